@@ -1,0 +1,139 @@
+# Textura - procedural texture synthesis toolkit
+#
+#   make            build libtex (static, shared, pkg-config), the OpenImageIO
+#                   bridge and every tool under build/
+#   make deps       install the Debian packages (as root)
+#   make demo       run the main job: writes demo.png
+#   make test       the whole test suite, plain and under ASan+UBSan
+#   make bench      the benchmarks in tests/bench (not timed tests)
+#   make install    PREFIX=/usr/local DESTDIR=
+#   make man        refresh the option lists of the man pages from the tools
+#   make fuzz       build the fuzz targets (clang, libFuzzer)
+#
+# Sources are found by wildcard: a new libtex/*.c joins the library, a new
+# tools/t_*.c becomes a tool, tests/unit/*.c and tests/*.sh join the suite.
+
+VERSION  = 0.1
+PREFIX  ?= /usr/local
+LIBDIR  ?= $(PREFIX)/lib
+BUILD   ?= build
+
+CC      ?= cc
+CXX     ?= c++
+OPT     ?= -O2
+CFLAGS  ?= $(OPT) -g
+CXXFLAGS ?= $(OPT) -g
+WARN     = -Wall -Wextra
+SANFLAGS = -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+SAN      = $(if $(SANITIZE),$(SANFLAGS))
+ALL_CFLAGS   = -std=gnu11 -fPIC -fopenmp $(WARN) $(SAN) $(CFLAGS) \
+               -DTEX_VERSION='"$(VERSION)"' -DTEX_LIBDIR='"$(LIBDIR)"'
+ALL_CXXFLAGS = -std=c++17 -fPIC $(WARN) $(CXXFLAGS)
+CPPFLAGS += -Ilibtex -I/usr/include/OpenEXR
+LDFLAGS  += -fopenmp $(SAN) -Wl,--as-needed
+LDLIBS    = -lOpenEXRCore -lfftw3f_threads -lfftw3f -lflann -lm -ldl
+
+LIB_SRC  = $(wildcard libtex/*.c)
+LIB_OBJ  = $(LIB_SRC:%.c=$(BUILD)/obj/%.o)
+TOOL_SRC = $(wildcard tools/t_*.c)
+TOOLS    = $(TOOL_SRC:tools/%.c=$(BUILD)/bin/%)
+UNIT_SRC = $(wildcard tests/unit/test_*.c)
+UNITS    = $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
+BRIDGE   = $(BUILD)/lib/textura/textura-oiio.so
+STATIC   = $(BUILD)/lib/libtex.a
+SHARED   = $(BUILD)/lib/libtex.so.0
+PCFILE   = $(BUILD)/lib/pkgconfig/textura.pc
+HEADERS  = $(filter-out libtex/oiio_bridge.h,$(wildcard libtex/*.h))
+
+DEBS = build-essential pkg-config libopenexr-dev libopenimageio-dev openimageio-tools \
+       libflann-dev libfftw3-dev colord-data mandoc netpbm imagemagick libnoise-dev povray \
+       hyperfine clang libclang-rt-14-dev python3
+
+.PHONY: all deps demo test test-plain test-asan check bench install man fuzz clean
+
+all: $(STATIC) $(SHARED) $(BRIDGE) $(PCFILE) $(TOOLS)
+
+$(BUILD)/obj/%.o: %.c
+	@mkdir -p $(@D)
+	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) -MMD -MP -c -o $@ $<
+
+$(STATIC): $(LIB_OBJ)
+	@mkdir -p $(@D)
+	rm -f $@
+	ar rcs $@ $^
+
+$(SHARED): $(LIB_OBJ)
+	@mkdir -p $(@D)
+	$(CC) -shared -Wl,-soname,libtex.so.0 $(LDFLAGS) -o $@ $^ $(LDLIBS)
+	ln -sf libtex.so.0 $(BUILD)/lib/libtex.so
+
+$(BRIDGE): libtex/oiio_bridge.cpp libtex/oiio_bridge.h
+	@mkdir -p $(@D)
+	$(CXX) $(CPPFLAGS) $(ALL_CXXFLAGS) -shared -fvisibility=hidden -o $@ $< \
+	    $$(pkg-config --cflags --libs OpenImageIO)
+
+$(PCFILE): Makefile
+	@mkdir -p $(@D)
+	printf 'prefix=%s\nlibdir=%s\nincludedir=$${prefix}/include/textura\n\nName: textura\nDescription: Textura texture synthesis library (libtex)\nVersion: %s\nCflags: -I$${includedir} -fopenmp\nLibs: -L$${libdir} -ltex\nLibs.private: %s -fopenmp\n' \
+	    '$(PREFIX)' '$(LIBDIR)' '$(VERSION)' '$(LDLIBS)' > $@
+
+$(BUILD)/bin/%: $(BUILD)/obj/tools/%.o $(STATIC)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(STATIC) $(LDLIBS)
+
+$(BUILD)/tests/%: $(BUILD)/obj/tests/unit/%.o $(STATIC)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) -o $@ $< $(STATIC) $(LDLIBS)
+
+$(BUILD)/obj/tests/unit/%.o: CPPFLAGS += -Itests/unit
+
+check: all $(UNITS)
+
+deps:
+	apt-get update -qq
+	DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(DEBS)
+
+demo: all
+	$(BUILD)/bin/t_noise -s 512 --frequency 12 -S 7 | $(BUILD)/bin/t_convert -o demo.png
+	@echo "wrote demo.png"
+
+# The suite runs twice: as built, and built again with AddressSanitizer and UBSan.
+test:
+	$(MAKE) check
+	$(MAKE) check BUILD=build-asan SANITIZE=1 OPT=-O1
+	tests/run build build-asan
+
+test-plain: check
+	tests/run build
+
+bench: all
+	tests/bench/run $(BUILD)
+
+man: all
+	tests/mkman $(BUILD)/bin
+
+fuzz:
+	$(MAKE) -C tests/fuzz BUILD=$(abspath $(BUILD))/fuzz
+
+install: all
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(LIBDIR)/textura $(DESTDIR)$(LIBDIR)/pkgconfig \
+	    $(DESTDIR)$(PREFIX)/include/textura $(DESTDIR)$(PREFIX)/share/man/man1 \
+	    $(DESTDIR)$(PREFIX)/share/man/man3 $(DESTDIR)$(PREFIX)/share/man/man5 \
+	    $(DESTDIR)$(PREFIX)/share/textura/palettes $(DESTDIR)$(PREFIX)/share/textura/patterns
+	install -m 755 $(TOOLS) $(DESTDIR)$(PREFIX)/bin
+	install -m 644 $(STATIC) $(DESTDIR)$(LIBDIR)
+	install -m 755 $(SHARED) $(DESTDIR)$(LIBDIR)
+	ln -sf libtex.so.0 $(DESTDIR)$(LIBDIR)/libtex.so
+	install -m 755 $(BRIDGE) $(DESTDIR)$(LIBDIR)/textura
+	install -m 644 $(PCFILE) $(DESTDIR)$(LIBDIR)/pkgconfig
+	install -m 644 $(HEADERS) libtex/primitives.def $(DESTDIR)$(PREFIX)/include/textura
+	install -m 644 $(wildcard man/man1/*.1) $(DESTDIR)$(PREFIX)/share/man/man1
+	install -m 644 $(wildcard man/man3/*.3) $(DESTDIR)$(PREFIX)/share/man/man3
+	install -m 644 $(wildcard man/man5/*.5) $(DESTDIR)$(PREFIX)/share/man/man5
+	cp -R palettes/. $(DESTDIR)$(PREFIX)/share/textura/palettes
+	cp -R patterns/. $(DESTDIR)$(PREFIX)/share/textura/patterns
+
+clean:
+	rm -rf build build-asan demo.png
+
+-include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)

@@ -1,0 +1,344 @@
+/* cli.c - options, help, errors and the generator main for every tool */
+#include <getopt.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+#include "cli.h"
+#include "error.h"
+#include "file.h"
+#include "stream.h"
+
+#ifndef TEX_VERSION
+#define TEX_VERSION "0.1"
+#endif
+
+const char *tex_progname = "textura";
+
+#define C(f) offsetof(struct tex_common, f)
+/* The common options: rows over struct tex_common, each with its mask bit. */
+static const struct {
+    unsigned mask;
+    struct tex_param row;
+} common_rows[] = {
+    {TEX_OPT_OUTPUT, TEX_STRING(struct tex_common, output, 'o', NULL, "FILE",
+                                "write to FILE, its format from the extension (default: the EXR "
+                                "stream on standard output)")},
+    {TEX_OPT_OUTPUT, {"depth", 0, TEX_P_ENUM, C(depth_choice), 0, 0, 0, "auto", "auto|8|16|32", 0,
+                      NULL, "bits per sample of integer formats, or 32 for float"}},
+    {TEX_OPT_OUTPUT, {"compression", 0, TEX_P_ENUM, C(compression), 0, 0, 0, "zip", "none|zip|piz",
+                      0, NULL, "compression of EXR files on disk (the stream is never compressed)"}},
+    {TEX_OPT_OUTPUT, TEX_STRING(struct tex_common, format, 0, NULL, "EXT",
+                                "format of standard output, e.g. png (default: exr)")},
+    {TEX_OPT_SIZE, TEX_STRING(struct tex_common, size, 's', "256", "N|WxH",
+                              "size of the map in pixels, 1..65536 a side")},
+    {TEX_OPT_SEED, TEX_INT(struct tex_common, seed, 'S', 1, 0, 2147483647, "N", "random seed")},
+    {TEX_OPT_IDS, TEX_FLAG(struct tex_common, ids, 0,
+                           "write the subregion id of each pixel instead of colours")},
+    {TEX_OPT_PALETTE, TEX_STRING(struct tex_common, palette, 0, NULL, "NAME|FILE",
+                                 "colour the map through a palette")},
+    {TEX_OPT_TILE, TEX_FLAG(struct tex_common, tile, 0,
+                            "make the map tile seamlessly left-right and top-bottom")},
+    {0, TEX_INT(struct tex_common, threads, 'j', 0, 0, 1024, "N",
+                "threads to use (0: one per core)")},
+    {0, TEX_FLAG(struct tex_common, quiet, 'q', "print no progress or warnings")},
+};
+#undef C
+#define NCOMMON (sizeof common_rows / sizeof *common_rows)
+
+static void vmsg(const char *kind, const char *fmt, va_list ap)
+{
+    fprintf(stderr, "%s: %s", tex_progname, kind);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+}
+
+void tex_die(void)
+{
+    fprintf(stderr, "%s: error: %s\n", tex_progname, tex_errmsg());
+    exit(tex_errkind() == TEX_ERR_USAGE ? 2 : 1);
+}
+
+void tex_usage_die(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vmsg("error: ", fmt, ap);
+    va_end(ap);
+    exit(2);
+}
+
+/* One (row, struct) pair per option the tool accepts. */
+struct opt {
+    const struct tex_param *row;
+    void *obj;
+};
+
+static int collect(const struct tex_tool *t, struct tex_common *c, void *opts, struct opt *o)
+{
+    int n = 0;
+
+    for (size_t i = 0; i < NCOMMON; i++)
+        if (!common_rows[i].mask || (t->common & common_rows[i].mask))
+            o[n++] = (struct opt){&common_rows[i].row, c};
+    for (const struct tex_param *p = t->params; p && p->name; p++)
+        o[n++] = (struct opt){p, opts};
+    return n;
+}
+
+static void usage_line(const struct tex_tool *t, FILE *fp)
+{
+    fprintf(fp, "usage: %s [options]%s%s\n", t->name, t->operands && *t->operands ? " " : "",
+            t->operands ? t->operands : "");
+}
+
+static void print_help(const struct tex_tool *t, const struct opt *o, int n)
+{
+    usage_line(t, stdout);
+    printf("%s.\n\nOptions:\n", t->summary);
+    for (int i = 0; i < n; i++) {
+        const struct tex_param *p = o[i].row;
+        char opt[64], lhs[128], rng[128], def[64];
+        tex_param_option(p, opt, sizeof opt);
+        snprintf(lhs, sizeof lhs, "%c%c%s%s %s", p->key ? '-' : ' ', p->key ? p->key : ' ',
+                 p->key ? ", " : "  ", opt,
+                 p->type == TEX_P_FLAG ? "" : p->type == TEX_P_ENUM ? "NAME" : p->meta ? p->meta : "X");
+        printf("  %-28s %s", lhs, p->help);
+        tex_param_range(p, rng, sizeof rng);
+        if (p->type != TEX_P_FLAG && p->type != TEX_P_STRING)
+            printf(" [%s]", rng);
+        if (p->type != TEX_P_FLAG && (p->type != TEX_P_STRING || p->defstr))
+            printf(" (default %s)", tex_param_default(p, def, sizeof def));
+        putchar('\n');
+    }
+    printf("  -h, --help                   show this help\n"
+           "  -V, --version                show the version\n");
+}
+
+/* The option list as mdoc, for the man page (checked by the tests). */
+static void print_mdoc(const struct opt *o, int n)
+{
+    puts(".Bl -tag -width Ds");
+    for (int i = 0; i < n; i++) {
+        const struct tex_param *p = o[i].row;
+        char opt[64], rng[128], def[64];
+        tex_param_option(p, opt, sizeof opt);
+        printf(".It ");
+        if (p->key)
+            printf("Fl %c , ", p->key);
+        printf("Fl %s", opt + 1);
+        if (p->type != TEX_P_FLAG)
+            printf(" Ar %s", p->type == TEX_P_ENUM ? "name" : p->meta ? p->meta : "x");
+        printf("\n%c%s", p->help[0] >= 'a' && p->help[0] <= 'z' ? p->help[0] - 32 : p->help[0],
+               p->help + 1);
+        if (p->type == TEX_P_ENUM)
+            printf(": one of %s", tex_param_range(p, rng, sizeof rng));
+        else if (p->type != TEX_P_FLAG && p->type != TEX_P_STRING)
+            printf(", %s", tex_param_range(p, rng, sizeof rng));
+        if (p->type != TEX_P_FLAG && (p->type != TEX_P_STRING || p->defstr))
+            printf("; default %s", tex_param_default(p, def, sizeof def));
+        puts(".");
+    }
+    puts(".El");
+}
+
+static char *join_cmdline(int argc, char **argv)
+{
+    size_t n = 1;
+    char *s, *e;
+
+    for (int i = 0; i < argc; i++)
+        n += 3 + 2 * strlen(argv[i]);
+    if (!(s = malloc(n)))
+        return NULL;
+    e = s;
+    for (int i = 0; i < argc; i++) {
+        const char *a = i == 0 ? tex_progname : argv[i];
+        int quote = *a == '\0' || strpbrk(a, " \t\n'\"\\$*?;&|<>()") != NULL;
+        if (i)
+            *e++ = ' ';
+        if (quote)
+            *e++ = '\'';
+        for (; *a; a++) {
+            if (*a == '\n') { /* history keeps one line per command */
+                *e++ = ' ';
+                continue;
+            }
+            if (*a == '\'' && quote) {
+                memcpy(e, "'\\''", 4);
+                e += 4;
+                continue;
+            }
+            *e++ = *a;
+        }
+        if (quote)
+            *e++ = '\'';
+    }
+    *e = '\0';
+    return s;
+}
+
+static int parse_size(const char *s, int *w, int *h)
+{
+    char *end;
+    long long a, b;
+
+    a = strtoll(s, &end, 10);
+    if (end == s)
+        return -1;
+    if (*end == 'x' || *end == 'X') {
+        const char *t = end + 1;
+        b = strtoll(t, &end, 10);
+        if (end == t)
+            return -1;
+    } else
+        b = a;
+    if (*end || tex_map_check_size(a, b, 1) < 0)
+        return -1;
+    *w = (int)a;
+    *h = (int)b;
+    return 0;
+}
+
+int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_common *c,
+                  void *opts)
+{
+    struct opt o[128];
+    struct option lo[132];
+    char shorts[260], *sp = shorts, names[128][48];
+    int n, k, nops;
+
+    tex_progname = t->name;
+    memset(c, 0, sizeof *c);
+    n = collect(t, c, opts, o);
+    for (size_t i = 0; i < NCOMMON; i++)
+        if (!common_rows[i].mask || (t->common & common_rows[i].mask)) {
+            struct tex_param one[2] = {common_rows[i].row, {0}};
+            tex_params_defaults(one, c);
+        }
+    if (t->params && tex_params_defaults(t->params, opts) < 0)
+        tex_die();
+
+    *sp++ = '+'; /* stop at the first operand: "-" is an operand */
+    *sp++ = ':';
+    for (int i = 0; i < n; i++) {
+        const struct tex_param *p = o[i].row;
+        tex_param_option(p, names[i], sizeof names[i]);
+        lo[i] = (struct option){names[i] + 2, p->type == TEX_P_FLAG ? no_argument : required_argument,
+                                NULL, 256 + i};
+        if (p->key) {
+            *sp++ = (char)p->key;
+            if (p->type != TEX_P_FLAG)
+                *sp++ = ':';
+        }
+    }
+    strcpy(sp, "hV");
+    lo[n] = (struct option){"help", no_argument, NULL, 'h'};
+    lo[n + 1] = (struct option){"version", no_argument, NULL, 'V'};
+    lo[n + 2] = (struct option){"help-mdoc", no_argument, NULL, 1};
+    lo[n + 3] = (struct option){0};
+
+    opterr = 0;
+    optind = 1;
+    while ((k = getopt_long(argc, argv, shorts, lo, NULL)) != -1) {
+        int i = -1;
+        if (k == 'h') {
+            print_help(t, o, n);
+            exit(0);
+        } else if (k == 'V') {
+            printf("%s (Textura) %s\n", t->name, TEX_VERSION);
+            exit(0);
+        } else if (k == 1) {
+            print_mdoc(o, n);
+            exit(0);
+        } else if (k == '?' || k == ':') {
+            const char *bad = argv[optind - 1];
+            if (optopt && optopt < 256)
+                tex_usage_die("%s -%c (see %s --help)",
+                              k == ':' ? "missing value for" : "unknown option", optopt, t->name);
+            tex_usage_die("%s %s (see %s --help)", k == ':' ? "missing value for" : "unknown option",
+                          bad, t->name);
+        } else if (k >= 256) {
+            i = k - 256;
+        } else {
+            for (int j = 0; j < n; j++)
+                if (o[j].row->key == k)
+                    i = j;
+        }
+        if (i < 0 || tex_param_set(o[i].row, o[i].obj, optarg ? optarg : "") < 0)
+            tex_die();
+    }
+    if ((t->common & TEX_OPT_SIZE) && parse_size(c->size, &c->w, &c->h) < 0)
+        tex_usage_die("-s must be N or WxH with each side 1..%d (got '%s')", TEX_MAP_MAX_SIDE,
+                      c->size);
+    nops = argc - optind;
+    if (nops < t->min_operands || (t->max_operands >= 0 && nops > t->max_operands)) {
+        usage_line(t, stderr);
+        if (nops > 0 && (t->max_operands >= 0 && nops > t->max_operands))
+            tex_usage_die("unexpected operand '%s'", argv[optind + (t->max_operands)]);
+        tex_usage_die("missing operand");
+    }
+#ifdef _OPENMP
+    if (c->threads > 0)
+        omp_set_num_threads(c->threads);
+#endif
+    if (!(c->cmdline = join_cmdline(argc, argv))) {
+        tex_error("out of memory");
+        tex_die();
+    }
+    return optind;
+}
+
+tex_map *tex_cli_read(const char *path)
+{
+    tex_map *m = tex_map_read(path);
+    if (!m)
+        tex_die();
+    return m;
+}
+
+void tex_cli_write(tex_map *m, const struct tex_common *c)
+{
+    static const int depths[] = {0, 8, 16, 32};
+    struct tex_write_opts o = {depths[c->depth_choice], (enum tex_compression)c->compression,
+                               c->format};
+
+    if (c->cmdline && tex_map_add_history(m, c->cmdline) < 0)
+        tex_die();
+    if (tex_map_write(m, c->output, &o) < 0)
+        tex_die();
+}
+
+int tex_generate_main(const struct tex_primitive *p, int argc, char **argv)
+{
+    char name[64];
+    struct tex_common c;
+    struct tex_field *f;
+    tex_map *m;
+    struct tex_tool t = {name, "", p->summary, TEX_OPT_OUTPUT | TEX_OPT_SIZE | TEX_OPT_SEED,
+                         p->params, 0, 0};
+
+    snprintf(name, sizeof name, "t_%s", p->name);
+    if (p->flags & TEX_PRIM_TILE)
+        t.common |= TEX_OPT_TILE;
+    if (p->flags & TEX_PRIM_REGIONS)
+        t.common |= TEX_OPT_IDS;
+    if (!(f = tex_field_new(p)))
+        tex_die();
+    tex_cli_parse(&t, argc, argv, &c, f->params);
+    f->seed = (uint64_t)c.seed;
+    f->tile = c.tile;
+    f->ids = c.ids;
+    if (tex_field_init(f, c.w, c.h) < 0 || !(m = tex_field_sample(f)))
+        tex_die();
+    tex_cli_write(m, &c);
+    tex_map_free(m);
+    tex_field_free(f);
+    free(c.cmdline);
+    return 0;
+}

@@ -1,0 +1,96 @@
+/* cli.h - the tools' shared command-line front end
+ *
+ * Every tool parses its options here, with getopt_long, from parameter
+ * tables (param.h): the common options below, chosen by a mask, plus the
+ * tool's own rows.  The front end prints --help and --version from the
+ * same rows, reports errors as "t_noise: error: ..." on stderr and exits
+ * with 2 for usage errors and 1 for runtime errors.  It is the one part of
+ * libtex that prints and exits: it stands for the tool's main.
+ *
+ *   static struct opts { int json; } o;
+ *   static const struct tex_param rows[] = {TEX_FLAG(struct opts, json, 0, "..."), {0}};
+ *   static const struct tex_tool tool = {"t_info", "[MAP]", "statistics of a map",
+ *                                        0, rows, 0, 1};
+ *   struct tex_common c;
+ *   int i = tex_cli_parse(&tool, argc, argv, &c, &o);   // argv[i..] are the operands
+ *
+ * Common options (mask bits):
+ *   TEX_OPT_OUTPUT   -o FILE, --depth auto|8|16|32, --compression none|zip|piz,
+ *                    --format EXT (of standard output)
+ *   TEX_OPT_SIZE     -s N|WxH
+ *   TEX_OPT_SEED     -S/--seed N
+ *   TEX_OPT_IDS      --ids
+ *   TEX_OPT_PALETTE  --palette NAME|FILE
+ *   TEX_OPT_TILE     --tile
+ *   always           -j/--threads N, -q/--quiet, -h/--help, -V/--version
+ */
+#ifndef TEX_CLI_H
+#define TEX_CLI_H
+
+#include <stdint.h>
+
+#include "map.h"
+#include "param.h"
+#include "prim.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum {
+    TEX_OPT_OUTPUT = 1 << 0,
+    TEX_OPT_SIZE = 1 << 1,
+    TEX_OPT_SEED = 1 << 2,
+    TEX_OPT_IDS = 1 << 3,
+    TEX_OPT_PALETTE = 1 << 4,
+    TEX_OPT_TILE = 1 << 5,
+};
+
+struct tex_common {
+    const char *output; /* NULL: standard output */
+    int depth_choice;   /* index into auto|8|16|32 */
+    int compression;    /* enum tex_compression */
+    const char *format;
+    const char *size;
+    int w, h;           /* parsed from size */
+    int seed;
+    int threads;        /* 0: OpenMP's default */
+    int quiet;
+    int ids;
+    const char *palette;
+    int tile;
+    char *cmdline;      /* the command line, for the map's history */
+};
+
+struct tex_tool {
+    const char *name;     /* "t_info" */
+    const char *operands; /* usage text after the options, e.g. "[MAP]" */
+    const char *summary;  /* one line */
+    unsigned common;      /* TEX_OPT_* */
+    const struct tex_param *params; /* the tool's own options, or NULL */
+    int min_operands, max_operands; /* max < 0: any number */
+};
+
+extern const char *tex_progname;
+
+/* Parse argv; returns the index of the first operand.  Exits on --help,
+ * --version and errors. */
+int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_common *c,
+                  void *opts);
+/* Print "prog: error: <tex_errmsg()>" and exit with its kind's status. */
+void tex_die(void) __attribute__((noreturn));
+/* Print "prog: error: ..." and exit 2 (usage). */
+void tex_usage_die(const char *fmt, ...) __attribute__((noreturn, format(printf, 1, 2)));
+/* Read a map or die. */
+tex_map *tex_cli_read(const char *path);
+/* Append the command line to the history and write the map to -o or
+ * standard output, or die. */
+void tex_cli_write(tex_map *m, const struct tex_common *c);
+
+/* The whole main of a generator tool t_NAME: parse, sample, write. */
+int tex_generate_main(const struct tex_primitive *p, int argc, char **argv);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

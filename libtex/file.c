@@ -1,0 +1,505 @@
+/* file.c - texture maps from and to files, pipes and other formats */
+#define _GNU_SOURCE
+#include <dlfcn.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "error.h"
+#include "file.h"
+#include "oiio_bridge.h"
+
+#ifndef TEX_LIBDIR
+#define TEX_LIBDIR "/usr/local/lib"
+#endif
+
+static const struct {
+    enum tex_format f;
+    const char *name; /* also the extension handed to OpenImageIO */
+    const char *exts; /* every extension that names the format */
+    int float_ok;     /* can hold float32 */
+    int max_int_depth;
+    unsigned nc_ok;   /* bit k-1 set: the writer takes k channels (measured on OIIO 2.4) */
+} formats[] = {
+    {TEX_FMT_UNKNOWN, "unknown", "", 0, 0, 0},
+    {TEX_FMT_EXR, "exr", " exr ", 1, 0, 15},
+    {TEX_FMT_PNG, "png", " png ", 0, 16, 15},
+    {TEX_FMT_TIFF, "tif", " tif tiff ", 1, 16, 15},
+    {TEX_FMT_PNM, "pnm", " pnm ppm pgm pbm pam ", 0, 16, 5},
+    {TEX_FMT_PFM, "pfm", " pfm ", 1, 0, 5},
+    {TEX_FMT_BMP, "bmp", " bmp ", 0, 8, 13},
+    {TEX_FMT_TGA, "tga", " tga ", 0, 8, 15},
+    {TEX_FMT_HDR, "hdr", " hdr rgbe ", 1, 0, 4},
+    {TEX_FMT_JPEG, "jpg", " jpg jpeg ", 0, 8, 5},
+    {TEX_FMT_GIF, "gif", " gif ", 0, 8, 12},
+    {TEX_FMT_WEBP, "webp", " webp ", 0, 8, 12},
+    {TEX_FMT_DPX, "dpx", " dpx ", 0, 16, 13},
+};
+
+const char *tex_format_name(enum tex_format f)
+{
+    return formats[f].name;
+}
+
+enum tex_format tex_format_from_name(const char *path)
+{
+    const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
+    char ext[16];
+    size_t n;
+
+    if (!dot || (slash && dot < slash) || (n = strlen(dot + 1)) == 0 || n > 5)
+        return TEX_FMT_UNKNOWN;
+    snprintf(ext, sizeof ext, " %s ", dot + 1);
+    for (char *p = ext; *p; p++)
+        *p = (char)(*p >= 'A' && *p <= 'Z' ? *p + 32 : *p);
+    for (size_t i = 1; i < sizeof formats / sizeof *formats; i++)
+        if (strstr(formats[i].exts, ext))
+            return formats[i].f;
+    return TEX_FMT_UNKNOWN;
+}
+
+static int is_space(unsigned char c)
+{
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r';
+}
+
+enum tex_format tex_format_sniff(const void *head, size_t n)
+{
+    const unsigned char *b = head;
+
+    if (n >= 4 && b[0] == 0x76 && b[1] == 0x2f && b[2] == 0x31 && b[3] == 0x01)
+        return TEX_FMT_EXR;
+    if (n >= 8 && memcmp(b, "\x89PNG\r\n\x1a\n", 8) == 0)
+        return TEX_FMT_PNG;
+    if (n >= 4 && (memcmp(b, "II*\0", 4) == 0 || memcmp(b, "MM\0*", 4) == 0 ||
+                   memcmp(b, "II+\0", 4) == 0 || memcmp(b, "MM\0+", 4) == 0))
+        return TEX_FMT_TIFF;
+    if (n >= 3 && b[0] == 'P' && (b[1] == 'F' || b[1] == 'f') && is_space(b[2]))
+        return TEX_FMT_PFM;
+    if (n >= 3 && b[0] == 'P' && b[1] >= '1' && b[1] <= '7' && is_space(b[2]))
+        return TEX_FMT_PNM;
+    if (n >= 3 && b[0] == 0xff && b[1] == 0xd8 && b[2] == 0xff)
+        return TEX_FMT_JPEG;
+    if (n >= 6 && (memcmp(b, "GIF87a", 6) == 0 || memcmp(b, "GIF89a", 6) == 0))
+        return TEX_FMT_GIF;
+    if (n >= 12 && memcmp(b, "RIFF", 4) == 0 && memcmp(b + 8, "WEBP", 4) == 0)
+        return TEX_FMT_WEBP;
+    if (n >= 4 && (memcmp(b, "SDPX", 4) == 0 || memcmp(b, "XPDS", 4) == 0))
+        return TEX_FMT_DPX;
+    if (n >= 6 && (memcmp(b, "#?RADIANCE", n < 10 ? n : 10) == 0 || memcmp(b, "#?RGBE", 6) == 0))
+        return TEX_FMT_HDR;
+    if (n >= 26 && b[0] == 'B' && b[1] == 'M')
+        return TEX_FMT_BMP;
+    /* TGA has no magic number: accept a plausible header. */
+    if (n >= 18 && b[1] <= 1 &&
+        (b[2] == 1 || b[2] == 2 || b[2] == 3 || b[2] == 9 || b[2] == 10 || b[2] == 11) &&
+        (b[16] == 8 || b[16] == 15 || b[16] == 16 || b[16] == 24 || b[16] == 32) &&
+        (b[12] | b[13]) && (b[14] | b[15]) && (b[1] == 1 || (b[3] | b[4] | b[5] | b[6] | b[7]) == 0))
+        return TEX_FMT_TGA;
+    return TEX_FMT_UNKNOWN;
+}
+
+/* ---- the OpenImageIO bridge, loaded on first use ---- */
+
+static const struct tex_oiio_bridge *bridge(void)
+{
+    static const struct tex_oiio_bridge *b;
+    static char tried_msg[PATH_MAX + 128];
+    char cand[3][PATH_MAX];
+    const char *env = getenv("TEXTURA_OIIO_BRIDGE");
+    int n = 0;
+
+    if (b)
+        return b;
+    if (tried_msg[0]) {
+        tex_error("%s", tried_msg);
+        return NULL;
+    }
+    if (env && *env)
+        snprintf(cand[n++], PATH_MAX, "%s", env);
+    else {
+        char exe[PATH_MAX];
+        ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+        if (len > 0) {
+            char *s;
+            exe[len] = '\0';
+            if ((s = strrchr(exe, '/'))) {
+                *s = '\0';
+                snprintf(cand[n++], PATH_MAX, "%.*s/../lib/textura/textura-oiio.so",
+                         PATH_MAX - 40, exe);
+            }
+        }
+        snprintf(cand[n++], PATH_MAX, "%s/textura/textura-oiio.so", TEX_LIBDIR);
+    }
+    for (int i = 0; i < n; i++) {
+        void *h = dlopen(cand[i], RTLD_NOW | RTLD_LOCAL);
+        if (h && (b = dlsym(h, "tex_oiio_bridge")) && b->version == TEX_OIIO_BRIDGE_VERSION)
+            return b;
+        b = NULL;
+        if (i == n - 1) {
+            const char *why = dlerror();
+            snprintf(tried_msg, sizeof tried_msg, "cannot load the OpenImageIO bridge %s: %s",
+                     cand[i], why ? why : "wrong version");
+        }
+    }
+    tex_error("%s", tried_msg);
+    return NULL;
+}
+
+/* ---- reading ---- */
+
+int tex_read_fd(int fd, tex_buf *b, const char *name)
+{
+    struct stat st;
+    size_t want = 1 << 20;
+
+    if (fstat(fd, &st) == 0) {
+        if (S_ISDIR(st.st_mode))
+            return tex_error("%s: is a directory", name);
+        if (S_ISREG(st.st_mode) && st.st_size > 0)
+            want = (size_t)st.st_size + 1;
+    }
+    for (;;) {
+        ssize_t r;
+        if (b->cap - b->len < (1 << 16) && tex_buf_reserve(b, b->len + (b->len > want ? b->len : want)) < 0)
+            return -1;
+        r = read(fd, b->data + b->len, b->cap - b->len);
+        if (r == 0)
+            return 0;
+        if (r < 0) {
+            if (errno == EINTR)
+                continue;
+            return tex_error("%s: %s", name, strerror(errno));
+        }
+        b->len += (size_t)r;
+    }
+}
+
+static tex_map *read_bridged(const char *path, const void *mem, size_t len, enum tex_format f,
+                             const char *name)
+{
+    const struct tex_oiio_bridge *br = bridge();
+    struct tex_oiio_in *in;
+    char err[400] = "";
+    int w, h, nc;
+    tex_map *m;
+
+    if (!br) {
+        tex_error_context(name);
+        return NULL;
+    }
+    if (!(in = br->open(path, mem, len, tex_format_name(f), &w, &h, &nc, err, sizeof err))) {
+        tex_error("%s: %s", name, err);
+        return NULL;
+    }
+    if (nc > TEX_MAP_MAX_CHANNELS)
+        nc = TEX_MAP_MAX_CHANNELS;
+    if (!(m = tex_map_new(w, h, nc))) {
+        tex_error_context(name);
+    } else if (br->read(in, m->px, nc, err, sizeof err) < 0) {
+        tex_error("%s: %s", name, err);
+        tex_map_free(m);
+        m = NULL;
+    }
+    br->close(in);
+    return m;
+}
+
+static tex_map *decode(const char *path, const void *data, size_t len, const char *name)
+{
+    enum tex_format f;
+    tex_map *m;
+
+    if (len == 0) {
+        tex_error("%s: empty input, expected an image", name);
+        return NULL;
+    }
+    f = tex_format_sniff(data, len);
+    if (f == TEX_FMT_UNKNOWN && path)
+        f = tex_format_from_name(path);
+    if (f == TEX_FMT_UNKNOWN) {
+        tex_error("%s: unknown image format (not EXR, PNG, TIFF, PNM, PFM, BMP, TGA, HDR, JPEG, "
+                  "GIF, WebP or DPX)",
+                  name);
+        return NULL;
+    }
+    if (f == TEX_FMT_EXR) {
+        if (!(m = tex_exr_decode(data, len, name)))
+            tex_error_context(name);
+        return m;
+    }
+    /* A named file is opened by OpenImageIO itself (some formats can't read from memory). */
+    return path ? read_bridged(path, NULL, 0, f, name) : read_bridged(NULL, data, len, f, name);
+}
+
+tex_map *tex_map_read_memory(const void *data, size_t len, const char *name)
+{
+    return decode(NULL, data, len, name);
+}
+
+tex_map *tex_map_read(const char *path)
+{
+    tex_buf b = {0};
+    tex_map *m = NULL;
+    int fd = 0;
+    const char *name = "standard input";
+
+    if (path && strcmp(path, "-") != 0) {
+        name = path;
+        if ((fd = open(path, O_RDONLY)) < 0) {
+            tex_error("%s: %s", path, strerror(errno));
+            return NULL;
+        }
+    } else {
+        path = NULL;
+    }
+    if (tex_read_fd(fd, &b, name) == 0)
+        m = decode(path, b.data, b.len, name);
+    if (fd != 0)
+        close(fd);
+    tex_buf_free(&b);
+    return m;
+}
+
+/* ---- writing ---- */
+
+static int write_all(int fd, const void *p, size_t n, const char *name)
+{
+    const char *c = p;
+
+    while (n > 0) {
+        ssize_t w = write(fd, c, n);
+        if (w < 0) {
+            if (errno == EINTR)
+                continue;
+            return tex_error("%s: write error: %s", name, strerror(errno));
+        }
+        c += w;
+        n -= (size_t)w;
+    }
+    return 0;
+}
+
+/* Quantise to 8 or 16 bits with clamping and rounding; NaN becomes 0. */
+static void *quantise(const tex_map *m, int bits)
+{
+    size_t n = tex_map_samples(m);
+    float scale = bits == 8 ? 255.0f : 65535.0f;
+    void *q = malloc(n * (bits / 8));
+
+    if (!q) {
+        tex_error("out of memory");
+        return NULL;
+    }
+    for (size_t i = 0; i < n; i++) {
+        float v = m->px[i];
+        v = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f; /* NaN fails v > 0 */
+        if (bits == 8)
+            ((unsigned char *)q)[i] = (unsigned char)lrintf(v * scale);
+        else
+            ((unsigned short *)q)[i] = (unsigned short)lrintf(v * scale);
+    }
+    return q;
+}
+
+static int choose_depth(enum tex_format f, int depth, const char *name)
+{
+    if (f == TEX_FMT_EXR || f == TEX_FMT_PFM || f == TEX_FMT_HDR) {
+        if (depth != 0 && depth != 32)
+            return tex_usage_error("%s: %s holds float samples only (--depth 32)", name,
+                                   tex_format_name(f));
+        return 32;
+    }
+    if (depth == 0)
+        return 8;
+    if (depth == 32 && !formats[f].float_ok)
+        return tex_usage_error("%s: %s cannot hold float samples (use exr, tif, pfm or hdr)", name,
+                               tex_format_name(f));
+    if (depth == 16 && formats[f].max_int_depth < 16)
+        return tex_usage_error("%s: %s holds 8-bit samples only", name, tex_format_name(f));
+    return depth;
+}
+
+/* A copy of m with a channel count format f can hold: grey becomes RGB,
+ * a 2-vector (R,G) gains B = 0, alpha is added (1) or dropped. */
+static tex_map *adapt_channels(const tex_map *m, enum tex_format f)
+{
+    static const int prefer[5][3] = {{0}, {3, 4, 0}, {3, 4, 1}, {4, 0, 0}, {3, 0, 0}};
+    int nc = 0;
+    tex_map *a;
+
+    for (int i = 0; i < 3 && !nc; i++)
+        if (prefer[m->nc][i] && formats[f].nc_ok & (1u << (prefer[m->nc][i] - 1)))
+            nc = prefer[m->nc][i];
+    if (!nc) {
+        tex_error("%s cannot hold %d channels", tex_format_name(f), m->nc);
+        return NULL;
+    }
+    if (!(a = tex_map_new(m->w, m->h, nc)))
+        return NULL;
+    for (size_t i = 0, n = (size_t)m->w * m->h; i < n; i++) {
+        const float *s = m->px + i * m->nc;
+        float *d = a->px + i * nc, rgba[4] = {s[0], s[0], s[0], 1.0f};
+        if (m->nc >= 2) {
+            rgba[1] = s[1];
+            rgba[2] = m->nc >= 3 ? s[2] : 0.0f;
+            rgba[3] = m->nc == 4 ? s[3] : 1.0f;
+        }
+        for (int c = 0; c < nc; c++)
+            d[c] = nc == 1 ? s[0] : rgba[c];
+    }
+    return a;
+}
+
+/* OpenImageIO 2.4 cannot write PFM: a header and the rows bottom to top. */
+static int write_pfm(const tex_map *m, int fd, const char *name)
+{
+    char head[64];
+    int n = snprintf(head, sizeof head, "%s\n%d %d\n-1.0\n", m->nc == 3 ? "PF" : "Pf", m->w, m->h);
+    int r = write_all(fd, head, (size_t)n, name);
+
+    for (int y = m->h - 1; y >= 0 && r == 0; y--)
+        r = write_all(fd, tex_map_row(m, y), (size_t)m->w * m->nc * sizeof(float), name);
+    return r;
+}
+
+/* Write m in format f to the file at tmp (already created); name is for messages. */
+static int write_to_path(const tex_map *m, enum tex_format f, int depth, const char *tmp, int fd,
+                         const struct tex_write_opts *o, const char *name)
+{
+    if (!(formats[f].nc_ok & (1u << (m->nc - 1)))) {
+        tex_map *a = adapt_channels(m, f);
+        int r;
+        if (!a) {
+            tex_error_context(name);
+            return -1;
+        }
+        r = write_to_path(a, f, depth, tmp, fd, o, name);
+        tex_map_free(a);
+        return r;
+    }
+    if (f == TEX_FMT_PFM)
+        return write_pfm(m, fd, name);
+    if (f == TEX_FMT_EXR) {
+        tex_buf b = {0};
+        int r = tex_exr_encode(m, fd == 1 ? TEX_COMPRESS_NONE : o->compression, &b);
+        if (r == 0)
+            r = write_all(fd, b.data, b.len, name);
+        tex_buf_free(&b);
+        return r;
+    } else {
+        const struct tex_oiio_bridge *br = bridge();
+        char err[400] = "";
+        void *px = depth == 32 ? m->px : quantise(m, depth);
+        int r;
+
+        if (!br) {
+            if (depth != 32)
+                free(px);
+            tex_error_context(name);
+            return -1;
+        }
+        if (!px)
+            return -1;
+        r = br->write(tmp, tex_format_name(f), px, m->w, m->h, m->nc, depth, err, sizeof err);
+        if (depth != 32)
+            free(px);
+        if (r < 0)
+            return tex_error("%s: %s", name, err);
+        return 0;
+    }
+}
+
+static int write_stdout(const tex_map *m, const struct tex_write_opts *o)
+{
+    const char *name = "standard output";
+    enum tex_format f = TEX_FMT_EXR;
+    int depth, r;
+
+    if (isatty(1))
+        return tex_usage_error("refusing to write image data to a terminal; use -o FILE or a pipe");
+    if (o->format) {
+        char probe[32];
+        snprintf(probe, sizeof probe, "x.%s", o->format);
+        if ((f = tex_format_from_name(probe)) == TEX_FMT_UNKNOWN)
+            return tex_usage_error("--format %s: unknown format (exr, png, tif, pnm, pfm, bmp, "
+                                   "tga, hdr, jpg, webp, dpx)",
+                                   o->format);
+    }
+    if ((depth = choose_depth(f, o->depth, name)) < 0)
+        return -1;
+    if (f == TEX_FMT_EXR)
+        return write_to_path(m, f, depth, NULL, 1, o, name);
+    /* OpenImageIO writes files: go through a temporary one. */
+    {
+        const char *dir = getenv("TMPDIR");
+        char path[PATH_MAX];
+        tex_buf b = {0};
+        int fd;
+
+        snprintf(path, sizeof path, "%s/textura.XXXXXX", dir && *dir ? dir : "/tmp");
+        if ((fd = mkstemp(path)) < 0)
+            return tex_error("cannot create a temporary file in %s: %s", dir ? dir : "/tmp",
+                             strerror(errno));
+        r = write_to_path(m, f, depth, path, fd, o, name);
+        if (r == 0 && lseek(fd, 0, SEEK_SET) == 0 && (r = tex_read_fd(fd, &b, path)) == 0)
+            r = write_all(1, b.data, b.len, name);
+        tex_buf_free(&b);
+        close(fd);
+        unlink(path);
+        return r;
+    }
+}
+
+int tex_map_write(const tex_map *m, const char *path, const struct tex_write_opts *o)
+{
+    static const struct tex_write_opts defaults = TEX_WRITE_DEFAULTS;
+    enum tex_format f;
+    char tmp[PATH_MAX];
+    const char *slash;
+    int fd, depth, r;
+    struct stat st;
+
+    if (!o)
+        o = &defaults;
+    if (!path || strcmp(path, "-") == 0)
+        return write_stdout(m, o);
+    if ((f = tex_format_from_name(path)) == TEX_FMT_UNKNOWN)
+        return tex_usage_error("%s: cannot tell the format from the extension (use .exr, .png, "
+                               ".tif, .pnm, .pfm, .bmp, .tga, .hdr, .jpg, .webp or .dpx)",
+                               path);
+    if ((depth = choose_depth(f, o->depth, path)) < 0)
+        return -1;
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
+        return tex_error("%s: is a directory", path);
+    slash = strrchr(path, '/');
+    if (slash)
+        r = snprintf(tmp, sizeof tmp, "%.*s/.%s.XXXXXX", (int)(slash - path), path, slash + 1);
+    else
+        r = snprintf(tmp, sizeof tmp, ".%s.XXXXXX", path);
+    if (r < 0 || (size_t)r >= sizeof tmp)
+        return tex_error("%s: path too long", path);
+    if ((fd = mkstemp(tmp)) < 0)
+        return tex_error("%s: cannot create a file there: %s", path, strerror(errno));
+    r = write_to_path(m, f, depth, tmp, fd, o, path);
+    if (close(fd) < 0 && r == 0)
+        r = tex_error("%s: %s", path, strerror(errno));
+    if (r == 0) {
+        /* mkstemp makes the file 0600; give it the permissions a new file would get. */
+        mode_t mask = umask(0);
+        umask(mask);
+        chmod(tmp, 0666 & ~mask);
+        if (rename(tmp, path) < 0)
+            r = tex_error("%s: %s", path, strerror(errno));
+    }
+    if (r < 0)
+        unlink(tmp);
+    return r;
+}

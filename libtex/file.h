@@ -1,0 +1,65 @@
+/* file.h - reading and writing texture maps as files and pipes
+ *
+ *   tex_map *m = tex_map_read("-");            // standard input, any format
+ *   struct tex_write_opts o = TEX_WRITE_DEFAULTS;
+ *   tex_map_write(m, "out.png", &o);           // atomic; "-" or NULL: stdout
+ *
+ * Reading: the format is recognised by its magic bytes (EXR, PNG, TIFF,
+ * PNM/PAM/PFM, BMP, TGA, HDR, JPEG, GIF, WebP, DPX).  EXR is decoded by the
+ * stream module; every other format goes through OpenImageIO, whose bridge
+ * (textura-oiio.so) is loaded with dlopen the first time it is needed, so a
+ * tool on the EXR path never pays OpenImageIO's start-up.
+ *
+ * Writing: a file's format follows its extension; standard output carries
+ * the uncompressed EXR stream unless o.format names another.  Files are
+ * written to a temporary name in the same folder and renamed on success,
+ * so a failure leaves no partial file.  Image data is never written to a
+ * terminal.  Integer formats are quantised with clamping to o.depth bits
+ * (8 or 16; 0 picks the format's usual depth); depth 32 asks for float.
+ * Values are written as they are: no transfer function is applied.
+ *
+ * The bridge is found at $TEXTURA_OIIO_BRIDGE, else next to the program
+ * in ../lib/textura/textura-oiio.so, else in the installed library folder.
+ */
+#ifndef TEX_FILE_H
+#define TEX_FILE_H
+
+#include "map.h"
+#include "stream.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum tex_format {
+    TEX_FMT_UNKNOWN, TEX_FMT_EXR, TEX_FMT_PNG, TEX_FMT_TIFF, TEX_FMT_PNM, TEX_FMT_PFM,
+    TEX_FMT_BMP, TEX_FMT_TGA, TEX_FMT_HDR, TEX_FMT_JPEG, TEX_FMT_GIF, TEX_FMT_WEBP, TEX_FMT_DPX
+};
+
+/* The format of a file image from its first bytes (at least 18 wanted). */
+enum tex_format tex_format_sniff(const void *head, size_t n);
+/* The format of a file name from its extension; TEX_FMT_UNKNOWN if none. */
+enum tex_format tex_format_from_name(const char *path);
+const char *tex_format_name(enum tex_format f); /* "exr", "png", ... */
+
+struct tex_write_opts {
+    int depth;                        /* 0, 8, 16 or 32 */
+    enum tex_compression compression; /* EXR files on disk */
+    const char *format;               /* for standard output: an extension; NULL = EXR */
+};
+#define TEX_WRITE_DEFAULTS {0, TEX_COMPRESS_ZIP, NULL}
+
+/* Read a map from a path, or standard input for NULL or "-". */
+tex_map *tex_map_read(const char *path);
+/* Read a map from a file image in memory; name is for messages. */
+tex_map *tex_map_read_memory(const void *data, size_t len, const char *name);
+/* Write a map; NULL or "-" is standard output. */
+int tex_map_write(const tex_map *m, const char *path, const struct tex_write_opts *o);
+
+/* Read all of a file descriptor into b (for standard input and pipes). */
+int tex_read_fd(int fd, tex_buf *b, const char *name);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,126 @@
+/* map.c - allocation and metadata of texture maps */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "error.h"
+#include "map.h"
+
+int tex_map_check_size(long long w, long long h, long long nc)
+{
+    if (w < 1 || w > TEX_MAP_MAX_SIDE || h < 1 || h > TEX_MAP_MAX_SIDE)
+        return tex_usage_error("size %lldx%lld is out of range: each side must be 1..%d", w, h,
+                               TEX_MAP_MAX_SIDE);
+    if (nc < 1 || nc > TEX_MAP_MAX_CHANNELS)
+        return tex_usage_error("%lld channels is out of range: 1..%d", nc, TEX_MAP_MAX_CHANNELS);
+    /* Each factor is at most 2^16, so the product fits in 64 bits. */
+    if ((unsigned long long)w * h * nc > TEX_MAP_MAX_SAMPLES)
+        return tex_usage_error("size %lldx%lldx%lld is too large: at most %llu samples (4 GiB)",
+                               w, h, nc, TEX_MAP_MAX_SAMPLES);
+    return 0;
+}
+
+tex_map *tex_map_new(int w, int h, int nc)
+{
+    tex_map *m;
+    size_t bytes;
+
+    if (tex_map_check_size(w, h, nc) < 0)
+        return NULL;
+    if (!(m = calloc(1, sizeof *m))) {
+        tex_error("out of memory");
+        return NULL;
+    }
+    bytes = (size_t)w * h * nc * sizeof *m->px;
+    /* Round up: aligned_alloc wants a multiple of the alignment. */
+    if (!(m->px = aligned_alloc(64, (bytes + 63) & ~(size_t)63))) {
+        free(m);
+        tex_error("out of memory for a %dx%dx%d map", w, h, nc);
+        return NULL;
+    }
+    memset(m->px, 0, bytes);
+    m->w = w;
+    m->h = h;
+    m->nc = nc;
+    return m;
+}
+
+void tex_map_free(tex_map *m)
+{
+    if (!m)
+        return;
+    free(m->px);
+    free(m->history);
+    free(m);
+}
+
+tex_map *tex_map_clone(const tex_map *m)
+{
+    tex_map *c = tex_map_new(m->w, m->h, m->nc);
+
+    if (!c)
+        return NULL;
+    memcpy(c->px, m->px, tex_map_samples(m) * sizeof *m->px);
+    c->subregions = m->subregions;
+    if (m->history && tex_map_set_history(c, m->history) < 0) {
+        tex_map_free(c);
+        return NULL;
+    }
+    return c;
+}
+
+int tex_map_set_history(tex_map *m, const char *history)
+{
+    char *h = NULL;
+
+    if (history && !(h = strdup(history)))
+        return tex_error("out of memory");
+    free(m->history);
+    m->history = h;
+    return 0;
+}
+
+int tex_map_add_history(tex_map *m, const char *line)
+{
+    size_t old = m->history ? strlen(m->history) : 0, n = strlen(line);
+    char *h = realloc(m->history, old + n + 2);
+
+    if (!h)
+        return tex_error("out of memory");
+    memcpy(h + old, line, n);
+    h[old + n] = '\n';
+    h[old + n + 1] = '\0';
+    m->history = h;
+    return 0;
+}
+
+void tex_map_stats(const tex_map *m, int c, struct tex_stats *s)
+{
+    double sum = 0, sum2 = 0, mean;
+    size_t n = 0, bad = 0, total = (size_t)m->w * m->h;
+    float lo = INFINITY, hi = -INFINITY;
+
+    /* Two passes in a fixed order: the figures are the same on every run. */
+    for (size_t i = 0; i < total; i++) {
+        float v = m->px[i * m->nc + c];
+        if (!isfinite(v)) {
+            bad++;
+            continue;
+        }
+        lo = v < lo ? v : lo;
+        hi = v > hi ? v : hi;
+        sum += v;
+        n++;
+    }
+    mean = n ? sum / n : 0;
+    for (size_t i = 0; i < total; i++) {
+        float v = m->px[i * m->nc + c];
+        if (isfinite(v))
+            sum2 += (v - mean) * (v - mean);
+    }
+    s->min = n ? lo : 0;
+    s->max = n ? hi : 0;
+    s->mean = mean;
+    s->stddev = n ? sqrt(sum2 / n) : 0;
+    s->nonfinite = bad;
+}

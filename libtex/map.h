@@ -1,0 +1,76 @@
+/* map.h - the texture map: one sampled texture field as an image
+ *
+ * A texture map is width x height pixels of 1 to 4 float32 channels,
+ * interleaved, row-major, top row first (v grows downwards, as the thesis
+ * numbers subregions left to right, top to bottom).  1 channel is a scalar
+ * field, 2 a vector (e.g. a gradient), 3 RGB, 4 RGBA.
+ *
+ * Metadata travels with the map: the number of subregions when the map
+ * holds region ids (0 otherwise), and the history, the command lines that
+ * made it, one per line.
+ *
+ *   tex_map *m = tex_map_new(256, 256, 1);   // NULL and tex_errmsg() on failure
+ *   tex_map_px(m, x, y)[c] = 0.5f;
+ *   tex_map_free(m);
+ *
+ * Sizes are checked without overflow: each side must be 1..TEX_MAP_MAX_SIDE
+ * and the whole map at most TEX_MAP_MAX_SAMPLES floats (4 GiB).
+ */
+#ifndef TEX_MAP_H
+#define TEX_MAP_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define TEX_MAP_MAX_SIDE 65536
+#define TEX_MAP_MAX_SAMPLES (1ULL << 30)
+#define TEX_MAP_MAX_CHANNELS 4
+
+typedef struct tex_map {
+    int w, h, nc;
+    float *px;      /* w*h*nc floats, 64-byte aligned */
+    int subregions; /* > 0: the pixels are region ids 1..subregions */
+    char *history;  /* command lines, newline-terminated; NULL if none */
+} tex_map;
+
+/* 0 if a w x h x nc map is allowed, else -1 with a usage error naming the limit. */
+int tex_map_check_size(long long w, long long h, long long nc);
+
+tex_map *tex_map_new(int w, int h, int nc); /* zero-filled */
+void tex_map_free(tex_map *m);
+tex_map *tex_map_clone(const tex_map *m);
+
+/* Append one line to the history; returns -1 on allocation failure. */
+int tex_map_add_history(tex_map *m, const char *line);
+int tex_map_set_history(tex_map *m, const char *history);
+
+static inline float *tex_map_row(const tex_map *m, int y)
+{
+    return m->px + (size_t)y * m->w * m->nc;
+}
+
+static inline float *tex_map_px(const tex_map *m, int x, int y)
+{
+    return m->px + ((size_t)y * m->w + x) * m->nc;
+}
+
+static inline size_t tex_map_samples(const tex_map *m)
+{
+    return (size_t)m->w * m->h * m->nc;
+}
+
+/* Statistics of one channel over its finite samples; nonfinite counts NaN and infinities. */
+struct tex_stats {
+    double min, max, mean, stddev;
+    size_t nonfinite;
+};
+void tex_map_stats(const tex_map *m, int channel, struct tex_stats *s);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
+

@@ -1,0 +1,238 @@
+/* param.c - defaults, parsing and range checks from parameter tables */
+#include <errno.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "error.h"
+#include "param.h"
+
+#define AT(obj, p, T) ((T *)((char *)(obj) + (p)->off))
+
+int tex_parse_real(const char *text, double *out)
+{
+    char *end;
+    double v;
+
+    while (*text == ' ')
+        text++;
+    errno = 0;
+    v = strtod(text, &end);
+    if (end == text || *end != '\0' || !isfinite(v) || errno == ERANGE)
+        return -1;
+    *out = v;
+    return 0;
+}
+
+static int hexval(int c)
+{
+    return c >= '0' && c <= '9' ? c - '0'
+         : c >= 'a' && c <= 'f' ? c - 'a' + 10
+         : c >= 'A' && c <= 'F' ? c - 'A' + 10
+                                : -1;
+}
+
+int tex_parse_color(const char *text, float rgba[4])
+{
+    rgba[3] = 1.0f;
+    if (text[0] == '#') {
+        size_t n = strlen(text + 1);
+        int d[8];
+        if (n != 3 && n != 6 && n != 8)
+            return -1;
+        for (size_t i = 0; i < n; i++)
+            if ((d[i] = hexval(text[1 + i])) < 0)
+                return -1;
+        for (int c = 0; c < (n == 8 ? 4 : 3); c++)
+            rgba[c] = n == 3 ? d[c] * 17 / 255.0f : (d[2 * c] * 16 + d[2 * c + 1]) / 255.0f;
+        return 0;
+    } else {
+        char buf[128], *tok, *save;
+        int k = 0;
+        double v;
+        if (strlen(text) >= sizeof buf)
+            return -1;
+        strcpy(buf, text);
+        for (tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
+            if (k == 4 || tex_parse_real(tok, &v) < 0 || v < 0 || v > 1)
+                return -1;
+            rgba[k++] = (float)v;
+        }
+        return k == 3 || k == 4 ? 0 : -1;
+    }
+}
+
+const char *tex_param_option(const struct tex_param *p, char *buf, size_t n)
+{
+    snprintf(buf, n, "--%s", p->name);
+    for (char *c = buf; *c; c++)
+        if (*c == '_')
+            *c = '-';
+    return buf;
+}
+
+static void fmt_real(double v, char *buf, size_t n)
+{
+    if (v >= 1e15 || (v <= -1e15))
+        snprintf(buf, n, "%g", v);
+    else
+        snprintf(buf, n, "%.10g", v);
+}
+
+const char *tex_param_range(const struct tex_param *p, char *buf, size_t n)
+{
+    char a[40], b[40];
+
+    switch (p->type) {
+    case TEX_P_INT:
+        snprintf(buf, n, "%lld..%lld", (long long)p->min, (long long)p->max);
+        break;
+    case TEX_P_REAL:
+    case TEX_P_REALS:
+        fmt_real(p->min, a, sizeof a);
+        fmt_real(p->max, b, sizeof b);
+        if (p->type == TEX_P_REALS)
+            snprintf(buf, n, "1..%d values in %s..%s", p->nmax, a, b);
+        else
+            snprintf(buf, n, "%s..%s", a, b);
+        break;
+    case TEX_P_ENUM:
+        snprintf(buf, n, "%s", p->choices);
+        break;
+    case TEX_P_COLOR:
+        snprintf(buf, n, "#rrggbb or r,g,b in 0..1");
+        break;
+    default:
+        buf[0] = '\0';
+    }
+    return buf;
+}
+
+const char *tex_param_default(const struct tex_param *p, char *buf, size_t n)
+{
+    switch (p->type) {
+    case TEX_P_INT:
+        snprintf(buf, n, "%lld", (long long)p->def);
+        break;
+    case TEX_P_REAL:
+        fmt_real(p->def, buf, n);
+        break;
+    case TEX_P_FLAG:
+        snprintf(buf, n, "off");
+        break;
+    default:
+        snprintf(buf, n, "%s", p->defstr ? p->defstr : "none");
+    }
+    return buf;
+}
+
+const struct tex_param *tex_param_find(const struct tex_param *t, const char *name)
+{
+    for (; t && t->name; t++) {
+        const char *a = t->name, *b = name;
+        while (*a && (*a == *b || (*a == '_' && *b == '-')))
+            a++, b++;
+        if (!*a && !*b)
+            return t;
+    }
+    return NULL;
+}
+
+static int bad(const struct tex_param *p, const char *text)
+{
+    char o[64], r[96];
+    return tex_usage_error("%s must be %s (got '%s')", tex_param_option(p, o, sizeof o),
+                           tex_param_range(p, r, sizeof r), text);
+}
+
+int tex_param_set(const struct tex_param *p, void *obj, const char *text)
+{
+    double v;
+
+    switch (p->type) {
+    case TEX_P_INT:
+        if (tex_parse_real(text, &v) < 0 || v != floor(v) || v < p->min || v > p->max)
+            return bad(p, text);
+        *AT(obj, p, int) = (int)v;
+        return 0;
+    case TEX_P_REAL:
+        if (tex_parse_real(text, &v) < 0 || v < p->min || v > p->max)
+            return bad(p, text);
+        *AT(obj, p, double) = v;
+        return 0;
+    case TEX_P_FLAG:
+        *AT(obj, p, int) = 1;
+        return 0;
+    case TEX_P_ENUM: {
+        const char *c = p->choices;
+        size_t n = strlen(text);
+        for (int i = 0; c && *c; i++) {
+            const char *bar = strchr(c, '|');
+            size_t len = bar ? (size_t)(bar - c) : strlen(c);
+            if (len == n && strncmp(c, text, n) == 0) {
+                *AT(obj, p, int) = i;
+                return 0;
+            }
+            c = bar ? bar + 1 : c + len;
+        }
+        return bad(p, text);
+    }
+    case TEX_P_REALS: {
+        struct tex_reals *r = AT(obj, p, struct tex_reals);
+        char buf[1024], *tok, *save;
+        if (strlen(text) >= sizeof buf)
+            return bad(p, text);
+        strcpy(buf, text);
+        r->n = 0;
+        /* strtok would skip empty fields: ",," must be an error, not a shorter list. */
+        for (tok = buf; tok; tok = save) {
+            if ((save = strchr(tok, ',')))
+                *save++ = '\0';
+            if (r->n == p->nmax || tex_parse_real(tok, &v) < 0 || v < p->min || v > p->max)
+                return bad(p, text);
+            r->v[r->n++] = v;
+        }
+        return 0;
+    }
+    case TEX_P_COLOR:
+        if (tex_parse_color(text, AT(obj, p, float)) < 0)
+            return bad(p, text);
+        return 0;
+    case TEX_P_STRING:
+        *AT(obj, p, const char *) = text;
+        return 0;
+    }
+    return tex_usage_error("internal: unknown parameter type");
+}
+
+int tex_params_defaults(const struct tex_param *t, void *obj)
+{
+    for (; t && t->name; t++) {
+        char num[64];
+        switch (t->type) {
+        case TEX_P_INT:
+        case TEX_P_REAL:
+        case TEX_P_FLAG:
+            snprintf(num, sizeof num, "%.17g", t->def);
+            if (t->type == TEX_P_FLAG)
+                *AT(obj, t, int) = 0;
+            else if (tex_param_set(t, obj, num) < 0)
+                return -1;
+            break;
+        case TEX_P_STRING:
+            *AT(obj, t, const char *) = t->defstr;
+            break;
+        default:
+            if (!t->defstr) {
+                if (t->type == TEX_P_ENUM)
+                    *AT(obj, t, int) = 0;
+                else if (t->type == TEX_P_REALS)
+                    AT(obj, t, struct tex_reals)->n = 0;
+                else
+                    memset(AT(obj, t, float), 0, 4 * sizeof(float));
+            } else if (tex_param_set(t, obj, t->defstr) < 0)
+                return -1;
+        }
+    }
+    return 0;
+}

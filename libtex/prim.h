@@ -1,0 +1,103 @@
+/* prim.h - the primitive descriptor: one description, two modalities
+ *
+ * A primitive ("primitiva de textura") is a parametrised generator of a
+ * texture field.  Its descriptor, a struct tex_primitive, is the one place
+ * that declares it: name, one-line summary, parameter table (param.h) and
+ * evaluation callbacks.  From it
+ *   - the tool t_NAME samples the field on a grid and writes the map
+ *     (its main is one call: tex_generate_main(&tex_prim_NAME, argc, argv));
+ *   - --help and the man page list the parameters with defaults and ranges;
+ *   - t_apply scenes name the primitive and its parameters and evaluate it
+ *     at hit points (solid textures need eval3).
+ *
+ * Kinds, in flags:
+ *   TEX_PRIM_2D       eval2 at any (u,v) points
+ *   TEX_PRIM_3D       eval3 at any (u,v,w) points: a solid texture
+ *   TEX_PRIM_GRID     grid fills a whole map at once (midpoint displacement,
+ *                     spectral synthesis...); the renderer uses the map
+ *   TEX_PRIM_REGIONS  values are subregion ids 1..nregions
+ *   TEX_PRIM_TILE     honours tile: the field is periodic over the unit square
+ *
+ * Texture space is [0,1]^2 (or ^3); sampling a w x h map evaluates pixel
+ * (x,y) at u = (x+0.5)/w, v = (y+0.5)/h, with v growing downwards.  Points
+ * come a row at a time so that inner loops vectorise; out receives n
+ * values of nc floats each, interleaved.  Evaluation must be a pure
+ * function of the point and the field, so that any thread split gives the
+ * same bytes.
+ *
+ * Registering a primitive: define `const struct tex_primitive tex_prim_NAME`
+ * in its module and add TEX_PRIMITIVE(NAME) to primitives.def.
+ */
+#ifndef TEX_PRIM_H
+#define TEX_PRIM_H
+
+#include <stdint.h>
+
+#include "map.h"
+#include "param.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum {
+    TEX_PRIM_2D = 1 << 0,
+    TEX_PRIM_3D = 1 << 1,
+    TEX_PRIM_GRID = 1 << 2,
+    TEX_PRIM_REGIONS = 1 << 3,
+    TEX_PRIM_TILE = 1 << 4,
+};
+
+struct tex_field {
+    const struct tex_primitive *prim;
+    void *params;     /* the primitive's parameter struct, defaults filled in */
+    uint64_t seed;
+    int tile;         /* 1: periodic over the unit square / cube */
+    int ids;          /* 1: REGIONS primitives write region ids, not colours */
+    int w, h;         /* the grid being sampled (0 when evaluated at points) */
+    int nc;           /* floats per value; init may change it (default 1) */
+    int nregions;     /* REGIONS: set by init */
+    void *state;      /* the primitive's own, made by init */
+};
+
+struct tex_primitive {
+    const char *name;    /* "noise": the tool is t_noise, the scene word is noise */
+    const char *summary; /* one line, no final period */
+    unsigned flags;
+    size_t params_size;
+    const struct tex_param *params;
+    /* Check parameters that depend on each other and build tables (from the
+     * seed).  Return -1 with tex_usage_error() for bad parameters. */
+    int (*init)(struct tex_field *f);
+    void (*fini)(struct tex_field *f);
+    void (*eval2)(const struct tex_field *f, int n, const double *u, const double *v, float *out);
+    void (*eval3)(const struct tex_field *f, int n, const double *u, const double *v,
+                  const double *w, float *out);
+    /* Optional fast path for grid sampling: row y of the f->w x f->h grid. */
+    void (*row)(const struct tex_field *f, int y, float *out);
+    /* TEX_PRIM_GRID: fill m (f->w x f->h, f->nc channels). */
+    int (*grid)(const struct tex_field *f, tex_map *m);
+};
+
+/* Every registered primitive: tex_prim_NAME, and the NULL-terminated list. */
+#define TEX_PRIMITIVE(n) extern const struct tex_primitive tex_prim_##n;
+#include "primitives.def"
+#undef TEX_PRIMITIVE
+extern const struct tex_primitive *const tex_primitives[];
+const struct tex_primitive *tex_primitive_find(const char *name);
+
+/* A field with the primitive's defaults; NULL on allocation failure. */
+struct tex_field *tex_field_new(const struct tex_primitive *p);
+/* Set parameter name (option spelling or row name) from text. */
+int tex_field_set(struct tex_field *f, const char *name, const char *value);
+/* Run init once the parameters are set; w, h may be 0 outside a grid. */
+int tex_field_init(struct tex_field *f, int w, int h);
+void tex_field_free(struct tex_field *f);
+
+/* Sample an initialised field on its w x h grid, threads from OpenMP. */
+tex_map *tex_field_sample(const struct tex_field *f);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

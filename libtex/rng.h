@@ -1,0 +1,46 @@
+/* rng.h - deterministic random numbers for primitives
+ *
+ * Every random choice in libtex comes from here, never from libc rand(),
+ * so that a seed gives the same map on every machine, thread count and
+ * SIMD level.
+ *
+ *   tex_rng r; tex_rng_seed(&r, seed);
+ *   double x = tex_rng_uniform(&r);        // [0,1)
+ *   uint32_t k = tex_rng_below(&r, n);     // 0..n-1, unbiased
+ *   uint64_t h = tex_hash64(x ^ tex_hash64(y)); // stateless hashing
+ *
+ * The generator is xoshiro256** seeded through splitmix64.
+ */
+#ifndef TEX_RNG_H
+#define TEX_RNG_H
+
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct tex_rng {
+    uint64_t s[4];
+} tex_rng;
+
+/* splitmix64's finaliser: a good 64-bit mixing function. */
+static inline uint64_t tex_hash64(uint64_t x)
+{
+    x += 0x9e3779b97f4a7c15ULL;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+    return x ^ (x >> 31);
+}
+
+void tex_rng_seed(tex_rng *r, uint64_t seed);
+uint64_t tex_rng_next(tex_rng *r);
+double tex_rng_uniform(tex_rng *r);   /* [0,1) with 53 bits */
+uint32_t tex_rng_below(tex_rng *r, uint32_t n); /* 0..n-1 */
+double tex_rng_gauss(tex_rng *r);     /* standard normal */
+void tex_rng_shuffle(tex_rng *r, int *a, int n); /* Fisher-Yates */
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,310 @@
+/* stream.c - OpenEXR encoding and decoding through the core C library
+ *
+ * The whole file lives in memory both ways: a pipe cannot seek, and the
+ * core library writes the chunk offset table last.  One copy in memory
+ * costs far less than the disk or pipe it crosses.
+ */
+#include <stdlib.h>
+#include <string.h>
+
+#include <openexr.h>
+
+#include "error.h"
+#include "stream.h"
+
+#define ATTR_SUBREGIONS "textura:subregions"
+#define ATTR_HISTORY "textura:history"
+
+int tex_buf_reserve(tex_buf *b, size_t cap)
+{
+    unsigned char *d;
+
+    if (cap <= b->cap)
+        return 0;
+    if (cap < 2 * b->cap)
+        cap = 2 * b->cap;
+    if (!(d = realloc(b->data, cap)))
+        return tex_error("out of memory (%zu bytes)", cap);
+    b->data = d;
+    b->cap = cap;
+    return 0;
+}
+
+void tex_buf_free(tex_buf *b)
+{
+    free(b->data);
+    b->data = NULL;
+    b->len = b->cap = 0;
+}
+
+/* The core library reports through a callback; keep its last word. */
+static void on_exr_error(exr_const_context_t ctxt, exr_result_t code, const char *msg)
+{
+    (void)ctxt;
+    (void)code;
+    tex_error("%s", msg);
+}
+
+/* ---- writing ---- */
+
+struct wsink {
+    tex_buf *buf;
+    size_t base;
+};
+
+static int64_t write_mem(exr_const_context_t ctxt, void *ud, const void *src, uint64_t sz,
+                         uint64_t off, exr_stream_error_func_ptr_t ecb)
+{
+    struct wsink *w = ud;
+    size_t end = w->base + off + sz;
+
+    if (tex_buf_reserve(w->buf, end) < 0)
+        return ecb(ctxt, EXR_ERR_OUT_OF_MEMORY, "out of memory"), -1;
+    memcpy(w->buf->data + w->base + off, src, sz);
+    if (end > w->buf->len)
+        w->buf->len = end;
+    return (int64_t)sz;
+}
+
+static const char *const chnames[4][4] = {
+    {"Y"}, {"R", "G"}, {"R", "G", "B"}, {"R", "G", "B", "A"}};
+
+static int exr_fail(exr_context_t *ctx, exr_result_t rv, const char *what)
+{
+    if (rv != EXR_ERR_SUCCESS && strcmp(tex_errmsg(), "unknown error") == 0)
+        tex_error("%s: %s", what, exr_get_default_error_message(rv));
+    if (ctx && *ctx)
+        exr_finish(ctx);
+    return -1;
+}
+
+int tex_exr_encode(const tex_map *m, enum tex_compression c, tex_buf *out)
+{
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    exr_context_t ctx = NULL;
+    exr_encode_pipeline_t enc;
+    exr_chunk_info_t ci;
+    exr_result_t rv;
+    struct wsink sink = {out, out->len};
+    int part, lines, y, ch;
+    static const exr_compression_t ctype[] = {EXR_COMPRESSION_NONE, EXR_COMPRESSION_ZIP,
+                                              EXR_COMPRESSION_PIZ};
+    size_t est = (size_t)m->w * m->h * m->nc * 4 + 4096 + (size_t)m->h * 16;
+
+    if (c == TEX_COMPRESS_NONE && tex_buf_reserve(out, out->len + est) < 0)
+        return -1;
+    init.user_data = &sink;
+    init.write_fn = write_mem;
+    init.error_handler_fn = on_exr_error;
+    init.max_image_width = TEX_MAP_MAX_SIDE;
+    init.max_image_height = TEX_MAP_MAX_SIDE;
+
+    if ((rv = exr_start_write(&ctx, "stream", EXR_WRITE_FILE_DIRECTLY, &init)))
+        return exr_fail(&ctx, rv, "EXR write");
+    if ((rv = exr_add_part(ctx, "", EXR_STORAGE_SCANLINE, &part)) ||
+        (rv = exr_initialize_required_attr_simple(ctx, part, m->w, m->h, ctype[c])))
+        return exr_fail(&ctx, rv, "EXR header");
+    for (ch = 0; ch < m->nc; ch++)
+        if ((rv = exr_add_channel(ctx, part, chnames[m->nc - 1][ch], EXR_PIXEL_FLOAT,
+                                  EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1)))
+            return exr_fail(&ctx, rv, "EXR channel");
+    if (m->subregions > 0 &&
+        (rv = exr_attr_set_int(ctx, part, ATTR_SUBREGIONS, m->subregions)))
+        return exr_fail(&ctx, rv, "EXR attribute");
+    if (m->history && (rv = exr_attr_set_string(ctx, part, ATTR_HISTORY, m->history)))
+        return exr_fail(&ctx, rv, "EXR attribute");
+    if ((rv = exr_write_header(ctx)) || (rv = exr_get_scanlines_per_chunk(ctx, part, &lines)))
+        return exr_fail(&ctx, rv, "EXR header");
+
+    memset(&enc, 0, sizeof enc);
+    for (y = 0; y < m->h; y += lines) {
+        if ((rv = exr_write_scanline_chunk_info(ctx, part, y, &ci)))
+            return exr_fail(&ctx, rv, "EXR chunk");
+        rv = y == 0 ? exr_encoding_initialize(ctx, part, &ci, &enc)
+                    : exr_encoding_update(ctx, part, &ci, &enc);
+        if (rv)
+            return exr_fail(&ctx, rv, "EXR encoder");
+        /* The channel list is alphabetical (A B G R); point each at its plane. */
+        for (ch = 0; ch < enc.channel_count; ch++) {
+            exr_coding_channel_info_t *cc = &enc.channels[ch];
+            int k = 0;
+            while (k < m->nc && strcmp(cc->channel_name, chnames[m->nc - 1][k]))
+                k++;
+            cc->user_bytes_per_element = 4;
+            cc->user_data_type = EXR_PIXEL_FLOAT;
+            cc->user_pixel_stride = 4 * m->nc;
+            cc->user_line_stride = 4 * m->nc * m->w;
+            cc->encode_from_ptr = (const uint8_t *)(tex_map_row(m, y) + k);
+        }
+        if (y == 0 && (rv = exr_encoding_choose_default_routines(ctx, part, &enc)))
+            return exr_fail(&ctx, rv, "EXR encoder");
+        if ((rv = exr_encoding_run(ctx, part, &enc)))
+            return exr_fail(&ctx, rv, "EXR encode");
+    }
+    exr_encoding_destroy(ctx, &enc);
+    if ((rv = exr_finish(&ctx)))
+        return exr_fail(NULL, rv, "EXR finish");
+    return 0;
+}
+
+/* ---- reading ---- */
+
+struct rsrc {
+    const unsigned char *data;
+    size_t len;
+};
+
+static int64_t read_mem(exr_const_context_t ctxt, void *ud, void *dst, uint64_t sz, uint64_t off,
+                        exr_stream_error_func_ptr_t ecb)
+{
+    struct rsrc *r = ud;
+
+    (void)ctxt;
+    (void)ecb;
+    if (off >= r->len)
+        return 0;
+    if (sz > r->len - off)
+        sz = r->len - off;
+    memcpy(dst, r->data + off, sz);
+    return (int64_t)sz;
+}
+
+static int64_t size_mem(exr_const_context_t ctxt, void *ud)
+{
+    (void)ctxt;
+    return (int64_t)((struct rsrc *)ud)->len;
+}
+
+/* Order the file's channels into the map's: R G B A, Y A, or as listed. */
+static int order_channels(const exr_attr_chlist_t *cl, int map[4])
+{
+    static const char *const pref[][4] = {{"R", "G", "B", "A"}, {"Y", "A"}};
+    int n = cl->num_channels < 4 ? cl->num_channels : 4;
+
+    for (int p = 0; p < 2; p++) {
+        int found = 0;
+        for (int k = 0; k < 4 && pref[p][k]; k++)
+            for (int i = 0; i < cl->num_channels; i++)
+                if (strcmp(cl->entries[i].name.str, pref[p][k]) == 0)
+                    map[found++] = i;
+        if (found > 0 && (found == cl->num_channels || found >= 3)) {
+            return found;
+        }
+    }
+    for (int i = 0; i < n; i++)
+        map[i] = i;
+    return n;
+}
+
+tex_map *tex_exr_decode(const void *data, size_t len, const char *name)
+{
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    exr_context_t ctx = NULL;
+    exr_decode_pipeline_t dec;
+    exr_chunk_info_t ci;
+    exr_attr_box2i_t dw;
+    exr_storage_t st;
+    const exr_attr_chlist_t *cl;
+    exr_result_t rv;
+    struct rsrc src = {data, len};
+    tex_map *m = NULL;
+    int lines, nparts, order[4], nc, w, h, y, i;
+    int32_t sub, hlen;
+    const char *hist;
+
+    init.user_data = &src;
+    init.read_fn = read_mem;
+    init.size_fn = size_mem;
+    init.error_handler_fn = on_exr_error;
+    init.flags = EXR_CONTEXT_FLAG_SILENT_HEADER_PARSE | EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
+    init.max_image_width = TEX_MAP_MAX_SIDE;
+    init.max_image_height = TEX_MAP_MAX_SIDE;
+    tex_error("unknown error");
+
+    if ((rv = exr_start_read(&ctx, name, &init))) {
+        tex_error("not a valid OpenEXR stream (%s)", exr_get_default_error_message(rv));
+        goto fail;
+    }
+    if ((rv = exr_get_count(ctx, &nparts)) || nparts < 1 || (rv = exr_get_storage(ctx, 0, &st)))
+        goto bad;
+    if (st != EXR_STORAGE_SCANLINE && st != EXR_STORAGE_TILED) {
+        tex_error("deep OpenEXR data is not a texture map");
+        goto fail;
+    }
+    if (st == EXR_STORAGE_TILED) {
+        tex_error("tiled OpenEXR is not read on the stream path; convert it with t_convert x.exr");
+        goto fail;
+    }
+    if ((rv = exr_get_data_window(ctx, 0, &dw)) || (rv = exr_get_channels(ctx, 0, &cl)) ||
+        (rv = exr_get_scanlines_per_chunk(ctx, 0, &lines)))
+        goto bad;
+    w = dw.max.x - dw.min.x + 1;
+    h = dw.max.y - dw.min.y + 1;
+    if (cl->num_channels < 1) {
+        tex_error("OpenEXR file has no channels");
+        goto fail;
+    }
+    for (i = 0; i < cl->num_channels; i++)
+        if (cl->entries[i].x_sampling != 1 || cl->entries[i].y_sampling != 1) {
+            tex_error("subsampled OpenEXR channels are not supported");
+            goto fail;
+        }
+    nc = order_channels(cl, order);
+    if (!(m = tex_map_new(w, h, nc)))
+        goto fail;
+    if (exr_attr_get_int(ctx, 0, ATTR_SUBREGIONS, &sub) == EXR_ERR_SUCCESS && sub > 0)
+        m->subregions = sub;
+    if (exr_attr_get_string(ctx, 0, ATTR_HISTORY, &hlen, &hist) == EXR_ERR_SUCCESS && hist) {
+        if (!(m->history = malloc((size_t)hlen + 1)))
+            goto oom;
+        memcpy(m->history, hist, (size_t)hlen);
+        m->history[hlen] = '\0';
+    }
+
+    memset(&dec, 0, sizeof dec);
+    for (y = dw.min.y; y <= dw.max.y; y += lines) {
+        int row = y - dw.min.y;
+        if ((rv = exr_read_scanline_chunk_info(ctx, 0, y, &ci)))
+            goto bad;
+        rv = row == 0 ? exr_decoding_initialize(ctx, 0, &ci, &dec)
+                      : exr_decoding_update(ctx, 0, &ci, &dec);
+        if (rv)
+            goto bad;
+        for (i = 0; i < dec.channel_count; i++) {
+            exr_coding_channel_info_t *cc = &dec.channels[i];
+            int k = -1;
+            for (int j = 0; j < nc; j++)
+                if (order[j] == i)
+                    k = j;
+            if (k < 0) {
+                cc->decode_to_ptr = NULL; /* skipped channel */
+                continue;
+            }
+            cc->user_bytes_per_element = 4;
+            cc->user_data_type = EXR_PIXEL_FLOAT;
+            cc->user_pixel_stride = 4 * nc;
+            cc->user_line_stride = 4 * nc * w;
+            cc->decode_to_ptr = (uint8_t *)(tex_map_row(m, row) + k);
+        }
+        if (row == 0 && (rv = exr_decoding_choose_default_routines(ctx, 0, &dec)))
+            goto bad;
+        if ((rv = exr_decoding_run(ctx, 0, &dec))) {
+            exr_decoding_destroy(ctx, &dec);
+            tex_error("truncated or corrupt OpenEXR data at scanline %d", y);
+            goto fail;
+        }
+    }
+    exr_decoding_destroy(ctx, &dec);
+    exr_finish(&ctx);
+    return m;
+oom:
+    tex_error("out of memory");
+    goto fail;
+bad:
+    tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv));
+fail:
+    if (ctx)
+        exr_finish(&ctx);
+    tex_map_free(m);
+    return NULL;
+}

@@ -1,0 +1,47 @@
+/* stream.h - the Textura stream: texture maps as OpenEXR
+ *
+ * Tools pass texture maps to each other as OpenEXR: float32, scanline,
+ * uncompressed on a pipe (it is read once, at once), optionally zip or piz
+ * compressed on disk.  Encoding and decoding go through OpenEXR's core C
+ * library (openexr.h).  Metadata rides as attributes:
+ *
+ *   textura:subregions  int     number of subregions of a region-id map
+ *   textura:history     string  the command lines that made the map
+ *
+ * Channels are named Y (1 channel), R G (2), R G B (3), R G B A (4).  On
+ * reading, R G B A and Y A are recognised, half and uint channels become
+ * float, and any other set of at most four channels is taken in the order
+ * the file lists them.
+ */
+#ifndef TEX_STREAM_H
+#define TEX_STREAM_H
+
+#include <stddef.h>
+
+#include "map.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum tex_compression { TEX_COMPRESS_NONE, TEX_COMPRESS_ZIP, TEX_COMPRESS_PIZ };
+
+/* A growable byte buffer. */
+typedef struct tex_buf {
+    unsigned char *data;
+    size_t len, cap;
+} tex_buf;
+
+int tex_buf_reserve(tex_buf *b, size_t cap);
+void tex_buf_free(tex_buf *b);
+
+/* Encode m as an EXR file image in out (appended to whatever it holds). */
+int tex_exr_encode(const tex_map *m, enum tex_compression c, tex_buf *out);
+
+/* Decode an EXR held in memory; name is for messages only. */
+tex_map *tex_exr_decode(const void *data, size_t len, const char *name);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,56 @@
+# tests/lib.sh - helpers for the shell tests; source it first.
+#
+#   check NAME CMD...             ok if CMD succeeds
+#   check_fails NAME STATUS CMD.. ok if CMD exits with STATUS, prints exactly one
+#                                 line on stderr naming the program, and did not crash
+#   approx A B TOL                true if |A-B| <= TOL
+#   info_json MAP KEY...          a figure from t_info --json (e.g. stats 0 mean)
+#   $T                            a fresh temporary folder, removed at exit
+set -u
+T=$(mktemp -d "${TMPDIR:-/tmp}/textura-test.XXXXXX")
+trap 'rm -rf "$T"' EXIT
+
+ok() { echo "ok - $1"; }
+notok() { echo "not ok - $1${2:+: $2}"; }
+
+check() {
+    local name=$1
+    shift
+    local err
+    if err=$("$@" 2>&1 >/dev/null); then ok "$name"; else notok "$name" "$(head -c 300 <<<"$err")"; fi
+}
+
+# check_fails NAME STATUS CMD...: the command must fail cleanly.
+check_fails() {
+    local name=$1 want=$2
+    shift 2
+    "$@" >"$T/.out" 2>"$T/.err" </dev/null
+    local got=$? lines prog
+    lines=$(wc -l <"$T/.err")
+    prog=$(basename "$1")
+    if [ "$got" != "$want" ]; then
+        notok "$name" "exit $got, wanted $want: $(head -c 200 "$T/.err")"
+    elif [ "$lines" != 1 ]; then
+        notok "$name" "$lines lines on stderr: $(head -c 300 "$T/.err")"
+    elif ! grep -q "^$prog: " "$T/.err"; then
+        notok "$name" "message does not name $prog: $(cat "$T/.err")"
+    else
+        ok "$name"
+    fi
+}
+
+approx() {
+    awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= t) }'
+}
+
+# info_json MAP PATH...: python-style path into t_info --json, e.g. stats 0 mean.
+info_json() {
+    local map=$1
+    shift
+    t_info --json "$map" | python3 -c '
+import json, sys
+v = json.load(sys.stdin)
+for k in sys.argv[1:]:
+    v = v[int(k)] if isinstance(v, list) else v[k]
+print(v)' "$@"
+}

@@ -1,0 +1,21 @@
+/* t_convert - read a texture map in any format and write it in another */
+#include <stdlib.h>
+
+#include "textura.h"
+
+static const struct tex_tool tool = {
+    "t_convert", "[MAP]", "read a map (EXR, PNG, TIFF, PNM, PFM, BMP, TGA, HDR, JPEG...) and "
+                          "write it in the format of the output's extension",
+    TEX_OPT_OUTPUT, NULL, 0, 1};
+
+int main(int argc, char **argv)
+{
+    struct tex_common c;
+    int i = tex_cli_parse(&tool, argc, argv, &c, NULL);
+    tex_map *m = tex_cli_read(i < argc ? argv[i] : "-");
+
+    tex_cli_write(m, &c);
+    tex_map_free(m);
+    free(c.cmdline);
+    return 0;
+}

@@ -1,0 +1,93 @@
+/* t_info - describe a texture map: size, channels, statistics, metadata */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "textura.h"
+
+struct opts {
+    int json;
+};
+
+static const struct tex_param rows[] = {
+    TEX_FLAG(struct opts, json, 0, "print JSON instead of text"), {0}};
+
+static const struct tex_tool tool = {
+    "t_info", "[MAP]", "print the size, channels, per-channel statistics, subregions and history "
+                       "of a texture map",
+    0, rows, 0, 1};
+
+static const char *const chname[4][4] = {{"Y"}, {"R", "G"}, {"R", "G", "B"}, {"R", "G", "B", "A"}};
+
+static void json_string(const char *s)
+{
+    putchar('"');
+    for (; s && *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\')
+            printf("\\%c", c);
+        else if (c == '\n')
+            fputs("\\n", stdout);
+        else if (c < 0x20)
+            printf("\\u%04x", c);
+        else
+            putchar(c);
+    }
+    putchar('"');
+}
+
+int main(int argc, char **argv)
+{
+    struct tex_common c;
+    struct opts o;
+    int i = tex_cli_parse(&tool, argc, argv, &c, &o);
+    const char *name = i < argc ? argv[i] : "-";
+    tex_map *m = tex_cli_read(name);
+    struct tex_stats st[4];
+
+    for (int k = 0; k < m->nc; k++)
+        tex_map_stats(m, k, &st[k]);
+    if (o.json) {
+        printf("{\"width\": %d, \"height\": %d, \"channels\": %d, \"subregions\": %d,\n", m->w, m->h,
+               m->nc, m->subregions);
+        printf(" \"stats\": [");
+        for (int k = 0; k < m->nc; k++)
+            printf("%s\n  {\"channel\": \"%s\", \"min\": %.9g, \"max\": %.9g, \"mean\": %.9g, "
+                   "\"stddev\": %.9g, \"nonfinite\": %zu}",
+                   k ? "," : "", chname[m->nc - 1][k], st[k].min, st[k].max, st[k].mean,
+                   st[k].stddev, st[k].nonfinite);
+        printf("],\n \"history\": ");
+        json_string(m->history ? m->history : "");
+        printf("}\n");
+    } else {
+        printf("%s: %dx%d, %d channel%s", strcmp(name, "-") ? name : "standard input", m->w, m->h,
+               m->nc, m->nc > 1 ? "s" : "");
+        if (m->subregions)
+            printf(", %d subregions", m->subregions);
+        putchar('\n');
+        for (int k = 0; k < m->nc; k++) {
+            printf("  %-2s min %-12.6g max %-12.6g mean %-12.6g stddev %.6g", chname[m->nc - 1][k],
+                   st[k].min, st[k].max, st[k].mean, st[k].stddev);
+            if (st[k].nonfinite)
+                printf("  (%zu NaN/inf)", st[k].nonfinite);
+            putchar('\n');
+        }
+        if (m->history) {
+            const char *h = m->history;
+            printf("history:\n");
+            while (*h) {
+                const char *e = strchr(h, '\n');
+                int len = e ? (int)(e - h) : (int)strlen(h);
+                printf("  %.*s\n", len, h);
+                h += len + (e != NULL);
+            }
+        }
+    }
+    tex_map_free(m);
+    free(c.cmdline);
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        tex_error("standard output: write error");
+        tex_die();
+    }
+    return 0;
+}
