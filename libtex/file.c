@@ -471,14 +471,14 @@ int tex_map_write(const tex_map *m, const char *path, const struct tex_write_opt
         o = &defaults;
     if (!path || strcmp(path, "-") == 0)
         return write_stdout(m, o);
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
+        return tex_error("%s: is a directory", path);
     if ((f = tex_format_from_name(path)) == TEX_FMT_UNKNOWN)
         return tex_usage_error("%s: cannot tell the format from the extension (use .exr, .png, "
                                ".tif, .pnm, .pfm, .bmp, .tga, .hdr, .jpg, .webp or .dpx)",
                                path);
     if ((depth = choose_depth(f, o->depth, path)) < 0)
         return -1;
-    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
-        return tex_error("%s: is a directory", path);
     slash = strrchr(path, '/');
     if (slash)
         r = snprintf(tmp, sizeof tmp, "%.*s/.%s.XXXXXX", (int)(slash - path), path, slash + 1);
