@@ -373,22 +373,24 @@ static void row_coeffs(const tex_noise_grid *g, const struct row_corners *rc, in
 /* Pixels x..x1-1, the reference order of operations for every level;
  * P and Q hold the slots from sb on. */
 static void row_scalar(const tex_noise_grid *g, const float *P, const float *Q, int sb,
-                       float *out, int x, int x1)
+                       float *out, int x, int x1, const float *amp)
 {
     for (; x < x1; x++) {
         int s = g->slot[x] - sb;
         float t0 = P[s] * g->u[x] + Q[s];
         float t1 = P[s + 1] * g->um1[x] + Q[s + 1];
-        out[x] = g->w0[x] * t0 + g->w1[x] * t1;
+        float r = g->w0[x] * t0 + g->w1[x] * t1;
+        out[x] = amp ? out[x] + *amp * r : r;
     }
 }
 
 #ifdef TEX_X86
 __attribute__((target("avx2"))) static void row_avx2(const tex_noise_grid *g, const float *P,
                                                      const float *Q, int sb, float *out, int x,
-                                                     int x1)
+                                                     int x1, const float *amp)
 {
     __m256i vsb = _mm256_set1_epi32(sb);
+    __m256 va = _mm256_set1_ps(amp ? *amp : 0);
 
     for (; x + 8 <= x1; x += 8) {
         __m256i s = _mm256_sub_epi32(_mm256_loadu_si256((const __m256i *)(g->slot + x)), vsb);
@@ -412,13 +414,15 @@ __attribute__((target("avx2"))) static void row_avx2(const tex_noise_grid *g, co
         __m256 t1 = _mm256_add_ps(_mm256_mul_ps(p1, _mm256_loadu_ps(g->um1 + x)), q1);
         __m256 r = _mm256_add_ps(_mm256_mul_ps(_mm256_loadu_ps(g->w0 + x), t0),
                                  _mm256_mul_ps(_mm256_loadu_ps(g->w1 + x), t1));
+        if (amp)
+            r = _mm256_add_ps(_mm256_loadu_ps(out + x), _mm256_mul_ps(va, r));
         _mm256_storeu_ps(out + x, r);
     }
-    row_scalar(g, P, Q, sb, out, x, x1);
+    row_scalar(g, P, Q, sb, out, x, x1, amp);
 }
 #endif
 
-void tex_noise_grid_row(const tex_noise_grid *g, int y, float *out)
+static void grid_row(const tex_noise_grid *g, int y, float *out, const float *amp)
 {
     /* Columns in chunks, so that the coefficients stay on the stack and in L1. */
     enum { CHUNK = 1024 };
@@ -433,12 +437,96 @@ void tex_noise_grid_row(const tex_noise_grid *g, int y, float *out)
         row_coeffs(g, &rc, s0, s1, P, Q);
 #ifdef TEX_X86
         if (level >= TEX_SIMD_AVX2)
-            row_avx2(g, P, Q, s0, out, x0, x1);
+            row_avx2(g, P, Q, s0, out, x0, x1, amp);
         else
 #endif
-            row_scalar(g, P, Q, s0, out, x0, x1);
+            row_scalar(g, P, Q, s0, out, x0, x1, amp);
     }
     (void)level;
+}
+
+void tex_noise_grid_row(const tex_noise_grid *g, int y, float *out)
+{
+    grid_row(g, y, out, NULL);
+}
+
+void tex_noise_grid_row_add(const tex_noise_grid *g, int y, float amp, float *out)
+{
+    grid_row(g, y, out, &amp);
+}
+
+/* ---- octaves ---- */
+
+int tex_octaves_init(tex_octaves *o, uint64_t seed, int gradients, int fade, int n, double freq,
+                     double lac, const double off[3], double z, double t, int dims, int tile,
+                     int w, int h)
+{
+    /* Irrational-looking shifts so that the octaves do not all vanish together. */
+    static const double shift[4] = {13.1367, 7.7351, 3.5193, 5.2371};
+
+    memset(o, 0, sizeof *o);
+    if (n < 1 || n > TEX_OCTAVES_MAX)
+        return tex_usage_error("--octaves must be 1..%d (got %d)", TEX_OCTAVES_MAX, n);
+    if (tile && (freq != floor(freq) || freq < 1))
+        return tex_usage_error("--frequency must be a whole number >= 1 with --tile (got %g)",
+                               freq);
+    if (tile && lac != floor(lac))
+        return tex_usage_error("--lacunarity must be a whole number with --tile (got %g)", lac);
+    o->n = n;
+    o->dims = dims;
+    for (int k = 0; k < n; k++) {
+        double s = pow(lac, k);
+        o->freq[k] = freq * s;
+        if (tile && o->freq[k] > 1e9)
+            return tex_usage_error("--tile: the last octave's frequency %g is above 1e9 (lower "
+                                   "--octaves, --frequency or --lacunarity)",
+                                   o->freq[k]);
+        o->period[k] = tile ? (int)o->freq[k] : 0;
+        o->off[k][0] = s * off[0] + (k ? k * shift[0] : 0);
+        o->off[k][1] = s * off[1] + (k ? k * shift[1] : 0);
+        o->off[k][2] = s * (freq * z + off[2]) + (k ? k * shift[2] : 0);
+        o->off[k][3] = dims == 4 ? s * freq * t + (k ? k * shift[3] : 0) : 0;
+    }
+    if (tex_noise_init(&o->t, seed, gradients, 0) < 0)
+        return -1;
+    o->t.fade = fade;
+    if (w > 0 && h > 0) {
+        o->grid = 1;
+        for (int k = 0; k < n; k++)
+            if (tex_noise_grid_init(&o->g[k], &o->t, w, h, o->freq[k], o->freq[k], o->off[k],
+                                    dims, o->period[k]) < 0) {
+                tex_octaves_free(o);
+                return -1;
+            }
+    }
+    return 0;
+}
+
+void tex_octaves_free(tex_octaves *o)
+{
+    tex_noise_free(&o->t);
+    for (int k = 0; k < o->n; k++)
+        tex_noise_grid_free(&o->g[k]);
+    o->grid = 0;
+}
+
+double tex_octave_point(const tex_octaves *o, int k, double u, double v, double w)
+{
+    double f = o->freq[k], x = o->off[k][0] + f * u, y = o->off[k][1] + f * v;
+
+    if (o->dims == 4)
+        return tex_noise4p(&o->t, o->period[k], x, y, o->off[k][2] + f * w, o->off[k][3]);
+    return tex_noise3p(&o->t, o->period[k], x, y, o->off[k][2] + f * w);
+}
+
+void tex_octave_row(const tex_octaves *o, int k, int y, float *out)
+{
+    tex_noise_grid_row(&o->g[k], y, out);
+}
+
+void tex_octave_row_add(const tex_octaves *o, int k, int y, float amp, float *out)
+{
+    tex_noise_grid_row_add(&o->g[k], y, amp, out);
 }
 
 /* ---- the primitive ---- */

@@ -86,7 +86,37 @@ typedef struct tex_noise_grid {
 int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int h, double fx,
                         double fy, const double off[4], int dims, int period);
 void tex_noise_grid_row(const tex_noise_grid *g, int y, float *out);
+/* out[x] = out[x] + amp * noise, in the same vectorised pass. */
+void tex_noise_grid_row_add(const tex_noise_grid *g, int y, float amp, float *out);
 void tex_noise_grid_free(tex_noise_grid *g);
+
+/* Octaves: noise at frequencies F L^k, k = 0..n-1, for turbulence and
+ * fractal sums.  Octave k samples the lattice point
+ *     L^k (F u + off) + shift_k,   shift_0 = 0,
+ * the fixed shifts keeping the octaves' zeros at the origin apart.  With
+ * tile, F and L must be whole numbers and octave k's period is F L^k.
+ * u, v, w are texture coordinates; w is the slice for 3D (dims 3) and
+ * t the fourth coordinate for dims 4. */
+#define TEX_OCTAVES_MAX 30
+typedef struct tex_octaves {
+    tex_noise_table t;
+    int n, dims, grid;
+    double freq[TEX_OCTAVES_MAX], off[TEX_OCTAVES_MAX][4];
+    int period[TEX_OCTAVES_MAX];
+    tex_noise_grid g[TEX_OCTAVES_MAX]; /* when sampled on a grid (w, h > 0) */
+} tex_octaves;
+
+/* off: the offset (x, y, z) in lattice units of octave 0; z and t the slice
+ * and fourth coordinate in texture units; usage errors name the options. */
+int tex_octaves_init(tex_octaves *o, uint64_t seed, int gradients, int fade, int n, double freq,
+                     double lac, const double off[3], double z, double t, int dims, int tile,
+                     int w, int h);
+void tex_octaves_free(tex_octaves *o);
+/* Signed noise of octave k at texture point (u, v, w), w added to the slice. */
+double tex_octave_point(const tex_octaves *o, int k, double u, double v, double w);
+/* Signed noise of octave k over row y of the grid. */
+void tex_octave_row(const tex_octaves *o, int k, int y, float *out);
+void tex_octave_row_add(const tex_octaves *o, int k, int y, float amp, float *out);
 
 /* SIMD levels for the row kernels. */
 enum { TEX_SIMD_SCALAR = 0, TEX_SIMD_AVX2 = 1, TEX_SIMD_AVX512 = 2 };
