@@ -652,3 +652,105 @@ const struct tex_primitive tex_prim_noise = {
     .eval3 = noise_eval3,
     .row = noise_row,
 };
+
+/* ---- d_noise: the analytic gradient (thesis 5.2.2.3) ---- */
+
+struct dnoise_params {
+    double frequency, z, strength;
+    struct tex_reals offset;
+    int channels, normal, fade, gradients;
+};
+
+static const struct tex_param dnoise_rows[] = {
+    TEX_REAL(struct dnoise_params, frequency, 'f', 8, 0, 1e6, "F",
+             "lattice cells across the map (a whole number with --tile)"),
+    TEX_REAL(struct dnoise_params, z, 0, 0, -1e9, 1e9, "Z",
+             "the slice of the solid noise, in map widths"),
+    TEX_REALS(struct dnoise_params, offset, 0, NULL, -1e12, 1e12, 3, "X[,Y[,Z]]",
+              "lattice offset added to the scaled coordinates"),
+    TEX_INT(struct dnoise_params, channels, 'c', 2, 2, 3, "N",
+            "2: d/dx, d/dy; 3: also d/dz (raw gradient, lattice units)"),
+    TEX_FLAG(struct dnoise_params, normal, 0,
+             "write a tangent-space normal map (x right, y up, z out) encoded as 0.5 + 0.5 n"),
+    TEX_REAL(struct dnoise_params, strength, 0, 1, 0, 1e6, "S",
+             "--normal: height scale, n = normalize(-S dn/dx, S dn/dy_up, 1)"),
+    TEX_ENUM(struct dnoise_params, fade, 0, "cubic", "cubic|quintic",
+             "weight function: the thesis's cubic (eq. 5.2) or Perlin's quintic"),
+    TEX_INT(struct dnoise_params, gradients, 0, 256, 2, TEX_NOISE_MAX_GRADIENTS, "N",
+            "gradients on the sphere (the thesis's n)"),
+    {0}};
+
+static int dnoise_init(struct tex_field *f)
+{
+    const struct dnoise_params *p = f->params;
+    struct noise_state *s = calloc(1, sizeof *s);
+
+    if (!s)
+        return tex_error("out of memory");
+    f->state = s;
+    if (f->tile) {
+        if (p->frequency != floor(p->frequency) || p->frequency < 1)
+            return tex_usage_error("--frequency must be a whole number >= 1 with --tile (got %g)",
+                                   p->frequency);
+        s->period = (int)p->frequency;
+    }
+    for (int a = 0; a < p->offset.n; a++)
+        s->off[a] = p->offset.v[a];
+    s->off[2] += p->frequency * p->z;
+    f->nc = p->normal ? 3 : p->channels;
+    if (tex_noise_init(&s->t, f->seed, p->gradients, s->period) < 0)
+        return -1;
+    s->t.fade = p->fade;
+    return 0;
+}
+
+static void dnoise_fini(struct tex_field *f)
+{
+    struct noise_state *s = f->state;
+    if (s)
+        tex_noise_free(&s->t);
+    free(s);
+}
+
+static void dnoise_eval3(const struct tex_field *f, int n, const double *u, const double *v,
+                         const double *w, float *out)
+{
+    const struct dnoise_params *p = f->params;
+    const struct noise_state *s = f->state;
+    double fr = p->frequency;
+
+    for (int i = 0; i < n; i++, out += f->nc) {
+        double g[3];
+        tex_noise3_grad(&s->t, s->period, s->off[0] + fr * u[i], s->off[1] + fr * v[i],
+                        s->off[2] + fr * (w ? w[i] : 0), g);
+        if (p->normal) {
+            /* v grows downwards: the height's slope along y-up is -dn/dv. */
+            double nx = -p->strength * g[0], ny = p->strength * g[1];
+            double len = sqrt(nx * nx + ny * ny + 1);
+            out[0] = (float)(0.5 + 0.5 * nx / len);
+            out[1] = (float)(0.5 + 0.5 * ny / len);
+            out[2] = (float)(0.5 + 0.5 / len);
+        } else {
+            for (int c = 0; c < f->nc; c++)
+                out[c] = (float)g[c];
+        }
+    }
+}
+
+static void dnoise_eval2(const struct tex_field *f, int n, const double *u, const double *v,
+                         float *out)
+{
+    dnoise_eval3(f, n, u, v, NULL, out);
+}
+
+const struct tex_primitive tex_prim_d_noise = {
+    .name = "d_noise",
+    .summary = "the analytic gradient of gradient noise, or a normal map from it",
+    .flags = TEX_PRIM_2D | TEX_PRIM_3D | TEX_PRIM_TILE,
+    .params_size = sizeof(struct dnoise_params),
+    .params = dnoise_rows,
+    .init = dnoise_init,
+    .fini = dnoise_fini,
+    .eval2 = dnoise_eval2,
+    .eval3 = dnoise_eval3,
+};

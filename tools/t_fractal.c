@@ -1,4 +1,4 @@
-/* t_fractal - fractal */
+/* t_fractal - fBm, multifractals, midpoint displacement, Mandelbrot, Julia and Koch maps */
 #include "textura.h"
 
 int main(int argc, char **argv)

@@ -1,4 +1,4 @@
-/* t_turbulence - turbulence */
+/* t_turbulence - Perlin turbulence as a texture map */
 #include "textura.h"
 
 int main(int argc, char **argv)
