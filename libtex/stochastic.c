@@ -121,7 +121,7 @@ static const struct tex_param colorvar_rows[] = {
 
 struct colorvar_state {
     tex_noise_table t;
-    double sumc;
+    double sumc, phase[2][16]; /* per-term phases from the seed, as in Gardner's model */
 };
 
 static int colorvar_init(struct tex_field *f)
@@ -135,8 +135,13 @@ static int colorvar_init(struct tex_field *f)
     f->state = s;
     if (f->tile && (whole(p->frequency, "--frequency") < 0 || whole(p->b, "-b") < 0))
         return -1;
-    for (int i = 0; i < p->terms; i++, c /= sqrt(2.0))
+    tex_rng r;
+    tex_rng_seed(&r, f->seed);
+    for (int i = 0; i < p->terms; i++, c /= sqrt(2.0)) {
         s->sumc += c;
+        s->phase[0][i] = 2 * M_PI * tex_rng_uniform(&r);
+        s->phase[1][i] = 2 * M_PI * tex_rng_uniform(&r);
+    }
     f->nc = p->color[3] > 0 ? 3 : 1;
     return tex_noise_init(&s->t, f->seed, 256, f->tile ? 4 : 0);
 }
@@ -149,7 +154,7 @@ static void colorvar_fini(struct tex_field *f)
     free(s);
 }
 
-/* Fact = sum C_i (sin(w_i u + P_z) + 1) * sum C_i (sin(w_i v + P_x) + 1), over its
+/* Fact = sum C_i (sin(w_i u + P_z + a_i) + 1) * sum C_i (sin(w_i v + P_x + b_i) + 1), over its
  * largest value (2 sum C_i)^2 so that it lies in [0,1]. */
 static void colorvar_eval2(const struct tex_field *f, int n, const double *u, const double *v,
                            float *out)
@@ -166,8 +171,8 @@ static void colorvar_eval2(const struct tex_field *f, int n, const double *u, co
             px += nz;
         }
         for (int i = 0; i < p->terms; i++, c /= sqrt(2.0), w *= 2) {
-            su += c * (sin(w * u[k] + pz) + 1);
-            sv += c * (sin(w * v[k] + px) + 1);
+            su += c * (sin(w * u[k] + pz + s->phase[0][i]) + 1);
+            sv += c * (sin(w * v[k] + px + s->phase[1][i]) + 1);
         }
         double fact = su * sv / (4 * s->sumc * s->sumc);
         if (f->nc == 1)
