@@ -80,9 +80,12 @@ static void bilinear(const struct tex_sampler *s, double x, double y, float *out
     }
 }
 
+/* Lookups along one axis: about one per source pixel the output pixel spans,
+ * so each bilinear tap covers its share; one (plain bilinear) at 1:1 and when
+ * magnifying, which keeps whole-pixel lookups exact. */
 static int taps(double len, int maxtaps)
 {
-    double n = ceil(2.0 * len - 1e-9);
+    double n = ceil(len - 1e-6);
     return n < 1 ? 1 : n > maxtaps ? maxtaps : (int)n;
 }
 

@@ -3,9 +3,10 @@
  * Rotate, scale, shift, expand and clip a map (thesis 4.3.2 and 5.2.4.2:
  * Rotate alpha, Scale dx dy, Shift dx dy, expand ... background, clipping).
  * Resampling is area-filtered: each output pixel averages an N x M grid of
- * bilinear lookups spread over its footprint in the source, with N and M
- * growing with the local shrink factor (at least 2), so a rotated or shrunk
- * checkerboard does not alias.  Maps that hold region ids (subregions > 0)
+ * bilinear lookups spread over its footprint in the source, N and M being
+ * the number of source pixels the footprint spans along each axis (1 at
+ * 1:1 or when magnifying), so a rotated or shrunk checkerboard does not
+ * alias.  Maps that hold region ids (subregions > 0)
  * are sampled nearest-neighbour instead: ids must not be blended.
  *
  * Coordinates are in pixels of the source, pixel (x,y) covering
