@@ -1,0 +1,465 @@
+/* compose.c - per-pixel operators, cascades, tiling, warping, blur */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "compose.h"
+#include "error.h"
+#include "param.h"
+
+static const char *const op_names[TEX_OP_COUNT] = {
+    "add", "sub", "mul", "div", "min", "max", "mix", "abs", "invert", "threshold",
+    "over", "under", "and", "or", "xor"};
+
+int tex_op_find(const char *name)
+{
+    for (int i = 0; i < TEX_OP_COUNT; i++)
+        if (!strcmp(name, op_names[i]))
+            return i;
+    return tex_usage_error("unknown operator '%s' (valid: %s)", name, tex_op_names());
+}
+
+const char *tex_op_name(enum tex_op op)
+{
+    return op >= 0 && op < TEX_OP_COUNT ? op_names[op] : "?";
+}
+
+const char *tex_op_names(void)
+{
+    return "add|sub|mul|div|min|max|mix|abs|invert|threshold|over|under|and|or|xor";
+}
+
+int tex_op_arity(enum tex_op op)
+{
+    return op == TEX_OP_MIX ? 3 : op == TEX_OP_ABS || op == TEX_OP_INVERT || op == TEX_OP_THRESHOLD
+                                      ? 1 : 2;
+}
+
+int tex_operand_parse(const char *text, struct tex_operand *o)
+{
+    const char *s = text;
+    char buf[64];
+
+    memset(o, 0, sizeof *o);
+    while (*s) {
+        size_t n = strcspn(s, ",");
+        double v;
+        if (o->nc == 4 || n == 0 || n >= sizeof buf)
+            return -1;
+        memcpy(buf, s, n);
+        buf[n] = '\0';
+        if (tex_parse_real(buf, &v) < 0 || fabs(v) > 3e38)
+            return -1;
+        o->c[o->nc++] = (float)v;
+        s += n;
+        if (*s == ',' && !*++s)
+            return -1;
+    }
+    if (o->nc == 0 || o->nc == 2)
+        return -1;
+    return 0;
+}
+
+static int operand_nc(const struct tex_operand *o)
+{
+    return o->map ? o->map->nc : o->nc;
+}
+
+/* Channel c of operand o at pixel i, seen with `nc` channels. */
+static inline float val(const struct tex_operand *o, size_t i, int c, int nc)
+{
+    int onc = o->map ? o->map->nc : o->nc;
+    const float *p = o->map ? o->map->px + i * onc : o->c;
+
+    if (nc == 4 && c == 3)
+        return onc == 4 ? p[3] : 1.0f;
+    return onc == 1 ? p[0] : p[c];
+}
+
+/* The channels of the result, or -1 if the operands do not combine. */
+static int combine_nc(const struct tex_operand *const *ops, int n)
+{
+    int nc = 1;
+
+    for (int k = 0; k < n; k++)
+        if (ops[k] && operand_nc(ops[k]) > nc)
+            nc = operand_nc(ops[k]);
+    for (int k = 0; k < n; k++) {
+        int c = ops[k] ? operand_nc(ops[k]) : nc;
+        if (!(c == 1 || c == nc || (c == 3 && nc == 4)))
+            return -1;
+    }
+    return nc;
+}
+
+static inline float bit(float x, float t)
+{
+    return x >= t ? 1.0f : 0.0f;
+}
+
+tex_map *tex_op_apply(enum tex_op op, const struct tex_operand *a, const struct tex_operand *b,
+                      const struct tex_operand *w, double t)
+{
+    const struct tex_operand *ops[3] = {a, b, w};
+    const tex_map *size = NULL;
+    int nops = tex_op_arity(op), nc;
+    float ft = (float)t;
+    tex_map *r;
+    size_t n;
+
+    if (op < 0 || op >= TEX_OP_COUNT)
+        return tex_usage_error("unknown operator"), NULL;
+    if (op == TEX_OP_THRESHOLD && b)
+        nops = 2;
+    for (int k = 0; k < nops; k++) {
+        if (!ops[k])
+            return tex_usage_error("%s needs %d operands", op_names[op], nops), NULL;
+        if (!ops[k]->map)
+            continue;
+        if (!size)
+            size = ops[k]->map;
+        else if (ops[k]->map->w != size->w || ops[k]->map->h != size->h)
+            return tex_usage_error("%s: operand %d is %dx%d but operand 1 is %dx%d (use "
+                                   "--resize)", op_names[op], k + 1, ops[k]->map->w,
+                                   ops[k]->map->h, size->w, size->h), NULL;
+    }
+    if (!size)
+        return tex_usage_error("%s: at least one operand must be a map", op_names[op]), NULL;
+    if ((nc = combine_nc(ops, nops)) < 0)
+        return tex_usage_error("%s: operands of %d, %d%s channels do not combine (1 broadcasts, "
+                               "3 meets 4 as opaque)", op_names[op], operand_nc(a),
+                               nops > 1 ? operand_nc(b) : 0, nops > 2 ? " and more" : ""), NULL;
+    if (!(r = tex_map_new(size->w, size->h, nc)))
+        return NULL;
+    if (a->map && a->map->history && tex_map_set_history(r, a->map->history) < 0) {
+        tex_map_free(r);
+        return NULL;
+    }
+    n = (size_t)size->w * size->h;
+    /* Colour channels: all but the alpha of RGBA. */
+    int ncol = nc == 4 ? 3 : nc;
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++) {
+        float *d = r->px + i * nc;
+        if (op == TEX_OP_OVER || op == TEX_OP_UNDER) {
+            const struct tex_operand *top = op == TEX_OP_OVER ? a : b;
+            const struct tex_operand *bot = op == TEX_OP_OVER ? b : a;
+            float k = nc == 4 ? 1.0f - val(top, i, 3, 4) : 0.0f;
+            for (int c = 0; c < nc; c++)
+                d[c] = val(top, i, c, nc) + val(bot, i, c, nc) * k;
+            continue;
+        }
+        if (op == TEX_OP_MIX) {
+            for (int c = 0; c < nc; c++) {
+                float x = val(a, i, c, nc), y = val(b, i, c, nc), s = val(w, i, c, nc);
+                d[c] = x + (y - x) * s;
+            }
+            continue;
+        }
+        for (int c = 0; c < ncol; c++) {
+            float x = val(a, i, c, nc), y = nops > 1 ? val(b, i, c, nc) : 0.0f, z;
+            switch (op) {
+            case TEX_OP_ADD: z = x + y; break;
+            case TEX_OP_SUB: z = x - y; break;
+            case TEX_OP_MUL: z = x * y; break;
+            case TEX_OP_DIV: z = y != 0.0f ? x / y : 0.0f; break;
+            case TEX_OP_MIN: z = fminf(x, y); break;
+            case TEX_OP_MAX: z = fmaxf(x, y); break;
+            case TEX_OP_ABS: z = fabsf(x); break;
+            case TEX_OP_INVERT: z = (nc == 4 ? val(a, i, 3, 4) : 1.0f) - x; break;
+            case TEX_OP_THRESHOLD: z = bit(x, nops > 1 ? y : ft); break;
+            case TEX_OP_AND: z = bit(x, ft) * bit(y, ft); break;
+            case TEX_OP_OR: z = fmaxf(bit(x, ft), bit(y, ft)); break;
+            case TEX_OP_XOR: z = bit(x, ft) != bit(y, ft) ? 1.0f : 0.0f; break;
+            default: z = 0.0f; break;
+            }
+            d[c] = z;
+        }
+        if (nc == 4)
+            d[3] = val(a, i, 3, 4);
+    }
+    return r;
+}
+
+tex_map *tex_fit(const tex_map *m, int w, int h, enum tex_fit fit, const char *what)
+{
+    static const double id[6] = {1, 0, 0, 0, 1, 0};
+
+    if (m->w == w && m->h == h)
+        return tex_map_clone(m);
+    switch (fit) {
+    case TEX_FIT_SCALE: return tex_resize(m, w, h);
+    case TEX_FIT_TILE: return tex_affine(m, w, h, id, TEX_EDGE_WRAP, NULL);
+    default:
+        return tex_usage_error("%s is %dx%d but the result is %dx%d (use --resize scale|tile)",
+                               what, m->w, m->h, w, h), NULL;
+    }
+}
+
+/* ---- cascade ---- */
+
+tex_map *tex_cascade(const tex_map *ids, int nregions, const tex_map *const *maps,
+                     const float def[4])
+{
+    int nc = 1, has2 = 0;
+    float d4[4];
+    struct tex_operand dop = {NULL, 4, {0}};
+    tex_map *r;
+    size_t n = (size_t)ids->w * ids->h;
+
+    if (ids->nc != 1)
+        return tex_usage_error("the region-id map must have 1 channel (it has %d)", ids->nc), NULL;
+    for (int k = 1; k <= nregions; k++) {
+        if (!maps[k])
+            continue;
+        if (maps[k]->w != ids->w || maps[k]->h != ids->h)
+            return tex_usage_error("the map of region %d is %dx%d but the ids are %dx%d (use "
+                                   "--resize)", k, maps[k]->w, maps[k]->h, ids->w, ids->h), NULL;
+        has2 |= maps[k]->nc == 2;
+        if (maps[k]->nc > nc)
+            nc = maps[k]->nc;
+    }
+    if (def[3] < 1.0f)
+        nc = 4;
+    else if ((def[0] != def[1] || def[1] != def[2]) && nc < 3)
+        nc = 3;
+    if (has2 && nc != 2)
+        return tex_usage_error("2-channel region maps do not combine with colours"), NULL;
+    /* The default as a premultiplied constant operand. */
+    d4[0] = def[0] * def[3];
+    d4[1] = def[1] * def[3];
+    d4[2] = def[2] * def[3];
+    d4[3] = def[3];
+    memcpy(dop.c, d4, sizeof d4);
+    if (!(r = tex_map_new(ids->w, ids->h, nc)))
+        return NULL;
+    if (ids->history && tex_map_set_history(r, ids->history) < 0) {
+        tex_map_free(r);
+        return NULL;
+    }
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++) {
+        float id = ids->px[i];
+        int k = id >= 0.5f && id < nregions + 0.5f ? (int)lrintf(id) : 0;
+        struct tex_operand o = {k ? maps[k] : NULL, 0, {0}};
+        const struct tex_operand *src = o.map ? &o : &dop;
+        for (int c = 0; c < nc; c++)
+            r->px[i * nc + c] = val(src, src == &dop ? 0 : i, c, nc);
+    }
+    return r;
+}
+
+/* ---- tiling and the matrix of maps ---- */
+
+static int rule_pick(enum tex_rule rule, int cu, int cv, int nu, int n)
+{
+    switch (rule) {
+    case TEX_RULE_DIAGONAL: return cu == cv ? 0 : 1 % n;
+    case TEX_RULE_CHECKER: return (cu + cv) % n;
+    case TEX_RULE_ROWS: return cv % n;
+    case TEX_RULE_COLUMNS: return cu % n;
+    default: return (int)(((long long)cv * nu + cu) % n);
+    }
+}
+
+tex_map *tex_tile(const tex_map *const *maps, int nmaps, enum tex_rule rule, int nu, int nv,
+                  int mirror, int w, int h)
+{
+    int nc = 1, failed = 0;
+    tex_map **conv, *r;
+    struct tex_sampler *s;
+
+    if (nmaps < 1 || nu < 1 || nv < 1)
+        return tex_usage_error("tiling needs at least one map and nu, nv >= 1"), NULL;
+    for (int k = 0; k < nmaps; k++)
+        if (maps[k]->nc > nc)
+            nc = maps[k]->nc;
+    if (!(r = tex_map_new(w, h, nc)))
+        return NULL;
+    conv = calloc(nmaps, sizeof *conv);
+    s = calloc(nmaps, sizeof *s);
+    if (!conv || !s) {
+        tex_error("out of memory");
+        failed = 1;
+    }
+    for (int k = 0; k < nmaps && !failed; k++) {
+        const tex_map *m = maps[k];
+        if (m->nc != nc && !(m = conv[k] = tex_map_channels(m, nc)))
+            failed = 1;
+        else
+            tex_sampler_init(&s[k], m, mirror ? TEX_EDGE_MIRROR : TEX_EDGE_WRAP, NULL);
+    }
+    if (!failed) {
+        r->subregions = nmaps == 1 ? maps[0]->subregions : 0;
+        if (maps[0]->history && tex_map_set_history(r, maps[0]->history) < 0)
+            failed = 1;
+    }
+    if (!failed) {
+#pragma omp parallel for schedule(dynamic, 4)
+        for (int y = 0; y < h; y++) {
+            double V = (y + 0.5) / h * nv;
+            int cv = V < nv ? (int)V : nv - 1;
+            double fv = V - cv;
+            if (mirror && (cv & 1))
+                fv = 1.0 - fv;
+            for (int x = 0; x < w; x++) {
+                double U = (x + 0.5) / w * nu;
+                int cu = U < nu ? (int)U : nu - 1;
+                double fu = U - cu;
+                int k = rule_pick(rule, cu, cv, nu, nmaps);
+                const tex_map *m = s[k].m;
+                double du[2] = {(double)nu * m->w / w, 0}, dv[2] = {0, (double)nv * m->h / h};
+                if (mirror && (cu & 1))
+                    fu = 1.0 - fu;
+                tex_sample(&s[k], fu * m->w, fv * m->h, du, dv, tex_map_px(r, x, y));
+            }
+        }
+    }
+    for (int k = 0; conv && k < nmaps; k++)
+        tex_map_free(conv[k]);
+    free(conv);
+    free(s);
+    if (failed) {
+        tex_map_free(r);
+        return NULL;
+    }
+    return r;
+}
+
+/* ---- domain perturbation ---- */
+
+/* The displacement (in texture units, before the amount) at row y. */
+static void warp_row(const struct tex_sampler *sb, const struct tex_warp_opts *o, int w, int h,
+                     int y, double *d)
+{
+    const tex_map *b = sb->m;
+    double du[2] = {(double)b->w / w, 0}, dv[2] = {0, (double)b->h / h};
+    double ca = cos(o->angle * M_PI / 180.0), sa = sin(o->angle * M_PI / 180.0);
+    float v[4], v2[4];
+
+    for (int x = 0; x <= w; x++) {
+        double u = (x + 0.5) / w, vv = (y + 0.5) / h;
+        tex_sample(sb, u * b->w, vv * b->h, du, dv, v);
+        if (b->nc >= 2) {
+            d[2 * x] = v[0] - o->centre;
+            d[2 * x + 1] = v[1] - o->centre;
+        } else if (o->isotropic) {
+            tex_sample(sb, (u + 0.5) * b->w, (vv + 0.5) * b->h, du, dv, v2);
+            d[2 * x] = v[0] - o->centre;
+            d[2 * x + 1] = v2[0] - o->centre;
+        } else {
+            d[2 * x] = (v[0] - o->centre) * ca;
+            d[2 * x + 1] = -(v[0] - o->centre) * sa;
+        }
+    }
+}
+
+tex_map *tex_warp(const tex_map *m, const tex_map *by, const struct tex_warp_opts *o, int w,
+                  int h)
+{
+    struct tex_sampler sm, sb;
+    tex_map *r;
+    int failed = 0;
+
+    if (!isfinite(o->amount) || !isfinite(o->centre) || !isfinite(o->angle))
+        return tex_usage_error("warp parameters must be finite"), NULL;
+    if (!(r = tex_map_new(w, h, m->nc)))
+        return NULL;
+    r->subregions = m->subregions;
+    if (m->history && tex_map_set_history(r, m->history) < 0) {
+        tex_map_free(r);
+        return NULL;
+    }
+    tex_sampler_init(&sm, m, o->edge, NULL);
+    tex_sampler_init(&sb, by, TEX_EDGE_WRAP, NULL);
+    sb.nearest = 0;
+#pragma omp parallel
+    {
+        /* This row's displacements and the next row's, one extra column:
+         * their differences give each pixel's footprint in m. */
+        double *d0 = malloc(4 * sizeof *d0 * (w + 1)), *d1 = d0 ? d0 + 2 * (w + 1) : NULL;
+        if (!d0) {
+#pragma omp atomic write
+            failed = 1;
+        }
+#pragma omp for schedule(dynamic, 4)
+        for (int y = 0; y < h; y++) {
+            if (!d0)
+                continue;
+            warp_row(&sb, o, w, h, y, d0);
+            warp_row(&sb, o, w, h, y + 1, d1);
+            for (int x = 0; x < w; x++) {
+                double u = (x + 0.5) / w + o->amount * d0[2 * x];
+                double v = (y + 0.5) / h + o->amount * d0[2 * x + 1];
+                double du[2] = {m->w * (1.0 / w + o->amount * (d0[2 * x + 2] - d0[2 * x])),
+                                m->h * o->amount * (d0[2 * x + 3] - d0[2 * x + 1])};
+                double dv[2] = {m->w * o->amount * (d1[2 * x] - d0[2 * x]),
+                                m->h * (1.0 / h + o->amount * (d1[2 * x + 1] - d0[2 * x + 1]))};
+                tex_sample(&sm, u * m->w, v * m->h, du, dv, tex_map_px(r, x, y));
+            }
+        }
+        free(d0);
+    }
+    if (failed) {
+        tex_map_free(r);
+        return tex_error("out of memory"), NULL;
+    }
+    return r;
+}
+
+/* ---- blur ---- */
+
+tex_map *tex_blur(const tex_map *m, double sigma)
+{
+    int rad, nc = m->nc;
+    float *k;
+    tex_map *tmp, *r;
+
+    if (!(sigma >= 0 && sigma <= TEX_BLUR_MAX))
+        return tex_usage_error("blur radius must be 0..%d (got %g)", TEX_BLUR_MAX, sigma), NULL;
+    if (sigma == 0)
+        return tex_map_clone(m);
+    rad = (int)ceil(3 * sigma);
+    if (!(k = malloc((2 * rad + 1) * sizeof *k)))
+        return tex_error("out of memory"), NULL;
+    double sum = 0;
+    for (int i = -rad; i <= rad; i++)
+        sum += k[i + rad] = (float)exp(-0.5 * i * i / (sigma * sigma));
+    for (int i = 0; i <= 2 * rad; i++)
+        k[i] = (float)(k[i] / sum);
+    tmp = tex_map_new(m->w, m->h, nc);
+    r = tmp ? tex_map_clone(m) : NULL;
+    if (!r) {
+        free(k);
+        tex_map_free(tmp);
+        return NULL;
+    }
+    r->subregions = 0;
+#pragma omp parallel for schedule(static)
+    for (int y = 0; y < m->h; y++)
+        for (int x = 0; x < m->w; x++) {
+            float acc[4] = {0, 0, 0, 0};
+            for (int i = -rad; i <= rad; i++) {
+                int xx = x + i < 0 ? 0 : x + i >= m->w ? m->w - 1 : x + i;
+                const float *p = tex_map_px(m, xx, y);
+                for (int c = 0; c < nc; c++)
+                    acc[c] += k[i + rad] * p[c];
+            }
+            memcpy(tex_map_px(tmp, x, y), acc, nc * sizeof *acc);
+        }
+#pragma omp parallel for schedule(static)
+    for (int y = 0; y < m->h; y++)
+        for (int x = 0; x < m->w; x++) {
+            float acc[4] = {0, 0, 0, 0};
+            for (int i = -rad; i <= rad; i++) {
+                int yy = y + i < 0 ? 0 : y + i >= m->h ? m->h - 1 : y + i;
+                const float *p = tex_map_px(tmp, x, yy);
+                for (int c = 0; c < nc; c++)
+                    acc[c] += k[i + rad] * p[c];
+            }
+            memcpy(tex_map_px(r, x, y), acc, nc * sizeof *acc);
+        }
+    free(k);
+    tex_map_free(tmp);
+    return r;
+}

@@ -1,0 +1,1144 @@
+/* script.c - lexer, parser and interpreter of the pattern composition language */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "compose.h"
+#include "error.h"
+#include "file.h"
+#include "prim.h"
+#include "script.h"
+#include "transform.h"
+
+#define MAX_DEPTH 100      /* nesting of one expression */
+#define MAX_EVAL_DEPTH 500 /* chains of definitions */
+
+/* ---- lexer ---- */
+
+enum tk { T_EOF, T_NAME, T_NUM, T_STR, T_PUNCT };
+
+struct tok {
+    enum tk k;
+    const char *p; /* T_NAME: the text; T_STR: unescaped, in the arena */
+    size_t n;
+    double num;
+    char c; /* T_PUNCT */
+    int line, col;
+};
+
+/* ---- syntax tree ---- */
+
+enum nk { N_REF, N_FILE, N_PRIM, N_NUM, N_BIN, N_EXPAND, N_ROTATE, N_SCALE, N_RESIZE, N_SHIFT,
+          N_CLIP, N_FILTER, N_TILE, N_MATRIX, N_WARP, N_MIX };
+
+struct param {
+    char *name, *value;
+    int line, col;
+};
+
+struct node {
+    enum nk k;
+    int line, col;
+    int op;               /* N_BIN: enum tex_op; N_FILTER: filter; N_MATRIX: rule */
+    int flag;             /* wrap, mirror, isotropic, background given */
+    char *s;              /* name, file, primitive */
+    struct node *a, *b, *c;
+    struct node **list;   /* N_MATRIX */
+    int nlist;
+    double v[4];          /* numbers of the operation */
+    float colour[4];
+    struct param *params;
+    int nparams;
+    int w, h;             /* an explicit size, 0 if none */
+    struct def *def;      /* N_REF, once resolved */
+};
+
+struct def {
+    char *name;
+    struct node *expr;
+    int line, col;   /* where it was defined (or declared) */
+    int state;       /* 0 not evaluated, 1 being evaluated, 2 done */
+    tex_map *map;
+};
+
+struct cellref {
+    int i, j, line, col;
+    struct node *expr;
+};
+
+struct chunk {
+    struct chunk *next;
+    max_align_t data[];
+};
+
+struct S {
+    const char *src, *end, *cur, *name;
+    int line, col;
+    struct tok t;         /* the current token */
+    jmp_buf fail;
+    struct chunk *arena;
+    const struct tex_script_opts *o;
+    /* what the script says */
+    char *title;
+    int have_kind, have_size, w, h, cw, ch;
+    float bg[4];
+    struct def *defs;
+    int ndefs, capdefs;
+    struct node **refs;
+    int nrefs, caprefs;
+    struct cellref *cells;
+    int ncells, capcells;
+    int depth, evaldepth, stdin_used;
+};
+
+static void *arena(struct S *s, size_t n)
+{
+    struct chunk *c = calloc(1, sizeof *c + n);
+
+    if (!c) {
+        tex_error("out of memory");
+        longjmp(s->fail, 1);
+    }
+    c->next = s->arena;
+    s->arena = c;
+    return c->data;
+}
+
+/* Grow an array of elements of size sz to hold one more. */
+static void *grow(struct S *s, void *a, int *cap, int n, size_t sz)
+{
+    void *b;
+    if (n < *cap)
+        return a;
+    *cap = *cap ? 2 * *cap : 16;
+    if (!(b = realloc(a, *cap * sz))) {
+        tex_error("out of memory");
+        longjmp(s->fail, 1);
+    }
+    return b;
+}
+
+static void fail_at(struct S *s, int line, int col, const char *fmt, ...)
+    __attribute__((noreturn, format(printf, 4, 5)));
+
+static void fail_at(struct S *s, int line, int col, const char *fmt, ...)
+{
+    char msg[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    tex_usage_error("%s:%d:%d: %s", s->name, line, col, msg);
+    longjmp(s->fail, 1);
+}
+
+static void next(struct S *s)
+{
+    const char *p = s->cur;
+
+    for (;;) { /* blanks and comments */
+        if (p < s->end && (*p == ' ' || *p == '\t' || *p == '\r')) {
+            p++;
+            s->col++;
+        } else if (p < s->end && *p == '\n') {
+            p++;
+            s->line++;
+            s->col = 1;
+        } else if (p < s->end && *p == '#') {
+            while (p < s->end && *p != '\n')
+                p++;
+        } else
+            break;
+    }
+    s->t = (struct tok){T_EOF, p, 0, 0, 0, s->line, s->col};
+    if (p == s->end) {
+        s->cur = p;
+        return;
+    }
+    const char *q = p;
+    unsigned char c = (unsigned char)*p;
+    if ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_') {
+        while (q < s->end && ((*q >= 'a' && *q <= 'z') || (*q >= 'A' && *q <= 'Z') ||
+                              (*q >= '0' && *q <= '9') || *q == '_'))
+            q++;
+        s->t.k = T_NAME;
+    } else if ((c >= '0' && c <= '9') || (c == '.' && p + 1 < s->end && p[1] >= '0' &&
+                                          p[1] <= '9')) {
+        char buf[64];
+        size_t n;
+        while (q < s->end && ((*q >= '0' && *q <= '9') || *q == '.'))
+            q++;
+        if (q < s->end && (*q == 'e' || *q == 'E')) {
+            const char *e = q + 1;
+            if (e < s->end && (*e == '+' || *e == '-'))
+                e++;
+            if (e < s->end && *e >= '0' && *e <= '9') {
+                q = e;
+                while (q < s->end && *q >= '0' && *q <= '9')
+                    q++;
+            }
+        }
+        n = (size_t)(q - p);
+        if (n >= sizeof buf)
+            fail_at(s, s->line, s->col, "number too long");
+        memcpy(buf, p, n);
+        buf[n] = '\0';
+        char *e;
+        s->t.num = strtod(buf, &e);
+        if (*e || !isfinite(s->t.num))
+            fail_at(s, s->line, s->col, "malformed number '%s'", buf);
+        s->t.k = T_NUM;
+    } else if (c == '"') {
+        char *d;
+        size_t n = 0;
+        q = p + 1;
+        while (q < s->end && *q != '"' && *q != '\n') {
+            if (*q == '\\' && q + 1 < s->end)
+                q++;
+            q++;
+        }
+        if (q >= s->end || *q != '"')
+            fail_at(s, s->line, s->col, "unterminated string");
+        d = arena(s, (size_t)(q - p));
+        for (const char *r = p + 1; r < q; r++) {
+            if (*r == '\\')
+                r++;
+            if (*r == '\0')
+                fail_at(s, s->line, s->col, "NUL byte in a string");
+            d[n++] = *r;
+        }
+        d[n] = '\0';
+        q++;
+        s->t.k = T_STR;
+        s->t.p = d;
+        s->t.n = n;
+        s->col += (int)(q - p);
+        s->cur = q;
+        return;
+    } else if (strchr(";,=()+-*", c) && c) {
+        q = p + 1;
+        s->t.k = T_PUNCT;
+        s->t.c = (char)c;
+    } else if (c >= 0x20 && c < 0x7f)
+        fail_at(s, s->line, s->col, "unexpected character '%c'", c);
+    else
+        fail_at(s, s->line, s->col, "unexpected byte 0x%02x", c);
+    if (s->t.k != T_STR)
+        s->t.n = (size_t)(q - p);
+    s->col += (int)(q - p);
+    s->cur = q;
+}
+
+static int is_word(const struct S *s, const char *w)
+{
+    return s->t.k == T_NAME && strlen(w) == s->t.n && !memcmp(s->t.p, w, s->t.n);
+}
+
+static int is_punct(const struct S *s, char c)
+{
+    return s->t.k == T_PUNCT && s->t.c == c;
+}
+
+static const char *tok_desc(struct S *s)
+{
+    static _Thread_local char buf[48];
+    switch (s->t.k) {
+    case T_EOF: return "the end of the script";
+    case T_STR: return "a string";
+    case T_NUM: return "a number";
+    default:
+        snprintf(buf, sizeof buf, "'%.*s'", (int)(s->t.n > 32 ? 32 : s->t.n), s->t.p);
+        return buf;
+    }
+}
+
+static void expect_word(struct S *s, const char *w)
+{
+    if (!is_word(s, w))
+        fail_at(s, s->t.line, s->t.col, "expected '%s', found %s", w, tok_desc(s));
+    next(s);
+}
+
+static void expect_punct(struct S *s, char c)
+{
+    if (!is_punct(s, c))
+        fail_at(s, s->t.line, s->t.col, "expected '%c', found %s", c, tok_desc(s));
+    next(s);
+}
+
+static int accept_word(struct S *s, const char *w)
+{
+    if (!is_word(s, w))
+        return 0;
+    next(s);
+    return 1;
+}
+
+static char *take_name(struct S *s, const char *what)
+{
+    char *n;
+    if (s->t.k != T_NAME)
+        fail_at(s, s->t.line, s->t.col, "expected %s, found %s", what, tok_desc(s));
+    n = arena(s, s->t.n + 1);
+    memcpy(n, s->t.p, s->t.n);
+    next(s);
+    return n;
+}
+
+static double number(struct S *s)
+{
+    int neg = 0;
+    double v;
+    if (is_punct(s, '-')) {
+        neg = 1;
+        next(s);
+    }
+    if (s->t.k != T_NUM)
+        fail_at(s, s->t.line, s->t.col, "expected a number, found %s", tok_desc(s));
+    v = neg ? -s->t.num : s->t.num;
+    next(s);
+    return v;
+}
+
+/* A whole number in lo..hi. */
+static int integer(struct S *s, long lo, long hi, const char *what)
+{
+    int line = s->t.line, col = s->t.col;
+    double v = number(s);
+    if (v != floor(v) || v < lo || v > hi)
+        fail_at(s, line, col, "%s must be a whole number in %ld..%ld (got %g)", what, lo, hi, v);
+    return (int)v;
+}
+
+static void size_pair(struct S *s, int *w, int *h, const char *what)
+{
+    *w = integer(s, 1, TEX_MAP_MAX_SIDE, what);
+    expect_word(s, "by");
+    *h = integer(s, 1, TEX_MAP_MAX_SIDE, what);
+}
+
+/* 1-4 numbers in 0..1: grey, grey+alpha, RGB, RGBA (straight alpha). */
+static void colour(struct S *s, float rgba[4])
+{
+    double v[4];
+    int n = 0, line = s->t.line, col = s->t.col;
+    do {
+        if (n == 4)
+            fail_at(s, line, col, "a colour has 1 to 4 values");
+        v[n++] = number(s);
+    } while (is_punct(s, ',') && (next(s), 1));
+    for (int i = 0; i < n; i++)
+        if (v[i] < 0 || v[i] > 1)
+            fail_at(s, line, col, "colour values must be in 0..1 (got %g)", v[i]);
+    rgba[0] = (float)v[0];
+    rgba[1] = (float)(n >= 3 ? v[1] : v[0]);
+    rgba[2] = (float)(n >= 3 ? v[2] : v[0]);
+    rgba[3] = (float)(n == 2 ? v[1] : n == 4 ? v[3] : 1.0);
+}
+
+static struct node *new_node(struct S *s, enum nk k, int line, int col)
+{
+    struct node *n = arena(s, sizeof *n);
+    n->k = k;
+    n->line = line;
+    n->col = col;
+    return n;
+}
+
+static struct node *expr(struct S *s);
+static struct node *unary(struct S *s);
+
+static struct node *primary(struct S *s)
+{
+    int line = s->t.line, col = s->t.col;
+    struct node *n;
+
+    if (is_punct(s, '(')) {
+        next(s);
+        n = expr(s);
+        expect_punct(s, ')');
+        return n;
+    }
+    if (s->t.k == T_NUM || is_punct(s, '-')) {
+        n = new_node(s, N_NUM, line, col);
+        n->v[0] = number(s);
+        return n;
+    }
+    if (s->t.k == T_STR) {
+        n = new_node(s, N_FILE, line, col);
+        n->s = (char *)s->t.p;
+        next(s);
+        if (s->t.k == T_NUM)
+            size_pair(s, &n->w, &n->h, "an image size");
+        return n;
+    }
+    if (s->t.k != T_NAME)
+        fail_at(s, line, col, "expected an image, found %s", tok_desc(s));
+    n = new_node(s, N_REF, line, col);
+    n->s = take_name(s, "an image name");
+    if (!is_punct(s, '(')) {
+        s->refs = grow(s, s->refs, &s->caprefs, s->nrefs, sizeof *s->refs);
+        s->refs[s->nrefs++] = n;
+        return n;
+    }
+    /* A primitive call: name(param = value, ...) [W by H]. */
+    n->k = N_PRIM;
+    next(s);
+    while (!is_punct(s, ')')) {
+        struct param *p;
+        if (n->nparams == 64)
+            fail_at(s, s->t.line, s->t.col, "too many parameters");
+        if (!n->params)
+            n->params = arena(s, 64 * sizeof *n->params);
+        p = &n->params[n->nparams++];
+        p->line = s->t.line;
+        p->col = s->t.col;
+        p->name = take_name(s, "a parameter name");
+        expect_punct(s, '=');
+        if (s->t.k == T_NAME || s->t.k == T_STR) {
+            p->value = arena(s, s->t.n + 1);
+            memcpy(p->value, s->t.p, s->t.n);
+            next(s);
+        } else {
+            double v = number(s);
+            p->value = arena(s, 40);
+            snprintf(p->value, 40, "%.17g", v);
+        }
+        if (!is_punct(s, ')'))
+            expect_punct(s, ',');
+    }
+    next(s);
+    if (s->t.k == T_NUM)
+        size_pair(s, &n->w, &n->h, "an image size");
+    return n;
+}
+
+static const char *const filters[] = {"blur", "threshold", "invert", "abs", NULL};
+static const char *const rules[] = {"diagonal", "checker", "rows", "columns", "cycle", NULL};
+
+static int pick(struct S *s, const char *const *names, const char *what)
+{
+    int line = s->t.line, col = s->t.col;
+    for (int i = 0; names[i]; i++)
+        if (accept_word(s, names[i]))
+            return i;
+    fail_at(s, line, col, "unknown %s %s", what, tok_desc(s));
+}
+
+static struct node *unary(struct S *s)
+{
+    int line = s->t.line, col = s->t.col;
+    struct node *n;
+
+    if (++s->depth > MAX_DEPTH)
+        fail_at(s, line, col, "expression nested too deeply (more than %d levels)", MAX_DEPTH);
+    if (accept_word(s, "expand")) {
+        n = new_node(s, N_EXPAND, line, col);
+        n->a = unary(s);
+        expect_word(s, "to");
+        size_pair(s, &n->w, &n->h, "an expanded size");
+        memcpy(n->colour, (float[4]){0, 0, 0, 1}, sizeof n->colour);
+        if (accept_word(s, "background"))
+            colour(s, n->colour);
+    } else if (accept_word(s, "rotate")) {
+        n = new_node(s, N_ROTATE, line, col);
+        n->a = unary(s);
+        expect_word(s, "by");
+        n->v[0] = number(s);
+        if ((n->flag = accept_word(s, "around"))) {
+            n->v[1] = number(s);
+            expect_punct(s, ',');
+            n->v[2] = number(s);
+        }
+        memcpy(n->colour, (float[4]){0, 0, 0, 1}, sizeof n->colour);
+        if (accept_word(s, "background"))
+            colour(s, n->colour);
+    } else if (accept_word(s, "scale")) {
+        n = new_node(s, N_SCALE, line, col);
+        n->a = unary(s);
+        expect_word(s, "by");
+        n->v[0] = n->v[1] = number(s);
+        if (is_punct(s, ',')) {
+            next(s);
+            n->v[1] = number(s);
+        }
+        if (!(n->v[0] >= 1e-3 && n->v[0] <= 1e3 && n->v[1] >= 1e-3 && n->v[1] <= 1e3))
+            fail_at(s, line, col, "scale factors must be in 0.001..1000 (got %g, %g)", n->v[0],
+                    n->v[1]);
+    } else if (accept_word(s, "resize")) {
+        n = new_node(s, N_RESIZE, line, col);
+        n->a = unary(s);
+        expect_word(s, "to");
+        size_pair(s, &n->w, &n->h, "a size");
+    } else if (accept_word(s, "shift")) {
+        n = new_node(s, N_SHIFT, line, col);
+        n->a = unary(s);
+        expect_word(s, "by");
+        n->v[0] = number(s);
+        expect_punct(s, ',');
+        n->v[1] = number(s);
+        n->flag = accept_word(s, "wrap");
+        memcpy(n->colour, (float[4]){0, 0, 0, 1}, sizeof n->colour);
+        if (accept_word(s, "background"))
+            colour(s, n->colour);
+    } else if (accept_word(s, "clipping") || accept_word(s, "clip")) {
+        n = new_node(s, N_CLIP, line, col);
+        n->a = unary(s);
+        expect_word(s, "from");
+        n->v[0] = integer(s, 0, TEX_MAP_MAX_SIDE, "a clipping corner");
+        expect_punct(s, ',');
+        n->v[1] = integer(s, 0, TEX_MAP_MAX_SIDE, "a clipping corner");
+        expect_word(s, "to");
+        n->v[2] = integer(s, 0, TEX_MAP_MAX_SIDE, "a clipping corner");
+        expect_punct(s, ',');
+        n->v[3] = integer(s, 0, TEX_MAP_MAX_SIDE, "a clipping corner");
+    } else if (accept_word(s, "filter")) {
+        n = new_node(s, N_FILTER, line, col);
+        n->op = pick(s, filters, "filter");
+        n->a = unary(s);
+        n->v[0] = n->op == 1 ? 0.5 : 1.0;
+        if ((n->flag = accept_word(s, "by")))
+            n->v[0] = number(s);
+        if (n->op == 0 && !(n->v[0] >= 0 && n->v[0] <= s->o->max_blur))
+            fail_at(s, line, col, "blur radius must be 0..%d (got %g)", s->o->max_blur, n->v[0]);
+    } else if (accept_word(s, "tile")) {
+        n = new_node(s, N_TILE, line, col);
+        n->a = unary(s);
+        expect_word(s, "by");
+        n->v[0] = integer(s, 1, 4096, "repetitions");
+        expect_punct(s, ',');
+        n->v[1] = integer(s, 1, 4096, "repetitions");
+        n->flag = accept_word(s, "mirror");
+    } else if (accept_word(s, "matrix")) {
+        n = new_node(s, N_MATRIX, line, col);
+        n->op = pick(s, rules, "matrix rule");
+        expect_word(s, "by");
+        n->v[0] = integer(s, 1, 4096, "matrix cells");
+        expect_punct(s, ',');
+        n->v[1] = integer(s, 1, 4096, "matrix cells");
+        expect_word(s, "of");
+        n->list = arena(s, 64 * sizeof *n->list);
+        do {
+            if (n->nlist == 64)
+                fail_at(s, line, col, "a matrix takes at most 64 images");
+            n->list[n->nlist++] = unary(s);
+        } while (is_punct(s, ',') && (next(s), 1));
+        n->flag = accept_word(s, "mirror");
+    } else if (accept_word(s, "warp")) {
+        n = new_node(s, N_WARP, line, col);
+        n->a = unary(s);
+        expect_word(s, "by");
+        n->b = unary(s);
+        n->v[0] = 0.1;
+        if (accept_word(s, "amount"))
+            n->v[0] = number(s);
+        if (!(fabs(n->v[0]) <= 100))
+            fail_at(s, line, col, "warp amount must be in -100..100 (got %g)", n->v[0]);
+        n->flag = accept_word(s, "isotropic");
+    } else if (accept_word(s, "mix")) {
+        n = new_node(s, N_MIX, line, col);
+        n->a = unary(s);
+        expect_punct(s, ',');
+        n->b = unary(s);
+        expect_word(s, "by");
+        n->c = unary(s);
+    } else
+        n = primary(s);
+    s->depth--;
+    return n;
+}
+
+static int binop(struct S *s)
+{
+    static const struct {
+        const char *w;
+        char c;
+        int op;
+    } ops[] = {{"over", 0, TEX_OP_OVER}, {"under", 0, TEX_OP_UNDER}, {"and", 0, TEX_OP_AND},
+               {"or", 0, TEX_OP_OR},     {"xor", 0, TEX_OP_XOR},     {"min", 0, TEX_OP_MIN},
+               {"max", 0, TEX_OP_MAX},   {NULL, '+', TEX_OP_ADD},    {NULL, '-', TEX_OP_SUB},
+               {NULL, '*', TEX_OP_MUL}};
+    for (size_t i = 0; i < sizeof ops / sizeof *ops; i++)
+        if (ops[i].w ? is_word(s, ops[i].w) : is_punct(s, ops[i].c)) {
+            next(s);
+            return ops[i].op;
+        }
+    return -1;
+}
+
+static struct node *expr(struct S *s)
+{
+    struct node *n;
+    int op;
+
+    if (++s->depth > MAX_DEPTH)
+        fail_at(s, s->t.line, s->t.col, "expression nested too deeply (more than %d levels)",
+                MAX_DEPTH);
+    n = unary(s);
+    for (;;) {
+        int line = s->t.line, col = s->t.col;
+        struct node *b;
+        if ((op = binop(s)) < 0)
+            break;
+        b = new_node(s, N_BIN, line, col);
+        b->op = op;
+        b->a = n;
+        b->b = unary(s);
+        n = b;
+    }
+    s->depth--;
+    return n;
+}
+
+static struct def *find_def(struct S *s, const char *name)
+{
+    for (int i = 0; i < s->ndefs; i++)
+        if (!strcmp(s->defs[i].name, name))
+            return &s->defs[i];
+    return NULL;
+}
+
+static void define(struct S *s, char *name, struct node *e, int line, int col)
+{
+    struct def *d = find_def(s, name);
+
+    if (d && d->expr)
+        fail_at(s, line, col, "image '%s' is defined twice (first at line %d)", name, d->line);
+    if (d && !e)
+        fail_at(s, line, col, "image '%s' is declared twice (first at line %d)", name, d->line);
+    if (!d) {
+        s->defs = grow(s, s->defs, &s->capdefs, s->ndefs, sizeof *s->defs);
+        d = &s->defs[s->ndefs++];
+        memset(d, 0, sizeof *d);
+        d->name = name;
+    }
+    d->expr = e;
+    d->line = line;
+    d->col = col;
+}
+
+static int is_tess(struct S *s)
+{
+    return accept_word(s, "tessellation") || accept_word(s, "tesselation");
+}
+
+static void parse(struct S *s)
+{
+    next(s);
+    /* The header: tessellation NAME; size; tessellation KIND; cell; background. */
+    for (;;) {
+        int line = s->t.line, col = s->t.col;
+        if (is_tess(s)) {
+            char *w = take_name(s, "a name");
+            if (!s->title)
+                s->title = w;
+            else if (s->have_kind++)
+                fail_at(s, line, col, "the tessellation kind is given twice");
+            else if (strcmp(w, "rectangular"))
+                fail_at(s, line, col, "unknown tessellation '%s' (only rectangular is supported)",
+                        w);
+        } else if (accept_word(s, "size")) {
+            size_pair(s, &s->w, &s->h, "the size");
+            s->have_size = 1;
+        } else if (accept_word(s, "cell")) {
+            size_pair(s, &s->cw, &s->ch, "the cell size");
+        } else if (accept_word(s, "background")) {
+            colour(s, s->bg);
+        } else
+            break;
+        expect_punct(s, ';');
+    }
+    if (!s->title)
+        fail_at(s, s->t.line, s->t.col, "a script starts with 'tessellation NAME;', found %s",
+                tok_desc(s));
+    if (!s->have_size)
+        fail_at(s, s->t.line, s->t.col, "expected 'size W by H;' before %s", tok_desc(s));
+    if ((long long)s->w * s->h > s->o->max_pixels)
+        fail_at(s, 1, 1, "size %d by %d is larger than the limit of %lld pixels", s->w, s->h,
+                s->o->max_pixels);
+    if (!s->cw) {
+        s->cw = s->w;
+        s->ch = s->h;
+    }
+    if (s->cw > s->w || s->ch > s->h)
+        fail_at(s, 1, 1, "cell %d by %d is larger than the size %d by %d", s->cw, s->ch, s->w,
+                s->h);
+    if (accept_word(s, "images")) {
+        while (!is_word(s, "end")) {
+            int line = s->t.line, col = s->t.col;
+            char *name = take_name(s, "an image name or 'end images'");
+            struct node *e = NULL;
+            if (is_punct(s, '=')) {
+                next(s);
+                e = expr(s);
+            }
+            define(s, name, e, line, col);
+            expect_punct(s, ';');
+        }
+        next(s);
+        expect_word(s, "images");
+        expect_punct(s, ';');
+    }
+    /* Definitions, then the layout. */
+    while (!is_word(s, "built")) {
+        int line = s->t.line, col = s->t.col;
+        char *name;
+        if (s->t.k == T_EOF)
+            fail_at(s, line, col, "expected 'built with ... end tessellation;', found %s",
+                    tok_desc(s));
+        name = take_name(s, "an image name or 'built with'");
+        expect_punct(s, '=');
+        define(s, name, expr(s), line, col);
+        expect_punct(s, ';');
+    }
+    next(s);
+    expect_word(s, "with");
+    while (!is_word(s, "end")) {
+        struct cellref *c;
+        int line = s->t.line, col = s->t.col;
+        int cols = (s->w + s->cw - 1) / s->cw, rows = (s->h + s->ch - 1) / s->ch;
+        expect_punct(s, '(');
+        s->cells = grow(s, s->cells, &s->capcells, s->ncells, sizeof *s->cells);
+        c = &s->cells[s->ncells];
+        c->line = line;
+        c->col = col;
+        c->i = integer(s, 1, cols, "the column of a cell");
+        expect_punct(s, ',');
+        c->j = integer(s, 1, rows, "the row of a cell");
+        expect_punct(s, ')');
+        for (int k = 0; k < s->ncells; k++)
+            if (s->cells[k].i == c->i && s->cells[k].j == c->j)
+                fail_at(s, line, col, "cell (%d,%d) is given twice (first at line %d)", c->i,
+                        c->j, s->cells[k].line);
+        c->expr = expr(s);
+        s->ncells++;
+        expect_punct(s, ';');
+    }
+    next(s);
+    if (!is_tess(s))
+        fail_at(s, s->t.line, s->t.col, "expected 'end tessellation;', found %s", tok_desc(s));
+    expect_punct(s, ';');
+    if (s->t.k != T_EOF)
+        fail_at(s, s->t.line, s->t.col, "unexpected %s after 'end tessellation;'", tok_desc(s));
+    /* Every name used must be defined somewhere. */
+    for (int i = 0; i < s->nrefs; i++) {
+        struct node *r = s->refs[i];
+        struct def *d = find_def(s, r->s);
+        if (!d)
+            fail_at(s, r->line, r->col, "undefined image '%s'", r->s);
+        if (!d->expr)
+            fail_at(s, r->line, r->col, "image '%s' is declared (line %d) but never defined",
+                    r->s, d->line);
+        r->def = d;
+    }
+}
+
+/* ---- interpreter ---- */
+
+struct val {
+    const tex_map *m; /* NULL: the constant c */
+    tex_map *own;     /* m, when this value owns it */
+    float c;
+};
+
+static void val_free(struct val *v)
+{
+    tex_map_free(v->own);
+    v->own = NULL;
+    v->m = NULL;
+}
+
+/* Record the position in front of the current libtex message. */
+static int err_at(struct S *s, const struct node *n)
+{
+    char where[300];
+    snprintf(where, sizeof where, "%s:%d:%d", s->name, n->line, n->col);
+    tex_error_context(where);
+    return -1;
+}
+
+static int fail_node(struct S *s, const struct node *n, const char *fmt, ...)
+    __attribute__((format(printf, 3, 4)));
+
+static int fail_node(struct S *s, const struct node *n, const char *fmt, ...)
+{
+    char msg[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return tex_usage_error("%s:%d:%d: %s", s->name, n->line, n->col, msg);
+}
+
+static int check_pixels(struct S *s, const struct node *n, long long w, long long h)
+{
+    if (w * h > s->o->max_pixels)
+        return fail_node(s, n, "a %lld by %lld image is larger than the limit of %lld pixels", w,
+                         h, s->o->max_pixels);
+    return 0;
+}
+
+static int set_result(struct S *s, const struct node *n, struct val *out, tex_map *m)
+{
+    if (!m)
+        return err_at(s, n);
+    out->m = out->own = m;
+    return 0;
+}
+
+static int eval(struct S *s, const struct node *n, struct val *out);
+
+static int eval_map(struct S *s, const struct node *n, struct val *out, const char *what)
+{
+    if (eval(s, n, out) < 0)
+        return -1;
+    if (!out->m)
+        return fail_node(s, n, "%s needs an image, not a number", what);
+    return 0;
+}
+
+static int eval_def(struct S *s, const struct node *ref, struct val *out)
+{
+    struct def *d = ref->def;
+
+    if (d->state == 1)
+        return fail_node(s, ref, "recursive definition: '%s' (line %d) needs itself", d->name,
+                         d->line);
+    if (d->state == 0) {
+        struct val v = {0};
+        d->state = 1;
+        if (eval_map(s, d->expr, &v, d->name) < 0)
+            return -1;
+        d->map = v.own ? v.own : tex_map_clone(v.m);
+        if (!d->map)
+            return err_at(s, ref);
+        d->state = 2;
+    }
+    /* Uses borrow the map, which lives until the script ends: a value that
+     * borrowed it may still be alive when another use comes. */
+    out->m = d->map;
+    return 0;
+}
+
+static int eval_prim(struct S *s, const struct node *n, struct val *out)
+{
+    const struct tex_primitive *p = tex_primitive_find(n->s);
+    struct tex_field *f;
+    int w = n->w ? n->w : s->cw, h = n->h ? n->h : s->ch;
+    tex_map *m = NULL;
+
+    if (!p)
+        return fail_node(s, n, "unknown primitive '%s'", n->s);
+    if (check_pixels(s, n, w, h) < 0)
+        return -1;
+    if (!(f = tex_field_new(p)))
+        return err_at(s, n);
+    for (int i = 0; i < n->nparams; i++) {
+        const struct param *q = &n->params[i];
+        char *e;
+        if (!strcmp(q->name, "seed") || !strcmp(q->name, "tile") || !strcmp(q->name, "ids")) {
+            long v = strtol(q->value, &e, 10);
+            if (*e || v < 0 || v > (q->name[0] == 's' ? 2147483647L : 1)) {
+                tex_field_free(f);
+                return fail_node(s, n, "%s must be %s (got '%s')", q->name,
+                                 q->name[0] == 's' ? "0..2147483647" : "0 or 1", q->value);
+            }
+            if (q->name[0] == 's')
+                f->seed = (uint64_t)v;
+            else if (q->name[0] == 't')
+                f->tile = (int)v;
+            else
+                f->ids = (int)v;
+        } else if (tex_field_set(f, q->name, q->value) < 0) {
+            char where[300];
+            tex_field_free(f);
+            snprintf(where, sizeof where, "%s:%d:%d", s->name, q->line, q->col);
+            tex_error_context(where);
+            return -1;
+        }
+    }
+    if (tex_field_init(f, w, h) == 0)
+        m = tex_field_sample(f);
+    tex_field_free(f);
+    return set_result(s, n, out, m);
+}
+
+static int eval_file(struct S *s, const struct node *n, struct val *out)
+{
+    tex_map *m;
+    int is_stdin = !strcmp(n->s, "-");
+
+    if (!s->o->allow_files)
+        return fail_node(s, n, "reading files is not allowed here");
+    if (is_stdin && !s->o->allow_stdin)
+        return fail_node(s, n, "standard input is not available (the script came from it)");
+    if (is_stdin && s->stdin_used++)
+        return fail_node(s, n, "standard input can be read only once");
+    if (!(m = tex_map_read(n->s)))
+        return err_at(s, n);
+    if (check_pixels(s, n, m->w, m->h) < 0) {
+        tex_map_free(m);
+        return -1;
+    }
+    if (n->w && (m->w != n->w || m->h != n->h)) {
+        tex_map *r = tex_resize(m, n->w, n->h);
+        tex_map_free(m);
+        m = r;
+    }
+    return set_result(s, n, out, m);
+}
+
+static int eval(struct S *s, const struct node *n, struct val *out)
+{
+    struct val a = {0}, b = {0}, c = {0};
+    tex_map *r = NULL;
+    int rc = -1;
+
+    memset(out, 0, sizeof *out);
+    if (++s->evaldepth > MAX_EVAL_DEPTH) {
+        s->evaldepth--;
+        return fail_node(s, n, "definitions nested too deeply (more than %d)", MAX_EVAL_DEPTH);
+    }
+    switch (n->k) {
+    case N_REF: rc = eval_def(s, n, out); goto done;
+    case N_PRIM: rc = eval_prim(s, n, out); goto done;
+    case N_FILE: rc = eval_file(s, n, out); goto done;
+    case N_NUM:
+        out->c = (float)n->v[0];
+        rc = 0;
+        goto done;
+    case N_BIN: {
+        struct tex_operand oa = {0}, ob = {0};
+        if (eval(s, n->a, &a) < 0 || eval(s, n->b, &b) < 0)
+            goto done;
+        if (!a.m && !b.m) {
+            fail_node(s, n, "%s needs at least one image", tex_op_name(n->op));
+            goto done;
+        }
+        if (a.m && b.m && (a.m->w != b.m->w || a.m->h != b.m->h)) {
+            fail_node(s, n, "%s of images of different sizes (%dx%d and %dx%d): resize one",
+                      tex_op_name(n->op), a.m->w, a.m->h, b.m->w, b.m->h);
+            goto done;
+        }
+        oa = a.m ? (struct tex_operand){a.m, 0, {0}} : (struct tex_operand){NULL, 1, {a.c}};
+        ob = b.m ? (struct tex_operand){b.m, 0, {0}} : (struct tex_operand){NULL, 1, {b.c}};
+        r = tex_op_apply(n->op, &oa, &ob, NULL, 0.5);
+        break;
+    }
+    case N_MIX: {
+        struct tex_operand oa, ob, oc;
+        if (eval_map(s, n->a, &a, "mix") < 0 || eval_map(s, n->b, &b, "mix") < 0 ||
+            eval(s, n->c, &c) < 0)
+            goto done;
+        if (a.m->w != b.m->w || a.m->h != b.m->h ||
+            (c.m && (c.m->w != a.m->w || c.m->h != a.m->h))) {
+            fail_node(s, n, "mix of images of different sizes: resize them");
+            goto done;
+        }
+        oa = (struct tex_operand){a.m, 0, {0}};
+        ob = (struct tex_operand){b.m, 0, {0}};
+        oc = c.m ? (struct tex_operand){c.m, 0, {0}} : (struct tex_operand){NULL, 1, {c.c}};
+        r = tex_op_apply(TEX_OP_MIX, &oa, &ob, &oc, 0.5);
+        break;
+    }
+    case N_EXPAND:
+        if (check_pixels(s, n, n->w, n->h) < 0 || eval_map(s, n->a, &a, "expand") < 0)
+            goto done;
+        r = tex_expand(a.m, n->w, n->h, n->colour);
+        break;
+    case N_ROTATE:
+        if (eval_map(s, n->a, &a, "rotate") < 0)
+            goto done;
+        r = tex_rotate(a.m, n->v[0], n->flag ? n->v[1] : a.m->w / 2.0,
+                       n->flag ? n->v[2] : a.m->h / 2.0, n->colour);
+        break;
+    case N_SCALE: {
+        double w, h;
+        if (eval_map(s, n->a, &a, "scale") < 0)
+            goto done;
+        w = floor(a.m->w * n->v[0] + 0.5);
+        h = floor(a.m->h * n->v[1] + 0.5);
+        if (w < 1 || h < 1 || w > TEX_MAP_MAX_SIDE || h > TEX_MAP_MAX_SIDE) {
+            fail_node(s, n, "scaling a %dx%d image gives %.0f by %.0f", a.m->w, a.m->h, w, h);
+            goto done;
+        }
+        if (check_pixels(s, n, (long long)w, (long long)h) < 0)
+            goto done;
+        r = tex_resize(a.m, (int)w, (int)h);
+        break;
+    }
+    case N_RESIZE:
+        if (check_pixels(s, n, n->w, n->h) < 0 || eval_map(s, n->a, &a, "resize") < 0)
+            goto done;
+        r = tex_resize(a.m, n->w, n->h);
+        break;
+    case N_SHIFT:
+        if (eval_map(s, n->a, &a, "shift") < 0)
+            goto done;
+        r = tex_shift(a.m, n->v[0], n->v[1], n->flag, n->colour);
+        break;
+    case N_CLIP:
+        if (eval_map(s, n->a, &a, "clipping") < 0)
+            goto done;
+        r = tex_clip(a.m, (int)n->v[0], (int)n->v[1], (int)n->v[2], (int)n->v[3]);
+        break;
+    case N_FILTER: {
+        struct tex_operand oa, ob = {NULL, 1, {(float)n->v[0]}};
+        if (eval_map(s, n->a, &a, filters[n->op]) < 0)
+            goto done;
+        oa = (struct tex_operand){a.m, 0, {0}};
+        if (n->op == 0)
+            r = tex_blur(a.m, n->v[0]);
+        else
+            r = tex_op_apply(n->op == 1 ? TEX_OP_THRESHOLD : n->op == 2 ? TEX_OP_INVERT
+                                                                          : TEX_OP_ABS,
+                             &oa, n->op == 1 ? &ob : NULL, NULL, n->v[0]);
+        break;
+    }
+    case N_TILE:
+        if (eval_map(s, n->a, &a, "tile") < 0)
+            goto done;
+        r = tex_tile(&a.m, 1, TEX_RULE_CYCLE, (int)n->v[0], (int)n->v[1], n->flag, a.m->w,
+                     a.m->h);
+        break;
+    case N_MATRIX: {
+        struct val *vs = calloc(n->nlist, sizeof *vs);
+        const tex_map **ms = calloc(n->nlist, sizeof *ms);
+        int ok = vs && ms;
+        if (!ok)
+            tex_error("out of memory");
+        for (int i = 0; ok && i < n->nlist; i++) {
+            ok = eval_map(s, n->list[i], &vs[i], "matrix") == 0;
+            if (ok)
+                ms[i] = vs[i].m;
+        }
+        if (ok)
+            r = tex_tile(ms, n->nlist, (enum tex_rule)n->op, (int)n->v[0], (int)n->v[1],
+                         n->flag, ms[0]->w, ms[0]->h);
+        for (int i = 0; vs && i < n->nlist; i++)
+            val_free(&vs[i]);
+        free(vs);
+        free(ms);
+        if (!ok)
+            goto done;
+        break;
+    }
+    case N_WARP: {
+        struct tex_warp_opts wo = {n->v[0], 0, 0, n->flag, TEX_EDGE_WRAP};
+        if (eval_map(s, n->a, &a, "warp") < 0 || eval_map(s, n->b, &b, "warp") < 0)
+            goto done;
+        r = tex_warp(a.m, b.m, &wo, a.m->w, a.m->h);
+        break;
+    }
+    }
+    rc = set_result(s, n, out, r);
+done:
+    val_free(&a);
+    val_free(&b);
+    val_free(&c);
+    s->evaldepth--;
+    return rc;
+}
+
+/* Lay the cells out on the canvas. */
+static tex_map *build(struct S *s)
+{
+    tex_map *canvas = NULL;
+    int nc = tex_bg_channels(&(tex_map){.nc = 1}, s->bg);
+    struct val *v = calloc(s->ncells ? s->ncells : 1, sizeof *v);
+
+    if (!v)
+        return tex_error("out of memory"), NULL;
+    if (s->bg[0] != s->bg[1] || s->bg[1] != s->bg[2])
+        nc = nc < 3 ? 3 : nc;
+    for (int k = 0; k < s->ncells; k++) {
+        if (eval_map(s, s->cells[k].expr, &v[k], "a cell") < 0)
+            goto fail;
+        if (v[k].m->nc > nc)
+            nc = v[k].m->nc;
+    }
+    for (int k = 0; k < s->ncells; k++)
+        if (v[k].m->nc == 2 && nc != 2) {
+            fail_node(s, s->cells[k].expr, "a 2-channel image does not combine with colours");
+            goto fail;
+        }
+    /* The canvas: background everywhere, then each cell's image centred in it. */
+    {
+        float b[4] = {s->bg[0] * s->bg[3], s->bg[1] * s->bg[3], s->bg[2] * s->bg[3], s->bg[3]};
+        size_t n = (size_t)s->w * s->h;
+        if (nc == 2)
+            b[1] = s->bg[3];
+        if (!(canvas = tex_map_new(s->w, s->h, nc)))
+            goto fail;
+        for (size_t i = 0; i < n; i++)
+            memcpy(canvas->px + i * nc, b, nc * sizeof *b);
+    }
+    for (int k = 0; k < s->ncells; k++) {
+        const struct cellref *c = &s->cells[k];
+        int x0 = (c->i - 1) * s->cw, y0 = (c->j - 1) * s->ch;
+        int cw = x0 + s->cw > s->w ? s->w - x0 : s->cw, ch = y0 + s->ch > s->h ? s->h - y0 : s->ch;
+        tex_map *e = tex_expand(v[k].m, cw, ch, s->bg), *f;
+        if (!e)
+            goto fail;
+        f = e->nc == nc ? e : tex_map_channels(e, nc);
+        if (f != e)
+            tex_map_free(e);
+        if (!f)
+            goto fail;
+        for (int y = 0; y < ch; y++)
+            memcpy(tex_map_px(canvas, x0, y0 + y), tex_map_row(f, y), (size_t)cw * nc * 4);
+        tex_map_free(f);
+    }
+    for (int k = 0; k < s->ncells; k++)
+        val_free(&v[k]);
+    free(v);
+    return canvas;
+fail:
+    for (int k = 0; k < s->ncells; k++)
+        val_free(&v[k]);
+    free(v);
+    tex_map_free(canvas);
+    return NULL;
+}
+
+/* parse and build longjmp back here on a script error. */
+static tex_map *run(struct S *s)
+{
+    if (setjmp(s->fail))
+        return NULL;
+    parse(s);
+    return build(s);
+}
+
+tex_map *tex_script_run(const char *text, size_t len, const char *name,
+                        const struct tex_script_opts *o)
+{
+    static const struct tex_script_opts defaults = TEX_SCRIPT_DEFAULTS;
+    struct S *s = calloc(1, sizeof *s);
+    tex_map *m = NULL;
+
+    if (!s)
+        return tex_error("out of memory"), NULL;
+    s->src = s->cur = text;
+    s->end = text + len;
+    s->name = name ? name : "script";
+    s->line = s->col = 1;
+    s->o = o ? o : &defaults;
+    s->bg[3] = 1.0f;
+    m = run(s);
+    for (int i = 0; i < s->ndefs; i++)
+        tex_map_free(s->defs[i].map);
+    free(s->defs);
+    free(s->refs);
+    free(s->cells);
+    while (s->arena) {
+        struct chunk *c = s->arena;
+        s->arena = c->next;
+        free(c);
+    }
+    free(s);
+    return m;
+}

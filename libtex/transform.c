@@ -1,0 +1,261 @@
+/* transform.c - area-filtered resampling: rotate, scale, shift, expand, clip */
+#include <math.h>
+#include <string.h>
+
+#include "error.h"
+#include "transform.h"
+
+/* Background colours are given straight and stored premultiplied, like
+ * the colour channels of every RGBA map. */
+static void bg_layout(const float bg[4], int nc, float out[4])
+{
+    float a = bg[3];
+
+    switch (nc) {
+    case 1: out[0] = bg[0] * a; break;
+    case 2: out[0] = bg[0]; out[1] = bg[1]; break;
+    case 3: out[0] = bg[0] * a; out[1] = bg[1] * a; out[2] = bg[2] * a; break;
+    default: out[0] = bg[0] * a; out[1] = bg[1] * a; out[2] = bg[2] * a; out[3] = a; break;
+    }
+}
+
+void tex_sampler_init(struct tex_sampler *s, const tex_map *m, enum tex_edge edge,
+                      const float bg[4])
+{
+    static const float black[4] = {0, 0, 0, 1};
+
+    memset(s, 0, sizeof *s);
+    s->m = m;
+    s->edge = edge;
+    s->nearest = m->subregions > 0;
+    s->maxtaps = 32;
+    bg_layout(bg ? bg : black, m->nc, s->bg);
+}
+
+static inline long edge_index(long i, long n, enum tex_edge e)
+{
+    if (i >= 0 && i < n)
+        return i;
+    switch (e) {
+    case TEX_EDGE_CLAMP: return i < 0 ? 0 : n - 1;
+    case TEX_EDGE_WRAP: i %= n; return i < 0 ? i + n : i;
+    case TEX_EDGE_MIRROR:
+        i %= 2 * n;
+        if (i < 0)
+            i += 2 * n;
+        return i < n ? i : 2 * n - 1 - i;
+    default: return -1;
+    }
+}
+
+/* Pixel (ix,iy) through the edge rule: a pointer into the map or to bg. */
+static inline const float *fetch(const struct tex_sampler *s, long ix, long iy)
+{
+    long x = edge_index(ix, s->m->w, s->edge), y = edge_index(iy, s->m->h, s->edge);
+
+    if (x < 0 || y < 0)
+        return s->bg;
+    return tex_map_px(s->m, (int)x, (int)y);
+}
+
+/* Huge or non-finite coordinates (from a wild warp) are pinned far outside
+ * the map, where the edge rule still gives an answer. */
+static inline double tame(double x)
+{
+    return x > -1e9 && x < 1e9 ? x : (x > 0 ? 1e9 : -1e9);
+}
+
+static void bilinear(const struct tex_sampler *s, double x, double y, float *out)
+{
+    int nc = s->m->nc;
+    double fx = tame(x) - 0.5, fy = tame(y) - 0.5, x0 = floor(fx), y0 = floor(fy);
+    float tx = (float)(fx - x0), ty = (float)(fy - y0);
+    long ix = (long)x0, iy = (long)y0;
+    const float *p00 = fetch(s, ix, iy), *p10 = fetch(s, ix + 1, iy);
+    const float *p01 = fetch(s, ix, iy + 1), *p11 = fetch(s, ix + 1, iy + 1);
+
+    for (int c = 0; c < nc; c++) {
+        float a = p00[c] + (p10[c] - p00[c]) * tx, b = p01[c] + (p11[c] - p01[c]) * tx;
+        out[c] = a + (b - a) * ty;
+    }
+}
+
+/* Lookups along one axis: about one per source pixel the output pixel spans,
+ * so each bilinear tap covers its share; one (plain bilinear) at 1:1 and when
+ * magnifying, which keeps whole-pixel lookups exact. */
+static int taps(double len, int maxtaps)
+{
+    double n = ceil(len - 1e-6);
+    return n < 1 ? 1 : n > maxtaps ? maxtaps : (int)n;
+}
+
+void tex_sample(const struct tex_sampler *s, double x, double y, const double du[2],
+                const double dv[2], float *out)
+{
+    int nc = s->m->nc, nu, nv, maxt = s->maxtaps > 0 ? s->maxtaps : 32;
+    float acc[4] = {0, 0, 0, 0}, v[4];
+
+    if (s->nearest) {
+        const float *p = fetch(s, (long)floor(tame(x)), (long)floor(tame(y)));
+        memcpy(out, p, nc * sizeof *out);
+        return;
+    }
+    nu = taps(hypot(du[0], du[1]), maxt);
+    nv = taps(hypot(dv[0], dv[1]), maxt);
+    if (nu == 1 && nv == 1) {
+        bilinear(s, x, y, out);
+        return;
+    }
+    for (int j = 0; j < nv; j++) {
+        double b = (j + 0.5) / nv - 0.5;
+        for (int i = 0; i < nu; i++) {
+            double a = (i + 0.5) / nu - 0.5;
+            bilinear(s, x + a * du[0] + b * dv[0], y + a * du[1] + b * dv[1], v);
+            for (int c = 0; c < nc; c++)
+                acc[c] += v[c];
+        }
+    }
+    for (int c = 0; c < nc; c++)
+        out[c] = acc[c] / (float)(nu * nv);
+}
+
+int tex_bg_channels(const tex_map *m, const float bg[4])
+{
+    return bg && bg[3] < 1.0f && m->nc != 4 ? 4 : m->nc;
+}
+
+tex_map *tex_map_channels(const tex_map *m, int nc)
+{
+    tex_map *r;
+    size_t n = (size_t)m->w * m->h;
+
+    if (nc == m->nc)
+        return tex_map_clone(m);
+    if (m->nc == 2 || nc == 2 || (m->nc == 1 && nc == 1))
+        return tex_error("cannot convert %d channels to %d", m->nc, nc), NULL;
+    if (!(r = tex_map_new(m->w, m->h, nc)))
+        return NULL;
+    if (m->history && tex_map_set_history(r, m->history) < 0) {
+        tex_map_free(r);
+        return NULL;
+    }
+    for (size_t i = 0; i < n; i++) {
+        const float *s = m->px + i * m->nc;
+        float *d = r->px + i * nc;
+        if (nc == 1)
+            d[0] = 0.2126f * s[0] + 0.7152f * s[1] + 0.0722f * s[2];
+        else if (m->nc == 1) {
+            d[0] = d[1] = d[2] = s[0];
+            if (nc == 4)
+                d[3] = 1.0f;
+        } else {
+            d[0] = s[0];
+            d[1] = s[1];
+            d[2] = s[2];
+            if (nc == 4)
+                d[3] = 1.0f;
+        }
+    }
+    return r;
+}
+
+tex_map *tex_affine(const tex_map *m, int w, int h, const double a[6], enum tex_edge edge,
+                    const float bg[4])
+{
+    int nc = tex_bg_channels(m, bg);
+    const tex_map *src = m;
+    tex_map *conv = NULL, *r;
+    struct tex_sampler s;
+    const double du[2] = {a[0], a[3]}, dv[2] = {a[1], a[4]};
+    /* A whole-pixel translation copies pixels: no filtering at all. */
+    int exact = a[0] == 1 && a[1] == 0 && a[3] == 0 && a[4] == 1 && a[2] == floor(a[2]) &&
+                a[5] == floor(a[5]);
+
+    for (int i = 0; i < 6; i++)
+        if (!isfinite(a[i]))
+            return tex_usage_error("transform is not finite"), NULL;
+    if (nc != m->nc && !(src = conv = tex_map_channels(m, nc)))
+        return NULL;
+    if (!(r = tex_map_new(w, h, nc))) {
+        tex_map_free(conv);
+        return NULL;
+    }
+    r->subregions = m->subregions;
+    if (m->history && tex_map_set_history(r, m->history) < 0) {
+        tex_map_free(conv);
+        tex_map_free(r);
+        return NULL;
+    }
+    tex_sampler_init(&s, src, edge, bg);
+    if (exact)
+        s.nearest = 1;
+#pragma omp parallel for schedule(dynamic, 4)
+    for (int y = 0; y < h; y++) {
+        float *row = tex_map_row(r, y);
+        double Y = y + 0.5;
+        for (int x = 0; x < w; x++) {
+            double X = x + 0.5;
+            tex_sample(&s, a[0] * X + a[1] * Y + a[2], a[3] * X + a[4] * Y + a[5], du, dv,
+                       row + (size_t)x * nc);
+        }
+    }
+    tex_map_free(conv);
+    return r;
+}
+
+tex_map *tex_rotate(const tex_map *m, double degrees, double cx, double cy, const float bg[4])
+{
+    double t = degrees * M_PI / 180.0, c = cos(t), s = sin(t);
+    /* Output point P samples the source at c + R(-t)(P - c), with y downwards. */
+    double a[6] = {c, -s, cx - c * cx + s * cy, s, c, cy - s * cx - c * cy};
+
+    if (!isfinite(degrees) || !isfinite(cx) || !isfinite(cy))
+        return tex_usage_error("rotation is not finite"), NULL;
+    return tex_affine(m, m->w, m->h, a, TEX_EDGE_BACKGROUND, bg);
+}
+
+tex_map *tex_resize(const tex_map *m, int w, int h)
+{
+    double a[6] = {(double)m->w / w, 0, 0, 0, (double)m->h / h, 0};
+
+    if (tex_map_check_size(w, h, m->nc) < 0)
+        return NULL;
+    return tex_affine(m, w, h, a, TEX_EDGE_CLAMP, NULL);
+}
+
+tex_map *tex_scale(const tex_map *m, double sx, double sy)
+{
+    double w = floor(m->w * sx + 0.5), h = floor(m->h * sy + 0.5);
+
+    if (!(sx > 0 && sy > 0) || !(w >= 1 && h >= 1 && w <= TEX_MAP_MAX_SIDE &&
+                                  h <= TEX_MAP_MAX_SIDE))
+        return tex_usage_error("scale %g,%g of a %dx%d map gives %.0fx%.0f: each side must be "
+                               "1..%d", sx, sy, m->w, m->h, w, h, TEX_MAP_MAX_SIDE), NULL;
+    return tex_resize(m, (int)w, (int)h);
+}
+
+tex_map *tex_shift(const tex_map *m, double dx, double dy, int wrap, const float bg[4])
+{
+    double a[6] = {1, 0, -dx, 0, 1, -dy};
+
+    return tex_affine(m, m->w, m->h, a, wrap ? TEX_EDGE_WRAP : TEX_EDGE_BACKGROUND, bg);
+}
+
+tex_map *tex_expand(const tex_map *m, int w, int h, const float bg[4])
+{
+    double a[6] = {1, 0, (double)((m->w - w) / 2), 0, 1, (double)((m->h - h) / 2)};
+
+    if (tex_map_check_size(w, h, 4) < 0)
+        return NULL;
+    return tex_affine(m, w, h, a, TEX_EDGE_BACKGROUND, bg);
+}
+
+tex_map *tex_clip(const tex_map *m, int x0, int y0, int x1, int y1)
+{
+    double a[6] = {1, 0, x0, 0, 1, y0};
+
+    if (x0 < 0 || y0 < 0 || x1 > m->w || y1 > m->h || x1 <= x0 || y1 <= y0)
+        return tex_usage_error("clip window %d,%d to %d,%d must lie inside the %dx%d map and "
+                               "not be empty", x0, y0, x1, y1, m->w, m->h), NULL;
+    return tex_affine(m, x1 - x0, y1 - y0, a, TEX_EDGE_CLAMP, NULL);
+}

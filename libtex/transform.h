@@ -1,0 +1,79 @@
+/* transform.h - filtered geometric transforms of texture maps
+ *
+ * Rotate, scale, shift, expand and clip a map (thesis 4.3.2 and 5.2.4.2:
+ * Rotate alpha, Scale dx dy, Shift dx dy, expand ... background, clipping).
+ * Resampling is area-filtered: each output pixel averages an N x M grid of
+ * bilinear lookups spread over its footprint in the source, N and M being
+ * the number of source pixels the footprint spans along each axis (1 at
+ * 1:1 or when magnifying), so a rotated or shrunk checkerboard does not
+ * alias.  Maps that hold region ids (subregions > 0)
+ * are sampled nearest-neighbour instead: ids must not be blended.
+ *
+ * Coordinates are in pixels of the source, pixel (x,y) covering
+ * [x,x+1) x [y,y+1); angles are degrees, positive turns counter-clockwise
+ * as seen on the screen (v grows downwards).  Where a transform uncovers
+ * the canvas it shows the background colour (RGBA, 0..1): a 1-channel map
+ * takes its first component, a 3-channel map its RGB; a background that
+ * is not opaque gives the result an alpha channel (4 channels).
+ *
+ *   float bg[4] = {0, 0, 0, 1};
+ *   tex_map *r = tex_rotate(m, 20, 150, 150, bg);     // NULL + tex_errmsg()
+ *   tex_map *s = tex_resize(m, m->w / 3, m->h / 3);   // filtered shrink
+ *   tex_map *c = tex_clip(r, 50, 50, 250, 250);       // 200 x 200 window
+ *
+ * The low-level sampler serves the other composition modules (tiling,
+ * warping): tex_sample() returns the filtered value at a point given its
+ * footprint, with an edge rule for lookups outside the map.
+ */
+#ifndef TEX_TRANSFORM_H
+#define TEX_TRANSFORM_H
+
+#include "map.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum tex_edge { TEX_EDGE_BACKGROUND, TEX_EDGE_CLAMP, TEX_EDGE_WRAP, TEX_EDGE_MIRROR };
+
+struct tex_sampler {
+    const tex_map *m;
+    enum tex_edge edge;
+    float bg[4];  /* background in m's channel layout (TEX_EDGE_BACKGROUND) */
+    int nearest;  /* 1: no interpolation or averaging (region ids) */
+    int maxtaps;  /* most lookups per axis for one output pixel (0: 32) */
+};
+
+/* Prepare a sampler; bg is RGBA and is converted to m's channels. */
+void tex_sampler_init(struct tex_sampler *s, const tex_map *m, enum tex_edge edge,
+                      const float bg[4]);
+/* The filtered value at source point (x,y) (pixels) whose output pixel
+ * spans the source vectors du = (du[0],du[1]) and dv: out gets m->nc floats. */
+void tex_sample(const struct tex_sampler *s, double x, double y, const double du[2],
+                const double dv[2], float *out);
+
+/* Channels of the result of drawing m over background bg (RGBA). */
+int tex_bg_channels(const tex_map *m, const float bg[4]);
+/* A copy of m with nc channels: 1 -> 3 (grey), 1/3 -> 4 (opaque), 4 -> 3
+ * (drop alpha), 3/4 -> 1 (Rec. 709 luminance); other pairs fail. */
+tex_map *tex_map_channels(const tex_map *m, int nc);
+
+/* The general case: a w x h map whose pixel centre (X,Y) samples m at
+ * x = a[0] X + a[1] Y + a[2], y = a[3] X + a[4] Y + a[5]. */
+tex_map *tex_affine(const tex_map *m, int w, int h, const double a[6], enum tex_edge edge,
+                    const float bg[4]);
+
+tex_map *tex_rotate(const tex_map *m, double degrees, double cx, double cy, const float bg[4]);
+tex_map *tex_resize(const tex_map *m, int w, int h);
+tex_map *tex_scale(const tex_map *m, double sx, double sy); /* to round(w sx) x round(h sy) */
+/* Move the content by (dx,dy) pixels; wrap: re-enter at the other side. */
+tex_map *tex_shift(const tex_map *m, double dx, double dy, int wrap, const float bg[4]);
+/* A w x h canvas of bg with m centred on it (m is cropped if larger). */
+tex_map *tex_expand(const tex_map *m, int w, int h, const float bg[4]);
+/* The window [x0,x1) x [y0,y1), which must lie inside m. */
+tex_map *tex_clip(const tex_map *m, int x0, int y0, int x1, int y1);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

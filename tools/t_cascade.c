@@ -1,0 +1,81 @@
+/* t_cascade - fill the subregions of a region-id map with other maps */
+#include <stdlib.h>
+#include <string.h>
+
+#include "compose.h"
+#include "textura.h"
+
+struct opts {
+    float fallback[4];
+    int regions, resize;
+};
+
+static const struct tex_param rows[] = {
+    {"default", 0, TEX_P_COLOR, offsetof(struct opts, fallback), 0, 0, 1, "#000000", NULL, 0,
+     "COLOUR", "colour of the regions given no map"},
+    TEX_INT(struct opts, regions, 0, 0, 0, 65535, "N",
+            "treat IDS as region ids 1..N even without the textura:subregions attribute "
+            "(0: use the attribute)"),
+    TEX_ENUM(struct opts, resize, 0, "error", "error|scale|tile",
+             "how region maps of another size than IDS are brought to its size"),
+    {0}};
+
+static const struct tex_tool tool = {
+    "t_cascade", "IDS K=MAP...",
+    "a cascade of texture maps: region K of the region-id map IDS is filled with MAP",
+    TEX_OPT_OUTPUT, rows, 2, -1};
+
+int main(int argc, char **argv)
+{
+    struct tex_common c;
+    struct opts o;
+    int i = tex_cli_parse(&tool, argc, argv, &c, &o), n = argc - i - 1, nreg;
+    int stdin_used = !strcmp(argv[i], "-");
+    tex_map *ids, **maps, *r;
+    long *key = calloc(n, sizeof *key);
+
+    if (!key)
+        tex_usage_die("out of memory");
+    /* Check every K=MAP before reading anything. */
+    for (int k = 0; k < n; k++) {
+        const char *a = argv[i + 1 + k], *eq = strchr(a, '=');
+        char *e;
+        key[k] = strtol(a, &e, 10);
+        if (!eq || e != eq || e == a || key[k] < 1 || key[k] > 65535 || !eq[1])
+            tex_usage_die("region maps are K=MAP with K in 1..65535 (got '%s')", a);
+        if (!strcmp(eq + 1, "-") && stdin_used++)
+            tex_usage_die("standard input (-) can be read only once");
+        for (int j = 0; j < k; j++)
+            if (key[j] == key[k])
+                tex_usage_die("region %ld is given two maps", key[k]);
+    }
+    ids = tex_cli_read(argv[i]);
+    nreg = o.regions ? o.regions : ids->subregions;
+    if (nreg < 1)
+        tex_usage_die("%s has no textura:subregions attribute: it is not a region-id map (give "
+                      "--regions N to use its values as ids)", argv[i]);
+    for (int k = 0; k < n; k++)
+        if (key[k] > nreg)
+            tex_usage_die("region %ld does not exist: %s has regions 1..%d", key[k], argv[i],
+                          nreg);
+    if (!(maps = calloc(nreg + 1, sizeof *maps)))
+        tex_usage_die("out of memory");
+    for (int k = 0; k < n; k++) {
+        const char *a = strchr(argv[i + 1 + k], '=') + 1;
+        tex_map *m = tex_cli_read(a);
+        if (!(maps[key[k]] = tex_fit(m, ids->w, ids->h, (enum tex_fit)o.resize, a)))
+            tex_die();
+        tex_map_free(m);
+    }
+    if (!(r = tex_cascade(ids, nreg, (const tex_map *const *)maps, o.fallback)))
+        tex_die();
+    tex_cli_write(r, &c);
+    tex_map_free(r);
+    for (int k = 0; k <= nreg; k++)
+        tex_map_free(maps[k]);
+    free(maps);
+    free(key);
+    tex_map_free(ids);
+    free(c.cmdline);
+    return 0;
+}

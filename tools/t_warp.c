@@ -1,0 +1,97 @@
+/* t_warp - domain perturbation: displace a map's lookups by another map */
+#include <stdlib.h>
+#include <string.h>
+
+#include "compose.h"
+#include "textura.h"
+
+struct opts {
+    double amount, centre, angle;
+    int isotropic, edge;
+    const char *size;
+};
+
+static const struct tex_param rows[] = {
+    TEX_REAL(struct opts, amount, 'a', 0.1, -100, 100, "A",
+             "displacement in texture units (map widths) per unit of BY"),
+    TEX_REAL(struct opts, centre, 0, 0, -1e6, 1e6, "C",
+             "value of BY that displaces nothing (0.5 for a symmetric push)"),
+    TEX_REAL(struct opts, angle, 0, 0, -1e6, 1e6, "DEG",
+             "direction of the push of a 1-channel BY, degrees counter-clockwise from u"),
+    TEX_FLAG(struct opts, isotropic, 0,
+             "a 1-channel BY displaces along both axes (two decorrelated lookups)"),
+    TEX_ENUM(struct opts, edge, 0, "wrap", "wrap|clamp",
+             "lookups of MAP outside the unit square"),
+    TEX_STRING(struct opts, size, 's', NULL, "N|WxH", "size of the result (default: MAP's)"),
+    {0}};
+
+static const struct tex_tool tool = {
+    "t_warp", "MAP BY",
+    "domain perturbation: MAP looked up at (u,v) + amount * BY(u,v), as turbulence makes "
+    "marble from stripes",
+    TEX_OPT_OUTPUT, rows, 2, -1};
+
+static const struct tex_tool tool2 = {
+    "t_warp", "MAP BY",
+    "domain perturbation: MAP looked up at (u,v) + amount * BY(u,v), as turbulence makes "
+    "marble from stripes",
+    TEX_OPT_OUTPUT, rows, 2, 2};
+
+int main(int argc, char **argv)
+{
+    struct tex_common c;
+    struct opts o;
+    int i = tex_cli_parse(&tool, argc, argv, &c, &o), w, h;
+    tex_map *m, *by, *r;
+    struct tex_warp_opts wo;
+    char **moved = NULL;
+
+    if (argc - i > 2) {
+        /* Options after MAP BY: move them in front and parse again. */
+        char **v = malloc((argc + 1) * sizeof *v);
+        int k = 0;
+        if (!v)
+            tex_usage_die("out of memory");
+        for (int j = 0; j < i; j++)
+            v[k++] = argv[j];
+        for (int j = i + 2; j < argc; j++)
+            v[k++] = argv[j];
+        v[k++] = argv[i];
+        v[k++] = argv[i + 1];
+        v[k] = NULL;
+        free(c.cmdline);
+        i = tex_cli_parse(&tool2, argc, v, &c, &o);
+        argv = moved = v;
+    }
+    if (!strcmp(argv[i], "-") && !strcmp(argv[i + 1], "-"))
+        tex_usage_die("standard input (-) can be read only once");
+    w = h = 0;
+    if (o.size) {
+        char *e;
+        long a = strtol(o.size, &e, 10), b = a;
+        if (*e == 'x' || *e == 'X')
+            b = strtol(e + 1, &e, 10);
+        if (*e || a < 1 || b < 1 || a > TEX_MAP_MAX_SIDE || b > TEX_MAP_MAX_SIDE)
+            tex_usage_die("-s must be N or WxH with each side 1..%d (got '%s')", TEX_MAP_MAX_SIDE,
+                          o.size);
+        w = (int)a;
+        h = (int)b;
+    }
+    m = tex_cli_read(argv[i]);
+    by = tex_cli_read(argv[i + 1]);
+    if (!o.size) {
+        w = m->w;
+        h = m->h;
+    }
+    wo = (struct tex_warp_opts){o.amount, o.centre, o.angle, o.isotropic,
+                                o.edge ? TEX_EDGE_CLAMP : TEX_EDGE_WRAP};
+    if (!(r = tex_warp(m, by, &wo, w, h)))
+        tex_die();
+    tex_cli_write(r, &c);
+    tex_map_free(r);
+    tex_map_free(m);
+    tex_map_free(by);
+    free(moved);
+    free(c.cmdline);
+    return 0;
+}
