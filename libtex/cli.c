@@ -1,4 +1,5 @@
 /* cli.c - options, help, errors and the generator main for every tool */
+#include <ctype.h>
 #include <getopt.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -205,6 +206,23 @@ static int parse_size(const char *s, int *w, int *h)
     return 0;
 }
 
+/* Does the option word w (e.g. "-f" or "--frequency") take a separate value? */
+static int takes_value(const struct option *lo, int n, const char *shorts, const char *w)
+{
+    if (w[0] != '-' || w[1] == '\0')
+        return 0;
+    if (w[1] != '-') {
+        const char *s = w[2] == '\0' ? strchr(shorts, w[1]) : NULL;
+        return s && s[1] == ':';
+    }
+    if (strchr(w, '='))
+        return 0;
+    for (int i = 0; i < n; i++)
+        if (strcmp(lo[i].name, w + 2) == 0)
+            return lo[i].has_arg == required_argument;
+    return 0;
+}
+
 int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_common *c,
                   void *opts)
 {
@@ -242,6 +260,23 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
     lo[n + 2] = (struct option){"help-mdoc", no_argument, NULL, 1};
     lo[n + 3] = (struct option){0};
 
+    /* Options may follow operands (GNU getopt permutes argv), but a negative
+     * number such as "t_op add a.exr -0.5" is an operand: hide it from getopt
+     * behind a marker byte, restored once parsing is done. */
+    for (int i = 1; i < argc && strcmp(argv[i], "--") != 0; i++) {
+        double num;
+        if (argv[i][0] == '-' && (isdigit((unsigned char)argv[i][1]) || argv[i][1] == '.') &&
+            tex_parse_real(argv[i], &num) == 0 && !(i > 1 && takes_value(lo, n, shorts, argv[i - 1]))) {
+            char *h = malloc(strlen(argv[i]) + 2);
+            if (!h) {
+                tex_error("out of memory");
+                tex_die();
+            }
+            h[0] = '\001';
+            strcpy(h + 1, argv[i]);
+            argv[i] = h;
+        }
+    }
     opterr = 0;
     optind = 1;
     while ((k = getopt_long(argc, argv, shorts, lo, NULL)) != -1) {
@@ -272,6 +307,9 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
         if (i < 0 || tex_param_set(o[i].row, o[i].obj, optarg ? optarg : "") < 0)
             tex_die();
     }
+    for (int i = 1; i < argc; i++)
+        if (argv[i][0] == '\001')
+            argv[i]++; /* the marked copy is kept for the life of the program */
     if ((t->common & TEX_OPT_SIZE) && parse_size(c->size, &c->w, &c->h) < 0)
         tex_usage_die("-s must be N or WxH with each side 1..%d (got '%s')", TEX_MAP_MAX_SIDE,
                       c->size);

@@ -130,3 +130,9 @@ for t in "$TEXTURA_BUILD"/bin/t_*; do
     n=$(basename "$t")
     [ -f "$TEXTURA_TOP/man/man1/$n.1" ] && ok "$n has a man page" || notok "$n has a man page"
 done
+
+# --- operands and options in any order ---
+t_noise -s 8 -o "$T/o.exr"
+check "options may follow the operand" t_convert "$T/o.exr" -o "$T/o2.pfm"
+check "a negative number is an operand, not an option" bash -c "t_op add '$T/o.exr' -0.5 | t_info >/dev/null"
+check "a negative option value is kept" bash -c "t_noise -s 8 --z -0.5 | t_info | grep -q 'z -0.5'"
