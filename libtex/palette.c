@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include "error.h"
+#include "map.h"
 #include "palette.h"
 
 #ifndef TEX_LIBDIR
@@ -516,4 +517,76 @@ void tex_palette_index_n(const tex_palette *p, int id, int n, float rgba[4])
 void tex_palette_index(const tex_palette *p, int id, float rgba[4])
 {
     tex_palette_index_n(p, id, 0, rgba);
+}
+
+/* ---- colouring maps ---- */
+
+float tex_palette_t(double v, double lo, double hi, enum tex_outside outside)
+{
+    double t = hi > lo ? (v - lo) / (hi - lo) : 0.0;
+
+    if (!isfinite(t))
+        return 0.0f;
+    if (t < 0.0 || t > 1.0) {
+        switch (outside) {
+        case TEX_OUTSIDE_REPEAT:
+            t -= floor(t);
+            break;
+        case TEX_OUTSIDE_MIRROR:
+            t = fmod(fabs(t), 2.0);
+            t = t > 1.0 ? 2.0 - t : t;
+            break;
+        default:
+            t = t < 0.0 ? 0.0 : 1.0;
+        }
+    }
+    return (float)t;
+}
+
+tex_map *tex_palette_map(const tex_palette *p, const tex_map *m, double lo, double hi,
+                         enum tex_outside outside)
+{
+    int alpha = 0, nc;
+    size_t n = (size_t)m->w * m->h;
+    tex_map *out;
+
+    if (m->nc != 1) {
+        tex_error("the map has %d channels: a palette colours a scalar map (1 channel) or a "
+                  "region-id map", m->nc);
+        return NULL;
+    }
+    for (int i = 0; i < p->nstops; i++)
+        alpha |= p->stops[i].rgba[3] != 1.0f;
+    for (int i = 0; i < p->nindex; i++)
+        alpha |= p->index[i].rgba[3] != 1.0f;
+    nc = alpha ? 4 : 3;
+    if (!(out = tex_map_new(m->w, m->h, nc)))
+        return NULL;
+    if (m->history && tex_map_set_history(out, m->history) < 0) {
+        tex_map_free(out);
+        return NULL;
+    }
+    if (m->subregions > 0) {
+#pragma omp parallel for schedule(static)
+        for (size_t i = 0; i < n; i++) {
+            float v = m->px[i], c[4];
+            int id = isfinite(v) && fabsf(v) < (float)MAX_ID ? (int)lrintf(v) : 0;
+            tex_palette_index_n(p, id, m->subregions, c);
+            memcpy(out->px + i * nc, c, nc * sizeof *c);
+        }
+        return out;
+    }
+    if (isnan(lo) || isnan(hi)) {
+        struct tex_stats s;
+        tex_map_stats(m, 0, &s);
+        lo = s.min;
+        hi = s.max;
+    }
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++) {
+        float c[4];
+        tex_palette_lookup(p, tex_palette_t(m->px[i], lo, hi, outside), c);
+        memcpy(out->px + i * nc, c, nc * sizeof *c);
+    }
+    return out;
 }

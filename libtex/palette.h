@@ -35,6 +35,16 @@
  * ids 1..n evenly over [0,1]; tex_palette_index (n unknown) uses the golden
  * ratio sequence t = frac(id * 0.618...), so neighbouring ids differ.
  *
+ * Colouring a whole map:
+ *
+ *   tex_map *c = tex_palette_map(p, m, lo, hi, TEX_OUTSIDE_CLAMP);
+ *
+ * A scalar map (1 channel) becomes RGB, or RGBA when the palette has any
+ * alpha below 1: t = (v - lo) / (hi - lo), and values outside [lo,hi]
+ * clamp, repeat (sawtooth) or mirror (triangle wave).  lo = hi = NaN picks
+ * the map's own finite minimum and maximum.  A region-id map (subregions
+ * > 0) takes indexed colours: tex_palette_index_n(p, id, subregions).
+ *
  * Errors (a bad file, an unknown name) are reported with file:line through
  * tex_error() (runtime, exit 1); an unknown palette name is a usage error.
  */
@@ -88,6 +98,14 @@ int tex_palette_find(const char *name, char *buf, size_t n);
 void tex_palette_lookup(const tex_palette *p, float t, float rgba[4]);
 void tex_palette_index(const tex_palette *p, int id, float rgba[4]);
 void tex_palette_index_n(const tex_palette *p, int id, int n, float rgba[4]);
+
+struct tex_map;
+enum tex_outside { TEX_OUTSIDE_CLAMP, TEX_OUTSIDE_REPEAT, TEX_OUTSIDE_MIRROR };
+/* Colour a map; NULL + tex_error() if it is not a scalar map or memory fails. */
+struct tex_map *tex_palette_map(const tex_palette *p, const struct tex_map *m, double lo,
+                                double hi, enum tex_outside outside);
+/* The position in [0,1] of value v for range [lo,hi] and an outside mode. */
+float tex_palette_t(double v, double lo, double hi, enum tex_outside outside);
 
 /* Colour spaces: sRGB-encoded RGB (alpha untouched) <-> OKLab. */
 void tex_srgb_to_oklab(const float rgb[3], float lab[3]);
