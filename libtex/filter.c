@@ -112,7 +112,9 @@ tex_map *tex_filter_separable(const tex_map *m, const float *k, int r, enum tex_
 #pragma omp atomic write
             fail = 1;
         }
-#pragma omp for schedule(static)
+        /* dynamic: a busy machine may stall one thread; each row is independent, so the
+         * result does not depend on which thread takes it */
+#pragma omp for schedule(dynamic, 8)
         for (int y = 0; y < m->h; y++) {
             const float *row = tex_map_row(m, y);
             if (!pad)
@@ -130,7 +132,7 @@ tex_map *tex_filter_separable(const tex_map *m, const float *k, int r, enum tex_
         tex_error("out of memory");
         return NULL;
     }
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(dynamic, 1)
     for (int t = 0; t < strips * yblocks; t++) {
         int s = t % strips, yb = t / strips;
         int i0 = s * VB, len = n - i0 < VB ? n - i0 : VB;
