@@ -16,6 +16,7 @@
 VERSION  = 0.1
 PREFIX  ?= /usr/local
 LIBDIR  ?= $(PREFIX)/lib
+DATADIR ?= $(PREFIX)/share/textura
 BUILD   ?= build
 
 CC      ?= cc
@@ -27,7 +28,8 @@ WARN     = -Wall -Wextra
 SANFLAGS = -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
 SAN      = $(if $(SANITIZE),$(SANFLAGS))
 ALL_CFLAGS   = -std=gnu11 -fPIC -fopenmp $(WARN) $(SAN) $(CFLAGS) \
-               -DTEX_VERSION='"$(VERSION)"' -DTEX_LIBDIR='"$(LIBDIR)"'
+               -DTEX_VERSION='"$(VERSION)"' -DTEX_LIBDIR='"$(LIBDIR)"' \
+               -DTEX_DATADIR='"$(DATADIR)"'
 ALL_CXXFLAGS = -std=c++17 -fPIC $(WARN) $(CXXFLAGS)
 CPPFLAGS += -Ilibtex -I/usr/include/OpenEXR
 LDFLAGS  += -fopenmp $(SAN) -Wl,--as-needed
@@ -72,10 +74,12 @@ $(BRIDGE): libtex/oiio_bridge.cpp libtex/oiio_bridge.h
 	$(CXX) $(CPPFLAGS) $(ALL_CXXFLAGS) -shared -fvisibility=hidden -o $@ $< \
 	    $$(pkg-config --cflags --libs OpenImageIO)
 
+# pkg-config file for a prefix: $(call pc,PREFIX,LIBDIR)
+pc = printf 'prefix=%s\nlibdir=%s\nincludedir=$${prefix}/include/textura\n\nName: textura\nDescription: Textura texture synthesis library (libtex)\nVersion: %s\nCflags: -I$${includedir} -fopenmp\nLibs: -L$${libdir} -ltex\nLibs.private: %s -fopenmp\n' '$(1)' '$(2)' '$(VERSION)' '$(LDLIBS)'
+
 $(PCFILE): Makefile
 	@mkdir -p $(@D)
-	printf 'prefix=%s\nlibdir=%s\nincludedir=$${prefix}/include/textura\n\nName: textura\nDescription: Textura texture synthesis library (libtex)\nVersion: %s\nCflags: -I$${includedir} -fopenmp\nLibs: -L$${libdir} -ltex\nLibs.private: %s -fopenmp\n' \
-	    '$(PREFIX)' '$(LIBDIR)' '$(VERSION)' '$(LDLIBS)' > $@
+	$(call pc,$(PREFIX),$(LIBDIR)) > $@
 
 $(BUILD)/bin/%: $(BUILD)/obj/tools/%.o $(STATIC)
 	@mkdir -p $(@D)
@@ -120,19 +124,19 @@ install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(LIBDIR)/textura $(DESTDIR)$(LIBDIR)/pkgconfig \
 	    $(DESTDIR)$(PREFIX)/include/textura $(DESTDIR)$(PREFIX)/share/man/man1 \
 	    $(DESTDIR)$(PREFIX)/share/man/man3 $(DESTDIR)$(PREFIX)/share/man/man5 \
-	    $(DESTDIR)$(PREFIX)/share/textura/palettes $(DESTDIR)$(PREFIX)/share/textura/patterns
+	    $(DESTDIR)$(DATADIR)/palettes $(DESTDIR)$(DATADIR)/patterns
 	install -m 755 $(TOOLS) $(DESTDIR)$(PREFIX)/bin
 	install -m 644 $(STATIC) $(DESTDIR)$(LIBDIR)
 	install -m 755 $(SHARED) $(DESTDIR)$(LIBDIR)
 	ln -sf libtex.so.0 $(DESTDIR)$(LIBDIR)/libtex.so
 	install -m 755 $(BRIDGE) $(DESTDIR)$(LIBDIR)/textura
-	install -m 644 $(PCFILE) $(DESTDIR)$(LIBDIR)/pkgconfig
+	$(call pc,$(PREFIX),$(LIBDIR)) > $(DESTDIR)$(LIBDIR)/pkgconfig/textura.pc
 	install -m 644 $(HEADERS) libtex/primitives.def $(DESTDIR)$(PREFIX)/include/textura
 	install -m 644 $(wildcard man/man1/*.1) $(DESTDIR)$(PREFIX)/share/man/man1
 	install -m 644 $(wildcard man/man3/*.3) $(DESTDIR)$(PREFIX)/share/man/man3
 	install -m 644 $(wildcard man/man5/*.5) $(DESTDIR)$(PREFIX)/share/man/man5
-	cp -R palettes/. $(DESTDIR)$(PREFIX)/share/textura/palettes
-	cp -R patterns/. $(DESTDIR)$(PREFIX)/share/textura/patterns
+	cp -R palettes/. $(DESTDIR)$(DATADIR)/palettes
+	cp -R patterns/. $(DESTDIR)$(DATADIR)/patterns
 
 clean:
 	rm -rf build build-asan demo.png

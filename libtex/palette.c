@@ -11,8 +11,8 @@
 #include "map.h"
 #include "palette.h"
 
-#ifndef TEX_LIBDIR
-#define TEX_LIBDIR "/usr/local/lib"
+#ifndef TEX_DATADIR
+#define TEX_DATADIR "/usr/local/share/textura"
 #endif
 
 #define MAX_FILE (4 << 20)   /* a palette is text: refuse anything larger */
@@ -375,7 +375,7 @@ int tex_palette_find(const char *name, char *buf, size_t n)
         }
     }
     {
-        const char *share = TEX_LIBDIR "/../share/textura/palettes";
+        const char *share = TEX_DATADIR "/palettes";
         if (try_dir(share, strlen(share), name, buf, n))
             return 0;
     }
