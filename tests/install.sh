@@ -1,0 +1,41 @@
+# install.sh - make install gives a usable library: headers compile as C and C++,
+# a program links through pkg-config, and installed tools find their data.
+. "$(dirname "$0")/lib.sh"
+top=$TEXTURA_TOP
+b=$(basename "$TEXTURA_BUILD")
+if ! make -s -C "$top" install BUILD="$b" PREFIX="$T/p" >"$T/log" 2>&1; then
+    notok "make install into a fresh prefix" "$(tail -3 "$T/log")"
+    exit 0
+fi
+ok "make install into a fresh prefix"
+for f in bin/t_noise lib/libtex.a lib/libtex.so.0 lib/textura/textura-oiio.so \
+    include/textura/textura.h lib/pkgconfig/textura.pc share/man/man1/t_noise.1 share/man/man5/textura.5; do
+    [ -e "$T/p/$f" ] && ok "installs $f" || notok "installs $f"
+done
+cat >"$T/prog.c" <<'C'
+#include <textura/textura.h>
+#include <stdio.h>
+int main(void)
+{
+    struct tex_field *f = tex_field_new(tex_primitive_find("noise"));
+    tex_map *m;
+    if (!f || tex_field_init(f, 16, 16) < 0 || !(m = tex_field_sample(f)))
+        return 1;
+    printf("%d %d\n", m->w, m->nc);
+    tex_map_free(m);
+    tex_field_free(f);
+    return 0;
+}
+C
+export PKG_CONFIG_PATH="$T/p/lib/pkgconfig"
+if cc -o "$T/prog" "$T/prog.c" $(pkg-config --cflags textura) -I"$T/p/include" \
+    "$T/p/lib/libtex.a" $(pkg-config --static --libs-only-l textura | sed 's/-ltex//') -fopenmp 2>"$T/cc"; then
+    [ "$("$T/prog")" = "16 1" ] && ok "a program links libtex through pkg-config and samples a primitive" \
+        || notok "the linked program samples a primitive"
+else
+    notok "a program compiles against the installed headers" "$(head -3 "$T/cc")"
+fi
+printf '#include <textura/textura.h>\nint main(void) { return tex_primitive_find("noise") == nullptr; }\n' >"$T/prog.cc"
+check "the public headers compile as C++" c++ -fsyntax-only -I"$T/p/include" -I/usr/include/OpenEXR "$T/prog.cc"
+check "installed tools find the OpenImageIO bridge" "$T/p/bin/t_noise" -s 8 -o "$T/x.png"
+check "installed tools find the shipped palettes" bash -c "'$T/p/bin/t_noise' -s 8 | TEXTURA_PALETTES= '$T/p/bin/t_palette' fire | '$T/p/bin/t_info' >/dev/null"
