@@ -66,8 +66,8 @@ int tex_check_finite(const tex_map *m, const char *what)
             bad = i;
     if (bad < n) {
         size_t p = bad / m->nc;
-        return tex_error("%s: pixel (%zu,%zu) is not a finite number", what, p % m->w,
-                         p / m->w);
+        return tex_error("%s%spixel (%zu,%zu) is not a finite number", what ? what : "",
+                         what ? ": " : "", p % m->w, p / m->w);
     }
     return 0;
 }
@@ -145,7 +145,7 @@ tex_map *tex_fft(const tex_map *m, enum tex_fft_output out, int hann)
     tex_map *o = NULL;
     fftwf_plan plan;
 
-    if (tex_check_finite(m, "map") < 0 || !(s = scalar_of(m, &own)))
+    if (tex_check_finite(m, NULL) < 0 || !(s = scalar_of(m, &own)))
         return NULL;
     in = fftwf_alloc_real((size_t)w * h);
     F = fftwf_alloc_complex((size_t)h * hw);
@@ -340,21 +340,21 @@ tex_map *tex_ifft(const tex_map *s, const struct tex_ifft_opts *o)
     fftwf_plan plan = NULL;
     tex_map *out = NULL;
 
-    if (tex_check_finite(s, "spectrum") < 0)
+    if (tex_check_finite(s, NULL) < 0)
         return NULL;
     if (scale == TEX_SCALE_AUTO)
         scale = cplx ? TEX_SCALE_NONE : TEX_SCALE_UNIT;
     if (cplx) {
         c.cplx = s->px;
         if (all_zero(s->px, 2 * n, 1)) {
-            tex_error("spectrum: every coefficient is zero (nothing to invert)");
+            tex_error("every coefficient of the spectrum is zero (nothing to invert)");
             return NULL;
         }
     } else {
         if (!(c.mag = scalar_of(s, &own)))
             return NULL;
         if (all_zero(c.mag, n, 1)) {
-            tex_error("spectrum: the magnitude is zero everywhere (nothing to invert)");
+            tex_error("the magnitude is zero everywhere (nothing to invert)");
             goto done;
         }
         if (o->phase == TEX_PHASE_MAP) {
@@ -579,7 +579,7 @@ tex_map *tex_sparse_convolve(const tex_map *s, int w, int h, const struct tex_sp
         tex_usage_error("--density %g asks for %.3g impulses (at most 1e9)", p->density, count);
         return NULL;
     }
-    if (tex_check_finite(s, "sample") < 0)
+    if (tex_check_finite(s, NULL) < 0)
         return NULL;
     rb = fftwf_alloc_real(n);
     win = malloc((size_t)sw * sh * sizeof *win);

@@ -122,7 +122,8 @@ tex_map *tex_ifft(const tex_map *spectrum, const struct tex_ifft_opts *o);
 int tex_spectral_fbm(tex_map *m, const struct tex_fbm_spec *p);
 tex_map *tex_sparse_convolve(const tex_map *sample, int w, int h, const struct tex_sparse_spec *p);
 
-/* 0 if every sample of m is finite, else -1 naming the first bad pixel. */
+/* 0 if every sample of m is finite, else -1 naming the first bad pixel
+ * (after "what: " unless what is NULL). */
 int tex_check_finite(const tex_map *m, const char *what);
 
 #ifdef __cplusplus

@@ -31,8 +31,11 @@ int main(int argc, char **argv)
     tex_map *s = tex_cli_read(name), *m;
     struct tex_sparse_spec sp = {o.density, o.falloff, (uint64_t)c.seed};
 
-    if (!(m = tex_sparse_convolve(s, c.w, c.h, &sp)))
+    if (!(m = tex_sparse_convolve(s, c.w, c.h, &sp))) {
+        if (tex_errkind() == TEX_ERR_RUNTIME)
+            tex_error_context(name);
         tex_die();
+    }
     tex_map_set_history(m, s->history);
     tex_cli_write(m, &c);
     tex_map_free(m);
