@@ -1,6 +1,9 @@
 /* spectral.c - FFT and inverse FFT of maps, spectral synthesis of fBm,
  * Lewis's sparse convolution, and the spectral primitive */
 #include <fftw3.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <math.h>
 #include <pthread.h>
 #include <stdlib.h>
@@ -56,20 +59,40 @@ static inline const float *random_phase(uint64_t key, uint64_t k)
 
 /* ---- helpers ---- */
 
-int tex_check_finite(const tex_map *m, const char *what)
+void tex_spectral_keep_memory(void)
+{
+#ifdef __GLIBC__
+    mallopt(M_MMAP_THRESHOLD, 1 << 30);
+    mallopt(M_TRIM_THRESHOLD, 1 << 30);
+#endif
+}
+
+/* The finite check and, in the same pass, whether any sample is nonzero. */
+static int scan(const tex_map *m, const char *what, int *nonzero)
 {
     size_t n = tex_map_samples(m), bad = n;
+    int nz = 0;
 
-#pragma omp parallel for reduction(min : bad)
-    for (size_t i = 0; i < n; i++)
-        if (!isfinite(m->px[i]) && i < bad)
+#pragma omp parallel for schedule(static) reduction(min : bad) reduction(| : nz)
+    for (size_t i = 0; i < n; i++) {
+        float v = m->px[i];
+        if (!isfinite(v) && i < bad)
             bad = i;
+        nz |= v != 0.0f;
+    }
+    if (nonzero)
+        *nonzero = nz;
     if (bad < n) {
         size_t p = bad / m->nc;
         return tex_error("%s%spixel (%zu,%zu) is not a finite number", what ? what : "",
                          what ? ": " : "", p % m->w, p / m->w);
     }
     return 0;
+}
+
+int tex_check_finite(const tex_map *m, const char *what)
+{
+    return scan(m, what, NULL);
 }
 
 /* The scalar of each pixel (see spectral.h); *owned is set when it is a copy. */
@@ -122,10 +145,10 @@ static void to_unit(float *v, size_t n, int from_zero)
             v[i] = v[i] < 0 ? 0 : v[i] > 1 ? 1 : v[i];
         return;
     }
-    float d = hi - lo; /* a division, so that hi maps to exactly 1 */
-#pragma omp parallel for
-    for (size_t i = 0; i < n; i++)
-        v[i] = (v[i] - lo) / d;
+    float sc = 1.0f / (hi - lo);
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++) /* the maximum maps to exactly 1 */
+        v[i] = v[i] == hi ? 1.0f : (v[i] - lo) * sc;
 }
 
 static inline float turns(float im, float re)
@@ -340,20 +363,22 @@ tex_map *tex_ifft(const tex_map *s, const struct tex_ifft_opts *o)
     fftwf_plan plan = NULL;
     tex_map *out = NULL;
 
-    if (tex_check_finite(s, NULL) < 0)
+    int nonzero;
+
+    if (scan(s, NULL, &nonzero) < 0)
         return NULL;
     if (scale == TEX_SCALE_AUTO)
         scale = cplx ? TEX_SCALE_NONE : TEX_SCALE_UNIT;
     if (cplx) {
         c.cplx = s->px;
-        if (all_zero(s->px, 2 * n, 1)) {
+        if (!nonzero) {
             tex_error("every coefficient of the spectrum is zero (nothing to invert)");
             return NULL;
         }
     } else {
         if (!(c.mag = scalar_of(s, &own)))
             return NULL;
-        if (all_zero(c.mag, n, 1)) {
+        if (!nonzero || (s->nc > 2 && all_zero(c.mag, n, 1))) {
             tex_error("the magnitude is zero everywhere (nothing to invert)");
             goto done;
         }
@@ -442,50 +467,34 @@ done:
 
 /* ---- spectral synthesis of fBm ---- */
 
-/* log2 and exp2 good to about 1e-6 relative, without a libm call per
- * frequency: the amplitude f^-(H+1) is exp2(e log2 f^2). */
-static inline float fast_log2(float x)
+/* x^e for float x > 0 without a libm call per frequency: with x = m 2^E,
+ * m in [1,2), x^e = m^e 2^(E e), the first from a table over the top ten
+ * bits of the mantissa with linear interpolation (relative error about
+ * 1e-7 |e (e-1)|), the second from a table over the exponent. */
+#define POW_BITS 10
+struct powtab {
+    float m[(1 << POW_BITS) + 1];
+    float p[256];
+};
+
+static void powtab_init(struct powtab *t, double e)
+{
+    for (int i = 0; i <= 1 << POW_BITS; i++)
+        t->m[i] = (float)pow(1.0 + (double)i / (1 << POW_BITS), e);
+    for (int j = 0; j < 256; j++)
+        t->p[j] = (float)fmin(exp2((j - 127) * e), 3.4e38);
+}
+
+static inline float powtab_eval(const struct powtab *t, float x)
 {
     union {
         float f;
         uint32_t i;
     } u = {x};
-    int e = (int)((u.i >> 23) & 255) - 127;
-    float m, t, t2;
-
-    u.i = (u.i & 0x007fffffu) | 0x3f800000u; /* mantissa in [1,2) */
-    m = u.f;
-    if (m > 1.41421356f) {
-        m *= 0.5f;
-        e++;
-    }
-    t = (m - 1.0f) / (m + 1.0f); /* |t| <= 0.172: atanh series */
-    t2 = t * t;
-    return (float)e + t * (2.88539008f + t2 * (0.961796694f + t2 * (0.577078016f +
-                                                                   t2 * 0.412198583f)));
-}
-
-static inline float fast_exp2(float y)
-{
-    union {
-        uint32_t i;
-        float f;
-    } u;
-    int n;
-    float f, p;
-
-    if (y < -126.0f)
-        return 0.0f;
-    if (y > 127.0f)
-        y = 127.0f;
-    n = (int)y;
-    n -= (float)n > y;
-    f = y - (float)n; /* [0,1) */
-    p = 1.0f + f * (0.693147181f + f * (0.240226507f + f * (0.0555041087f +
-        f * (0.00961812911f + f * (0.00133335581f + f * (0.000154035304f +
-        f * 0.0000152527338f))))));
-    u.i = (uint32_t)(n + 127) << 23;
-    return p * u.f;
+    uint32_t i = (u.i >> (23 - POW_BITS)) & ((1u << POW_BITS) - 1);
+    float frac = (float)(u.i & ((1u << (23 - POW_BITS)) - 1)) * (1.0f / (1 << (23 - POW_BITS)));
+    float m = t->m[i] + (t->m[i + 1] - t->m[i]) * frac;
+    return m * t->p[(u.i >> 23) & 255];
 }
 
 int tex_spectral_fbm(tex_map *m, const struct tex_fbm_spec *p)
@@ -501,11 +510,13 @@ int tex_spectral_fbm(tex_map *m, const struct tex_fbm_spec *p)
     uint64_t key = tex_hash64(p->seed ^ 0x5bd1e995u);
     fftwf_complex *F;
     fftwf_plan plan;
+    struct powtab pt;
 
     if (m->nc != 1)
         return tex_error("internal: fBm fills a 1-channel map");
     if (!(F = fftwf_alloc_complex((size_t)h * hw)))
         return tex_error("out of memory");
+    powtab_init(&pt, e);
     plan_setup();
     if (!(plan = fftwf_plan_dft_c2r_2d(h, w, F, m->px, FFTW_ESTIMATE))) {
         fftwf_free(F);
@@ -525,7 +536,7 @@ int tex_spectral_fbm(tex_map *m, const struct tex_fbm_spec *p)
                 row[kx][0] = row[kx][1] = 0.0f;
                 continue;
             }
-            amp = fast_exp2(e * fast_log2(f2 + r2 * par * par));
+            amp = powtab_eval(&pt, f2 + r2 * par * par);
             any = 1;
             /* Columns 0 and w/2 hold both k and -k: give the pair one phase. */
             if (kx == 0 || 2 * kx == w) {

@@ -27,7 +27,10 @@ int main(int argc, char **argv)
                                                TEX_FFT_COMPLEX};
     struct tex_common c;
     struct opts o;
-    int i = tex_cli_parse(&tool, argc, argv, &c, &o);
+    int i;
+
+    tex_spectral_keep_memory();
+    i = tex_cli_parse(&tool, argc, argv, &c, &o);
     const char *name = i < argc ? argv[i] : "-";
     tex_map *m = tex_cli_read(name), *s;
 
@@ -36,9 +39,9 @@ int main(int argc, char **argv)
         tex_die();
     }
     tex_map_set_history(s, m->history);
+    tex_map_free(m);
     tex_cli_write(s, &c);
     tex_map_free(s);
-    tex_map_free(m);
     free(c.cmdline);
     return 0;
 }

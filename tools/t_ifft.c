@@ -42,6 +42,8 @@ int main(int argc, char **argv)
     const char *name = i < argc ? argv[i] : "-";
     tex_map *s, *phase = NULL, *t;
 
+    tex_spectral_keep_memory();
+
     if (o.phase && !strcmp(o.phase, "zero"))
         io.phase = TEX_PHASE_ZERO;
     else if (o.phase && strcmp(o.phase, "random")) {
@@ -65,10 +67,10 @@ int main(int argc, char **argv)
         tex_die();
     }
     tex_map_set_history(t, s->history);
+    tex_map_free(s); /* before writing: the encoder can reuse the memory */
+    tex_map_free(phase);
     tex_cli_write(t, &c);
     tex_map_free(t);
-    tex_map_free(s);
-    tex_map_free(phase);
     free(c.cmdline);
     return 0;
 }

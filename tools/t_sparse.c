@@ -26,7 +26,10 @@ int main(int argc, char **argv)
 {
     struct tex_common c;
     struct opts o;
-    int i = tex_cli_parse(&tool, argc, argv, &c, &o);
+    int i;
+
+    tex_spectral_keep_memory();
+    i = tex_cli_parse(&tool, argc, argv, &c, &o);
     const char *name = i < argc ? argv[i] : "-";
     tex_map *s = tex_cli_read(name), *m;
     struct tex_sparse_spec sp = {o.density, o.falloff, (uint64_t)c.seed};
@@ -37,9 +40,9 @@ int main(int argc, char **argv)
         tex_die();
     }
     tex_map_set_history(m, s->history);
+    tex_map_free(s);
     tex_cli_write(m, &c);
     tex_map_free(m);
-    tex_map_free(s);
     free(c.cmdline);
     return 0;
 }
