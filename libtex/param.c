@@ -91,7 +91,7 @@ const char *tex_param_range(const struct tex_param *p, char *buf, size_t n)
     case TEX_P_REALS:
         fmt_real(p->min, a, sizeof a);
         fmt_real(p->max, b, sizeof b);
-        if (p->type == TEX_P_REALS)
+        if (p->type == TEX_P_REALS && p->nmax > 1)
             snprintf(buf, n, "1..%d values in %s..%s", p->nmax, a, b);
         else
             snprintf(buf, n, "%s..%s", a, b);
