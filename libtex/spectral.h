@@ -5,7 +5,9 @@
  * by their spectrum.  Transforms go through FFTW in single precision with
  * its threads (as many as OpenMP's max, i.e. -j) and the ESTIMATE planner,
  * so the same input gives the same bits on every run and for any thread
- * count (FFTW's threads only split independent rows and columns).  Any
+ * count (FFTW's threads only split independent rows and columns; checked
+ * by the tests).  FFTW chooses its SIMD codelets from the CPU, so two
+ * machines with different vector units may differ in the last bits.  Any
  * size works, not only powers of two.
  *
  * The centred layout.  A w x h spectrum map holds the frequency (kx, ky),
