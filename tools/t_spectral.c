@@ -1,0 +1,9 @@
+/* t_spectral - fBm by spectral synthesis: the classic forgery of clouds */
+#include "spectral.h"
+#include "textura.h"
+
+int main(int argc, char **argv)
+{
+    tex_spectral_keep_memory();
+    return tex_generate_main(&tex_prim_spectral, argc, argv);
+}
