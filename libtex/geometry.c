@@ -634,3 +634,246 @@ const struct tex_primitive tex_prim_four_rings = {
     .fini = geo_fini,
     .eval2 = four_rings_eval2,
 };
+
+/* ---- polygon and star: 1 outside, 2 inside ---- */
+
+struct polygon_params {
+    GEO_HEAD;
+    int sides;
+    double radius, inner, angle;
+};
+
+static const struct tex_param polygon_rows[] = {
+    TEX_INT(struct polygon_params, sides, 'n', 6, 3, 1000, "N", "number of sides"),
+    TEX_REAL(struct polygon_params, radius, 'r', 0.4, 0, 0.5, "R",
+             "distance from a vertex to the centre, in cells"),
+    TEX_REAL(struct polygon_params, angle, 'a', 90, -360, 360, "DEG",
+             "direction of the first vertex, in degrees counterclockwise from the right"),
+    ROW_NU(struct polygon_params, 1),
+    ROW_NV(struct polygon_params, 1),
+    ROW_COLOR(struct polygon_params, 1, "#f4efe2", "colour of region 1, outside"),
+    ROW_COLOR(struct polygon_params, 2, "#2b5f8a", "colour of region 2, inside"),
+    {0}};
+
+static const struct tex_param star_rows[] = {
+    TEX_INT(struct polygon_params, sides, 'n', 5, 2, 1000, "N", "number of points"),
+    TEX_REAL(struct polygon_params, radius, 'r', 0.45, 0, 0.5, "R",
+             "distance from a point's tip to the centre, in cells"),
+    TEX_REAL(struct polygon_params, inner, 'i', 0.382, 0, 1, "K",
+             "radius of the inner vertices as a fraction of --radius (0.382: a pentagram)"),
+    TEX_REAL(struct polygon_params, angle, 'a', 90, -360, 360, "DEG",
+             "direction of the first point, in degrees counterclockwise from the right"),
+    ROW_NU(struct polygon_params, 1),
+    ROW_NV(struct polygon_params, 1),
+    ROW_COLOR(struct polygon_params, 1, "#1d2a44", "colour of region 1, outside"),
+    ROW_COLOR(struct polygon_params, 2, "#f2c12e", "colour of region 2, the star"),
+    {0}};
+
+/* k: the sector angle 2 pi/n, the first vertex's angle, the outer vertex
+ * A = (r, 0) and the inner one B, both in the sector's own frame. */
+static int polygon_setup(struct tex_field *f, double inner_radius)
+{
+    const struct polygon_params *p = f->params;
+    double *k;
+    if (geo_init(f, 2) < 0)
+        return -1;
+    k = ((struct geo_state *)f->state)->k;
+    k[0] = 2 * M_PI / p->sides;
+    k[1] = p->angle * M_PI / 180;
+    k[2] = p->radius;
+    k[3] = inner_radius * cos(M_PI / p->sides);
+    k[4] = inner_radius * sin(M_PI / p->sides);
+    return 0;
+}
+
+static int polygon_init(struct tex_field *f)
+{
+    const struct polygon_params *p = f->params;
+    return polygon_setup(f, p->radius * cos(M_PI / p->sides));
+}
+
+static int star_init(struct tex_field *f)
+{
+    const struct polygon_params *p = f->params;
+    return polygon_setup(f, p->radius * p->inner);
+}
+
+/* Fold the point into half a sector (the figure is symmetric about each
+ * vertex's ray) and test it against the edge from vertex A to vertex B. */
+static inline int polygon_id(const struct polygon_params *p, const double *k, double x, double y)
+{
+    double rho, t;
+    (void)p;
+    x -= 0.5;
+    y -= 0.5;
+    rho = sqrt(x * x + y * y);
+    t = atan2(y, x) - k[1];
+    t -= k[0] * floor(t / k[0]);
+    if (t > k[0] / 2)
+        t = k[0] - t;
+    x = rho * cos(t) - k[2];
+    y = rho * sin(t);
+    return (k[3] - k[2]) * y - k[4] * x >= 0 ? 2 : 1;
+}
+GEO_EVAL2(polygon, struct polygon_params)
+
+const struct tex_primitive tex_prim_polygon = {
+    .name = "polygon",
+    .summary = "a regular polygon: 2 subregions",
+    .flags = TEX_PRIM_2D | TEX_PRIM_REGIONS | TEX_PRIM_TILE,
+    .params_size = sizeof(struct polygon_params),
+    .params = polygon_rows,
+    .init = polygon_init,
+    .fini = geo_fini,
+    .eval2 = polygon_eval2,
+};
+
+const struct tex_primitive tex_prim_star = {
+    .name = "star",
+    .summary = "a star with n points: 2 subregions",
+    .flags = TEX_PRIM_2D | TEX_PRIM_REGIONS | TEX_PRIM_TILE,
+    .params_size = sizeof(struct polygon_params),
+    .params = star_rows,
+    .init = star_init,
+    .fini = geo_fini,
+    .eval2 = polygon_eval2,
+};
+
+/* ---- grid: 1 the cells, 2 the lines ---- */
+
+struct grid_params {
+    GEO_HEAD;
+    double width;
+};
+
+static const struct tex_param grid_rows[] = {
+    TEX_REAL(struct grid_params, width, 'd', 0.1, 0, 1, "D",
+             "width of the lines as a fraction of a cell"),
+    ROW_NU(struct grid_params, 8),
+    ROW_NV(struct grid_params, 8),
+    ROW_COLOR(struct grid_params, 1, "#f4efe2", "colour of region 1, the cells"),
+    ROW_COLOR(struct grid_params, 2, "#3a3a3a", "colour of region 2, the lines"),
+    {0}};
+
+static int grid_init(struct tex_field *f)
+{
+    return geo_init(f, 2);
+}
+
+/* Lines run along the cells' sides, half of each in either neighbour. */
+static inline int grid_id(const struct grid_params *p, const double *k, double x, double y)
+{
+    double h = p->width / 2;
+    (void)k;
+    return x < h || x >= 1 - h || y <= h || y > 1 - h ? 2 : 1;
+}
+GEO_EVAL2(grid, struct grid_params)
+
+const struct tex_primitive tex_prim_grid = {
+    .name = "grid",
+    .summary = "grid lines: 2 subregions",
+    .flags = TEX_PRIM_2D | TEX_PRIM_REGIONS | TEX_PRIM_TILE,
+    .params_size = sizeof(struct grid_params),
+    .params = grid_rows,
+    .init = grid_init,
+    .fini = geo_fini,
+    .eval2 = grid_eval2,
+};
+
+/* ---- brick: 1 the bricks, 2 the mortar ---- */
+
+struct brick_params {
+    GEO_HEAD;
+    double width;
+};
+
+static const struct tex_param brick_rows[] = {
+    TEX_REAL(struct brick_params, width, 'd', 0.12, 0, 1, "D",
+             "width of the mortar joints as a fraction of a course's height"),
+    ROW_NU(struct brick_params, 4),
+    ROW_NV(struct brick_params, 4),
+    ROW_COLOR(struct brick_params, 1, "#a8452e", "colour of region 1, the bricks"),
+    ROW_COLOR(struct brick_params, 2, "#d9d2c3", "colour of region 2, the mortar"),
+    {0}};
+
+/* A cell is one brick wide and two courses high, the lower course shifted by
+ * half a brick.  Joints keep one width on the map: k[0] is half the bed
+ * joint in cell heights, k[1] half the head joint in cell widths. */
+static int brick_init(struct tex_field *f)
+{
+    const struct brick_params *p = f->params;
+    double *k;
+    if (geo_init(f, 2) < 0)
+        return -1;
+    k = ((struct geo_state *)f->state)->k;
+    k[0] = p->width / 4;
+    k[1] = p->width / 4 * p->nu / p->nv * (f->w > 0 && f->h > 0 ? (double)f->h / f->w : 1);
+    return 0;
+}
+
+static inline int brick_id(const struct brick_params *p, const double *k, double x, double y)
+{
+    (void)p;
+    if (fabs(y - 0.5) < k[0] || y < k[0] || y > 1 - k[0])
+        return 2;
+    if (y > 0.5)
+        return x < k[1] || x > 1 - k[1] ? 2 : 1;
+    return fabs(x - 0.5) < k[1] ? 2 : 1;
+}
+GEO_EVAL2(brick, struct brick_params)
+
+const struct tex_primitive tex_prim_brick = {
+    .name = "brick",
+    .summary = "a brick wall in running bond: 2 subregions",
+    .flags = TEX_PRIM_2D | TEX_PRIM_REGIONS | TEX_PRIM_TILE,
+    .params_size = sizeof(struct brick_params),
+    .params = brick_rows,
+    .init = brick_init,
+    .fini = geo_fini,
+    .eval2 = brick_eval2,
+};
+
+/* ---- dots: 1 the ground, 2 the dots ---- */
+
+struct dots_params {
+    GEO_HEAD;
+    double radius;
+};
+
+static const struct tex_param dots_rows[] = {
+    TEX_REAL(struct dots_params, radius, 'r', 0.2, 0, 0.5, "R",
+             "radius of the dots, in cells (they touch at 0.354)"),
+    ROW_NU(struct dots_params, 4),
+    ROW_NV(struct dots_params, 4),
+    ROW_COLOR(struct dots_params, 1, "#2b5f8a", "colour of region 1, the ground"),
+    ROW_COLOR(struct dots_params, 2, "#f4efe2", "colour of region 2, the dots"),
+    {0}};
+
+static int dots_init(struct tex_field *f)
+{
+    const struct dots_params *p = f->params;
+    if (geo_init(f, 2) < 0)
+        return -1;
+    ((struct geo_state *)f->state)->k[0] = p->radius * p->radius;
+    return 0;
+}
+
+/* Staggered polka dots: one at the cell's centre, a quarter at each corner. */
+static inline int dots_id(const struct dots_params *p, const double *k, double x, double y)
+{
+    double cx = x - 0.5, cy = y - 0.5, ex = fmin(x, 1 - x), ey = fmin(y, 1 - y);
+    (void)p;
+    return cx * cx + cy * cy <= k[0] || ex * ex + ey * ey <= k[0] ? 2 : 1;
+}
+GEO_EVAL2(dots, struct dots_params)
+
+const struct tex_primitive tex_prim_dots = {
+    .name = "dots",
+    .summary = "staggered polka dots: 2 subregions",
+    .flags = TEX_PRIM_2D | TEX_PRIM_REGIONS | TEX_PRIM_TILE,
+    .params_size = sizeof(struct dots_params),
+    .params = dots_rows,
+    .init = dots_init,
+    .fini = geo_fini,
+    .eval2 = dots_eval2,
+};
