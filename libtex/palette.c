@@ -1,0 +1,592 @@
+/* palette.c - palette files, gradient lookup in RGB or OKLab, indexed colours */
+#include <ctype.h>
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "error.h"
+#include "map.h"
+#include "palette.h"
+
+#ifndef TEX_LIBDIR
+#define TEX_LIBDIR "/usr/local/lib"
+#endif
+
+#define MAX_FILE (4 << 20)   /* a palette is text: refuse anything larger */
+#define MAX_ENTRIES 65536    /* stops, and index entries */
+#define MAX_ID (1 << 24)
+
+/* ---- colour spaces (Ottosson's OKLab, sRGB transfer) ---- */
+
+static double srgb_decode(double c)
+{
+    return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
+}
+
+static double srgb_encode(double c)
+{
+    if (c <= 0.0)
+        return 0.0;
+    if (c >= 1.0)
+        return 1.0;
+    return c <= 0.0031308 ? 12.92 * c : 1.055 * pow(c, 1 / 2.4) - 0.055;
+}
+
+void tex_srgb_to_oklab(const float rgb[3], float lab[3])
+{
+    double r = srgb_decode(rgb[0]), g = srgb_decode(rgb[1]), b = srgb_decode(rgb[2]);
+    double l = cbrt(0.4122214708 * r + 0.5363325363 * g + 0.0514459929 * b);
+    double m = cbrt(0.2119034982 * r + 0.6806995451 * g + 0.1073969566 * b);
+    double s = cbrt(0.0883024619 * r + 0.2817188376 * g + 0.6299787005 * b);
+    lab[0] = (float)(0.2104542553 * l + 0.7936177850 * m - 0.0040720468 * s);
+    lab[1] = (float)(1.9779984951 * l - 2.4285922050 * m + 0.4505937099 * s);
+    lab[2] = (float)(0.0259040371 * l + 0.7827717662 * m - 0.8086757660 * s);
+}
+
+void tex_oklab_to_srgb(const float lab[3], float rgb[3])
+{
+    double l = lab[0] + 0.3963377774 * lab[1] + 0.2158037573 * lab[2];
+    double m = lab[0] - 0.1055613458 * lab[1] - 0.0638541728 * lab[2];
+    double s = lab[0] - 0.0894841775 * lab[1] - 1.2914855480 * lab[2];
+    l = l * l * l;
+    m = m * m * m;
+    s = s * s * s;
+    rgb[0] = (float)srgb_encode(4.0767416621 * l - 3.3077115913 * m + 0.2309699292 * s);
+    rgb[1] = (float)srgb_encode(-1.2684380046 * l + 2.6097574011 * m - 0.3413193965 * s);
+    rgb[2] = (float)srgb_encode(-0.0041960863 * l - 0.7034186147 * m + 1.7076147010 * s);
+}
+
+/* ---- construction ---- */
+
+tex_palette *tex_palette_new(enum tex_palette_space space)
+{
+    tex_palette *p = calloc(1, sizeof *p);
+    if (!p)
+        tex_error("out of memory");
+    else
+        p->space = space;
+    return p;
+}
+
+void tex_palette_free(tex_palette *p)
+{
+    if (!p)
+        return;
+    free(p->name);
+    free(p->stops);
+    free(p->index);
+    free(p);
+}
+
+static int grow(void **a, int n, size_t size)
+{
+    /* capacity doubles at powers of two */
+    if (n && (n & (n - 1)))
+        return 0;
+    void *b = realloc(*a, (size_t)(n ? 2 * n : 4) * size);
+    if (!b)
+        return tex_error("out of memory");
+    *a = b;
+    return 0;
+}
+
+int tex_palette_add_stop(tex_palette *p, float pos, const float rgba[4])
+{
+    struct tex_palette_stop *s;
+
+    if (p->nstops >= MAX_ENTRIES)
+        return tex_error("more than %d colour stops", MAX_ENTRIES);
+    if (grow((void **)&p->stops, p->nstops, sizeof *p->stops) < 0)
+        return -1;
+    s = &p->stops[p->nstops++];
+    s->pos = pos;
+    memcpy(s->rgba, rgba, sizeof s->rgba);
+    tex_srgb_to_oklab(rgba, s->lab);
+    s->lab[3] = rgba[3];
+    return 0;
+}
+
+/* ---- parsing ---- */
+
+struct parser {
+    const char *name;
+    int line;
+};
+
+static int perr(const struct parser *ps, const char *fmt, const char *arg)
+{
+    char msg[160];
+    snprintf(msg, sizeof msg, fmt, arg);
+    return tex_error("%s:%d: %s", ps->name, ps->line, msg);
+}
+
+static int hexval(int c)
+{
+    if (c >= '0' && c <= '9')
+        return c - '0';
+    c = tolower(c);
+    return c >= 'a' && c <= 'f' ? c - 'a' + 10 : -1;
+}
+
+/* #rgb, #rrggbb or #rrggbbaa */
+static int parse_hex(const char *tok, float rgba[4])
+{
+    size_t n = strlen(tok) - 1;
+    int d[8];
+
+    if (n != 3 && n != 6 && n != 8)
+        return -1;
+    for (size_t i = 0; i < n; i++)
+        if ((d[i] = hexval((unsigned char)tok[1 + i])) < 0)
+            return -1;
+    rgba[3] = 1.0f;
+    for (int c = 0; c < (n == 8 ? 4 : 3); c++)
+        rgba[c] = n == 3 ? (float)(d[c] * 17) / 255.0f : (float)(d[2 * c] * 16 + d[2 * c + 1]) / 255.0f;
+    return 0;
+}
+
+static int parse_unit(const struct parser *ps, const char *tok, const char *what, float *out)
+{
+    char *end;
+    double v;
+
+    errno = 0;
+    v = strtod(tok, &end);
+    if (end == tok || *end || errno || !isfinite(v)) {
+        char msg[96];
+        snprintf(msg, sizeof msg, "%s: not a number: '%%s'", what);
+        return perr(ps, msg, tok);
+    }
+    if (v < 0 || v > 1) {
+        char msg[96];
+        snprintf(msg, sizeof msg, "%s must be in 0..1 (got %%s)", what);
+        return perr(ps, msg, tok);
+    }
+    *out = (float)v;
+    return 0;
+}
+
+/* A colour from tokens: one hex token, or 3 or 4 numbers in [0,1]. */
+static int parse_colour(const struct parser *ps, char **tok, int ntok, float rgba[4])
+{
+    static const char *const comp[4] = {"red", "green", "blue", "alpha"};
+
+    if (ntok == 0)
+        return perr(ps, "missing colour%s", "");
+    if (tok[0][0] == '#') {
+        if (ntok > 1)
+            return perr(ps, "unexpected '%s' after the colour", tok[1]);
+        if (parse_hex(tok[0], rgba) < 0)
+            return perr(ps, "bad hex colour '%s' (want #rrggbb or #rrggbbaa)", tok[0]);
+        return 0;
+    }
+    if (ntok < 3)
+        return perr(ps, "a colour needs r g b [a] or #rrggbb%s", "");
+    if (ntok > 4)
+        return perr(ps, "unexpected '%s' after the colour", tok[4]);
+    rgba[3] = 1.0f;
+    for (int c = 0; c < ntok; c++)
+        if (parse_unit(ps, tok[c], comp[c], &rgba[c]) < 0)
+            return -1;
+    return 0;
+}
+
+static int cmp_entry(const void *a, const void *b)
+{
+    const struct tex_palette_entry *x = a, *y = b;
+    return (x->id > y->id) - (x->id < y->id);
+}
+
+static int parse_line(tex_palette *p, struct parser *ps, char *s)
+{
+    char *tok[16];
+    int n = 0;
+    float rgba[4];
+
+    /* Tokens split at blanks; a '#' token followed by a blank (or alone)
+     * starts a trailing comment, as does '#' at the start of the line. */
+    for (char *t = strtok(s, " \t\r\v\f"); t; t = strtok(NULL, " \t\r\v\f")) {
+        if (t[0] == '#' && (n == 0 || t[1] == '\0'))
+            break;
+        if (n == 16)
+            return perr(ps, "too many fields%s", "");
+        tok[n++] = t;
+    }
+    if (n == 0)
+        return 0;
+    if (!strcmp(tok[0], "space")) {
+        if (n != 2 || (strcmp(tok[1], "rgb") && strcmp(tok[1], "oklab")))
+            return perr(ps, "want 'space rgb' or 'space oklab'%s", "");
+        p->space = !strcmp(tok[1], "rgb") ? TEX_SPACE_RGB : TEX_SPACE_OKLAB;
+        return 0;
+    }
+    if (!strcmp(tok[0], "index")) {
+        char *end;
+        long id;
+        if (n < 3)
+            return perr(ps, "want 'index ID COLOUR'%s", "");
+        errno = 0;
+        id = strtol(tok[1], &end, 10);
+        if (end == tok[1] || *end || errno || id < 0 || id > MAX_ID) {
+            char msg[64];
+            snprintf(msg, sizeof msg, "index: region id must be 0..%d (got '%%s')", MAX_ID);
+            return perr(ps, msg, tok[1]);
+        }
+        if (parse_colour(ps, tok + 2, n - 2, rgba) < 0)
+            return -1;
+        for (int i = 0; i < p->nindex; i++)
+            if (p->index[i].id == id)
+                return perr(ps, "index %s given twice", tok[1]);
+        if (p->nindex >= MAX_ENTRIES)
+            return perr(ps, "too many index entries%s", "");
+        if (grow((void **)&p->index, p->nindex, sizeof *p->index) < 0)
+            return -1;
+        p->index[p->nindex].id = (int)id;
+        memcpy(p->index[p->nindex++].rgba, rgba, sizeof rgba);
+        return 0;
+    }
+    if (!(isdigit((unsigned char)tok[0][0]) || tok[0][0] == '.' || tok[0][0] == '-' ||
+          tok[0][0] == '+'))
+        return perr(ps, "unknown keyword '%s' (want a stop position, 'space' or 'index')", tok[0]);
+    {
+        float pos;
+        if (parse_unit(ps, tok[0], "stop position", &pos) < 0 ||
+            parse_colour(ps, tok + 1, n - 1, rgba) < 0)
+            return -1;
+        if (p->nstops && pos < p->stops[p->nstops - 1].pos) {
+            char msg[96];
+            snprintf(msg, sizeof msg, "stops out of order: %%s after %.9g", p->stops[p->nstops - 1].pos);
+            return perr(ps, msg, tok[0]);
+        }
+        if (tex_palette_add_stop(p, pos, rgba) < 0)
+            return perr(ps, "%s", tex_errmsg());
+    }
+    return 0;
+}
+
+tex_palette *tex_palette_parse(const char *text, size_t len, const char *name)
+{
+    struct parser ps = {name, 0};
+    tex_palette *p = tex_palette_new(TEX_SPACE_RGB);
+    size_t i = 0;
+
+    if (!p)
+        return NULL;
+    while (i < len) {
+        size_t e = i;
+        char buf[1024];
+        while (e < len && text[e] != '\n')
+            e++;
+        ps.line++;
+        if (e - i >= sizeof buf) {
+            perr(&ps, "line too long%s", "");
+            goto fail;
+        }
+        memcpy(buf, text + i, e - i);
+        buf[e - i] = '\0';
+        if (memchr(buf, '\0', e - i)) {
+            perr(&ps, "not a text file%s", "");
+            goto fail;
+        }
+        if (parse_line(p, &ps, buf) < 0)
+            goto fail;
+        i = e + 1;
+    }
+    if (p->nstops == 0 && p->nindex == 0) {
+        tex_error("%s:%d: empty palette: no colour stops or index entries", name,
+                  ps.line ? ps.line : 1);
+        goto fail;
+    }
+    if (p->nindex > 1)
+        qsort(p->index, (size_t)p->nindex, sizeof *p->index, cmp_entry);
+    /* Only indexed colours: they double as evenly spaced gradient stops. */
+    if (p->nstops == 0)
+        for (int k = 0; k < p->nindex; k++)
+            if (tex_palette_add_stop(p, p->nindex > 1 ? (float)k / (float)(p->nindex - 1) : 0.0f,
+                                     p->index[k].rgba) < 0)
+                goto fail;
+    if (!(p->name = strdup(name))) {
+        tex_error("out of memory");
+        goto fail;
+    }
+    return p;
+fail:
+    tex_palette_free(p);
+    return NULL;
+}
+
+/* ---- finding and loading ---- */
+
+static int is_file_name(const char *s)
+{
+    size_t n = strlen(s);
+    return strchr(s, '/') || (n >= 4 && !strcmp(s + n - 4, ".pal"));
+}
+
+static int try_dir(const char *dir, size_t dlen, const char *name, char *buf, size_t n)
+{
+    if (dlen == 0)
+        return 0;
+    if ((size_t)snprintf(buf, n, "%.*s/%s.pal", (int)dlen, dir, name) >= n)
+        return 0;
+    return access(buf, R_OK) == 0;
+}
+
+int tex_palette_find(const char *name, char *buf, size_t n)
+{
+    const char *env = getenv("TEXTURA_PALETTES");
+    char exe[PATH_MAX];
+    ssize_t len;
+
+    if (!*name)
+        return tex_usage_error("empty palette name");
+    if (is_file_name(name)) {
+        if ((size_t)snprintf(buf, n, "%s", name) >= n)
+            return tex_usage_error("palette file name too long");
+        return 0;
+    }
+    for (const char *c = name; *c; c++)
+        if (!isalnum((unsigned char)*c) && !strchr("._+-", *c))
+            return tex_usage_error("bad palette name '%s' (letters, digits, '.', '_', '+', '-')",
+                                   name);
+    while (env && *env) {
+        const char *e = strchr(env, ':');
+        size_t dl = e ? (size_t)(e - env) : strlen(env);
+        if (try_dir(env, dl, name, buf, n))
+            return 0;
+        env = e ? e + 1 : NULL;
+    }
+    len = readlink("/proc/self/exe", exe, sizeof exe - 1);
+    if (len > 0) {
+        char *s;
+        exe[len] = '\0';
+        if ((s = strrchr(exe, '/'))) {
+            char dir[PATH_MAX + 32];
+            *s = '\0';
+            snprintf(dir, sizeof dir, "%s/../share/textura/palettes", exe);
+            if (try_dir(dir, strlen(dir), name, buf, n))
+                return 0;
+            snprintf(dir, sizeof dir, "%s/../../palettes", exe);
+            if (try_dir(dir, strlen(dir), name, buf, n))
+                return 0;
+        }
+    }
+    {
+        const char *share = TEX_LIBDIR "/../share/textura/palettes";
+        if (try_dir(share, strlen(share), name, buf, n))
+            return 0;
+    }
+    return tex_usage_error("unknown palette '%s' (no %s.pal in $TEXTURA_PALETTES, the program's "
+                           "share/textura/palettes or the source tree's palettes/)",
+                           name, name);
+}
+
+tex_palette *tex_palette_load(const char *name_or_file)
+{
+    char path[PATH_MAX];
+    FILE *fp;
+    char *text;
+    size_t len;
+    tex_palette *p;
+
+    if (tex_palette_find(name_or_file, path, sizeof path) < 0)
+        return NULL;
+    if (!(fp = fopen(path, "rb"))) {
+        tex_error("%s: %s", path, strerror(errno));
+        return NULL;
+    }
+    if (!(text = malloc(MAX_FILE + 1))) {
+        fclose(fp);
+        tex_error("out of memory");
+        return NULL;
+    }
+    len = fread(text, 1, MAX_FILE + 1, fp);
+    if (ferror(fp)) {
+        tex_error("%s: read error", path);
+        p = NULL;
+    } else if (len > MAX_FILE) {
+        tex_error("%s: too large for a palette (over %d bytes)", path, MAX_FILE);
+        p = NULL;
+    } else
+        p = tex_palette_parse(text, len, path);
+    free(text);
+    fclose(fp);
+    return p;
+}
+
+/* ---- writing ---- */
+
+static void put_colour(FILE *fp, const float c[4])
+{
+    fprintf(fp, " %.9g %.9g %.9g", c[0], c[1], c[2]);
+    if (c[3] != 1.0f)
+        fprintf(fp, " %.9g", c[3]);
+}
+
+int tex_palette_write(const tex_palette *p, FILE *fp)
+{
+    fprintf(fp, "# Textura palette (textura-palette(5))\nspace %s\n",
+            p->space == TEX_SPACE_OKLAB ? "oklab" : "rgb");
+    for (int i = 0; i < p->nstops; i++) {
+        fprintf(fp, "%.9g", p->stops[i].pos);
+        put_colour(fp, p->stops[i].rgba);
+        fputc('\n', fp);
+    }
+    for (int i = 0; i < p->nindex; i++) {
+        fprintf(fp, "index %d", p->index[i].id);
+        put_colour(fp, p->index[i].rgba);
+        fputc('\n', fp);
+    }
+    if (fflush(fp) != 0 || ferror(fp))
+        return tex_error("write error");
+    return 0;
+}
+
+/* ---- lookup ---- */
+
+void tex_palette_lookup(const tex_palette *p, float t, float rgba[4])
+{
+    const struct tex_palette_stop *a, *b;
+    int lo = 0, hi = p->nstops;
+    float f;
+
+    if (!(t >= 0.0f)) /* also NaN */
+        t = 0.0f;
+    if (t > 1.0f)
+        t = 1.0f;
+    /* first stop with pos > t */
+    while (lo < hi) {
+        int mid = (lo + hi) / 2;
+        if (p->stops[mid].pos <= t)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    if (lo == 0 || lo == p->nstops) {
+        memcpy(rgba, p->stops[lo ? lo - 1 : 0].rgba, 4 * sizeof *rgba);
+        return;
+    }
+    a = &p->stops[lo - 1];
+    b = &p->stops[lo];
+    f = (t - a->pos) / (b->pos - a->pos);
+    if (f <= 0.0f) { /* exactly at a stop */
+        memcpy(rgba, a->rgba, 4 * sizeof *rgba);
+        return;
+    }
+    if (p->space == TEX_SPACE_RGB) {
+        for (int c = 0; c < 4; c++)
+            rgba[c] = a->rgba[c] + f * (b->rgba[c] - a->rgba[c]);
+    } else {
+        float lab[3];
+        for (int c = 0; c < 3; c++)
+            lab[c] = a->lab[c] + f * (b->lab[c] - a->lab[c]);
+        tex_oklab_to_srgb(lab, rgba);
+        rgba[3] = a->rgba[3] + f * (b->rgba[3] - a->rgba[3]);
+    }
+}
+
+void tex_palette_index_n(const tex_palette *p, int id, int n, float rgba[4])
+{
+    int lo = 0, hi = p->nindex - 1;
+    double t;
+
+    while (lo <= hi) {
+        int mid = (lo + hi) / 2;
+        if (p->index[mid].id == id) {
+            memcpy(rgba, p->index[mid].rgba, 4 * sizeof *rgba);
+            return;
+        }
+        if (p->index[mid].id < id)
+            lo = mid + 1;
+        else
+            hi = mid - 1;
+    }
+    if (n >= 1 && id >= 1 && id <= n)
+        t = n == 1 ? 0.5 : (double)(id - 1) / (n - 1);
+    else {
+        t = fmod((double)id * 0.6180339887498949, 1.0);
+        if (t < 0)
+            t += 1.0;
+    }
+    tex_palette_lookup(p, (float)t, rgba);
+}
+
+void tex_palette_index(const tex_palette *p, int id, float rgba[4])
+{
+    tex_palette_index_n(p, id, 0, rgba);
+}
+
+/* ---- colouring maps ---- */
+
+float tex_palette_t(double v, double lo, double hi, enum tex_outside outside)
+{
+    double t = hi > lo ? (v - lo) / (hi - lo) : 0.0;
+
+    if (!isfinite(t))
+        return 0.0f;
+    if (t < 0.0 || t > 1.0) {
+        switch (outside) {
+        case TEX_OUTSIDE_REPEAT:
+            t -= floor(t);
+            break;
+        case TEX_OUTSIDE_MIRROR:
+            t = fmod(fabs(t), 2.0);
+            t = t > 1.0 ? 2.0 - t : t;
+            break;
+        default:
+            t = t < 0.0 ? 0.0 : 1.0;
+        }
+    }
+    return (float)t;
+}
+
+tex_map *tex_palette_map(const tex_palette *p, const tex_map *m, double lo, double hi,
+                         enum tex_outside outside)
+{
+    int alpha = 0, nc;
+    size_t n = (size_t)m->w * m->h;
+    tex_map *out;
+
+    if (m->nc != 1) {
+        tex_error("the map has %d channels: a palette colours a scalar map (1 channel) or a "
+                  "region-id map", m->nc);
+        return NULL;
+    }
+    for (int i = 0; i < p->nstops; i++)
+        alpha |= p->stops[i].rgba[3] != 1.0f;
+    for (int i = 0; i < p->nindex; i++)
+        alpha |= p->index[i].rgba[3] != 1.0f;
+    nc = alpha ? 4 : 3;
+    if (!(out = tex_map_new(m->w, m->h, nc)))
+        return NULL;
+    if (m->history && tex_map_set_history(out, m->history) < 0) {
+        tex_map_free(out);
+        return NULL;
+    }
+    if (m->subregions > 0) {
+#pragma omp parallel for schedule(static)
+        for (size_t i = 0; i < n; i++) {
+            float v = m->px[i], c[4];
+            int id = isfinite(v) && fabsf(v) < (float)MAX_ID ? (int)lrintf(v) : 0;
+            tex_palette_index_n(p, id, m->subregions, c);
+            memcpy(out->px + i * nc, c, nc * sizeof *c);
+        }
+        return out;
+    }
+    if (isnan(lo) || isnan(hi)) {
+        struct tex_stats s;
+        tex_map_stats(m, 0, &s);
+        lo = s.min;
+        hi = s.max;
+    }
+#pragma omp parallel for schedule(static)
+    for (size_t i = 0; i < n; i++) {
+        float c[4];
+        tex_palette_lookup(p, tex_palette_t(m->px[i], lo, hi, outside), c);
+        memcpy(out->px + i * nc, c, nc * sizeof *c);
+    }
+    return out;
+}

@@ -1,0 +1,167 @@
+/* test_palette - palette parsing, lookup, OKLab, round trip, errors, shipped palettes */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "error.h"
+#include "palette.h"
+#include "unit.h"
+
+static tex_palette *parse(const char *s)
+{
+    return tex_palette_parse(s, strlen(s), "t.pal");
+}
+
+static int same4(const float a[4], const float b[4])
+{
+    return !memcmp(a, b, 4 * sizeof *a);
+}
+
+static void check_error(const char *text, const char *want, const char *what)
+{
+    tex_palette *p = parse(text);
+    CHECKF(!p && strstr(tex_errmsg(), want), "%s is refused with '%s' (got '%s')", what, want,
+           p ? "(accepted)" : tex_errmsg());
+    tex_palette_free(p);
+}
+
+int main(void)
+{
+    static const char *const text = "# test\n"
+                                    "space oklab\n"
+                                    "0    #102030\n"
+                                    "0.25 0.5 0.25 0.125 # trailing comment\n"
+                                    "0.25 #ff000080\n"
+                                    "0.8  0.9 0.8 0.7 0.5\n"
+                                    "index 2 #00ff00\n"
+                                    "index 1 0 0 1\n";
+    tex_palette *p = parse(text), *q;
+    float c[4], want[4];
+
+    CHECKF(p != NULL, "a palette parses (%s)", p ? "" : tex_errmsg());
+    if (!p)
+        return unit_done();
+    CHECK(p->nstops == 4 && p->nindex == 2 && p->space == TEX_SPACE_OKLAB, "stops, index, space");
+
+    /* The lookup hits every stop exactly (a hard edge gives the later colour). */
+    tex_palette_lookup(p, 0.0f, c);
+    CHECK(same4(c, p->stops[0].rgba), "t = 0 is the first stop");
+    tex_palette_lookup(p, 0.25f, c);
+    CHECK(same4(c, p->stops[2].rgba), "t = 0.25 (hard edge) is the later stop");
+    tex_palette_lookup(p, 0.8f, c);
+    CHECK(same4(c, p->stops[3].rgba), "t = 0.8 is the last stop exactly");
+    tex_palette_lookup(p, 1.0f, c);
+    CHECK(same4(c, p->stops[3].rgba), "past the last stop: its colour");
+    tex_palette_lookup(p, -3.0f, c);
+    CHECK(same4(c, p->stops[0].rgba), "below 0 clamps");
+    tex_palette_lookup(p, NAN, c);
+    CHECK(same4(c, p->stops[0].rgba), "NaN gives the first colour");
+    CHECKF(fabsf(p->stops[2].rgba[3] - 128 / 255.0f) < 1e-7f, "hex alpha (%g)", p->stops[2].rgba[3]);
+
+    /* Indexed colours and the fallbacks. */
+    tex_palette_index(p, 1, c);
+    CHECK(c[0] == 0 && c[1] == 0 && c[2] == 1 && c[3] == 1, "index 1 (sorted after parsing)");
+    tex_palette_index(p, 2, c);
+    CHECK(c[0] == 0 && c[1] == 1 && c[2] == 0, "index 2");
+    tex_palette_index_n(p, 3, 3, c);
+    tex_palette_lookup(p, 1.0f, want);
+    CHECK(same4(c, want), "id 3 of 3 without an entry takes the gradient's end");
+
+    /* RGB interpolation is linear; OKLab round-trips colours. */
+    q = parse("0 0 0 0\n1 1 0.5 0.25 0.5\n");
+    tex_palette_lookup(q, 0.5f, c);
+    CHECKF(fabsf(c[0] - 0.5f) < 1e-6f && fabsf(c[1] - 0.25f) < 1e-6f && fabsf(c[3] - 0.75f) < 1e-6f,
+           "rgb midpoint (%g %g %g %g)", c[0], c[1], c[2], c[3]);
+    tex_palette_free(q);
+    {
+        float rgb[3] = {0.8f, 0.3f, 0.1f}, lab[3], back[3], white[3] = {1, 1, 1};
+        tex_srgb_to_oklab(rgb, lab);
+        tex_oklab_to_srgb(lab, back);
+        CHECKF(fabsf(back[0] - rgb[0]) < 1e-4f && fabsf(back[1] - rgb[1]) < 1e-4f &&
+                   fabsf(back[2] - rgb[2]) < 1e-4f,
+               "OKLab round trip (%g %g %g)", back[0], back[1], back[2]);
+        tex_srgb_to_oklab(white, lab);
+        CHECKF(fabsf(lab[0] - 1) < 1e-4f && fabsf(lab[1]) < 1e-4f && fabsf(lab[2]) < 1e-4f,
+               "white is L=1 a=b=0 (%g %g %g)", lab[0], lab[1], lab[2]);
+    }
+    /* OKLab midpoint of black and white is perceptual mid-grey (L = 0.5), not 0.5 sRGB. */
+    q = parse("space oklab\n0 #000000\n1 #ffffff\n");
+    tex_palette_lookup(q, 0.5f, c);
+    {
+        float lab[3];
+        tex_srgb_to_oklab(c, lab);
+        CHECKF(fabsf(lab[0] - 0.5f) < 1e-3f && fabsf(c[0] - c[2]) < 1e-5f,
+               "oklab midpoint has L = 0.5 (L=%g, rgb %g)", lab[0], c[0]);
+    }
+    tex_palette_free(q);
+
+    /* Round trip through the text format. */
+    {
+        char *buf = NULL;
+        size_t len = 0;
+        FILE *fp = open_memstream(&buf, &len);
+        int ok = fp && tex_palette_write(p, fp) == 0;
+        if (fp)
+            fclose(fp);
+        q = ok ? tex_palette_parse(buf, len, "mem") : NULL;
+        ok = q && q->nstops == p->nstops && q->nindex == p->nindex && q->space == p->space;
+        for (int i = 0; ok && i < p->nstops; i++)
+            ok = q->stops[i].pos == p->stops[i].pos && same4(q->stops[i].rgba, p->stops[i].rgba);
+        for (int i = 0; ok && i < p->nindex; i++)
+            ok = q->index[i].id == p->index[i].id && same4(q->index[i].rgba, p->index[i].rgba);
+        CHECK(ok, "write then parse gives the same palette, bit for bit");
+        tex_palette_free(q);
+        free(buf);
+    }
+    tex_palette_free(p);
+
+    /* Bad input: one message with file and line. */
+    check_error("0 #000000\n0.5 #ffffff\n0.4 #808080\n", "t.pal:3: stops out of order",
+                "unsorted stops");
+    check_error("1.5 #000000\n", "t.pal:1: stop position must be in 0..1", "a position above 1");
+    check_error("-0.1 #000000\n", "t.pal:1: stop position must be in 0..1", "a negative position");
+    check_error("0 #12345\n", "t.pal:1: bad hex colour", "a 5-digit hex colour");
+    check_error("0 #gg0000\n", "t.pal:1: bad hex colour", "a non-hex digit");
+    check_error("0 0.5 1.2 0\n", "t.pal:1: green must be in 0..1", "a component above 1");
+    check_error("# nothing\n\n", "t.pal:2: empty palette", "an empty palette");
+    check_error("", "empty palette", "an empty file");
+    check_error("0 0.5 0.5\n", "t.pal:1: a colour needs", "two components");
+    check_error("spaces rgb\n", "t.pal:1: unknown keyword", "an unknown keyword");
+    check_error("space hsv\n", "t.pal:1: want 'space rgb'", "an unknown space");
+    check_error("index 1 #fff\nindex 1 #000\n", "t.pal:2: index 1 given twice", "a repeated index");
+    check_error("index -1 #fff\n", "t.pal:1: index: region id", "a negative region id");
+    check_error("0 nan 0 0\n", "t.pal:1: red: not a number", "NaN");
+    check_error("0 #fff #000\n", "unexpected", "two colours");
+
+    /* Only index lines: they double as the gradient. */
+    p = parse("index 1 #000000\nindex 2 #ffffff\n");
+    tex_palette_lookup(p, 1.0f, c);
+    CHECK(p && c[0] == 1.0f, "an indexed-only palette has a gradient");
+    tex_palette_free(p);
+
+    /* Every shipped palette loads by name from the source tree. */
+    {
+        static const char *const names[] = {"wood", "marble", "granite", "fire", "clouds",
+                                            "sky", "earth", "water", "brick", "grass", "greys",
+                                            "rainbow", "viridis", "magma", "inferno", "plasma"};
+        char dir[4096];
+        const char *top = getenv("TEXTURA_TOP");
+        snprintf(dir, sizeof dir, "%s/palettes", top ? top : ".");
+        setenv("TEXTURA_PALETTES", dir, 1);
+        for (size_t i = 0; i < sizeof names / sizeof *names; i++) {
+            p = tex_palette_load(names[i]);
+            CHECKF(p && p->nstops >= 2, "palette %s loads (%s)", names[i], p ? "" : tex_errmsg());
+            tex_palette_free(p);
+        }
+        p = tex_palette_load("viridis");
+        tex_palette_lookup(p, 0.0f, c);
+        CHECK(p && c[0] == 0.267004f && c[2] == 0.329415f, "viridis starts at its published value");
+        tex_palette_free(p);
+        p = tex_palette_load("no-such-palette");
+        CHECK(!p && tex_errkind() == TEX_ERR_USAGE && strstr(tex_errmsg(), "no-such-palette"),
+              "an unknown name is a usage error naming it");
+        p = tex_palette_load("../x/missing.pal");
+        CHECK(!p && strstr(tex_errmsg(), "missing.pal"), "a missing file is an error naming it");
+    }
+    return unit_done();
+}

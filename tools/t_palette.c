@@ -1,0 +1,163 @@
+/* t_palette - colour a texture map through a palette, or make a palette from two colours */
+#include <errno.h>
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "palette.h"
+#include "textura.h"
+
+struct opts {
+    const char *range;
+    int outside;
+    const char *from, *to;
+    int n;
+    int space;
+};
+
+static const struct tex_param rows[] = {
+    TEX_STRING(struct opts, range, 0, "auto", "auto|MIN,MAX",
+               "map values MIN..MAX onto the palette, or the map's own range"),
+    TEX_ENUM(struct opts, outside, 0, "clamp", "clamp|repeat|mirror",
+             "values outside the range: clamp to the ends, repeat the palette, or mirror it"),
+    TEX_STRING(struct opts, from, 0, NULL, "COLOUR",
+               "make a palette from this colour (#rrggbb or r,g,b[,a]) ..."),
+    TEX_STRING(struct opts, to, 0, NULL, "COLOUR", "... to this colour"),
+    TEX_INT(struct opts, n, 'n', 8, 2, 4096, "N", "stops of the palette made with --from/--to"),
+    TEX_ENUM(struct opts, space, 0, "rgb", "rgb|oklab",
+             "interpolation space of the palette made with --from/--to"),
+    {0}};
+
+static const struct tex_tool tool = {
+    "t_palette", "[NAME|FILE] [MAP]",
+    "colour a scalar map (or a region-id map) through a palette; with --from and --to, write a "
+    "palette interpolating two colours",
+    TEX_OPT_OUTPUT | TEX_OPT_PALETTE, rows, 0, 2};
+
+static void die_if(int fail)
+{
+    if (fail)
+        tex_die();
+}
+
+/* Write the palette text to path through a temporary file renamed on success. */
+static void write_text(const tex_palette *p, const char *path)
+{
+    char tmp[PATH_MAX];
+    const char *slash;
+    FILE *fp;
+    int fd;
+
+    if (!path || !strcmp(path, "-")) {
+        if (tex_palette_write(p, stdout) < 0) {
+            tex_error("standard output: write error");
+            tex_die();
+        }
+        return;
+    }
+    slash = strrchr(path, '/');
+    if ((size_t)snprintf(tmp, sizeof tmp, "%.*s.t_palette.XXXXXX", slash ? (int)(slash - path + 1) : 0,
+                         path) >= sizeof tmp)
+        tex_usage_die("-o: file name too long");
+    if ((fd = mkstemp(tmp)) < 0 || !(fp = fdopen(fd, "w"))) {
+        tex_error("%s: %s", path, strerror(errno));
+        if (fd >= 0)
+            close(fd), unlink(tmp);
+        tex_die();
+    }
+    if (tex_palette_write(p, fp) < 0 || fclose(fp) != 0 || rename(tmp, path) != 0) {
+        tex_error("%s: write error: %s", path, strerror(errno));
+        unlink(tmp);
+        tex_die();
+    }
+}
+
+/* The colour editor: n colours interpolated between two, recorded as stops. */
+static void make_palette(const struct opts *o, const struct tex_common *c)
+{
+    float a[4], b[4];
+    tex_palette *two, *p;
+
+    if (!o->from || !o->to)
+        tex_usage_die("--from and --to go together (each a colour: #rrggbb or r,g,b[,a])");
+    if (tex_parse_color(o->from, a) < 0)
+        tex_usage_die("--from must be a colour: #rgb, #rrggbb, #rrggbbaa or r,g,b[,a] in 0..1 "
+                      "(got '%s')", o->from);
+    if (tex_parse_color(o->to, b) < 0)
+        tex_usage_die("--to must be a colour: #rgb, #rrggbb, #rrggbbaa or r,g,b[,a] in 0..1 "
+                      "(got '%s')", o->to);
+    two = tex_palette_new((enum tex_palette_space)o->space);
+    p = tex_palette_new((enum tex_palette_space)o->space);
+    die_if(!two || !p || tex_palette_add_stop(two, 0, a) < 0 || tex_palette_add_stop(two, 1, b) < 0);
+    for (int i = 0; i < o->n; i++) {
+        float t = (float)i / (float)(o->n - 1), col[4];
+        tex_palette_lookup(two, t, col);
+        die_if(tex_palette_add_stop(p, t, col) < 0);
+    }
+    write_text(p, c->output);
+    tex_palette_free(two);
+    tex_palette_free(p);
+}
+
+static void parse_range(const char *s, double *lo, double *hi)
+{
+    char buf[128];
+    char *comma;
+
+    *lo = *hi = NAN;
+    if (!strcmp(s, "auto"))
+        return;
+    snprintf(buf, sizeof buf, "%s", s);
+    if (!(comma = strchr(buf, ',')))
+        goto bad;
+    *comma = '\0';
+    if (tex_parse_real(buf, lo) < 0 || tex_parse_real(comma + 1, hi) < 0 || !(*lo < *hi))
+        goto bad;
+    return;
+bad:
+    tex_usage_die("--range must be auto or MIN,MAX with MIN < MAX (got '%s')", s);
+}
+
+int main(int argc, char **argv)
+{
+    struct tex_common c;
+    struct opts o;
+    int i = tex_cli_parse(&tool, argc, argv, &c, &o);
+    const char *name = c.palette, *input = "-";
+    double lo, hi;
+    tex_palette *p;
+    tex_map *m, *out;
+
+    if (o.from || o.to) {
+        if (i < argc)
+            tex_usage_die("--from/--to make a palette and take no operand (got '%s')", argv[i]);
+        make_palette(&o, &c);
+        free(c.cmdline);
+        return 0;
+    }
+    if (!name) {
+        if (i >= argc)
+            tex_usage_die("missing palette: t_palette NAME|FILE [MAP] (e.g. marble)");
+        name = argv[i++];
+    }
+    if (i < argc)
+        input = argv[i++];
+    if (i < argc)
+        tex_usage_die("unexpected operand '%s'", argv[i]);
+    parse_range(o.range, &lo, &hi);
+    die_if(!(p = tex_palette_load(name)));
+    m = tex_cli_read(input);
+    if (!(out = tex_palette_map(p, m, lo, hi, (enum tex_outside)o.outside))) {
+        tex_error_context(strcmp(input, "-") ? input : "standard input");
+        tex_die();
+    }
+    tex_cli_write(out, &c);
+    tex_map_free(out);
+    tex_map_free(m);
+    tex_palette_free(p);
+    free(c.cmdline);
+    return 0;
+}
