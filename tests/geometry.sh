@@ -32,6 +32,17 @@ m=$(t_ring --nu 4 --nv 2 -s 256x128 --color1 '#000' --color2 '#000' --color3 '#f
 approx "$m" "$(awk 'BEGIN { print 3.14159265 * 0.28 * 0.28 }')" 0.003 &&
     ok "t_ring --nu 4 --nv 2 keeps the inner disc's area" || notok "t_ring repetition" "$m"
 
+# --palette colours region k as t_palette colours id k (antialiasing aside).
+a=$(t_ring -s 128 --palette viridis | info_json - stats 1 mean)
+b=$(t_ring -s 128 --ids | t_palette viridis | info_json - stats 1 mean)
+approx "$a" "$b" 0.01 && ok "t_ring --palette viridis matches t_ring --ids | t_palette viridis" ||
+    notok "t_ring --palette" "$a vs $b"
+c=$(t_ring -s 128 | info_json - stats 1 mean)
+approx "$a" "$c" 0.05 && notok "t_ring --palette changes the colours" "$a vs $c" ||
+    ok "t_ring --palette changes the colours"
+check_fails "t_ring: unknown palette" 2 t_ring --palette no-such-palette
+check_fails "t_ring: --palette with --ids" 2 t_ring --palette viridis --ids
+
 check "t_checker | t_convert -o png" sh -c "t_checker -s 64 | t_convert -o '$T/c.png'"
 check "t_stripe --angle 0 --width 0.2" t_stripe --angle 0 --width 0.2 -s 32 -o "$T/s.exr"
 check "t_ring --tile" t_ring --tile -s 32 -o "$T/r.exr"
