@@ -225,8 +225,7 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
     if (t->params && tex_params_defaults(t->params, opts) < 0)
         tex_die();
 
-    *sp++ = '+'; /* stop at the first operand: "-" is an operand */
-    *sp++ = ':';
+    *sp++ = ':'; /* options may follow operands, as in GNU tools; "--" ends them */
     for (int i = 0; i < n; i++) {
         const struct tex_param *p = o[i].row;
         tex_param_option(p, names[i], sizeof names[i]);
@@ -279,10 +278,10 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
                       c->size);
     nops = argc - optind;
     if (nops < t->min_operands || (t->max_operands >= 0 && nops > t->max_operands)) {
-        usage_line(t, stderr);
-        if (nops > 0 && (t->max_operands >= 0 && nops > t->max_operands))
-            tex_usage_die("unexpected operand '%s'", argv[optind + (t->max_operands)]);
-        tex_usage_die("missing operand");
+        if (nops > t->min_operands)
+            tex_usage_die("unexpected operand '%s' (usage: %s [options] %s)",
+                          argv[optind + t->max_operands], t->name, t->operands);
+        tex_usage_die("missing operand (usage: %s [options] %s)", t->name, t->operands);
     }
 #ifdef _OPENMP
     if (c->threads > 0)

@@ -251,6 +251,8 @@ tex_map *tex_map_read(const char *path)
     int fd = 0;
     const char *name = "standard input";
 
+    struct stat st;
+
     if (path && strcmp(path, "-") != 0) {
         name = path;
         if ((fd = open(path, O_RDONLY)) < 0) {
@@ -260,8 +262,37 @@ tex_map *tex_map_read(const char *path)
     } else {
         path = NULL;
     }
+    /* A pipe carrying the stream is decoded as it arrives; anything else
+     * (a file, another format) is read whole first. */
+    if (fstat(fd, &st) == 0 && S_ISFIFO(st.st_mode)) {
+        unsigned char head[64];
+        size_t n = 0;
+        while (n < sizeof head) {
+            ssize_t k = read(fd, head + n, sizeof head - n);
+            if (k < 0 && errno == EINTR)
+                continue;
+            if (k <= 0) {
+                if (k < 0) {
+                    tex_error("%s: %s", name, strerror(errno));
+                    goto done;
+                }
+                break;
+            }
+            n += (size_t)k;
+        }
+        if (tex_format_sniff(head, n) == TEX_FMT_EXR) {
+            if (!(m = tex_exr_read_fd(fd, head, n, name)))
+                tex_error_context(name);
+            goto done;
+        }
+        if (tex_buf_reserve(&b, 1 << 20) < 0)
+            goto done;
+        memcpy(b.data, head, n);
+        b.len = n;
+    }
     if (tex_read_fd(fd, &b, name) == 0)
         m = decode(path, b.data, b.len, name);
+done:
     if (fd != 0)
         close(fd);
     tex_buf_free(&b);
@@ -269,23 +300,6 @@ tex_map *tex_map_read(const char *path)
 }
 
 /* ---- writing ---- */
-
-static int write_all(int fd, const void *p, size_t n, const char *name)
-{
-    const char *c = p;
-
-    while (n > 0) {
-        ssize_t w = write(fd, c, n);
-        if (w < 0) {
-            if (errno == EINTR)
-                continue;
-            return tex_error("%s: write error: %s", name, strerror(errno));
-        }
-        c += w;
-        n -= (size_t)w;
-    }
-    return 0;
-}
 
 /* Quantise to 8 or 16 bits with clamping and rounding; NaN becomes 0. */
 static void *quantise(const tex_map *m, int bits)
@@ -363,10 +377,10 @@ static int write_pfm(const tex_map *m, int fd, const char *name)
 {
     char head[64];
     int n = snprintf(head, sizeof head, "%s\n%d %d\n-1.0\n", m->nc == 3 ? "PF" : "Pf", m->w, m->h);
-    int r = write_all(fd, head, (size_t)n, name);
+    int r = tex_write_all(fd, head, (size_t)n, name);
 
     for (int y = m->h - 1; y >= 0 && r == 0; y--)
-        r = write_all(fd, tex_map_row(m, y), (size_t)m->w * m->nc * sizeof(float), name);
+        r = tex_write_all(fd, tex_map_row(m, y), (size_t)m->w * m->nc * sizeof(float), name);
     return r;
 }
 
@@ -389,9 +403,11 @@ static int write_to_path(const tex_map *m, enum tex_format f, int depth, const c
         return write_pfm(m, fd, name);
     if (f == TEX_FMT_EXR) {
         tex_buf b = {0};
-        int r = tex_exr_encode(m, fd == 1 ? TEX_COMPRESS_NONE : o->compression, &b);
-        if (r == 0)
-            r = write_all(fd, b.data, b.len, name);
+        int r;
+        if (fd == 1 || o->compression == TEX_COMPRESS_NONE)
+            return tex_exr_write_fd(m, fd, name);
+        if ((r = tex_exr_encode(m, o->compression, &b)) == 0)
+            r = tex_write_all(fd, b.data, b.len, name);
         tex_buf_free(&b);
         return r;
     } else {
@@ -450,7 +466,7 @@ static int write_stdout(const tex_map *m, const struct tex_write_opts *o)
                              strerror(errno));
         r = write_to_path(m, f, depth, path, fd, o, name);
         if (r == 0 && lseek(fd, 0, SEEK_SET) == 0 && (r = tex_read_fd(fd, &b, path)) == 0)
-            r = write_all(1, b.data, b.len, name);
+            r = tex_write_all(1, b.data, b.len, name);
         tex_buf_free(&b);
         close(fd);
         unlink(path);
@@ -471,14 +487,14 @@ int tex_map_write(const tex_map *m, const char *path, const struct tex_write_opt
         o = &defaults;
     if (!path || strcmp(path, "-") == 0)
         return write_stdout(m, o);
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
+        return tex_error("%s: is a directory", path);
     if ((f = tex_format_from_name(path)) == TEX_FMT_UNKNOWN)
         return tex_usage_error("%s: cannot tell the format from the extension (use .exr, .png, "
                                ".tif, .pnm, .pfm, .bmp, .tga, .hdr, .jpg, .webp or .dpx)",
                                path);
     if ((depth = choose_depth(f, o->depth, path)) < 0)
         return -1;
-    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
-        return tex_error("%s: is a directory", path);
     slash = strrchr(path, '/');
     if (slash)
         r = snprintf(tmp, sizeof tmp, "%.*s/.%s.XXXXXX", (int)(slash - path), path, slash + 1);

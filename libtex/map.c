@@ -2,6 +2,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 
 #include "error.h"
 #include "map.h"
@@ -32,13 +33,21 @@ tex_map *tex_map_new(int w, int h, int nc)
         return NULL;
     }
     bytes = (size_t)w * h * nc * sizeof *m->px;
-    /* Round up: aligned_alloc wants a multiple of the alignment. */
-    if (!(m->px = aligned_alloc(64, (bytes + 63) & ~(size_t)63))) {
+    if (bytes >= (1 << 20)) {
+        /* Fresh pages come zeroed: no pass over a map the caller will fill anyway. */
+        void *p = mmap(NULL, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        if (p != MAP_FAILED) {
+            m->px = p;
+            m->mapped = bytes;
+        }
+    } else if ((m->px = aligned_alloc(64, (bytes + 63) & ~(size_t)63))) {
+        memset(m->px, 0, bytes); /* aligned_alloc wants a multiple of the alignment, above */
+    }
+    if (!m->px) {
         free(m);
         tex_error("out of memory for a %dx%dx%d map", w, h, nc);
         return NULL;
     }
-    memset(m->px, 0, bytes);
     m->w = w;
     m->h = h;
     m->nc = nc;
@@ -49,7 +58,10 @@ void tex_map_free(tex_map *m)
 {
     if (!m)
         return;
-    free(m->px);
+    if (m->mapped)
+        munmap(m->px, m->mapped);
+    else
+        free(m->px);
     free(m->history);
     free(m);
 }

@@ -34,6 +34,7 @@ typedef struct tex_map {
     float *px;      /* w*h*nc floats, 64-byte aligned */
     int subregions; /* > 0: the pixels are region ids 1..subregions */
     char *history;  /* command lines, newline-terminated; NULL if none */
+    size_t mapped;  /* private: bytes mmap'ed for px, 0 if malloc'ed */
 } tex_map;
 
 /* 0 if a w x h x nc map is allowed, else -1 with a usage error naming the limit. */

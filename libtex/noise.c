@@ -1,6 +1,17 @@
-/* noise.c - gradient noise and the noise primitive */
+/* noise.c - gradient noise: point evaluation, vectorised grid rows, the noise primitive */
+
+/* Every SIMD level must do the same float operations in the same order:
+ * no fused multiply-adds anywhere, whatever -march the library is built with. */
+#pragma GCC optimize("fp-contract=off")
+
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#define TEX_X86 1
+#endif
 
 #include "error.h"
 #include "noise.h"
@@ -11,14 +22,18 @@ int tex_noise_init(tex_noise_table *t, uint64_t seed, int n, int period)
 {
     tex_rng r;
 
+    memset(t, 0, sizeof *t);
     if (n < 2 || n > TEX_NOISE_MAX_GRADIENTS)
         return tex_usage_error("the number of gradients must be 2..%d (got %d)",
                                TEX_NOISE_MAX_GRADIENTS, n);
+    if (period < 0)
+        return tex_usage_error("the noise period must be >= 0 (got %d)", period);
     t->n = n;
     t->period = period;
-    t->perm = malloc(n * sizeof *t->perm);
+    t->perm = malloc(2 * n * sizeof *t->perm);
     t->grad = malloc(n * sizeof *t->grad);
-    if (!t->perm || !t->grad) {
+    t->grad4 = malloc(n * sizeof *t->grad4);
+    if (!t->perm || !t->grad || !t->grad4) {
         tex_noise_free(t);
         return tex_error("out of memory");
     }
@@ -30,9 +45,25 @@ int tex_noise_init(tex_noise_table *t, uint64_t seed, int n, int period)
         t->grad[i][0] = (float)(s * cos(phi));
         t->grad[i][1] = (float)(s * sin(phi));
         t->grad[i][2] = (float)z;
+        t->grad[i][3] = 0;
         t->perm[i] = i;
     }
+    for (int i = 0; i < n; i++) {
+        /* Uniform on the 4D sphere: a normalised Gaussian vector. */
+        double g[4], len;
+        do {
+            len = 0;
+            for (int k = 0; k < 4; k++) {
+                g[k] = tex_rng_gauss(&r);
+                len += g[k] * g[k];
+            }
+        } while (len < 1e-12);
+        len = sqrt(len);
+        for (int k = 0; k < 4; k++)
+            t->grad4[i][k] = (float)(g[k] / len);
+    }
     tex_rng_shuffle(&r, t->perm, n);
+    memcpy(t->perm + n, t->perm, n * sizeof *t->perm);
     return 0;
 }
 
@@ -40,40 +71,462 @@ void tex_noise_free(tex_noise_table *t)
 {
     free(t->perm);
     free(t->grad);
+    free(t->grad4);
     t->perm = NULL;
     t->grad = NULL;
+    t->grad4 = NULL;
 }
 
-static inline int imod(long long a, int n)
+static inline int imod64(int64_t a, int64_t n)
 {
-    int m = (int)(a % n);
-    return m < 0 ? m + n : m;
+    int64_t m = a % n;
+    return (int)(m < 0 ? m + n : m);
 }
 
-static inline double weight(double t)
+/* A lattice index made ready for F: wrapped by the period, then mod n. */
+static inline int lat_index(int64_t i, int period, int n)
 {
-    t = fabs(t);
-    return t < 1.0 ? (2.0 * t - 3.0) * t * t + 1.0 : 0.0;
+    if (period)
+        i = imod64(i, period);
+    return imod64(i, n);
+}
+
+/* The fade of eq. 5.2 for t in [0,1] (w(0) = 1, w(1) = 0), and its derivative. */
+static inline double fade(int kind, double t)
+{
+    if (kind == TEX_FADE_QUINTIC)
+        return 1.0 - t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
+    return (2.0 * t - 3.0) * t * t + 1.0;
+}
+
+static inline double dfade(int kind, double t)
+{
+    if (kind == TEX_FADE_QUINTIC)
+        return -30.0 * t * t * (t - 1.0) * (t - 1.0);
+    return 6.0 * t * (t - 1.0);
+}
+
+/* Noise at p (dims 3 or 4) and, if g, its gradient. */
+static double noise_point(const tex_noise_table *t, int period, int dims, const double p[4],
+                          double g[4])
+{
+    const int *F = t->perm;
+    int n = t->n, idx[4][2];
+    double f[4], wt[4][2], dw[4][2], sum = 0;
+
+    for (int a = 0; a < dims; a++) {
+        double c = floor(p[a]);
+        int64_t i = (int64_t)c;
+        int per = a < 2 ? period : 0;
+        f[a] = p[a] - c;
+        idx[a][0] = lat_index(i, per, n);
+        idx[a][1] = lat_index(i + 1, per, n);
+        wt[a][0] = fade(t->fade, f[a]);
+        wt[a][1] = fade(t->fade, 1.0 - f[a]);
+        dw[a][0] = dfade(t->fade, f[a]);
+        dw[a][1] = -dfade(t->fade, 1.0 - f[a]);
+    }
+    if (g)
+        g[0] = g[1] = g[2] = g[3] = 0;
+    for (int c = 0; c < 1 << dims; c++) {
+        int b[4] = {c & 1, c >> 1 & 1, c >> 2 & 1, c >> 3 & 1}, h;
+        const float *gr;
+        double d[4], dot = 0, w = 1;
+        if (dims == 4) {
+            h = F[idx[0][b[0]] +
+                  F[idx[1][b[1]] + F[idx[2][b[2]] + F[idx[3][b[3]]]]]];
+            gr = t->grad4[h];
+        } else {
+            h = F[idx[0][b[0]] + F[idx[1][b[1]] + F[idx[2][b[2]]]]];
+            gr = t->grad[h];
+        }
+        for (int a = 0; a < dims; a++) {
+            d[a] = f[a] - b[a];
+            dot += gr[a] * d[a];
+            w *= wt[a][b[a]];
+        }
+        sum += w * dot;
+        if (g)
+            for (int a = 0; a < dims; a++) {
+                double dwa = dw[a][b[a]];
+                for (int o = 0; o < dims; o++)
+                    if (o != a)
+                        dwa *= wt[o][b[o]];
+                g[a] += dwa * dot + w * gr[a];
+            }
+    }
+    return sum;
+}
+
+double tex_noise3p(const tex_noise_table *t, int period, double x, double y, double z)
+{
+    double p[4] = {x, y, z, 0};
+    return noise_point(t, period, 3, p, NULL);
+}
+
+double tex_noise4p(const tex_noise_table *t, int period, double x, double y, double z, double w)
+{
+    double p[4] = {x, y, z, w};
+    return noise_point(t, period, 4, p, NULL);
 }
 
 double tex_noise3(const tex_noise_table *t, double x, double y, double z)
 {
-    double fx = floor(x), fy = floor(y), fz = floor(z), sum = 0.0;
-    long long ix = (long long)fx, iy = (long long)fy, iz = (long long)fz;
-    int n = t->n;
+    return tex_noise3p(t, t->period, x, y, z);
+}
 
-    for (int c = 0; c < 8; c++) {
-        long long i = ix + (c & 1), j = iy + (c >> 1 & 1), k = iz + (c >> 2);
-        double u = x - (double)i, v = y - (double)j, w = z - (double)k;
-        const float *g;
-        if (t->period) {
-            i = imod(i, t->period);
-            j = imod(j, t->period);
-        }
-        g = t->grad[t->perm[imod(i + t->perm[imod(j + t->perm[imod(k, n)], n)], n)]];
-        sum += weight(u) * weight(v) * weight(w) * (g[0] * u + g[1] * v + g[2] * w);
+double tex_noise4(const tex_noise_table *t, double x, double y, double z, double w)
+{
+    return tex_noise4p(t, t->period, x, y, z, w);
+}
+
+double tex_noise3_grad(const tex_noise_table *t, int period, double x, double y, double z,
+                       double g[3])
+{
+    double p[4] = {x, y, z, 0}, g4[4];
+    double s = noise_point(t, period, 3, p, g4);
+    g[0] = g4[0];
+    g[1] = g4[1];
+    g[2] = g4[2];
+    return s;
+}
+
+/* ---- SIMD level ---- */
+
+const char *tex_simd_name(int level)
+{
+    return level == TEX_SIMD_AVX512 ? "avx512" : level == TEX_SIMD_AVX2 ? "avx2" : "scalar";
+}
+
+static int simd_detect(void)
+{
+    int best = TEX_SIMD_SCALAR;
+    const char *e = getenv("TEXTURA_SIMD");
+#ifdef TEX_X86
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx2"))
+        best = TEX_SIMD_AVX2;
+#endif
+    /* The rows have no AVX-512 kernel: their AVX2 one is memory-bound already. */
+    if (e && strcmp(e, "scalar") == 0)
+        best = TEX_SIMD_SCALAR;
+    return best;
+}
+
+int tex_simd_level(void)
+{
+    static int level = -1;
+    int l;
+#pragma omp atomic read
+    l = level;
+    if (l < 0) {
+        l = simd_detect();
+#pragma omp atomic write
+        level = l;
     }
-    return sum;
+    return l;
+}
+
+/* ---- grid sampling ---- */
+
+static void grid_clear(tex_noise_grid *g)
+{
+    free(g->slot);
+    free(g->lat);
+    free(g->u);
+    g->slot = g->lat = NULL;
+    g->u = g->um1 = g->w0 = g->w1 = NULL;
+}
+
+void tex_noise_grid_free(tex_noise_grid *g)
+{
+    grid_clear(g);
+}
+
+int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int h, double fx,
+                        double fy, const double off[4], int dims, int period)
+{
+    int64_t *list;
+    int ns = 0;
+
+    memset(g, 0, sizeof *g);
+    if (w < 1 || h < 1 || (dims != 3 && dims != 4))
+        return tex_error("noise grid: bad size %dx%d or dimension %d", w, h, dims);
+    g->t = t;
+    g->w = w;
+    g->h = h;
+    g->dims = dims;
+    g->period = period;
+    g->fy = fy / h;
+    g->oy = off[1];
+    g->z = off[2];
+    g->w4 = dims == 4 ? off[3] : 0;
+    g->slot = malloc(w * sizeof *g->slot);
+    g->lat = malloc((2 * w + 16) * sizeof *g->lat);
+    g->u = malloc(4 * (w + 8) * sizeof *g->u);
+    list = malloc((2 * w + 2) * sizeof *list);
+    if (!g->slot || !g->lat || !g->u || !list) {
+        free(list);
+        grid_clear(g);
+        return tex_error("out of memory");
+    }
+    g->um1 = g->u + (w + 8);
+    g->w0 = g->um1 + (w + 8);
+    g->w1 = g->w0 + (w + 8);
+    /* Columns: the cell and fraction in double, so that large offsets keep
+     * their texture; the slots list each lattice column the row touches once,
+     * a pixel's right corner sitting in the slot after its left one. */
+    for (int x = 0; x < w; x++) {
+        double X = off[0] + fx * ((x + 0.5) / w), c = floor(X);
+        int64_t i = (int64_t)c;
+        double u = X - c;
+        if (ns == 0 || i > list[ns - 1]) {
+            list[ns++] = i;
+            list[ns++] = i + 1;
+        } else if (i == list[ns - 1]) {
+            list[ns++] = i + 1;
+        }
+        g->slot[x] = ns - 2;
+        g->u[x] = (float)u;
+        g->um1[x] = (float)(u - 1.0);
+        g->w0[x] = (float)fade(t->fade, u);
+        g->w1[x] = (float)fade(t->fade, 1.0 - u);
+    }
+    for (int s = 0; s < ns; s++)
+        g->lat[s] = lat_index(list[s], period, t->n);
+    for (int s = ns; s < ns + 16; s++)
+        g->lat[s] = 0;
+    g->nslots = ns;
+    free(list);
+    return 0;
+}
+
+/* Row y's corners in y, z and w: their weights, offsets and hash prefixes. */
+struct row_corners {
+    int nc, A[8];
+    double W[8], D[8][3];
+};
+
+static void row_setup(const tex_noise_grid *g, int y, struct row_corners *rc)
+{
+    const tex_noise_table *t = g->t;
+    const int *F = t->perm;
+    double Y = g->oy + g->fy * (y + 0.5), cy = floor(Y), fr[3], wt[3][2];
+    double zc = floor(g->z), wc = floor(g->w4);
+    int64_t base[3] = {(int64_t)cy, (int64_t)zc, (int64_t)wc};
+    int li[3][2], axes = g->dims - 1;
+
+    fr[0] = Y - cy;
+    fr[1] = g->z - zc;
+    fr[2] = g->w4 - wc;
+    for (int a = 0; a < axes; a++) {
+        int per = a == 0 ? g->period : 0;
+        li[a][0] = lat_index(base[a], per, t->n);
+        li[a][1] = lat_index(base[a] + 1, per, t->n);
+        wt[a][0] = fade(t->fade, fr[a]);
+        wt[a][1] = fade(t->fade, 1.0 - fr[a]);
+    }
+    rc->nc = 0;
+    for (int c = 0; c < 1 << axes; c++) {
+        int b[3] = {c & 1, c >> 1 & 1, c >> 2 & 1}, k = rc->nc;
+        double w = 1;
+        for (int a = 0; a < axes; a++)
+            w *= wt[a][b[a]];
+        if (w == 0) /* a corner at distance 1: w(1) = 0 exactly */
+            continue;
+        rc->W[k] = w;
+        for (int a = 0; a < 3; a++)
+            rc->D[k][a] = a < axes ? fr[a] - b[a] : 0;
+        if (axes == 3)
+            rc->A[k] = F[li[0][b[0]] + F[li[1][b[1]] + F[li[2][b[2]]]]];
+        else
+            rc->A[k] = F[li[0][b[0]] + F[li[1][b[1]]]];
+        rc->nc++;
+    }
+}
+
+/* The two coefficients of slots s0..s1-1 (stored from P[0]): a pixel's noise is
+ *   w0(u) (P[s] u + Q[s]) + w1(u) (P[s+1] (u-1) + Q[s+1]),  s = slot[x],
+ * P and Q folding the gradients of the slot's lattice column over the
+ * corners in y, z and w with their weights.  Shared by every SIMD level. */
+static void row_coeffs(const tex_noise_grid *g, const struct row_corners *rc, int s0, int s1,
+                       float *P, float *Q)
+{
+    const int *F = g->t->perm;
+    const float(*G)[4] = g->dims == 4 ? g->t->grad4 : g->t->grad;
+
+    for (int s = s0; s < s1; s++) {
+        int i = g->lat[s];
+        double p = 0, q = 0;
+        for (int c = 0; c < rc->nc; c++) {
+            const float *gr = G[F[i + rc->A[c]]];
+            p += rc->W[c] * gr[0];
+            q += rc->W[c] * (gr[1] * rc->D[c][0] + gr[2] * rc->D[c][1] + gr[3] * rc->D[c][2]);
+        }
+        P[s - s0] = (float)p;
+        Q[s - s0] = (float)q;
+    }
+    for (int s = s1 - s0; s < s1 - s0 + 16; s++)
+        P[s] = Q[s] = 0;
+}
+
+/* Pixels x..x1-1, the reference order of operations for every level;
+ * P and Q hold the slots from sb on. */
+static void row_scalar(const tex_noise_grid *g, const float *P, const float *Q, int sb,
+                       float *out, int x, int x1, const float *amp)
+{
+    for (; x < x1; x++) {
+        int s = g->slot[x] - sb;
+        float t0 = P[s] * g->u[x] + Q[s];
+        float t1 = P[s + 1] * g->um1[x] + Q[s + 1];
+        float r = g->w0[x] * t0 + g->w1[x] * t1;
+        out[x] = amp ? out[x] + *amp * r : r;
+    }
+}
+
+#ifdef TEX_X86
+__attribute__((target("avx2"))) static void row_avx2(const tex_noise_grid *g, const float *P,
+                                                     const float *Q, int sb, float *out, int x,
+                                                     int x1, const float *amp)
+{
+    __m256i vsb = _mm256_set1_epi32(sb);
+    __m256 va = _mm256_set1_ps(amp ? *amp : 0);
+
+    for (; x + 8 <= x1; x += 8) {
+        __m256i s = _mm256_sub_epi32(_mm256_loadu_si256((const __m256i *)(g->slot + x)), vsb);
+        int s0 = g->slot[x] - sb;
+        __m256 p0, p1, q0, q1;
+        if (g->slot[x + 7] - sb - s0 <= 7) {
+            /* The eight pixels touch at most nine slots: permute, no gather. */
+            __m256i k = _mm256_sub_epi32(s, _mm256_set1_epi32(s0));
+            p0 = _mm256_permutevar8x32_ps(_mm256_loadu_ps(P + s0), k);
+            p1 = _mm256_permutevar8x32_ps(_mm256_loadu_ps(P + s0 + 1), k);
+            q0 = _mm256_permutevar8x32_ps(_mm256_loadu_ps(Q + s0), k);
+            q1 = _mm256_permutevar8x32_ps(_mm256_loadu_ps(Q + s0 + 1), k);
+        } else {
+            __m256i s1 = _mm256_add_epi32(s, _mm256_set1_epi32(1));
+            p0 = _mm256_i32gather_ps(P, s, 4);
+            p1 = _mm256_i32gather_ps(P, s1, 4);
+            q0 = _mm256_i32gather_ps(Q, s, 4);
+            q1 = _mm256_i32gather_ps(Q, s1, 4);
+        }
+        __m256 t0 = _mm256_add_ps(_mm256_mul_ps(p0, _mm256_loadu_ps(g->u + x)), q0);
+        __m256 t1 = _mm256_add_ps(_mm256_mul_ps(p1, _mm256_loadu_ps(g->um1 + x)), q1);
+        __m256 r = _mm256_add_ps(_mm256_mul_ps(_mm256_loadu_ps(g->w0 + x), t0),
+                                 _mm256_mul_ps(_mm256_loadu_ps(g->w1 + x), t1));
+        if (amp)
+            r = _mm256_add_ps(_mm256_loadu_ps(out + x), _mm256_mul_ps(va, r));
+        _mm256_storeu_ps(out + x, r);
+    }
+    row_scalar(g, P, Q, sb, out, x, x1, amp);
+}
+#endif
+
+static void grid_row(const tex_noise_grid *g, int y, float *out, const float *amp)
+{
+    /* Columns in chunks, so that the coefficients stay on the stack and in L1. */
+    enum { CHUNK = 1024 };
+    float P[2 * CHUNK + 24], Q[2 * CHUNK + 24];
+    struct row_corners rc;
+    int level = tex_simd_level();
+
+    row_setup(g, y, &rc);
+    for (int x0 = 0; x0 < g->w; x0 += CHUNK) {
+        int x1 = x0 + CHUNK < g->w ? x0 + CHUNK : g->w;
+        int s0 = g->slot[x0], s1 = g->slot[x1 - 1] + 2;
+        row_coeffs(g, &rc, s0, s1, P, Q);
+#ifdef TEX_X86
+        if (level >= TEX_SIMD_AVX2)
+            row_avx2(g, P, Q, s0, out, x0, x1, amp);
+        else
+#endif
+            row_scalar(g, P, Q, s0, out, x0, x1, amp);
+    }
+    (void)level;
+}
+
+void tex_noise_grid_row(const tex_noise_grid *g, int y, float *out)
+{
+    grid_row(g, y, out, NULL);
+}
+
+void tex_noise_grid_row_add(const tex_noise_grid *g, int y, float amp, float *out)
+{
+    grid_row(g, y, out, &amp);
+}
+
+/* ---- octaves ---- */
+
+int tex_octaves_init(tex_octaves *o, uint64_t seed, int gradients, int fade, int n, double freq,
+                     double lac, const double off[3], double z, double t, int dims, int tile,
+                     int w, int h)
+{
+    /* Irrational-looking shifts so that the octaves do not all vanish together. */
+    static const double shift[4] = {13.1367, 7.7351, 3.5193, 5.2371};
+
+    memset(o, 0, sizeof *o);
+    if (n < 1 || n > TEX_OCTAVES_MAX)
+        return tex_usage_error("--octaves must be 1..%d (got %d)", TEX_OCTAVES_MAX, n);
+    if (tile && (freq != floor(freq) || freq < 1))
+        return tex_usage_error("--frequency must be a whole number >= 1 with --tile (got %g)",
+                               freq);
+    if (tile && lac != floor(lac))
+        return tex_usage_error("--lacunarity must be a whole number with --tile (got %g)", lac);
+    o->n = n;
+    o->dims = dims;
+    for (int k = 0; k < n; k++) {
+        double s = pow(lac, k);
+        o->freq[k] = freq * s;
+        if (tile && o->freq[k] > 1e9)
+            return tex_usage_error("--tile: the last octave's frequency %g is above 1e9 (lower "
+                                   "--octaves, --frequency or --lacunarity)",
+                                   o->freq[k]);
+        o->period[k] = tile ? (int)o->freq[k] : 0;
+        o->off[k][0] = s * off[0] + (k ? k * shift[0] : 0);
+        o->off[k][1] = s * off[1] + (k ? k * shift[1] : 0);
+        o->off[k][2] = s * (freq * z + off[2]) + (k ? k * shift[2] : 0);
+        o->off[k][3] = dims == 4 ? s * freq * t + (k ? k * shift[3] : 0) : 0;
+    }
+    if (tex_noise_init(&o->t, seed, gradients, 0) < 0)
+        return -1;
+    o->t.fade = fade;
+    if (w > 0 && h > 0) {
+        o->grid = 1;
+        for (int k = 0; k < n; k++)
+            if (tex_noise_grid_init(&o->g[k], &o->t, w, h, o->freq[k], o->freq[k], o->off[k],
+                                    dims, o->period[k]) < 0) {
+                tex_octaves_free(o);
+                return -1;
+            }
+    }
+    return 0;
+}
+
+void tex_octaves_free(tex_octaves *o)
+{
+    tex_noise_free(&o->t);
+    for (int k = 0; k < o->n; k++)
+        tex_noise_grid_free(&o->g[k]);
+    o->grid = 0;
+}
+
+double tex_octave_point(const tex_octaves *o, int k, double u, double v, double w)
+{
+    double f = o->freq[k], x = o->off[k][0] + f * u, y = o->off[k][1] + f * v;
+
+    if (o->dims == 4)
+        return tex_noise4p(&o->t, o->period[k], x, y, o->off[k][2] + f * w, o->off[k][3]);
+    return tex_noise3p(&o->t, o->period[k], x, y, o->off[k][2] + f * w);
+}
+
+void tex_octave_row(const tex_octaves *o, int k, int y, float *out)
+{
+    tex_noise_grid_row(&o->g[k], y, out);
+}
+
+void tex_octave_row_add(const tex_octaves *o, int k, int y, float amp, float *out)
+{
+    tex_noise_grid_row_add(&o->g[k], y, amp, out);
 }
 
 /* ---- the primitive ---- */
@@ -81,71 +534,110 @@ double tex_noise3(const tex_noise_table *t, double x, double y, double z)
 struct noise_params {
     double frequency;
     double z;
+    struct tex_reals w;
+    struct tex_reals offset;
+    int fade;
     int gradients;
 };
 
 static const struct tex_param noise_rows[] = {
     TEX_REAL(struct noise_params, frequency, 'f', 8, 0, 1e6, "F",
-             "lattice cells across the map (an integer with --tile)"),
-    TEX_REAL(struct noise_params, z, 0, 0, -1e6, 1e6, "Z", "the slice of the solid noise"),
+             "lattice cells across the map (a whole number with --tile)"),
+    TEX_REAL(struct noise_params, z, 0, 0, -1e9, 1e9, "Z",
+             "the slice of the solid noise, in map widths (lattice z = F Z + offset z)"),
+    TEX_REALS(struct noise_params, w, 0, NULL, -1e9, 1e9, 1, "W",
+              "4D noise at fourth coordinate W, in map widths (loops in time)"),
+    TEX_REALS(struct noise_params, offset, 0, NULL, -1e12, 1e12, 3, "X[,Y[,Z]]",
+              "lattice offset added to the scaled coordinates"),
+    TEX_ENUM(struct noise_params, fade, 0, "cubic", "cubic|quintic",
+             "weight function: the thesis's cubic (eq. 5.2) or Perlin's quintic"),
     TEX_INT(struct noise_params, gradients, 0, 256, 2, TEX_NOISE_MAX_GRADIENTS, "N",
             "gradients on the sphere (the thesis's n)"),
     {0}};
 
+struct noise_state {
+    tex_noise_table t;
+    tex_noise_grid g;
+    int period, dims;
+    double off[4];
+};
+
 static int noise_init(struct tex_field *f)
 {
     const struct noise_params *p = f->params;
-    tex_noise_table *t = malloc(sizeof *t);
-    int period = 0;
+    struct noise_state *s = calloc(1, sizeof *s);
 
-    if (!t)
+    if (!s)
         return tex_error("out of memory");
+    f->state = s;
     if (f->tile) {
-        if (p->frequency != floor(p->frequency) || p->frequency < 1) {
-            free(t);
+        if (p->frequency != floor(p->frequency) || p->frequency < 1)
             return tex_usage_error("--frequency must be a whole number >= 1 with --tile (got %g)",
                                    p->frequency);
-        }
-        period = (int)p->frequency;
+        s->period = (int)p->frequency;
     }
-    if (tex_noise_init(t, f->seed, p->gradients, period) < 0) {
-        free(t);
+    for (int a = 0; a < p->offset.n; a++)
+        s->off[a] = p->offset.v[a];
+    s->dims = p->w.n ? 4 : 3;
+    s->off[2] += p->frequency * p->z;
+    s->off[3] = p->w.n ? p->frequency * p->w.v[0] : 0;
+    if (tex_noise_init(&s->t, f->seed, p->gradients, s->period) < 0)
         return -1;
-    }
-    f->state = t;
+    s->t.fade = p->fade;
+    if (f->w > 0 && f->h > 0)
+        return tex_noise_grid_init(&s->g, &s->t, f->w, f->h, p->frequency, p->frequency, s->off,
+                                   s->dims, s->period);
     return 0;
 }
 
 static void noise_fini(struct tex_field *f)
 {
-    if (f->state)
-        tex_noise_free(f->state);
-    free(f->state);
+    struct noise_state *s = f->state;
+    if (!s)
+        return;
+    tex_noise_free(&s->t);
+    tex_noise_grid_free(&s->g);
+    free(s);
 }
 
-static inline float to_unit(double s)
+static inline float to_unit(float s)
 {
-    s = 0.5 + 0.5 * s;
-    return (float)(s < 0 ? 0 : s > 1 ? 1 : s);
+    s = 0.5f + 0.5f * s;
+    return s < 0 ? 0 : s > 1 ? 1 : s;
+}
+
+static double noise_at(const struct tex_field *f, double u, double v, double w)
+{
+    const struct noise_params *p = f->params;
+    const struct noise_state *s = f->state;
+    double fr = p->frequency, x = s->off[0] + fr * u, y = s->off[1] + fr * v;
+
+    if (s->dims == 4)
+        return tex_noise4p(&s->t, s->period, x, y, s->off[2] + fr * w, s->off[3]);
+    return tex_noise3p(&s->t, s->period, x, y, s->off[2] + fr * w);
 }
 
 static void noise_eval3(const struct tex_field *f, int n, const double *u, const double *v,
                         const double *w, float *out)
 {
-    const struct noise_params *p = f->params;
-
     for (int i = 0; i < n; i++)
-        out[i] = to_unit(tex_noise3(f->state, u[i] * p->frequency, v[i] * p->frequency,
-                                    w[i] * p->frequency));
+        out[i] = to_unit((float)noise_at(f, u[i], v[i], w[i]));
 }
 
 static void noise_eval2(const struct tex_field *f, int n, const double *u, const double *v,
                         float *out)
 {
-    const struct noise_params *p = f->params;
-
     for (int i = 0; i < n; i++)
-        out[i] = to_unit(tex_noise3(f->state, u[i] * p->frequency, v[i] * p->frequency, p->z));
+        out[i] = to_unit((float)noise_at(f, u[i], v[i], 0));
+}
+
+static void noise_row(const struct tex_field *f, int y, float *out)
+{
+    const struct noise_state *s = f->state;
+
+    tex_noise_grid_row(&s->g, y, out);
+    for (int x = 0; x < f->w; x++)
+        out[x] = to_unit(out[x]);
 }
 
 const struct tex_primitive tex_prim_noise = {
@@ -158,4 +650,107 @@ const struct tex_primitive tex_prim_noise = {
     .fini = noise_fini,
     .eval2 = noise_eval2,
     .eval3 = noise_eval3,
+    .row = noise_row,
+};
+
+/* ---- d_noise: the analytic gradient (thesis 5.2.2.3) ---- */
+
+struct dnoise_params {
+    double frequency, z, strength;
+    struct tex_reals offset;
+    int channels, normal, fade, gradients;
+};
+
+static const struct tex_param dnoise_rows[] = {
+    TEX_REAL(struct dnoise_params, frequency, 'f', 8, 0, 1e6, "F",
+             "lattice cells across the map (a whole number with --tile)"),
+    TEX_REAL(struct dnoise_params, z, 0, 0, -1e9, 1e9, "Z",
+             "the slice of the solid noise, in map widths"),
+    TEX_REALS(struct dnoise_params, offset, 0, NULL, -1e12, 1e12, 3, "X[,Y[,Z]]",
+              "lattice offset added to the scaled coordinates"),
+    TEX_INT(struct dnoise_params, channels, 'c', 2, 2, 3, "N",
+            "2: d/dx, d/dy; 3: also d/dz (raw gradient, lattice units)"),
+    TEX_FLAG(struct dnoise_params, normal, 0,
+             "write a tangent-space normal map (x right, y up, z out) encoded as 0.5 + 0.5 n"),
+    TEX_REAL(struct dnoise_params, strength, 0, 1, 0, 1e6, "S",
+             "--normal: height scale, n = normalize(-S dn/dx, S dn/dy_up, 1)"),
+    TEX_ENUM(struct dnoise_params, fade, 0, "cubic", "cubic|quintic",
+             "weight function: the thesis's cubic (eq. 5.2) or Perlin's quintic"),
+    TEX_INT(struct dnoise_params, gradients, 0, 256, 2, TEX_NOISE_MAX_GRADIENTS, "N",
+            "gradients on the sphere (the thesis's n)"),
+    {0}};
+
+static int dnoise_init(struct tex_field *f)
+{
+    const struct dnoise_params *p = f->params;
+    struct noise_state *s = calloc(1, sizeof *s);
+
+    if (!s)
+        return tex_error("out of memory");
+    f->state = s;
+    if (f->tile) {
+        if (p->frequency != floor(p->frequency) || p->frequency < 1)
+            return tex_usage_error("--frequency must be a whole number >= 1 with --tile (got %g)",
+                                   p->frequency);
+        s->period = (int)p->frequency;
+    }
+    for (int a = 0; a < p->offset.n; a++)
+        s->off[a] = p->offset.v[a];
+    s->off[2] += p->frequency * p->z;
+    f->nc = p->normal ? 3 : p->channels;
+    if (tex_noise_init(&s->t, f->seed, p->gradients, s->period) < 0)
+        return -1;
+    s->t.fade = p->fade;
+    return 0;
+}
+
+static void dnoise_fini(struct tex_field *f)
+{
+    struct noise_state *s = f->state;
+    if (s)
+        tex_noise_free(&s->t);
+    free(s);
+}
+
+static void dnoise_eval3(const struct tex_field *f, int n, const double *u, const double *v,
+                         const double *w, float *out)
+{
+    const struct dnoise_params *p = f->params;
+    const struct noise_state *s = f->state;
+    double fr = p->frequency;
+
+    for (int i = 0; i < n; i++, out += f->nc) {
+        double g[3];
+        tex_noise3_grad(&s->t, s->period, s->off[0] + fr * u[i], s->off[1] + fr * v[i],
+                        s->off[2] + fr * (w ? w[i] : 0), g);
+        if (p->normal) {
+            /* v grows downwards: the height's slope along y-up is -dn/dv. */
+            double nx = -p->strength * g[0], ny = p->strength * g[1];
+            double len = sqrt(nx * nx + ny * ny + 1);
+            out[0] = (float)(0.5 + 0.5 * nx / len);
+            out[1] = (float)(0.5 + 0.5 * ny / len);
+            out[2] = (float)(0.5 + 0.5 / len);
+        } else {
+            for (int c = 0; c < f->nc; c++)
+                out[c] = (float)g[c];
+        }
+    }
+}
+
+static void dnoise_eval2(const struct tex_field *f, int n, const double *u, const double *v,
+                         float *out)
+{
+    dnoise_eval3(f, n, u, v, NULL, out);
+}
+
+const struct tex_primitive tex_prim_d_noise = {
+    .name = "d_noise",
+    .summary = "the analytic gradient of gradient noise, or a normal map from it",
+    .flags = TEX_PRIM_2D | TEX_PRIM_3D | TEX_PRIM_TILE,
+    .params_size = sizeof(struct dnoise_params),
+    .params = dnoise_rows,
+    .init = dnoise_init,
+    .fini = dnoise_fini,
+    .eval2 = dnoise_eval2,
+    .eval3 = dnoise_eval3,
 };

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <OpenImageIO/filesystem.h>
@@ -20,6 +21,29 @@ extern "C" {
 }
 
 using namespace OIIO;
+
+// Some codecs (libpng, libtiff) print their own complaints on stderr; the
+// tools promise one line per error, so mute fd 2 while OpenImageIO works.
+struct quiet_stderr {
+    int saved = -1;
+    quiet_stderr()
+    {
+        int null = open("/dev/null", O_WRONLY);
+        fflush(stderr);
+        if (null >= 0) {
+            saved = dup(2);
+            dup2(null, 2);
+            close(null);
+        }
+    }
+    ~quiet_stderr()
+    {
+        if (saved >= 0) {
+            dup2(saved, 2);
+            close(saved);
+        }
+    }
+};
 
 struct tex_oiio_in {
     std::unique_ptr<ImageInput> in;
@@ -42,6 +66,7 @@ static void say(char *err, size_t n, const std::string &s)
 static tex_oiio_in *b_open(const char *path, const void *mem, size_t len, const char *ext, int *w,
                            int *h, int *nc, char *err, size_t errlen)
 {
+    quiet_stderr mute;
     auto r = std::make_unique<tex_oiio_in>();
     std::string name = path ? path : std::string("stdin.") + ext;
 
@@ -100,6 +125,7 @@ static tex_oiio_in *b_open(const char *path, const void *mem, size_t len, const 
 
 static int b_read(tex_oiio_in *r, float *px, int nc, char *err, size_t errlen)
 {
+    quiet_stderr mute;
     if (!r->in->read_image(0, 0, 0, nc, TypeDesc::FLOAT, px)) {
         say(err, errlen, r->in->geterror());
         return -1;
@@ -119,6 +145,7 @@ static void b_close(tex_oiio_in *r)
 static int b_write(const char *path, const char *format_name, const void *px, int w, int h,
                    int nc, int bits, char *err, size_t errlen)
 {
+    quiet_stderr mute;
     TypeDesc t = bits == 8 ? TypeDesc::UINT8 : bits == 16 ? TypeDesc::UINT16 : TypeDesc::FLOAT;
     std::string probe = std::string("x.") + format_name;
     auto out = ImageOutput::create(probe);

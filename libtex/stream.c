@@ -4,8 +4,10 @@
  * core library writes the chunk offset table last.  One copy in memory
  * costs far less than the disk or pipe it crosses.
  */
+#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include <openexr.h>
 
@@ -47,9 +49,37 @@ static void on_exr_error(exr_const_context_t ctxt, exr_result_t code, const char
 
 /* ---- writing ---- */
 
+int tex_write_all(int fd, const void *p, size_t n, const char *name)
+{
+    const char *c = p;
+
+    while (n > 0) {
+        ssize_t w = write(fd, c, n);
+        if (w < 0) {
+            if (errno == EINTR)
+                continue;
+            return tex_error("%s: write error: %s", name, strerror(errno));
+        }
+        c += w;
+        n -= (size_t)w;
+    }
+    return 0;
+}
+
+/* Where encoded bytes go.  In memory (buf) they may land at any offset.  On
+ * a file descriptor they must come in order: the header is buffered, then
+ * written with a chunk offset table computed in advance, and the chunks pass
+ * straight through; the table the core writes last must match ours. */
 struct wsink {
     tex_buf *buf;
     size_t base;
+    int fd;              /* -1: memory only */
+    const char *name;
+    int streaming;       /* header sent: writes go to fd */
+    uint64_t pos;        /* bytes sent to fd */
+    uint64_t table_off;  /* where the offset table sits */
+    unsigned char *table;
+    size_t table_len;
 };
 
 static int64_t write_mem(exr_const_context_t ctxt, void *ud, const void *src, uint64_t sz,
@@ -58,12 +88,49 @@ static int64_t write_mem(exr_const_context_t ctxt, void *ud, const void *src, ui
     struct wsink *w = ud;
     size_t end = w->base + off + sz;
 
+    if (w->streaming) {
+        if (off == w->pos) {
+            if (tex_write_all(w->fd, src, sz, w->name) < 0)
+                return ecb(ctxt, EXR_ERR_WRITE_IO, "%s", tex_errmsg()), -1;
+            w->pos += sz;
+            return (int64_t)sz;
+        }
+        if (off == w->table_off && sz == w->table_len && memcmp(src, w->table, sz) == 0)
+            return (int64_t)sz;
+        return ecb(ctxt, EXR_ERR_WRITE_IO, "unexpected write at offset %llu of the stream",
+                   (unsigned long long)off), -1;
+    }
     if (tex_buf_reserve(w->buf, end) < 0)
         return ecb(ctxt, EXR_ERR_OUT_OF_MEMORY, "out of memory"), -1;
     memcpy(w->buf->data + w->base + off, src, sz);
     if (end > w->buf->len)
         w->buf->len = end;
     return (int64_t)sz;
+}
+
+/* Send the buffered header and the offset table of uncompressed scanline
+ * chunks (each: int y, int size, then the pixels). */
+static int start_streaming(struct wsink *w, const tex_map *m, int nchunks, int lines)
+{
+    uint64_t off;
+    size_t row = (size_t)m->w * m->nc * 4;
+
+    w->table_off = w->buf->len;
+    w->table_len = (size_t)nchunks * 8;
+    if (!(w->table = malloc(w->table_len)))
+        return tex_error("out of memory");
+    off = w->table_off + w->table_len;
+    for (int k = 0; k < nchunks; k++) {
+        int n = m->h - k * lines < lines ? m->h - k * lines : lines;
+        memcpy(w->table + 8 * k, &off, 8); /* EXR is little-endian, as is this machine */
+        off += 8 + n * row;
+    }
+    if (tex_write_all(w->fd, w->buf->data, w->buf->len, w->name) < 0 ||
+        tex_write_all(w->fd, w->table, w->table_len, w->name) < 0)
+        return -1;
+    w->pos = w->table_off + w->table_len;
+    w->streaming = 1;
+    return 0;
 }
 
 static const char *const chnames[4][4] = {
@@ -78,22 +145,23 @@ static int exr_fail(exr_context_t *ctx, exr_result_t rv, const char *what)
     return -1;
 }
 
-int tex_exr_encode(const tex_map *m, enum tex_compression c, tex_buf *out)
+static int encode(const tex_map *m, enum tex_compression c, struct wsink *sink)
 {
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     exr_context_t ctx = NULL;
     exr_encode_pipeline_t enc;
     exr_chunk_info_t ci;
     exr_result_t rv;
-    struct wsink sink = {out, out->len};
-    int part, lines, y, ch;
+    tex_buf *out = sink->buf;
+    int part, lines, y, ch, nchunks;
     static const exr_compression_t ctype[] = {EXR_COMPRESSION_NONE, EXR_COMPRESSION_ZIP,
                                               EXR_COMPRESSION_PIZ};
     size_t est = (size_t)m->w * m->h * m->nc * 4 + 4096 + (size_t)m->h * 16;
 
-    if (c == TEX_COMPRESS_NONE && tex_buf_reserve(out, out->len + est) < 0)
+    if (sink->fd < 0 && c == TEX_COMPRESS_NONE && tex_buf_reserve(out, out->len + est) < 0)
         return -1;
-    init.user_data = &sink;
+    memset(&enc, 0, sizeof enc);
+    init.user_data = sink;
     init.write_fn = write_mem;
     init.error_handler_fn = on_exr_error;
     init.max_image_width = TEX_MAP_MAX_SIDE;
@@ -113,10 +181,13 @@ int tex_exr_encode(const tex_map *m, enum tex_compression c, tex_buf *out)
         return exr_fail(&ctx, rv, "EXR attribute");
     if (m->history && (rv = exr_attr_set_string(ctx, part, ATTR_HISTORY, m->history)))
         return exr_fail(&ctx, rv, "EXR attribute");
-    if ((rv = exr_write_header(ctx)) || (rv = exr_get_scanlines_per_chunk(ctx, part, &lines)))
+    if ((rv = exr_write_header(ctx)) || (rv = exr_get_scanlines_per_chunk(ctx, part, &lines)) ||
+        (rv = exr_get_chunk_count(ctx, part, &nchunks)))
         return exr_fail(&ctx, rv, "EXR header");
-
-    memset(&enc, 0, sizeof enc);
+    if (sink->fd >= 0 && start_streaming(sink, m, nchunks, lines) < 0) {
+        exr_finish(&ctx);
+        return -1;
+    }
     for (y = 0; y < m->h; y += lines) {
         if ((rv = exr_write_scanline_chunk_info(ctx, part, y, &ci)))
             return exr_fail(&ctx, rv, "EXR chunk");
@@ -138,13 +209,32 @@ int tex_exr_encode(const tex_map *m, enum tex_compression c, tex_buf *out)
         }
         if (y == 0 && (rv = exr_encoding_choose_default_routines(ctx, part, &enc)))
             return exr_fail(&ctx, rv, "EXR encoder");
-        if ((rv = exr_encoding_run(ctx, part, &enc)))
+        if ((rv = exr_encoding_run(ctx, part, &enc))) {
+            exr_encoding_destroy(ctx, &enc);
             return exr_fail(&ctx, rv, "EXR encode");
+        }
     }
     exr_encoding_destroy(ctx, &enc);
     if ((rv = exr_finish(&ctx)))
         return exr_fail(NULL, rv, "EXR finish");
     return 0;
+}
+
+int tex_exr_encode(const tex_map *m, enum tex_compression c, tex_buf *out)
+{
+    struct wsink sink = {out, out->len, -1, "memory", 0, 0, 0, NULL, 0};
+    return encode(m, c, &sink);
+}
+
+int tex_exr_write_fd(const tex_map *m, int fd, const char *name)
+{
+    tex_buf head = {0};
+    struct wsink sink = {&head, 0, fd, name, 0, 0, 0, NULL, 0};
+    int r = encode(m, TEX_COMPRESS_NONE, &sink);
+
+    free(sink.table);
+    tex_buf_free(&head);
+    return r;
 }
 
 /* ---- reading ---- */
@@ -175,6 +265,67 @@ static int64_t size_mem(exr_const_context_t ctxt, void *ud)
     return (int64_t)((struct rsrc *)ud)->len;
 }
 
+/* A pipe read as it is decoded.  The core reads the header, the offset
+ * table and then the chunks we ask for in increasing order, so only a
+ * window of the stream need be kept: bytes before the latest request go. */
+struct rstream {
+    int fd;
+    const char *name;
+    unsigned char *buf;
+    size_t cap, len;
+    uint64_t base; /* stream offset of buf[0] */
+    int eof;
+};
+
+static int64_t read_stream(exr_const_context_t ctxt, void *ud, void *dst, uint64_t sz,
+                           uint64_t off, exr_stream_error_func_ptr_t ecb)
+{
+    struct rstream *r = ud;
+    size_t drop, need, avail;
+
+    if (off < r->base)
+        return ecb(ctxt, EXR_ERR_READ_IO, "the stream's chunks are out of order"), -1;
+    need = (size_t)(off + sz - r->base);
+    if (need > r->cap) {
+        /* Out of room: drop what lies before this request, then grow if still short. */
+        drop = off - r->base < r->len ? (size_t)(off - r->base) : r->len;
+        memmove(r->buf, r->buf + drop, r->len - drop);
+        r->base += drop;
+        r->len -= drop;
+        need = (size_t)(off + sz - r->base);
+    }
+    if (need > r->cap) {
+        size_t cap = need > (1 << 20) ? need : (1 << 20);
+        unsigned char *b = realloc(r->buf, cap);
+        if (!b)
+            return ecb(ctxt, EXR_ERR_OUT_OF_MEMORY, "out of memory"), -1;
+        r->buf = b;
+        r->cap = cap;
+    }
+    while (r->len < need && !r->eof) {
+        ssize_t k = read(r->fd, r->buf + r->len, r->cap - r->len);
+        if (k < 0 && errno == EINTR)
+            continue;
+        if (k < 0)
+            return ecb(ctxt, EXR_ERR_READ_IO, "%s: %s", r->name, strerror(errno)), -1;
+        if (k == 0)
+            r->eof = 1;
+        r->len += (size_t)k;
+    }
+    avail = r->base + r->len > off ? (size_t)(r->base + r->len - off) : 0;
+    if (avail > sz)
+        avail = (size_t)sz;
+    memcpy(dst, r->buf + (off - r->base), avail);
+    return (int64_t)avail;
+}
+
+static int64_t size_unknown(exr_const_context_t ctxt, void *ud)
+{
+    (void)ctxt;
+    (void)ud;
+    return -1;
+}
+
 /* Order the file's channels into the map's: R G B A, Y A, or as listed. */
 static int order_channels(const exr_attr_chlist_t *cl, int map[4])
 {
@@ -196,9 +347,42 @@ static int order_channels(const exr_attr_chlist_t *cl, int map[4])
     return n;
 }
 
+static tex_map *decode(exr_context_initializer_t *init, const char *name);
+
 tex_map *tex_exr_decode(const void *data, size_t len, const char *name)
 {
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    struct rsrc src = {data, len};
+
+    init.user_data = &src;
+    init.read_fn = read_mem;
+    init.size_fn = size_mem;
+    return decode(&init, name);
+}
+
+tex_map *tex_exr_read_fd(int fd, const void *prefix, size_t prefix_len, const char *name)
+{
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    struct rstream r = {fd, name, malloc(1 << 20), 1 << 20, prefix_len, 0, 0};
+    tex_map *m = NULL;
+
+    if (!r.buf || prefix_len > r.cap) {
+        free(r.buf);
+        tex_error("out of memory");
+        return NULL;
+    }
+    memcpy(r.buf, prefix, prefix_len);
+    init.user_data = &r;
+    init.read_fn = read_stream;
+    init.size_fn = size_unknown;
+    m = decode(&init, name);
+    free(r.buf);
+    return m;
+}
+
+static tex_map *decode(exr_context_initializer_t *initp, const char *name)
+{
+    exr_context_initializer_t init = *initp;
     exr_context_t ctx = NULL;
     exr_decode_pipeline_t dec;
     exr_chunk_info_t ci;
@@ -206,15 +390,12 @@ tex_map *tex_exr_decode(const void *data, size_t len, const char *name)
     exr_storage_t st;
     const exr_attr_chlist_t *cl;
     exr_result_t rv;
-    struct rsrc src = {data, len};
     tex_map *m = NULL;
     int lines, nparts, order[4], nc, w, h, y, i;
     int32_t sub, hlen;
     const char *hist;
 
-    init.user_data = &src;
-    init.read_fn = read_mem;
-    init.size_fn = size_mem;
+    memset(&dec, 0, sizeof dec);
     init.error_handler_fn = on_exr_error;
     init.flags = EXR_CONTEXT_FLAG_SILENT_HEADER_PARSE | EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
     init.max_image_width = TEX_MAP_MAX_SIDE;
@@ -261,7 +442,6 @@ tex_map *tex_exr_decode(const void *data, size_t len, const char *name)
         m->history[hlen] = '\0';
     }
 
-    memset(&dec, 0, sizeof dec);
     for (y = dw.min.y; y <= dw.max.y; y += lines) {
         int row = y - dw.min.y;
         if ((rv = exr_read_scanline_chunk_info(ctx, 0, y, &ci)))
@@ -289,7 +469,6 @@ tex_map *tex_exr_decode(const void *data, size_t len, const char *name)
         if (row == 0 && (rv = exr_decoding_choose_default_routines(ctx, 0, &dec)))
             goto bad;
         if ((rv = exr_decoding_run(ctx, 0, &dec))) {
-            exr_decoding_destroy(ctx, &dec);
             tex_error("truncated or corrupt OpenEXR data at scanline %d", y);
             goto fail;
         }
@@ -303,8 +482,10 @@ oom:
 bad:
     tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv));
 fail:
-    if (ctx)
+    if (ctx) {
+        exr_decoding_destroy(ctx, &dec);
         exr_finish(&ctx);
+    }
     tex_map_free(m);
     return NULL;
 }

@@ -38,6 +38,19 @@ void tex_buf_free(tex_buf *b);
 /* Encode m as an EXR file image in out (appended to whatever it holds). */
 int tex_exr_encode(const tex_map *m, enum tex_compression c, tex_buf *out);
 
+/* Write m as the uncompressed stream to fd as it is encoded, without holding
+ * the whole file in memory (a pipe cannot seek back for the offset table,
+ * so the table is computed in advance and checked against the core's). */
+int tex_exr_write_fd(const tex_map *m, int fd, const char *name);
+
+/* Decode an EXR read from fd, of which the first prefix_len bytes were
+ * already read into prefix (to recognise the format).  Reads as it decodes,
+ * keeping only a window of the stream. */
+tex_map *tex_exr_read_fd(int fd, const void *prefix, size_t prefix_len, const char *name);
+
+/* Write all n bytes, retrying after interruptions; -1 with a message naming name. */
+int tex_write_all(int fd, const void *p, size_t n, const char *name);
+
 /* Decode an EXR held in memory; name is for messages only. */
 tex_map *tex_exr_decode(const void *data, size_t len, const char *name);
 

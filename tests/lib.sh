@@ -3,6 +3,7 @@
 #   check NAME CMD...             ok if CMD succeeds
 #   check_fails NAME STATUS CMD.. ok if CMD exits with STATUS, prints exactly one
 #                                 line on stderr naming the program, and did not crash
+#                                 (under `bash -c PIPELINE`, any t_* program)
 #   approx A B TOL                true if |A-B| <= TOL
 #   info_json MAP KEY...          a figure from t_info --json (e.g. stats 0 mean)
 #   $T                            a fresh temporary folder, removed at exit
@@ -28,6 +29,7 @@ check_fails() {
     local got=$? lines prog
     lines=$(wc -l <"$T/.err")
     prog=$(basename "$1")
+    [ "$prog" = bash ] && prog='t_[a-z_]*' # a pipeline: any Textura tool may speak
     if [ "$got" != "$want" ]; then
         notok "$name" "exit $got, wanted $want: $(head -c 200 "$T/.err")"
     elif [ "$lines" != 1 ]; then

@@ -1,22 +1,26 @@
 # tests/bench/lib.sh - helpers for benchmark scripts; source it first.
 #
-#   median_time N CMD...   run CMD (a shell string) N times, print the median wall seconds
+#   median_time N CMD      median wall seconds of N runs of CMD, timed by hyperfine
+#                          (no shell for a plain command; for a pipeline hyperfine
+#                          subtracts the shell's own start-up)
 #   ratio A B              A/B with 3 significant digits
+#   calc EXPR              awk arithmetic, e.g. calc "2 * 3.5"
 set -u
 BT=$(mktemp -d "${TMPDIR:-/tmp}/textura-bench.XXXXXX")
 trap 'rm -rf "$BT"' EXIT
 
 median_time() {
-    local n=$1 cmd=$2 i
-    for ((i = 0; i < n; i++)); do
-        local s e
-        s=$(date +%s.%N)
-        bash -c "$cmd" >/dev/null 2>&1
-        e=$(date +%s.%N)
-        echo "$e - $s" | bc -l
-    done | sort -g | awk '{ a[NR] = $1 } END { print (NR % 2) ? a[(NR + 1) / 2] : (a[NR / 2] + a[NR / 2 + 1]) / 2 }'
+    local n=$1 cmd=$2 shell=()
+    case $cmd in *'|'* | *'>'* | *'<'* | *';'*) ;; *) shell=(-N) ;; esac
+    hyperfine "${shell[@]}" --runs "$n" --warmup 1 --export-json "$BT/h.json" "$cmd" \
+        >/dev/null 2>&1 || { echo 0; return; }
+    python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["results"][0]["median"])' "$BT/h.json"
 }
 
 ratio() {
     awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3g\n", (b > 0) ? a / b : 0 }'
+}
+
+calc() {
+    awk "BEGIN { printf \"%.4g\n\", $1 }"
 }

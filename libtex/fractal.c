@@ -1,0 +1,627 @@
+/* fractal.c - turbulence and the fractal primitives (thesis 5.2.2.4, 5.2.2.8, 2.3.2)
+ *
+ * turbulence  sum_k g^k |noise(L^k p)| / sum_k g^k
+ * fractal     --mode fbm | ridged | hybrid    sums of noise octaves (Musgrave)
+ *             --mode midpoint                 Fournier-Fussell-Carpenter on the grid
+ *             --mode mandelbrot | julia       escape time of x -> x^2 + C
+ *             --mode koch                     the Koch snowflake or curve
+ */
+#pragma GCC optimize("fp-contract=off")
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "error.h"
+#include "noise.h"
+#include "prim.h"
+#include "rng.h"
+
+static inline float clamp01(float x)
+{
+    return x < 0 ? 0 : x > 1 ? 1 : x;
+}
+
+/* ---- turbulence ---- */
+
+struct turb_params {
+    double frequency, lacunarity, gain, z;
+    int octaves;
+    struct tex_reals w, offset;
+    int fade, gradients;
+};
+
+#define NOISE_ROWS(S)                                                                             \
+    TEX_REAL(S, z, 0, 0, -1e9, 1e9, "Z", "the slice of the solid field, in map widths"),         \
+        TEX_REALS(S, w, 0, NULL, -1e9, 1e9, 1, "W",                                               \
+                  "use 4D noise at fourth coordinate W, in map widths (loops in time)"),          \
+        TEX_REALS(S, offset, 0, NULL, -1e12, 1e12, 3, "X[,Y[,Z]]",                                \
+                  "lattice offset of the first octave"),                                           \
+        TEX_ENUM(S, fade, 0, "cubic", "cubic|quintic",                                            \
+                 "noise weight function: the thesis's cubic (eq. 5.2) or Perlin's quintic"),       \
+        TEX_INT(S, gradients, 0, 256, 2, TEX_NOISE_MAX_GRADIENTS, "N",                            \
+                "gradients on the sphere (the thesis's n)")
+
+static const struct tex_param turb_rows[] = {
+    TEX_REAL(struct turb_params, frequency, 'f', 4, 0, 1e6, "F",
+             "lattice cells across the map at the first octave (whole with --tile)"),
+    TEX_INT(struct turb_params, octaves, 'n', 6, 1, TEX_OCTAVES_MAX, "N", "octaves summed"),
+    TEX_REAL(struct turb_params, lacunarity, 'l', 2, 1, 16, "L",
+             "frequency ratio between octaves (whole with --tile)"),
+    TEX_REAL(struct turb_params, gain, 'g', 0.5, 0, 1, "G", "amplitude ratio between octaves"),
+    NOISE_ROWS(struct turb_params),
+    {0}};
+
+struct turb_state {
+    tex_octaves o;
+    float amp[TEX_OCTAVES_MAX], inv;
+};
+
+static void offsets(const struct tex_reals *r, double off[3])
+{
+    off[0] = off[1] = off[2] = 0;
+    for (int a = 0; a < r->n && a < 3; a++)
+        off[a] = r->v[a];
+}
+
+static int turb_init(struct tex_field *f)
+{
+    const struct turb_params *p = f->params;
+    struct turb_state *s = calloc(1, sizeof *s);
+    double off[3], sum = 0;
+
+    if (!s)
+        return tex_error("out of memory");
+    f->state = s;
+    offsets(&p->offset, off);
+    for (int k = 0; k < p->octaves; k++) {
+        s->amp[k] = (float)pow(p->gain, k);
+        sum += s->amp[k];
+    }
+    s->inv = (float)(1.0 / sum);
+    return tex_octaves_init(&s->o, f->seed, p->gradients, p->fade, p->octaves, p->frequency,
+                            p->lacunarity, off, p->z, p->w.n ? p->w.v[0] : 0, p->w.n ? 4 : 3,
+                            f->tile, f->w, f->h);
+}
+
+static void turb_fini(struct tex_field *f)
+{
+    struct turb_state *s = f->state;
+    if (s)
+        tex_octaves_free(&s->o);
+    free(s);
+}
+
+static float turb_point(const struct tex_field *f, double u, double v, double w)
+{
+    const struct turb_state *s = f->state;
+    float acc = 0;
+
+    for (int k = 0; k < s->o.n; k++)
+        acc += s->amp[k] * fabsf((float)tex_octave_point(&s->o, k, u, v, w));
+    return clamp01(acc * s->inv);
+}
+
+static void turb_eval2(const struct tex_field *f, int n, const double *u, const double *v,
+                       float *out)
+{
+    for (int i = 0; i < n; i++)
+        out[i] = turb_point(f, u[i], v[i], 0);
+}
+
+static void turb_eval3(const struct tex_field *f, int n, const double *u, const double *v,
+                       const double *w, float *out)
+{
+    for (int i = 0; i < n; i++)
+        out[i] = turb_point(f, u[i], v[i], w[i]);
+}
+
+static void turb_row(const struct tex_field *f, int y, float *out)
+{
+    const struct turb_state *s = f->state;
+    float *tmp = malloc(f->w * sizeof *tmp);
+
+    if (!tmp) { /* no memory for a row buffer: the point path needs none */
+        for (int x = 0; x < f->w; x++)
+            out[x] = turb_point(f, (x + 0.5) / f->w, (y + 0.5) / f->h, 0);
+        return;
+    }
+    for (int x = 0; x < f->w; x++)
+        out[x] = 0;
+    for (int k = 0; k < s->o.n; k++) {
+        tex_octave_row(&s->o, k, y, tmp);
+        for (int x = 0; x < f->w; x++)
+            out[x] += s->amp[k] * fabsf(tmp[x]);
+    }
+    for (int x = 0; x < f->w; x++)
+        out[x] = clamp01(out[x] * s->inv);
+    free(tmp);
+}
+
+const struct tex_primitive tex_prim_turbulence = {
+    .name = "turbulence",
+    .summary = "Perlin's turbulence: a sum of octaves of |noise|",
+    .flags = TEX_PRIM_2D | TEX_PRIM_3D | TEX_PRIM_TILE,
+    .params_size = sizeof(struct turb_params),
+    .params = turb_rows,
+    .init = turb_init,
+    .fini = turb_fini,
+    .eval2 = turb_eval2,
+    .eval3 = turb_eval3,
+    .row = turb_row,
+};
+
+/* ---- fractal ---- */
+
+enum { FBM, RIDGED, HYBRID, MIDPOINT, MANDELBROT, JULIA, KOCH };
+
+struct frac_params {
+    int mode;
+    double frequency, lacunarity, gain, mf_offset, z;
+    int octaves;
+    struct tex_reals h, w, offset;
+    int fade, gradients;
+    struct tex_reals centre, c;
+    double zoom;
+    int iterations, depth, koch;
+    double line_width;
+};
+
+static const struct tex_param frac_rows[] = {
+    TEX_ENUM(struct frac_params, mode, 'm', "fbm",
+             "fbm|ridged|hybrid|midpoint|mandelbrot|julia|koch", "the fractal"),
+    TEX_REAL(struct frac_params, frequency, 'f', 4, 0, 1e6, "F",
+             "fbm, ridged, hybrid: lattice cells across the map at the first octave"),
+    TEX_INT(struct frac_params, octaves, 'n', 8, 1, TEX_OCTAVES_MAX, "N",
+            "fbm, ridged, hybrid: octaves summed"),
+    TEX_REAL(struct frac_params, lacunarity, 'l', 2, 1, 16, "L",
+             "fbm, ridged, hybrid: frequency ratio between octaves (whole with --tile)"),
+    TEX_REALS(struct frac_params, h, 0, "0.8", -20, 20, 16, "H[,H...]",
+              "Hurst exponent per octave or level, the last repeating: amplitude falls by "
+              "L^-H (fbm, ridged, hybrid) or 2^-H (midpoint) each step"),
+    TEX_REAL(struct frac_params, gain, 'g', 2, 0, 16, "G", "ridged: Musgrave's weight gain"),
+    TEX_REAL(struct frac_params, mf_offset, 0, 1, 0, 4, "O",
+             "ridged, hybrid: Musgrave's offset (try 0.7 for hybrid)"),
+    NOISE_ROWS(struct frac_params),
+    TEX_REALS(struct frac_params, centre, 0, NULL, -1e3, 1e3, 2, "X,Y",
+              "mandelbrot, julia: complex point at the centre of the map (-0.5,0 and 0,0)"),
+    TEX_REAL(struct frac_params, zoom, 0, 1, 1e-12, 1e12, "Z",
+             "mandelbrot, julia: magnification; the map spans 4/Z"),
+    TEX_INT(struct frac_params, iterations, 'i', 256, 1, 100000, "N",
+            "mandelbrot, julia: most iterations"),
+    TEX_REALS(struct frac_params, c, 0, "-0.8,0.156", -10, 10, 2, "RE,IM", "julia: the constant C"),
+    TEX_INT(struct frac_params, depth, 'd', 5, 0, 12, "N", "koch: recursion depth"),
+    TEX_ENUM(struct frac_params, koch, 0, "snowflake", "snowflake|curve",
+             "koch: the filled snowflake or the curve on one edge"),
+    TEX_REAL(struct frac_params, line_width, 0, 0.006, 1e-6, 1, "W",
+             "koch curve: line width in map widths"),
+    {0}};
+
+struct frac_state {
+    tex_octaves o;
+    int mode;
+    float amp[TEX_OCTAVES_MAX];
+    float inv, lo, hi; /* rescaling to [0,1] */
+    float *mp;         /* midpoint: the displaced grid, mw x mh */
+    int mw, mh;
+};
+
+/* Musgrave's ridged and hybrid multifractals over per-octave noise n[k]. */
+static float ridged(const struct frac_state *s, const struct frac_params *p, const float *n)
+{
+    float off = (float)p->mf_offset, gain = (float)p->gain;
+    float sig = off - fabsf(n[0]), res, wgt;
+
+    sig *= sig;
+    res = sig;
+    for (int k = 1; k < s->o.n; k++) {
+        wgt = sig * gain;
+        wgt = wgt < 0 ? 0 : wgt > 1 ? 1 : wgt;
+        sig = off - fabsf(n[k]);
+        sig *= sig;
+        sig *= wgt;
+        res += sig * s->amp[k];
+    }
+    return res;
+}
+
+static float hybrid(const struct frac_state *s, const struct frac_params *p, const float *n)
+{
+    float off = (float)p->mf_offset, res = (n[0] + off) * s->amp[0], wgt = res;
+
+    for (int k = 1; k < s->o.n; k++) {
+        float sig;
+        if (wgt > 1)
+            wgt = 1;
+        sig = (n[k] + off) * s->amp[k];
+        res += wgt * sig;
+        wgt *= sig;
+    }
+    return res;
+}
+
+static float combine(const struct frac_state *s, const struct frac_params *p, const float *n)
+{
+    float acc = 0;
+
+    switch (s->mode) {
+    case RIDGED:
+        return clamp01(ridged(s, p, n) * s->inv);
+    case HYBRID:
+        return clamp01((hybrid(s, p, n) - s->lo) * s->inv);
+    default:
+        for (int k = 0; k < s->o.n; k++)
+            acc += s->amp[k] * n[k];
+        return clamp01(0.5f + 0.5f * (acc * s->inv));
+    }
+}
+
+/* Escape time of x -> x^2 + c from x0, smoothed: n + 1 - log2(log|x|) over
+ * the iteration limit; 1 inside (no escape). */
+static float escape(double x, double y, double cx, double cy, int iters)
+{
+    for (int n = 0; n < iters; n++) {
+        double xx = x * x, yy = y * y;
+        if (xx + yy > 256.0 * 256.0) {
+            double nu = n + 1 - log2(0.5 * log(xx + yy));
+            return clamp01((float)(nu / iters));
+        }
+        y = 2 * x * y + cy;
+        x = xx - yy + cx;
+    }
+    return 1;
+}
+
+/* ---- Koch ---- */
+
+struct pt {
+    double x, y;
+};
+
+static int in_triangle(struct pt p, struct pt a, struct pt b, struct pt c)
+{
+    double d1 = (p.x - b.x) * (a.y - b.y) - (a.x - b.x) * (p.y - b.y);
+    double d2 = (p.x - c.x) * (b.y - c.y) - (b.x - c.x) * (p.y - c.y);
+    double d3 = (p.x - a.x) * (c.y - a.y) - (c.x - a.x) * (p.y - a.y);
+    int neg = d1 < 0 || d2 < 0 || d3 < 0, pos = d1 > 0 || d2 > 0 || d3 > 0;
+    return !(neg && pos);
+}
+
+/* The point at fraction t along ab, pushed by k |ab| to the right of a->b. */
+static struct pt along(struct pt a, struct pt b, double t, double k)
+{
+    double dx = b.x - a.x, dy = b.y - a.y;
+    return (struct pt){a.x + t * dx + k * dy, a.y + t * dy - k * dx};
+}
+
+/* Is p under the Koch bumps that edge a->b grows to its right at depth d?
+ * They all lie in the triangle on ab with apex at height |ab|/(2 sqrt 3). */
+static int koch_in(struct pt p, struct pt a, struct pt b, int d)
+{
+    struct pt p1, p2, p3, e[5];
+
+    if (d == 0 || !in_triangle(p, a, b, along(a, b, 0.5, 0.5 / sqrt(3.0))))
+        return 0;
+    p1 = along(a, b, 1.0 / 3, 0);
+    p3 = along(a, b, 2.0 / 3, 0);
+    p2 = along(a, b, 0.5, sqrt(3.0) / 6);
+    if (in_triangle(p, p1, p2, p3))
+        return 1;
+    e[0] = a, e[1] = p1, e[2] = p2, e[3] = p3, e[4] = b;
+    for (int i = 0; i < 4; i++)
+        if (koch_in(p, e[i], e[i + 1], d - 1))
+            return 1;
+    return 0;
+}
+
+static double seg_dist(struct pt p, struct pt a, struct pt b)
+{
+    double dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
+    double t = l2 > 0 ? ((p.x - a.x) * dx + (p.y - a.y) * dy) / l2 : 0;
+    t = t < 0 ? 0 : t > 1 ? 1 : t;
+    return hypot(p.x - a.x - t * dx, p.y - a.y - t * dy);
+}
+
+/* Distance from p to the Koch curve on a->b, if below best. */
+static double koch_dist(struct pt p, struct pt a, struct pt b, int d, double best)
+{
+    struct pt apex = along(a, b, 0.5, 0.5 / sqrt(3.0)), e[5];
+
+    if (d == 0)
+        return fmin(best, seg_dist(p, a, b));
+    /* Outside the bounding triangle by more than best: nothing closer here. */
+    if (!in_triangle(p, a, b, apex) &&
+        fmin(seg_dist(p, a, b), fmin(seg_dist(p, b, apex), seg_dist(p, apex, a))) >= best)
+        return best;
+    e[0] = a;
+    e[1] = along(a, b, 1.0 / 3, 0);
+    e[2] = along(a, b, 0.5, sqrt(3.0) / 6);
+    e[3] = along(a, b, 2.0 / 3, 0);
+    e[4] = b;
+    for (int i = 0; i < 4; i++)
+        best = koch_dist(p, e[i], e[i + 1], d - 1, best);
+    return best;
+}
+
+static float koch(const struct frac_params *p, double u, double v)
+{
+    struct pt q = {u, v};
+
+    if (p->koch == 1) { /* the curve along one edge, bumps upwards */
+        struct pt a = {0.05, 0.7}, b = {0.95, 0.7};
+        double d = koch_dist(q, a, b, p->depth, 1e9), hw = 0.5 * p->line_width;
+        return clamp01((float)(1.0 - (d - hw) / hw));
+    }
+    /* The snowflake fills the circle of radius 0.45 about the centre: a
+     * counter-clockwise triangle (v grows downwards), bumps to the outside. */
+    struct pt t[3];
+    for (int i = 0; i < 3; i++) {
+        double a = M_PI / 2 + 2 * M_PI * i / 3;
+        t[i] = (struct pt){0.5 + 0.45 * cos(a), 0.5 + 0.45 * sin(a)};
+    }
+    if (in_triangle(q, t[0], t[1], t[2]))
+        return 1;
+    for (int i = 0; i < 3; i++)
+        if (koch_in(q, t[i], t[(i + 1) % 3], p->depth) ||
+            koch_in(q, t[(i + 1) % 3], t[i], p->depth))
+            return 1;
+    return 0;
+}
+
+/* ---- midpoint displacement ---- */
+
+static double level_scale(const struct tex_reals *h, int l)
+{
+    return pow(2.0, -h->v[l - 1 < h->n ? l - 1 : h->n - 1]);
+}
+
+/* Diamond-square on an N x N periodic lattice (tile) or (N+1)^2 points;
+ * level l displaces new points by a Gaussian of deviation
+ * prod_{m<=l} 2^-h_m (Fournier, Fussell and Carpenter; per-level h after
+ * Haruyama and Barsky). */
+static int midpoint(const struct frac_params *p, uint64_t seed, int tile, int w, int h,
+                    float *out)
+{
+    int N = 1, S;
+    double sd = 1, lo = INFINITY, hi = -INFINITY;
+    float *g;
+    tex_rng r;
+
+    while (N < w || N < h)
+        N *= 2;
+    S = tile ? N : N + 1;
+    if (!(g = malloc((size_t)S * S * sizeof *g)))
+        return tex_error("out of memory");
+    tex_rng_seed(&r, seed);
+#define G(x, y) g[(size_t)((y) % S) * S + ((x) % S)]
+    for (int y = 0; y < S; y += N)
+        for (int x = 0; x < S; x += N)
+            G(x, y) = (float)tex_rng_gauss(&r);
+    for (int step = N, l = 1; step > 1; step /= 2, l++) {
+        int hs = step / 2;
+        sd *= level_scale(&p->h, l);
+        /* Diamond: square centres from their four corners. */
+        for (int y = hs; y < S; y += step)
+            for (int x = hs; x < S; x += step)
+                G(x, y) = (float)((G(x - hs, y - hs) + G(x + hs, y - hs) + G(x - hs, y + hs) +
+                                   G(x + hs, y + hs)) / 4.0 + sd * tex_rng_gauss(&r));
+        /* Square: edge midpoints from their (up to) four diamond neighbours. */
+        for (int y = 0; y < S; y += hs)
+            for (int x = (y / hs % 2 == 0) ? hs : 0; x < S; x += step) {
+                double sum = 0;
+                int k = 0;
+                if (tile || y >= hs) sum += G(x, y - hs + S), k++;
+                if (tile || y + hs < S) sum += G(x, y + hs), k++;
+                if (tile || x >= hs) sum += G(x - hs + S, y), k++;
+                if (tile || x + hs < S) sum += G(x + hs, y), k++;
+                G(x, y) = (float)(sum / k + sd * tex_rng_gauss(&r));
+            }
+    }
+    /* Onto the map: bilinear where the map is not N x N. */
+    for (int y = 0; y < h; y++) {
+        float *row = out + (size_t)y * w;
+        for (int x = 0; x < w; x++) {
+            double gx = (double)x * N / w, gy = (double)y * N / h;
+            int ix = (int)gx, iy = (int)gy;
+            double fx = gx - ix, fy = gy - iy;
+            double a = G(ix, iy) + fx * (G(ix + 1, iy) - G(ix, iy));
+            double b = G(ix, iy + 1) + fx * (G(ix + 1, iy + 1) - G(ix, iy + 1));
+            row[x] = (float)(a + fy * (b - a));
+            lo = fmin(lo, row[x]);
+            hi = fmax(hi, row[x]);
+        }
+    }
+#undef G
+    free(g);
+    for (size_t i = 0; i < (size_t)w * h; i++)
+        out[i] = hi > lo ? (float)((out[i] - lo) / (hi - lo)) : 0.5f;
+    return 0;
+}
+
+/* ---- the fractal primitive ---- */
+
+static const char *const mode_names[] = {"fbm", "ridged", "hybrid", "midpoint",
+                                         "mandelbrot", "julia", "koch"};
+
+static int frac_init(struct tex_field *f)
+{
+    const struct frac_params *p = f->params;
+    struct frac_state *s = calloc(1, sizeof *s);
+    double off[3], sum = 0, amp = 1;
+    float ones[TEX_OCTAVES_MAX], mones[TEX_OCTAVES_MAX], zeros[TEX_OCTAVES_MAX] = {0};
+
+    if (!s)
+        return tex_error("out of memory");
+    f->state = s;
+    s->mode = p->mode;
+    if (f->tile && p->mode >= MANDELBROT)
+        return tex_usage_error("--tile: --mode %s is not periodic (fbm, ridged, hybrid and "
+                               "midpoint tile)",
+                               mode_names[p->mode]);
+    if (p->mode == MIDPOINT) {
+        /* Scenes evaluate at points: they get a 512 x 512 map, sampled bilinearly. */
+        s->mw = f->w > 0 ? f->w : 512;
+        s->mh = f->h > 0 ? f->h : 512;
+        if (!(s->mp = malloc((size_t)s->mw * s->mh * sizeof *s->mp)))
+            return tex_error("out of memory");
+        return midpoint(p, f->seed, f->tile, s->mw, s->mh, s->mp);
+    }
+    if (p->mode >= MANDELBROT)
+        return 0;
+    for (int k = 0; k < p->octaves; k++) {
+        if (k)
+            amp *= pow(p->lacunarity, -p->h.v[k - 1 < p->h.n ? k - 1 : p->h.n - 1]);
+        s->amp[k] = (float)amp;
+        sum += s->amp[k];
+        ones[k] = 1;
+        mones[k] = -1;
+    }
+    if (!isfinite(sum) || sum <= 0)
+        return tex_usage_error("--h: the octave amplitudes overflow (got %g over %d octaves)",
+                               p->h.v[0], p->octaves);
+    s->o.n = p->octaves;
+    if (p->mode == FBM) {
+        s->inv = (float)(1.0 / sum);
+    } else if (p->mode == RIDGED) {
+        /* Every octave's signal is at most max(offset, |1 - offset|)^2. */
+        double m = fmax(p->mf_offset, fabs(1 - p->mf_offset));
+        s->inv = (float)(1.0 / (m * m * sum));
+        (void)zeros;
+    } else {
+        s->lo = hybrid(s, p, mones);
+        s->hi = hybrid(s, p, ones);
+        if (!(s->hi > s->lo))
+            return tex_usage_error("--mf-offset %g gives hybrid a constant field", p->mf_offset);
+        s->inv = 1.0f / (s->hi - s->lo);
+    }
+    offsets(&p->offset, off);
+    return tex_octaves_init(&s->o, f->seed, p->gradients, p->fade, p->octaves, p->frequency,
+                            p->lacunarity, off, p->z, p->w.n ? p->w.v[0] : 0, p->w.n ? 4 : 3,
+                            f->tile, f->w, f->h);
+}
+
+static void frac_fini(struct tex_field *f)
+{
+    struct frac_state *s = f->state;
+    if (s) {
+        tex_octaves_free(&s->o);
+        free(s->mp);
+    }
+    free(s);
+}
+
+static float midpoint_at(const struct frac_state *s, double u, double v)
+{
+    double gx = u * s->mw - 0.5, gy = v * s->mh - 0.5;
+    double x0 = floor(gx), y0 = floor(gy), fx = gx - x0, fy = gy - y0;
+    int ix = (int)fmod(x0 + s->mw, s->mw), iy = (int)fmod(y0 + s->mh, s->mh);
+    int jx = (ix + 1) % s->mw, jy = (iy + 1) % s->mh;
+    const float *a = s->mp + (size_t)iy * s->mw, *b = s->mp + (size_t)jy * s->mw;
+    double top = a[ix] + fx * (a[jx] - a[ix]), bot = b[ix] + fx * (b[jx] - b[ix]);
+
+    if (!isfinite(u) || !isfinite(v))
+        return 0.5f;
+    return (float)(top + fy * (bot - top));
+}
+
+static float frac_point(const struct tex_field *f, double u, double v, double w)
+{
+    const struct frac_params *p = f->params;
+    const struct frac_state *s = f->state;
+    double zx, zy, sc = 4.0 / p->zoom;
+    float n[TEX_OCTAVES_MAX];
+
+    switch (s->mode) {
+    case MANDELBROT:
+    case JULIA:
+        zx = (p->centre.n ? p->centre.v[0] : s->mode == MANDELBROT ? -0.5 : 0) + (u - 0.5) * sc;
+        zy = (p->centre.n > 1 ? p->centre.v[1] : 0) + (0.5 - v) * sc;
+        if (s->mode == MANDELBROT)
+            return escape(0, 0, zx, zy, p->iterations);
+        return escape(zx, zy, p->c.v[0], p->c.v[1], p->iterations);
+    case KOCH:
+        return koch(p, u, v);
+    case MIDPOINT:
+        return midpoint_at(s, u - floor(u), v - floor(v));
+    default:
+        for (int k = 0; k < s->o.n; k++)
+            n[k] = (float)tex_octave_point(&s->o, k, u, v, w);
+        return combine(s, p, n);
+    }
+}
+
+static void frac_eval2(const struct tex_field *f, int n, const double *u, const double *v,
+                       float *out)
+{
+    for (int i = 0; i < n; i++)
+        out[i] = frac_point(f, u[i], v[i], 0);
+}
+
+static void frac_eval3(const struct tex_field *f, int n, const double *u, const double *v,
+                       const double *w, float *out)
+{
+    for (int i = 0; i < n; i++)
+        out[i] = frac_point(f, u[i], v[i], w[i]);
+}
+
+static void frac_row(const struct tex_field *f, int y, float *out)
+{
+    const struct frac_params *p = f->params;
+    const struct frac_state *s = f->state;
+    float *tmp;
+    double v = (y + 0.5) / f->h;
+
+    if (s->mode == FBM) {
+        memset(out, 0, f->w * sizeof *out);
+        for (int k = 0; k < s->o.n; k++)
+            tex_octave_row_add(&s->o, k, y, s->amp[k], out);
+        for (int x = 0; x < f->w; x++)
+            out[x] = clamp01(0.5f + 0.5f * (out[x] * s->inv));
+        return;
+    }
+    tmp = s->mode <= HYBRID ? malloc((size_t)f->w * s->o.n * sizeof *tmp) : NULL;
+    if (!tmp) { /* not an octave sum, or no memory for the buffer */
+        for (int x = 0; x < f->w; x++)
+            out[x] = frac_point(f, (x + 0.5) / f->w, v, 0);
+        return;
+    }
+    for (int k = 0; k < s->o.n; k++)
+        tex_octave_row(&s->o, k, y, tmp + (size_t)k * f->w);
+    {
+        for (int x = 0; x < f->w; x++) {
+            float n[TEX_OCTAVES_MAX];
+            for (int k = 0; k < s->o.n; k++)
+                n[k] = tmp[(size_t)k * f->w + x];
+            out[x] = combine(s, p, n);
+        }
+    }
+    free(tmp);
+}
+
+static int frac_grid(const struct tex_field *f, tex_map *m)
+{
+    const struct frac_state *s = f->state;
+
+    if (s->mode == MIDPOINT) {
+        memcpy(m->px, s->mp, (size_t)f->w * f->h * sizeof *s->mp);
+        return 0;
+    }
+#pragma omp parallel for schedule(dynamic, 4)
+    for (int y = 0; y < f->h; y++)
+        frac_row(f, y, tex_map_row(m, y));
+    return 0;
+}
+
+const struct tex_primitive tex_prim_fractal = {
+    .name = "fractal",
+    .summary = "fractals: fBm, multifractals, midpoint displacement, Mandelbrot, Julia, Koch",
+    .flags = TEX_PRIM_2D | TEX_PRIM_3D | TEX_PRIM_TILE | TEX_PRIM_GRID,
+    .params_size = sizeof(struct frac_params),
+    .params = frac_rows,
+    .init = frac_init,
+    .fini = frac_fini,
+    .eval2 = frac_eval2,
+    .eval3 = frac_eval3,
+    .row = frac_row,
+    .grid = frac_grid,
+};

@@ -1,0 +1,311 @@
+/* stochastic.c - holes (thesis 5.2.2.6), Gardner's colour variation (5.2.2.7) and the
+ * perturbed regular pattern (5.2.2.2) */
+#pragma GCC optimize("fp-contract=off")
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "error.h"
+#include "noise.h"
+#include "prim.h"
+#include "rng.h"
+
+static inline float clamp01(float x)
+{
+    return x < 0 ? 0 : x > 1 ? 1 : x;
+}
+
+static int whole(double v, const char *opt)
+{
+    if (v != floor(v))
+        return tex_usage_error("%s must be a whole number with --tile (got %g)", opt, v);
+    return 0;
+}
+
+/* ---- holes ---- */
+
+struct holes_params {
+    int count;
+    double diameter, jitter, density, depth;
+};
+
+static const struct tex_param holes_rows[] = {
+    TEX_INT(struct holes_params, count, 'n', 8, 1, 100000, "N",
+            "grid cells across the map, at most one hole each"),
+    TEX_REAL(struct holes_params, diameter, 'd', 0.6, 0.001, 1, "D",
+             "hole diameter, in cells"),
+    TEX_REAL(struct holes_params, jitter, 0, 0.3, 0, 1, "J",
+             "random variation of the diameter, a fraction of D"),
+    TEX_REAL(struct holes_params, density, 0, 0.8, 0, 1, "P", "probability that a cell has a hole"),
+    TEX_REAL(struct holes_params, depth, 0, 1, 0, 1, "A", "depth of the holes (Fact)"),
+    {0}};
+
+/* The hole of cell (i, j), wrapped by the grid: centre in cell units, diameter. */
+static int hole(const struct tex_field *f, int64_t i, int64_t j, double *cx, double *cy,
+                double *d)
+{
+    const struct holes_params *p = f->params;
+    int64_t n = p->count, ki = f->tile ? ((i % n) + n) % n : i, kj = f->tile ? ((j % n) + n) % n : j;
+    uint64_t h = tex_hash64(f->seed ^ tex_hash64((uint64_t)ki * 0x9e3779b1u ^ tex_hash64((uint64_t)kj)));
+    double r0 = (h & 0xffff) / 65536.0, r1 = (h >> 16 & 0xffff) / 65536.0;
+    double r2 = (h >> 32 & 0xffff) / 65536.0, r3 = (h >> 48) / 65536.0;
+
+    if (r3 >= p->density)
+        return 0;
+    *d = p->diameter * (1 + p->jitter * (2 * r2 - 1));
+    /* Keep the rim inside the cell so that the 3 x 3 neighbourhood sees every hole. */
+    *cx = i + 0.5 + (r0 - 0.5) * (1 - fmin(*d, 1));
+    *cy = j + 0.5 + (r1 - 0.5) * (1 - fmin(*d, 1));
+    return 1;
+}
+
+static float holes_point(const struct tex_field *f, double u, double v)
+{
+    const struct holes_params *p = f->params;
+    double x = u * p->count, y = v * p->count, best = 0;
+    int64_t i = (int64_t)floor(x), j = (int64_t)floor(y);
+
+    for (int dj = -1; dj <= 1; dj++)
+        for (int di = -1; di <= 1; di++) {
+            double cx, cy, d;
+            if (hole(f, i + di, j + dj, &cx, &cy, &d)) {
+                /* The thesis's exponential well e^(-N^2 R / D), N = 4/D, scaled so
+                 * that it falls to e^-4 at the rim R = D/2: e^(-8 R / D). */
+                double r = hypot(x - cx, y - cy) / d;
+                best = fmax(best, exp(-8.0 * r));
+            }
+        }
+    return clamp01((float)(1.0 - p->depth * best));
+}
+
+static void holes_eval2(const struct tex_field *f, int n, const double *u, const double *v,
+                        float *out)
+{
+    for (int i = 0; i < n; i++)
+        out[i] = holes_point(f, u[i], v[i]);
+}
+
+const struct tex_primitive tex_prim_holes = {
+    .name = "holes",
+    .summary = "randomly placed round holes (the thesis's hole model)",
+    .flags = TEX_PRIM_2D | TEX_PRIM_TILE,
+    .params_size = sizeof(struct holes_params),
+    .params = holes_rows,
+    .eval2 = holes_eval2,
+};
+
+/* ---- colour variation (Gardner) ---- */
+
+struct colorvar_params {
+    double frequency, k1, k2, b, noise;
+    int terms;
+    float color[4];
+};
+
+static const struct tex_param colorvar_rows[] = {
+    TEX_REAL(struct colorvar_params, frequency, 'f', 2, 0, 1e4, "F",
+             "cycles of the first term across the map: w1 = 2 pi F (whole with --tile)"),
+    TEX_INT(struct colorvar_params, terms, 'n', 5, 1, 16, "N",
+            "terms of each sum: C(i+1) = C(i)/sqrt 2, w(i+1) = 2 w(i)"),
+    TEX_REAL(struct colorvar_params, k1, 0, 0.5, -100, 100, "K", "phase shift P_z = K1 sin(2 pi v)"),
+    TEX_REAL(struct colorvar_params, k2, 0, 0.5, -100, 100, "K",
+             "phase shift P_x = K2 sin(2 pi B u)"),
+    TEX_REAL(struct colorvar_params, b, 0, 1, -1e4, 1e4, "B",
+             "frequency of P_x (whole with --tile)"),
+    TEX_REAL(struct colorvar_params, noise, 0, 0, 0, 100, "A",
+             "add A times gradient noise to both phases (breaks the regularity)"),
+    TEX_COLOR(struct colorvar_params, color, 0, NULL,
+              "write an RGB map: the colour scaled by Fact (default: Fact alone)"),
+    {0}};
+
+struct colorvar_state {
+    tex_noise_table t;
+    double sumc, phase[2][16]; /* per-term phases from the seed, as in Gardner's model */
+};
+
+static int colorvar_init(struct tex_field *f)
+{
+    const struct colorvar_params *p = f->params;
+    struct colorvar_state *s = calloc(1, sizeof *s);
+    double c = 1;
+
+    if (!s)
+        return tex_error("out of memory");
+    f->state = s;
+    if (f->tile && (whole(p->frequency, "--frequency") < 0 || whole(p->b, "-b") < 0))
+        return -1;
+    tex_rng r;
+    tex_rng_seed(&r, f->seed);
+    for (int i = 0; i < p->terms; i++, c /= sqrt(2.0)) {
+        s->sumc += c;
+        s->phase[0][i] = 2 * M_PI * tex_rng_uniform(&r);
+        s->phase[1][i] = 2 * M_PI * tex_rng_uniform(&r);
+    }
+    f->nc = p->color[3] > 0 ? 3 : 1;
+    return tex_noise_init(&s->t, f->seed, 256, f->tile ? 4 : 0);
+}
+
+static void colorvar_fini(struct tex_field *f)
+{
+    struct colorvar_state *s = f->state;
+    if (s)
+        tex_noise_free(&s->t);
+    free(s);
+}
+
+/* Fact = sum C_i (sin(w_i u + P_z + a_i) + 1) * sum C_i (sin(w_i v + P_x + b_i) + 1), over its
+ * largest value (2 sum C_i)^2 so that it lies in [0,1]. */
+static void colorvar_eval2(const struct tex_field *f, int n, const double *u, const double *v,
+                           float *out)
+{
+    const struct colorvar_params *p = f->params;
+    const struct colorvar_state *s = f->state;
+
+    for (int k = 0; k < n; k++, out += f->nc) {
+        double pz = p->k1 * sin(2 * M_PI * v[k]), px = p->k2 * sin(2 * M_PI * p->b * u[k]);
+        double su = 0, sv = 0, c = 1, w = 2 * M_PI * p->frequency;
+        if (p->noise > 0) {
+            double nz = p->noise * tex_noise3(&s->t, 4 * u[k], 4 * v[k], 0.5);
+            pz += nz;
+            px += nz;
+        }
+        for (int i = 0; i < p->terms; i++, c /= sqrt(2.0), w *= 2) {
+            su += c * (sin(w * u[k] + pz + s->phase[0][i]) + 1);
+            sv += c * (sin(w * v[k] + px + s->phase[1][i]) + 1);
+        }
+        double fact = su * sv / (4 * s->sumc * s->sumc);
+        if (f->nc == 1)
+            out[0] = clamp01((float)fact);
+        else
+            for (int ch = 0; ch < 3; ch++)
+                out[ch] = clamp01((float)(fact * p->color[ch]));
+    }
+}
+
+const struct tex_primitive tex_prim_colorvar = {
+    .name = "colorvar",
+    .summary = "Gardner's colour variation: products of sums of sines with shifted phases",
+    .flags = TEX_PRIM_2D | TEX_PRIM_TILE,
+    .params_size = sizeof(struct colorvar_params),
+    .params = colorvar_rows,
+    .init = colorvar_init,
+    .fini = colorvar_fini,
+    .eval2 = colorvar_eval2,
+};
+
+/* ---- perturbed regular pattern ---- */
+
+struct perturb_params {
+    double a, b, c, d, frequency;
+    int octaves;
+};
+
+static const struct tex_param perturb_rows[] = {
+    TEX_REAL(struct perturb_params, a, 'a', 3, -1e4, 1e4, "A",
+             "stripes across the map (whole with --tile)"),
+    TEX_REAL(struct perturb_params, b, 'b', 10, -1e4, 1e4, "B", "strength of the perturbation"),
+    TEX_REAL(struct perturb_params, c, 'c', 4, -1e4, 1e4, "C", "weight of the turbulence"),
+    TEX_REAL(struct perturb_params, d, 'd', 1, -1e4, 1e4, "D",
+             "waves of the regular cosine along v (whole with --tile)"),
+    TEX_REAL(struct perturb_params, frequency, 'f', 4, 0, 1e6, "F",
+             "lattice cells across the map of the turbulence (whole with --tile)"),
+    TEX_INT(struct perturb_params, octaves, 'n', 5, 1, TEX_OCTAVES_MAX, "N",
+            "octaves of the turbulence"),
+    {0}};
+
+struct perturb_state {
+    tex_octaves o;
+    float amp[TEX_OCTAVES_MAX], inv;
+};
+
+static int perturb_init(struct tex_field *f)
+{
+    const struct perturb_params *p = f->params;
+    struct perturb_state *s = calloc(1, sizeof *s);
+    double off[3] = {0, 0, 0}, sum = 0;
+
+    if (!s)
+        return tex_error("out of memory");
+    f->state = s;
+    if (f->tile && (whole(p->a, "-a") < 0 || whole(p->d, "-d") < 0))
+        return -1;
+    for (int k = 0; k < p->octaves; k++) {
+        s->amp[k] = (float)pow(0.5, k);
+        sum += s->amp[k];
+    }
+    s->inv = (float)(1 / sum);
+    return tex_octaves_init(&s->o, f->seed, 256, TEX_FADE_CUBIC, p->octaves, p->frequency, 2, off,
+                            0, 0, 3, f->tile, f->w, f->h);
+}
+
+static void perturb_fini(struct tex_field *f)
+{
+    struct perturb_state *s = f->state;
+    if (s)
+        tex_octaves_free(&s->o);
+    free(s);
+}
+
+/* T = 0.5 + 0.5 sin(2 pi [A u + B/10 (C turbulence + 1 + cos(2 pi D v))]). */
+static float perturb_value(const struct perturb_params *p, double u, double v, float turb)
+{
+    double ph = p->a * u + p->b / 10 * (p->c * turb + 1 + cos(2 * M_PI * p->d * v));
+    return clamp01((float)(0.5 + 0.5 * sin(2 * M_PI * ph)));
+}
+
+static void perturb_eval3(const struct tex_field *f, int n, const double *u, const double *v,
+                          const double *w, float *out)
+{
+    const struct perturb_state *s = f->state;
+
+    for (int i = 0; i < n; i++) {
+        float t = 0;
+        for (int k = 0; k < s->o.n; k++)
+            t += s->amp[k] * fabsf((float)tex_octave_point(&s->o, k, u[i], v[i], w ? w[i] : 0));
+        out[i] = perturb_value(f->params, u[i], v[i], t * s->inv);
+    }
+}
+
+static void perturb_eval2(const struct tex_field *f, int n, const double *u, const double *v,
+                          float *out)
+{
+    perturb_eval3(f, n, u, v, NULL, out);
+}
+
+static void perturb_row(const struct tex_field *f, int y, float *out)
+{
+    const struct perturb_state *s = f->state;
+    float *tmp = malloc(f->w * sizeof *tmp);
+    double v = (y + 0.5) / f->h;
+
+    if (!tmp) {
+        for (int x = 0; x < f->w; x++) {
+            double u = (x + 0.5) / f->w;
+            perturb_eval2(f, 1, &u, &v, out + x);
+        }
+        return;
+    }
+    memset(out, 0, f->w * sizeof *out);
+    for (int k = 0; k < s->o.n; k++) {
+        tex_octave_row(&s->o, k, y, tmp);
+        for (int x = 0; x < f->w; x++)
+            out[x] += s->amp[k] * fabsf(tmp[x]);
+    }
+    for (int x = 0; x < f->w; x++)
+        out[x] = perturb_value(f->params, (x + 0.5) / f->w, v, out[x] * s->inv);
+    free(tmp);
+}
+
+const struct tex_primitive tex_prim_perturb = {
+    .name = "perturb",
+    .summary = "a regular pattern perturbed by turbulence: marble-like veins",
+    .flags = TEX_PRIM_2D | TEX_PRIM_3D | TEX_PRIM_TILE,
+    .params_size = sizeof(struct perturb_params),
+    .params = perturb_rows,
+    .init = perturb_init,
+    .fini = perturb_fini,
+    .eval2 = perturb_eval2,
+    .eval3 = perturb_eval3,
+    .row = perturb_row,
+};

@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# tests/fractal.sh - t_fractal's modes and the stochastic models from the command line.
+. "$(dirname "$0")/lib.sh"
+
+for m in fbm ridged hybrid midpoint mandelbrot julia koch; do
+    # PFM: the pixels alone (an EXR's history holds the command line).
+    t_fractal -s 64 -m "$m" -S 3 -j 1 -o "$T/$m.1.exr" && t_convert -o "$T/$m.1.pfm" "$T/$m.1.exr" &&
+        t_fractal -s 64 -m "$m" -S 3 -j 2 --format pfm >"$T/$m.2.pfm" &&
+        TEXTURA_SIMD=scalar t_fractal -s 64 -m "$m" -S 3 --format pfm >"$T/$m.3.pfm"
+    if cmp -s "$T/$m.1.pfm" "$T/$m.2.pfm" && cmp -s "$T/$m.1.pfm" "$T/$m.3.pfm"; then
+        ok "fractal $m: same bytes across threads and SIMD levels"
+    else
+        notok "fractal $m" "bytes differ"
+    fi
+    lo=$(info_json "$T/$m.1.exr" stats 0 min)
+    hi=$(info_json "$T/$m.1.exr" stats 0 max)
+    if approx "$lo" 0.5 0.5 && approx "$hi" 0.5 0.5 && awk -v a="$lo" -v b="$hi" 'BEGIN{exit !(b > a)}'; then
+        ok "fractal $m in [0,1] and not constant ($lo..$hi)"
+    else
+        notok "fractal $m range" "$lo..$hi"
+    fi
+done
+for t in holes colorvar perturb; do
+    if t_$t -s 48 -j 1 --format pfm >"$T/$t.1" && t_$t -s 48 -j 2 --format pfm >"$T/$t.2" && cmp -s "$T/$t.1" "$T/$t.2"; then
+        ok "$t: same bytes with 1 and 2 threads"
+    else
+        notok "$t determinism"
+    fi
+done
+t_colorvar -s 16 --color '#ff8000' -o "$T/c.exr"
+if [ "$(info_json "$T/c.exr" channels)" = 3 ] && [ "$(info_json "$T/c.exr" stats 2 max)" = 0 ]; then
+    ok "colorvar --color scales the colour"
+else
+    notok "colorvar --color" "$(t_info "$T/c.exr" | head -5)"
+fi
+# The thesis's orange peel: h per level.
+check "midpoint orange peel" t_fractal -m midpoint --h 10,0,0,0,0,0,-10,10 -s 64 -o "$T/peel.exr"
+# Koch: the centre of the snowflake is inside, a corner outside.
+t_fractal -m koch -s 33 -d 3 -o "$T/k.exr"
+if [ "$(info_json "$T/k.exr" stats 0 max)" = 1 ] && approx "$(info_json "$T/k.exr" stats 0 mean)" 0.45 0.15; then
+    ok "koch snowflake fills part of the map"
+else
+    notok "koch" "$(t_info "$T/k.exr" | head -3)"
+fi
+
+check_fails "octaves 0" 2 t_fractal -n 0
+check_fails "octaves 1000" 2 t_fractal -n 1000
+check_fails "negative frequency" 2 t_fractal -f -2
+check_fails "NaN gain" 2 t_fractal -g nan
+check_fails "malformed --h" 2 t_fractal -m midpoint --h 10,,0
+check_fails "--h not a number" 2 t_fractal -m midpoint --h 1,x
+check_fails "--h too long" 2 t_fractal -m midpoint --h 1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1
+check_fails "unknown mode" 2 t_fractal -m spiral
+check_fails "mandelbrot cannot tile" 2 t_fractal -m mandelbrot --tile
+check_fails "zero zoom" 2 t_fractal -m julia --zoom 0
+check_fails "holes count 0" 2 t_holes -n 0
+check_fails "perturb fractional stripes with --tile" 2 t_perturb --tile -a 2.5
+check_fails "colorvar bad colour" 2 t_colorvar --color '#12'

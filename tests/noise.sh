@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# tests/noise.sh - t_noise, t_d_noise, t_turbulence from the command line: determinism across
+# threads and SIMD levels, tiling options, large coordinates, bad input.
+. "$(dirname "$0")/lib.sh"
+
+# same_bytes NAME CMD...: CMD run with -j 1, -j 2 and TEXTURA_SIMD=scalar writes identical
+# pixels (as PFM: the EXR's history holds the differing command lines).
+same_bytes() {
+    local name=$1
+    shift
+    "$@" -j 1 --format pfm >"$T/a.pfm" && "$@" -j 2 --format pfm >"$T/b.pfm" &&
+        TEXTURA_SIMD=scalar "$@" -j 2 --format pfm >"$T/c.pfm" || { notok "$name" "command failed"; return; }
+    if cmp -s "$T/a.pfm" "$T/b.pfm" && cmp -s "$T/a.pfm" "$T/c.pfm"; then
+        ok "$name: same bytes for -j 1, -j 2 and scalar SIMD"
+    else
+        notok "$name" "bytes differ between thread counts or SIMD levels"
+    fi
+}
+
+same_bytes "noise 2D" t_noise -s 203x67 -f 13 -S 5
+same_bytes "noise 3D slice" t_noise -s 130 -f 7 --z 0.37 --offset 0.5,2.25
+same_bytes "noise 4D" t_noise -s 96 -f 3 --w 0.6 --fade quintic
+same_bytes "noise far away" t_noise -s 64 -f 9 --offset 1e6,-3e7,2e6
+same_bytes "noise tile" t_noise -s 64 -f 4 --tile
+same_bytes "noise more cells than pixels" t_noise -s 50 -f 333
+same_bytes "turbulence" t_turbulence -s 100 -n 7
+same_bytes "d_noise" t_d_noise -s 40 -c 3
+
+check "same seed, same map" bash -c 't_noise -s 32 -S 9 --format pfm >"$0/x" && t_noise -s 32 -S 9 --format pfm >"$0/y" && cmp -s "$0/x" "$0/y"' "$T"
+check "another seed, another map" bash -c 't_noise -s 32 -S 9 --format pfm >"$0/x" && t_noise -s 32 -S 10 --format pfm >"$0/y" && ! cmp -s "$0/x" "$0/y"' "$T"
+
+# Far from the origin: no NaN and the texture is still there.
+t_noise -s 64 -f 8 --offset 1e9,1e9 -o "$T/far.exr"
+sd=$(info_json "$T/far.exr" stats 0 stddev)
+nf=$(info_json "$T/far.exr" stats 0 nonfinite)
+if [ "$nf" = 0 ] && approx "$sd" 0.09 0.05; then ok "noise at 1e9 keeps its texture (stddev $sd)"; else notok "noise at 1e9" "stddev $sd, nonfinite $nf"; fi
+
+t_noise -s 128 -f 8 -o "$T/n.exr"
+mean=$(info_json "$T/n.exr" stats 0 mean)
+if approx "$mean" 0.5 0.04; then ok "noise mean near 0.5 ($mean)"; else notok "noise mean" "$mean"; fi
+
+t_d_noise -s 32 --normal --strength 3 -o "$T/nm.exr"
+if [ "$(info_json "$T/nm.exr" channels)" = 3 ] && approx "$(info_json "$T/nm.exr" stats 2 min)" 0.8 0.3; then
+    ok "d_noise --normal writes 3 channels pointing outwards"
+else
+    notok "d_noise --normal" "$(t_info "$T/nm.exr" | head -4)"
+fi
+t_d_noise -s 16 -o "$T/g.exr"
+if [ "$(info_json "$T/g.exr" channels)" = 2 ]; then ok "d_noise writes 2 channels"; else notok "d_noise channels"; fi
+
+check_fails "negative frequency" 2 t_noise -f -1
+check_fails "NaN frequency" 2 t_noise -f nan
+check_fails "fractional frequency with --tile" 2 t_noise -f 2.5 --tile
+check_fails "malformed offset" 2 t_noise --offset 1,,2
+check_fails "too many offsets" 2 t_noise --offset 1,2,3,4
+check_fails "unknown fade" 2 t_noise --fade linear
+check_fails "turbulence octaves 0" 2 t_turbulence -n 0
+check_fails "turbulence octaves 1000" 2 t_turbulence -n 1000
+check_fails "turbulence fractional lacunarity with --tile" 2 t_turbulence --tile -l 2.5
+check_fails "d_noise 4 channels" 2 t_d_noise -c 4

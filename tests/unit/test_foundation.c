@@ -1,0 +1,196 @@
+/* test_foundation.c - maps, parameter rows, format sniffing, the EXR stream */
+#define _GNU_SOURCE
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "textura.h"
+#include "unit.h"
+
+static void test_map_limits(void)
+{
+    tex_map *m;
+
+    CHECK(tex_map_check_size(1, 1, 1) == 0, "a 1x1 map is allowed");
+    CHECK(tex_map_check_size(0, 5, 1) < 0 && tex_errkind() == TEX_ERR_USAGE, "width 0 is refused");
+    CHECK(tex_map_check_size(5, -1, 1) < 0, "negative height is refused");
+    CHECK(tex_map_check_size(1000000000, 1, 1) < 0, "a side of 1e9 is refused");
+    CHECK(strstr(tex_errmsg(), "65536") != NULL, "the message names the limit");
+    CHECK(tex_map_check_size(65536, 65536, 4) < 0, "65536^2 x 4 exceeds the sample limit");
+    CHECK(tex_map_check_size(32768, 32768, 1) == 0, "32768^2 x 1 is within the limit");
+    CHECK(tex_map_check_size(4, 4, 5) < 0 && tex_map_check_size(4, 4, 0) < 0,
+          "channels outside 1..4 are refused");
+    CHECK(tex_map_new(0, 10, 1) == NULL, "tex_map_new refuses an empty map");
+    m = tex_map_new(7, 3, 3);
+    CHECK(m && m->w == 7 && m->h == 3 && m->nc == 3, "tex_map_new keeps the shape");
+    CHECK(m && ((uintptr_t)m->px & 63) == 0, "pixels are 64-byte aligned");
+    CHECK(m && tex_map_px(m, 6, 2) == m->px + (2 * 7 + 6) * 3, "pixel addressing is row-major");
+    tex_map_add_history(m, "a b");
+    tex_map_add_history(m, "c");
+    CHECK(m && strcmp(m->history, "a b\nc\n") == 0, "history appends one line per command");
+    tex_map_free(m);
+}
+
+struct p {
+    int n;
+    double x;
+    int e;
+    struct tex_reals l;
+    float col[4];
+};
+
+static const struct tex_param rows[] = {
+    TEX_INT(struct p, n, 'n', 4, 1, 30, "N", "count"),
+    TEX_REAL(struct p, x, 0, 0.5, 0, 1, "X", "fraction"),
+    TEX_ENUM(struct p, e, 0, "b", "a|b|c", "choice"),
+    TEX_REALS(struct p, l, 0, "1,2", -10, 10, 4, "LIST", "list"),
+    TEX_COLOR(struct p, col, 0, "#ff8000", "colour"),
+    {0}};
+
+static void test_params(void)
+{
+    struct p v;
+
+    CHECK(tex_params_defaults(rows, &v) == 0, "defaults apply");
+    CHECK(v.n == 4 && v.x == 0.5 && v.e == 1 && v.l.n == 2 && v.l.v[1] == 2,
+          "defaults have the declared values");
+    CHECK(fabsf(v.col[0] - 1) < 1e-6 && fabsf(v.col[1] - 128 / 255.0f) < 1e-6 && v.col[3] == 1,
+          "hex colour default parses");
+    CHECK(tex_param_set(&rows[0], &v, "31") < 0 && tex_errkind() == TEX_ERR_USAGE,
+          "an int above the range is a usage error");
+    CHECK(strstr(tex_errmsg(), "--n must be 1..30") != NULL, "the message gives the range");
+    CHECK(tex_param_set(&rows[0], &v, "2.5") < 0, "a fraction is not an int");
+    CHECK(tex_param_set(&rows[0], &v, "12abc") < 0, "trailing garbage is refused");
+    CHECK(tex_param_set(&rows[1], &v, "nan") < 0 && tex_param_set(&rows[1], &v, "inf") < 0,
+          "NaN and infinity are refused");
+    CHECK(tex_param_set(&rows[2], &v, "c") == 0 && v.e == 2, "enum by name");
+    CHECK(tex_param_set(&rows[2], &v, "d") < 0, "unknown enum name is refused");
+    CHECK(tex_param_set(&rows[3], &v, "1,,2") < 0, "an empty list item is refused");
+    CHECK(tex_param_set(&rows[3], &v, "1,2,3,4,5") < 0, "too many list items are refused");
+    CHECK(tex_param_set(&rows[3], &v, "-3,4.5") == 0 && v.l.n == 2 && v.l.v[0] == -3,
+          "a list parses");
+    CHECK(tex_param_set(&rows[4], &v, "0.1,0.2,0.3") == 0 && fabsf(v.col[2] - 0.3f) < 1e-6,
+          "r,g,b colour parses");
+    CHECK(tex_param_set(&rows[4], &v, "#12345") < 0 && tex_param_set(&rows[4], &v, "1,2,3") < 0,
+          "malformed colours are refused");
+}
+
+static void test_sniff(void)
+{
+    static const struct {
+        const char *bytes;
+        size_t n;
+        enum tex_format f;
+    } cases[] = {
+        {"\x76\x2f\x31\x01\x02\0\0\0", 8, TEX_FMT_EXR},
+        {"\x89PNG\r\n\x1a\n", 8, TEX_FMT_PNG},
+        {"II*\0\x08\0\0\0", 8, TEX_FMT_TIFF},
+        {"MM\0*\0\0\0\x08", 8, TEX_FMT_TIFF},
+        {"P5\n64 64\n255\n", 13, TEX_FMT_PNM},
+        {"Pf\n64 64\n-1\n", 12, TEX_FMT_PFM},
+        {"\xff\xd8\xff\xe0", 4, TEX_FMT_JPEG},
+        {"#?RADIANCE\n", 11, TEX_FMT_HDR},
+        {"GIF89a\x01\0", 8, TEX_FMT_GIF},
+        {"hello, world", 12, TEX_FMT_UNKNOWN},
+        {"P9\n", 3, TEX_FMT_UNKNOWN},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++)
+        CHECKF(tex_format_sniff(cases[i].bytes, cases[i].n) == cases[i].f, "sniff case %zu (%s)",
+               i, tex_format_name(cases[i].f));
+    CHECK(tex_format_from_name("a/b.TIFF") == TEX_FMT_TIFF && tex_format_from_name("x.pgm") ==
+          TEX_FMT_PNM && tex_format_from_name("dir.png/x") == TEX_FMT_UNKNOWN,
+          "formats from extensions");
+}
+
+static void test_stream(void)
+{
+    tex_map *m = tex_map_new(37, 11, 4), *r;
+    tex_buf b = {0};
+    int same = 1, fails = 0;
+
+    for (size_t i = 0; i < tex_map_samples(m); i++)
+        m->px[i] = (float)((int)(i * 2654435761u % 1000) - 500) / 7.0f;
+    m->px[5] = NAN;
+    m->px[6] = -INFINITY;
+    m->px[7] = 1e-40f; /* a denormal survives float32 exactly */
+    m->subregions = 3;
+    tex_map_add_history(m, "t_test 'quoted arg'");
+    CHECK(tex_exr_encode(m, TEX_COMPRESS_NONE, &b) == 0, "encode a 37x11x4 map");
+    r = tex_exr_decode(b.data, b.len, "test");
+    CHECK(r && r->w == 37 && r->h == 11 && r->nc == 4, "decode keeps the shape");
+    for (size_t i = 0; r && i < tex_map_samples(m); i++)
+        same &= memcmp(&m->px[i], &r->px[i], 4) == 0;
+    CHECK(r && same, "the round trip is bit-exact (NaN, infinity and denormals included)");
+    CHECK(r && r->subregions == 3, "textura:subregions survives");
+    CHECK(r && r->history && strcmp(r->history, m->history) == 0, "textura:history survives");
+    tex_map_free(r);
+
+    /* Every truncation must fail cleanly: never crash, never decode. */
+    for (size_t cut = 0; cut < b.len; cut += 1 + cut / 8) {
+        tex_map *t = tex_exr_decode(b.data, cut, "cut");
+        fails += t != NULL;
+        tex_map_free(t);
+    }
+    CHECK(fails == 0, "no truncated stream decodes");
+
+    /* A header that claims a huge data window is refused before allocation. */
+    {
+        unsigned char *p = memmem(b.data, b.len, "dataWindow\0box2i", 16);
+        if (p) {
+            int32_t big = 1 << 30;
+            memcpy(p + 16 + 4 + 8, &big, 4); /* max.x */
+            r = tex_exr_decode(b.data, b.len, "huge");
+            CHECK(r == NULL, "a data window of 2^30 pixels is refused");
+            tex_map_free(r);
+        } else
+            CHECK(0, "found the data window in the header");
+    }
+    tex_buf_free(&b);
+
+    for (int nc = 1; nc <= 4; nc++) {
+        tex_map *s = tex_map_new(5, 4, nc);
+        int eq = 1;
+        for (size_t i = 0; i < tex_map_samples(s); i++)
+            s->px[i] = (float)i;
+        for (int c = TEX_COMPRESS_NONE; c <= TEX_COMPRESS_PIZ; c++) {
+            tex_buf e = {0};
+            tex_map *d = NULL;
+            if (tex_exr_encode(s, c, &e) == 0)
+                d = tex_exr_decode(e.data, e.len, "x");
+            eq &= d && d->nc == nc && memcmp(d->px, s->px, tex_map_samples(s) * 4) == 0;
+            tex_map_free(d);
+            tex_buf_free(&e);
+        }
+        CHECKF(eq, "%d-channel maps round-trip through none, zip and piz", nc);
+        tex_map_free(s);
+    }
+    tex_map_free(m);
+}
+
+static void test_noise(void)
+{
+    tex_noise_table t;
+    double maxd = 0, lattice = 0;
+
+    tex_noise_init(&t, 42, 256, 0);
+    for (int i = -3; i <= 3; i++)
+        lattice = fmax(lattice, fabs(tex_noise3(&t, i, 2 * i, -i)));
+    CHECK(lattice == 0, "noise vanishes at lattice points");
+    for (int i = 0; i < 10000; i++) {
+        double x = i * 0.0137, d = fabs(tex_noise3(&t, x + 1e-4, 0.3, 0.7) - tex_noise3(&t, x, 0.3, 0.7));
+        maxd = fmax(maxd, d);
+    }
+    CHECKF(maxd < 1e-3, "noise is continuous (max step %g over 1e-4)", maxd);
+    CHECK(isfinite(tex_noise3(&t, 1e9 + 0.5, -1e9 + 0.25, 3e8)), "huge coordinates stay finite");
+    tex_noise_free(&t);
+}
+
+int main(void)
+{
+    test_map_limits();
+    test_params();
+    test_sniff();
+    test_stream();
+    test_noise();
+    return unit_done();
+}

@@ -1,0 +1,268 @@
+/* test_noise.c - gradient noise, its grid rows, derivative, octaves and the stochastic
+ * primitives' statistics (range, continuity, tiling, spectra) */
+#include <complex.h>
+#include <fftw3.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "textura.h"
+#include "unit.h"
+
+static tex_map *sample(const struct tex_primitive *p, int n, int tile, const char *const *kv)
+{
+    struct tex_field *f = tex_field_new(p);
+    tex_map *m = NULL;
+
+    f->seed = 7;
+    f->tile = tile;
+    for (int i = 0; kv && kv[i]; i += 2)
+        if (tex_field_set(f, kv[i], kv[i + 1]) < 0)
+            goto out;
+    if (tex_field_init(f, n, n) == 0)
+        m = tex_field_sample(f);
+out:
+    tex_field_free(f);
+    return m;
+}
+
+/* Mean absolute difference across the seam (last column/row to the first)
+ * over the mean between interior neighbours. */
+static double seam_ratio(const tex_map *m)
+{
+    double seam = 0, in = 0;
+    int w = m->w, h = m->h, nc = m->nc;
+
+    for (int y = 0; y < h; y++)
+        for (int c = 0; c < nc; c++) {
+            const float *r = tex_map_row(m, y);
+            seam += fabs(r[(w - 1) * nc + c] - r[c]);
+            seam += fabs(tex_map_row(m, h - 1)[y * nc + c] - tex_map_row(m, 0)[y * nc + c]);
+            for (int x = 1; x < w; x++) {
+                in += fabs(r[x * nc + c] - r[(x - 1) * nc + c]) / (w - 1);
+                in += fabs(tex_map_row(m, x)[y * nc + c] - tex_map_row(m, x - 1)[y * nc + c]) /
+                      (h - 1);
+            }
+        }
+    return in > 0 ? seam / in : 1e9;
+}
+
+/* Slope of log power against log frequency, radially averaged, over k in [k0, k1]. */
+static double spectrum_slope(const tex_map *m, int k0, int k1)
+{
+    int n = m->w;
+    float *in = fftwf_malloc(sizeof *in * n * n);
+    fftwf_complex *out = fftwf_malloc(sizeof *out * n * (n / 2 + 1));
+    fftwf_plan plan = fftwf_plan_dft_r2c_2d(n, n, in, out, FFTW_ESTIMATE);
+    double pw[1024] = {0}, cnt[1024] = {0}, sx = 0, sy = 0, sxx = 0, sxy = 0, mean = 0;
+    int np = 0;
+
+    for (int i = 0; i < n * n; i++)
+        mean += m->px[i];
+    mean /= n * n;
+    for (int i = 0; i < n * n; i++)
+        in[i] = (float)(m->px[i] - mean);
+    fftwf_execute(plan);
+    for (int y = 0; y < n; y++)
+        for (int x = 0; x <= n / 2; x++) {
+            int ky = y <= n / 2 ? y : y - n, k = (int)lround(sqrt((double)x * x + ky * ky));
+            if (k < 1024) {
+                pw[k] += cabsf(out[y * (n / 2 + 1) + x]) * cabsf(out[y * (n / 2 + 1) + x]);
+                cnt[k]++;
+            }
+        }
+    for (int k = k0; k <= k1; k++) {
+        double lx = log(k), ly = log(pw[k] / cnt[k]);
+        sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly, np++;
+    }
+    fftwf_destroy_plan(plan);
+    fftwf_free(in);
+    fftwf_free(out);
+    return (np * sxy - sx * sy) / (np * sxx - sx * sx);
+}
+
+/* Slope of log E[(f(x+d) - f(x))^2] against log d, d = 1..16 (2H for fBm). */
+static double variogram_slope(const tex_map *m)
+{
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    int np = 0;
+
+    for (int d = 1; d <= 16; d *= 2) {
+        double v = 0;
+        int c = 0;
+        for (int y = 0; y < m->h; y++)
+            for (int x = 0; x + d < m->w; x++, c++) {
+                double a = tex_map_row(m, y)[x + d] - tex_map_row(m, y)[x];
+                v += a * a;
+            }
+        double lx = log(d), ly = log(v / c);
+        sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly, np++;
+    }
+    return (np * sxy - sx * sy) / (np * sxx - sx * sx);
+}
+
+int main(void)
+{
+    tex_noise_table t;
+    tex_rng r;
+    double lo = 1, hi = -1, sum = 0, maxstep = 0, maxerr = 0;
+    int n = 200000;
+
+    CHECK(tex_noise_init(&t, 3, 256, 0) == 0, "noise table");
+    tex_rng_seed(&r, 1);
+    for (int i = 0; i < n; i++) {
+        double x = 100 * tex_rng_uniform(&r), y = 100 * tex_rng_uniform(&r),
+               z = 100 * tex_rng_uniform(&r), s = tex_noise3(&t, x, y, z);
+        lo = fmin(lo, s), hi = fmax(hi, s), sum += s;
+        /* Continuity: a step of 1e-4 moves the noise by at most a few 1e-4. */
+        maxstep = fmax(maxstep, fabs(tex_noise3(&t, x + 1e-4, y, z) - s));
+    }
+    CHECKF(lo >= -1 && hi <= 1 && hi - lo > 0.8, "3D noise within [-1,1] and spread (%g..%g)", lo,
+           hi);
+    CHECKF(fabs(sum / n) < 0.01, "3D noise mean near 0 (%g)", sum / n);
+    CHECKF(maxstep < 4e-4, "noise is continuous (largest change %g over 1e-4)", maxstep);
+    CHECK(tex_noise3(&t, 5, -7, 11) == 0, "noise vanishes at lattice points");
+
+    /* The analytic gradient matches central differences, both fades. */
+    for (int fade = 0; fade < 2; fade++) {
+        t.fade = fade;
+        maxerr = 0;
+        for (int i = 0; i < 2000; i++) {
+            double x = 50 * tex_rng_uniform(&r), y = 50 * tex_rng_uniform(&r),
+                   z = 50 * tex_rng_uniform(&r), g[3], e = 1e-5;
+            tex_noise3_grad(&t, 0, x, y, z, g);
+            double fd[3] = {(tex_noise3(&t, x + e, y, z) - tex_noise3(&t, x - e, y, z)) / (2 * e),
+                            (tex_noise3(&t, x, y + e, z) - tex_noise3(&t, x, y - e, z)) / (2 * e),
+                            (tex_noise3(&t, x, y, z + e) - tex_noise3(&t, x, y, z - e)) / (2 * e)};
+            for (int a = 0; a < 3; a++)
+                maxerr = fmax(maxerr, fabs(fd[a] - g[a]));
+        }
+        CHECKF(maxerr < 1e-6, "%s: gradient matches finite differences (error %g)",
+               fade ? "quintic" : "cubic", maxerr);
+    }
+    t.fade = 0;
+
+    /* Grid rows agree with the point evaluation: 2D, 3D slice, 4D, period, far away. */
+    {
+        struct {
+            double off[4];
+            int dims, period, w;
+            double freq;
+        } cs[] = {{{0, 0, 0, 0}, 3, 0, 300, 8},       {{0.3, 0.1, 2.37, 0}, 3, 0, 257, 33},
+                  {{0, 0, 0.5, 1.25}, 4, 0, 128, 5},  {{0, 0, 0, 0}, 3, 16, 64, 16},
+                  {{1e6, -3e6, 1e6, 0}, 3, 0, 100, 7}, {{0, 0, 0.1, 0}, 3, 0, 50, 400}};
+        for (int c = 0; c < 6; c++) {
+            tex_noise_grid g;
+            float row[512];
+            double err = 0;
+            tex_noise_grid_init(&g, &t, cs[c].w, 40, cs[c].freq, cs[c].freq, cs[c].off, cs[c].dims,
+                                cs[c].period);
+            for (int y = 0; y < 40; y += 3) {
+                tex_noise_grid_row(&g, y, row);
+                for (int x = 0; x < cs[c].w; x++) {
+                    double X = cs[c].off[0] + cs[c].freq * ((x + 0.5) / cs[c].w),
+                           Y = cs[c].off[1] + cs[c].freq * ((y + 0.5) / 40);
+                    double s = cs[c].dims == 4 ? tex_noise4p(&t, cs[c].period, X, Y, cs[c].off[2],
+                                                             cs[c].off[3])
+                                               : tex_noise3p(&t, cs[c].period, X, Y, cs[c].off[2]);
+                    err = fmax(err, fabs(s - row[x]));
+                    if (isnan(row[x]))
+                        err = INFINITY;
+                }
+            }
+            tex_noise_grid_free(&g);
+            CHECKF(err < 2e-6, "grid case %d (dims %d, period %d, f %g) matches points (%g)", c,
+                   cs[c].dims, cs[c].period, cs[c].freq, err);
+        }
+    }
+    /* Far from the origin the texture survives. */
+    {
+        double s2 = 0;
+        for (int i = 0; i < 1000; i++) {
+            double s = tex_noise3(&t, 1e12 + i * 0.173, 3e9 + i * 0.071, 0.5);
+            s2 += s * s;
+            if (isnan(s))
+                s2 = NAN;
+        }
+        CHECKF(sqrt(s2 / 1000) > 0.1, "noise at 1e12 keeps its texture (rms %g)", sqrt(s2 / 1000));
+    }
+    tex_noise_free(&t);
+
+    /* Statistics and tiling of the primitives through their descriptors. */
+    {
+        const char *noise_kv[] = {"frequency", "8", NULL};
+        tex_map *m = sample(&tex_prim_noise, 256, 0, noise_kv);
+        struct tex_stats st;
+        tex_map_stats(m, 0, &st);
+        CHECKF(st.min >= 0 && st.max <= 1 && fabs(st.mean - 0.5) < 0.03,
+               "t_noise in [0,1] with mean near 0.5 (%g..%g, mean %g)", st.min, st.max, st.mean);
+        tex_map_free(m);
+    }
+    {
+        struct {
+            const struct tex_primitive *p;
+            const char *kv[7];
+        } tp[] = {{&tex_prim_noise, {"frequency", "5", NULL}},
+                  {&tex_prim_noise, {"frequency", "3", "w", "0.4", NULL}},
+                  {&tex_prim_d_noise, {"frequency", "4", "normal", NULL, NULL}},
+                  {&tex_prim_turbulence, {"frequency", "3", NULL}},
+                  {&tex_prim_fractal, {"mode", "fbm", "frequency", "2", NULL}},
+                  {&tex_prim_fractal, {"mode", "ridged", "frequency", "2", NULL}},
+                  {&tex_prim_fractal, {"mode", "hybrid", "frequency", "2", NULL}},
+                  {&tex_prim_fractal, {"mode", "midpoint", NULL}},
+                  {&tex_prim_holes, {"count", "5", NULL}},
+                  {&tex_prim_colorvar, {"noise", "1", NULL}},
+                  {&tex_prim_perturb, {"frequency", "3", NULL}}};
+        for (size_t i = 0; i < sizeof tp / sizeof *tp; i++) {
+            const char *kv[7];
+            memcpy(kv, tp[i].kv, sizeof kv);
+            if (tp[i].p == &tex_prim_d_noise)
+                kv[2] = NULL; /* --normal is a flag: leave the defaults */
+            tex_map *m = sample(tp[i].p, 128, 1, kv);
+            double q = m ? seam_ratio(m) : 1e9;
+            CHECKF(q < 1.6, "%s %s tiles: seam/interior difference %.3f", tp[i].p->name,
+                   kv[1] ? kv[1] : "", q);
+            tex_map_free(m);
+        }
+        const char *kv[] = {"frequency", "5.5", NULL};
+        tex_map *m = sample(&tex_prim_noise, 128, 0, kv);
+        double q = seam_ratio(m);
+        CHECKF(q > 3, "without --tile the seam is a jump (%.3f): the tiling check can fail", q);
+        tex_map_free(m);
+    }
+    /* fBm's spectrum falls as k^-(2H+2): compare H = 0.4 and H = 1. */
+    {
+        const char *a[] = {"mode", "fbm", "h", "0.4", "frequency", "2", "octaves", "8", NULL};
+        const char *b[] = {"mode", "fbm", "h", "1", "frequency", "2", "octaves", "8", NULL};
+        tex_map *ma = sample(&tex_prim_fractal, 256, 1, a), *mb = sample(&tex_prim_fractal, 256, 1, b);
+        double sa = spectrum_slope(ma, 6, 60), sb = spectrum_slope(mb, 6, 60);
+        CHECKF(fabs(sa + 2.8) < 0.6 && fabs(sb + 4) < 0.6,
+               "fBm spectral slopes match -(2H+2): H=0.4 %.2f (-2.8), H=1 %.2f (-4)", sa, sb);
+        tex_map_free(ma);
+        tex_map_free(mb);
+    }
+    /* Midpoint displacement with one h has fBm statistics: variogram ~ d^(2H). */
+    for (int i = 0; i < 2; i++) {
+        const char *h = i ? "0.8" : "0.4";
+        const char *kv[] = {"mode", "midpoint", "h", h, NULL};
+        tex_map *m = sample(&tex_prim_fractal, 256, 0, kv);
+        double s = variogram_slope(m);
+        CHECKF(fabs(s - 2 * atof(h)) < 0.3, "midpoint h=%s: variogram slope %.2f (2H = %.1f)", h,
+               s, 2 * atof(h));
+        tex_map_free(m);
+    }
+    /* Known points of the Mandelbrot set. */
+    {
+        struct tex_field *f = tex_field_new(&tex_prim_fractal);
+        double u[2] = {0.5, 0.75}, v[2] = {0.5, 0.5};
+        float out[2];
+        tex_field_set(f, "mode", "mandelbrot");
+        tex_field_set(f, "centre", "0,0");
+        tex_field_init(f, 0, 0);
+        f->prim->eval2(f, 2, u, v, out);
+        CHECKF(out[0] == 1 && out[1] < 0.1, "Mandelbrot: c=0 inside (%g), c=1 outside (%g)", out[0],
+               out[1]);
+        tex_field_free(f);
+    }
+    return unit_done();
+}
