@@ -24,8 +24,8 @@ static const struct tex_param rows[] = {
     TEX_ENUM(struct opts, outside, 0, "clamp", "clamp|repeat|mirror",
              "values outside the range: clamp to the ends, repeat the palette, or mirror it"),
     TEX_STRING(struct opts, from, 0, NULL, "COLOUR",
-               "make a palette from this colour (#rrggbb or r,g,b[,a]) ..."),
-    TEX_STRING(struct opts, to, 0, NULL, "COLOUR", "... to this colour"),
+               "make a palette from this colour (#rrggbb or r,g,b[,a]) to the --to colour"),
+    TEX_STRING(struct opts, to, 0, NULL, "COLOUR", "the end colour of the palette made with --from"),
     TEX_INT(struct opts, n, 'n', 8, 2, 4096, "N", "stops of the palette made with --from/--to"),
     TEX_ENUM(struct opts, space, 0, "rgb", "rgb|oklab",
              "interpolation space of the palette made with --from/--to"),
@@ -125,28 +125,55 @@ int main(int argc, char **argv)
 {
     struct tex_common c;
     struct opts o;
-    int i = tex_cli_parse(&tool, argc, argv, &c, &o);
-    const char *name = c.palette, *input = "-";
+    const char *first = NULL, *name, *input = "-";
+    char **av = argv;
+    int i;
     double lo, hi;
     tex_palette *p;
     tex_map *m, *out;
 
+    /* "t_palette marble -o x.png": the palette name may come before the options. */
+    if (argc > 1 && argv[1][0] != '-') {
+        if (!(av = malloc((size_t)argc * sizeof *av)))
+            return 1;
+        first = argv[1];
+        av[0] = argv[0];
+        memcpy(av + 1, argv + 2, (size_t)(argc - 2) * sizeof *av);
+        argc--;
+    }
+    i = tex_cli_parse(&tool, argc, av, &c, &o);
+    if (first) { /* keep the name in the history line */
+        size_t n = strlen(c.cmdline) + strlen(first) + 2, k = strlen(tex_progname);
+        char *s = malloc(n);
+        if (!s)
+            return 1;
+        snprintf(s, n, "%s %s%s", tex_progname, first, c.cmdline + k);
+        free(c.cmdline);
+        c.cmdline = s;
+        if (c.palette)
+            tex_usage_die("a palette both as --palette and as '%s'", first);
+        i--;
+        av[i] = (char *)first;
+    }
+    name = c.palette;
     if (o.from || o.to) {
         if (i < argc)
-            tex_usage_die("--from/--to make a palette and take no operand (got '%s')", argv[i]);
+            tex_usage_die("--from/--to make a palette and take no operand (got '%s')", av[i]);
         make_palette(&o, &c);
         free(c.cmdline);
+        if (av != argv)
+            free(av);
         return 0;
     }
     if (!name) {
         if (i >= argc)
             tex_usage_die("missing palette: t_palette NAME|FILE [MAP] (e.g. marble)");
-        name = argv[i++];
+        name = av[i++];
     }
     if (i < argc)
-        input = argv[i++];
+        input = av[i++];
     if (i < argc)
-        tex_usage_die("unexpected operand '%s'", argv[i]);
+        tex_usage_die("unexpected operand '%s'", av[i]);
     parse_range(o.range, &lo, &hi);
     die_if(!(p = tex_palette_load(name)));
     m = tex_cli_read(input);
@@ -159,5 +186,7 @@ int main(int argc, char **argv)
     tex_map_free(m);
     tex_palette_free(p);
     free(c.cmdline);
+    if (av != argv)
+        free(av);
     return 0;
 }

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "error.h"
+#include "map.h"
 #include "palette.h"
 #include "unit.h"
 
@@ -132,6 +133,35 @@ int main(void)
     check_error("index -1 #fff\n", "t.pal:1: index: region id", "a negative region id");
     check_error("0 nan 0 0\n", "t.pal:1: red: not a number", "NaN");
     check_error("0 #fff #000\n", "unexpected", "two colours");
+
+    /* Colouring maps: a region-id map takes indexed colours, a scalar map the gradient. */
+    p = parse("0 #000000\n1 #ffffff80\nindex 2 #ff0000\n");
+    {
+        tex_map *m = tex_map_new(3, 1, 1), *o;
+        m->subregions = 3;
+        m->px[0] = 1, m->px[1] = 2, m->px[2] = 3;
+        o = tex_palette_map(p, m, NAN, NAN, TEX_OUTSIDE_CLAMP);
+        CHECK(o && o->nc == 4 && o->px[0] == 0 && o->px[3] == 1 && o->px[4] == 1 && o->px[5] == 0 &&
+                  o->px[8] == 1 && o->px[11] == 128 / 255.0f,
+              "region ids 1..3: gradient start, index 2, gradient end (RGBA: the palette has alpha)");
+        tex_map_free(o);
+        m->subregions = 0;
+        o = tex_palette_map(p, m, 1, 3, TEX_OUTSIDE_CLAMP);
+        CHECK(o && o->px[4] > 0.49f && o->px[4] < 0.51f, "scalar map: the middle of the range");
+        tex_map_free(o);
+        CHECK(tex_palette_t(1.25, 0, 1, TEX_OUTSIDE_REPEAT) == 0.25f &&
+                  tex_palette_t(1.25, 0, 1, TEX_OUTSIDE_MIRROR) == 0.75f &&
+                  tex_palette_t(-0.25, 0, 1, TEX_OUTSIDE_MIRROR) == 0.25f &&
+                  tex_palette_t(1.25, 0, 1, TEX_OUTSIDE_CLAMP) == 1.0f &&
+                  tex_palette_t(1.0, 0, 1, TEX_OUTSIDE_REPEAT) == 1.0f,
+              "outside modes: repeat, mirror, clamp (and 1 stays 1)");
+        tex_map_free(m);
+        m = tex_map_new(2, 2, 3);
+        o = tex_palette_map(p, m, 0, 1, TEX_OUTSIDE_CLAMP);
+        CHECK(!o && strstr(tex_errmsg(), "3 channels"), "an RGB map is refused");
+        tex_map_free(m);
+    }
+    tex_palette_free(p);
 
     /* Only index lines: they double as the gradient. */
     p = parse("index 1 #000000\nindex 2 #ffffff\n");

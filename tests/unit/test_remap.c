@@ -1,0 +1,60 @@
+/* test_remap - Perlin's bias and gain, levels, quantise, invert, clamp */
+#include <math.h>
+
+#include "remap.h"
+#include "unit.h"
+
+int main(void)
+{
+    struct tex_remap id = TEX_REMAP_IDENTITY, r;
+    int ok = 1;
+
+    for (double b = 0.05; b < 1; b += 0.1)
+        ok &= fabs(tex_bias(b, 0.5) - b) < 1e-12;
+    CHECK(ok, "bias_b(0.5) = b");
+    ok = 1;
+    for (double g = 0.05; g < 1; g += 0.1)
+        ok &= fabs(tex_gain(g, 0.5) - 0.5) < 1e-12 && fabs(tex_gain(g, 0.25) - tex_bias(1 - g, 0.5) / 2) < 1e-12 &&
+              fabs(tex_gain(g, 0.3) + tex_gain(g, 0.7) - 1) < 1e-12;
+    CHECK(ok, "gain_g(0.5) = 0.5, gain_g(0.25) = (1-g)/2, odd symmetry about 0.5");
+    CHECK(tex_bias(0.3, 0) == 0 && tex_bias(0.3, 1) == 1 && tex_gain(0.8, 0) == 0 &&
+              tex_gain(0.8, 1) == 1,
+          "bias and gain fix 0 and 1");
+    CHECK(tex_bias(0.3, 0.2) < 0.2 && tex_bias(0.7, 0.2) > 0.2, "bias above 0.5 raises values");
+    ok = 1;
+    for (double t = -0.5; t <= 1.5; t += 0.01)
+        ok &= tex_remap_value(&id, t) == t;
+    CHECK(ok, "the identity remap changes nothing, outside [0,1] too");
+
+    r = id;
+    r.in0 = 0.2, r.in1 = 0.6, r.out0 = 1, r.out1 = 3;
+    CHECKF(fabs(tex_remap_value(&r, 0.4) - 2) < 1e-12 && tex_remap_value(&r, 0) == 1 &&
+               tex_remap_value(&r, 1) == 3,
+           "levels 0.2,0.6,1,3 (0.4 -> %g)", tex_remap_value(&r, 0.4));
+    r = id;
+    r.quantize = 4;
+    CHECK(tex_remap_value(&r, 0.1) == 0 && tex_remap_value(&r, 0.3) == 1.0 / 3 &&
+              tex_remap_value(&r, 0.99) == 1 && tex_remap_value(&r, 1) == 1,
+          "quantize 4: 0, 1/3, 2/3, 1");
+    r = id;
+    r.gamma = 2;
+    CHECK(fabs(tex_remap_value(&r, 0.25) - 0.5) < 1e-12, "gamma 2: 0.25 -> 0.5");
+    r = id;
+    r.invert = 1, r.clamp = 1, r.lo = 0.2, r.hi = 0.7;
+    CHECK(tex_remap_value(&r, 0.1) == 0.7 && fabs(tex_remap_value(&r, 0.5) - 0.5) < 1e-12,
+          "invert, then clamp to 0.2..0.7");
+    r = id;
+    r.bias = 1;
+    CHECK(tex_remap_check(&r) < 0, "bias 1 is refused");
+    {
+        tex_map *m = tex_map_new(8, 8, 4);
+        for (size_t i = 0; i < tex_map_samples(m); i++)
+            m->px[i] = 0.25f;
+        r = id;
+        r.invert = 1;
+        tex_remap_map(m, &r);
+        CHECK(m->px[0] == 0.75f && m->px[3] == 0.25f, "RGBA: colours remapped, alpha kept");
+        tex_map_free(m);
+    }
+    return unit_done();
+}
