@@ -13,6 +13,7 @@
 #include "cli.h"
 #include "error.h"
 #include "file.h"
+#include "palette.h"
 #include "stream.h"
 
 #ifndef TEX_VERSION
@@ -351,8 +352,28 @@ void tex_cli_write(tex_map *m, const struct tex_common *c)
         tex_die();
 }
 
+/* The colours of subregions 1..n through a palette (its indexed colours, or
+ * n stops spread over its gradient): n RGB triples. */
+static float *region_colors(const char *palette, int n)
+{
+    tex_palette *pal = tex_palette_load(palette);
+    float *c = pal ? malloc(sizeof *c * 3 * (n > 0 ? n : 1)) : NULL;
+
+    if (pal && !c)
+        tex_error("out of memory");
+    for (int k = 0; c && k < n; k++) {
+        float rgba[4];
+        tex_palette_index_n(pal, k + 1, n, rgba);
+        for (int j = 0; j < 3; j++)
+            c[3 * k + j] = rgba[j];
+    }
+    tex_palette_free(pal);
+    return c;
+}
+
 int tex_generate_main(const struct tex_primitive *p, int argc, char **argv)
 {
+    float *colors = NULL;
     char name[64];
     struct tex_common c;
     struct tex_field *f;
@@ -364,18 +385,28 @@ int tex_generate_main(const struct tex_primitive *p, int argc, char **argv)
     if (p->flags & TEX_PRIM_TILE)
         t.common |= TEX_OPT_TILE;
     if (p->flags & TEX_PRIM_REGIONS)
-        t.common |= TEX_OPT_IDS;
+        t.common |= TEX_OPT_IDS | TEX_OPT_PALETTE;
     if (!(f = tex_field_new(p)))
         tex_die();
     tex_cli_parse(&t, argc, argv, &c, f->params);
     f->seed = (uint64_t)c.seed;
     f->tile = c.tile;
     f->ids = c.ids;
-    if (tex_field_init(f, c.w, c.h) < 0 || !(m = tex_field_sample(f)))
+    if (c.palette && c.ids)
+        tex_usage_die("--palette colours the subregions; --ids writes their ids instead: "
+                      "give one of them");
+    if (tex_field_init(f, c.w, c.h) < 0)
+        tex_die();
+    if (c.palette && !(colors = region_colors(c.palette, f->nregions)))
+        tex_die();
+    if (colors)
+        f->colors = (const float(*)[3])colors;
+    if (!(m = tex_field_sample(f)))
         tex_die();
     tex_cli_write(m, &c);
     tex_map_free(m);
     tex_field_free(f);
+    free(colors);
     free(c.cmdline);
     return 0;
 }

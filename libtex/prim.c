@@ -67,14 +67,76 @@ void tex_field_free(struct tex_field *f)
     free(f);
 }
 
+/* A REGIONS field in colour: each pixel averages the colours of the regions
+ * hit by S x S stratified subsamples, in a fixed order (same bytes for any
+ * thread count).  Sums of at most 64 floats are exact in double, so a pixel
+ * wholly inside a region gets exactly that region's colour. */
+static int sample_colors(const struct tex_field *f, tex_map *m)
+{
+    enum { S = TEX_FIELD_SS };
+    const int n = f->w * S;
+    int failed = 0;
+
+#pragma omp parallel
+    {
+        double *u = malloc(sizeof *u * 2 * n), *v = u ? u + n : NULL;
+        double *acc = malloc(sizeof *acc * 3 * f->w);
+        float *id = malloc(sizeof *id * n);
+
+        if (u)
+            for (int i = 0; i < n; i++)
+                u[i] = (i + 0.5) / n;
+#pragma omp for schedule(dynamic, 4)
+        for (int y = 0; y < f->h; y++) {
+            float *out = tex_map_row(m, y);
+            if (!u || !acc || !id) {
+#pragma omp atomic write
+                failed = 1;
+                continue;
+            }
+            for (int i = 0; i < 3 * f->w; i++)
+                acc[i] = 0;
+            for (int sy = 0; sy < S; sy++) {
+                double vv = (y * S + sy + 0.5) / ((double)S * f->h);
+                for (int i = 0; i < n; i++)
+                    v[i] = vv;
+                f->prim->eval2(f, n, u, v, id);
+                for (int i = 0; i < n; i++) {
+                    int k = (int)id[i];
+                    if (k >= 1 && k <= f->nregions)
+                        for (int c = 0; c < 3; c++)
+                            acc[i / S * 3 + c] += f->colors[k - 1][c];
+                }
+            }
+            for (int i = 0; i < 3 * f->w; i++)
+                out[i] = (float)(acc[i] / (S * S));
+        }
+        free(u);
+        free(acc);
+        free(id);
+    }
+    if (failed)
+        return tex_error("out of memory");
+    return 0;
+}
+
 tex_map *tex_field_sample(const struct tex_field *f)
 {
     const struct tex_primitive *p = f->prim;
-    tex_map *m = tex_map_new(f->w, f->h, f->nc);
+    int colored = (p->flags & TEX_PRIM_REGIONS) && !(p->flags & TEX_PRIM_GRID) && !f->ids &&
+                  f->colors && p->eval2;
+    tex_map *m = tex_map_new(f->w, f->h, colored ? 3 : f->nc);
     int failed = 0;
 
     if (!m)
         return NULL;
+    if (colored) {
+        if (sample_colors(f, m) < 0) {
+            tex_map_free(m);
+            return NULL;
+        }
+        return m;
+    }
     if (p->flags & TEX_PRIM_REGIONS && f->ids)
         m->subregions = f->nregions;
     if (p->flags & TEX_PRIM_GRID) {

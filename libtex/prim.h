@@ -57,6 +57,11 @@ struct tex_field {
     int w, h;         /* the grid being sampled (0 when evaluated at points) */
     int nc;           /* floats per value; init may change it (default 1) */
     int nregions;     /* REGIONS: set by init */
+    /* REGIONS: the colour of region k is colors[k-1] (init or a palette sets
+     * it).  When set and ids is 0, the sampler writes an RGB map in which each
+     * pixel is the mean colour of TEX_FIELD_SS x TEX_FIELD_SS stratified
+     * subsamples (antialiasing by coverage); eval2 still writes one id per point. */
+    const float (*colors)[3];
     void *state;      /* the primitive's own, made by init */
 };
 
@@ -93,6 +98,9 @@ int tex_field_set(struct tex_field *f, const char *name, const char *value);
 /* Run init once the parameters are set; w, h may be 0 outside a grid. */
 int tex_field_init(struct tex_field *f, int w, int h);
 void tex_field_free(struct tex_field *f);
+
+/* Subsamples per pixel side when a REGIONS field is sampled in colour. */
+#define TEX_FIELD_SS 4
 
 /* Sample an initialised field on its w x h grid, threads from OpenMP. */
 tex_map *tex_field_sample(const struct tex_field *f);

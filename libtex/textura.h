@@ -12,6 +12,7 @@
  *   cli.h     the tools' shared command-line front end
  *   rng.h     deterministic random numbers
  *   noise.h   the thesis's gradient noise
+ *   geometry.h the geometric primitives and their subregions
  */
 #ifndef TEXTURA_H
 #define TEXTURA_H
@@ -19,6 +20,7 @@
 #include "cli.h"
 #include "error.h"
 #include "file.h"
+#include "geometry.h"
 #include "map.h"
 #include "noise.h"
 #include "param.h"

@@ -1,0 +1,879 @@
+/* geometry.c - the geometric primitives: figures that split texture space into subregions */
+#include <math.h>
+#include <stdlib.h>
+
+#include "error.h"
+#include "geometry.h"
+
+/* Every primitive's parameter struct starts with this head, so that the
+ * shared code reads repetitions and colours through struct geo_head. */
+#define GEO_HEAD                                                                                   \
+    int nu, nv, nw;                                                                                \
+    float color1[4], color2[4], color3[4]
+struct geo_head {
+    GEO_HEAD;
+};
+
+struct geo_state {
+    float col[3][3]; /* region colours as RGB, for f->colors */
+    double k[8];     /* constants the primitive precomputes */
+};
+
+#define ROW_NU(S, d)                                                                               \
+    TEX_INT(S, nu, 0, d, 1, 4096, "N", "repetitions of the pattern across the map (the thesis's nu)")
+#define ROW_NV(S, d) TEX_INT(S, nv, 0, d, 1, 4096, "N", "repetitions of the pattern down the map (nv)")
+#define ROW_NW(S, d) TEX_INT(S, nw, 0, d, 1, 4096, "N", "repetitions along w (solid texture only)")
+#define ROW_COLOR(S, k, def, help) TEX_COLOR(S, color##k, 0, def, help)
+
+/* Position inside a repetition cell: [0,1). */
+static inline double cell(double t, int n)
+{
+    double s = t * n;
+    return s - floor(s);
+}
+
+static int geo_init(struct tex_field *f, int nregions)
+{
+    const struct geo_head *h = f->params;
+    const float *c[3] = {h->color1, h->color2, h->color3};
+    struct geo_state *s = calloc(1, sizeof *s);
+
+    if (!s)
+        return tex_error("out of memory");
+    for (int k = 0; k < nregions && k < 3; k++)
+        for (int j = 0; j < 3; j++)
+            s->col[k][j] = c[k][j];
+    f->state = s;
+    f->nregions = nregions;
+    f->colors = (const float(*)[3])s->col;
+    f->nc = 1;
+    return 0;
+}
+
+static void geo_fini(struct tex_field *f)
+{
+    free(f->state);
+    f->state = NULL;
+}
+
+int tex_geometry_region(const struct tex_field *f, double u, double v)
+{
+    float id;
+    f->prim->eval2(f, 1, &u, &v, &id);
+    return (int)id;
+}
+
+/* eval2 for a primitive NAME with NAME_id(p, k, x, y): x right and y up in
+ * the cell, origin at its lower-left corner (the thesis's corner convention;
+ * the centred figures subtract 0.5). */
+#define GEO_EVAL2(name, S)                                                                         \
+    static void name##_eval2(const struct tex_field *f, int n, const double *u, const double *v,  \
+                             float *out)                                                           \
+    {                                                                                              \
+        const S *p = f->params;                                                                    \
+        const double *k = ((const struct geo_state *)f->state)->k;                                \
+        for (int i = 0; i < n; i++)                                                                \
+            out[i] = (float)name##_id(p, k, cell(u[i], p->nu), 1.0 - cell(v[i], p->nv));           \
+    }
+
+/* Usage errors for parameters that depend on each other. */
+static int not_above(const char *a, double va, const char *b, double vb)
+{
+    if (va > vb)
+        return tex_usage_error("--%s (%g) must not exceed --%s (%g)", a, va, b, vb);
+    return 0;
+}
+
+/* ---- circle: 1 outside, 2 inside ---- */
+
+struct circle_params {
+    GEO_HEAD;
+    double radius;
+};
+
+static const struct tex_param circle_rows[] = {
+    TEX_REAL(struct circle_params, radius, 'r', 0.4, 0, 1, "R",
+             "radius of the circle, in cells (0.5 touches the cell's sides)"),
+    ROW_NU(struct circle_params, 1),
+    ROW_NV(struct circle_params, 1),
+    ROW_NW(struct circle_params, 1),
+    ROW_COLOR(struct circle_params, 1, "#f4efe2", "colour of region 1, outside the circle"),
+    ROW_COLOR(struct circle_params, 2, "#b8322a", "colour of region 2, inside the circle"),
+    {0}};
+
+static int circle_init(struct tex_field *f)
+{
+    const struct circle_params *p = f->params;
+    if (geo_init(f, 2) < 0)
+        return -1;
+    ((struct geo_state *)f->state)->k[0] = p->radius * p->radius;
+    return 0;
+}
+
+static inline int circle_id(const struct circle_params *p, const double *k, double x, double y)
+{
+    (void)p;
+    x -= 0.5;
+    y -= 0.5;
+    return x * x + y * y <= k[0] ? 2 : 1;
+}
+GEO_EVAL2(circle, struct circle_params)
+
+static void circle_eval3(const struct tex_field *f, int n, const double *u, const double *v,
+                         const double *w, float *out)
+{
+    const struct circle_params *p = f->params;
+    const double *k = ((const struct geo_state *)f->state)->k;
+    for (int i = 0; i < n; i++) {
+        double x = cell(u[i], p->nu) - 0.5, y = cell(v[i], p->nv) - 0.5, z = cell(w[i], p->nw) - 0.5;
+        out[i] = x * x + y * y + z * z <= k[0] ? 2.0f : 1.0f;
+    }
+}
+
+const struct tex_primitive tex_prim_circle = {
+    .name = "circle",
+    .summary = "a circle (a ball as a solid texture): 2 subregions",
+    .flags = TEX_PRIM_2D | TEX_PRIM_3D | TEX_PRIM_REGIONS | TEX_PRIM_TILE,
+    .params_size = sizeof(struct circle_params),
+    .params = circle_rows,
+    .init = circle_init,
+    .fini = geo_fini,
+    .eval2 = circle_eval2,
+    .eval3 = circle_eval3,
+};
+
+/* ---- ring: 1 outside, 2 the ring, 3 inside ---- */
+
+struct ring_params {
+    GEO_HEAD;
+    double radius, width;
+};
+
+static const struct tex_param ring_rows[] = {
+    TEX_REAL(struct ring_params, radius, 'r', 0.4, 0, 1, "R",
+             "radius of the outer circle, in cells (the thesis's r)"),
+    TEX_REAL(struct ring_params, width, 'd', 0.12, 0, 1, "D",
+             "width of the ring (the thesis's d), at most the radius"),
+    ROW_NU(struct ring_params, 1),
+    ROW_NV(struct ring_params, 1),
+    ROW_NW(struct ring_params, 1),
+    ROW_COLOR(struct ring_params, 1, "#f4efe2", "colour of region 1, outside the ring"),
+    ROW_COLOR(struct ring_params, 2, "#2b5f8a", "colour of region 2, the ring"),
+    ROW_COLOR(struct ring_params, 3, "#e0a526", "colour of region 3, inside the ring"),
+    {0}};
+
+static int ring_init(struct tex_field *f)
+{
+    const struct ring_params *p = f->params;
+    double *k;
+    if (not_above("width", p->width, "radius", p->radius) < 0 || geo_init(f, 3) < 0)
+        return -1;
+    k = ((struct geo_state *)f->state)->k;
+    k[0] = p->radius * p->radius;
+    /* d = r leaves no inside: not even the centre point. */
+    k[1] = p->width < p->radius ? (p->radius - p->width) * (p->radius - p->width) : -1;
+    return 0;
+}
+
+static inline int ring_of(const double *k, double d2)
+{
+    return d2 > k[0] ? 1 : d2 > k[1] ? 2 : 3;
+}
+
+static inline int ring_id(const struct ring_params *p, const double *k, double x, double y)
+{
+    (void)p;
+    x -= 0.5;
+    y -= 0.5;
+    return ring_of(k, x * x + y * y);
+}
+GEO_EVAL2(ring, struct ring_params)
+
+static void ring_eval3(const struct tex_field *f, int n, const double *u, const double *v,
+                       const double *w, float *out)
+{
+    const struct ring_params *p = f->params;
+    const double *k = ((const struct geo_state *)f->state)->k;
+    for (int i = 0; i < n; i++) {
+        double x = cell(u[i], p->nu) - 0.5, y = cell(v[i], p->nv) - 0.5, z = cell(w[i], p->nw) - 0.5;
+        out[i] = (float)ring_of(k, x * x + y * y + z * z);
+    }
+}
+
+const struct tex_primitive tex_prim_ring = {
+    .name = "ring",
+    .summary = "two concentric circles (spheres as a solid texture): 3 subregions",
+    .flags = TEX_PRIM_2D | TEX_PRIM_3D | TEX_PRIM_REGIONS | TEX_PRIM_TILE,
+    .params_size = sizeof(struct ring_params),
+    .params = ring_rows,
+    .init = ring_init,
+    .fini = geo_fini,
+    .eval2 = ring_eval2,
+    .eval3 = ring_eval3,
+};
+
+/* ---- ellipse: 1 outside, 2 the band, 3 inside ---- */
+
+struct ellipse_params {
+    GEO_HEAD;
+    double major, minor, width, angle;
+};
+
+static const struct tex_param ellipse_rows[] = {
+    TEX_REAL(struct ellipse_params, major, 'M', 0.45, 0, 1, "M",
+             "semi-major axis of the outer ellipse, in cells (the thesis's M)"),
+    TEX_REAL(struct ellipse_params, minor, 'm', 0.3, 0, 1, "M",
+             "semi-minor axis of the outer ellipse (the thesis's m), at most M"),
+    TEX_REAL(struct ellipse_params, width, 'd', 0.08, 0, 1, "D",
+             "width of the band (the thesis's d), at most m: the inner ellipse has semi-axes "
+             "M-d, m-d"),
+    TEX_REAL(struct ellipse_params, angle, 'a', 0, -360, 360, "DEG",
+             "angle of the major axis with the horizontal, in degrees, counterclockwise"),
+    ROW_NU(struct ellipse_params, 1),
+    ROW_NV(struct ellipse_params, 1),
+    ROW_COLOR(struct ellipse_params, 1, "#f4efe2", "colour of region 1, outside the ellipse"),
+    ROW_COLOR(struct ellipse_params, 2, "#2b5f8a", "colour of region 2, the band"),
+    ROW_COLOR(struct ellipse_params, 3, "#e0a526", "colour of region 3, inside the band"),
+    {0}};
+
+static int ellipse_init(struct tex_field *f)
+{
+    const struct ellipse_params *p = f->params;
+    double a = p->angle * M_PI / 180, c = cos(a), s = sin(a), *k;
+
+    if (not_above("minor", p->minor, "major", p->major) < 0 ||
+        not_above("width", p->width, "minor", p->minor) < 0)
+        return -1;
+    if (p->minor <= 0)
+        return tex_usage_error("--minor must be above 0 (got %g)", p->minor);
+    if (f->tile && fmod(p->angle, 90) != 0) {
+        /* A tilted ellipse is seamless only if it stays inside its cell. */
+        double ex = sqrt(pow(p->major * c, 2) + pow(p->minor * s, 2));
+        double ey = sqrt(pow(p->major * s, 2) + pow(p->minor * c, 2));
+        if (ex > 0.5 || ey > 0.5)
+            return tex_usage_error("--tile needs --angle a multiple of 90 or the ellipse inside "
+                                   "its cell (it reaches %g x %g of 0.5 x 0.5)",
+                                   ex, ey);
+    }
+    if (geo_init(f, 3) < 0)
+        return -1;
+    k = ((struct geo_state *)f->state)->k;
+    k[0] = c;
+    k[1] = s;
+    k[2] = 1 / (p->major * p->major);
+    k[3] = 1 / (p->minor * p->minor);
+    k[4] = p->width < p->minor ? 1 / ((p->major - p->width) * (p->major - p->width)) : 0;
+    k[5] = p->width < p->minor ? 1 / ((p->minor - p->width) * (p->minor - p->width)) : 0;
+    return 0;
+}
+
+static inline int ellipse_id(const struct ellipse_params *p, const double *k, double x, double y)
+{
+    double xr, yr;
+    (void)p;
+    x -= 0.5;
+    y -= 0.5;
+    xr = x * k[0] + y * k[1];
+    yr = y * k[0] - x * k[1];
+    xr *= xr;
+    yr *= yr;
+    if (xr * k[2] + yr * k[3] > 1)
+        return 1;
+    return k[5] > 0 && xr * k[4] + yr * k[5] <= 1 ? 3 : 2;
+}
+GEO_EVAL2(ellipse, struct ellipse_params)
+
+const struct tex_primitive tex_prim_ellipse = {
+    .name = "ellipse",
+    .summary = "two concentric ellipses: 3 subregions",
+    .flags = TEX_PRIM_2D | TEX_PRIM_REGIONS | TEX_PRIM_TILE,
+    .params_size = sizeof(struct ellipse_params),
+    .params = ellipse_rows,
+    .init = ellipse_init,
+    .fini = geo_fini,
+    .eval2 = ellipse_eval2,
+};
+
+/* ---- flower: the rose r = d sin(n theta); 1 ground, 2 the flower ---- */
+
+struct flower_params {
+    GEO_HEAD;
+    int petals;
+    double length;
+};
+
+static const struct tex_param flower_rows[] = {
+    TEX_INT(struct flower_params, petals, 'n', 5, 1, 1000, "N",
+            "the rose's n: n petals for odd n, 2n for even n"),
+    TEX_REAL(struct flower_params, length, 'd', 0.45, 0, 1, "D",
+             "length of the petals, in cells (the thesis's d, the rose's a)"),
+    ROW_NU(struct flower_params, 1),
+    ROW_NV(struct flower_params, 1),
+    ROW_COLOR(struct flower_params, 1, "#1f4d2b", "colour of region 1, the ground"),
+    ROW_COLOR(struct flower_params, 2, "#f2c12e", "colour of region 2, the flower"),
+    {0}};
+
+static int flower_init(struct tex_field *f)
+{
+    const struct flower_params *p = f->params;
+    /* Odd roses are mirror symmetric left-right only: seamless while inside the cell. */
+    if (f->tile && p->petals % 2 && p->length > 0.5)
+        return tex_usage_error("--tile with an odd --petals needs --length at most 0.5 (got %g)",
+                               p->length);
+    return geo_init(f, 2);
+}
+
+/* A point at distance rho and angle theta from the centre lies on the rose
+ * r = d sin(n theta) when rho <= d sin(n theta) or, through the negative half
+ * of the curve drawn at theta + pi, rho <= -d sin(n theta + n pi).  For odd n
+ * both say rho <= d sin(n theta) (n petals); for even n together they say
+ * rho <= d |sin(n theta)| (2n petals). */
+static inline int flower_id(const struct flower_params *p, const double *k, double x, double y)
+{
+    double s;
+    (void)k;
+    x -= 0.5;
+    y -= 0.5;
+    s = sin(p->petals * atan2(y, x));
+    if (p->petals % 2 == 0)
+        s = fabs(s);
+    return sqrt(x * x + y * y) <= p->length * s ? 2 : 1;
+}
+GEO_EVAL2(flower, struct flower_params)
+
+const struct tex_primitive tex_prim_flower = {
+    .name = "flower",
+    .summary = "a flower, the rose curve r = d sin(n theta): 2 subregions",
+    .flags = TEX_PRIM_2D | TEX_PRIM_REGIONS | TEX_PRIM_TILE,
+    .params_size = sizeof(struct flower_params),
+    .params = flower_rows,
+    .init = flower_init,
+    .fini = geo_fini,
+    .eval2 = flower_eval2,
+};
+
+/* ---- checker: 1 the top-left square's kind, 2 the other ---- */
+
+struct checker_params {
+    GEO_HEAD;
+};
+
+static const struct tex_param checker_rows[] = {
+    ROW_NU(struct checker_params, 4),
+    ROW_NV(struct checker_params, 4),
+    ROW_NW(struct checker_params, 4),
+    ROW_COLOR(struct checker_params, 1, "#f0e9dc", "colour of region 1, the top-left square's kind"),
+    ROW_COLOR(struct checker_params, 2, "#262626", "colour of region 2, the other squares"),
+    {0}};
+
+static int checker_init(struct tex_field *f)
+{
+    return geo_init(f, 2);
+}
+
+/* The cell is a 2 x 2 board: a nu x nv pattern is a 2nu x 2nv chessboard. */
+static inline int checker_id(const struct checker_params *p, const double *k, double x, double y)
+{
+    (void)p;
+    (void)k;
+    return 1 + (((x >= 0.5) + (y <= 0.5)) & 1);
+}
+GEO_EVAL2(checker, struct checker_params)
+
+static void checker_eval3(const struct tex_field *f, int n, const double *u, const double *v,
+                          const double *w, float *out)
+{
+    const struct checker_params *p = f->params;
+    for (int i = 0; i < n; i++)
+        out[i] = (float)(1 + (((cell(u[i], p->nu) >= 0.5) + (cell(v[i], p->nv) >= 0.5) +
+                               (cell(w[i], p->nw) >= 0.5)) & 1));
+}
+
+const struct tex_primitive tex_prim_checker = {
+    .name = "checker",
+    .summary = "a chessboard (a 3D checker as a solid texture): 2 subregions",
+    .flags = TEX_PRIM_2D | TEX_PRIM_3D | TEX_PRIM_REGIONS | TEX_PRIM_TILE,
+    .params_size = sizeof(struct checker_params),
+    .params = checker_rows,
+    .init = checker_init,
+    .fini = geo_fini,
+    .eval2 = checker_eval2,
+    .eval3 = checker_eval3,
+};
+
+/* ---- stripe: 1 between the stripes, 2 the stripes ---- */
+
+struct stripe_params {
+    GEO_HEAD;
+    double angle, width, spacing;
+};
+
+static const struct tex_param stripe_rows[] = {
+    TEX_REAL(struct stripe_params, angle, 'a', 45, -360, 360, "DEG",
+             "angle of the stripes with the horizontal, in degrees (the thesis's a)"),
+    TEX_REAL(struct stripe_params, width, 'l', 0.1, 0, 1, "L",
+             "width of a stripe across it, in cells (the thesis's l)"),
+    TEX_REAL(struct stripe_params, spacing, 'd', 0.1, 0, 1, "D",
+             "distance between neighbouring stripes, edge to edge (the thesis's d)"),
+    ROW_NU(struct stripe_params, 1),
+    ROW_NV(struct stripe_params, 1),
+    ROW_COLOR(struct stripe_params, 1, "#f4efe2", "colour of region 1, between the stripes"),
+    ROW_COLOR(struct stripe_params, 2, "#2b5f8a", "colour of region 2, the stripes"),
+    {0}};
+
+static int stripe_init(struct tex_field *f)
+{
+    const struct stripe_params *p = f->params;
+    double a = p->angle * M_PI / 180, *k;
+
+    if (p->width <= 0)
+        return tex_usage_error("--width must be above 0 (got %g)", p->width);
+    if (geo_init(f, 2) < 0)
+        return -1;
+    k = ((struct geo_state *)f->state)->k;
+    k[0] = sin(a);
+    k[1] = cos(a);
+    k[2] = p->width + p->spacing;
+    return 0;
+}
+
+/* t runs across the stripes; one stripe is centred on the cell's centre. */
+static inline int stripe_id(const struct stripe_params *p, const double *k, double x, double y)
+{
+    double t = (x - 0.5) * k[0] - (y - 0.5) * k[1] + 0.5 * p->width, q = t / k[2];
+    return (q - floor(q)) * k[2] < p->width ? 2 : 1;
+}
+GEO_EVAL2(stripe, struct stripe_params)
+
+const struct tex_primitive tex_prim_stripe = {
+    .name = "stripe",
+    .summary = "parallel stripes at an angle: 2 subregions",
+    .flags = TEX_PRIM_2D | TEX_PRIM_REGIONS,
+    .params_size = sizeof(struct stripe_params),
+    .params = stripe_rows,
+    .init = stripe_init,
+    .fini = geo_fini,
+    .eval2 = stripe_eval2,
+};
+
+/* ---- cycloid: 1 above the outer arch, 2 between the arches, 3 inside ---- */
+
+struct cycloid_params {
+    GEO_HEAD;
+    double radius, width;
+};
+
+static const struct tex_param cycloid_rows[] = {
+    TEX_REAL(struct cycloid_params, radius, 'r', 100, 0, 100, "PCT",
+             "size of the outer arch in percent (the thesis's r): 100 spans the cell's width"),
+    TEX_REAL(struct cycloid_params, width, 'd', 0.08, 0, 1, "D",
+             "distance from the outer to the inner arch at their tops, in cells (the thesis's d)"),
+    ROW_NU(struct cycloid_params, 1),
+    ROW_NV(struct cycloid_params, 1),
+    ROW_COLOR(struct cycloid_params, 1, "#f4efe2", "colour of region 1, above the outer arch"),
+    ROW_COLOR(struct cycloid_params, 2, "#2b5f8a", "colour of region 2, between the arches"),
+    ROW_COLOR(struct cycloid_params, 3, "#e0a526", "colour of region 3, inside the inner arch"),
+    {0}};
+
+static int cycloid_init(struct tex_field *f)
+{
+    const struct cycloid_params *p = f->params;
+    double a = p->radius / 100 / (2 * M_PI), *k;
+
+    if (p->width > 2 * a)
+        return tex_usage_error("--width (%g) must not exceed the arch's height %g (--radius %g)",
+                               p->width, 2 * a, p->radius);
+    if (geo_init(f, 3) < 0)
+        return -1;
+    k = ((struct geo_state *)f->state)->k;
+    k[0] = a;
+    k[1] = a - p->width / 2;
+    return 0;
+}
+
+/* Under the arch of the cycloid x = a(t - sin t), y = a(1 - cos t), its base
+ * on the cell's bottom side, centred: at height y the left branch is at
+ * a acos((a - y)/a) - sqrt(2ay - y^2) from the arch's start (Appendix A). */
+static inline int under_arch(double a, double x, double y)
+{
+    double c, xl;
+    if (a <= 0 || y > 2 * a)
+        return 0;
+    c = (a - y) / a;
+    xl = a * acos(c < -1 ? -1 : c > 1 ? 1 : c) - sqrt(fmax(0, 2 * a * y - y * y));
+    return fabs(x - 0.5) <= M_PI * a - xl;
+}
+
+static inline int cycloid_id(const struct cycloid_params *p, const double *k, double x, double y)
+{
+    (void)p;
+    if (!under_arch(k[0], x, y))
+        return 1;
+    return under_arch(k[1], x, y) ? 3 : 2;
+}
+GEO_EVAL2(cycloid, struct cycloid_params)
+
+const struct tex_primitive tex_prim_cycloid = {
+    .name = "cycloid",
+    .summary = "two nested cycloid arches: 3 subregions",
+    .flags = TEX_PRIM_2D | TEX_PRIM_REGIONS,
+    .params_size = sizeof(struct cycloid_params),
+    .params = cycloid_rows,
+    .init = cycloid_init,
+    .fini = geo_fini,
+    .eval2 = cycloid_eval2,
+};
+
+/* ---- hypocycloid: 1 outside, 2 between the astroids, 3 inside ---- */
+
+struct hypocycloid_params {
+    GEO_HEAD;
+    double radius, width;
+};
+
+static const struct tex_param hypocycloid_rows[] = {
+    TEX_REAL(struct hypocycloid_params, radius, 'r', 0.45, 0, 1, "R",
+             "distance from a cusp to the centre of the outer astroid, in cells (the thesis's r)"),
+    TEX_REAL(struct hypocycloid_params, width, 'd', 0.1, 0, 1, "D",
+             "distance between the outer and the inner astroid (the thesis's d), at most r"),
+    ROW_NU(struct hypocycloid_params, 1),
+    ROW_NV(struct hypocycloid_params, 1),
+    ROW_COLOR(struct hypocycloid_params, 1, "#f4efe2", "colour of region 1, outside"),
+    ROW_COLOR(struct hypocycloid_params, 2, "#2b5f8a", "colour of region 2, between the astroids"),
+    ROW_COLOR(struct hypocycloid_params, 3, "#e0a526", "colour of region 3, inside"),
+    {0}};
+
+static int hypocycloid_init(struct tex_field *f)
+{
+    const struct hypocycloid_params *p = f->params;
+    double *k;
+    if (not_above("width", p->width, "radius", p->radius) < 0 || geo_init(f, 3) < 0)
+        return -1;
+    k = ((struct geo_state *)f->state)->k;
+    k[0] = cbrt(p->radius * p->radius);
+    k[1] = p->width < p->radius ? cbrt((p->radius - p->width) * (p->radius - p->width)) : -1;
+    return 0;
+}
+
+/* The four-cusped hypocycloid (astroid) x^(2/3) + y^(2/3) = a^(2/3). */
+static inline int hypocycloid_id(const struct hypocycloid_params *p, const double *k, double x,
+                                 double y)
+{
+    double q;
+    (void)p;
+    x -= 0.5;
+    y -= 0.5;
+    q = cbrt(x * x) + cbrt(y * y);
+    return q > k[0] ? 1 : q > k[1] ? 2 : 3;
+}
+GEO_EVAL2(hypocycloid, struct hypocycloid_params)
+
+const struct tex_primitive tex_prim_hypocycloid = {
+    .name = "hypocycloid",
+    .summary = "two nested four-cusped hypocycloids (astroids): 3 subregions",
+    .flags = TEX_PRIM_2D | TEX_PRIM_REGIONS | TEX_PRIM_TILE,
+    .params_size = sizeof(struct hypocycloid_params),
+    .params = hypocycloid_rows,
+    .init = hypocycloid_init,
+    .fini = geo_fini,
+    .eval2 = hypocycloid_eval2,
+};
+
+/* ---- four_rings: 1 ground, 2 the rings ---- */
+
+struct four_rings_params {
+    GEO_HEAD;
+    double radius, width;
+};
+
+static const struct tex_param four_rings_rows[] = {
+    TEX_REAL(struct four_rings_params, radius, 'r', 0.2, 0, 0.5, "R",
+             "outer radius of each ring, in cells (the thesis's r); above 0.25 they interlace"),
+    TEX_REAL(struct four_rings_params, width, 'd', 0.06, 0, 0.5, "D",
+             "width of the rings (the thesis's d), at most r"),
+    ROW_NU(struct four_rings_params, 1),
+    ROW_NV(struct four_rings_params, 1),
+    ROW_COLOR(struct four_rings_params, 1, "#f4efe2", "colour of region 1, the ground"),
+    ROW_COLOR(struct four_rings_params, 2, "#2b5f8a", "colour of region 2, the rings"),
+    {0}};
+
+static int four_rings_init(struct tex_field *f)
+{
+    const struct four_rings_params *p = f->params;
+    double *k;
+    if (not_above("width", p->width, "radius", p->radius) < 0 || geo_init(f, 2) < 0)
+        return -1;
+    k = ((struct geo_state *)f->state)->k;
+    k[0] = p->radius * p->radius;
+    k[1] = p->width < p->radius ? (p->radius - p->width) * (p->radius - p->width) : -1;
+    return 0;
+}
+
+/* The rings of t_ring, centred in the cell's four quarters. */
+static inline int four_rings_id(const struct four_rings_params *p, const double *k, double x,
+                                double y)
+{
+    (void)p;
+    for (int j = 0; j < 4; j++) {
+        double dx = x - (j & 1 ? 0.75 : 0.25), dy = y - (j & 2 ? 0.75 : 0.25);
+        double d2 = dx * dx + dy * dy;
+        if (d2 <= k[0] && d2 > k[1])
+            return 2;
+    }
+    return 1;
+}
+GEO_EVAL2(four_rings, struct four_rings_params)
+
+const struct tex_primitive tex_prim_four_rings = {
+    .name = "four_rings",
+    .summary = "four rings, one in each quarter of the cell: 2 subregions",
+    .flags = TEX_PRIM_2D | TEX_PRIM_REGIONS | TEX_PRIM_TILE,
+    .params_size = sizeof(struct four_rings_params),
+    .params = four_rings_rows,
+    .init = four_rings_init,
+    .fini = geo_fini,
+    .eval2 = four_rings_eval2,
+};
+
+/* ---- polygon and star: 1 outside, 2 inside ---- */
+
+struct polygon_params {
+    GEO_HEAD;
+    int sides;
+    double radius, inner, angle;
+};
+
+static const struct tex_param polygon_rows[] = {
+    TEX_INT(struct polygon_params, sides, 'n', 6, 3, 1000, "N", "number of sides"),
+    TEX_REAL(struct polygon_params, radius, 'r', 0.4, 0, 0.5, "R",
+             "distance from a vertex to the centre, in cells"),
+    TEX_REAL(struct polygon_params, angle, 'a', 90, -360, 360, "DEG",
+             "direction of the first vertex, in degrees counterclockwise from the right"),
+    ROW_NU(struct polygon_params, 1),
+    ROW_NV(struct polygon_params, 1),
+    ROW_COLOR(struct polygon_params, 1, "#f4efe2", "colour of region 1, outside"),
+    ROW_COLOR(struct polygon_params, 2, "#2b5f8a", "colour of region 2, inside"),
+    {0}};
+
+static const struct tex_param star_rows[] = {
+    TEX_INT(struct polygon_params, sides, 'n', 5, 2, 1000, "N", "number of points"),
+    TEX_REAL(struct polygon_params, radius, 'r', 0.45, 0, 0.5, "R",
+             "distance from a point's tip to the centre, in cells"),
+    TEX_REAL(struct polygon_params, inner, 'i', 0.382, 0, 1, "K",
+             "radius of the inner vertices as a fraction of --radius (0.382: a pentagram)"),
+    TEX_REAL(struct polygon_params, angle, 'a', 90, -360, 360, "DEG",
+             "direction of the first point, in degrees counterclockwise from the right"),
+    ROW_NU(struct polygon_params, 1),
+    ROW_NV(struct polygon_params, 1),
+    ROW_COLOR(struct polygon_params, 1, "#1d2a44", "colour of region 1, outside"),
+    ROW_COLOR(struct polygon_params, 2, "#f2c12e", "colour of region 2, the star"),
+    {0}};
+
+/* k: the sector angle 2 pi/n, the first vertex's angle, the outer vertex
+ * A = (r, 0) and the inner one B, both in the sector's own frame. */
+static int polygon_setup(struct tex_field *f, double inner_radius)
+{
+    const struct polygon_params *p = f->params;
+    double *k;
+    if (geo_init(f, 2) < 0)
+        return -1;
+    k = ((struct geo_state *)f->state)->k;
+    k[0] = 2 * M_PI / p->sides;
+    k[1] = p->angle * M_PI / 180;
+    k[2] = p->radius;
+    k[3] = inner_radius * cos(M_PI / p->sides);
+    k[4] = inner_radius * sin(M_PI / p->sides);
+    return 0;
+}
+
+static int polygon_init(struct tex_field *f)
+{
+    const struct polygon_params *p = f->params;
+    return polygon_setup(f, p->radius * cos(M_PI / p->sides));
+}
+
+static int star_init(struct tex_field *f)
+{
+    const struct polygon_params *p = f->params;
+    return polygon_setup(f, p->radius * p->inner);
+}
+
+/* Fold the point into half a sector (the figure is symmetric about each
+ * vertex's ray) and test it against the edge from vertex A to vertex B. */
+static inline int polygon_id(const struct polygon_params *p, const double *k, double x, double y)
+{
+    double rho, t;
+    (void)p;
+    x -= 0.5;
+    y -= 0.5;
+    rho = sqrt(x * x + y * y);
+    t = atan2(y, x) - k[1];
+    t -= k[0] * floor(t / k[0]);
+    if (t > k[0] / 2)
+        t = k[0] - t;
+    x = rho * cos(t) - k[2];
+    y = rho * sin(t);
+    return (k[3] - k[2]) * y - k[4] * x >= 0 ? 2 : 1;
+}
+GEO_EVAL2(polygon, struct polygon_params)
+
+const struct tex_primitive tex_prim_polygon = {
+    .name = "polygon",
+    .summary = "a regular polygon: 2 subregions",
+    .flags = TEX_PRIM_2D | TEX_PRIM_REGIONS | TEX_PRIM_TILE,
+    .params_size = sizeof(struct polygon_params),
+    .params = polygon_rows,
+    .init = polygon_init,
+    .fini = geo_fini,
+    .eval2 = polygon_eval2,
+};
+
+const struct tex_primitive tex_prim_star = {
+    .name = "star",
+    .summary = "a star with n points: 2 subregions",
+    .flags = TEX_PRIM_2D | TEX_PRIM_REGIONS | TEX_PRIM_TILE,
+    .params_size = sizeof(struct polygon_params),
+    .params = star_rows,
+    .init = star_init,
+    .fini = geo_fini,
+    .eval2 = polygon_eval2,
+};
+
+/* ---- grid: 1 the cells, 2 the lines ---- */
+
+struct grid_params {
+    GEO_HEAD;
+    double width;
+};
+
+static const struct tex_param grid_rows[] = {
+    TEX_REAL(struct grid_params, width, 'd', 0.1, 0, 1, "D",
+             "width of the lines as a fraction of a cell"),
+    ROW_NU(struct grid_params, 8),
+    ROW_NV(struct grid_params, 8),
+    ROW_COLOR(struct grid_params, 1, "#f4efe2", "colour of region 1, the cells"),
+    ROW_COLOR(struct grid_params, 2, "#3a3a3a", "colour of region 2, the lines"),
+    {0}};
+
+static int grid_init(struct tex_field *f)
+{
+    return geo_init(f, 2);
+}
+
+/* Lines run along the cells' sides, half of each in either neighbour. */
+static inline int grid_id(const struct grid_params *p, const double *k, double x, double y)
+{
+    double h = p->width / 2;
+    (void)k;
+    return x < h || x >= 1 - h || y <= h || y > 1 - h ? 2 : 1;
+}
+GEO_EVAL2(grid, struct grid_params)
+
+const struct tex_primitive tex_prim_grid = {
+    .name = "grid",
+    .summary = "grid lines: 2 subregions",
+    .flags = TEX_PRIM_2D | TEX_PRIM_REGIONS | TEX_PRIM_TILE,
+    .params_size = sizeof(struct grid_params),
+    .params = grid_rows,
+    .init = grid_init,
+    .fini = geo_fini,
+    .eval2 = grid_eval2,
+};
+
+/* ---- brick: 1 the bricks, 2 the mortar ---- */
+
+struct brick_params {
+    GEO_HEAD;
+    double width;
+};
+
+static const struct tex_param brick_rows[] = {
+    TEX_REAL(struct brick_params, width, 'd', 0.12, 0, 1, "D",
+             "width of the mortar joints as a fraction of a course's height"),
+    ROW_NU(struct brick_params, 4),
+    ROW_NV(struct brick_params, 4),
+    ROW_COLOR(struct brick_params, 1, "#a8452e", "colour of region 1, the bricks"),
+    ROW_COLOR(struct brick_params, 2, "#d9d2c3", "colour of region 2, the mortar"),
+    {0}};
+
+/* A cell is one brick wide and two courses high, the lower course shifted by
+ * half a brick.  Joints keep one width on the map: k[0] is half the bed
+ * joint in cell heights, k[1] half the head joint in cell widths. */
+static int brick_init(struct tex_field *f)
+{
+    const struct brick_params *p = f->params;
+    double *k;
+    if (geo_init(f, 2) < 0)
+        return -1;
+    k = ((struct geo_state *)f->state)->k;
+    k[0] = p->width / 4;
+    k[1] = p->width / 4 * p->nu / p->nv * (f->w > 0 && f->h > 0 ? (double)f->h / f->w : 1);
+    return 0;
+}
+
+static inline int brick_id(const struct brick_params *p, const double *k, double x, double y)
+{
+    (void)p;
+    if (fabs(y - 0.5) < k[0] || y < k[0] || y > 1 - k[0])
+        return 2;
+    if (y > 0.5)
+        return x < k[1] || x > 1 - k[1] ? 2 : 1;
+    return fabs(x - 0.5) < k[1] ? 2 : 1;
+}
+GEO_EVAL2(brick, struct brick_params)
+
+const struct tex_primitive tex_prim_brick = {
+    .name = "brick",
+    .summary = "a brick wall in running bond: 2 subregions",
+    .flags = TEX_PRIM_2D | TEX_PRIM_REGIONS | TEX_PRIM_TILE,
+    .params_size = sizeof(struct brick_params),
+    .params = brick_rows,
+    .init = brick_init,
+    .fini = geo_fini,
+    .eval2 = brick_eval2,
+};
+
+/* ---- dots: 1 the ground, 2 the dots ---- */
+
+struct dots_params {
+    GEO_HEAD;
+    double radius;
+};
+
+static const struct tex_param dots_rows[] = {
+    TEX_REAL(struct dots_params, radius, 'r', 0.2, 0, 0.5, "R",
+             "radius of the dots, in cells (they touch at 0.354)"),
+    ROW_NU(struct dots_params, 4),
+    ROW_NV(struct dots_params, 4),
+    ROW_COLOR(struct dots_params, 1, "#2b5f8a", "colour of region 1, the ground"),
+    ROW_COLOR(struct dots_params, 2, "#f4efe2", "colour of region 2, the dots"),
+    {0}};
+
+static int dots_init(struct tex_field *f)
+{
+    const struct dots_params *p = f->params;
+    if (geo_init(f, 2) < 0)
+        return -1;
+    ((struct geo_state *)f->state)->k[0] = p->radius * p->radius;
+    return 0;
+}
+
+/* Staggered polka dots: one at the cell's centre, a quarter at each corner. */
+static inline int dots_id(const struct dots_params *p, const double *k, double x, double y)
+{
+    double cx = x - 0.5, cy = y - 0.5, ex = fmin(x, 1 - x), ey = fmin(y, 1 - y);
+    (void)p;
+    return cx * cx + cy * cy <= k[0] || ex * ex + ey * ey <= k[0] ? 2 : 1;
+}
+GEO_EVAL2(dots, struct dots_params)
+
+const struct tex_primitive tex_prim_dots = {
+    .name = "dots",
+    .summary = "staggered polka dots: 2 subregions",
+    .flags = TEX_PRIM_2D | TEX_PRIM_REGIONS | TEX_PRIM_TILE,
+    .params_size = sizeof(struct dots_params),
+    .params = dots_rows,
+    .init = dots_init,
+    .fini = geo_fini,
+    .eval2 = dots_eval2,
+};
