@@ -11,6 +11,11 @@
 #include "prim.h"
 #include "rng.h"
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#define HAVE_AVX2_KERNEL 1
+#include <immintrin.h>
+#endif
+
 /* ---- point sets ---- */
 
 static int points_alloc(tex_points *ps, int dim, long n)
@@ -315,6 +320,12 @@ struct tex_cellular {
     int g;
     long *start, *gid;
     double *gx, *gia, gfac;
+    /* 2D Euclidean without radii: per bucket, every point that can be one of
+     * the two nearest to a query inside it */
+    long *cstart;
+    double *cx, *cy;
+    long *cid;
+    int avx2; /* the CPU runs the AVX2 kernel */
     /* kd-tree over the points (and their periodic images within margin) */
     flann_index_t index;
     double *rep, margin, kfac;
@@ -432,10 +443,16 @@ static inline int cell_of(double x, int g)
     return t >= g ? g - 1 : (int)t;
 }
 
+/* Points per bucket on average.  Small buckets keep the candidate lists
+ * short; an even set leaves about exp(-GRID_FILL) of them empty. */
+#ifndef GRID_FILL
+#define GRID_FILL 0.25
+#endif
+
 static int grid_build(struct tex_cellular *c)
 {
     int dim = c->dim;
-    double want = c->n / 2.0; /* about two points per bucket */
+    double want = c->n / GRID_FILL;
     long cells, *fill;
     int g = (int)floor(pow(want, 1.0 / dim));
 
@@ -535,6 +552,292 @@ static void grid_query1(const struct tex_cellular *c, const double *q, struct be
         }
         if (bound == INFINITY || b->a2 < acc_of(c, bound * c->gfac))
             return;
+    }
+}
+
+/* Candidate lists.  F2 is 1-Lipschitz, so inside bucket C (centre m, half
+ * diagonal hd) F2(q) <= F2(m) + hd = U, and a point that is one of the two
+ * nearest to q lies within U of q, hence within U of the box C.  The lists
+ * hold exactly the points (and periodic images) within U of each box. */
+static int cand_push(struct tex_cellular *c, size_t *cap, size_t used, double x, double y,
+                     long id)
+{
+    if (used == *cap) {
+        size_t nc = *cap ? 2 * *cap : 4096;
+        double *nx = realloc(c->cx, nc * sizeof *nx);
+        if (nx)
+            c->cx = nx;
+        double *ny = nx ? realloc(c->cy, nc * sizeof *ny) : NULL;
+        if (ny)
+            c->cy = ny;
+        long *ni = ny ? realloc(c->cid, nc * sizeof *ni) : NULL;
+        if (!ni)
+            return tex_error("out of memory for the candidate lists");
+        c->cid = ni;
+        *cap = nc;
+    }
+    c->cx[used] = x;
+    c->cy[used] = y;
+    c->cid[used] = id;
+    return 0;
+}
+
+static int cand_build(struct tex_cellular *c)
+{
+    int g = c->g, reach = 2;
+    long cells = (long)g * g;
+    size_t cap = 0, used = 0, tcap = 0;
+    double hd = sqrt(0.5) / g, *tmp = NULL; /* the block's points: x, y, id */
+
+    if (!(c->cstart = malloc((cells + 1) * sizeof *c->cstart)))
+        return tex_error("out of memory for the candidate lists");
+    for (long k = 0; k < cells; k++) {
+        int kx = (int)(k % g), ky = (int)(k / g);
+        double m[2] = {(kx + 0.5) / g, (ky + 0.5) / g}, lo[2], hi[2], u;
+        size_t nt;
+        c->cstart[k] = (long)used;
+        lo[0] = (double)kx / g, hi[0] = (double)(kx + 1) / g;
+        lo[1] = (double)ky / g, hi[1] = (double)(ky + 1) / g;
+        if (reach > 2)
+            reach--; /* neighbouring buckets need about the same reach */
+        for (;;) {
+            /* Gather the (2 reach + 1)^2 block and find F2 at the centre. */
+            double b1 = INFINITY, b2 = INFINITY;
+            int whole = !c->tile && kx - reach <= 0 && ky - reach <= 0 && kx + reach >= g - 1 &&
+                        ky + reach >= g - 1;
+            nt = 0;
+            for (int oy = -reach; oy <= reach; oy++)
+                for (int ox = -reach; ox <= reach; ox++) {
+                    int kk[2] = {kx + ox, ky + oy};
+                    double s[2] = {0, 0};
+                    long cell;
+                    for (int j = 0; j < 2; j++) {
+                        if (c->tile) {
+                            int w = (kk[j] % g + g) % g;
+                            s[j] = (kk[j] - w) / g;
+                            kk[j] = w;
+                        } else if (kk[j] < 0 || kk[j] >= g) {
+                            goto skip;
+                        }
+                    }
+                    cell = kk[0] + (long)g * kk[1];
+                    for (long at = c->start[cell]; at < c->start[cell + 1]; at++) {
+                        double px = c->gx[at * 2] + s[0], py = c->gx[at * 2 + 1] + s[1];
+                        double d = (px - m[0]) * (px - m[0]) + (py - m[1]) * (py - m[1]);
+                        if (nt == tcap) {
+                            size_t nc = tcap ? 2 * tcap : 256;
+                            double *t = realloc(tmp, nc * 3 * sizeof *t);
+                            if (!t) {
+                                free(tmp);
+                                return tex_error("out of memory for the candidate lists");
+                            }
+                            tmp = t;
+                            tcap = nc;
+                        }
+                        tmp[3 * nt] = px, tmp[3 * nt + 1] = py, tmp[3 * nt + 2] = (double)c->gid[at];
+                        nt++;
+                        if (d < b1)
+                            b2 = b1, b1 = d;
+                        else if (d < b2)
+                            b2 = d;
+                    }
+                skip:;
+                }
+            /* F2 at the centre is right if no point outside the block can be
+             * closer, and U must stay inside the block. */
+            u = (sqrt(b2) + hd) * (1 + 1e-9) + 1e-12;
+            if (whole || (u < reach * (1 - 1e-9) / g))
+                break;
+            reach++;
+        }
+        for (size_t t = 0; t < nt; t++) {
+            double px = tmp[3 * t], py = tmp[3 * t + 1];
+            double dx = px < lo[0] ? lo[0] - px : px > hi[0] ? px - hi[0] : 0;
+            double dy = py < lo[1] ? lo[1] - py : py > hi[1] ? py - hi[1] : 0;
+            if (dx * dx + dy * dy > u * u)
+                continue;
+            if (cand_push(c, &cap, used, px, py, (long)tmp[3 * t + 2]) < 0) {
+                free(tmp);
+                return -1;
+            }
+            used++;
+        }
+        /* Nearest to the centre first: the running minima settle early. */
+        for (size_t i = c->cstart[k] + 1; i < used; i++) {
+            double x = c->cx[i], y = c->cy[i], d = (x - m[0]) * (x - m[0]) + (y - m[1]) * (y - m[1]);
+            long id = c->cid[i];
+            size_t j = i;
+            for (; j > (size_t)c->cstart[k]; j--) {
+                double px = c->cx[j - 1], py = c->cy[j - 1];
+                if ((px - m[0]) * (px - m[0]) + (py - m[1]) * (py - m[1]) <= d)
+                    break;
+                c->cx[j] = px, c->cy[j] = py, c->cid[j] = c->cid[j - 1];
+            }
+            c->cx[j] = x, c->cy[j] = y, c->cid[j] = id;
+        }
+    }
+    free(tmp);
+    c->cstart[cells] = (long)used;
+#ifdef HAVE_AVX2_KERNEL
+    c->avx2 = !getenv("TEXTURA_NO_AVX2") && __builtin_cpu_supports("avx2");
+#endif
+    return 0;
+}
+
+/* The hot loop: 2D Euclidean through the candidate lists.  Queries that
+ * fall in the same bucket (neighbouring pixels of a row) share its list and
+ * go through it four at a time, one query per vector lane; every lane does
+ * the scalar arithmetic of acc_point, so the results do not depend on the
+ * grouping or the vector width. */
+typedef double v2d __attribute__((vector_size(16)));
+typedef long long v2l __attribute__((vector_size(16)));
+
+static inline v2d vsel(v2l m, v2d x, v2d y)
+{
+    return (v2d)(((v2l)x & m) | ((v2l)y & ~m));
+}
+
+/* Four lanes as two native 16-byte vectors (SSE2 on every x86-64). */
+static inline void cand_lanes(const struct tex_cellular *c, long k, const double *qx,
+                              const double *qy, int want_id, double *a1, double *a2, long *i1)
+{
+    const double *cx = c->cx, *cy = c->cy;
+    const long *cid = c->cid;
+    long e = c->cstart[k + 1];
+    v2d X0 = {qx[0], qx[1]}, Y0 = {qy[0], qy[1]}, X1 = {qx[2], qx[3]}, Y1 = {qy[2], qy[3]};
+    v2d A10 = {INFINITY, INFINITY}, A20 = A10, A11 = A10, A21 = A10;
+    v2d I10 = {-1, -1}, I11 = I10;
+
+    for (long t = c->cstart[k]; t < e; t++) {
+        v2d px = {cx[t], cx[t]}, py = {cy[t], cy[t]};
+        v2d dx0 = X0 - px, dy0 = Y0 - py, a0 = dx0 * dx0 + dy0 * dy0;
+        v2d dx1 = X1 - px, dy1 = Y1 - py, a1v = dx1 * dx1 + dy1 * dy1;
+        v2l lt0 = a0 < A10, lt1 = a1v < A11;
+        if (want_id) {
+            v2d id = {(double)cid[t], (double)cid[t]};
+            lt0 |= (a0 == A10) & (id < I10);
+            lt1 |= (a1v == A11) & (id < I11);
+            I10 = vsel(lt0, id, I10);
+            I11 = vsel(lt1, id, I11);
+        }
+        v2d lose0 = vsel(lt0, A10, a0), lose1 = vsel(lt1, A11, a1v);
+        A20 = vsel(lose0 < A20, lose0, A20);
+        A21 = vsel(lose1 < A21, lose1, A21);
+        A10 = vsel(lt0, a0, A10);
+        A11 = vsel(lt1, a1v, A11);
+    }
+#ifdef HAVE_AVX2_KERNEL
+    /* Vector square roots: correctly rounded like sqrt(), without its errno check. */
+    A10 = (v2d)_mm_sqrt_pd((__m128d)A10), A11 = (v2d)_mm_sqrt_pd((__m128d)A11);
+    A20 = (v2d)_mm_sqrt_pd((__m128d)A20), A21 = (v2d)_mm_sqrt_pd((__m128d)A21);
+#else
+    for (int l = 0; l < 2; l++)
+        A10[l] = sqrt(A10[l]), A11[l] = sqrt(A11[l]), A20[l] = sqrt(A20[l]), A21[l] = sqrt(A21[l]);
+#endif
+    a1[0] = A10[0], a1[1] = A10[1], a1[2] = A11[0], a1[3] = A11[1];
+    a2[0] = A20[0], a2[1] = A20[1], a2[2] = A21[0], a2[3] = A21[1];
+    i1[0] = (long)I10[0], i1[1] = (long)I10[1], i1[2] = (long)I11[0], i1[3] = (long)I11[1];
+}
+
+#ifdef HAVE_AVX2_KERNEL
+/* The same four lanes in one 32-byte AVX2 vector, chosen at run time.
+ * AVX2 alone brings no fused multiply-add, so each lane rounds exactly as
+ * the SSE2 and scalar code do: the map is the same bytes on any CPU. */
+typedef double v4d __attribute__((vector_size(32)));
+typedef long long v4l __attribute__((vector_size(32)));
+
+__attribute__((target("avx2"))) static void cand_lanes_avx2(const struct tex_cellular *c, long k,
+                                                            const double *qx, const double *qy,
+                                                            int want_id, double *a1, double *a2,
+                                                            long *i1)
+{
+    const double *cx = c->cx, *cy = c->cy;
+    const long *cid = c->cid;
+    long e = c->cstart[k + 1];
+    v4d X = {qx[0], qx[1], qx[2], qx[3]}, Y = {qy[0], qy[1], qy[2], qy[3]};
+    v4d A1 = {INFINITY, INFINITY, INFINITY, INFINITY}, A2 = A1, I1 = {-1, -1, -1, -1};
+
+    for (long t = c->cstart[k]; t < e; t++) {
+        v4d px = {cx[t], cx[t], cx[t], cx[t]}, py = {cy[t], cy[t], cy[t], cy[t]};
+        v4d dx = X - px, dy = Y - py, a = dx * dx + dy * dy;
+        v4l lt = a < A1;
+        if (want_id) {
+            double d = (double)cid[t];
+            v4d id = {d, d, d, d};
+            lt |= (a == A1) & (id < I1);
+            I1 = (v4d)(((v4l)id & lt) | ((v4l)I1 & ~lt));
+        }
+        v4d lose = (v4d)(((v4l)A1 & lt) | ((v4l)a & ~lt));
+        v4l m = lose < A2;
+        A2 = (v4d)(((v4l)lose & m) | ((v4l)A2 & ~m));
+        A1 = (v4d)(((v4l)a & lt) | ((v4l)A1 & ~lt));
+    }
+    A1 = (v4d)_mm256_sqrt_pd((__m256d)A1);
+    A2 = (v4d)_mm256_sqrt_pd((__m256d)A2);
+    for (int l = 0; l < 4; l++) {
+        a1[l] = A1[l];
+        a2[l] = A2[l];
+        i1[l] = (long)I1[l];
+    }
+}
+#endif
+
+static void cand_query(const struct tex_cellular *c, int n, const double *q, double *f1,
+                       double *f2, long *id)
+{
+    enum { CHUNK = 256 };
+    int g = c->g;
+
+    for (int i0 = 0; i0 < n; i0 += CHUNK) {
+        int m = n - i0 < CHUNK ? n - i0 : CHUNK;
+        double qx[CHUNK + 3], qy[CHUNK + 3], a1[CHUNK + 3], a2[CHUNK + 3];
+        long kk[CHUNK], i1[CHUNK + 3];
+        for (int i = 0; i < m; i++) {
+            double x = q[2 * (i0 + i)], y = q[2 * (i0 + i) + 1];
+            x = isfinite(x) ? x : 0;
+            y = isfinite(y) ? y : 0;
+            if (c->tile) {
+                x = wrap1(x);
+                y = wrap1(y);
+            }
+            qx[i] = x;
+            qy[i] = y;
+            kk[i] = x >= 0 && x < 1 && y >= 0 && y < 1
+                        ? cell_of(x, g) + (long)g * cell_of(y, g)
+                        : -1;
+        }
+        for (int i = 0; i < m;) {
+            int j = i + 1;
+            if (kk[i] < 0) {
+                struct best b;
+                double qq[2] = {qx[i], qy[i]};
+                grid_query1(c, qq, &b);
+                a1[i] = sqrt(b.a1), a2[i] = sqrt(b.a2), i1[i] = b.i1;
+                i = j;
+                continue;
+            }
+            while (j < m && j - i < 4 && kk[j] == kk[i])
+                j++;
+            double lx[4], ly[4];
+            for (int l = 0; l < 4; l++) { /* pad the lanes with the run's first query */
+                lx[l] = qx[i + l < j ? i + l : i];
+                ly[l] = qy[i + l < j ? i + l : i];
+            }
+#ifdef HAVE_AVX2_KERNEL
+            if (c->avx2)
+                cand_lanes_avx2(c, kk[i], lx, ly, id != NULL, a1 + i, a2 + i, i1 + i);
+            else
+#endif
+                cand_lanes(c, kk[i], lx, ly, id != NULL, a1 + i, a2 + i, i1 + i);
+            i = j;
+        }
+        for (int i = 0; i < m; i++) {
+            f1[i0 + i] = a1[i];
+            if (f2)
+                f2[i0 + i] = a2[i];
+            if (id)
+                id[i0 + i] = i1[i];
+        }
     }
 }
 
@@ -687,6 +990,10 @@ void tex_cellular_free(tex_cellular *c)
     free(c->rep);
     free(c->repid);
     free(c->repshift);
+    free(c->cstart);
+    free(c->cx);
+    free(c->cy);
+    free(c->cid);
     free(c);
 }
 
@@ -726,7 +1033,11 @@ tex_cellular *tex_cellular_new(const tex_points *ps, const struct tex_cellular_o
         if (grid_build(c) < 0)
             goto fail;
         if (c->search == TEX_SEARCH_AUTO)
-            c->search = grid_empty_share(c) < 0.3 ? TEX_SEARCH_GRID : TEX_SEARCH_KDTREE;
+            c->search = grid_empty_share(c) < exp(-GRID_FILL) + 0.15 ? TEX_SEARCH_GRID
+                                                                     : TEX_SEARCH_KDTREE;
+        if (c->search == TEX_SEARCH_GRID && dim == 2 && c->metric == TEX_METRIC_EUCLID &&
+            !c->ia && (long)c->g * c->g <= 1 << 22 && cand_build(c) < 0)
+            goto fail;
     }
     if (c->search == TEX_SEARCH_KDTREE && kdtree_build(c) < 0)
         goto fail;
@@ -749,6 +1060,10 @@ void tex_cellular_query(const tex_cellular *c, int n, const double *q, double *f
     enum { CHUNK = 256 };
     int dim = c->dim;
 
+    if (c->search == TEX_SEARCH_GRID && c->cstart) {
+        cand_query(c, n, q, f1, f2, id);
+        return;
+    }
     for (int i0 = 0; i0 < n; i0 += CHUNK) {
         int m = n - i0 < CHUNK ? n - i0 : CHUNK;
         double qb[CHUNK * 3];
@@ -764,8 +1079,9 @@ void tex_cellular_query(const tex_cellular *c, int n, const double *q, double *f
             kdtree_query(c, m, qb, b);
         else
             for (int i = 0; i < m; i++) {
+                const double *qi = qb + i * dim;
                 if (c->search == TEX_SEARCH_GRID)
-                    grid_query1(c, qb + i * dim, b + i);
+                    grid_query1(c, qi, b + i);
                 else
                     brute1(c, qb + i * dim, b + i);
             }
