@@ -213,7 +213,8 @@ int tex_points_read(tex_points *ps, const char *path, int dim)
             errno = 0;
             v[cols] = strtod(s, &end);
             if (end == s || (*end && !strchr(" \t\r\n", *end))) {
-                tex_error("%s:%ld: not a number: '%.20s'", path, lineno, s);
+                int len = (int)strcspn(s, " \t\r\n");
+                tex_error("%s:%ld: not a number: '%.*s'", path, lineno, len < 20 ? len : 20, s);
                 goto out;
             }
             if (!isfinite(v[cols])) {
