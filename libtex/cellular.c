@@ -497,13 +497,27 @@ static int grid_build(struct tex_cellular *c)
     return 0;
 }
 
-/* The share of empty buckets: high for clustered sets, where the grid's
- * ring search degenerates. */
-static double grid_empty_share(const struct tex_cellular *c)
+/* The share of empty buckets on a grid of two points per bucket: about
+ * exp(-2) = 0.14 for uniform points, less for Poisson-disk ones, and most
+ * of them for clustered sets, where the ring search and the candidate
+ * lists degenerate.  -1 when out of memory. */
+static double empty_share(const struct tex_cellular *c)
 {
-    long cells = c->dim == 2 ? (long)c->g * c->g : (long)c->g * c->g * c->g, empty = 0;
+    int dim = c->dim, g = (int)floor(pow(c->n / 2.0, 1.0 / dim));
+    long cells, empty = 0;
+    unsigned char *hit;
+
+    g = g < 1 ? 1 : g > 1024 ? 1024 : g;
+    cells = dim == 2 ? (long)g * g : (long)g * g * g;
+    if (!(hit = calloc(cells, 1)))
+        return -1;
+    for (long i = 0; i < c->n; i++) {
+        const double *p = c->x + i * dim;
+        hit[cell_of(p[0], g) + (long)g * (cell_of(p[1], g) + (dim == 3 ? (long)g * cell_of(p[2], g) : 0))] = 1;
+    }
     for (long k = 0; k < cells; k++)
-        empty += c->start[k] == c->start[k + 1];
+        empty += !hit[k];
+    free(hit);
     return (double)empty / cells;
 }
 
@@ -1030,12 +1044,15 @@ tex_cellular *tex_cellular_new(const tex_points *ps, const struct tex_cellular_o
     }
     c->gfac = (1 - 1e-9) / c->rmax;
     c->search = o->search;
-    if (c->search == TEX_SEARCH_GRID || c->search == TEX_SEARCH_AUTO) {
+    if (c->search == TEX_SEARCH_AUTO) {
+        double e = empty_share(c);
+        if (e < 0)
+            goto oom;
+        c->search = e < 0.3 ? TEX_SEARCH_GRID : TEX_SEARCH_KDTREE;
+    }
+    if (c->search == TEX_SEARCH_GRID) {
         if (grid_build(c) < 0)
             goto fail;
-        if (c->search == TEX_SEARCH_AUTO)
-            c->search = grid_empty_share(c) < exp(-GRID_FILL) + 0.15 ? TEX_SEARCH_GRID
-                                                                     : TEX_SEARCH_KDTREE;
         if (c->search == TEX_SEARCH_GRID && dim == 2 && c->metric == TEX_METRIC_EUCLID &&
             !c->ia && (long)c->g * c->g <= 1 << 22 && cand_build(c) < 0)
             goto fail;

@@ -1,6 +1,6 @@
 /* bubble_bench.c - nearest-point query throughput of libtex/cellular.c
  *
- *   bubble_bench SIZE N DIST SEARCH THREADS RUNS
+ *   bubble_bench SIZE N DIST SEARCH THREADS RUNS [f1|f2]
  * queries every pixel centre of a SIZE x SIZE map against N points of
  * distribution DIST (uniform|poisson|cluster) with SEARCH (auto|grid|kdtree|
  * brute), rows split over THREADS OpenMP threads as the sampler does, and
@@ -24,8 +24,8 @@ static int cmp(const void *a, const void *b)
 
 int main(int argc, char **argv)
 {
-    if (argc != 7) {
-        fprintf(stderr, "usage: bubble_bench SIZE N DIST SEARCH THREADS RUNS\n");
+    if (argc != 7 && argc != 8) {
+        fprintf(stderr, "usage: bubble_bench SIZE N DIST SEARCH THREADS RUNS [f1|f2]\n");
         return 2;
     }
     int size = atoi(argv[1]), threads = atoi(argv[5]), runs = atoi(argv[6]);
@@ -38,6 +38,7 @@ int main(int argc, char **argv)
     for (int i = 0; i < 4; i++)
         if (!strcmp(argv[4], searches[i]))
             search = i;
+    int want_f2 = !(argc == 8 && !strcmp(argv[7], "f1"));
     int step = search == TEX_SEARCH_BRUTE ? 64 : 1;
     tex_points ps;
     if (tex_points_random(&ps, 2, n, dist, 0, 1, 0) < 0)
@@ -64,8 +65,8 @@ int main(int argc, char **argv)
                     q[2 * x] = (x + 0.5) / size;
                     q[2 * x + 1] = (y + 0.5) / size;
                 }
-                tex_cellular_query(c, size, q, f1, f2, NULL);
-                sink += f1[size / 2] + f2[size / 3];
+                tex_cellular_query(c, size, q, f1, want_f2 ? f2 : NULL, NULL);
+                sink += f1[size / 2] + (want_f2 ? f2[size / 3] : 0);
             }
             clock_gettime(CLOCK_THREAD_CPUTIME_ID, &b);
             used += (b.tv_sec - a.tv_sec) + 1e-9 * (b.tv_nsec - a.tv_nsec);
