@@ -1,0 +1,1311 @@
+/* cellular.c - point sets, nearest-point queries and the bubble primitive */
+#include <errno.h>
+#include <flann/flann.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cellular.h"
+#include "error.h"
+#include "prim.h"
+#include "rng.h"
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#define HAVE_AVX2_KERNEL 1
+#include <immintrin.h>
+#endif
+
+/* ---- point sets ---- */
+
+static int points_alloc(tex_points *ps, int dim, long n)
+{
+    ps->dim = dim;
+    ps->n = n;
+    ps->axes = NULL;
+    if (!(ps->x = malloc((size_t)n * dim * sizeof *ps->x)))
+        return tex_error("out of memory for %ld points", n);
+    return 0;
+}
+
+void tex_points_free(tex_points *ps)
+{
+    free(ps->x);
+    free(ps->axes);
+    ps->x = ps->axes = NULL;
+    ps->n = 0;
+}
+
+static inline double wrap1(double x)
+{
+    x -= floor(x);
+    return x < 1.0 ? x : 0.0; /* -tiny - floor(-tiny) rounds to 1 */
+}
+
+void tex_points_wrap(tex_points *ps)
+{
+    for (long i = 0; i < ps->n * ps->dim; i++)
+        ps->x[i] = wrap1(ps->x[i]);
+}
+
+/* Dart throwing on a background grid whose cells (side <= r/sqrt(dim))
+ * hold at most one point each. */
+static int poisson(tex_points *ps, tex_rng *rng, int tile)
+{
+    int dim = ps->dim;
+    long n = ps->n, placed = 0;
+    double cover = dim == 2 ? 0.35 : 0.2; /* dart throwing saturates at 0.547 and 0.38 */
+    double r = dim == 2 ? 2 * sqrt(cover / (M_PI * n)) : 2 * cbrt(cover * 3 / (4 * M_PI * n));
+    int g = (int)ceil(sqrt((double)dim) / r), reach = 2;
+    long cells = (long)g * g * (dim == 3 ? g : 1);
+    long *owner = malloc(cells * sizeof *owner);
+    long tries = 0, budget = 1000 * n + 100000;
+
+    if (!owner)
+        return tex_error("out of memory for the Poisson-disk grid");
+    for (long i = 0; i < cells; i++)
+        owner[i] = -1;
+    while (placed < n && tries++ < budget) {
+        double p[3] = {0, 0, 0};
+        int k[3] = {0, 0, 0}, ok = 1;
+        for (int j = 0; j < dim; j++) {
+            p[j] = tex_rng_uniform(rng);
+            k[j] = (int)(p[j] * g);
+            if (k[j] >= g)
+                k[j] = g - 1;
+        }
+        for (int dz = dim == 3 ? -reach : 0; ok && dz <= (dim == 3 ? reach : 0); dz++)
+            for (int dy = -reach; ok && dy <= reach; dy++)
+                for (int dx = -reach; ok && dx <= reach; dx++) {
+                    int o[3] = {dx, dy, dz}, kk[3] = {0, 0, 0};
+                    long cell = 0;
+                    for (int j = 0; j < dim; j++) {
+                        kk[j] = k[j] + o[j];
+                        if (tile)
+                            kk[j] = (kk[j] % g + g) % g;
+                        else if (kk[j] < 0 || kk[j] >= g)
+                            goto next;
+                    }
+                    cell = kk[0] + (long)g * (kk[1] + (long)g * kk[2]);
+                    if (owner[cell] >= 0) {
+                        const double *q = ps->x + owner[cell] * dim;
+                        double d2 = 0;
+                        for (int j = 0; j < dim; j++) {
+                            double d = fabs(p[j] - q[j]);
+                            if (tile && d > 0.5)
+                                d = 1 - d;
+                            d2 += d * d;
+                        }
+                        if (d2 < r * r)
+                            ok = 0;
+                    }
+                next:;
+                }
+        if (ok) {
+            owner[k[0] + (long)g * (k[1] + (long)g * k[2])] = placed;
+            memcpy(ps->x + placed * dim, p, dim * sizeof *p);
+            placed++;
+        }
+    }
+    free(owner);
+    if (placed < n)
+        return tex_error("Poisson-disk sampling placed only %ld of %ld points", placed, n);
+    return 0;
+}
+
+int tex_points_random(tex_points *ps, int dim, long n, enum tex_pointdist dist, int clusters,
+                      uint64_t seed, int tile)
+{
+    tex_rng rng;
+
+    memset(ps, 0, sizeof *ps);
+    if (dim != 2 && dim != 3)
+        return tex_usage_error("points must have 2 or 3 dimensions (got %d)", dim);
+    if (n < 1 || n > TEX_POINTS_MAX)
+        return tex_usage_error("the number of points must be 1..%d (got %ld)", TEX_POINTS_MAX, n);
+    if (points_alloc(ps, dim, n) < 0)
+        return -1;
+    tex_rng_seed(&rng, seed);
+    if (dist == TEX_POINTS_POISSON) {
+        if (poisson(ps, &rng, tile) < 0) {
+            tex_points_free(ps);
+            return -1;
+        }
+    } else if (dist == TEX_POINTS_CLUSTER) {
+        long k = clusters > 0 ? clusters : lround(sqrt((double)n));
+        double sigma = 0.25 / pow((double)k, 1.0 / dim), *parent;
+        if (k < 1)
+            k = 1;
+        if (!(parent = malloc((size_t)k * dim * sizeof *parent))) {
+            tex_points_free(ps);
+            return tex_error("out of memory");
+        }
+        for (long i = 0; i < k * dim; i++)
+            parent[i] = tex_rng_uniform(&rng);
+        for (long i = 0; i < n; i++) {
+            const double *c = parent + (long)tex_rng_below(&rng, (uint32_t)k) * dim;
+            for (int j = 0; j < dim; j++)
+                ps->x[i * dim + j] = wrap1(c[j] + sigma * tex_rng_gauss(&rng));
+        }
+        free(parent);
+    } else {
+        for (long i = 0; i < n * dim; i++)
+            ps->x[i] = tex_rng_uniform(&rng);
+    }
+    return 0;
+}
+
+int tex_points_vary(tex_points *ps, double size, double shape, uint64_t seed)
+{
+    tex_rng rng;
+    int dim = ps->dim;
+
+    if (!(size >= 0 && size <= 0.95 && shape >= 0 && shape <= 0.95))
+        return tex_usage_error("size and shape spreads must be 0..0.95");
+    if (size == 0 && shape == 0)
+        return 0;
+    if (!ps->axes) {
+        if (!(ps->axes = malloc((size_t)ps->n * dim * sizeof *ps->axes)))
+            return tex_error("out of memory");
+        for (long i = 0; i < ps->n * dim; i++)
+            ps->axes[i] = 1;
+    }
+    /* A stream of its own, so that the positions do not move with the spreads. */
+    tex_rng_seed(&rng, tex_hash64(seed ^ 0x6275626231657331ULL));
+    for (long i = 0; i < ps->n; i++) {
+        double s = 1 + size * (2 * tex_rng_uniform(&rng) - 1);
+        for (int j = 0; j < dim; j++)
+            ps->axes[i * dim + j] *= s * (1 + shape * (2 * tex_rng_uniform(&rng) - 1));
+    }
+    return 0;
+}
+
+int tex_points_read(tex_points *ps, const char *path, int dim)
+{
+    FILE *fp;
+    char *line = NULL;
+    size_t cap = 0, alloc = 0;
+    long lineno = 0, n = 0;
+    int ret = -1;
+
+    memset(ps, 0, sizeof *ps);
+    ps->dim = dim;
+    if (!(fp = fopen(path, "r")))
+        return tex_error("%s: %s", path, strerror(errno));
+    while (getline(&line, &cap, fp) >= 0) {
+        double v[5];
+        int cols = 0;
+        char *s = line, *hash = strchr(line, '#');
+        lineno++;
+        if (hash)
+            *hash = '\0';
+        for (;;) {
+            char *end;
+            while (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\n')
+                s++;
+            if (!*s)
+                break;
+            if (cols == dim + 1) {
+                tex_error("%s:%ld: too many columns (want %s)", path, lineno,
+                          dim == 2 ? "x y [w]" : "x y z [w]");
+                goto out;
+            }
+            errno = 0;
+            v[cols] = strtod(s, &end);
+            if (end == s || (*end && !strchr(" \t\r\n", *end))) {
+                int len = (int)strcspn(s, " \t\r\n");
+                tex_error("%s:%ld: not a number: '%.*s'", path, lineno, len < 20 ? len : 20, s);
+                goto out;
+            }
+            if (!isfinite(v[cols])) {
+                tex_error("%s:%ld: not a finite number: '%.*s'", path, lineno, (int)(end - s), s);
+                goto out;
+            }
+            cols++;
+            s = end;
+        }
+        if (cols == 0)
+            continue;
+        if (cols < dim) {
+            tex_error("%s:%ld: %d column%s, want %s", path, lineno, cols, cols == 1 ? "" : "s",
+                      dim == 2 ? "x y [w]" : "x y z [w]");
+            goto out;
+        }
+        if (cols == dim + 1 && !(v[dim] > 0)) {
+            tex_error("%s:%ld: the radius must be > 0 (got %g)", path, lineno, v[dim]);
+            goto out;
+        }
+        if (n == TEX_POINTS_MAX) {
+            tex_error("%s:%ld: more than %d points", path, lineno, TEX_POINTS_MAX);
+            goto out;
+        }
+        if ((size_t)n == alloc) {
+            size_t na = alloc ? 2 * alloc : 1024;
+            double *x = realloc(ps->x, na * dim * sizeof *x);
+            double *a = ps->axes ? realloc(ps->axes, na * dim * sizeof *a) : NULL;
+            if (x)
+                ps->x = x;
+            if (a)
+                ps->axes = a;
+            if (!x || (ps->axes && !a)) {
+                tex_error("out of memory reading %s", path);
+                goto out;
+            }
+            alloc = na;
+        }
+        if (cols == dim + 1 && !ps->axes) {
+            if (!(ps->axes = malloc(alloc * dim * sizeof *ps->axes))) {
+                tex_error("out of memory reading %s", path);
+                goto out;
+            }
+            for (long i = 0; i < n * dim; i++)
+                ps->axes[i] = 1;
+        }
+        for (int j = 0; j < dim; j++) {
+            ps->x[n * dim + j] = v[j];
+            if (ps->axes)
+                ps->axes[n * dim + j] = cols == dim + 1 ? v[dim] : 1;
+        }
+        n++;
+    }
+    if (ferror(fp)) {
+        tex_error("%s: %s", path, strerror(errno));
+        goto out;
+    }
+    if (n == 0) {
+        tex_error("%s:%ld: no points in the file", path, lineno);
+        goto out;
+    }
+    ps->n = n;
+    ret = 0;
+out:
+    free(line);
+    fclose(fp);
+    if (ret < 0)
+        tex_points_free(ps);
+    return ret;
+}
+
+int tex_metric_parse(const char *text, enum tex_metric *m, double *p)
+{
+    *p = 2;
+    if (strcmp(text, "euclid") == 0)
+        *m = TEX_METRIC_EUCLID;
+    else if (strcmp(text, "manhattan") == 0)
+        *m = TEX_METRIC_MANHATTAN, *p = 1;
+    else if (strcmp(text, "chebyshev") == 0)
+        *m = TEX_METRIC_CHEBYSHEV, *p = INFINITY;
+    else if (strncmp(text, "minkowski:", 10) == 0) {
+        char *end;
+        double v = strtod(text + 10, &end);
+        if (end == text + 10 || *end || !(v >= 1 && v <= 64))
+            return tex_usage_error("--metric minkowski:P needs P in 1..64 (got '%s')", text);
+        *m = TEX_METRIC_MINKOWSKI;
+        *p = v;
+    } else
+        return tex_usage_error(
+            "--metric must be euclid|manhattan|chebyshev|minkowski:P (got '%s')", text);
+    return 0;
+}
+
+/* ---- nearest-point queries ---- */
+
+struct tex_cellular {
+    int dim, tile;
+    long n;
+    enum tex_metric metric;
+    double p, rmax;
+    enum tex_search search;
+    double *x, *ia; /* coordinates and inverse radii (NULL: all 1) */
+    /* grid: points in bucket order */
+    int g;
+    long *start, *gid;
+    double *gx, *gia, gfac;
+    /* 2D Euclidean without radii: per bucket, every point that can be one of
+     * the two nearest to a query inside it */
+    long *cstart;
+    double *cx, *cy;
+    long *cid;
+    int avx2; /* the CPU runs the AVX2 kernel */
+    /* kd-tree over the points (and their periodic images within margin) */
+    flann_index_t index;
+    double *rep, margin, kfac;
+    long *repid;
+    unsigned char *repshift;
+    long nrep;
+};
+
+/* The "accumulated" distance: squared for L2, the p-th power for Lp, so that
+ * comparisons need no root.  Every search method calls this one function
+ * for its final candidates, which keeps them bit-identical. */
+static inline double acc_point(const struct tex_cellular *c, const double *q, const double *p,
+                               const double *ia, const double *s)
+{
+    double a = 0;
+    for (int j = 0; j < c->dim; j++) {
+        double d = q[j] - (p[j] + s[j]);
+        if (ia)
+            d *= ia[j];
+        d = fabs(d);
+        switch (c->metric) {
+        case TEX_METRIC_EUCLID:
+            a += d * d;
+            break;
+        case TEX_METRIC_MANHATTAN:
+            a += d;
+            break;
+        case TEX_METRIC_CHEBYSHEV:
+            a = d > a ? d : a;
+            break;
+        case TEX_METRIC_MINKOWSKI:
+            a += pow(d, c->p);
+            break;
+        }
+    }
+    return a;
+}
+
+static inline double acc_finish(const struct tex_cellular *c, double a)
+{
+    switch (c->metric) {
+    case TEX_METRIC_EUCLID:
+        return sqrt(a);
+    case TEX_METRIC_MINKOWSKI:
+        return pow(a, 1 / c->p);
+    default:
+        return a;
+    }
+}
+
+static inline double acc_of(const struct tex_cellular *c, double d)
+{
+    switch (c->metric) {
+    case TEX_METRIC_EUCLID:
+        return d * d;
+    case TEX_METRIC_MINKOWSKI:
+        return pow(d, c->p);
+    default:
+        return d;
+    }
+}
+
+struct best {
+    double a1, a2;
+    long i1;
+};
+
+static inline void best_add(struct best *b, double a, long i)
+{
+    if (a < b->a1 || (a == b->a1 && i < b->i1)) {
+        b->a2 = b->a1;
+        b->a1 = a;
+        b->i1 = i;
+    } else if (a < b->a2) {
+        b->a2 = a;
+    }
+}
+
+static inline void best_init(struct best *b)
+{
+    b->a1 = b->a2 = INFINITY;
+    b->i1 = -1;
+}
+
+/* Shift number k (0 .. 3^dim-1) as a vector of -1, 0, 1. */
+static inline void shift_of(int k, int dim, double *s)
+{
+    for (int j = 0; j < dim; j++, k /= 3)
+        s[j] = k % 3 - 1;
+    for (int j = dim; j < 3; j++)
+        s[j] = 0;
+}
+
+static void brute1(const struct tex_cellular *c, const double *q, struct best *b)
+{
+    int dim = c->dim, nshift = c->tile ? (dim == 2 ? 9 : 27) : 1;
+    double zero[3] = {0, 0, 0}, s[3];
+
+    best_init(b);
+    for (int k = 0; k < nshift; k++) {
+        if (c->tile)
+            shift_of(k, dim, s);
+        for (long i = 0; i < c->n; i++)
+            best_add(b, acc_point(c, q, c->x + i * dim, c->ia ? c->ia + i * dim : NULL,
+                                  c->tile ? s : zero),
+                     i);
+    }
+}
+
+static inline int cell_of(double x, int g)
+{
+    double t = x * g;
+    if (!(t >= 0))
+        return 0;
+    return t >= g ? g - 1 : (int)t;
+}
+
+/* Points per bucket on average.  Small buckets keep the candidate lists
+ * short; an even set leaves about exp(-GRID_FILL) of them empty. */
+#ifndef GRID_FILL
+#define GRID_FILL 0.25
+#endif
+
+static int grid_build(struct tex_cellular *c)
+{
+    int dim = c->dim;
+    double want = c->n / GRID_FILL;
+    long cells, *fill;
+    int g = (int)floor(pow(want, 1.0 / dim));
+
+    g = g < 1 ? 1 : g;
+    while (dim == 2 ? (double)g * g > 1 << 24 : (double)g * g * g > 1 << 24)
+        g--;
+    c->g = g;
+    cells = dim == 2 ? (long)g * g : (long)g * g * g;
+    c->start = calloc(cells + 1, sizeof *c->start);
+    fill = calloc(cells, sizeof *fill);
+    c->gid = malloc(c->n * sizeof *c->gid);
+    c->gx = malloc(c->n * dim * sizeof *c->gx);
+    if (c->ia)
+        c->gia = malloc(c->n * dim * sizeof *c->gia);
+    if (!c->start || !fill || !c->gid || !c->gx || (c->ia && !c->gia)) {
+        free(fill);
+        return tex_error("out of memory for the bucket grid");
+    }
+    for (long i = 0; i < c->n; i++) {
+        const double *p = c->x + i * dim;
+        long k = cell_of(p[0], g) + (long)g * (cell_of(p[1], g) + (dim == 3 ? (long)g * cell_of(p[2], g) : 0));
+        fill[k]++;
+    }
+    for (long k = 0; k < cells; k++)
+        c->start[k + 1] = c->start[k] + fill[k];
+    memset(fill, 0, cells * sizeof *fill);
+    for (long i = 0; i < c->n; i++) {
+        const double *p = c->x + i * dim;
+        long k = cell_of(p[0], g) + (long)g * (cell_of(p[1], g) + (dim == 3 ? (long)g * cell_of(p[2], g) : 0));
+        long at = c->start[k] + fill[k]++;
+        c->gid[at] = i;
+        memcpy(c->gx + at * dim, p, dim * sizeof *p);
+        if (c->ia)
+            memcpy(c->gia + at * dim, c->ia + i * dim, dim * sizeof *p);
+    }
+    free(fill);
+    /* Unvisited points lie beyond the searched box: their L-infinity offset,
+     * a lower bound of every Lp norm, is at least the distance to its faces,
+     * and radii shrink distances at most by rmax.  The slack absorbs rounding. */
+    c->gfac = (1 - 1e-9) / c->rmax;
+    return 0;
+}
+
+/* The share of empty buckets on a grid of two points per bucket: about
+ * exp(-2) = 0.14 for uniform points, less for Poisson-disk ones, and most
+ * of them for clustered sets, where the ring search and the candidate
+ * lists degenerate.  -1 when out of memory. */
+static double empty_share(const struct tex_cellular *c)
+{
+    int dim = c->dim, g = (int)floor(pow(c->n / 2.0, 1.0 / dim));
+    long cells, empty = 0;
+    unsigned char *hit;
+
+    g = g < 1 ? 1 : g > 1024 ? 1024 : g;
+    cells = dim == 2 ? (long)g * g : (long)g * g * g;
+    if (!(hit = calloc(cells, 1)))
+        return -1;
+    for (long i = 0; i < c->n; i++) {
+        const double *p = c->x + i * dim;
+        hit[cell_of(p[0], g) + (long)g * (cell_of(p[1], g) + (dim == 3 ? (long)g * cell_of(p[2], g) : 0))] = 1;
+    }
+    for (long k = 0; k < cells; k++)
+        empty += !hit[k];
+    free(hit);
+    return (double)empty / cells;
+}
+
+static void grid_query1(const struct tex_cellular *c, const double *q, struct best *b)
+{
+    int dim = c->dim, g = c->g, cc[3] = {0, 0, 0};
+
+    best_init(b);
+    for (int j = 0; j < dim; j++)
+        cc[j] = cell_of(q[j], g);
+    for (int r = 0;; r++) {
+        int rz = dim == 3 ? r : 0;
+        double bound = INFINITY;
+        for (int oz = -rz; oz <= rz; oz++)
+            for (int oy = -r; oy <= r; oy++)
+                for (int ox = -r; ox <= r; ox++) {
+                    int o[3] = {ox, oy, oz}, k[3] = {0, 0, 0};
+                    double s[3] = {0, 0, 0};
+                    long cell;
+                    if (abs(ox) != r && abs(oy) != r && abs(oz) != r)
+                        continue; /* inside: visited in an earlier ring */
+                    for (int j = 0; j < dim; j++) {
+                        k[j] = cc[j] + o[j];
+                        if (c->tile) {
+                            int w = (k[j] % g + g) % g;
+                            s[j] = (k[j] - w) / g;
+                            k[j] = w;
+                        } else if (k[j] < 0 || k[j] >= g) {
+                            goto skip;
+                        }
+                    }
+                    cell = k[0] + (long)g * (k[1] + (long)g * k[2]);
+                    for (long at = c->start[cell]; at < c->start[cell + 1]; at++)
+                        best_add(b, acc_point(c, q, c->gx + at * dim, c->gia ? c->gia + at * dim : NULL, s),
+                                 c->gid[at]);
+                skip:;
+                }
+        for (int j = 0; j < dim; j++) {
+            if (c->tile || cc[j] - r > 0) {
+                double d = q[j] - (double)(cc[j] - r) / g;
+                bound = d < bound ? d : bound;
+            }
+            if (c->tile || cc[j] + r < g - 1) {
+                double d = (double)(cc[j] + r + 1) / g - q[j];
+                bound = d < bound ? d : bound;
+            }
+        }
+        if (bound == INFINITY || b->a2 < acc_of(c, bound * c->gfac))
+            return;
+    }
+}
+
+/* Candidate lists.  F2 is 1-Lipschitz, so inside bucket C (centre m, half
+ * diagonal hd) F2(q) <= F2(m) + hd = U, and a point that is one of the two
+ * nearest to q lies within U of q, hence within U of the box C.  The lists
+ * hold exactly the points (and periodic images) within U of each box. */
+static int cand_push(struct tex_cellular *c, size_t *cap, size_t used, double x, double y,
+                     long id)
+{
+    if (used == *cap) {
+        size_t nc = *cap ? 2 * *cap : 4096;
+        double *nx = realloc(c->cx, nc * sizeof *nx);
+        if (nx)
+            c->cx = nx;
+        double *ny = nx ? realloc(c->cy, nc * sizeof *ny) : NULL;
+        if (ny)
+            c->cy = ny;
+        long *ni = ny ? realloc(c->cid, nc * sizeof *ni) : NULL;
+        if (!ni)
+            return tex_error("out of memory for the candidate lists");
+        c->cid = ni;
+        *cap = nc;
+    }
+    c->cx[used] = x;
+    c->cy[used] = y;
+    c->cid[used] = id;
+    return 0;
+}
+
+static int cand_build(struct tex_cellular *c)
+{
+    int g = c->g, reach = 2;
+    long cells = (long)g * g;
+    size_t cap = 0, used = 0, tcap = 0;
+    double hd = sqrt(0.5) / g, *tmp = NULL; /* the block's points: x, y, id */
+
+    if (!(c->cstart = malloc((cells + 1) * sizeof *c->cstart)))
+        return tex_error("out of memory for the candidate lists");
+    for (long k = 0; k < cells; k++) {
+        int kx = (int)(k % g), ky = (int)(k / g);
+        double m[2] = {(kx + 0.5) / g, (ky + 0.5) / g}, lo[2], hi[2], u;
+        size_t nt;
+        c->cstart[k] = (long)used;
+        lo[0] = (double)kx / g, hi[0] = (double)(kx + 1) / g;
+        lo[1] = (double)ky / g, hi[1] = (double)(ky + 1) / g;
+        if (reach > 2)
+            reach--; /* neighbouring buckets need about the same reach */
+        for (;;) {
+            /* Gather the (2 reach + 1)^2 block and find F2 at the centre. */
+            double b1 = INFINITY, b2 = INFINITY;
+            int whole = !c->tile && kx - reach <= 0 && ky - reach <= 0 && kx + reach >= g - 1 &&
+                        ky + reach >= g - 1;
+            nt = 0;
+            for (int oy = -reach; oy <= reach; oy++)
+                for (int ox = -reach; ox <= reach; ox++) {
+                    int kk[2] = {kx + ox, ky + oy};
+                    double s[2] = {0, 0};
+                    long cell;
+                    for (int j = 0; j < 2; j++) {
+                        if (c->tile) {
+                            int w = (kk[j] % g + g) % g;
+                            s[j] = (kk[j] - w) / g;
+                            kk[j] = w;
+                        } else if (kk[j] < 0 || kk[j] >= g) {
+                            goto skip;
+                        }
+                    }
+                    cell = kk[0] + (long)g * kk[1];
+                    for (long at = c->start[cell]; at < c->start[cell + 1]; at++) {
+                        double px = c->gx[at * 2] + s[0], py = c->gx[at * 2 + 1] + s[1];
+                        double d = (px - m[0]) * (px - m[0]) + (py - m[1]) * (py - m[1]);
+                        if (nt == tcap) {
+                            size_t nc = tcap ? 2 * tcap : 256;
+                            double *t = realloc(tmp, nc * 3 * sizeof *t);
+                            if (!t) {
+                                free(tmp);
+                                return tex_error("out of memory for the candidate lists");
+                            }
+                            tmp = t;
+                            tcap = nc;
+                        }
+                        tmp[3 * nt] = px, tmp[3 * nt + 1] = py, tmp[3 * nt + 2] = (double)c->gid[at];
+                        nt++;
+                        if (d < b1)
+                            b2 = b1, b1 = d;
+                        else if (d < b2)
+                            b2 = d;
+                    }
+                skip:;
+                }
+            /* F2 at the centre is right if no point outside the block can be
+             * closer, and U must stay inside the block. */
+            u = (sqrt(b2) + hd) * (1 + 1e-9) + 1e-12;
+            if (whole || (u < reach * (1 - 1e-9) / g))
+                break;
+            reach++;
+        }
+        for (size_t t = 0; t < nt; t++) {
+            double px = tmp[3 * t], py = tmp[3 * t + 1];
+            double dx = px < lo[0] ? lo[0] - px : px > hi[0] ? px - hi[0] : 0;
+            double dy = py < lo[1] ? lo[1] - py : py > hi[1] ? py - hi[1] : 0;
+            if (dx * dx + dy * dy > u * u)
+                continue;
+            if (cand_push(c, &cap, used, px, py, (long)tmp[3 * t + 2]) < 0) {
+                free(tmp);
+                return -1;
+            }
+            used++;
+        }
+        /* Nearest to the centre first: the running minima settle early. */
+        for (size_t i = c->cstart[k] + 1; i < used; i++) {
+            double x = c->cx[i], y = c->cy[i], d = (x - m[0]) * (x - m[0]) + (y - m[1]) * (y - m[1]);
+            long id = c->cid[i];
+            size_t j = i;
+            for (; j > (size_t)c->cstart[k]; j--) {
+                double px = c->cx[j - 1], py = c->cy[j - 1];
+                if ((px - m[0]) * (px - m[0]) + (py - m[1]) * (py - m[1]) <= d)
+                    break;
+                c->cx[j] = px, c->cy[j] = py, c->cid[j] = c->cid[j - 1];
+            }
+            c->cx[j] = x, c->cy[j] = y, c->cid[j] = id;
+        }
+    }
+    free(tmp);
+    c->cstart[cells] = (long)used;
+#ifdef HAVE_AVX2_KERNEL
+    c->avx2 = !getenv("TEXTURA_NO_AVX2") && __builtin_cpu_supports("avx2");
+#endif
+    return 0;
+}
+
+/* The hot loop: 2D Euclidean through the candidate lists.  Queries that
+ * fall in the same bucket (neighbouring pixels of a row) share its list and
+ * go through it four at a time, one query per vector lane; every lane does
+ * the scalar arithmetic of acc_point, so the results do not depend on the
+ * grouping or the vector width. */
+typedef double v2d __attribute__((vector_size(16)));
+typedef long long v2l __attribute__((vector_size(16)));
+
+static inline v2d vsel(v2l m, v2d x, v2d y)
+{
+    return (v2d)(((v2l)x & m) | ((v2l)y & ~m));
+}
+
+/* Four lanes as two native 16-byte vectors (SSE2 on every x86-64). */
+static inline void cand_lanes(const struct tex_cellular *c, long k, const double *qx,
+                              const double *qy, int want_id, double *a1, double *a2, long *i1)
+{
+    const double *cx = c->cx, *cy = c->cy;
+    const long *cid = c->cid;
+    long e = c->cstart[k + 1];
+    v2d X0 = {qx[0], qx[1]}, Y0 = {qy[0], qy[1]}, X1 = {qx[2], qx[3]}, Y1 = {qy[2], qy[3]};
+    v2d A10 = {INFINITY, INFINITY}, A20 = A10, A11 = A10, A21 = A10;
+    v2d I10 = {-1, -1}, I11 = I10;
+
+    for (long t = c->cstart[k]; t < e; t++) {
+        v2d px = {cx[t], cx[t]}, py = {cy[t], cy[t]};
+        v2d dx0 = X0 - px, dy0 = Y0 - py, a0 = dx0 * dx0 + dy0 * dy0;
+        v2d dx1 = X1 - px, dy1 = Y1 - py, a1v = dx1 * dx1 + dy1 * dy1;
+        v2l lt0 = a0 < A10, lt1 = a1v < A11;
+        if (want_id) {
+            v2d id = {(double)cid[t], (double)cid[t]};
+            lt0 |= (a0 == A10) & (id < I10);
+            lt1 |= (a1v == A11) & (id < I11);
+            I10 = vsel(lt0, id, I10);
+            I11 = vsel(lt1, id, I11);
+        }
+        v2d lose0 = vsel(lt0, A10, a0), lose1 = vsel(lt1, A11, a1v);
+        A20 = vsel(lose0 < A20, lose0, A20);
+        A21 = vsel(lose1 < A21, lose1, A21);
+        A10 = vsel(lt0, a0, A10);
+        A11 = vsel(lt1, a1v, A11);
+    }
+#ifdef HAVE_AVX2_KERNEL
+    /* Vector square roots: correctly rounded like sqrt(), without its errno check. */
+    A10 = (v2d)_mm_sqrt_pd((__m128d)A10), A11 = (v2d)_mm_sqrt_pd((__m128d)A11);
+    A20 = (v2d)_mm_sqrt_pd((__m128d)A20), A21 = (v2d)_mm_sqrt_pd((__m128d)A21);
+#else
+    for (int l = 0; l < 2; l++)
+        A10[l] = sqrt(A10[l]), A11[l] = sqrt(A11[l]), A20[l] = sqrt(A20[l]), A21[l] = sqrt(A21[l]);
+#endif
+    a1[0] = A10[0], a1[1] = A10[1], a1[2] = A11[0], a1[3] = A11[1];
+    a2[0] = A20[0], a2[1] = A20[1], a2[2] = A21[0], a2[3] = A21[1];
+    i1[0] = (long)I10[0], i1[1] = (long)I10[1], i1[2] = (long)I11[0], i1[3] = (long)I11[1];
+}
+
+#ifdef HAVE_AVX2_KERNEL
+/* The same four lanes in one 32-byte AVX2 vector, chosen at run time.
+ * AVX2 alone brings no fused multiply-add, so each lane rounds exactly as
+ * the SSE2 and scalar code do: the map is the same bytes on any CPU. */
+typedef double v4d __attribute__((vector_size(32)));
+typedef long long v4l __attribute__((vector_size(32)));
+
+__attribute__((target("avx2"))) static void cand_lanes_avx2(const struct tex_cellular *c, long k,
+                                                            const double *qx, const double *qy,
+                                                            int want_id, double *a1, double *a2,
+                                                            long *i1)
+{
+    const double *cx = c->cx, *cy = c->cy;
+    const long *cid = c->cid;
+    long e = c->cstart[k + 1];
+    v4d X = {qx[0], qx[1], qx[2], qx[3]}, Y = {qy[0], qy[1], qy[2], qy[3]};
+    v4d A1 = {INFINITY, INFINITY, INFINITY, INFINITY}, A2 = A1, I1 = {-1, -1, -1, -1};
+
+    for (long t = c->cstart[k]; t < e; t++) {
+        v4d px = {cx[t], cx[t], cx[t], cx[t]}, py = {cy[t], cy[t], cy[t], cy[t]};
+        v4d dx = X - px, dy = Y - py, a = dx * dx + dy * dy;
+        v4l lt = a < A1;
+        if (want_id) {
+            double d = (double)cid[t];
+            v4d id = {d, d, d, d};
+            lt |= (a == A1) & (id < I1);
+            I1 = (v4d)(((v4l)id & lt) | ((v4l)I1 & ~lt));
+        }
+        v4d lose = (v4d)(((v4l)A1 & lt) | ((v4l)a & ~lt));
+        v4l m = lose < A2;
+        A2 = (v4d)(((v4l)lose & m) | ((v4l)A2 & ~m));
+        A1 = (v4d)(((v4l)a & lt) | ((v4l)A1 & ~lt));
+    }
+    A1 = (v4d)_mm256_sqrt_pd((__m256d)A1);
+    A2 = (v4d)_mm256_sqrt_pd((__m256d)A2);
+    for (int l = 0; l < 4; l++) {
+        a1[l] = A1[l];
+        a2[l] = A2[l];
+        i1[l] = (long)I1[l];
+    }
+}
+#endif
+
+static void cand_query(const struct tex_cellular *c, int n, const double *q, double *f1,
+                       double *f2, long *id)
+{
+    enum { CHUNK = 256 };
+    int g = c->g;
+
+    for (int i0 = 0; i0 < n; i0 += CHUNK) {
+        int m = n - i0 < CHUNK ? n - i0 : CHUNK;
+        double qx[CHUNK + 3], qy[CHUNK + 3], a1[CHUNK + 3], a2[CHUNK + 3];
+        long kk[CHUNK], i1[CHUNK + 3];
+        for (int i = 0; i < m; i++) {
+            double x = q[2 * (i0 + i)], y = q[2 * (i0 + i) + 1];
+            x = isfinite(x) ? x : 0;
+            y = isfinite(y) ? y : 0;
+            if (c->tile) {
+                x = wrap1(x);
+                y = wrap1(y);
+            }
+            qx[i] = x;
+            qy[i] = y;
+            kk[i] = x >= 0 && x < 1 && y >= 0 && y < 1
+                        ? cell_of(x, g) + (long)g * cell_of(y, g)
+                        : -1;
+        }
+        for (int i = 0; i < m;) {
+            int j = i + 1;
+            if (kk[i] < 0) {
+                struct best b;
+                double qq[2] = {qx[i], qy[i]};
+                grid_query1(c, qq, &b);
+                a1[i] = sqrt(b.a1), a2[i] = sqrt(b.a2), i1[i] = b.i1;
+                i = j;
+                continue;
+            }
+            while (j < m && j - i < 4 && kk[j] == kk[i])
+                j++;
+            double lx[4], ly[4];
+            for (int l = 0; l < 4; l++) { /* pad the lanes with the run's first query */
+                lx[l] = qx[i + l < j ? i + l : i];
+                ly[l] = qy[i + l < j ? i + l : i];
+            }
+#ifdef HAVE_AVX2_KERNEL
+            if (c->avx2)
+                cand_lanes_avx2(c, kk[i], lx, ly, id != NULL, a1 + i, a2 + i, i1 + i);
+            else
+#endif
+                cand_lanes(c, kk[i], lx, ly, id != NULL, a1 + i, a2 + i, i1 + i);
+            i = j;
+        }
+        for (int i = 0; i < m; i++) {
+            f1[i0 + i] = a1[i];
+            if (f2)
+                f2[i0 + i] = a2[i];
+            if (id)
+                id[i0 + i] = i1[i];
+        }
+    }
+}
+
+static int kdtree_build(struct tex_cellular *c)
+{
+    int dim = c->dim, nshift = c->tile ? (dim == 2 ? 9 : 27) : 1;
+    struct FLANNParameters fp = DEFAULT_FLANN_PARAMETERS;
+    float speedup;
+    long cap = c->n * nshift;
+
+    if (c->tile) {
+        /* Images within margin of the unit cube; farther ones are at least
+         * margin away in L-infinity from any query in [0,1). */
+        double m = 4 * c->rmax * pow((double)c->n, -1.0 / dim);
+        c->margin = c->n <= 1000000 || m > 0.5 ? 0.5 : m < 0.05 ? 0.05 : m;
+    }
+    if (cap > 0x7fffffffL)
+        return tex_error("too many points for the kd-tree (%ld with periodic images)", cap);
+    c->rep = malloc(cap * dim * sizeof *c->rep);
+    c->repid = malloc(cap * sizeof *c->repid);
+    c->repshift = malloc(cap);
+    if (!c->rep || !c->repid || !c->repshift)
+        return tex_error("out of memory for the kd-tree");
+    for (int k = 0; k < nshift; k++) {
+        double s[3] = {0, 0, 0};
+        if (c->tile)
+            shift_of(k, dim, s);
+        for (long i = 0; i < c->n; i++) {
+            const double *p = c->x + i * dim;
+            int in = 1;
+            for (int j = 0; j < dim; j++)
+                in &= p[j] + s[j] >= -c->margin && p[j] + s[j] < 1 + c->margin;
+            if (!c->tile || in) {
+                for (int j = 0; j < dim; j++)
+                    c->rep[c->nrep * dim + j] = p[j] + s[j];
+                c->repid[c->nrep] = i;
+                c->repshift[c->nrep++] = (unsigned char)k;
+            }
+        }
+    }
+    fp.algorithm = FLANN_INDEX_KDTREE_SINGLE;
+    fp.checks = FLANN_CHECKS_UNLIMITED;
+    fp.eps = 0;
+    fp.sorted = 1;
+    fp.cores = 1;
+    fp.leaf_max_size = 8;
+    fp.log_level = FLANN_LOG_NONE;
+    flann_set_distance_type(FLANN_DIST_EUCLIDEAN, 0);
+    c->index = flann_build_index_double(c->rep, (int)c->nrep, dim, &speedup, &fp);
+    if (!c->index)
+        return tex_error("FLANN could not build the kd-tree");
+    /* Lp >= L2 for p <= 2 and Lp >= L2 * dim^(1/p - 1/2) beyond. */
+    c->kfac = (1 - 1e-9) / c->rmax;
+    if (c->metric == TEX_METRIC_CHEBYSHEV)
+        c->kfac /= sqrt((double)dim);
+    else if (c->metric == TEX_METRIC_MINKOWSKI && c->p > 2)
+        c->kfac *= pow((double)dim, 1 / c->p - 0.5);
+    return 0;
+}
+
+static void kdtree_query(const struct tex_cellular *c, int n, const double *q, struct best *b)
+{
+    int dim = c->dim, npend = n, k = 3;
+    struct FLANNParameters fp = DEFAULT_FLANN_PARAMETERS;
+    int *pend = malloc(n * sizeof *pend), *ind = NULL;
+    double *qb = malloc((size_t)n * dim * sizeof *qb), *dist = NULL;
+
+    fp.algorithm = FLANN_INDEX_KDTREE_SINGLE;
+    fp.checks = FLANN_CHECKS_UNLIMITED;
+    fp.eps = 0;
+    fp.sorted = 1;
+    fp.cores = 1;
+    fp.log_level = FLANN_LOG_NONE;
+    if (!pend || !qb)
+        goto brute;
+    for (int i = 0; i < n; i++)
+        pend[i] = i;
+    if (c->ia || c->metric != TEX_METRIC_EUCLID)
+        k = 8;
+    while (npend > 0) {
+        int next = 0;
+        if (k > c->nrep)
+            k = (int)c->nrep;
+        free(ind);
+        free(dist);
+        ind = malloc((size_t)npend * k * sizeof *ind);
+        dist = malloc((size_t)npend * k * sizeof *dist);
+        if (!ind || !dist)
+            goto brute;
+        for (int i = 0; i < npend; i++)
+            memcpy(qb + (size_t)i * dim, q + (size_t)pend[i] * dim, dim * sizeof *qb);
+        if (flann_find_nearest_neighbors_index_double(c->index, qb, npend, ind, dist, k, &fp) < 0)
+            goto brute;
+        for (int i = 0; i < npend; i++) {
+            struct best *bi = b + pend[i];
+            const double *qi = q + (size_t)pend[i] * dim;
+            double bound = INFINITY;
+            best_init(bi);
+            for (int t = 0; t < k; t++) {
+                long r = ind[(size_t)i * k + t], id = c->repid[r];
+                double s[3] = {0, 0, 0};
+                if (c->tile)
+                    shift_of(c->repshift[r], dim, s);
+                best_add(bi, acc_point(c, qi, c->x + id * dim, c->ia ? c->ia + id * dim : NULL, s),
+                         id);
+            }
+            if (k < c->nrep)
+                bound = sqrt(dist[(size_t)i * k + k - 1]) * c->kfac;
+            if (c->tile && c->margin * c->gfac < bound)
+                bound = c->margin * c->gfac;
+            if (!(bound == INFINITY || bi->a2 < acc_of(c, bound)))
+                pend[next++] = pend[i];
+        }
+        npend = next;
+        if (npend > 0 && (k >= 256 || k >= c->nrep))
+            goto brute;
+        k *= 4;
+    }
+    free(pend);
+    free(qb);
+    free(ind);
+    free(dist);
+    return;
+brute:
+    /* Out of memory or a degenerate set (many equal distances): exact anyway. */
+    if (!pend)
+        npend = n;
+    for (int i = 0; i < npend; i++) {
+        int at = pend ? pend[i] : i;
+        brute1(c, q + (size_t)at * dim, b + at);
+    }
+    free(pend);
+    free(qb);
+    free(ind);
+    free(dist);
+}
+
+void tex_cellular_free(tex_cellular *c)
+{
+    if (!c)
+        return;
+    if (c->index)
+        flann_free_index_double(c->index, NULL);
+    free(c->x);
+    free(c->ia);
+    free(c->start);
+    free(c->gid);
+    free(c->gx);
+    free(c->gia);
+    free(c->rep);
+    free(c->repid);
+    free(c->repshift);
+    free(c->cstart);
+    free(c->cx);
+    free(c->cy);
+    free(c->cid);
+    free(c);
+}
+
+tex_cellular *tex_cellular_new(const tex_points *ps, const struct tex_cellular_opts *o)
+{
+    struct tex_cellular *c = calloc(1, sizeof *c);
+    int dim = ps->dim;
+
+    if (!c) {
+        tex_error("out of memory");
+        return NULL;
+    }
+    c->dim = dim;
+    c->n = ps->n;
+    c->tile = o->tile;
+    c->metric = o->metric;
+    c->p = o->metric == TEX_METRIC_EUCLID ? 2 : o->p;
+    c->rmax = 1;
+    if (!(c->x = malloc(c->n * dim * sizeof *c->x)))
+        goto oom;
+    memcpy(c->x, ps->x, c->n * dim * sizeof *c->x);
+    if (c->tile)
+        for (long i = 0; i < c->n * dim; i++)
+            c->x[i] = wrap1(c->x[i]);
+    if (ps->axes) {
+        if (!(c->ia = malloc(c->n * dim * sizeof *c->ia)))
+            goto oom;
+        c->rmax = 0;
+        for (long i = 0; i < c->n * dim; i++) {
+            c->ia[i] = 1 / ps->axes[i];
+            c->rmax = ps->axes[i] > c->rmax ? ps->axes[i] : c->rmax;
+        }
+    }
+    c->gfac = (1 - 1e-9) / c->rmax;
+    c->search = o->search;
+    if (c->search == TEX_SEARCH_AUTO) {
+        double e = empty_share(c);
+        if (e < 0)
+            goto oom;
+        c->search = e < 0.3 ? TEX_SEARCH_GRID : TEX_SEARCH_KDTREE;
+    }
+    if (c->search == TEX_SEARCH_GRID) {
+        if (grid_build(c) < 0)
+            goto fail;
+        if (c->search == TEX_SEARCH_GRID && dim == 2 && c->metric == TEX_METRIC_EUCLID &&
+            !c->ia && (long)c->g * c->g <= 1 << 22 && cand_build(c) < 0)
+            goto fail;
+    }
+    if (c->search == TEX_SEARCH_KDTREE && kdtree_build(c) < 0)
+        goto fail;
+    return c;
+oom:
+    tex_error("out of memory");
+fail:
+    tex_cellular_free(c);
+    return NULL;
+}
+
+enum tex_search tex_cellular_search(const tex_cellular *c)
+{
+    return c->search;
+}
+
+void tex_cellular_query(const tex_cellular *c, int n, const double *q, double *f1, double *f2,
+                        long *id)
+{
+    enum { CHUNK = 256 };
+    int dim = c->dim;
+
+    if (c->search == TEX_SEARCH_GRID && c->cstart) {
+        cand_query(c, n, q, f1, f2, id);
+        return;
+    }
+    for (int i0 = 0; i0 < n; i0 += CHUNK) {
+        int m = n - i0 < CHUNK ? n - i0 : CHUNK;
+        double qb[CHUNK * 3];
+        struct best b[CHUNK];
+        for (int i = 0; i < m; i++)
+            for (int j = 0; j < dim; j++) {
+                double x = q[(size_t)(i0 + i) * dim + j];
+                if (!isfinite(x))
+                    x = 0;
+                qb[i * dim + j] = c->tile ? wrap1(x) : x;
+            }
+        if (c->search == TEX_SEARCH_KDTREE)
+            kdtree_query(c, m, qb, b);
+        else
+            for (int i = 0; i < m; i++) {
+                const double *qi = qb + i * dim;
+                if (c->search == TEX_SEARCH_GRID)
+                    grid_query1(c, qi, b + i);
+                else
+                    brute1(c, qb + i * dim, b + i);
+            }
+        for (int i = 0; i < m; i++) {
+            f1[i0 + i] = acc_finish(c, b[i].a1);
+            if (f2)
+                f2[i0 + i] = acc_finish(c, b[i].a2);
+            if (id)
+                id[i0 + i] = b[i].i1;
+        }
+    }
+}
+
+/* ---- the bubble primitive ---- */
+
+enum { OUT_BUBBLE, OUT_F1, OUT_F2, OUT_F2F1, OUT_CELL };
+
+struct bubble_params {
+    int count;
+    const char *points;
+    int value;
+    const char *metric;
+    int distribution;
+    int clusters;
+    int dimension;
+    double z;
+    double size_spread;
+    double axis_spread;
+    int search;
+};
+
+static const struct tex_param bubble_rows[] = {
+    TEX_INT(struct bubble_params, count, 'n', 64, 1, TEX_POINTS_MAX, "N",
+            "number of random points (bubbles)"),
+    TEX_STRING(struct bubble_params, points, 0, NULL, "FILE",
+               "read the points from FILE instead (textura-points(5)); overrides -n"),
+    TEX_ENUM(struct bubble_params, value, 0, "bubble", "bubble|f1|f2|f2-f1|cell",
+             "what to write: bubble shading, distances F1, F2, F2-F1, or a random value per cell"),
+    TEX_STRING(struct bubble_params, metric, 0, "euclid", "NAME",
+               "distance: euclid|manhattan|chebyshev|minkowski:P with P in 1..64"),
+    TEX_ENUM(struct bubble_params, distribution, 0, "uniform", "uniform|poisson|cluster",
+             "how the random points are spread"),
+    TEX_INT(struct bubble_params, clusters, 0, 0, 0, 1000000, "N",
+            "clusters of the cluster distribution (0: about sqrt(N))"),
+    TEX_ENUM(struct bubble_params, dimension, 0, "2", "2|3",
+             "points in the plane, or in space for solid textures"),
+    TEX_REAL(struct bubble_params, z, 0, 0.5, -1e6, 1e6, "Z",
+             "the slice of the map through 3D points"),
+    TEX_REAL(struct bubble_params, size_spread, 0, 0, 0, 0.95, "S",
+             "random bubble sizes: each radius is 1+S(2u-1), u uniform"),
+    TEX_REAL(struct bubble_params, axis_spread, 0, 0, 0, 0.95, "E",
+             "random ellipses (ellipsoids): each axis of a bubble scaled by 1+E(2u-1)"),
+    TEX_ENUM(struct bubble_params, search, 0, "auto", "auto|grid|kdtree|brute",
+             "nearest-point search: all give the same map; auto picks grid or FLANN's kd-tree"),
+    {0}};
+
+struct bubble_state {
+    tex_cellular *c;
+    double unit;  /* mean spacing of the points, N^(-1/dim) */
+    uint64_t key; /* for the cell values */
+    int dim;
+};
+
+static void bubble_fini(struct tex_field *f)
+{
+    struct bubble_state *s = f->state;
+    if (s)
+        tex_cellular_free(s->c);
+    free(s);
+    f->state = NULL;
+}
+
+static int bubble_init(struct tex_field *f)
+{
+    const struct bubble_params *p = f->params;
+    struct tex_cellular_opts o = {TEX_METRIC_EUCLID, 2, f->tile, (enum tex_search)p->search};
+    struct bubble_state *s;
+    tex_points ps;
+    int dim = p->dimension + 2;
+
+    if (tex_metric_parse(p->metric, &o.metric, &o.p) < 0)
+        return -1;
+    if (p->points) {
+        if (tex_points_read(&ps, p->points, dim) < 0)
+            return -1;
+    } else {
+        if (p->distribution == TEX_POINTS_POISSON && p->count > 2000000)
+            return tex_usage_error("--distribution poisson takes at most 2000000 points (got %d)",
+                                   p->count);
+        if (tex_points_random(&ps, dim, p->count, (enum tex_pointdist)p->distribution,
+                              p->clusters, f->seed, f->tile) < 0)
+            return -1;
+    }
+    if (tex_points_vary(&ps, p->size_spread, p->axis_spread, f->seed) < 0) {
+        tex_points_free(&ps);
+        return -1;
+    }
+    if (!(s = calloc(1, sizeof *s))) {
+        tex_points_free(&ps);
+        return tex_error("out of memory");
+    }
+    s->dim = dim;
+    s->unit = pow((double)ps.n, -1.0 / dim);
+    s->key = tex_hash64(f->seed ^ 0x63656c6c73ULL);
+    s->c = tex_cellular_new(&ps, &o);
+    tex_points_free(&ps);
+    f->state = s;
+    if (!s->c) {
+        bubble_fini(f);
+        return -1;
+    }
+    return 0;
+}
+
+static inline float unit_clamp(double x)
+{
+    return (float)(x < 0 ? 0 : x < 1 ? x : 1);
+}
+
+/* Shade n query points (q: n*dim). */
+static void bubble_shade(const struct tex_field *f, int n, const double *q, float *out)
+{
+    enum { CHUNK = 256 };
+    const struct bubble_params *p = f->params;
+    const struct bubble_state *s = f->state;
+
+    for (int i0 = 0; i0 < n; i0 += CHUNK) {
+        int m = n - i0 < CHUNK ? n - i0 : CHUNK;
+        double f1[CHUNK], f2[CHUNK];
+        long id[CHUNK];
+        tex_cellular_query(s->c, m, q + (size_t)i0 * s->dim, f1, f2,
+                           p->value == OUT_CELL ? id : NULL);
+        for (int i = 0; i < m; i++) {
+            double a = f1[i], b = f2[i], t;
+            float *o = out + i0 + i;
+            switch (p->value) {
+            case OUT_F1:
+                *o = unit_clamp(a / (1.5 * s->unit));
+                break;
+            case OUT_F2:
+                *o = unit_clamp(b / (2 * s->unit));
+                break;
+            case OUT_F2F1:
+                *o = unit_clamp((b - a) / s->unit);
+                break;
+            case OUT_CELL:
+                *o = (float)((tex_hash64((uint64_t)id[i] ^ s->key) >> 40) * 0x1p-24);
+                break;
+            default:
+                /* t: 0 at the point, 1 where F1 = F2 (the cell border); a
+                 * hemisphere's height over t reads as a lit bubble. */
+                t = a + b > 0 ? 2 * a / (a + b) : 0;
+                *o = unit_clamp(sqrt(1 - t * t > 0 ? 1 - t * t : 0));
+                break;
+            }
+        }
+    }
+}
+
+static void bubble_eval3(const struct tex_field *f, int n, const double *u, const double *v,
+                         const double *w, float *out)
+{
+    const struct bubble_state *s = f->state;
+    double q[256 * 3];
+
+    for (int i0 = 0; i0 < n; i0 += 256) {
+        int m = n - i0 < 256 ? n - i0 : 256;
+        for (int i = 0; i < m; i++) {
+            q[i * s->dim] = u[i0 + i];
+            q[i * s->dim + 1] = v[i0 + i];
+            if (s->dim == 3)
+                q[i * 3 + 2] = w ? w[i0 + i] : ((const struct bubble_params *)f->params)->z;
+        }
+        bubble_shade(f, m, q, out + i0);
+    }
+}
+
+static void bubble_eval2(const struct tex_field *f, int n, const double *u, const double *v,
+                         float *out)
+{
+    bubble_eval3(f, n, u, v, NULL, out);
+}
+
+static void bubble_row(const struct tex_field *f, int y, float *out)
+{
+    double u[256], v[256];
+
+    for (int x0 = 0; x0 < f->w; x0 += 256) {
+        int m = f->w - x0 < 256 ? f->w - x0 : 256;
+        for (int i = 0; i < m; i++) {
+            u[i] = (x0 + i + 0.5) / f->w;
+            v[i] = (y + 0.5) / f->h;
+        }
+        bubble_eval3(f, m, u, v, NULL, out + x0);
+    }
+}
+
+const struct tex_primitive tex_prim_bubble = {
+    .name = "bubble",
+    .summary = "bubbles and Voronoi cells around random points (the thesis's t.bubble)",
+    .flags = TEX_PRIM_2D | TEX_PRIM_3D | TEX_PRIM_TILE,
+    .params_size = sizeof(struct bubble_params),
+    .params = bubble_rows,
+    .init = bubble_init,
+    .fini = bubble_fini,
+    .eval2 = bubble_eval2,
+    .eval3 = bubble_eval3,
+    .row = bubble_row,
+};
