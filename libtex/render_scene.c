@@ -1002,7 +1002,8 @@ static void parse_light(struct parser *ps)
         fail_at(ps, &at, 0, "unknown light '%s' (distant|point|spot|area)", k);
     struct tex_scene *s = ps->s;
     struct tex_light *a = palloc(ps, (s->nlights + 1) * sizeof *a);
-    memcpy(a, s->lights, s->nlights * sizeof *a);
+    if (s->nlights)
+        memcpy(a, s->lights, s->nlights * sizeof *a);
     s->lights = a;
     struct tex_light *l = &a[s->nlights++];
     l->kind = kind;
