@@ -435,21 +435,3 @@ void tex_gamut_map(double rgb[3], enum tex_gamut g)
     for (int i = 0; i < 3; i++) /* rounding */
         rgb[i] = rgb[i] < 0 ? 0 : rgb[i] > 1 ? 1 : rgb[i];
 }
-
-double tex_srgb_encode(double x)
-{
-    if (!(x > 0))
-        return 0;
-    if (x >= 1)
-        return 1;
-    return x <= 0.0031308 ? 12.92 * x : 1.055 * pow(x, 1 / 2.4) - 0.055;
-}
-
-double tex_srgb_decode(double x)
-{
-    if (!(x > 0))
-        return 0;
-    if (x >= 1)
-        return 1;
-    return x <= 0.04045 ? x / 12.92 : pow((x + 0.055) / 1.055, 2.4);
-}

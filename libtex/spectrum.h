@@ -19,7 +19,8 @@
  *   tex_bands_xyz(&b, s, xyz);               // reflected spectrum -> XYZ
  *   tex_xyz_to_linear_srgb(xyz, rgb);        // primaries' matrix
  *   tex_gamut_map(rgb, TEX_GAMUT_DESATURATE);
- *   for (i..3) byte = 255 * tex_srgb_encode(rgb[i]);   // display non-linearity
+ *   // then the display non-linearity when a file is written (colour.h's
+ *   // tex_srgb_encode, the renderer's: the chain stays linear until then)
  *
  * Spectrum to XYZ.  The band samples are reconstructed as a step function
  * (constant over each band) and multiplied by the CIE matching functions,
@@ -54,9 +55,6 @@
  *       saturation is lost; a colour brighter than white (Y >= 1) becomes
  *       white, a colour with Y <= 0 black.  This is the default.
  *   TEX_GAMUT_NONE        leave linear values as they are (for EXR output).
- *
- * Display non-linearity: tex_srgb_encode() is the sRGB transfer function
- * (linear segment below 0.0031308, then 1.055 x^(1/2.4) - 0.055).
  *
  * RGB -> spectrum (tex_bands_from_rgb), for colours given in RGB (textured
  * albedo, scene colours) in spectral mode: a smooth basis.  Three smooth
@@ -148,8 +146,6 @@ void tex_bands_to_rgb(const struct tex_bands *b, const float *s, enum tex_gamut 
 void tex_xyz_to_linear_srgb(const double xyz[3], double rgb[3]);
 void tex_linear_srgb_to_xyz(const double rgb[3], double xyz[3]);
 void tex_gamut_map(double rgb[3], enum tex_gamut g);
-double tex_srgb_encode(double linear);
-double tex_srgb_decode(double encoded);
 
 #ifdef __cplusplus
 }

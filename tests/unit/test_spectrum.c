@@ -145,13 +145,6 @@ int main(void)
     tex_gamut_map(inside, TEX_GAMUT_DESATURATE);
     CHECK(!memcmp(inside, keep, sizeof keep), "colours inside the gamut are left alone");
 
-    int inv = 1;
-    for (int i = 0; i <= 100; i++) {
-        double t = i / 100.0;
-        inv &= fabs(tex_srgb_decode(tex_srgb_encode(t)) - t) < 1e-9;
-    }
-    CHECK(inv && fabs(tex_srgb_encode(0.5) - 0.735357) < 1e-5,
-          "sRGB transfer: encode(0.5) = 0.7354, decode inverts it");
     double wp[3] = {0.95047, 1, 1.08883};
     tex_xyz_to_linear_srgb(wp, rgb);
     CHECKF(fabs(rgb[0] - 1) < 1e-4 && fabs(rgb[1] - 1) < 1e-4 && fabs(rgb[2] - 1) < 1e-4,

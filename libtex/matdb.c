@@ -1,5 +1,5 @@
-/* material.c - the materials database */
-#include "material.h"
+/* matdb.c - the materials database */
+#include "matdb.h"
 
 #include "error.h"
 
@@ -11,14 +11,14 @@
 #include <string.h>
 
 struct pending {
-    struct tex_material mat;
+    struct tex_matdb_entry mat;
     int form; /* 0 none, 1 ior, 2 cauchy, 3 sellmeier, 4 nk */
     double c[6];
     int nrows, cap;
     double *wl, *n, *k;
 };
 
-void tex_materials_free(struct tex_materials *db)
+void tex_matdb_free(struct tex_matdb *db)
 {
     for (int i = 0; i < db->count; i++)
         free(db->m[i].source);
@@ -65,7 +65,7 @@ static double formula_n(const struct pending *p, double nm)
 /* Turn the pending material into curves. */
 static int finish(struct pending *p, const char *file, int line)
 {
-    struct tex_material *m = &p->mat;
+    struct tex_matdb_entry *m = &p->mat;
     if (p->form == 0)
         return tex_usage_error("%s:%d: material '%s' has no data (ior, cauchy, sellmeier or nk)",
                                file, line, m->name);
@@ -88,9 +88,9 @@ static int finish(struct pending *p, const char *file, int line)
     return 0;
 }
 
-static int add(struct tex_materials *db, struct pending *p)
+static int add(struct tex_matdb *db, struct pending *p)
 {
-    struct tex_material *nm = realloc(db->m, (db->count + 1) * sizeof *nm);
+    struct tex_matdb_entry *nm = realloc(db->m, (db->count + 1) * sizeof *nm);
     if (!nm)
         return tex_error("out of memory");
     db->m = nm;
@@ -99,7 +99,7 @@ static int add(struct tex_materials *db, struct pending *p)
     return 0;
 }
 
-int tex_materials_parse(struct tex_materials *db, const char *text, const char *file)
+int tex_matdb_parse(struct tex_matdb *db, const char *text, const char *file)
 {
     db->count = 0;
     db->m = NULL;
@@ -141,9 +141,9 @@ int tex_materials_parse(struct tex_materials *db, const char *text, const char *
             else if (got != 2 || (strcmp(kind, "conductor") && strcmp(kind, "dielectric")))
                 rc = tex_usage_error("%s:%d: expected 'material NAME conductor|dielectric'",
                                      file, line);
-            else if (strlen(name) >= TEX_MATERIAL_NAME)
+            else if (strlen(name) >= TEX_MATDB_NAME)
                 rc = tex_usage_error("%s:%d: material name longer than %d characters", file,
-                                     line, TEX_MATERIAL_NAME - 1);
+                                     line, TEX_MATDB_NAME - 1);
             else {
                 for (int i = 0; i < db->count; i++)
                     if (!strcmp(db->m[i].name, name))
@@ -243,11 +243,11 @@ int tex_materials_parse(struct tex_materials *db, const char *text, const char *
     free(p.n);
     free(p.k);
     if (rc < 0)
-        tex_materials_free(db);
+        tex_matdb_free(db);
     return rc;
 }
 
-int tex_materials_read(struct tex_materials *db, const char *path)
+int tex_matdb_read(struct tex_matdb *db, const char *path)
 {
     db->count = 0;
     db->m = NULL;
@@ -281,12 +281,12 @@ int tex_materials_read(struct tex_materials *db, const char *path)
         free(text);
         return tex_usage_error("%s: binary data in a materials file", path);
     }
-    int rc = tex_materials_parse(db, text, path);
+    int rc = tex_matdb_parse(db, text, path);
     free(text);
     return rc;
 }
 
-const struct tex_material *tex_material_find(const struct tex_materials *db, const char *name)
+const struct tex_matdb_entry *tex_matdb_find(const struct tex_matdb *db, const char *name)
 {
     for (int i = 0; i < db->count; i++)
         if (!strcmp(db->m[i].name, name))

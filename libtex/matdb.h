@@ -1,4 +1,4 @@
-/* material.h - the materials database ("banco de materiais", seed 000 section 5)
+/* matdb.h - the materials database ("banco de materiais", seed 000 section 5)
  *
  * Optical constants per wavelength, read from a text file (format in
  * textura-materials(5); the shipped one is patterns/materials.txt):
@@ -19,19 +19,19 @@
  * n(l), k(l) at 1 nm over 380-780 nm (spectrum.h), so the renderer samples
  * them into its bands with tex_bands_sample().
  *
- *   struct tex_materials db;
- *   if (tex_materials_read(&db, "patterns/materials.txt") < 0) die(tex_errmsg());
- *   const struct tex_material *m = tex_material_find(&db, "gold");  // NULL + error
- *   tex_materials_free(&db);
+ *   struct tex_matdb db;
+ *   if (tex_matdb_read(&db, "patterns/materials.txt") < 0) die(tex_errmsg());
+ *   const struct tex_matdb_entry *m = tex_matdb_find(&db, "gold");  // NULL + error
+ *   tex_matdb_free(&db);
  *
  * Errors carry "file:line: " and are usage errors (exit 2): unknown keyword,
  * unsorted or negative wavelengths, k < 0, n <= 0, a Sellmeier or Cauchy
  * formula giving n <= 0 in 380-780 nm, a material without data, a duplicate
- * name, a missing `end`.  tex_material_find() of an unknown name is a usage
+ * name, a missing `end`.  tex_matdb_find() of an unknown name is a usage
  * error listing the known names.
  */
-#ifndef TEX_MATERIAL_H
-#define TEX_MATERIAL_H
+#ifndef TEX_MATDB_H
+#define TEX_MATDB_H
 
 #include "spectrum.h"
 
@@ -39,27 +39,27 @@
 extern "C" {
 #endif
 
-#define TEX_MATERIAL_NAME 32
+#define TEX_MATDB_NAME 32
 
-enum tex_material_kind { TEX_DIELECTRIC, TEX_CONDUCTOR };
+enum tex_matdb_kind { TEX_DIELECTRIC, TEX_CONDUCTOR };
 
-struct tex_material {
-    char name[TEX_MATERIAL_NAME];
-    enum tex_material_kind kind;
+struct tex_matdb_entry {
+    char name[TEX_MATDB_NAME];
+    enum tex_matdb_kind kind;
     tex_curve n, k;
     char *source; /* citation, may be NULL */
 };
 
-struct tex_materials {
+struct tex_matdb {
     int count;
-    struct tex_material *m;
+    struct tex_matdb_entry *m;
 };
 
-int tex_materials_read(struct tex_materials *db, const char *path);
+int tex_matdb_read(struct tex_matdb *db, const char *path);
 /* Parse from memory; `name` is used in messages. */
-int tex_materials_parse(struct tex_materials *db, const char *text, const char *name);
-const struct tex_material *tex_material_find(const struct tex_materials *db, const char *name);
-void tex_materials_free(struct tex_materials *db);
+int tex_matdb_parse(struct tex_matdb *db, const char *text, const char *name);
+const struct tex_matdb_entry *tex_matdb_find(const struct tex_matdb *db, const char *name);
+void tex_matdb_free(struct tex_matdb *db);
 
 #ifdef __cplusplus
 }
