@@ -1,0 +1,118 @@
+/* colour.h - the renderer's colour: n samples, RGB or spectral
+ *
+ * t_apply shades in one of two colour modes, chosen per scene:
+ *   TEX_COLOUR_RGB       n = 3 samples: linear R, G, B (Whitted-Phong)
+ *   TEX_COLOUR_SPECTRAL  n = sample count: the mean of a spectrum over n
+ *                        equal bands between lambda0 and lambda1 nm (Hall)
+ * A tex_colour holds up to TEX_COLOUR_MAX samples; only the first n are
+ * meaningful, and every operation takes n so that an RGB scene pays for
+ * 3 floats, not TEX_COLOUR_MAX.  Colours are linear (radiance, reflectance);
+ * the conversion to display RGB happens once per pixel sample, through the
+ * scene's tex_colour_space (to_rgb), and the sRGB non-linearity only when a
+ * file is written in an 8/16-bit format.
+ *
+ *   tex_colour c, k;
+ *   tex_colour_set(&c, n, 0.0f);            // c = 0
+ *   tex_colour_madd(&c, n, &k, 0.5f);       // c += 0.5 k
+ *   tex_colour_mul(&c, n, &c, &k);          // c = c * k (per sample)
+ *
+ * A colour space converts to and from the n samples:
+ *   cs->from_rgb(cs, rgb, kind, &c)   an RGB triple (reflectance or light,
+ *                                     TEX_SPECTRUM_REFLECTANCE / _ILLUMINANT)
+ *                                     to n samples (identity in RGB mode)
+ *   cs->to_rgb(cs, &c, rgb)           n samples to linear display RGB
+ *                                     (identity in RGB mode; spectral: CIE
+ *                                     1931 -> XYZ -> RGB, gamut mapping)
+ * tex_colour_space_rgb() fills the RGB space; the spectral space is made by
+ * the spectrum module (issue 10) and plugs into the same two functions.
+ */
+#ifndef TEX_COLOUR_H
+#define TEX_COLOUR_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define TEX_COLOUR_MAX 64 /* most spectral samples a scene may ask for */
+
+typedef struct tex_colour {
+    float v[TEX_COLOUR_MAX];
+} tex_colour;
+
+enum tex_colour_mode { TEX_COLOUR_RGB, TEX_COLOUR_SPECTRAL };
+enum tex_spectrum_kind { TEX_SPECTRUM_REFLECTANCE, TEX_SPECTRUM_ILLUMINANT };
+
+struct tex_colour_space {
+    enum tex_colour_mode mode;
+    int n;                  /* samples per colour: 3 in RGB mode */
+    double lambda0, lambda1; /* spectral: the sampled range in nm */
+    void (*from_rgb)(const struct tex_colour_space *cs, const float rgb[3],
+                     enum tex_spectrum_kind kind, tex_colour *out);
+    void (*to_rgb)(const struct tex_colour_space *cs, const tex_colour *c, float rgb[3]);
+    void *data; /* the mode's tables (matching functions, basis spectra) */
+};
+
+/* The RGB colour space (n = 3, identity conversions). */
+void tex_colour_space_rgb(struct tex_colour_space *cs);
+
+/* sRGB transfer function (IEC 61966-2-1) on one linear value, and back. */
+float tex_srgb_encode(float linear);
+float tex_srgb_decode(float encoded);
+
+static inline void tex_colour_set(tex_colour *d, int n, float x)
+{
+    for (int i = 0; i < n; i++)
+        d->v[i] = x;
+}
+
+static inline void tex_colour_copy(tex_colour *d, int n, const tex_colour *a)
+{
+    for (int i = 0; i < n; i++)
+        d->v[i] = a->v[i];
+}
+
+static inline void tex_colour_add(tex_colour *d, int n, const tex_colour *a, const tex_colour *b)
+{
+    for (int i = 0; i < n; i++)
+        d->v[i] = a->v[i] + b->v[i];
+}
+
+static inline void tex_colour_mul(tex_colour *d, int n, const tex_colour *a, const tex_colour *b)
+{
+    for (int i = 0; i < n; i++)
+        d->v[i] = a->v[i] * b->v[i];
+}
+
+static inline void tex_colour_scale(tex_colour *d, int n, const tex_colour *a, float s)
+{
+    for (int i = 0; i < n; i++)
+        d->v[i] = a->v[i] * s;
+}
+
+/* d += a * s */
+static inline void tex_colour_madd(tex_colour *d, int n, const tex_colour *a, float s)
+{
+    for (int i = 0; i < n; i++)
+        d->v[i] += a->v[i] * s;
+}
+
+/* d += a * b * s (per sample) */
+static inline void tex_colour_mmadd(tex_colour *d, int n, const tex_colour *a, const tex_colour *b,
+                                    float s)
+{
+    for (int i = 0; i < n; i++)
+        d->v[i] += a->v[i] * b->v[i] * s;
+}
+
+static inline float tex_colour_max(const tex_colour *a, int n)
+{
+    float m = a->v[0];
+    for (int i = 1; i < n; i++)
+        m = a->v[i] > m ? a->v[i] : m;
+    return m;
+}
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,41 @@
+/* render_shade.c - Whitted-Phong and the table of shading models */
+#include <math.h>
+#include <string.h>
+
+#include "render_shade.h"
+
+static void phong_direct(const struct tex_material *m, const double N[3], const double V[3],
+                         const double L[3], const tex_colour *E, int n, tex_colour *out)
+{
+    double nl = N[0] * L[0] + N[1] * L[1] + N[2] * L[2];
+    if (nl <= 0)
+        return;
+    tex_colour_mmadd(out, n, &m->kd, E, (float)nl);
+    double h[3] = {L[0] + V[0], L[1] + V[1], L[2] + V[2]};
+    double hl = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+    if (hl <= 0)
+        return;
+    double nh = (N[0] * h[0] + N[1] * h[1] + N[2] * h[2]) / hl;
+    if (nh > 0)
+        tex_colour_mmadd(out, n, &m->ks, E, (float)pow(nh, m->n));
+}
+
+static void phong_weights(const struct tex_material *m, double cosi, int n, tex_colour *kr,
+                          tex_colour *kt)
+{
+    (void)cosi;
+    tex_colour_set(kr, n, (float)m->kr);
+    tex_colour_set(kt, n, (float)m->kt);
+}
+
+const struct tex_shading_model tex_shading_phong = {"phong", phong_direct, phong_weights};
+
+static const struct tex_shading_model *const models[] = {&tex_shading_phong, NULL};
+
+const struct tex_shading_model *tex_shading_find(const char *name)
+{
+    for (int i = 0; models[i]; i++)
+        if (!strcmp(models[i]->name, name))
+            return models[i];
+    return NULL;
+}
