@@ -416,7 +416,7 @@ void tex_gamut_map(double rgb[3], enum tex_gamut g)
         rgb[0] = rgb[1] = rgb[2] = 0;
         return;
     }
-    if (y >= 1) {
+    if (y >= 1 && g == TEX_GAMUT_DESATURATE) {
         rgb[0] = rgb[1] = rgb[2] = 1;
         return;
     }
@@ -425,6 +425,11 @@ void tex_gamut_map(double rgb[3], enum tex_gamut g)
         double t = y / (y - lo);
         for (int i = 0; i < 3; i++)
             rgb[i] = y + t * (rgb[i] - y);
+    }
+    if (g == TEX_GAMUT_CHROMA) {
+        for (int i = 0; i < 3; i++)
+            rgb[i] = rgb[i] < 0 ? 0 : rgb[i];
+        return;
     }
     double hi = fmax(rgb[0], fmax(rgb[1], rgb[2]));
     if (hi > 1) { /* then until the highest reaches 1 */

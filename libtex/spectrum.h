@@ -54,7 +54,10 @@
  *       exceeds 1.  Luminance and hue (dominant wavelength) are kept and only
  *       saturation is lost; a colour brighter than white (Y >= 1) becomes
  *       white, a colour with Y <= 0 black.  This is the default.
- *   TEX_GAMUT_NONE        leave linear values as they are (for EXR output).
+ *   TEX_GAMUT_CHROMA      only the first step: no negative channel, luminance
+ *       kept, values above 1 left for the writer (the renderer's per-sample
+ *       conversion, so that EXR output keeps its range).
+ *   TEX_GAMUT_NONE        leave linear values as they are.
  *
  * RGB -> spectrum (tex_bands_from_rgb), for colours given in RGB (textured
  * albedo, scene colours) in spectral mode: a smooth basis.  Three smooth
@@ -110,7 +113,7 @@ struct tex_bands {
     double xyz2rgb[3][3];          /* sRGB primaries, white = these bands' D65 */
 };
 
-enum tex_gamut { TEX_GAMUT_DESATURATE, TEX_GAMUT_CLIP, TEX_GAMUT_NONE };
+enum tex_gamut { TEX_GAMUT_DESATURATE, TEX_GAMUT_CLIP, TEX_GAMUT_CHROMA, TEX_GAMUT_NONE };
 
 /* Curves. */
 void tex_curve_constant(tex_curve *c, double v);
