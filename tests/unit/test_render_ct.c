@@ -124,6 +124,8 @@ int main(void)
     CHECK(tex_ct_init(&ct, &cs, NULL, TEX_FACET_BECKMANN, 0, 0, 0.5) < 0 &&
               tex_ct_init(&ct, &cs, NULL, TEX_FACET_BECKMANN, 0.2, 0, 1.5) < 0,
           "bad roughness or specular fraction: usage errors");
+    CHECK(tex_shading_find("cook-torrance") == &tex_shading_cook_torrance,
+          "the model is found by its scene name");
     tex_matdb_free(&db);
     tex_colour_space_spectral_free(&cs);
     return unit_done();
