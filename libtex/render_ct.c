@@ -32,6 +32,15 @@ int tex_ct_init(struct tex_ct *ct, const struct tex_colour_space *cs,
     return 0;
 }
 
+/* A surface that names the model but sets none of its parameters: a dielectric of the
+ * surface's ior, Beckmann m = 0.2, half specular. */
+static const struct tex_ct ct_default = {{TEX_FACET_BECKMANN, 0.2, 0}, 0.5, 0, 0, {{0}}, {{0}}};
+
+static const struct tex_ct *params(const struct tex_material *mat)
+{
+    return mat->model_data ? mat->model_data : &ct_default;
+}
+
 /* Fresnel reflectance per sample at cos_i (< 0: from inside). */
 static void fresnel(const struct tex_material *mat, const struct tex_ct *ct, double cos_i,
                     int n, tex_colour *fr)
@@ -50,7 +59,7 @@ static void fresnel(const struct tex_material *mat, const struct tex_ct *ct, dou
 static void ct_direct(const struct tex_material *mat, const double N[3], const double V[3],
                       const double L[3], const tex_colour *E, int n, tex_colour *out)
 {
-    const struct tex_ct *ct = mat->model_data;
+    const struct tex_ct *ct = params(mat);
     double nl = N[0] * L[0] + N[1] * L[1] + N[2] * L[2];
     double nv = N[0] * V[0] + N[1] * V[1] + N[2] * V[2];
     if (nl <= 0)
@@ -73,7 +82,7 @@ static void ct_direct(const struct tex_material *mat, const double N[3], const d
 static void ct_weights(const struct tex_material *mat, double cosi, int n, tex_colour *kr,
                        tex_colour *kt)
 {
-    const struct tex_ct *ct = mat->model_data;
+    const struct tex_ct *ct = params(mat);
     tex_colour f;
     fresnel(mat, ct, cosi, n, &f);
     for (int i = 0; i < n; i++) {

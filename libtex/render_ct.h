@@ -12,6 +12,8 @@
  *       m / ns:  Beckmann slope or Blinn exponent (microfacet.h)
  *       s:       specular fraction, d = 1 - s the diffuse one
  *   mat.model = &tex_shading_cook_torrance; mat.model_data = &ct;
+ * With model_data NULL the model shades a dielectric of the surface's ior
+ * with Beckmann m = 0.2 and s = 0.5.
  *
  * direct(): for a light of irradiance colour E from L,
  *     out += d kd E (N.L) + s pi F(V.H) [D G / (4 (N.V)(N.L))] E (N.L)

@@ -124,6 +124,13 @@ int main(void)
     CHECK(tex_ct_init(&ct, &cs, NULL, TEX_FACET_BECKMANN, 0, 0, 0.5) < 0 &&
               tex_ct_init(&ct, &cs, NULL, TEX_FACET_BECKMANN, 0.2, 0, 1.5) < 0,
           "bad roughness or specular fraction: usage errors");
+    mat.model_data = NULL;
+    mat.model->weights(&mat, 1, cs.n, &kr, &kt);
+    tex_colour_set(&out, cs.n, 0);
+    double N0[3] = {0, 0, 1};
+    mat.model->direct(&mat, N0, N0, N0, &E, cs.n, &out);
+    CHECKF(fabs(kr.v[0] - 0.04) < 1e-6 && out.v[0] > 0,
+           "without model data: a dielectric of the surface's ior (Fr %.4f)", kr.v[0]);
     CHECK(tex_shading_find("cook-torrance") == &tex_shading_cook_torrance,
           "the model is found by its scene name");
     tex_matdb_free(&db);
