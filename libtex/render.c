@@ -1,0 +1,223 @@
+/* render.c - camera, sampling, Whitted recursion, tiles and threads
+ *
+ * Each pixel draws its sample positions (and area-light jitter) from an
+ * RNG seeded by the scene seed and the pixel's index, and pixels are
+ * independent, so any thread count gives the same image.  Tiles of 16x16
+ * pixels are shared among OpenMP threads dynamically.
+ */
+#include <math.h>
+#include <omp.h>
+#include <stdlib.h>
+
+#include "error.h"
+#include "render.h"
+#include "rng.h"
+
+#define TILE 16
+
+struct ctx {
+    const struct tex_scene *s;
+    int n;                 /* colour samples */
+    tex_colour ambient, background;
+    tex_rng *rng;
+};
+
+static double eps_at(tex_v3 p)
+{
+    double m = fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z)));
+    return 1e-6 * (1 + m);
+}
+
+static const struct tex_surface *surface_of(const struct tex_scene *s, const struct tex_object *leaf)
+{
+    return leaf->surface ? leaf->surface : s->surfaces[0];
+}
+
+/* World normal at a hit, facing outwards of the solid. */
+static tex_v3 hit_normal(const struct tex_hit *h, tex_v3 P)
+{
+    const struct tex_object *l = h->leaf;
+    tex_v3 n = tex_shape_methods[l->kind].normal(l, tex_xform_point(&l->to_obj, P));
+    n = tex_v3_norm(tex_xform_normal(&l->to_obj, n));
+    return h->flip ? tex_v3_scale(n, -1) : n;
+}
+
+/* Fraction of light passing from P to the light: transparent surfaces let Kt through. */
+static double transmittance(const struct tex_scene *s, tex_v3 P, tex_v3 L, double dist)
+{
+    double tr = 1;
+    for (int i = 0; i < 16; i++) {
+        struct tex_hit h;
+        if (!tex_scene_trace(s, P, L, 0, dist, &h))
+            return tr;
+        tr *= surface_of(s, h.leaf)->kt;
+        if (tr <= 1e-4)
+            return 0;
+        tex_v3 Q = tex_v3_madd(P, L, h.t);
+        double e = eps_at(Q);
+        P = tex_v3_madd(Q, L, e);
+        dist -= h.t + e;
+        if (dist <= 0)
+            return tr;
+    }
+    return tr;
+}
+
+static void trace(const struct ctx *c, const tex_ray *r, int depth, tex_colour *out)
+{
+    const struct tex_scene *s = c->s;
+    int n = c->n;
+    struct tex_hit h;
+    if (!tex_scene_trace(s, r->o, r->d, 0, INFINITY, &h)) {
+        tex_colour_copy(out, n, &c->background);
+        return;
+    }
+    tex_v3 P = tex_v3_madd(r->o, r->d, h.t);
+    tex_v3 Ng = hit_normal(&h, P);
+    int entering = tex_v3_dot(r->d, Ng) < 0;
+    tex_v3 N = entering ? Ng : tex_v3_scale(Ng, -1);
+    const struct tex_surface *sf = surface_of(s, h.leaf);
+    double width = r->width + h.t * r->spread;
+    struct tex_material m;
+    tex_resolve_material(s, sf, h.leaf, P, r->d, &N, s->settings.filter ? width : 0, &m);
+    tex_v3 V = tex_v3_scale(r->d, -1);
+    double e = eps_at(P);
+    /* offset along the geometric normal so bumped normals cannot start rays inside */
+    tex_v3 Ngv = entering ? Ng : tex_v3_scale(Ng, -1);
+    tex_v3 Pout = tex_v3_madd(P, Ngv, e), Pin = tex_v3_madd(P, Ngv, -e);
+
+    tex_colour_mul(out, n, &c->ambient, &m.ka);
+    for (int li = 0; li < s->nlights; li++) {
+        const struct tex_light *l = &s->lights[li];
+        int ns = tex_light_samples(l);
+        for (int k = 0; k < ns; k++) {
+            double jx = 0.5, jy = 0.5;
+            if (l->kind == TEX_LIGHT_AREA) {
+                jx = tex_rng_uniform(c->rng);
+                jy = tex_rng_uniform(c->rng);
+            }
+            tex_v3 L;
+            double dist, fatt;
+            if (!tex_light_sample(l, k, jx, jy, P, &L, &dist, &fatt))
+                continue;
+            if (tex_v3_dot(L, N) <= 0 || tex_v3_dot(L, Ngv) <= 0)
+                continue;
+            double sh = transmittance(s, Pout, L, dist);
+            if (sh <= 0)
+                continue;
+            tex_colour E;
+            tex_colour_scale(&E, n, &l->e, (float)(fatt * sh));
+            m.model->direct(&m, &N.x, &V.x, &L.x, &E, n, out);
+        }
+    }
+    if (depth >= s->settings.depth || (m.kr <= 0 && m.kt <= 0 && m.model == &tex_shading_phong))
+        return;
+    tex_colour kr, kt, I;
+    double cosi = tex_v3_dot(N, V);
+    m.model->weights(&m, cosi, n, &kr, &kt);
+    tex_ray rr = {Pout, tex_reflect(r->d, N), width, r->spread};
+    if (tex_v3_dot(rr.d, Ngv) <= 0)
+        rr.d = tex_reflect(r->d, Ngv);
+    if (tex_colour_max(&kt, n) > 0) {
+        double n1 = entering ? 1 : m.ior, n2 = entering ? m.ior : 1;
+        tex_ray rt = {Pin, r->d, width, r->spread};
+        if (tex_refract(r->d, N, n1, n2, &rt.d)) {
+            trace(c, &rt, depth + 1, &I);
+            tex_colour_mmadd(out, n, &kt, &I, 1);
+        } else {
+            tex_colour_add(&kr, n, &kr, &kt); /* total internal reflection */
+        }
+    }
+    if (tex_colour_max(&kr, n) > 0) {
+        trace(c, &rr, depth + 1, &I);
+        tex_colour_mmadd(out, n, &kr, &I, 1);
+    }
+}
+
+struct camera {
+    tex_v3 eye, fwd, right, up;
+    double sx, sy; /* half extents of the image plane at distance 1 */
+};
+
+static void camera_setup(const struct tex_scene *s, struct camera *cam)
+{
+    cam->eye = s->eye;
+    cam->fwd = tex_v3_norm(tex_v3_sub(s->look, s->eye));
+    /* left-handed like POV-Ray: x right, y up, z into the screen */
+    cam->right = tex_v3_norm(tex_v3_cross(s->up, cam->fwd));
+    cam->up = tex_v3_cross(cam->fwd, cam->right);
+    cam->sx = tan(s->fov * M_PI / 360);
+    cam->sy = cam->sx * s->settings.h / s->settings.w;
+}
+
+static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, int y, float *px)
+{
+    const struct tex_scene *s = c0->s;
+    const struct tex_settings *st = &s->settings;
+    tex_rng rng;
+    tex_rng_seed(&rng, tex_hash64(st->seed ^ tex_hash64((uint64_t)y * st->w + x)));
+    struct ctx c = *c0;
+    c.rng = &rng;
+    int spp = st->spp, k = (int)sqrt((double)spp);
+    int grid = k * k == spp;
+    double acc[3] = {0, 0, 0};
+    double spread = 2 * cam->sx / st->w;
+    for (int i = 0; i < spp; i++) {
+        double ox = 0.5, oy = 0.5;
+        if (spp > 1) {
+            ox = tex_rng_uniform(&rng);
+            oy = tex_rng_uniform(&rng);
+            if (grid) { /* stratified: jitter within cell i of a k x k grid */
+                ox = ((i % k) + ox) / k;
+                oy = ((i / k) + oy) / k;
+            }
+        }
+        double a = (2 * (x + ox) / st->w - 1) * cam->sx;
+        double b = (1 - 2 * (y + oy) / st->h) * cam->sy;
+        tex_ray r = {cam->eye,
+                     tex_v3_norm(tex_v3_add(cam->fwd, tex_v3_add(tex_v3_scale(cam->right, a),
+                                                                 tex_v3_scale(cam->up, b)))),
+                     0, spread / sqrt(spp)};
+        tex_colour col;
+        float rgb[3];
+        trace(&c, &r, 0, &col);
+        s->cs.to_rgb(&s->cs, &col, rgb);
+        for (int j = 0; j < 3; j++)
+            acc[j] += rgb[j];
+    }
+    for (int j = 0; j < 3; j++)
+        px[j] = (float)(acc[j] / spp);
+}
+
+tex_map *tex_render(struct tex_scene *s, void (*progress)(long, long, void *), void *arg)
+{
+    if (!s->bvh && tex_scene_prepare(s) < 0)
+        return NULL;
+    const struct tex_settings *st = &s->settings;
+    tex_map *img = tex_map_new(st->w, st->h, 3);
+    if (!img)
+        return NULL;
+    struct ctx c = {s, s->cs.n, {{0}}, {{0}}, NULL};
+    s->cs.from_rgb(&s->cs, s->ambient, TEX_SPECTRUM_ILLUMINANT, &c.ambient);
+    s->cs.from_rgb(&s->cs, s->background, TEX_SPECTRUM_ILLUMINANT, &c.background);
+    struct camera cam;
+    camera_setup(s, &cam);
+    int tw = (st->w + TILE - 1) / TILE, th = (st->h + TILE - 1) / TILE;
+    long ntiles = (long)tw * th, done = 0;
+    int threads = st->threads > 0 ? st->threads : omp_get_max_threads();
+#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
+    for (long t = 0; t < ntiles; t++) {
+        int x0 = (int)(t % tw) * TILE, y0 = (int)(t / tw) * TILE;
+        for (int y = y0; y < y0 + TILE && y < st->h; y++)
+            for (int x = x0; x < x0 + TILE && x < st->w; x++)
+                render_pixel(&c, &cam, x, y, tex_map_px(img, x, y));
+        long d;
+#pragma omp atomic capture
+        d = ++done;
+        if (progress && omp_get_thread_num() == 0)
+            progress(d, ntiles, arg);
+    }
+    if (progress)
+        progress(ntiles, ntiles, arg);
+    return img;
+}

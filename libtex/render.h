@@ -1,0 +1,342 @@
+/* render.h - t_apply's ray tracer: scenes, CSG objects, texture application
+ *
+ * A minimal Whitted ray tracer (thesis 4.3.4-4.4, 5.3; DESIGN section 6)
+ * that maps texture maps onto CSG objects through application functions.
+ * The scene language is described in t_apply(5).
+ *
+ *   struct tex_scene *s = tex_scene_load("vase.scene");   // NULL + tex_errmsg()
+ *   // or tex_scene_parse(text, len, "name") for text in memory
+ *   s->settings.w = 800;                    // command-line overrides
+ *   tex_map *img = tex_render(s, progress_fn, NULL);       // linear RGB, 3 channels
+ *   tex_scene_free(s);
+ *
+ * Errors name the place: "vase.scene:12:7: unknown texture 'wood'".
+ * Warnings (e.g. the camera inside an object) are kept in s->warnings,
+ * one per line, for the tool to print.
+ *
+ * Modules (Rayshade's split):
+ *   render_scene.c   the scene language (lexer, parser, checks)
+ *   render_shape.c   sphere, box, cylinder, cone, plane: a method
+ *                    table per shape (intervals along a ray, normal, uv, bounds)
+ *   render_csg.c     union, intersection, difference of hit intervals
+ *   render_bvh.c     bounding-volume hierarchy over the top-level objects
+ *   render_texture.c textures (maps with mip-map pyramids, primitives),
+ *                    mappings and application functions
+ *   render_light.c   distant, point, spot and area lights; shadows
+ *   render_shade.c   shading models (Whitted-Phong), see render_shade.h
+ *   render.c         camera, sampling, recursion, tiles and threads
+ *
+ * Geometry is double precision.  Every shape is canonical in its own space
+ * and placed by an affine transform; rays are transformed, not normalised,
+ * so a ray parameter t means the same point in every space.
+ */
+#ifndef TEX_RENDER_H
+#define TEX_RENDER_H
+
+#include <math.h>
+#include <stdint.h>
+
+#include "colour.h"
+#include "map.h"
+#include "prim.h"
+#include "render_shade.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- vectors ------------------------------------------------------------ */
+
+typedef struct tex_v3 {
+    double x, y, z;
+} tex_v3;
+
+static inline tex_v3 tex_v3_make(double x, double y, double z)
+{
+    tex_v3 r = {x, y, z};
+    return r;
+}
+static inline tex_v3 tex_v3_add(tex_v3 a, tex_v3 b)
+{
+    return tex_v3_make(a.x + b.x, a.y + b.y, a.z + b.z);
+}
+static inline tex_v3 tex_v3_sub(tex_v3 a, tex_v3 b)
+{
+    return tex_v3_make(a.x - b.x, a.y - b.y, a.z - b.z);
+}
+static inline tex_v3 tex_v3_scale(tex_v3 a, double s)
+{
+    return tex_v3_make(a.x * s, a.y * s, a.z * s);
+}
+static inline tex_v3 tex_v3_madd(tex_v3 a, tex_v3 b, double s)
+{
+    return tex_v3_make(a.x + b.x * s, a.y + b.y * s, a.z + b.z * s);
+}
+static inline double tex_v3_dot(tex_v3 a, tex_v3 b)
+{
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+static inline tex_v3 tex_v3_cross(tex_v3 a, tex_v3 b)
+{
+    return tex_v3_make(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+static inline double tex_v3_len(tex_v3 a)
+{
+    return sqrt(tex_v3_dot(a, a));
+}
+static inline tex_v3 tex_v3_norm(tex_v3 a)
+{
+    double l = tex_v3_len(a);
+    return l > 0 ? tex_v3_scale(a, 1 / l) : a;
+}
+static inline double tex_v3_get(tex_v3 a, int i)
+{
+    return i == 0 ? a.x : i == 1 ? a.y : a.z;
+}
+
+/* Affine transform: p' = m[0..2][0..2] p + m[..][3]. */
+typedef struct tex_xform {
+    double m[3][4];
+} tex_xform;
+
+void tex_xform_identity(tex_xform *t);
+/* r = a after b (apply b first). */
+void tex_xform_mul(tex_xform *r, const tex_xform *a, const tex_xform *b);
+/* -1 if singular. */
+int tex_xform_invert(tex_xform *r, const tex_xform *a);
+tex_v3 tex_xform_point(const tex_xform *t, tex_v3 p);
+tex_v3 tex_xform_dir(const tex_xform *t, tex_v3 d);
+/* The normal transform: the inverse's transpose applied to n (pass the inverse). */
+tex_v3 tex_xform_normal(const tex_xform *inv, tex_v3 n);
+
+/* ---- rays and optics ---------------------------------------------------- */
+
+typedef struct tex_ray {
+    tex_v3 o, d;      /* d is unit length in world space */
+    double width;     /* footprint width at o (for filtered texture lookups) */
+    double spread;    /* footprint growth per unit distance (pixel angle) */
+} tex_ray;
+
+/* Mirror direction of unit d about unit n. */
+tex_v3 tex_reflect(tex_v3 d, tex_v3 n);
+/* Refraction of unit d through a surface with unit normal n facing against
+ * d, from index n1 into index n2 (Snell).  Returns 0 on total internal
+ * reflection, else 1 with *t the unit refracted direction. */
+int tex_refract(tex_v3 d, tex_v3 n, double n1, double n2, tex_v3 *t);
+
+/* ---- shapes and CSG ----------------------------------------------------- */
+
+enum tex_shape_kind { TEX_SHAPE_SPHERE, TEX_SHAPE_BOX, TEX_SHAPE_CYLINDER, TEX_SHAPE_CONE,
+                      TEX_SHAPE_PLANE, TEX_SHAPE_NKINDS };
+
+struct tex_surface;
+struct tex_object;
+
+/* One boundary crossing of a ray with a leaf shape. */
+struct tex_hit {
+    double t;
+    const struct tex_object *leaf; /* NULL at +-infinity */
+    int flip;                      /* 1: the normal points the other way (difference) */
+};
+
+/* A solid's extent along a ray: sorted disjoint intervals [in, out]. */
+#define TEX_SPANS_MAX 16
+struct tex_spans {
+    int n;
+    struct tex_hit in[TEX_SPANS_MAX], out[TEX_SPANS_MAX];
+};
+
+struct tex_bounds {
+    tex_v3 lo, hi;
+};
+
+struct tex_shape_methods {
+    const char *name;
+    /* Intervals of the canonical solid along o + t d (object space). */
+    void (*spans)(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s);
+    /* Outward normal (object space, any length) at a surface point. */
+    tex_v3 (*normal)(const struct tex_object *ob, tex_v3 p);
+    /* The shape's own inverse mapping: (u,v) in [0,1] and a face id (1...). */
+    int (*uv)(const struct tex_object *ob, tex_v3 p, double *u, double *v);
+    /* Bounds of the canonical solid; 0 if unbounded. */
+    int (*bounds)(const struct tex_object *ob, struct tex_bounds *b);
+};
+extern const struct tex_shape_methods tex_shape_methods[TEX_SHAPE_NKINDS];
+
+enum tex_csg_op { TEX_CSG_LEAF, TEX_CSG_UNION, TEX_CSG_INTERSECTION, TEX_CSG_DIFFERENCE };
+
+struct tex_object {
+    enum tex_csg_op op;
+    enum tex_shape_kind kind;   /* leaves */
+    double r0, r1;              /* cone radii at y = 0 and y = 1 */
+    tex_xform to_world, to_obj; /* leaves: the accumulated transform */
+    const struct tex_surface *surface;
+    struct tex_object *a, *b;   /* CSG children */
+    const struct tex_object *root; /* the top-level object (solid texturing's box) */
+    struct tex_bounds wb;       /* world bounds */
+    int bounded;
+    int line, col;              /* where it was declared */
+};
+
+/* Intervals of an object (leaf or CSG tree) along a world ray o + t d. */
+void tex_object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s);
+/* Combine two interval lists with a CSG operation. */
+void tex_csg_combine(enum tex_csg_op op, const struct tex_spans *a, const struct tex_spans *b,
+                     struct tex_spans *r);
+/* World bounds of an object; 0 if unbounded. */
+int tex_object_bounds(struct tex_object *ob);
+
+/* ---- textures, mappings, application functions --------------------------- */
+
+enum tex_mapping { TEX_MAP_NATURAL, TEX_MAP_SPHERE, TEX_MAP_CYLINDER, TEX_MAP_CONE,
+                   TEX_MAP_BOX, TEX_MAP_PLANAR, TEX_MAP_SOLID, TEX_MAP_WORLD };
+
+struct tex_texture {
+    char *name;
+    tex_map **mip;       /* a map's pyramid: mip[0] is the map; NULL for point primitives */
+    int nlevels;
+    int subregions;      /* > 0: the map holds region ids (nearest lookup, no filtering) */
+    struct tex_field *field; /* a primitive evaluated at hit points */
+    int solid;           /* the field is evaluated at (u,v,w) */
+    int line, col;
+};
+
+/* Sample a texture at (u,v[,w]) with a footprint of fw texture-space units;
+ * out receives RGB (grey maps repeated).  Returns the region id or 0. */
+int tex_texture_eval(const struct tex_texture *t, double u, double v, double w, double fw,
+                     float out[3]);
+struct tex_scene;
+/* The material at a hit on leaf (surface sf) at world point P seen along D:
+ * the application functions evaluated, N bent by bump maps, colours in the
+ * scene's colour space.  width is the ray's footprint at P (0: no filtering). */
+void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *sf,
+                          const struct tex_object *leaf, tex_v3 P, tex_v3 D, tex_v3 *N,
+                          double width, struct tex_material *m);
+/* Build the pyramid of mip[0] (box filter, wrapping). */
+int tex_texture_build_mip(struct tex_texture *t);
+
+enum tex_sparam { TEX_SP_KA, TEX_SP_KD, TEX_SP_KS, TEX_SP_N, TEX_SP_KR, TEX_SP_KT, TEX_SP_IOR,
+                  TEX_SP_BUMP, TEX_SP_COUNT };
+
+/* An expression of f (the map value), p (the untextured value), numbers,
+ * colours and other textures (a cascade), evaluated per RGB channel. */
+enum tex_expr_op { TEX_E_NUM, TEX_E_F, TEX_E_P, TEX_E_RGB, TEX_E_TEX, TEX_E_ADD, TEX_E_SUB,
+                   TEX_E_MUL, TEX_E_DIV, TEX_E_NEG };
+struct tex_expr {
+    enum tex_expr_op op;
+    double v[3];
+    const struct tex_texture *tex;
+    struct tex_expr *a, *b;
+};
+
+/* g[region][parameter] = h: one application function. */
+struct tex_appfn {
+    int region;          /* 0: every region (or a map without regions) */
+    enum tex_sparam param;
+    struct tex_expr *e;
+    struct tex_appfn *next;
+};
+
+/* One texture applied to a surface: its mapping, window, placement and functions. */
+struct tex_apply {
+    const struct tex_texture *tex;
+    enum tex_mapping mapping;
+    double u1, v1, u2, v2; /* the texture window */
+    double nu, nv;         /* repeat counts (1 1: stretch) */
+    double scale;          /* world / planar mapping: texture units per world unit */
+    struct tex_appfn *fns;
+    struct tex_apply *next;
+    int line, col;
+};
+
+struct tex_surface {
+    char *name;
+    float ka, kd[3], ks[3]; /* ka scalar times kd colour; ks scalar times white or colour */
+    double n, kr, kt, ior;
+    const struct tex_shading_model *model;
+    struct tex_apply *apply;
+    int line, col;
+};
+
+/* ---- lights ------------------------------------------------------------- */
+
+enum tex_light_kind { TEX_LIGHT_DISTANT, TEX_LIGHT_POINT, TEX_LIGHT_SPOT, TEX_LIGHT_AREA };
+enum tex_falloff { TEX_FALL_NONE, TEX_FALL_SQUARE, TEX_FALL_POLY };
+
+struct tex_light {
+    enum tex_light_kind kind;
+    float rgb[3];          /* colour times intensity */
+    tex_colour e;          /* the same in the scene's colour space */
+    tex_v3 pos, dir;       /* dir: towards the light for distant, the axis for spot */
+    tex_v3 edge1, edge2;   /* area: a parallelogram pos + a edge1 + b edge2 */
+    int samples;           /* area: samples per side */
+    enum tex_falloff falloff;
+    double c1, c2, c3;
+    double cos_angle, exponent; /* spot */
+};
+
+/* Number of samples of a light (n*n for an area light, else 1), and sample
+ * k with jitter (jx, jy) in [0,1): the unit direction L from P towards it,
+ * its distance (infinity for distant lights) and the attenuation times the
+ * spot falloff and the sample's share.  0 if it sends no light to P. */
+int tex_light_samples(const struct tex_light *l);
+int tex_light_sample(const struct tex_light *l, int k, double jx, double jy, tex_v3 P, tex_v3 *L,
+                     double *dist, double *fatt);
+
+/* ---- the scene ------------------------------------------------------------ */
+
+struct tex_settings {
+    int w, h, spp, depth, threads;
+    int filter;       /* 1: mip-mapped texture lookups */
+    uint64_t seed;
+};
+
+struct tex_bvh;
+
+struct tex_scene {
+    char *file;
+    tex_v3 eye, look, up;
+    double fov;                 /* horizontal, degrees */
+    struct tex_settings settings;
+    float ambient[3], background[3];
+    struct tex_colour_space cs;
+    struct tex_light *lights;
+    int nlights;
+    struct tex_object **objects; /* top-level objects */
+    int nobjects;
+    struct tex_bvh *bvh;
+    /* everything allocated, freed together */
+    struct tex_texture **textures;
+    int ntextures;
+    struct tex_surface **surfaces;
+    int nsurfaces;
+    void **pool;
+    size_t npool, cpool;
+    char *warnings;
+};
+
+struct tex_scene *tex_scene_load(const char *path); /* "-" is not allowed: maps use stdin */
+struct tex_scene *tex_scene_parse(const char *text, size_t len, const char *name);
+void tex_scene_free(struct tex_scene *s);
+
+/* Build the BVH and check the settings (after command-line overrides). */
+int tex_scene_prepare(struct tex_scene *s);
+
+/* The closest hit along a ray beyond tmin: 1 and *hit, or 0. */
+int tex_scene_trace(const struct tex_scene *s, tex_v3 o, tex_v3 d, double tmin, double tmax,
+                    struct tex_hit *hit);
+
+struct tex_bvh *tex_bvh_build(struct tex_object **obs, int n);
+void tex_bvh_free(struct tex_bvh *b);
+int tex_bvh_trace(const struct tex_bvh *b, tex_v3 o, tex_v3 d, double tmin, double tmax,
+                  struct tex_hit *hit);
+
+/* Render: linear RGB, 3 channels.  progress(done, total, arg) is called
+ * from the master thread now and then (may be NULL). */
+tex_map *tex_render(struct tex_scene *s, void (*progress)(long done, long total, void *arg),
+                    void *arg);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,60 @@
+/* render_light.c - lights (seed 002 section 7.2) and shadows
+ *
+ *   distant  parallel light from direction dir, no attenuation
+ *   point    at pos; fatt = 1, 1/d^2, or min(1/(c1 + c2 d + c3 d^2), 1)
+ *   spot     a point light times cos^c of the angle to its axis, 0 outside
+ *            the cone
+ *   area     a parallelogram pos + a edge1 + b edge2 sampled on an n x n
+ *            jittered grid: soft shadows (each sample carries 1/n^2)
+ */
+#include <math.h>
+
+#include "render.h"
+
+int tex_light_samples(const struct tex_light *l)
+{
+    return l->kind == TEX_LIGHT_AREA ? l->samples * l->samples : 1;
+}
+
+int tex_light_sample(const struct tex_light *l, int k, double jx, double jy, tex_v3 P, tex_v3 *L,
+                     double *dist, double *fatt)
+{
+    tex_v3 pos = l->pos;
+    if (l->kind == TEX_LIGHT_DISTANT) {
+        *L = l->dir;
+        *dist = INFINITY;
+        *fatt = 1;
+        return 1;
+    }
+    if (l->kind == TEX_LIGHT_AREA) {
+        int n = l->samples;
+        double a = ((k % n) + jx) / n, b = ((k / n) + jy) / n;
+        pos = tex_v3_add(pos, tex_v3_add(tex_v3_scale(l->edge1, a), tex_v3_scale(l->edge2, b)));
+    }
+    tex_v3 d = tex_v3_sub(pos, P);
+    double dl = tex_v3_len(d);
+    if (!(dl > 0))
+        return 0;
+    *L = tex_v3_scale(d, 1 / dl);
+    *dist = dl;
+    double f = 1;
+    switch (l->falloff) {
+    case TEX_FALL_SQUARE: f = 1 / (dl * dl); break;
+    case TEX_FALL_POLY: {
+        double q = l->c1 + l->c2 * dl + l->c3 * dl * dl;
+        f = q > 1 ? 1 / q : 1;
+        break;
+    }
+    default: break;
+    }
+    if (l->kind == TEX_LIGHT_SPOT) {
+        double c = -tex_v3_dot(*L, l->dir);
+        if (c < l->cos_angle)
+            return 0;
+        f *= pow(c, l->exponent);
+    }
+    if (l->kind == TEX_LIGHT_AREA)
+        f /= tex_light_samples(l);
+    *fatt = f;
+    return f > 0;
+}

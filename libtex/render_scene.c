@@ -1,0 +1,1348 @@
+/* render_scene.c - the scene language of t_apply(5)
+ *
+ * A hand-written lexer and recursive-descent parser.  Every error names
+ * file:line:column of the token at fault.  All memory of a scene hangs
+ * from it (a pool), so an error anywhere frees everything at once.
+ */
+#include <errno.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "error.h"
+#include "file.h"
+#include "render.h"
+
+#define MAX_SIDE 16384
+#define MAX_NEST 64
+
+enum tok_kind { T_EOF, T_NUM, T_ID, T_STR, T_PUNCT };
+
+struct tok {
+    enum tok_kind kind;
+    const char *text;
+    size_t len;
+    double num;
+    int line, col;
+};
+
+struct parser {
+    const char *src, *end, *name;
+    const char *p;
+    int line, col;
+    struct tok t;
+    struct tex_scene *s;
+    jmp_buf jb;
+    int nest;
+    int stdin_used;
+};
+
+static void fail_at(struct parser *ps, const struct tok *t, int runtime, const char *fmt, ...)
+    __attribute__((noreturn, format(printf, 4, 5)));
+
+static void fail_at(struct parser *ps, const struct tok *t, int runtime, const char *fmt, ...)
+{
+    char msg[400];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    if (runtime)
+        tex_error("%s:%d:%d: %s", ps->name, t->line, t->col, msg);
+    else
+        tex_usage_error("%s:%d:%d: %s", ps->name, t->line, t->col, msg);
+    longjmp(ps->jb, 1);
+}
+#define FAIL(ps, ...) fail_at(ps, &(ps)->t, 0, __VA_ARGS__)
+
+static void *palloc(struct parser *ps, size_t n)
+{
+    struct tex_scene *s = ps->s;
+    if (s->npool == s->cpool) {
+        size_t c = s->cpool ? 2 * s->cpool : 64;
+        void **np = realloc(s->pool, c * sizeof *np);
+        if (!np)
+            fail_at(ps, &ps->t, 1, "out of memory");
+        s->pool = np;
+        s->cpool = c;
+    }
+    void *m = calloc(1, n ? n : 1);
+    if (!m)
+        fail_at(ps, &ps->t, 1, "out of memory");
+    s->pool[s->npool++] = m;
+    return m;
+}
+
+static char *pstrdup(struct parser *ps, const char *t, size_t n)
+{
+    char *d = palloc(ps, n + 1);
+    memcpy(d, t, n);
+    return d;
+}
+
+/* ---- lexer ---------------------------------------------------------------------- */
+
+static int is_id0(int c)
+{
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
+}
+static int is_id(int c)
+{
+    return is_id0(c) || (c >= '0' && c <= '9');
+}
+static int is_digit(int c)
+{
+    return c >= '0' && c <= '9';
+}
+
+static void advance(struct parser *ps, size_t n)
+{
+    while (n-- && ps->p < ps->end) {
+        if (*ps->p == '\n') {
+            ps->line++;
+            ps->col = 1;
+        } else {
+            ps->col++;
+        }
+        ps->p++;
+    }
+}
+
+static void next(struct parser *ps)
+{
+    for (;;) {
+        while (ps->p < ps->end && (*ps->p == ' ' || *ps->p == '\t' || *ps->p == '\n' ||
+                                   *ps->p == '\r' || *ps->p == ';'))
+            advance(ps, 1);
+        if (ps->p < ps->end && *ps->p == '#') {
+            while (ps->p < ps->end && *ps->p != '\n')
+                advance(ps, 1);
+            continue;
+        }
+        break;
+    }
+    struct tok *t = &ps->t;
+    t->line = ps->line;
+    t->col = ps->col;
+    t->text = ps->p;
+    t->len = 0;
+    if (ps->p >= ps->end) {
+        t->kind = T_EOF;
+        return;
+    }
+    const char *q = ps->p;
+    int c = (unsigned char)*q;
+    if (c == 0)
+        FAIL(ps, "NUL byte in the scene");
+    if (is_digit(c) || ((c == '-' || c == '+' || c == '.') && q + 1 < ps->end &&
+                        (is_digit(q[1]) || (q[1] == '.' && q + 2 < ps->end && is_digit(q[2]))))) {
+        /* copy to a bounded buffer: the text is not NUL-terminated */
+        char buf[64];
+        size_t n = 0;
+        while (q + n < ps->end && n < sizeof buf - 1 &&
+               (is_digit(q[n]) || q[n] == '.' || q[n] == 'e' || q[n] == 'E' ||
+                ((q[n] == '-' || q[n] == '+') && (n == 0 || q[n - 1] == 'e' || q[n - 1] == 'E'))))
+            n++;
+        memcpy(buf, q, n);
+        buf[n] = 0;
+        char *e;
+        errno = 0;
+        double v = strtod(buf, &e);
+        if (e == buf)
+            FAIL(ps, "malformed number");
+        n = (size_t)(e - buf);
+        if (!isfinite(v) || errno == ERANGE)
+            FAIL(ps, "number out of range");
+        t->kind = T_NUM;
+        t->num = v;
+        t->len = n;
+        advance(ps, n);
+        if (ps->p < ps->end && is_id0((unsigned char)*ps->p))
+            FAIL(ps, "malformed number");
+        return;
+    }
+    if (is_id0(c)) {
+        size_t n = 1;
+        for (;;) {
+            while (q + n < ps->end && is_id((unsigned char)q[n]))
+                n++;
+            /* "major-radius": a hyphen between letters belongs to the name */
+            if (q + n + 1 < ps->end && q[n] == '-' && is_id0((unsigned char)q[n + 1]))
+                n++;
+            else
+                break;
+        }
+        t->kind = T_ID;
+        t->len = n;
+        advance(ps, n);
+        return;
+    }
+    if (c == '"') {
+        size_t n = 1;
+        while (q + n < ps->end && q[n] != '"' && q[n] != '\n')
+            n++;
+        if (q + n >= ps->end || q[n] != '"')
+            FAIL(ps, "unterminated string");
+        t->kind = T_STR;
+        t->text = q + 1;
+        t->len = n - 1;
+        advance(ps, n + 1);
+        return;
+    }
+    if (strchr("{}=*/+-(),", c)) {
+        t->kind = T_PUNCT;
+        t->len = 1;
+        advance(ps, 1);
+        return;
+    }
+    if (c >= 32 && c < 127)
+        FAIL(ps, "unexpected character '%c'", c);
+    FAIL(ps, "unexpected byte 0x%02x", c);
+}
+
+static int is_word(const struct tok *t, const char *w)
+{
+    return t->kind == T_ID && strlen(w) == t->len && !memcmp(t->text, w, t->len);
+}
+
+static int is_punct(const struct tok *t, int c)
+{
+    return t->kind == T_PUNCT && t->text[0] == c;
+}
+
+static const char *tokdesc(const struct tok *t, char *buf, size_t n)
+{
+    if (t->kind == T_EOF)
+        return "end of file";
+    snprintf(buf, n, "'%.*s'", (int)(t->len > 40 ? 40 : t->len), t->text);
+    return buf;
+}
+
+static void expect(struct parser *ps, int c)
+{
+    char b[64];
+    if (!is_punct(&ps->t, c))
+        FAIL(ps, "expected '%c', found %s", c, tokdesc(&ps->t, b, sizeof b));
+    next(ps);
+}
+
+static double number(struct parser *ps)
+{
+    char b[64];
+    if (ps->t.kind != T_NUM)
+        FAIL(ps, "expected a number, found %s", tokdesc(&ps->t, b, sizeof b));
+    double v = ps->t.num;
+    next(ps);
+    return v;
+}
+
+static double number_in(struct parser *ps, double lo, double hi, const char *what)
+{
+    struct tok t = ps->t;
+    double v = number(ps);
+    if (!(v >= lo && v <= hi))
+        fail_at(ps, &t, 0, "%s %g is outside %g..%g", what, v, lo, hi);
+    return v;
+}
+
+static int integer_in(struct parser *ps, int lo, int hi, const char *what)
+{
+    struct tok t = ps->t;
+    double v = number(ps);
+    if (v != floor(v) || !(v >= lo && v <= hi))
+        fail_at(ps, &t, 0, "%s must be a whole number in %d..%d", what, lo, hi);
+    return (int)v;
+}
+
+static tex_v3 vec(struct parser *ps)
+{
+    double x = number(ps), y = number(ps), z = number(ps);
+    return tex_v3_make(x, y, z);
+}
+
+static void colour3(struct parser *ps, float rgb[3], double hi)
+{
+    for (int i = 0; i < 3; i++)
+        rgb[i] = (float)number_in(ps, 0, hi, "colour component");
+}
+
+static char *word(struct parser *ps, const char *what)
+{
+    char b[64];
+    if (ps->t.kind != T_ID)
+        FAIL(ps, "expected %s, found %s", what, tokdesc(&ps->t, b, sizeof b));
+    char *w = pstrdup(ps, ps->t.text, ps->t.len);
+    next(ps);
+    return w;
+}
+
+/* ---- textures ------------------------------------------------------------------- */
+
+static struct tex_texture *find_texture(struct parser *ps, const struct tok *t)
+{
+    for (int i = 0; i < ps->s->ntextures; i++)
+        if (strlen(ps->s->textures[i]->name) == t->len &&
+            !memcmp(ps->s->textures[i]->name, t->text, t->len))
+            return ps->s->textures[i];
+    return NULL;
+}
+
+static void add_texture(struct parser *ps, struct tex_texture *tx)
+{
+    struct tex_scene *s = ps->s;
+    struct tex_texture **a = realloc(s->textures, (s->ntextures + 1) * sizeof *a);
+    if (!a)
+        fail_at(ps, &ps->t, 1, "out of memory");
+    s->textures = a;
+    a[s->ntextures++] = tx;
+}
+
+static void texture_map(struct parser *ps, struct tex_texture *tx, tex_map *m, const struct tok *at)
+{
+    tx->mip = malloc(sizeof *tx->mip);
+    if (!tx->mip) {
+        tex_map_free(m);
+        fail_at(ps, at, 1, "out of memory");
+    }
+    tx->mip[0] = m;
+    tx->nlevels = 1;
+    tx->subregions = m->subregions;
+    if (tex_texture_build_mip(tx) < 0)
+        fail_at(ps, at, 1, "%s", tex_errmsg());
+}
+
+static void parse_texture(struct parser *ps)
+{
+    struct tok at = ps->t;
+    char *name = word(ps, "a texture name");
+    if (find_texture(ps, &at))
+        fail_at(ps, &at, 0, "texture '%s' is defined twice", name);
+    struct tex_texture *tx = calloc(1, sizeof *tx);
+    if (!tx)
+        fail_at(ps, &at, 1, "out of memory");
+    add_texture(ps, tx); /* freed with the scene from here on */
+    tx->name = name;
+    tx->line = at.line;
+    tx->col = at.col;
+    if (is_word(&ps->t, "file")) {
+        next(ps);
+        struct tok ft = ps->t;
+        char *path;
+        if (is_punct(&ft, '-')) {
+            path = pstrdup(ps, "-", 1);
+            next(ps);
+        } else if (ft.kind == T_STR || ft.kind == T_ID) {
+            path = pstrdup(ps, ft.text, ft.len);
+            next(ps);
+        } else {
+            FAIL(ps, "expected a file name or '-' after 'file'");
+        }
+        if (!strcmp(path, "-")) {
+            if (ps->stdin_used)
+                fail_at(ps, &ft, 0, "only one texture can come from standard input");
+            ps->stdin_used = 1;
+        }
+        tex_map *m = tex_map_read(path);
+        if (!m)
+            fail_at(ps, &ft, 1, "cannot read map '%s': %s", path, tex_errmsg());
+        texture_map(ps, tx, m, &ft);
+        return;
+    }
+    struct tok pt = ps->t;
+    char *pname = word(ps, "'file' or a primitive name");
+    const struct tex_primitive *prim = tex_primitive_find(pname);
+    if (!prim)
+        fail_at(ps, &pt, 0, "unknown primitive '%s'", pname);
+    struct tex_field *f = tex_field_new(prim);
+    if (!f)
+        fail_at(ps, &pt, 1, "out of memory");
+    tx->field = f;
+    int size = 0;
+    expect(ps, '{');
+    while (!is_punct(&ps->t, '}')) {
+        struct tok kt = ps->t;
+        char *key = word(ps, "a parameter name");
+        if (!strcmp(key, "seed")) {
+            f->seed = (uint64_t)integer_in(ps, 0, 2147483647, "seed");
+        } else if (!strcmp(key, "size")) {
+            size = integer_in(ps, 1, 8192, "size");
+        } else if (!strcmp(key, "tile")) {
+            f->tile = 1;
+        } else if (!strcmp(key, "ids")) {
+            f->ids = 1;
+        } else if (!strcmp(key, "solid")) {
+            if (!(prim->flags & TEX_PRIM_3D))
+                fail_at(ps, &kt, 0, "primitive '%s' has no solid (3D) form", pname);
+            tx->solid = 1;
+        } else {
+            struct tok vt = ps->t;
+            char *val;
+            if (vt.kind == T_NUM || vt.kind == T_STR || vt.kind == T_ID)
+                val = pstrdup(ps, vt.text, vt.len);
+            else
+                FAIL(ps, "expected a value for '%s'", key);
+            next(ps);
+            if (tex_field_set(f, key, val) < 0)
+                fail_at(ps, &kt, 0, "%s", tex_errmsg());
+        }
+    }
+    next(ps);
+    if (prim->flags & TEX_PRIM_GRID && !size)
+        size = 512;
+    if (!(prim->flags & (TEX_PRIM_2D | TEX_PRIM_3D | TEX_PRIM_GRID)))
+        fail_at(ps, &pt, 0, "primitive '%s' cannot be evaluated", pname);
+    if (!size && !tx->solid && !(prim->flags & TEX_PRIM_2D))
+        size = 512;
+    if (tex_field_init(f, size, size) < 0)
+        fail_at(ps, &pt, 0, "%s", tex_errmsg());
+    if (size) {
+        tex_map *m;
+        if (prim->flags & TEX_PRIM_GRID) {
+            m = tex_map_new(size, size, f->nc);
+            if (m && prim->grid(f, m) < 0) {
+                tex_map_free(m);
+                m = NULL;
+            }
+        } else {
+            m = tex_field_sample(f);
+        }
+        if (!m)
+            fail_at(ps, &pt, 1, "%s", tex_errmsg());
+        if (f->ids && (prim->flags & TEX_PRIM_REGIONS))
+            m->subregions = f->nregions > 0 ? f->nregions : 1;
+        texture_map(ps, tx, m, &pt);
+    }
+}
+
+/* ---- expressions ---------------------------------------------------------------- */
+
+static struct tex_expr *expr(struct parser *ps);
+
+static struct tex_expr *enode(struct parser *ps, enum tex_expr_op op, struct tex_expr *a,
+                              struct tex_expr *b)
+{
+    struct tex_expr *e = palloc(ps, sizeof *e);
+    e->op = op;
+    e->a = a;
+    e->b = b;
+    return e;
+}
+
+static struct tex_expr *primary(struct parser *ps)
+{
+    char b[64];
+    if (++ps->nest > MAX_NEST)
+        FAIL(ps, "expression nested too deeply");
+    struct tex_expr *e;
+    struct tok t = ps->t;
+    if (t.kind == T_NUM) {
+        e = enode(ps, TEX_E_NUM, NULL, NULL);
+        e->v[0] = number(ps);
+        /* three numbers in a row: a colour */
+        if (ps->t.kind == T_NUM && ps->t.text[0] != '-' && ps->t.text[0] != '+') {
+            e->op = TEX_E_RGB;
+            e->v[1] = number(ps);
+            e->v[2] = number(ps);
+        }
+    } else if (is_punct(&t, '(')) {
+        next(ps);
+        e = expr(ps);
+        expect(ps, ')');
+    } else if (is_punct(&t, '-')) {
+        next(ps);
+        e = enode(ps, TEX_E_NEG, primary(ps), NULL);
+    } else if (is_word(&t, "f")) {
+        next(ps);
+        e = enode(ps, TEX_E_F, NULL, NULL);
+    } else if (is_word(&t, "p")) {
+        next(ps);
+        e = enode(ps, TEX_E_P, NULL, NULL);
+    } else if (is_word(&t, "rgb")) {
+        next(ps);
+        e = enode(ps, TEX_E_RGB, NULL, NULL);
+        expect(ps, '(');
+        for (int i = 0; i < 3; i++) {
+            if (i)
+                expect(ps, ',');
+            e->v[i] = number(ps);
+        }
+        expect(ps, ')');
+    } else if (t.kind == T_ID) {
+        const struct tex_texture *tx = find_texture(ps, &t);
+        if (!tx)
+            FAIL(ps, "unknown name '%.*s' in an expression (f, p, rgb(...), a number or "
+                     "a texture)", (int)t.len, t.text);
+        next(ps);
+        e = enode(ps, TEX_E_TEX, NULL, NULL);
+        e->tex = tx;
+    } else {
+        FAIL(ps, "expected an expression, found %s", tokdesc(&t, b, sizeof b));
+    }
+    ps->nest--;
+    return e;
+}
+
+static struct tex_expr *term(struct parser *ps)
+{
+    struct tex_expr *e = primary(ps);
+    while (is_punct(&ps->t, '*') || is_punct(&ps->t, '/')) {
+        enum tex_expr_op op = ps->t.text[0] == '*' ? TEX_E_MUL : TEX_E_DIV;
+        next(ps);
+        e = enode(ps, op, e, primary(ps));
+    }
+    return e;
+}
+
+static struct tex_expr *expr(struct parser *ps)
+{
+    if (++ps->nest > MAX_NEST)
+        FAIL(ps, "expression nested too deeply");
+    struct tex_expr *e = term(ps);
+    for (;;) {
+        if (is_punct(&ps->t, '+') || is_punct(&ps->t, '-')) {
+            enum tex_expr_op op = ps->t.text[0] == '+' ? TEX_E_ADD : TEX_E_SUB;
+            next(ps);
+            e = enode(ps, op, e, term(ps));
+        } else if (ps->t.kind == T_NUM && (ps->t.text[0] == '-' || ps->t.text[0] == '+')) {
+            /* "f -1" lexes the sign into the number */
+            e = enode(ps, TEX_E_ADD, e, term(ps));
+        } else {
+            break;
+        }
+    }
+    ps->nest--;
+    return e;
+}
+
+/* ---- surfaces ------------------------------------------------------------------- */
+
+static const char *const sparam_names[TEX_SP_COUNT] = {"Ka", "Kd", "Ks", "n", "Kr", "Kt",
+                                                       "ior", "bump"};
+
+static int sparam(const struct tok *t)
+{
+    for (int i = 0; i < TEX_SP_COUNT; i++)
+        if (is_word(t, sparam_names[i]))
+            return i;
+    if (is_word(t, "normal"))
+        return TEX_SP_BUMP;
+    return -1;
+}
+
+static void parse_fns(struct parser *ps, struct tex_apply *ap, int region)
+{
+    char b[64];
+    for (;;) {
+        int sp = sparam(&ps->t);
+        if (sp < 0)
+            return;
+        next(ps);
+        if (!is_punct(&ps->t, '='))
+            FAIL(ps, "expected '=' after %s, found %s", sparam_names[sp],
+                 tokdesc(&ps->t, b, sizeof b));
+        next(ps);
+        struct tex_appfn *fn = palloc(ps, sizeof *fn), **tail = &ap->fns;
+        fn->region = region;
+        fn->param = sp;
+        fn->e = expr(ps);
+        while (*tail)
+            tail = &(*tail)->next;
+        *tail = fn;
+    }
+}
+
+static const char *const mapping_names[] = {"natural", "sphere", "cylinder", "cone", "box",
+                                            "planar",  "solid",  "world",    NULL};
+
+static struct tex_apply *parse_apply(struct parser *ps)
+{
+    struct tok at = ps->t;
+    const struct tex_texture *tx = at.kind == T_ID ? find_texture(ps, &at) : NULL;
+    if (!tx) {
+        char b[64];
+        FAIL(ps, "unknown texture %s", tokdesc(&at, b, sizeof b));
+    }
+    next(ps);
+    struct tex_apply *ap = palloc(ps, sizeof *ap);
+    ap->tex = tx;
+    ap->u2 = ap->v2 = ap->nu = ap->nv = ap->scale = 1;
+    ap->line = at.line;
+    ap->col = at.col;
+    expect(ps, '{');
+    while (!is_punct(&ps->t, '}')) {
+        struct tok kt = ps->t;
+        if (is_word(&kt, "mapping")) {
+            next(ps);
+            struct tok mt = ps->t;
+            char *m = word(ps, "a mapping");
+            int i = 0;
+            while (mapping_names[i] && strcmp(mapping_names[i], m))
+                i++;
+            if (!mapping_names[i])
+                fail_at(ps, &mt, 0, "unknown mapping '%s' (natural|sphere|cylinder|cone|box|"
+                                    "planar|solid|world)", m);
+            ap->mapping = i;
+            if (ap->mapping == TEX_MAP_SOLID && tx->field && !tx->solid && !tx->mip)
+                fail_at(ps, &mt, 0, "texture '%s' is 2D; add 'solid' to it", tx->name);
+        } else if (is_word(&kt, "window")) {
+            next(ps);
+            ap->u1 = number_in(ps, 0, 1, "u1");
+            ap->v1 = number_in(ps, 0, 1, "v1");
+            ap->u2 = number_in(ps, 0, 1, "u2");
+            ap->v2 = number_in(ps, 0, 1, "v2");
+            if (!(ap->u2 > ap->u1 && ap->v2 > ap->v1))
+                fail_at(ps, &kt, 0, "window needs u1 < u2 and v1 < v2");
+        } else if (is_word(&kt, "repeat")) {
+            next(ps);
+            ap->nu = number_in(ps, 1e-3, 1e6, "repeat");
+            ap->nv = number_in(ps, 1e-3, 1e6, "repeat");
+        } else if (is_word(&kt, "stretch")) {
+            next(ps);
+            ap->nu = ap->nv = 1;
+        } else if (is_word(&kt, "scale")) {
+            next(ps);
+            ap->scale = number_in(ps, 1e-9, 1e9, "scale");
+        } else if (is_word(&kt, "region")) {
+            next(ps);
+            int r = integer_in(ps, 1, 1 << 24, "region");
+            expect(ps, '{');
+            parse_fns(ps, ap, r);
+            expect(ps, '}');
+        } else if (sparam(&kt) >= 0) {
+            parse_fns(ps, ap, 0);
+        } else {
+            char b[64];
+            FAIL(ps, "unknown word %s in an apply block", tokdesc(&kt, b, sizeof b));
+        }
+    }
+    next(ps);
+    return ap;
+}
+
+static void parse_surface(struct parser *ps)
+{
+    struct tok at = ps->t;
+    char *name = word(ps, "a surface name");
+    for (int i = 0; i < ps->s->nsurfaces; i++)
+        if (!strcmp(ps->s->surfaces[i]->name, name))
+            fail_at(ps, &at, 0, "surface '%s' is defined twice", name);
+    struct tex_surface *sf = palloc(ps, sizeof *sf);
+    struct tex_surface **a = palloc(ps, (ps->s->nsurfaces + 1) * sizeof *a);
+    memcpy(a, ps->s->surfaces, ps->s->nsurfaces * sizeof *a);
+    a[ps->s->nsurfaces++] = sf;
+    ps->s->surfaces = a;
+    sf->name = name;
+    sf->ka = 0.1f;
+    sf->kd[0] = sf->kd[1] = sf->kd[2] = 0.8f;
+    sf->n = 20;
+    sf->ior = 1;
+    sf->model = &tex_shading_phong;
+    sf->line = at.line;
+    sf->col = at.col;
+    struct tex_apply **tail = &sf->apply;
+    expect(ps, '{');
+    while (!is_punct(&ps->t, '}')) {
+        struct tok kt = ps->t;
+        if (is_word(&kt, "Ka")) {
+            next(ps);
+            sf->ka = (float)number_in(ps, 0, 1, "Ka");
+        } else if (is_word(&kt, "Kd")) {
+            next(ps);
+            double v = number_in(ps, 0, 1, "Kd");
+            sf->kd[0] = sf->kd[1] = sf->kd[2] = (float)v;
+            if (ps->t.kind == T_NUM) {
+                sf->kd[1] = (float)number_in(ps, 0, 1, "Kd");
+                sf->kd[2] = (float)number_in(ps, 0, 1, "Kd");
+            }
+        } else if (is_word(&kt, "Ks")) {
+            next(ps);
+            double v = number_in(ps, 0, 1, "Ks");
+            sf->ks[0] = sf->ks[1] = sf->ks[2] = (float)v;
+        } else if (is_word(&kt, "n")) {
+            next(ps);
+            sf->n = number_in(ps, 0.1, 10000, "n");
+        } else if (is_word(&kt, "Kr")) {
+            next(ps);
+            sf->kr = number_in(ps, 0, 1, "Kr");
+        } else if (is_word(&kt, "Kt")) {
+            next(ps);
+            sf->kt = number_in(ps, 0, 1, "Kt");
+        } else if (is_word(&kt, "ior")) {
+            next(ps);
+            sf->ior = number_in(ps, 0.1, 10, "ior");
+        } else if (is_word(&kt, "model")) {
+            next(ps);
+            struct tok mt = ps->t;
+            char *m = word(ps, "a shading model");
+            sf->model = tex_shading_find(m);
+            if (!sf->model)
+                fail_at(ps, &mt, 0, "unknown shading model '%s'", m);
+        } else if (is_word(&kt, "apply")) {
+            next(ps);
+            *tail = parse_apply(ps);
+            tail = &(*tail)->next;
+        } else {
+            char b[64];
+            FAIL(ps, "unknown word %s in a surface", tokdesc(&kt, b, sizeof b));
+        }
+    }
+    next(ps);
+}
+
+/* ---- objects -------------------------------------------------------------------- */
+
+static const struct tex_surface *find_surface(struct parser *ps, const struct tok *t)
+{
+    for (int i = 0; i < ps->s->nsurfaces; i++)
+        if (strlen(ps->s->surfaces[i]->name) == t->len &&
+            !memcmp(ps->s->surfaces[i]->name, t->text, t->len))
+            return ps->s->surfaces[i];
+    return NULL;
+}
+
+static void xf_translate(tex_xform *t, tex_v3 v)
+{
+    tex_xform_identity(t);
+    t->m[0][3] = v.x, t->m[1][3] = v.y, t->m[2][3] = v.z;
+}
+
+static void xf_scale(tex_xform *t, tex_v3 v)
+{
+    tex_xform_identity(t);
+    t->m[0][0] = v.x, t->m[1][1] = v.y, t->m[2][2] = v.z;
+}
+
+static void xf_rot(tex_xform *t, int axis, double deg)
+{
+    double a = deg * M_PI / 180, c = cos(a), s = sin(a);
+    int i = (axis + 1) % 3, j = (axis + 2) % 3;
+    tex_xform_identity(t);
+    t->m[i][i] = c, t->m[i][j] = -s;
+    t->m[j][i] = s, t->m[j][j] = c;
+}
+
+/* A frame taking the y axis to unit a. */
+static void xf_frame(tex_xform *t, tex_v3 origin, tex_v3 a, double ylen, double r)
+{
+    tex_v3 y = tex_v3_norm(a);
+    tex_v3 h = fabs(y.x) < 0.9 ? tex_v3_make(1, 0, 0) : tex_v3_make(0, 0, 1);
+    tex_v3 x = tex_v3_norm(tex_v3_cross(h, y)), z = tex_v3_cross(x, y);
+    tex_xform_identity(t);
+    for (int i = 0; i < 3; i++) {
+        t->m[i][0] = tex_v3_get(x, i) * r;
+        t->m[i][1] = tex_v3_get(y, i) * ylen;
+        t->m[i][2] = tex_v3_get(z, i) * r;
+        t->m[i][3] = tex_v3_get(origin, i);
+    }
+}
+
+/* Transform keywords shared by every object block; 1 if one was read. */
+static int parse_transform(struct parser *ps, tex_xform *acc)
+{
+    struct tok kt = ps->t;
+    tex_xform t;
+    if (is_word(&kt, "translate")) {
+        next(ps);
+        xf_translate(&t, vec(ps));
+    } else if (is_word(&kt, "rotate")) {
+        next(ps);
+        tex_v3 r = vec(ps);
+        tex_xform a, b, c;
+        xf_rot(&a, 0, r.x);
+        xf_rot(&b, 1, r.y);
+        xf_rot(&c, 2, r.z);
+        tex_xform_mul(&t, &b, &a);
+        tex_xform_mul(&t, &c, &t);
+    } else if (is_word(&kt, "scale")) {
+        next(ps);
+        double sx = number(ps), sy = sx, sz = sx;
+        if (ps->t.kind == T_NUM) {
+            sy = number(ps);
+            sz = number(ps);
+        }
+        if (sx == 0 || sy == 0 || sz == 0)
+            fail_at(ps, &kt, 0, "scale by zero makes a degenerate object");
+        xf_scale(&t, tex_v3_make(sx, sy, sz));
+    } else {
+        return 0;
+    }
+    tex_xform_mul(acc, &t, acc);
+    return 1;
+}
+
+static int shape_kind(const struct tok *t)
+{
+    for (int k = 0; k < TEX_SHAPE_NKINDS; k++)
+        if (is_word(t, tex_shape_methods[k].name))
+            return k;
+    return -1;
+}
+
+static int csg_kind(const struct tok *t)
+{
+    if (is_word(t, "union"))
+        return TEX_CSG_UNION;
+    if (is_word(t, "intersection"))
+        return TEX_CSG_INTERSECTION;
+    if (is_word(t, "difference"))
+        return TEX_CSG_DIFFERENCE;
+    return -1;
+}
+
+static int is_object(const struct tok *t)
+{
+    return shape_kind(t) >= 0 || csg_kind(t) >= 0;
+}
+
+static struct tex_object *parse_object(struct parser *ps);
+
+static struct tex_object *parse_leaf(struct parser *ps, int kind, const struct tok *at)
+{
+    struct tex_object *ob = palloc(ps, sizeof *ob);
+    ob->op = TEX_CSG_LEAF;
+    ob->kind = kind;
+    ob->line = at->line;
+    ob->col = at->col;
+    tex_v3 c = {0, 0, 0}, lo = {-1, -1, -1}, hi = {1, 1, 1}, base = {0, 0, 0}, top = {0, 1, 0};
+    tex_v3 normal = {0, 1, 0};
+    double radius = 1, r0 = 1, r1 = 0, dist = 0;
+    tex_xform acc;
+    tex_xform_identity(&acc);
+    expect(ps, '{');
+    while (!is_punct(&ps->t, '}')) {
+        struct tok kt = ps->t;
+        if (parse_transform(ps, &acc))
+            continue;
+        next(ps);
+        if (is_word(&kt, "surface")) {
+            struct tok st = ps->t;
+            if (st.kind != T_ID || !(ob->surface = find_surface(ps, &st)))
+                FAIL(ps, "unknown surface '%.*s'", (int)st.len, st.text);
+            next(ps);
+        } else if (kind == TEX_SHAPE_SPHERE && is_word(&kt, "centre")) {
+            c = vec(ps);
+        } else if (kind == TEX_SHAPE_SPHERE && is_word(&kt, "center")) {
+            c = vec(ps);
+        } else if ((kind == TEX_SHAPE_SPHERE || kind == TEX_SHAPE_CYLINDER) &&
+                   is_word(&kt, "radius")) {
+            radius = number(ps);
+        } else if (kind == TEX_SHAPE_BOX && is_word(&kt, "min")) {
+            lo = vec(ps);
+        } else if (kind == TEX_SHAPE_BOX && is_word(&kt, "max")) {
+            hi = vec(ps);
+        } else if ((kind == TEX_SHAPE_CYLINDER || kind == TEX_SHAPE_CONE) &&
+                   is_word(&kt, "base")) {
+            base = vec(ps);
+        } else if ((kind == TEX_SHAPE_CYLINDER || kind == TEX_SHAPE_CONE) &&
+                   is_word(&kt, "top")) {
+            top = vec(ps);
+        } else if (kind == TEX_SHAPE_CONE && is_word(&kt, "radius1")) {
+            r0 = number(ps);
+        } else if (kind == TEX_SHAPE_CONE && is_word(&kt, "radius2")) {
+            r1 = number(ps);
+        } else if (kind == TEX_SHAPE_PLANE && is_word(&kt, "normal")) {
+            normal = vec(ps);
+        } else if (kind == TEX_SHAPE_PLANE && is_word(&kt, "distance")) {
+            dist = number(ps);
+        } else {
+            char b[64];
+            fail_at(ps, &kt, 0, "unknown word %s in a %s", tokdesc(&kt, b, sizeof b),
+                    tex_shape_methods[kind].name);
+        }
+    }
+    next(ps);
+    tex_xform place;
+    switch (kind) {
+    case TEX_SHAPE_SPHERE:
+        if (!(radius > 0))
+            fail_at(ps, at, 0, "sphere radius must be > 0");
+        xf_scale(&place, tex_v3_make(radius, radius, radius));
+        place.m[0][3] = c.x, place.m[1][3] = c.y, place.m[2][3] = c.z;
+        break;
+    case TEX_SHAPE_BOX:
+        if (!(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z))
+            fail_at(ps, at, 0, "box needs min < max on every axis");
+        xf_scale(&place, tex_v3_scale(tex_v3_sub(hi, lo), 0.5));
+        c = tex_v3_scale(tex_v3_add(hi, lo), 0.5);
+        place.m[0][3] = c.x, place.m[1][3] = c.y, place.m[2][3] = c.z;
+        break;
+    case TEX_SHAPE_CYLINDER:
+    case TEX_SHAPE_CONE: {
+        double len = tex_v3_len(tex_v3_sub(top, base));
+        if (kind == TEX_SHAPE_CYLINDER)
+            r0 = r1 = radius;
+        if (!(len > 0))
+            fail_at(ps, at, 0, "%s axis has zero length (base = top)",
+                    tex_shape_methods[kind].name);
+        if (!(r0 >= 0 && r1 >= 0 && r0 + r1 > 0))
+            fail_at(ps, at, 0, "%s radii must be >= 0 and not both 0",
+                    tex_shape_methods[kind].name);
+        /* the canonical shape keeps unit radius scale; r0, r1 are in world units */
+        xf_frame(&place, base, tex_v3_sub(top, base), len, 1);
+        ob->r0 = r0;
+        ob->r1 = r1;
+        break;
+    }
+    default:
+        if (!(tex_v3_len(normal) > 0))
+            fail_at(ps, at, 0, "plane normal must not be zero");
+        xf_frame(&place, tex_v3_scale(tex_v3_norm(normal), dist), normal, 1, 1);
+        break;
+    }
+    tex_xform_mul(&ob->to_world, &acc, &place);
+    return ob;
+}
+
+static void set_world(struct parser *ps, struct tex_object *ob, const tex_xform *parent,
+                      const struct tex_surface *sf, const struct tex_object *root)
+{
+    if (ob->op == TEX_CSG_LEAF) {
+        tex_xform_mul(&ob->to_world, parent, &ob->to_world);
+        if (tex_xform_invert(&ob->to_obj, &ob->to_world) < 0) {
+            struct tok t = {0};
+            t.line = ob->line, t.col = ob->col;
+            fail_at(ps, &t, 0, "degenerate %s (its transform is singular)",
+                    tex_shape_methods[ob->kind].name);
+        }
+    } else {
+        tex_xform w;
+        tex_xform_mul(&w, parent, &ob->to_world);
+        set_world(ps, ob->a, &w, ob->surface ? ob->surface : sf, root);
+        set_world(ps, ob->b, &w, ob->surface ? ob->surface : sf, root);
+    }
+    if (!ob->surface)
+        ob->surface = sf;
+    ob->root = root;
+}
+
+static struct tex_object *parse_object(struct parser *ps)
+{
+    struct tok at = ps->t;
+    if (++ps->nest > MAX_NEST)
+        FAIL(ps, "objects nested too deeply");
+    int k = shape_kind(&at);
+    next(ps);
+    struct tex_object *ob;
+    if (k >= 0) {
+        ob = parse_leaf(ps, k, &at);
+    } else {
+        int op = csg_kind(&at);
+        ob = palloc(ps, sizeof *ob);
+        ob->op = op;
+        ob->line = at.line;
+        ob->col = at.col;
+        tex_xform_identity(&ob->to_world);
+        struct tex_object **kids = NULL;
+        int nk = 0, ck = 0;
+        expect(ps, '{');
+        while (!is_punct(&ps->t, '}')) {
+            struct tok kt = ps->t;
+            if (parse_transform(ps, &ob->to_world))
+                continue;
+            if (is_word(&kt, "surface")) {
+                next(ps);
+                struct tok st = ps->t;
+                if (st.kind != T_ID || !(ob->surface = find_surface(ps, &st)))
+                    FAIL(ps, "unknown surface '%.*s'", (int)st.len, st.text);
+                next(ps);
+            } else if (is_object(&kt)) {
+                if (nk == ck) {
+                    ck = ck ? 2 * ck : 4;
+                    struct tex_object **nkids = palloc(ps, ck * sizeof *nkids);
+                    if (nk)
+                        memcpy(nkids, kids, nk * sizeof *nkids);
+                    kids = nkids;
+                }
+                kids[nk++] = parse_object(ps);
+            } else {
+                char b[64];
+                FAIL(ps, "unknown word %s in a %s", tokdesc(&kt, b, sizeof b),
+                     op == TEX_CSG_UNION ? "union" : op == TEX_CSG_INTERSECTION ? "intersection"
+                                                                               : "difference");
+            }
+        }
+        next(ps);
+        if (nk < 2)
+            fail_at(ps, &at, 0, "a CSG operation needs at least two objects");
+        /* more than two children fold to the left: ((a op b) op c) */
+        struct tex_object *left = kids[0];
+        for (int i = 1; i < nk - 1; i++) {
+            struct tex_object *n = palloc(ps, sizeof *n);
+            n->op = op;
+            n->line = at.line;
+            n->col = at.col;
+            tex_xform_identity(&n->to_world);
+            n->a = left;
+            n->b = kids[i];
+            left = n;
+        }
+        ob->a = left;
+        ob->b = kids[nk - 1];
+    }
+    ps->nest--;
+    return ob;
+}
+
+/* ---- lights, camera, settings ------------------------------------------------------------ */
+
+static void parse_light(struct parser *ps)
+{
+    struct tok at = ps->t;
+    static const char *const kinds[] = {"distant", "point", "spot", "area", NULL};
+    char *k = word(ps, "a light kind (distant|point|spot|area)");
+    int kind = 0;
+    while (kinds[kind] && strcmp(kinds[kind], k))
+        kind++;
+    if (!kinds[kind])
+        fail_at(ps, &at, 0, "unknown light '%s' (distant|point|spot|area)", k);
+    struct tex_scene *s = ps->s;
+    struct tex_light *a = palloc(ps, (s->nlights + 1) * sizeof *a);
+    memcpy(a, s->lights, s->nlights * sizeof *a);
+    s->lights = a;
+    struct tex_light *l = &a[s->nlights++];
+    l->kind = kind;
+    float col[3] = {1, 1, 1};
+    double intensity = 1, angle = 30;
+    tex_v3 at_pt = {0, 0, 0}, dir = {0, 1, 0};
+    int have_at = 0;
+    l->samples = 4;
+    l->edge1 = tex_v3_make(1, 0, 0);
+    l->edge2 = tex_v3_make(0, 0, 1);
+    expect(ps, '{');
+    while (!is_punct(&ps->t, '}')) {
+        struct tok kt = ps->t;
+        next(ps);
+        if (is_word(&kt, "colour") || is_word(&kt, "color")) {
+            colour3(ps, col, 1e6);
+        } else if (is_word(&kt, "intensity")) {
+            intensity = number_in(ps, 0, 1e9, "intensity");
+        } else if (kind == TEX_LIGHT_DISTANT && is_word(&kt, "direction")) {
+            dir = vec(ps);
+            if (!(tex_v3_len(dir) > 0))
+                fail_at(ps, &kt, 0, "light direction must not be zero");
+        } else if (kind != TEX_LIGHT_DISTANT && is_word(&kt, "position")) {
+            l->pos = vec(ps);
+        } else if (kind != TEX_LIGHT_DISTANT && is_word(&kt, "falloff")) {
+            struct tok ft = ps->t;
+            if (is_word(&ft, "none")) {
+                next(ps);
+                l->falloff = TEX_FALL_NONE;
+            } else if (is_word(&ft, "square")) {
+                next(ps);
+                l->falloff = TEX_FALL_SQUARE;
+            } else {
+                l->falloff = TEX_FALL_POLY;
+                l->c1 = number_in(ps, 0, 1e9, "c1");
+                l->c2 = number_in(ps, 0, 1e9, "c2");
+                l->c3 = number_in(ps, 0, 1e9, "c3");
+                if (l->c1 + l->c2 + l->c3 <= 0)
+                    fail_at(ps, &ft, 0, "falloff c1 c2 c3 must not all be 0");
+            }
+        } else if (kind == TEX_LIGHT_SPOT && is_word(&kt, "at")) {
+            at_pt = vec(ps);
+            have_at = 1;
+        } else if (kind == TEX_LIGHT_SPOT && is_word(&kt, "angle")) {
+            angle = number_in(ps, 0.01, 90, "angle");
+        } else if (kind == TEX_LIGHT_SPOT && is_word(&kt, "exponent")) {
+            l->exponent = number_in(ps, 0, 1e4, "exponent");
+        } else if (kind == TEX_LIGHT_AREA && is_word(&kt, "edge1")) {
+            l->edge1 = vec(ps);
+        } else if (kind == TEX_LIGHT_AREA && is_word(&kt, "edge2")) {
+            l->edge2 = vec(ps);
+        } else if (kind == TEX_LIGHT_AREA && is_word(&kt, "samples")) {
+            l->samples = integer_in(ps, 1, 32, "samples");
+        } else {
+            char b[64];
+            fail_at(ps, &kt, 0, "unknown word %s in a %s light", tokdesc(&kt, b, sizeof b), k);
+        }
+    }
+    next(ps);
+    for (int i = 0; i < 3; i++)
+        l->rgb[i] = (float)(col[i] * intensity);
+    if (kind == TEX_LIGHT_DISTANT)
+        l->dir = tex_v3_norm(dir);
+    if (kind == TEX_LIGHT_SPOT) {
+        if (!have_at)
+            fail_at(ps, &at, 0, "a spot light needs 'at X Y Z'");
+        tex_v3 d = tex_v3_sub(at_pt, l->pos);
+        if (!(tex_v3_len(d) > 0))
+            fail_at(ps, &at, 0, "spot light 'at' equals its position");
+        l->dir = tex_v3_norm(d);
+        l->cos_angle = cos(angle * M_PI / 180);
+    }
+    if (kind == TEX_LIGHT_AREA && !(tex_v3_len(tex_v3_cross(l->edge1, l->edge2)) > 0))
+        fail_at(ps, &at, 0, "area light edges must span a parallelogram");
+}
+
+static void parse_camera(struct parser *ps)
+{
+    struct tex_scene *s = ps->s;
+    expect(ps, '{');
+    while (!is_punct(&ps->t, '}')) {
+        struct tok kt = ps->t;
+        next(ps);
+        if (is_word(&kt, "eye"))
+            s->eye = vec(ps);
+        else if (is_word(&kt, "look"))
+            s->look = vec(ps);
+        else if (is_word(&kt, "up"))
+            s->up = vec(ps);
+        else if (is_word(&kt, "fov"))
+            s->fov = number_in(ps, 0.01, 179, "fov");
+        else {
+            char b[64];
+            fail_at(ps, &kt, 0, "unknown word %s in the camera", tokdesc(&kt, b, sizeof b));
+        }
+    }
+    next(ps);
+}
+
+static void add_object(struct parser *ps, struct tex_object *ob)
+{
+    struct tex_scene *s = ps->s;
+    struct tex_object **a = realloc(s->objects, (s->nobjects + 1) * sizeof *a);
+    if (!a)
+        fail_at(ps, &ps->t, 1, "out of memory");
+    s->objects = a;
+    a[s->nobjects++] = ob;
+}
+
+static void parse_scene(struct parser *ps)
+{
+    struct tex_scene *s = ps->s;
+    struct tex_settings *st = &s->settings;
+    struct tok camt = {0};
+    camt.line = camt.col = 1;
+    next(ps);
+    while (ps->t.kind != T_EOF) {
+        struct tok kt = ps->t;
+        if (is_object(&kt)) {
+            struct tex_object *ob = parse_object(ps);
+            tex_xform id;
+            tex_xform_identity(&id);
+            set_world(ps, ob, &id, NULL, ob);
+            add_object(ps, ob);
+            continue;
+        }
+        next(ps);
+        if (is_word(&kt, "camera")) {
+            camt = kt;
+            parse_camera(ps);
+        } else if (is_word(&kt, "light")) {
+            parse_light(ps);
+        } else if (is_word(&kt, "texture")) {
+            parse_texture(ps);
+        } else if (is_word(&kt, "surface")) {
+            parse_surface(ps);
+        } else if (is_word(&kt, "image")) {
+            st->w = integer_in(ps, 1, MAX_SIDE, "image width");
+            st->h = integer_in(ps, 1, MAX_SIDE, "image height");
+        } else if (is_word(&kt, "samples")) {
+            st->spp = integer_in(ps, 1, 4096, "samples");
+        } else if (is_word(&kt, "depth")) {
+            st->depth = integer_in(ps, 0, 64, "depth");
+        } else if (is_word(&kt, "threads")) {
+            st->threads = integer_in(ps, 0, 1024, "threads");
+        } else if (is_word(&kt, "seed")) {
+            st->seed = (uint64_t)integer_in(ps, 0, 2147483647, "seed");
+        } else if (is_word(&kt, "filter")) {
+            if (is_word(&ps->t, "on"))
+                st->filter = 1;
+            else if (is_word(&ps->t, "off"))
+                st->filter = 0;
+            else
+                FAIL(ps, "filter takes on or off");
+            next(ps);
+        } else if (is_word(&kt, "ambient")) {
+            colour3(ps, s->ambient, 1e6);
+        } else if (is_word(&kt, "background")) {
+            colour3(ps, s->background, 1e6);
+        } else if (is_word(&kt, "colour") || is_word(&kt, "color")) {
+            if (is_word(&ps->t, "rgb"))
+                next(ps);
+            else
+                FAIL(ps, "colour model must be rgb (spectral is not built into this t_apply)");
+        } else {
+            char b[64];
+            fail_at(ps, &kt, 0, "unknown word %s at the top of the scene",
+                    tokdesc(&kt, b, sizeof b));
+        }
+    }
+    tex_v3 f = tex_v3_sub(s->look, s->eye);
+    if (!(tex_v3_len(f) > 0))
+        fail_at(ps, &camt, 0, "camera eye and look are the same point");
+    if (!(tex_v3_len(tex_v3_cross(f, s->up)) > 1e-12 * tex_v3_len(f) * tex_v3_len(s->up)))
+        fail_at(ps, &camt, 0, "camera up is parallel to the viewing direction");
+}
+
+static void warn(struct tex_scene *s, const char *fmt, ...)
+{
+    char line[300];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(line, sizeof line, fmt, ap);
+    va_end(ap);
+    size_t old = s->warnings ? strlen(s->warnings) : 0, n = strlen(line);
+    char *w = realloc(s->warnings, old + n + 2);
+    if (!w)
+        return;
+    memcpy(w + old, line, n);
+    w[old + n] = '\n';
+    w[old + n + 1] = 0;
+    s->warnings = w;
+}
+
+/* Everything that can fail lives here, under setjmp: the caller frees the scene. */
+static int parse_all(struct parser *ps)
+{
+    if (setjmp(ps->jb))
+        return -1;
+    /* surfaces[0] is the default surface for objects that name none */
+    struct tex_surface *def = palloc(ps, sizeof *def);
+    def->name = "default";
+    def->ka = 0.1f;
+    def->kd[0] = def->kd[1] = def->kd[2] = 0.8f;
+    def->n = 20;
+    def->ior = 1;
+    def->model = &tex_shading_phong;
+    ps->s->surfaces = palloc(ps, sizeof *ps->s->surfaces);
+    ps->s->surfaces[0] = def;
+    ps->s->nsurfaces = 1;
+    parse_scene(ps);
+    return 0;
+}
+
+struct tex_scene *tex_scene_parse(const char *text, size_t len, const char *name)
+{
+    struct tex_scene *s = calloc(1, sizeof *s);
+    if (!s || !(s->file = strdup(name))) {
+        free(s);
+        tex_error("out of memory");
+        return NULL;
+    }
+    struct parser ps = {0};
+    ps.src = ps.p = text;
+    ps.end = text + len;
+    ps.name = name;
+    ps.line = ps.col = 1;
+    ps.s = s;
+    s->eye = tex_v3_make(0, 0, -5);
+    s->up = tex_v3_make(0, 1, 0);
+    s->fov = 45;
+    s->settings = (struct tex_settings){640, 480, 1, 5, 0, 1, 0};
+    s->ambient[0] = s->ambient[1] = s->ambient[2] = 1;
+    tex_colour_space_rgb(&s->cs);
+    if (parse_all(&ps) < 0) {
+        tex_scene_free(s);
+        return NULL;
+    }
+    if (!s->nobjects)
+        warn(s, "%s: warning: the scene has no objects", name);
+    return s;
+}
+
+struct tex_scene *tex_scene_load(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        tex_error("%s: %s", path, strerror(errno));
+        return NULL;
+    }
+    size_t cap = 1 << 16, n = 0;
+    char *buf = malloc(cap);
+    for (;;) {
+        if (!buf) {
+            fclose(f);
+            tex_error("out of memory");
+            return NULL;
+        }
+        n += fread(buf + n, 1, cap - n, f);
+        if (n < cap)
+            break;
+        if (cap >= (1u << 28)) {
+            free(buf);
+            fclose(f);
+            tex_error("%s: scene larger than 256 MiB", path);
+            return NULL;
+        }
+        char *nb = realloc(buf, cap * 2);
+        if (!nb)
+            free(buf);
+        buf = nb;
+        cap *= 2;
+    }
+    int err = ferror(f);
+    fclose(f);
+    if (err) {
+        free(buf);
+        tex_error("%s: read error", path);
+        return NULL;
+    }
+    struct tex_scene *s = tex_scene_parse(buf, n, path);
+    free(buf);
+    return s;
+}
+
+void tex_scene_free(struct tex_scene *s)
+{
+    if (!s)
+        return;
+    for (int i = 0; i < s->ntextures; i++) {
+        struct tex_texture *t = s->textures[i];
+        if (t->mip)
+            for (int l = 0; l < t->nlevels; l++)
+                tex_map_free(t->mip[l]);
+        free(t->mip);
+        tex_field_free(t->field);
+        free(t);
+    }
+    free(s->textures);
+    free(s->objects);
+    tex_bvh_free(s->bvh);
+    for (size_t i = 0; i < s->npool; i++)
+        free(s->pool[i]);
+    free(s->pool);
+    free(s->warnings);
+    free(s->file);
+    free(s);
+}
+
+/* Is point p inside object ob?  A ray from p: inside if p lies in one of its intervals. */
+static int inside(const struct tex_object *ob, tex_v3 p)
+{
+    struct tex_spans sp;
+    tex_object_spans(ob, p, tex_v3_make(0.5773, 0.5774, 0.5775), &sp);
+    for (int i = 0; i < sp.n; i++)
+        if (sp.in[i].t < 0 && sp.out[i].t > 0)
+            return 1;
+    return 0;
+}
+
+int tex_scene_prepare(struct tex_scene *s)
+{
+    struct tex_settings *st = &s->settings;
+    if (st->w < 1 || st->h < 1 || st->w > MAX_SIDE || st->h > MAX_SIDE)
+        return tex_usage_error("image size %dx%d is outside 1..%d on each side", st->w, st->h,
+                               MAX_SIDE);
+    if (tex_map_check_size(st->w, st->h, 3) < 0)
+        return -1;
+    if (st->spp < 1 || st->spp > 4096)
+        return tex_usage_error("samples per pixel %d is outside 1..4096", st->spp);
+    for (int i = 0; i < s->nlights; i++)
+        s->cs.from_rgb(&s->cs, s->lights[i].rgb, TEX_SPECTRUM_ILLUMINANT, &s->lights[i].e);
+    tex_bvh_free(s->bvh);
+    s->bvh = tex_bvh_build(s->objects, s->nobjects);
+    if (!s->bvh)
+        return -1;
+    for (int i = 0; i < s->nobjects; i++) {
+        if (inside(s->objects[i], s->eye)) {
+            const struct tex_object *o = s->objects[i];
+            warn(s, "%s:%d:%d: warning: the camera is inside this object", s->file, o->line,
+                 o->col);
+        }
+    }
+    return 0;
+}

@@ -1,0 +1,511 @@
+/* render_shape.c - transforms, optics and the canonical shapes
+ *
+ * Canonical solids (object space):
+ *   sphere    unit sphere at the origin
+ *   box       the cube [-1,1]^3
+ *   cylinder  radius 1, y in [0,1], capped (a cone with r0 = r1 = 1)
+ *   cone      radius r0 at y = 0 and r1 at y = 1, capped (convex)
+ *   plane     the half-space y <= 0, normal +y
+ */
+#include <float.h>
+#include <math.h>
+
+#include "render.h"
+
+/* ---- transforms ----------------------------------------------------------- */
+
+void tex_xform_identity(tex_xform *t)
+{
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 4; j++)
+            t->m[i][j] = i == j;
+}
+
+void tex_xform_mul(tex_xform *r, const tex_xform *a, const tex_xform *b)
+{
+    tex_xform t;
+    for (int i = 0; i < 3; i++) {
+        for (int j = 0; j < 4; j++) {
+            double s = j == 3 ? a->m[i][3] : 0;
+            for (int k = 0; k < 3; k++)
+                s += a->m[i][k] * b->m[k][j];
+            t.m[i][j] = s;
+        }
+    }
+    *r = t;
+}
+
+int tex_xform_invert(tex_xform *r, const tex_xform *a)
+{
+    const double(*m)[4] = a->m;
+    double c00 = m[1][1] * m[2][2] - m[1][2] * m[2][1];
+    double c01 = m[1][2] * m[2][0] - m[1][0] * m[2][2];
+    double c02 = m[1][0] * m[2][1] - m[1][1] * m[2][0];
+    double det = m[0][0] * c00 + m[0][1] * c01 + m[0][2] * c02;
+    if (!(fabs(det) > 1e-300) || !isfinite(det))
+        return -1;
+    double id = 1 / det;
+    tex_xform t;
+    t.m[0][0] = c00 * id;
+    t.m[1][0] = c01 * id;
+    t.m[2][0] = c02 * id;
+    t.m[0][1] = (m[0][2] * m[2][1] - m[0][1] * m[2][2]) * id;
+    t.m[1][1] = (m[0][0] * m[2][2] - m[0][2] * m[2][0]) * id;
+    t.m[2][1] = (m[0][1] * m[2][0] - m[0][0] * m[2][1]) * id;
+    t.m[0][2] = (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * id;
+    t.m[1][2] = (m[0][2] * m[1][0] - m[0][0] * m[1][2]) * id;
+    t.m[2][2] = (m[0][0] * m[1][1] - m[0][1] * m[1][0]) * id;
+    for (int i = 0; i < 3; i++)
+        t.m[i][3] = -(t.m[i][0] * m[0][3] + t.m[i][1] * m[1][3] + t.m[i][2] * m[2][3]);
+    *r = t;
+    return 0;
+}
+
+tex_v3 tex_xform_point(const tex_xform *t, tex_v3 p)
+{
+    const double(*m)[4] = t->m;
+    return tex_v3_make(m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
+                       m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
+                       m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]);
+}
+
+tex_v3 tex_xform_dir(const tex_xform *t, tex_v3 d)
+{
+    const double(*m)[4] = t->m;
+    return tex_v3_make(m[0][0] * d.x + m[0][1] * d.y + m[0][2] * d.z,
+                       m[1][0] * d.x + m[1][1] * d.y + m[1][2] * d.z,
+                       m[2][0] * d.x + m[2][1] * d.y + m[2][2] * d.z);
+}
+
+tex_v3 tex_xform_normal(const tex_xform *inv, tex_v3 n)
+{
+    const double(*m)[4] = inv->m;
+    return tex_v3_make(m[0][0] * n.x + m[1][0] * n.y + m[2][0] * n.z,
+                       m[0][1] * n.x + m[1][1] * n.y + m[2][1] * n.z,
+                       m[0][2] * n.x + m[1][2] * n.y + m[2][2] * n.z);
+}
+
+/* ---- optics ----------------------------------------------------------------- */
+
+tex_v3 tex_reflect(tex_v3 d, tex_v3 n)
+{
+    return tex_v3_madd(d, n, -2 * tex_v3_dot(d, n));
+}
+
+int tex_refract(tex_v3 d, tex_v3 n, double n1, double n2, tex_v3 *t)
+{
+    double eta = n1 / n2;
+    double cosi = -tex_v3_dot(d, n);
+    double k = 1 - eta * eta * (1 - cosi * cosi);
+    if (k < 0)
+        return 0;
+    *t = tex_v3_norm(tex_v3_add(tex_v3_scale(d, eta), tex_v3_scale(n, eta * cosi - sqrt(k))));
+    return 1;
+}
+
+/* ---- spans helpers ---------------------------------------------------------- */
+
+static void span1(struct tex_spans *s, const struct tex_object *ob, double t0, double t1)
+{
+    s->n = 1;
+    s->in[0].t = t0;
+    s->in[0].leaf = isfinite(t0) ? ob : NULL;
+    s->in[0].flip = 0;
+    s->out[0].t = t1;
+    s->out[0].leaf = isfinite(t1) ? ob : NULL;
+    s->out[0].flip = 0;
+}
+
+/* ---- sphere ----------------------------------------------------------------- */
+
+static void sphere_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s)
+{
+    double a = tex_v3_dot(d, d), b = tex_v3_dot(o, d), c = tex_v3_dot(o, o) - 1;
+    double disc = b * b - a * c;
+    s->n = 0;
+    if (disc <= 0 || a <= 0)
+        return;
+    double q = sqrt(disc);
+    span1(s, ob, (-b - q) / a, (-b + q) / a);
+}
+
+static tex_v3 sphere_normal(const struct tex_object *ob, tex_v3 p)
+{
+    (void)ob;
+    return p;
+}
+
+static int sphere_uv(const struct tex_object *ob, tex_v3 p, double *u, double *v)
+{
+    (void)ob;
+    double r = tex_v3_len(p);
+    double a = atan2(-p.z, p.x) / (2 * M_PI);
+    *u = a < 0 ? a + 1 : a;
+    *v = r > 0 ? acos(fmax(-1, fmin(1, p.y / r))) / M_PI : 0.5;
+    return 1;
+}
+
+static int unit_bounds(const struct tex_object *ob, struct tex_bounds *b)
+{
+    (void)ob;
+    b->lo = tex_v3_make(-1, -1, -1);
+    b->hi = tex_v3_make(1, 1, 1);
+    return 1;
+}
+
+/* ---- box -------------------------------------------------------------------- */
+
+static void box_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s)
+{
+    double t0 = -INFINITY, t1 = INFINITY;
+    s->n = 0;
+    for (int i = 0; i < 3; i++) {
+        double oi = tex_v3_get(o, i), di = tex_v3_get(d, i);
+        if (di == 0) {
+            if (oi < -1 || oi > 1)
+                return;
+            continue;
+        }
+        double a = (-1 - oi) / di, b = (1 - oi) / di;
+        if (a > b) {
+            double x = a;
+            a = b;
+            b = x;
+        }
+        t0 = a > t0 ? a : t0;
+        t1 = b < t1 ? b : t1;
+    }
+    if (t0 < t1)
+        span1(s, ob, t0, t1);
+}
+
+static int box_face(tex_v3 p)
+{
+    double ax = fabs(p.x), ay = fabs(p.y), az = fabs(p.z);
+    if (ax >= ay && ax >= az)
+        return p.x > 0 ? 1 : 2;
+    if (ay >= az)
+        return p.y > 0 ? 3 : 4;
+    return p.z > 0 ? 5 : 6;
+}
+
+static tex_v3 box_normal(const struct tex_object *ob, tex_v3 p)
+{
+    (void)ob;
+    static const tex_v3 n[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    return n[box_face(p) - 1];
+}
+
+/* Faces 1..6 = +x -x +y -y +z -z, each seen from outside with v downwards. */
+static int box_uv(const struct tex_object *ob, tex_v3 p, double *u, double *v)
+{
+    (void)ob;
+    int f = box_face(p);
+    double a, b;
+    switch (f) {
+    case 1: a = -p.z, b = -p.y; break;
+    case 2: a = p.z, b = -p.y; break;
+    case 3: a = p.x, b = p.z; break;
+    case 4: a = p.x, b = -p.z; break;
+    case 5: a = p.x, b = -p.y; break;
+    default: a = -p.x, b = -p.y; break;
+    }
+    *u = fmin(1, fmax(0, (a + 1) / 2));
+    *v = fmin(1, fmax(0, (b + 1) / 2));
+    return f;
+}
+
+/* ---- cone and cylinder ---------------------------------------------------------- */
+
+static void cone_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s)
+{
+    double r0 = ob->r0, k = ob->r1 - ob->r0;
+    double t[4];
+    int n = 0;
+    double a = d.x * d.x + d.z * d.z - k * k * d.y * d.y;
+    double ry = r0 + k * o.y;
+    double b = 2 * (o.x * d.x + o.z * d.z - ry * k * d.y);
+    double c = o.x * o.x + o.z * o.z - ry * ry;
+    s->n = 0;
+    if (fabs(a) > 1e-14) {
+        double disc = b * b - 4 * a * c;
+        if (disc > 0) {
+            double q = sqrt(disc);
+            double r[2] = {(-b - q) / (2 * a), (-b + q) / (2 * a)};
+            for (int i = 0; i < 2; i++) {
+                double y = o.y + r[i] * d.y;
+                if (y >= 0 && y <= 1 && r0 + k * y >= 0)
+                    t[n++] = r[i];
+            }
+        }
+    } else if (fabs(b) > 1e-14) {
+        double r = -c / b, y = o.y + r * d.y;
+        if (y >= 0 && y <= 1)
+            t[n++] = r;
+    }
+    if (d.y != 0) {
+        for (int cap = 0; cap < 2; cap++) {
+            double r = (cap - o.y) / d.y;
+            double x = o.x + r * d.x, z = o.z + r * d.z, rad = cap ? ob->r1 : r0;
+            if (x * x + z * z <= rad * rad)
+                t[n++] = r;
+        }
+    }
+    if (n < 2)
+        return;
+    double lo = t[0], hi = t[0];
+    for (int i = 1; i < n; i++) {
+        lo = t[i] < lo ? t[i] : lo;
+        hi = t[i] > hi ? t[i] : hi;
+    }
+    if (hi > lo)
+        span1(s, ob, lo, hi);
+}
+
+/* 0: the side, 1: bottom cap, 2: top cap - whichever surface is nearest. */
+static int cone_part(const struct tex_object *ob, tex_v3 p)
+{
+    double ry = ob->r0 + (ob->r1 - ob->r0) * p.y;
+    double side = fabs(sqrt(p.x * p.x + p.z * p.z) - ry) / sqrt(1 + (ob->r1 - ob->r0) * (ob->r1 - ob->r0));
+    double bot = fabs(p.y), top = fabs(p.y - 1);
+    if (side <= bot && side <= top)
+        return 0;
+    return bot <= top ? 1 : 2;
+}
+
+static tex_v3 cone_normal(const struct tex_object *ob, tex_v3 p)
+{
+    int part = cone_part(ob, p);
+    if (part == 1)
+        return tex_v3_make(0, -1, 0);
+    if (part == 2)
+        return tex_v3_make(0, 1, 0);
+    double k = ob->r1 - ob->r0, ry = ob->r0 + k * p.y;
+    tex_v3 n = tex_v3_make(p.x, -k * ry, p.z);
+    return tex_v3_len(n) > 0 ? n : tex_v3_make(0, 1, 0);
+}
+
+/* cylinder_map / cone_map: u around the axis, v down the side; caps as discs. */
+static int cone_uv(const struct tex_object *ob, tex_v3 p, double *u, double *v)
+{
+    int part = cone_part(ob, p);
+    if (part == 0) {
+        double a = atan2(-p.z, p.x) / (2 * M_PI);
+        *u = a < 0 ? a + 1 : a;
+        *v = fmin(1, fmax(0, 1 - p.y));
+        return 1;
+    }
+    double r = part == 1 ? ob->r0 : ob->r1;
+    r = r > 0 ? r : 1;
+    *u = fmin(1, fmax(0, (p.x / r + 1) / 2));
+    *v = fmin(1, fmax(0, (p.z / r + 1) / 2));
+    return part + 1;
+}
+
+static int cone_bounds(const struct tex_object *ob, struct tex_bounds *b)
+{
+    double r = ob->r0 > ob->r1 ? ob->r0 : ob->r1;
+    b->lo = tex_v3_make(-r, 0, -r);
+    b->hi = tex_v3_make(r, 1, r);
+    return 1;
+}
+
+/* ---- plane ------------------------------------------------------------------ */
+
+static void plane_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s)
+{
+    s->n = 0;
+    if (d.y == 0) {
+        if (o.y <= 0)
+            span1(s, ob, -INFINITY, INFINITY);
+        return;
+    }
+    double t = -o.y / d.y;
+    if (d.y > 0)
+        span1(s, ob, -INFINITY, t);
+    else
+        span1(s, ob, t, INFINITY);
+}
+
+static tex_v3 plane_normal(const struct tex_object *ob, tex_v3 p)
+{
+    (void)ob;
+    (void)p;
+    return tex_v3_make(0, 1, 0);
+}
+
+/* Planar: one texture-space unit per object-space unit, wrapping. */
+static int plane_uv(const struct tex_object *ob, tex_v3 p, double *u, double *v)
+{
+    (void)ob;
+    *u = p.x - floor(p.x);
+    *v = p.z - floor(p.z);
+    return 1;
+}
+
+static int plane_bounds(const struct tex_object *ob, struct tex_bounds *b)
+{
+    (void)ob;
+    (void)b;
+    return 0;
+}
+
+const struct tex_shape_methods tex_shape_methods[TEX_SHAPE_NKINDS] = {
+    [TEX_SHAPE_SPHERE] = {"sphere", sphere_spans, sphere_normal, sphere_uv, unit_bounds},
+    [TEX_SHAPE_BOX] = {"box", box_spans, box_normal, box_uv, unit_bounds},
+    [TEX_SHAPE_CYLINDER] = {"cylinder", cone_spans, cone_normal, cone_uv, cone_bounds},
+    [TEX_SHAPE_CONE] = {"cone", cone_spans, cone_normal, cone_uv, cone_bounds},
+    [TEX_SHAPE_PLANE] = {"plane", plane_spans, plane_normal, plane_uv, plane_bounds},
+};
+
+/* ---- objects ------------------------------------------------------------------ */
+
+static int ray_box(const struct tex_bounds *b, tex_v3 o, tex_v3 d)
+{
+    double t0 = -INFINITY, t1 = INFINITY;
+    for (int i = 0; i < 3; i++) {
+        double oi = tex_v3_get(o, i), di = tex_v3_get(d, i);
+        double lo = tex_v3_get(b->lo, i), hi = tex_v3_get(b->hi, i);
+        if (di == 0) {
+            if (oi < lo || oi > hi)
+                return 0;
+            continue;
+        }
+        double a = (lo - oi) / di, c = (hi - oi) / di;
+        if (a > c) {
+            double x = a;
+            a = c;
+            c = x;
+        }
+        t0 = a > t0 ? a : t0;
+        t1 = c < t1 ? c : t1;
+        if (t0 > t1)
+            return 0;
+    }
+    return 1;
+}
+
+void tex_object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s)
+{
+    if (ob->op == TEX_CSG_LEAF) {
+        tex_v3 lo = tex_xform_point(&ob->to_obj, o), ld = tex_xform_dir(&ob->to_obj, d);
+        tex_shape_methods[ob->kind].spans(ob, lo, ld, s);
+        return;
+    }
+    if (ob->bounded && !ray_box(&ob->wb, o, d)) {
+        s->n = 0;
+        return;
+    }
+    struct tex_spans a, b;
+    tex_object_spans(ob->a, o, d, &a);
+    if (a.n == 0 && ob->op != TEX_CSG_UNION) {
+        s->n = 0;
+        return;
+    }
+    tex_object_spans(ob->b, o, d, &b);
+    tex_csg_combine(ob->op, &a, &b, s);
+}
+
+int tex_object_bounds(struct tex_object *ob)
+{
+    if (ob->op == TEX_CSG_LEAF) {
+        struct tex_bounds lb;
+        ob->bounded = tex_shape_methods[ob->kind].bounds(ob, &lb);
+        if (!ob->bounded)
+            return 0;
+        ob->wb.lo = tex_v3_make(INFINITY, INFINITY, INFINITY);
+        ob->wb.hi = tex_v3_make(-INFINITY, -INFINITY, -INFINITY);
+        for (int c = 0; c < 8; c++) {
+            tex_v3 p = tex_v3_make(c & 1 ? lb.hi.x : lb.lo.x, c & 2 ? lb.hi.y : lb.lo.y,
+                                   c & 4 ? lb.hi.z : lb.lo.z);
+            p = tex_xform_point(&ob->to_world, p);
+            ob->wb.lo = tex_v3_make(fmin(ob->wb.lo.x, p.x), fmin(ob->wb.lo.y, p.y),
+                                    fmin(ob->wb.lo.z, p.z));
+            ob->wb.hi = tex_v3_make(fmax(ob->wb.hi.x, p.x), fmax(ob->wb.hi.y, p.y),
+                                    fmax(ob->wb.hi.z, p.z));
+        }
+        return 1;
+    }
+    int ba = tex_object_bounds(ob->a), bb = tex_object_bounds(ob->b);
+    switch (ob->op) {
+    case TEX_CSG_UNION:
+        ob->bounded = ba && bb;
+        if (ob->bounded) {
+            ob->wb.lo = tex_v3_make(fmin(ob->a->wb.lo.x, ob->b->wb.lo.x),
+                                    fmin(ob->a->wb.lo.y, ob->b->wb.lo.y),
+                                    fmin(ob->a->wb.lo.z, ob->b->wb.lo.z));
+            ob->wb.hi = tex_v3_make(fmax(ob->a->wb.hi.x, ob->b->wb.hi.x),
+                                    fmax(ob->a->wb.hi.y, ob->b->wb.hi.y),
+                                    fmax(ob->a->wb.hi.z, ob->b->wb.hi.z));
+        }
+        break;
+    case TEX_CSG_INTERSECTION:
+        ob->bounded = ba || bb;
+        if (ba && bb) {
+            ob->wb.lo = tex_v3_make(fmax(ob->a->wb.lo.x, ob->b->wb.lo.x),
+                                    fmax(ob->a->wb.lo.y, ob->b->wb.lo.y),
+                                    fmax(ob->a->wb.lo.z, ob->b->wb.lo.z));
+            ob->wb.hi = tex_v3_make(fmin(ob->a->wb.hi.x, ob->b->wb.hi.x),
+                                    fmin(ob->a->wb.hi.y, ob->b->wb.hi.y),
+                                    fmin(ob->a->wb.hi.z, ob->b->wb.hi.z));
+        } else if (ob->bounded) {
+            ob->wb = ba ? ob->a->wb : ob->b->wb;
+        }
+        break;
+    default: /* difference: inside a */
+        ob->bounded = ba;
+        ob->wb = ob->a->wb;
+        break;
+    }
+    return ob->bounded;
+}
+
+/* ---- CSG on intervals ------------------------------------------------------------ */
+
+static int csg_inside(enum tex_csg_op op, int a, int b)
+{
+    switch (op) {
+    case TEX_CSG_UNION: return a || b;
+    case TEX_CSG_INTERSECTION: return a && b;
+    default: return a && !b;
+    }
+}
+
+/* Sweep the boundaries of a and b in order; a boundary of the result is
+ * wherever the combined inside/outside state changes.  Surfaces of the
+ * subtracted solid face the other way. */
+void tex_csg_combine(enum tex_csg_op op, const struct tex_spans *a, const struct tex_spans *b,
+                     struct tex_spans *r)
+{
+    int ia = 0, ib = 0, na = 2 * a->n, nb = 2 * b->n;
+    int ina = 0, inb = 0, inr = 0;
+    r->n = 0;
+    while (ia < na || ib < nb) {
+        const struct tex_hit *ha = ia < na ? (ia & 1 ? &a->out[ia / 2] : &a->in[ia / 2]) : NULL;
+        const struct tex_hit *hb = ib < nb ? (ib & 1 ? &b->out[ib / 2] : &b->in[ib / 2]) : NULL;
+        struct tex_hit h;
+        int fromb = !ha || (hb && hb->t < ha->t);
+        if (fromb) {
+            h = *hb;
+            ib++;
+            inb = !inb;
+            if (op == TEX_CSG_DIFFERENCE)
+                h.flip = !h.flip;
+        } else {
+            h = *ha;
+            ia++;
+            ina = !ina;
+        }
+        int now = csg_inside(op, ina, inb);
+        if (now == inr)
+            continue;
+        inr = now;
+        if (now) {
+            if (r->n == TEX_SPANS_MAX)
+                return; /* keep the nearest intervals */
+            r->in[r->n] = h;
+        } else {
+            r->out[r->n++] = h;
+        }
+    }
+}

@@ -1,0 +1,405 @@
+/* render_texture.c - textures, mappings and application functions
+ *
+ * A texture is a map (with a mip-map pyramid for filtered lookups) or a
+ * primitive evaluated at hit points.  A surface applies textures in order;
+ * each one maps the hit point to texture space (its mapping), keeps the
+ * point only inside its window (u1,v1)-(u2,v2), repeats the map nu x nv
+ * times there (1 x 1 stretches it), looks up the value f and changes the
+ * shading parameters through its application functions g[region][param].
+ */
+#include <math.h>
+#include <stdlib.h>
+
+#include "error.h"
+#include "render.h"
+
+/* ---- mip-mapped maps ------------------------------------------------------------ */
+
+int tex_texture_build_mip(struct tex_texture *t)
+{
+    tex_map *m = t->mip[0];
+    int n = 1;
+    for (int w = m->w, h = m->h; w > 1 || h > 1; w = (w + 1) / 2, h = (h + 1) / 2)
+        n++;
+    tex_map **mip = realloc(t->mip, n * sizeof *mip);
+    if (!mip)
+        return tex_error("out of memory");
+    t->mip = mip;
+    t->nlevels = 1;
+    if (t->subregions)
+        return 0; /* region ids are never averaged */
+    for (int l = 1; l < n; l++) {
+        const tex_map *s = mip[l - 1];
+        tex_map *d = tex_map_new(s->w > 1 ? s->w / 2 : 1, s->h > 1 ? s->h / 2 : 1, s->nc);
+        if (!d)
+            return -1;
+        int fx = s->w / d->w, fy = s->h / d->h;
+        for (int y = 0; y < d->h; y++) {
+            for (int x = 0; x < d->w; x++) {
+                float *o = tex_map_px(d, x, y);
+                for (int j = 0; j < fy; j++)
+                    for (int i = 0; i < fx; i++) {
+                        const float *p = tex_map_px(s, x * fx + i, y * fy + j);
+                        for (int c = 0; c < s->nc; c++)
+                            o[c] += p[c];
+                    }
+                for (int c = 0; c < s->nc; c++)
+                    o[c] /= fx * fy;
+            }
+        }
+        mip[l] = d;
+        t->nlevels = l + 1;
+        if (d->w == 1 && d->h == 1)
+            break;
+    }
+    return 0;
+}
+
+static void to_rgb(const float *p, int nc, float out[3])
+{
+    if (nc >= 3) {
+        out[0] = p[0], out[1] = p[1], out[2] = p[2];
+    } else {
+        out[0] = out[1] = out[2] = p[0];
+    }
+}
+
+static inline int wrapi(int i, int n)
+{
+    i %= n;
+    return i < 0 ? i + n : i;
+}
+
+static void bilinear(const tex_map *m, double u, double v, float out[3])
+{
+    double x = u * m->w - 0.5, y = v * m->h - 0.5;
+    double fx = floor(x), fy = floor(y);
+    double ax = x - fx, ay = y - fy;
+    int x0 = wrapi((int)fx, m->w), y0 = wrapi((int)fy, m->h);
+    int x1 = x0 + 1 == m->w ? 0 : x0 + 1, y1 = y0 + 1 == m->h ? 0 : y0 + 1;
+    float a[3], b[3], c[3], d[3];
+    to_rgb(tex_map_px(m, x0, y0), m->nc, a);
+    to_rgb(tex_map_px(m, x1, y0), m->nc, b);
+    to_rgb(tex_map_px(m, x0, y1), m->nc, c);
+    to_rgb(tex_map_px(m, x1, y1), m->nc, d);
+    for (int k = 0; k < 3; k++)
+        out[k] = (float)((a[k] * (1 - ax) + b[k] * ax) * (1 - ay) + (c[k] * (1 - ax) + d[k] * ax) * ay);
+}
+
+int tex_texture_eval(const struct tex_texture *t, double u, double v, double w, double fw,
+                     float out[3])
+{
+    if (t->mip) {
+        const tex_map *m = t->mip[0];
+        u -= floor(u);
+        v -= floor(v);
+        if (t->subregions) {
+            int x = wrapi((int)(u * m->w), m->w), y = wrapi((int)(v * m->h), m->h);
+            float id = tex_map_px(m, x, y)[0];
+            out[0] = out[1] = out[2] = id;
+            return (int)lrintf(id);
+        }
+        int side = m->w > m->h ? m->w : m->h;
+        double lod = fw > 0 ? log2(fw * side) : 0;
+        if (!(lod > 0) || t->nlevels == 1) {
+            bilinear(m, u, v, out);
+            return 0;
+        }
+        if (lod >= t->nlevels - 1) {
+            bilinear(t->mip[t->nlevels - 1], u, v, out);
+            return 0;
+        }
+        int l = (int)lod;
+        double a = lod - l;
+        float o0[3], o1[3];
+        bilinear(t->mip[l], u, v, o0);
+        bilinear(t->mip[l + 1], u, v, o1);
+        for (int k = 0; k < 3; k++)
+            out[k] = (float)(o0[k] * (1 - a) + o1[k] * a);
+        return 0;
+    }
+    float val[TEX_MAP_MAX_CHANNELS] = {0};
+    const struct tex_field *f = t->field;
+    if (t->solid)
+        f->prim->eval3(f, 1, &u, &v, &w, val);
+    else
+        f->prim->eval2(f, 1, &u, &v, val);
+    to_rgb(val, f->nc, out);
+    if ((f->prim->flags & TEX_PRIM_REGIONS) && f->ids)
+        return (int)lrintf(val[0]);
+    return 0;
+}
+
+/* ---- mappings -------------------------------------------------------------------- */
+
+static double fract(double x)
+{
+    return x - floor(x);
+}
+
+static void local_box(const struct tex_object *leaf, struct tex_bounds *b, int *bounded)
+{
+    *bounded = tex_shape_methods[leaf->kind].bounds(leaf, b);
+}
+
+/* Texture-space coordinates of world point P on leaf; returns the face id. */
+static int map_point(const struct tex_apply *ap, const struct tex_object *leaf, tex_v3 P,
+                     double uvw[3])
+{
+    tex_v3 pl = tex_xform_point(&leaf->to_obj, P);
+    struct tex_bounds b;
+    int bounded, face = 1;
+    enum tex_mapping mp = ap->mapping;
+    uvw[2] = 0;
+    if (mp == TEX_MAP_NATURAL && leaf->kind == TEX_SHAPE_PLANE)
+        mp = TEX_MAP_PLANAR;
+    if (mp == TEX_MAP_NATURAL)
+        return tex_shape_methods[leaf->kind].uv(leaf, pl, &uvw[0], &uvw[1]);
+    if (mp == TEX_MAP_WORLD || (mp == TEX_MAP_SOLID && !(leaf->root && leaf->root->bounded))) {
+        uvw[0] = fract(P.x * ap->scale);
+        uvw[1] = fract(-P.y * ap->scale);
+        uvw[2] = fract(P.z * ap->scale);
+        if (mp == TEX_MAP_WORLD) {
+            double t = uvw[1];
+            uvw[1] = uvw[2], uvw[2] = t; /* 2D maps lie in the ground plane x,z */
+        }
+        return 1;
+    }
+    if (mp == TEX_MAP_SOLID) {
+        const struct tex_bounds *rb = &leaf->root->wb;
+        tex_v3 e = tex_v3_sub(rb->hi, rb->lo);
+        uvw[0] = e.x > 0 ? (P.x - rb->lo.x) / e.x : 0;
+        uvw[1] = e.y > 0 ? (rb->hi.y - P.y) / e.y : 0; /* v downwards: top of the box is 0 */
+        uvw[2] = e.z > 0 ? (P.z - rb->lo.z) / e.z : 0;
+        return 1;
+    }
+    local_box(leaf, &b, &bounded);
+    tex_v3 c = bounded ? tex_v3_scale(tex_v3_add(b.lo, b.hi), 0.5) : tex_v3_make(0, 0, 0);
+    tex_v3 e = bounded ? tex_v3_scale(tex_v3_sub(b.hi, b.lo), 0.5) : tex_v3_make(1, 1, 1);
+    tex_v3 q = tex_v3_make((pl.x - c.x) / e.x, (pl.y - c.y) / e.y, (pl.z - c.z) / e.z);
+    switch (mp) {
+    case TEX_MAP_SPHERE:
+        return tex_shape_methods[TEX_SHAPE_SPHERE].uv(leaf, q, &uvw[0], &uvw[1]);
+    case TEX_MAP_BOX:
+        return tex_shape_methods[TEX_SHAPE_BOX].uv(leaf, q, &uvw[0], &uvw[1]);
+    case TEX_MAP_CYLINDER:
+    case TEX_MAP_CONE: {
+        double a = atan2(-q.z, q.x) / (2 * M_PI);
+        uvw[0] = a < 0 ? a + 1 : a;
+        uvw[1] = bounded ? fmin(1, fmax(0, (1 - q.y) / 2)) : fract(-pl.y * ap->scale);
+        return face;
+    }
+    default: /* planar: x and z across the box */
+        if (!bounded) {
+            uvw[0] = fract(pl.x * ap->scale);
+            uvw[1] = fract(pl.z * ap->scale);
+        } else {
+            uvw[0] = fmin(1, fmax(0, (q.x + 1) / 2));
+            uvw[1] = fmin(1, fmax(0, (q.z + 1) / 2));
+        }
+        return face;
+    }
+}
+
+/* Window and placement: 0 if the point is outside the window. */
+static int place(const struct tex_apply *ap, double uvw[3])
+{
+    double s = (uvw[0] - ap->u1) / (ap->u2 - ap->u1), t = (uvw[1] - ap->v1) / (ap->v2 - ap->v1);
+    if (s < 0 || s > 1 || t < 0 || t > 1)
+        return 0;
+    uvw[0] = s * ap->nu;
+    uvw[1] = t * ap->nv;
+    return 1;
+}
+
+static double wrapdiff(double d)
+{
+    return d - floor(d + 0.5);
+}
+
+/* ---- application functions ---------------------------------------------------------- */
+
+struct evalctx {
+    const float *f;     /* map value, RGB */
+    const float *p;     /* untextured value, RGB */
+    double uvw[3], fw;
+};
+
+static void expr_eval(const struct tex_expr *e, const struct evalctx *c, double out[3])
+{
+    double a[3], b[3];
+    switch (e->op) {
+    case TEX_E_NUM:
+        out[0] = out[1] = out[2] = e->v[0];
+        return;
+    case TEX_E_RGB:
+        out[0] = e->v[0], out[1] = e->v[1], out[2] = e->v[2];
+        return;
+    case TEX_E_F:
+        out[0] = c->f[0], out[1] = c->f[1], out[2] = c->f[2];
+        return;
+    case TEX_E_P:
+        out[0] = c->p[0], out[1] = c->p[1], out[2] = c->p[2];
+        return;
+    case TEX_E_TEX: {
+        float v[3];
+        tex_texture_eval(e->tex, c->uvw[0], c->uvw[1], c->uvw[2], c->fw, v);
+        out[0] = v[0], out[1] = v[1], out[2] = v[2];
+        return;
+    }
+    case TEX_E_NEG:
+        expr_eval(e->a, c, a);
+        out[0] = -a[0], out[1] = -a[1], out[2] = -a[2];
+        return;
+    default:
+        break;
+    }
+    expr_eval(e->a, c, a);
+    expr_eval(e->b, c, b);
+    for (int k = 0; k < 3; k++) {
+        switch (e->op) {
+        case TEX_E_ADD: out[k] = a[k] + b[k]; break;
+        case TEX_E_SUB: out[k] = a[k] - b[k]; break;
+        case TEX_E_MUL: out[k] = a[k] * b[k]; break;
+        default: out[k] = b[k] != 0 ? a[k] / b[k] : 0; break;
+        }
+    }
+}
+
+static double clampd(double x, double lo, double hi)
+{
+    return !(x >= lo) ? lo : x > hi ? hi : x;
+}
+
+/* The parameters being textured, in RGB, before conversion to the colour space. */
+struct params {
+    float ka, kd[3], ks, n, kr, kt, ior, bump;
+};
+
+static void apply_fn(const struct tex_appfn *fn, struct params *pr, const struct evalctx *base)
+{
+    struct evalctx c = *base;
+    float p[3];
+    double r[3];
+    float *scalar = NULL;
+    double lo = 0, hi = 1;
+    switch (fn->param) {
+    case TEX_SP_KD:
+        c.p = pr->kd;
+        expr_eval(fn->e, &c, r);
+        for (int k = 0; k < 3; k++)
+            pr->kd[k] = (float)clampd(r[k], 0, 1);
+        return;
+    case TEX_SP_KA: scalar = &pr->ka; break;
+    case TEX_SP_KS: scalar = &pr->ks; break;
+    case TEX_SP_N: scalar = &pr->n, lo = 0.1, hi = 10000; break;
+    case TEX_SP_KR: scalar = &pr->kr; break;
+    case TEX_SP_KT: scalar = &pr->kt; break;
+    case TEX_SP_IOR: scalar = &pr->ior, lo = 0.1, hi = 10; break;
+    default: scalar = &pr->bump, lo = -1000, hi = 1000; break;
+    }
+    p[0] = p[1] = p[2] = *scalar;
+    c.p = p;
+    /* a scalar parameter sees the map's luminance as f */
+    float fl = (c.f[0] + c.f[1] + c.f[2]) / 3, fg[3] = {fl, fl, fl};
+    c.f = fg;
+    expr_eval(fn->e, &c, r);
+    *scalar = (float)clampd((r[0] + r[1] + r[2]) / 3, lo, hi);
+}
+
+static float lum(const float v[3])
+{
+    return (v[0] + v[1] + v[2]) / 3;
+}
+
+/* Value of the applied texture at world point P (after mapping and placement). */
+static int look(const struct tex_apply *ap, const struct tex_object *leaf, tex_v3 P, double fw,
+                double uvw[3], float f[3])
+{
+    map_point(ap, leaf, P, uvw);
+    if (!place(ap, uvw))
+        return -1;
+    return tex_texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw, f);
+}
+
+void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *sf,
+                          const struct tex_object *leaf, tex_v3 P, tex_v3 D, tex_v3 *N,
+                          double width, struct tex_material *m)
+{
+    struct params pr = {sf->ka, {sf->kd[0], sf->kd[1], sf->kd[2]}, sf->ks[0], (float)sf->n,
+                        (float)sf->kr, (float)sf->kt, (float)sf->ior, 0};
+    float ks_rgb[3] = {sf->ks[0], sf->ks[1], sf->ks[2]};
+    int ks_textured = 0;
+    if (sf->apply) {
+        /* the pixel footprint on the surface: across the ray's projection
+         * (stretched by 1/cos) and along the tangent perpendicular to it */
+        double cosv = fabs(tex_v3_dot(D, *N));
+        tex_v3 t1 = tex_v3_sub(D, tex_v3_scale(*N, tex_v3_dot(D, *N)));
+        if (tex_v3_len(t1) < 1e-9)
+            t1 = fabs(N->x) < 0.9 ? tex_v3_cross(*N, tex_v3_make(1, 0, 0))
+                                  : tex_v3_cross(*N, tex_v3_make(0, 1, 0));
+        t1 = tex_v3_norm(t1);
+        tex_v3 t2 = tex_v3_cross(*N, t1);
+        double w1 = width / fmax(cosv, 0.02), w2 = width;
+        tex_v3 bumpg = tex_v3_make(0, 0, 0);
+        for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next) {
+            double uvw[3], a[3], b[3];
+            float f[3], fa[3], fb[3];
+            int region = look(ap, leaf, P, 0, uvw, f);
+            if (region < 0)
+                continue;
+            double fw = 0;
+            if (s->settings.filter && width > 0) {
+                map_point(ap, leaf, tex_v3_madd(P, t1, w1), a);
+                map_point(ap, leaf, tex_v3_madd(P, t2, w2), b);
+                double du1 = wrapdiff(a[0] - uvw[0] / ap->nu * (ap->u2 - ap->u1) - ap->u1);
+                double dv1 = wrapdiff(a[1] - uvw[1] / ap->nv * (ap->v2 - ap->v1) - ap->v1);
+                double du2 = wrapdiff(b[0] - uvw[0] / ap->nu * (ap->u2 - ap->u1) - ap->u1);
+                double dv2 = wrapdiff(b[1] - uvw[1] / ap->nv * (ap->v2 - ap->v1) - ap->v1);
+                double su = ap->nu / (ap->u2 - ap->u1), sv = ap->nv / (ap->v2 - ap->v1);
+                double l1 = hypot(du1 * su, dv1 * sv), l2 = hypot(du2 * su, dv2 * sv);
+                fw = l1 > l2 ? l1 : l2;
+                if (!ap->tex->subregions)
+                    region = tex_texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw, f);
+            }
+            struct evalctx c = {f, NULL, {uvw[0], uvw[1], uvw[2]}, fw};
+            for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next) {
+                if (fn->region && fn->region != region)
+                    continue;
+                if (fn->param == TEX_SP_KS)
+                    ks_textured = 1;
+                apply_fn(fn, &pr, &c);
+                if (fn->param == TEX_SP_BUMP && pr.bump != 0) {
+                    /* Blinn: tilt N against the surface gradient of the map value */
+                    double h = fmax(width, 1e-4);
+                    double uv2[3];
+                    int ra = look(ap, leaf, tex_v3_madd(P, t1, h), fw, uv2, fa);
+                    int rb = look(ap, leaf, tex_v3_madd(P, t2, h), fw, uv2, fb);
+                    if (ra >= 0 && rb >= 0) {
+                        double g1 = (lum(fa) - lum(f)) / h, g2 = (lum(fb) - lum(f)) / h;
+                        bumpg = tex_v3_add(bumpg, tex_v3_scale(tex_v3_add(tex_v3_scale(t1, g1),
+                                                                          tex_v3_scale(t2, g2)),
+                                                               pr.bump));
+                    }
+                    pr.bump = 0;
+                }
+            }
+        }
+        if (tex_v3_len(bumpg) > 0)
+            *N = tex_v3_norm(tex_v3_sub(*N, bumpg));
+    }
+    const struct tex_colour_space *cs = &s->cs;
+    float ka[3] = {pr.ka * pr.kd[0], pr.ka * pr.kd[1], pr.ka * pr.kd[2]};
+    float ks[3];
+    for (int k = 0; k < 3; k++)
+        ks[k] = ks_textured ? pr.ks : ks_rgb[k];
+    cs->from_rgb(cs, ka, TEX_SPECTRUM_REFLECTANCE, &m->ka);
+    cs->from_rgb(cs, pr.kd, TEX_SPECTRUM_REFLECTANCE, &m->kd);
+    cs->from_rgb(cs, ks, TEX_SPECTRUM_REFLECTANCE, &m->ks);
+    m->n = pr.n;
+    m->kr = pr.kr;
+    m->kt = pr.kt;
+    m->ior = pr.ior;
+    m->model = sf->model;
+    m->model_data = NULL;
+}

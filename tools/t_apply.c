@@ -1,0 +1,100 @@
+/* t_apply - render a scene: texture maps applied to CSG objects (Whitted ray tracer) */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "render.h"
+#include "textura.h"
+
+struct opts {
+    const char *size;
+    int spp;
+    int linear;
+};
+
+static const struct tex_param rows[] = {
+    TEX_STRING(struct opts, size, 's', NULL, "WxH",
+               "image size, overriding the scene's 'image' (1..16384 a side)"),
+    TEX_INT(struct opts, spp, 0, 0, 0, 4096, "N",
+            "samples per pixel, overriding the scene's 'samples' (0: the scene's)"),
+    TEX_FLAG(struct opts, linear, 0,
+             "write linear values to 8/16-bit formats too (default: sRGB-encode them)"),
+    {0}};
+
+static const struct tex_tool tool = {
+    "t_apply", "SCENE", "render a scene of CSG objects with texture maps applied through "
+                        "application functions (Whitted ray tracer, t_apply(5))",
+    TEX_OPT_OUTPUT, rows, 1, 1};
+
+static void progress(long done, long total, void *arg)
+{
+    (void)arg;
+    int w = 40, k = (int)(w * done / total);
+    fprintf(stderr, "\rt_apply: [%.*s%*s] %3d%%", k, "########################################",
+            w - k, "", (int)(100 * done / total));
+    if (done == total)
+        fputc('\n', stderr);
+}
+
+/* Integer formats get the sRGB transfer function; float formats stay linear. */
+static int wants_srgb(const struct tex_common *c, const struct opts *o)
+{
+    if (o->linear || c->depth_choice == 3)
+        return 0;
+    enum tex_format f = c->output && strcmp(c->output, "-")
+                            ? tex_format_from_name(c->output)
+                            : c->format ? tex_format_from_name(c->format) : TEX_FMT_EXR;
+    if (f == TEX_FMT_UNKNOWN && c->format && !(c->output && strcmp(c->output, "-"))) {
+        char name[64];
+        snprintf(name, sizeof name, "x.%s", c->format);
+        f = tex_format_from_name(name);
+    }
+    return !(f == TEX_FMT_EXR || f == TEX_FMT_PFM || f == TEX_FMT_HDR);
+}
+
+int main(int argc, char **argv)
+{
+    struct tex_common c;
+    struct opts o;
+    /* t_apply SCENE -o OUT: the shared parser stops at the first operand, so
+     * move a leading scene name behind the options */
+    if (argc > 2 && argv[1][0] != '-') {
+        char *scene = argv[1];
+        memmove(argv + 1, argv + 2, (argc - 2) * sizeof *argv);
+        argv[argc - 1] = scene;
+    }
+    int i = tex_cli_parse(&tool, argc, argv, &c, &o);
+    struct tex_scene *s = tex_scene_load(argv[i]);
+    if (!s)
+        tex_die();
+    if (o.size) {
+        char *end;
+        long w = strtol(o.size, &end, 10), h = w;
+        if (*end == 'x')
+            h = strtol(end + 1, &end, 10);
+        if (*end || w < 1 || h < 1 || w > 16384 || h > 16384)
+            tex_usage_die("--size '%s' must be N or WxH with 1..16384 a side", o.size);
+        s->settings.w = (int)w;
+        s->settings.h = (int)h;
+    }
+    if (o.spp)
+        s->settings.spp = o.spp;
+    if (c.threads)
+        s->settings.threads = c.threads;
+    if (tex_scene_prepare(s) < 0)
+        tex_die();
+    if (s->warnings && !c.quiet)
+        fprintf(stderr, "%s", s->warnings);
+    tex_map *img = tex_render(s, !c.quiet && isatty(2) ? progress : NULL, NULL);
+    if (!img)
+        tex_die();
+    if (wants_srgb(&c, &o))
+        for (size_t k = 0; k < tex_map_samples(img); k++)
+            img->px[k] = tex_srgb_encode(img->px[k]);
+    tex_cli_write(img, &c);
+    tex_map_free(img);
+    tex_scene_free(s);
+    free(c.cmdline);
+    return 0;
+}
