@@ -94,7 +94,7 @@ deps:
 	DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(DEBS)
 
 demo: all
-	$(BUILD)/bin/t_noise -s 512 --frequency 12 -S 7 | $(BUILD)/bin/t_convert -o demo.png
+	$(BUILD)/bin/t_noise -s 512 --frequency 12 -S 7 | $(BUILD)/bin/t_apply -o demo.png patterns/still_life.scene
 	@echo "wrote demo.png"
 
 # The suite runs twice: as built, and built again with AddressSanitizer and UBSan.

@@ -18,7 +18,7 @@
 struct ctx {
     const struct tex_scene *s;
     int n;                 /* colour samples */
-    tex_colour ambient, background;
+    const tex_colour *ambient, *background;
     tex_rng *rng;
 };
 
@@ -46,6 +46,12 @@ static tex_v3 hit_normal(const struct tex_hit *h, tex_v3 P)
 static double transmittance(const struct tex_scene *s, tex_v3 P, tex_v3 L, double dist)
 {
     double tr = 1;
+    struct tex_hit h0;
+    /* most blockers are opaque: any hit on one ends the search */
+    if (!tex_bvh_trace_any(s->bvh, P, L, 0, dist, 1, &h0))
+        return 1;
+    if (surface_of(s, h0.leaf)->kt <= 0)
+        return 0;
     for (int i = 0; i < 16; i++) {
         struct tex_hit h;
         if (!tex_scene_trace(s, P, L, 0, dist, &h))
@@ -69,7 +75,7 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, tex_colour *
     int n = c->n;
     struct tex_hit h;
     if (!tex_scene_trace(s, r->o, r->d, 0, INFINITY, &h)) {
-        tex_colour_copy(out, n, &c->background);
+        tex_colour_copy(out, n, c->background);
         return;
     }
     tex_v3 P = tex_v3_madd(r->o, r->d, h.t);
@@ -86,7 +92,7 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, tex_colour *
     tex_v3 Ngv = entering ? Ng : tex_v3_scale(Ng, -1);
     tex_v3 Pout = tex_v3_madd(P, Ngv, e), Pin = tex_v3_madd(P, Ngv, -e);
 
-    tex_colour_mul(out, n, &c->ambient, &m.ka);
+    tex_colour_mul(out, n, c->ambient, &m.ka);
     for (int li = 0; li < s->nlights; li++) {
         const struct tex_light *l = &s->lights[li];
         int ns = tex_light_samples(l);
@@ -197,9 +203,10 @@ tex_map *tex_render(struct tex_scene *s, void (*progress)(long, long, void *), v
     tex_map *img = tex_map_new(st->w, st->h, 3);
     if (!img)
         return NULL;
-    struct ctx c = {s, s->cs.n, {{0}}, {{0}}, NULL};
-    s->cs.from_rgb(&s->cs, s->ambient, TEX_SPECTRUM_ILLUMINANT, &c.ambient);
-    s->cs.from_rgb(&s->cs, s->background, TEX_SPECTRUM_ILLUMINANT, &c.background);
+    tex_colour ambient, background;
+    s->cs.from_rgb(&s->cs, s->ambient, TEX_SPECTRUM_ILLUMINANT, &ambient);
+    s->cs.from_rgb(&s->cs, s->background, TEX_SPECTRUM_ILLUMINANT, &background);
+    struct ctx c = {s, s->cs.n, &ambient, &background, NULL};
     struct camera cam;
     camera_setup(s, &cam);
     int tw = (st->w + TILE - 1) / TILE, th = (st->h + TILE - 1) / TILE;

@@ -330,6 +330,9 @@ struct tex_bvh *tex_bvh_build(struct tex_object **obs, int n);
 void tex_bvh_free(struct tex_bvh *b);
 int tex_bvh_trace(const struct tex_bvh *b, tex_v3 o, tex_v3 d, double tmin, double tmax,
                   struct tex_hit *hit);
+/* any = 1: stop at the first hit found, not necessarily the nearest (shadows). */
+int tex_bvh_trace_any(const struct tex_bvh *b, tex_v3 o, tex_v3 d, double tmin, double tmax,
+                      int any, struct tex_hit *hit);
 
 /* Render: linear RGB, 3 channels.  progress(done, total, arg) is called
  * from the master thread now and then (may be NULL). */

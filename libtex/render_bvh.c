@@ -107,17 +107,26 @@ void tex_bvh_free(struct tex_bvh *b)
 }
 
 /* Slab test against [tmin, tmax]; the entry distance in *t0. */
-static int hit_box(const struct tex_bounds *b, tex_v3 o, tex_v3 inv, double tmin, double tmax,
-                   double *t0)
+static inline double mind(double a, double b)
+{
+    return a < b ? a : b;
+}
+static inline double maxd(double a, double b)
+{
+    return a > b ? a : b;
+}
+
+/* Slab test against [tmin, tmax]; the entry distance in *t0.  Plain compares,
+ * not fmin/fmax, which are library calls at -O2 (NaN rules). */
+static inline int hit_box(const struct tex_bounds *b, tex_v3 o, tex_v3 inv, double tmin,
+                          double tmax, double *t0)
 {
     double a = (b->lo.x - o.x) * inv.x, c = (b->hi.x - o.x) * inv.x;
-    double lo = fmin(a, c), hi = fmax(a, c);
+    double lo = maxd(tmin, mind(a, c)), hi = mind(tmax, maxd(a, c));
     a = (b->lo.y - o.y) * inv.y, c = (b->hi.y - o.y) * inv.y;
-    lo = fmax(lo, fmin(a, c)), hi = fmin(hi, fmax(a, c));
+    lo = maxd(lo, mind(a, c)), hi = mind(hi, maxd(a, c));
     a = (b->lo.z - o.z) * inv.z, c = (b->hi.z - o.z) * inv.z;
-    lo = fmax(lo, fmin(a, c)), hi = fmin(hi, fmax(a, c));
-    lo = fmax(lo, tmin);
-    hi = fmin(hi, tmax);
+    lo = maxd(lo, mind(a, c)), hi = mind(hi, maxd(a, c));
     *t0 = lo;
     return lo <= hi;
 }
@@ -145,9 +154,18 @@ static int first_hit(const struct tex_object *ob, tex_v3 o, tex_v3 d, double tmi
 int tex_bvh_trace(const struct tex_bvh *t, tex_v3 o, tex_v3 d, double tmin, double tmax,
                   struct tex_hit *hit)
 {
+    return tex_bvh_trace_any(t, o, d, tmin, tmax, 0, hit);
+}
+
+int tex_bvh_trace_any(const struct tex_bvh *t, tex_v3 o, tex_v3 d, double tmin, double tmax,
+                      int any, struct tex_hit *hit)
+{
     int found = 0;
-    for (int i = 0; i < t->nunb; i++)
+    for (int i = 0; i < t->nunb; i++) {
         found |= first_hit(t->unb[i], o, d, tmin, &tmax, hit);
+        if (found && any)
+            return 1;
+    }
     if (!t->nnodes)
         return found;
     /* IEEE division gives +-inf for zero components, which the slab test handles
@@ -166,6 +184,8 @@ int tex_bvh_trace(const struct tex_bvh *t, tex_v3 o, tex_v3 d, double tmin, doub
         if (n->count) {
             for (int i = 0; i < n->count; i++)
                 found |= first_hit(t->obs[n->first + i], o, d, tmin, &tmax, hit);
+            if (found && any)
+                return 1;
             continue;
         }
         double tl, tr;

@@ -728,8 +728,10 @@ static void xf_rot(tex_xform *t, int axis, double deg)
 static void xf_frame(tex_xform *t, tex_v3 origin, tex_v3 a, double ylen, double r)
 {
     tex_v3 y = tex_v3_norm(a);
+    /* x: world x (or z) made perpendicular to y, so that an upright plane keeps
+     * the world's x and z as its planar coordinates */
     tex_v3 h = fabs(y.x) < 0.9 ? tex_v3_make(1, 0, 0) : tex_v3_make(0, 0, 1);
-    tex_v3 x = tex_v3_norm(tex_v3_cross(h, y)), z = tex_v3_cross(x, y);
+    tex_v3 x = tex_v3_norm(tex_v3_madd(h, y, -tex_v3_dot(h, y))), z = tex_v3_cross(x, y);
     tex_xform_identity(t);
     for (int i = 0; i < 3; i++) {
         t->m[i][0] = tex_v3_get(x, i) * r;
@@ -1000,7 +1002,8 @@ static void parse_light(struct parser *ps)
         fail_at(ps, &at, 0, "unknown light '%s' (distant|point|spot|area)", k);
     struct tex_scene *s = ps->s;
     struct tex_light *a = palloc(ps, (s->nlights + 1) * sizeof *a);
-    memcpy(a, s->lights, s->nlights * sizeof *a);
+    if (s->nlights)
+        memcpy(a, s->lights, s->nlights * sizeof *a);
     s->lights = a;
     struct tex_light *l = &a[s->nlights++];
     l->kind = kind;

@@ -350,14 +350,15 @@ void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *s
                 continue;
             double fw = 0;
             if (s->settings.filter && width > 0) {
-                map_point(ap, leaf, tex_v3_madd(P, t1, w1), a);
-                map_point(ap, leaf, tex_v3_madd(P, t2, w2), b);
-                double du1 = wrapdiff(a[0] - uvw[0] / ap->nu * (ap->u2 - ap->u1) - ap->u1);
-                double dv1 = wrapdiff(a[1] - uvw[1] / ap->nv * (ap->v2 - ap->v1) - ap->v1);
-                double du2 = wrapdiff(b[0] - uvw[0] / ap->nu * (ap->u2 - ap->u1) - ap->u1);
-                double dv2 = wrapdiff(b[1] - uvw[1] / ap->nv * (ap->v2 - ap->v1) - ap->v1);
+                /* derivatives over a short step (no wrap-around), scaled to the footprint */
+                double d1 = fmin(w1, 1e-3), d2 = fmin(w2, 1e-3);
+                map_point(ap, leaf, tex_v3_madd(P, t1, d1), a);
+                map_point(ap, leaf, tex_v3_madd(P, t2, d2), b);
+                double u0 = uvw[0] / ap->nu * (ap->u2 - ap->u1) + ap->u1;
+                double v0 = uvw[1] / ap->nv * (ap->v2 - ap->v1) + ap->v1;
                 double su = ap->nu / (ap->u2 - ap->u1), sv = ap->nv / (ap->v2 - ap->v1);
-                double l1 = hypot(du1 * su, dv1 * sv), l2 = hypot(du2 * su, dv2 * sv);
+                double l1 = hypot(wrapdiff(a[0] - u0) * su, wrapdiff(a[1] - v0) * sv) * w1 / d1;
+                double l2 = hypot(wrapdiff(b[0] - u0) * su, wrapdiff(b[1] - v0) * sv) * w2 / d2;
                 fw = l1 > l2 ? l1 : l2;
                 if (!ap->tex->subregions)
                     region = tex_texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw, f);

@@ -1,0 +1,62 @@
+#!/bin/bash
+# t_apply: command line, output, and bad scenes (file:line:column, exit status, no output)
+. tests/lib.sh
+
+good=tests/scenes/spheres.scene
+check "renders a shipped test scene" t_apply "$good" -s 64x48 -o "$T/a.png"
+check "scene then options order" t_apply -o "$T/b.exr" -s 40x30 --spp 2 -j 2 "$good"
+w=$(info_json "$T/b.exr" width)
+[ "$w" = 40 ] && ok "-s overrides the scene's image size" || notok "-s overrides" "width $w"
+t_apply "$good" -s 40x30 -j 1 -o "$T/j1.exr" && t_apply "$good" -s 40x30 -j 2 -o "$T/j2.exr"
+t_convert -o "$T/j1.pfm" "$T/j1.exr" && t_convert -o "$T/j2.pfm" "$T/j2.exr"
+cmp -s "$T/j1.pfm" "$T/j2.pfm" && ok "same bytes with -j 1 and -j 2" || notok "determinism across -j"
+t_noise -s 64 -o "$T/noise.exr"
+for f in patterns/*.scene tests/scenes/*.scene; do
+    if t_apply "$f" -s 32x24 --spp 1 -o "$T/s.exr" <"$T/noise.exr" 2>"$T/s.err"; then
+        ok "shipped scene $f renders"
+    else
+        notok "shipped scene $f renders" "$(cat "$T/s.err")"
+    fi
+done
+
+# bad input: each must fail with one line naming file:line:column and leave no file
+bad() {
+    local name=$1 status=$2 text=$3
+    printf '%s\n' "$text" >"$T/bad.scene"
+    check_fails "$name" "$status" t_apply "$T/bad.scene" -o "$T/bad.png"
+    if [ -e "$T/bad.png" ]; then notok "$name: no output file"; rm -f "$T/bad.png"; fi
+    if [ "$status" != 0 ] && ! grep -q "bad.scene:[0-9]*:[0-9]*:" "$T/.err"; then
+        notok "$name: message names file:line:column" "$(cat "$T/.err")"
+    fi
+}
+bad "syntax error" 2 'camera { eye 0 0 -5 look 0 0 0'
+bad "unknown word" 2 'sphere { radius 1 colour 1 }'
+bad "unknown surface" 2 'sphere { surface nosuch }'
+bad "unknown texture in apply" 2 'surface s { apply wood { Kd = f } }'
+bad "unknown name in an expression" 2 'texture t noise { } surface s { apply t { Kd = g } }'
+bad "unknown primitive" 2 'texture t nosuchprim { }'
+bad "bad primitive parameter" 2 'texture t noise { frequency -3 }'
+bad "missing map file" 1 'texture t file "/nonexistent/map.png"'
+bad "sphere radius 0" 2 'sphere { radius 0 }'
+bad "cylinder of zero length" 2 'cylinder { base 0 1 0 top 0 1 0 }'
+bad "box min > max" 2 'box { min 1 1 1 max 0 0 0 }'
+bad "NaN as a number" 2 'sphere { radius nan }'
+bad "huge number" 2 'sphere { radius 1e999 }'
+bad "absurd image size" 2 'image 100000 100000'
+bad "samples 0" 2 'samples 0'
+bad "eye equals look" 2 'camera { eye 0 0 0 look 0 0 0 }'
+bad "scale by zero" 2 'sphere { scale 0 }'
+bad "single CSG child" 2 'union { sphere { } }'
+bad "unterminated string" 2 'texture t file "abc'
+bad "nested too deeply" 2 "$(for i in $(seq 70); do printf 'union { sphere { } '; done)"
+check_fails "missing scene file" 1 t_apply "$T/none.scene" -o "$T/x.png"
+check_fails "absurd -s" 2 t_apply "$good" -s 0x5 -o "$T/x.png"
+
+printf 'camera { eye 0 0 0 look 0 0 1 }\nsphere { radius 2 }\n' >"$T/in.scene"
+t_apply "$T/in.scene" -s 8 -o "$T/in.exr" 2>"$T/in.err"
+grep -q "in.scene:2:1: warning: the camera is inside" "$T/in.err" && [ -e "$T/in.exr" ] &&
+    ok "camera inside an object: a warning with its place" || notok "camera inside warning" "$(cat "$T/in.err")"
+
+# a map on standard input
+t_noise -s 64 | t_apply tests/scenes/stdin.scene -s 32x24 -o "$T/stdin.exr" &&
+    ok "texture '-' reads the map from standard input" || notok "texture from standard input"

@@ -1,0 +1,283 @@
+/* test_render.c - analytic checks of t_apply's renderer */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "error.h"
+#include "file.h"
+#include "render.h"
+#include "unit.h"
+
+static char dir[] = "/tmp/textura-render.XXXXXX";
+
+static tex_map *render_text(const char *text, int threads)
+{
+    struct tex_scene *s = tex_scene_parse(text, strlen(text), "test.scene");
+    if (!s) {
+        printf("# parse: %s\n", tex_errmsg());
+        return NULL;
+    }
+    if (threads)
+        s->settings.threads = threads;
+    tex_map *m = tex_render(s, NULL, NULL);
+    if (!m)
+        printf("# render: %s\n", tex_errmsg());
+    tex_scene_free(s);
+    return m;
+}
+
+static void test_silhouette(void)
+{
+    const char *sc = "image 200 200 samples 4 ambient 1 1 1 background 0 0 0\n"
+                     "camera { eye 0 0 -10 look 0 0 0 fov 30 }\n"
+                     "surface white { Ka 1 Kd 1 1 1 }\n"
+                     "sphere { radius 1 surface white }\n";
+    tex_map *m = render_text(sc, 0);
+    CHECK(m != NULL, "sphere scene renders");
+    if (!m)
+        return;
+    double area = 0;
+    for (size_t i = 0; i < (size_t)m->w * m->h; i++)
+        area += m->px[3 * i];
+    double rho = tan(asin(1.0 / 10)), ppu = 200 / (2 * tan(15 * M_PI / 180));
+    double want = M_PI * rho * ppu * rho * ppu;
+    CHECKF(fabs(area - want) < 0.01 * want, "sphere silhouette %.1f px vs projected disc %.1f px",
+           area, want);
+    tex_map_free(m);
+}
+
+static void test_lambert(void)
+{
+    const char *sc = "image 32 32 ambient 0 0 0\n"
+                     "camera { eye 0 5 -5 look 0 0 0 fov 20 }\n"
+                     "light distant { direction 0 1 1 }\n"
+                     "surface matte { Ka 0 Kd 1 1 1 Ks 0 }\n"
+                     "plane { surface matte }\n";
+    tex_map *m = render_text(sc, 0);
+    CHECK(m != NULL, "plane scene renders");
+    if (!m)
+        return;
+    double worst = 0;
+    for (size_t i = 0; i < tex_map_samples(m); i++)
+        worst = fmax(worst, fabs(m->px[i] - M_SQRT1_2));
+    CHECKF(worst < 1e-5, "Lambertian plane equals N.L = 0.7071 (worst error %g)", worst);
+    tex_map_free(m);
+}
+
+static void test_shadow(void)
+{
+    const char *sc = "image 41 41 ambient 1 1 1\n"
+                     "camera { eye 0 3 -6 look 0 0 0 fov 30 }\n"
+                     "light distant { direction 0 1 0 }\n"
+                     "surface matte { Ka 0.2 Kd 1 1 1 Ks 0 }\n"
+                     "plane { surface matte }\n"
+                     "sphere { centre 0 1 0 radius 0.5 surface matte }\n";
+    tex_map *m = render_text(sc, 0);
+    CHECK(m != NULL, "shadow scene renders");
+    if (!m)
+        return;
+    float c = tex_map_px(m, 20, 20)[0], lit = tex_map_px(m, 2, 38)[0];
+    CHECKF(fabsf(c - 0.2f) < 1e-5, "point in shadow is at the ambient level (%g)", c);
+    CHECKF(fabsf(lit - 1.2f) < 1e-4, "point out of shadow is ambient + N.L (%g)", lit);
+    tex_map_free(m);
+}
+
+/* A ray at height h through a glass sphere (ior 1.5): the chord inside spans
+ * pi - 2 theta_t around the centre, and the total deviation is 2 (theta_i - theta_t). */
+static void test_snell(void)
+{
+    double h = 0.5, ior = 1.5;
+    double ti = asin(h), tt = asin(h / ior);
+    struct tex_object ob = {0};
+    ob.op = TEX_CSG_LEAF;
+    ob.kind = TEX_SHAPE_SPHERE;
+    tex_xform_identity(&ob.to_world);
+    tex_xform_identity(&ob.to_obj);
+    tex_v3 o = tex_v3_make(0, h, -5), d = tex_v3_make(0, 0, 1);
+    struct tex_spans s;
+    tex_object_spans(&ob, o, d, &s);
+    CHECK(s.n == 1, "ray meets the sphere");
+    tex_v3 p1 = tex_v3_madd(o, d, s.in[0].t), n1 = tex_v3_norm(p1), t1, t2;
+    CHECK(tex_refract(d, n1, 1, ior, &t1), "refracts on entry");
+    tex_object_spans(&ob, tex_v3_madd(p1, t1, 1e-9), t1, &s);
+    tex_v3 p2 = tex_v3_madd(tex_v3_madd(p1, t1, 1e-9), t1, s.out[0].t);
+    double chord = acos(tex_v3_dot(n1, tex_v3_norm(p2)));
+    CHECKF(fabs(chord - (M_PI - 2 * tt)) < 1e-9, "exit point %.9f rad around vs Snell %.9f",
+           chord, M_PI - 2 * tt);
+    tex_v3 n2 = tex_v3_scale(tex_v3_norm(p2), -1); /* inside, facing the ray */
+    CHECK(tex_refract(t1, n2, ior, 1, &t2), "leaves the sphere");
+    double dev = acos(tex_v3_dot(d, t2));
+    CHECKF(fabs(dev - 2 * (ti - tt)) < 1e-9, "deviation %.9f vs 2(ti - tt) = %.9f", dev,
+           2 * (ti - tt));
+    tex_v3 g = tex_v3_make(0, sin(1.2), cos(1.2)), gn = tex_v3_make(0, 0, -1);
+    CHECK(!tex_refract(g, gn, 1.5, 1, &t2), "total internal reflection beyond the critical angle");
+}
+
+static void test_difference(void)
+{
+    const char *fmt = "image 200 200 ambient 1 1 1 background 0 0 0\n"
+                      "camera { eye 0 0 -100 look 0 0 0 fov 2 }\n"
+                      "surface white { Ka 1 Kd 1 1 1 }\n%s";
+    char sc[1024];
+    snprintf(sc, sizeof sc, fmt,
+             "difference { box { min -1 -1 -1 max 1 1 1 } "
+             "cylinder { base 0 0 -2 top 0 0 2 radius 0.5 } surface white }\n");
+    tex_map *m = render_text(sc, 0);
+    CHECK(m != NULL, "CSG difference renders");
+    if (!m)
+        return;
+    double ppu = 200 / (2 * tan(M_PI / 180)), hole = 0;
+    for (int y = 0; y < 200; y++)
+        for (int x = 0; x < 200; x++)
+            if (fabs(x + 0.5 - 100) < 0.9 * ppu * 1 / 99 && fabs(y + 0.5 - 100) < 0.9 * ppu / 99)
+                hole += tex_map_px(m, x, y)[0] < 0.5;
+    double r = 0.5 / 101 * ppu, want = M_PI * r * r;
+    CHECKF(fabs(hole - want) < 0.04 * want, "hole through the box %.0f px vs %.0f px", hole, want);
+    tex_map_free(m);
+}
+
+static char *write_map(tex_map *m, const char *name)
+{
+    static char path[4][256];
+    static int k;
+    char *p = path[k++ & 3];
+    snprintf(p, 256, "%s/%s", dir, name);
+    struct tex_write_opts o = TEX_WRITE_DEFAULTS;
+    if (tex_map_write(m, p, &o) < 0)
+        printf("# write: %s\n", tex_errmsg());
+    return p;
+}
+
+static tex_map *checker(int n, int cells_u, int cells_v)
+{
+    tex_map *m = tex_map_new(n, n, 1);
+    for (int y = 0; y < n; y++)
+        for (int x = 0; x < n; x++)
+            tex_map_px(m, x, y)[0] = (float)(((x * cells_u / n) + (y * cells_v / n)) & 1);
+    return m;
+}
+
+static void test_sphere_map(void)
+{
+    struct tex_texture t = {0};
+    t.mip = malloc(sizeof *t.mip);
+    t.mip[0] = checker(256, 16, 8);
+    t.nlevels = 1;
+    int changes = 0;
+    float prev = -1;
+    for (int i = 0; i <= 3600; i++) {
+        double a = 2 * M_PI * (i + 0.25) / 3600, u, v;
+        tex_shape_methods[TEX_SHAPE_SPHERE].uv(NULL, tex_v3_make(cos(a), 0.01, sin(a)), &u, &v);
+        float f[3];
+        tex_texture_eval(&t, u, v, 0, 0, f);
+        float b = f[0] > 0.5f;
+        if (prev >= 0 && b != prev)
+            changes++;
+        prev = b;
+    }
+    CHECKF(changes == 16, "sphere_map of a 16x8 checker: %d checks along the equator", changes);
+    tex_map_free(t.mip[0]);
+    free(t.mip);
+}
+
+static void test_kd_f(void)
+{
+    tex_map *m = tex_map_new(64, 64, 1);
+    for (int y = 0; y < 64; y++)
+        for (int x = 0; x < 64; x++)
+            tex_map_px(m, x, y)[0] = (float)(0.5 + 0.4 * sin(x * 0.3) * cos(y * 0.17));
+    char *path = write_map(m, "f.exr");
+    char sc[1024];
+    snprintf(sc, sizeof sc,
+             "image 64 64 ambient 0 0 0\n"
+             "camera { eye 0.5 10 0.5 look 0.5 0 0.5 up 0 0 1 fov %.10f }\n"
+             "light distant { direction 0 1 0 }\n"
+             "texture t file \"%s\"\n"
+             "surface s { Ka 0 Ks 0 apply t { Kd = f } }\n"
+             "plane { surface s }\n",
+             2 * atan(0.05) * 180 / M_PI, path);
+    tex_map *img = render_text(sc, 0);
+    CHECK(img != NULL, "Kd = f scene renders");
+    if (img) {
+        double worst = 0;
+        for (int y = 0; y < 64; y++)
+            for (int x = 0; x < 64; x++)
+                worst = fmax(worst, fabs(tex_map_px(img, x, y)[1] - tex_map_px(m, x, 63 - y)[0]));
+        CHECKF(worst < 2e-3, "Kd = f reproduces the map on an evenly lit plane (worst %g)", worst);
+    }
+    tex_map_free(img);
+    tex_map_free(m);
+}
+
+static void test_determinism(void)
+{
+    const char *sc = "image 64 48 samples 4 ambient 0.2 0.2 0.2\n"
+                     "camera { eye 0 2 -6 look 0 0.5 0 }\n"
+                     "light area { position -1 5 -3 edge1 2 0 0 edge2 0 0 2 samples 3 }\n"
+                     "surface g { Kd 0.1 Ks 0.8 n 80 Kr 0.2 Kt 0.7 ior 1.5 }\n"
+                     "plane { }\n"
+                     "sphere { centre 0 1 0 surface g }\n";
+    tex_map *a = render_text(sc, 1), *b = render_text(sc, 2);
+    CHECK(a && b && !memcmp(a->px, b->px, tex_map_samples(a) * sizeof(float)),
+          "the same bytes with 1 and 2 threads");
+    tex_map_free(a);
+    tex_map_free(b);
+}
+
+static void test_receding(void)
+{
+    tex_map *m = checker(64, 2, 2);
+    char *path = write_map(m, "chk.exr");
+    tex_map_free(m);
+    double var[2];
+    for (int filter = 0; filter < 2; filter++) {
+        char sc[1024];
+        snprintf(sc, sizeof sc,
+                 "image 160 120 ambient 1 1 1 filter %s background 0.5 0.5 0.5\n"
+                 "camera { eye 0 1 0 look 0 0.9 10 fov 60 }\n"
+                 "texture c file \"%s\"\n"
+                 "surface s { Ka 1 Kd 1 1 1 apply c { Kd = f } }\n"
+                 "plane { surface s }\n",
+                 filter ? "on" : "off", path);
+        tex_map *img = render_text(sc, 0);
+        if (!img) {
+            var[filter] = 1;
+            continue;
+        }
+        /* the far rows: just below the horizon (which lies at row ~58.6) */
+        double s = 0, s2 = 0;
+        int n = 0;
+        for (int y = 61; y < 68; y++)
+            for (int x = 0; x < 160; x++) {
+                double v = tex_map_px(img, x, y)[0];
+                s += v, s2 += v * v, n++;
+            }
+        var[filter] = s2 / n - (s / n) * (s / n);
+        tex_map_free(img);
+    }
+    CHECKF(var[1] < 0.01 && var[1] < var[0] / 4,
+           "receding checkerboard far rows: variance %.4f filtered vs %.4f unfiltered", var[1],
+           var[0]);
+}
+
+int main(void)
+{
+    if (!mkdtemp(dir))
+        return 1;
+    test_silhouette();
+    test_lambert();
+    test_shadow();
+    test_snell();
+    test_difference();
+    test_sphere_map();
+    test_kd_f();
+    test_determinism();
+    test_receding();
+    char cmd[300];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    if (system(cmd) != 0)
+        printf("# could not remove %s\n", dir);
+    return unit_done();
+}
