@@ -23,18 +23,25 @@ int tex_ct_init(struct tex_ct *ct, const struct tex_colour_space *cs,
     ct->facets.m = m;
     ct->facets.ns = ns;
     ct->s = s;
+    ct->entry = entry;
+    tex_ct_set_space(ct, cs);
+    return 0;
+}
+
+void tex_ct_set_space(struct tex_ct *ct, const struct tex_colour_space *cs)
+{
+    const struct tex_matdb_entry *entry = ct->entry;
+    ct->has_eta = entry != NULL;
+    ct->conductor = entry && entry->kind == TEX_CONDUCTOR;
     if (entry) {
-        ct->has_eta = 1;
-        ct->conductor = entry->kind == TEX_CONDUCTOR;
         tex_colour_space_curve(cs, &entry->n, &ct->eta);
         tex_colour_space_curve(cs, &entry->k, &ct->k);
     }
-    return 0;
 }
 
 /* A surface that names the model but sets none of its parameters: a dielectric of the
  * surface's ior, Beckmann m = 0.2, half specular. */
-static const struct tex_ct ct_default = {{TEX_FACET_BECKMANN, 0.2, 0}, 0.5, 0, 0, {{0}}, {{0}}};
+static const struct tex_ct ct_default = {{TEX_FACET_BECKMANN, 0.2, 0}, 0.5, 0, 0, {{0}}, {{0}}, NULL};
 
 static const struct tex_ct *params(const struct tex_material *mat)
 {

@@ -52,6 +52,7 @@ struct tex_ct {
     int conductor;     /* 1: n + ik, no transmission */
     int has_eta;       /* 0: use the material's ior */
     tex_colour eta, k; /* per sample */
+    const struct tex_matdb_entry *entry; /* where eta and k come from (kept for resampling) */
 };
 
 extern const struct tex_shading_model tex_shading_cook_torrance;
@@ -59,6 +60,9 @@ extern const struct tex_shading_model tex_shading_cook_torrance;
 int tex_ct_init(struct tex_ct *ct, const struct tex_colour_space *cs,
                 const struct tex_matdb_entry *entry, enum tex_facet_dist dist, double m,
                 double ns, double s);
+/* Sample eta and k again for another colour space (a scene's colour model
+ * overridden after its surfaces were read); the entry must still exist. */
+void tex_ct_set_space(struct tex_ct *ct, const struct tex_colour_space *cs);
 
 #ifdef __cplusplus
 }

@@ -11,6 +11,9 @@ struct opts {
     const char *size;
     int spp;
     int linear;
+    const char *spectral;
+    int rgb;
+    const char *model;
 };
 
 static const struct tex_param rows[] = {
@@ -20,6 +23,11 @@ static const struct tex_param rows[] = {
             "samples per pixel, overriding the scene's 'samples' (0: the scene's)"),
     TEX_FLAG(struct opts, linear, 0,
              "write linear values to 8/16-bit formats too (default: sRGB-encode them)"),
+    TEX_STRING(struct opts, spectral, 0, NULL, "N",
+               "shade with N spectral samples (1..64), overriding the scene's 'colour'"),
+    TEX_FLAG(struct opts, rgb, 0, "shade in RGB, overriding the scene's 'colour'"),
+    TEX_STRING(struct opts, model, 0, NULL, "NAME",
+               "shade every surface with this model (phong|cook-torrance)"),
     {0}};
 
 static const struct tex_tool tool = {
@@ -80,6 +88,26 @@ int main(int argc, char **argv)
     }
     if (o.spp)
         s->settings.spp = o.spp;
+    if (o.spectral && o.rgb)
+        tex_usage_die("--spectral and --rgb exclude each other");
+    if (o.spectral) {
+        char *end;
+        long n = strtol(o.spectral, &end, 10);
+        if (*end || end == o.spectral || n < 1 || n > TEX_COLOUR_MAX)
+            tex_usage_die("--spectral '%s' must be a sample count in 1..%d", o.spectral,
+                          TEX_COLOUR_MAX);
+        if (tex_scene_set_colour(s, (int)n) < 0)
+            tex_die();
+    }
+    if (o.rgb && tex_scene_set_colour(s, 0) < 0)
+        tex_die();
+    if (o.model) {
+        const struct tex_shading_model *m = tex_shading_find(o.model);
+        if (!m)
+            tex_usage_die("--model '%s' must be phong or cook-torrance", o.model);
+        for (int k = 0; k < s->nsurfaces; k++)
+            s->surfaces[k]->model = m;
+    }
     if (c.threads)
         s->settings.threads = c.threads;
     if (tex_scene_prepare(s) < 0)
