@@ -1303,6 +1303,13 @@ static void parse_scene(struct parser *ps)
             else
                 FAIL(ps, "filter takes on or off");
             next(ps);
+        } else if (is_word(&kt, "materials")) {
+            struct tok ft = ps->t;
+            if (ft.kind != T_STR && ft.kind != T_ID)
+                FAIL(ps, "expected a file name after 'materials'");
+            char *path = pstrdup(ps, ft.text, ft.len);
+            next(ps);
+            load_materials(ps, path, &ft);
         } else if (is_word(&kt, "ambient")) {
             colour3(ps, s->ambient, 1e6);
         } else if (is_word(&kt, "background")) {
