@@ -48,18 +48,54 @@ static const struct tex_ct *params(const struct tex_material *mat)
     return mat->model_data ? mat->model_data : &ct_default;
 }
 
+/* tex_fresnel_conductor (fresnel.h, eta_i = 1) in single precision for a whole
+ * spectrum at once: the same exact formula without a call per sample (it is
+ * the hottest shading step of a spectral scene with metals). */
+static void fresnel_conductor_n(double cos_i, const float *n, const float *k, int count,
+                                float *out)
+{
+    float c = (float)(cos_i < 0 ? 0 : cos_i > 1 ? 1 : cos_i);
+    float c2 = c * c, s2 = 1 - c2;
+    for (int i = 0; i < count; i++) {
+        float e2 = n[i] * n[i], k2 = k[i] * k[i];
+        float t0 = e2 - k2 - s2;
+        float a2b2 = sqrtf(t0 * t0 + 4 * e2 * k2);
+        float a = sqrtf(fmaxf(0, 0.5f * (a2b2 + t0)));
+        float t1 = a2b2 + c2, t2 = 2 * a * c;
+        float rs = (t1 - t2) / (t1 + t2);
+        float t3 = c2 * a2b2 + s2 * s2, t4 = t2 * s2;
+        float rp = rs * (t3 - t4) / (t3 + t4);
+        float f = 0.5f * (rs + rp);
+        out[i] = f < 0 ? 0 : f > 1 ? 1 : f;
+    }
+}
+
 /* Fresnel reflectance per sample at cos_i (< 0: from inside). */
 static void fresnel(const struct tex_material *mat, const struct tex_ct *ct, double cos_i,
                     int n, tex_colour *fr)
 {
+    if (ct->conductor) {
+        fresnel_conductor_n(fabs(cos_i), ct->eta.v, ct->k.v, n, fr->v);
+        return;
+    }
+    double last_eta = -1, last_k = -1, last_f = 0;
     for (int i = 0; i < n; i++) {
         double eta = ct->has_eta ? ct->eta.v[i] : mat->ior;
+        double k = ct->conductor ? ct->k.v[i] : 0;
+        /* a flat index (a plain dielectric): one evaluation for every sample */
+        if (eta == last_eta && k == last_k) {
+            fr->v[i] = (float)last_f;
+            continue;
+        }
+        last_eta = eta;
+        last_k = k;
         if (ct->conductor)
             fr->v[i] = (float)tex_fresnel_conductor(fabs(cos_i), 1, eta, ct->k.v[i]);
         else if (cos_i >= 0)
             fr->v[i] = (float)tex_fresnel_dielectric(cos_i, 1, eta, NULL);
         else
             fr->v[i] = (float)tex_fresnel_dielectric(-cos_i, eta, 1, NULL);
+        last_f = fr->v[i];
     }
 }
 

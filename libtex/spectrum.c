@@ -361,16 +361,17 @@ void tex_bands_xyz(const struct tex_bands *b, const float *s, double xyz[3])
 void tex_bands_from_rgb(const struct tex_bands *b, const double rgb[3], int reflectance,
                         float *out)
 {
-    double c[3];
+    /* per hit point in the renderer: single precision, so the loop vectorises */
+    float c[3];
     for (int j = 0; j < 3; j++)
-        c[j] = b->rgb2c[j][0] * rgb[0] + b->rgb2c[j][1] * rgb[1] + b->rgb2c[j][2] * rgb[2];
+        c[j] = (float)(b->rgb2c[j][0] * rgb[0] + b->rgb2c[j][1] * rgb[1] +
+                       b->rgb2c[j][2] * rgb[2]);
+    float hi = reflectance ? 1.0f : INFINITY;
+#pragma omp simd
     for (int i = 0; i < b->n; i++) {
-        double v = c[0] * b->basis[0][i] + c[1] * b->basis[1][i] + c[2] * b->basis[2][i];
-        if (v < 0)
-            v = 0;
-        if (reflectance && v > 1)
-            v = 1;
-        out[i] = (float)v;
+        float v = c[0] * b->basis[0][i] + c[1] * b->basis[1][i] + c[2] * b->basis[2][i];
+        v = v < 0 ? 0 : v;
+        out[i] = v > hi ? hi : v;
     }
 }
 

@@ -1,6 +1,7 @@
 /* test_render_ct.c - the spectral colour space and the Cook-Torrance shading model */
 #include "colour_spectral.h"
 #include "error.h"
+#include "fresnel.h"
 #include "render_ct.h"
 #include "unit.h"
 
@@ -121,6 +122,14 @@ int main(void)
     CHECKF(kt.v[0] == 0 && kr.v[cs.n - 1] > kr.v[0] + 0.2,
            "copper: no transmission, reflects more red than blue (%.3f vs %.3f)", kr.v[cs.n - 1],
            kr.v[0]);
+    worst = 0;
+    for (double c = 0; c <= 1; c += 0.01) {
+        mat.model->weights(&mat, c, cs.n, &kr, &kt);
+        for (int i = 0; i < cs.n; i++)
+            worst = fmax(worst, fabs(kr.v[i] - tex_fresnel_conductor(c, 1, ct.eta.v[i], ct.k.v[i])));
+    }
+    CHECKF(worst < 1e-5, "copper: the per-spectrum Fresnel equals tex_fresnel_conductor (%.2g)",
+           worst);
     CHECK(tex_ct_init(&ct, &cs, NULL, TEX_FACET_BECKMANN, 0, 0, 0.5) < 0 &&
               tex_ct_init(&ct, &cs, NULL, TEX_FACET_BECKMANN, 0.2, 0, 1.5) < 0,
           "bad roughness or specular fraction: usage errors");
