@@ -254,6 +254,7 @@ struct tex_surface {
     float ka, kd[3], ks[3]; /* ka scalar times kd colour; ks scalar times white or colour */
     double n, kr, kt, ior;
     const struct tex_shading_model *model;
+    struct tex_ct *ct;      /* Cook-Torrance parameters (render_ct.h); NULL: its defaults */
     struct tex_apply *apply;
     int line, col;
 };
@@ -273,6 +274,7 @@ struct tex_light {
     enum tex_falloff falloff;
     double c1, c2, c3;
     double cos_angle, exponent; /* spot */
+    struct tex_curve *spectrum; /* `spectrum D65|A|blackbody K` (spectrum.h), or NULL */
 };
 
 /* Number of samples of a light (n*n for an area light, else 1), and sample
@@ -318,6 +320,10 @@ struct tex_scene {
 struct tex_scene *tex_scene_load(const char *path); /* "-" is not allowed: maps use stdin */
 struct tex_scene *tex_scene_parse(const char *text, size_t len, const char *name);
 void tex_scene_free(struct tex_scene *s);
+
+/* The colour model: 0 for RGB, else spectral with that many bands (1..64);
+ * frees the previous one.  For command-line overrides, before tex_scene_prepare. */
+int tex_scene_set_colour(struct tex_scene *s, int bands);
 
 /* Build the BVH and check the settings (after command-line overrides). */
 int tex_scene_prepare(struct tex_scene *s);

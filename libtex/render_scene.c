@@ -12,9 +12,16 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "colour_spectral.h"
 #include "error.h"
 #include "file.h"
+#include "matdb.h"
 #include "render.h"
+#include "render_ct.h"
+
+#ifndef TEX_DATADIR
+#define TEX_DATADIR "/usr/local/share/textura"
+#endif
 
 #define MAX_SIDE 16384
 #define MAX_NEST 64
@@ -38,6 +45,8 @@ struct parser {
     jmp_buf jb;
     int nest;
     int stdin_used;
+    struct tex_matdb db; /* the materials database, read on first use */
+    int have_db;
 };
 
 static void fail_at(struct parser *ps, const struct tok *t, int runtime, const char *fmt, ...)
@@ -622,6 +631,91 @@ static struct tex_apply *parse_apply(struct parser *ps)
     return ap;
 }
 
+/* ---- Cook-Torrance parameters and the materials database ---------------------------- */
+
+static struct tex_ct *surface_ct(struct parser *ps, struct tex_surface *sf)
+{
+    if (!sf->ct) {
+        sf->ct = palloc(ps, sizeof *sf->ct);
+        sf->ct->facets.dist = TEX_FACET_BECKMANN; /* render_ct.h's defaults */
+        sf->ct->facets.m = 0.2;
+        sf->ct->s = 0.5;
+    }
+    return sf->ct;
+}
+
+static void load_materials(struct parser *ps, const char *path, const struct tok *at)
+{
+    if (ps->have_db)
+        tex_matdb_free(&ps->db);
+    ps->have_db = 0;
+    if (tex_matdb_read(&ps->db, path) < 0)
+        fail_at(ps, at, tex_errkind() == TEX_ERR_RUNTIME, "materials: %s", tex_errmsg());
+    ps->have_db = 1;
+}
+
+/* The default database: $TEXTURA_MATERIALS, materials.txt beside the scene, or the
+ * installed patterns/materials.txt. */
+static void default_materials(struct parser *ps, const struct tok *at)
+{
+    const char *env = getenv("TEXTURA_MATERIALS");
+    if (env && *env) {
+        load_materials(ps, env, at);
+        return;
+    }
+    char path[4096];
+    const char *slash = strrchr(ps->name, '/');
+    int dl = slash ? (int)(slash - ps->name) + 1 : 0;
+    snprintf(path, sizeof path, "%.*smaterials.txt", dl, ps->name);
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        snprintf(path, sizeof path, "%s/patterns/materials.txt", TEX_DATADIR);
+    else
+        fclose(f);
+    load_materials(ps, path, at);
+}
+
+/* A copy of the named material in the scene's pool (the database is freed after parsing). */
+static const struct tex_matdb_entry *find_material(struct parser *ps, const struct tok *at,
+                                                   const char *name)
+{
+    if (!ps->have_db)
+        default_materials(ps, at);
+    const struct tex_matdb_entry *e = tex_matdb_find(&ps->db, name);
+    if (!e)
+        fail_at(ps, at, 0, "%s", tex_errmsg());
+    struct tex_matdb_entry *c = palloc(ps, sizeof *c);
+    *c = *e;
+    c->source = NULL;
+    return c;
+}
+
+/* facets beckmann M | facets blinn NS, either with `beta DEG` instead of the number */
+static void parse_facets(struct parser *ps, struct tex_ct *ct)
+{
+    struct tok dt = ps->t;
+    if (is_word(&dt, "beckmann"))
+        ct->facets.dist = TEX_FACET_BECKMANN;
+    else if (is_word(&dt, "blinn"))
+        ct->facets.dist = TEX_FACET_BLINN;
+    else
+        FAIL(ps, "facets takes beckmann M or blinn NS");
+    next(ps);
+    int beckmann = ct->facets.dist == TEX_FACET_BECKMANN;
+    if (is_word(&ps->t, "beta")) {
+        next(ps);
+        double b = number_in(ps, 0.01, 89, "beta") * M_PI / 180;
+        if (beckmann)
+            ct->facets.m = tex_beckmann_m_from_beta(b);
+        else
+            ct->facets.ns = tex_blinn_ns_from_beta(b);
+    } else if (beckmann) {
+        ct->facets.m = number_in(ps, 1e-3, 2, "Beckmann slope m");
+    } else {
+        ct->facets.ns = number_in(ps, 0, 1e5, "Blinn exponent Ns");
+    }
+}
+
 static void parse_surface(struct parser *ps)
 {
     struct tok at = ps->t;
@@ -643,6 +737,7 @@ static void parse_surface(struct parser *ps)
     sf->line = at.line;
     sf->col = at.col;
     struct tex_apply **tail = &sf->apply;
+    int ior_set = 0;
     expect(ps, '{');
     while (!is_punct(&ps->t, '}')) {
         struct tok kt = ps->t;
@@ -673,6 +768,20 @@ static void parse_surface(struct parser *ps)
         } else if (is_word(&kt, "ior")) {
             next(ps);
             sf->ior = number_in(ps, 0.1, 10, "ior");
+            ior_set = 1;
+        } else if (is_word(&kt, "material")) {
+            next(ps);
+            struct tok mt = ps->t;
+            char *m = mt.kind == T_STR ? pstrdup(ps, mt.text, mt.len) : word(ps, "a material");
+            if (mt.kind == T_STR)
+                next(ps);
+            surface_ct(ps, sf)->entry = find_material(ps, &mt, m);
+        } else if (is_word(&kt, "facets")) {
+            next(ps);
+            parse_facets(ps, surface_ct(ps, sf));
+        } else if (is_word(&kt, "specular")) {
+            next(ps);
+            surface_ct(ps, sf)->s = number_in(ps, 0, 1, "specular fraction");
         } else if (is_word(&kt, "model")) {
             next(ps);
             struct tok mt = ps->t;
@@ -690,6 +799,15 @@ static void parse_surface(struct parser *ps)
         }
     }
     next(ps);
+    struct tex_ct *ct = sf->ct;
+    if (ct) {
+        /* a dielectric from the database also gives the refraction index (at 550 nm) */
+        if (ct->entry && ct->entry->kind == TEX_DIELECTRIC && !ior_set)
+            sf->ior = tex_curve_at(&ct->entry->n, 550);
+        if (tex_ct_init(ct, &ps->s->cs, ct->entry, ct->facets.dist, ct->facets.m, ct->facets.ns,
+                        ct->s) < 0)
+            fail_at(ps, &at, 0, "%s", tex_errmsg());
+    }
 }
 
 /* ---- objects -------------------------------------------------------------------- */
@@ -990,6 +1108,24 @@ static struct tex_object *parse_object(struct parser *ps)
 
 /* ---- lights, camera, settings ------------------------------------------------------------ */
 
+/* spectrum D65 | A | E | F2 ... (colord-data) | blackbody K | "blackbody:K" */
+static void parse_spectrum(struct parser *ps, tex_curve *c)
+{
+    struct tok t = ps->t;
+    char name[64];
+    if (is_word(&t, "blackbody")) {
+        next(ps);
+        snprintf(name, sizeof name, "blackbody:%.17g", number_in(ps, 100, 1e6, "temperature"));
+    } else if ((t.kind == T_ID || t.kind == T_STR) && t.len < sizeof name) {
+        snprintf(name, sizeof name, "%.*s", (int)t.len, t.text);
+        next(ps);
+    } else {
+        FAIL(ps, "spectrum takes D65, A, blackbody K or another CIE illuminant name");
+    }
+    if (tex_illuminant(c, name, NULL) < 0)
+        fail_at(ps, &t, tex_errkind() == TEX_ERR_RUNTIME, "%s", tex_errmsg());
+}
+
 static void parse_light(struct parser *ps)
 {
     struct tok at = ps->t;
@@ -1010,7 +1146,8 @@ static void parse_light(struct parser *ps)
     float col[3] = {1, 1, 1};
     double intensity = 1, angle = 30;
     tex_v3 at_pt = {0, 0, 0}, dir = {0, 1, 0};
-    int have_at = 0;
+    int have_at = 0, have_colour = 0;
+    struct tok spt = {0};
     l->samples = 4;
     l->edge1 = tex_v3_make(1, 0, 0);
     l->edge2 = tex_v3_make(0, 0, 1);
@@ -1020,6 +1157,11 @@ static void parse_light(struct parser *ps)
         next(ps);
         if (is_word(&kt, "colour") || is_word(&kt, "color")) {
             colour3(ps, col, 1e6);
+            have_colour = 1;
+        } else if (is_word(&kt, "spectrum")) {
+            spt = kt;
+            l->spectrum = palloc(ps, sizeof *l->spectrum);
+            parse_spectrum(ps, l->spectrum);
         } else if (is_word(&kt, "intensity")) {
             intensity = number_in(ps, 0, 1e9, "intensity");
         } else if (kind == TEX_LIGHT_DISTANT && is_word(&kt, "direction")) {
@@ -1063,8 +1205,10 @@ static void parse_light(struct parser *ps)
         }
     }
     next(ps);
+    if (l->spectrum && have_colour)
+        fail_at(ps, &spt, 0, "a light takes a colour or a spectrum, not both");
     for (int i = 0; i < 3; i++)
-        l->rgb[i] = (float)(col[i] * intensity);
+        l->rgb[i] = (float)(l->spectrum ? intensity : col[i] * intensity);
     if (kind == TEX_LIGHT_DISTANT)
         l->dir = tex_v3_norm(dir);
     if (kind == TEX_LIGHT_SPOT) {
@@ -1159,15 +1303,32 @@ static void parse_scene(struct parser *ps)
             else
                 FAIL(ps, "filter takes on or off");
             next(ps);
+        } else if (is_word(&kt, "materials")) {
+            struct tok ft = ps->t;
+            if (ft.kind != T_STR && ft.kind != T_ID)
+                FAIL(ps, "expected a file name after 'materials'");
+            char *path = pstrdup(ps, ft.text, ft.len);
+            next(ps);
+            load_materials(ps, path, &ft);
         } else if (is_word(&kt, "ambient")) {
             colour3(ps, s->ambient, 1e6);
         } else if (is_word(&kt, "background")) {
             colour3(ps, s->background, 1e6);
         } else if (is_word(&kt, "colour") || is_word(&kt, "color")) {
-            if (is_word(&ps->t, "rgb"))
+            struct tok mt = ps->t;
+            int bands = 0;
+            if (is_word(&mt, "spectral")) {
                 next(ps);
-            else
-                FAIL(ps, "colour model must be rgb (spectral is not built into this t_apply)");
+                bands = TEX_BANDS_DEFAULT;
+                if (ps->t.kind == T_NUM)
+                    bands = integer_in(ps, 1, TEX_COLOUR_MAX, "spectral samples");
+            } else if (is_word(&mt, "rgb")) {
+                next(ps);
+            } else {
+                FAIL(ps, "colour model must be rgb or spectral [N]");
+            }
+            if (tex_scene_set_colour(s, bands) < 0)
+                fail_at(ps, &mt, tex_errkind() == TEX_ERR_RUNTIME, "%s", tex_errmsg());
         } else {
             char b[64];
             fail_at(ps, &kt, 0, "unknown word %s at the top of the scene",
@@ -1238,7 +1399,10 @@ struct tex_scene *tex_scene_parse(const char *text, size_t len, const char *name
     s->settings = (struct tex_settings){640, 480, 1, 5, 0, 1, 0};
     s->ambient[0] = s->ambient[1] = s->ambient[2] = 1;
     tex_colour_space_rgb(&s->cs);
-    if (parse_all(&ps) < 0) {
+    int rc = parse_all(&ps);
+    if (ps.have_db)
+        tex_matdb_free(&ps.db);
+    if (rc < 0) {
         tex_scene_free(s);
         return NULL;
     }
@@ -1310,7 +1474,20 @@ void tex_scene_free(struct tex_scene *s)
     free(s->pool);
     free(s->warnings);
     free(s->file);
+    tex_colour_space_spectral_free(&s->cs);
     free(s);
+}
+
+int tex_scene_set_colour(struct tex_scene *s, int bands)
+{
+    struct tex_colour_space cs;
+    if (!bands)
+        tex_colour_space_rgb(&cs);
+    else if (tex_colour_space_spectral(&cs, bands, NULL) < 0)
+        return -1;
+    tex_colour_space_spectral_free(&s->cs);
+    s->cs = cs;
+    return 0;
 }
 
 /* Is point p inside object ob?  A ray from p: inside if p lies in one of its intervals. */
@@ -1334,8 +1511,21 @@ int tex_scene_prepare(struct tex_scene *s)
         return -1;
     if (st->spp < 1 || st->spp > 4096)
         return tex_usage_error("samples per pixel %d is outside 1..4096", st->spp);
-    for (int i = 0; i < s->nlights; i++)
-        s->cs.from_rgb(&s->cs, s->lights[i].rgb, TEX_SPECTRUM_ILLUMINANT, &s->lights[i].e);
+    for (int i = 0; i < s->nlights; i++) {
+        struct tex_light *l = &s->lights[i];
+        if (!l->spectrum) {
+            s->cs.from_rgb(&s->cs, l->rgb, TEX_SPECTRUM_ILLUMINANT, &l->e);
+            continue;
+        }
+        /* the spectrum at luminance 1 times the intensity */
+        if (tex_colour_space_spectral_light(&s->cs, l->spectrum, &l->e) < 0)
+            return -1;
+        tex_colour_scale(&l->e, s->cs.n, &l->e, l->rgb[0]);
+    }
+    /* the colour model may have changed since the surfaces were read */
+    for (int i = 0; i < s->nsurfaces; i++)
+        if (s->surfaces[i]->ct)
+            tex_ct_set_space(s->surfaces[i]->ct, &s->cs);
     tex_bvh_free(s->bvh);
     s->bvh = tex_bvh_build(s->objects, s->nobjects);
     if (!s->bvh)

@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "render_shade.h"
+#include "render_ct.h"
 
 static void phong_direct(const struct tex_material *m, const double N[3], const double V[3],
                          const double L[3], const tex_colour *E, int n, tex_colour *out)
@@ -30,7 +31,8 @@ static void phong_weights(const struct tex_material *m, double cosi, int n, tex_
 
 const struct tex_shading_model tex_shading_phong = {"phong", phong_direct, phong_weights};
 
-static const struct tex_shading_model *const models[] = {&tex_shading_phong, NULL};
+static const struct tex_shading_model *const models[] = {&tex_shading_phong,
+                                                         &tex_shading_cook_torrance, NULL};
 
 const struct tex_shading_model *tex_shading_find(const char *name)
 {

@@ -402,5 +402,5 @@ void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *s
     m->kt = pr.kt;
     m->ior = pr.ior;
     m->model = sf->model;
-    m->model_data = NULL;
+    m->model_data = sf->ct;
 }

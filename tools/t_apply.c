@@ -11,6 +11,9 @@ struct opts {
     const char *size;
     int spp;
     int linear;
+    const char *spectral;
+    int rgb;
+    const char *model;
 };
 
 static const struct tex_param rows[] = {
@@ -20,6 +23,11 @@ static const struct tex_param rows[] = {
             "samples per pixel, overriding the scene's 'samples' (0: the scene's)"),
     TEX_FLAG(struct opts, linear, 0,
              "write linear values to 8/16-bit formats too (default: sRGB-encode them)"),
+    TEX_STRING(struct opts, spectral, 0, NULL, "N",
+               "shade with N spectral samples (1..64), overriding the scene's 'colour'"),
+    TEX_FLAG(struct opts, rgb, 0, "shade in RGB, overriding the scene's 'colour'"),
+    TEX_STRING(struct opts, model, 0, NULL, "NAME",
+               "shade every surface with this model (phong|cook-torrance)"),
     {0}};
 
 static const struct tex_tool tool = {
@@ -53,6 +61,12 @@ static int wants_srgb(const struct tex_common *c, const struct opts *o)
     return !(f == TEX_FMT_EXR || f == TEX_FMT_PFM || f == TEX_FMT_HDR);
 }
 
+__attribute__((noreturn)) static void die_freeing(struct tex_scene *s)
+{
+    tex_scene_free(s); /* keeps the error message */
+    tex_die();
+}
+
 int main(int argc, char **argv)
 {
     struct tex_common c;
@@ -65,25 +79,45 @@ int main(int argc, char **argv)
         argv[argc - 1] = scene;
     }
     int i = tex_cli_parse(&tool, argc, argv, &c, &o);
-    struct tex_scene *s = tex_scene_load(argv[i]);
-    if (!s)
-        tex_die();
+    /* options first: a usage error must not leave the scene allocated (LSan) */
+    long w = 0, h = 0, bands = 0;
     if (o.size) {
         char *end;
-        long w = strtol(o.size, &end, 10), h = w;
+        w = h = strtol(o.size, &end, 10);
         if (*end == 'x')
             h = strtol(end + 1, &end, 10);
         if (*end || w < 1 || h < 1 || w > 16384 || h > 16384)
             tex_usage_die("--size '%s' must be N or WxH with 1..16384 a side", o.size);
+    }
+    if (o.spectral && o.rgb)
+        tex_usage_die("--spectral and --rgb exclude each other");
+    if (o.spectral) {
+        char *end;
+        bands = strtol(o.spectral, &end, 10);
+        if (*end || end == o.spectral || bands < 1 || bands > TEX_COLOUR_MAX)
+            tex_usage_die("--spectral '%s' must be a sample count in 1..%d", o.spectral,
+                          TEX_COLOUR_MAX);
+    }
+    const struct tex_shading_model *model = NULL;
+    if (o.model && !(model = tex_shading_find(o.model)))
+        tex_usage_die("--model '%s' must be phong or cook-torrance", o.model);
+    struct tex_scene *s = tex_scene_load(argv[i]);
+    if (!s)
+        tex_die();
+    if (o.size) {
         s->settings.w = (int)w;
         s->settings.h = (int)h;
     }
     if (o.spp)
         s->settings.spp = o.spp;
+    if ((o.spectral || o.rgb) && tex_scene_set_colour(s, (int)bands) < 0)
+        die_freeing(s);
+    for (int k = 0; model && k < s->nsurfaces; k++)
+        s->surfaces[k]->model = model;
     if (c.threads)
         s->settings.threads = c.threads;
     if (tex_scene_prepare(s) < 0)
-        tex_die();
+        die_freeing(s);
     if (s->warnings && !c.quiet)
         fprintf(stderr, "%s", s->warnings);
     tex_map *img = tex_render(s, !c.quiet && isatty(2) ? progress : NULL, NULL);

@@ -1,0 +1,120 @@
+/* colour_spectral.c - the spectral colour space for the renderer */
+#include "colour_spectral.h"
+
+#include "error.h"
+
+#include <stdlib.h>
+
+struct spectral_data {
+    struct tex_bands bands;
+    float d65[TEX_BANDS_MAX]; /* Y = 1 */
+};
+
+static void spec_from_rgb(const struct tex_colour_space *cs, const float rgb[3],
+                          enum tex_spectrum_kind kind, tex_colour *out)
+{
+    const struct spectral_data *d = cs->data;
+    double c[3] = {rgb[0], rgb[1], rgb[2]};
+    tex_bands_from_rgb(&d->bands, c, kind == TEX_SPECTRUM_REFLECTANCE, out->v);
+    if (kind == TEX_SPECTRUM_ILLUMINANT)
+        for (int i = 0; i < cs->n; i++)
+            out->v[i] *= d->d65[i];
+}
+
+static void spec_to_rgb(const struct tex_colour_space *cs, const tex_colour *c, float rgb[3])
+{
+    const struct spectral_data *d = cs->data;
+    double r[3];
+    tex_bands_to_rgb(&d->bands, c->v, TEX_GAMUT_CHROMA, r);
+    for (int i = 0; i < 3; i++)
+        rgb[i] = (float)r[i];
+}
+
+int tex_colour_space_spectral(struct tex_colour_space *cs, int n, const char *colord)
+{
+    if (n < 1 || n > TEX_COLOUR_MAX || n > TEX_BANDS_MAX)
+        return tex_usage_error("spectral samples %d outside [1, %d]", n, TEX_BANDS_MAX);
+    tex_colorimetry *cm = malloc(sizeof *cm);
+    struct spectral_data *d = malloc(sizeof *d);
+    if (!cm || !d) {
+        free(cm);
+        free(d);
+        return tex_error("out of memory");
+    }
+    int rc = tex_colorimetry_load(cm, colord);
+    if (rc == 0)
+        rc = tex_bands_init(&d->bands, n, cm);
+    if (rc == 0 && tex_bands_light(&d->bands, &cm->d65, d->d65) < 0)
+        rc = tex_error("D65 has no luminance");
+    free(cm);
+    if (rc < 0) {
+        free(d);
+        return -1;
+    }
+    cs->mode = TEX_COLOUR_SPECTRAL;
+    cs->n = n;
+    cs->lambda0 = TEX_LAMBDA_MIN;
+    cs->lambda1 = TEX_LAMBDA_MAX;
+    cs->from_rgb = spec_from_rgb;
+    cs->to_rgb = spec_to_rgb;
+    cs->data = d;
+    return 0;
+}
+
+void tex_colour_space_spectral_free(struct tex_colour_space *cs)
+{
+    if (cs->mode == TEX_COLOUR_SPECTRAL) {
+        free(cs->data);
+        cs->data = NULL;
+    }
+}
+
+const struct tex_bands *tex_colour_space_bands(const struct tex_colour_space *cs)
+{
+    return cs->mode == TEX_COLOUR_SPECTRAL ? &((const struct spectral_data *)cs->data)->bands
+                                           : NULL;
+}
+
+int tex_colour_space_spectral_light(const struct tex_colour_space *cs, const tex_curve *c,
+                                    tex_colour *out)
+{
+    const struct tex_bands *b = tex_colour_space_bands(cs);
+    if (b) {
+        if (tex_bands_light(b, c, out->v) < 0)
+            return tex_usage_error("light spectrum has no luminance");
+        return 0;
+    }
+    /* RGB mode: the curve's colour through 16 bands and the CIE tables, Y = 1. */
+    tex_colorimetry *cm = malloc(sizeof *cm);
+    struct tex_bands *tb = malloc(sizeof *tb);
+    int rc = cm && tb ? 0 : tex_error("out of memory");
+    float s[TEX_BANDS_MAX];
+    if (rc == 0)
+        rc = tex_colorimetry_load(cm, NULL);
+    if (rc == 0)
+        rc = tex_bands_init(tb, TEX_BANDS_DEFAULT, cm);
+    if (rc == 0 && tex_bands_light(tb, c, s) < 0)
+        rc = tex_usage_error("light spectrum has no luminance");
+    if (rc == 0) {
+        double rgb[3];
+        tex_bands_to_rgb(tb, s, TEX_GAMUT_CHROMA, rgb);
+        for (int i = 0; i < 3; i++)
+            out->v[i] = (float)rgb[i];
+    }
+    free(cm);
+    free(tb);
+    return rc;
+}
+
+void tex_colour_space_curve(const struct tex_colour_space *cs, const tex_curve *c,
+                            tex_colour *out)
+{
+    const struct tex_bands *b = tex_colour_space_bands(cs);
+    if (b) {
+        tex_bands_sample(b, c, out->v);
+        return;
+    }
+    out->v[0] = (float)tex_curve_at(c, 610);
+    out->v[1] = (float)tex_curve_at(c, 550);
+    out->v[2] = (float)tex_curve_at(c, 465);
+}

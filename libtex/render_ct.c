@@ -1,0 +1,138 @@
+/* render_ct.c - the Cook-Torrance shading model */
+#include "render_ct.h"
+
+#include "colour_spectral.h"
+#include "error.h"
+#include "fresnel.h"
+
+#include <math.h>
+#include <string.h>
+
+int tex_ct_init(struct tex_ct *ct, const struct tex_colour_space *cs,
+                const struct tex_matdb_entry *entry, enum tex_facet_dist dist, double m,
+                double ns, double s)
+{
+    memset(ct, 0, sizeof *ct);
+    if (dist == TEX_FACET_BECKMANN && !(m > 0 && m <= 2))
+        return tex_usage_error("Beckmann slope m = %g outside (0, 2]", m);
+    if (dist == TEX_FACET_BLINN && !(ns >= 0 && ns <= 1e5))
+        return tex_usage_error("Blinn exponent Ns = %g outside [0, 100000]", ns);
+    if (!(s >= 0 && s <= 1))
+        return tex_usage_error("specular fraction s = %g outside [0, 1]", s);
+    ct->facets.dist = dist;
+    ct->facets.m = m;
+    ct->facets.ns = ns;
+    ct->s = s;
+    ct->entry = entry;
+    tex_ct_set_space(ct, cs);
+    return 0;
+}
+
+void tex_ct_set_space(struct tex_ct *ct, const struct tex_colour_space *cs)
+{
+    const struct tex_matdb_entry *entry = ct->entry;
+    ct->has_eta = entry != NULL;
+    ct->conductor = entry && entry->kind == TEX_CONDUCTOR;
+    if (entry) {
+        tex_colour_space_curve(cs, &entry->n, &ct->eta);
+        tex_colour_space_curve(cs, &entry->k, &ct->k);
+    }
+}
+
+/* A surface that names the model but sets none of its parameters: a dielectric of the
+ * surface's ior, Beckmann m = 0.2, half specular. */
+static const struct tex_ct ct_default = {{TEX_FACET_BECKMANN, 0.2, 0}, 0.5, 0, 0, {{0}}, {{0}}, NULL};
+
+static const struct tex_ct *params(const struct tex_material *mat)
+{
+    return mat->model_data ? mat->model_data : &ct_default;
+}
+
+/* tex_fresnel_conductor (fresnel.h, eta_i = 1) in single precision for a whole
+ * spectrum at once: the same exact formula without a call per sample (it is
+ * the hottest shading step of a spectral scene with metals). */
+static void fresnel_conductor_n(double cos_i, const float *n, const float *k, int count,
+                                float *out)
+{
+    float c = (float)(cos_i < 0 ? 0 : cos_i > 1 ? 1 : cos_i);
+    float c2 = c * c, s2 = 1 - c2;
+    for (int i = 0; i < count; i++) {
+        float e2 = n[i] * n[i], k2 = k[i] * k[i];
+        float t0 = e2 - k2 - s2;
+        float a2b2 = sqrtf(t0 * t0 + 4 * e2 * k2);
+        float a = sqrtf(fmaxf(0, 0.5f * (a2b2 + t0)));
+        float t1 = a2b2 + c2, t2 = 2 * a * c;
+        float rs = (t1 - t2) / (t1 + t2);
+        float t3 = c2 * a2b2 + s2 * s2, t4 = t2 * s2;
+        float rp = rs * (t3 - t4) / (t3 + t4);
+        float f = 0.5f * (rs + rp);
+        out[i] = f < 0 ? 0 : f > 1 ? 1 : f;
+    }
+}
+
+/* Fresnel reflectance per sample at cos_i (< 0: from inside). */
+static void fresnel(const struct tex_material *mat, const struct tex_ct *ct, double cos_i,
+                    int n, tex_colour *fr)
+{
+    if (ct->conductor) {
+        fresnel_conductor_n(fabs(cos_i), ct->eta.v, ct->k.v, n, fr->v);
+        return;
+    }
+    double last_eta = -1, last_k = -1, last_f = 0;
+    for (int i = 0; i < n; i++) {
+        double eta = ct->has_eta ? ct->eta.v[i] : mat->ior;
+        double k = ct->conductor ? ct->k.v[i] : 0;
+        /* a flat index (a plain dielectric): one evaluation for every sample */
+        if (eta == last_eta && k == last_k) {
+            fr->v[i] = (float)last_f;
+            continue;
+        }
+        last_eta = eta;
+        last_k = k;
+        if (ct->conductor)
+            fr->v[i] = (float)tex_fresnel_conductor(fabs(cos_i), 1, eta, ct->k.v[i]);
+        else if (cos_i >= 0)
+            fr->v[i] = (float)tex_fresnel_dielectric(cos_i, 1, eta, NULL);
+        else
+            fr->v[i] = (float)tex_fresnel_dielectric(-cos_i, eta, 1, NULL);
+        last_f = fr->v[i];
+    }
+}
+
+static void ct_direct(const struct tex_material *mat, const double N[3], const double V[3],
+                      const double L[3], const tex_colour *E, int n, tex_colour *out)
+{
+    const struct tex_ct *ct = params(mat);
+    double nl = N[0] * L[0] + N[1] * L[1] + N[2] * L[2];
+    double nv = N[0] * V[0] + N[1] * V[1] + N[2] * V[2];
+    if (nl <= 0)
+        return;
+    tex_colour_mmadd(out, n, &mat->kd, E, (float)((1 - ct->s) * nl));
+    double h[3] = {L[0] + V[0], L[1] + V[1], L[2] + V[2]};
+    double hl = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+    if (hl <= 0 || nv <= 0 || ct->s <= 0)
+        return;
+    double nh = (N[0] * h[0] + N[1] * h[1] + N[2] * h[2]) / hl;
+    double vh = (V[0] * h[0] + V[1] * h[1] + V[2] * h[2]) / hl;
+    double g = tex_ct_geometry(&ct->facets, nh, nv, nl, vh);
+    if (g <= 0)
+        return;
+    tex_colour f;
+    fresnel(mat, ct, vh, n, &f);
+    tex_colour_mmadd(out, n, &f, E, (float)(ct->s * M_PI * g * nl));
+}
+
+static void ct_weights(const struct tex_material *mat, double cosi, int n, tex_colour *kr,
+                       tex_colour *kt)
+{
+    const struct tex_ct *ct = params(mat);
+    tex_colour f;
+    fresnel(mat, ct, cosi, n, &f);
+    for (int i = 0; i < n; i++) {
+        kr->v[i] = (float)(mat->kr * f.v[i]);
+        kt->v[i] = ct->conductor ? 0 : (float)(mat->kt * (1 - f.v[i]));
+    }
+}
+
+const struct tex_shading_model tex_shading_cook_torrance = {"cook-torrance", ct_direct,
+                                                            ct_weights};

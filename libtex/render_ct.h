@@ -1,0 +1,70 @@
+/* render_ct.h - the Cook-Torrance shading model for t_apply (seed 000 eq. 22)
+ *
+ * A shading model in the sense of render_shade.h, chosen per surface with
+ * `model cook-torrance`.  Its own parameters (the model_data of a
+ * struct tex_material) are a struct tex_ct:
+ *
+ *   struct tex_ct ct;
+ *   tex_ct_init(&ct, &cs, entry, TEX_FACET_BECKMANN, 0.2, 0, 0.8);
+ *       cs:      the scene's colour space (RGB or spectral, colour.h)
+ *       entry:   a material of the database (matdb.h), or NULL for a plain
+ *                dielectric of the surface's ior
+ *       m / ns:  Beckmann slope or Blinn exponent (microfacet.h)
+ *       s:       specular fraction, d = 1 - s the diffuse one
+ *   mat.model = &tex_shading_cook_torrance; mat.model_data = &ct;
+ * With model_data NULL the model shades a dielectric of the surface's ior
+ * with Beckmann m = 0.2 and s = 0.5.
+ *
+ * direct(): for a light of irradiance colour E from L,
+ *     out += d kd E (N.L) + s pi F(V.H) [D G / (4 (N.V)(N.L))] E (N.L)
+ * per sample.  The bracket is tex_ct_geometry (normalised D), F the exact
+ * Fresnel reflectance per sample: a conductor's from its n + ik (so metal
+ * highlights take the metal's colour), a dielectric's from its index (so
+ * glass and the floor get the highlights Whitted-Phong misses).  The pi
+ * converts the BRDF to the renderer's light unit, in which a Lambertian
+ * surface reflects kd E (N.L) (the Phong model's diffuse term); the seed's
+ * Rbd = (F/pi) D G/((N.V)(N.L)) carries that pi inside its D.
+ *
+ * weights(): the recursive rays at cos_i = N.V: reflected kr * Fr(cos_i),
+ * transmitted kt * Ft = kt (1 - Fr), per sample (coloured for metals,
+ * k > 0 means no transmission).  cos_i < 0 means the ray is inside the
+ * object, leaving it: the indices swap, and beyond the critical angle
+ * Fr = 1 (total internal reflection).
+ *
+ * The ambient term Ra f Ia is the renderer's Ka Ia with Ka = the ambient
+ * reflectance; tex_ct_ambient (microfacet.h) gives Ra = d Rd + s F(1) for
+ * a scene that wants it.
+ */
+#ifndef TEX_RENDER_CT_H
+#define TEX_RENDER_CT_H
+
+#include "matdb.h"
+#include "microfacet.h"
+#include "render_shade.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+struct tex_ct {
+    struct tex_facets facets;
+    double s;          /* specular fraction, 0..1 */
+    int conductor;     /* 1: n + ik, no transmission */
+    int has_eta;       /* 0: use the material's ior */
+    tex_colour eta, k; /* per sample */
+    const struct tex_matdb_entry *entry; /* where eta and k come from (kept for resampling) */
+};
+
+extern const struct tex_shading_model tex_shading_cook_torrance;
+
+int tex_ct_init(struct tex_ct *ct, const struct tex_colour_space *cs,
+                const struct tex_matdb_entry *entry, enum tex_facet_dist dist, double m,
+                double ns, double s);
+/* Sample eta and k again for another colour space (a scene's colour model
+ * overridden after its surfaces were read); the entry must still exist. */
+void tex_ct_set_space(struct tex_ct *ct, const struct tex_colour_space *cs);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

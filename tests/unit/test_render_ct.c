@@ -1,0 +1,148 @@
+/* test_render_ct.c - the spectral colour space and the Cook-Torrance shading model */
+#include "colour_spectral.h"
+#include "error.h"
+#include "fresnel.h"
+#include "render_ct.h"
+#include "unit.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The colour of a highlight: light from (0,0,1) reflected to the mirror direction. */
+static void highlight(const struct tex_colour_space *cs, const struct tex_matdb_entry *e,
+                      float rgb[3])
+{
+    struct tex_ct ct;
+    tex_ct_init(&ct, cs, e, TEX_FACET_BECKMANN, 0.2, 0, 1);
+    struct tex_material mat;
+    memset(&mat, 0, sizeof mat);
+    mat.ior = 1.5;
+    mat.kr = 1;
+    mat.model = &tex_shading_cook_torrance;
+    mat.model_data = &ct;
+    float white[3] = {1, 1, 1};
+    tex_colour E, out;
+    cs->from_rgb(cs, white, TEX_SPECTRUM_ILLUMINANT, &E);
+    tex_colour_set(&out, cs->n, 0);
+    double s = sin(0.3), c = cos(0.3);
+    double N[3] = {0, 0, 1}, V[3] = {s, 0, c}, L[3] = {-s, 0, c};
+    mat.model->direct(&mat, N, V, L, &E, cs->n, &out);
+    cs->to_rgb(cs, &out, rgb);
+}
+
+int main(void)
+{
+    struct tex_colour_space cs, rgbcs;
+    CHECK(tex_colour_space_spectral(&cs, 0, NULL) < 0 && tex_errkind() == TEX_ERR_USAGE,
+          "0 spectral samples: usage error");
+    CHECK(tex_colour_space_spectral(&cs, 10000, NULL) < 0 && tex_errkind() == TEX_ERR_USAGE,
+          "10000 spectral samples: usage error");
+    int rc = tex_colour_space_spectral(&cs, 16, NULL);
+    CHECKF(rc == 0 && cs.n == 16 && cs.mode == TEX_COLOUR_SPECTRAL, "16-band colour space (%s)",
+           rc ? tex_errmsg() : "ok");
+    if (rc)
+        return unit_done();
+    tex_colour_space_rgb(&rgbcs);
+
+    /* A white diffuse surface under a white (D65) light is neutral. */
+    float w[3] = {1, 1, 1}, grey[3] = {0.5f, 0.5f, 0.5f}, rgb[3];
+    tex_colour E, kd, out;
+    cs.from_rgb(&cs, w, TEX_SPECTRUM_ILLUMINANT, &E);
+    cs.from_rgb(&cs, grey, TEX_SPECTRUM_REFLECTANCE, &kd);
+    tex_colour_mul(&out, cs.n, &kd, &E);
+    cs.to_rgb(&cs, &out, rgb);
+    CHECKF(fabs(rgb[0] - 0.5) < 1e-3 && fabs(rgb[1] - 0.5) < 1e-3 && fabs(rgb[2] - 0.5) < 1e-3,
+           "grey 0.5 under the white light renders (%.4f %.4f %.4f)", rgb[0], rgb[1], rgb[2]);
+    tex_curve a;
+    tex_colour la;
+    CHECK(tex_illuminant(&a, "A", NULL) == 0 && tex_colour_space_spectral_light(&cs, &a, &la) == 0,
+          "illuminant A as a light");
+    tex_colour_mul(&out, cs.n, &kd, &la);
+    cs.to_rgb(&cs, &out, rgb);
+    CHECKF(rgb[0] > rgb[2] * 2, "grey under A is orange (%.3f %.3f %.3f)", rgb[0], rgb[1],
+           rgb[2]);
+    tex_colour_space_spectral_light(&rgbcs, &a, &la);
+    CHECKF(la.v[0] > 2 * la.v[2], "illuminant A in an RGB scene (%.3f %.3f %.3f)", la.v[0],
+           la.v[1], la.v[2]);
+
+    const char *top = getenv("TEXTURA_TOP");
+    char path[4096];
+    snprintf(path, sizeof path, "%s/patterns/materials.txt", top ? top : ".");
+    struct tex_matdb db;
+    if (tex_matdb_read(&db, path) < 0) {
+        CHECKF(0, "materials: %s", tex_errmsg());
+        return unit_done();
+    }
+    highlight(&cs, tex_matdb_find(&db, "gold"), rgb);
+    CHECKF(rgb[0] > rgb[1] && rgb[1] > 1.3 * rgb[2], "spectral gold highlight is yellow (%.3f %.3f %.3f)",
+           rgb[0], rgb[1], rgb[2]);
+    float g0 = rgb[0];
+    highlight(&cs, tex_matdb_find(&db, "silver"), rgb);
+    float mx = fmaxf(rgb[0], fmaxf(rgb[1], rgb[2])), mn = fminf(rgb[0], fminf(rgb[1], rgb[2]));
+    CHECKF(mn > 0 && mx / mn < 1.1 && mx > g0 * 0.8,
+           "spectral silver highlight is neutral (%.3f %.3f %.3f)", rgb[0], rgb[1], rgb[2]);
+    highlight(&cs, NULL, rgb);
+    CHECKF(rgb[1] > 0 && rgb[1] < 0.2 * g0 && fabs(rgb[0] - rgb[2]) < 0.02 * rgb[1] + 1e-4,
+           "a dielectric (ior 1.5) gets a faint white highlight (%.4f %.4f %.4f)", rgb[0], rgb[1],
+           rgb[2]);
+    highlight(&rgbcs, tex_matdb_find(&db, "gold"), rgb);
+    CHECKF(rgb[0] > rgb[1] && rgb[1] > rgb[2], "RGB-mode gold highlight is yellow too (%.3f %.3f %.3f)",
+           rgb[0], rgb[1], rgb[2]);
+    float again[3];
+    highlight(&cs, tex_matdb_find(&db, "gold"), again);
+    highlight(&cs, tex_matdb_find(&db, "gold"), rgb);
+    CHECK(!memcmp(again, rgb, sizeof rgb), "shading is deterministic");
+
+    /* Reflection and transmission weights. */
+    struct tex_ct ct;
+    struct tex_material mat;
+    memset(&mat, 0, sizeof mat);
+    mat.ior = 1.5;
+    mat.kr = mat.kt = 1;
+    mat.model = &tex_shading_cook_torrance;
+    mat.model_data = &ct;
+    tex_ct_init(&ct, &cs, tex_matdb_find(&db, "bk7"), TEX_FACET_BECKMANN, 0.1, 0, 0.5);
+    tex_colour kr, kt;
+    double worst = 0;
+    for (double c = -1; c <= 1; c += 0.05) {
+        mat.model->weights(&mat, c, cs.n, &kr, &kt);
+        for (int i = 0; i < cs.n; i++)
+            worst = fmax(worst, fabs(kr.v[i] + kt.v[i] - 1));
+    }
+    CHECKF(worst < 1e-6, "glass: Fr + Ft = 1 per band, from both sides (%.2g)", worst);
+    mat.model->weights(&mat, 1, cs.n, &kr, &kt);
+    CHECKF(fabs(kr.v[8] - 0.042) < 0.003, "BK7 reflects about 4.2%% at normal incidence (%.4f)",
+           kr.v[8]);
+    mat.model->weights(&mat, -0.3, cs.n, &kr, &kt);
+    CHECK(kr.v[0] == 1 && kt.v[0] == 0, "inside glass at a grazing angle: total internal reflection");
+    tex_ct_init(&ct, &cs, tex_matdb_find(&db, "copper"), TEX_FACET_BECKMANN, 0.1, 0, 0.5);
+    mat.model->weights(&mat, 0.9, cs.n, &kr, &kt);
+    CHECKF(kt.v[0] == 0 && kr.v[cs.n - 1] > kr.v[0] + 0.2,
+           "copper: no transmission, reflects more red than blue (%.3f vs %.3f)", kr.v[cs.n - 1],
+           kr.v[0]);
+    worst = 0;
+    for (double c = 0; c <= 1; c += 0.01) {
+        mat.model->weights(&mat, c, cs.n, &kr, &kt);
+        for (int i = 0; i < cs.n; i++)
+            worst = fmax(worst, fabs(kr.v[i] - tex_fresnel_conductor(c, 1, ct.eta.v[i], ct.k.v[i])));
+    }
+    CHECKF(worst < 1e-5, "copper: the per-spectrum Fresnel equals tex_fresnel_conductor (%.2g)",
+           worst);
+    CHECK(tex_ct_init(&ct, &cs, NULL, TEX_FACET_BECKMANN, 0, 0, 0.5) < 0 &&
+              tex_ct_init(&ct, &cs, NULL, TEX_FACET_BECKMANN, 0.2, 0, 1.5) < 0,
+          "bad roughness or specular fraction: usage errors");
+    mat.model_data = NULL;
+    mat.model->weights(&mat, 1, cs.n, &kr, &kt);
+    tex_colour_set(&out, cs.n, 0);
+    double N0[3] = {0, 0, 1};
+    mat.model->direct(&mat, N0, N0, N0, &E, cs.n, &out);
+    CHECKF(fabs(kr.v[0] - 0.04) < 1e-6 && out.v[0] > 0,
+           "without model data: a dielectric of the surface's ior (Fr %.4f)", kr.v[0]);
+    CHECK(tex_shading_find("cook-torrance") == &tex_shading_cook_torrance,
+          "the model is found by its scene name");
+    tex_matdb_free(&db);
+    tex_colour_space_spectral_free(&cs);
+    return unit_done();
+}
