@@ -49,25 +49,6 @@
 extern "C" {
 #endif
 
-enum tex_edge { TEX_EDGE_CLAMP, TEX_EDGE_WRAP, TEX_EDGE_MIRROR };
-
-/* The source index of position i (any integer) in 0..n-1. */
-static inline int tex_edge_index(long i, int n, enum tex_edge e)
-{
-    if (i >= 0 && i < n)
-        return (int)i;
-    if (e == TEX_EDGE_CLAMP)
-        return i < 0 ? 0 : n - 1;
-    if (e == TEX_EDGE_WRAP) {
-        i %= n;
-        return (int)(i < 0 ? i + n : i);
-    }
-    i %= 2L * n;
-    if (i < 0)
-        i += 2L * n;
-    return (int)(i < n ? i : 2L * n - 1 - i);
-}
-
 /* The blur kernel's half-width for sigma: ceil(4 sigma). */
 int tex_blur_radius(double sigma);
 

@@ -63,6 +63,33 @@ static inline size_t tex_map_samples(const tex_map *m)
     return (size_t)m->w * m->h * m->nc;
 }
 
+/* How a lookup beyond a map's edge is answered: the border pixel (clamp), the
+ * opposite side (wrap: a tileable map stays tileable), the mirror image, or
+ * nothing (background: the caller supplies a colour).  The order is that of
+ * the options "clamp|wrap|mirror". */
+enum tex_edge { TEX_EDGE_CLAMP, TEX_EDGE_WRAP, TEX_EDGE_MIRROR, TEX_EDGE_BACKGROUND };
+
+/* The index in 0..n-1 that position i (any integer) reads, or -1 for background. */
+static inline long tex_edge_index(long i, long n, enum tex_edge e)
+{
+    if (i >= 0 && i < n)
+        return i;
+    switch (e) {
+    case TEX_EDGE_CLAMP:
+        return i < 0 ? 0 : n - 1;
+    case TEX_EDGE_WRAP:
+        i %= n;
+        return i < 0 ? i + n : i;
+    case TEX_EDGE_MIRROR:
+        i %= 2 * n;
+        if (i < 0)
+            i += 2 * n;
+        return i < n ? i : 2 * n - 1 - i;
+    default:
+        return -1;
+    }
+}
+
 /* Statistics of one channel over its finite samples; nonfinite counts NaN and infinities. */
 struct tex_stats {
     double min, max, mean, stddev;

@@ -32,26 +32,10 @@ void tex_sampler_init(struct tex_sampler *s, const tex_map *m, enum tex_edge edg
     bg_layout(bg ? bg : black, m->nc, s->bg);
 }
 
-static inline long edge_index(long i, long n, enum tex_edge e)
-{
-    if (i >= 0 && i < n)
-        return i;
-    switch (e) {
-    case TEX_EDGE_CLAMP: return i < 0 ? 0 : n - 1;
-    case TEX_EDGE_WRAP: i %= n; return i < 0 ? i + n : i;
-    case TEX_EDGE_MIRROR:
-        i %= 2 * n;
-        if (i < 0)
-            i += 2 * n;
-        return i < n ? i : 2 * n - 1 - i;
-    default: return -1;
-    }
-}
-
 /* Pixel (ix,iy) through the edge rule: a pointer into the map or to bg. */
 static inline const float *fetch(const struct tex_sampler *s, long ix, long iy)
 {
-    long x = edge_index(ix, s->m->w, s->edge), y = edge_index(iy, s->m->h, s->edge);
+    long x = tex_edge_index(ix, s->m->w, s->edge), y = tex_edge_index(iy, s->m->h, s->edge);
 
     if (x < 0 || y < 0)
         return s->bg;

@@ -34,8 +34,6 @@
 extern "C" {
 #endif
 
-enum tex_edge { TEX_EDGE_BACKGROUND, TEX_EDGE_CLAMP, TEX_EDGE_WRAP, TEX_EDGE_MIRROR };
-
 struct tex_sampler {
     const tex_map *m;
     enum tex_edge edge;
