@@ -34,6 +34,11 @@ ALL_CXXFLAGS = -std=c++17 -fPIC $(WARN) $(CXXFLAGS)
 CPPFLAGS += -Ilibtex -I/usr/include/OpenEXR
 LDFLAGS  += -fopenmp $(SAN) -Wl,--as-needed
 LDLIBS    = -lOpenEXRCore -lfftw3f_threads -lfftw3f -lflann -lm -ldl
+# Programs link FLANN and its libstdc++ statically: resolving libstdc++'s
+# symbols at every start doubled a tool's start-up (6.4 ms against 2.8 ms).
+# Sanitizer builds keep them shared so that ASan sees every operator new.
+PROG_LDLIBS = $(if $(SANITIZE),$(LDLIBS),-lOpenEXRCore -lfftw3f_threads -lfftw3f \
+              -l:libflann_s.a -llz4 -Wl,-Bstatic -lstdc++ -Wl,-Bdynamic -lm -ldl)
 
 LIB_SRC  = $(wildcard libtex/*.c)
 LIB_OBJ  = $(LIB_SRC:%.c=$(BUILD)/obj/%.o)
@@ -47,7 +52,7 @@ SHARED   = $(BUILD)/lib/libtex.so.0
 PCFILE   = $(BUILD)/lib/pkgconfig/textura.pc
 HEADERS  = $(filter-out libtex/oiio_bridge.h,$(wildcard libtex/*.h))
 
-DEBS = build-essential pkg-config libopenexr-dev libopenimageio-dev openimageio-tools \
+DEBS = build-essential pkg-config liblz4-dev libopenexr-dev libopenimageio-dev openimageio-tools \
        libflann-dev libfftw3-dev colord-data mandoc netpbm imagemagick libnoise-dev povray \
        hyperfine clang libclang-rt-14-dev python3
 
@@ -83,12 +88,12 @@ $(PCFILE): Makefile
 
 $(BUILD)/bin/%: $(BUILD)/obj/tools/%.o $(STATIC)
 	@mkdir -p $(@D)
-	$(CC) $(LDFLAGS) -o $@ $< $(STATIC) $(LDLIBS)
+	$(CC) $(LDFLAGS) -o $@ $< $(STATIC) $(PROG_LDLIBS)
 
 .PRECIOUS: $(BUILD)/obj/%.o
 $(BUILD)/tests/%: $(BUILD)/obj/tests/unit/%.o $(STATIC)
 	@mkdir -p $(@D)
-	$(CC) $(LDFLAGS) -o $@ $< $(STATIC) $(LDLIBS)
+	$(CC) $(LDFLAGS) -o $@ $< $(STATIC) $(PROG_LDLIBS)
 
 $(BUILD)/obj/tests/unit/%.o: CPPFLAGS += -Itests/unit
 

@@ -4,7 +4,10 @@
  * core library writes the chunk offset table last.  One copy in memory
  * costs far less than the disk or pipe it crosses.
  */
+#define _GNU_SOURCE
 #include <errno.h>
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -226,11 +229,27 @@ int tex_exr_encode(const tex_map *m, enum tex_compression c, tex_buf *out)
     return encode(m, c, &sink);
 }
 
+/* A pipe's default 64 KiB buffer costs a context switch per 64 KiB; ask for
+ * more (Linux grants up to /proc/sys/fs/pipe-max-size, 1 MiB by default). */
+void tex_pipe_widen(int fd)
+{
+#ifdef F_SETPIPE_SZ
+    struct stat st;
+    if (fstat(fd, &st) == 0 && S_ISFIFO(st.st_mode) && fcntl(fd, F_GETPIPE_SZ) < (1 << 20))
+        (void)fcntl(fd, F_SETPIPE_SZ, 1 << 20);
+#else
+    (void)fd;
+#endif
+}
+
 int tex_exr_write_fd(const tex_map *m, int fd, const char *name)
 {
     tex_buf head = {0};
     struct wsink sink = {&head, 0, fd, name, 0, 0, 0, NULL, 0};
-    int r = encode(m, TEX_COMPRESS_NONE, &sink);
+    int r;
+
+    tex_pipe_widen(fd);
+    r = encode(m, TEX_COMPRESS_NONE, &sink);
 
     free(sink.table);
     tex_buf_free(&head);
@@ -372,6 +391,7 @@ tex_map *tex_exr_read_fd(int fd, const void *prefix, size_t prefix_len, const ch
         return NULL;
     }
     memcpy(r.buf, prefix, prefix_len);
+    tex_pipe_widen(fd);
     init.user_data = &r;
     init.read_fn = read_stream;
     init.size_fn = size_unknown;

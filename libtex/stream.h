@@ -48,6 +48,9 @@ int tex_exr_write_fd(const tex_map *m, int fd, const char *name);
  * keeping only a window of the stream. */
 tex_map *tex_exr_read_fd(int fd, const void *prefix, size_t prefix_len, const char *name);
 
+/* Widen a pipe's buffer to 1 MiB where the system allows (no-op otherwise). */
+void tex_pipe_widen(int fd);
+
 /* Write all n bytes, retrying after interruptions; -1 with a message naming name. */
 int tex_write_all(int fd, const void *p, size_t n, const char *name);
 
