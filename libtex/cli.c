@@ -185,28 +185,6 @@ static char *join_cmdline(int argc, char **argv)
     return s;
 }
 
-static int parse_size(const char *s, int *w, int *h)
-{
-    char *end;
-    long long a, b;
-
-    a = strtoll(s, &end, 10);
-    if (end == s)
-        return -1;
-    if (*end == 'x' || *end == 'X') {
-        const char *t = end + 1;
-        b = strtoll(t, &end, 10);
-        if (end == t)
-            return -1;
-    } else
-        b = a;
-    if (*end || tex_map_check_size(a, b, 1) < 0)
-        return -1;
-    *w = (int)a;
-    *h = (int)b;
-    return 0;
-}
-
 /* Does the option word w (e.g. "-f" or "--frequency") take a separate value? */
 static int takes_value(const struct option *lo, int n, const char *shorts, const char *w)
 {
@@ -311,7 +289,7 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
     for (int i = 1; i < argc; i++)
         if (argv[i][0] == '\001')
             argv[i]++; /* the marked copy is kept for the life of the program */
-    if ((t->common & TEX_OPT_SIZE) && parse_size(c->size, &c->w, &c->h) < 0)
+    if ((t->common & TEX_OPT_SIZE) && tex_parse_size(c->size, &c->w, &c->h) < 0)
         tex_usage_die("-s must be N or WxH with each side 1..%d (got '%s')", TEX_MAP_MAX_SIDE,
                       c->size);
     nops = argc - optind;

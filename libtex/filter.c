@@ -340,14 +340,15 @@ tex_map *tex_filter_emboss(const tex_map *m, double angle, double strength, enum
     return o;
 }
 
-tex_map *tex_filter_normal(const tex_map *m, double strength, enum tex_edge e)
+/* The Sobel slopes of a map's height: a tangent-space normal map of strength k
+ * (normal set), or the 2-channel gradient (Fu, Fv) per unit of texture space. */
+static tex_map *slopes(const tex_map *m, enum tex_edge e, int normal, float k)
 {
     tex_map *h = height_of(m), *o;
-    float k = (float)strength;
 
     if (!h)
         return NULL;
-    if (!(o = like(m, 3))) {
+    if (!(o = like(m, normal ? 3 : 2))) {
         if (h != m)
             tex_map_free(h);
         return NULL;
@@ -357,38 +358,29 @@ tex_map *tex_filter_normal(const tex_map *m, double strength, enum tex_edge e)
         for (int x = 0; x < m->w; x++) {
             float gx, gy, *p = tex_map_px(o, x, y);
             sobel(h, x, y, 0, e, &gx, &gy);
-            float nx = -k * gx, ny = k * gy, len = sqrtf(nx * nx + ny * ny + 1.0f);
-            p[0] = 0.5f + 0.5f * nx / len;
-            p[1] = 0.5f + 0.5f * ny / len;
-            p[2] = 0.5f + 0.5f / len;
+            if (normal) {
+                float nx = -k * gx, ny = k * gy, len = sqrtf(nx * nx + ny * ny + 1.0f);
+                p[0] = 0.5f + 0.5f * nx / len;
+                p[1] = 0.5f + 0.5f * ny / len;
+                p[2] = 0.5f + 0.5f / len;
+            } else {
+                p[0] = gx * (float)m->w;
+                p[1] = gy * (float)m->h;
+            }
         }
     if (h != m)
         tex_map_free(h);
     return o;
 }
 
+tex_map *tex_filter_normal(const tex_map *m, double strength, enum tex_edge e)
+{
+    return slopes(m, e, 1, (float)strength);
+}
+
 tex_map *tex_filter_gradient(const tex_map *m, enum tex_edge e)
 {
-    tex_map *h = height_of(m), *o;
-
-    if (!h)
-        return NULL;
-    if (!(o = like(m, 2))) {
-        if (h != m)
-            tex_map_free(h);
-        return NULL;
-    }
-#pragma omp parallel for schedule(static)
-    for (int y = 0; y < m->h; y++)
-        for (int x = 0; x < m->w; x++) {
-            float gx, gy, *p = tex_map_px(o, x, y);
-            sobel(h, x, y, 0, e, &gx, &gy);
-            p[0] = gx * (float)m->w;
-            p[1] = gy * (float)m->h;
-        }
-    if (h != m)
-        tex_map_free(h);
-    return o;
+    return slopes(m, e, 0, 0.0f);
 }
 
 /* ---- median ---- */

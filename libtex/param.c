@@ -5,9 +5,32 @@
 #include <string.h>
 
 #include "error.h"
+#include "map.h"
 #include "param.h"
 
 #define AT(obj, p, T) ((T *)((char *)(obj) + (p)->off))
+
+int tex_parse_size(const char *s, int *w, int *h)
+{
+    char *end;
+    long long a, b;
+
+    a = strtoll(s, &end, 10);
+    if (end == s)
+        return -1;
+    if (*end == 'x' || *end == 'X') {
+        const char *t = end + 1;
+        b = strtoll(t, &end, 10);
+        if (end == t)
+            return -1;
+    } else
+        b = a;
+    if (*end || tex_map_check_size(a, b, 1) < 0)
+        return -1;
+    *w = (int)a;
+    *h = (int)b;
+    return 0;
+}
 
 int tex_parse_real(const char *text, double *out)
 {

@@ -87,6 +87,7 @@ const char *tex_param_option(const struct tex_param *p, char *buf, size_t n);
 /* Helpers for values that are not whole rows. */
 int tex_parse_real(const char *text, double *out);         /* -1 if not a finite number */
 int tex_parse_color(const char *text, float rgba[4]);      /* -1 if malformed */
+int tex_parse_size(const char *text, int *w, int *h);      /* N or WxH; -1 outside the map limits */
 
 #ifdef __cplusplus
 }

@@ -80,15 +80,10 @@ int main(int argc, char **argv)
     }
     int i = tex_cli_parse(&tool, argc, argv, &c, &o);
     /* options first: a usage error must not leave the scene allocated (LSan) */
-    long w = 0, h = 0, bands = 0;
-    if (o.size) {
-        char *end;
-        w = h = strtol(o.size, &end, 10);
-        if (*end == 'x')
-            h = strtol(end + 1, &end, 10);
-        if (*end || w < 1 || h < 1 || w > 16384 || h > 16384)
-            tex_usage_die("--size '%s' must be N or WxH with 1..16384 a side", o.size);
-    }
+    int w = 0, h = 0;
+    long bands = 0;
+    if (o.size && (tex_parse_size(o.size, &w, &h) < 0 || w > 16384 || h > 16384))
+        tex_usage_die("--size '%s' must be N or WxH with 1..16384 a side", o.size);
     if (o.spectral && o.rgb)
         tex_usage_die("--spectral and --rgb exclude each other");
     if (o.spectral) {

@@ -47,17 +47,9 @@ int main(int argc, char **argv)
             tex_usage_die("--matrix %s takes 2 maps (got %d)", o.matrix, n);
     } else if (n != 1)
         tex_usage_die("repetition takes one map (got %d; use --matrix RULE for several)", n);
-    if (o.size) {
-        char *e;
-        long a = strtol(o.size, &e, 10), b = a;
-        if (*e == 'x' || *e == 'X')
-            b = strtol(e + 1, &e, 10);
-        if (*e || a < 1 || b < 1 || a > TEX_MAP_MAX_SIDE || b > TEX_MAP_MAX_SIDE)
-            tex_usage_die("-s must be N or WxH with each side 1..%d (got '%s')", TEX_MAP_MAX_SIDE,
-                          o.size);
-        w = (int)a;
-        h = (int)b;
-    }
+    if (o.size && tex_parse_size(o.size, &w, &h) < 0)
+        tex_usage_die("-s must be N or WxH with each side 1..%d (got '%s')", TEX_MAP_MAX_SIDE,
+                      o.size);
     for (int k = 0; k < n; k++)
         if (!strcmp(argv[i + k], "-") && stdin_used++)
             tex_usage_die("standard input (-) can be read only once");

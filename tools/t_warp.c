@@ -66,17 +66,9 @@ int main(int argc, char **argv)
     if (!strcmp(argv[i], "-") && !strcmp(argv[i + 1], "-"))
         tex_usage_die("standard input (-) can be read only once");
     w = h = 0;
-    if (o.size) {
-        char *e;
-        long a = strtol(o.size, &e, 10), b = a;
-        if (*e == 'x' || *e == 'X')
-            b = strtol(e + 1, &e, 10);
-        if (*e || a < 1 || b < 1 || a > TEX_MAP_MAX_SIDE || b > TEX_MAP_MAX_SIDE)
-            tex_usage_die("-s must be N or WxH with each side 1..%d (got '%s')", TEX_MAP_MAX_SIDE,
-                          o.size);
-        w = (int)a;
-        h = (int)b;
-    }
+    if (o.size && tex_parse_size(o.size, &w, &h) < 0)
+        tex_usage_die("-s must be N or WxH with each side 1..%d (got '%s')", TEX_MAP_MAX_SIDE,
+                      o.size);
     m = tex_cli_read(argv[i]);
     by = tex_cli_read(argv[i + 1]);
     if (!o.size) {
