@@ -28,7 +28,9 @@ int main(void)
 }
 C
 export PKG_CONFIG_PATH="$T/p/lib/pkgconfig"
-if cc -o "$T/prog" "$T/prog.c" $(pkg-config --cflags textura) -I"$T/p/include" \
+san=() # a sanitizer build installs an instrumented library: link the program alike
+nm "$T/p/lib/libtex.a" 2>/dev/null | grep -q __asan_ && san=(-fsanitize=address,undefined)
+if cc "${san[@]}" -o "$T/prog" "$T/prog.c" $(pkg-config --cflags textura) -I"$T/p/include" \
     "$T/p/lib/libtex.a" $(pkg-config --static --libs-only-l textura | sed 's/-ltex//') -fopenmp 2>"$T/cc"; then
     [ "$("$T/prog")" = "16 1" ] && ok "a program links libtex through pkg-config and samples a primitive" \
         || notok "the linked program samples a primitive"
