@@ -562,28 +562,41 @@ struct noise_state {
     double off[4];
 };
 
-static int noise_init(struct tex_field *f)
+/* The state shared by noise and d_noise: the lattice tables from the seed, the
+ * period under --tile, and the offset in lattice units (z slice included). */
+static int state_init(struct tex_field *f, double frequency, const struct tex_reals *offset,
+                      double z, int gradients, int fade)
 {
-    const struct noise_params *p = f->params;
     struct noise_state *s = calloc(1, sizeof *s);
 
     if (!s)
         return tex_error("out of memory");
     f->state = s;
     if (f->tile) {
-        if (p->frequency != floor(p->frequency) || p->frequency < 1)
+        if (frequency != floor(frequency) || frequency < 1)
             return tex_usage_error("--frequency must be a whole number >= 1 with --tile (got %g)",
-                                   p->frequency);
-        s->period = (int)p->frequency;
+                                   frequency);
+        s->period = (int)frequency;
     }
-    for (int a = 0; a < p->offset.n; a++)
-        s->off[a] = p->offset.v[a];
-    s->dims = p->w.n ? 4 : 3;
-    s->off[2] += p->frequency * p->z;
-    s->off[3] = p->w.n ? p->frequency * p->w.v[0] : 0;
-    if (tex_noise_init(&s->t, f->seed, p->gradients, s->period) < 0)
+    for (int a = 0; a < offset->n; a++)
+        s->off[a] = offset->v[a];
+    s->off[2] += frequency * z;
+    if (tex_noise_init(&s->t, f->seed, gradients, s->period) < 0)
         return -1;
-    s->t.fade = p->fade;
+    s->t.fade = fade;
+    return 0;
+}
+
+static int noise_init(struct tex_field *f)
+{
+    const struct noise_params *p = f->params;
+    struct noise_state *s;
+
+    if (state_init(f, p->frequency, &p->offset, p->z, p->gradients, p->fade) < 0)
+        return -1;
+    s = f->state;
+    s->dims = p->w.n ? 4 : 3;
+    s->off[3] = p->w.n ? p->frequency * p->w.v[0] : 0;
     if (f->w > 0 && f->h > 0)
         return tex_noise_grid_init(&s->g, &s->t, f->w, f->h, p->frequency, p->frequency, s->off,
                                    s->dims, s->period);
@@ -683,25 +696,9 @@ static const struct tex_param dnoise_rows[] = {
 static int dnoise_init(struct tex_field *f)
 {
     const struct dnoise_params *p = f->params;
-    struct noise_state *s = calloc(1, sizeof *s);
 
-    if (!s)
-        return tex_error("out of memory");
-    f->state = s;
-    if (f->tile) {
-        if (p->frequency != floor(p->frequency) || p->frequency < 1)
-            return tex_usage_error("--frequency must be a whole number >= 1 with --tile (got %g)",
-                                   p->frequency);
-        s->period = (int)p->frequency;
-    }
-    for (int a = 0; a < p->offset.n; a++)
-        s->off[a] = p->offset.v[a];
-    s->off[2] += p->frequency * p->z;
     f->nc = p->normal ? 3 : p->channels;
-    if (tex_noise_init(&s->t, f->seed, p->gradients, s->period) < 0)
-        return -1;
-    s->t.fade = p->fade;
-    return 0;
+    return state_init(f, p->frequency, &p->offset, p->z, p->gradients, p->fade);
 }
 
 static void dnoise_fini(struct tex_field *f)
