@@ -31,17 +31,6 @@ struct turb_params {
     int fade, gradients;
 };
 
-#define NOISE_ROWS(S)                                                                             \
-    TEX_REAL(S, z, 0, 0, -1e9, 1e9, "Z", "the slice of the solid field, in map widths"),         \
-        TEX_REALS(S, w, 0, NULL, -1e9, 1e9, 1, "W",                                               \
-                  "use 4D noise at fourth coordinate W, in map widths (loops in time)"),          \
-        TEX_REALS(S, offset, 0, NULL, -1e12, 1e12, 3, "X[,Y[,Z]]",                                \
-                  "lattice offset of the first octave"),                                           \
-        TEX_ENUM(S, fade, 0, "cubic", "cubic|quintic",                                            \
-                 "noise weight function: the thesis's cubic (eq. 5.2) or Perlin's quintic"),       \
-        TEX_INT(S, gradients, 0, 256, 2, TEX_NOISE_MAX_GRADIENTS, "N",                            \
-                "gradients on the sphere (the thesis's n)")
-
 static const struct tex_param turb_rows[] = {
     TEX_REAL(struct turb_params, frequency, 'f', 4, 0, 1e6, "F",
              "lattice cells across the map at the first octave (whole with --tile)"),
@@ -49,7 +38,8 @@ static const struct tex_param turb_rows[] = {
     TEX_REAL(struct turb_params, lacunarity, 'l', 2, 1, 16, "L",
              "frequency ratio between octaves (whole with --tile)"),
     TEX_REAL(struct turb_params, gain, 'g', 0.5, 0, 1, "G", "amplitude ratio between octaves"),
-    NOISE_ROWS(struct turb_params),
+    TEX_NOISE_ROWS(struct turb_params),
+    TEX_NOISE_W_ROW(struct turb_params),
     {0}};
 
 struct turb_state {
@@ -182,7 +172,8 @@ static const struct tex_param frac_rows[] = {
     TEX_REAL(struct frac_params, gain, 'g', 2, 0, 16, "G", "ridged: Musgrave's weight gain"),
     TEX_REAL(struct frac_params, mf_offset, 0, 1, 0, 4, "O",
              "ridged, hybrid: Musgrave's offset (try 0.7 for hybrid)"),
-    NOISE_ROWS(struct frac_params),
+    TEX_NOISE_ROWS(struct frac_params),
+    TEX_NOISE_W_ROW(struct frac_params),
     TEX_REALS(struct frac_params, centre, 0, NULL, -1e3, 1e3, 2, "X,Y",
               "mandelbrot, julia: complex point at the centre of the map (-0.5,0 and 0,0)"),
     TEX_REAL(struct frac_params, zoom, 0, 1, 1e-12, 1e12, "Z",

@@ -92,6 +92,11 @@ int tex_map_set_history(tex_map *m, const char *history)
     return 0;
 }
 
+int tex_map_inherit(tex_map *dst, const tex_map *src)
+{
+    return tex_map_set_history(dst, src->history);
+}
+
 int tex_map_add_history(tex_map *m, const char *line)
 {
     size_t old = m->history ? strlen(m->history) : 0, n = strlen(line);

@@ -44,6 +44,8 @@ tex_map *tex_map_new(int w, int h, int nc); /* zero-filled */
 void tex_map_free(tex_map *m);
 tex_map *tex_map_clone(const tex_map *m);
 
+/* A map made from src carries src's history; returns -1 on allocation failure. */
+int tex_map_inherit(tex_map *dst, const tex_map *src);
 /* Append one line to the history; returns -1 on allocation failure. */
 int tex_map_add_history(tex_map *m, const char *line);
 int tex_map_set_history(tex_map *m, const char *history);

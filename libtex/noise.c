@@ -543,16 +543,8 @@ struct noise_params {
 static const struct tex_param noise_rows[] = {
     TEX_REAL(struct noise_params, frequency, 'f', 8, 0, 1e6, "F",
              "lattice cells across the map (a whole number with --tile)"),
-    TEX_REAL(struct noise_params, z, 0, 0, -1e9, 1e9, "Z",
-             "the slice of the solid noise, in map widths (lattice z = F Z + offset z)"),
-    TEX_REALS(struct noise_params, w, 0, NULL, -1e9, 1e9, 1, "W",
-              "4D noise at fourth coordinate W, in map widths (loops in time)"),
-    TEX_REALS(struct noise_params, offset, 0, NULL, -1e12, 1e12, 3, "X[,Y[,Z]]",
-              "lattice offset added to the scaled coordinates"),
-    TEX_ENUM(struct noise_params, fade, 0, "cubic", "cubic|quintic",
-             "weight function: the thesis's cubic (eq. 5.2) or Perlin's quintic"),
-    TEX_INT(struct noise_params, gradients, 0, 256, 2, TEX_NOISE_MAX_GRADIENTS, "N",
-            "gradients on the sphere (the thesis's n)"),
+    TEX_NOISE_ROWS(struct noise_params),
+    TEX_NOISE_W_ROW(struct noise_params),
     {0}};
 
 struct noise_state {
@@ -677,20 +669,13 @@ struct dnoise_params {
 static const struct tex_param dnoise_rows[] = {
     TEX_REAL(struct dnoise_params, frequency, 'f', 8, 0, 1e6, "F",
              "lattice cells across the map (a whole number with --tile)"),
-    TEX_REAL(struct dnoise_params, z, 0, 0, -1e9, 1e9, "Z",
-             "the slice of the solid noise, in map widths"),
-    TEX_REALS(struct dnoise_params, offset, 0, NULL, -1e12, 1e12, 3, "X[,Y[,Z]]",
-              "lattice offset added to the scaled coordinates"),
+    TEX_NOISE_ROWS(struct dnoise_params),
     TEX_INT(struct dnoise_params, channels, 'c', 2, 2, 3, "N",
             "2: d/dx, d/dy; 3: also d/dz (raw gradient, lattice units)"),
     TEX_FLAG(struct dnoise_params, normal, 0,
              "write a tangent-space normal map (x right, y up, z out) encoded as 0.5 + 0.5 n"),
     TEX_REAL(struct dnoise_params, strength, 0, 1, 0, 1e6, "S",
              "--normal: height scale, n = normalize(-S dn/dx, S dn/dy_up, 1)"),
-    TEX_ENUM(struct dnoise_params, fade, 0, "cubic", "cubic|quintic",
-             "weight function: the thesis's cubic (eq. 5.2) or Perlin's quintic"),
-    TEX_INT(struct dnoise_params, gradients, 0, 256, 2, TEX_NOISE_MAX_GRADIENTS, "N",
-            "gradients on the sphere (the thesis's n)"),
     {0}};
 
 static int dnoise_init(struct tex_field *f)

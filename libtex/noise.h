@@ -44,6 +44,8 @@
 
 #include <stdint.h>
 
+#include "param.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -123,6 +125,21 @@ enum { TEX_SIMD_SCALAR = 0, TEX_SIMD_AVX2 = 1, TEX_SIMD_AVX512 = 2 };
 /* The level in use: the best the CPU has, or TEXTURA_SIMD's if lower. */
 int tex_simd_level(void);
 const char *tex_simd_name(int level);
+
+/* The parameter rows every noise-based primitive shares (param.h), declared once:
+ * struct S must have double z, struct tex_reals offset, int fade, int gradients
+ * (and struct tex_reals w for TEX_NOISE_W_ROW). */
+#define TEX_NOISE_ROWS(S)                                                                          \
+    TEX_REAL(S, z, 0, 0, -1e9, 1e9, "Z", "the slice of the solid field, in map widths"),          \
+        TEX_REALS(S, offset, 0, NULL, -1e12, 1e12, 3, "X[,Y[,Z]]",                                 \
+                  "lattice offset added to the scaled coordinates (of the first octave)"),         \
+        TEX_ENUM(S, fade, 0, "cubic", "cubic|quintic",                                             \
+                 "noise weight function: the thesis's cubic (eq. 5.2) or Perlin's quintic"),        \
+        TEX_INT(S, gradients, 0, 256, 2, TEX_NOISE_MAX_GRADIENTS, "N",                             \
+                "gradients on the sphere (the thesis's n)")
+#define TEX_NOISE_W_ROW(S)                                                                         \
+    TEX_REALS(S, w, 0, NULL, -1e9, 1e9, 1, "W",                                                    \
+              "use 4D noise at fourth coordinate W, in map widths (loops in time)")
 
 #ifdef __cplusplus
 }

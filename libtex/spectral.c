@@ -159,7 +159,7 @@ static inline float turns(float im, float re)
 
 /* ---- the forward transform ---- */
 
-tex_map *tex_fft(const tex_map *m, enum tex_fft_output out, int hann)
+static tex_map *fft(const tex_map *m, enum tex_fft_output out, int hann)
 {
     int w = m->w, h = m->h, hw = w / 2 + 1;
     float *own = NULL, *in = NULL, *wx = NULL, *wy = NULL;
@@ -352,7 +352,7 @@ static int all_zero(const float *v, size_t n, size_t stride)
     return !nz;
 }
 
-tex_map *tex_ifft(const tex_map *s, const struct tex_ifft_opts *o)
+static tex_map *ifft(const tex_map *s, const struct tex_ifft_opts *o)
 {
     int w = s->w, h = s->h, hw = w / 2 + 1, cplx = s->nc == 2;
     size_t n = (size_t)w * h;
@@ -570,7 +570,7 @@ int tex_spectral_fbm(tex_map *m, const struct tex_fbm_spec *p)
 
 /* ---- Lewis's sparse convolution ---- */
 
-tex_map *tex_sparse_convolve(const tex_map *s, int w, int h, const struct tex_sparse_spec *p)
+static tex_map *sparse_convolve(const tex_map *s, int w, int h, const struct tex_sparse_spec *p)
 {
     int sw = s->w, sh = s->h, hw = w / 2 + 1, nc = s->nc;
     size_t n = (size_t)w * h, nhalf = (size_t)h * hw;
@@ -735,3 +735,28 @@ const struct tex_primitive tex_prim_spectral = {
     .init = spectral_init,
     .grid = spectral_grid,
 };
+
+/* The public transforms: the result carries the history of the map it came from. */
+static tex_map *inherit(tex_map *r, const tex_map *from)
+{
+    if (r && tex_map_inherit(r, from) < 0) {
+        tex_map_free(r);
+        return NULL;
+    }
+    return r;
+}
+
+tex_map *tex_fft(const tex_map *m, enum tex_fft_output out, int hann)
+{
+    return inherit(fft(m, out, hann), m);
+}
+
+tex_map *tex_ifft(const tex_map *s, const struct tex_ifft_opts *o)
+{
+    return inherit(ifft(s, o), s);
+}
+
+tex_map *tex_sparse_convolve(const tex_map *s, int w, int h, const struct tex_sparse_spec *p)
+{
+    return inherit(sparse_convolve(s, w, h, p), s);
+}

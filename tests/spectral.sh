@@ -117,3 +117,10 @@ for t in t_fft t_ifft t_spectral t_sparse; do
     if grep -q "^ok - man/man1/$t.1 " <<<"$man"; then ok "man/man1/$t.1 lists the options of $t"
     else notok "man/man1/$t.1 lists the options of $t (missing, or run make man)"; fi
 done
+
+# The transforms keep the history of the map they came from.
+t_noise -s 32 -S 9 | t_fft --as complex | t_ifft | t_info >"$T/hist.txt"
+check "t_fft | t_ifft keeps the history and adds both stages" \
+    grep -qzE 't_noise -s 32 -S 9.*t_fft --as complex.*t_ifft' "$T/hist.txt"
+t_noise -s 16 | t_sparse -s 32 | t_info >"$T/hist2.txt"
+check "t_sparse keeps the history of its sample" grep -qzE 't_noise -s 16.*t_sparse -s 32' "$T/hist2.txt"

@@ -38,7 +38,6 @@ int main(int argc, char **argv)
         tex_error_context(name);
         tex_die();
     }
-    tex_map_set_history(s, m->history);
     tex_map_free(m);
     tex_cli_write(s, &c);
     tex_map_free(s);

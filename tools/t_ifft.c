@@ -66,7 +66,6 @@ int main(int argc, char **argv)
             tex_error_context(name);
         tex_die();
     }
-    tex_map_set_history(t, s->history);
     tex_map_free(s); /* before writing: the encoder can reuse the memory */
     tex_map_free(phase);
     tex_cli_write(t, &c);

@@ -39,7 +39,6 @@ int main(int argc, char **argv)
             tex_error_context(name);
         tex_die();
     }
-    tex_map_set_history(m, s->history);
     tex_map_free(s);
     tex_cli_write(m, &c);
     tex_map_free(m);
