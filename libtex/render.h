@@ -16,7 +16,7 @@
  *
  * Modules (Rayshade's split):
  *   render_scene.c   the scene language (lexer, parser, checks)
- *   render_shape.c   sphere, box, cylinder, cone, plane: a method
+ *   render_shape.c   sphere, box, cylinder, cone, plane, torus: a method
  *                    table per shape (intervals along a ray, normal, uv, bounds)
  *   render_csg.c     union, intersection, difference of hit intervals
  *   render_bvh.c     bounding-volume hierarchy over the top-level objects
@@ -127,7 +127,7 @@ int tex_refract(tex_v3 d, tex_v3 n, double n1, double n2, tex_v3 *t);
 /* ---- shapes and CSG ----------------------------------------------------- */
 
 enum tex_shape_kind { TEX_SHAPE_SPHERE, TEX_SHAPE_BOX, TEX_SHAPE_CYLINDER, TEX_SHAPE_CONE,
-                      TEX_SHAPE_PLANE, TEX_SHAPE_NKINDS };
+                      TEX_SHAPE_PLANE, TEX_SHAPE_TORUS, TEX_SHAPE_NKINDS };
 
 struct tex_surface;
 struct tex_object;
