@@ -120,13 +120,19 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, tex_colour *
         return;
     tex_colour kr, kt, I;
     double cosi = tex_v3_dot(N, V);
+    /* the media on both sides (nested solids); Fresnel sees the solid's index
+     * relative to what lies beyond it */
+    struct tex_media beyond;
+    double n1, n2;
+    tex_media_cross(r->media, h.leaf->root ? h.leaf->root : h.leaf, entering, m.ior, &beyond, &n1,
+                    &n2);
+    m.ior = entering ? n2 / n1 : n1 / n2;
     m.model->weights(&m, cosi, n, &kr, &kt);
-    tex_ray rr = {Pout, tex_reflect(r->d, N), width, r->spread};
+    tex_ray rr = {Pout, tex_reflect(r->d, N), width, r->spread, r->media};
     if (tex_v3_dot(rr.d, Ngv) <= 0)
         rr.d = tex_reflect(r->d, Ngv);
     if (tex_colour_max(&kt, n) > 0) {
-        double n1 = entering ? 1 : m.ior, n2 = entering ? m.ior : 1;
-        tex_ray rt = {Pin, r->d, width, r->spread};
+        tex_ray rt = {Pin, r->d, width, r->spread, &beyond};
         if (tex_refract(r->d, N, n1, n2, &rt.d)) {
             trace(c, &rt, depth + 1, &I);
             tex_colour_mmadd(out, n, &kt, &I, 1);
@@ -183,7 +189,7 @@ static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, 
         tex_ray r = {cam->eye,
                      tex_v3_norm(tex_v3_add(cam->fwd, tex_v3_add(tex_v3_scale(cam->right, a),
                                                                  tex_v3_scale(cam->up, b)))),
-                     0, spread / sqrt(spp)};
+                     0, spread / sqrt(spp), NULL};
         tex_colour col;
         float rgb[3];
         trace(&c, &r, 0, &col);
