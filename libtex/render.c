@@ -69,6 +69,31 @@ static double transmittance(const struct tex_scene *s, tex_v3 P, tex_v3 L, doubl
     return tr;
 }
 
+/* The surface's largest normal curvature at P (unit facing normal Nf, unit
+ * ray direction d): > 0 where it bulges towards the ray (a convex mirror
+ * spreads a beam), < 0 where it is hollow, from the shape's own normals a
+ * short step away along two tangents; the step along the ray's projection
+ * is stretched by 1/cos, as the footprint is. */
+static double curvature(const struct tex_hit *h, tex_v3 P, tex_v3 Nf, tex_v3 d)
+{
+    tex_v3 t1 = tex_v3_sub(d, tex_v3_scale(Nf, tex_v3_dot(d, Nf)));
+    if (tex_v3_len(t1) < 1e-9)
+        t1 = tex_v3_cross(Nf, fabs(Nf.x) < 0.9 ? tex_v3_make(1, 0, 0) : tex_v3_make(0, 1, 0));
+    t1 = tex_v3_norm(t1);
+    tex_v3 t2 = tex_v3_cross(Nf, t1);
+    double e = 1e-4 * (1 + fmax(fabs(P.x), fmax(fabs(P.y), fabs(P.z))));
+    double cosd = fmax(fabs(tex_v3_dot(d, Nf)), 0.02);
+    double k[2];
+    for (int i = 0; i < 2; i++) {
+        tex_v3 t = i ? t2 : t1, n = hit_normal(h, tex_v3_madd(P, t, e));
+        if (tex_v3_dot(n, Nf) < 0)
+            n = tex_v3_scale(n, -1);
+        k[i] = tex_v3_dot(tex_v3_sub(n, Nf), t) / e;
+    }
+    k[0] /= cosd;
+    return fabs(k[0]) > fabs(k[1]) ? k[0] : k[1];
+}
+
 static void trace(const struct ctx *c, const tex_ray *r, int depth, tex_colour *out)
 {
     const struct tex_scene *s = c->s;
@@ -83,7 +108,7 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, tex_colour *
     int entering = tex_v3_dot(r->d, Ng) < 0;
     tex_v3 N = entering ? Ng : tex_v3_scale(Ng, -1);
     const struct tex_surface *sf = surface_of(s, h.leaf);
-    double width = r->width + h.t * r->spread;
+    double width = fabs(r->width + h.t * r->spread); /* a focused beam crosses 0 */
     struct tex_material m;
     tex_resolve_material(s, sf, h.leaf, P, r->d, &N, s->settings.filter ? width : 0, &m);
     tex_v3 V = tex_v3_scale(r->d, -1);
@@ -120,14 +145,28 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, tex_colour *
         return;
     tex_colour kr, kt, I;
     double cosi = tex_v3_dot(N, V);
+    /* the media on both sides (nested solids); Fresnel sees the solid's index
+     * relative to what lies beyond it */
+    struct tex_media beyond;
+    double n1, n2;
+    tex_media_cross(r->media, h.leaf->root ? h.leaf->root : h.leaf, entering, m.ior, &beyond, &n1,
+                    &n2);
+    m.ior = entering ? n2 / n1 : n1 / n2;
     m.model->weights(&m, cosi, n, &kr, &kt);
-    tex_ray rr = {Pout, tex_reflect(r->d, N), width, r->spread};
+    tex_ray rr = {Pout, tex_reflect(r->d, N), width, r->spread, r->media};
     if (tex_v3_dot(rr.d, Ngv) <= 0)
         rr.d = tex_reflect(r->d, Ngv);
+    /* footprints after curved surfaces: a mirror of curvature k turns a beam
+     * of width w by 2 k w more (its focal length is 1/2k); a refracting
+     * surface bends it by (eta cos_i - cos_t) k w (paraxial lens power) */
+    double kc = s->settings.filter && width > 0 ? curvature(&h, P, Ngv, r->d) : 0;
+    rr.spread = fmin(r->spread + 2 * kc * width, 1);
     if (tex_colour_max(&kt, n) > 0) {
-        double n1 = entering ? 1 : m.ior, n2 = entering ? m.ior : 1;
-        tex_ray rt = {Pin, r->d, width, r->spread};
+        tex_ray rt = {Pin, r->d, width, r->spread, &beyond};
         if (tex_refract(r->d, N, n1, n2, &rt.d)) {
+            double eta = n1 / n2, ci = fabs(tex_v3_dot(r->d, Ngv)), ct = fabs(tex_v3_dot(rt.d, Ngv));
+            if (ct > 1e-3)
+                rt.spread = fmin(eta * ci / ct * r->spread + (eta * ci - ct) * kc * width, 1);
             trace(c, &rt, depth + 1, &I);
             tex_colour_mmadd(out, n, &kt, &I, 1);
         } else {
@@ -183,7 +222,7 @@ static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, 
         tex_ray r = {cam->eye,
                      tex_v3_norm(tex_v3_add(cam->fwd, tex_v3_add(tex_v3_scale(cam->right, a),
                                                                  tex_v3_scale(cam->up, b)))),
-                     0, spread / sqrt(spp)};
+                     0, spread / sqrt(spp), NULL};
         tex_colour col;
         float rgb[3];
         trace(&c, &r, 0, &col);

@@ -16,13 +16,14 @@
  *
  * Modules (Rayshade's split):
  *   render_scene.c   the scene language (lexer, parser, checks)
- *   render_shape.c   sphere, box, cylinder, cone, plane: a method
+ *   render_shape.c   sphere, box, cylinder, cone, plane, torus: a method
  *                    table per shape (intervals along a ray, normal, uv, bounds)
  *   render_csg.c     union, intersection, difference of hit intervals
  *   render_bvh.c     bounding-volume hierarchy over the top-level objects
  *   render_texture.c textures (maps with mip-map pyramids, primitives),
  *                    mappings and application functions
  *   render_light.c   distant, point, spot and area lights; shadows
+ *   render_media.c   the stack of nested transparent media along a ray
  *   render_shade.c   shading models (Whitted-Phong), see render_shade.h
  *   render.c         camera, sampling, recursion, tiles and threads
  *
@@ -111,11 +112,33 @@ tex_v3 tex_xform_normal(const tex_xform *inv, tex_v3 n);
 
 /* ---- rays and optics ---------------------------------------------------- */
 
+struct tex_media;
+
 typedef struct tex_ray {
     tex_v3 o, d;      /* d is unit length in world space */
     double width;     /* footprint width at o (for filtered texture lookups) */
     double spread;    /* footprint growth per unit distance (pixel angle) */
+    const struct tex_media *media; /* the solids it travels inside; NULL: air */
 } tex_ray;
+
+/* Nested transparent media: the top-level solids a ray is inside, innermost
+ * last.  A refracted ray entering a solid pushes it, one leaving pops it, so
+ * Snell's law sees the real indices on both sides: glass in water bends by
+ * 1.33 -> 1.5, an air bubble in glass by 1.5 -> 1.  The stack is bounded by
+ * the recursion depth; past TEX_MEDIA_MAX the outermost are forgotten. */
+#define TEX_MEDIA_MAX 16
+struct tex_media {
+    int n;
+    const struct tex_object *ob[TEX_MEDIA_MAX];
+    double ior[TEX_MEDIA_MAX];
+};
+/* The index of the medium a ray with stack m travels in (1: air). */
+double tex_media_ior(const struct tex_media *m);
+/* A crossing of solid ob's boundary (entering or not) whose surface has
+ * index ior: *out is the stack beyond it, *n1 and *n2 the indices before
+ * and after.  m may be NULL (air). */
+void tex_media_cross(const struct tex_media *m, const struct tex_object *ob, int entering,
+                     double ior, struct tex_media *out, double *n1, double *n2);
 
 /* Mirror direction of unit d about unit n. */
 tex_v3 tex_reflect(tex_v3 d, tex_v3 n);
@@ -127,7 +150,7 @@ int tex_refract(tex_v3 d, tex_v3 n, double n1, double n2, tex_v3 *t);
 /* ---- shapes and CSG ----------------------------------------------------- */
 
 enum tex_shape_kind { TEX_SHAPE_SPHERE, TEX_SHAPE_BOX, TEX_SHAPE_CYLINDER, TEX_SHAPE_CONE,
-                      TEX_SHAPE_PLANE, TEX_SHAPE_NKINDS };
+                      TEX_SHAPE_PLANE, TEX_SHAPE_TORUS, TEX_SHAPE_NKINDS };
 
 struct tex_surface;
 struct tex_object;

@@ -929,6 +929,7 @@ static struct tex_object *parse_leaf(struct parser *ps, int kind, const struct t
     tex_v3 c = {0, 0, 0}, lo = {-1, -1, -1}, hi = {1, 1, 1}, base = {0, 0, 0}, top = {0, 1, 0};
     tex_v3 normal = {0, 1, 0};
     double radius = 1, r0 = 1, r1 = 0, dist = 0;
+    double minor = 0.25; /* torus: major is r0 */
     tex_xform acc;
     tex_xform_identity(&acc);
     expect(ps, '{');
@@ -942,10 +943,15 @@ static struct tex_object *parse_leaf(struct parser *ps, int kind, const struct t
             if (st.kind != T_ID || !(ob->surface = find_surface(ps, &st)))
                 FAIL(ps, "unknown surface '%.*s'", (int)st.len, st.text);
             next(ps);
-        } else if (kind == TEX_SHAPE_SPHERE && is_word(&kt, "centre")) {
+        } else if ((kind == TEX_SHAPE_SPHERE || kind == TEX_SHAPE_TORUS) &&
+                   (is_word(&kt, "centre") || is_word(&kt, "center"))) {
             c = vec(ps);
-        } else if (kind == TEX_SHAPE_SPHERE && is_word(&kt, "center")) {
-            c = vec(ps);
+        } else if (kind == TEX_SHAPE_TORUS && is_word(&kt, "major")) {
+            r0 = number(ps);
+        } else if (kind == TEX_SHAPE_TORUS && is_word(&kt, "minor")) {
+            minor = number(ps);
+        } else if (kind == TEX_SHAPE_TORUS && is_word(&kt, "axis")) {
+            top = vec(ps);
         } else if ((kind == TEX_SHAPE_SPHERE || kind == TEX_SHAPE_CYLINDER) &&
                    is_word(&kt, "radius")) {
             radius = number(ps);
@@ -1006,6 +1012,19 @@ static struct tex_object *parse_leaf(struct parser *ps, int kind, const struct t
         ob->r1 = r1;
         break;
     }
+    case TEX_SHAPE_TORUS:
+        /* r0, r1 are in world units like a cone's; the frame only turns and moves */
+        r1 = minor;
+        if (!(r0 >= 0))
+            fail_at(ps, at, 0, "torus major radius must be >= 0");
+        if (!(r1 > 0))
+            fail_at(ps, at, 0, "torus minor radius must be > 0");
+        if (!(tex_v3_len(top) > 0))
+            fail_at(ps, at, 0, "torus axis must not be zero");
+        xf_frame(&place, c, top, 1, 1);
+        ob->r0 = r0;
+        ob->r1 = r1;
+        break;
     default:
         if (!(tex_v3_len(normal) > 0))
             fail_at(ps, at, 0, "plane normal must not be zero");

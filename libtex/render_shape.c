@@ -6,9 +6,12 @@
  *   cylinder  radius 1, y in [0,1], capped (a cone with r0 = r1 = 1)
  *   cone      radius r0 at y = 0 and r1 at y = 1, capped (convex)
  *   plane     the half-space y <= 0, normal +y
+ *   torus     around the y axis: (sqrt(x^2+z^2) - R)^2 + y^2 <= r^2 with
+ *             R = r0 (major radius, >= 0) and r = r1 (minor radius, > 0)
  */
 #include <float.h>
 #include <math.h>
+#include <stdlib.h>
 
 #include "render.h"
 
@@ -350,12 +353,182 @@ static int plane_bounds(const struct tex_object *ob, struct tex_bounds *b)
     return 0;
 }
 
+
+/* ---- torus -------------------------------------------------------------------- */
+
+/* Polynomials c[0] + c[1] s + ... + c[n] s^n, solved on a bracket [a, b] by
+ * the critical points (Yuksel, "High-performance polynomial root finding for
+ * graphics", 2022): between consecutive roots of the derivative the
+ * polynomial is monotonic, so each sign change there holds exactly one root,
+ * found by Newton steps kept inside a shrinking bracket.  Unlike a closed
+ * form (Ferrari) nothing cancels catastrophically, and a double root of a
+ * grazing ray is a root of the derivative, found as well as any other. */
+static double poly_eval(const double *c, int n, double s, double *ds)
+{
+    double f = c[n], d = 0;
+    for (int i = n - 1; i >= 0; i--) {
+        d = d * s + f;
+        f = f * s + c[i];
+    }
+    *ds = d;
+    return f;
+}
+
+static double poly_bracketed(const double *c, int n, double lo, double hi, double flo)
+{
+    double x = 0.5 * (lo + hi);
+    for (int it = 0; it < 200; it++) {
+        double d, f = poly_eval(c, n, x, &d);
+        if (f == 0)
+            return x;
+        if ((f < 0) == (flo < 0))
+            lo = x;
+        else
+            hi = x;
+        double nx = d != 0 ? x - f / d : lo - 1;
+        if (!(nx > lo && nx < hi))
+            nx = 0.5 * (lo + hi);
+        if (fabs(nx - x) <= 1e-15 * (1 + fabs(x)) || hi - lo <= 1e-15 * (1 + fabs(x)))
+            return nx;
+        x = nx;
+    }
+    return x;
+}
+
+/* Roots of c (degree n >= 1) in (a, b) where it changes sign, ascending;
+ * returns their number (at most n). */
+static int poly_sign_roots(const double *c, int n, double a, double b, double *r)
+{
+    if (n == 1) {
+        double x = -c[0] / c[1];
+        if (c[1] != 0 && x > a && x < b) {
+            r[0] = x;
+            return 1;
+        }
+        return 0;
+    }
+    double dc[4], x[6];
+    for (int i = 1; i <= n; i++)
+        dc[i - 1] = i * c[i];
+    int nx = 1;
+    x[0] = a;
+    nx += poly_sign_roots(dc, n - 1, a, b, x + 1);
+    x[nx++] = b;
+    int k = 0;
+    double d, fa = poly_eval(c, n, a, &d);
+    for (int i = 0; i + 1 < nx; i++) {
+        double fb = poly_eval(c, n, x[i + 1], &d);
+        if (fa == 0 && i > 0)
+            r[k++] = x[i];
+        else if ((fa < 0 && fb > 0) || (fa > 0 && fb < 0))
+            r[k++] = poly_bracketed(c, n, x[i], x[i + 1], fa);
+        fa = fb;
+    }
+    return k;
+}
+
+static int torus_inside(double R, double r, tex_v3 p)
+{
+    double q = sqrt(p.x * p.x + p.z * p.z) - R;
+    return q * q + p.y * p.y < r * r;
+}
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The quartic (|p|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + z^2) = 0 along the ray,
+ * solved with d made unit and the origin moved to the point nearest the
+ * centre (well scaled whatever the distance).  Its roots and critical
+ * points cut the chord through the bounding sphere into pieces, each inside
+ * or outside (tested at its middle), so grazing rays (double roots) and
+ * spindle tori (r > R: the quartic's extra inner sheet) still give the
+ * solid's true intervals: up to two, four crossings. */
+static void torus_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s)
+{
+    double R = ob->r0, r = ob->r1, len = tex_v3_len(d);
+    s->n = 0;
+    if (!(len > 0))
+        return;
+    d = tex_v3_scale(d, 1 / len);
+    double tc = -tex_v3_dot(o, d);
+    o = tex_v3_madd(o, d, tc);
+    double big = R + r, h2 = big * big - tex_v3_dot(o, o);
+    if (!(h2 > 0))
+        return;
+    double h = sqrt(h2) * 1.0001 + 1e-9 * big;
+    double G = tex_v3_dot(o, o) + R * R - r * r, k = tex_v3_dot(o, d); /* k ~ 0 */
+    double dxz = d.x * d.x + d.z * d.z, oxz = o.x * d.x + o.z * d.z;
+    double c[5] = {G * G - 4 * R * R * (o.x * o.x + o.z * o.z), 4 * k * G - 8 * R * R * oxz,
+                   4 * k * k + 2 * G - 4 * R * R * dxz, 4 * k, 1};
+    double cut[10], dc[4] = {c[1], 2 * c[2], 3 * c[3], 4 * c[4]};
+    int n = 0;
+    cut[n++] = -h;
+    n += poly_sign_roots(c, 4, -h, h, cut + n);
+    n += poly_sign_roots(dc, 3, -h, h, cut + n);
+    cut[n++] = h;
+    qsort(cut, n, sizeof *cut, cmp_double);
+    int in = 0;
+    for (int i = 0; i + 1 < n; i++) {
+        if (!(cut[i + 1] > cut[i]))
+            continue;
+        int now = torus_inside(R, r, tex_v3_madd(o, d, 0.5 * (cut[i] + cut[i + 1])));
+        if (now == in)
+            continue;
+        in = now;
+        double t = (tc + cut[i]) / len;
+        if (now) {
+            s->in[s->n].t = t;
+            s->in[s->n].leaf = ob;
+            s->in[s->n].flip = 0;
+        } else {
+            s->out[s->n].t = t;
+            s->out[s->n].leaf = ob;
+            s->out[s->n].flip = 0;
+            s->n++;
+        }
+    }
+}
+
+/* The gradient of (rho - R)^2 + y^2: away from the tube's centre circle. */
+static tex_v3 torus_normal(const struct tex_object *ob, tex_v3 p)
+{
+    double rho = sqrt(p.x * p.x + p.z * p.z);
+    if (!(rho > 0))
+        return tex_v3_make(0, p.y < 0 ? -1 : 1, 0);
+    double k = 1 - ob->r0 / rho;
+    return tex_v3_make(p.x * k, p.y, p.z * k);
+}
+
+/* torus_map: u around the major circle (as sphere_map's longitude), v around
+ * the tube from the top (v = 0) down the outside (0.25 at the outer
+ * equator), under (0.5) and up the inside (0.75). */
+static int torus_uv(const struct tex_object *ob, tex_v3 p, double *u, double *v)
+{
+    double a = atan2(-p.z, p.x) / (2 * M_PI);
+    *u = a < 0 ? a + 1 : a;
+    double b = atan2(sqrt(p.x * p.x + p.z * p.z) - ob->r0, p.y) / (2 * M_PI);
+    *v = b < 0 ? b + 1 : b;
+    return 1;
+}
+
+static int torus_bounds(const struct tex_object *ob, struct tex_bounds *b)
+{
+    double e = ob->r0 + ob->r1;
+    b->lo = tex_v3_make(-e, -ob->r1, -e);
+    b->hi = tex_v3_make(e, ob->r1, e);
+    return 1;
+}
+
 const struct tex_shape_methods tex_shape_methods[TEX_SHAPE_NKINDS] = {
     [TEX_SHAPE_SPHERE] = {"sphere", sphere_spans, sphere_normal, sphere_uv, unit_bounds},
     [TEX_SHAPE_BOX] = {"box", box_spans, box_normal, box_uv, unit_bounds},
     [TEX_SHAPE_CYLINDER] = {"cylinder", cone_spans, cone_normal, cone_uv, cone_bounds},
     [TEX_SHAPE_CONE] = {"cone", cone_spans, cone_normal, cone_uv, cone_bounds},
     [TEX_SHAPE_PLANE] = {"plane", plane_spans, plane_normal, plane_uv, plane_bounds},
+    [TEX_SHAPE_TORUS] = {"torus", torus_spans, torus_normal, torus_uv, torus_bounds},
 };
 
 /* ---- objects ------------------------------------------------------------------ */
