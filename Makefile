@@ -54,7 +54,7 @@ HEADERS  = $(filter-out libtex/oiio_bridge.h,$(wildcard libtex/*.h))
 
 DEBS = build-essential pkg-config liblz4-dev libopenexr-dev libopenimageio-dev openimageio-tools \
        libflann-dev libfftw3-dev colord-data mandoc netpbm imagemagick libnoise-dev povray \
-       hyperfine clang libclang-rt-14-dev python3
+       hyperfine clang libclang-rt-14-dev libomp-dev python3
 
 .PHONY: all deps demo test test-plain test-asan check bench install man fuzz clean
 
