@@ -17,9 +17,11 @@
 #include "prim.h"
 #include "rng.h"
 
+/* max then min, as the row kernels clamp (noise.c) */
 static inline float clamp01(float x)
 {
-    return x < 0 ? 0 : x > 1 ? 1 : x;
+    float m = x > 0 ? x : 0;
+    return m < 1 ? m : 1;
 }
 
 /* ---- turbulence ---- */
@@ -109,23 +111,11 @@ static void turb_eval3(const struct tex_field *f, int n, const double *u, const 
 static void turb_row(const struct tex_field *f, int y, float *out)
 {
     const struct turb_state *s = f->state;
-    float *tmp = malloc(f->w * sizeof *tmp);
 
-    if (!tmp) { /* no memory for a row buffer: the point path needs none */
-        for (int x = 0; x < f->w; x++)
-            out[x] = turb_point(f, (x + 0.5) / f->w, (y + 0.5) / f->h, 0);
-        return;
-    }
-    for (int x = 0; x < f->w; x++)
-        out[x] = 0;
-    for (int k = 0; k < s->o.n; k++) {
-        tex_octave_row(&s->o, k, y, tmp);
-        for (int x = 0; x < f->w; x++)
-            out[x] += s->amp[k] * fabsf(tmp[x]);
-    }
-    for (int x = 0; x < f->w; x++)
-        out[x] = clamp01(out[x] * s->inv);
-    free(tmp);
+    memset(out, 0, f->w * sizeof *out);
+    for (int k = 0; k < s->o.n; k++)
+        tex_octave_row_op(&s->o, k, y, k == s->o.n - 1 ? TEX_ROW_ADD_ABS_CLAMP : TEX_ROW_ADD_ABS,
+                          s->amp[k], s->inv, out);
 }
 
 const struct tex_primitive tex_prim_turbulence = {
@@ -565,9 +555,8 @@ static void frac_row(const struct tex_field *f, int y, float *out)
     if (s->mode == FBM) {
         memset(out, 0, f->w * sizeof *out);
         for (int k = 0; k < s->o.n; k++)
-            tex_octave_row_add(&s->o, k, y, s->amp[k], out);
-        for (int x = 0; x < f->w; x++)
-            out[x] = clamp01(0.5f + 0.5f * (out[x] * s->inv));
+            tex_octave_row_op(&s->o, k, y, k == s->o.n - 1 ? TEX_ROW_ADD_UNIT : TEX_ROW_ADD,
+                              s->amp[k], s->inv, out);
         return;
     }
     tmp = s->mode <= HYBRID ? malloc((size_t)f->w * s->o.n * sizeof *tmp) : NULL;

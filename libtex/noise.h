@@ -74,21 +74,37 @@ double tex_noise4p(const tex_noise_table *t, int period, double x, double y, dou
 double tex_noise3_grad(const tex_noise_table *t, int period, double x, double y, double z,
                        double g[3]);
 
+struct tex_noise_cache; /* lattice rows kept for the next pixel rows (noise.c) */
+
 typedef struct tex_noise_grid {
     const tex_noise_table *t;
     int w, h, dims, period;
-    double fy, oy, z, w4;
-    int nslots;
+    double fy, oy;
+    int nslots, stride;
     int32_t *slot;     /* per column: slot of its cell's left lattice column */
     int32_t *lat;      /* per slot: lattice column index reduced mod period and n */
     float *u, *um1, *w0, *w1; /* per column: fraction, fraction - 1, the two x weights */
+    int nz, zh[4];     /* the slice's corners in z (and w) of non-zero weight, hash prefixes */
+    float zw[4], zd[4][2]; /* their weights and offsets */
+    struct tex_noise_cache *cache;
 } tex_noise_grid;
 
 /* dims is 3 (off[2] is the slice Z) or 4 (off[3] is W); period 0: none. */
 int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int h, double fx,
                         double fy, const double off[4], int dims, int period);
+/* What a row does with each noise value n, in the same vectorised pass
+ * (clamp01(x) is min(max(x, 0), 1)): */
+enum {
+    TEX_ROW_SET,          /* out = n */
+    TEX_ROW_UNIT,         /* out = clamp01(0.5 + 0.5 n) */
+    TEX_ROW_ADD,          /* out = out + a n */
+    TEX_ROW_ADD_ABS,      /* out = out + a |n| */
+    TEX_ROW_ADD_UNIT,     /* out = clamp01(0.5 + 0.5 ((out + a n) b)): fBm's last octave */
+    TEX_ROW_ADD_ABS_CLAMP /* out = clamp01((out + a |n|) b): turbulence's last octave */
+};
+void tex_noise_grid_row_op(const tex_noise_grid *g, int y, int op, float a, float b, float *out);
+/* tex_noise_grid_row_op with TEX_ROW_SET and TEX_ROW_ADD. */
 void tex_noise_grid_row(const tex_noise_grid *g, int y, float *out);
-/* out[x] = out[x] + amp * noise, in the same vectorised pass. */
 void tex_noise_grid_row_add(const tex_noise_grid *g, int y, float amp, float *out);
 void tex_noise_grid_free(tex_noise_grid *g);
 
@@ -119,6 +135,7 @@ double tex_octave_point(const tex_octaves *o, int k, double u, double v, double 
 /* Signed noise of octave k over row y of the grid. */
 void tex_octave_row(const tex_octaves *o, int k, int y, float *out);
 void tex_octave_row_add(const tex_octaves *o, int k, int y, float amp, float *out);
+void tex_octave_row_op(const tex_octaves *o, int k, int y, int op, float a, float b, float *out);
 
 /* SIMD levels for the row kernels. */
 enum { TEX_SIMD_SCALAR = 0, TEX_SIMD_AVX2 = 1, TEX_SIMD_AVX512 = 2 };
