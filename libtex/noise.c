@@ -290,9 +290,9 @@ static void slice_setup(tex_noise_grid *g, double z, double w4)
             w *= wt[a][b[a]];
         if (w == 0) /* a corner at distance 1: w(1) = 0 exactly */
             continue;
-        g->zw[k] = (float)w;
-        g->zd[k][0] = (float)(fr[0] - b[0]);
-        g->zd[k][1] = axes == 2 ? (float)(fr[1] - b[1]) : 0;
+        g->zm[k][0] = g->zm[k][1] = (float)w;
+        g->zm[k][2] = (float)(w * (fr[0] - b[0]));
+        g->zm[k][3] = axes == 2 ? (float)(w * (fr[1] - b[1])) : 0;
         g->zh[k] = axes == 2 ? F[li[0][b[0]] + F[li[1][b[1]]]] : F[li[0][b[0]]];
         g->nz++;
     }
@@ -377,80 +377,47 @@ int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int 
     return 0;
 }
 
-/* Lattice row j folded over the slice's corners, for slots s0..s1-1:
- *   X = sum_c W_c G_c.x,  Y = sum_c W_c G_c.y,  C = sum_c W_c (G_c.z dz_c + G_c.w dw_c)
- * (float, corners in order), so that a pixel row between lattice rows j and
- * j+1 needs two such rows.  The reference for every SIMD level. */
-static void lattice_row_scalar(const tex_noise_grid *g, const int *A, int s0, int s1, float *X,
-                               float *Y, float *C)
-{
-    const int *F = g->t->perm;
-    const float(*G)[4] = g->dims == 4 ? g->t->grad4 : g->t->grad;
-
-    for (int s = s0; s < s1; s++) {
-        int i = g->lat[s];
-        float x = 0, y = 0, z = 0;
-        for (int c = 0; c < g->nz; c++) {
-            const float *gr = G[F[i + A[c]]];
-            x = x + g->zw[c] * gr[0];
-            y = y + g->zw[c] * gr[1];
-            z = z + g->zw[c] * (gr[2] * g->zd[c][0] + gr[3] * g->zd[c][1]);
-        }
-        X[s - s0] = x;
-        Y[s - s0] = y;
-        C[s - s0] = z;
-    }
-}
-
-#ifdef TEX_X86
-__attribute__((target("avx2"))) static void lattice_row_avx2(const tex_noise_grid *g, const int *A,
-                                                             int s0, int s1, float *X, float *Y,
-                                                             float *C)
-{
-    const int *F = g->t->perm;
-    const float *G = g->dims == 4 ? g->t->grad4[0] : g->t->grad[0];
-    int s = s0;
-
-    for (; s + 8 <= s1; s += 8) {
-        __m256i i = _mm256_loadu_si256((const __m256i *)(g->lat + s));
-        __m256 x = _mm256_setzero_ps(), y = x, z = x;
-        for (int c = 0; c < g->nz; c++) {
-            __m256i h = _mm256_i32gather_epi32(F, _mm256_add_epi32(i, _mm256_set1_epi32(A[c])), 4);
-            __m256 w = _mm256_set1_ps(g->zw[c]);
-            h = _mm256_slli_epi32(h, 2);
-            __m256 gx = _mm256_i32gather_ps(G, h, 4);
-            __m256 gy = _mm256_i32gather_ps(G + 1, h, 4);
-            __m256 gz = _mm256_i32gather_ps(G + 2, h, 4);
-            __m256 gw = _mm256_i32gather_ps(G + 3, h, 4);
-            __m256 t = _mm256_add_ps(_mm256_mul_ps(gz, _mm256_set1_ps(g->zd[c][0])),
-                                     _mm256_mul_ps(gw, _mm256_set1_ps(g->zd[c][1])));
-            x = _mm256_add_ps(x, _mm256_mul_ps(w, gx));
-            y = _mm256_add_ps(y, _mm256_mul_ps(w, gy));
-            z = _mm256_add_ps(z, _mm256_mul_ps(w, t));
-        }
-        _mm256_storeu_ps(X + s - s0, x);
-        _mm256_storeu_ps(Y + s - s0, y);
-        _mm256_storeu_ps(C + s - s0, z);
-    }
-    lattice_row_scalar(g, A, s, s1, X + s - s0, Y + s - s0, C + s - s0);
-}
-#endif
-
+/* Lattice row j folded over the slice's corners, for slots s0..s1-1: with
+ * m_c = W_c (1, 1, dz_c, dw_c) and a = sum_c G_c * m_c (component-wise,
+ * corners in order, float),
+ *   X = a.x,  Y = a.y,  C = a.z + a.w,
+ * so that a pixel row between lattice rows j and j+1 needs two such rows.
+ * Element-wise float operations: the SSE form below gives the same bits. */
 static void lattice_row(const tex_noise_grid *g, int64_t j, int s0, int s1, float *X, float *Y,
                         float *C)
 {
     const int *F = g->t->perm;
-    int lj = lat_index(j, g->period, g->t->n), A[4];
+    const float(*G)[4] = g->dims == 4 ? g->t->grad4 : g->t->grad;
+    int lj = lat_index(j, g->period, g->t->n), A[4], s = s0;
 
     for (int c = 0; c < g->nz; c++)
         A[c] = F[lj + g->zh[c]];
 #ifdef TEX_X86
-    if (tex_simd_level() >= TEX_SIMD_AVX2) {
-        lattice_row_avx2(g, A, s0, s1, X, Y, C);
-        return;
+    for (; s + 4 <= s1; s += 4) {
+        __m128 a[4];
+        for (int k = 0; k < 4; k++) {
+            int i = g->lat[s + k];
+            a[k] = _mm_setzero_ps();
+            for (int c = 0; c < g->nz; c++)
+                a[k] = _mm_add_ps(a[k], _mm_mul_ps(_mm_loadu_ps(G[F[i + A[c]]]),
+                                                   _mm_loadu_ps(g->zm[c])));
+        }
+        _MM_TRANSPOSE4_PS(a[0], a[1], a[2], a[3]);
+        _mm_storeu_ps(X + s - s0, a[0]);
+        _mm_storeu_ps(Y + s - s0, a[1]);
+        _mm_storeu_ps(C + s - s0, _mm_add_ps(a[2], a[3]));
     }
 #endif
-    lattice_row_scalar(g, A, s0, s1, X, Y, C);
+    for (; s < s1; s++) {
+        int i = g->lat[s];
+        float a[4] = {0, 0, 0, 0};
+        for (int c = 0; c < g->nz; c++)
+            for (int k = 0; k < 4; k++)
+                a[k] = a[k] + G[F[i + A[c]]][k] * g->zm[c][k];
+        X[s - s0] = a[0];
+        Y[s - s0] = a[1];
+        C[s - s0] = a[2] + a[3];
+    }
 }
 
 static struct cache_entry *cache_take(const tex_noise_grid *g)
@@ -515,7 +482,7 @@ static void row_coeffs(int ns, const float *wy, const float *dy, const float *co
 
 #ifdef TEX_X86
 /* row_coeffs eight slots at a time: the same operations, element by element. */
-__attribute__((target("avx2"))) static void
+__attribute__((target("avx2"))) static inline void
 row_coeffs_avx2(int ns, const float *wy, const float *dy, const float *const L0[3],
                 const float *const L1[3], float *P, float *Q)
 {
@@ -677,7 +644,7 @@ row_avx2_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, flo
 }
 
 /* One copy of the loop per operation, the operation folded in. */
-AVX2 static void row_avx2(const tex_noise_grid *g, const float *P, const float *Q, int sb,
+AVX2 static inline void row_avx2(const tex_noise_grid *g, const float *P, const float *Q, int sb,
                           float *out, int x, int x1, int op, float a, float b)
 {
     switch (op) {
@@ -703,56 +670,67 @@ AVX2 static void row_avx2(const tex_noise_grid *g, const float *P, const float *
 }
 #endif
 
+/* Row y: the lattice rows (kept or computed), the coefficients, the pixels.
+ * Columns go in chunks, so that the coefficients stay on the stack and in L1
+ * (a chunk of CHUNK columns touches at most 2 CHUNK slots).  One copy per
+ * level, so that the vector parts inline. */
+#define GRID_ROW(NAME, ATTR, COEFFS, PIXELS)                                                       \
+    ATTR static void NAME(const tex_noise_grid *g, int y, int op, float a, float b, float *out)    \
+    {                                                                                              \
+        enum { CHUNK = 1024, NS = 2 * CHUNK + 24 };                                                \
+        float P[NS], Q[NS], L[6][NS];                                                              \
+        double Y = g->oy + g->fy * (y + 0.5), cy = floor(Y), fr = Y - cy;                          \
+        int64_t j = (int64_t)cy;                                                                   \
+        float wy[2] = {(float)fade(g->t->fade, fr), (float)fade(g->t->fade, 1.0 - fr)};           \
+        float dy[2] = {(float)fr, (float)(fr - 1.0)};                                              \
+        int two = wy[1] != 0;                                                                      \
+        struct cache_entry *e = cache_take(g);                                                     \
+        const float *r0 = NULL, *r1 = NULL;                                                        \
+                                                                                                   \
+        if (e) {                                                                                   \
+            int b0 = cache_row(g, e, j, -1), b1 = two ? cache_row(g, e, j + 1, b0) : -1;           \
+            r0 = e->buf[b0];                                                                       \
+            r1 = two ? e->buf[b1] : NULL;                                                          \
+        }                                                                                          \
+        for (int x0 = 0; x0 < g->w; x0 += CHUNK) {                                                 \
+            int x1 = x0 + CHUNK < g->w ? x0 + CHUNK : g->w;                                        \
+            int s0 = g->slot[x0], s1 = g->slot[x1 - 1] + 2;                                        \
+            const float *L0[3], *L1[3];                                                            \
+            if (e) {                                                                               \
+                for (int k = 0; k < 3; k++) {                                                      \
+                    L0[k] = r0 + k * (size_t)g->stride + s0;                                       \
+                    L1[k] = two ? r1 + k * (size_t)g->stride + s0 : NULL;                          \
+                }                                                                                  \
+            } else {                                                                               \
+                lattice_row(g, j, s0, s1, L[0], L[1], L[2]);                                       \
+                if (two)                                                                           \
+                    lattice_row(g, j + 1, s0, s1, L[3], L[4], L[5]);                               \
+                for (int k = 0; k < 3; k++) {                                                      \
+                    L0[k] = L[k];                                                                  \
+                    L1[k] = L[3 + k];                                                              \
+                }                                                                                  \
+            }                                                                                      \
+            COEFFS(s1 - s0, wy, dy, L0, two ? L1 : NULL, P, Q);                                    \
+            PIXELS(g, P, Q, s0, out, x0, x1, op, a, b);                                            \
+        }                                                                                          \
+        if (e)                                                                                     \
+            __atomic_store_n(&e->busy, 0, __ATOMIC_RELEASE);                                       \
+    }
+
+GRID_ROW(grid_row_scalar, , row_coeffs, row_scalar)
+#ifdef TEX_X86
+GRID_ROW(grid_row_avx2, AVX2, row_coeffs_avx2, row_avx2)
+#endif
+
 void tex_noise_grid_row_op(const tex_noise_grid *g, int y, int op, float a, float b, float *out)
 {
-    /* Columns in chunks, so that the coefficients stay on the stack and in L1;
-     * a chunk of CHUNK columns touches at most 2 CHUNK slots. */
-    enum { CHUNK = 1024, NS = 2 * CHUNK + 24 };
-    float P[NS], Q[NS], L[6][NS];
-    double Y = g->oy + g->fy * (y + 0.5), cy = floor(Y), fr = Y - cy;
-    int64_t j = (int64_t)cy;
-    float wy[2] = {(float)fade(g->t->fade, fr), (float)fade(g->t->fade, 1.0 - fr)};
-    float dy[2] = {(float)fr, (float)(fr - 1.0)};
-    int two = wy[1] != 0, level = tex_simd_level();
-    struct cache_entry *e = cache_take(g);
-    const float *r0 = NULL, *r1 = NULL;
-
-    if (e) {
-        int b0 = cache_row(g, e, j, -1), b1 = two ? cache_row(g, e, j + 1, b0) : -1;
-        r0 = e->buf[b0];
-        r1 = two ? e->buf[b1] : NULL;
-    }
-    for (int x0 = 0; x0 < g->w; x0 += CHUNK) {
-        int x1 = x0 + CHUNK < g->w ? x0 + CHUNK : g->w;
-        int s0 = g->slot[x0], s1 = g->slot[x1 - 1] + 2;
-        const float *L0[3], *L1[3];
-        if (e) {
-            for (int k = 0; k < 3; k++) {
-                L0[k] = r0 + k * (size_t)g->stride + s0;
-                L1[k] = two ? r1 + k * (size_t)g->stride + s0 : NULL;
-            }
-        } else {
-            lattice_row(g, j, s0, s1, L[0], L[1], L[2]);
-            if (two)
-                lattice_row(g, j + 1, s0, s1, L[3], L[4], L[5]);
-            for (int k = 0; k < 3; k++) {
-                L0[k] = L[k];
-                L1[k] = L[3 + k];
-            }
-        }
 #ifdef TEX_X86
-        if (level >= TEX_SIMD_AVX2) {
-            row_coeffs_avx2(s1 - s0, wy, dy, L0, two ? L1 : NULL, P, Q);
-            row_avx2(g, P, Q, s0, out, x0, x1, op, a, b);
-            continue;
-        }
-#endif
-        row_coeffs(s1 - s0, wy, dy, L0, two ? L1 : NULL, P, Q);
-        row_scalar(g, P, Q, s0, out, x0, x1, op, a, b);
+    if (tex_simd_level() >= TEX_SIMD_AVX2) {
+        grid_row_avx2(g, y, op, a, b, out);
+        return;
     }
-    if (e)
-        __atomic_store_n(&e->busy, 0, __ATOMIC_RELEASE);
-    (void)level;
+#endif
+    grid_row_scalar(g, y, op, a, b, out);
 }
 
 void tex_noise_grid_row(const tex_noise_grid *g, int y, float *out)

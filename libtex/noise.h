@@ -85,7 +85,7 @@ typedef struct tex_noise_grid {
     int32_t *lat;      /* per slot: lattice column index reduced mod period and n */
     float *u, *um1, *w0, *w1; /* per column: fraction, fraction - 1, the two x weights */
     int nz, zh[4];     /* the slice's corners in z (and w) of non-zero weight, hash prefixes */
-    float zw[4], zd[4][2]; /* their weights and offsets */
+    float zm[4][4];    /* their weight W (1, 1, dz, dw) */
     struct tex_noise_cache *cache;
 } tex_noise_grid;
 
