@@ -538,6 +538,10 @@ static inline float apply_op(int op, float r, float o, float a, float b)
     switch (op) {
     case TEX_ROW_SET:
         return r;
+    case TEX_ROW_MUL:
+        return a * r;
+    case TEX_ROW_MUL_ABS:
+        return a * fabsf(r);
     case TEX_ROW_UNIT:
         return clamp01(0.5f + 0.5f * r);
     case TEX_ROW_ADD:
@@ -582,6 +586,10 @@ AVX2 static inline __attribute__((always_inline)) __m256 apply_avx2(const int op
     switch (op) {
     case TEX_ROW_SET:
         return r;
+    case TEX_ROW_MUL:
+        return _mm256_mul_ps(a, r);
+    case TEX_ROW_MUL_ABS:
+        return _mm256_mul_ps(a, _mm256_andnot_ps(sign, r));
     case TEX_ROW_UNIT:
         return clamp01_avx2(_mm256_add_ps(half, _mm256_mul_ps(half, r)));
     case TEX_ROW_ADD:
@@ -650,6 +658,12 @@ AVX2 static inline void row_avx2(const tex_noise_grid *g, const float *P, const 
     switch (op) {
     case TEX_ROW_SET:
         row_avx2_op(g, P, Q, sb, out, x, x1, TEX_ROW_SET, a, b);
+        break;
+    case TEX_ROW_MUL:
+        row_avx2_op(g, P, Q, sb, out, x, x1, TEX_ROW_MUL, a, b);
+        break;
+    case TEX_ROW_MUL_ABS:
+        row_avx2_op(g, P, Q, sb, out, x, x1, TEX_ROW_MUL_ABS, a, b);
         break;
     case TEX_ROW_UNIT:
         row_avx2_op(g, P, Q, sb, out, x, x1, TEX_ROW_UNIT, a, b);

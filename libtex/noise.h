@@ -96,6 +96,8 @@ int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int 
  * (clamp01(x) is min(max(x, 0), 1)): */
 enum {
     TEX_ROW_SET,          /* out = n */
+    TEX_ROW_MUL,          /* out = a n */
+    TEX_ROW_MUL_ABS,      /* out = a |n| */
     TEX_ROW_UNIT,         /* out = clamp01(0.5 + 0.5 n) */
     TEX_ROW_ADD,          /* out = out + a n */
     TEX_ROW_ADD_ABS,      /* out = out + a |n| */

@@ -278,9 +278,8 @@ static void perturb_row(const struct tex_field *f, int y, float *out)
     const struct perturb_state *s = f->state;
     double v = (y + 0.5) / f->h;
 
-    memset(out, 0, f->w * sizeof *out);
-    for (int k = 0; k < s->o.n; k++)
-        tex_octave_row_op(&s->o, k, y, TEX_ROW_ADD_ABS, s->amp[k], 0, out);
+    for (int k = 0; k < s->o.n; k++) /* a |n| is never -0: the same as 0 + a |n| */
+        tex_octave_row_op(&s->o, k, y, k ? TEX_ROW_ADD_ABS : TEX_ROW_MUL_ABS, s->amp[k], 0, out);
     for (int x = 0; x < f->w; x++)
         out[x] = perturb_value(f->params, (x + 0.5) / f->w, v, out[x] * s->inv);
 }
