@@ -383,24 +383,25 @@ int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int 
  *   X = a.x,  Y = a.y,  C = a.z + a.w,
  * so that a pixel row between lattice rows j and j+1 needs two such rows.
  * Element-wise float operations: the SSE form below gives the same bits. */
-static void lattice_row(const tex_noise_grid *g, int64_t j, int s0, int s1, float *X, float *Y,
-                        float *C)
+static inline __attribute__((always_inline)) void
+lattice_row_n(const tex_noise_grid *g, const int *A, int s0, int s1, float *X, float *Y, float *C,
+              const int nz)
 {
     const int *F = g->t->perm;
     const float(*G)[4] = g->dims == 4 ? g->t->grad4 : g->t->grad;
-    int lj = lat_index(j, g->period, g->t->n), A[4], s = s0;
+    int s = s0;
 
-    for (int c = 0; c < g->nz; c++)
-        A[c] = F[lj + g->zh[c]];
 #ifdef TEX_X86
+    __m128 m[4];
+    for (int c = 0; c < nz; c++)
+        m[c] = _mm_loadu_ps(g->zm[c]);
     for (; s + 4 <= s1; s += 4) {
         __m128 a[4];
         for (int k = 0; k < 4; k++) {
             int i = g->lat[s + k];
             a[k] = _mm_setzero_ps();
-            for (int c = 0; c < g->nz; c++)
-                a[k] = _mm_add_ps(a[k], _mm_mul_ps(_mm_loadu_ps(G[F[i + A[c]]]),
-                                                   _mm_loadu_ps(g->zm[c])));
+            for (int c = 0; c < nz; c++)
+                a[k] = _mm_add_ps(a[k], _mm_mul_ps(_mm_loadu_ps(G[F[i + A[c]]]), m[c]));
         }
         _MM_TRANSPOSE4_PS(a[0], a[1], a[2], a[3]);
         _mm_storeu_ps(X + s - s0, a[0]);
@@ -411,12 +412,37 @@ static void lattice_row(const tex_noise_grid *g, int64_t j, int s0, int s1, floa
     for (; s < s1; s++) {
         int i = g->lat[s];
         float a[4] = {0, 0, 0, 0};
-        for (int c = 0; c < g->nz; c++)
+        for (int c = 0; c < nz; c++)
             for (int k = 0; k < 4; k++)
                 a[k] = a[k] + G[F[i + A[c]]][k] * g->zm[c][k];
         X[s - s0] = a[0];
         Y[s - s0] = a[1];
         C[s - s0] = a[2] + a[3];
+    }
+}
+
+static void lattice_row(const tex_noise_grid *g, int64_t j, int s0, int s1, float *X, float *Y,
+                        float *C)
+{
+    const int *F = g->t->perm;
+    int lj = lat_index(j, g->period, g->t->n), A[4];
+
+    for (int c = 0; c < g->nz; c++)
+        A[c] = F[lj + g->zh[c]];
+    /* One copy per number of corners, so that the sums stay in registers. */
+    switch (g->nz) {
+    case 1:
+        lattice_row_n(g, A, s0, s1, X, Y, C, 1);
+        break;
+    case 2:
+        lattice_row_n(g, A, s0, s1, X, Y, C, 2);
+        break;
+    case 3:
+        lattice_row_n(g, A, s0, s1, X, Y, C, 3);
+        break;
+    default:
+        lattice_row_n(g, A, s0, s1, X, Y, C, 4);
+        break;
     }
 }
 
