@@ -84,8 +84,10 @@ typedef struct tex_noise_grid {
     int32_t *slot;     /* per column: slot of its cell's left lattice column */
     int32_t *lat;      /* per slot: lattice column index reduced mod period and n */
     float *u, *um1, *w0, *w1; /* per column: fraction, fraction - 1, the two x weights */
+    float *dw0, *dw1;  /* per column: the x weights' derivatives in u */
     int nz, zh[4];     /* the slice's corners in z (and w) of non-zero weight, hash prefixes */
     float zm[4][4];    /* their weight W (1, 1, dz, dw) */
+    float zdm[4][4];   /* dims 3: the z derivative's (W', W', W' dz + W, 0) */
     struct tex_noise_cache *cache;
 } tex_noise_grid;
 
@@ -108,6 +110,10 @@ void tex_noise_grid_row_op(const tex_noise_grid *g, int y, int op, float a, floa
 /* tex_noise_grid_row_op with TEX_ROW_SET and TEX_ROW_ADD. */
 void tex_noise_grid_row(const tex_noise_grid *g, int y, float *out);
 void tex_noise_grid_row_add(const tex_noise_grid *g, int y, float amp, float *out);
+/* The analytic gradient over row y, in lattice units: dn/dX, dn/dY and, if dz
+ * is not NULL, dn/dZ, w floats each (dims 3; the same at every SIMD level,
+ * within about 1e-5 of tex_noise3_grad). */
+void tex_noise_grid_row_grad(const tex_noise_grid *g, int y, float *dx, float *dy, float *dz);
 void tex_noise_grid_free(tex_noise_grid *g);
 
 /* Octaves: noise at frequencies F L^k, k = 0..n-1, for turbulence and

@@ -25,6 +25,8 @@ same_bytes "noise tile" t_noise -s 64 -f 4 --tile
 same_bytes "noise more cells than pixels" t_noise -s 50 -f 333
 same_bytes "turbulence" t_turbulence -s 100 -n 7
 same_bytes "d_noise" t_d_noise -s 40 -c 3
+same_bytes "d_noise wide, quintic, far away" t_d_noise -s 1030x24 -f 300 -c 3 --fade quintic --offset 1e6,2e6 --z 0.3
+same_bytes "d_noise normal map, tile" t_d_noise -s 67x45 -f 5 --normal --strength 2 --tile
 # The octave rows' fast paths: cells wider than 8 pixels (broadcasts), 1-8 pixels (permutes),
 # narrower (gathers); lattice rows kept for the next pixel rows (cells taller than a pixel) or
 # not; more than one column chunk (1024); a width not a multiple of 8; every row operation.

@@ -242,6 +242,66 @@ int main(void)
         tex_noise_grid_free(&g);
         CHECKF(bad == 0, "row operations set, mul, |n|, unit, add and the finishes (%d wrong)", bad);
     }
+    /* Grid rows of the gradient agree with the point evaluation's. */
+    for (int fd = 0; fd < 2; fd++) {
+        struct {
+            double off[4];
+            int period, w;
+            double freq;
+        } cs[] = {{{0, 0, 0, 0}, 0, 300, 8},      {{0.3, 0.1, 2.37, 0}, 0, 257, 33},
+                  {{0, 0, 0.5, 0}, 16, 64, 16},   {{1e6, -3e6, 1e6, 0}, 0, 100, 7},
+                  {{0, 0, 0.1, 0}, 0, 50, 400}};
+        double err = 0;
+        t.fade = fd;
+        for (int c = 0; c < 5; c++) {
+            tex_noise_grid g;
+            float d[3][512];
+            tex_noise_grid_init(&g, &t, cs[c].w, 40, cs[c].freq, cs[c].freq, cs[c].off, 3,
+                                cs[c].period);
+            for (int y = 0; y < 40; y += 3) {
+                tex_noise_grid_row_grad(&g, y, d[0], d[1], d[2]);
+                for (int x = 0; x < cs[c].w; x++) {
+                    double X = cs[c].off[0] + cs[c].freq * ((x + 0.5) / cs[c].w),
+                           Y = cs[c].off[1] + cs[c].freq * ((y + 0.5) / 40), gr[3];
+                    tex_noise3_grad(&t, cs[c].period, X, Y, cs[c].off[2], gr);
+                    for (int a = 0; a < 3; a++)
+                        err = isnan(d[a][x]) ? INFINITY : fmax(err, fabs(gr[a] - d[a][x]));
+                }
+            }
+            tex_noise_grid_free(&g);
+        }
+        CHECKF(err < 2e-5, "%s: grid rows of the gradient match the points' (%g)",
+               fd ? "quintic" : "cubic", err);
+    }
+    t.fade = 0;
+    /* t_d_noise's grid rows agree with its points (raw gradient and normal map). */
+    for (int normal = 0; normal < 2; normal++) {
+        struct tex_field *f = tex_field_new(&tex_prim_d_noise);
+        tex_map *m;
+        double err = 0;
+        f->seed = 3;
+        tex_field_set(f, "frequency", "6");
+        tex_field_set(f, "z", "0.4");
+        if (normal)
+            tex_field_set(f, "normal", NULL);
+        else
+            tex_field_set(f, "channels", "3");
+        tex_field_init(f, 70, 30);
+        m = tex_field_sample(f);
+        for (int y = 0; m && y < 30; y++) {
+            double u[70], v[70];
+            float pt[70 * 3];
+            for (int x = 0; x < 70; x++)
+                u[x] = (x + 0.5) / 70, v[x] = (y + 0.5) / 30;
+            f->prim->eval2(f, 70, u, v, pt);
+            for (int i = 0; i < 70 * 3; i++)
+                err = fmax(err, fabs(pt[i] - tex_map_row(m, y)[i]));
+        }
+        CHECKF(m && m->nc == 3 && err < 1e-5, "d_noise%s: map rows match points (%g)",
+               normal ? " --normal" : "", err);
+        tex_map_free(m);
+        tex_field_free(f);
+    }
     /* Far from the origin the texture survives. */
     {
         double s2 = 0;
