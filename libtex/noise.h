@@ -31,13 +31,19 @@
  *
  * pixel (x,y) is the lattice point (ox + fx (x+0.5)/w, oy + fy (y+0.5)/h,
  * Z[, W]).  Cell indices and fractions are computed once per column in
- * double precision; per row, each lattice column's gradients are folded
- * with the row's weights into two coefficients, and the per-pixel work is
- * four float multiplies and three adds.  Rows are vectorised (AVX2, chosen
- * at run time; TEXTURA_SIMD=scalar|avx2|avx512 forces a level) and every
- * level performs the same float operations in the same order, so the
- * bytes are identical whatever the level or thread count.  They agree
- * with tex_noise3/4 to about 1e-6.
+ * double precision.  A lattice row (the gradients of one lattice y over
+ * the row's lattice columns) is folded once over the slice's corners in z
+ * (and w) into three floats per column; pixel rows inside the same cell
+ * share it (each grid keeps the last two per thread), and a pixel row
+ * combines two of them with its y weights into two coefficients per
+ * lattice column.  The per-pixel work is then four float multiplies and
+ * three adds, with the row's operation (rescale, weighted sum, |n|, the last
+ * octave's finish: tex_noise_grid_row_op) in the same pass.  Rows are
+ * vectorised (AVX2, chosen at run time; TEXTURA_SIMD=scalar forces the
+ * portable path; there is no AVX-512 kernel) and every level performs the
+ * same float operations in the same order, so the bytes are identical
+ * whatever the level, the thread count or the order rows come in.  They
+ * agree with tex_noise3/4 to about 1e-6.
  */
 #ifndef TEX_NOISE_H
 #define TEX_NOISE_H
