@@ -601,15 +601,43 @@ static inline float apply_op(int op, float r, float o, float a, float b)
 
 /* Pixels x..x1-1, the reference order of operations for every level;
  * P and Q hold the slots from sb on. */
+static inline __attribute__((always_inline)) void
+row_scalar_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, float *out, int x,
+              int x1, const int op, float a, float b)
+{
+    const int32_t *restrict slot = g->slot;
+    const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
+                          *restrict w1 = g->w1;
+
+    for (; x < x1; x++) {
+        int s = slot[x] - sb;
+        float t0 = P[s] * u[x] + Q[s];
+        float t1 = P[s + 1] * um1[x] + Q[s + 1];
+        float r = w0[x] * t0 + w1[x] * t1;
+        out[x] = apply_op(op, r, out[x], a, b);
+    }
+}
+
+/* One copy of the loop per operation, the operation folded in. */
 static void row_scalar(const tex_noise_grid *g, const float *P, const float *Q, int sb,
                        float *out, int x, int x1, int op, float a, float b)
 {
-    for (; x < x1; x++) {
-        int s = g->slot[x] - sb;
-        float t0 = P[s] * g->u[x] + Q[s];
-        float t1 = P[s + 1] * g->um1[x] + Q[s + 1];
-        float r = g->w0[x] * t0 + g->w1[x] * t1;
-        out[x] = apply_op(op, r, out[x], a, b);
+    switch (op) {
+#define CASE(OP)                                                                                   \
+    case OP:                                                                                       \
+        row_scalar_op(g, P, Q, sb, out, x, x1, OP, a, b);                                          \
+        break;
+        CASE(TEX_ROW_SET)
+        CASE(TEX_ROW_MUL)
+        CASE(TEX_ROW_MUL_ABS)
+        CASE(TEX_ROW_UNIT)
+        CASE(TEX_ROW_ADD)
+        CASE(TEX_ROW_ADD_ABS)
+        CASE(TEX_ROW_ADD_UNIT)
+#undef CASE
+    default:
+        row_scalar_op(g, P, Q, sb, out, x, x1, TEX_ROW_ADD_ABS_CLAMP, a, b);
+        break;
     }
 }
 
@@ -693,35 +721,26 @@ row_avx2_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, flo
                                  _mm256_mul_ps(_mm256_loadu_ps(w1 + x), t1));
         _mm256_storeu_ps(out + x, apply_avx2(op, r, out + x, va, vb));
     }
-    row_scalar(g, P, Q, sb, out, x, x1, op, a, b);
+    row_scalar_op(g, P, Q, sb, out, x, x1, op, a, b);
 }
 
 /* One copy of the loop per operation, the operation folded in. */
 AVX2 static inline void row_avx2(const tex_noise_grid *g, const float *P, const float *Q, int sb,
-                          float *out, int x, int x1, int op, float a, float b)
+                                 float *out, int x, int x1, int op, float a, float b)
 {
     switch (op) {
-    case TEX_ROW_SET:
-        row_avx2_op(g, P, Q, sb, out, x, x1, TEX_ROW_SET, a, b);
+#define CASE(OP)                                                                                   \
+    case OP:                                                                                       \
+        row_avx2_op(g, P, Q, sb, out, x, x1, OP, a, b);                                            \
         break;
-    case TEX_ROW_MUL:
-        row_avx2_op(g, P, Q, sb, out, x, x1, TEX_ROW_MUL, a, b);
-        break;
-    case TEX_ROW_MUL_ABS:
-        row_avx2_op(g, P, Q, sb, out, x, x1, TEX_ROW_MUL_ABS, a, b);
-        break;
-    case TEX_ROW_UNIT:
-        row_avx2_op(g, P, Q, sb, out, x, x1, TEX_ROW_UNIT, a, b);
-        break;
-    case TEX_ROW_ADD:
-        row_avx2_op(g, P, Q, sb, out, x, x1, TEX_ROW_ADD, a, b);
-        break;
-    case TEX_ROW_ADD_ABS:
-        row_avx2_op(g, P, Q, sb, out, x, x1, TEX_ROW_ADD_ABS, a, b);
-        break;
-    case TEX_ROW_ADD_UNIT:
-        row_avx2_op(g, P, Q, sb, out, x, x1, TEX_ROW_ADD_UNIT, a, b);
-        break;
+        CASE(TEX_ROW_SET)
+        CASE(TEX_ROW_MUL)
+        CASE(TEX_ROW_MUL_ABS)
+        CASE(TEX_ROW_UNIT)
+        CASE(TEX_ROW_ADD)
+        CASE(TEX_ROW_ADD_ABS)
+        CASE(TEX_ROW_ADD_UNIT)
+#undef CASE
     default:
         row_avx2_op(g, P, Q, sb, out, x, x1, TEX_ROW_ADD_ABS_CLAMP, a, b);
         break;
