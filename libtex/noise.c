@@ -484,22 +484,37 @@ static struct cache_entry *cache_take(const tex_noise_grid *g)
     return NULL;
 }
 
-/* The entry's buffer holding lattice row j, computed there if missing
- * (in the buffer that is not keep). */
-static int cache_row(const tex_noise_grid *g, struct cache_entry *e, int64_t j, int keep)
+static int cache_find(const struct cache_entry *e, int64_t j)
 {
-    int b;
-    float *r;
-
-    for (b = 0; b < 2; b++)
+    for (int b = 0; b < 2; b++)
         if (e->valid[b] && e->key[b] == j)
             return b;
-    b = keep == 0 ? 1 : 0;
-    r = e->buf[b];
+    return -1;
+}
+
+/* Lattice row j into buffer b of the entry. */
+static void cache_fill(const tex_noise_grid *g, struct cache_entry *e, int b, int64_t j)
+{
+    float *r = e->buf[b];
+
     lattice_row(g, j, 0, g->nslots, r, r + g->stride, r + 2 * g->stride);
     e->key[b] = j;
     e->valid[b] = 1;
-    return b;
+}
+
+/* The entry's buffers holding lattice rows j and (if two) j + 1, computed
+ * where missing without evicting the other. */
+static void cache_rows(const tex_noise_grid *g, struct cache_entry *e, int64_t j, int two,
+                       const float **r0, const float **r1)
+{
+    int b0 = cache_find(e, j), b1 = two ? cache_find(e, j + 1) : -1;
+
+    if (b0 < 0)
+        cache_fill(g, e, b0 = b1 == 0 ? 1 : 0, j);
+    if (two && b1 < 0)
+        cache_fill(g, e, b1 = 1 - b0, j + 1);
+    *r0 = e->buf[b0];
+    *r1 = two ? e->buf[b1] : NULL;
 }
 
 /* The two coefficients of each slot for the row (P[0] is slot s0's):
@@ -765,11 +780,8 @@ AVX2 static inline void row_avx2(const tex_noise_grid *g, const float *P, const 
         struct cache_entry *e = cache_take(g);                                                     \
         const float *r0 = NULL, *r1 = NULL;                                                        \
                                                                                                    \
-        if (e) {                                                                                   \
-            int b0 = cache_row(g, e, j, -1), b1 = two ? cache_row(g, e, j + 1, b0) : -1;           \
-            r0 = e->buf[b0];                                                                       \
-            r1 = two ? e->buf[b1] : NULL;                                                          \
-        }                                                                                          \
+        if (e)                                                                                     \
+            cache_rows(g, e, j, two, &r0, &r1);                                                    \
         for (int x0 = 0; x0 < g->w; x0 += CHUNK) {                                                 \
             int x1 = x0 + CHUNK < g->w ? x0 + CHUNK : g->w;                                        \
             int s0 = g->slot[x0], s1 = g->slot[x1 - 1] + 2;                                        \
