@@ -12,14 +12,21 @@
 #include <stdlib.h>
 #include <string.h>
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#define TEX_X86 1
+#endif
+
 #include "error.h"
 #include "noise.h"
 #include "prim.h"
 #include "rng.h"
 
+/* max then min, as the row kernels clamp (noise.c) */
 static inline float clamp01(float x)
 {
-    return x < 0 ? 0 : x > 1 ? 1 : x;
+    float m = x > 0 ? x : 0;
+    return m < 1 ? m : 1;
 }
 
 /* ---- turbulence ---- */
@@ -109,23 +116,16 @@ static void turb_eval3(const struct tex_field *f, int n, const double *u, const 
 static void turb_row(const struct tex_field *f, int y, float *out)
 {
     const struct turb_state *s = f->state;
-    float *tmp = malloc(f->w * sizeof *tmp);
 
-    if (!tmp) { /* no memory for a row buffer: the point path needs none */
-        for (int x = 0; x < f->w; x++)
-            out[x] = turb_point(f, (x + 0.5) / f->w, (y + 0.5) / f->h, 0);
-        return;
-    }
-    for (int x = 0; x < f->w; x++)
-        out[x] = 0;
-    for (int k = 0; k < s->o.n; k++) {
-        tex_octave_row(&s->o, k, y, tmp);
-        for (int x = 0; x < f->w; x++)
-            out[x] += s->amp[k] * fabsf(tmp[x]);
-    }
-    for (int x = 0; x < f->w; x++)
-        out[x] = clamp01(out[x] * s->inv);
-    free(tmp);
+    /* The first octave sets the sum: a |n| is never -0, the same as 0 + a |n|. */
+    if (s->o.n == 1)
+        memset(out, 0, f->w * sizeof *out);
+    for (int k = 0; k < s->o.n; k++)
+        tex_octave_row_op(&s->o, k, y,
+                          k == s->o.n - 1 ? TEX_ROW_ADD_ABS_CLAMP
+                          : k == 0        ? TEX_ROW_MUL_ABS
+                                          : TEX_ROW_ADD_ABS,
+                          s->amp[k], s->inv, out);
 }
 
 const struct tex_primitive tex_prim_turbulence = {
@@ -206,8 +206,7 @@ static float ridged(const struct frac_state *s, const struct frac_params *p, con
     sig *= sig;
     res = sig;
     for (int k = 1; k < s->o.n; k++) {
-        wgt = sig * gain;
-        wgt = wgt < 0 ? 0 : wgt > 1 ? 1 : wgt;
+        wgt = clamp01(sig * gain);
         sig = off - fabsf(n[k]);
         sig *= sig;
         sig *= wgt;
@@ -222,8 +221,7 @@ static float hybrid(const struct frac_state *s, const struct frac_params *p, con
 
     for (int k = 1; k < s->o.n; k++) {
         float sig;
-        if (wgt > 1)
-            wgt = 1;
+        wgt = wgt < 1 ? wgt : 1; /* as the vector min */
         sig = (n[k] + off) * s->amp[k];
         res += wgt * sig;
         wgt *= sig;
@@ -520,7 +518,7 @@ static float frac_point(const struct tex_field *f, double u, double v, double w)
     const struct frac_params *p = f->params;
     const struct frac_state *s = f->state;
     double zx, zy, sc = 4.0 / p->zoom;
-    float n[TEX_OCTAVES_MAX];
+    float n[TEX_OCTAVES_MAX] = {0};
 
     switch (s->mode) {
     case MANDELBROT:
@@ -555,38 +553,145 @@ static void frac_eval3(const struct tex_field *f, int n, const double *u, const 
         out[i] = frac_point(f, u[i], v[i], w[i]);
 }
 
+/* Ridged and hybrid over a row, octave by octave: on each pixel the
+ * operations of ridged() and hybrid() in their order, so that every SIMD
+ * level gives the same bits.  n: octave k's noise; st: sig (ridged) or the
+ * weight (hybrid); res: the sum. */
+struct mf_step {
+    int first;
+    float off, gain, amp;
+};
+
+static void ridged_step(const struct mf_step *m, int x, int w, const float *n, float *st,
+                        float *res)
+{
+    for (; x < w; x++) {
+        float sig = m->off - fabsf(n[x]);
+        sig *= sig;
+        if (m->first) {
+            res[x] = st[x] = sig;
+            continue;
+        }
+        sig *= clamp01(st[x] * m->gain);
+        st[x] = sig;
+        res[x] += sig * m->amp;
+    }
+}
+
+static void hybrid_step(const struct mf_step *m, int x, int w, const float *n, float *st,
+                        float *res)
+{
+    for (; x < w; x++) {
+        float sig = (n[x] + m->off) * m->amp, wgt;
+        if (m->first) {
+            res[x] = st[x] = sig;
+            continue;
+        }
+        wgt = st[x] < 1 ? st[x] : 1;
+        res[x] += wgt * sig;
+        st[x] = wgt * sig;
+    }
+}
+
+#ifdef TEX_X86
+__attribute__((target("avx2"))) static void ridged_step_avx2(const struct mf_step *m, int w,
+                                                             const float *n, float *st,
+                                                             float *res)
+{
+    __m256 off = _mm256_set1_ps(m->off), gain = _mm256_set1_ps(m->gain);
+    __m256 amp = _mm256_set1_ps(m->amp), sign = _mm256_set1_ps(-0.0f);
+    __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1);
+    int x = 0;
+
+    for (; x + 8 <= w; x += 8) {
+        __m256 sig = _mm256_sub_ps(off, _mm256_andnot_ps(sign, _mm256_loadu_ps(n + x)));
+        sig = _mm256_mul_ps(sig, sig);
+        if (m->first) {
+            _mm256_storeu_ps(st + x, sig);
+            _mm256_storeu_ps(res + x, sig);
+            continue;
+        }
+        __m256 wgt = _mm256_mul_ps(_mm256_loadu_ps(st + x), gain);
+        wgt = _mm256_min_ps(_mm256_max_ps(wgt, zero), one);
+        sig = _mm256_mul_ps(sig, wgt);
+        _mm256_storeu_ps(st + x, sig);
+        _mm256_storeu_ps(res + x, _mm256_add_ps(_mm256_loadu_ps(res + x), _mm256_mul_ps(sig, amp)));
+    }
+    ridged_step(m, x, w, n, st, res);
+}
+
+__attribute__((target("avx2"))) static void hybrid_step_avx2(const struct mf_step *m, int w,
+                                                             const float *n, float *st,
+                                                             float *res)
+{
+    __m256 off = _mm256_set1_ps(m->off), amp = _mm256_set1_ps(m->amp), one = _mm256_set1_ps(1);
+    int x = 0;
+
+    for (; x + 8 <= w; x += 8) {
+        __m256 sig = _mm256_mul_ps(_mm256_add_ps(_mm256_loadu_ps(n + x), off), amp);
+        if (m->first) {
+            _mm256_storeu_ps(st + x, sig);
+            _mm256_storeu_ps(res + x, sig);
+            continue;
+        }
+        __m256 wgt = _mm256_min_ps(_mm256_loadu_ps(st + x), one);
+        _mm256_storeu_ps(res + x, _mm256_add_ps(_mm256_loadu_ps(res + x), _mm256_mul_ps(wgt, sig)));
+        _mm256_storeu_ps(st + x, _mm256_mul_ps(wgt, sig));
+    }
+    hybrid_step(m, x, w, n, st, res);
+}
+#endif
+
 static void frac_row(const struct tex_field *f, int y, float *out)
 {
     const struct frac_params *p = f->params;
     const struct frac_state *s = f->state;
-    float *tmp;
+    float *n, *st;
     double v = (y + 0.5) / f->h;
+    int level = tex_simd_level();
 
     if (s->mode == FBM) {
-        memset(out, 0, f->w * sizeof *out);
+        /* The first octave sets the sum (a n instead of 0 + a n: only the sign
+         * of a zero differs, and 0.5 + 0.5 x erases it). */
+        if (s->o.n == 1)
+            memset(out, 0, f->w * sizeof *out);
         for (int k = 0; k < s->o.n; k++)
-            tex_octave_row_add(&s->o, k, y, s->amp[k], out);
-        for (int x = 0; x < f->w; x++)
-            out[x] = clamp01(0.5f + 0.5f * (out[x] * s->inv));
+            tex_octave_row_op(&s->o, k, y,
+                              k == s->o.n - 1 ? TEX_ROW_ADD_UNIT
+                              : k == 0        ? TEX_ROW_MUL
+                                              : TEX_ROW_ADD,
+                              s->amp[k], s->inv, out);
         return;
     }
-    tmp = s->mode <= HYBRID ? malloc((size_t)f->w * s->o.n * sizeof *tmp) : NULL;
-    if (!tmp) { /* not an octave sum, or no memory for the buffer */
+    n = s->mode <= HYBRID ? malloc(2 * (size_t)f->w * sizeof *n) : NULL;
+    if (!n) { /* not an octave sum, or no memory for the buffers */
         for (int x = 0; x < f->w; x++)
             out[x] = frac_point(f, (x + 0.5) / f->w, v, 0);
         return;
     }
-    for (int k = 0; k < s->o.n; k++)
-        tex_octave_row(&s->o, k, y, tmp + (size_t)k * f->w);
-    {
-        for (int x = 0; x < f->w; x++) {
-            float n[TEX_OCTAVES_MAX];
-            for (int k = 0; k < s->o.n; k++)
-                n[k] = tmp[(size_t)k * f->w + x];
-            out[x] = combine(s, p, n);
+    st = n + f->w;
+    for (int k = 0; k < s->o.n; k++) {
+        struct mf_step m = {k == 0, (float)p->mf_offset, (float)p->gain, s->amp[k]};
+        tex_octave_row(&s->o, k, y, n);
+#ifdef TEX_X86
+        if (level >= TEX_SIMD_AVX2) {
+            if (s->mode == RIDGED)
+                ridged_step_avx2(&m, f->w, n, st, out);
+            else
+                hybrid_step_avx2(&m, f->w, n, st, out);
+            continue;
         }
+#endif
+        if (s->mode == RIDGED)
+            ridged_step(&m, 0, f->w, n, st, out);
+        else
+            hybrid_step(&m, 0, f->w, n, st, out);
     }
-    free(tmp);
+    for (int x = 0; x < f->w; x++)
+        out[x] = s->mode == RIDGED ? clamp01(out[x] * s->inv)
+                                   : clamp01((out[x] - s->lo) * s->inv);
+    free(n);
+    (void)level;
 }
 
 static int frac_grid(const struct tex_field *f, tex_map *m)

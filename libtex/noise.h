@@ -31,13 +31,19 @@
  *
  * pixel (x,y) is the lattice point (ox + fx (x+0.5)/w, oy + fy (y+0.5)/h,
  * Z[, W]).  Cell indices and fractions are computed once per column in
- * double precision; per row, each lattice column's gradients are folded
- * with the row's weights into two coefficients, and the per-pixel work is
- * four float multiplies and three adds.  Rows are vectorised (AVX2, chosen
- * at run time; TEXTURA_SIMD=scalar|avx2|avx512 forces a level) and every
- * level performs the same float operations in the same order, so the
- * bytes are identical whatever the level or thread count.  They agree
- * with tex_noise3/4 to about 1e-6.
+ * double precision.  A lattice row (the gradients of one lattice y over
+ * the row's lattice columns) is folded once over the slice's corners in z
+ * (and w) into three floats per column; pixel rows inside the same cell
+ * share it (each grid keeps the last two per thread), and a pixel row
+ * combines two of them with its y weights into two coefficients per
+ * lattice column.  The per-pixel work is then four float multiplies and
+ * three adds, with the row's operation (rescale, weighted sum, |n|, the last
+ * octave's finish: tex_noise_grid_row_op) in the same pass.  Rows are
+ * vectorised (AVX2, chosen at run time; TEXTURA_SIMD=scalar forces the
+ * portable path; there is no AVX-512 kernel) and every level performs the
+ * same float operations in the same order, so the bytes are identical
+ * whatever the level, the thread count or the order rows come in.  They
+ * agree with tex_noise3/4 to about 1e-6.
  */
 #ifndef TEX_NOISE_H
 #define TEX_NOISE_H
@@ -74,22 +80,46 @@ double tex_noise4p(const tex_noise_table *t, int period, double x, double y, dou
 double tex_noise3_grad(const tex_noise_table *t, int period, double x, double y, double z,
                        double g[3]);
 
+struct tex_noise_cache; /* lattice rows kept for the next pixel rows (noise.c) */
+
 typedef struct tex_noise_grid {
     const tex_noise_table *t;
     int w, h, dims, period;
-    double fy, oy, z, w4;
-    int nslots;
+    double fy, oy;
+    int nslots, stride;
     int32_t *slot;     /* per column: slot of its cell's left lattice column */
     int32_t *lat;      /* per slot: lattice column index reduced mod period and n */
     float *u, *um1, *w0, *w1; /* per column: fraction, fraction - 1, the two x weights */
+    float *dw0, *dw1;  /* per column: the x weights' derivatives in u */
+    int nz, zh[4];     /* the slice's corners in z (and w) of non-zero weight, hash prefixes */
+    float zm[4][4];    /* their weight W (1, 1, dz, dw) */
+    float zdm[4][4];   /* dims 3: the z derivative's (W', W', W' dz + W, 0) */
+    struct tex_noise_cache *cache;
 } tex_noise_grid;
 
 /* dims is 3 (off[2] is the slice Z) or 4 (off[3] is W); period 0: none. */
 int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int h, double fx,
                         double fy, const double off[4], int dims, int period);
+/* What a row does with each noise value n, in the same vectorised pass
+ * (clamp01(x) is min(max(x, 0), 1)): */
+enum {
+    TEX_ROW_SET,          /* out = n */
+    TEX_ROW_MUL,          /* out = a n */
+    TEX_ROW_MUL_ABS,      /* out = a |n| */
+    TEX_ROW_UNIT,         /* out = clamp01(0.5 + 0.5 n) */
+    TEX_ROW_ADD,          /* out = out + a n */
+    TEX_ROW_ADD_ABS,      /* out = out + a |n| */
+    TEX_ROW_ADD_UNIT,     /* out = clamp01(0.5 + 0.5 ((out + a n) b)): fBm's last octave */
+    TEX_ROW_ADD_ABS_CLAMP /* out = clamp01((out + a |n|) b): turbulence's last octave */
+};
+void tex_noise_grid_row_op(const tex_noise_grid *g, int y, int op, float a, float b, float *out);
+/* tex_noise_grid_row_op with TEX_ROW_SET and TEX_ROW_ADD. */
 void tex_noise_grid_row(const tex_noise_grid *g, int y, float *out);
-/* out[x] = out[x] + amp * noise, in the same vectorised pass. */
 void tex_noise_grid_row_add(const tex_noise_grid *g, int y, float amp, float *out);
+/* The analytic gradient over row y, in lattice units: dn/dX, dn/dY and, if dz
+ * is not NULL, dn/dZ, w floats each (dims 3; the same at every SIMD level,
+ * within about 1e-5 of tex_noise3_grad). */
+void tex_noise_grid_row_grad(const tex_noise_grid *g, int y, float *dx, float *dy, float *dz);
 void tex_noise_grid_free(tex_noise_grid *g);
 
 /* Octaves: noise at frequencies F L^k, k = 0..n-1, for turbulence and
@@ -119,6 +149,7 @@ double tex_octave_point(const tex_octaves *o, int k, double u, double v, double 
 /* Signed noise of octave k over row y of the grid. */
 void tex_octave_row(const tex_octaves *o, int k, int y, float *out);
 void tex_octave_row_add(const tex_octaves *o, int k, int y, float amp, float *out);
+void tex_octave_row_op(const tex_octaves *o, int k, int y, int op, float a, float b, float *out);
 
 /* SIMD levels for the row kernels. */
 enum { TEX_SIMD_SCALAR = 0, TEX_SIMD_AVX2 = 1, TEX_SIMD_AVX512 = 2 };

@@ -276,25 +276,12 @@ static void perturb_eval2(const struct tex_field *f, int n, const double *u, con
 static void perturb_row(const struct tex_field *f, int y, float *out)
 {
     const struct perturb_state *s = f->state;
-    float *tmp = malloc(f->w * sizeof *tmp);
     double v = (y + 0.5) / f->h;
 
-    if (!tmp) {
-        for (int x = 0; x < f->w; x++) {
-            double u = (x + 0.5) / f->w;
-            perturb_eval2(f, 1, &u, &v, out + x);
-        }
-        return;
-    }
-    memset(out, 0, f->w * sizeof *out);
-    for (int k = 0; k < s->o.n; k++) {
-        tex_octave_row(&s->o, k, y, tmp);
-        for (int x = 0; x < f->w; x++)
-            out[x] += s->amp[k] * fabsf(tmp[x]);
-    }
+    for (int k = 0; k < s->o.n; k++) /* a |n| is never -0: the same as 0 + a |n| */
+        tex_octave_row_op(&s->o, k, y, k ? TEX_ROW_ADD_ABS : TEX_ROW_MUL_ABS, s->amp[k], 0, out);
     for (int x = 0; x < f->w; x++)
         out[x] = perturb_value(f->params, (x + 0.5) / f->w, v, out[x] * s->inv);
-    free(tmp);
 }
 
 const struct tex_primitive tex_prim_perturb = {

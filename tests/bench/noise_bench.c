@@ -1,6 +1,6 @@
 /* noise_bench.c - M samples/s of libtex noise grids (2048 x 2048), built by tests/bench/noise.
  *
- *   noise_bench KIND THREADS REPS   KIND: 2d | 3d | fbm8 | points3d
+ *   noise_bench KIND THREADS REPS   KIND: 2d | 3d | fbm8 | ridged8 | turb8 | dnoise | points3d
  * prints the best of REPS fills in M samples/s (the best: other jobs share the machine). */
 #include <omp.h>
 #include <stdio.h>
@@ -13,7 +13,11 @@ int main(int argc, char **argv)
 {
     const char *kind = argc > 1 ? argv[1] : "2d";
     int threads = argc > 2 ? atoi(argv[2]) : 1, reps = argc > 3 ? atoi(argv[3]) : 5, n = 2048;
-    const struct tex_primitive *p = strcmp(kind, "fbm8") == 0 ? &tex_prim_fractal : &tex_prim_noise;
+    const struct tex_primitive *p = strcmp(kind, "fbm8") == 0 || strcmp(kind, "ridged8") == 0
+                                        ? &tex_prim_fractal
+                                    : strcmp(kind, "turb8") == 0  ? &tex_prim_turbulence
+                                    : strcmp(kind, "dnoise") == 0 ? &tex_prim_d_noise
+                                                                  : &tex_prim_noise;
     struct tex_field *f = tex_field_new(p);
     double best = 0;
 
@@ -23,13 +27,15 @@ int main(int argc, char **argv)
     tex_field_set(f, "frequency", "8");
     if (strcmp(kind, "3d") == 0 || strcmp(kind, "points3d") == 0)
         tex_field_set(f, "z", "0.3721"); /* a slice between lattice planes: 8 corners */
-    if (p == &tex_prim_fractal)
+    if (p == &tex_prim_fractal || p == &tex_prim_turbulence)
         tex_field_set(f, "octaves", "8");
+    if (strcmp(kind, "ridged8") == 0)
+        tex_field_set(f, "mode", "ridged");
     if (tex_field_init(f, strcmp(kind, "points3d") == 0 ? 0 : n, n) < 0) {
         fprintf(stderr, "noise_bench: %s\n", tex_errmsg());
         return 1;
     }
-    tex_map *m = tex_map_new(n, n, 1);
+    tex_map *m = tex_map_new(n, n, f->nc);
     for (int r = 0; r < reps; r++) {
         double t0 = omp_get_wtime(), t1;
         if (strcmp(kind, "points3d") == 0) {

@@ -1,5 +1,8 @@
 /* test_noise.c - gradient noise, its grid rows, derivative, octaves and the stochastic
  * primitives' statistics (range, continuity, tiling, spectra) */
+/* The expected row operations below are written out: no fused multiply-adds. */
+#pragma GCC optimize("fp-contract=off")
+
 #include <complex.h>
 #include <fftw3.h>
 #include <math.h>
@@ -174,6 +177,130 @@ int main(void)
             CHECKF(err < 2e-6, "grid case %d (dims %d, period %d, f %g) matches points (%g)", c,
                    cs[c].dims, cs[c].period, cs[c].freq, err);
         }
+    }
+    /* Rows kept between calls (lattice rows shared by neighbouring pixel rows)
+     * give the same bytes whatever order the rows come in: in order, backwards,
+     * scattered, each row from a fresh grid; with one octave or many. */
+    {
+        enum { W = 300, H = 200 };
+        double off[4] = {0.25, 3.5, 0.7, 0};
+        float *ref = malloc(sizeof *ref * W * H), row[W];
+        tex_noise_grid g;
+        int bad[3] = {0, 0, 0};
+        tex_noise_grid_init(&g, &t, W, H, 11, 11, off, 3, 0);
+        CHECK(g.cache != NULL, "a grid with cells taller than a pixel keeps lattice rows");
+        for (int y = 0; y < H; y++)
+            tex_noise_grid_row_op(&g, y, TEX_ROW_UNIT, 0, 0, ref + y * W);
+        for (int y = H - 1; y >= 0; y--) {
+            tex_noise_grid_row_op(&g, y, TEX_ROW_UNIT, 0, 0, row);
+            bad[0] |= memcmp(row, ref + y * W, sizeof row) != 0;
+        }
+        for (int i = 0; i < H; i++) {
+            int y = (i * 37 + 11) % H; /* 37 is prime to 200: every row once */
+            tex_noise_grid_row_op(&g, y, TEX_ROW_UNIT, 0, 0, row);
+            bad[1] |= memcmp(row, ref + y * W, sizeof row) != 0;
+        }
+        tex_noise_grid_free(&g);
+        for (int y = 0; y < H; y += 7) {
+            tex_noise_grid_init(&g, &t, W, H, 11, 11, off, 3, 0);
+            tex_noise_grid_row_op(&g, y, TEX_ROW_UNIT, 0, 0, row);
+            bad[2] |= memcmp(row, ref + y * W, sizeof row) != 0;
+            tex_noise_grid_free(&g);
+        }
+        CHECKF(!bad[0] && !bad[1] && !bad[2],
+               "grid rows: same bytes backwards %d, scattered %d, from fresh grids %d", !bad[0],
+               !bad[1], !bad[2]);
+        free(ref);
+    }
+    /* The row operations are what they say, on the same noise. */
+    {
+        float n[64], o[64], v[64];
+        double off[4] = {0.1, 0.2, 0.3, 0};
+        int bad = 0;
+        tex_noise_grid g;
+        tex_noise_grid_init(&g, &t, 64, 8, 5, 5, off, 3, 0);
+        tex_noise_grid_row(&g, 3, n);
+        for (int op = TEX_ROW_SET; op <= TEX_ROW_ADD_ABS_CLAMP; op++) {
+            for (int x = 0; x < 64; x++)
+                o[x] = v[x] = 0.25f - 0.01f * x;
+            tex_noise_grid_row_op(&g, 3, op, 0.7f, 1.3f, o);
+            for (int x = 0; x < 64; x++) {
+                float a = 0.7f, b = 1.3f, r = n[x], e;
+                switch (op) {
+                case TEX_ROW_SET: e = r; break;
+                case TEX_ROW_MUL: e = a * r; break;
+                case TEX_ROW_MUL_ABS: e = a * fabsf(r); break;
+                case TEX_ROW_UNIT: e = fminf(fmaxf(0.5f + 0.5f * r, 0), 1); break;
+                case TEX_ROW_ADD: e = v[x] + a * r; break;
+                case TEX_ROW_ADD_ABS: e = v[x] + a * fabsf(r); break;
+                case TEX_ROW_ADD_UNIT: e = fminf(fmaxf(0.5f + 0.5f * ((v[x] + a * r) * b), 0), 1); break;
+                default: e = fminf(fmaxf((v[x] + a * fabsf(r)) * b, 0), 1); break;
+                }
+                bad += o[x] != e;
+            }
+        }
+        tex_noise_grid_free(&g);
+        CHECKF(bad == 0, "row operations set, mul, |n|, unit, add and the finishes (%d wrong)", bad);
+    }
+    /* Grid rows of the gradient agree with the point evaluation's. */
+    for (int fd = 0; fd < 2; fd++) {
+        struct {
+            double off[4];
+            int period, w;
+            double freq;
+        } cs[] = {{{0, 0, 0, 0}, 0, 300, 8},      {{0.3, 0.1, 2.37, 0}, 0, 257, 33},
+                  {{0, 0, 0.5, 0}, 16, 64, 16},   {{1e6, -3e6, 1e6, 0}, 0, 100, 7},
+                  {{0, 0, 0.1, 0}, 0, 50, 400}};
+        double err = 0;
+        t.fade = fd;
+        for (int c = 0; c < 5; c++) {
+            tex_noise_grid g;
+            float d[3][512];
+            tex_noise_grid_init(&g, &t, cs[c].w, 40, cs[c].freq, cs[c].freq, cs[c].off, 3,
+                                cs[c].period);
+            for (int y = 0; y < 40; y += 3) {
+                tex_noise_grid_row_grad(&g, y, d[0], d[1], d[2]);
+                for (int x = 0; x < cs[c].w; x++) {
+                    double X = cs[c].off[0] + cs[c].freq * ((x + 0.5) / cs[c].w),
+                           Y = cs[c].off[1] + cs[c].freq * ((y + 0.5) / 40), gr[3];
+                    tex_noise3_grad(&t, cs[c].period, X, Y, cs[c].off[2], gr);
+                    for (int a = 0; a < 3; a++)
+                        err = isnan(d[a][x]) ? INFINITY : fmax(err, fabs(gr[a] - d[a][x]));
+                }
+            }
+            tex_noise_grid_free(&g);
+        }
+        CHECKF(err < 2e-5, "%s: grid rows of the gradient match the points' (%g)",
+               fd ? "quintic" : "cubic", err);
+    }
+    t.fade = 0;
+    /* t_d_noise's grid rows agree with its points (raw gradient and normal map). */
+    for (int normal = 0; normal < 2; normal++) {
+        struct tex_field *f = tex_field_new(&tex_prim_d_noise);
+        tex_map *m;
+        double err = 0;
+        f->seed = 3;
+        tex_field_set(f, "frequency", "6");
+        tex_field_set(f, "z", "0.4");
+        if (normal)
+            tex_field_set(f, "normal", NULL);
+        else
+            tex_field_set(f, "channels", "3");
+        tex_field_init(f, 70, 30);
+        m = tex_field_sample(f);
+        for (int y = 0; m && y < 30; y++) {
+            double u[70], v[70];
+            float pt[70 * 3];
+            for (int x = 0; x < 70; x++)
+                u[x] = (x + 0.5) / 70, v[x] = (y + 0.5) / 30;
+            f->prim->eval2(f, 70, u, v, pt);
+            for (int i = 0; i < 70 * 3; i++)
+                err = fmax(err, fabs(pt[i] - tex_map_row(m, y)[i]));
+        }
+        CHECKF(m && m->nc == 3 && err < 1e-5, "d_noise%s: map rows match points (%g)",
+               normal ? " --normal" : "", err);
+        tex_map_free(m);
+        tex_field_free(f);
     }
     /* Far from the origin the texture survives. */
     {
