@@ -25,7 +25,7 @@ OPT     ?= -O2
 CFLAGS  ?= $(OPT) -g
 CXXFLAGS ?= $(OPT) -g
 WARN     = -Wall -Wextra
-SANFLAGS = -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+SANFLAGS = -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer -fno-sanitize-recover=undefined,float-cast-overflow
 SAN      = $(if $(SANITIZE),$(SANFLAGS))
 ALL_CFLAGS   = -std=gnu11 -fPIC -fopenmp $(WARN) $(SAN) $(CFLAGS) \
                -DTEX_VERSION='"$(VERSION)"' -DTEX_LIBDIR='"$(LIBDIR)"' \

@@ -120,7 +120,7 @@ static double noise_point(const tex_noise_table *t, int period, int dims, const 
 
     for (int a = 0; a < dims; a++) {
         double c = floor(p[a]);
-        int64_t i = (int64_t)c;
+        int64_t i = tex_noise_cell(c);
         int per = a < 2 ? period : 0;
         f[a] = p[a] - c;
         idx[a][0] = lat_index(i, per, n);
@@ -273,7 +273,7 @@ static void slice_setup(tex_noise_grid *g, double z, double w4)
     const tex_noise_table *t = g->t;
     const int *F = t->perm;
     double zc = floor(z), wc = floor(w4), fr[2] = {z - zc, w4 - wc}, wt[2][2];
-    int64_t base[2] = {(int64_t)zc, (int64_t)wc};
+    int64_t base[2] = {tex_noise_cell(zc), tex_noise_cell(wc)};
     int li[2][2], axes = g->dims - 2;
 
     for (int a = 0; a < axes; a++) {
@@ -341,7 +341,7 @@ int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int 
      * a pixel's right corner sitting in the slot after its left one. */
     for (int x = 0; x < w; x++) {
         double X = off[0] + fx * ((x + 0.5) / w), c = floor(X);
-        int64_t i = (int64_t)c;
+        int64_t i = tex_noise_cell(c);
         double u = X - c;
         if (ns == 0 || i > list[ns - 1]) {
             list[ns++] = i;
@@ -773,7 +773,7 @@ AVX2 static inline void row_avx2(const tex_noise_grid *g, const float *P, const 
         enum { CHUNK = 1024, NS = 2 * CHUNK + 24 };                                                \
         float P[NS], Q[NS], L[6][NS];                                                              \
         double Y = g->oy + g->fy * (y + 0.5), cy = floor(Y), fr = Y - cy;                          \
-        int64_t j = (int64_t)cy;                                                                   \
+        int64_t j = tex_noise_cell(cy);                                                           \
         float wy[2] = {(float)fade(g->t->fade, fr), (float)fade(g->t->fade, 1.0 - fr)};           \
         float dy[2] = {(float)fr, (float)(fr - 1.0)};                                              \
         int two = wy[1] != 0;                                                                      \
@@ -906,7 +906,7 @@ void tex_noise_grid_row_grad(const tex_noise_grid *g, int y, float *dx, float *d
     float L[12][NS], K[6][NS];
     const float *const C[6] = {K[0], K[1], K[2], K[3], K[4], K[5]};
     double Y = g->oy + g->fy * (y + 0.5), cy = floor(Y), fr = Y - cy;
-    int64_t j = (int64_t)cy;
+    int64_t j = tex_noise_cell(cy);
     int fd = g->t->fade;
     float wy[2] = {(float)fade(fd, fr), (float)fade(fd, 1.0 - fr)};
     float dwy[2] = {(float)dfade(fd, fr), (float)-dfade(fd, 1.0 - fr)};

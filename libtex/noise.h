@@ -58,6 +58,15 @@ extern "C" {
 
 #define TEX_NOISE_MAX_GRADIENTS 4096
 
+/* The lattice cell of a coordinate already floored.  Past 2^52 every double is
+ * a lattice point, where gradient noise is 0 whatever the cell, so clamping
+ * (high octaves of a large frequency reach 1e35) changes no value and keeps
+ * the conversion defined. */
+static inline int64_t tex_noise_cell(double c)
+{
+    return (int64_t)(c < -0x1p62 ? -0x1p62 : c > 0x1p62 ? 0x1p62 : c);
+}
+
 enum { TEX_FADE_CUBIC = 0, TEX_FADE_QUINTIC = 1 };
 
 typedef struct tex_noise_table {

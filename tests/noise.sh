@@ -38,6 +38,10 @@ same_bytes "ridged" t_fractal -m ridged -s 257x40 -f 6 -n 7 -l 2.5 -g 3
 same_bytes "hybrid tile" t_fractal -m hybrid -s 200x48 -f 4 --tile --mf-offset 0.7
 same_bytes "one octave of fbm" t_fractal -s 77x20 -n 1
 same_bytes "one octave of turbulence" t_turbulence -s 77x20 -n 1
+# Thirty octaves at lacunarity 16 from frequency 1e6 reach 1e41 cycles: the top octaves sit on
+# lattice points (0), the map stays finite, and the sanitizer build checks the float-to-int casts.
+same_bytes "fbm past 2^62 cycles" t_fractal -s 64x16 -f 1e6 -n 30 -l 16
+same_bytes "turbulence past 2^62 cycles" t_turbulence -s 64x16 -f 1e6 -n 30 -l 16 --z 1e9 --w 1e9
 same_bytes "perturb" t_perturb -s 150x40 -n 6
 
 check "same seed, same map" bash -c 't_noise -s 32 -S 9 --format pfm >"$0/x" && t_noise -s 32 -S 9 --format pfm >"$0/y" && cmp -s "$0/x" "$0/y"' "$T"
