@@ -19,7 +19,11 @@
 #include "error.h"
 #include "render.h"
 
-#define LEAF_MAX 4
+#define LEAF_MAX 8
+
+/* Relative costs for the surface-area heuristic: one node visit tests two
+ * boxes; a world-space sphere or plane test is cheaper than a box test. */
+#define COST_NODE 2.0
 
 enum pkind { PK_SPHERE, PK_PLANE, PK_LEAF, PK_CSG };
 
@@ -95,6 +99,11 @@ static void classify(struct prim *p, const struct tex_object *ob)
     }
 }
 
+static double cost(const struct prim *p)
+{
+    return p->kind == PK_SPHERE || p->kind == PK_PLANE ? 0.8 : p->kind == PK_LEAF ? 2 : 4;
+}
+
 static double centre(const struct prim *p, int axis)
 {
     return tex_v3_get(p->ob->wb.lo, axis) + tex_v3_get(p->ob->wb.hi, axis);
@@ -119,7 +128,7 @@ struct builder {
     const struct prim *src; /* the bounded prims in input order */
     int *idx;               /* [first, first + count): the items of the node being built */
     int *tmp;
-    double *rarea;          /* right-hand areas of a sweep */
+    double *rarea;          /* right-hand area times cost of a sweep */
     int nprims;
 };
 
@@ -134,8 +143,10 @@ static void build(struct builder *bd, int first, int count, int depth)
     n->b = bd->src[bd->idx[first]].ob->wb;
     for (int i = 1; i < count; i++)
         n->b = merge(n->b, bd->src[bd->idx[first + i]].ob->wb);
-    /* surface-area heuristic: a box test costs about one object test */
-    double best = count, parea = area(n->b);
+    /* surface-area heuristic */
+    double best = 0, parea = area(n->b);
+    for (int i = 0; i < count; i++)
+        best += cost(&bd->src[bd->idx[first + i]]);
     int best_axis = -1, best_split = 0;
     for (int axis = 0; axis < 3 && count > 1 && parea > 0 && depth < SAH_DEPTH; axis++) {
         int *it = bd->tmp;
@@ -144,13 +155,17 @@ static void build(struct builder *bd, int first, int count, int depth)
             it[i] = bd->idx[first + i];
         qsort_r(it, count, sizeof *it, cmp_centre, &k);
         struct tex_bounds b = bd->src[it[count - 1]].ob->wb;
+        double sum = 0;
         for (int i = count - 1; i > 0; i--) {
             b = merge(b, bd->src[it[i]].ob->wb);
-            bd->rarea[i] = area(b);
+            sum += cost(&bd->src[it[i]]);
+            bd->rarea[i] = area(b) * sum;
         }
         b = bd->src[it[0]].ob->wb;
+        sum = 0;
         for (int i = 1; i < count; i++) {
-            double c = 1 + (area(b) * i + bd->rarea[i] * (count - i)) / parea;
+            sum += cost(&bd->src[it[i - 1]]);
+            double c = COST_NODE + (area(b) * sum + bd->rarea[i]) / parea;
             if (c < best) {
                 best = c;
                 best_axis = axis;
@@ -258,55 +273,22 @@ static inline int hit_box(const struct tex_bounds *b, const struct ray *r, doubl
     return lo <= hi;
 }
 
-static inline void set_hit(struct tex_hit *hit, double t, const struct tex_object *ob)
+/* Spans of a CSG tree or a transformed leaf: the first boundary beyond tmin
+ * and before *tmax.  Out of line: the interval lists are large. */
+static __attribute__((noinline)) int first_hit_spans(const struct prim *p, const struct ray *r,
+                                                     double tmin, double *tmax,
+                                                     struct tex_hit *hit)
 {
-    hit->t = t;
-    hit->leaf = ob;
-    hit->flip = 0;
-}
-
-/* The first boundary of p beyond tmin and before *tmax: 1, *hit and *tmax updated. */
-static int first_hit(const struct prim *p, const struct ray *r, double tmin, double *tmax,
-                     struct tex_hit *hit)
-{
-    switch (p->kind) {
-    case PK_SPHERE: {
-        tex_v3 oc = tex_v3_sub(r->o, p->a);
-        double b = tex_v3_dot(oc, r->d), c = tex_v3_dot(oc, oc) - p->b;
-        double disc = b * b - r->dd * c;
-        if (disc <= 0)
-            return 0;
-        double q = sqrt(disc), t = (-b - q) / r->dd;
-        if (!(t > tmin))
-            t = (-b + q) / r->dd;
-        if (t > tmin && t < *tmax) {
-            set_hit(hit, t, p->ob);
-            *tmax = t;
-            return 1;
-        }
-        return 0;
-    }
-    case PK_PLANE: {
-        double dy = tex_v3_dot(p->a, r->d);
-        if (dy == 0)
-            return 0;
-        double t = -(tex_v3_dot(p->a, r->o) + p->b) / dy;
-        if (t > tmin && t < *tmax) {
-            set_hit(hit, t, p->ob);
-            *tmax = t;
-            return 1;
-        }
-        return 0;
-    }
-    default:
-        break;
-    }
     struct tex_spans s;
     const struct tex_object *ob = p->ob;
     if (p->kind == PK_LEAF) {
         tex_v3 lo = tex_xform_point(&ob->to_obj, r->o), ld = tex_xform_dir(&ob->to_obj, r->d);
         tex_shape_methods[ob->kind].spans(ob, lo, ld, &s);
     } else {
+        double t0;
+        /* the tree's box, against the closest hit so far, before its interval lists */
+        if (ob->bounded && !hit_box(&ob->wb, r, tmin, *tmax, &t0))
+            return 0;
         tex_object_spans(ob, r->o, r->d, &s);
     }
     for (int i = 0; i < s.n; i++) {
@@ -319,6 +301,39 @@ static int first_hit(const struct prim *p, const struct ray *r, double tmin, dou
             return 1;
         }
         return 0;
+    }
+    return 0;
+}
+
+/* The first boundary of p beyond tmin and before *tmax: 1, *hit and *tmax updated. */
+static inline int first_hit(const struct prim *p, const struct ray *r, double tmin, double *tmax,
+                            struct tex_hit *hit)
+{
+    double t;
+    if (p->kind == PK_SPHERE) {
+        tex_v3 oc = tex_v3_sub(r->o, p->a);
+        double b = tex_v3_dot(oc, r->d), c = tex_v3_dot(oc, oc) - p->b;
+        double disc = b * b - r->dd * c;
+        if (disc <= 0)
+            return 0;
+        double q = sqrt(disc);
+        t = (-b - q) / r->dd;
+        if (!(t > tmin))
+            t = (-b + q) / r->dd;
+    } else if (p->kind == PK_PLANE) {
+        double dy = tex_v3_dot(p->a, r->d);
+        if (dy == 0)
+            return 0;
+        t = -(tex_v3_dot(p->a, r->o) + p->b) / dy;
+    } else {
+        return first_hit_spans(p, r, tmin, tmax, hit);
+    }
+    if (t > tmin && t < *tmax) {
+        hit->t = t;
+        hit->leaf = p->ob;
+        hit->flip = 0;
+        *tmax = t;
+        return 1;
     }
     return 0;
 }

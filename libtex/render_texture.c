@@ -70,12 +70,18 @@ static inline int wrapi(int i, int n)
     return i < 0 ? i + n : i;
 }
 
+/* i in [-1, n] (u, v in [0, 1]) wraps without a division */
+static inline int wrap1(int i, int n)
+{
+    return i < 0 ? (i + n < 0 ? wrapi(i, n) : i + n) : i >= n ? wrapi(i, n) : i;
+}
+
 static void bilinear(const tex_map *m, double u, double v, float out[3])
 {
     double x = u * m->w - 0.5, y = v * m->h - 0.5;
     double fx = floor(x), fy = floor(y);
     double ax = x - fx, ay = y - fy;
-    int x0 = wrapi((int)fx, m->w), y0 = wrapi((int)fy, m->h);
+    int x0 = wrap1((int)fx, m->w), y0 = wrap1((int)fy, m->h);
     int x1 = x0 + 1 == m->w ? 0 : x0 + 1, y1 = y0 + 1 == m->h ? 0 : y0 + 1;
     float a[3], b[3], c[3], d[3];
     to_rgb(tex_map_px(m, x0, y0), m->nc, a);
@@ -143,10 +149,9 @@ static void local_box(const struct tex_object *leaf, struct tex_bounds *b, int *
 }
 
 /* Texture-space coordinates of world point P on leaf; returns the face id. */
-static int map_point(const struct tex_apply *ap, const struct tex_object *leaf, tex_v3 P,
-                     double uvw[3])
+static int map_point_at(const struct tex_apply *ap, const struct tex_object *leaf, tex_v3 P,
+                        tex_v3 pl, double uvw[3])
 {
-    tex_v3 pl = tex_xform_point(&leaf->to_obj, P);
     struct tex_bounds b;
     int bounded, face = 1;
     enum tex_mapping mp = ap->mapping;
@@ -199,6 +204,12 @@ static int map_point(const struct tex_apply *ap, const struct tex_object *leaf, 
         }
         return face;
     }
+}
+
+static int map_point(const struct tex_apply *ap, const struct tex_object *leaf, tex_v3 P,
+                     double uvw[3])
+{
+    return map_point_at(ap, leaf, P, tex_xform_point(&leaf->to_obj, P), uvw);
 }
 
 /* Window and placement: 0 if the point is outside the window. */
@@ -342,27 +353,37 @@ void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *s
         tex_v3 t2 = tex_v3_cross(*N, t1);
         double w1 = width / fmax(cosv, 0.02), w2 = width;
         tex_v3 bumpg = tex_v3_make(0, 0, 0);
+        int filter = s->settings.filter && width > 0;
+        /* the hit and the two footprint steps in object space, once for every texture */
+        double d1 = fmin(w1, 1e-3), d2 = fmin(w2, 1e-3);
+        tex_v3 pl = tex_xform_point(&leaf->to_obj, P), pl1 = pl, pl2 = pl;
+        tex_v3 P1 = P, P2 = P;
+        if (filter) {
+            P1 = tex_v3_madd(P, t1, d1), P2 = tex_v3_madd(P, t2, d2);
+            pl1 = tex_v3_madd(pl, tex_xform_dir(&leaf->to_obj, t1), d1);
+            pl2 = tex_v3_madd(pl, tex_xform_dir(&leaf->to_obj, t2), d2);
+        }
         for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next) {
             double uvw[3], a[3], b[3];
             float f[3], fa[3], fb[3];
-            int region = look(ap, leaf, P, 0, uvw, f);
-            if (region < 0)
+            map_point_at(ap, leaf, P, pl, uvw);
+            double u0 = uvw[0], v0 = uvw[1];
+            if (!place(ap, uvw))
                 continue;
             double fw = 0;
-            if (s->settings.filter && width > 0) {
+            if (filter) {
                 /* derivatives over a short step (no wrap-around), scaled to the footprint */
-                double d1 = fmin(w1, 1e-3), d2 = fmin(w2, 1e-3);
-                map_point(ap, leaf, tex_v3_madd(P, t1, d1), a);
-                map_point(ap, leaf, tex_v3_madd(P, t2, d2), b);
-                double u0 = uvw[0] / ap->nu * (ap->u2 - ap->u1) + ap->u1;
-                double v0 = uvw[1] / ap->nv * (ap->v2 - ap->v1) + ap->v1;
+                map_point_at(ap, leaf, P1, pl1, a);
+                map_point_at(ap, leaf, P2, pl2, b);
                 double su = ap->nu / (ap->u2 - ap->u1), sv = ap->nv / (ap->v2 - ap->v1);
-                double l1 = hypot(wrapdiff(a[0] - u0) * su, wrapdiff(a[1] - v0) * sv) * w1 / d1;
-                double l2 = hypot(wrapdiff(b[0] - u0) * su, wrapdiff(b[1] - v0) * sv) * w2 / d2;
+                double a0 = wrapdiff(a[0] - u0) * su, a1 = wrapdiff(a[1] - v0) * sv;
+                double b0 = wrapdiff(b[0] - u0) * su, b1 = wrapdiff(b[1] - v0) * sv;
+                double l1 = sqrt(a0 * a0 + a1 * a1) * w1 / d1;
+                double l2 = sqrt(b0 * b0 + b1 * b1) * w2 / d2;
                 fw = l1 > l2 ? l1 : l2;
-                if (!ap->tex->subregions)
-                    region = tex_texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw, f);
             }
+            /* one lookup: region maps and primitives ignore the footprint */
+            int region = tex_texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw, f);
             struct evalctx c = {f, NULL, {uvw[0], uvw[1], uvw[2]}, fw};
             for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next) {
                 if (fn->region && fn->region != region)
