@@ -20,6 +20,7 @@ struct ctx {
     int n;                 /* colour samples */
     const tex_colour *ambient, *background;
     tex_rng *rng;
+    int need_rng; /* jittered samples or area lights */
 };
 
 static double eps_at(tex_v3 p)
@@ -40,33 +41,6 @@ static tex_v3 hit_normal(const struct tex_hit *h, tex_v3 P)
     tex_v3 n = tex_shape_methods[l->kind].normal(l, tex_xform_point(&l->to_obj, P));
     n = tex_v3_norm(tex_xform_normal(&l->to_obj, n));
     return h->flip ? tex_v3_scale(n, -1) : n;
-}
-
-/* Fraction of light passing from P to the light: transparent surfaces let Kt through. */
-static double transmittance(const struct tex_scene *s, tex_v3 P, tex_v3 L, double dist)
-{
-    double tr = 1;
-    struct tex_hit h0;
-    /* most blockers are opaque: any hit on one ends the search */
-    if (!tex_bvh_trace_any(s->bvh, P, L, 0, dist, 1, &h0))
-        return 1;
-    if (surface_of(s, h0.leaf)->kt <= 0)
-        return 0;
-    for (int i = 0; i < 16; i++) {
-        struct tex_hit h;
-        if (!tex_scene_trace(s, P, L, 0, dist, &h))
-            return tr;
-        tr *= surface_of(s, h.leaf)->kt;
-        if (tr <= 1e-4)
-            return 0;
-        tex_v3 Q = tex_v3_madd(P, L, h.t);
-        double e = eps_at(Q);
-        P = tex_v3_madd(Q, L, e);
-        dist -= h.t + e;
-        if (dist <= 0)
-            return tr;
-    }
-    return tr;
 }
 
 static void trace(const struct ctx *c, const tex_ray *r, int depth, tex_colour *out)
@@ -108,7 +82,7 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, tex_colour *
                 continue;
             if (tex_v3_dot(L, N) <= 0 || tex_v3_dot(L, Ngv) <= 0)
                 continue;
-            double sh = transmittance(s, Pout, L, dist);
+            double sh = tex_scene_transmit(s, Pout, L, 0, dist);
             if (sh <= 0)
                 continue;
             tex_colour E;
@@ -161,7 +135,8 @@ static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, 
     const struct tex_scene *s = c0->s;
     const struct tex_settings *st = &s->settings;
     tex_rng rng;
-    tex_rng_seed(&rng, tex_hash64(st->seed ^ tex_hash64((uint64_t)y * st->w + x)));
+    if (c0->need_rng)
+        tex_rng_seed(&rng, tex_hash64(st->seed ^ tex_hash64((uint64_t)y * st->w + x)));
     struct ctx c = *c0;
     c.rng = &rng;
     int spp = st->spp, k = (int)sqrt((double)spp);
@@ -206,7 +181,9 @@ tex_map *tex_render(struct tex_scene *s, void (*progress)(long, long, void *), v
     tex_colour ambient, background;
     s->cs.from_rgb(&s->cs, s->ambient, TEX_SPECTRUM_ILLUMINANT, &ambient);
     s->cs.from_rgb(&s->cs, s->background, TEX_SPECTRUM_ILLUMINANT, &background);
-    struct ctx c = {s, s->cs.n, &ambient, &background, NULL};
+    struct ctx c = {s, s->cs.n, &ambient, &background, NULL, st->spp > 1};
+    for (int i = 0; i < s->nlights; i++)
+        c.need_rng |= s->lights[i].kind == TEX_LIGHT_AREA;
     struct camera cam;
     camera_setup(s, &cam);
     int tw = (st->w + TILE - 1) / TILE, th = (st->h + TILE - 1) / TILE;

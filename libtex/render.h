@@ -332,6 +332,11 @@ int tex_scene_prepare(struct tex_scene *s);
 int tex_scene_trace(const struct tex_scene *s, tex_v3 o, tex_v3 d, double tmin, double tmax,
                     struct tex_hit *hit);
 
+/* Fraction of light passing along o + t d for t in (tmin, tmax): the product
+ * of the surfaces' Kt over every boundary crossed, 0 if it falls to 1e-4. */
+double tex_scene_transmit(const struct tex_scene *s, tex_v3 o, tex_v3 d, double tmin,
+                          double tmax);
+
 struct tex_bvh *tex_bvh_build(struct tex_object **obs, int n);
 void tex_bvh_free(struct tex_bvh *b);
 int tex_bvh_trace(const struct tex_bvh *b, tex_v3 o, tex_v3 d, double tmin, double tmax,

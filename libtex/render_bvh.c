@@ -11,7 +11,9 @@
  * space, a plane through its object-space y row alone; other leaves pay for
  * the transform, CSG trees for their interval lists.  Traversal is ordered
  * (nearer child first), skips nodes entered beyond the closest hit, and a
- * shadow query (any = 1) stops at the first hit.
+ * shadow query (any = 1) stops at the first hit.  tex_scene_transmit visits
+ * every object along a shadow ray once, in any order: the light passing is
+ * the product of Kt over the surfaces crossed.
  */
 #define _GNU_SOURCE /* qsort_r */
 #include <stdlib.h>
@@ -406,6 +408,100 @@ int tex_bvh_trace_any(const struct tex_bvh *t, tex_v3 o, tex_v3 d, double tmin, 
                 break;
         }
         ni = stack[sp].node;
+    }
+}
+
+/* Product of Kt over the boundaries of p in (tmin, tmax) into *tr; 0 at an opaque one. */
+static double surface_kt(const struct tex_scene *s, const struct tex_object *leaf)
+{
+    return (leaf->surface ? leaf->surface : s->surfaces[0])->kt;
+}
+
+static void transmit_prim(const struct tex_scene *s, const struct prim *p, const struct ray *r,
+                          double tmin, double tmax, double *tr)
+{
+    double t0, t1;
+    int n = 0;
+    if (p->kind == PK_SPHERE) {
+        tex_v3 oc = tex_v3_sub(r->o, p->a);
+        double b = tex_v3_dot(oc, r->d), c = tex_v3_dot(oc, oc) - p->b;
+        double disc = b * b - r->dd * c;
+        if (disc <= 0)
+            return;
+        double q = sqrt(disc);
+        t0 = (-b - q) / r->dd, t1 = (-b + q) / r->dd;
+        n = (t0 > tmin && t0 < tmax) + (t1 > tmin && t1 < tmax);
+    } else if (p->kind == PK_PLANE) {
+        double dy = tex_v3_dot(p->a, r->d);
+        if (dy == 0)
+            return;
+        t0 = -(tex_v3_dot(p->a, r->o) + p->b) / dy;
+        n = t0 > tmin && t0 < tmax;
+    } else {
+        struct tex_spans sp;
+        const struct tex_object *ob = p->ob;
+        if (p->kind == PK_LEAF) {
+            tex_v3 lo = tex_xform_point(&ob->to_obj, r->o), ld = tex_xform_dir(&ob->to_obj, r->d);
+            tex_shape_methods[ob->kind].spans(ob, lo, ld, &sp);
+        } else {
+            if (ob->bounded && !hit_box(&ob->wb, r, tmin, tmax, &t0))
+                return;
+            tex_object_spans(ob, r->o, r->d, &sp);
+        }
+        for (int i = 0; i < sp.n && *tr > 0; i++) {
+            const struct tex_hit *h[2] = {&sp.in[i], &sp.out[i]};
+            for (int k = 0; k < 2; k++)
+                if (h[k]->leaf && h[k]->t > tmin && h[k]->t < tmax)
+                    *tr *= surface_kt(s, h[k]->leaf);
+        }
+        return;
+    }
+    if (n) {
+        double kt = surface_kt(s, p->ob);
+        *tr *= n == 2 ? kt * kt : kt;
+    }
+}
+
+double tex_scene_transmit(const struct tex_scene *s, tex_v3 o, tex_v3 d, double tmin, double tmax)
+{
+    const struct tex_bvh *t = s->bvh;
+    struct ray r = {o, d,
+                    tex_v3_make(1 / (d.x != 0 ? d.x : 1e-300), 1 / (d.y != 0 ? d.y : 1e-300),
+                                1 / (d.z != 0 ? d.z : 1e-300)),
+                    tex_v3_dot(d, d)};
+    double tr = 1, t0;
+    if (!(r.dd > 0))
+        return 1;
+    for (int i = 0; i < t->nunb; i++) {
+        transmit_prim(s, &t->unb[i], &r, tmin, tmax, &tr);
+        if (tr <= 1e-4)
+            return 0;
+    }
+    if (!t->nnodes || !hit_box(&t->nodes[0].b, &r, tmin, tmax, &t0))
+        return tr;
+    int stack[128], sp = 0, ni = 0;
+    for (;;) {
+        const struct node *n = &t->nodes[ni];
+        if (n->count) {
+            for (int i = 0; i < n->count; i++) {
+                transmit_prim(s, &t->prims[n->first + i], &r, tmin, tmax, &tr);
+                if (tr <= 1e-4)
+                    return 0;
+            }
+        } else {
+            int l = ni + 1, rt = n->first;
+            int hl = hit_box(&t->nodes[l].b, &r, tmin, tmax, &t0);
+            int hr = hit_box(&t->nodes[rt].b, &r, tmin, tmax, &t0);
+            if (hl && hr)
+                stack[sp++] = rt;
+            if (hl || hr) {
+                ni = hl ? l : rt;
+                continue;
+            }
+        }
+        if (!sp)
+            return tr;
+        ni = stack[--sp];
     }
 }
 

@@ -17,7 +17,9 @@ static void phong_direct(const struct tex_material *m, const double N[3], const 
     if (hl <= 0)
         return;
     double nh = (N[0] * h[0] + N[1] * h[1] + N[2] * h[2]) / hl;
-    if (nh > 0)
+    /* skip pow where the highlight is below 1e-13: ln x <= -(y + y^2/2 + y^3/3), y = 1 - x */
+    double y = 1 - nh;
+    if (nh > 0 && m->n * y * (1 + y * (0.5 + y * (1.0 / 3))) < 30)
         tex_colour_mmadd(out, n, &m->ks, E, (float)pow(nh, m->n));
 }
 
