@@ -61,30 +61,35 @@ float tex_srgb_decode(float encoded);
 
 static inline void tex_colour_set(tex_colour *d, int n, float x)
 {
+#pragma omp simd
     for (int i = 0; i < n; i++)
         d->v[i] = x;
 }
 
 static inline void tex_colour_copy(tex_colour *d, int n, const tex_colour *a)
 {
+#pragma omp simd
     for (int i = 0; i < n; i++)
         d->v[i] = a->v[i];
 }
 
 static inline void tex_colour_add(tex_colour *d, int n, const tex_colour *a, const tex_colour *b)
 {
+#pragma omp simd
     for (int i = 0; i < n; i++)
         d->v[i] = a->v[i] + b->v[i];
 }
 
 static inline void tex_colour_mul(tex_colour *d, int n, const tex_colour *a, const tex_colour *b)
 {
+#pragma omp simd
     for (int i = 0; i < n; i++)
         d->v[i] = a->v[i] * b->v[i];
 }
 
 static inline void tex_colour_scale(tex_colour *d, int n, const tex_colour *a, float s)
 {
+#pragma omp simd
     for (int i = 0; i < n; i++)
         d->v[i] = a->v[i] * s;
 }
@@ -92,6 +97,7 @@ static inline void tex_colour_scale(tex_colour *d, int n, const tex_colour *a, f
 /* d += a * s */
 static inline void tex_colour_madd(tex_colour *d, int n, const tex_colour *a, float s)
 {
+#pragma omp simd
     for (int i = 0; i < n; i++)
         d->v[i] += a->v[i] * s;
 }
@@ -100,6 +106,7 @@ static inline void tex_colour_madd(tex_colour *d, int n, const tex_colour *a, fl
 static inline void tex_colour_mmadd(tex_colour *d, int n, const tex_colour *a, const tex_colour *b,
                                     float s)
 {
+#pragma omp simd
     for (int i = 0; i < n; i++)
         d->v[i] += a->v[i] * b->v[i] * s;
 }

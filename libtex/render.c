@@ -178,6 +178,14 @@ tex_map *tex_render(struct tex_scene *s, void (*progress)(long, long, void *), v
     tex_map *img = tex_map_new(st->w, st->h, 3);
     if (!img)
         return NULL;
+    for (int i = 0; i < s->nsurfaces; i++) {
+        if (tex_surface_cache(s->surfaces[i], &s->cs) < 0) {
+            for (int j = 0; j <= i; j++)
+                tex_surface_uncache(s->surfaces[j]);
+            tex_map_free(img);
+            return NULL;
+        }
+    }
     tex_colour ambient, background;
     s->cs.from_rgb(&s->cs, s->ambient, TEX_SPECTRUM_ILLUMINANT, &ambient);
     s->cs.from_rgb(&s->cs, s->background, TEX_SPECTRUM_ILLUMINANT, &background);
@@ -203,5 +211,7 @@ tex_map *tex_render(struct tex_scene *s, void (*progress)(long, long, void *), v
     }
     if (progress)
         progress(ntiles, ntiles, arg);
+    for (int i = 0; i < s->nsurfaces; i++)
+        tex_surface_uncache(s->surfaces[i]);
     return img;
 }

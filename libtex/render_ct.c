@@ -33,40 +33,70 @@ void tex_ct_set_space(struct tex_ct *ct, const struct tex_colour_space *cs)
     const struct tex_matdb_entry *entry = ct->entry;
     ct->has_eta = entry != NULL;
     ct->conductor = entry && entry->kind == TEX_CONDUCTOR;
+    ct->flat = 0;
     if (entry) {
         tex_colour_space_curve(cs, &entry->n, &ct->eta);
         tex_colour_space_curve(cs, &entry->k, &ct->k);
+        ct->flat = !ct->conductor;
+        for (int i = 1; i < cs->n; i++)
+            ct->flat &= ct->eta.v[i] == ct->eta.v[0];
     }
 }
 
 /* A surface that names the model but sets none of its parameters: a dielectric of the
  * surface's ior, Beckmann m = 0.2, half specular. */
-static const struct tex_ct ct_default = {{TEX_FACET_BECKMANN, 0.2, 0}, 0.5, 0, 0, {{0}}, {{0}}, NULL};
+static const struct tex_ct ct_default = {{TEX_FACET_BECKMANN, 0.2, 0}, 0.5, 0, 0, {{0}}, {{0}}, NULL, 0};
 
 static const struct tex_ct *params(const struct tex_material *mat)
 {
     return mat->model_data ? mat->model_data : &ct_default;
 }
 
+/* The spectrum loops below vectorise only without errno from sqrtf (GCC). */
+#if defined(__GNUC__) && !defined(__clang__)
+#define NO_ERRNO __attribute__((optimize("no-math-errno")))
+#else
+#define NO_ERRNO
+#endif
+
 /* tex_fresnel_conductor (fresnel.h, eta_i = 1) in single precision for a whole
  * spectrum at once: the same exact formula without a call per sample (it is
  * the hottest shading step of a spectral scene with metals). */
-static void fresnel_conductor_n(double cos_i, const float *n, const float *k, int count,
+static NO_ERRNO void fresnel_conductor_n(double cos_i, const float *n, const float *k, int count,
                                 float *out)
 {
     float c = (float)(cos_i < 0 ? 0 : cos_i > 1 ? 1 : cos_i);
     float c2 = c * c, s2 = 1 - c2;
+#pragma omp simd
     for (int i = 0; i < count; i++) {
         float e2 = n[i] * n[i], k2 = k[i] * k[i];
         float t0 = e2 - k2 - s2;
         float a2b2 = sqrtf(t0 * t0 + 4 * e2 * k2);
-        float a = sqrtf(fmaxf(0, 0.5f * (a2b2 + t0)));
+        float h = 0.5f * (a2b2 + t0);
+        float a = sqrtf(h > 0 ? h : 0); /* not fmaxf: a library call at -O2 */
         float t1 = a2b2 + c2, t2 = 2 * a * c;
         float rs = (t1 - t2) / (t1 + t2);
         float t3 = c2 * a2b2 + s2 * s2, t4 = t2 * s2;
         float rp = rs * (t3 - t4) / (t3 + t4);
         float f = 0.5f * (rs + rp);
         out[i] = f < 0 ? 0 : f > 1 ? 1 : f;
+    }
+}
+
+/* tex_fresnel_dielectric (fresnel.h) in single precision for a whole spectrum:
+ * r[i] = eta_i / eta_t per sample, c = cos of the angle of incidence. */
+static NO_ERRNO void fresnel_dielectric_n(float c, const float *r, int count, float *out)
+{
+    float c2 = c * c, s2 = 1 - c2;
+#pragma omp simd
+    for (int i = 0; i < count; i++) {
+        float st2 = r[i] * r[i] * s2;
+        float ct = sqrtf(st2 < 1 ? 1 - st2 : 0);
+        float rc = r[i] * c, rct = r[i] * ct;
+        float rpar = (c - rct) / (c + rct), rperp = (rc - ct) / (rc + ct);
+        float f = 0.5f * (rpar * rpar + rperp * rperp);
+        f = f < 0 ? 0 : f > 1 ? 1 : f;
+        out[i] = st2 >= 1 ? 1 : f; /* total internal reflection */
     }
 }
 
@@ -78,25 +108,24 @@ static void fresnel(const struct tex_material *mat, const struct tex_ct *ct, dou
         fresnel_conductor_n(fabs(cos_i), ct->eta.v, ct->k.v, n, fr->v);
         return;
     }
-    double last_eta = -1, last_k = -1, last_f = 0;
-    for (int i = 0; i < n; i++) {
-        double eta = ct->has_eta ? ct->eta.v[i] : mat->ior;
-        double k = ct->conductor ? ct->k.v[i] : 0;
-        /* a flat index (a plain dielectric): one evaluation for every sample */
-        if (eta == last_eta && k == last_k) {
-            fr->v[i] = (float)last_f;
-            continue;
-        }
-        last_eta = eta;
-        last_k = k;
-        if (ct->conductor)
-            fr->v[i] = (float)tex_fresnel_conductor(fabs(cos_i), 1, eta, ct->k.v[i]);
-        else if (cos_i >= 0)
-            fr->v[i] = (float)tex_fresnel_dielectric(cos_i, 1, eta, NULL);
-        else
-            fr->v[i] = (float)tex_fresnel_dielectric(-cos_i, eta, 1, NULL);
-        last_f = fr->v[i];
+    if (!ct->has_eta || ct->flat) { /* one index: one evaluation for every sample */
+        double eta = ct->has_eta ? ct->eta.v[0] : mat->ior;
+        double f = cos_i >= 0 ? tex_fresnel_dielectric(cos_i, 1, eta, NULL)
+                              : tex_fresnel_dielectric(-cos_i, eta, 1, NULL);
+        tex_colour_set(fr, n, (float)f);
+        return;
     }
+    float r[TEX_COLOUR_MAX];
+    double c = cos_i >= 0 ? cos_i : -cos_i;
+    if (cos_i >= 0) {
+#pragma omp simd
+        for (int i = 0; i < n; i++)
+            r[i] = 1 / ct->eta.v[i];
+    } else {
+        for (int i = 0; i < n; i++)
+            r[i] = ct->eta.v[i];
+    }
+    fresnel_dielectric_n((float)(c > 1 ? 1 : c), r, n, fr->v);
 }
 
 static void ct_direct(const struct tex_material *mat, const double N[3], const double V[3],
@@ -128,9 +157,10 @@ static void ct_weights(const struct tex_material *mat, double cosi, int n, tex_c
     const struct tex_ct *ct = params(mat);
     tex_colour f;
     fresnel(mat, ct, cosi, n, &f);
+    float wr = (float)mat->kr, wt = ct->conductor ? 0 : (float)mat->kt;
     for (int i = 0; i < n; i++) {
-        kr->v[i] = (float)(mat->kr * f.v[i]);
-        kt->v[i] = ct->conductor ? 0 : (float)(mat->kt * (1 - f.v[i]));
+        kr->v[i] = wr * f.v[i];
+        kt->v[i] = wt * (1 - f.v[i]);
     }
 }
 

@@ -415,13 +415,50 @@ void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *s
     float ks[3];
     for (int k = 0; k < 3; k++)
         ks[k] = ks_textured ? pr.ks : ks_rgb[k];
-    cs->from_rgb(cs, ka, TEX_SPECTRUM_REFLECTANCE, &m->ka);
-    cs->from_rgb(cs, pr.kd, TEX_SPECTRUM_REFLECTANCE, &m->kd);
-    cs->from_rgb(cs, ks, TEX_SPECTRUM_REFLECTANCE, &m->ks);
+    int n = cs->n, cached = sf->cache ? sf->cached : 0;
+    if (cached & 1)
+        tex_colour_copy(&m->ka, n, &sf->cache[0]);
+    else
+        cs->from_rgb(cs, ka, TEX_SPECTRUM_REFLECTANCE, &m->ka);
+    if (cached & 2)
+        tex_colour_copy(&m->kd, n, &sf->cache[1]);
+    else
+        cs->from_rgb(cs, pr.kd, TEX_SPECTRUM_REFLECTANCE, &m->kd);
+    if (cached & 4)
+        tex_colour_copy(&m->ks, n, &sf->cache[2]);
+    else
+        cs->from_rgb(cs, ks, TEX_SPECTRUM_REFLECTANCE, &m->ks);
     m->n = pr.n;
     m->kr = pr.kr;
     m->kt = pr.kt;
     m->ior = pr.ior;
     m->model = sf->model;
     m->model_data = sf->ct;
+}
+
+int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
+{
+    int textured = 0; /* bits of enum tex_sparam */
+    for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next)
+        for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next)
+            textured |= 1 << fn->param;
+    free(sf->cache);
+    sf->cache = malloc(3 * sizeof *sf->cache);
+    sf->cached = 0;
+    if (!sf->cache)
+        return tex_error("out of memory");
+    float ka[3] = {sf->ka * sf->kd[0], sf->ka * sf->kd[1], sf->ka * sf->kd[2]};
+    cs->from_rgb(cs, ka, TEX_SPECTRUM_REFLECTANCE, &sf->cache[0]);
+    cs->from_rgb(cs, sf->kd, TEX_SPECTRUM_REFLECTANCE, &sf->cache[1]);
+    cs->from_rgb(cs, sf->ks, TEX_SPECTRUM_REFLECTANCE, &sf->cache[2]);
+    sf->cached = (textured & (1 << TEX_SP_KA | 1 << TEX_SP_KD) ? 0 : 1) |
+                 (textured & 1 << TEX_SP_KD ? 0 : 2) | (textured & 1 << TEX_SP_KS ? 0 : 4);
+    return 0;
+}
+
+void tex_surface_uncache(struct tex_surface *sf)
+{
+    free(sf->cache);
+    sf->cache = NULL;
+    sf->cached = 0;
 }
