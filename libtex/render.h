@@ -130,6 +130,7 @@ enum tex_shape_kind { TEX_SHAPE_SPHERE, TEX_SHAPE_BOX, TEX_SHAPE_CYLINDER, TEX_S
                       TEX_SHAPE_PLANE, TEX_SHAPE_NKINDS };
 
 struct tex_surface;
+struct tex_surface_cache;
 struct tex_object;
 
 /* One boundary crossing of a ray with a leaf shape. */
@@ -212,7 +213,8 @@ struct tex_scene;
 void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *sf,
                           const struct tex_object *leaf, tex_v3 P, tex_v3 D, tex_v3 *N,
                           double width, struct tex_material *m);
-/* Fill (tex_render, before tracing) and free a surface's colour cache. */
+/* Fill (tex_render, before tracing) and free a surface's cache: its untextured
+ * colours in the scene's colour space, its application functions compiled. */
 int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs);
 void tex_surface_uncache(struct tex_surface *sf);
 /* Build the pyramid of mip[0] (box filter, wrapping). */
@@ -260,10 +262,7 @@ struct tex_surface {
     struct tex_ct *ct;      /* Cook-Torrance parameters (render_ct.h); NULL: its defaults */
     struct tex_apply *apply;
     int line, col;
-    /* tex_render's cache: Ka*Kd, Kd and Ks in the scene's colour space; bit i
-     * of cached is set where entry i is untextured (constant over the surface) */
-    tex_colour *cache;
-    int cached;
+    struct tex_surface_cache *cache; /* tex_render's (render_texture.c), or NULL */
 };
 
 /* ---- lights ------------------------------------------------------------- */

@@ -9,6 +9,7 @@
  */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "error.h"
 #include "render.h"
@@ -83,6 +84,13 @@ static void bilinear(const tex_map *m, double u, double v, float out[3])
     double ax = x - fx, ay = y - fy;
     int x0 = wrap1((int)fx, m->w), y0 = wrap1((int)fy, m->h);
     int x1 = x0 + 1 == m->w ? 0 : x0 + 1, y1 = y0 + 1 == m->h ? 0 : y0 + 1;
+    if (m->nc < 3) { /* grey: one channel to interpolate */
+        double a = tex_map_px(m, x0, y0)[0], b = tex_map_px(m, x1, y0)[0];
+        double c = tex_map_px(m, x0, y1)[0], d = tex_map_px(m, x1, y1)[0];
+        out[0] = out[1] = out[2] =
+            (float)((a * (1 - ax) + b * ax) * (1 - ay) + (c * (1 - ax) + d * ax) * ay);
+        return;
+    }
     float a[3], b[3], c[3], d[3];
     to_rgb(tex_map_px(m, x0, y0), m->nc, a);
     to_rgb(tex_map_px(m, x1, y0), m->nc, b);
@@ -206,6 +214,28 @@ static int map_point_at(const struct tex_apply *ap, const struct tex_object *lea
     }
 }
 
+/* Where the mapping is affine in P (modulo wrapping), its world-space
+ * gradients of u and v: 1, else 0 (the footprint then takes finite differences). */
+static int map_gradient(const struct tex_apply *ap, const struct tex_object *leaf, tex_v3 *du,
+                        tex_v3 *dv)
+{
+    enum tex_mapping mp = ap->mapping;
+    double s = ap->scale;
+    if ((mp == TEX_MAP_NATURAL || mp == TEX_MAP_PLANAR) && leaf->kind == TEX_SHAPE_PLANE) {
+        /* planar on an unbounded shape: u = x, v = z of the object space, scaled */
+        const double(*m)[4] = leaf->to_obj.m;
+        *du = tex_v3_make(m[0][0] * s, m[0][1] * s, m[0][2] * s);
+        *dv = tex_v3_make(m[2][0] * s, m[2][1] * s, m[2][2] * s);
+        return 1;
+    }
+    if (mp == TEX_MAP_WORLD) {
+        *du = tex_v3_make(s, 0, 0);
+        *dv = tex_v3_make(0, 0, s);
+        return 1;
+    }
+    return 0;
+}
+
 static int map_point(const struct tex_apply *ap, const struct tex_object *leaf, tex_v3 P,
                      double uvw[3])
 {
@@ -277,6 +307,100 @@ static void expr_eval(const struct tex_expr *e, const struct evalctx *c, double 
     }
 }
 
+/* An application function compiled to c0 + c1 f + c2 p + c3 f p per channel,
+ * where its expression is at most linear in each of f and p (no cascade). */
+struct poly {
+    double c[4][3];
+    int df, dp; /* degrees in f and p */
+};
+
+static int poly_of(const struct tex_expr *e, struct poly *r)
+{
+    struct poly a, b;
+    memset(r, 0, sizeof *r);
+    switch (e->op) {
+    case TEX_E_NUM:
+        r->c[0][0] = r->c[0][1] = r->c[0][2] = e->v[0];
+        return 1;
+    case TEX_E_RGB:
+        for (int k = 0; k < 3; k++)
+            r->c[0][k] = e->v[k];
+        return 1;
+    case TEX_E_F:
+        r->c[1][0] = r->c[1][1] = r->c[1][2] = 1;
+        r->df = 1;
+        return 1;
+    case TEX_E_P:
+        r->c[2][0] = r->c[2][1] = r->c[2][2] = 1;
+        r->dp = 1;
+        return 1;
+    case TEX_E_NEG:
+        if (!poly_of(e->a, r))
+            return 0;
+        for (int i = 0; i < 4; i++)
+            for (int k = 0; k < 3; k++)
+                r->c[i][k] = -r->c[i][k];
+        return 1;
+    case TEX_E_ADD:
+    case TEX_E_SUB:
+    case TEX_E_MUL:
+    case TEX_E_DIV:
+        break;
+    default:
+        return 0;
+    }
+    if (!poly_of(e->a, &a) || !poly_of(e->b, &b))
+        return 0;
+    double sg = e->op == TEX_E_SUB ? -1 : 1;
+    switch (e->op) {
+    case TEX_E_ADD:
+    case TEX_E_SUB:
+        for (int i = 0; i < 4; i++)
+            for (int k = 0; k < 3; k++)
+                r->c[i][k] = a.c[i][k] + sg * b.c[i][k];
+        r->df = a.df | b.df;
+        r->dp = a.dp | b.dp;
+        return 1;
+    case TEX_E_MUL:
+        if (a.df + b.df > 1 || a.dp + b.dp > 1)
+            return 0;
+        for (int k = 0; k < 3; k++) {
+            r->c[0][k] = a.c[0][k] * b.c[0][k];
+            r->c[1][k] = a.c[0][k] * b.c[1][k] + a.c[1][k] * b.c[0][k];
+            r->c[2][k] = a.c[0][k] * b.c[2][k] + a.c[2][k] * b.c[0][k];
+            r->c[3][k] = a.c[0][k] * b.c[3][k] + a.c[3][k] * b.c[0][k] + a.c[1][k] * b.c[2][k] +
+                         a.c[2][k] * b.c[1][k];
+        }
+        r->df = a.df | b.df;
+        r->dp = a.dp | b.dp;
+        return 1;
+    default: /* division by a constant; by 0 gives 0 as in expr_eval */
+        if (b.df || b.dp)
+            return 0;
+        for (int i = 0; i < 4; i++)
+            for (int k = 0; k < 3; k++)
+                r->c[i][k] = b.c[0][k] != 0 ? a.c[i][k] / b.c[0][k] : 0;
+        r->df = a.df;
+        r->dp = a.dp;
+        return 1;
+    }
+}
+
+static void poly_eval(const struct poly *q, const float f[3], const float p[3], double out[3])
+{
+    for (int k = 0; k < 3; k++) {
+        double fk = f[k], pk = p[k];
+        out[k] = q->c[0][k] + q->c[1][k] * fk + q->c[2][k] * pk + q->c[3][k] * fk * pk;
+    }
+}
+
+struct tex_surface_cache {
+    tex_colour col[3]; /* Ka Kd, Kd, Ks in the scene's colour space */
+    int cached;        /* bit i: col[i] is constant (untextured) */
+    struct poly *poly; /* per application function, in order */
+    char *compiled;    /* 1: poly[i] holds function i */
+};
+
 static double clampd(double x, double lo, double hi)
 {
     return !(x >= lo) ? lo : x > hi ? hi : x;
@@ -287,7 +411,17 @@ struct params {
     float ka, kd[3], ks, n, kr, kt, ior, bump;
 };
 
-static void apply_fn(const struct tex_appfn *fn, struct params *pr, const struct evalctx *base)
+static void eval_fn(const struct tex_appfn *fn, const struct poly *q, const struct evalctx *c,
+                    double r[3])
+{
+    if (q)
+        poly_eval(q, c->f, c->p, r);
+    else
+        expr_eval(fn->e, c, r);
+}
+
+static void apply_fn(const struct tex_appfn *fn, const struct poly *q, struct params *pr,
+                     const struct evalctx *base)
 {
     struct evalctx c = *base;
     float p[3];
@@ -297,7 +431,7 @@ static void apply_fn(const struct tex_appfn *fn, struct params *pr, const struct
     switch (fn->param) {
     case TEX_SP_KD:
         c.p = pr->kd;
-        expr_eval(fn->e, &c, r);
+        eval_fn(fn, q, &c, r);
         for (int k = 0; k < 3; k++)
             pr->kd[k] = (float)clampd(r[k], 0, 1);
         return;
@@ -314,7 +448,7 @@ static void apply_fn(const struct tex_appfn *fn, struct params *pr, const struct
     /* a scalar parameter sees the map's luminance as f */
     float fl = (c.f[0] + c.f[1] + c.f[2]) / 3, fg[3] = {fl, fl, fl};
     c.f = fg;
-    expr_eval(fn->e, &c, r);
+    eval_fn(fn, q, &c, r);
     *scalar = (float)clampd((r[0] + r[1] + r[2]) / 3, lo, hi);
 }
 
@@ -351,46 +485,65 @@ void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *s
                                   : tex_v3_cross(*N, tex_v3_make(0, 1, 0));
         t1 = tex_v3_norm(t1);
         tex_v3 t2 = tex_v3_cross(*N, t1);
-        double w1 = width / fmax(cosv, 0.02), w2 = width;
+        double w1 = width / (cosv > 0.02 ? cosv : 0.02), w2 = width;
         tex_v3 bumpg = tex_v3_make(0, 0, 0);
         int filter = s->settings.filter && width > 0;
         /* the hit and the two footprint steps in object space, once for every texture */
-        double d1 = fmin(w1, 1e-3), d2 = fmin(w2, 1e-3);
+        double d1 = w1 < 1e-3 ? w1 : 1e-3, d2 = w2 < 1e-3 ? w2 : 1e-3;
         tex_v3 pl = tex_xform_point(&leaf->to_obj, P), pl1 = pl, pl2 = pl;
         tex_v3 P1 = P, P2 = P;
-        if (filter) {
+        int steps = 0; /* the footprint steps are computed (some mapping is not affine) */
+        for (const struct tex_apply *ap = sf->apply; ap && filter && !steps; ap = ap->next) {
+            tex_v3 du, dv;
+            steps = !map_gradient(ap, leaf, &du, &dv);
+        }
+        if (steps) {
             P1 = tex_v3_madd(P, t1, d1), P2 = tex_v3_madd(P, t2, d2);
             pl1 = tex_v3_madd(pl, tex_xform_dir(&leaf->to_obj, t1), d1);
             pl2 = tex_v3_madd(pl, tex_xform_dir(&leaf->to_obj, t2), d2);
         }
+        const struct tex_surface_cache *cache = sf->cache;
+        int nfn = 0; /* index of the function in the cache */
         for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next) {
             double uvw[3], a[3], b[3];
             float f[3], fa[3], fb[3];
             map_point_at(ap, leaf, P, pl, uvw);
             double u0 = uvw[0], v0 = uvw[1];
-            if (!place(ap, uvw))
+            if (!place(ap, uvw)) {
+                for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next)
+                    nfn++;
                 continue;
+            }
             double fw = 0;
             if (filter) {
-                /* derivatives over a short step (no wrap-around), scaled to the footprint */
-                map_point_at(ap, leaf, P1, pl1, a);
-                map_point_at(ap, leaf, P2, pl2, b);
                 double su = ap->nu / (ap->u2 - ap->u1), sv = ap->nv / (ap->v2 - ap->v1);
-                double a0 = wrapdiff(a[0] - u0) * su, a1 = wrapdiff(a[1] - v0) * sv;
-                double b0 = wrapdiff(b[0] - u0) * su, b1 = wrapdiff(b[1] - v0) * sv;
-                double l1 = sqrt(a0 * a0 + a1 * a1) * w1 / d1;
-                double l2 = sqrt(b0 * b0 + b1 * b1) * w2 / d2;
+                double a0, a1, b0, b1, l1, l2;
+                tex_v3 du, dv;
+                if (map_gradient(ap, leaf, &du, &dv)) { /* affine: the exact derivatives */
+                    a0 = tex_v3_dot(du, t1) * su, a1 = tex_v3_dot(dv, t1) * sv;
+                    b0 = tex_v3_dot(du, t2) * su, b1 = tex_v3_dot(dv, t2) * sv;
+                    l1 = sqrt(a0 * a0 + a1 * a1) * w1;
+                    l2 = sqrt(b0 * b0 + b1 * b1) * w2;
+                } else {
+                    /* derivatives over a short step (no wrap-around), scaled to the footprint */
+                    map_point_at(ap, leaf, P1, pl1, a);
+                    map_point_at(ap, leaf, P2, pl2, b);
+                    a0 = wrapdiff(a[0] - u0) * su, a1 = wrapdiff(a[1] - v0) * sv;
+                    b0 = wrapdiff(b[0] - u0) * su, b1 = wrapdiff(b[1] - v0) * sv;
+                    l1 = sqrt(a0 * a0 + a1 * a1) * w1 / d1;
+                    l2 = sqrt(b0 * b0 + b1 * b1) * w2 / d2;
+                }
                 fw = l1 > l2 ? l1 : l2;
             }
             /* one lookup: region maps and primitives ignore the footprint */
             int region = tex_texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw, f);
             struct evalctx c = {f, NULL, {uvw[0], uvw[1], uvw[2]}, fw};
-            for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next) {
+            for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++) {
                 if (fn->region && fn->region != region)
                     continue;
                 if (fn->param == TEX_SP_KS)
                     ks_textured = 1;
-                apply_fn(fn, &pr, &c);
+                apply_fn(fn, cache && cache->compiled[nfn] ? &cache->poly[nfn] : NULL, &pr, &c);
                 if (fn->param == TEX_SP_BUMP && pr.bump != 0) {
                     /* Blinn: tilt N against the surface gradient of the map value */
                     double h = fmax(width, 1e-4);
@@ -415,17 +568,17 @@ void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *s
     float ks[3];
     for (int k = 0; k < 3; k++)
         ks[k] = ks_textured ? pr.ks : ks_rgb[k];
-    int n = cs->n, cached = sf->cache ? sf->cached : 0;
+    int n = cs->n, cached = sf->cache ? sf->cache->cached : 0;
     if (cached & 1)
-        tex_colour_copy(&m->ka, n, &sf->cache[0]);
+        tex_colour_copy(&m->ka, n, &sf->cache->col[0]);
     else
         cs->from_rgb(cs, ka, TEX_SPECTRUM_REFLECTANCE, &m->ka);
     if (cached & 2)
-        tex_colour_copy(&m->kd, n, &sf->cache[1]);
+        tex_colour_copy(&m->kd, n, &sf->cache->col[1]);
     else
         cs->from_rgb(cs, pr.kd, TEX_SPECTRUM_REFLECTANCE, &m->kd);
     if (cached & 4)
-        tex_colour_copy(&m->ks, n, &sf->cache[2]);
+        tex_colour_copy(&m->ks, n, &sf->cache->col[2]);
     else
         cs->from_rgb(cs, ks, TEX_SPECTRUM_REFLECTANCE, &m->ks);
     m->n = pr.n;
@@ -438,27 +591,39 @@ void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *s
 
 int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
 {
-    int textured = 0; /* bits of enum tex_sparam */
+    int textured = 0, nfn = 0; /* bits of enum tex_sparam */
     for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next)
-        for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next)
+        for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++)
             textured |= 1 << fn->param;
-    free(sf->cache);
-    sf->cache = malloc(3 * sizeof *sf->cache);
-    sf->cached = 0;
-    if (!sf->cache)
+    tex_surface_uncache(sf);
+    struct tex_surface_cache *c = calloc(1, sizeof *c);
+    if (!c || !(c->poly = malloc((nfn ? nfn : 1) * sizeof *c->poly)) ||
+        !(c->compiled = malloc(nfn ? nfn : 1))) {
+        if (c)
+            free(c->poly);
+        free(c);
         return tex_error("out of memory");
+    }
+    nfn = 0;
+    for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next)
+        for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++)
+            c->compiled[nfn] = (char)poly_of(fn->e, &c->poly[nfn]);
     float ka[3] = {sf->ka * sf->kd[0], sf->ka * sf->kd[1], sf->ka * sf->kd[2]};
-    cs->from_rgb(cs, ka, TEX_SPECTRUM_REFLECTANCE, &sf->cache[0]);
-    cs->from_rgb(cs, sf->kd, TEX_SPECTRUM_REFLECTANCE, &sf->cache[1]);
-    cs->from_rgb(cs, sf->ks, TEX_SPECTRUM_REFLECTANCE, &sf->cache[2]);
-    sf->cached = (textured & (1 << TEX_SP_KA | 1 << TEX_SP_KD) ? 0 : 1) |
-                 (textured & 1 << TEX_SP_KD ? 0 : 2) | (textured & 1 << TEX_SP_KS ? 0 : 4);
+    cs->from_rgb(cs, ka, TEX_SPECTRUM_REFLECTANCE, &c->col[0]);
+    cs->from_rgb(cs, sf->kd, TEX_SPECTRUM_REFLECTANCE, &c->col[1]);
+    cs->from_rgb(cs, sf->ks, TEX_SPECTRUM_REFLECTANCE, &c->col[2]);
+    c->cached = (textured & (1 << TEX_SP_KA | 1 << TEX_SP_KD) ? 0 : 1) |
+                (textured & 1 << TEX_SP_KD ? 0 : 2) | (textured & 1 << TEX_SP_KS ? 0 : 4);
+    sf->cache = c;
     return 0;
 }
 
 void tex_surface_uncache(struct tex_surface *sf)
 {
-    free(sf->cache);
+    if (sf->cache) {
+        free(sf->cache->poly);
+        free(sf->cache->compiled);
+        free(sf->cache);
+    }
     sf->cache = NULL;
-    sf->cached = 0;
 }
