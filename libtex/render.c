@@ -25,7 +25,9 @@ struct ctx {
 
 static double eps_at(tex_v3 p)
 {
-    double m = fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z)));
+    double x = fabs(p.x), y = fabs(p.y), z = fabs(p.z);
+    double m = x > y ? x : y;
+    m = m > z ? m : z; /* not fmax: a library call at -O2 */
     return 1e-6 * (1 + m);
 }
 
@@ -43,7 +45,9 @@ static tex_v3 hit_normal(const struct tex_hit *h, tex_v3 P)
     return h->flip ? tex_v3_scale(n, -1) : n;
 }
 
-static void trace(const struct ctx *c, const tex_ray *r, int depth, tex_colour *out)
+/* weight: the largest share of the pixel this ray can carry (1 for eye rays);
+ * reflected and refracted rays below the scene's bailout are not traced. */
+static void trace(const struct ctx *c, const tex_ray *r, int depth, double weight, tex_colour *out)
 {
     const struct tex_scene *s = c->s;
     int n = c->n;
@@ -102,14 +106,18 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, tex_colour *
         double n1 = entering ? 1 : m.ior, n2 = entering ? m.ior : 1;
         tex_ray rt = {Pin, r->d, width, r->spread};
         if (tex_refract(r->d, N, n1, n2, &rt.d)) {
-            trace(c, &rt, depth + 1, &I);
-            tex_colour_mmadd(out, n, &kt, &I, 1);
+            double w = weight * tex_colour_max(&kt, n);
+            if (w >= s->settings.bailout) {
+                trace(c, &rt, depth + 1, w, &I);
+                tex_colour_mmadd(out, n, &kt, &I, 1);
+            }
         } else {
             tex_colour_add(&kr, n, &kr, &kt); /* total internal reflection */
         }
     }
-    if (tex_colour_max(&kr, n) > 0) {
-        trace(c, &rr, depth + 1, &I);
+    double wr = weight * tex_colour_max(&kr, n);
+    if (wr > 0 && wr >= s->settings.bailout) {
+        trace(c, &rr, depth + 1, wr, &I);
         tex_colour_mmadd(out, n, &kr, &I, 1);
     }
 }
@@ -161,7 +169,7 @@ static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, 
                      0, spread / sqrt(spp)};
         tex_colour col;
         float rgb[3];
-        trace(&c, &r, 0, &col);
+        trace(&c, &r, 0, 1, &col);
         s->cs.to_rgb(&s->cs, &col, rgb);
         for (int j = 0; j < 3; j++)
             acc[j] += rgb[j];

@@ -297,6 +297,7 @@ struct tex_settings {
     int w, h, spp, depth, threads;
     int filter;       /* 1: mip-mapped texture lookups */
     uint64_t seed;
+    double bailout;   /* reflected/refracted rays weighing less are not traced */
 };
 
 struct tex_bvh;

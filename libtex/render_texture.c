@@ -480,10 +480,14 @@ void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *s
          * (stretched by 1/cos) and along the tangent perpendicular to it */
         double cosv = fabs(tex_v3_dot(D, *N));
         tex_v3 t1 = tex_v3_sub(D, tex_v3_scale(*N, tex_v3_dot(D, *N)));
-        if (tex_v3_len(t1) < 1e-9)
+        double l1 = tex_v3_len(t1);
+        if (l1 < 1e-9) {
             t1 = fabs(N->x) < 0.9 ? tex_v3_cross(*N, tex_v3_make(1, 0, 0))
                                   : tex_v3_cross(*N, tex_v3_make(0, 1, 0));
-        t1 = tex_v3_norm(t1);
+            t1 = tex_v3_norm(t1);
+        } else {
+            t1 = tex_v3_scale(t1, 1 / l1);
+        }
         tex_v3 t2 = tex_v3_cross(*N, t1);
         double w1 = width / (cosv > 0.02 ? cosv : 0.02), w2 = width;
         tex_v3 bumpg = tex_v3_make(0, 0, 0);
@@ -560,7 +564,7 @@ void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *s
                 }
             }
         }
-        if (tex_v3_len(bumpg) > 0)
+        if (tex_v3_dot(bumpg, bumpg) > 0)
             *N = tex_v3_norm(tex_v3_sub(*N, bumpg));
     }
     const struct tex_colour_space *cs = &s->cs;

@@ -364,6 +364,45 @@ static void test_bvh_brute(void)
     tex_scene_free(s);
 }
 
+/* Adaptive depth control: a bailout below every path weight changes nothing,
+ * one above the deeper weights drops only their (non-negative) light. */
+static void test_bailout(void)
+{
+    char sc[600];
+    const char *fmt = "image 48 36 depth 5 bailout %g ambient 0.2 0.2 0.2 background 0.3 0.4 0.5\n"
+                      "camera { eye 0 1.5 -5 look 0 0.8 0 fov 50 }\n"
+                      "light point { position 3 6 -4 }\n"
+                      "surface m { Ka 0.5 Kd 0.6 0.5 0.4 Ks 0.5 n 20 Kr 0.5 }\n"
+                      "plane { surface m }\n"
+                      "sphere { centre 0 1 0 radius 1 surface m }\n";
+    double b[3] = {0, 1e-3, 0.2}, sum[3] = {0, 0, 0}, dmax[3] = {0, 0, 0};
+    tex_map *m[3];
+    for (int i = 0; i < 3; i++) {
+        snprintf(sc, sizeof sc, fmt, b[i]);
+        m[i] = render_text(sc, 1);
+    }
+    CHECK(m[0] && m[1] && m[2], "bailout scenes render");
+    if (m[0] && m[1] && m[2]) {
+        size_t n = (size_t)m[0]->w * m[0]->h * 3;
+        for (int i = 0; i < 3; i++)
+            for (size_t k = 0; k < n; k++) {
+                sum[i] += m[i]->px[k];
+                double d = fabs(m[i]->px[k] - m[0]->px[k]);
+                dmax[i] = d > dmax[i] ? d : dmax[i];
+            }
+        CHECKF(dmax[1] == 0, "bailout below every path weight (0.5^5) changes nothing (%g)",
+               dmax[1]);
+        CHECKF(dmax[2] > 0 && sum[2] < sum[0],
+               "bailout 0.2 drops the deeper reflections (max change %g, total %g < %g)",
+               dmax[2], sum[2], sum[0]);
+    }
+    for (int i = 0; i < 3; i++)
+        tex_map_free(m[i]);
+    struct tex_scene *s = tex_scene_parse("bailout 2\n", 10, "b.scene");
+    CHECK(!s, "bailout outside 0..1 is refused");
+    tex_scene_free(s);
+}
+
 int main(void)
 {
     if (!mkdtemp(dir))
@@ -378,6 +417,7 @@ int main(void)
     test_determinism();
     test_receding();
     test_bvh_brute();
+    test_bailout();
     char cmd[300];
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
     if (system(cmd) != 0)
