@@ -360,50 +360,48 @@ const struct tex_shape_methods tex_shape_methods[TEX_SHAPE_NKINDS] = {
 
 /* ---- objects ------------------------------------------------------------------ */
 
-static int ray_box(const struct tex_bounds *b, tex_v3 o, tex_v3 d)
+/* Does the line o + t d meet box b?  inv is 1/d with zero components nudged
+ * to +-1e300 (as the BVH does), so the slab test needs no division. */
+static int ray_box(const struct tex_bounds *b, tex_v3 o, tex_v3 inv)
 {
-    double t0 = -INFINITY, t1 = INFINITY;
-    for (int i = 0; i < 3; i++) {
-        double oi = tex_v3_get(o, i), di = tex_v3_get(d, i);
-        double lo = tex_v3_get(b->lo, i), hi = tex_v3_get(b->hi, i);
-        if (di == 0) {
-            if (oi < lo || oi > hi)
-                return 0;
-            continue;
-        }
-        double a = (lo - oi) / di, c = (hi - oi) / di;
-        if (a > c) {
-            double x = a;
-            a = c;
-            c = x;
-        }
-        t0 = a > t0 ? a : t0;
-        t1 = c < t1 ? c : t1;
-        if (t0 > t1)
-            return 0;
-    }
-    return 1;
+    double a = (b->lo.x - o.x) * inv.x, c = (b->hi.x - o.x) * inv.x;
+    double t0 = a < c ? a : c, t1 = a < c ? c : a;
+    a = (b->lo.y - o.y) * inv.y, c = (b->hi.y - o.y) * inv.y;
+    t0 = t0 > (a < c ? a : c) ? t0 : (a < c ? a : c);
+    t1 = t1 < (a < c ? c : a) ? t1 : (a < c ? c : a);
+    a = (b->lo.z - o.z) * inv.z, c = (b->hi.z - o.z) * inv.z;
+    t0 = t0 > (a < c ? a : c) ? t0 : (a < c ? a : c);
+    t1 = t1 < (a < c ? c : a) ? t1 : (a < c ? c : a);
+    return t0 <= t1;
 }
 
-void tex_object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s)
+static void object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, tex_v3 inv,
+                         struct tex_spans *s)
 {
     if (ob->op == TEX_CSG_LEAF) {
         tex_v3 lo = tex_xform_point(&ob->to_obj, o), ld = tex_xform_dir(&ob->to_obj, d);
         tex_shape_methods[ob->kind].spans(ob, lo, ld, s);
         return;
     }
-    if (ob->bounded && !ray_box(&ob->wb, o, d)) {
+    if (ob->bounded && !ray_box(&ob->wb, o, inv)) {
         s->n = 0;
         return;
     }
     struct tex_spans a, b;
-    tex_object_spans(ob->a, o, d, &a);
+    object_spans(ob->a, o, d, inv, &a);
     if (a.n == 0 && ob->op != TEX_CSG_UNION) {
         s->n = 0;
         return;
     }
-    tex_object_spans(ob->b, o, d, &b);
+    object_spans(ob->b, o, d, inv, &b);
     tex_csg_combine(ob->op, &a, &b, s);
+}
+
+void tex_object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s)
+{
+    tex_v3 inv = tex_v3_make(1 / (d.x != 0 ? d.x : 1e-300), 1 / (d.y != 0 ? d.y : 1e-300),
+                             1 / (d.z != 0 ? d.z : 1e-300));
+    object_spans(ob, o, d, inv, s);
 }
 
 int tex_object_bounds(struct tex_object *ob)
