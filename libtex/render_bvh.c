@@ -103,7 +103,8 @@ static void classify(struct prim *p, const struct tex_object *ob)
 
 static double cost(const struct prim *p)
 {
-    return p->kind == PK_SPHERE || p->kind == PK_PLANE ? 0.8 : p->kind == PK_LEAF ? 2 : 4;
+    /* a CSG tree starts with its own box test, which rejects most rays */
+    return p->kind == PK_SPHERE || p->kind == PK_PLANE ? 0.8 : p->kind == PK_LEAF ? 2 : 1.5;
 }
 
 static double centre(const struct prim *p, int axis)
@@ -289,9 +290,13 @@ static __attribute__((noinline)) int first_hit_spans(const struct prim *p, const
     } else {
         double t0;
         /* the tree's box, against the closest hit so far, before its interval lists */
-        if (ob->bounded && !hit_box(&ob->wb, r, tmin, *tmax, &t0))
-            return 0;
-        tex_object_spans(ob, r->o, r->d, &s);
+        if (!ob->bounded) {
+            tex_object_spans(ob, r->o, r->d, &s);
+        } else {
+            if (!hit_box(&ob->wb, r, tmin, *tmax, &t0))
+                return 0;
+            tex_csg_spans(ob, r->o, r->d, r->inv, &s);
+        }
     }
     for (int i = 0; i < s.n; i++) {
         const struct tex_hit *h = s.in[i].t > tmin ? &s.in[i] : s.out[i].t > tmin ? &s.out[i] : NULL;
@@ -444,9 +449,13 @@ static void transmit_prim(const struct tex_scene *s, const struct prim *p, const
             tex_v3 lo = tex_xform_point(&ob->to_obj, r->o), ld = tex_xform_dir(&ob->to_obj, r->d);
             tex_shape_methods[ob->kind].spans(ob, lo, ld, &sp);
         } else {
-            if (ob->bounded && !hit_box(&ob->wb, r, tmin, tmax, &t0))
-                return;
-            tex_object_spans(ob, r->o, r->d, &sp);
+            if (!ob->bounded) {
+                tex_object_spans(ob, r->o, r->d, &sp);
+            } else {
+                if (!hit_box(&ob->wb, r, tmin, tmax, &t0))
+                    return;
+                tex_csg_spans(ob, r->o, r->d, r->inv, &sp);
+            }
         }
         for (int i = 0; i < sp.n && *tr > 0; i++) {
             const struct tex_hit *h[2] = {&sp.in[i], &sp.out[i]};

@@ -404,6 +404,23 @@ void tex_object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct te
     object_spans(ob, o, d, inv, s);
 }
 
+void tex_csg_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, tex_v3 inv,
+                   struct tex_spans *s)
+{
+    if (ob->op == TEX_CSG_LEAF) {
+        object_spans(ob, o, d, inv, s);
+        return;
+    }
+    struct tex_spans a, b;
+    object_spans(ob->a, o, d, inv, &a);
+    if (a.n == 0 && ob->op != TEX_CSG_UNION) {
+        s->n = 0;
+        return;
+    }
+    object_spans(ob->b, o, d, inv, &b);
+    tex_csg_combine(ob->op, &a, &b, s);
+}
+
 int tex_object_bounds(struct tex_object *ob)
 {
     if (ob->op == TEX_CSG_LEAF) {
