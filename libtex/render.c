@@ -170,6 +170,11 @@ static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, 
         tex_colour col;
         float rgb[3];
         trace(&c, &r, 0, 1, &col);
+        if (s->cs.mode == TEX_COLOUR_RGB) { /* the identity: no call, no store and reload */
+            for (int j = 0; j < 3; j++)
+                acc[j] += col.v[j];
+            continue;
+        }
         s->cs.to_rgb(&s->cs, &col, rgb);
         for (int j = 0; j < 3; j++)
             acc[j] += rgb[j];
