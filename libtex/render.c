@@ -40,7 +40,13 @@ static const struct tex_surface *surface_of(const struct tex_scene *s, const str
 static tex_v3 hit_normal(const struct tex_hit *h, tex_v3 P)
 {
     const struct tex_object *l = h->leaf;
-    tex_v3 n = tex_shape_methods[l->kind].normal(l, tex_xform_point(&l->to_obj, P));
+    tex_v3 n;
+    if (l->kind == TEX_SHAPE_PLANE) /* the common shapes without the method call */
+        n = tex_v3_make(0, 1, 0);
+    else if (l->kind == TEX_SHAPE_SPHERE)
+        n = tex_xform_point(&l->to_obj, P);
+    else
+        n = tex_shape_methods[l->kind].normal(l, tex_xform_point(&l->to_obj, P));
     n = tex_v3_norm(tex_xform_normal(&l->to_obj, n));
     return h->flip ? tex_v3_scale(n, -1) : n;
 }
