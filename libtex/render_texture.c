@@ -246,6 +246,59 @@ static int map_gradient(const struct tex_apply *ap, const struct tex_object *lea
     return 0;
 }
 
+/* The natural mappings' (sphere_map, box faces, cylinder_map / cone_map)
+ * gradients of u and v in object space at p on face (map_point's answer);
+ * 0 where there are none (other mappings, the poles, the axis). */
+static int natural_gradient(const struct tex_apply *ap, const struct tex_object *leaf, tex_v3 p,
+                            int face, tex_v3 *du, tex_v3 *dv)
+{
+    if (ap->mapping != TEX_MAP_NATURAL)
+        return 0;
+    double rho2 = p.x * p.x + p.z * p.z;
+    switch (leaf->kind) {
+    case TEX_SHAPE_SPHERE: {
+        /* u = atan2(-z, x) / 2pi, v = acos(y / r) / pi */
+        double r2 = rho2 + p.y * p.y;
+        if (!(rho2 > 1e-12 * r2))
+            return 0;
+        double rho = sqrt(rho2), k = 1 / (M_PI * rho * r2);
+        *du = tex_v3_scale(tex_v3_make(p.z, 0, -p.x), 1 / (2 * M_PI * rho2));
+        *dv = tex_v3_make(p.x * p.y * k, -rho2 * k, p.z * p.y * k);
+        return 1;
+    }
+    case TEX_SHAPE_BOX: {
+        /* box_uv: u = (a + 1) / 2, v = (b + 1) / 2 with a, b signed coordinates */
+        static const signed char ab[6][2] = {{-3, -2}, {3, -2}, {1, 3}, {1, -3}, {1, -2}, {-1, -2}};
+        if (face < 1 || face > 6)
+            return 0;
+        double g[2][3] = {{0, 0, 0}, {0, 0, 0}};
+        for (int i = 0; i < 2; i++) {
+            int c = ab[face - 1][i];
+            g[i][(c < 0 ? -c : c) - 1] = c < 0 ? -0.5 : 0.5;
+        }
+        *du = tex_v3_make(g[0][0], g[0][1], g[0][2]);
+        *dv = tex_v3_make(g[1][0], g[1][1], g[1][2]);
+        return 1;
+    }
+    case TEX_SHAPE_CYLINDER:
+    case TEX_SHAPE_CONE:
+        if (face == 1) { /* the side: u around the axis, v = 1 - y */
+            if (!(rho2 > 1e-24))
+                return 0;
+            *du = tex_v3_scale(tex_v3_make(p.z, 0, -p.x), 1 / (2 * M_PI * rho2));
+            *dv = tex_v3_make(0, -1, 0);
+        } else { /* the caps: a disc of radius r across [0, 1]^2 */
+            double r = face == 2 ? leaf->r0 : leaf->r1;
+            r = r > 0 ? r : 1;
+            *du = tex_v3_make(0.5 / r, 0, 0);
+            *dv = tex_v3_make(0, 0, 0.5 / r);
+        }
+        return 1;
+    default:
+        return 0;
+    }
+}
+
 static int map_point(const struct tex_apply *ap, const struct tex_object *leaf, tex_v3 P,
                      double uvw[3])
 {
@@ -505,23 +558,14 @@ void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *s
         /* the hit and the two footprint steps in object space, once for every texture */
         double d1 = w1 < 1e-3 ? w1 : 1e-3, d2 = w2 < 1e-3 ? w2 : 1e-3;
         tex_v3 pl = tex_xform_point(&leaf->to_obj, P), pl1 = pl, pl2 = pl;
-        tex_v3 P1 = P, P2 = P;
-        int steps = 0; /* the footprint steps are computed (some mapping is not affine) */
-        for (const struct tex_apply *ap = sf->apply; ap && filter && !steps; ap = ap->next) {
-            tex_v3 du, dv;
-            steps = !map_gradient(ap, leaf, &du, &dv);
-        }
-        if (steps) {
-            P1 = tex_v3_madd(P, t1, d1), P2 = tex_v3_madd(P, t2, d2);
-            pl1 = tex_v3_madd(pl, tex_xform_dir(&leaf->to_obj, t1), d1);
-            pl2 = tex_v3_madd(pl, tex_xform_dir(&leaf->to_obj, t2), d2);
-        }
+        tex_v3 P1 = P, P2 = P, o1 = t1, o2 = t2;
+        int steps = 0; /* the tangents in object space and the footprint steps: computed */
         const struct tex_surface_cache *cache = sf->cache;
         int nfn = 0; /* index of the function in the cache */
         for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next) {
             double uvw[3], a[3], b[3];
             float f[3], fa[3], fb[3];
-            map_point_at(ap, leaf, P, pl, uvw);
+            int face = map_point_at(ap, leaf, P, pl, uvw);
             double u0 = uvw[0], v0 = uvw[1];
             if (!place(ap, uvw)) {
                 for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next)
@@ -533,12 +577,31 @@ void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *s
                 double su = ap->nu / (ap->u2 - ap->u1), sv = ap->nv / (ap->v2 - ap->v1);
                 double a0, a1, b0, b1, l1, l2;
                 tex_v3 du, dv;
-                if (map_gradient(ap, leaf, &du, &dv)) { /* affine: the exact derivatives */
-                    a0 = tex_v3_dot(du, t1) * su, a1 = tex_v3_dot(dv, t1) * sv;
-                    b0 = tex_v3_dot(du, t2) * su, b1 = tex_v3_dot(dv, t2) * sv;
+                int grad = map_gradient(ap, leaf, &du, &dv); /* affine: world gradients */
+                if (!grad && natural_gradient(ap, leaf, pl, face, &du, &dv)) {
+                    if (!steps) { /* object-space gradients: object-space tangents */
+                        o1 = tex_xform_dir(&leaf->to_obj, t1);
+                        o2 = tex_xform_dir(&leaf->to_obj, t2);
+                        P1 = tex_v3_madd(P, t1, d1), P2 = tex_v3_madd(P, t2, d2);
+                        pl1 = tex_v3_madd(pl, o1, d1), pl2 = tex_v3_madd(pl, o2, d2);
+                        steps = 1;
+                    }
+                    grad = 2;
+                }
+                if (grad) { /* the exact derivatives along the two tangents */
+                    tex_v3 e1 = grad == 1 ? t1 : o1, e2 = grad == 1 ? t2 : o2;
+                    a0 = tex_v3_dot(du, e1) * su, a1 = tex_v3_dot(dv, e1) * sv;
+                    b0 = tex_v3_dot(du, e2) * su, b1 = tex_v3_dot(dv, e2) * sv;
                     l1 = sqrt(a0 * a0 + a1 * a1) * w1;
                     l2 = sqrt(b0 * b0 + b1 * b1) * w2;
                 } else {
+                    if (!steps) {
+                        o1 = tex_xform_dir(&leaf->to_obj, t1);
+                        o2 = tex_xform_dir(&leaf->to_obj, t2);
+                        P1 = tex_v3_madd(P, t1, d1), P2 = tex_v3_madd(P, t2, d2);
+                        pl1 = tex_v3_madd(pl, o1, d1), pl2 = tex_v3_madd(pl, o2, d2);
+                        steps = 1;
+                    }
                     /* derivatives over a short step (no wrap-around), scaled to the footprint */
                     map_point_at(ap, leaf, P1, pl1, a);
                     map_point_at(ap, leaf, P2, pl2, b);
