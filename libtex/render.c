@@ -131,6 +131,9 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, double weigh
 struct camera {
     tex_v3 eye, fwd, right, up;
     double sx, sy; /* half extents of the image plane at distance 1 */
+    double kx, ky; /* 2 sx / w and 2 sy / h: image plane units per pixel */
+    double spread; /* footprint growth per unit distance of a sample's ray */
+    int k;         /* spp = k * k: stratified, else 0 */
 };
 
 static void camera_setup(const struct tex_scene *s, struct camera *cam)
@@ -142,6 +145,11 @@ static void camera_setup(const struct tex_scene *s, struct camera *cam)
     cam->up = tex_v3_cross(cam->fwd, cam->right);
     cam->sx = tan(s->fov * M_PI / 360);
     cam->sy = cam->sx * s->settings.h / s->settings.w;
+    cam->kx = 2 * cam->sx / s->settings.w;
+    cam->ky = 2 * cam->sy / s->settings.h;
+    cam->spread = 2 * cam->sx / s->settings.w / sqrt(s->settings.spp);
+    int k = (int)sqrt((double)s->settings.spp);
+    cam->k = k * k == s->settings.spp ? k : 0;
 }
 
 static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, int y, float *px)
@@ -153,10 +161,8 @@ static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, 
         tex_rng_seed(&rng, tex_hash64(st->seed ^ tex_hash64((uint64_t)y * st->w + x)));
     struct ctx c = *c0;
     c.rng = &rng;
-    int spp = st->spp, k = (int)sqrt((double)spp);
-    int grid = k * k == spp;
+    int spp = st->spp, k = cam->k, grid = k > 0;
     double acc[3] = {0, 0, 0};
-    double spread = 2 * cam->sx / st->w;
     for (int i = 0; i < spp; i++) {
         double ox = 0.5, oy = 0.5;
         if (spp > 1) {
@@ -167,12 +173,12 @@ static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, 
                 oy = ((i / k) + oy) / k;
             }
         }
-        double a = (2 * (x + ox) / st->w - 1) * cam->sx;
-        double b = (1 - 2 * (y + oy) / st->h) * cam->sy;
+        double a = (x + ox) * cam->kx - cam->sx;
+        double b = cam->sy - (y + oy) * cam->ky;
         tex_ray r = {cam->eye,
                      tex_v3_norm(tex_v3_add(cam->fwd, tex_v3_add(tex_v3_scale(cam->right, a),
                                                                  tex_v3_scale(cam->up, b)))),
-                     0, spread / sqrt(spp)};
+                     0, cam->spread};
         tex_colour col;
         float rgb[3];
         trace(&c, &r, 0, 1, &col);
@@ -186,7 +192,7 @@ static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, 
             acc[j] += rgb[j];
     }
     for (int j = 0; j < 3; j++)
-        px[j] = (float)(acc[j] / spp);
+        px[j] = (float)(spp == 1 ? acc[j] : acc[j] / spp);
 }
 
 tex_map *tex_render(struct tex_scene *s, void (*progress)(long, long, void *), void *arg)
