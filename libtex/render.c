@@ -41,13 +41,14 @@ static tex_v3 hit_normal(const struct tex_hit *h, tex_v3 P)
 {
     const struct tex_object *l = h->leaf;
     tex_v3 n;
-    if (l->kind == TEX_SHAPE_PLANE) /* the common shapes without the method call */
-        n = tex_v3_make(0, 1, 0);
-    else if (l->kind == TEX_SHAPE_SPHERE)
-        n = tex_xform_point(&l->to_obj, P);
-    else
+    if (l->fast == 1) { /* planes and round spheres: no transforms, no square root */
+        n = l->fn;
+    } else if (l->fast == 2) {
+        n = tex_v3_scale(tex_v3_sub(P, l->fn), l->fr);
+    } else {
         n = tex_shape_methods[l->kind].normal(l, tex_xform_point(&l->to_obj, P));
-    n = tex_v3_norm(tex_xform_normal(&l->to_obj, n));
+        n = tex_v3_norm(tex_xform_normal(&l->to_obj, n));
+    }
     return h->flip ? tex_v3_scale(n, -1) : n;
 }
 

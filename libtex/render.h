@@ -177,6 +177,11 @@ struct tex_object {
     struct tex_bounds wb;       /* world bounds */
     int bounded;
     int line, col;              /* where it was declared */
+    /* leaves, set by tex_object_bounds: the world normal without the transforms,
+     * 1: a plane of unit normal fn; 2: a sphere placed by a similarity, n = (P - fn) fr */
+    int fast;
+    tex_v3 fn;
+    double fr;
 };
 
 /* Intervals of an object (leaf or CSG tree) along a world ray o + t d. */

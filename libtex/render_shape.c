@@ -421,9 +421,38 @@ void tex_csg_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, tex_v3 inv,
     tex_csg_combine(ob->op, &a, &b, s);
 }
 
+/* The leaf's normal fast path (struct tex_object's fast). */
+static void leaf_fast(struct tex_object *ob)
+{
+    const double(*m)[4] = ob->to_world.m;
+    ob->fast = 0;
+    if (ob->kind == TEX_SHAPE_PLANE) {
+        const double(*q)[4] = ob->to_obj.m; /* the normal: the y row of the inverse */
+        tex_v3 n = tex_v3_make(q[1][0], q[1][1], q[1][2]);
+        if (tex_v3_len(n) > 0) {
+            ob->fast = 1;
+            ob->fn = tex_v3_norm(n);
+        }
+    } else if (ob->kind == TEX_SHAPE_SPHERE) {
+        /* orthogonal columns of equal length: the sphere stays round */
+        tex_v3 c0 = tex_v3_make(m[0][0], m[1][0], m[2][0]);
+        tex_v3 c1 = tex_v3_make(m[0][1], m[1][1], m[2][1]);
+        tex_v3 c2 = tex_v3_make(m[0][2], m[1][2], m[2][2]);
+        double s2 = tex_v3_dot(c0, c0), tol = 1e-12 * s2;
+        if (s2 > 0 && fabs(tex_v3_dot(c1, c1) - s2) <= tol &&
+            fabs(tex_v3_dot(c2, c2) - s2) <= tol && fabs(tex_v3_dot(c0, c1)) <= tol &&
+            fabs(tex_v3_dot(c1, c2)) <= tol && fabs(tex_v3_dot(c0, c2)) <= tol) {
+            ob->fast = 2;
+            ob->fn = tex_v3_make(m[0][3], m[1][3], m[2][3]);
+            ob->fr = 1 / sqrt(s2);
+        }
+    }
+}
+
 int tex_object_bounds(struct tex_object *ob)
 {
     if (ob->op == TEX_CSG_LEAF) {
+        leaf_fast(ob);
         struct tex_bounds lb;
         ob->bounded = tex_shape_methods[ob->kind].bounds(ob, &lb);
         if (!ob->bounded)
