@@ -427,21 +427,25 @@ static void transmit_prim(const struct tex_scene *s, const struct prim *p, const
 {
     double t0, t1;
     int n = 0;
+    /* only whether the crossings lie in (tmin, tmax) matters: compare t's
+     * numerators with the bounds times the (positive) denominator, no division */
     if (p->kind == PK_SPHERE) {
         tex_v3 oc = tex_v3_sub(r->o, p->a);
         double b = tex_v3_dot(oc, r->d), c = tex_v3_dot(oc, oc) - p->b;
         double disc = b * b - r->dd * c;
         if (disc <= 0)
             return;
-        double q = sqrt(disc);
-        t0 = (-b - q) / r->dd, t1 = (-b + q) / r->dd;
-        n = (t0 > tmin && t0 < tmax) + (t1 > tmin && t1 < tmax);
+        double q = sqrt(disc), lo = tmin * r->dd, hi = tmax * r->dd;
+        t0 = -b - q, t1 = -b + q;
+        n = (t0 > lo && t0 < hi) + (t1 > lo && t1 < hi);
     } else if (p->kind == PK_PLANE) {
         double dy = tex_v3_dot(p->a, r->d);
         if (dy == 0)
             return;
-        t0 = -(tex_v3_dot(p->a, r->o) + p->b) / dy;
-        n = t0 > tmin && t0 < tmax;
+        double num = -(tex_v3_dot(p->a, r->o) + p->b);
+        if (dy < 0)
+            num = -num, dy = -dy;
+        n = num > tmin * dy && num < tmax * dy;
     } else {
         struct tex_spans sp;
         const struct tex_object *ob = p->ob;
