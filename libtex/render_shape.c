@@ -518,9 +518,55 @@ static int csg_inside(enum tex_csg_op op, int a, int b)
 /* Sweep the boundaries of a and b in order; a boundary of the result is
  * wherever the combined inside/outside state changes.  Surfaces of the
  * subtracted solid face the other way. */
+/* a and b of one interval each (convex leaves), all ends distinct: the
+ * sweep's answer directly.  0 where the general sweep must decide. */
+static int combine11(enum tex_csg_op op, const struct tex_spans *a, const struct tex_spans *b,
+                     struct tex_spans *r)
+{
+    double a0 = a->in[0].t, a1 = a->out[0].t, b0 = b->in[0].t, b1 = b->out[0].t;
+    if (a0 == b0 || a0 == b1 || a1 == b0 || a1 == b1)
+        return 0;
+    if (op == TEX_CSG_INTERSECTION) {
+        r->n = 0;
+        if (a0 > b1 || b0 > a1)
+            return 1;
+        r->n = 1;
+        r->in[0] = a0 > b0 ? a->in[0] : b->in[0];
+        r->out[0] = a1 < b1 ? a->out[0] : b->out[0];
+        return 1;
+    }
+    if (op != TEX_CSG_DIFFERENCE)
+        return 0;
+    struct tex_hit fb0 = b->in[0], fb1 = b->out[0]; /* the subtracted surfaces face the other way */
+    fb0.flip = !fb0.flip;
+    fb1.flip = !fb1.flip;
+    r->n = 0;
+    if (b1 < a0 || b0 > a1) { /* apart */
+        r->in[0] = a->in[0];
+        r->out[0] = a->out[0];
+        r->n = 1;
+        return 1;
+    }
+    if (b0 < a0 && b1 > a1) /* b covers a */
+        return 1;
+    if (b0 > a0) { /* a starts outside b */
+        r->in[0] = a->in[0];
+        r->out[0] = fb0;
+        r->n = 1;
+    }
+    if (b1 < a1) { /* a goes on after b */
+        r->in[r->n] = fb1;
+        r->out[r->n] = a->out[0];
+        r->n++;
+    }
+    return 1;
+}
+
 void tex_csg_combine(enum tex_csg_op op, const struct tex_spans *a, const struct tex_spans *b,
                      struct tex_spans *r)
 {
+    if (a->n == 1 && b->n == 1 && combine11(op, a, b, r))
+        return;
     int ia = 0, ib = 0, na = 2 * a->n, nb = 2 * b->n;
     int ina = 0, inb = 0, inr = 0;
     r->n = 0;

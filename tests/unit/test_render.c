@@ -403,6 +403,51 @@ static void test_bailout(void)
     tex_scene_free(s);
 }
 
+/* CSG on interval lists: every combination of two intervals (the fast path
+ * for convex leaves, ties included) against membership point by point. */
+static void test_csg_combine(void)
+{
+    static const struct tex_object la, lb; /* leaf tags */
+    const double ends[] = {-INFINITY, 0, 1, 2, 3, INFINITY};
+    int bad = 0, cases = 0;
+    for (int op = TEX_CSG_UNION; op <= TEX_CSG_DIFFERENCE; op++)
+        for (int i0 = 0; i0 < 6; i0++)
+            for (int i1 = i0 + 1; i1 < 6; i1++)
+                for (int j0 = 0; j0 < 6; j0++)
+                    for (int j1 = j0 + 1; j1 < 6; j1++)
+                        for (int bn = 0; bn < 2; bn++) {
+                            struct tex_spans a, b, r;
+                            a.n = 1;
+                            b.n = bn;
+                            a.in[0] = (struct tex_hit){ends[i0], &la, 0};
+                            a.out[0] = (struct tex_hit){ends[i1], &la, 0};
+                            b.in[0] = (struct tex_hit){ends[j0], &lb, 0};
+                            b.out[0] = (struct tex_hit){ends[j1], &lb, 0};
+                            tex_csg_combine(op, &a, &b, &r);
+                            cases++;
+                            for (double t = -0.75; t < 4; t += 0.5) {
+                                int ia = t > ends[i0] && t < ends[i1];
+                                int ib = bn && t > ends[j0] && t < ends[j1];
+                                int want = op == TEX_CSG_UNION          ? ia || ib
+                                           : op == TEX_CSG_INTERSECTION ? ia && ib
+                                                                        : ia && !ib;
+                                int got = 0;
+                                for (int k = 0; k < r.n; k++)
+                                    got |= t > r.in[k].t && t < r.out[k].t;
+                                bad += got != want;
+                            }
+                            /* boundaries of the subtracted solid face the other way */
+                            for (int k = 0; k < r.n; k++)
+                                for (int e = 0; e < 2; e++) {
+                                    const struct tex_hit *h = e ? &r.out[k] : &r.in[k];
+                                    int want = op == TEX_CSG_DIFFERENCE && h->leaf == &lb;
+                                    bad += h->leaf && h->flip != want;
+                                }
+                        }
+    CHECKF(bad == 0, "CSG of two intervals matches membership (%d errors in %d cases)", bad,
+           cases);
+}
+
 int main(void)
 {
     if (!mkdtemp(dir))
@@ -418,6 +463,7 @@ int main(void)
     test_receding();
     test_bvh_brute();
     test_bailout();
+    test_csg_combine();
     char cmd[300];
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
     if (system(cmd) != 0)
