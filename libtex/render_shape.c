@@ -158,15 +158,16 @@ static int unit_bounds(const struct tex_object *ob, struct tex_bounds *b)
 static void box_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s)
 {
     double t0 = -INFINITY, t1 = INFINITY;
+    double oo[3] = {o.x, o.y, o.z}, dd[3] = {d.x, d.y, d.z};
     s->n = 0;
     for (int i = 0; i < 3; i++) {
-        double oi = tex_v3_get(o, i), di = tex_v3_get(d, i);
+        double oi = oo[i], di = dd[i];
         if (di == 0) {
             if (oi < -1 || oi > 1)
                 return;
             continue;
         }
-        double a = (-1 - oi) / di, b = (1 - oi) / di;
+        double inv = 1 / di, a = (-1 - oi) * inv, b = (1 - oi) * inv;
         if (a > b) {
             double x = a;
             a = b;
@@ -230,8 +231,8 @@ static void cone_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct t
     if (fabs(a) > 1e-14) {
         double disc = b * b - 4 * a * c;
         if (disc > 0) {
-            double q = sqrt(disc);
-            double r[2] = {(-b - q) / (2 * a), (-b + q) / (2 * a)};
+            double q = sqrt(disc), h = 0.5 / a;
+            double r[2] = {(-b - q) * h, (-b + q) * h};
             for (int i = 0; i < 2; i++) {
                 double y = o.y + r[i] * d.y;
                 if (y >= 0 && y <= 1 && r0 + k * y >= 0)
@@ -244,8 +245,9 @@ static void cone_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct t
             t[n++] = r;
     }
     if (d.y != 0) {
+        double iy = 1 / d.y;
         for (int cap = 0; cap < 2; cap++) {
-            double r = (cap - o.y) / d.y;
+            double r = (cap - o.y) * iy;
             double x = o.x + r * d.x, z = o.z + r * d.z, rad = cap ? ob->r1 : r0;
             if (x * x + z * z <= rad * rad)
                 t[n++] = r;
