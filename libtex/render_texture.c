@@ -592,8 +592,8 @@ void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *s
                     tex_v3 e1 = grad == 1 ? t1 : o1, e2 = grad == 1 ? t2 : o2;
                     a0 = tex_v3_dot(du, e1) * su, a1 = tex_v3_dot(dv, e1) * sv;
                     b0 = tex_v3_dot(du, e2) * su, b1 = tex_v3_dot(dv, e2) * sv;
-                    l1 = sqrt(a0 * a0 + a1 * a1) * w1;
-                    l2 = sqrt(b0 * b0 + b1 * b1) * w2;
+                    l1 = (a0 * a0 + a1 * a1) * (w1 * w1); /* squared: one root below */
+                    l2 = (b0 * b0 + b1 * b1) * (w2 * w2);
                 } else {
                     if (!steps) {
                         o1 = tex_xform_dir(&leaf->to_obj, t1);
@@ -607,10 +607,11 @@ void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *s
                     map_point_at(ap, leaf, P2, pl2, b);
                     a0 = wrapdiff(a[0] - u0) * su, a1 = wrapdiff(a[1] - v0) * sv;
                     b0 = wrapdiff(b[0] - u0) * su, b1 = wrapdiff(b[1] - v0) * sv;
-                    l1 = sqrt(a0 * a0 + a1 * a1) * w1 / d1;
-                    l2 = sqrt(b0 * b0 + b1 * b1) * w2 / d2;
+                    double s1 = w1 / d1, s2 = w2 / d2;
+                    l1 = (a0 * a0 + a1 * a1) * (s1 * s1);
+                    l2 = (b0 * b0 + b1 * b1) * (s2 * s2);
                 }
-                fw = l1 > l2 ? l1 : l2;
+                fw = sqrt(l1 > l2 ? l1 : l2);
             }
             /* one lookup: region maps and primitives ignore the footprint */
             int region = tex_texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw, f);
