@@ -104,10 +104,29 @@ void tex_xform_identity(tex_xform *t);
 void tex_xform_mul(tex_xform *r, const tex_xform *a, const tex_xform *b);
 /* -1 if singular. */
 int tex_xform_invert(tex_xform *r, const tex_xform *a);
-tex_v3 tex_xform_point(const tex_xform *t, tex_v3 p);
-tex_v3 tex_xform_dir(const tex_xform *t, tex_v3 d);
+/* Inline: every ray meets them per leaf. */
+static inline tex_v3 tex_xform_point(const tex_xform *t, tex_v3 p)
+{
+    const double(*m)[4] = t->m;
+    return tex_v3_make(m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
+                       m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
+                       m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]);
+}
+static inline tex_v3 tex_xform_dir(const tex_xform *t, tex_v3 d)
+{
+    const double(*m)[4] = t->m;
+    return tex_v3_make(m[0][0] * d.x + m[0][1] * d.y + m[0][2] * d.z,
+                       m[1][0] * d.x + m[1][1] * d.y + m[1][2] * d.z,
+                       m[2][0] * d.x + m[2][1] * d.y + m[2][2] * d.z);
+}
 /* The normal transform: the inverse's transpose applied to n (pass the inverse). */
-tex_v3 tex_xform_normal(const tex_xform *inv, tex_v3 n);
+static inline tex_v3 tex_xform_normal(const tex_xform *inv, tex_v3 n)
+{
+    const double(*m)[4] = inv->m;
+    return tex_v3_make(m[0][0] * n.x + m[1][0] * n.y + m[2][0] * n.z,
+                       m[0][1] * n.x + m[1][1] * n.y + m[2][1] * n.z,
+                       m[0][2] * n.x + m[1][2] * n.y + m[2][2] * n.z);
+}
 
 /* ---- rays and optics ---------------------------------------------------- */
 

@@ -61,30 +61,6 @@ int tex_xform_invert(tex_xform *r, const tex_xform *a)
     return 0;
 }
 
-tex_v3 tex_xform_point(const tex_xform *t, tex_v3 p)
-{
-    const double(*m)[4] = t->m;
-    return tex_v3_make(m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
-                       m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
-                       m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]);
-}
-
-tex_v3 tex_xform_dir(const tex_xform *t, tex_v3 d)
-{
-    const double(*m)[4] = t->m;
-    return tex_v3_make(m[0][0] * d.x + m[0][1] * d.y + m[0][2] * d.z,
-                       m[1][0] * d.x + m[1][1] * d.y + m[1][2] * d.z,
-                       m[2][0] * d.x + m[2][1] * d.y + m[2][2] * d.z);
-}
-
-tex_v3 tex_xform_normal(const tex_xform *inv, tex_v3 n)
-{
-    const double(*m)[4] = inv->m;
-    return tex_v3_make(m[0][0] * n.x + m[1][0] * n.y + m[2][0] * n.z,
-                       m[0][1] * n.x + m[1][1] * n.y + m[2][1] * n.z,
-                       m[0][2] * n.x + m[1][2] * n.y + m[2][2] * n.z);
-}
-
 /* ---- optics ----------------------------------------------------------------- */
 
 tex_v3 tex_reflect(tex_v3 d, tex_v3 n)
