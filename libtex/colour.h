@@ -59,49 +59,53 @@ void tex_colour_space_rgb(struct tex_colour_space *cs);
 float tex_srgb_encode(float linear);
 float tex_srgb_decode(float encoded);
 
+/* Every sample i < n: RGB unrolled (n = 3), spectra vectorised. */
+#define TEX_COLOUR_EACH(n, stmt)                                                                   \
+    do {                                                                                           \
+        if ((n) == 3) {                                                                            \
+            for (int i = 0; i < 3; i++)                                                            \
+                stmt;                                                                              \
+        } else {                                                                                   \
+            _Pragma("omp simd") for (int i = 0; i < (n); i++) stmt;                                \
+        }                                                                                          \
+    } while (0)
+
 static inline void tex_colour_set(tex_colour *d, int n, float x)
 {
-    for (int i = 0; i < n; i++)
-        d->v[i] = x;
+    TEX_COLOUR_EACH(n, d->v[i] = x);
 }
 
 static inline void tex_colour_copy(tex_colour *d, int n, const tex_colour *a)
 {
-    for (int i = 0; i < n; i++)
-        d->v[i] = a->v[i];
+    TEX_COLOUR_EACH(n, d->v[i] = a->v[i]);
 }
 
 static inline void tex_colour_add(tex_colour *d, int n, const tex_colour *a, const tex_colour *b)
 {
-    for (int i = 0; i < n; i++)
-        d->v[i] = a->v[i] + b->v[i];
+    TEX_COLOUR_EACH(n, d->v[i] = a->v[i] + b->v[i]);
 }
 
 static inline void tex_colour_mul(tex_colour *d, int n, const tex_colour *a, const tex_colour *b)
 {
-    for (int i = 0; i < n; i++)
-        d->v[i] = a->v[i] * b->v[i];
+    TEX_COLOUR_EACH(n, d->v[i] = a->v[i] * b->v[i]);
 }
 
 static inline void tex_colour_scale(tex_colour *d, int n, const tex_colour *a, float s)
 {
-    for (int i = 0; i < n; i++)
-        d->v[i] = a->v[i] * s;
+    TEX_COLOUR_EACH(n, d->v[i] = a->v[i] * s);
 }
 
 /* d += a * s */
 static inline void tex_colour_madd(tex_colour *d, int n, const tex_colour *a, float s)
 {
-    for (int i = 0; i < n; i++)
-        d->v[i] += a->v[i] * s;
+    TEX_COLOUR_EACH(n, d->v[i] += a->v[i] * s);
 }
 
 /* d += a * b * s (per sample) */
 static inline void tex_colour_mmadd(tex_colour *d, int n, const tex_colour *a, const tex_colour *b,
                                     float s)
 {
-    for (int i = 0; i < n; i++)
-        d->v[i] += a->v[i] * b->v[i] * s;
+    TEX_COLOUR_EACH(n, d->v[i] += a->v[i] * b->v[i] * s);
 }
 
 static inline float tex_colour_max(const tex_colour *a, int n)

@@ -20,11 +20,14 @@ struct ctx {
     int n;                 /* colour samples */
     const tex_colour *ambient, *background;
     tex_rng *rng;
+    int need_rng; /* jittered samples or area lights */
 };
 
 static double eps_at(tex_v3 p)
 {
-    double m = fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z)));
+    double x = fabs(p.x), y = fabs(p.y), z = fabs(p.z);
+    double m = x > y ? x : y;
+    m = m > z ? m : z; /* not fmax: a library call at -O2 */
     return 1e-6 * (1 + m);
 }
 
@@ -37,36 +40,16 @@ static const struct tex_surface *surface_of(const struct tex_scene *s, const str
 static tex_v3 hit_normal(const struct tex_hit *h, tex_v3 P)
 {
     const struct tex_object *l = h->leaf;
-    tex_v3 n = tex_shape_methods[l->kind].normal(l, tex_xform_point(&l->to_obj, P));
-    n = tex_v3_norm(tex_xform_normal(&l->to_obj, n));
-    return h->flip ? tex_v3_scale(n, -1) : n;
-}
-
-/* Fraction of light passing from P to the light: transparent surfaces let Kt through. */
-static double transmittance(const struct tex_scene *s, tex_v3 P, tex_v3 L, double dist)
-{
-    double tr = 1;
-    struct tex_hit h0;
-    /* most blockers are opaque: any hit on one ends the search */
-    if (!tex_bvh_trace_any(s->bvh, P, L, 0, dist, 1, &h0))
-        return 1;
-    if (surface_of(s, h0.leaf)->kt <= 0)
-        return 0;
-    for (int i = 0; i < 16; i++) {
-        struct tex_hit h;
-        if (!tex_scene_trace(s, P, L, 0, dist, &h))
-            return tr;
-        tr *= surface_of(s, h.leaf)->kt;
-        if (tr <= 1e-4)
-            return 0;
-        tex_v3 Q = tex_v3_madd(P, L, h.t);
-        double e = eps_at(Q);
-        P = tex_v3_madd(Q, L, e);
-        dist -= h.t + e;
-        if (dist <= 0)
-            return tr;
+    tex_v3 n;
+    if (l->fast == 1) { /* planes and round spheres: no transforms, no square root */
+        n = l->fn;
+    } else if (l->fast == 2) {
+        n = tex_v3_scale(tex_v3_sub(P, l->fn), l->fr);
+    } else {
+        n = tex_shape_methods[l->kind].normal(l, tex_xform_point(&l->to_obj, P));
+        n = tex_v3_norm(tex_xform_normal(&l->to_obj, n));
     }
-    return tr;
+    return h->flip ? tex_v3_scale(n, -1) : n;
 }
 
 /* The surface's largest normal curvature at P (unit facing normal Nf, unit
@@ -94,7 +77,9 @@ static double curvature(const struct tex_hit *h, tex_v3 P, tex_v3 Nf, tex_v3 d)
     return fabs(k[0]) > fabs(k[1]) ? k[0] : k[1];
 }
 
-static void trace(const struct ctx *c, const tex_ray *r, int depth, tex_colour *out)
+/* weight: the largest share of the pixel this ray can carry (1 for eye rays);
+ * reflected and refracted rays below the scene's bailout are not traced. */
+static void trace(const struct ctx *c, const tex_ray *r, int depth, double weight, tex_colour *out)
 {
     const struct tex_scene *s = c->s;
     int n = c->n;
@@ -133,7 +118,7 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, tex_colour *
                 continue;
             if (tex_v3_dot(L, N) <= 0 || tex_v3_dot(L, Ngv) <= 0)
                 continue;
-            double sh = transmittance(s, Pout, L, dist);
+            double sh = tex_scene_transmit(s, Pout, L, 0, dist);
             if (sh <= 0)
                 continue;
             tex_colour E;
@@ -159,22 +144,30 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, tex_colour *
     /* footprints after curved surfaces: a mirror of curvature k turns a beam
      * of width w by 2 k w more (its focal length is 1/2k); a refracting
      * surface bends it by (eta cos_i - cos_t) k w (paraxial lens power) */
-    double kc = s->settings.filter && width > 0 ? curvature(&h, P, Ngv, r->d) : 0;
+    double kmax = fmax(tex_colour_max(&kr, n), tex_colour_max(&kt, n));
+    double kc = s->settings.filter && width > 0 && kmax > 0 && weight * kmax >= s->settings.bailout
+                    ? curvature(&h, P, Ngv, r->d)
+                    : 0;
     rr.spread = fmin(r->spread + 2 * kc * width, 1);
     if (tex_colour_max(&kt, n) > 0) {
         tex_ray rt = {Pin, r->d, width, r->spread, &beyond};
         if (tex_refract(r->d, N, n1, n2, &rt.d)) {
-            double eta = n1 / n2, ci = fabs(tex_v3_dot(r->d, Ngv)), ct = fabs(tex_v3_dot(rt.d, Ngv));
-            if (ct > 1e-3)
-                rt.spread = fmin(eta * ci / ct * r->spread + (eta * ci - ct) * kc * width, 1);
-            trace(c, &rt, depth + 1, &I);
-            tex_colour_mmadd(out, n, &kt, &I, 1);
+            double w = weight * tex_colour_max(&kt, n);
+            if (w >= s->settings.bailout) {
+                double eta = n1 / n2, ci = fabs(tex_v3_dot(r->d, Ngv)),
+                       ct = fabs(tex_v3_dot(rt.d, Ngv));
+                if (ct > 1e-3)
+                    rt.spread = fmin(eta * ci / ct * r->spread + (eta * ci - ct) * kc * width, 1);
+                trace(c, &rt, depth + 1, w, &I);
+                tex_colour_mmadd(out, n, &kt, &I, 1);
+            }
         } else {
             tex_colour_add(&kr, n, &kr, &kt); /* total internal reflection */
         }
     }
-    if (tex_colour_max(&kr, n) > 0) {
-        trace(c, &rr, depth + 1, &I);
+    double wr = weight * tex_colour_max(&kr, n);
+    if (wr > 0 && wr >= s->settings.bailout) {
+        trace(c, &rr, depth + 1, wr, &I);
         tex_colour_mmadd(out, n, &kr, &I, 1);
     }
 }
@@ -182,6 +175,9 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, tex_colour *
 struct camera {
     tex_v3 eye, fwd, right, up;
     double sx, sy; /* half extents of the image plane at distance 1 */
+    double kx, ky; /* 2 sx / w and 2 sy / h: image plane units per pixel */
+    double spread; /* footprint growth per unit distance of a sample's ray */
+    int k;         /* spp = k * k: stratified, else 0 */
 };
 
 static void camera_setup(const struct tex_scene *s, struct camera *cam)
@@ -193,6 +189,11 @@ static void camera_setup(const struct tex_scene *s, struct camera *cam)
     cam->up = tex_v3_cross(cam->fwd, cam->right);
     cam->sx = tan(s->fov * M_PI / 360);
     cam->sy = cam->sx * s->settings.h / s->settings.w;
+    cam->kx = 2 * cam->sx / s->settings.w;
+    cam->ky = 2 * cam->sy / s->settings.h;
+    cam->spread = 2 * cam->sx / s->settings.w / sqrt(s->settings.spp);
+    int k = (int)sqrt((double)s->settings.spp);
+    cam->k = k * k == s->settings.spp ? k : 0;
 }
 
 static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, int y, float *px)
@@ -200,13 +201,12 @@ static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, 
     const struct tex_scene *s = c0->s;
     const struct tex_settings *st = &s->settings;
     tex_rng rng;
-    tex_rng_seed(&rng, tex_hash64(st->seed ^ tex_hash64((uint64_t)y * st->w + x)));
+    if (c0->need_rng)
+        tex_rng_seed(&rng, tex_hash64(st->seed ^ tex_hash64((uint64_t)y * st->w + x)));
     struct ctx c = *c0;
     c.rng = &rng;
-    int spp = st->spp, k = (int)sqrt((double)spp);
-    int grid = k * k == spp;
+    int spp = st->spp, k = cam->k, grid = k > 0;
     double acc[3] = {0, 0, 0};
-    double spread = 2 * cam->sx / st->w;
     for (int i = 0; i < spp; i++) {
         double ox = 0.5, oy = 0.5;
         if (spp > 1) {
@@ -217,21 +217,26 @@ static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, 
                 oy = ((i / k) + oy) / k;
             }
         }
-        double a = (2 * (x + ox) / st->w - 1) * cam->sx;
-        double b = (1 - 2 * (y + oy) / st->h) * cam->sy;
+        double a = (x + ox) * cam->kx - cam->sx;
+        double b = cam->sy - (y + oy) * cam->ky;
         tex_ray r = {cam->eye,
                      tex_v3_norm(tex_v3_add(cam->fwd, tex_v3_add(tex_v3_scale(cam->right, a),
                                                                  tex_v3_scale(cam->up, b)))),
-                     0, spread / sqrt(spp), NULL};
+                     0, cam->spread, NULL};
         tex_colour col;
         float rgb[3];
-        trace(&c, &r, 0, &col);
+        trace(&c, &r, 0, 1, &col);
+        if (s->cs.mode == TEX_COLOUR_RGB) { /* the identity: no call, no store and reload */
+            for (int j = 0; j < 3; j++)
+                acc[j] += col.v[j];
+            continue;
+        }
         s->cs.to_rgb(&s->cs, &col, rgb);
         for (int j = 0; j < 3; j++)
             acc[j] += rgb[j];
     }
     for (int j = 0; j < 3; j++)
-        px[j] = (float)(acc[j] / spp);
+        px[j] = (float)(spp == 1 ? acc[j] : acc[j] / spp);
 }
 
 tex_map *tex_render(struct tex_scene *s, void (*progress)(long, long, void *), void *arg)
@@ -242,10 +247,20 @@ tex_map *tex_render(struct tex_scene *s, void (*progress)(long, long, void *), v
     tex_map *img = tex_map_new(st->w, st->h, 3);
     if (!img)
         return NULL;
+    for (int i = 0; i < s->nsurfaces; i++) {
+        if (tex_surface_cache(s->surfaces[i], &s->cs) < 0) {
+            for (int j = 0; j <= i; j++)
+                tex_surface_uncache(s->surfaces[j]);
+            tex_map_free(img);
+            return NULL;
+        }
+    }
     tex_colour ambient, background;
     s->cs.from_rgb(&s->cs, s->ambient, TEX_SPECTRUM_ILLUMINANT, &ambient);
     s->cs.from_rgb(&s->cs, s->background, TEX_SPECTRUM_ILLUMINANT, &background);
-    struct ctx c = {s, s->cs.n, &ambient, &background, NULL};
+    struct ctx c = {s, s->cs.n, &ambient, &background, NULL, st->spp > 1};
+    for (int i = 0; i < s->nlights; i++)
+        c.need_rng |= s->lights[i].kind == TEX_LIGHT_AREA;
     struct camera cam;
     camera_setup(s, &cam);
     int tw = (st->w + TILE - 1) / TILE, th = (st->h + TILE - 1) / TILE;
@@ -265,5 +280,7 @@ tex_map *tex_render(struct tex_scene *s, void (*progress)(long, long, void *), v
     }
     if (progress)
         progress(ntiles, ntiles, arg);
+    for (int i = 0; i < s->nsurfaces; i++)
+        tex_surface_uncache(s->surfaces[i]);
     return img;
 }

@@ -105,10 +105,29 @@ void tex_xform_identity(tex_xform *t);
 void tex_xform_mul(tex_xform *r, const tex_xform *a, const tex_xform *b);
 /* -1 if singular. */
 int tex_xform_invert(tex_xform *r, const tex_xform *a);
-tex_v3 tex_xform_point(const tex_xform *t, tex_v3 p);
-tex_v3 tex_xform_dir(const tex_xform *t, tex_v3 d);
+/* Inline: every ray meets them per leaf. */
+static inline tex_v3 tex_xform_point(const tex_xform *t, tex_v3 p)
+{
+    const double(*m)[4] = t->m;
+    return tex_v3_make(m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
+                       m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
+                       m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]);
+}
+static inline tex_v3 tex_xform_dir(const tex_xform *t, tex_v3 d)
+{
+    const double(*m)[4] = t->m;
+    return tex_v3_make(m[0][0] * d.x + m[0][1] * d.y + m[0][2] * d.z,
+                       m[1][0] * d.x + m[1][1] * d.y + m[1][2] * d.z,
+                       m[2][0] * d.x + m[2][1] * d.y + m[2][2] * d.z);
+}
 /* The normal transform: the inverse's transpose applied to n (pass the inverse). */
-tex_v3 tex_xform_normal(const tex_xform *inv, tex_v3 n);
+static inline tex_v3 tex_xform_normal(const tex_xform *inv, tex_v3 n)
+{
+    const double(*m)[4] = inv->m;
+    return tex_v3_make(m[0][0] * n.x + m[1][0] * n.y + m[2][0] * n.z,
+                       m[0][1] * n.x + m[1][1] * n.y + m[2][1] * n.z,
+                       m[0][2] * n.x + m[1][2] * n.y + m[2][2] * n.z);
+}
 
 /* ---- rays and optics ---------------------------------------------------- */
 
@@ -153,6 +172,7 @@ enum tex_shape_kind { TEX_SHAPE_SPHERE, TEX_SHAPE_BOX, TEX_SHAPE_CYLINDER, TEX_S
                       TEX_SHAPE_PLANE, TEX_SHAPE_TORUS, TEX_SHAPE_NKINDS };
 
 struct tex_surface;
+struct tex_surface_cache;
 struct tex_object;
 
 /* One boundary crossing of a ray with a leaf shape. */
@@ -199,10 +219,19 @@ struct tex_object {
     struct tex_bounds wb;       /* world bounds */
     int bounded;
     int line, col;              /* where it was declared */
+    /* leaves, set by tex_object_bounds: the world normal without the transforms,
+     * 1: a plane of unit normal fn; 2: a sphere placed by a similarity, n = (P - fn) fr */
+    int fast;
+    tex_v3 fn;
+    double fr;
 };
 
 /* Intervals of an object (leaf or CSG tree) along a world ray o + t d. */
 void tex_object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s);
+/* The same, for a ray whose line is known to meet ob's world box: inv is
+ * 1/d with zero components replaced by 1/1e-300 (the BVH's ray). */
+void tex_csg_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, tex_v3 inv,
+                   struct tex_spans *s);
 /* Combine two interval lists with a CSG operation. */
 void tex_csg_combine(enum tex_csg_op op, const struct tex_spans *a, const struct tex_spans *b,
                      struct tex_spans *r);
@@ -235,6 +264,10 @@ struct tex_scene;
 void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *sf,
                           const struct tex_object *leaf, tex_v3 P, tex_v3 D, tex_v3 *N,
                           double width, struct tex_material *m);
+/* Fill (tex_render, before tracing) and free a surface's cache: its untextured
+ * colours in the scene's colour space, its application functions compiled. */
+int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs);
+void tex_surface_uncache(struct tex_surface *sf);
 /* Build the pyramid of mip[0] (box filter, wrapping). */
 int tex_texture_build_mip(struct tex_texture *t);
 
@@ -280,6 +313,7 @@ struct tex_surface {
     struct tex_ct *ct;      /* Cook-Torrance parameters (render_ct.h); NULL: its defaults */
     struct tex_apply *apply;
     int line, col;
+    struct tex_surface_cache *cache; /* tex_render's (render_texture.c), or NULL */
 };
 
 /* ---- lights ------------------------------------------------------------- */
@@ -314,6 +348,7 @@ struct tex_settings {
     int w, h, spp, depth, threads;
     int filter;       /* 1: mip-mapped texture lookups */
     uint64_t seed;
+    double bailout;   /* reflected/refracted rays weighing less are not traced */
 };
 
 struct tex_bvh;
@@ -354,6 +389,11 @@ int tex_scene_prepare(struct tex_scene *s);
 /* The closest hit along a ray beyond tmin: 1 and *hit, or 0. */
 int tex_scene_trace(const struct tex_scene *s, tex_v3 o, tex_v3 d, double tmin, double tmax,
                     struct tex_hit *hit);
+
+/* Fraction of light passing along o + t d for t in (tmin, tmax): the product
+ * of the surfaces' Kt over every boundary crossed, 0 if it falls to 1e-4. */
+double tex_scene_transmit(const struct tex_scene *s, tex_v3 o, tex_v3 d, double tmin,
+                          double tmax);
 
 struct tex_bvh *tex_bvh_build(struct tex_object **obs, int n);
 void tex_bvh_free(struct tex_bvh *b);

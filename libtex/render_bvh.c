@@ -1,27 +1,60 @@
 /* render_bvh.c - bounding-volume hierarchy over the top-level objects
  *
- * Bounded objects go into a binary tree split at the median of the
- * longest axis of their centres; unbounded ones (planes, CSG trees built
- * on them) are tested one by one.  Traversal visits the nearer child
- * first and shrinks tmax as hits are found.
+ * Bounded objects go into a binary tree built with the surface-area
+ * heuristic over their centres (sorted per axis, ties broken by index, so
+ * the tree is deterministic); leaves hold up to LEAF_MAX objects.  Unbounded
+ * ones (planes, CSG trees built on them) are tested one by one, first, so
+ * their hits shrink the search before the tree is entered.
+ *
+ * Each object gets a fast path chosen at build time: a sphere placed by a
+ * similarity (translate, rotate, uniform scale) is intersected in world
+ * space, a plane through its object-space y row alone; other leaves pay for
+ * the transform, CSG trees for their interval lists.  Traversal is ordered
+ * (nearer child first), skips nodes entered beyond the closest hit, and a
+ * shadow query (any = 1) stops at the first hit.  tex_scene_transmit visits
+ * every object along a shadow ray once, in any order: the light passing is
+ * the product of Kt over the surfaces crossed.
  */
+#define _GNU_SOURCE /* qsort_r */
 #include <stdlib.h>
 
 #include "error.h"
 #include "render.h"
 
+#define LEAF_MAX 8
+
+/* Relative costs for the surface-area heuristic: one node visit tests two
+ * boxes; a world-space sphere or plane test is cheaper than a box test. */
+#define COST_NODE 2.0
+
+enum pkind { PK_SPHERE, PK_PLANE, PK_LEAF, PK_CSG };
+
+/* One top-level object and its fast path. */
+struct prim {
+    tex_v3 a;  /* sphere: world centre; plane: the y row of to_obj */
+    double b;  /* sphere: radius squared; plane: the row's offset */
+    int kind;
+    const struct tex_object *ob;
+};
+
 struct node {
     struct tex_bounds b;
-    int left, right; /* children, or -1 */
-    int first, count; /* leaves: objects[first..first+count) */
+    int first; /* inner: the right child (the left is the next node); leaf: first prim */
+    int count; /* leaf: number of prims; 0 for inner nodes */
 };
 
 struct tex_bvh {
     struct node *nodes;
     int nnodes;
-    const struct tex_object **obs; /* bounded, in tree order */
-    const struct tex_object **unb; /* unbounded */
+    struct prim *prims; /* bounded, in tree order */
+    struct prim *unb;   /* unbounded */
     int nunb;
+};
+
+/* A ray with its per-ray constants. */
+struct ray {
+    tex_v3 o, d, inv;
+    double dd; /* d.d */
 };
 
 static struct tex_bounds merge(struct tex_bounds a, struct tex_bounds b)
@@ -33,67 +66,180 @@ static struct tex_bounds merge(struct tex_bounds a, struct tex_bounds b)
     return r;
 }
 
-static double centre(const struct tex_object *o, int axis)
+static double area(struct tex_bounds b)
 {
-    return tex_v3_get(o->wb.lo, axis) + tex_v3_get(o->wb.hi, axis);
+    tex_v3 e = tex_v3_sub(b.hi, b.lo);
+    return e.x * e.y + e.y * e.z + e.z * e.x;
 }
 
-static int build(struct tex_bvh *t, int first, int count)
+/* The fast path of a top-level object. */
+static void classify(struct prim *p, const struct tex_object *ob)
 {
+    p->ob = ob;
+    p->kind = ob->op == TEX_CSG_LEAF ? PK_LEAF : PK_CSG;
+    if (p->kind != PK_LEAF)
+        return;
+    const double(*m)[4] = ob->to_world.m;
+    if (ob->kind == TEX_SHAPE_SPHERE) {
+        /* a similarity keeps the sphere round: orthogonal columns of equal length */
+        tex_v3 c0 = tex_v3_make(m[0][0], m[1][0], m[2][0]);
+        tex_v3 c1 = tex_v3_make(m[0][1], m[1][1], m[2][1]);
+        tex_v3 c2 = tex_v3_make(m[0][2], m[1][2], m[2][2]);
+        double s2 = tex_v3_dot(c0, c0), tol = 1e-12 * s2;
+        if (fabs(tex_v3_dot(c1, c1) - s2) <= tol && fabs(tex_v3_dot(c2, c2) - s2) <= tol &&
+            fabs(tex_v3_dot(c0, c1)) <= tol && fabs(tex_v3_dot(c1, c2)) <= tol &&
+            fabs(tex_v3_dot(c0, c2)) <= tol && s2 > 0) {
+            p->kind = PK_SPHERE;
+            p->a = tex_v3_make(m[0][3], m[1][3], m[2][3]);
+            p->b = s2;
+        }
+    } else if (ob->kind == TEX_SHAPE_PLANE) {
+        const double(*q)[4] = ob->to_obj.m;
+        p->kind = PK_PLANE;
+        p->a = tex_v3_make(q[1][0], q[1][1], q[1][2]);
+        p->b = q[1][3];
+    }
+}
+
+static double cost(const struct prim *p)
+{
+    /* a CSG tree starts with its own box test, which rejects most rays */
+    return p->kind == PK_SPHERE || p->kind == PK_PLANE ? 0.8 : p->kind == PK_LEAF ? 2 : 1.5;
+}
+
+static double centre(const struct prim *p, int axis)
+{
+    return tex_v3_get(p->ob->wb.lo, axis) + tex_v3_get(p->ob->wb.hi, axis);
+}
+
+struct sortkey {
+    const struct prim *base;
+    int axis;
+};
+
+/* Sort items (indices into the prims) by centre, then by index: deterministic. */
+static int cmp_centre(const void *x, const void *y, void *arg)
+{
+    const struct sortkey *k = arg;
+    int i = *(const int *)x, j = *(const int *)y;
+    double a = centre(&k->base[i], k->axis), b = centre(&k->base[j], k->axis);
+    return a < b ? -1 : a > b ? 1 : (i > j) - (i < j);
+}
+
+struct builder {
+    struct tex_bvh *t;
+    const struct prim *src; /* the bounded prims in input order */
+    int *idx;               /* [first, first + count): the items of the node being built */
+    int *tmp;
+    double *rarea;          /* right-hand area times cost of a sweep */
+    int nprims;
+};
+
+/* Deeper than this, split at the median: the traversal stack stays bounded. */
+#define SAH_DEPTH 48
+
+static void build(struct builder *bd, int first, int count, int depth)
+{
+    struct tex_bvh *t = bd->t;
     int id = t->nnodes++;
     struct node *n = &t->nodes[id];
-    n->b = t->obs[first]->wb;
+    n->b = bd->src[bd->idx[first]].ob->wb;
     for (int i = 1; i < count; i++)
-        n->b = merge(n->b, t->obs[first + i]->wb);
-    n->left = n->right = -1;
-    n->first = first;
-    n->count = count;
-    if (count <= 2)
-        return id;
-    tex_v3 ext = tex_v3_sub(n->b.hi, n->b.lo);
-    int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : ext.y >= ext.z ? 1 : 2;
-    /* insertion sort by centre: stable and deterministic, fine for thousands */
-    for (int i = first + 1; i < first + count; i++) {
-        const struct tex_object *o = t->obs[i];
-        int j = i - 1;
-        while (j >= first && centre(t->obs[j], axis) > centre(o, axis)) {
-            t->obs[j + 1] = t->obs[j];
-            j--;
+        n->b = merge(n->b, bd->src[bd->idx[first + i]].ob->wb);
+    /* surface-area heuristic */
+    double best = 0, parea = area(n->b);
+    for (int i = 0; i < count; i++)
+        best += cost(&bd->src[bd->idx[first + i]]);
+    int best_axis = -1, best_split = 0;
+    for (int axis = 0; axis < 3 && count > 1 && parea > 0 && depth < SAH_DEPTH; axis++) {
+        int *it = bd->tmp;
+        struct sortkey k = {bd->src, axis};
+        for (int i = 0; i < count; i++)
+            it[i] = bd->idx[first + i];
+        qsort_r(it, count, sizeof *it, cmp_centre, &k);
+        struct tex_bounds b = bd->src[it[count - 1]].ob->wb;
+        double sum = 0;
+        for (int i = count - 1; i > 0; i--) {
+            b = merge(b, bd->src[it[i]].ob->wb);
+            sum += cost(&bd->src[it[i]]);
+            bd->rarea[i] = area(b) * sum;
         }
-        t->obs[j + 1] = o;
+        b = bd->src[it[0]].ob->wb;
+        sum = 0;
+        for (int i = 1; i < count; i++) {
+            sum += cost(&bd->src[it[i - 1]]);
+            double c = COST_NODE + (area(b) * sum + bd->rarea[i]) / parea;
+            if (c < best) {
+                best = c;
+                best_axis = axis;
+                best_split = i;
+            }
+            b = merge(b, bd->src[it[i]].ob->wb);
+        }
     }
-    int half = count / 2;
-    int l = build(t, first, half);
-    int r = build(t, first + half, count - half);
-    t->nodes[id].left = l;
-    t->nodes[id].right = r;
-    t->nodes[id].count = 0;
-    return id;
+    if (best_axis < 0 && count > LEAF_MAX) { /* no better split: halve along the longest axis */
+        tex_v3 e = tex_v3_sub(n->b.hi, n->b.lo);
+        best_axis = e.x >= e.y && e.x >= e.z ? 0 : e.y >= e.z ? 1 : 2;
+        best_split = count / 2;
+    }
+    if (best_axis < 0) {
+        n->count = count;
+        n->first = bd->nprims;
+        for (int i = 0; i < count; i++)
+            t->prims[bd->nprims++] = bd->src[bd->idx[first + i]];
+        return;
+    }
+    struct sortkey k = {bd->src, best_axis};
+    qsort_r(bd->idx + first, count, sizeof *bd->idx, cmp_centre, &k);
+    n->count = 0;
+    build(bd, first, best_split, depth + 1);
+    int right = t->nnodes;
+    build(bd, first + best_split, count - best_split, depth + 1);
+    t->nodes[id].first = right;
 }
 
 struct tex_bvh *tex_bvh_build(struct tex_object **obs, int n)
 {
     struct tex_bvh *t = calloc(1, sizeof *t);
+    struct builder bd = {t, NULL, NULL, NULL, NULL, 0};
+    struct prim *src = NULL;
+    int m = n ? n : 1;
     if (!t)
-        return NULL;
-    t->obs = malloc((n ? n : 1) * sizeof *t->obs);
-    t->unb = malloc((n ? n : 1) * sizeof *t->unb);
-    t->nodes = malloc((2 * n + 1) * sizeof *t->nodes);
-    if (!t->obs || !t->unb || !t->nodes) {
-        tex_bvh_free(t);
-        tex_error("out of memory building the BVH");
-        return NULL;
-    }
+        goto oom;
+    t->prims = malloc(m * sizeof *t->prims);
+    t->unb = malloc(m * sizeof *t->unb);
+    t->nodes = malloc((2 * m + 1) * sizeof *t->nodes);
+    src = malloc(m * sizeof *src);
+    bd.idx = malloc(m * sizeof *bd.idx);
+    bd.tmp = malloc(m * sizeof *bd.tmp);
+    bd.rarea = malloc(m * sizeof *bd.rarea);
+    if (!t->prims || !t->unb || !t->nodes || !src || !bd.idx || !bd.tmp || !bd.rarea)
+        goto oom;
     int nb = 0;
     for (int i = 0; i < n; i++) {
-        if (tex_object_bounds(obs[i]))
-            t->obs[nb++] = obs[i];
-        else
-            t->unb[t->nunb++] = obs[i];
+        if (tex_object_bounds(obs[i])) {
+            bd.idx[nb] = nb;
+            classify(&src[nb++], obs[i]);
+        } else {
+            classify(&t->unb[t->nunb++], obs[i]);
+        }
     }
+    bd.src = src;
     if (nb)
-        build(t, 0, nb);
+        build(&bd, 0, nb, 0);
+    free(src);
+    free(bd.idx);
+    free(bd.tmp);
+    free(bd.rarea);
     return t;
+oom:
+    free(src);
+    free(bd.idx);
+    free(bd.tmp);
+    free(bd.rarea);
+    tex_bvh_free(t);
+    tex_error("out of memory building the BVH");
+    return NULL;
 }
 
 void tex_bvh_free(struct tex_bvh *b)
@@ -101,12 +247,11 @@ void tex_bvh_free(struct tex_bvh *b)
     if (!b)
         return;
     free(b->nodes);
-    free(b->obs);
+    free(b->prims);
     free(b->unb);
     free(b);
 }
 
-/* Slab test against [tmin, tmax]; the entry distance in *t0. */
 static inline double mind(double a, double b)
 {
     return a < b ? a : b;
@@ -118,25 +263,41 @@ static inline double maxd(double a, double b)
 
 /* Slab test against [tmin, tmax]; the entry distance in *t0.  Plain compares,
  * not fmin/fmax, which are library calls at -O2 (NaN rules). */
-static inline int hit_box(const struct tex_bounds *b, tex_v3 o, tex_v3 inv, double tmin,
+static inline int hit_box(const struct tex_bounds *b, const struct ray *r, double tmin,
                           double tmax, double *t0)
 {
-    double a = (b->lo.x - o.x) * inv.x, c = (b->hi.x - o.x) * inv.x;
+    double a = (b->lo.x - r->o.x) * r->inv.x, c = (b->hi.x - r->o.x) * r->inv.x;
     double lo = maxd(tmin, mind(a, c)), hi = mind(tmax, maxd(a, c));
-    a = (b->lo.y - o.y) * inv.y, c = (b->hi.y - o.y) * inv.y;
+    a = (b->lo.y - r->o.y) * r->inv.y, c = (b->hi.y - r->o.y) * r->inv.y;
     lo = maxd(lo, mind(a, c)), hi = mind(hi, maxd(a, c));
-    a = (b->lo.z - o.z) * inv.z, c = (b->hi.z - o.z) * inv.z;
+    a = (b->lo.z - r->o.z) * r->inv.z, c = (b->hi.z - r->o.z) * r->inv.z;
     lo = maxd(lo, mind(a, c)), hi = mind(hi, maxd(a, c));
     *t0 = lo;
     return lo <= hi;
 }
 
-/* The first boundary of ob beyond tmin and before *tmax. */
-static int first_hit(const struct tex_object *ob, tex_v3 o, tex_v3 d, double tmin, double *tmax,
-                     struct tex_hit *hit)
+/* Spans of a CSG tree or a transformed leaf: the first boundary beyond tmin
+ * and before *tmax.  Out of line: the interval lists are large. */
+static __attribute__((noinline)) int first_hit_spans(const struct prim *p, const struct ray *r,
+                                                     double tmin, double *tmax,
+                                                     struct tex_hit *hit)
 {
     struct tex_spans s;
-    tex_object_spans(ob, o, d, &s);
+    const struct tex_object *ob = p->ob;
+    if (p->kind == PK_LEAF) {
+        tex_v3 lo = tex_xform_point(&ob->to_obj, r->o), ld = tex_xform_dir(&ob->to_obj, r->d);
+        tex_shape_methods[ob->kind].spans(ob, lo, ld, &s);
+    } else {
+        double t0;
+        /* the tree's box, against the closest hit so far, before its interval lists */
+        if (!ob->bounded) {
+            tex_object_spans(ob, r->o, r->d, &s);
+        } else {
+            if (!hit_box(&ob->wb, r, tmin, *tmax, &t0))
+                return 0;
+            tex_csg_spans(ob, r->o, r->d, r->inv, &s);
+        }
+    }
     for (int i = 0; i < s.n; i++) {
         const struct tex_hit *h = s.in[i].t > tmin ? &s.in[i] : s.out[i].t > tmin ? &s.out[i] : NULL;
         if (!h)
@@ -151,6 +312,39 @@ static int first_hit(const struct tex_object *ob, tex_v3 o, tex_v3 d, double tmi
     return 0;
 }
 
+/* The first boundary of p beyond tmin and before *tmax: 1, *hit and *tmax updated. */
+static inline int first_hit(const struct prim *p, const struct ray *r, double tmin, double *tmax,
+                            struct tex_hit *hit)
+{
+    double t;
+    if (p->kind == PK_SPHERE) {
+        tex_v3 oc = tex_v3_sub(r->o, p->a);
+        double b = tex_v3_dot(oc, r->d), c = tex_v3_dot(oc, oc) - p->b;
+        double disc = b * b - r->dd * c;
+        if (disc <= 0)
+            return 0;
+        double q = sqrt(disc);
+        t = (-b - q) / r->dd;
+        if (!(t > tmin))
+            t = (-b + q) / r->dd;
+    } else if (p->kind == PK_PLANE) {
+        double dy = tex_v3_dot(p->a, r->d);
+        if (dy == 0)
+            return 0;
+        t = -(tex_v3_dot(p->a, r->o) + p->b) / dy;
+    } else {
+        return first_hit_spans(p, r, tmin, tmax, hit);
+    }
+    if (t > tmin && t < *tmax) {
+        hit->t = t;
+        hit->leaf = p->ob;
+        hit->flip = 0;
+        *tmax = t;
+        return 1;
+    }
+    return 0;
+}
+
 int tex_bvh_trace(const struct tex_bvh *t, tex_v3 o, tex_v3 d, double tmin, double tmax,
                   struct tex_hit *hit)
 {
@@ -160,48 +354,168 @@ int tex_bvh_trace(const struct tex_bvh *t, tex_v3 o, tex_v3 d, double tmin, doub
 int tex_bvh_trace_any(const struct tex_bvh *t, tex_v3 o, tex_v3 d, double tmin, double tmax,
                       int any, struct tex_hit *hit)
 {
+    /* IEEE division gives +-inf for zero components, which the slab test handles
+     * except for 0 * inf; nudge zeros instead. */
+    struct ray r = {o, d,
+                    tex_v3_make(1 / (d.x != 0 ? d.x : 1e-300), 1 / (d.y != 0 ? d.y : 1e-300),
+                                1 / (d.z != 0 ? d.z : 1e-300)),
+                    tex_v3_dot(d, d)};
     int found = 0;
+    if (!(r.dd > 0))
+        return 0;
     for (int i = 0; i < t->nunb; i++) {
-        found |= first_hit(t->unb[i], o, d, tmin, &tmax, hit);
+        found |= first_hit(&t->unb[i], &r, tmin, &tmax, hit);
         if (found && any)
             return 1;
     }
     if (!t->nnodes)
         return found;
-    /* IEEE division gives +-inf for zero components, which the slab test handles
-     * except for 0 * inf; nudge zeros instead. */
-    tex_v3 inv = tex_v3_make(1 / (d.x != 0 ? d.x : 1e-300), 1 / (d.y != 0 ? d.y : 1e-300),
-                             1 / (d.z != 0 ? d.z : 1e-300));
-    int stack[128], sp = 0;
+    struct {
+        int node;
+        double t;
+    } stack[128]; /* the tree is at most SAH_DEPTH + 32 deep */
+    int sp = 0, ni = 0;
     double t0;
-    if (!hit_box(&t->nodes[0].b, o, inv, tmin, tmax, &t0))
+    if (!hit_box(&t->nodes[0].b, &r, tmin, tmax, &t0))
         return found;
-    stack[sp++] = 0;
-    while (sp) {
-        const struct node *n = &t->nodes[stack[--sp]];
-        if (!hit_box(&n->b, o, inv, tmin, tmax, &t0))
-            continue;
+    for (;;) {
+        const struct node *n = &t->nodes[ni];
         if (n->count) {
-            for (int i = 0; i < n->count; i++)
-                found |= first_hit(t->obs[n->first + i], o, d, tmin, &tmax, hit);
-            if (found && any)
-                return 1;
-            continue;
+            const struct prim *p = &t->prims[n->first];
+            for (int i = 0; i < n->count; i++) {
+                found |= first_hit(&p[i], &r, tmin, &tmax, hit);
+                if (found && any)
+                    return 1;
+            }
+        } else {
+            double tl, tr;
+            int l = ni + 1, rt = n->first;
+            int hl = hit_box(&t->nodes[l].b, &r, tmin, tmax, &tl);
+            int hr = hit_box(&t->nodes[rt].b, &r, tmin, tmax, &tr);
+            if (hl && hr) {
+                /* visit the nearer first; the farther waits with its entry distance */
+                stack[sp].node = tl <= tr ? rt : l;
+                stack[sp++].t = tl <= tr ? tr : tl;
+                ni = tl <= tr ? l : rt;
+                continue;
+            }
+            if (hl || hr) {
+                ni = hl ? l : rt;
+                continue;
+            }
         }
-        double tl, tr;
-        int hl = hit_box(&t->nodes[n->left].b, o, inv, tmin, tmax, &tl);
-        int hr = hit_box(&t->nodes[n->right].b, o, inv, tmin, tmax, &tr);
-        if (hl && hr && sp < 126) {
-            /* push the farther first so the nearer is visited first */
-            stack[sp++] = tl <= tr ? n->right : n->left;
-            stack[sp++] = tl <= tr ? n->left : n->right;
-        } else if (hl && sp < 127) {
-            stack[sp++] = n->left;
-        } else if (hr && sp < 127) {
-            stack[sp++] = n->right;
+        /* pop the next node still entered before the closest hit so far */
+        for (;;) {
+            if (!sp)
+                return found;
+            sp--;
+            if (stack[sp].t <= tmax)
+                break;
         }
+        ni = stack[sp].node;
     }
-    return found;
+}
+
+/* Product of Kt over the boundaries of p in (tmin, tmax) into *tr; 0 at an opaque one. */
+static double surface_kt(const struct tex_scene *s, const struct tex_object *leaf)
+{
+    return (leaf->surface ? leaf->surface : s->surfaces[0])->kt;
+}
+
+static void transmit_prim(const struct tex_scene *s, const struct prim *p, const struct ray *r,
+                          double tmin, double tmax, double *tr)
+{
+    double t0, t1;
+    int n = 0;
+    /* only whether the crossings lie in (tmin, tmax) matters: compare t's
+     * numerators with the bounds times the (positive) denominator, no division */
+    if (p->kind == PK_SPHERE) {
+        tex_v3 oc = tex_v3_sub(r->o, p->a);
+        double b = tex_v3_dot(oc, r->d), c = tex_v3_dot(oc, oc) - p->b;
+        double disc = b * b - r->dd * c;
+        if (disc <= 0)
+            return;
+        double q = sqrt(disc), lo = tmin * r->dd, hi = tmax * r->dd;
+        t0 = -b - q, t1 = -b + q;
+        n = (t0 > lo && t0 < hi) + (t1 > lo && t1 < hi);
+    } else if (p->kind == PK_PLANE) {
+        double dy = tex_v3_dot(p->a, r->d);
+        if (dy == 0)
+            return;
+        double num = -(tex_v3_dot(p->a, r->o) + p->b);
+        if (dy < 0)
+            num = -num, dy = -dy;
+        n = num > tmin * dy && num < tmax * dy;
+    } else {
+        struct tex_spans sp;
+        const struct tex_object *ob = p->ob;
+        if (p->kind == PK_LEAF) {
+            tex_v3 lo = tex_xform_point(&ob->to_obj, r->o), ld = tex_xform_dir(&ob->to_obj, r->d);
+            tex_shape_methods[ob->kind].spans(ob, lo, ld, &sp);
+        } else {
+            if (!ob->bounded) {
+                tex_object_spans(ob, r->o, r->d, &sp);
+            } else {
+                if (!hit_box(&ob->wb, r, tmin, tmax, &t0))
+                    return;
+                tex_csg_spans(ob, r->o, r->d, r->inv, &sp);
+            }
+        }
+        for (int i = 0; i < sp.n && *tr > 0; i++) {
+            const struct tex_hit *h[2] = {&sp.in[i], &sp.out[i]};
+            for (int k = 0; k < 2; k++)
+                if (h[k]->leaf && h[k]->t > tmin && h[k]->t < tmax)
+                    *tr *= surface_kt(s, h[k]->leaf);
+        }
+        return;
+    }
+    if (n) {
+        double kt = surface_kt(s, p->ob);
+        *tr *= n == 2 ? kt * kt : kt;
+    }
+}
+
+double tex_scene_transmit(const struct tex_scene *s, tex_v3 o, tex_v3 d, double tmin, double tmax)
+{
+    const struct tex_bvh *t = s->bvh;
+    struct ray r = {o, d,
+                    tex_v3_make(1 / (d.x != 0 ? d.x : 1e-300), 1 / (d.y != 0 ? d.y : 1e-300),
+                                1 / (d.z != 0 ? d.z : 1e-300)),
+                    tex_v3_dot(d, d)};
+    double tr = 1, t0;
+    if (!(r.dd > 0))
+        return 1;
+    for (int i = 0; i < t->nunb; i++) {
+        transmit_prim(s, &t->unb[i], &r, tmin, tmax, &tr);
+        if (tr <= 1e-4)
+            return 0;
+    }
+    if (!t->nnodes || !hit_box(&t->nodes[0].b, &r, tmin, tmax, &t0))
+        return tr;
+    int stack[128], sp = 0, ni = 0;
+    for (;;) {
+        const struct node *n = &t->nodes[ni];
+        if (n->count) {
+            for (int i = 0; i < n->count; i++) {
+                transmit_prim(s, &t->prims[n->first + i], &r, tmin, tmax, &tr);
+                if (tr <= 1e-4)
+                    return 0;
+            }
+        } else {
+            int l = ni + 1, rt = n->first;
+            int hl = hit_box(&t->nodes[l].b, &r, tmin, tmax, &t0);
+            int hr = hit_box(&t->nodes[rt].b, &r, tmin, tmax, &t0);
+            if (hl && hr)
+                stack[sp++] = rt;
+            if (hl || hr) {
+                ni = hl ? l : rt;
+                continue;
+            }
+        }
+        if (!sp)
+            return tr;
+        ni = stack[--sp];
+    }
 }
 
 int tex_scene_trace(const struct tex_scene *s, tex_v3 o, tex_v3 d, double tmin, double tmax,

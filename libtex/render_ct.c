@@ -33,24 +33,95 @@ void tex_ct_set_space(struct tex_ct *ct, const struct tex_colour_space *cs)
     const struct tex_matdb_entry *entry = ct->entry;
     ct->has_eta = entry != NULL;
     ct->conductor = entry && entry->kind == TEX_CONDUCTOR;
+    ct->flat = 0;
     if (entry) {
         tex_colour_space_curve(cs, &entry->n, &ct->eta);
         tex_colour_space_curve(cs, &entry->k, &ct->k);
+        ct->flat = !ct->conductor;
+        for (int i = 1; i < cs->n; i++)
+            ct->flat &= ct->eta.v[i] == ct->eta.v[0];
     }
 }
 
 /* A surface that names the model but sets none of its parameters: a dielectric of the
  * surface's ior, Beckmann m = 0.2, half specular. */
-static const struct tex_ct ct_default = {{TEX_FACET_BECKMANN, 0.2, 0}, 0.5, 0, 0, {{0}}, {{0}}, NULL};
+static const struct tex_ct ct_default = {{TEX_FACET_BECKMANN, 0.2, 0}, 0.5, 0, 0, {{0}}, {{0}}, NULL, 0};
 
 static const struct tex_ct *params(const struct tex_material *mat)
 {
     return mat->model_data ? mat->model_data : &ct_default;
 }
 
+/* The two spectrum loops below are the hottest shading steps of a spectral
+ * scene (per hit, per light, per band).  GCC at -O2 does not vectorise sqrtf
+ * (errno), so on SSE2 they are written with intrinsics, four bands at a time,
+ * the last group padded: every band takes the same instructions, and IEEE
+ * sqrt and division give the scalar code's results. */
+#ifdef __SSE2__
+#include <emmintrin.h>
+
+static inline __m128 clamp01_ps(__m128 f)
+{
+    return _mm_min_ps(_mm_max_ps(f, _mm_setzero_ps()), _mm_set1_ps(1));
+}
+
 /* tex_fresnel_conductor (fresnel.h, eta_i = 1) in single precision for a whole
- * spectrum at once: the same exact formula without a call per sample (it is
- * the hottest shading step of a spectral scene with metals). */
+ * spectrum at once: the same exact formula without a call per sample. */
+static void fresnel_conductor_n(double cos_i, const float *n, const float *k, int count,
+                                float *out)
+{
+    float cf = (float)(cos_i < 0 ? 0 : cos_i > 1 ? 1 : cos_i);
+    __m128 c = _mm_set1_ps(cf), c2 = _mm_set1_ps(cf * cf), s2 = _mm_set1_ps(1 - cf * cf);
+    __m128 half = _mm_set1_ps(0.5f), two = _mm_set1_ps(2), four = _mm_set1_ps(4);
+    for (int i = 0; i < count; i += 4) {
+        float nb[4] = {1, 1, 1, 1}, kb[4] = {0, 0, 0, 0}, ob[4];
+        int m = count - i < 4 ? count - i : 4;
+        for (int j = 0; j < m; j++)
+            nb[j] = n[i + j], kb[j] = k[i + j];
+        __m128 nv = _mm_loadu_ps(nb), kv = _mm_loadu_ps(kb);
+        __m128 e2 = _mm_mul_ps(nv, nv), k2 = _mm_mul_ps(kv, kv);
+        __m128 t0 = _mm_sub_ps(_mm_sub_ps(e2, k2), s2);
+        __m128 a2b2 = _mm_sqrt_ps(
+            _mm_add_ps(_mm_mul_ps(t0, t0), _mm_mul_ps(_mm_mul_ps(four, e2), k2)));
+        __m128 h = _mm_mul_ps(half, _mm_add_ps(a2b2, t0));
+        __m128 a = _mm_sqrt_ps(_mm_max_ps(h, _mm_setzero_ps()));
+        __m128 t1 = _mm_add_ps(a2b2, c2), t2 = _mm_mul_ps(_mm_mul_ps(two, a), c);
+        __m128 rs = _mm_div_ps(_mm_sub_ps(t1, t2), _mm_add_ps(t1, t2));
+        __m128 t3 = _mm_add_ps(_mm_mul_ps(c2, a2b2), _mm_mul_ps(s2, s2));
+        __m128 t4 = _mm_mul_ps(t2, s2);
+        __m128 rp = _mm_div_ps(_mm_mul_ps(rs, _mm_sub_ps(t3, t4)), _mm_add_ps(t3, t4));
+        _mm_storeu_ps(ob, clamp01_ps(_mm_mul_ps(half, _mm_add_ps(rs, rp))));
+        for (int j = 0; j < m; j++)
+            out[i + j] = ob[j];
+    }
+}
+
+/* tex_fresnel_dielectric (fresnel.h) in single precision for a whole spectrum:
+ * r[i] = eta_i / eta_t per sample, c = cos of the angle of incidence. */
+static void fresnel_dielectric_n(float cf, const float *r, int count, float *out)
+{
+    __m128 c = _mm_set1_ps(cf), s2 = _mm_set1_ps(1 - cf * cf), one = _mm_set1_ps(1);
+    __m128 half = _mm_set1_ps(0.5f);
+    for (int i = 0; i < count; i += 4) {
+        float rb[4] = {1, 1, 1, 1}, ob[4];
+        int m = count - i < 4 ? count - i : 4;
+        for (int j = 0; j < m; j++)
+            rb[j] = r[i + j];
+        __m128 rv = _mm_loadu_ps(rb);
+        __m128 st2 = _mm_mul_ps(_mm_mul_ps(rv, rv), s2);
+        __m128 ct = _mm_sqrt_ps(_mm_max_ps(_mm_sub_ps(one, st2), _mm_setzero_ps()));
+        __m128 rc = _mm_mul_ps(rv, c), rct = _mm_mul_ps(rv, ct);
+        __m128 rpar = _mm_div_ps(_mm_sub_ps(c, rct), _mm_add_ps(c, rct));
+        __m128 rperp = _mm_div_ps(_mm_sub_ps(rc, ct), _mm_add_ps(rc, ct));
+        __m128 f = clamp01_ps(
+            _mm_mul_ps(half, _mm_add_ps(_mm_mul_ps(rpar, rpar), _mm_mul_ps(rperp, rperp))));
+        __m128 tir = _mm_cmpge_ps(st2, one); /* total internal reflection */
+        _mm_storeu_ps(ob, _mm_or_ps(_mm_and_ps(tir, one), _mm_andnot_ps(tir, f)));
+        for (int j = 0; j < m; j++)
+            out[i + j] = ob[j];
+    }
+}
+#else
 static void fresnel_conductor_n(double cos_i, const float *n, const float *k, int count,
                                 float *out)
 {
@@ -60,7 +131,8 @@ static void fresnel_conductor_n(double cos_i, const float *n, const float *k, in
         float e2 = n[i] * n[i], k2 = k[i] * k[i];
         float t0 = e2 - k2 - s2;
         float a2b2 = sqrtf(t0 * t0 + 4 * e2 * k2);
-        float a = sqrtf(fmaxf(0, 0.5f * (a2b2 + t0)));
+        float h = 0.5f * (a2b2 + t0);
+        float a = sqrtf(h > 0 ? h : 0);
         float t1 = a2b2 + c2, t2 = 2 * a * c;
         float rs = (t1 - t2) / (t1 + t2);
         float t3 = c2 * a2b2 + s2 * s2, t4 = t2 * s2;
@@ -70,6 +142,21 @@ static void fresnel_conductor_n(double cos_i, const float *n, const float *k, in
     }
 }
 
+static void fresnel_dielectric_n(float c, const float *r, int count, float *out)
+{
+    float s2 = 1 - c * c;
+    for (int i = 0; i < count; i++) {
+        float st2 = r[i] * r[i] * s2;
+        float ct = sqrtf(st2 < 1 ? 1 - st2 : 0);
+        float rc = r[i] * c, rct = r[i] * ct;
+        float rpar = (c - rct) / (c + rct), rperp = (rc - ct) / (rc + ct);
+        float f = 0.5f * (rpar * rpar + rperp * rperp);
+        f = f < 0 ? 0 : f > 1 ? 1 : f;
+        out[i] = st2 >= 1 ? 1 : f; /* total internal reflection */
+    }
+}
+#endif
+
 /* Fresnel reflectance per sample at cos_i (< 0: from inside). */
 static void fresnel(const struct tex_material *mat, const struct tex_ct *ct, double cos_i,
                     int n, tex_colour *fr)
@@ -78,25 +165,24 @@ static void fresnel(const struct tex_material *mat, const struct tex_ct *ct, dou
         fresnel_conductor_n(fabs(cos_i), ct->eta.v, ct->k.v, n, fr->v);
         return;
     }
-    double last_eta = -1, last_k = -1, last_f = 0;
-    for (int i = 0; i < n; i++) {
-        double eta = ct->has_eta ? ct->eta.v[i] : mat->ior;
-        double k = ct->conductor ? ct->k.v[i] : 0;
-        /* a flat index (a plain dielectric): one evaluation for every sample */
-        if (eta == last_eta && k == last_k) {
-            fr->v[i] = (float)last_f;
-            continue;
-        }
-        last_eta = eta;
-        last_k = k;
-        if (ct->conductor)
-            fr->v[i] = (float)tex_fresnel_conductor(fabs(cos_i), 1, eta, ct->k.v[i]);
-        else if (cos_i >= 0)
-            fr->v[i] = (float)tex_fresnel_dielectric(cos_i, 1, eta, NULL);
-        else
-            fr->v[i] = (float)tex_fresnel_dielectric(-cos_i, eta, 1, NULL);
-        last_f = fr->v[i];
+    if (!ct->has_eta || ct->flat) { /* one index: one evaluation for every sample */
+        double eta = ct->has_eta ? ct->eta.v[0] : mat->ior;
+        double f = cos_i >= 0 ? tex_fresnel_dielectric(cos_i, 1, eta, NULL)
+                              : tex_fresnel_dielectric(-cos_i, eta, 1, NULL);
+        tex_colour_set(fr, n, (float)f);
+        return;
     }
+    float r[TEX_COLOUR_MAX];
+    double c = cos_i >= 0 ? cos_i : -cos_i;
+    if (cos_i >= 0) {
+#pragma omp simd
+        for (int i = 0; i < n; i++)
+            r[i] = 1 / ct->eta.v[i];
+    } else {
+        for (int i = 0; i < n; i++)
+            r[i] = ct->eta.v[i];
+    }
+    fresnel_dielectric_n((float)(c > 1 ? 1 : c), r, n, fr->v);
 }
 
 static void ct_direct(const struct tex_material *mat, const double N[3], const double V[3],
@@ -115,11 +201,13 @@ static void ct_direct(const struct tex_material *mat, const double N[3], const d
     double nh = (N[0] * h[0] + N[1] * h[1] + N[2] * h[2]) / hl;
     double vh = (V[0] * h[0] + V[1] * h[1] + V[2] * h[2]) / hl;
     double g = tex_ct_geometry(&ct->facets, nh, nv, nl, vh);
-    if (g <= 0)
+    double w = ct->s * M_PI * g * nl;
+    /* F <= 1: a highlight below 1e-12 of the light (far from H) needs no Fresnel term */
+    if (!(w > 1e-12))
         return;
     tex_colour f;
     fresnel(mat, ct, vh, n, &f);
-    tex_colour_mmadd(out, n, &f, E, (float)(ct->s * M_PI * g * nl));
+    tex_colour_mmadd(out, n, &f, E, (float)w);
 }
 
 static void ct_weights(const struct tex_material *mat, double cosi, int n, tex_colour *kr,
@@ -128,9 +216,10 @@ static void ct_weights(const struct tex_material *mat, double cosi, int n, tex_c
     const struct tex_ct *ct = params(mat);
     tex_colour f;
     fresnel(mat, ct, cosi, n, &f);
+    float wr = (float)mat->kr, wt = ct->conductor ? 0 : (float)mat->kt;
     for (int i = 0; i < n; i++) {
-        kr->v[i] = (float)(mat->kr * f.v[i]);
-        kt->v[i] = ct->conductor ? 0 : (float)(mat->kt * (1 - f.v[i]));
+        kr->v[i] = wr * f.v[i];
+        kt->v[i] = wt * (1 - f.v[i]);
     }
 }
 

@@ -53,6 +53,7 @@ struct tex_ct {
     int has_eta;       /* 0: use the material's ior */
     tex_colour eta, k; /* per sample */
     const struct tex_matdb_entry *entry; /* where eta and k come from (kept for resampling) */
+    int flat;          /* a dielectric whose eta is the same in every sample */
 };
 
 extern const struct tex_shading_model tex_shading_cook_torrance;

@@ -1310,6 +1310,8 @@ static void parse_scene(struct parser *ps)
             st->spp = integer_in(ps, 1, 4096, "samples");
         } else if (is_word(&kt, "depth")) {
             st->depth = integer_in(ps, 0, 64, "depth");
+        } else if (is_word(&kt, "bailout")) {
+            st->bailout = number_in(ps, 0, 1, "bailout");
         } else if (is_word(&kt, "threads")) {
             st->threads = integer_in(ps, 0, 1024, "threads");
         } else if (is_word(&kt, "seed")) {
@@ -1415,7 +1417,7 @@ struct tex_scene *tex_scene_parse(const char *text, size_t len, const char *name
     s->eye = tex_v3_make(0, 0, -5);
     s->up = tex_v3_make(0, 1, 0);
     s->fov = 45;
-    s->settings = (struct tex_settings){640, 480, 1, 5, 0, 1, 0};
+    s->settings = (struct tex_settings){640, 480, 1, 5, 0, 1, 0, 1.0 / 255};
     s->ambient[0] = s->ambient[1] = s->ambient[2] = 1;
     tex_colour_space_rgb(&s->cs);
     int rc = parse_all(&ps);

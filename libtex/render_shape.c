@@ -64,30 +64,6 @@ int tex_xform_invert(tex_xform *r, const tex_xform *a)
     return 0;
 }
 
-tex_v3 tex_xform_point(const tex_xform *t, tex_v3 p)
-{
-    const double(*m)[4] = t->m;
-    return tex_v3_make(m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
-                       m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],
-                       m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]);
-}
-
-tex_v3 tex_xform_dir(const tex_xform *t, tex_v3 d)
-{
-    const double(*m)[4] = t->m;
-    return tex_v3_make(m[0][0] * d.x + m[0][1] * d.y + m[0][2] * d.z,
-                       m[1][0] * d.x + m[1][1] * d.y + m[1][2] * d.z,
-                       m[2][0] * d.x + m[2][1] * d.y + m[2][2] * d.z);
-}
-
-tex_v3 tex_xform_normal(const tex_xform *inv, tex_v3 n)
-{
-    const double(*m)[4] = inv->m;
-    return tex_v3_make(m[0][0] * n.x + m[1][0] * n.y + m[2][0] * n.z,
-                       m[0][1] * n.x + m[1][1] * n.y + m[2][1] * n.z,
-                       m[0][2] * n.x + m[1][2] * n.y + m[2][2] * n.z);
-}
-
 /* ---- optics ----------------------------------------------------------------- */
 
 tex_v3 tex_reflect(tex_v3 d, tex_v3 n)
@@ -161,15 +137,16 @@ static int unit_bounds(const struct tex_object *ob, struct tex_bounds *b)
 static void box_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s)
 {
     double t0 = -INFINITY, t1 = INFINITY;
+    double oo[3] = {o.x, o.y, o.z}, dd[3] = {d.x, d.y, d.z};
     s->n = 0;
     for (int i = 0; i < 3; i++) {
-        double oi = tex_v3_get(o, i), di = tex_v3_get(d, i);
+        double oi = oo[i], di = dd[i];
         if (di == 0) {
             if (oi < -1 || oi > 1)
                 return;
             continue;
         }
-        double a = (-1 - oi) / di, b = (1 - oi) / di;
+        double inv = 1 / di, a = (-1 - oi) * inv, b = (1 - oi) * inv;
         if (a > b) {
             double x = a;
             a = b;
@@ -233,8 +210,8 @@ static void cone_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct t
     if (fabs(a) > 1e-14) {
         double disc = b * b - 4 * a * c;
         if (disc > 0) {
-            double q = sqrt(disc);
-            double r[2] = {(-b - q) / (2 * a), (-b + q) / (2 * a)};
+            double q = sqrt(disc), h = 0.5 / a;
+            double r[2] = {(-b - q) * h, (-b + q) * h};
             for (int i = 0; i < 2; i++) {
                 double y = o.y + r[i] * d.y;
                 if (y >= 0 && y <= 1 && r0 + k * y >= 0)
@@ -247,8 +224,9 @@ static void cone_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct t
             t[n++] = r;
     }
     if (d.y != 0) {
+        double iy = 1 / d.y;
         for (int cap = 0; cap < 2; cap++) {
-            double r = (cap - o.y) / d.y;
+            double r = (cap - o.y) * iy;
             double x = o.x + r * d.x, z = o.z + r * d.z, rad = cap ? ob->r1 : r0;
             if (x * x + z * z <= rad * rad)
                 t[n++] = r;
@@ -533,55 +511,99 @@ const struct tex_shape_methods tex_shape_methods[TEX_SHAPE_NKINDS] = {
 
 /* ---- objects ------------------------------------------------------------------ */
 
-static int ray_box(const struct tex_bounds *b, tex_v3 o, tex_v3 d)
+/* Does the line o + t d meet box b?  inv is 1/d with zero components nudged
+ * to +-1e300 (as the BVH does), so the slab test needs no division. */
+static int ray_box(const struct tex_bounds *b, tex_v3 o, tex_v3 inv)
 {
-    double t0 = -INFINITY, t1 = INFINITY;
-    for (int i = 0; i < 3; i++) {
-        double oi = tex_v3_get(o, i), di = tex_v3_get(d, i);
-        double lo = tex_v3_get(b->lo, i), hi = tex_v3_get(b->hi, i);
-        if (di == 0) {
-            if (oi < lo || oi > hi)
-                return 0;
-            continue;
-        }
-        double a = (lo - oi) / di, c = (hi - oi) / di;
-        if (a > c) {
-            double x = a;
-            a = c;
-            c = x;
-        }
-        t0 = a > t0 ? a : t0;
-        t1 = c < t1 ? c : t1;
-        if (t0 > t1)
-            return 0;
-    }
-    return 1;
+    double a = (b->lo.x - o.x) * inv.x, c = (b->hi.x - o.x) * inv.x;
+    double t0 = a < c ? a : c, t1 = a < c ? c : a;
+    a = (b->lo.y - o.y) * inv.y, c = (b->hi.y - o.y) * inv.y;
+    t0 = t0 > (a < c ? a : c) ? t0 : (a < c ? a : c);
+    t1 = t1 < (a < c ? c : a) ? t1 : (a < c ? c : a);
+    a = (b->lo.z - o.z) * inv.z, c = (b->hi.z - o.z) * inv.z;
+    t0 = t0 > (a < c ? a : c) ? t0 : (a < c ? a : c);
+    t1 = t1 < (a < c ? c : a) ? t1 : (a < c ? c : a);
+    return t0 <= t1;
 }
 
-void tex_object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s)
+static void object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, tex_v3 inv,
+                         struct tex_spans *s)
 {
     if (ob->op == TEX_CSG_LEAF) {
         tex_v3 lo = tex_xform_point(&ob->to_obj, o), ld = tex_xform_dir(&ob->to_obj, d);
         tex_shape_methods[ob->kind].spans(ob, lo, ld, s);
         return;
     }
-    if (ob->bounded && !ray_box(&ob->wb, o, d)) {
+    if (ob->bounded && !ray_box(&ob->wb, o, inv)) {
         s->n = 0;
         return;
     }
     struct tex_spans a, b;
-    tex_object_spans(ob->a, o, d, &a);
+    object_spans(ob->a, o, d, inv, &a);
     if (a.n == 0 && ob->op != TEX_CSG_UNION) {
         s->n = 0;
         return;
     }
-    tex_object_spans(ob->b, o, d, &b);
+    object_spans(ob->b, o, d, inv, &b);
     tex_csg_combine(ob->op, &a, &b, s);
+}
+
+void tex_object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s)
+{
+    tex_v3 inv = tex_v3_make(1 / (d.x != 0 ? d.x : 1e-300), 1 / (d.y != 0 ? d.y : 1e-300),
+                             1 / (d.z != 0 ? d.z : 1e-300));
+    object_spans(ob, o, d, inv, s);
+}
+
+void tex_csg_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, tex_v3 inv,
+                   struct tex_spans *s)
+{
+    if (ob->op == TEX_CSG_LEAF) {
+        object_spans(ob, o, d, inv, s);
+        return;
+    }
+    struct tex_spans a, b;
+    object_spans(ob->a, o, d, inv, &a);
+    if (a.n == 0 && ob->op != TEX_CSG_UNION) {
+        s->n = 0;
+        return;
+    }
+    object_spans(ob->b, o, d, inv, &b);
+    tex_csg_combine(ob->op, &a, &b, s);
+}
+
+/* The leaf's normal fast path (struct tex_object's fast). */
+static void leaf_fast(struct tex_object *ob)
+{
+    const double(*m)[4] = ob->to_world.m;
+    ob->fast = 0;
+    if (ob->kind == TEX_SHAPE_PLANE) {
+        const double(*q)[4] = ob->to_obj.m; /* the normal: the y row of the inverse */
+        tex_v3 n = tex_v3_make(q[1][0], q[1][1], q[1][2]);
+        if (tex_v3_len(n) > 0) {
+            ob->fast = 1;
+            ob->fn = tex_v3_norm(n);
+        }
+    } else if (ob->kind == TEX_SHAPE_SPHERE) {
+        /* orthogonal columns of equal length: the sphere stays round */
+        tex_v3 c0 = tex_v3_make(m[0][0], m[1][0], m[2][0]);
+        tex_v3 c1 = tex_v3_make(m[0][1], m[1][1], m[2][1]);
+        tex_v3 c2 = tex_v3_make(m[0][2], m[1][2], m[2][2]);
+        double s2 = tex_v3_dot(c0, c0), tol = 1e-12 * s2;
+        if (s2 > 0 && fabs(tex_v3_dot(c1, c1) - s2) <= tol &&
+            fabs(tex_v3_dot(c2, c2) - s2) <= tol && fabs(tex_v3_dot(c0, c1)) <= tol &&
+            fabs(tex_v3_dot(c1, c2)) <= tol && fabs(tex_v3_dot(c0, c2)) <= tol) {
+            ob->fast = 2;
+            ob->fn = tex_v3_make(m[0][3], m[1][3], m[2][3]);
+            ob->fr = 1 / sqrt(s2);
+        }
+    }
 }
 
 int tex_object_bounds(struct tex_object *ob)
 {
     if (ob->op == TEX_CSG_LEAF) {
+        leaf_fast(ob);
         struct tex_bounds lb;
         ob->bounded = tex_shape_methods[ob->kind].bounds(ob, &lb);
         if (!ob->bounded)
@@ -647,9 +669,55 @@ static int csg_inside(enum tex_csg_op op, int a, int b)
 /* Sweep the boundaries of a and b in order; a boundary of the result is
  * wherever the combined inside/outside state changes.  Surfaces of the
  * subtracted solid face the other way. */
+/* a and b of one interval each (convex leaves), all ends distinct: the
+ * sweep's answer directly.  0 where the general sweep must decide. */
+static int combine11(enum tex_csg_op op, const struct tex_spans *a, const struct tex_spans *b,
+                     struct tex_spans *r)
+{
+    double a0 = a->in[0].t, a1 = a->out[0].t, b0 = b->in[0].t, b1 = b->out[0].t;
+    if (a0 == b0 || a0 == b1 || a1 == b0 || a1 == b1)
+        return 0;
+    if (op == TEX_CSG_INTERSECTION) {
+        r->n = 0;
+        if (a0 > b1 || b0 > a1)
+            return 1;
+        r->n = 1;
+        r->in[0] = a0 > b0 ? a->in[0] : b->in[0];
+        r->out[0] = a1 < b1 ? a->out[0] : b->out[0];
+        return 1;
+    }
+    if (op != TEX_CSG_DIFFERENCE)
+        return 0;
+    struct tex_hit fb0 = b->in[0], fb1 = b->out[0]; /* the subtracted surfaces face the other way */
+    fb0.flip = !fb0.flip;
+    fb1.flip = !fb1.flip;
+    r->n = 0;
+    if (b1 < a0 || b0 > a1) { /* apart */
+        r->in[0] = a->in[0];
+        r->out[0] = a->out[0];
+        r->n = 1;
+        return 1;
+    }
+    if (b0 < a0 && b1 > a1) /* b covers a */
+        return 1;
+    if (b0 > a0) { /* a starts outside b */
+        r->in[0] = a->in[0];
+        r->out[0] = fb0;
+        r->n = 1;
+    }
+    if (b1 < a1) { /* a goes on after b */
+        r->in[r->n] = fb1;
+        r->out[r->n] = a->out[0];
+        r->n++;
+    }
+    return 1;
+}
+
 void tex_csg_combine(enum tex_csg_op op, const struct tex_spans *a, const struct tex_spans *b,
                      struct tex_spans *r)
 {
+    if (a->n == 1 && b->n == 1 && combine11(op, a, b, r))
+        return;
     int ia = 0, ib = 0, na = 2 * a->n, nb = 2 * b->n;
     int ina = 0, inb = 0, inr = 0;
     r->n = 0;

@@ -8,6 +8,7 @@
 #include "error.h"
 #include "file.h"
 #include "render.h"
+#include "rng.h"
 #include "unit.h"
 
 static char dir[] = "/tmp/textura-render.XXXXXX";
@@ -262,6 +263,191 @@ static void test_receding(void)
            var[0]);
 }
 
+/* The first boundary of ob beyond tmin: what a search over every object finds. */
+static int brute_first(const struct tex_object *ob, tex_v3 o, tex_v3 d, double tmin,
+                       struct tex_hit *h)
+{
+    struct tex_spans s;
+    tex_object_spans(ob, o, d, &s);
+    for (int i = 0; i < s.n; i++) {
+        const struct tex_hit *x = s.in[i].t > tmin ? &s.in[i] : s.out[i].t > tmin ? &s.out[i] : NULL;
+        if (!x)
+            continue;
+        if (!x->leaf)
+            return 0;
+        *h = *x;
+        return 1;
+    }
+    return 0;
+}
+
+/* The BVH (with its fast paths for spheres and planes) finds the same closest
+ * hit as testing every object, and shadow queries agree on occlusion. */
+static void test_bvh_brute(void)
+{
+    size_t cap = 200000, len = 0;
+    char *sc = malloc(cap);
+    if (!sc)
+        return;
+    tex_rng g;
+    tex_rng_seed(&g, 42);
+    len += snprintf(sc + len, cap - len, "image 8 8 camera { eye 0 0 -30 look 0 0 0 }\n"
+                                         "plane { normal 0.1 1 0.2 distance -12 }\n");
+    for (int i = 0; i < 600; i++) {
+        double x = 20 * tex_rng_uniform(&g) - 10, y = 20 * tex_rng_uniform(&g) - 10,
+               z = 20 * tex_rng_uniform(&g) - 10, r = 0.2 + 0.8 * tex_rng_uniform(&g);
+        switch (i % 6) {
+        case 0: /* world-space fast path */
+            len += snprintf(sc + len, cap - len, "sphere { centre %g %g %g radius %g }\n", x, y,
+                            z, r);
+            break;
+        case 1: /* rotated and uniformly scaled: still the fast path */
+            len += snprintf(sc + len, cap - len,
+                            "sphere { radius %g rotate 10 20 30 scale 1.5 translate %g %g %g }\n",
+                            r, x, y, z);
+            break;
+        case 2: /* an ellipsoid: the transformed path */
+            len += snprintf(sc + len, cap - len,
+                            "sphere { radius %g scale 1 0.5 2 rotate 0 40 0 translate %g %g %g }\n",
+                            r, x, y, z);
+            break;
+        case 3:
+            len += snprintf(sc + len, cap - len, "box { min %g %g %g max %g %g %g rotate 5 5 5 }\n",
+                            x, y, z, x + r, y + 2 * r, z + r);
+            break;
+        case 4:
+            len += snprintf(sc + len, cap - len,
+                            "cylinder { base %g %g %g top %g %g %g radius %g }\n", x, y, z, x + 1,
+                            y + 1, z, r / 2);
+            break;
+        default:
+            len += snprintf(sc + len, cap - len,
+                            "difference { sphere { centre %g %g %g radius %g } "
+                            "box { min %g %g %g max %g %g %g } }\n",
+                            x, y, z, r, x, y - 1, z - 1, x + 1, y + 1, z + 1);
+            break;
+        }
+    }
+    struct tex_scene *s = tex_scene_parse(sc, len, "bvh.scene");
+    free(sc);
+    CHECK(s && tex_scene_prepare(s) == 0, "600-object scene prepares");
+    if (!s)
+        return;
+    int bad_closest = 0, bad_any = 0, hits = 0;
+    for (int k = 0; k < 3000; k++) {
+        tex_v3 o = tex_v3_make(30 * tex_rng_uniform(&g) - 15, 30 * tex_rng_uniform(&g) - 15,
+                               30 * tex_rng_uniform(&g) - 15);
+        tex_v3 d = tex_v3_norm(tex_v3_make(tex_rng_uniform(&g) - 0.5, tex_rng_uniform(&g) - 0.5,
+                                           tex_rng_uniform(&g) - 0.5));
+        if (k % 10 == 0)
+            d = tex_v3_make(0, 0, k % 20 ? 1 : -1); /* axis-aligned: zero components */
+        struct tex_hit best = {INFINITY, NULL, 0}, h;
+        for (int i = 0; i < s->nobjects; i++)
+            if (brute_first(s->objects[i], o, d, 0, &h) && h.t < best.t)
+                best = h;
+        int found = tex_scene_trace(s, o, d, 0, INFINITY, &h);
+        hits += found;
+        if (found != (best.leaf != NULL) ||
+            (found && (fabs(h.t - best.t) > 1e-9 * (1 + best.t) ||
+                       (h.leaf != best.leaf && fabs(h.t - best.t) > 1e-12))))
+            bad_closest++;
+        double tmax = best.leaf ? best.t * 1.5 : 40; /* occluded iff something lies before tmax */
+        struct tex_hit a;
+        int occl = tex_bvh_trace_any(s->bvh, o, d, 0, tmax, 1, &a);
+        if (occl != (best.leaf != NULL) || (occl && !(a.t > 0 && a.t < tmax)))
+            bad_any++;
+    }
+    CHECKF(bad_closest == 0 && hits > 1000,
+           "BVH closest hits match a search of every object (%d of 3000 differ, %d hits)",
+           bad_closest, hits);
+    CHECKF(bad_any == 0, "BVH shadow queries match (%d of 3000 differ)", bad_any);
+    tex_scene_free(s);
+}
+
+/* Adaptive depth control: a bailout below every path weight changes nothing,
+ * one above the deeper weights drops only their (non-negative) light. */
+static void test_bailout(void)
+{
+    char sc[600];
+    const char *fmt = "image 48 36 depth 5 bailout %g ambient 0.2 0.2 0.2 background 0.3 0.4 0.5\n"
+                      "camera { eye 0 1.5 -5 look 0 0.8 0 fov 50 }\n"
+                      "light point { position 3 6 -4 }\n"
+                      "surface m { Ka 0.5 Kd 0.6 0.5 0.4 Ks 0.5 n 20 Kr 0.5 }\n"
+                      "plane { surface m }\n"
+                      "sphere { centre 0 1 0 radius 1 surface m }\n";
+    double b[3] = {0, 1e-3, 0.2}, sum[3] = {0, 0, 0}, dmax[3] = {0, 0, 0};
+    tex_map *m[3];
+    for (int i = 0; i < 3; i++) {
+        snprintf(sc, sizeof sc, fmt, b[i]);
+        m[i] = render_text(sc, 1);
+    }
+    CHECK(m[0] && m[1] && m[2], "bailout scenes render");
+    if (m[0] && m[1] && m[2]) {
+        size_t n = (size_t)m[0]->w * m[0]->h * 3;
+        for (int i = 0; i < 3; i++)
+            for (size_t k = 0; k < n; k++) {
+                sum[i] += m[i]->px[k];
+                double d = fabs(m[i]->px[k] - m[0]->px[k]);
+                dmax[i] = d > dmax[i] ? d : dmax[i];
+            }
+        CHECKF(dmax[1] == 0, "bailout below every path weight (0.5^5) changes nothing (%g)",
+               dmax[1]);
+        CHECKF(dmax[2] > 0 && sum[2] < sum[0],
+               "bailout 0.2 drops the deeper reflections (max change %g, total %g < %g)",
+               dmax[2], sum[2], sum[0]);
+    }
+    for (int i = 0; i < 3; i++)
+        tex_map_free(m[i]);
+    struct tex_scene *s = tex_scene_parse("bailout 2\n", 10, "b.scene");
+    CHECK(!s, "bailout outside 0..1 is refused");
+    tex_scene_free(s);
+}
+
+/* CSG on interval lists: every combination of two intervals (the fast path
+ * for convex leaves, ties included) against membership point by point. */
+static void test_csg_combine(void)
+{
+    static const struct tex_object la, lb; /* leaf tags */
+    const double ends[] = {-INFINITY, 0, 1, 2, 3, INFINITY};
+    int bad = 0, cases = 0;
+    for (int op = TEX_CSG_UNION; op <= TEX_CSG_DIFFERENCE; op++)
+        for (int i0 = 0; i0 < 6; i0++)
+            for (int i1 = i0 + 1; i1 < 6; i1++)
+                for (int j0 = 0; j0 < 6; j0++)
+                    for (int j1 = j0 + 1; j1 < 6; j1++)
+                        for (int bn = 0; bn < 2; bn++) {
+                            struct tex_spans a, b, r;
+                            a.n = 1;
+                            b.n = bn;
+                            a.in[0] = (struct tex_hit){ends[i0], &la, 0};
+                            a.out[0] = (struct tex_hit){ends[i1], &la, 0};
+                            b.in[0] = (struct tex_hit){ends[j0], &lb, 0};
+                            b.out[0] = (struct tex_hit){ends[j1], &lb, 0};
+                            tex_csg_combine(op, &a, &b, &r);
+                            cases++;
+                            for (double t = -0.75; t < 4; t += 0.5) {
+                                int ia = t > ends[i0] && t < ends[i1];
+                                int ib = bn && t > ends[j0] && t < ends[j1];
+                                int want = op == TEX_CSG_UNION          ? ia || ib
+                                           : op == TEX_CSG_INTERSECTION ? ia && ib
+                                                                        : ia && !ib;
+                                int got = 0;
+                                for (int k = 0; k < r.n; k++)
+                                    got |= t > r.in[k].t && t < r.out[k].t;
+                                bad += got != want;
+                            }
+                            /* boundaries of the subtracted solid face the other way */
+                            for (int k = 0; k < r.n; k++)
+                                for (int e = 0; e < 2; e++) {
+                                    const struct tex_hit *h = e ? &r.out[k] : &r.in[k];
+                                    int want = op == TEX_CSG_DIFFERENCE && h->leaf == &lb;
+                                    bad += h->leaf && h->flip != want;
+                                }
+                        }
+    CHECKF(bad == 0, "CSG of two intervals matches membership (%d errors in %d cases)", bad,
+           cases);
+}
+
 int main(void)
 {
     if (!mkdtemp(dir))
@@ -275,6 +461,9 @@ int main(void)
     test_kd_f();
     test_determinism();
     test_receding();
+    test_bvh_brute();
+    test_bailout();
+    test_csg_combine();
     char cmd[300];
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
     if (system(cmd) != 0)
