@@ -59,13 +59,18 @@ static tex_v3 hit_normal(const struct tex_hit *h, tex_v3 P)
  * is stretched by 1/cos, as the footprint is. */
 static double curvature(const struct tex_hit *h, tex_v3 P, tex_v3 Nf, tex_v3 d)
 {
+    const struct tex_object *l = h->leaf;
+    double cosd = fmax(fabs(tex_v3_dot(d, Nf)), 0.02);
+    if (l->fast == 1) /* planes are flat */
+        return 0;
+    if (l->fast == 2) /* round spheres: 1/r both ways, convex where Nf points outwards */
+        return (tex_v3_dot(Nf, tex_v3_sub(P, l->fn)) > 0 ? l->fr : -l->fr) / cosd;
     tex_v3 t1 = tex_v3_sub(d, tex_v3_scale(Nf, tex_v3_dot(d, Nf)));
     if (tex_v3_len(t1) < 1e-9)
         t1 = tex_v3_cross(Nf, fabs(Nf.x) < 0.9 ? tex_v3_make(1, 0, 0) : tex_v3_make(0, 1, 0));
     t1 = tex_v3_norm(t1);
     tex_v3 t2 = tex_v3_cross(Nf, t1);
     double e = 1e-4 * (1 + fmax(fabs(P.x), fmax(fabs(P.y), fabs(P.z))));
-    double cosd = fmax(fabs(tex_v3_dot(d, Nf)), 0.02);
     double k[2];
     for (int i = 0; i < 2; i++) {
         tex_v3 t = i ? t2 : t1, n = hit_normal(h, tex_v3_madd(P, t, e));
