@@ -323,6 +323,7 @@ struct tex_cellular {
     double *gx, *gia, gfac;
     /* 2D Euclidean without radii: per bucket, every point that can be one of
      * the two nearest to a query inside it */
+    int cgx, cgy;
     long *cstart;
     double *cx, *cy;
     long *cid;
@@ -570,10 +571,20 @@ static void grid_query1(const struct tex_cellular *c, const double *q, struct be
     }
 }
 
-/* Candidate lists.  F2 is 1-Lipschitz, so inside bucket C (centre m, half
- * diagonal hd) F2(q) <= F2(m) + hd = U, and a point that is one of the two
- * nearest to q lies within U of q, hence within U of the box C.  The lists
- * hold exactly the points (and periodic images) within U of each box. */
+/* Candidate lists (2D Euclidean without radii).  F2 is 1-Lipschitz, so
+ * inside bucket C (centre m, half diagonal hd) F2(q) <= F2(m) + hd = U, and
+ * a point that is one of the two nearest to q lies within U of q, hence
+ * within U of the box C.  The lists hold the points (and periodic images)
+ * within U of each box.  These buckets have their own grid, wider than
+ * tall: a row of pixels stays longer in one, and its queries share the
+ * list. */
+#ifndef CAND_FILL
+#define CAND_FILL 0.15
+#endif
+#ifndef CAND_ASPECT
+#define CAND_ASPECT 1.0
+#endif
+
 static int cand_push(struct tex_cellular *c, size_t *cap, size_t used, double x, double y,
                      long id)
 {
@@ -599,99 +610,57 @@ static int cand_push(struct tex_cellular *c, size_t *cap, size_t used, double x,
 
 static int cand_build(struct tex_cellular *c)
 {
-    int g = c->g, reach = 2;
-    long cells = (long)g * g;
-    size_t cap = 0, used = 0, tcap = 0;
-    double hd = sqrt(0.5) / g, *tmp = NULL; /* the block's points: x, y, id */
+    int g = c->g;
+    double want = c->n / CAND_FILL;
+    int gx = (int)lround(sqrt(want * CAND_ASPECT)), gy = (int)lround(sqrt(want / CAND_ASPECT));
+    size_t cap = 0, used = 0;
 
+    gx = gx < 1 ? 1 : gx > 1 << 12 ? 1 << 12 : gx;
+    gy = gy < 1 ? 1 : gy > 1 << 10 ? 1 << 10 : gy;
+    c->cgx = gx;
+    c->cgy = gy;
+    double hd = 0.5 * sqrt(1.0 / ((double)gx * gx) + 1.0 / ((double)gy * gy));
+    long cells = (long)gx * gy;
     if (!(c->cstart = malloc((cells + 1) * sizeof *c->cstart)))
         return tex_error("out of memory for the candidate lists");
     for (long k = 0; k < cells; k++) {
-        int kx = (int)(k % g), ky = (int)(k / g);
-        double m[2] = {(kx + 0.5) / g, (ky + 0.5) / g}, lo[2], hi[2], u;
-        size_t nt;
+        int kx = (int)(k % gx), ky = (int)(k / gx), k0[2], k1[2];
+        double lo[2] = {(double)kx / gx, (double)ky / gy};
+        double hi[2] = {(double)(kx + 1) / gx, (double)(ky + 1) / gy};
+        double m[2] = {(kx + 0.5) / gx, (ky + 0.5) / gy}, u, ur;
+        struct best b;
         c->cstart[k] = (long)used;
-        lo[0] = (double)kx / g, hi[0] = (double)(kx + 1) / g;
-        lo[1] = (double)ky / g, hi[1] = (double)(ky + 1) / g;
-        if (reach > 2)
-            reach--; /* neighbouring buckets need about the same reach */
-        for (;;) {
-            /* Gather the (2 reach + 1)^2 block and find F2 at the centre. */
-            double b1 = INFINITY, b2 = INFINITY;
-            int whole = !c->tile && kx - reach <= 0 && ky - reach <= 0 && kx + reach >= g - 1 &&
-                        ky + reach >= g - 1;
-            nt = 0;
-            for (int oy = -reach; oy <= reach; oy++)
-                for (int ox = -reach; ox <= reach; ox++) {
-                    int kk[2] = {kx + ox, ky + oy};
-                    double s[2] = {0, 0};
-                    long cell;
-                    for (int j = 0; j < 2; j++) {
-                        if (c->tile) {
-                            int w = (kk[j] % g + g) % g;
-                            s[j] = (kk[j] - w) / g;
-                            kk[j] = w;
-                        } else if (kk[j] < 0 || kk[j] >= g) {
-                            goto skip;
-                        }
-                    }
-                    cell = kk[0] + (long)g * kk[1];
-                    for (long at = c->start[cell]; at < c->start[cell + 1]; at++) {
-                        double px = c->gx[at * 2] + s[0], py = c->gx[at * 2 + 1] + s[1];
-                        double d = (px - m[0]) * (px - m[0]) + (py - m[1]) * (py - m[1]);
-                        if (nt == tcap) {
-                            size_t nc = tcap ? 2 * tcap : 256;
-                            double *t = realloc(tmp, nc * 3 * sizeof *t);
-                            if (!t) {
-                                free(tmp);
-                                return tex_error("out of memory for the candidate lists");
-                            }
-                            tmp = t;
-                            tcap = nc;
-                        }
-                        tmp[3 * nt] = px, tmp[3 * nt + 1] = py, tmp[3 * nt + 2] = (double)c->gid[at];
-                        nt++;
-                        if (d < b1)
-                            b2 = b1, b1 = d;
-                        else if (d < b2)
-                            b2 = d;
-                    }
-                skip:;
+        grid_query1(c, m, &b);
+        u = (sqrt(b.a2) + hd) * (1 + 1e-9) + 1e-12;
+        ur = u < 2 ? u : 2; /* for the cell range: images beyond one period never count */
+        for (int j = 0; j < 2; j++) {
+            if (c->tile) {
+                k0[j] = (int)floor((lo[j] - ur) * g);
+                k1[j] = (int)floor((hi[j] + ur) * g);
+                k0[j] = k0[j] < -g ? -g : k0[j];
+                k1[j] = k1[j] > 2 * g - 1 ? 2 * g - 1 : k1[j];
+            } else {
+                k0[j] = cell_of(lo[j] - u, g);
+                k1[j] = cell_of(hi[j] + u, g);
+            }
+        }
+        for (int yy = k0[1]; yy <= k1[1]; yy++)
+            for (int xx = k0[0]; xx <= k1[0]; xx++) {
+                int wx = (xx % g + g) % g, wy = (yy % g + g) % g;
+                double sx = (xx - wx) / g, sy = (yy - wy) / g;
+                long cell = wx + (long)g * wy;
+                for (long at = c->start[cell]; at < c->start[cell + 1]; at++) {
+                    double px = c->gx[at * 2] + sx, py = c->gx[at * 2 + 1] + sy;
+                    double dx = px < lo[0] ? lo[0] - px : px > hi[0] ? px - hi[0] : 0;
+                    double dy = py < lo[1] ? lo[1] - py : py > hi[1] ? py - hi[1] : 0;
+                    if (dx * dx + dy * dy > u * u)
+                        continue;
+                    if (cand_push(c, &cap, used, px, py, c->gid[at]) < 0)
+                        return -1;
+                    used++;
                 }
-            /* F2 at the centre is right if no point outside the block can be
-             * closer, and U must stay inside the block. */
-            u = (sqrt(b2) + hd) * (1 + 1e-9) + 1e-12;
-            if (whole || (u < reach * (1 - 1e-9) / g))
-                break;
-            reach++;
-        }
-        for (size_t t = 0; t < nt; t++) {
-            double px = tmp[3 * t], py = tmp[3 * t + 1];
-            double dx = px < lo[0] ? lo[0] - px : px > hi[0] ? px - hi[0] : 0;
-            double dy = py < lo[1] ? lo[1] - py : py > hi[1] ? py - hi[1] : 0;
-            if (dx * dx + dy * dy > u * u)
-                continue;
-            if (cand_push(c, &cap, used, px, py, (long)tmp[3 * t + 2]) < 0) {
-                free(tmp);
-                return -1;
             }
-            used++;
-        }
-        /* Nearest to the centre first: the running minima settle early. */
-        for (size_t i = c->cstart[k] + 1; i < used; i++) {
-            double x = c->cx[i], y = c->cy[i], d = (x - m[0]) * (x - m[0]) + (y - m[1]) * (y - m[1]);
-            long id = c->cid[i];
-            size_t j = i;
-            for (; j > (size_t)c->cstart[k]; j--) {
-                double px = c->cx[j - 1], py = c->cy[j - 1];
-                if ((px - m[0]) * (px - m[0]) + (py - m[1]) * (py - m[1]) <= d)
-                    break;
-                c->cx[j] = px, c->cy[j] = py, c->cid[j] = c->cid[j - 1];
-            }
-            c->cx[j] = x, c->cy[j] = y, c->cid[j] = id;
-        }
     }
-    free(tmp);
     c->cstart[cells] = (long)used;
 #ifdef HAVE_AVX2_KERNEL
     c->avx2 = !getenv("TEXTURA_NO_AVX2") && __builtin_cpu_supports("avx2");
@@ -699,100 +668,107 @@ static int cand_build(struct tex_cellular *c)
     return 0;
 }
 
-/* The hot loop: 2D Euclidean through the candidate lists.  Queries that
- * fall in the same bucket (neighbouring pixels of a row) share its list and
- * go through it four at a time, one query per vector lane; every lane does
- * the scalar arithmetic of acc_point, so the results do not depend on the
- * grouping or the vector width. */
-typedef double v2d __attribute__((vector_size(16)));
-typedef long long v2l __attribute__((vector_size(16)));
-
-static inline v2d vsel(v2l m, v2d x, v2d y)
-{
-    return (v2d)(((v2l)x & m) | ((v2l)y & ~m));
-}
-
-/* Four lanes as two native 16-byte vectors (SSE2 on every x86-64). */
-static inline void cand_lanes(const struct tex_cellular *c, long k, const double *qx,
-                              const double *qy, int want_id, double *a1, double *a2, long *i1)
-{
-    const double *cx = c->cx, *cy = c->cy;
-    const long *cid = c->cid;
-    long e = c->cstart[k + 1];
-    v2d X0 = {qx[0], qx[1]}, Y0 = {qy[0], qy[1]}, X1 = {qx[2], qx[3]}, Y1 = {qy[2], qy[3]};
-    v2d A10 = {INFINITY, INFINITY}, A20 = A10, A11 = A10, A21 = A10;
-    v2d I10 = {-1, -1}, I11 = I10;
-
-    for (long t = c->cstart[k]; t < e; t++) {
-        v2d px = {cx[t], cx[t]}, py = {cy[t], cy[t]};
-        v2d dx0 = X0 - px, dy0 = Y0 - py, a0 = dx0 * dx0 + dy0 * dy0;
-        v2d dx1 = X1 - px, dy1 = Y1 - py, a1v = dx1 * dx1 + dy1 * dy1;
-        v2l lt0 = a0 < A10, lt1 = a1v < A11;
-        if (want_id) {
-            v2d id = {(double)cid[t], (double)cid[t]};
-            lt0 |= (a0 == A10) & (id < I10);
-            lt1 |= (a1v == A11) & (id < I11);
-            I10 = vsel(lt0, id, I10);
-            I11 = vsel(lt1, id, I11);
-        }
-        v2d lose0 = vsel(lt0, A10, a0), lose1 = vsel(lt1, A11, a1v);
-        A20 = vsel(lose0 < A20, lose0, A20);
-        A21 = vsel(lose1 < A21, lose1, A21);
-        A10 = vsel(lt0, a0, A10);
-        A11 = vsel(lt1, a1v, A11);
-    }
-#ifdef HAVE_AVX2_KERNEL
-    /* Vector square roots: correctly rounded like sqrt(), without its errno check. */
-    A10 = (v2d)_mm_sqrt_pd((__m128d)A10), A11 = (v2d)_mm_sqrt_pd((__m128d)A11);
-    A20 = (v2d)_mm_sqrt_pd((__m128d)A20), A21 = (v2d)_mm_sqrt_pd((__m128d)A21);
-#else
-    for (int l = 0; l < 2; l++)
-        A10[l] = sqrt(A10[l]), A11[l] = sqrt(A11[l]), A20[l] = sqrt(A20[l]), A21[l] = sqrt(A21[l]);
-#endif
-    a1[0] = A10[0], a1[1] = A10[1], a1[2] = A11[0], a1[3] = A11[1];
-    a2[0] = A20[0], a2[1] = A20[1], a2[2] = A21[0], a2[3] = A21[1];
-    i1[0] = (long)I10[0], i1[1] = (long)I10[1], i1[2] = (long)I11[0], i1[3] = (long)I11[1];
-}
-
-#ifdef HAVE_AVX2_KERNEL
-/* The same four lanes in one 32-byte AVX2 vector, chosen at run time.
- * AVX2 alone brings no fused multiply-add, so each lane rounds exactly as
- * the SSE2 and scalar code do: the map is the same bytes on any CPU. */
+/* The hot loop: 2D Euclidean through a candidate list for up to 16 queries
+ * that fall in the same bucket (neighbouring pixels of a row), one query
+ * per vector lane, nv vectors of four.  Every lane does the scalar
+ * arithmetic of acc_point and best_add (no fused multiply-add), so the
+ * results do not depend on the grouping, the vector width or the CPU.
+ * Several independent vectors hide the latency of the compare-and-select
+ * chain.  Writes squared distances; the callers take the roots. */
 typedef double v4d __attribute__((vector_size(32)));
 typedef long long v4l __attribute__((vector_size(32)));
 
-__attribute__((target("avx2"))) static void cand_lanes_avx2(const struct tex_cellular *c, long k,
-                                                            const double *qx, const double *qy,
-                                                            int want_id, double *a1, double *a2,
-                                                            long *i1)
-{
-    const double *cx = c->cx, *cy = c->cy;
-    const long *cid = c->cid;
-    long e = c->cstart[k + 1];
-    v4d X = {qx[0], qx[1], qx[2], qx[3]}, Y = {qy[0], qy[1], qy[2], qy[3]};
-    v4d A1 = {INFINITY, INFINITY, INFINITY, INFINITY}, A2 = A1, I1 = {-1, -1, -1, -1};
+/* A macro, not a function: a 32-byte vector argument outside AVX code
+ * would change the ABI. */
+#define vsel(m, x, y) ((v4d)(((v4l)(x) & (m)) | ((v4l)(y) & ~(m))))
 
-    for (long t = c->cstart[k]; t < e; t++) {
-        v4d px = {cx[t], cx[t], cx[t], cx[t]}, py = {cy[t], cy[t], cy[t], cy[t]};
-        v4d dx = X - px, dy = Y - py, a = dx * dx + dy * dy;
-        v4l lt = a < A1;
-        if (want_id) {
-            double d = (double)cid[t];
-            v4d id = {d, d, d, d};
-            lt |= (a == A1) & (id < I1);
-            I1 = (v4d)(((v4l)id & lt) | ((v4l)I1 & ~lt));
-        }
-        v4d lose = (v4d)(((v4l)A1 & lt) | ((v4l)a & ~lt));
-        v4l m = lose < A2;
-        A2 = (v4d)(((v4l)lose & m) | ((v4l)A2 & ~m));
-        A1 = (v4d)(((v4l)a & lt) | ((v4l)A1 & ~lt));
+static inline __attribute__((always_inline)) void
+lanes(const double *cx, const double *cy, const long *cid, long t0, long e, const double *qx,
+      const double *qy, const int nv, const int want_id, const int want_f2, double *a1,
+      double *a2, long *i1)
+{
+    v4d X[4], Y[4], A1[4], A2[4], I1[4];
+
+    for (int v = 0; v < nv; v++) {
+        for (int l = 0; l < 4; l++)
+            X[v][l] = qx[4 * v + l], Y[v][l] = qy[4 * v + l];
+        A1[v] = A2[v] = (v4d){INFINITY, INFINITY, INFINITY, INFINITY};
+        I1[v] = (v4d){-1, -1, -1, -1};
     }
-    A1 = (v4d)_mm256_sqrt_pd((__m256d)A1);
-    A2 = (v4d)_mm256_sqrt_pd((__m256d)A2);
-    for (int l = 0; l < 4; l++) {
-        a1[l] = A1[l];
-        a2[l] = A2[l];
-        i1[l] = (long)I1[l];
+    for (long t = t0; t < e; t++) {
+        double d = want_id ? (double)cid[t] : 0;
+        v4d px = {cx[t], cx[t], cx[t], cx[t]}, py = {cy[t], cy[t], cy[t], cy[t]};
+        v4d id = {d, d, d, d};
+        for (int v = 0; v < nv; v++) {
+            v4d dx = X[v] - px, dy = Y[v] - py, a = dx * dx + dy * dy;
+            v4l lt = a < A1[v];
+            if (want_id) {
+                lt |= (a == A1[v]) & (id < I1[v]);
+                I1[v] = vsel(lt, id, I1[v]);
+            }
+            if (want_f2) {
+                v4d lose = vsel(lt, A1[v], a);
+                A2[v] = vsel(lose < A2[v], lose, A2[v]);
+            }
+            A1[v] = vsel(lt, a, A1[v]);
+        }
+    }
+    for (int v = 0; v < nv; v++)
+        for (int l = 0; l < 4; l++) {
+            a1[4 * v + l] = A1[v][l];
+            if (want_f2)
+                a2[4 * v + l] = A2[v][l];
+            if (want_id)
+                i1[4 * v + l] = (long)I1[v][l];
+        }
+}
+
+#define LANES_CASE(k)                                                                         \
+    case k:                                                                                   \
+        lanes(cx, cy, cid, t0, e, qx, qy, (k) / 4 + 1, ((k) >> 1) & 1, (k)&1, a1, a2, i1);   \
+        break;
+#define LANES_SWITCH                                                                          \
+    switch ((nv - 1) * 4 + want_id * 2 + want_f2) {                                           \
+        LANES_CASE(0) LANES_CASE(1) LANES_CASE(2) LANES_CASE(3) LANES_CASE(4) LANES_CASE(5)   \
+        LANES_CASE(6) LANES_CASE(7) LANES_CASE(8) LANES_CASE(9) LANES_CASE(10) LANES_CASE(11) \
+        LANES_CASE(12) LANES_CASE(13) LANES_CASE(14) LANES_CASE(15)                           \
+    }
+
+/* Baseline build: GCC lowers each 32-byte vector to two SSE2 ones. */
+static void cand_lanes(const double *cx, const double *cy, const long *cid, long t0, long e,
+                       const double *qx, const double *qy, int nv, int want_id, int want_f2,
+                       double *a1, double *a2, long *i1)
+{
+    LANES_SWITCH
+    /* Vector square roots: correctly rounded like sqrt(), without its errno check. */
+    for (int l = 0; l < 4 * nv; l += 2) {
+#ifdef HAVE_AVX2_KERNEL
+        _mm_storeu_pd(a1 + l, _mm_sqrt_pd(_mm_loadu_pd(a1 + l)));
+        if (want_f2)
+            _mm_storeu_pd(a2 + l, _mm_sqrt_pd(_mm_loadu_pd(a2 + l)));
+#else
+        for (int k = l; k < l + 2; k++) {
+            a1[k] = sqrt(a1[k]);
+            if (want_f2)
+                a2[k] = sqrt(a2[k]);
+        }
+#endif
+    }
+}
+
+#ifdef HAVE_AVX2_KERNEL
+/* The same lanes in 32-byte AVX2 vectors, chosen at run time.  AVX2 alone
+ * brings no fused multiply-add, so each lane rounds as the SSE2 code does. */
+__attribute__((target("avx2"))) static void
+cand_lanes_avx2(const double *cx, const double *cy, const long *cid, long t0, long e,
+                const double *qx, const double *qy, int nv, int want_id, int want_f2, double *a1,
+                double *a2, long *i1)
+{
+    LANES_SWITCH
+    for (int l = 0; l < 4 * nv; l += 4) {
+        _mm256_storeu_pd(a1 + l, _mm256_sqrt_pd(_mm256_loadu_pd(a1 + l)));
+        if (want_f2)
+            _mm256_storeu_pd(a2 + l, _mm256_sqrt_pd(_mm256_loadu_pd(a2 + l)));
     }
 }
 #endif
@@ -800,13 +776,13 @@ __attribute__((target("avx2"))) static void cand_lanes_avx2(const struct tex_cel
 static void cand_query(const struct tex_cellular *c, int n, const double *q, double *f1,
                        double *f2, long *id)
 {
-    enum { CHUNK = 256 };
-    int g = c->g;
+    enum { CHUNK = 256, RUN = 16 };
+    int gx = c->cgx, gy = c->cgy, want_id = id != NULL, want_f2 = f2 != NULL;
 
     for (int i0 = 0; i0 < n; i0 += CHUNK) {
         int m = n - i0 < CHUNK ? n - i0 : CHUNK;
-        double qx[CHUNK + 3], qy[CHUNK + 3], a1[CHUNK + 3], a2[CHUNK + 3];
-        long kk[CHUNK], i1[CHUNK + 3];
+        double qx[CHUNK], qy[CHUNK], a1[CHUNK + RUN], a2[CHUNK + RUN];
+        long kk[CHUNK], i1[CHUNK + RUN];
         for (int i = 0; i < m; i++) {
             double x = q[2 * (i0 + i)], y = q[2 * (i0 + i) + 1];
             x = isfinite(x) ? x : 0;
@@ -818,7 +794,7 @@ static void cand_query(const struct tex_cellular *c, int n, const double *q, dou
             qx[i] = x;
             qy[i] = y;
             kk[i] = x >= 0 && x < 1 && y >= 0 && y < 1
-                        ? cell_of(x, g) + (long)g * cell_of(y, g)
+                        ? cell_of(x, gx) + (long)gx * cell_of(y, gy)
                         : -1;
         }
         for (int i = 0; i < m;) {
@@ -831,28 +807,30 @@ static void cand_query(const struct tex_cellular *c, int n, const double *q, dou
                 i = j;
                 continue;
             }
-            while (j < m && j - i < 4 && kk[j] == kk[i])
+            while (j < m && j - i < RUN && kk[j] == kk[i])
                 j++;
-            double lx[4], ly[4];
-            for (int l = 0; l < 4; l++) { /* pad the lanes with the run's first query */
+            int nv = (j - i + 3) / 4;
+            double lx[RUN], ly[RUN];
+            for (int l = 0; l < 4 * nv; l++) { /* pad the lanes with the run's first query */
                 lx[l] = qx[i + l < j ? i + l : i];
                 ly[l] = qy[i + l < j ? i + l : i];
             }
+            long t0 = c->cstart[kk[i]], e = c->cstart[kk[i] + 1];
 #ifdef HAVE_AVX2_KERNEL
             if (c->avx2)
-                cand_lanes_avx2(c, kk[i], lx, ly, id != NULL, a1 + i, a2 + i, i1 + i);
+                cand_lanes_avx2(c->cx, c->cy, c->cid, t0, e, lx, ly, nv, want_id, want_f2,
+                                a1 + i, a2 + i, i1 + i);
             else
 #endif
-                cand_lanes(c, kk[i], lx, ly, id != NULL, a1 + i, a2 + i, i1 + i);
+                cand_lanes(c->cx, c->cy, c->cid, t0, e, lx, ly, nv, want_id, want_f2, a1 + i,
+                           a2 + i, i1 + i);
             i = j;
         }
-        for (int i = 0; i < m; i++) {
-            f1[i0 + i] = a1[i];
-            if (f2)
-                f2[i0 + i] = a2[i];
-            if (id)
-                id[i0 + i] = i1[i];
-        }
+        memcpy(f1 + i0, a1, m * sizeof *f1);
+        if (f2)
+            memcpy(f2 + i0, a2, m * sizeof *f2);
+        if (id)
+            memcpy(id + i0, i1, m * sizeof *id);
     }
 }
 
@@ -1054,7 +1032,7 @@ tex_cellular *tex_cellular_new(const tex_points *ps, const struct tex_cellular_o
         if (grid_build(c) < 0)
             goto fail;
         if (c->search == TEX_SEARCH_GRID && dim == 2 && c->metric == TEX_METRIC_EUCLID &&
-            !c->ia && (long)c->g * c->g <= 1 << 22 && cand_build(c) < 0)
+            !c->ia && cand_build(c) < 0)
             goto fail;
     }
     if (c->search == TEX_SEARCH_KDTREE && kdtree_build(c) < 0)
