@@ -330,10 +330,16 @@ struct tex_cellular {
     int avx2; /* the CPU runs the AVX2 kernel */
     /* kd-tree over the points (and their periodic images within margin) */
     flann_index_t index;
-    double *rep, margin, kfac;
+    double *rep, margin, kfac, lip, amin;
     long *repid;
     unsigned char *repshift;
     long nrep;
+    /* adaptive candidate tree over the unit square: top grid at x at, per
+     * node its first child (-1 leaf, -2 left to kdtree_query) and leaf
+     * list; list entries as x, y and point ids */
+    int at, *achild, *alen;
+    long *astart, *aid;
+    double *ax, *ay;
 };
 
 /* The "accumulated" distance: squared for L2, the p-th power for Lp, so that
@@ -662,9 +668,6 @@ static int cand_build(struct tex_cellular *c)
             }
     }
     c->cstart[cells] = (long)used;
-#ifdef HAVE_AVX2_KERNEL
-    c->avx2 = !getenv("TEXTURA_NO_AVX2") && __builtin_cpu_supports("avx2");
-#endif
     return 0;
 }
 
@@ -737,11 +740,11 @@ lanes(const double *cx, const double *cy, const long *cid, long t0, long e, cons
 /* Baseline build: GCC lowers each 32-byte vector to two SSE2 ones. */
 static void cand_lanes(const double *cx, const double *cy, const long *cid, long t0, long e,
                        const double *qx, const double *qy, int nv, int want_id, int want_f2,
-                       double *a1, double *a2, long *i1)
+                       int roots, double *a1, double *a2, long *i1)
 {
     LANES_SWITCH
     /* Vector square roots: correctly rounded like sqrt(), without its errno check. */
-    for (int l = 0; l < 4 * nv; l += 2) {
+    for (int l = 0; roots && l < 4 * nv; l += 2) {
 #ifdef HAVE_AVX2_KERNEL
         _mm_storeu_pd(a1 + l, _mm_sqrt_pd(_mm_loadu_pd(a1 + l)));
         if (want_f2)
@@ -761,11 +764,11 @@ static void cand_lanes(const double *cx, const double *cy, const long *cid, long
  * brings no fused multiply-add, so each lane rounds as the SSE2 code does. */
 __attribute__((target("avx2"))) static void
 cand_lanes_avx2(const double *cx, const double *cy, const long *cid, long t0, long e,
-                const double *qx, const double *qy, int nv, int want_id, int want_f2, double *a1,
-                double *a2, long *i1)
+                const double *qx, const double *qy, int nv, int want_id, int want_f2, int roots,
+                double *a1, double *a2, long *i1)
 {
     LANES_SWITCH
-    for (int l = 0; l < 4 * nv; l += 4) {
+    for (int l = 0; roots && l < 4 * nv; l += 4) {
         _mm256_storeu_pd(a1 + l, _mm256_sqrt_pd(_mm256_loadu_pd(a1 + l)));
         if (want_f2)
             _mm256_storeu_pd(a2 + l, _mm256_sqrt_pd(_mm256_loadu_pd(a2 + l)));
@@ -818,12 +821,12 @@ static void cand_query(const struct tex_cellular *c, int n, const double *q, dou
             long t0 = c->cstart[kk[i]], e = c->cstart[kk[i] + 1];
 #ifdef HAVE_AVX2_KERNEL
             if (c->avx2)
-                cand_lanes_avx2(c->cx, c->cy, c->cid, t0, e, lx, ly, nv, want_id, want_f2,
+                cand_lanes_avx2(c->cx, c->cy, c->cid, t0, e, lx, ly, nv, want_id, want_f2, 1,
                                 a1 + i, a2 + i, i1 + i);
             else
 #endif
-                cand_lanes(c->cx, c->cy, c->cid, t0, e, lx, ly, nv, want_id, want_f2, a1 + i,
-                           a2 + i, i1 + i);
+                cand_lanes(c->cx, c->cy, c->cid, t0, e, lx, ly, nv, want_id, want_f2, 1,
+                           a1 + i, a2 + i, i1 + i);
             i = j;
         }
         memcpy(f1 + i0, a1, m * sizeof *f1);
@@ -832,6 +835,61 @@ static void cand_query(const struct tex_cellular *c, int n, const double *q, dou
         if (id)
             memcpy(id + i0, i1, m * sizeof *id);
     }
+}
+
+/* Reps in Morton order of a 1024^dim grid over their bounding box: the
+ * points FLANN returns for one box then lie close in memory. */
+struct morton {
+    uint64_t key;
+    long at;
+};
+
+static int morton_cmp(const void *a, const void *b)
+{
+    const struct morton *x = a, *y = b;
+    return x->key != y->key ? (x->key < y->key ? -1 : 1) : (x->at > y->at) - (x->at < y->at);
+}
+
+static int rep_sort(struct tex_cellular *c)
+{
+    int dim = c->dim;
+    long n = c->nrep;
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    struct morton *m = malloc(n * sizeof *m);
+    double *rep = malloc(n * dim * sizeof *rep);
+    long *repid = malloc(n * sizeof *repid);
+    unsigned char *shift = malloc(n);
+
+    if (!m || !rep || !repid || !shift) {
+        free(m), free(rep), free(repid), free(shift);
+        return tex_error("out of memory for the kd-tree");
+    }
+    for (long i = 0; i < n * dim; i++) {
+        lo[i % dim] = fmin(lo[i % dim], c->rep[i]);
+        hi[i % dim] = fmax(hi[i % dim], c->rep[i]);
+    }
+    for (long i = 0; i < n; i++) {
+        uint64_t key = 0;
+        for (int d = 0; d < dim; d++) {
+            double t = hi[d] > lo[d] ? (c->rep[i * dim + d] - lo[d]) / (hi[d] - lo[d]) : 0;
+            uint64_t k = (uint64_t)(t * 1023.999);
+            for (int b = 0; b < 10; b++)
+                key |= ((k >> b) & 1) << (b * dim + d);
+        }
+        m[i].key = key;
+        m[i].at = i;
+    }
+    qsort(m, n, sizeof *m, morton_cmp);
+    for (long i = 0; i < n; i++) {
+        memcpy(rep + i * dim, c->rep + m[i].at * dim, dim * sizeof *rep);
+        repid[i] = c->repid[m[i].at];
+        shift[i] = c->repshift[m[i].at];
+    }
+    free(c->rep), free(c->repid), free(c->repshift), free(m);
+    c->rep = rep;
+    c->repid = repid;
+    c->repshift = shift;
+    return 0;
 }
 
 static int kdtree_build(struct tex_cellular *c)
@@ -871,6 +929,8 @@ static int kdtree_build(struct tex_cellular *c)
             }
         }
     }
+    if (rep_sort(c) < 0)
+        return -1;
     fp.algorithm = FLANN_INDEX_KDTREE_SINGLE;
     fp.checks = FLANN_CHECKS_UNLIMITED;
     fp.eps = 0;
@@ -884,6 +944,13 @@ static int kdtree_build(struct tex_cellular *c)
         return tex_error("FLANN could not build the kd-tree");
     /* Lp >= L2 for p <= 2 and Lp >= L2 * dim^(1/p - 1/2) beyond. */
     c->kfac = (1 - 1e-9) / c->rmax;
+    /* Upward, ||x / a||_p <= ||x||_2 / amin times dim^(1/p - 1/2) for p < 2:
+     * every distance, hence F1 and F2, is lip-Lipschitz in the query. */
+    c->lip = (1 + 1e-9) / c->amin;
+    if (c->metric == TEX_METRIC_MANHATTAN)
+        c->lip *= sqrt((double)dim);
+    else if (c->metric == TEX_METRIC_MINKOWSKI && c->p < 2)
+        c->lip *= pow((double)dim, 1 / c->p - 0.5);
     if (c->metric == TEX_METRIC_CHEBYSHEV)
         c->kfac /= sqrt((double)dim);
     else if (c->metric == TEX_METRIC_MINKOWSKI && c->p > 2)
@@ -968,6 +1035,440 @@ brute:
     free(dist);
 }
 
+/* The adaptive candidate tree (kd-tree search).  FLANN answers per query
+ * at about a microsecond; a row of pixels asks it the same question over
+ * and over.  So the unit square (cube) is cut once into boxes, each with a
+ * complete candidate list: every point (periodic image) that can be one
+ * of the two nearest to a query in the box.  Queries then search their
+ * box's list exactly as brute force does, point by point.
+ *
+ * A box B (centre m, half diagonal hd) gets its list from FLANN: the K
+ * nearest neighbours of m are all the points closer than the K-th, E.  Let
+ * U bound F2 over B: F2(m) (or the second smallest distance among the K)
+ * plus lip hd, F2 being lip-Lipschitz.  A point that is one of the two
+ * nearest to q in B has d(q) <= F2(q) <= U, so it lies within U / kfac of
+ * B in L2 (kfac: the lower norm bound), and within U / kfac + hd of m.
+ * While that is below E (and below the tiling margin), the K points hold
+ * the list; otherwise B is split and its children ask FLANN.  A box whose
+ * list is long is split too, and its children filter their lists from it:
+ * the parent's list is complete at the child's centre, so F2 there is exact
+ * and the child's bound is no larger than the parent's.  Boxes FLANN cannot
+ * settle even small (many coincident points) leave their queries to
+ * kdtree_query.  Lists are built in depth-first order, so the tree is the
+ * same on every run. */
+enum { ACT_CMAX = 400, ACT_RMAX = 8192, ACT_LEAF = 48, ACT_DEPTH = 14, ACT_NMAX = 2000000 };
+
+/* Lists under construction, one set per depth: coordinates (dim per
+ * entry) and point ids; kid holds the 2^dim children's lists of the node
+ * being split at the depth above, own a list straight from FLANN. */
+struct act_list {
+    double *p;
+    long *id, cap;
+};
+
+struct act_build {
+    struct FLANNParameters fp;
+    int rind[ACT_RMAX];
+    double rdist[ACT_RMAX];
+    long nnode, capnode, nent, capent, budget, nodebudget;
+    struct act_list kid[ACT_DEPTH + 2], own[ACT_DEPTH + 2];
+};
+
+static int act_reserve(struct act_list *l, long n, int dim)
+{
+    if (n > l->cap) {
+        double *p = realloc(l->p, n * dim * sizeof *p);
+        if (p)
+            l->p = p;
+        long *id = p ? realloc(l->id, n * sizeof *id) : NULL;
+        if (!id)
+            return tex_error("out of memory for the candidate tree");
+        l->id = id;
+        l->cap = n;
+    }
+    return 0;
+}
+
+static int act_grow(struct tex_cellular *c, struct act_build *B, long nodes, long ents)
+{
+    if (B->nnode + nodes > B->capnode) {
+        long nc = 2 * (B->nnode + nodes);
+        int *ch = realloc(c->achild, nc * sizeof *ch);
+        if (ch)
+            c->achild = ch;
+        long *st = ch ? realloc(c->astart, nc * sizeof *st) : NULL;
+        if (st)
+            c->astart = st;
+        int *ln = st ? realloc(c->alen, nc * sizeof *ln) : NULL;
+        if (!ln)
+            return tex_error("out of memory for the candidate tree");
+        c->alen = ln;
+        B->capnode = nc;
+    }
+    if (B->nent + ents > B->capent) {
+        long nc = 2 * (B->nent + ents);
+        double *ex = realloc(c->ax, nc * sizeof *ex);
+        if (ex)
+            c->ax = ex;
+        double *ey = ex ? realloc(c->ay, nc * sizeof *ey) : NULL;
+        if (ey)
+            c->ay = ey;
+        long *id = ey ? realloc(c->aid, nc * sizeof *id) : NULL;
+        if (!id)
+            return tex_error("out of memory for the candidate tree");
+        c->aid = id;
+        B->capent = nc;
+    }
+    return 0;
+}
+
+/* Two smallest squared L2 distances from each of the 2^D child centres to
+ * the list (an upper bound only: rounding here is absorbed by the slack). */
+static inline __attribute__((always_inline)) void act_f2_euclid(const double *lp, int n,
+                                                                const int D, double cm[8][3],
+                                                                double *s1, double *s2)
+{
+    for (int t = 0; t < n; t++) {
+        const double *p = lp + (size_t)t * D;
+        for (int k = 0; k < 1 << D; k++) {
+            double a = 0;
+            for (int d = 0; d < D; d++)
+                a += (cm[k][d] - p[d]) * (cm[k][d] - p[d]);
+            double lo = a < s1[k] ? a : s1[k], hi = a < s1[k] ? s1[k] : a;
+            s1[k] = lo;
+            s2[k] = hi < s2[k] ? hi : s2[k];
+        }
+    }
+}
+
+/* Each child's list: the entries within sqrt(thr[k]) of its box. */
+static inline __attribute__((always_inline)) void
+act_filter(const double *lp, const long *lid, int n, const int D, double clo[8][3],
+           double chi[8][3], const double *thr, struct act_list *kid, int *cn)
+{
+    for (int t = 0; t < n; t++) {
+        const double *p = lp + (size_t)t * D;
+        for (int k = 0; k < 1 << D; k++) {
+            double e2 = 0;
+            for (int d = 0; d < D; d++) {
+                double x = fmax(clo[k][d] - p[d], p[d] - chi[k][d]);
+                x = x > 0 ? x : 0;
+                e2 += x * x;
+            }
+            if (e2 <= thr[k]) {
+                long at = (long)k * n + cn[k]++;
+                for (int d = 0; d < D; d++)
+                    kid->p[at * D + d] = p[d];
+                kid->id[at] = lid[t];
+            }
+        }
+    }
+}
+
+/* Fill node `node` (box lo + [0,side)^dim) from its complete list lp, lid
+ * (n entries) or, without one, from FLANN.  Returns -1 on failure, 1 when
+ * a budget runs out. */
+static int act_node(struct tex_cellular *c, struct act_build *B, long node, const double *lo,
+                    double side, int depth, const double *lp, const long *lid, int n)
+{
+    int dim = c->dim, nch = 1 << dim, ret = 0;
+    int euclid = c->metric == TEX_METRIC_EUCLID && !c->ia;
+    double hd = 0.5 * side * sqrt((double)dim), zero[3] = {0, 0, 0};
+
+    if (!lp) {
+        /* F2 at m from its two nearest, then every point within reach. */
+        int k2 = c->nrep < 2 ? 1 : 2, ind[2], maxnn, nl = 0;
+        double dist[2], m[3], R, f2, est, s1 = INFINITY, s2 = INFINITY, thr;
+        struct act_list *own = &B->own[depth];
+        for (int d = 0; d < dim; d++)
+            m[d] = lo[d] + 0.5 * side;
+        if (flann_find_nearest_neighbors_index_double(c->index, m, 1, ind, dist, k2, &B->fp) < 0)
+            return tex_error("FLANN could not search the kd-tree");
+        for (int t = 0; t < k2; t++) {
+            long id = c->repid[ind[t]];
+            double a = acc_point(c, m, c->rep + (size_t)ind[t] * dim,
+                                 c->ia ? c->ia + id * dim : NULL, zero);
+            s2 = t == 0 ? INFINITY : a > s1 ? a : s1;
+            s1 = t == 0 ? a : a < s1 ? a : s1;
+        }
+        f2 = acc_finish(c, s2) / c->kfac;
+        R = ((acc_finish(c, s2) + c->lip * hd) / c->kfac) * (1 + 1e-9) + 1e-12 + hd * (1 + 1e-9);
+        if (c->tile && !(R < c->margin * (1 - 1e-9))) {
+            /* Images beyond the margin are not in the tree: smaller boxes
+             * help while F2 stays well inside it, else kdtree_query. */
+            c->achild[node] = -2;
+            if (f2 < 0.5 * c->margin && depth < ACT_DEPTH)
+                goto split;
+            return 0;
+        }
+        /* Points within R: about 2 (R / |m - second nearest|)^dim. */
+        est = R == INFINITY ? (double)c->nrep
+                            : 2 * pow(R / fmax(sqrt(dist[k2 - 1]), 1e-300), dim) + 16;
+        if (est > ACT_CMAX && est < c->nrep && depth < ACT_DEPTH) {
+            c->achild[node] = -2;
+            goto split;
+        }
+        maxnn = est < ACT_RMAX ? (int)est + 16 : ACT_RMAX;
+        for (;;) {
+            float r2 = R == INFINITY ? INFINITY : nextafterf((float)(R * R), INFINITY);
+            if (maxnn > c->nrep)
+                maxnn = (int)c->nrep + 1;
+            n = flann_radius_search_double(c->index, m, B->rind, B->rdist, maxnn, r2, &B->fp);
+            if (n < 0)
+                return tex_error("FLANN could not search the kd-tree");
+            if (n < maxnn)
+                break; /* all of them */
+            if (maxnn < ACT_RMAX) {
+                maxnn = 4 * maxnn < ACT_RMAX ? 4 * maxnn : ACT_RMAX;
+                continue;
+            }
+            c->achild[node] = -2;
+            if (depth < ACT_DEPTH)
+                goto split;
+            return 0;
+        }
+        /* F2 at m is exact now; keep the points within thr of the box. */
+        s1 = s2 = INFINITY;
+        for (int t = 0; t < n; t++) {
+            long id = c->repid[B->rind[t]];
+            double a = acc_point(c, m, c->rep + (size_t)B->rind[t] * dim,
+                                 c->ia ? c->ia + id * dim : NULL, zero);
+            if (a < s1)
+                s2 = s1, s1 = a;
+            else if (a < s2)
+                s2 = a;
+        }
+        thr = ((acc_finish(c, s2) + c->lip * hd) / c->kfac) * (1 + 1e-9) + 1e-12;
+        if (act_reserve(own, n, dim) < 0)
+            return -1;
+        for (int t = 0; t < n; t++) {
+            const double *p = c->rep + (size_t)B->rind[t] * dim;
+            double e2 = 0;
+            for (int d = 0; d < dim; d++) {
+                double x = p[d] < lo[d] ? lo[d] - p[d] : p[d] > lo[d] + side ? p[d] - (lo[d] + side) : 0;
+                e2 += x * x;
+            }
+            if (e2 <= thr * thr) {
+                memcpy(own->p + (size_t)nl * dim, p, dim * sizeof *p);
+                own->id[nl++] = c->repid[B->rind[t]];
+            }
+        }
+        lp = own->p;
+        lid = own->id;
+        n = nl;
+    }
+    if (n <= ACT_LEAF || depth >= ACT_DEPTH) {
+        if (B->nent + n > B->budget)
+            return 1;
+        if (act_grow(c, B, 0, n) < 0)
+            return -1;
+        c->achild[node] = -1;
+        c->astart[node] = B->nent;
+        c->alen[node] = n;
+        memcpy(c->aid + B->nent, lid, (size_t)n * sizeof *lid);
+        for (int t = 0; t < n; t++) {
+            c->ax[B->nent + t] = lp[t * dim];
+            c->ay[B->nent + t] = lp[t * dim + 1];
+        }
+        B->nent += n;
+        return 0;
+    }
+split:
+    {
+        long first = B->nnode;
+        struct act_list *kid = &B->kid[depth + 1];
+        double clo[8][3], chi[8][3], cm[8][3], s1[8], s2[8], thr[8];
+        int cn[8] = {0};
+        if (B->nnode + nch > B->nodebudget)
+            return 1;
+        if (act_grow(c, B, nch, 0) < 0 || (lp && act_reserve(kid, (long)nch * n, dim) < 0))
+            return -1;
+        B->nnode += nch;
+        c->achild[node] = (int)first;
+        for (int k = 0; k < nch; k++) {
+            for (int d = 0; d < dim; d++) {
+                clo[k][d] = lo[d] + ((k >> d) & 1) * 0.5 * side;
+                chi[k][d] = clo[k][d] + 0.5 * side;
+                cm[k][d] = clo[k][d] + 0.25 * side;
+            }
+            s1[k] = s2[k] = INFINITY;
+        }
+        if (lp) {
+            /* F2 at every child's centre (exact: the list is complete
+             * there), then each child's list. */
+            if (euclid && dim == 2)
+                act_f2_euclid(lp, n, 2, cm, s1, s2);
+            else if (euclid)
+                act_f2_euclid(lp, n, 3, cm, s1, s2);
+            else
+                for (int t = 0; t < n; t++)
+                    for (int k = 0; k < nch; k++) {
+                        double a = acc_point(c, cm[k], lp + (size_t)t * dim,
+                                             c->ia ? c->ia + lid[t] * dim : NULL, zero);
+                        if (a < s1[k])
+                            s2[k] = s1[k], s1[k] = a;
+                        else if (a < s2[k])
+                            s2[k] = a;
+                    }
+            for (int k = 0; k < nch; k++) {
+                thr[k] = ((acc_finish(c, s2[k]) + c->lip * 0.5 * hd) / c->kfac) * (1 + 1e-9) + 1e-12;
+                thr[k] *= thr[k];
+            }
+            if (dim == 2)
+                act_filter(lp, lid, n, 2, clo, chi, thr, kid, cn);
+            else
+                act_filter(lp, lid, n, 3, clo, chi, thr, kid, cn);
+        }
+        for (int k = 0; k < nch && ret == 0; k++)
+            ret = act_node(c, B, first + k, clo[k], 0.5 * side, depth + 1,
+                           lp ? kid->p + (size_t)k * n * dim : NULL, lp ? kid->id + (size_t)k * n : NULL,
+                           cn[k]);
+    }
+    return ret;
+}
+
+static void act_free(struct tex_cellular *c)
+{
+    free(c->achild), free(c->astart), free(c->alen);
+    free(c->ax), free(c->ay), free(c->aid);
+    c->achild = c->alen = NULL;
+    c->astart = c->aid = NULL;
+    c->ax = c->ay = NULL;
+    c->at = 0;
+}
+
+/* Top boxes of about ACT_K / 4 points; an entry budget keeps memory in
+ * check (beyond it the queries go to kdtree_query). */
+static int act_build(struct tex_cellular *c)
+{
+    int dim = c->dim, T = 1, ret = 0;
+    struct act_build *B = calloc(1, sizeof *B);
+    long ntop;
+
+    if (!B)
+        return tex_error("out of memory for the candidate tree");
+    B->fp = DEFAULT_FLANN_PARAMETERS;
+    B->fp.algorithm = FLANN_INDEX_KDTREE_SINGLE;
+    B->fp.checks = FLANN_CHECKS_UNLIMITED;
+    B->fp.eps = 0;
+    B->fp.sorted = 0;
+    B->fp.max_neighbors = -1;
+    B->fp.cores = 1;
+    B->fp.log_level = FLANN_LOG_NONE;
+    B->budget = 32 * c->n + (1L << 20);
+    B->nodebudget = 16 * c->n + (1L << 16);
+    while (pow(2.0 * T, dim) <= c->n / 32.0 && T < (dim == 2 ? 1024 : 64))
+        T *= 2;
+    ntop = dim == 2 ? (long)T * T : (long)T * T * T;
+    if (act_grow(c, B, ntop, 0) < 0) {
+        free(B);
+        return -1;
+    }
+    B->nnode = ntop;
+    c->at = T;
+    for (long k = 0; k < ntop && ret == 0; k++) {
+        double lo[3] = {(double)(k % T) / T, (double)(k / T % T) / T, (double)(k / T / T) / T};
+        ret = act_node(c, B, k, lo, 1.0 / T, 0, NULL, NULL, 0);
+    }
+    for (int d = 0; d < ACT_DEPTH + 2; d++) {
+        free(B->kid[d].p), free(B->kid[d].id);
+        free(B->own[d].p), free(B->own[d].id);
+    }
+    free(B);
+    if (ret > 0)
+        act_free(c); /* over budget: the queries go to kdtree_query */
+    return ret < 0 ? -1 : 0;
+}
+
+/* The leaf holding q (in [0,1)^dim): its node, box corner lo and side. */
+static long act_leaf(const struct tex_cellular *c, const double *q, double *lo, double *side)
+{
+    int dim = c->dim, T = c->at;
+    long node = 0;
+
+    *side = 1.0 / T;
+    for (int d = dim - 1; d >= 0; d--) {
+        int k = cell_of(q[d], T);
+        node = node * T + k;
+        lo[d] = (double)k / T;
+    }
+    while (c->achild[node] >= 0) {
+        int k = 0;
+        *side *= 0.5;
+        for (int d = 0; d < dim; d++)
+            if (q[d] >= lo[d] + *side) {
+                k |= 1 << d;
+                lo[d] += *side;
+            }
+        node = c->achild[node] + k;
+    }
+    return node;
+}
+
+/* Queries (wrapped, finite) through the tree; b as brute force gives it. */
+static void act_query(const struct tex_cellular *c, int n, const double *q, struct best *b,
+                      int want_id)
+{
+    int dim = c->dim, vec = dim == 2 && c->metric == TEX_METRIC_EUCLID && !c->ia;
+    double lo[3] = {0, 0, 0}, side = -1, zero[3] = {0, 0, 0};
+    long node = -1;
+
+    for (int i = 0; i < n;) {
+        const double *qi = q + (size_t)i * dim;
+        int in = 1, inleaf = side > 0, j = i + 1;
+        for (int d = 0; d < dim; d++) {
+            in &= qi[d] >= 0 && qi[d] < 1;
+            inleaf &= qi[d] >= lo[d] && qi[d] < lo[d] + side;
+        }
+        if (!in) {
+            kdtree_query(c, 1, qi, b + i);
+            i = j;
+            continue;
+        }
+        if (!inleaf)
+            node = act_leaf(c, qi, lo, &side);
+        if (c->achild[node] == -2) {
+            kdtree_query(c, 1, qi, b + i);
+            i = j;
+            continue;
+        }
+        long t0 = c->astart[node], e = t0 + c->alen[node];
+        if (vec) {
+            /* The run of queries in this leaf, up to 16 at a time. */
+            for (; j < n && j - i < 16; j++) {
+                const double *qj = q + 2 * (size_t)j;
+                if (!(qj[0] >= lo[0] && qj[0] < lo[0] + side && qj[1] >= lo[1] &&
+                      qj[1] < lo[1] + side))
+                    break;
+            }
+            int m = j - i, nv = (m + 3) / 4;
+            double qx[16], qy[16], a1[16], a2[16];
+            long i1[16];
+            for (int l = 0; l < 4 * nv; l++) {
+                qx[l] = q[2 * (size_t)(i + (l < m ? l : 0))];
+                qy[l] = q[2 * (size_t)(i + (l < m ? l : 0)) + 1];
+            }
+#ifdef HAVE_AVX2_KERNEL
+            if (c->avx2)
+                cand_lanes_avx2(c->ax, c->ay, c->aid, t0, e, qx, qy, nv, want_id, 1, 0, a1, a2,
+                                i1);
+            else
+#endif
+                cand_lanes(c->ax, c->ay, c->aid, t0, e, qx, qy, nv, want_id, 1, 0, a1, a2, i1);
+            for (int l = 0; l < m; l++)
+                b[i + l].a1 = a1[l], b[i + l].a2 = a2[l], b[i + l].i1 = i1[l];
+        } else {
+            best_init(b + i);
+            for (long t = t0; t < e; t++) {
+                long id = c->aid[t];
+                double pt[2] = {c->ax[t], c->ay[t]};
+                best_add(b + i, acc_point(c, qi, pt, c->ia ? c->ia + id * 2 : NULL, zero), id);
+            }
+        }
+        i = j;
+    }
+}
+
 void tex_cellular_free(tex_cellular *c)
 {
     if (!c)
@@ -987,6 +1488,7 @@ void tex_cellular_free(tex_cellular *c)
     free(c->cx);
     free(c->cy);
     free(c->cid);
+    act_free(c);
     free(c);
 }
 
@@ -1004,7 +1506,7 @@ tex_cellular *tex_cellular_new(const tex_points *ps, const struct tex_cellular_o
     c->tile = o->tile;
     c->metric = o->metric;
     c->p = o->metric == TEX_METRIC_EUCLID ? 2 : o->p;
-    c->rmax = 1;
+    c->rmax = c->amin = 1;
     if (!(c->x = malloc(c->n * dim * sizeof *c->x)))
         goto oom;
     memcpy(c->x, ps->x, c->n * dim * sizeof *c->x);
@@ -1015,12 +1517,17 @@ tex_cellular *tex_cellular_new(const tex_points *ps, const struct tex_cellular_o
         if (!(c->ia = malloc(c->n * dim * sizeof *c->ia)))
             goto oom;
         c->rmax = 0;
+        c->amin = INFINITY;
         for (long i = 0; i < c->n * dim; i++) {
             c->ia[i] = 1 / ps->axes[i];
             c->rmax = ps->axes[i] > c->rmax ? ps->axes[i] : c->rmax;
+            c->amin = ps->axes[i] < c->amin ? ps->axes[i] : c->amin;
         }
     }
     c->gfac = (1 - 1e-9) / c->rmax;
+#ifdef HAVE_AVX2_KERNEL
+    c->avx2 = !getenv("TEXTURA_NO_AVX2") && __builtin_cpu_supports("avx2");
+#endif
     c->search = o->search;
     if (c->search == TEX_SEARCH_AUTO) {
         double e = empty_share(c);
@@ -1035,7 +1542,9 @@ tex_cellular *tex_cellular_new(const tex_points *ps, const struct tex_cellular_o
             !c->ia && cand_build(c) < 0)
             goto fail;
     }
-    if (c->search == TEX_SEARCH_KDTREE && kdtree_build(c) < 0)
+    if (c->search == TEX_SEARCH_KDTREE &&
+        (kdtree_build(c) < 0 ||
+         (dim == 2 && c->n <= ACT_NMAX && !getenv("TEXTURA_BUBBLE_NO_TREE") && act_build(c) < 0)))
         goto fail;
     return c;
 oom:
@@ -1072,7 +1581,7 @@ void tex_cellular_query(const tex_cellular *c, int n, const double *q, double *f
                 qb[i * dim + j] = c->tile ? wrap1(x) : x;
             }
         if (c->search == TEX_SEARCH_KDTREE)
-            kdtree_query(c, m, qb, b);
+            c->at ? act_query(c, m, qb, b, id != NULL) : kdtree_query(c, m, qb, b);
         else
             for (int i = 0; i < m; i++) {
                 const double *qi = qb + i * dim;
