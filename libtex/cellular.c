@@ -323,16 +323,23 @@ struct tex_cellular {
     double *gx, *gia, gfac;
     /* 2D Euclidean without radii: per bucket, every point that can be one of
      * the two nearest to a query inside it */
+    int cgx, cgy;
     long *cstart;
     double *cx, *cy;
     long *cid;
     int avx2; /* the CPU runs the AVX2 kernel */
     /* kd-tree over the points (and their periodic images within margin) */
     flann_index_t index;
-    double *rep, margin, kfac;
+    double *rep, margin, kfac, lip, amin;
     long *repid;
     unsigned char *repshift;
     long nrep;
+    /* adaptive candidate tree over the unit square: top grid at x at, per
+     * node its first child (-1 leaf, -2 left to kdtree_query) and leaf
+     * list; list entries as x, y and point ids */
+    int at, *achild, *alen;
+    long *astart, *aid;
+    double *ax, *ay;
 };
 
 /* The "accumulated" distance: squared for L2, the p-th power for Lp, so that
@@ -570,10 +577,20 @@ static void grid_query1(const struct tex_cellular *c, const double *q, struct be
     }
 }
 
-/* Candidate lists.  F2 is 1-Lipschitz, so inside bucket C (centre m, half
- * diagonal hd) F2(q) <= F2(m) + hd = U, and a point that is one of the two
- * nearest to q lies within U of q, hence within U of the box C.  The lists
- * hold exactly the points (and periodic images) within U of each box. */
+/* Candidate lists (2D Euclidean without radii).  F2 is 1-Lipschitz, so
+ * inside bucket C (centre m, half diagonal hd) F2(q) <= F2(m) + hd = U, and
+ * a point that is one of the two nearest to q lies within U of q, hence
+ * within U of the box C.  The lists hold the points (and periodic images)
+ * within U of each box.  These buckets have their own grid, wider than
+ * tall: a row of pixels stays longer in one, and its queries share the
+ * list. */
+#ifndef CAND_FILL
+#define CAND_FILL 0.15
+#endif
+#ifndef CAND_ASPECT
+#define CAND_ASPECT 1.0
+#endif
+
 static int cand_push(struct tex_cellular *c, size_t *cap, size_t used, double x, double y,
                      long id)
 {
@@ -599,200 +616,162 @@ static int cand_push(struct tex_cellular *c, size_t *cap, size_t used, double x,
 
 static int cand_build(struct tex_cellular *c)
 {
-    int g = c->g, reach = 2;
-    long cells = (long)g * g;
-    size_t cap = 0, used = 0, tcap = 0;
-    double hd = sqrt(0.5) / g, *tmp = NULL; /* the block's points: x, y, id */
+    int g = c->g;
+    double want = c->n / CAND_FILL;
+    int gx = (int)lround(sqrt(want * CAND_ASPECT)), gy = (int)lround(sqrt(want / CAND_ASPECT));
+    size_t cap = 0, used = 0;
 
+    gx = gx < 1 ? 1 : gx > 1 << 12 ? 1 << 12 : gx;
+    gy = gy < 1 ? 1 : gy > 1 << 10 ? 1 << 10 : gy;
+    c->cgx = gx;
+    c->cgy = gy;
+    double hd = 0.5 * sqrt(1.0 / ((double)gx * gx) + 1.0 / ((double)gy * gy));
+    long cells = (long)gx * gy;
     if (!(c->cstart = malloc((cells + 1) * sizeof *c->cstart)))
         return tex_error("out of memory for the candidate lists");
     for (long k = 0; k < cells; k++) {
-        int kx = (int)(k % g), ky = (int)(k / g);
-        double m[2] = {(kx + 0.5) / g, (ky + 0.5) / g}, lo[2], hi[2], u;
-        size_t nt;
+        int kx = (int)(k % gx), ky = (int)(k / gx), k0[2], k1[2];
+        double lo[2] = {(double)kx / gx, (double)ky / gy};
+        double hi[2] = {(double)(kx + 1) / gx, (double)(ky + 1) / gy};
+        double m[2] = {(kx + 0.5) / gx, (ky + 0.5) / gy}, u, ur;
+        struct best b;
         c->cstart[k] = (long)used;
-        lo[0] = (double)kx / g, hi[0] = (double)(kx + 1) / g;
-        lo[1] = (double)ky / g, hi[1] = (double)(ky + 1) / g;
-        if (reach > 2)
-            reach--; /* neighbouring buckets need about the same reach */
-        for (;;) {
-            /* Gather the (2 reach + 1)^2 block and find F2 at the centre. */
-            double b1 = INFINITY, b2 = INFINITY;
-            int whole = !c->tile && kx - reach <= 0 && ky - reach <= 0 && kx + reach >= g - 1 &&
-                        ky + reach >= g - 1;
-            nt = 0;
-            for (int oy = -reach; oy <= reach; oy++)
-                for (int ox = -reach; ox <= reach; ox++) {
-                    int kk[2] = {kx + ox, ky + oy};
-                    double s[2] = {0, 0};
-                    long cell;
-                    for (int j = 0; j < 2; j++) {
-                        if (c->tile) {
-                            int w = (kk[j] % g + g) % g;
-                            s[j] = (kk[j] - w) / g;
-                            kk[j] = w;
-                        } else if (kk[j] < 0 || kk[j] >= g) {
-                            goto skip;
-                        }
-                    }
-                    cell = kk[0] + (long)g * kk[1];
-                    for (long at = c->start[cell]; at < c->start[cell + 1]; at++) {
-                        double px = c->gx[at * 2] + s[0], py = c->gx[at * 2 + 1] + s[1];
-                        double d = (px - m[0]) * (px - m[0]) + (py - m[1]) * (py - m[1]);
-                        if (nt == tcap) {
-                            size_t nc = tcap ? 2 * tcap : 256;
-                            double *t = realloc(tmp, nc * 3 * sizeof *t);
-                            if (!t) {
-                                free(tmp);
-                                return tex_error("out of memory for the candidate lists");
-                            }
-                            tmp = t;
-                            tcap = nc;
-                        }
-                        tmp[3 * nt] = px, tmp[3 * nt + 1] = py, tmp[3 * nt + 2] = (double)c->gid[at];
-                        nt++;
-                        if (d < b1)
-                            b2 = b1, b1 = d;
-                        else if (d < b2)
-                            b2 = d;
-                    }
-                skip:;
+        grid_query1(c, m, &b);
+        u = (sqrt(b.a2) + hd) * (1 + 1e-9) + 1e-12;
+        ur = u < 2 ? u : 2; /* for the cell range: images beyond one period never count */
+        for (int j = 0; j < 2; j++) {
+            if (c->tile) {
+                k0[j] = (int)floor((lo[j] - ur) * g);
+                k1[j] = (int)floor((hi[j] + ur) * g);
+                k0[j] = k0[j] < -g ? -g : k0[j];
+                k1[j] = k1[j] > 2 * g - 1 ? 2 * g - 1 : k1[j];
+            } else {
+                k0[j] = cell_of(lo[j] - u, g);
+                k1[j] = cell_of(hi[j] + u, g);
+            }
+        }
+        for (int yy = k0[1]; yy <= k1[1]; yy++)
+            for (int xx = k0[0]; xx <= k1[0]; xx++) {
+                int wx = (xx % g + g) % g, wy = (yy % g + g) % g;
+                double sx = (xx - wx) / g, sy = (yy - wy) / g;
+                long cell = wx + (long)g * wy;
+                for (long at = c->start[cell]; at < c->start[cell + 1]; at++) {
+                    double px = c->gx[at * 2] + sx, py = c->gx[at * 2 + 1] + sy;
+                    double dx = px < lo[0] ? lo[0] - px : px > hi[0] ? px - hi[0] : 0;
+                    double dy = py < lo[1] ? lo[1] - py : py > hi[1] ? py - hi[1] : 0;
+                    if (dx * dx + dy * dy > u * u)
+                        continue;
+                    if (cand_push(c, &cap, used, px, py, c->gid[at]) < 0)
+                        return -1;
+                    used++;
                 }
-            /* F2 at the centre is right if no point outside the block can be
-             * closer, and U must stay inside the block. */
-            u = (sqrt(b2) + hd) * (1 + 1e-9) + 1e-12;
-            if (whole || (u < reach * (1 - 1e-9) / g))
-                break;
-            reach++;
-        }
-        for (size_t t = 0; t < nt; t++) {
-            double px = tmp[3 * t], py = tmp[3 * t + 1];
-            double dx = px < lo[0] ? lo[0] - px : px > hi[0] ? px - hi[0] : 0;
-            double dy = py < lo[1] ? lo[1] - py : py > hi[1] ? py - hi[1] : 0;
-            if (dx * dx + dy * dy > u * u)
-                continue;
-            if (cand_push(c, &cap, used, px, py, (long)tmp[3 * t + 2]) < 0) {
-                free(tmp);
-                return -1;
             }
-            used++;
-        }
-        /* Nearest to the centre first: the running minima settle early. */
-        for (size_t i = c->cstart[k] + 1; i < used; i++) {
-            double x = c->cx[i], y = c->cy[i], d = (x - m[0]) * (x - m[0]) + (y - m[1]) * (y - m[1]);
-            long id = c->cid[i];
-            size_t j = i;
-            for (; j > (size_t)c->cstart[k]; j--) {
-                double px = c->cx[j - 1], py = c->cy[j - 1];
-                if ((px - m[0]) * (px - m[0]) + (py - m[1]) * (py - m[1]) <= d)
-                    break;
-                c->cx[j] = px, c->cy[j] = py, c->cid[j] = c->cid[j - 1];
-            }
-            c->cx[j] = x, c->cy[j] = y, c->cid[j] = id;
-        }
     }
-    free(tmp);
     c->cstart[cells] = (long)used;
-#ifdef HAVE_AVX2_KERNEL
-    c->avx2 = !getenv("TEXTURA_NO_AVX2") && __builtin_cpu_supports("avx2");
-#endif
     return 0;
 }
 
-/* The hot loop: 2D Euclidean through the candidate lists.  Queries that
- * fall in the same bucket (neighbouring pixels of a row) share its list and
- * go through it four at a time, one query per vector lane; every lane does
- * the scalar arithmetic of acc_point, so the results do not depend on the
- * grouping or the vector width. */
-typedef double v2d __attribute__((vector_size(16)));
-typedef long long v2l __attribute__((vector_size(16)));
-
-static inline v2d vsel(v2l m, v2d x, v2d y)
-{
-    return (v2d)(((v2l)x & m) | ((v2l)y & ~m));
-}
-
-/* Four lanes as two native 16-byte vectors (SSE2 on every x86-64). */
-static inline void cand_lanes(const struct tex_cellular *c, long k, const double *qx,
-                              const double *qy, int want_id, double *a1, double *a2, long *i1)
-{
-    const double *cx = c->cx, *cy = c->cy;
-    const long *cid = c->cid;
-    long e = c->cstart[k + 1];
-    v2d X0 = {qx[0], qx[1]}, Y0 = {qy[0], qy[1]}, X1 = {qx[2], qx[3]}, Y1 = {qy[2], qy[3]};
-    v2d A10 = {INFINITY, INFINITY}, A20 = A10, A11 = A10, A21 = A10;
-    v2d I10 = {-1, -1}, I11 = I10;
-
-    for (long t = c->cstart[k]; t < e; t++) {
-        v2d px = {cx[t], cx[t]}, py = {cy[t], cy[t]};
-        v2d dx0 = X0 - px, dy0 = Y0 - py, a0 = dx0 * dx0 + dy0 * dy0;
-        v2d dx1 = X1 - px, dy1 = Y1 - py, a1v = dx1 * dx1 + dy1 * dy1;
-        v2l lt0 = a0 < A10, lt1 = a1v < A11;
-        if (want_id) {
-            v2d id = {(double)cid[t], (double)cid[t]};
-            lt0 |= (a0 == A10) & (id < I10);
-            lt1 |= (a1v == A11) & (id < I11);
-            I10 = vsel(lt0, id, I10);
-            I11 = vsel(lt1, id, I11);
-        }
-        v2d lose0 = vsel(lt0, A10, a0), lose1 = vsel(lt1, A11, a1v);
-        A20 = vsel(lose0 < A20, lose0, A20);
-        A21 = vsel(lose1 < A21, lose1, A21);
-        A10 = vsel(lt0, a0, A10);
-        A11 = vsel(lt1, a1v, A11);
-    }
-#ifdef HAVE_AVX2_KERNEL
-    /* Vector square roots: correctly rounded like sqrt(), without its errno check. */
-    A10 = (v2d)_mm_sqrt_pd((__m128d)A10), A11 = (v2d)_mm_sqrt_pd((__m128d)A11);
-    A20 = (v2d)_mm_sqrt_pd((__m128d)A20), A21 = (v2d)_mm_sqrt_pd((__m128d)A21);
-#else
-    for (int l = 0; l < 2; l++)
-        A10[l] = sqrt(A10[l]), A11[l] = sqrt(A11[l]), A20[l] = sqrt(A20[l]), A21[l] = sqrt(A21[l]);
-#endif
-    a1[0] = A10[0], a1[1] = A10[1], a1[2] = A11[0], a1[3] = A11[1];
-    a2[0] = A20[0], a2[1] = A20[1], a2[2] = A21[0], a2[3] = A21[1];
-    i1[0] = (long)I10[0], i1[1] = (long)I10[1], i1[2] = (long)I11[0], i1[3] = (long)I11[1];
-}
-
-#ifdef HAVE_AVX2_KERNEL
-/* The same four lanes in one 32-byte AVX2 vector, chosen at run time.
- * AVX2 alone brings no fused multiply-add, so each lane rounds exactly as
- * the SSE2 and scalar code do: the map is the same bytes on any CPU. */
+/* The hot loop: 2D Euclidean through a candidate list for up to 16 queries
+ * that fall in the same bucket (neighbouring pixels of a row), one query
+ * per vector lane, nv vectors of four.  Every lane does the scalar
+ * arithmetic of acc_point and best_add (no fused multiply-add), so the
+ * results do not depend on the grouping, the vector width or the CPU.
+ * Several independent vectors hide the latency of the compare-and-select
+ * chain.  Writes squared distances; the callers take the roots. */
 typedef double v4d __attribute__((vector_size(32)));
 typedef long long v4l __attribute__((vector_size(32)));
 
-__attribute__((target("avx2"))) static void cand_lanes_avx2(const struct tex_cellular *c, long k,
-                                                            const double *qx, const double *qy,
-                                                            int want_id, double *a1, double *a2,
-                                                            long *i1)
-{
-    const double *cx = c->cx, *cy = c->cy;
-    const long *cid = c->cid;
-    long e = c->cstart[k + 1];
-    v4d X = {qx[0], qx[1], qx[2], qx[3]}, Y = {qy[0], qy[1], qy[2], qy[3]};
-    v4d A1 = {INFINITY, INFINITY, INFINITY, INFINITY}, A2 = A1, I1 = {-1, -1, -1, -1};
+/* A macro, not a function: a 32-byte vector argument outside AVX code
+ * would change the ABI. */
+#define vsel(m, x, y) ((v4d)(((v4l)(x) & (m)) | ((v4l)(y) & ~(m))))
 
-    for (long t = c->cstart[k]; t < e; t++) {
-        v4d px = {cx[t], cx[t], cx[t], cx[t]}, py = {cy[t], cy[t], cy[t], cy[t]};
-        v4d dx = X - px, dy = Y - py, a = dx * dx + dy * dy;
-        v4l lt = a < A1;
-        if (want_id) {
-            double d = (double)cid[t];
-            v4d id = {d, d, d, d};
-            lt |= (a == A1) & (id < I1);
-            I1 = (v4d)(((v4l)id & lt) | ((v4l)I1 & ~lt));
-        }
-        v4d lose = (v4d)(((v4l)A1 & lt) | ((v4l)a & ~lt));
-        v4l m = lose < A2;
-        A2 = (v4d)(((v4l)lose & m) | ((v4l)A2 & ~m));
-        A1 = (v4d)(((v4l)a & lt) | ((v4l)A1 & ~lt));
+static inline __attribute__((always_inline)) void
+lanes(const double *cx, const double *cy, const long *cid, long t0, long e, const double *qx,
+      const double *qy, const int nv, const int want_id, const int want_f2, double *a1,
+      double *a2, long *i1)
+{
+    v4d X[4], Y[4], A1[4], A2[4], I1[4];
+
+    for (int v = 0; v < nv; v++) {
+        for (int l = 0; l < 4; l++)
+            X[v][l] = qx[4 * v + l], Y[v][l] = qy[4 * v + l];
+        A1[v] = A2[v] = (v4d){INFINITY, INFINITY, INFINITY, INFINITY};
+        I1[v] = (v4d){-1, -1, -1, -1};
     }
-    A1 = (v4d)_mm256_sqrt_pd((__m256d)A1);
-    A2 = (v4d)_mm256_sqrt_pd((__m256d)A2);
-    for (int l = 0; l < 4; l++) {
-        a1[l] = A1[l];
-        a2[l] = A2[l];
-        i1[l] = (long)I1[l];
+    for (long t = t0; t < e; t++) {
+        double d = want_id ? (double)cid[t] : 0;
+        v4d px = {cx[t], cx[t], cx[t], cx[t]}, py = {cy[t], cy[t], cy[t], cy[t]};
+        v4d id = {d, d, d, d};
+        for (int v = 0; v < nv; v++) {
+            v4d dx = X[v] - px, dy = Y[v] - py, a = dx * dx + dy * dy;
+            v4l lt = a < A1[v];
+            if (want_id) {
+                lt |= (a == A1[v]) & (id < I1[v]);
+                I1[v] = vsel(lt, id, I1[v]);
+            }
+            if (want_f2) {
+                v4d lose = vsel(lt, A1[v], a);
+                A2[v] = vsel(lose < A2[v], lose, A2[v]);
+            }
+            A1[v] = vsel(lt, a, A1[v]);
+        }
+    }
+    for (int v = 0; v < nv; v++)
+        for (int l = 0; l < 4; l++) {
+            a1[4 * v + l] = A1[v][l];
+            if (want_f2)
+                a2[4 * v + l] = A2[v][l];
+            if (want_id)
+                i1[4 * v + l] = (long)I1[v][l];
+        }
+}
+
+#define LANES_CASE(k)                                                                         \
+    case k:                                                                                   \
+        lanes(cx, cy, cid, t0, e, qx, qy, (k) / 4 + 1, ((k) >> 1) & 1, (k)&1, a1, a2, i1);   \
+        break;
+#define LANES_SWITCH                                                                          \
+    switch ((nv - 1) * 4 + want_id * 2 + want_f2) {                                           \
+        LANES_CASE(0) LANES_CASE(1) LANES_CASE(2) LANES_CASE(3) LANES_CASE(4) LANES_CASE(5)   \
+        LANES_CASE(6) LANES_CASE(7) LANES_CASE(8) LANES_CASE(9) LANES_CASE(10) LANES_CASE(11) \
+        LANES_CASE(12) LANES_CASE(13) LANES_CASE(14) LANES_CASE(15)                           \
+    }
+
+/* Baseline build: GCC lowers each 32-byte vector to two SSE2 ones. */
+static void cand_lanes(const double *cx, const double *cy, const long *cid, long t0, long e,
+                       const double *qx, const double *qy, int nv, int want_id, int want_f2,
+                       int roots, double *a1, double *a2, long *i1)
+{
+    LANES_SWITCH
+    /* Vector square roots: correctly rounded like sqrt(), without its errno check. */
+    for (int l = 0; roots && l < 4 * nv; l += 2) {
+#ifdef HAVE_AVX2_KERNEL
+        _mm_storeu_pd(a1 + l, _mm_sqrt_pd(_mm_loadu_pd(a1 + l)));
+        if (want_f2)
+            _mm_storeu_pd(a2 + l, _mm_sqrt_pd(_mm_loadu_pd(a2 + l)));
+#else
+        for (int k = l; k < l + 2; k++) {
+            a1[k] = sqrt(a1[k]);
+            if (want_f2)
+                a2[k] = sqrt(a2[k]);
+        }
+#endif
+    }
+}
+
+#ifdef HAVE_AVX2_KERNEL
+/* The same lanes in 32-byte AVX2 vectors, chosen at run time.  AVX2 alone
+ * brings no fused multiply-add, so each lane rounds as the SSE2 code does. */
+__attribute__((target("avx2"))) static void
+cand_lanes_avx2(const double *cx, const double *cy, const long *cid, long t0, long e,
+                const double *qx, const double *qy, int nv, int want_id, int want_f2, int roots,
+                double *a1, double *a2, long *i1)
+{
+    LANES_SWITCH
+    for (int l = 0; roots && l < 4 * nv; l += 4) {
+        _mm256_storeu_pd(a1 + l, _mm256_sqrt_pd(_mm256_loadu_pd(a1 + l)));
+        if (want_f2)
+            _mm256_storeu_pd(a2 + l, _mm256_sqrt_pd(_mm256_loadu_pd(a2 + l)));
     }
 }
 #endif
@@ -800,13 +779,13 @@ __attribute__((target("avx2"))) static void cand_lanes_avx2(const struct tex_cel
 static void cand_query(const struct tex_cellular *c, int n, const double *q, double *f1,
                        double *f2, long *id)
 {
-    enum { CHUNK = 256 };
-    int g = c->g;
+    enum { CHUNK = 256, RUN = 16 };
+    int gx = c->cgx, gy = c->cgy, want_id = id != NULL, want_f2 = f2 != NULL;
 
     for (int i0 = 0; i0 < n; i0 += CHUNK) {
         int m = n - i0 < CHUNK ? n - i0 : CHUNK;
-        double qx[CHUNK + 3], qy[CHUNK + 3], a1[CHUNK + 3], a2[CHUNK + 3];
-        long kk[CHUNK], i1[CHUNK + 3];
+        double qx[CHUNK], qy[CHUNK], a1[CHUNK + RUN], a2[CHUNK + RUN];
+        long kk[CHUNK], i1[CHUNK + RUN];
         for (int i = 0; i < m; i++) {
             double x = q[2 * (i0 + i)], y = q[2 * (i0 + i) + 1];
             x = isfinite(x) ? x : 0;
@@ -818,7 +797,7 @@ static void cand_query(const struct tex_cellular *c, int n, const double *q, dou
             qx[i] = x;
             qy[i] = y;
             kk[i] = x >= 0 && x < 1 && y >= 0 && y < 1
-                        ? cell_of(x, g) + (long)g * cell_of(y, g)
+                        ? cell_of(x, gx) + (long)gx * cell_of(y, gy)
                         : -1;
         }
         for (int i = 0; i < m;) {
@@ -831,29 +810,86 @@ static void cand_query(const struct tex_cellular *c, int n, const double *q, dou
                 i = j;
                 continue;
             }
-            while (j < m && j - i < 4 && kk[j] == kk[i])
+            while (j < m && j - i < RUN && kk[j] == kk[i])
                 j++;
-            double lx[4], ly[4];
-            for (int l = 0; l < 4; l++) { /* pad the lanes with the run's first query */
+            int nv = (j - i + 3) / 4;
+            double lx[RUN], ly[RUN];
+            for (int l = 0; l < 4 * nv; l++) { /* pad the lanes with the run's first query */
                 lx[l] = qx[i + l < j ? i + l : i];
                 ly[l] = qy[i + l < j ? i + l : i];
             }
+            long t0 = c->cstart[kk[i]], e = c->cstart[kk[i] + 1];
 #ifdef HAVE_AVX2_KERNEL
             if (c->avx2)
-                cand_lanes_avx2(c, kk[i], lx, ly, id != NULL, a1 + i, a2 + i, i1 + i);
+                cand_lanes_avx2(c->cx, c->cy, c->cid, t0, e, lx, ly, nv, want_id, want_f2, 1,
+                                a1 + i, a2 + i, i1 + i);
             else
 #endif
-                cand_lanes(c, kk[i], lx, ly, id != NULL, a1 + i, a2 + i, i1 + i);
+                cand_lanes(c->cx, c->cy, c->cid, t0, e, lx, ly, nv, want_id, want_f2, 1,
+                           a1 + i, a2 + i, i1 + i);
             i = j;
         }
-        for (int i = 0; i < m; i++) {
-            f1[i0 + i] = a1[i];
-            if (f2)
-                f2[i0 + i] = a2[i];
-            if (id)
-                id[i0 + i] = i1[i];
-        }
+        memcpy(f1 + i0, a1, m * sizeof *f1);
+        if (f2)
+            memcpy(f2 + i0, a2, m * sizeof *f2);
+        if (id)
+            memcpy(id + i0, i1, m * sizeof *id);
     }
+}
+
+/* Reps in Morton order of a 1024^dim grid over their bounding box: the
+ * points FLANN returns for one box then lie close in memory. */
+struct morton {
+    uint64_t key;
+    long at;
+};
+
+static int morton_cmp(const void *a, const void *b)
+{
+    const struct morton *x = a, *y = b;
+    return x->key != y->key ? (x->key < y->key ? -1 : 1) : (x->at > y->at) - (x->at < y->at);
+}
+
+static int rep_sort(struct tex_cellular *c)
+{
+    int dim = c->dim;
+    long n = c->nrep;
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    struct morton *m = malloc(n * sizeof *m);
+    double *rep = malloc(n * dim * sizeof *rep);
+    long *repid = malloc(n * sizeof *repid);
+    unsigned char *shift = malloc(n);
+
+    if (!m || !rep || !repid || !shift) {
+        free(m), free(rep), free(repid), free(shift);
+        return tex_error("out of memory for the kd-tree");
+    }
+    for (long i = 0; i < n * dim; i++) {
+        lo[i % dim] = fmin(lo[i % dim], c->rep[i]);
+        hi[i % dim] = fmax(hi[i % dim], c->rep[i]);
+    }
+    for (long i = 0; i < n; i++) {
+        uint64_t key = 0;
+        for (int d = 0; d < dim; d++) {
+            double t = hi[d] > lo[d] ? (c->rep[i * dim + d] - lo[d]) / (hi[d] - lo[d]) : 0;
+            uint64_t k = (uint64_t)(t * 1023.999);
+            for (int b = 0; b < 10; b++)
+                key |= ((k >> b) & 1) << (b * dim + d);
+        }
+        m[i].key = key;
+        m[i].at = i;
+    }
+    qsort(m, n, sizeof *m, morton_cmp);
+    for (long i = 0; i < n; i++) {
+        memcpy(rep + i * dim, c->rep + m[i].at * dim, dim * sizeof *rep);
+        repid[i] = c->repid[m[i].at];
+        shift[i] = c->repshift[m[i].at];
+    }
+    free(c->rep), free(c->repid), free(c->repshift), free(m);
+    c->rep = rep;
+    c->repid = repid;
+    c->repshift = shift;
+    return 0;
 }
 
 static int kdtree_build(struct tex_cellular *c)
@@ -893,6 +929,8 @@ static int kdtree_build(struct tex_cellular *c)
             }
         }
     }
+    if (rep_sort(c) < 0)
+        return -1;
     fp.algorithm = FLANN_INDEX_KDTREE_SINGLE;
     fp.checks = FLANN_CHECKS_UNLIMITED;
     fp.eps = 0;
@@ -906,6 +944,13 @@ static int kdtree_build(struct tex_cellular *c)
         return tex_error("FLANN could not build the kd-tree");
     /* Lp >= L2 for p <= 2 and Lp >= L2 * dim^(1/p - 1/2) beyond. */
     c->kfac = (1 - 1e-9) / c->rmax;
+    /* Upward, ||x / a||_p <= ||x||_2 / amin times dim^(1/p - 1/2) for p < 2:
+     * every distance, hence F1 and F2, is lip-Lipschitz in the query. */
+    c->lip = (1 + 1e-9) / c->amin;
+    if (c->metric == TEX_METRIC_MANHATTAN)
+        c->lip *= sqrt((double)dim);
+    else if (c->metric == TEX_METRIC_MINKOWSKI && c->p < 2)
+        c->lip *= pow((double)dim, 1 / c->p - 0.5);
     if (c->metric == TEX_METRIC_CHEBYSHEV)
         c->kfac /= sqrt((double)dim);
     else if (c->metric == TEX_METRIC_MINKOWSKI && c->p > 2)
@@ -990,6 +1035,440 @@ brute:
     free(dist);
 }
 
+/* The adaptive candidate tree (kd-tree search).  FLANN answers per query
+ * at about a microsecond; a row of pixels asks it the same question over
+ * and over.  So the unit square (cube) is cut once into boxes, each with a
+ * complete candidate list: every point (periodic image) that can be one
+ * of the two nearest to a query in the box.  Queries then search their
+ * box's list exactly as brute force does, point by point.
+ *
+ * A box B (centre m, half diagonal hd) gets its list from FLANN: the K
+ * nearest neighbours of m are all the points closer than the K-th, E.  Let
+ * U bound F2 over B: F2(m) (or the second smallest distance among the K)
+ * plus lip hd, F2 being lip-Lipschitz.  A point that is one of the two
+ * nearest to q in B has d(q) <= F2(q) <= U, so it lies within U / kfac of
+ * B in L2 (kfac: the lower norm bound), and within U / kfac + hd of m.
+ * While that is below E (and below the tiling margin), the K points hold
+ * the list; otherwise B is split and its children ask FLANN.  A box whose
+ * list is long is split too, and its children filter their lists from it:
+ * the parent's list is complete at the child's centre, so F2 there is exact
+ * and the child's bound is no larger than the parent's.  Boxes FLANN cannot
+ * settle even small (many coincident points) leave their queries to
+ * kdtree_query.  Lists are built in depth-first order, so the tree is the
+ * same on every run. */
+enum { ACT_CMAX = 400, ACT_RMAX = 8192, ACT_LEAF = 48, ACT_DEPTH = 14, ACT_NMAX = 2000000 };
+
+/* Lists under construction, one set per depth: coordinates (dim per
+ * entry) and point ids; kid holds the 2^dim children's lists of the node
+ * being split at the depth above, own a list straight from FLANN. */
+struct act_list {
+    double *p;
+    long *id, cap;
+};
+
+struct act_build {
+    struct FLANNParameters fp;
+    int rind[ACT_RMAX];
+    double rdist[ACT_RMAX];
+    long nnode, capnode, nent, capent, budget, nodebudget;
+    struct act_list kid[ACT_DEPTH + 2], own[ACT_DEPTH + 2];
+};
+
+static int act_reserve(struct act_list *l, long n, int dim)
+{
+    if (n > l->cap) {
+        double *p = realloc(l->p, n * dim * sizeof *p);
+        if (p)
+            l->p = p;
+        long *id = p ? realloc(l->id, n * sizeof *id) : NULL;
+        if (!id)
+            return tex_error("out of memory for the candidate tree");
+        l->id = id;
+        l->cap = n;
+    }
+    return 0;
+}
+
+static int act_grow(struct tex_cellular *c, struct act_build *B, long nodes, long ents)
+{
+    if (B->nnode + nodes > B->capnode) {
+        long nc = 2 * (B->nnode + nodes);
+        int *ch = realloc(c->achild, nc * sizeof *ch);
+        if (ch)
+            c->achild = ch;
+        long *st = ch ? realloc(c->astart, nc * sizeof *st) : NULL;
+        if (st)
+            c->astart = st;
+        int *ln = st ? realloc(c->alen, nc * sizeof *ln) : NULL;
+        if (!ln)
+            return tex_error("out of memory for the candidate tree");
+        c->alen = ln;
+        B->capnode = nc;
+    }
+    if (B->nent + ents > B->capent) {
+        long nc = 2 * (B->nent + ents);
+        double *ex = realloc(c->ax, nc * sizeof *ex);
+        if (ex)
+            c->ax = ex;
+        double *ey = ex ? realloc(c->ay, nc * sizeof *ey) : NULL;
+        if (ey)
+            c->ay = ey;
+        long *id = ey ? realloc(c->aid, nc * sizeof *id) : NULL;
+        if (!id)
+            return tex_error("out of memory for the candidate tree");
+        c->aid = id;
+        B->capent = nc;
+    }
+    return 0;
+}
+
+/* Two smallest squared L2 distances from each of the 2^D child centres to
+ * the list (an upper bound only: rounding here is absorbed by the slack). */
+static inline __attribute__((always_inline)) void act_f2_euclid(const double *lp, int n,
+                                                                const int D, double cm[8][3],
+                                                                double *s1, double *s2)
+{
+    for (int t = 0; t < n; t++) {
+        const double *p = lp + (size_t)t * D;
+        for (int k = 0; k < 1 << D; k++) {
+            double a = 0;
+            for (int d = 0; d < D; d++)
+                a += (cm[k][d] - p[d]) * (cm[k][d] - p[d]);
+            double lo = a < s1[k] ? a : s1[k], hi = a < s1[k] ? s1[k] : a;
+            s1[k] = lo;
+            s2[k] = hi < s2[k] ? hi : s2[k];
+        }
+    }
+}
+
+/* Each child's list: the entries within sqrt(thr[k]) of its box. */
+static inline __attribute__((always_inline)) void
+act_filter(const double *lp, const long *lid, int n, const int D, double clo[8][3],
+           double chi[8][3], const double *thr, struct act_list *kid, int *cn)
+{
+    for (int t = 0; t < n; t++) {
+        const double *p = lp + (size_t)t * D;
+        for (int k = 0; k < 1 << D; k++) {
+            double e2 = 0;
+            for (int d = 0; d < D; d++) {
+                double x = fmax(clo[k][d] - p[d], p[d] - chi[k][d]);
+                x = x > 0 ? x : 0;
+                e2 += x * x;
+            }
+            if (e2 <= thr[k]) {
+                long at = (long)k * n + cn[k]++;
+                for (int d = 0; d < D; d++)
+                    kid->p[at * D + d] = p[d];
+                kid->id[at] = lid[t];
+            }
+        }
+    }
+}
+
+/* Fill node `node` (box lo + [0,side)^dim) from its complete list lp, lid
+ * (n entries) or, without one, from FLANN.  Returns -1 on failure, 1 when
+ * a budget runs out. */
+static int act_node(struct tex_cellular *c, struct act_build *B, long node, const double *lo,
+                    double side, int depth, const double *lp, const long *lid, int n)
+{
+    int dim = c->dim, nch = 1 << dim, ret = 0;
+    int euclid = c->metric == TEX_METRIC_EUCLID && !c->ia;
+    double hd = 0.5 * side * sqrt((double)dim), zero[3] = {0, 0, 0};
+
+    if (!lp) {
+        /* F2 at m from its two nearest, then every point within reach. */
+        int k2 = c->nrep < 2 ? 1 : 2, ind[2], maxnn, nl = 0;
+        double dist[2], m[3], R, f2, est, s1 = INFINITY, s2 = INFINITY, thr;
+        struct act_list *own = &B->own[depth];
+        for (int d = 0; d < dim; d++)
+            m[d] = lo[d] + 0.5 * side;
+        if (flann_find_nearest_neighbors_index_double(c->index, m, 1, ind, dist, k2, &B->fp) < 0)
+            return tex_error("FLANN could not search the kd-tree");
+        for (int t = 0; t < k2; t++) {
+            long id = c->repid[ind[t]];
+            double a = acc_point(c, m, c->rep + (size_t)ind[t] * dim,
+                                 c->ia ? c->ia + id * dim : NULL, zero);
+            s2 = t == 0 ? INFINITY : a > s1 ? a : s1;
+            s1 = t == 0 ? a : a < s1 ? a : s1;
+        }
+        f2 = acc_finish(c, s2) / c->kfac;
+        R = ((acc_finish(c, s2) + c->lip * hd) / c->kfac) * (1 + 1e-9) + 1e-12 + hd * (1 + 1e-9);
+        if (c->tile && !(R < c->margin * (1 - 1e-9))) {
+            /* Images beyond the margin are not in the tree: smaller boxes
+             * help while F2 stays well inside it, else kdtree_query. */
+            c->achild[node] = -2;
+            if (f2 < 0.5 * c->margin && depth < ACT_DEPTH)
+                goto split;
+            return 0;
+        }
+        /* Points within R: about 2 (R / |m - second nearest|)^dim. */
+        est = R == INFINITY ? (double)c->nrep
+                            : 2 * pow(R / fmax(sqrt(dist[k2 - 1]), 1e-300), dim) + 16;
+        if (est > ACT_CMAX && est < c->nrep && depth < ACT_DEPTH) {
+            c->achild[node] = -2;
+            goto split;
+        }
+        maxnn = est < ACT_RMAX ? (int)est + 16 : ACT_RMAX;
+        for (;;) {
+            float r2 = R == INFINITY ? INFINITY : nextafterf((float)(R * R), INFINITY);
+            if (maxnn > c->nrep)
+                maxnn = (int)c->nrep + 1;
+            n = flann_radius_search_double(c->index, m, B->rind, B->rdist, maxnn, r2, &B->fp);
+            if (n < 0)
+                return tex_error("FLANN could not search the kd-tree");
+            if (n < maxnn)
+                break; /* all of them */
+            if (maxnn < ACT_RMAX) {
+                maxnn = 4 * maxnn < ACT_RMAX ? 4 * maxnn : ACT_RMAX;
+                continue;
+            }
+            c->achild[node] = -2;
+            if (depth < ACT_DEPTH)
+                goto split;
+            return 0;
+        }
+        /* F2 at m is exact now; keep the points within thr of the box. */
+        s1 = s2 = INFINITY;
+        for (int t = 0; t < n; t++) {
+            long id = c->repid[B->rind[t]];
+            double a = acc_point(c, m, c->rep + (size_t)B->rind[t] * dim,
+                                 c->ia ? c->ia + id * dim : NULL, zero);
+            if (a < s1)
+                s2 = s1, s1 = a;
+            else if (a < s2)
+                s2 = a;
+        }
+        thr = ((acc_finish(c, s2) + c->lip * hd) / c->kfac) * (1 + 1e-9) + 1e-12;
+        if (act_reserve(own, n, dim) < 0)
+            return -1;
+        for (int t = 0; t < n; t++) {
+            const double *p = c->rep + (size_t)B->rind[t] * dim;
+            double e2 = 0;
+            for (int d = 0; d < dim; d++) {
+                double x = p[d] < lo[d] ? lo[d] - p[d] : p[d] > lo[d] + side ? p[d] - (lo[d] + side) : 0;
+                e2 += x * x;
+            }
+            if (e2 <= thr * thr) {
+                memcpy(own->p + (size_t)nl * dim, p, dim * sizeof *p);
+                own->id[nl++] = c->repid[B->rind[t]];
+            }
+        }
+        lp = own->p;
+        lid = own->id;
+        n = nl;
+    }
+    if (n <= ACT_LEAF || depth >= ACT_DEPTH) {
+        if (B->nent + n > B->budget)
+            return 1;
+        if (act_grow(c, B, 0, n) < 0)
+            return -1;
+        c->achild[node] = -1;
+        c->astart[node] = B->nent;
+        c->alen[node] = n;
+        memcpy(c->aid + B->nent, lid, (size_t)n * sizeof *lid);
+        for (int t = 0; t < n; t++) {
+            c->ax[B->nent + t] = lp[t * dim];
+            c->ay[B->nent + t] = lp[t * dim + 1];
+        }
+        B->nent += n;
+        return 0;
+    }
+split:
+    {
+        long first = B->nnode;
+        struct act_list *kid = &B->kid[depth + 1];
+        double clo[8][3], chi[8][3], cm[8][3], s1[8], s2[8], thr[8];
+        int cn[8] = {0};
+        if (B->nnode + nch > B->nodebudget)
+            return 1;
+        if (act_grow(c, B, nch, 0) < 0 || (lp && act_reserve(kid, (long)nch * n, dim) < 0))
+            return -1;
+        B->nnode += nch;
+        c->achild[node] = (int)first;
+        for (int k = 0; k < nch; k++) {
+            for (int d = 0; d < dim; d++) {
+                clo[k][d] = lo[d] + ((k >> d) & 1) * 0.5 * side;
+                chi[k][d] = clo[k][d] + 0.5 * side;
+                cm[k][d] = clo[k][d] + 0.25 * side;
+            }
+            s1[k] = s2[k] = INFINITY;
+        }
+        if (lp) {
+            /* F2 at every child's centre (exact: the list is complete
+             * there), then each child's list. */
+            if (euclid && dim == 2)
+                act_f2_euclid(lp, n, 2, cm, s1, s2);
+            else if (euclid)
+                act_f2_euclid(lp, n, 3, cm, s1, s2);
+            else
+                for (int t = 0; t < n; t++)
+                    for (int k = 0; k < nch; k++) {
+                        double a = acc_point(c, cm[k], lp + (size_t)t * dim,
+                                             c->ia ? c->ia + lid[t] * dim : NULL, zero);
+                        if (a < s1[k])
+                            s2[k] = s1[k], s1[k] = a;
+                        else if (a < s2[k])
+                            s2[k] = a;
+                    }
+            for (int k = 0; k < nch; k++) {
+                thr[k] = ((acc_finish(c, s2[k]) + c->lip * 0.5 * hd) / c->kfac) * (1 + 1e-9) + 1e-12;
+                thr[k] *= thr[k];
+            }
+            if (dim == 2)
+                act_filter(lp, lid, n, 2, clo, chi, thr, kid, cn);
+            else
+                act_filter(lp, lid, n, 3, clo, chi, thr, kid, cn);
+        }
+        for (int k = 0; k < nch && ret == 0; k++)
+            ret = act_node(c, B, first + k, clo[k], 0.5 * side, depth + 1,
+                           lp ? kid->p + (size_t)k * n * dim : NULL, lp ? kid->id + (size_t)k * n : NULL,
+                           cn[k]);
+    }
+    return ret;
+}
+
+static void act_free(struct tex_cellular *c)
+{
+    free(c->achild), free(c->astart), free(c->alen);
+    free(c->ax), free(c->ay), free(c->aid);
+    c->achild = c->alen = NULL;
+    c->astart = c->aid = NULL;
+    c->ax = c->ay = NULL;
+    c->at = 0;
+}
+
+/* Top boxes of about ACT_K / 4 points; an entry budget keeps memory in
+ * check (beyond it the queries go to kdtree_query). */
+static int act_build(struct tex_cellular *c)
+{
+    int dim = c->dim, T = 1, ret = 0;
+    struct act_build *B = calloc(1, sizeof *B);
+    long ntop;
+
+    if (!B)
+        return tex_error("out of memory for the candidate tree");
+    B->fp = DEFAULT_FLANN_PARAMETERS;
+    B->fp.algorithm = FLANN_INDEX_KDTREE_SINGLE;
+    B->fp.checks = FLANN_CHECKS_UNLIMITED;
+    B->fp.eps = 0;
+    B->fp.sorted = 0;
+    B->fp.max_neighbors = -1;
+    B->fp.cores = 1;
+    B->fp.log_level = FLANN_LOG_NONE;
+    B->budget = 32 * c->n + (1L << 20);
+    B->nodebudget = 16 * c->n + (1L << 16);
+    while (pow(2.0 * T, dim) <= c->n / 32.0 && T < (dim == 2 ? 1024 : 64))
+        T *= 2;
+    ntop = dim == 2 ? (long)T * T : (long)T * T * T;
+    if (act_grow(c, B, ntop, 0) < 0) {
+        free(B);
+        return -1;
+    }
+    B->nnode = ntop;
+    c->at = T;
+    for (long k = 0; k < ntop && ret == 0; k++) {
+        double lo[3] = {(double)(k % T) / T, (double)(k / T % T) / T, (double)(k / T / T) / T};
+        ret = act_node(c, B, k, lo, 1.0 / T, 0, NULL, NULL, 0);
+    }
+    for (int d = 0; d < ACT_DEPTH + 2; d++) {
+        free(B->kid[d].p), free(B->kid[d].id);
+        free(B->own[d].p), free(B->own[d].id);
+    }
+    free(B);
+    if (ret > 0)
+        act_free(c); /* over budget: the queries go to kdtree_query */
+    return ret < 0 ? -1 : 0;
+}
+
+/* The leaf holding q (in [0,1)^dim): its node, box corner lo and side. */
+static long act_leaf(const struct tex_cellular *c, const double *q, double *lo, double *side)
+{
+    int dim = c->dim, T = c->at;
+    long node = 0;
+
+    *side = 1.0 / T;
+    for (int d = dim - 1; d >= 0; d--) {
+        int k = cell_of(q[d], T);
+        node = node * T + k;
+        lo[d] = (double)k / T;
+    }
+    while (c->achild[node] >= 0) {
+        int k = 0;
+        *side *= 0.5;
+        for (int d = 0; d < dim; d++)
+            if (q[d] >= lo[d] + *side) {
+                k |= 1 << d;
+                lo[d] += *side;
+            }
+        node = c->achild[node] + k;
+    }
+    return node;
+}
+
+/* Queries (wrapped, finite) through the tree; b as brute force gives it. */
+static void act_query(const struct tex_cellular *c, int n, const double *q, struct best *b,
+                      int want_id)
+{
+    int dim = c->dim, vec = dim == 2 && c->metric == TEX_METRIC_EUCLID && !c->ia;
+    double lo[3] = {0, 0, 0}, side = -1, zero[3] = {0, 0, 0};
+    long node = -1;
+
+    for (int i = 0; i < n;) {
+        const double *qi = q + (size_t)i * dim;
+        int in = 1, inleaf = side > 0, j = i + 1;
+        for (int d = 0; d < dim; d++) {
+            in &= qi[d] >= 0 && qi[d] < 1;
+            inleaf &= qi[d] >= lo[d] && qi[d] < lo[d] + side;
+        }
+        if (!in) {
+            kdtree_query(c, 1, qi, b + i);
+            i = j;
+            continue;
+        }
+        if (!inleaf)
+            node = act_leaf(c, qi, lo, &side);
+        if (c->achild[node] == -2) {
+            kdtree_query(c, 1, qi, b + i);
+            i = j;
+            continue;
+        }
+        long t0 = c->astart[node], e = t0 + c->alen[node];
+        if (vec) {
+            /* The run of queries in this leaf, up to 16 at a time. */
+            for (; j < n && j - i < 16; j++) {
+                const double *qj = q + 2 * (size_t)j;
+                if (!(qj[0] >= lo[0] && qj[0] < lo[0] + side && qj[1] >= lo[1] &&
+                      qj[1] < lo[1] + side))
+                    break;
+            }
+            int m = j - i, nv = (m + 3) / 4;
+            double qx[16], qy[16], a1[16], a2[16];
+            long i1[16];
+            for (int l = 0; l < 4 * nv; l++) {
+                qx[l] = q[2 * (size_t)(i + (l < m ? l : 0))];
+                qy[l] = q[2 * (size_t)(i + (l < m ? l : 0)) + 1];
+            }
+#ifdef HAVE_AVX2_KERNEL
+            if (c->avx2)
+                cand_lanes_avx2(c->ax, c->ay, c->aid, t0, e, qx, qy, nv, want_id, 1, 0, a1, a2,
+                                i1);
+            else
+#endif
+                cand_lanes(c->ax, c->ay, c->aid, t0, e, qx, qy, nv, want_id, 1, 0, a1, a2, i1);
+            for (int l = 0; l < m; l++)
+                b[i + l].a1 = a1[l], b[i + l].a2 = a2[l], b[i + l].i1 = i1[l];
+        } else {
+            best_init(b + i);
+            for (long t = t0; t < e; t++) {
+                long id = c->aid[t];
+                double pt[2] = {c->ax[t], c->ay[t]};
+                best_add(b + i, acc_point(c, qi, pt, c->ia ? c->ia + id * 2 : NULL, zero), id);
+            }
+        }
+        i = j;
+    }
+}
+
 void tex_cellular_free(tex_cellular *c)
 {
     if (!c)
@@ -1009,6 +1488,7 @@ void tex_cellular_free(tex_cellular *c)
     free(c->cx);
     free(c->cy);
     free(c->cid);
+    act_free(c);
     free(c);
 }
 
@@ -1026,7 +1506,7 @@ tex_cellular *tex_cellular_new(const tex_points *ps, const struct tex_cellular_o
     c->tile = o->tile;
     c->metric = o->metric;
     c->p = o->metric == TEX_METRIC_EUCLID ? 2 : o->p;
-    c->rmax = 1;
+    c->rmax = c->amin = 1;
     if (!(c->x = malloc(c->n * dim * sizeof *c->x)))
         goto oom;
     memcpy(c->x, ps->x, c->n * dim * sizeof *c->x);
@@ -1037,12 +1517,17 @@ tex_cellular *tex_cellular_new(const tex_points *ps, const struct tex_cellular_o
         if (!(c->ia = malloc(c->n * dim * sizeof *c->ia)))
             goto oom;
         c->rmax = 0;
+        c->amin = INFINITY;
         for (long i = 0; i < c->n * dim; i++) {
             c->ia[i] = 1 / ps->axes[i];
             c->rmax = ps->axes[i] > c->rmax ? ps->axes[i] : c->rmax;
+            c->amin = ps->axes[i] < c->amin ? ps->axes[i] : c->amin;
         }
     }
     c->gfac = (1 - 1e-9) / c->rmax;
+#ifdef HAVE_AVX2_KERNEL
+    c->avx2 = !getenv("TEXTURA_NO_AVX2") && __builtin_cpu_supports("avx2");
+#endif
     c->search = o->search;
     if (c->search == TEX_SEARCH_AUTO) {
         double e = empty_share(c);
@@ -1054,10 +1539,12 @@ tex_cellular *tex_cellular_new(const tex_points *ps, const struct tex_cellular_o
         if (grid_build(c) < 0)
             goto fail;
         if (c->search == TEX_SEARCH_GRID && dim == 2 && c->metric == TEX_METRIC_EUCLID &&
-            !c->ia && (long)c->g * c->g <= 1 << 22 && cand_build(c) < 0)
+            !c->ia && cand_build(c) < 0)
             goto fail;
     }
-    if (c->search == TEX_SEARCH_KDTREE && kdtree_build(c) < 0)
+    if (c->search == TEX_SEARCH_KDTREE &&
+        (kdtree_build(c) < 0 ||
+         (dim == 2 && c->n <= ACT_NMAX && !getenv("TEXTURA_BUBBLE_NO_TREE") && act_build(c) < 0)))
         goto fail;
     return c;
 oom:
@@ -1094,7 +1581,7 @@ void tex_cellular_query(const tex_cellular *c, int n, const double *q, double *f
                 qb[i * dim + j] = c->tile ? wrap1(x) : x;
             }
         if (c->search == TEX_SEARCH_KDTREE)
-            kdtree_query(c, m, qb, b);
+            c->at ? act_query(c, m, qb, b, id != NULL) : kdtree_query(c, m, qb, b);
         else
             for (int i = 0; i < m; i++) {
                 const double *qi = qb + i * dim;

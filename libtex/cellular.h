@@ -33,13 +33,22 @@
  *   TEX_SEARCH_BRUTE   every point (and its 3^dim periodic images)
  *   TEX_SEARCH_GRID    a uniform grid of buckets searched ring by ring
  *                      until no unvisited bucket can hold a closer point;
+ *                      2D Euclidean without radii: per-bucket candidate
+ *                      lists on a finer grid, queries of one bucket (a row
+ *                      of pixels) 16 at a time in vector lanes;
  *                      fastest for even sets (uniform, Poisson-disk)
  *   TEX_SEARCH_KDTREE  FLANN's exact single kd-tree (FLANN_INDEX_KDTREE_SINGLE,
  *                      unlimited checks, eps 0) on Euclidean distance; for
  *                      other metrics, radii or periodic images it fetches
  *                      k Euclidean neighbours and grows k until a norm
  *                      inequality proves no other point can be closer;
- *                      for arbitrary (clustered) sets
+ *                      for arbitrary (clustered) sets.  In 2D (up to
+ *                      2,000,000 points) FLANN's searches first fill an
+ *                      adaptive tree of boxes over the unit square, each
+ *                      with the complete list of points that can be one of
+ *                      the two nearest inside it; queries in the square
+ *                      search that list (set-up: a few us per point;
+ *                      TEXTURA_BUBBLE_NO_TREE in the environment skips it)
  *   TEX_SEARCH_AUTO    the grid, unless the buckets are badly unbalanced
  * Why FLANN runs Euclidean only: its C API keeps the distance type in a
  * process-wide variable that is read again at query time, so two fields

@@ -31,20 +31,44 @@ static int compare(const tex_points *ps, enum tex_metric m, double p, int tile, 
         return -1;
     *chosen_grid = tex_cellular_search(c[2]) == TEX_SEARCH_GRID;
     tex_rng_seed(&rng, seed);
-    /* Mostly inside the unit square, some beyond it (solid textures, files). */
-    for (int i = 0; i < nq * dim; i++)
-        q[i] = i % 7 == 0 ? 3 * tex_rng_uniform(&rng) - 1 : tex_rng_uniform(&rng);
-    tex_cellular_query(ref, nq, q, r1, r2, rid);
-    for (int k = 0; k < 3; k++) {
-        tex_cellular_query(c[k], nq, q, f1, f2, id);
-        for (int i = 0; i < nq; i++)
-            bad += f1[i] != r1[i] || f2[i] != r2[i] || id[i] != rid[i];
-        /* One query at a time gives the same as batches (any thread split). */
-        for (int i = 0; i < nq; i += 37) {
-            double a, b;
-            long j;
-            tex_cellular_query(c[k], 1, q + i * dim, &a, &b, &j);
-            bad += a != r1[i] || b != r2[i] || j != rid[i];
+    for (int pattern = 0; pattern < 2; pattern++) {
+        int nr = pattern == 0 ? nq : nq / 2;
+        if (pattern == 0) {
+            /* Mostly inside the unit square, some beyond it (solid textures, files). */
+            for (int i = 0; i < nq * dim; i++)
+                q[i] = i % 7 == 0 ? 3 * tex_rng_uniform(&rng) - 1 : tex_rng_uniform(&rng);
+        } else {
+            /* Rows of pixel centres, as the sampler asks: neighbouring queries
+             * share buckets and kd-tree runs; the rows overhang the square a
+             * little (seams when tiling). */
+            int w = 97;
+            double z = tex_rng_uniform(&rng);
+            for (int i = 0; i < nr; i++) {
+                q[i * dim] = -0.15 + 1.3 * (i % w + 0.5) / w;
+                q[i * dim + 1] = -0.15 + 1.3 * (i / w + 0.5) / ((nr + w - 1) / w);
+                if (dim == 3)
+                    q[i * dim + 2] = z;
+            }
+        }
+        tex_cellular_query(ref, nr, q, r1, r2, rid);
+        for (int k = 0; k < 3; k++) {
+            tex_cellular_query(c[k], nr, q, f1, f2, id);
+            for (int i = 0; i < nr; i++)
+                bad += f1[i] != r1[i] || f2[i] != r2[i] || id[i] != rid[i];
+            /* F1 alone, and F1 with F2 but without the index. */
+            tex_cellular_query(c[k], nr, q, f1, NULL, NULL);
+            for (int i = 0; i < nr; i++)
+                bad += f1[i] != r1[i];
+            tex_cellular_query(c[k], nr, q, f1, f2, NULL);
+            for (int i = 0; i < nr; i++)
+                bad += f1[i] != r1[i] || f2[i] != r2[i];
+            /* One query at a time gives the same as batches (any thread split). */
+            for (int i = 0; i < nr; i += 37) {
+                double a, b;
+                long j;
+                tex_cellular_query(c[k], 1, q + i * dim, &a, &b, &j);
+                bad += a != r1[i] || b != r2[i] || j != rid[i];
+            }
         }
     }
     for (int k = 0; k < 3; k++)
