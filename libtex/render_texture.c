@@ -225,6 +225,11 @@ static int map_point_at(const struct tex_apply *ap, const struct tex_object *lea
         uvw[2] = e.z > 0 ? (P.z - rb->lo.z) / e.z : 0;
         return 1;
     }
+    if (mp == TEX_MAP_PLANAR && leaf->kind == TEX_SHAPE_PLANE) { /* unbounded: no box */
+        uvw[0] = fract(pl.x * ap->scale);
+        uvw[1] = fract(pl.z * ap->scale);
+        return face;
+    }
     local_box(leaf, &b, &bounded);
     tex_v3 c = bounded ? tex_v3_scale(tex_v3_add(b.lo, b.hi), 0.5) : tex_v3_make(0, 0, 0);
     tex_v3 e = bounded ? tex_v3_scale(tex_v3_sub(b.hi, b.lo), 0.5) : tex_v3_make(1, 1, 1);
