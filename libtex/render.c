@@ -119,8 +119,18 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, double weigh
             }
             tex_v3 L;
             double dist, fatt;
-            if (!tex_light_sample(l, k, jx, jy, P, &L, &dist, &fatt))
+            if (l->kind == TEX_LIGHT_POINT) { /* tex_light_sample's arithmetic, inline */
+                tex_v3 dv = tex_v3_sub(l->pos, P);
+                dist = tex_v3_len(dv);
+                if (!(dist > 0))
+                    continue;
+                L = tex_v3_scale(dv, 1 / dist);
+                fatt = tex_light_falloff(l, dist);
+                if (!(fatt > 0))
+                    continue;
+            } else if (!tex_light_sample(l, k, jx, jy, P, &L, &dist, &fatt)) {
                 continue;
+            }
             if (tex_v3_dot(L, N) <= 0 || tex_v3_dot(L, Ngv) <= 0)
                 continue;
             double sh = tex_scene_transmit(s, Pout, L, 0, dist);

@@ -339,6 +339,18 @@ struct tex_light {
  * its distance (infinity for distant lights) and the attenuation times the
  * spot falloff and the sample's share.  0 if it sends no light to P. */
 int tex_light_samples(const struct tex_light *l);
+/* The attenuation at distance dl (inline: point lights are sampled in the shading loop). */
+static inline double tex_light_falloff(const struct tex_light *l, double dl)
+{
+    switch (l->falloff) {
+    case TEX_FALL_SQUARE: return 1 / (dl * dl);
+    case TEX_FALL_POLY: {
+        double q = l->c1 + l->c2 * dl + l->c3 * dl * dl;
+        return q > 1 ? 1 / q : 1;
+    }
+    default: return 1;
+    }
+}
 int tex_light_sample(const struct tex_light *l, int k, double jx, double jy, tex_v3 P, tex_v3 *L,
                      double *dist, double *fatt);
 

@@ -345,14 +345,10 @@ static inline int first_hit(const struct prim *p, const struct ray *r, double tm
     return 0;
 }
 
-int tex_bvh_trace(const struct tex_bvh *t, tex_v3 o, tex_v3 d, double tmin, double tmax,
-                  struct tex_hit *hit)
-{
-    return tex_bvh_trace_any(t, o, d, tmin, tmax, 0, hit);
-}
-
-int tex_bvh_trace_any(const struct tex_bvh *t, tex_v3 o, tex_v3 d, double tmin, double tmax,
-                      int any, struct tex_hit *hit)
+/* Inlined into both entry points: the closest-hit one loses every test of any. */
+static inline __attribute__((always_inline)) int bvh_trace(const struct tex_bvh *t, tex_v3 o,
+                                                           tex_v3 d, double tmin, double tmax,
+                                                           int any, struct tex_hit *hit)
 {
     /* IEEE division gives +-inf for zero components, which the slab test handles
      * except for 0 * inf; nudge zeros instead. */
@@ -416,14 +412,55 @@ int tex_bvh_trace_any(const struct tex_bvh *t, tex_v3 o, tex_v3 d, double tmin, 
     }
 }
 
+int tex_bvh_trace(const struct tex_bvh *t, tex_v3 o, tex_v3 d, double tmin, double tmax,
+                  struct tex_hit *hit)
+{
+    return bvh_trace(t, o, d, tmin, tmax, 0, hit);
+}
+
+int tex_bvh_trace_any(const struct tex_bvh *t, tex_v3 o, tex_v3 d, double tmin, double tmax,
+                      int any, struct tex_hit *hit)
+{
+    return any ? bvh_trace(t, o, d, tmin, tmax, 1, hit) : bvh_trace(t, o, d, tmin, tmax, 0, hit);
+}
+
 /* Product of Kt over the boundaries of p in (tmin, tmax) into *tr; 0 at an opaque one. */
 static double surface_kt(const struct tex_scene *s, const struct tex_object *leaf)
 {
     return (leaf->surface ? leaf->surface : s->surfaces[0])->kt;
 }
 
-static void transmit_prim(const struct tex_scene *s, const struct prim *p, const struct ray *r,
-                          double tmin, double tmax, double *tr)
+/* Spans of a CSG tree or a transformed leaf: the product of Kt over its
+ * boundaries in (tmin, tmax) into *tr.  Out of line: the interval lists are large. */
+static __attribute__((noinline)) void transmit_spans(const struct tex_scene *s,
+                                                     const struct prim *p, const struct ray *r,
+                                                     double tmin, double tmax, double *tr)
+{
+    struct tex_spans sp;
+    const struct tex_object *ob = p->ob;
+    double t0;
+    if (p->kind == PK_LEAF) {
+        tex_v3 lo = tex_xform_point(&ob->to_obj, r->o), ld = tex_xform_dir(&ob->to_obj, r->d);
+        tex_shape_methods[ob->kind].spans(ob, lo, ld, &sp);
+    } else {
+        if (!ob->bounded) {
+            tex_object_spans(ob, r->o, r->d, &sp);
+        } else {
+            if (!hit_box(&ob->wb, r, tmin, tmax, &t0))
+                return;
+            tex_csg_spans(ob, r->o, r->d, r->inv, &sp);
+        }
+    }
+    for (int i = 0; i < sp.n && *tr > 0; i++) {
+        const struct tex_hit *h[2] = {&sp.in[i], &sp.out[i]};
+        for (int k = 0; k < 2; k++)
+            if (h[k]->leaf && h[k]->t > tmin && h[k]->t < tmax)
+                *tr *= surface_kt(s, h[k]->leaf);
+    }
+}
+
+static inline void transmit_prim(const struct tex_scene *s, const struct prim *p,
+                                 const struct ray *r, double tmin, double tmax, double *tr)
 {
     double t0, t1;
     int n = 0;
@@ -447,26 +484,7 @@ static void transmit_prim(const struct tex_scene *s, const struct prim *p, const
             num = -num, dy = -dy;
         n = num > tmin * dy && num < tmax * dy;
     } else {
-        struct tex_spans sp;
-        const struct tex_object *ob = p->ob;
-        if (p->kind == PK_LEAF) {
-            tex_v3 lo = tex_xform_point(&ob->to_obj, r->o), ld = tex_xform_dir(&ob->to_obj, r->d);
-            tex_shape_methods[ob->kind].spans(ob, lo, ld, &sp);
-        } else {
-            if (!ob->bounded) {
-                tex_object_spans(ob, r->o, r->d, &sp);
-            } else {
-                if (!hit_box(&ob->wb, r, tmin, tmax, &t0))
-                    return;
-                tex_csg_spans(ob, r->o, r->d, r->inv, &sp);
-            }
-        }
-        for (int i = 0; i < sp.n && *tr > 0; i++) {
-            const struct tex_hit *h[2] = {&sp.in[i], &sp.out[i]};
-            for (int k = 0; k < 2; k++)
-                if (h[k]->leaf && h[k]->t > tmin && h[k]->t < tmax)
-                    *tr *= surface_kt(s, h[k]->leaf);
-        }
+        transmit_spans(s, p, r, tmin, tmax, tr);
         return;
     }
     if (n) {

@@ -37,16 +37,7 @@ int tex_light_sample(const struct tex_light *l, int k, double jx, double jy, tex
         return 0;
     *L = tex_v3_scale(d, 1 / dl);
     *dist = dl;
-    double f = 1;
-    switch (l->falloff) {
-    case TEX_FALL_SQUARE: f = 1 / (dl * dl); break;
-    case TEX_FALL_POLY: {
-        double q = l->c1 + l->c2 * dl + l->c3 * dl * dl;
-        f = q > 1 ? 1 / q : 1;
-        break;
-    }
-    default: break;
-    }
+    double f = tex_light_falloff(l, dl);
     if (l->kind == TEX_LIGHT_SPOT) {
         double c = -tex_v3_dot(*L, l->dir);
         if (c < l->cos_angle)

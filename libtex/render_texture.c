@@ -87,6 +87,20 @@ static inline int wrap1(int i, int n)
     return i < 0 ? (i + n < 0 ? wrapi(i, n) : i + n) : i >= n ? wrapi(i, n) : i;
 }
 
+/* One channel of a grey map (nc 1 or 2), bilinear: the same arithmetic as bilinear(). */
+static inline float bilinear_grey(const tex_map *m, double u, double v)
+{
+    double x = u * m->w - 0.5, y = v * m->h - 0.5;
+    double fx = floord(x), fy = floord(y);
+    double ax = x - fx, ay = y - fy;
+    int w = m->w, h = m->h, nc = m->nc;
+    int x0 = wrap1((int)fx, w), y0 = wrap1((int)fy, h);
+    int x1 = x0 + 1 == w ? 0 : x0 + 1, y1 = y0 + 1 == h ? 0 : y0 + 1;
+    const float *r0 = m->px + (size_t)y0 * w * nc, *r1 = m->px + (size_t)y1 * w * nc;
+    double a = r0[x0 * nc], b = r0[x1 * nc], c = r1[x0 * nc], d = r1[x1 * nc];
+    return (float)((a * (1 - ax) + b * ax) * (1 - ay) + (c * (1 - ax) + d * ax) * ay);
+}
+
 static void bilinear(const tex_map *m, double u, double v, float out[3])
 {
     double x = u * m->w - 0.5, y = v * m->h - 0.5;
@@ -125,6 +139,21 @@ int tex_texture_eval(const struct tex_texture *t, double u, double v, double w, 
         }
         int side = m->w > m->h ? m->w : m->h;
         double lod = fw > 0 ? log2(fw * side) : 0;
+        if (m->nc < 3) { /* grey: one channel through the levels */
+            float g;
+            if (!(lod > 0) || t->nlevels == 1) {
+                g = bilinear_grey(m, u, v);
+            } else if (lod >= t->nlevels - 1) {
+                g = bilinear_grey(t->mip[t->nlevels - 1], u, v);
+            } else {
+                int l = (int)lod;
+                double a = lod - l;
+                float g0 = bilinear_grey(t->mip[l], u, v), g1 = bilinear_grey(t->mip[l + 1], u, v);
+                g = (float)(g0 * (1 - a) + g1 * a);
+            }
+            out[0] = out[1] = out[2] = g;
+            return 0;
+        }
         if (!(lod > 0) || t->nlevels == 1) {
             bilinear(m, u, v, out);
             return 0;
@@ -195,6 +224,11 @@ static int map_point_at(const struct tex_apply *ap, const struct tex_object *lea
         uvw[1] = e.y > 0 ? (rb->hi.y - P.y) / e.y : 0; /* v downwards: top of the box is 0 */
         uvw[2] = e.z > 0 ? (P.z - rb->lo.z) / e.z : 0;
         return 1;
+    }
+    if (mp == TEX_MAP_PLANAR && leaf->kind == TEX_SHAPE_PLANE) { /* unbounded: no box */
+        uvw[0] = fract(pl.x * ap->scale);
+        uvw[1] = fract(pl.z * ap->scale);
+        return face;
     }
     local_box(leaf, &b, &bounded);
     tex_v3 c = bounded ? tex_v3_scale(tex_v3_add(b.lo, b.hi), 0.5) : tex_v3_make(0, 0, 0);
@@ -534,6 +568,20 @@ void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *s
                           const struct tex_object *leaf, tex_v3 P, tex_v3 D, tex_v3 *N,
                           double width, struct tex_material *m)
 {
+    const struct tex_surface_cache *sc = sf->cache;
+    if (!sf->apply && sc && sc->cached == 7) { /* untextured: the cached colours as they are */
+        int n = s->cs.n;
+        tex_colour_copy(&m->ka, n, &sc->col[0]);
+        tex_colour_copy(&m->kd, n, &sc->col[1]);
+        tex_colour_copy(&m->ks, n, &sc->col[2]);
+        m->n = (float)sf->n;
+        m->kr = (float)sf->kr;
+        m->kt = (float)sf->kt;
+        m->ior = (float)sf->ior;
+        m->model = sf->model;
+        m->model_data = sf->ct;
+        return;
+    }
     struct params pr = {sf->ka, {sf->kd[0], sf->kd[1], sf->kd[2]}, sf->ks[0], (float)sf->n,
                         (float)sf->kr, (float)sf->kt, (float)sf->ior, 0};
     float ks_rgb[3] = {sf->ks[0], sf->ks[1], sf->ks[2]};
