@@ -692,6 +692,8 @@ lanes(const double *cx, const double *cy, const long *cid, long t0, long e, cons
 {
     v4d X[4], Y[4], A1[4], A2[4], I1[4];
 
+    /* Fully unrolled, so that the accumulators stay in registers. */
+#pragma GCC unroll 4
     for (int v = 0; v < nv; v++) {
         for (int l = 0; l < 4; l++)
             X[v][l] = qx[4 * v + l], Y[v][l] = qy[4 * v + l];
@@ -702,6 +704,7 @@ lanes(const double *cx, const double *cy, const long *cid, long t0, long e, cons
         double d = want_id ? (double)cid[t] : 0;
         v4d px = {cx[t], cx[t], cx[t], cx[t]}, py = {cy[t], cy[t], cy[t], cy[t]};
         v4d id = {d, d, d, d};
+#pragma GCC unroll 4
         for (int v = 0; v < nv; v++) {
             v4d dx = X[v] - px, dy = Y[v] - py, a = dx * dx + dy * dy;
             v4l lt = a < A1[v];
@@ -716,6 +719,7 @@ lanes(const double *cx, const double *cy, const long *cid, long t0, long e, cons
             A1[v] = vsel(lt, a, A1[v]);
         }
     }
+#pragma GCC unroll 4
     for (int v = 0; v < nv; v++)
         for (int l = 0; l < 4; l++) {
             a1[4 * v + l] = A1[v][l];
@@ -781,6 +785,7 @@ static void cand_query(const struct tex_cellular *c, int n, const double *q, dou
 {
     enum { CHUNK = 256, RUN = 16 };
     int gx = c->cgx, gy = c->cgy, want_id = id != NULL, want_f2 = f2 != NULL;
+    double dgx = gx, dgy = gy, dgx1 = gx - 1, dgy1 = gy - 1;
 
     for (int i0 = 0; i0 < n; i0 += CHUNK) {
         int m = n - i0 < CHUNK ? n - i0 : CHUNK;
@@ -796,9 +801,17 @@ static void cand_query(const struct tex_cellular *c, int n, const double *q, dou
             }
             qx[i] = x;
             qy[i] = y;
-            kk[i] = x >= 0 && x < 1 && y >= 0 && y < 1
-                        ? cell_of(x, gx) + (long)gx * cell_of(y, gy)
-                        : -1;
+        }
+        /* The buckets of cell_of, without branches (the clamps keep the
+         * conversions defined; queries outside the square get -1). */
+        for (int i = 0; i < m; i++) {
+            double x = qx[i], y = qy[i], tx = x * dgx, ty = y * dgy;
+            tx = tx > 0 ? tx : 0;
+            ty = ty > 0 ? ty : 0;
+            tx = tx < dgx1 ? tx : dgx1;
+            ty = ty < dgy1 ? ty : dgy1;
+            long k = (int)tx + (long)gx * (int)ty;
+            kk[i] = x >= 0 && x < 1 && y >= 0 && y < 1 ? k : -1;
         }
         for (int i = 0; i < m;) {
             int j = i + 1;
