@@ -1420,7 +1420,7 @@ static long act_leaf(const struct tex_cellular *c, const double *q, double *lo, 
 
 /* Queries (wrapped, finite) through the tree; b as brute force gives it. */
 static void act_query(const struct tex_cellular *c, int n, const double *q, struct best *b,
-                      int want_id)
+                      int want_id, int want_f2)
 {
     int dim = c->dim, vec = dim == 2 && c->metric == TEX_METRIC_EUCLID && !c->ia;
     double lo[3] = {0, 0, 0}, side = -1, zero[3] = {0, 0, 0};
@@ -1463,11 +1463,12 @@ static void act_query(const struct tex_cellular *c, int n, const double *q, stru
             }
 #ifdef HAVE_AVX2_KERNEL
             if (c->avx2)
-                cand_lanes_avx2(c->ax, c->ay, c->aid, t0, e, qx, qy, nv, want_id, 1, 0, a1, a2,
-                                i1);
+                cand_lanes_avx2(c->ax, c->ay, c->aid, t0, e, qx, qy, nv, want_id, want_f2, 0,
+                                a1, a2, i1);
             else
 #endif
-                cand_lanes(c->ax, c->ay, c->aid, t0, e, qx, qy, nv, want_id, 1, 0, a1, a2, i1);
+                cand_lanes(c->ax, c->ay, c->aid, t0, e, qx, qy, nv, want_id, want_f2, 0, a1, a2,
+                           i1);
             for (int l = 0; l < m; l++)
                 b[i + l].a1 = a1[l], b[i + l].a2 = a2[l], b[i + l].i1 = i1[l];
         } else {
@@ -1594,7 +1595,7 @@ void tex_cellular_query(const tex_cellular *c, int n, const double *q, double *f
                 qb[i * dim + j] = c->tile ? wrap1(x) : x;
             }
         if (c->search == TEX_SEARCH_KDTREE)
-            c->at ? act_query(c, m, qb, b, id != NULL) : kdtree_query(c, m, qb, b);
+            c->at ? act_query(c, m, qb, b, id != NULL, f2 != NULL) : kdtree_query(c, m, qb, b);
         else
             for (int i = 0; i < m; i++) {
                 const double *qi = qb + i * dim;
@@ -1730,7 +1731,9 @@ static void bubble_shade(const struct tex_field *f, int n, const double *q, floa
         int m = n - i0 < CHUNK ? n - i0 : CHUNK;
         double f1[CHUNK], f2[CHUNK];
         long id[CHUNK];
-        tex_cellular_query(s->c, m, q + (size_t)i0 * s->dim, f1, f2,
+        /* F1 and the cell need no F2: the queries take a shorter path. */
+        int need_f2 = p->value != OUT_F1 && p->value != OUT_CELL;
+        tex_cellular_query(s->c, m, q + (size_t)i0 * s->dim, f1, need_f2 ? f2 : NULL,
                            p->value == OUT_CELL ? id : NULL);
         for (int i = 0; i < m; i++) {
             double a = f1[i], b = f2[i], t;
