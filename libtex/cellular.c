@@ -1,5 +1,6 @@
 /* cellular.c - point sets, nearest-point queries and the bubble primitive */
 #include <errno.h>
+#include <float.h>
 #include <flann/flann.h>
 #include <math.h>
 #include <stdio.h>
@@ -780,39 +781,62 @@ cand_lanes_avx2(const double *cx, const double *cy, const long *cid, long t0, lo
 }
 #endif
 
+/* The queries of a chunk (m <= 256), wrapped and non-finite coordinates
+ * made 0 as everywhere, and their buckets as cell_of gives them (-1 outside
+ * the unit square), two at a time in SSE2 vectors without branches: the
+ * clamps keep the conversions defined.  qx, qy, kk have room for m + 1. */
+static void cand_buckets(const struct tex_cellular *c, int m, const double *q, double *qx,
+                         double *qy, long *kk)
+{
+    typedef double v2d __attribute__((vector_size(16)));
+    typedef long long v2l __attribute__((vector_size(16)));
+    const v2d zero = {0, 0}, one = {1, 1}, big = {DBL_MAX, DBL_MAX};
+    const v2l mag = {INT64_MAX, INT64_MAX};
+    const v2d gx = {c->cgx, c->cgx}, gy = {c->cgy, c->cgy}, gx1 = gx - one, gy1 = gy - one;
+    int m2 = (m + 1) & ~1;
+
+    if (m < m2)
+        qx[m] = qy[m] = 0;
+    for (int i = 0; i < m2; i += 2) {
+        v2d x = {q[2 * i], i + 1 < m ? q[2 * i + 2] : 0};
+        v2d y = {q[2 * i + 1], i + 1 < m ? q[2 * i + 3] : 0};
+        v2l fx = (v2d)((v2l)x & mag) <= big, fy = (v2d)((v2l)y & mag) <= big;
+        x = (v2d)((v2l)x & fx); /* NaN and infinities: 0 */
+        y = (v2d)((v2l)y & fy);
+        memcpy(qx + i, &x, sizeof x);
+        memcpy(qy + i, &y, sizeof y);
+    }
+    if (c->tile)
+        for (int i = 0; i < m; i++)
+            qx[i] = wrap1(qx[i]), qy[i] = wrap1(qy[i]);
+    for (int i = 0; i < m2; i += 2) {
+        v2d x, y, tx, ty;
+        memcpy(&x, qx + i, sizeof x);
+        memcpy(&y, qy + i, sizeof y);
+        tx = x * gx;
+        ty = y * gy;
+        tx = (v2d)((v2l)tx & (tx > zero)); /* max(t, 0), min(t, g - 1) */
+        ty = (v2d)((v2l)ty & (ty > zero));
+        v2l cx = tx < gx1, cy = ty < gy1;
+        tx = (v2d)(((v2l)tx & cx) | ((v2l)gx1 & ~cx));
+        ty = (v2d)(((v2l)ty & cy) | ((v2l)gy1 & ~cy));
+        v2l in = (x >= zero) & (x < one) & (y >= zero) & (y < one);
+        for (int l = 0; l < 2; l++)
+            kk[i + l] = in[l] ? (int)tx[l] + (long)c->cgx * (int)ty[l] : -1;
+    }
+}
+
 static void cand_query(const struct tex_cellular *c, int n, const double *q, double *f1,
                        double *f2, long *id)
 {
     enum { CHUNK = 256, RUN = 16 };
-    int gx = c->cgx, gy = c->cgy, want_id = id != NULL, want_f2 = f2 != NULL;
-    double dgx = gx, dgy = gy, dgx1 = gx - 1, dgy1 = gy - 1;
+    int want_id = id != NULL, want_f2 = f2 != NULL;
 
     for (int i0 = 0; i0 < n; i0 += CHUNK) {
         int m = n - i0 < CHUNK ? n - i0 : CHUNK;
-        double qx[CHUNK], qy[CHUNK], a1[CHUNK + RUN], a2[CHUNK + RUN];
-        long kk[CHUNK], i1[CHUNK + RUN];
-        for (int i = 0; i < m; i++) {
-            double x = q[2 * (i0 + i)], y = q[2 * (i0 + i) + 1];
-            x = isfinite(x) ? x : 0;
-            y = isfinite(y) ? y : 0;
-            if (c->tile) {
-                x = wrap1(x);
-                y = wrap1(y);
-            }
-            qx[i] = x;
-            qy[i] = y;
-        }
-        /* The buckets of cell_of, without branches (the clamps keep the
-         * conversions defined; queries outside the square get -1). */
-        for (int i = 0; i < m; i++) {
-            double x = qx[i], y = qy[i], tx = x * dgx, ty = y * dgy;
-            tx = tx > 0 ? tx : 0;
-            ty = ty > 0 ? ty : 0;
-            tx = tx < dgx1 ? tx : dgx1;
-            ty = ty < dgy1 ? ty : dgy1;
-            long k = (int)tx + (long)gx * (int)ty;
-            kk[i] = x >= 0 && x < 1 && y >= 0 && y < 1 ? k : -1;
-        }
+        double qx[CHUNK + 1], qy[CHUNK + 1], a1[CHUNK + RUN], a2[CHUNK + RUN];
+        long kk[CHUNK + 1], i1[CHUNK + RUN];
+        cand_buckets(c, m, q + 2 * (size_t)i0, qx, qy, kk);
         for (int i = 0; i < m;) {
             int j = i + 1;
             if (kk[i] < 0) {
