@@ -838,9 +838,11 @@ static void cand_buckets(const struct tex_cellular *c, int m, const double *q, d
 {
     typedef double v2d __attribute__((vector_size(16)));
     typedef long long v2l __attribute__((vector_size(16)));
+    typedef int v2i __attribute__((vector_size(8)));
     const v2d zero = {0, 0}, one = {1, 1}, big = {DBL_MAX, DBL_MAX};
     const v2l mag = {INT64_MAX, INT64_MAX};
     const v2d gx = {c->cgx, c->cgx}, gy = {c->cgy, c->cgy}, gx1 = gx - one, gy1 = gy - one;
+    const v2i gxi = {c->cgx, c->cgx};
     int m2 = (m + 1) & ~1;
 
     if (m < m2)
@@ -869,8 +871,9 @@ static void cand_buckets(const struct tex_cellular *c, int m, const double *q, d
         tx = (v2d)(((v2l)tx & cx) | ((v2l)gx1 & ~cx));
         ty = (v2d)(((v2l)ty & cy) | ((v2l)gy1 & ~cy));
         v2l in = (x >= zero) & (x < one) & (y >= zero) & (y < one);
-        for (int l = 0; l < 2; l++)
-            kk[i + l] = ((int)tx[l] + (long)c->cgx * (int)ty[l]) | ~(long)in[l];
+        v2i k = __builtin_convertvector(tx, v2i) + gxi * __builtin_convertvector(ty, v2i);
+        v2l kl = __builtin_convertvector(k, v2l) | ~in;
+        kk[i] = (long)kl[0], kk[i + 1] = (long)kl[1];
     }
 }
 
