@@ -55,10 +55,13 @@ static int compare(const tex_points *ps, enum tex_metric m, double p, int tile, 
             tex_cellular_query(c[k], nr, q, f1, f2, id);
             for (int i = 0; i < nr; i++)
                 bad += f1[i] != r1[i] || f2[i] != r2[i] || id[i] != rid[i];
-            /* F1 alone, and F1 with F2 but without the index. */
+            /* F1 alone, F1 with the index, and F1 with F2 but without the index. */
             tex_cellular_query(c[k], nr, q, f1, NULL, NULL);
             for (int i = 0; i < nr; i++)
                 bad += f1[i] != r1[i];
+            tex_cellular_query(c[k], nr, q, f1, NULL, id);
+            for (int i = 0; i < nr; i++)
+                bad += f1[i] != r1[i] || id[i] != rid[i];
             tex_cellular_query(c[k], nr, q, f1, f2, NULL);
             for (int i = 0; i < nr; i++)
                 bad += f1[i] != r1[i] || f2[i] != r2[i];
@@ -111,6 +114,24 @@ int main(void)
                         CHECKF(grid, "auto picks the grid for %dD %s points", dim, dists[d]);
                     tex_points_free(&ps);
                 }
+
+    /* The baseline (SSE2) kernels where the CPU would take the AVX2 ones:
+     * the grid's candidate lists and the box tree, plain and tiled. */
+    setenv("TEXTURA_NO_AVX2", "1", 1);
+    for (int d = 0; d < 3; d++)
+        for (int tile = 0; tile <= 1; tile++) {
+            tex_points ps;
+            int grid = 0;
+            if (tex_points_random(&ps, 2, d == 2 ? 600 : 250, d, 0, 21 + d, tile) < 0) {
+                CHECK(0, "points generated");
+                continue;
+            }
+            int bad = compare(&ps, TEX_METRIC_EUCLID, 2, tile, 400, 40 + d, &grid);
+            CHECKF(bad == 0, "2D %s%s euclid, baseline kernels: equal brute force (%d)",
+                   dists[d], tile ? " tiled" : "", bad);
+            tex_points_free(&ps);
+        }
+    unsetenv("TEXTURA_NO_AVX2");
 
     /* Five tight clusters: auto leaves the grid to FLANN's kd-tree. */
     {
