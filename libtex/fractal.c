@@ -54,6 +54,18 @@ struct turb_state {
     float amp[TEX_OCTAVES_MAX], inv;
 };
 
+/* A row of octaves summed into out (w samples): the first octave sets the sum
+ * (no clearing pass), the last finishes it (rescale and clamp); a lone octave
+ * adds its finish to a cleared row. */
+static void octave_sum_row(const tex_octaves *o, int y, int w, int first, int mid, int last,
+                           const float *amp, float inv, float *out)
+{
+    if (o->n == 1)
+        memset(out, 0, w * sizeof *out);
+    for (int k = 0; k < o->n; k++)
+        tex_octave_row_op(o, k, y, k == o->n - 1 ? last : k == 0 ? first : mid, amp[k], inv, out);
+}
+
 static void offsets(const struct tex_reals *r, double off[3])
 {
     off[0] = off[1] = off[2] = 0;
@@ -117,15 +129,9 @@ static void turb_row(const struct tex_field *f, int y, float *out)
 {
     const struct turb_state *s = f->state;
 
-    /* The first octave sets the sum: a |n| is never -0, the same as 0 + a |n|. */
-    if (s->o.n == 1)
-        memset(out, 0, f->w * sizeof *out);
-    for (int k = 0; k < s->o.n; k++)
-        tex_octave_row_op(&s->o, k, y,
-                          k == s->o.n - 1 ? TEX_ROW_ADD_ABS_CLAMP
-                          : k == 0        ? TEX_ROW_MUL_ABS
-                                          : TEX_ROW_ADD_ABS,
-                          s->amp[k], s->inv, out);
+    /* a |n| is never -0: the same as 0 + a |n| */
+    octave_sum_row(&s->o, y, f->w, TEX_ROW_MUL_ABS, TEX_ROW_ADD_ABS, TEX_ROW_ADD_ABS_CLAMP, s->amp,
+                   s->inv, out);
 }
 
 const struct tex_primitive tex_prim_turbulence = {
@@ -651,16 +657,10 @@ static void frac_row(const struct tex_field *f, int y, float *out)
     int level = tex_simd_level();
 
     if (s->mode == FBM) {
-        /* The first octave sets the sum (a n instead of 0 + a n: only the sign
-         * of a zero differs, and 0.5 + 0.5 x erases it). */
-        if (s->o.n == 1)
-            memset(out, 0, f->w * sizeof *out);
-        for (int k = 0; k < s->o.n; k++)
-            tex_octave_row_op(&s->o, k, y,
-                              k == s->o.n - 1 ? TEX_ROW_ADD_UNIT
-                              : k == 0        ? TEX_ROW_MUL
-                                              : TEX_ROW_ADD,
-                              s->amp[k], s->inv, out);
+        /* a n instead of 0 + a n: only the sign of a zero differs, and
+         * 0.5 + 0.5 x erases it */
+        octave_sum_row(&s->o, y, f->w, TEX_ROW_MUL, TEX_ROW_ADD, TEX_ROW_ADD_UNIT, s->amp, s->inv,
+                       out);
         return;
     }
     n = s->mode <= HYBRID ? malloc(2 * (size_t)f->w * sizeof *n) : NULL;

@@ -633,27 +633,24 @@ row_scalar_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, f
     }
 }
 
-/* One copy of the loop per operation, the operation folded in. */
+/* One copy of the row loop FN per operation, the operation folded in as a
+ * constant (the caller's parameters g, P, Q, sb, out, x, x1, op, a, b). */
+#define ROW_OP_SWITCH(FN)                                                                          \
+    switch (op) {                                                                                  \
+    case TEX_ROW_SET: FN(g, P, Q, sb, out, x, x1, TEX_ROW_SET, a, b); break;                        \
+    case TEX_ROW_MUL: FN(g, P, Q, sb, out, x, x1, TEX_ROW_MUL, a, b); break;                        \
+    case TEX_ROW_MUL_ABS: FN(g, P, Q, sb, out, x, x1, TEX_ROW_MUL_ABS, a, b); break;                \
+    case TEX_ROW_UNIT: FN(g, P, Q, sb, out, x, x1, TEX_ROW_UNIT, a, b); break;                      \
+    case TEX_ROW_ADD: FN(g, P, Q, sb, out, x, x1, TEX_ROW_ADD, a, b); break;                        \
+    case TEX_ROW_ADD_ABS: FN(g, P, Q, sb, out, x, x1, TEX_ROW_ADD_ABS, a, b); break;                \
+    case TEX_ROW_ADD_UNIT: FN(g, P, Q, sb, out, x, x1, TEX_ROW_ADD_UNIT, a, b); break;              \
+    default: FN(g, P, Q, sb, out, x, x1, TEX_ROW_ADD_ABS_CLAMP, a, b); break;                       \
+    }
+
 static void row_scalar(const tex_noise_grid *g, const float *P, const float *Q, int sb,
                        float *out, int x, int x1, int op, float a, float b)
 {
-    switch (op) {
-#define CASE(OP)                                                                                   \
-    case OP:                                                                                       \
-        row_scalar_op(g, P, Q, sb, out, x, x1, OP, a, b);                                          \
-        break;
-        CASE(TEX_ROW_SET)
-        CASE(TEX_ROW_MUL)
-        CASE(TEX_ROW_MUL_ABS)
-        CASE(TEX_ROW_UNIT)
-        CASE(TEX_ROW_ADD)
-        CASE(TEX_ROW_ADD_ABS)
-        CASE(TEX_ROW_ADD_UNIT)
-#undef CASE
-    default:
-        row_scalar_op(g, P, Q, sb, out, x, x1, TEX_ROW_ADD_ABS_CLAMP, a, b);
-        break;
-    }
+    ROW_OP_SWITCH(row_scalar_op);
 }
 
 #ifdef TEX_X86
@@ -739,27 +736,10 @@ row_avx2_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, flo
     row_scalar_op(g, P, Q, sb, out, x, x1, op, a, b);
 }
 
-/* One copy of the loop per operation, the operation folded in. */
 AVX2 static inline void row_avx2(const tex_noise_grid *g, const float *P, const float *Q, int sb,
                                  float *out, int x, int x1, int op, float a, float b)
 {
-    switch (op) {
-#define CASE(OP)                                                                                   \
-    case OP:                                                                                       \
-        row_avx2_op(g, P, Q, sb, out, x, x1, OP, a, b);                                            \
-        break;
-        CASE(TEX_ROW_SET)
-        CASE(TEX_ROW_MUL)
-        CASE(TEX_ROW_MUL_ABS)
-        CASE(TEX_ROW_UNIT)
-        CASE(TEX_ROW_ADD)
-        CASE(TEX_ROW_ADD_ABS)
-        CASE(TEX_ROW_ADD_UNIT)
-#undef CASE
-    default:
-        row_avx2_op(g, P, Q, sb, out, x, x1, TEX_ROW_ADD_ABS_CLAMP, a, b);
-        break;
-    }
+    ROW_OP_SWITCH(row_avx2_op);
 }
 #endif
 
