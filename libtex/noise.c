@@ -637,14 +637,14 @@ row_scalar_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, f
  * constant (the caller's parameters g, P, Q, sb, out, x, x1, op, a, b). */
 #define ROW_OP_SWITCH(FN)                                                                          \
     switch (op) {                                                                                  \
-    case TEX_ROW_SET: FN(g, P, Q, sb, out, x, x1, TEX_ROW_SET, a, b); break;                        \
-    case TEX_ROW_MUL: FN(g, P, Q, sb, out, x, x1, TEX_ROW_MUL, a, b); break;                        \
-    case TEX_ROW_MUL_ABS: FN(g, P, Q, sb, out, x, x1, TEX_ROW_MUL_ABS, a, b); break;                \
-    case TEX_ROW_UNIT: FN(g, P, Q, sb, out, x, x1, TEX_ROW_UNIT, a, b); break;                      \
-    case TEX_ROW_ADD: FN(g, P, Q, sb, out, x, x1, TEX_ROW_ADD, a, b); break;                        \
-    case TEX_ROW_ADD_ABS: FN(g, P, Q, sb, out, x, x1, TEX_ROW_ADD_ABS, a, b); break;                \
-    case TEX_ROW_ADD_UNIT: FN(g, P, Q, sb, out, x, x1, TEX_ROW_ADD_UNIT, a, b); break;              \
-    default: FN(g, P, Q, sb, out, x, x1, TEX_ROW_ADD_ABS_CLAMP, a, b); break;                       \
+    case TEX_ROW_SET: FN(g, P, Q, sb, out, x, x1, TEX_ROW_SET, a, b); break;                       \
+    case TEX_ROW_MUL: FN(g, P, Q, sb, out, x, x1, TEX_ROW_MUL, a, b); break;                       \
+    case TEX_ROW_MUL_ABS: FN(g, P, Q, sb, out, x, x1, TEX_ROW_MUL_ABS, a, b); break;               \
+    case TEX_ROW_UNIT: FN(g, P, Q, sb, out, x, x1, TEX_ROW_UNIT, a, b); break;                     \
+    case TEX_ROW_ADD: FN(g, P, Q, sb, out, x, x1, TEX_ROW_ADD, a, b); break;                       \
+    case TEX_ROW_ADD_ABS: FN(g, P, Q, sb, out, x, x1, TEX_ROW_ADD_ABS, a, b); break;               \
+    case TEX_ROW_ADD_UNIT: FN(g, P, Q, sb, out, x, x1, TEX_ROW_ADD_UNIT, a, b); break;             \
+    default: FN(g, P, Q, sb, out, x, x1, TEX_ROW_ADD_ABS_CLAMP, a, b); break;                      \
     }
 
 static void row_scalar(const tex_noise_grid *g, const float *P, const float *Q, int sb,
@@ -865,8 +865,10 @@ AVX2 static void grad_avx2(const tex_noise_grid *g, const float *const C[6], int
         expand(C[1], s0, s, k, span, &b0, &b1);
         __m256 t0 = _mm256_add_ps(_mm256_mul_ps(a0, u), b0);
         __m256 t1 = _mm256_add_ps(_mm256_mul_ps(a1, v), b1);
-        __m256 r0 = _mm256_add_ps(_mm256_mul_ps(_mm256_loadu_ps(g->dw0 + x), t0), _mm256_mul_ps(w0, a0));
-        __m256 r1 = _mm256_add_ps(_mm256_mul_ps(_mm256_loadu_ps(g->dw1 + x), t1), _mm256_mul_ps(w1, a1));
+        __m256 r0 =
+            _mm256_add_ps(_mm256_mul_ps(_mm256_loadu_ps(g->dw0 + x), t0), _mm256_mul_ps(w0, a0));
+        __m256 r1 =
+            _mm256_add_ps(_mm256_mul_ps(_mm256_loadu_ps(g->dw1 + x), t1), _mm256_mul_ps(w1, a1));
         _mm256_storeu_ps(dx + x, _mm256_add_ps(r0, r1));
         for (int d = 1; d < (dz ? 3 : 2); d++) {
             expand(C[2 * d], s0, s, k, span, &a0, &a1);
