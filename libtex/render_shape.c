@@ -527,6 +527,23 @@ static int ray_box(const struct tex_bounds *b, tex_v3 o, tex_v3 inv)
 }
 
 static void object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, tex_v3 inv,
+                         struct tex_spans *s);
+
+/* A CSG node's spans from its children's (its own box already passed). */
+static void node_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, tex_v3 inv,
+                       struct tex_spans *s)
+{
+    struct tex_spans a, b;
+    object_spans(ob->a, o, d, inv, &a);
+    if (a.n == 0 && ob->op != TEX_CSG_UNION) {
+        s->n = 0;
+        return;
+    }
+    object_spans(ob->b, o, d, inv, &b);
+    tex_csg_combine(ob->op, &a, &b, s);
+}
+
+static void object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, tex_v3 inv,
                          struct tex_spans *s)
 {
     if (ob->op == TEX_CSG_LEAF) {
@@ -538,14 +555,7 @@ static void object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, tex_v3
         s->n = 0;
         return;
     }
-    struct tex_spans a, b;
-    object_spans(ob->a, o, d, inv, &a);
-    if (a.n == 0 && ob->op != TEX_CSG_UNION) {
-        s->n = 0;
-        return;
-    }
-    object_spans(ob->b, o, d, inv, &b);
-    tex_csg_combine(ob->op, &a, &b, s);
+    node_spans(ob, o, d, inv, s);
 }
 
 void tex_object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s)
@@ -558,18 +568,10 @@ void tex_object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct te
 void tex_csg_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, tex_v3 inv,
                    struct tex_spans *s)
 {
-    if (ob->op == TEX_CSG_LEAF) {
+    if (ob->op == TEX_CSG_LEAF)
         object_spans(ob, o, d, inv, s);
-        return;
-    }
-    struct tex_spans a, b;
-    object_spans(ob->a, o, d, inv, &a);
-    if (a.n == 0 && ob->op != TEX_CSG_UNION) {
-        s->n = 0;
-        return;
-    }
-    object_spans(ob->b, o, d, inv, &b);
-    tex_csg_combine(ob->op, &a, &b, s);
+    else
+        node_spans(ob, o, d, inv, s);
 }
 
 /* The leaf's normal fast path (struct tex_object's fast). */
