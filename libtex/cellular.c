@@ -10,6 +10,19 @@
 #include "cellular.h"
 #include "error.h"
 #include "prim.h"
+
+/* p grown to n elements of size bytes, or p itself with *ok cleared when that
+ * fails (or an earlier call failed): parallel arrays grow together and the
+ * caller reports once. */
+static void *grown(void *p, size_t n, size_t size, int *ok)
+{
+    void *q = *ok ? realloc(p, n * size) : NULL;
+    if (!q) {
+        *ok = 0;
+        return p;
+    }
+    return q;
+}
 #include "rng.h"
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -242,13 +255,11 @@ int tex_points_read(tex_points *ps, const char *path, int dim)
         }
         if ((size_t)n == alloc) {
             size_t na = alloc ? 2 * alloc : 1024;
-            double *x = realloc(ps->x, na * dim * sizeof *x);
-            double *a = ps->axes ? realloc(ps->axes, na * dim * sizeof *a) : NULL;
-            if (x)
-                ps->x = x;
-            if (a)
-                ps->axes = a;
-            if (!x || (ps->axes && !a)) {
+            int ok = 1;
+            ps->x = grown(ps->x, na * dim, sizeof *ps->x, &ok);
+            if (ps->axes)
+                ps->axes = grown(ps->axes, na * dim, sizeof *ps->axes, &ok);
+            if (!ok) {
                 tex_error("out of memory reading %s", path);
                 goto out;
             }
@@ -597,16 +608,12 @@ static int cand_push(struct tex_cellular *c, size_t *cap, size_t used, double x,
 {
     if (used == *cap) {
         size_t nc = *cap ? 2 * *cap : 4096;
-        double *nx = realloc(c->cx, nc * sizeof *nx);
-        if (nx)
-            c->cx = nx;
-        double *ny = nx ? realloc(c->cy, nc * sizeof *ny) : NULL;
-        if (ny)
-            c->cy = ny;
-        long *ni = ny ? realloc(c->cid, nc * sizeof *ni) : NULL;
-        if (!ni)
+        int ok = 1;
+        c->cx = grown(c->cx, nc, sizeof *c->cx, &ok);
+        c->cy = grown(c->cy, nc, sizeof *c->cy, &ok);
+        c->cid = grown(c->cid, nc, sizeof *c->cid, &ok);
+        if (!ok)
             return tex_error("out of memory for the candidate lists");
-        c->cid = ni;
         *cap = nc;
     }
     c->cx[used] = x;
@@ -1165,13 +1172,11 @@ struct act_build {
 static int act_reserve(struct act_list *l, long n, int dim)
 {
     if (n > l->cap) {
-        double *p = realloc(l->p, n * dim * sizeof *p);
-        if (p)
-            l->p = p;
-        long *id = p ? realloc(l->id, n * sizeof *id) : NULL;
-        if (!id)
+        int ok = 1;
+        l->p = grown(l->p, (size_t)n * dim, sizeof *l->p, &ok);
+        l->id = grown(l->id, n, sizeof *l->id, &ok);
+        if (!ok)
             return tex_error("out of memory for the candidate tree");
-        l->id = id;
         l->cap = n;
     }
     return 0;
@@ -1181,30 +1186,22 @@ static int act_grow(struct tex_cellular *c, struct act_build *B, long nodes, lon
 {
     if (B->nnode + nodes > B->capnode) {
         long nc = 2 * (B->nnode + nodes);
-        int *ch = realloc(c->achild, nc * sizeof *ch);
-        if (ch)
-            c->achild = ch;
-        long *st = ch ? realloc(c->astart, nc * sizeof *st) : NULL;
-        if (st)
-            c->astart = st;
-        int *ln = st ? realloc(c->alen, nc * sizeof *ln) : NULL;
-        if (!ln)
+        int ok = 1;
+        c->achild = grown(c->achild, nc, sizeof *c->achild, &ok);
+        c->astart = grown(c->astart, nc, sizeof *c->astart, &ok);
+        c->alen = grown(c->alen, nc, sizeof *c->alen, &ok);
+        if (!ok)
             return tex_error("out of memory for the candidate tree");
-        c->alen = ln;
         B->capnode = nc;
     }
     if (B->nent + ents > B->capent) {
         long nc = 2 * (B->nent + ents);
-        double *ex = realloc(c->ax, nc * sizeof *ex);
-        if (ex)
-            c->ax = ex;
-        double *ey = ex ? realloc(c->ay, nc * sizeof *ey) : NULL;
-        if (ey)
-            c->ay = ey;
-        long *id = ey ? realloc(c->aid, nc * sizeof *id) : NULL;
-        if (!id)
+        int ok = 1;
+        c->ax = grown(c->ax, nc, sizeof *c->ax, &ok);
+        c->ay = grown(c->ay, nc, sizeof *c->ay, &ok);
+        c->aid = grown(c->aid, nc, sizeof *c->aid, &ok);
+        if (!ok)
             return tex_error("out of memory for the candidate tree");
-        c->aid = id;
         B->capent = nc;
     }
     return 0;

@@ -10,6 +10,7 @@
 #include "error.h"
 #include "filter.h"
 #include "rng.h"
+#include "fixtures.h"
 #include "unit.h"
 
 static double mean_of(const tex_map *m, int c)
@@ -24,16 +25,6 @@ static double var_of(const tex_map *m, int c)
     struct tex_stats s;
     tex_map_stats(m, c, &s);
     return s.stddev * s.stddev;
-}
-
-static tex_map *white_noise(int w, int h, int nc, uint64_t seed)
-{
-    tex_map *m = tex_map_new(w, h, nc);
-    tex_rng r;
-    tex_rng_seed(&r, seed);
-    for (size_t i = 0; i < tex_map_samples(m); i++)
-        m->px[i] = (float)tex_rng_uniform(&r);
-    return m;
 }
 
 /* m shifted circularly by (dx, dy) */
@@ -80,7 +71,7 @@ int main(void)
 
     /* Blur of white noise: the mean stays, the variance falls by (sum g^2)^2, which for a
      * sampled Gaussian is close to the continuous 1 / (4 pi sigma^2). */
-    m = white_noise(256, 256, 1, 7);
+    m = unit_random_map(256, 256, 1, 7);
     for (double sigma = 1.5; sigma <= 3.0; sigma += 1.5) {
         double want = 1 / (4 * M_PI * sigma * sigma), got;
         b = tex_filter_blur(m, sigma, TEX_EDGE_WRAP);
@@ -103,7 +94,7 @@ int main(void)
     /* Every thread count gives the same bits. */
 #ifdef _OPENMP
     {
-        tex_map *rgba = white_noise(203, 131, 4, 3), *a1, *a2, *n1, *n2;
+        tex_map *rgba = unit_random_map(203, 131, 4, 3), *a1, *a2, *n1, *n2;
         omp_set_num_threads(1);
         a1 = tex_filter_blur(rgba, 4.5, TEX_EDGE_MIRROR);
         n1 = tex_filter_noise(rgba, 0.1, 9);

@@ -9,25 +9,10 @@
 #include "file.h"
 #include "render.h"
 #include "rng.h"
+#include "fixtures.h"
 #include "unit.h"
 
 static char dir[] = "/tmp/textura-render.XXXXXX";
-
-static tex_map *render_text(const char *text, int threads)
-{
-    struct tex_scene *s = tex_scene_parse(text, strlen(text), "test.scene");
-    if (!s) {
-        printf("# parse: %s\n", tex_errmsg());
-        return NULL;
-    }
-    if (threads)
-        s->settings.threads = threads;
-    tex_map *m = tex_render(s, NULL, NULL);
-    if (!m)
-        printf("# render: %s\n", tex_errmsg());
-    tex_scene_free(s);
-    return m;
-}
 
 static void test_silhouette(void)
 {
@@ -35,7 +20,7 @@ static void test_silhouette(void)
                      "camera { eye 0 0 -10 look 0 0 0 fov 30 }\n"
                      "surface white { Ka 1 Kd 1 1 1 }\n"
                      "sphere { radius 1 surface white }\n";
-    tex_map *m = render_text(sc, 0);
+    tex_map *m = unit_render_text(sc, 0);
     CHECK(m != NULL, "sphere scene renders");
     if (!m)
         return;
@@ -56,7 +41,7 @@ static void test_lambert(void)
                      "light distant { direction 0 1 1 }\n"
                      "surface matte { Ka 0 Kd 1 1 1 Ks 0 }\n"
                      "plane { surface matte }\n";
-    tex_map *m = render_text(sc, 0);
+    tex_map *m = unit_render_text(sc, 0);
     CHECK(m != NULL, "plane scene renders");
     if (!m)
         return;
@@ -75,7 +60,7 @@ static void test_shadow(void)
                      "surface matte { Ka 0.2 Kd 1 1 1 Ks 0 }\n"
                      "plane { surface matte }\n"
                      "sphere { centre 0 1 0 radius 0.5 surface matte }\n";
-    tex_map *m = render_text(sc, 0);
+    tex_map *m = unit_render_text(sc, 0);
     CHECK(m != NULL, "shadow scene renders");
     if (!m)
         return;
@@ -125,7 +110,7 @@ static void test_difference(void)
     snprintf(sc, sizeof sc, fmt,
              "difference { box { min -1 -1 -1 max 1 1 1 } "
              "cylinder { base 0 0 -2 top 0 0 2 radius 0.5 } surface white }\n");
-    tex_map *m = render_text(sc, 0);
+    tex_map *m = unit_render_text(sc, 0);
     CHECK(m != NULL, "CSG difference renders");
     if (!m)
         return;
@@ -199,7 +184,7 @@ static void test_kd_f(void)
              "surface s { Ka 0 Ks 0 apply t { Kd = f } }\n"
              "plane { surface s }\n",
              2 * atan(0.05) * 180 / M_PI, path);
-    tex_map *img = render_text(sc, 0);
+    tex_map *img = unit_render_text(sc, 0);
     CHECK(img != NULL, "Kd = f scene renders");
     if (img) {
         double worst = 0;
@@ -220,7 +205,7 @@ static void test_determinism(void)
                      "surface g { Kd 0.1 Ks 0.8 n 80 Kr 0.2 Kt 0.7 ior 1.5 }\n"
                      "plane { }\n"
                      "sphere { centre 0 1 0 surface g }\n";
-    tex_map *a = render_text(sc, 1), *b = render_text(sc, 2);
+    tex_map *a = unit_render_text(sc, 1), *b = unit_render_text(sc, 2);
     CHECK(a && b && !memcmp(a->px, b->px, tex_map_samples(a) * sizeof(float)),
           "the same bytes with 1 and 2 threads");
     tex_map_free(a);
@@ -242,7 +227,7 @@ static void test_receding(void)
                  "surface s { Ka 1 Kd 1 1 1 apply c { Kd = f } }\n"
                  "plane { surface s }\n",
                  filter ? "on" : "off", path);
-        tex_map *img = render_text(sc, 0);
+        tex_map *img = unit_render_text(sc, 0);
         if (!img) {
             var[filter] = 1;
             continue;
@@ -379,7 +364,7 @@ static void test_bailout(void)
     tex_map *m[3];
     for (int i = 0; i < 3; i++) {
         snprintf(sc, sizeof sc, fmt, b[i]);
-        m[i] = render_text(sc, 1);
+        m[i] = unit_render_text(sc, 1);
     }
     CHECK(m[0] && m[1] && m[2], "bailout scenes render");
     if (m[0] && m[1] && m[2]) {

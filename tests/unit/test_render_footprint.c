@@ -12,6 +12,7 @@
 
 #include "error.h"
 #include "render.h"
+#include "fixtures.h"
 #include "unit.h"
 
 #define N 96
@@ -28,14 +29,7 @@ static tex_map *render(const char *extra, int spp, int filter)
              "surface glass { Ka 0 Kd 0 Ks 0 Kr 0 Kt 1 ior 1.5 }\n"
              "plane { distance -1 surface floor }\n%s",
              N, N, spp, filter ? "on" : "off", extra);
-    struct tex_scene *s = tex_scene_parse(sc, strlen(sc), "footprint.scene");
-    if (!s) {
-        printf("# parse: %s\n", tex_errmsg());
-        return NULL;
-    }
-    tex_map *m = tex_render(s, NULL, NULL);
-    tex_scene_free(s);
-    return m;
+    return unit_render_text(sc, 0);
 }
 
 /* RMS difference from the reference over the ball's lower half (its

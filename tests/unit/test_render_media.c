@@ -14,6 +14,7 @@
 
 #include "error.h"
 #include "render.h"
+#include "fixtures.h"
 #include "unit.h"
 
 #define W 9
@@ -112,14 +113,8 @@ static void test_nested(const char *what, double na, double nb)
         len += snprintf(sc + len, sizeof sc - len,
                         "box { min -50 %g %g max 50 %g %g surface white }\n", 0.25 * k, BACK,
                         0.25 * k + 0.125, BACK + THICK);
-    struct tex_scene *s = tex_scene_parse(sc, strlen(sc), "media.scene");
-    if (!s) {
-        CHECKF(0, "%s: scene parses: %s", what, tex_errmsg());
-        return;
-    }
-    tex_map *img = tex_render(s, NULL, NULL);
-    tex_scene_free(s);
-    CHECKF(img != NULL, "%s: renders", what);
+    tex_map *img = unit_render_text(sc, 0);
+    CHECKF(img != NULL, "%s: scene parses and renders", what);
     if (!img)
         return;
     double sy = tan(fov() * M_PI / 360) * H / W;

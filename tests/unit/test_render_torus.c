@@ -6,6 +6,7 @@
 #include "error.h"
 #include "render.h"
 #include "rng.h"
+#include "fixtures.h"
 #include "unit.h"
 
 static struct tex_object torus(double R, double r)
@@ -24,20 +25,6 @@ static int inside(double R, double r, tex_v3 p)
 {
     double q = sqrt(p.x * p.x + p.z * p.z) - R;
     return q * q + p.y * p.y < r * r;
-}
-
-static tex_map *render_text(const char *text)
-{
-    struct tex_scene *s = tex_scene_parse(text, strlen(text), "test.scene");
-    if (!s) {
-        printf("# parse: %s\n", tex_errmsg());
-        return NULL;
-    }
-    tex_map *m = tex_render(s, NULL, NULL);
-    if (!m)
-        printf("# render: %s\n", tex_errmsg());
-    tex_scene_free(s);
-    return m;
 }
 
 /* A ray across the centre plane meets the tube at +-(R - r) and +-(R + r);
@@ -155,7 +142,7 @@ static void test_silhouette(void)
                      "camera { eye 0 10 0 look 0 0 0 up 0 0 1 fov 30 }\n"
                      "surface white { Ka 1 Kd 1 1 1 }\n"
                      "torus { major 1 minor 0.35 surface white }\n";
-    tex_map *m = render_text(sc);
+    tex_map *m = unit_render_text(sc, 0);
     CHECK(m != NULL, "torus scene renders");
     if (!m)
         return;
@@ -180,7 +167,7 @@ static void test_difference(void)
                      "surface white { Ka 1 Kd 1 1 1 }\n"
                      "difference { box { min -2 -0.2 -2 max 2 0.2 2 }\n"
                      "             torus { major 1 minor 0.5 } surface white }\n";
-    tex_map *m = render_text(sc);
+    tex_map *m = unit_render_text(sc, 0);
     CHECK(m != NULL, "CSG difference with a torus renders");
     if (!m)
         return;

@@ -10,17 +10,8 @@
 #include "error.h"
 #include "rng.h"
 #include "spectral.h"
+#include "fixtures.h"
 #include "unit.h"
-
-static tex_map *random_map(int w, int h, int nc, uint64_t seed)
-{
-    tex_map *m = tex_map_new(w, h, nc);
-    tex_rng r;
-    tex_rng_seed(&r, seed);
-    for (size_t i = 0; i < tex_map_samples(m); i++)
-        m->px[i] = (float)tex_rng_uniform(&r);
-    return m;
-}
 
 static double maxdiff(const tex_map *a, int ca, const tex_map *b, int cb)
 {
@@ -32,7 +23,7 @@ static double maxdiff(const tex_map *a, int ca, const tex_map *b, int cb)
 
 static void roundtrip(int w, int h)
 {
-    tex_map *m = random_map(w, h, 1, 7), *s = tex_fft(m, TEX_FFT_COMPLEX, 0), *b;
+    tex_map *m = unit_random_map(w, h, 1, 7), *s = tex_fft(m, TEX_FFT_COMPLEX, 0), *b;
     struct tex_ifft_opts o = TEX_IFFT_DEFAULTS;
     b = tex_ifft(s, &o);
     CHECKF(b && maxdiff(m, 0, b, 0) < 1e-5, "fft then ifft of a %dx%d map gives it back (%g)", w,
@@ -87,7 +78,7 @@ static void single_frequency(int w, int h, int kx, int ky)
 static void half_plane(int w, int h, int random_phase_map)
 {
     tex_map *half = tex_map_new(w, h, 1), *full = tex_map_new(w, h, 1);
-    tex_map *ph = random_phase_map ? random_map(w, h, 1, 11) : NULL, *phfull = NULL;
+    tex_map *ph = random_phase_map ? unit_random_map(w, h, 1, 11) : NULL, *phfull = NULL;
     tex_map *a, *b;
     struct tex_ifft_opts o = TEX_IFFT_DEFAULTS;
     tex_rng r;
@@ -320,7 +311,7 @@ static void bad_input(void)
 static void determinism(void)
 {
 #ifdef _OPENMP
-    tex_map *a, *b, *s = random_map(300, 200, 1, 4), *c, *d;
+    tex_map *a, *b, *s = unit_random_map(300, 200, 1, 4), *c, *d;
     struct tex_ifft_opts o = TEX_IFFT_DEFAULTS;
     omp_set_num_threads(1);
     a = fbm(300, 200, 0.7, 20, 2, 0, 1e6);
