@@ -36,8 +36,9 @@ static const struct tex_surface *surface_of(const struct tex_scene *s, const str
     return leaf->surface ? leaf->surface : s->surfaces[0];
 }
 
-/* World normal at a hit, facing outwards of the solid. */
-static tex_v3 hit_normal(const struct tex_hit *h, tex_v3 P)
+/* World normal at a hit, facing outwards of the solid.  Inline: a returned
+ * or passed tex_v3 goes through the stack and stalls the load after it. */
+static inline __attribute__((always_inline)) tex_v3 hit_normal(const struct tex_hit *h, tex_v3 P)
 {
     const struct tex_object *l = h->leaf;
     tex_v3 n;
@@ -89,7 +90,7 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, double weigh
     const struct tex_scene *s = c->s;
     int n = c->n;
     struct tex_hit h;
-    if (!tex_scene_trace(s, r->o, r->d, 0, INFINITY, &h)) {
+    if (!tex_scene_trace(s, &r->o, &r->d, 0, INFINITY, &h)) {
         tex_colour_copy(out, n, c->background);
         return;
     }
@@ -133,12 +134,15 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, double weigh
             }
             if (tex_v3_dot(L, N) <= 0 || tex_v3_dot(L, Ngv) <= 0)
                 continue;
-            double sh = tex_scene_transmit(s, Pout, L, 0, dist);
+            double sh = tex_scene_transmit(s, &Pout, &L, 0, dist);
             if (sh <= 0)
                 continue;
             tex_colour E;
             tex_colour_scale(&E, n, &l->e, (float)(fatt * sh));
-            m.model->direct(&m, &N.x, &V.x, &L.x, &E, n, out);
+            if (m.model == &tex_shading_phong) /* inline: no call for the common model */
+                tex_phong_direct(&m, &N.x, &V.x, &L.x, &E, n, out);
+            else
+                m.model->direct(&m, &N.x, &V.x, &L.x, &E, n, out);
         }
     }
     if (depth >= s->settings.depth || (m.kr <= 0 && m.kt <= 0 && m.model == &tex_shading_phong))

@@ -57,6 +57,17 @@ struct ray {
     double dd; /* d.d */
 };
 
+static inline void ray_setup(struct ray *r, const tex_v3 *o, const tex_v3 *d)
+{
+    r->o = *o;
+    r->d = *d;
+    /* IEEE division gives +-inf for zero components, which the slab test
+     * handles except for 0 * inf; nudge zeros instead. */
+    r->inv = tex_v3_make(1 / (d->x != 0 ? d->x : 1e-300), 1 / (d->y != 0 ? d->y : 1e-300),
+                         1 / (d->z != 0 ? d->z : 1e-300));
+    r->dd = tex_v3_dot(*d, *d);
+}
+
 static struct tex_bounds merge(struct tex_bounds a, struct tex_bounds b)
 {
     struct tex_bounds r = {tex_v3_make(fmin(a.lo.x, b.lo.x), fmin(a.lo.y, b.lo.y),
@@ -346,16 +357,13 @@ static inline int first_hit(const struct prim *p, const struct ray *r, double tm
 }
 
 /* Inlined into both entry points: the closest-hit one loses every test of any. */
-static inline __attribute__((always_inline)) int bvh_trace(const struct tex_bvh *t, tex_v3 o,
-                                                           tex_v3 d, double tmin, double tmax,
-                                                           int any, struct tex_hit *hit)
+static inline __attribute__((always_inline)) int bvh_trace(const struct tex_bvh *t,
+                                                           const tex_v3 *o, const tex_v3 *d,
+                                                           double tmin, double tmax, int any,
+                                                           struct tex_hit *hit)
 {
-    /* IEEE division gives +-inf for zero components, which the slab test handles
-     * except for 0 * inf; nudge zeros instead. */
-    struct ray r = {o, d,
-                    tex_v3_make(1 / (d.x != 0 ? d.x : 1e-300), 1 / (d.y != 0 ? d.y : 1e-300),
-                                1 / (d.z != 0 ? d.z : 1e-300)),
-                    tex_v3_dot(d, d)};
+    struct ray r;
+    ray_setup(&r, o, d);
     int found = 0;
     if (!(r.dd > 0))
         return 0;
@@ -412,14 +420,14 @@ static inline __attribute__((always_inline)) int bvh_trace(const struct tex_bvh 
     }
 }
 
-int tex_bvh_trace(const struct tex_bvh *t, tex_v3 o, tex_v3 d, double tmin, double tmax,
-                  struct tex_hit *hit)
+int tex_bvh_trace(const struct tex_bvh *t, const tex_v3 *o, const tex_v3 *d, double tmin,
+                  double tmax, struct tex_hit *hit)
 {
     return bvh_trace(t, o, d, tmin, tmax, 0, hit);
 }
 
-int tex_bvh_trace_any(const struct tex_bvh *t, tex_v3 o, tex_v3 d, double tmin, double tmax,
-                      int any, struct tex_hit *hit)
+int tex_bvh_trace_any(const struct tex_bvh *t, const tex_v3 *o, const tex_v3 *d, double tmin,
+                      double tmax, int any, struct tex_hit *hit)
 {
     return any ? bvh_trace(t, o, d, tmin, tmax, 1, hit) : bvh_trace(t, o, d, tmin, tmax, 0, hit);
 }
@@ -493,13 +501,12 @@ static inline void transmit_prim(const struct tex_scene *s, const struct prim *p
     }
 }
 
-double tex_scene_transmit(const struct tex_scene *s, tex_v3 o, tex_v3 d, double tmin, double tmax)
+double tex_scene_transmit(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
+                          double tmin, double tmax)
 {
     const struct tex_bvh *t = s->bvh;
-    struct ray r = {o, d,
-                    tex_v3_make(1 / (d.x != 0 ? d.x : 1e-300), 1 / (d.y != 0 ? d.y : 1e-300),
-                                1 / (d.z != 0 ? d.z : 1e-300)),
-                    tex_v3_dot(d, d)};
+    struct ray r;
+    ray_setup(&r, o, d);
     double tr = 1, t0;
     if (!(r.dd > 0))
         return 1;
@@ -536,8 +543,8 @@ double tex_scene_transmit(const struct tex_scene *s, tex_v3 o, tex_v3 d, double 
     }
 }
 
-int tex_scene_trace(const struct tex_scene *s, tex_v3 o, tex_v3 d, double tmin, double tmax,
-                    struct tex_hit *hit)
+int tex_scene_trace(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d, double tmin,
+                    double tmax, struct tex_hit *hit)
 {
-    return tex_bvh_trace(s->bvh, o, d, tmin, tmax, hit);
+    return bvh_trace(s->bvh, o, d, tmin, tmax, 0, hit);
 }

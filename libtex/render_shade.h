@@ -29,6 +29,8 @@
 #ifndef TEX_RENDER_SHADE_H
 #define TEX_RENDER_SHADE_H
 
+#include <math.h>
+
 #include "colour.h"
 
 #ifdef __cplusplus
@@ -58,6 +60,41 @@ struct tex_shading_model {
 };
 
 extern const struct tex_shading_model tex_shading_phong;
+/* x^n: by squaring for whole n up to 4096 (the usual Phong exponents), a few
+ * multiplications instead of pow's tens of cycles; pow otherwise. */
+static inline double tex_powi(double x, double n)
+{
+    if (!(n >= 0 && n <= 4096) || n != (int)n)
+        return pow(x, n);
+    double r = 1;
+    for (int k = (int)n; k; k >>= 1, x *= x)
+        if (k & 1)
+            r *= x;
+    return r;
+}
+
+/* Whitted-Phong's direct(), inline for the renderer's common case (N, V, L:
+ * three doubles each). */
+static inline void tex_phong_direct(const struct tex_material *m, const double *N,
+                                    const double *V, const double *L, const tex_colour *E,
+                                    int n, tex_colour *out)
+{
+    double nl = N[0] * L[0] + N[1] * L[1] + N[2] * L[2];
+    if (nl <= 0)
+        return;
+    tex_colour_mmadd(out, n, &m->kd, E, (float)nl);
+    double h[3] = {L[0] + V[0], L[1] + V[1], L[2] + V[2]};
+    double hh = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
+    double q = N[0] * h[0] + N[1] * h[1] + N[2] * h[2];
+    if (!(hh > 0) || q <= 0)
+        return;
+    /* skip where the highlight (N.H)^n = x^(n/2), x = (N.H)^2, is below 1e-13:
+     * ln x <= -(y + y^2/2 + y^3/3) with y = 1 - x; no square root for those */
+    double x = q * q / hh, y = 1 - x;
+    if (0.5 * m->n * y * (1 + y * (0.5 + y * (1.0 / 3))) < 30)
+        tex_colour_mmadd(out, n, &m->ks, E, (float)tex_powi(q / sqrt(hh), m->n));
+}
+
 /* NULL if no model has that name. */
 const struct tex_shading_model *tex_shading_find(const char *name);
 

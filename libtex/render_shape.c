@@ -64,24 +64,6 @@ int tex_xform_invert(tex_xform *r, const tex_xform *a)
     return 0;
 }
 
-/* ---- optics ----------------------------------------------------------------- */
-
-tex_v3 tex_reflect(tex_v3 d, tex_v3 n)
-{
-    return tex_v3_madd(d, n, -2 * tex_v3_dot(d, n));
-}
-
-int tex_refract(tex_v3 d, tex_v3 n, double n1, double n2, tex_v3 *t)
-{
-    double eta = n1 / n2;
-    double cosi = -tex_v3_dot(d, n);
-    double k = 1 - eta * eta * (1 - cosi * cosi);
-    if (k < 0)
-        return 0;
-    *t = tex_v3_norm(tex_v3_add(tex_v3_scale(d, eta), tex_v3_scale(n, eta * cosi - sqrt(k))));
-    return 1;
-}
-
 /* ---- spans helpers ---------------------------------------------------------- */
 
 static void span1(struct tex_spans *s, const struct tex_object *ob, double t0, double t1)

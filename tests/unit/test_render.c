@@ -330,7 +330,7 @@ static void test_bvh_brute(void)
         for (int i = 0; i < s->nobjects; i++)
             if (brute_first(s->objects[i], o, d, 0, &h) && h.t < best.t)
                 best = h;
-        int found = tex_scene_trace(s, o, d, 0, INFINITY, &h);
+        int found = tex_scene_trace(s, &o, &d, 0, INFINITY, &h);
         hits += found;
         if (found != (best.leaf != NULL) ||
             (found && (fabs(h.t - best.t) > 1e-9 * (1 + best.t) ||
@@ -338,7 +338,7 @@ static void test_bvh_brute(void)
             bad_closest++;
         double tmax = best.leaf ? best.t * 1.5 : 40; /* occluded iff something lies before tmax */
         struct tex_hit a;
-        int occl = tex_bvh_trace_any(s->bvh, o, d, 0, tmax, 1, &a);
+        int occl = tex_bvh_trace_any(s->bvh, &o, &d, 0, tmax, 1, &a);
         if (occl != (best.leaf != NULL) || (occl && !(a.t > 0 && a.t < tmax)))
             bad_any++;
     }
