@@ -59,58 +59,70 @@ void tex_colour_space_rgb(struct tex_colour_space *cs);
 float tex_srgb_encode(float linear);
 float tex_srgb_decode(float encoded);
 
-/* Every sample i < n: RGB unrolled (n = 3), spectra vectorised. */
-#define TEX_COLOUR_EACH(n, stmt)                                                                   \
+/* d->v[i] = expr for every sample i < n: RGB unrolled (n = 3), with all
+ * three values computed before any is stored (d may be an operand: the
+ * compiler need not reload after each store), spectra vectorised. */
+#define TEX_COLOUR_EACH(n, d, expr)                                                                \
     do {                                                                                           \
         if ((n) == 3) {                                                                            \
-            for (int i = 0; i < 3; i++)                                                            \
-                stmt;                                                                              \
+            int i = 0;                                                                             \
+            float r0_ = (expr);                                                                    \
+            i = 1;                                                                                 \
+            float r1_ = (expr);                                                                    \
+            i = 2;                                                                                 \
+            float r2_ = (expr);                                                                    \
+            (void)i;                                                                               \
+            (d)->v[0] = r0_, (d)->v[1] = r1_, (d)->v[2] = r2_;                                     \
         } else {                                                                                   \
-            _Pragma("omp simd") for (int i = 0; i < (n); i++) stmt;                                \
+            _Pragma("omp simd") for (int i = 0; i < (n); i++)(d)->v[i] = (expr);                   \
         }                                                                                          \
     } while (0)
 
 static inline void tex_colour_set(tex_colour *d, int n, float x)
 {
-    TEX_COLOUR_EACH(n, d->v[i] = x);
+    TEX_COLOUR_EACH(n, d, x);
 }
 
 static inline void tex_colour_copy(tex_colour *d, int n, const tex_colour *a)
 {
-    TEX_COLOUR_EACH(n, d->v[i] = a->v[i]);
+    TEX_COLOUR_EACH(n, d, a->v[i]);
 }
 
 static inline void tex_colour_add(tex_colour *d, int n, const tex_colour *a, const tex_colour *b)
 {
-    TEX_COLOUR_EACH(n, d->v[i] = a->v[i] + b->v[i]);
+    TEX_COLOUR_EACH(n, d, a->v[i] + b->v[i]);
 }
 
 static inline void tex_colour_mul(tex_colour *d, int n, const tex_colour *a, const tex_colour *b)
 {
-    TEX_COLOUR_EACH(n, d->v[i] = a->v[i] * b->v[i]);
+    TEX_COLOUR_EACH(n, d, a->v[i] * b->v[i]);
 }
 
 static inline void tex_colour_scale(tex_colour *d, int n, const tex_colour *a, float s)
 {
-    TEX_COLOUR_EACH(n, d->v[i] = a->v[i] * s);
+    TEX_COLOUR_EACH(n, d, a->v[i] * s);
 }
 
 /* d += a * s */
 static inline void tex_colour_madd(tex_colour *d, int n, const tex_colour *a, float s)
 {
-    TEX_COLOUR_EACH(n, d->v[i] += a->v[i] * s);
+    TEX_COLOUR_EACH(n, d, d->v[i] + a->v[i] * s);
 }
 
 /* d += a * b * s (per sample) */
 static inline void tex_colour_mmadd(tex_colour *d, int n, const tex_colour *a, const tex_colour *b,
                                     float s)
 {
-    TEX_COLOUR_EACH(n, d->v[i] += a->v[i] * b->v[i] * s);
+    TEX_COLOUR_EACH(n, d, d->v[i] + a->v[i] * b->v[i] * s);
 }
 
 static inline float tex_colour_max(const tex_colour *a, int n)
 {
     float m = a->v[0];
+    if (n == 3) { /* unrolled, as TEX_COLOUR_EACH */
+        m = a->v[1] > m ? a->v[1] : m;
+        return a->v[2] > m ? a->v[2] : m;
+    }
     for (int i = 1; i < n; i++)
         m = a->v[i] > m ? a->v[i] : m;
     return m;
