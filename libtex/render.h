@@ -95,6 +95,15 @@ static inline double tex_v3_get(tex_v3 a, int i)
     return i == 0 ? a.x : i == 1 ? a.y : a.z;
 }
 
+/* 1/d per component for slab tests, zeros nudged to 1e-300 first: IEEE
+ * division would give +-inf, and 0 * inf is NaN where the ray's origin lies
+ * on a slab's plane.  An addition instead of a test: 1e-300 vanishes beside
+ * any component over 1e-284. */
+static inline tex_v3 tex_v3_slab_inv(tex_v3 d)
+{
+    return tex_v3_make(1 / (d.x + 1e-300), 1 / (d.y + 1e-300), 1 / (d.z + 1e-300));
+}
+
 /* Affine transform: p' = m[0..2][0..2] p + m[..][3]. */
 typedef struct tex_xform {
     double m[3][4];

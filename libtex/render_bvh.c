@@ -61,10 +61,7 @@ static inline void ray_setup(struct ray *r, const tex_v3 *o, const tex_v3 *d)
 {
     r->o = *o;
     r->d = *d;
-    /* IEEE division gives +-inf for zero components, which the slab test
-     * handles except for 0 * inf; nudge zeros instead. */
-    r->inv = tex_v3_make(1 / (d->x != 0 ? d->x : 1e-300), 1 / (d->y != 0 ? d->y : 1e-300),
-                         1 / (d->z != 0 ? d->z : 1e-300));
+    r->inv = tex_v3_slab_inv(*d);
     r->dd = tex_v3_dot(*d, *d);
 }
 

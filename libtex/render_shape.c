@@ -542,9 +542,7 @@ static void object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, tex_v3
 
 void tex_object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s)
 {
-    tex_v3 inv = tex_v3_make(1 / (d.x != 0 ? d.x : 1e-300), 1 / (d.y != 0 ? d.y : 1e-300),
-                             1 / (d.z != 0 ? d.z : 1e-300));
-    object_spans(ob, o, d, inv, s);
+    object_spans(ob, o, d, tex_v3_slab_inv(d), s);
 }
 
 void tex_csg_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, tex_v3 inv,
