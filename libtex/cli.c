@@ -367,6 +367,8 @@ int tex_generate_main(const struct tex_primitive *p, int argc, char **argv)
     if (!(f = tex_field_new(p)))
         tex_die();
     tex_cli_parse(&t, argc, argv, &c, f->params);
+    if (tex_map_write_check(c.output) < 0)
+        tex_die(); /* now, not after the work */
     f->seed = (uint64_t)c.seed;
     f->tile = c.tile;
     f->ids = c.ids;

@@ -474,6 +474,21 @@ static int write_stdout(const tex_map *m, const struct tex_write_opts *o)
     }
 }
 
+int tex_map_write_check(const char *path)
+{
+    struct stat st;
+
+    if (!path || strcmp(path, "-") == 0)
+        return 0;
+    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
+        return tex_error("%s: is a directory", path);
+    if (tex_format_from_name(path) == TEX_FMT_UNKNOWN)
+        return tex_usage_error("%s: cannot tell the format from the extension (use .exr, .png, "
+                               ".tif, .pnm, .pfm, .bmp, .tga, .hdr, .jpg, .webp or .dpx)",
+                               path);
+    return 0;
+}
+
 int tex_map_write(const tex_map *m, const char *path, const struct tex_write_opts *o)
 {
     static const struct tex_write_opts defaults = TEX_WRITE_DEFAULTS;
@@ -481,18 +496,14 @@ int tex_map_write(const tex_map *m, const char *path, const struct tex_write_opt
     char tmp[PATH_MAX];
     const char *slash;
     int fd, depth, r;
-    struct stat st;
 
     if (!o)
         o = &defaults;
     if (!path || strcmp(path, "-") == 0)
         return write_stdout(m, o);
-    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
-        return tex_error("%s: is a directory", path);
-    if ((f = tex_format_from_name(path)) == TEX_FMT_UNKNOWN)
-        return tex_usage_error("%s: cannot tell the format from the extension (use .exr, .png, "
-                               ".tif, .pnm, .pfm, .bmp, .tga, .hdr, .jpg, .webp or .dpx)",
-                               path);
+    if (tex_map_write_check(path) < 0)
+        return -1;
+    f = tex_format_from_name(path);
     if ((depth = choose_depth(f, o->depth, path)) < 0)
         return -1;
     slash = strrchr(path, '/');

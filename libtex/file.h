@@ -55,6 +55,10 @@ tex_map *tex_map_read(const char *path);
 tex_map *tex_map_read_memory(const void *data, size_t len, const char *name);
 /* Write a map; NULL or "-" is standard output. */
 int tex_map_write(const tex_map *m, const char *path, const struct tex_write_opts *o);
+/* Whether tex_map_write could take path by its name (a known extension, not
+ * a directory): 0, or -1 with its error.  Tools that write images check it
+ * before the work (a palette file is not an image: it is not checked). */
+int tex_map_write_check(const char *path);
 
 /* Read all of a file descriptor into b (for standard input and pipes). */
 int tex_read_fd(int fd, tex_buf *b, const char *name);

@@ -51,6 +51,10 @@ bad "unterminated string" 2 'texture t file "abc'
 bad "nested too deeply" 2 "$(for i in $(seq 70); do printf 'union { sphere { } '; done)"
 check_fails "missing scene file" 1 t_apply "$T/none.scene" -o "$T/x.png"
 check_fails "absurd -s" 2 t_apply "$good" -s 0x5 -o "$T/x.png"
+# an output name without a format is refused before the scene is read (and rendered)
+check_fails "unknown output extension" 2 t_apply "$T/none.scene" -o "$T/x.foo"
+grep -q "x.foo: cannot tell the format" "$T/.err" && ok "the output's format is checked first" ||
+    notok "output format checked first" "$(cat "$T/.err")"
 
 printf 'camera { eye 0 0 0 look 0 0 1 }\nsphere { radius 2 }\n' >"$T/in.scene"
 t_apply "$T/in.scene" -s 8 -o "$T/in.exr" 2>"$T/in.err"

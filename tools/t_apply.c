@@ -79,6 +79,8 @@ int main(int argc, char **argv)
         argv[argc - 1] = scene;
     }
     int i = tex_cli_parse(&tool, argc, argv, &c, &o);
+    if (tex_map_write_check(c.output) < 0)
+        tex_die(); /* now, not after the render */
     /* options first: a usage error must not leave the scene allocated (LSan) */
     int w = 0, h = 0;
     long bands = 0;
