@@ -252,9 +252,12 @@ struct tex_object {
 /* Intervals of an object (leaf or CSG tree) along a world ray o + t d. */
 void tex_object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s);
 /* The same, for a ray whose line is known to meet ob's world box: inv is
- * 1/d with zero components replaced by 1/1e-300 (the BVH's ray). */
-void tex_csg_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, tex_v3 inv,
-                   struct tex_spans *s);
+ * tex_v3_slab_inv(d) (the BVH's ray). */
+void tex_csg_spans(const struct tex_object *ob, const tex_v3 *o, const tex_v3 *d,
+                   const tex_v3 *inv, struct tex_spans *s);
+/* The spans of a leaf (its transform applied) along a world ray. */
+void tex_leaf_spans(const struct tex_object *ob, const tex_v3 *o, const tex_v3 *d,
+                    struct tex_spans *s);
 /* Combine two interval lists with a CSG operation. */
 void tex_csg_combine(enum tex_csg_op op, const struct tex_spans *a, const struct tex_spans *b,
                      struct tex_spans *r);

@@ -293,8 +293,7 @@ static __attribute__((noinline)) int first_hit_spans(const struct prim *p, const
     struct tex_spans s;
     const struct tex_object *ob = p->ob;
     if (p->kind == PK_LEAF) {
-        tex_v3 lo = tex_xform_point(&ob->to_obj, r->o), ld = tex_xform_dir(&ob->to_obj, r->d);
-        tex_shape_methods[ob->kind].spans(ob, lo, ld, &s);
+        tex_leaf_spans(ob, &r->o, &r->d, &s);
     } else {
         double t0;
         /* the tree's box, against the closest hit so far, before its interval lists */
@@ -303,7 +302,7 @@ static __attribute__((noinline)) int first_hit_spans(const struct prim *p, const
         } else {
             if (!hit_box(&ob->wb, r, tmin, *tmax, &t0))
                 return 0;
-            tex_csg_spans(ob, r->o, r->d, r->inv, &s);
+            tex_csg_spans(ob, &r->o, &r->d, &r->inv, &s);
         }
     }
     for (int i = 0; i < s.n; i++) {
@@ -445,15 +444,14 @@ static __attribute__((noinline)) void transmit_spans(const struct tex_scene *s,
     const struct tex_object *ob = p->ob;
     double t0;
     if (p->kind == PK_LEAF) {
-        tex_v3 lo = tex_xform_point(&ob->to_obj, r->o), ld = tex_xform_dir(&ob->to_obj, r->d);
-        tex_shape_methods[ob->kind].spans(ob, lo, ld, &sp);
+        tex_leaf_spans(ob, &r->o, &r->d, &sp);
     } else {
         if (!ob->bounded) {
             tex_object_spans(ob, r->o, r->d, &sp);
         } else {
             if (!hit_box(&ob->wb, r, tmin, tmax, &t0))
                 return;
-            tex_csg_spans(ob, r->o, r->d, r->inv, &sp);
+            tex_csg_spans(ob, &r->o, &r->d, &r->inv, &sp);
         }
     }
     for (int i = 0; i < sp.n && *tr > 0; i++) {

@@ -508,12 +508,29 @@ static int ray_box(const struct tex_bounds *b, tex_v3 o, tex_v3 inv)
     return t0 <= t1;
 }
 
-static void object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, tex_v3 inv,
-                         struct tex_spans *s);
+/* A leaf's spans along a world ray: a switch, not the method table, so the
+ * common shapes are inlined and the object-space ray stays in registers
+ * (a tex_v3 passed by value goes through the stack, and the load after the
+ * store stalls). */
+void tex_leaf_spans(const struct tex_object *ob, const tex_v3 *o, const tex_v3 *d,
+                    struct tex_spans *s)
+{
+    tex_v3 lo = tex_xform_point(&ob->to_obj, *o), ld = tex_xform_dir(&ob->to_obj, *d);
+    switch (ob->kind) {
+    case TEX_SHAPE_SPHERE: sphere_spans(ob, lo, ld, s); break;
+    case TEX_SHAPE_BOX: box_spans(ob, lo, ld, s); break;
+    case TEX_SHAPE_CYLINDER:
+    case TEX_SHAPE_CONE: cone_spans(ob, lo, ld, s); break;
+    default: tex_shape_methods[ob->kind].spans(ob, lo, ld, s); break;
+    }
+}
+
+static void object_spans(const struct tex_object *ob, const tex_v3 *o, const tex_v3 *d,
+                         const tex_v3 *inv, struct tex_spans *s);
 
 /* A CSG node's spans from its children's (its own box already passed). */
-static void node_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, tex_v3 inv,
-                       struct tex_spans *s)
+static void node_spans(const struct tex_object *ob, const tex_v3 *o, const tex_v3 *d,
+                       const tex_v3 *inv, struct tex_spans *s)
 {
     struct tex_spans a, b;
     object_spans(ob->a, o, d, inv, &a);
@@ -525,15 +542,14 @@ static void node_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, tex_v3 i
     tex_csg_combine(ob->op, &a, &b, s);
 }
 
-static void object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, tex_v3 inv,
-                         struct tex_spans *s)
+static void object_spans(const struct tex_object *ob, const tex_v3 *o, const tex_v3 *d,
+                         const tex_v3 *inv, struct tex_spans *s)
 {
     if (ob->op == TEX_CSG_LEAF) {
-        tex_v3 lo = tex_xform_point(&ob->to_obj, o), ld = tex_xform_dir(&ob->to_obj, d);
-        tex_shape_methods[ob->kind].spans(ob, lo, ld, s);
+        tex_leaf_spans(ob, o, d, s);
         return;
     }
-    if (ob->bounded && !ray_box(&ob->wb, o, inv)) {
+    if (ob->bounded && !ray_box(&ob->wb, *o, *inv)) {
         s->n = 0;
         return;
     }
@@ -542,14 +558,15 @@ static void object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, tex_v3
 
 void tex_object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s)
 {
-    object_spans(ob, o, d, tex_v3_slab_inv(d), s);
+    tex_v3 inv = tex_v3_slab_inv(d);
+    object_spans(ob, &o, &d, &inv, s);
 }
 
-void tex_csg_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, tex_v3 inv,
-                   struct tex_spans *s)
+void tex_csg_spans(const struct tex_object *ob, const tex_v3 *o, const tex_v3 *d,
+                   const tex_v3 *inv, struct tex_spans *s)
 {
     if (ob->op == TEX_CSG_LEAF)
-        object_spans(ob, o, d, inv, s);
+        tex_leaf_spans(ob, o, d, s);
     else
         node_spans(ob, o, d, inv, s);
 }
