@@ -54,7 +54,7 @@ struct tex_bvh {
 /* A ray with its per-ray constants. */
 struct ray {
     tex_v3 o, d, inv;
-    double dd; /* d.d */
+    double dd, idd; /* d.d and 1 / d.d (1 for unit directions) */
 };
 
 static inline void ray_setup(struct ray *r, const tex_v3 *o, const tex_v3 *d)
@@ -63,6 +63,7 @@ static inline void ray_setup(struct ray *r, const tex_v3 *o, const tex_v3 *d)
     r->d = *d;
     r->inv = tex_v3_slab_inv(*d);
     r->dd = tex_v3_dot(*d, *d);
+    r->idd = 1 / r->dd;
 }
 
 static struct tex_bounds merge(struct tex_bounds a, struct tex_bounds b)
@@ -331,9 +332,9 @@ static inline int first_hit(const struct prim *p, const struct ray *r, double tm
         if (disc <= 0)
             return 0;
         double q = sqrt(disc);
-        t = (-b - q) / r->dd;
+        t = (-b - q) * r->idd; /* no division after the square root */
         if (!(t > tmin))
-            t = (-b + q) / r->dd;
+            t = (-b + q) * r->idd;
     } else if (p->kind == PK_PLANE) {
         double dy = tex_v3_dot(p->a, r->d);
         if (dy == 0)

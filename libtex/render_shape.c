@@ -86,8 +86,8 @@ static void sphere_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct
     s->n = 0;
     if (disc <= 0 || a <= 0)
         return;
-    double q = sqrt(disc);
-    span1(s, ob, (-b - q) / a, (-b + q) / a);
+    double q = sqrt(disc), ia = 1 / a; /* the division beside the root, not after it */
+    span1(s, ob, (-b - q) * ia, (-b + q) * ia);
 }
 
 static tex_v3 sphere_normal(const struct tex_object *ob, tex_v3 p)
