@@ -241,7 +241,7 @@ static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, 
         tex_ray r = {cam->eye,
                      tex_v3_norm(tex_v3_add(cam->fwd, tex_v3_add(tex_v3_scale(cam->right, a),
                                                                  tex_v3_scale(cam->up, b)))),
-                     0, cam->spread, NULL};
+                     0, cam->spread, s->eye_media.n ? &s->eye_media : NULL};
         tex_colour col;
         float rgb[3];
         trace(&c, &r, 0, 1, &col);

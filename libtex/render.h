@@ -403,6 +403,7 @@ struct tex_scene {
     struct tex_object **objects; /* top-level objects */
     int nobjects;
     struct tex_bvh *bvh;
+    struct tex_media eye_media; /* the transparent solids the camera is inside (prepare's) */
     /* everything allocated, freed together */
     struct tex_texture **textures;
     int ntextures;
@@ -421,7 +422,9 @@ void tex_scene_free(struct tex_scene *s);
  * frees the previous one.  For command-line overrides, before tex_scene_prepare. */
 int tex_scene_set_colour(struct tex_scene *s, int bands);
 
-/* Build the BVH and check the settings (after command-line overrides). */
+/* Build the BVH, check the settings (after command-line overrides) and find
+ * the media around the camera: the transparent solids containing the eye,
+ * outermost first, each with the index of the surface a ray leaves it by. */
 int tex_scene_prepare(struct tex_scene *s);
 
 /* The closest hit along a ray o + t d beyond tmin: 1 and *hit, or 0.  The

@@ -1511,15 +1511,46 @@ int tex_scene_set_colour(struct tex_scene *s, int bands)
     return 0;
 }
 
-/* Is point p inside object ob?  A ray from p: inside if p lies in one of its intervals. */
-static int inside(const struct tex_object *ob, tex_v3 p)
+/* Is point p inside object ob?  A ray from p: inside if p lies in one of
+ * its intervals; *out is where that ray leaves it. */
+static int inside(const struct tex_object *ob, tex_v3 p, struct tex_hit *out)
 {
     struct tex_spans sp;
     tex_object_spans(ob, p, tex_v3_make(0.5773, 0.5774, 0.5775), &sp);
-    for (int i = 0; i < sp.n; i++)
-        if (sp.in[i].t < 0 && sp.out[i].t > 0)
+    for (int i = 0; i < sp.n; i++) {
+        if (sp.in[i].t < 0 && sp.out[i].t > 0) {
+            *out = sp.out[i];
             return 1;
+        }
+    }
     return 0;
+}
+
+/* The camera's media: the transparent solids around the eye (their exit
+ * surfaces have Kt > 0), outermost (farthest exit) first; the others warn. */
+static void eye_media(struct tex_scene *s)
+{
+    struct tex_media *m = &s->eye_media;
+    double exit[TEX_MEDIA_MAX];
+    m->n = 0;
+    for (int i = 0; i < s->nobjects; i++) {
+        const struct tex_object *o = s->objects[i];
+        struct tex_hit h;
+        if (!inside(o, s->eye, &h))
+            continue;
+        const struct tex_surface *sf = h.leaf && h.leaf->surface ? h.leaf->surface : s->surfaces[0];
+        if (!(sf->kt > 0) || m->n == TEX_MEDIA_MAX) {
+            warn(s, "%s:%d:%d: warning: the camera is inside this object", s->file, o->line,
+                 o->col);
+            continue;
+        }
+        int k = m->n++; /* insertion by exit distance, ties in scene order */
+        for (; k > 0 && exit[k - 1] < h.t; k--) {
+            m->ob[k] = m->ob[k - 1], m->ior[k] = m->ior[k - 1];
+            exit[k] = exit[k - 1];
+        }
+        m->ob[k] = o, m->ior[k] = sf->ior, exit[k] = h.t;
+    }
 }
 
 int tex_scene_prepare(struct tex_scene *s)
@@ -1551,12 +1582,6 @@ int tex_scene_prepare(struct tex_scene *s)
     s->bvh = tex_bvh_build(s->objects, s->nobjects);
     if (!s->bvh)
         return -1;
-    for (int i = 0; i < s->nobjects; i++) {
-        if (inside(s->objects[i], s->eye)) {
-            const struct tex_object *o = s->objects[i];
-            warn(s, "%s:%d:%d: warning: the camera is inside this object", s->file, o->line,
-                 o->col);
-        }
-    }
+    eye_media(s);
     return 0;
 }

@@ -179,8 +179,49 @@ static void test_stack(void)
            tex_media_ior(&c));
 }
 
+/* The camera under water: a ball of the water's own index is invisible
+ * from inside the water (rays cross it unbent), so the stripes look the
+ * same with and without it.  Were the camera taken to be in air, the ball
+ * would be a 1 -> 1.33 lens and move them. */
+static void test_camera_inside(void)
+{
+    static const char head[] =
+        "image 48 48 samples 1 depth 10 ambient 1 1 1 background 0 0 0\n"
+        "camera { eye 0 0 -20 look 0 0 0 fov 12 }\n"
+        "surface water { Ka 0 Kd 0 Ks 0 Kr 0 Kt 1 ior 1.33 }\n"
+        "surface white { Ka 1 Kd 1 Ks 0 }\n"
+        "sphere { radius 100 surface water }\n";
+    char sc[2][4096];
+    for (int k = 0; k < 2; k++) {
+        int len = snprintf(sc[k], sizeof sc[k], "%s%s", head,
+                           k ? "sphere { radius 1.5 surface water }\n" : "");
+        for (int j = -8; j <= 8; j++)
+            len += snprintf(sc[k] + len, sizeof sc[k] - len,
+                            "box { min -50 %g 4 max 50 %g 4.001 surface white }\n", 0.25 * j,
+                            0.25 * j + 0.125);
+    }
+    tex_map *a = unit_render_text(sc[0], 0), *b = unit_render_text(sc[1], 0);
+    CHECKF(a && b, "camera in water: both scenes render");
+    if (!a || !b) {
+        tex_map_free(a);
+        tex_map_free(b);
+        return;
+    }
+    int differ = 0, white = 0;
+    for (size_t i = 0; i < tex_map_samples(a); i++) {
+        differ += fabsf(a->px[i] - b->px[i]) > 1e-3f;
+        white += a->px[i] > 0.5f;
+    }
+    CHECKF(differ == 0 && white > 500,
+           "camera in water: a water-index ball is invisible (%d of %zu samples differ, %d white)",
+           differ, tex_map_samples(a), white);
+    tex_map_free(a);
+    tex_map_free(b);
+}
+
 int main(void)
 {
+    test_camera_inside();
     test_stack();
     test_nested("glass ball (1.5) inside a water ball (1.33)", 1.33, 1.5);
     test_nested("air bubble (1.0) inside a glass ball (1.5)", 1.5, 1.0);
