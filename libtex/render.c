@@ -25,10 +25,7 @@ struct ctx {
 
 static double eps_at(tex_v3 p)
 {
-    double x = fabs(p.x), y = fabs(p.y), z = fabs(p.z);
-    double m = x > y ? x : y;
-    m = m > z ? m : z; /* not fmax: a library call at -O2 */
-    return 1e-6 * (1 + m);
+    return 1e-6 * (1 + tex_maxd(tex_maxd(fabs(p.x), fabs(p.y)), fabs(p.z)));
 }
 
 static const struct tex_surface *surface_of(const struct tex_scene *s, const struct tex_object *leaf)
@@ -61,7 +58,7 @@ static inline __attribute__((always_inline)) tex_v3 hit_normal(const struct tex_
 static double curvature(const struct tex_hit *h, tex_v3 P, tex_v3 Nf, tex_v3 d)
 {
     const struct tex_object *l = h->leaf;
-    double cosd = fmax(fabs(tex_v3_dot(d, Nf)), 0.02);
+    double cosd = tex_maxd(fabs(tex_v3_dot(d, Nf)), 0.02);
     if (l->fast == 1) /* planes are flat */
         return 0;
     if (l->fast == 2) /* round spheres: 1/r both ways, convex where Nf points outwards */
@@ -71,7 +68,7 @@ static double curvature(const struct tex_hit *h, tex_v3 P, tex_v3 Nf, tex_v3 d)
         t1 = tex_v3_cross(Nf, fabs(Nf.x) < 0.9 ? tex_v3_make(1, 0, 0) : tex_v3_make(0, 1, 0));
     t1 = tex_v3_norm(t1);
     tex_v3 t2 = tex_v3_cross(Nf, t1);
-    double e = 1e-4 * (1 + fmax(fabs(P.x), fmax(fabs(P.y), fabs(P.z))));
+    double e = 1e-4 * (1 + tex_maxd(fabs(P.x), tex_maxd(fabs(P.y), fabs(P.z))));
     double k[2];
     for (int i = 0; i < 2; i++) {
         tex_v3 t = i ? t2 : t1, n = hit_normal(h, tex_v3_madd(P, t, e));
@@ -163,11 +160,11 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, double weigh
     /* footprints after curved surfaces: a mirror of curvature k turns a beam
      * of width w by 2 k w more (its focal length is 1/2k); a refracting
      * surface bends it by (eta cos_i - cos_t) k w (paraxial lens power) */
-    double kmax = fmax(tex_colour_max(&kr, n), tex_colour_max(&kt, n));
+    double kmax = tex_maxd(tex_colour_max(&kr, n), tex_colour_max(&kt, n));
     double kc = s->settings.filter && width > 0 && kmax > 0 && weight * kmax >= s->settings.bailout
                     ? curvature(&h, P, Ngv, r->d)
                     : 0;
-    rr.spread = fmin(r->spread + 2 * kc * width, 1);
+    rr.spread = tex_mind(r->spread + 2 * kc * width, 1);
     if (tex_colour_max(&kt, n) > 0) {
         tex_ray rt = {Pin, r->d, width, r->spread, &beyond};
         if (tex_refract(r->d, N, n1, n2, &rt.d)) {
@@ -176,7 +173,8 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, double weigh
                 double eta = n1 / n2, ci = fabs(tex_v3_dot(r->d, Ngv)),
                        ct = fabs(tex_v3_dot(rt.d, Ngv));
                 if (ct > 1e-3)
-                    rt.spread = fmin(eta * ci / ct * r->spread + (eta * ci - ct) * kc * width, 1);
+                    rt.spread =
+                        tex_mind(eta * ci / ct * r->spread + (eta * ci - ct) * kc * width, 1);
                 trace(c, &rt, depth + 1, w, &I);
                 tex_colour_mmadd(out, n, &kt, &I, 1);
             }

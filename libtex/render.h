@@ -48,6 +48,17 @@ extern "C" {
 
 /* ---- vectors ------------------------------------------------------------ */
 
+/* The smaller and larger of two numbers by plain compares: fmin and fmax
+ * are library calls at -O2 (for their NaN rules). */
+static inline double tex_mind(double a, double b)
+{
+    return a < b ? a : b;
+}
+static inline double tex_maxd(double a, double b)
+{
+    return a > b ? a : b;
+}
+
 typedef struct tex_v3 {
     double x, y, z;
 } tex_v3;

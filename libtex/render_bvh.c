@@ -261,26 +261,17 @@ void tex_bvh_free(struct tex_bvh *b)
     free(b);
 }
 
-static inline double mind(double a, double b)
-{
-    return a < b ? a : b;
-}
-static inline double maxd(double a, double b)
-{
-    return a > b ? a : b;
-}
 
-/* Slab test against [tmin, tmax]; the entry distance in *t0.  Plain compares,
- * not fmin/fmax, which are library calls at -O2 (NaN rules). */
+/* Slab test against [tmin, tmax]; the entry distance in *t0. */
 static inline int hit_box(const struct tex_bounds *b, const struct ray *r, double tmin,
                           double tmax, double *t0)
 {
     double a = (b->lo.x - r->o.x) * r->inv.x, c = (b->hi.x - r->o.x) * r->inv.x;
-    double lo = maxd(tmin, mind(a, c)), hi = mind(tmax, maxd(a, c));
+    double lo = tex_maxd(tmin, tex_mind(a, c)), hi = tex_mind(tmax, tex_maxd(a, c));
     a = (b->lo.y - r->o.y) * r->inv.y, c = (b->hi.y - r->o.y) * r->inv.y;
-    lo = maxd(lo, mind(a, c)), hi = mind(hi, maxd(a, c));
+    lo = tex_maxd(lo, tex_mind(a, c)), hi = tex_mind(hi, tex_maxd(a, c));
     a = (b->lo.z - r->o.z) * r->inv.z, c = (b->hi.z - r->o.z) * r->inv.z;
-    lo = maxd(lo, mind(a, c)), hi = mind(hi, maxd(a, c));
+    lo = tex_maxd(lo, tex_mind(a, c)), hi = tex_mind(hi, tex_maxd(a, c));
     *t0 = lo;
     return lo <= hi;
 }
