@@ -147,12 +147,14 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, double weigh
     tex_colour kr, kt, I;
     double cosi = tex_v3_dot(N, V);
     /* the media on both sides (nested solids); Fresnel sees the solid's index
-     * relative to what lies beyond it */
+     * relative to what lies beyond it.  An opaque Phong mirror needs neither. */
     struct tex_media beyond;
-    double n1, n2;
-    tex_media_cross(r->media, h.leaf->root ? h.leaf->root : h.leaf, entering, m.ior, &beyond, &n1,
-                    &n2);
-    m.ior = entering ? n2 / n1 : n1 / n2;
+    double n1 = 1, n2 = 1;
+    if (m.kt > 0 || m.model != &tex_shading_phong) {
+        tex_media_cross(r->media, h.leaf->root ? h.leaf->root : h.leaf, entering, m.ior, &beyond,
+                        &n1, &n2);
+        m.ior = entering ? n2 / n1 : n1 / n2;
+    }
     m.model->weights(&m, cosi, n, &kr, &kt);
     tex_ray rr = {Pout, tex_reflect(r->d, N), width, r->spread, r->media};
     if (tex_v3_dot(rr.d, Ngv) <= 0)
