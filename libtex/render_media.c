@@ -17,10 +17,11 @@ double tex_media_ior(const struct tex_media *m)
 void tex_media_cross(const struct tex_media *m, const struct tex_object *ob, int entering,
                      double ior, struct tex_media *out, double *n1, double *n2)
 {
-    if (m)
-        *out = *m;
-    else
-        out->n = 0;
+    out->n = m ? m->n : 0; /* the stack's used part: most rays carry none or one */
+    if (out->n) {
+        memcpy(out->ob, m->ob, out->n * sizeof *out->ob);
+        memcpy(out->ior, m->ior, out->n * sizeof *out->ior);
+    }
     *n1 = tex_media_ior(out);
     if (entering) {
         if (out->n == TEX_MEDIA_MAX) { /* forget the outermost */
