@@ -89,11 +89,15 @@ static inline double wrap01(double u)
     return u >= 0 && u <= 1 ? u : 0;
 }
 
-/* floor() of a texel coordinate (|x| < 2^31): a truncation and a compare */
-static inline int floori(double x)
+/* floor() of a texel coordinate (|x| < 2^31), as an int and as a double (*f) */
+static inline int floori(double x, double *f)
 {
     int i = (int)x;
-    return i - (i > x);
+    double d = i;
+    if (d > x)
+        i--, d -= 1;
+    *f = d;
+    return i;
 }
 
 /* Channels 0..k-1 of map m (k = 1: grey, 3: colour) at (u, v) in [0, 1], bilinear between
@@ -102,8 +106,9 @@ static inline void bilinear(const tex_map *m, int k, double u, double v, float o
 {
     int w = m->w, h = m->h, nc = m->nc;
     double x = u * w - 0.5, y = v * h - 0.5;
-    int ix = floori(x), iy = floori(y); /* -1 ... w - 1 */
-    double ax = x - ix, ay = y - iy;
+    double fx, fy;
+    int ix = floori(x, &fx), iy = floori(y, &fy); /* -1 ... w - 1 */
+    double ax = x - fx, ay = y - fy;
     int x0 = ix < 0 ? w - 1 : ix, y0 = iy < 0 ? h - 1 : iy;
     int x1 = x0 + 1 == w ? 0 : x0 + 1, y1 = y0 + 1 == h ? 0 : y0 + 1;
     const float *r0 = tex_map_row(m, y0), *r1 = tex_map_row(m, y1);
@@ -213,19 +218,14 @@ static inline int plane_planar(const struct tex_apply *ap, const struct tex_obje
            leaf->kind == TEX_SHAPE_PLANE;
 }
 
-/* Texture-space coordinates of world point P (pl in leaf's object space); returns the face id. */
-static int map_point_at(const struct tex_apply *ap, const struct tex_object *leaf,
-                        const tex_v3 *P, const tex_v3 *pl, double uvw[3])
+/* map_point_at for every mapping but plane_planar */
+static int map_point_other(const struct tex_apply *ap, const struct tex_object *leaf,
+                           const tex_v3 *P, const tex_v3 *pl, double uvw[3])
 {
     struct tex_bounds b;
     int face = 1;
     enum tex_mapping mp = ap->mapping;
     uvw[2] = 0;
-    if (plane_planar(ap, leaf)) { /* unbounded: no box */
-        uvw[0] = fract(pl->x * ap->scale);
-        uvw[1] = fract(pl->z * ap->scale);
-        return face;
-    }
     if (mp == TEX_MAP_NATURAL)
         return tex_shape_methods[leaf->kind].uv(leaf, *pl, &uvw[0], &uvw[1]);
     if (mp == TEX_MAP_WORLD || (mp == TEX_MAP_SOLID && !(leaf->root && leaf->root->bounded))) {
@@ -272,6 +272,19 @@ static int map_point_at(const struct tex_apply *ap, const struct tex_object *lea
         }
         return face;
     }
+}
+
+/* Texture-space coordinates of world point P (pl in leaf's object space); returns the face id.
+ * Inline for the commonest, a plane's (unbounded: no box). */
+static inline int map_point_at(const struct tex_apply *ap, const struct tex_object *leaf,
+                               const tex_v3 *P, const tex_v3 *pl, double uvw[3])
+{
+    if (!plane_planar(ap, leaf))
+        return map_point_other(ap, leaf, P, pl, uvw);
+    uvw[0] = fract(pl->x * ap->scale);
+    uvw[1] = fract(pl->z * ap->scale);
+    uvw[2] = 0;
+    return 1;
 }
 
 /* Where the mapping is affine in P (modulo wrapping), its world-space
@@ -349,10 +362,23 @@ static int natural_gradient(const struct tex_apply *ap, const struct tex_object 
 }
 
 
-/* Window and placement: 0 if the point is outside the window (or not a number). */
-static int place(const struct tex_apply *ap, double uvw[3])
+/* A texture's window and placement, the divisions done once (tex_surface_cache): (u, v) is
+ * in the window where s = (u - u1) iu and t = (v - v1) iv lie in [0, 1], and goes to
+ * (s nu, t nv) on the map; su = nu iu and sv = nv iv scale the footprint likewise. */
+struct placement {
+    double iu, iv, su, sv;
+};
+
+static void placement_of(const struct tex_apply *ap, struct placement *pm)
 {
-    double s = (uvw[0] - ap->u1) / (ap->u2 - ap->u1), t = (uvw[1] - ap->v1) / (ap->v2 - ap->v1);
+    pm->iu = 1 / (ap->u2 - ap->u1), pm->iv = 1 / (ap->v2 - ap->v1);
+    pm->su = ap->nu * pm->iu, pm->sv = ap->nv * pm->iv;
+}
+
+/* Window and placement: 0 if the point is outside the window (or not a number). */
+static inline int place(const struct tex_apply *ap, const struct placement *pm, double uvw[3])
+{
+    double s = (uvw[0] - ap->u1) * pm->iu, t = (uvw[1] - ap->v1) * pm->iv;
     if (!(s >= 0 && s <= 1 && t >= 0 && t <= 1))
         return 0;
     uvw[0] = s * ap->nu;
@@ -414,11 +440,11 @@ static void footprint_obj(struct footprint *fp, const struct tex_object *leaf, c
 
 /* The footprint's size in texture units (after placement) for texture ap at the hit P (pl)
  * that its mapping took to (u0, v0) on face: the longer of its extents along t1 and t2. */
-static double footprint_width(const struct tex_apply *ap, const struct tex_object *leaf,
-                              struct footprint *fp, const tex_v3 *P, const tex_v3 *pl, int face,
-                              double u0, double v0)
+static double footprint_width(const struct tex_apply *ap, const struct placement *pm,
+                              const struct tex_object *leaf, struct footprint *fp,
+                              const tex_v3 *P, const tex_v3 *pl, int face, double u0, double v0)
 {
-    double su = ap->nu / (ap->u2 - ap->u1), sv = ap->nv / (ap->v2 - ap->v1);
+    double su = pm->su, sv = pm->sv;
     double a0, a1, b0, b1, s1 = fp->w1, s2 = fp->w2;
     const tex_v3 *e1 = &fp->t1, *e2 = &fp->t2;
     tex_v3 du, dv;
@@ -581,22 +607,24 @@ static inline void poly_eval(const struct poly *q, const float f[3], const float
     }
 }
 
+/* The parameters being textured, in RGB, before conversion to the colour space. */
+struct params {
+    float ka, kd[3], ks, n, kr, kt, ior, bump;
+};
+
 struct tex_surface_cache {
-    tex_colour col[3]; /* Ka Kd, Kd, Ks in the scene's colour space */
-    int cached;        /* bit i: col[i] is constant (untextured) */
-    struct poly *poly; /* per application function, in order */
-    char *compiled;    /* 1: poly[i] holds function i */
+    struct params base;          /* the surface's own parameters */
+    tex_colour col[3];           /* Ka Kd, Kd, Ks in the scene's colour space */
+    int cached;                  /* bit i: col[i] is constant (untextured) */
+    struct placement *placement; /* per texture applied, in order */
+    struct poly *poly;           /* per application function, in order */
+    char *compiled;              /* 1: poly[i] holds function i */
 };
 
 static double clampd(double x, double lo, double hi)
 {
     return !(x >= lo) ? lo : x > hi ? hi : x;
 }
-
-/* The parameters being textured, in RGB, before conversion to the colour space. */
-struct params {
-    float ka, kd[3], ks, n, kr, kt, ior, bump;
-};
 
 static float lum(const float v[3])
 {
@@ -643,9 +671,10 @@ static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const flo
 
 /* Blinn's bump mapping: the tilt of the normal against the surface gradient of texture ap's
  * luminance (f at the hit), by finite differences along the footprint's tangents. */
-static tex_v3 bump_tilt(const struct tex_apply *ap, const struct tex_object *leaf,
-                        const tex_v3 *P, const struct footprint *fp, double width, double fw,
-                        const float f[3], double strength)
+static tex_v3 bump_tilt(const struct tex_apply *ap, const struct placement *pm,
+                        const struct tex_object *leaf, const tex_v3 *P,
+                        const struct footprint *fp, double width, double fw, const float f[3],
+                        double strength)
 {
     double h = width > 1e-4 ? width : 1e-4, g[2];
     for (int i = 0; i < 2; i++) {
@@ -654,7 +683,7 @@ static tex_v3 bump_tilt(const struct tex_apply *ap, const struct tex_object *lea
         double uvw[3];
         float fi[3];
         map_point_at(ap, leaf, &Pi, &pli, uvw);
-        if (!place(ap, uvw))
+        if (!place(ap, pm, uvw))
             return tex_v3_make(0, 0, 0);
         texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw, fi);
         g[i] = (lum(fi) - lum(f)) / h;
@@ -673,27 +702,28 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_object 
     footprint_at(&fp, D, N, width);
     tex_v3 pl = tex_xform_point(&leaf->to_obj, *P), tilt = tex_v3_make(0, 0, 0);
     const struct tex_surface_cache *cache = sf->cache;
+    const struct placement *pm = cache->placement;
     int nfn = 0, ks_textured = 0; /* nfn: the function's index in the cache */
-    for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next) {
+    for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next, pm++) {
         double uvw[3];
         float f[3];
         int face = map_point_at(ap, leaf, P, &pl, uvw);
         double u0 = uvw[0], v0 = uvw[1];
-        if (!place(ap, uvw)) {
+        if (!place(ap, pm, uvw)) {
             for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next)
                 nfn++;
             continue;
         }
-        double fw = filter ? footprint_width(ap, leaf, &fp, P, &pl, face, u0, v0) : 0;
+        double fw = filter ? footprint_width(ap, pm, leaf, &fp, P, &pl, face, u0, v0) : 0;
         /* one lookup: region maps and primitives ignore the footprint */
         int region = texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw, f);
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++) {
             if (fn->region && fn->region != region)
                 continue;
             ks_textured |= fn->param == TEX_SP_KS;
-            apply_fn(fn, cache && cache->compiled[nfn] ? &cache->poly[nfn] : NULL, f, uvw, fw, pr);
+            apply_fn(fn, cache->compiled[nfn] ? &cache->poly[nfn] : NULL, f, uvw, fw, pr);
             if (fn->param == TEX_SP_BUMP && pr->bump != 0) {
-                tilt = tex_v3_add(tilt, bump_tilt(ap, leaf, P, &fp, width, fw, f, pr->bump));
+                tilt = tex_v3_add(tilt, bump_tilt(ap, pm, leaf, P, &fp, width, fw, f, pr->bump));
                 pr->bump = 0;
             }
         }
@@ -719,9 +749,8 @@ void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *s
 {
     const struct tex_colour_space *cs = &s->cs;
     const struct tex_surface_cache *sc = sf->cache;
-    int n = cs->n, cached = sc ? sc->cached : 0; /* untextured surfaces: every colour cached */
-    struct params pr = {sf->ka, {sf->kd[0], sf->kd[1], sf->kd[2]}, sf->ks[0], (float)sf->n,
-                        (float)sf->kr, (float)sf->kt, (float)sf->ior, 0};
+    int n = cs->n, cached = sc->cached; /* untextured surfaces: every colour cached */
+    struct params pr = sc->base;
     int ks_textured = 0;
     if (sf->apply)
         ks_textured = apply_textures(sf, leaf, P, D, N, width, s->settings.filter && width > 0,
@@ -752,30 +781,33 @@ void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *s
 
 int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
 {
-    int textured = 0, nfn = 0; /* bits of enum tex_sparam */
-    for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next)
+    int textured = 0, nfn = 0, nap = 0; /* textured: bits of enum tex_sparam */
+    for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next, nap++)
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++)
             textured |= 1 << fn->param;
     tex_surface_uncache(sf);
     struct tex_surface_cache *c = calloc(1, sizeof *c);
+    sf->cache = c;
     if (!c || !(c->poly = malloc((nfn ? nfn : 1) * sizeof *c->poly)) ||
-        !(c->compiled = malloc(nfn ? nfn : 1))) {
-        if (c)
-            free(c->poly);
-        free(c);
+        !(c->compiled = malloc(nfn ? nfn : 1)) ||
+        !(c->placement = malloc((nap ? nap : 1) * sizeof *c->placement))) {
+        tex_surface_uncache(sf);
         return tex_error("out of memory");
     }
-    nfn = 0;
-    for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next)
+    nfn = nap = 0;
+    for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next) {
+        placement_of(ap, &c->placement[nap++]);
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++)
             c->compiled[nfn] = (char)poly_of(fn->e, &c->poly[nfn]);
+    }
+    c->base = (struct params){sf->ka, {sf->kd[0], sf->kd[1], sf->kd[2]}, sf->ks[0], (float)sf->n,
+                              (float)sf->kr, (float)sf->kt, (float)sf->ior, 0};
     float ka[3] = {sf->ka * sf->kd[0], sf->ka * sf->kd[1], sf->ka * sf->kd[2]};
     cs->from_rgb(cs, ka, TEX_SPECTRUM_REFLECTANCE, &c->col[0]);
     cs->from_rgb(cs, sf->kd, TEX_SPECTRUM_REFLECTANCE, &c->col[1]);
     cs->from_rgb(cs, sf->ks, TEX_SPECTRUM_REFLECTANCE, &c->col[2]);
     c->cached = (textured & (1 << TEX_SP_KA | 1 << TEX_SP_KD) ? 0 : 1) |
                 (textured & 1 << TEX_SP_KD ? 0 : 2) | (textured & 1 << TEX_SP_KS ? 0 : 4);
-    sf->cache = c;
     return 0;
 }
 
@@ -784,6 +816,7 @@ void tex_surface_uncache(struct tex_surface *sf)
     if (sf->cache) {
         free(sf->cache->poly);
         free(sf->cache->compiled);
+        free(sf->cache->placement);
         free(sf->cache);
     }
     sf->cache = NULL;
