@@ -110,9 +110,10 @@ static inline void bilinear(const tex_map *m, int k, double u, double v, float o
     int ix = floori(x, &fx), iy = floori(y, &fy); /* -1 ... w - 1 */
     double ax = x - fx, ay = y - fy;
     int x0 = ix < 0 ? w - 1 : ix, y0 = iy < 0 ? h - 1 : iy;
-    int x1 = x0 + 1 == w ? 0 : x0 + 1, y1 = y0 + 1 == h ? 0 : y0 + 1;
-    const float *r0 = tex_map_row(m, y0), *r1 = tex_map_row(m, y1);
-    x0 *= nc, x1 *= nc;
+    int wn = w * nc; /* floats per row */
+    const float *r0 = m->px + (size_t)y0 * wn, *r1 = y0 + 1 == h ? m->px : r0 + wn;
+    x0 *= nc;
+    int x1 = x0 + nc == wn ? 0 : x0 + nc; /* the next texel, wrapping */
     for (int c = 0; c < k; c++) {
         double a = r0[x0 + c], b = r0[x1 + c], cc = r1[x0 + c], d = r1[x1 + c];
         out[c] = (float)((a * (1 - ax) + b * ax) * (1 - ay) + (cc * (1 - ax) + d * ax) * ay);
@@ -148,7 +149,8 @@ static inline int mip_level(const struct tex_texture *t, double x, double *a)
 
 /* A map's value at (u, v) in [0, 1] for a footprint fw: bilinear in the mip-map level of
  * the footprint and, between levels, linear across the two (trilinear). */
-static void map_eval(const struct tex_texture *t, double u, double v, double fw, float out[3])
+static inline void map_eval(const struct tex_texture *t, double u, double v, double fw,
+                            float out[3])
 {
     const tex_map *m = t->mip[0];
     int k = m->nc < 3 ? 1 : 3, side = m->w > m->h ? m->w : m->h;
@@ -180,20 +182,25 @@ static int field_eval(const struct tex_texture *t, double u, double v, double w,
     return 0;
 }
 
-/* tex_texture_eval, inlined into the renderer's own calls */
-static inline int texture_eval(const struct tex_texture *t, double u, double v, double w,
-                               double fw, float out[3])
+/* A region map's id at (u, v) in [0, 1]: the nearest texel, never averaged. */
+static int region_eval(const tex_map *m, double u, double v, float out[3])
+{
+    int x = wrapi((int)(u * m->w), m->w), y = wrapi((int)(v * m->h), m->h);
+    float id = tex_map_px(m, x, y)[0];
+    out[0] = out[1] = out[2] = id;
+    return (int)lrintf(id);
+}
+
+/* tex_texture_eval at placed coordinates (see place(): u, v in [0, 1e6], the largest repeat
+ * count), where truncation is floor; inline in the lookup of every textured hit. */
+static inline __attribute__((always_inline)) int
+texture_eval(const struct tex_texture *t, double u, double v, double w, double fw, float out[3])
 {
     if (!t->mip)
         return field_eval(t, u, v, w, out);
-    const tex_map *m = t->mip[0];
-    u = wrap01(u), v = wrap01(v);
-    if (t->subregions) { /* region ids: the nearest texel, never averaged */
-        int x = wrapi((int)(u * m->w), m->w), y = wrapi((int)(v * m->h), m->h);
-        float id = tex_map_px(m, x, y)[0];
-        out[0] = out[1] = out[2] = id;
-        return (int)lrintf(id);
-    }
+    u -= (int)u, v -= (int)v; /* maps repeat */
+    if (t->subregions)
+        return region_eval(t->mip[0], u, v, out);
     map_eval(t, u, v, fw, out);
     return 0;
 }
@@ -201,6 +208,8 @@ static inline int texture_eval(const struct tex_texture *t, double u, double v, 
 int tex_texture_eval(const struct tex_texture *t, double u, double v, double w, double fw,
                      float out[3])
 {
+    if (t->mip) /* any coordinates: wrapped as placed ones */
+        u = wrap01(u), v = wrap01(v);
     return texture_eval(t, u, v, w, fw, out);
 }
 
@@ -375,7 +384,8 @@ static void placement_of(const struct tex_apply *ap, struct placement *pm)
     pm->su = ap->nu * pm->iu, pm->sv = ap->nv * pm->iv;
 }
 
-/* Window and placement: 0 if the point is outside the window (or not a number). */
+/* Window and placement: 0 if the point is outside the window (or not a number), else the
+ * placed coordinates, u in [0, nu] and v in [0, nv]. */
 static inline int place(const struct tex_apply *ap, const struct placement *pm, double uvw[3])
 {
     double s = (uvw[0] - ap->u1) * pm->iu, t = (uvw[1] - ap->v1) * pm->iv;
@@ -496,7 +506,7 @@ static void expr_eval(const struct tex_expr *e, const struct evalctx *c, double 
         return;
     case TEX_E_TEX: {
         float v[3];
-        texture_eval(e->tex, c->uvw[0], c->uvw[1], c->uvw[2], c->fw, v);
+        tex_texture_eval(e->tex, c->uvw[0], c->uvw[1], c->uvw[2], c->fw, v);
         out[0] = v[0], out[1] = v[1], out[2] = v[2];
         return;
     }
@@ -598,13 +608,10 @@ static int poly_of(const struct tex_expr *e, struct poly *r)
     }
 }
 
-static inline void poly_eval(const struct poly *q, const float f[3], const float p[3],
-                             double out[3])
+/* Channel k of a compiled function at f, p */
+static inline double poly_at(const struct poly *q, int k, double f, double p)
 {
-    for (int k = 0; k < 3; k++) {
-        double fk = f[k], pk = p[k];
-        out[k] = q->c[0][k] + q->c[1][k] * fk + q->c[2][k] * pk + q->c[3][k] * fk * pk;
-    }
+    return q->c[0][k] + q->c[1][k] * f + q->c[2][k] * p + q->c[3][k] * f * p;
 }
 
 /* The parameters being textured, in RGB, before conversion to the colour space. */
@@ -655,17 +662,17 @@ static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const flo
         p[0] = p[1] = p[2] = *scalar;
         fv = fg, pv = p;
     }
-    if (q) {
-        poly_eval(q, fv, pv, r);
-    } else {
+    if (!q) {
         struct evalctx c = {fv, pv, uvw, fw};
         expr_eval(fn->e, &c, r);
     }
     if (scalar) {
+        for (int k = 0; q && k < 3; k++)
+            r[k] = poly_at(q, k, fv[k], pv[k]);
         *scalar = (float)clampd((r[0] + r[1] + r[2]) / 3, lo, hi);
-    } else {
+    } else { /* channel k of Kd reads only Kd's channel k */
         for (int k = 0; k < 3; k++)
-            pr->kd[k] = (float)clampd(r[k], 0, 1);
+            pr->kd[k] = (float)clampd(q ? poly_at(q, k, f[k], pr->kd[k]) : r[k], 0, 1);
     }
 }
 
@@ -685,7 +692,7 @@ static tex_v3 bump_tilt(const struct tex_apply *ap, const struct placement *pm,
         map_point_at(ap, leaf, &Pi, &pli, uvw);
         if (!place(ap, pm, uvw))
             return tex_v3_make(0, 0, 0);
-        texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw, fi);
+        tex_texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw, fi);
         g[i] = (lum(fi) - lum(f)) / h;
     }
     return tex_v3_scale(tex_v3_add(tex_v3_scale(fp->t1, g[0]), tex_v3_scale(fp->t2, g[1])),
@@ -743,40 +750,49 @@ static inline void reflectance(const struct tex_colour_space *cs, const float rg
         cs->from_rgb(cs, rgb, TEX_SPECTRUM_REFLECTANCE, out);
 }
 
-void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *sf,
-                          const struct tex_object *leaf, const tex_v3 *P, const tex_v3 *D,
-                          tex_v3 *N, double width, struct tex_material *m)
+/* The material from the parameters pr (ks_textured: Ks was set by a texture). */
+static inline __attribute__((always_inline)) void
+material(const struct tex_colour_space *cs, const struct tex_surface *sf,
+                            const struct params *pr, int ks_textured, struct tex_material *m)
 {
-    const struct tex_colour_space *cs = &s->cs;
     const struct tex_surface_cache *sc = sf->cache;
     int n = cs->n, cached = sc->cached; /* untextured surfaces: every colour cached */
-    struct params pr = sc->base;
-    int ks_textured = 0;
-    if (sf->apply)
-        ks_textured = apply_textures(sf, leaf, P, D, N, width, s->settings.filter && width > 0,
-                                     &pr);
     if (cached & 1) {
         tex_colour_copy(&m->ka, n, &sc->col[0]);
     } else {
-        float ka[3] = {pr.ka * pr.kd[0], pr.ka * pr.kd[1], pr.ka * pr.kd[2]};
+        float ka[3] = {pr->ka * pr->kd[0], pr->ka * pr->kd[1], pr->ka * pr->kd[2]};
         reflectance(cs, ka, &m->ka);
     }
     if (cached & 2)
         tex_colour_copy(&m->kd, n, &sc->col[1]);
     else
-        reflectance(cs, pr.kd, &m->kd);
+        reflectance(cs, pr->kd, &m->kd);
     if (cached & 4) {
         tex_colour_copy(&m->ks, n, &sc->col[2]);
     } else {
-        float ks[3] = {pr.ks, pr.ks, pr.ks};
+        float ks[3] = {pr->ks, pr->ks, pr->ks};
         reflectance(cs, ks_textured ? ks : sf->ks, &m->ks);
     }
-    m->n = pr.n;
-    m->kr = pr.kr;
-    m->kt = pr.kt;
-    m->ior = pr.ior;
+    m->n = pr->n;
+    m->kr = pr->kr;
+    m->kt = pr->kt;
+    m->ior = pr->ior;
     m->model = sf->model;
     m->model_data = sf->ct;
+}
+
+void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *sf,
+                          const struct tex_object *leaf, const tex_v3 *P, const tex_v3 *D,
+                          tex_v3 *N, double width, struct tex_material *m)
+{
+    if (!sf->apply) { /* the cache as it is, without the textured path's set-up */
+        material(&s->cs, sf, &sf->cache->base, 0, m);
+        return;
+    }
+    struct params pr = sf->cache->base;
+    int ks_textured =
+        apply_textures(sf, leaf, P, D, N, width, s->settings.filter && width > 0, &pr);
+    material(&s->cs, sf, &pr, ks_textured, m);
 }
 
 int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
