@@ -710,7 +710,7 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_object 
     tex_v3 pl = tex_xform_point(&leaf->to_obj, *P), tilt = tex_v3_make(0, 0, 0);
     const struct tex_surface_cache *cache = sf->cache;
     const struct placement *pm = cache->placement;
-    int nfn = 0, ks_textured = 0; /* nfn: the function's index in the cache */
+    int nfn = 0, ks_textured = 0, bumped = 0; /* nfn: the function's index in the cache */
     for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next, pm++) {
         double uvw[3];
         float f[3];
@@ -731,11 +731,12 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_object 
             apply_fn(fn, cache->compiled[nfn] ? &cache->poly[nfn] : NULL, f, uvw, fw, pr);
             if (fn->param == TEX_SP_BUMP && pr->bump != 0) {
                 tilt = tex_v3_add(tilt, bump_tilt(ap, pm, leaf, P, &fp, width, fw, f, pr->bump));
+                bumped = 1;
                 pr->bump = 0;
             }
         }
     }
-    if (tex_v3_dot(tilt, tilt) > 0)
+    if (bumped && tex_v3_dot(tilt, tilt) > 0)
         *N = tex_v3_norm(tex_v3_sub(*N, tilt));
     return ks_textured;
 }
