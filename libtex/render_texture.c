@@ -120,42 +120,45 @@ static inline void bilinear(const tex_map *m, int k, double u, double v, float o
     }
 }
 
-/* The pyramid level l of a footprint of x texels on the map, and the weight *a of level l + 1:
- * lod = log2(x) clamped to [0, nlevels - 1], l = floor(lod), *a = lod - l.  log2 from the
- * exponent bits and a polynomial in the mantissa (Chebyshev fit, error below 2.2e-6 in *a,
- * monotonic, exact at powers of two), not libm's, which cost a sixth of a textured hit. */
-static inline int mip_level(const struct tex_texture *t, double x, double *a)
+/* The pyramid level l of a footprint of x texels on the map (given as x2 = x^2, which spares
+ * the footprint a square root), and the weight *a of level l + 1: lod = log2(x) clamped to
+ * [0, nlevels - 1], l = floor(lod), *a = lod - l.  log2(x2) from the exponent bits and a
+ * polynomial in the mantissa, not libm's, which cost a sixth of a textured hit: log2(1 + m) / m
+ * interpolated at the 7 Chebyshev nodes of [0, 1], scaled to give 1 at m = 1; so *a is within
+ * 1.1e-6 of libm's, monotonic and exact at powers of two (tests/unit/test_render_mip.c). */
+static inline int mip_level(const struct tex_texture *t, double x2, double *a)
 {
     *a = 0;
-    if (!(x > 1)) /* magnified, or no filtering (0), or NaN */
+    if (!(x2 > 1)) /* magnified, or no filtering (0), or NaN */
         return 0;
     uint64_t bits;
-    memcpy(&bits, &x, sizeof bits);
-    int l = (int)(bits >> 52) - 1023; /* x > 1: positive, normal or infinite */
+    memcpy(&bits, &x2, sizeof bits);
+    int e = (int)(bits >> 52) - 1023, l = e >> 1; /* x2 > 1: positive, normal or infinite */
     if (l >= t->nlevels - 1)
         return t->nlevels - 1;
     bits = (bits & ((UINT64_C(1) << 52) - 1)) | UINT64_C(1023) << 52;
     double m;
     memcpy(&m, &bits, sizeof m);
     m -= 1; /* the mantissa minus 1, in [0, 1) */
-    *a = m * (1.4426913825514791 +
-              m * (-0.72114329207588301 +
-                   m * (0.47749583390193867 +
-                        m * (-0.33837682222577842 +
-                             m * (0.2139429748040822 +
-                                  m * (-0.094626704743473664 + m * 0.020016627787635053))))));
+    static const double c[7] = {1.4426913825514791,   -0.72114329207588301, 0.47749583390193867,
+                                -0.33837682222577842, 0.2139429748040822,   -0.094626704743473664,
+                                0.020016627787635053};
+    double lm = c[6]; /* log2(1 + m) = m (c0 + c1 m + ... + c6 m^6) */
+    for (int i = 5; i >= 0; i--)
+        lm = lm * m + c[i];
+    *a = ((e & 1) + lm * m) / 2; /* log2(x) = (e + log2(1 + m)) / 2 */
     return l;
 }
 
-/* A map's value at (u, v) in [0, 1] for a footprint fw: bilinear in the mip-map level of
- * the footprint and, between levels, linear across the two (trilinear). */
-static inline void map_eval(const struct tex_texture *t, double u, double v, double fw,
-                            float out[3])
+/* A map's value at (u, v) in [0, 1] for a footprint of width sqrt(fw2): bilinear in the
+ * mip-map level of the footprint and, between levels, linear across the two (trilinear). */
+static inline __attribute__((always_inline)) void
+map_eval(const struct tex_texture *t, double u, double v, double fw2, float out[3])
 {
     const tex_map *m = t->mip[0];
     int k = m->nc < 3 ? 1 : 3, side = m->w > m->h ? m->w : m->h;
     double a;
-    int l = mip_level(t, fw * side, &a);
+    int l = mip_level(t, fw2 * ((double)side * side), &a);
     bilinear(t->mip[l], k, u, v, out);
     if (a > 0) {
         float o1[3];
@@ -192,25 +195,33 @@ static int region_eval(const tex_map *m, double u, double v, float out[3])
 }
 
 /* tex_texture_eval at placed coordinates (see place(): u, v in [0, 1e6], the largest repeat
- * count), where truncation is floor; inline in the lookup of every textured hit. */
+ * count), where truncation is floor, for a footprint of width sqrt(fw2); inline in the
+ * lookup of every textured hit. */
 static inline __attribute__((always_inline)) int
-texture_eval(const struct tex_texture *t, double u, double v, double w, double fw, float out[3])
+texture_eval(const struct tex_texture *t, double u, double v, double w, double fw2, float out[3])
 {
     if (!t->mip)
         return field_eval(t, u, v, w, out);
     u -= (int)u, v -= (int)v; /* maps repeat */
     if (t->subregions)
         return region_eval(t->mip[0], u, v, out);
-    map_eval(t, u, v, fw, out);
+    map_eval(t, u, v, fw2, out);
     return 0;
+}
+
+/* texture_eval at any coordinates (wrapped as placed ones), out of line */
+static int texture_lookup(const struct tex_texture *t, double u, double v, double w, double fw2,
+                          float out[3])
+{
+    if (t->mip)
+        u = wrap01(u), v = wrap01(v);
+    return texture_eval(t, u, v, w, fw2, out);
 }
 
 int tex_texture_eval(const struct tex_texture *t, double u, double v, double w, double fw,
                      float out[3])
 {
-    if (t->mip) /* any coordinates: wrapped as placed ones */
-        u = wrap01(u), v = wrap01(v);
-    return texture_eval(t, u, v, w, fw, out);
+    return texture_lookup(t, u, v, w, fw > 0 ? fw * fw : 0, out);
 }
 
 /* ---- mappings -------------------------------------------------------------------- */
@@ -403,14 +414,16 @@ static double wrapdiff(double d)
 
 /* ---- the pixel footprint ------------------------------------------------------------ */
 
-/* The pixel's footprint on the surface at a hit: unit tangents t1 (the ray projected on
- * the surface) and t2 (perpendicular to it) with the footprint's widths along them, w1
- * stretched by 1/cos; once a mapping needs them, the tangents in object space (o1, o2) and
- * short steps d1, d2 along them from the hit (P1, P2 in world space, pl1, pl2 in object). */
+/* The pixel's footprint on the surface at a hit: tangents t1 (the ray projected on the
+ * surface) and t2 = N x t1, both of length sqrt(l2), and the footprint's widths along them,
+ * width / c (c: the cosine of incidence, at least 0.02) and width.  Affine mappings take
+ * the tangents as they are; the others want them of unit length (footprint_unit) and in
+ * object space (footprint_obj: o1, o2, and short steps d1, d2 along them from the hit, P1,
+ * P2 in world space, pl1, pl2 in object space). */
 struct footprint {
     tex_v3 t1, t2;
-    double w1, w2;
-    int obj; /* 1: the object-space members are set */
+    double l2, width, c;
+    int unit, obj; /* 1: t1, t2 have unit length (l2 = 1); the object-space members are set */
     tex_v3 o1, o2, P1, P2, pl1, pl2;
     double d1, d2;
 };
@@ -419,19 +432,29 @@ static void footprint_at(struct footprint *fp, const tex_v3 *D, const tex_v3 *N,
 {
     double dn = tex_v3_dot(*D, *N), cosv = fabs(dn);
     tex_v3 t1 = tex_v3_madd(*D, *N, -dn);
-    double l1 = tex_v3_len(t1);
-    if (l1 < 1e-9) { /* head-on: any tangent */
+    double l2 = tex_v3_dot(t1, t1);
+    if (l2 < 1e-18) { /* head-on: any tangent */
         t1 = fabs(N->x) < 0.9 ? tex_v3_cross(*N, tex_v3_make(1, 0, 0))
                               : tex_v3_cross(*N, tex_v3_make(0, 1, 0));
         t1 = tex_v3_norm(t1);
-    } else {
-        t1 = tex_v3_scale(t1, 1 / l1);
+        l2 = 1;
     }
     fp->t1 = t1;
     fp->t2 = tex_v3_cross(*N, t1);
-    fp->w1 = width / (cosv > 0.02 ? cosv : 0.02);
-    fp->w2 = width;
-    fp->obj = 0;
+    fp->l2 = l2;
+    fp->width = width;
+    fp->c = cosv > 0.02 ? cosv : 0.02;
+    fp->unit = fp->obj = 0;
+}
+
+static void footprint_unit(struct footprint *fp)
+{
+    if (fp->unit)
+        return;
+    double s = 1 / sqrt(fp->l2);
+    fp->t1 = tex_v3_scale(fp->t1, s), fp->t2 = tex_v3_scale(fp->t2, s);
+    fp->l2 = 1;
+    fp->unit = 1;
 }
 
 /* The object-space members, for the hit P (pl in object space) on leaf. */
@@ -440,7 +463,9 @@ static void footprint_obj(struct footprint *fp, const struct tex_object *leaf, c
 {
     if (fp->obj)
         return;
-    fp->d1 = fp->w1 < 1e-3 ? fp->w1 : 1e-3, fp->d2 = fp->w2 < 1e-3 ? fp->w2 : 1e-3;
+    footprint_unit(fp);
+    double w1 = fp->width / fp->c, w2 = fp->width;
+    fp->d1 = w1 < 1e-3 ? w1 : 1e-3, fp->d2 = w2 < 1e-3 ? w2 : 1e-3;
     fp->o1 = tex_xform_dir(&leaf->to_obj, fp->t1);
     fp->o2 = tex_xform_dir(&leaf->to_obj, fp->t2);
     fp->P1 = tex_v3_madd(*P, fp->t1, fp->d1), fp->P2 = tex_v3_madd(*P, fp->t2, fp->d2);
@@ -449,13 +474,13 @@ static void footprint_obj(struct footprint *fp, const struct tex_object *leaf, c
 }
 
 /* The footprint's size in texture units (after placement) for texture ap at the hit P (pl)
- * that its mapping took to (u0, v0) on face: the longer of its extents along t1 and t2. */
-static double footprint_width(const struct tex_apply *ap, const struct placement *pm,
-                              const struct tex_object *leaf, struct footprint *fp,
-                              const tex_v3 *P, const tex_v3 *pl, int face, double u0, double v0)
+ * that its mapping took to (u0, v0) on face: the longer of its extents along t1 and t2,
+ * squared (the mip level takes it so: neither a root nor a normalised tangent here). */
+static double footprint_width2(const struct tex_apply *ap, const struct placement *pm,
+                               const struct tex_object *leaf, struct footprint *fp,
+                               const tex_v3 *P, const tex_v3 *pl, int face, double u0, double v0)
 {
-    double su = pm->su, sv = pm->sv;
-    double a0, a1, b0, b1, s1 = fp->w1, s2 = fp->w2;
+    double su = pm->su, sv = pm->sv, a0, a1, b0, b1;
     const tex_v3 *e1 = &fp->t1, *e2 = &fp->t2;
     tex_v3 du, dv;
     int exact = 1;
@@ -464,19 +489,21 @@ static double footprint_width(const struct tex_apply *ap, const struct placement
         exact = natural_gradient(ap, leaf, pl, face, &du, &dv);
         e1 = &fp->o1, e2 = &fp->o2;
     }
-    if (exact) { /* the derivatives along the two tangents */
+    if (exact) { /* the derivatives along the two tangents, then over their length */
         a0 = tex_v3_dot(du, *e1) * su, a1 = tex_v3_dot(dv, *e1) * sv;
         b0 = tex_v3_dot(du, *e2) * su, b1 = tex_v3_dot(dv, *e2) * sv;
-    } else { /* over a short step (no wrap-around), scaled to the footprint */
-        double a[3], b[3];
-        map_point_at(ap, leaf, &fp->P1, &fp->pl1, a);
-        map_point_at(ap, leaf, &fp->P2, &fp->pl2, b);
-        a0 = wrapdiff(a[0] - u0) * su, a1 = wrapdiff(a[1] - v0) * sv;
-        b0 = wrapdiff(b[0] - u0) * su, b1 = wrapdiff(b[1] - v0) * sv;
-        s1 /= fp->d1, s2 /= fp->d2;
+        double c2 = fp->c * fp->c, l1 = a0 * a0 + a1 * a1, l2 = (b0 * b0 + b1 * b1) * c2;
+        return (l1 > l2 ? l1 : l2) * (fp->width * fp->width) / (fp->l2 * c2);
     }
+    /* over a short step (no wrap-around), scaled to the footprint */
+    double a[3], b[3];
+    map_point_at(ap, leaf, &fp->P1, &fp->pl1, a);
+    map_point_at(ap, leaf, &fp->P2, &fp->pl2, b);
+    a0 = wrapdiff(a[0] - u0) * su, a1 = wrapdiff(a[1] - v0) * sv;
+    b0 = wrapdiff(b[0] - u0) * su, b1 = wrapdiff(b[1] - v0) * sv;
+    double s1 = fp->width / fp->c / fp->d1, s2 = fp->width / fp->d2;
     double l1 = (a0 * a0 + a1 * a1) * (s1 * s1), l2 = (b0 * b0 + b1 * b1) * (s2 * s2);
-    return sqrt(l1 > l2 ? l1 : l2); /* squared until here: one root */
+    return l1 > l2 ? l1 : l2;
 }
 
 /* ---- application functions ---------------------------------------------------------- */
@@ -485,7 +512,7 @@ struct evalctx {
     const float *f;     /* map value, RGB */
     const float *p;     /* untextured value, RGB */
     const double *uvw;  /* where the map was looked up (for cascades) */
-    double fw;
+    double fw2; /* the footprint's squared width */
 };
 
 static void expr_eval(const struct tex_expr *e, const struct evalctx *c, double out[3])
@@ -506,7 +533,7 @@ static void expr_eval(const struct tex_expr *e, const struct evalctx *c, double 
         return;
     case TEX_E_TEX: {
         float v[3];
-        tex_texture_eval(e->tex, c->uvw[0], c->uvw[1], c->uvw[2], c->fw, v);
+        texture_lookup(e->tex, c->uvw[0], c->uvw[1], c->uvw[2], c->fw2, v);
         out[0] = v[0], out[1] = v[1], out[2] = v[2];
         return;
     }
@@ -638,11 +665,11 @@ static float lum(const float v[3])
     return (v[0] + v[1] + v[2]) / 3;
 }
 
-/* Function fn (compiled to q, or NULL) of the map value f looked up at uvw with footprint fw,
+/* Function fn (compiled to q, or NULL) of the map value f looked up at uvw (footprint fw2),
  * applied to the parameters pr: the colour Kd per channel; a scalar parameter sees the map's
  * luminance as f and takes the mean of the channels.  Results clamped to the valid range. */
 static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const float f[3],
-                     const double uvw[3], double fw, struct params *pr)
+                     const double uvw[3], double fw2, struct params *pr)
 {
     float *scalar = NULL, fg[3], p[3];
     double lo = 0, hi = 1, r[3];
@@ -663,7 +690,7 @@ static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const flo
         fv = fg, pv = p;
     }
     if (!q) {
-        struct evalctx c = {fv, pv, uvw, fw};
+        struct evalctx c = {fv, pv, uvw, fw2};
         expr_eval(fn->e, &c, r);
     }
     if (scalar) {
@@ -679,11 +706,11 @@ static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const flo
 /* Blinn's bump mapping: the tilt of the normal against the surface gradient of texture ap's
  * luminance (f at the hit), by finite differences along the footprint's tangents. */
 static tex_v3 bump_tilt(const struct tex_apply *ap, const struct placement *pm,
-                        const struct tex_object *leaf, const tex_v3 *P,
-                        const struct footprint *fp, double width, double fw, const float f[3],
-                        double strength)
+                        const struct tex_object *leaf, const tex_v3 *P, struct footprint *fp,
+                        double width, double fw2, const float f[3], double strength)
 {
     double h = width > 1e-4 ? width : 1e-4, g[2];
+    footprint_unit(fp);
     for (int i = 0; i < 2; i++) {
         tex_v3 Pi = tex_v3_madd(*P, i ? fp->t2 : fp->t1, h);
         tex_v3 pli = tex_xform_point(&leaf->to_obj, Pi);
@@ -692,7 +719,7 @@ static tex_v3 bump_tilt(const struct tex_apply *ap, const struct placement *pm,
         map_point_at(ap, leaf, &Pi, &pli, uvw);
         if (!place(ap, pm, uvw))
             return tex_v3_make(0, 0, 0);
-        tex_texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw, fi);
+        texture_lookup(ap->tex, uvw[0], uvw[1], uvw[2], fw2, fi);
         g[i] = (lum(fi) - lum(f)) / h;
     }
     return tex_v3_scale(tex_v3_add(tex_v3_scale(fp->t1, g[0]), tex_v3_scale(fp->t2, g[1])),
@@ -721,16 +748,16 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_object 
                 nfn++;
             continue;
         }
-        double fw = filter ? footprint_width(ap, pm, leaf, &fp, P, &pl, face, u0, v0) : 0;
+        double fw2 = filter ? footprint_width2(ap, pm, leaf, &fp, P, &pl, face, u0, v0) : 0;
         /* one lookup: region maps and primitives ignore the footprint */
-        int region = texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw, f);
+        int region = texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw2, f);
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++) {
             if (fn->region && fn->region != region)
                 continue;
             ks_textured |= fn->param == TEX_SP_KS;
-            apply_fn(fn, cache->compiled[nfn] ? &cache->poly[nfn] : NULL, f, uvw, fw, pr);
+            apply_fn(fn, cache->compiled[nfn] ? &cache->poly[nfn] : NULL, f, uvw, fw2, pr);
             if (fn->param == TEX_SP_BUMP && pr->bump != 0) {
-                tilt = tex_v3_add(tilt, bump_tilt(ap, pm, leaf, P, &fp, width, fw, f, pr->bump));
+                tilt = tex_v3_add(tilt, bump_tilt(ap, pm, leaf, P, &fp, width, fw2, f, pr->bump));
                 bumped = 1;
                 pr->bump = 0;
             }
