@@ -98,7 +98,7 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, double weigh
     const struct tex_surface *sf = surface_of(s, h.leaf);
     double width = fabs(r->width + h.t * r->spread); /* a focused beam crosses 0 */
     struct tex_material m;
-    tex_resolve_material(s, sf, h.leaf, P, r->d, &N, s->settings.filter ? width : 0, &m);
+    tex_resolve_material(s, sf, h.leaf, &P, &r->d, &N, s->settings.filter ? width : 0, &m);
     tex_v3 V = tex_v3_scale(r->d, -1);
     double e = eps_at(P);
     /* offset along the geometric normal so bumped normals cannot start rays inside */

@@ -297,10 +297,11 @@ int tex_texture_eval(const struct tex_texture *t, double u, double v, double w, 
 struct tex_scene;
 /* The material at a hit on leaf (surface sf) at world point P seen along D:
  * the application functions evaluated, N bent by bump maps, colours in the
- * scene's colour space.  width is the ray's footprint at P (0: no filtering). */
+ * scene's colour space.  width is the ray's footprint at P (0: no filtering).
+ * sf's cache must be filled (tex_surface_cache). */
 void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *sf,
-                          const struct tex_object *leaf, tex_v3 P, tex_v3 D, tex_v3 *N,
-                          double width, struct tex_material *m);
+                          const struct tex_object *leaf, const tex_v3 *P, const tex_v3 *D,
+                          tex_v3 *N, double width, struct tex_material *m);
 /* Fill (tex_render, before tracing) and free a surface's cache: its untextured
  * colours in the scene's colour space, its application functions compiled. */
 int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs);

@@ -8,6 +8,7 @@
  * shading parameters through its application functions g[region][param].
  */
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -81,96 +82,97 @@ static inline double floord(double x)
     return t > x ? t - 1 : t;
 }
 
-/* i in [-1, n] (u, v in [0, 1]) wraps without a division */
-static inline int wrap1(int i, int n)
+/* u modulo 1, in [0, 1]; NaN and infinities, which have no place on a map, give 0 */
+static inline double wrap01(double u)
 {
-    return i < 0 ? (i + n < 0 ? wrapi(i, n) : i + n) : i >= n ? wrapi(i, n) : i;
+    u -= floord(u);
+    return u >= 0 && u <= 1 ? u : 0;
 }
 
-/* One channel of a grey map (nc 1 or 2), bilinear: the same arithmetic as bilinear(). */
-static inline float bilinear_grey(const tex_map *m, double u, double v)
+/* floor() of a texel coordinate (|x| < 2^31), as an int and as a double (*f) */
+static inline int floori(double x, double *f)
 {
-    double x = u * m->w - 0.5, y = v * m->h - 0.5;
-    double fx = floord(x), fy = floord(y);
-    double ax = x - fx, ay = y - fy;
+    int i = (int)x;
+    double d = i;
+    if (d > x)
+        i--, d -= 1;
+    *f = d;
+    return i;
+}
+
+/* Channels 0..k-1 of map m (k = 1: grey, 3: colour) at (u, v) in [0, 1], bilinear between
+ * the texel centres (x + 0.5) / w, wrapping around. */
+static inline void bilinear(const tex_map *m, int k, double u, double v, float out[3])
+{
     int w = m->w, h = m->h, nc = m->nc;
-    int x0 = wrap1((int)fx, w), y0 = wrap1((int)fy, h);
-    int x1 = x0 + 1 == w ? 0 : x0 + 1, y1 = y0 + 1 == h ? 0 : y0 + 1;
-    const float *r0 = m->px + (size_t)y0 * w * nc, *r1 = m->px + (size_t)y1 * w * nc;
-    double a = r0[x0 * nc], b = r0[x1 * nc], c = r1[x0 * nc], d = r1[x1 * nc];
-    return (float)((a * (1 - ax) + b * ax) * (1 - ay) + (c * (1 - ax) + d * ax) * ay);
-}
-
-static void bilinear(const tex_map *m, double u, double v, float out[3])
-{
-    double x = u * m->w - 0.5, y = v * m->h - 0.5;
-    double fx = floord(x), fy = floord(y);
+    double x = u * w - 0.5, y = v * h - 0.5;
+    double fx, fy;
+    int ix = floori(x, &fx), iy = floori(y, &fy); /* -1 ... w - 1 */
     double ax = x - fx, ay = y - fy;
-    int x0 = wrap1((int)fx, m->w), y0 = wrap1((int)fy, m->h);
-    int x1 = x0 + 1 == m->w ? 0 : x0 + 1, y1 = y0 + 1 == m->h ? 0 : y0 + 1;
-    if (m->nc < 3) { /* grey: one channel to interpolate */
-        double a = tex_map_px(m, x0, y0)[0], b = tex_map_px(m, x1, y0)[0];
-        double c = tex_map_px(m, x0, y1)[0], d = tex_map_px(m, x1, y1)[0];
-        out[0] = out[1] = out[2] =
-            (float)((a * (1 - ax) + b * ax) * (1 - ay) + (c * (1 - ax) + d * ax) * ay);
-        return;
+    int x0 = ix < 0 ? w - 1 : ix, y0 = iy < 0 ? h - 1 : iy;
+    int wn = w * nc; /* floats per row */
+    const float *r0 = m->px + (size_t)y0 * wn, *r1 = y0 + 1 == h ? m->px : r0 + wn;
+    x0 *= nc;
+    int x1 = x0 + nc == wn ? 0 : x0 + nc; /* the next texel, wrapping */
+    for (int c = 0; c < k; c++) {
+        double a = r0[x0 + c], b = r0[x1 + c], cc = r1[x0 + c], d = r1[x1 + c];
+        out[c] = (float)((a * (1 - ax) + b * ax) * (1 - ay) + (cc * (1 - ax) + d * ax) * ay);
     }
-    float a[3], b[3], c[3], d[3];
-    to_rgb(tex_map_px(m, x0, y0), m->nc, a);
-    to_rgb(tex_map_px(m, x1, y0), m->nc, b);
-    to_rgb(tex_map_px(m, x0, y1), m->nc, c);
-    to_rgb(tex_map_px(m, x1, y1), m->nc, d);
-    for (int k = 0; k < 3; k++)
-        out[k] = (float)((a[k] * (1 - ax) + b[k] * ax) * (1 - ay) + (c[k] * (1 - ax) + d[k] * ax) * ay);
 }
 
-int tex_texture_eval(const struct tex_texture *t, double u, double v, double w, double fw,
-                     float out[3])
+/* The pyramid level l of a footprint of x texels on the map (given as x2 = x^2, which spares
+ * the footprint a square root), and the weight *a of level l + 1: lod = log2(x) clamped to
+ * [0, nlevels - 1], l = floor(lod), *a = lod - l.  log2(x2) from the exponent bits and a
+ * polynomial in the mantissa, not libm's, which cost a sixth of a textured hit: log2(1 + m) / m
+ * interpolated at the 7 Chebyshev nodes of [0, 1], scaled to give 1 at m = 1; so *a is within
+ * 1.1e-6 of libm's, monotonic and exact at powers of two (tests/unit/test_render_mip.c). */
+static inline int mip_level(const struct tex_texture *t, double x2, double *a)
 {
-    if (t->mip) {
-        const tex_map *m = t->mip[0];
-        u -= floord(u);
-        v -= floord(v);
-        if (t->subregions) {
-            int x = wrapi((int)(u * m->w), m->w), y = wrapi((int)(v * m->h), m->h);
-            float id = tex_map_px(m, x, y)[0];
-            out[0] = out[1] = out[2] = id;
-            return (int)lrintf(id);
-        }
-        int side = m->w > m->h ? m->w : m->h;
-        double lod = fw > 0 ? log2(fw * side) : 0;
-        if (m->nc < 3) { /* grey: one channel through the levels */
-            float g;
-            if (!(lod > 0) || t->nlevels == 1) {
-                g = bilinear_grey(m, u, v);
-            } else if (lod >= t->nlevels - 1) {
-                g = bilinear_grey(t->mip[t->nlevels - 1], u, v);
-            } else {
-                int l = (int)lod;
-                double a = lod - l;
-                float g0 = bilinear_grey(t->mip[l], u, v), g1 = bilinear_grey(t->mip[l + 1], u, v);
-                g = (float)(g0 * (1 - a) + g1 * a);
-            }
-            out[0] = out[1] = out[2] = g;
-            return 0;
-        }
-        if (!(lod > 0) || t->nlevels == 1) {
-            bilinear(m, u, v, out);
-            return 0;
-        }
-        if (lod >= t->nlevels - 1) {
-            bilinear(t->mip[t->nlevels - 1], u, v, out);
-            return 0;
-        }
-        int l = (int)lod;
-        double a = lod - l;
-        float o0[3], o1[3];
-        bilinear(t->mip[l], u, v, o0);
-        bilinear(t->mip[l + 1], u, v, o1);
-        for (int k = 0; k < 3; k++)
-            out[k] = (float)(o0[k] * (1 - a) + o1[k] * a);
+    *a = 0;
+    if (!(x2 > 1)) /* magnified, or no filtering (0), or NaN */
         return 0;
+    uint64_t bits;
+    memcpy(&bits, &x2, sizeof bits);
+    int e = (int)(bits >> 52) - 1023, l = e >> 1; /* x2 > 1: positive, normal or infinite */
+    if (l >= t->nlevels - 1)
+        return t->nlevels - 1;
+    bits = (bits & ((UINT64_C(1) << 52) - 1)) | UINT64_C(1023) << 52;
+    double m;
+    memcpy(&m, &bits, sizeof m);
+    m -= 1; /* the mantissa minus 1, in [0, 1) */
+    static const double c[7] = {1.4426913825514791,   -0.72114329207588301, 0.47749583390193867,
+                                -0.33837682222577842, 0.2139429748040822,   -0.094626704743473664,
+                                0.020016627787635053};
+    double lm = c[6]; /* log2(1 + m) = m (c0 + c1 m + ... + c6 m^6) */
+    for (int i = 5; i >= 0; i--)
+        lm = lm * m + c[i];
+    *a = ((e & 1) + lm * m) / 2; /* log2(x) = (e + log2(1 + m)) / 2 */
+    return l;
+}
+
+/* A map's value at (u, v) in [0, 1] for a footprint of width sqrt(fw2): bilinear in the
+ * mip-map level of the footprint and, between levels, linear across the two (trilinear). */
+static inline __attribute__((always_inline)) void
+map_eval(const struct tex_texture *t, double u, double v, double fw2, float out[3])
+{
+    const tex_map *m = t->mip[0];
+    int k = m->nc < 3 ? 1 : 3, side = m->w > m->h ? m->w : m->h;
+    double a;
+    int l = mip_level(t, fw2 * ((double)side * side), &a);
+    bilinear(t->mip[l], k, u, v, out);
+    if (a > 0) {
+        float o1[3];
+        bilinear(t->mip[l + 1], k, u, v, o1);
+        for (int c = 0; c < k; c++)
+            out[c] = (float)(out[c] * (1 - a) + o1[c] * a);
     }
+    if (k == 1)
+        out[1] = out[2] = out[0];
+}
+
+/* A primitive's value at a hit point (u, v[, w]) */
+static int field_eval(const struct tex_texture *t, double u, double v, double w, float out[3])
+{
     float val[TEX_MAP_MAX_CHANNELS] = {0};
     const struct tex_field *f = t->field;
     if (t->solid)
@@ -183,6 +185,45 @@ int tex_texture_eval(const struct tex_texture *t, double u, double v, double w, 
     return 0;
 }
 
+/* A region map's id at (u, v) in [0, 1]: the nearest texel, never averaged. */
+static int region_eval(const tex_map *m, double u, double v, float out[3])
+{
+    int x = wrapi((int)(u * m->w), m->w), y = wrapi((int)(v * m->h), m->h);
+    float id = tex_map_px(m, x, y)[0];
+    out[0] = out[1] = out[2] = id;
+    return (int)lrintf(id);
+}
+
+/* tex_texture_eval at placed coordinates (see place(): u, v in [0, 1e6], the largest repeat
+ * count), where truncation is floor, for a footprint of width sqrt(fw2); inline in the
+ * lookup of every textured hit. */
+static inline __attribute__((always_inline)) int
+texture_eval(const struct tex_texture *t, double u, double v, double w, double fw2, float out[3])
+{
+    if (!t->mip)
+        return field_eval(t, u, v, w, out);
+    u -= (int)u, v -= (int)v; /* maps repeat */
+    if (t->subregions)
+        return region_eval(t->mip[0], u, v, out);
+    map_eval(t, u, v, fw2, out);
+    return 0;
+}
+
+/* texture_eval at any coordinates (wrapped as placed ones), out of line */
+static int texture_lookup(const struct tex_texture *t, double u, double v, double w, double fw2,
+                          float out[3])
+{
+    if (t->mip)
+        u = wrap01(u), v = wrap01(v);
+    return texture_eval(t, u, v, w, fw2, out);
+}
+
+int tex_texture_eval(const struct tex_texture *t, double u, double v, double w, double fw,
+                     float out[3])
+{
+    return texture_lookup(t, u, v, w, fw > 0 ? fw * fw : 0, out);
+}
+
 /* ---- mappings -------------------------------------------------------------------- */
 
 static double fract(double x)
@@ -190,27 +231,27 @@ static double fract(double x)
     return x - floord(x);
 }
 
-static void local_box(const struct tex_object *leaf, struct tex_bounds *b, int *bounded)
+/* A planar mapping on an unbounded plane: u, v are its object-space x and z, scaled. */
+static inline int plane_planar(const struct tex_apply *ap, const struct tex_object *leaf)
 {
-    *bounded = tex_shape_methods[leaf->kind].bounds(leaf, b);
+    return (ap->mapping == TEX_MAP_NATURAL || ap->mapping == TEX_MAP_PLANAR) &&
+           leaf->kind == TEX_SHAPE_PLANE;
 }
 
-/* Texture-space coordinates of world point P on leaf; returns the face id. */
-static int map_point_at(const struct tex_apply *ap, const struct tex_object *leaf, tex_v3 P,
-                        tex_v3 pl, double uvw[3])
+/* map_point_at for every mapping but plane_planar */
+static int map_point_other(const struct tex_apply *ap, const struct tex_object *leaf,
+                           const tex_v3 *P, const tex_v3 *pl, double uvw[3])
 {
     struct tex_bounds b;
-    int bounded, face = 1;
+    int face = 1;
     enum tex_mapping mp = ap->mapping;
     uvw[2] = 0;
-    if (mp == TEX_MAP_NATURAL && leaf->kind == TEX_SHAPE_PLANE)
-        mp = TEX_MAP_PLANAR;
     if (mp == TEX_MAP_NATURAL)
-        return tex_shape_methods[leaf->kind].uv(leaf, pl, &uvw[0], &uvw[1]);
+        return tex_shape_methods[leaf->kind].uv(leaf, *pl, &uvw[0], &uvw[1]);
     if (mp == TEX_MAP_WORLD || (mp == TEX_MAP_SOLID && !(leaf->root && leaf->root->bounded))) {
-        uvw[0] = fract(P.x * ap->scale);
-        uvw[1] = fract(-P.y * ap->scale);
-        uvw[2] = fract(P.z * ap->scale);
+        uvw[0] = fract(P->x * ap->scale);
+        uvw[1] = fract(-P->y * ap->scale);
+        uvw[2] = fract(P->z * ap->scale);
         if (mp == TEX_MAP_WORLD) {
             double t = uvw[1];
             uvw[1] = uvw[2], uvw[2] = t; /* 2D maps lie in the ground plane x,z */
@@ -220,20 +261,15 @@ static int map_point_at(const struct tex_apply *ap, const struct tex_object *lea
     if (mp == TEX_MAP_SOLID) {
         const struct tex_bounds *rb = &leaf->root->wb;
         tex_v3 e = tex_v3_sub(rb->hi, rb->lo);
-        uvw[0] = e.x > 0 ? (P.x - rb->lo.x) / e.x : 0;
-        uvw[1] = e.y > 0 ? (rb->hi.y - P.y) / e.y : 0; /* v downwards: top of the box is 0 */
-        uvw[2] = e.z > 0 ? (P.z - rb->lo.z) / e.z : 0;
+        uvw[0] = e.x > 0 ? (P->x - rb->lo.x) / e.x : 0;
+        uvw[1] = e.y > 0 ? (rb->hi.y - P->y) / e.y : 0; /* v downwards: top of the box is 0 */
+        uvw[2] = e.z > 0 ? (P->z - rb->lo.z) / e.z : 0;
         return 1;
     }
-    if (mp == TEX_MAP_PLANAR && leaf->kind == TEX_SHAPE_PLANE) { /* unbounded: no box */
-        uvw[0] = fract(pl.x * ap->scale);
-        uvw[1] = fract(pl.z * ap->scale);
-        return face;
-    }
-    local_box(leaf, &b, &bounded);
+    int bounded = tex_shape_methods[leaf->kind].bounds(leaf, &b);
     tex_v3 c = bounded ? tex_v3_scale(tex_v3_add(b.lo, b.hi), 0.5) : tex_v3_make(0, 0, 0);
     tex_v3 e = bounded ? tex_v3_scale(tex_v3_sub(b.hi, b.lo), 0.5) : tex_v3_make(1, 1, 1);
-    tex_v3 q = tex_v3_make((pl.x - c.x) / e.x, (pl.y - c.y) / e.y, (pl.z - c.z) / e.z);
+    tex_v3 q = tex_v3_make((pl->x - c.x) / e.x, (pl->y - c.y) / e.y, (pl->z - c.z) / e.z);
     switch (mp) {
     case TEX_MAP_SPHERE:
         return tex_shape_methods[TEX_SHAPE_SPHERE].uv(leaf, q, &uvw[0], &uvw[1]);
@@ -243,13 +279,13 @@ static int map_point_at(const struct tex_apply *ap, const struct tex_object *lea
     case TEX_MAP_CONE: {
         double a = atan2(-q.z, q.x) / (2 * M_PI);
         uvw[0] = a < 0 ? a + 1 : a;
-        uvw[1] = bounded ? fmin(1, fmax(0, (1 - q.y) / 2)) : fract(-pl.y * ap->scale);
+        uvw[1] = bounded ? fmin(1, fmax(0, (1 - q.y) / 2)) : fract(-pl->y * ap->scale);
         return face;
     }
     default: /* planar: x and z across the box */
         if (!bounded) {
-            uvw[0] = fract(pl.x * ap->scale);
-            uvw[1] = fract(pl.z * ap->scale);
+            uvw[0] = fract(pl->x * ap->scale);
+            uvw[1] = fract(pl->z * ap->scale);
         } else {
             uvw[0] = fmin(1, fmax(0, (q.x + 1) / 2));
             uvw[1] = fmin(1, fmax(0, (q.z + 1) / 2));
@@ -258,21 +294,32 @@ static int map_point_at(const struct tex_apply *ap, const struct tex_object *lea
     }
 }
 
+/* Texture-space coordinates of world point P (pl in leaf's object space); returns the face id.
+ * Inline for the commonest, a plane's (unbounded: no box). */
+static inline int map_point_at(const struct tex_apply *ap, const struct tex_object *leaf,
+                               const tex_v3 *P, const tex_v3 *pl, double uvw[3])
+{
+    if (!plane_planar(ap, leaf))
+        return map_point_other(ap, leaf, P, pl, uvw);
+    uvw[0] = fract(pl->x * ap->scale);
+    uvw[1] = fract(pl->z * ap->scale);
+    uvw[2] = 0;
+    return 1;
+}
+
 /* Where the mapping is affine in P (modulo wrapping), its world-space
  * gradients of u and v: 1, else 0 (the footprint then takes finite differences). */
 static int map_gradient(const struct tex_apply *ap, const struct tex_object *leaf, tex_v3 *du,
                         tex_v3 *dv)
 {
-    enum tex_mapping mp = ap->mapping;
     double s = ap->scale;
-    if ((mp == TEX_MAP_NATURAL || mp == TEX_MAP_PLANAR) && leaf->kind == TEX_SHAPE_PLANE) {
-        /* planar on an unbounded shape: u = x, v = z of the object space, scaled */
+    if (plane_planar(ap, leaf)) {
         const double(*m)[4] = leaf->to_obj.m;
         *du = tex_v3_make(m[0][0] * s, m[0][1] * s, m[0][2] * s);
         *dv = tex_v3_make(m[2][0] * s, m[2][1] * s, m[2][2] * s);
         return 1;
     }
-    if (mp == TEX_MAP_WORLD) {
+    if (ap->mapping == TEX_MAP_WORLD) {
         *du = tex_v3_make(s, 0, 0);
         *dv = tex_v3_make(0, 0, s);
         return 1;
@@ -281,13 +328,14 @@ static int map_gradient(const struct tex_apply *ap, const struct tex_object *lea
 }
 
 /* The natural mappings' (sphere_map, box faces, cylinder_map / cone_map)
- * gradients of u and v in object space at p on face (map_point's answer);
+ * gradients of u and v in object space at *pp on face (map_point's answer);
  * 0 where there are none (other mappings, the poles, the axis). */
-static int natural_gradient(const struct tex_apply *ap, const struct tex_object *leaf, tex_v3 p,
-                            int face, tex_v3 *du, tex_v3 *dv)
+static int natural_gradient(const struct tex_apply *ap, const struct tex_object *leaf,
+                            const tex_v3 *pp, int face, tex_v3 *du, tex_v3 *dv)
 {
     if (ap->mapping != TEX_MAP_NATURAL)
         return 0;
+    tex_v3 p = *pp;
     double rho2 = p.x * p.x + p.z * p.z;
     switch (leaf->kind) {
     case TEX_SHAPE_SPHERE: {
@@ -333,17 +381,26 @@ static int natural_gradient(const struct tex_apply *ap, const struct tex_object 
     }
 }
 
-static int map_point(const struct tex_apply *ap, const struct tex_object *leaf, tex_v3 P,
-                     double uvw[3])
+
+/* A texture's window and placement, the divisions done once (tex_surface_cache): (u, v) is
+ * in the window where s = (u - u1) iu and t = (v - v1) iv lie in [0, 1], and goes to
+ * (s nu, t nv) on the map; su = nu iu and sv = nv iv scale the footprint likewise. */
+struct placement {
+    double iu, iv, su, sv;
+};
+
+static void placement_of(const struct tex_apply *ap, struct placement *pm)
 {
-    return map_point_at(ap, leaf, P, tex_xform_point(&leaf->to_obj, P), uvw);
+    pm->iu = 1 / (ap->u2 - ap->u1), pm->iv = 1 / (ap->v2 - ap->v1);
+    pm->su = ap->nu * pm->iu, pm->sv = ap->nv * pm->iv;
 }
 
-/* Window and placement: 0 if the point is outside the window. */
-static int place(const struct tex_apply *ap, double uvw[3])
+/* Window and placement: 0 if the point is outside the window (or not a number), else the
+ * placed coordinates, u in [0, nu] and v in [0, nv]. */
+static inline int place(const struct tex_apply *ap, const struct placement *pm, double uvw[3])
 {
-    double s = (uvw[0] - ap->u1) / (ap->u2 - ap->u1), t = (uvw[1] - ap->v1) / (ap->v2 - ap->v1);
-    if (s < 0 || s > 1 || t < 0 || t > 1)
+    double s = (uvw[0] - ap->u1) * pm->iu, t = (uvw[1] - ap->v1) * pm->iv;
+    if (!(s >= 0 && s <= 1 && t >= 0 && t <= 1))
         return 0;
     uvw[0] = s * ap->nu;
     uvw[1] = t * ap->nv;
@@ -355,12 +412,107 @@ static double wrapdiff(double d)
     return d - floord(d + 0.5);
 }
 
+/* ---- the pixel footprint ------------------------------------------------------------ */
+
+/* The pixel's footprint on the surface at a hit: tangents t1 (the ray projected on the
+ * surface) and t2 = N x t1, both of length sqrt(l2), and the footprint's widths along them,
+ * width / c (c: the cosine of incidence, at least 0.02) and width.  Affine mappings take
+ * the tangents as they are; the others want them of unit length (footprint_unit) and in
+ * object space (footprint_obj: o1, o2, and short steps d1, d2 along them from the hit, P1,
+ * P2 in world space, pl1, pl2 in object space). */
+struct footprint {
+    tex_v3 t1, t2;
+    double l2, width, c;
+    int unit, obj; /* 1: t1, t2 have unit length (l2 = 1); the object-space members are set */
+    tex_v3 o1, o2, P1, P2, pl1, pl2;
+    double d1, d2;
+};
+
+static void footprint_at(struct footprint *fp, const tex_v3 *D, const tex_v3 *N, double width)
+{
+    double dn = tex_v3_dot(*D, *N), cosv = fabs(dn);
+    tex_v3 t1 = tex_v3_madd(*D, *N, -dn);
+    double l2 = tex_v3_dot(t1, t1);
+    if (l2 < 1e-18) { /* head-on: any tangent */
+        t1 = fabs(N->x) < 0.9 ? tex_v3_cross(*N, tex_v3_make(1, 0, 0))
+                              : tex_v3_cross(*N, tex_v3_make(0, 1, 0));
+        t1 = tex_v3_norm(t1);
+        l2 = 1;
+    }
+    fp->t1 = t1;
+    fp->t2 = tex_v3_cross(*N, t1);
+    fp->l2 = l2;
+    fp->width = width;
+    fp->c = cosv > 0.02 ? cosv : 0.02;
+    fp->unit = fp->obj = 0;
+}
+
+static void footprint_unit(struct footprint *fp)
+{
+    if (fp->unit)
+        return;
+    double s = 1 / sqrt(fp->l2);
+    fp->t1 = tex_v3_scale(fp->t1, s), fp->t2 = tex_v3_scale(fp->t2, s);
+    fp->l2 = 1;
+    fp->unit = 1;
+}
+
+/* The object-space members, for the hit P (pl in object space) on leaf. */
+static void footprint_obj(struct footprint *fp, const struct tex_object *leaf, const tex_v3 *P,
+                          const tex_v3 *pl)
+{
+    if (fp->obj)
+        return;
+    footprint_unit(fp);
+    double w1 = fp->width / fp->c, w2 = fp->width;
+    fp->d1 = w1 < 1e-3 ? w1 : 1e-3, fp->d2 = w2 < 1e-3 ? w2 : 1e-3;
+    fp->o1 = tex_xform_dir(&leaf->to_obj, fp->t1);
+    fp->o2 = tex_xform_dir(&leaf->to_obj, fp->t2);
+    fp->P1 = tex_v3_madd(*P, fp->t1, fp->d1), fp->P2 = tex_v3_madd(*P, fp->t2, fp->d2);
+    fp->pl1 = tex_v3_madd(*pl, fp->o1, fp->d1), fp->pl2 = tex_v3_madd(*pl, fp->o2, fp->d2);
+    fp->obj = 1;
+}
+
+/* The footprint's size in texture units (after placement) for texture ap at the hit P (pl)
+ * that its mapping took to (u0, v0) on face: the longer of its extents along t1 and t2,
+ * squared (the mip level takes it so: neither a root nor a normalised tangent here). */
+static double footprint_width2(const struct tex_apply *ap, const struct placement *pm,
+                               const struct tex_object *leaf, struct footprint *fp,
+                               const tex_v3 *P, const tex_v3 *pl, int face, double u0, double v0)
+{
+    double su = pm->su, sv = pm->sv, a0, a1, b0, b1;
+    const tex_v3 *e1 = &fp->t1, *e2 = &fp->t2;
+    tex_v3 du, dv;
+    int exact = 1;
+    if (!map_gradient(ap, leaf, &du, &dv)) { /* not affine: in object space */
+        footprint_obj(fp, leaf, P, pl);
+        exact = natural_gradient(ap, leaf, pl, face, &du, &dv);
+        e1 = &fp->o1, e2 = &fp->o2;
+    }
+    if (exact) { /* the derivatives along the two tangents, then over their length */
+        a0 = tex_v3_dot(du, *e1) * su, a1 = tex_v3_dot(dv, *e1) * sv;
+        b0 = tex_v3_dot(du, *e2) * su, b1 = tex_v3_dot(dv, *e2) * sv;
+        double c2 = fp->c * fp->c, l1 = a0 * a0 + a1 * a1, l2 = (b0 * b0 + b1 * b1) * c2;
+        return (l1 > l2 ? l1 : l2) * (fp->width * fp->width) / (fp->l2 * c2);
+    }
+    /* over a short step (no wrap-around), scaled to the footprint */
+    double a[3], b[3];
+    map_point_at(ap, leaf, &fp->P1, &fp->pl1, a);
+    map_point_at(ap, leaf, &fp->P2, &fp->pl2, b);
+    a0 = wrapdiff(a[0] - u0) * su, a1 = wrapdiff(a[1] - v0) * sv;
+    b0 = wrapdiff(b[0] - u0) * su, b1 = wrapdiff(b[1] - v0) * sv;
+    double s1 = fp->width / fp->c / fp->d1, s2 = fp->width / fp->d2;
+    double l1 = (a0 * a0 + a1 * a1) * (s1 * s1), l2 = (b0 * b0 + b1 * b1) * (s2 * s2);
+    return l1 > l2 ? l1 : l2;
+}
+
 /* ---- application functions ---------------------------------------------------------- */
 
 struct evalctx {
     const float *f;     /* map value, RGB */
     const float *p;     /* untextured value, RGB */
-    double uvw[3], fw;
+    const double *uvw;  /* where the map was looked up (for cascades) */
+    double fw2; /* the footprint's squared width */
 };
 
 static void expr_eval(const struct tex_expr *e, const struct evalctx *c, double out[3])
@@ -381,7 +533,7 @@ static void expr_eval(const struct tex_expr *e, const struct evalctx *c, double 
         return;
     case TEX_E_TEX: {
         float v[3];
-        tex_texture_eval(e->tex, c->uvw[0], c->uvw[1], c->uvw[2], c->fw, v);
+        texture_lookup(e->tex, c->uvw[0], c->uvw[1], c->uvw[2], c->fw2, v);
         out[0] = v[0], out[1] = v[1], out[2] = v[2];
         return;
     }
@@ -483,24 +635,10 @@ static int poly_of(const struct tex_expr *e, struct poly *r)
     }
 }
 
-static void poly_eval(const struct poly *q, const float f[3], const float p[3], double out[3])
+/* Channel k of a compiled function at f, p */
+static inline double poly_at(const struct poly *q, int k, double f, double p)
 {
-    for (int k = 0; k < 3; k++) {
-        double fk = f[k], pk = p[k];
-        out[k] = q->c[0][k] + q->c[1][k] * fk + q->c[2][k] * pk + q->c[3][k] * fk * pk;
-    }
-}
-
-struct tex_surface_cache {
-    tex_colour col[3]; /* Ka Kd, Kd, Ks in the scene's colour space */
-    int cached;        /* bit i: col[i] is constant (untextured) */
-    struct poly *poly; /* per application function, in order */
-    char *compiled;    /* 1: poly[i] holds function i */
-};
-
-static double clampd(double x, double lo, double hi)
-{
-    return !(x >= lo) ? lo : x > hi ? hi : x;
+    return q->c[0][k] + q->c[1][k] * f + q->c[2][k] * p + q->c[3][k] * f * p;
 }
 
 /* The parameters being textured, in RGB, before conversion to the colour space. */
@@ -508,30 +646,35 @@ struct params {
     float ka, kd[3], ks, n, kr, kt, ior, bump;
 };
 
-static void eval_fn(const struct tex_appfn *fn, const struct poly *q, const struct evalctx *c,
-                    double r[3])
+struct tex_surface_cache {
+    struct params base;          /* the surface's own parameters */
+    tex_colour col[3];           /* Ka Kd, Kd, Ks in the scene's colour space */
+    int cached;                  /* bit i: col[i] is constant (untextured) */
+    struct placement *placement; /* per texture applied, in order */
+    struct poly *poly;           /* per application function, in order */
+    char *compiled;              /* 1: poly[i] holds function i */
+};
+
+static double clampd(double x, double lo, double hi)
 {
-    if (q)
-        poly_eval(q, c->f, c->p, r);
-    else
-        expr_eval(fn->e, c, r);
+    return !(x >= lo) ? lo : x > hi ? hi : x;
 }
 
-static void apply_fn(const struct tex_appfn *fn, const struct poly *q, struct params *pr,
-                     const struct evalctx *base)
+static float lum(const float v[3])
 {
-    struct evalctx c = *base;
-    float p[3];
-    double r[3];
-    float *scalar = NULL;
-    double lo = 0, hi = 1;
+    return (v[0] + v[1] + v[2]) / 3;
+}
+
+/* Function fn (compiled to q, or NULL) of the map value f looked up at uvw (footprint fw2),
+ * applied to the parameters pr: the colour Kd per channel; a scalar parameter sees the map's
+ * luminance as f and takes the mean of the channels.  Results clamped to the valid range. */
+static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const float f[3],
+                     const double uvw[3], double fw2, struct params *pr)
+{
+    float *scalar = NULL, fg[3], p[3];
+    double lo = 0, hi = 1, r[3];
     switch (fn->param) {
-    case TEX_SP_KD:
-        c.p = pr->kd;
-        eval_fn(fn, q, &c, r);
-        for (int k = 0; k < 3; k++)
-            pr->kd[k] = (float)clampd(r[k], 0, 1);
-        return;
+    case TEX_SP_KD: break;
     case TEX_SP_KA: scalar = &pr->ka; break;
     case TEX_SP_KS: scalar = &pr->ks; break;
     case TEX_SP_N: scalar = &pr->n, lo = 0.1, hi = 10000; break;
@@ -540,207 +683,175 @@ static void apply_fn(const struct tex_appfn *fn, const struct poly *q, struct pa
     case TEX_SP_IOR: scalar = &pr->ior, lo = 0.1, hi = 10; break;
     default: scalar = &pr->bump, lo = -1000, hi = 1000; break;
     }
-    p[0] = p[1] = p[2] = *scalar;
-    c.p = p;
-    /* a scalar parameter sees the map's luminance as f */
-    float fl = (c.f[0] + c.f[1] + c.f[2]) / 3, fg[3] = {fl, fl, fl};
-    c.f = fg;
-    eval_fn(fn, q, &c, r);
-    *scalar = (float)clampd((r[0] + r[1] + r[2]) / 3, lo, hi);
+    const float *fv = f, *pv = pr->kd;
+    if (scalar) {
+        fg[0] = fg[1] = fg[2] = lum(f);
+        p[0] = p[1] = p[2] = *scalar;
+        fv = fg, pv = p;
+    }
+    if (!q) {
+        struct evalctx c = {fv, pv, uvw, fw2};
+        expr_eval(fn->e, &c, r);
+    }
+    if (scalar) {
+        for (int k = 0; q && k < 3; k++)
+            r[k] = poly_at(q, k, fv[k], pv[k]);
+        *scalar = (float)clampd((r[0] + r[1] + r[2]) / 3, lo, hi);
+    } else { /* channel k of Kd reads only Kd's channel k */
+        for (int k = 0; k < 3; k++)
+            pr->kd[k] = (float)clampd(q ? poly_at(q, k, f[k], pr->kd[k]) : r[k], 0, 1);
+    }
 }
 
-static float lum(const float v[3])
+/* Blinn's bump mapping: the tilt of the normal against the surface gradient of texture ap's
+ * luminance (f at the hit), by finite differences along the footprint's tangents. */
+static tex_v3 bump_tilt(const struct tex_apply *ap, const struct placement *pm,
+                        const struct tex_object *leaf, const tex_v3 *P, struct footprint *fp,
+                        double width, double fw2, const float f[3], double strength)
 {
-    return (v[0] + v[1] + v[2]) / 3;
+    double h = width > 1e-4 ? width : 1e-4, g[2];
+    footprint_unit(fp);
+    for (int i = 0; i < 2; i++) {
+        tex_v3 Pi = tex_v3_madd(*P, i ? fp->t2 : fp->t1, h);
+        tex_v3 pli = tex_xform_point(&leaf->to_obj, Pi);
+        double uvw[3];
+        float fi[3];
+        map_point_at(ap, leaf, &Pi, &pli, uvw);
+        if (!place(ap, pm, uvw))
+            return tex_v3_make(0, 0, 0);
+        texture_lookup(ap->tex, uvw[0], uvw[1], uvw[2], fw2, fi);
+        g[i] = (lum(fi) - lum(f)) / h;
+    }
+    return tex_v3_scale(tex_v3_add(tex_v3_scale(fp->t1, g[0]), tex_v3_scale(fp->t2, g[1])),
+                        strength);
 }
 
-/* Value of the applied texture at world point P (after mapping and placement). */
-static int look(const struct tex_apply *ap, const struct tex_object *leaf, tex_v3 P, double fw,
-                double uvw[3], float f[3])
+/* The textures of sf applied at the hit P (seen along D, normal N, footprint width; filter:
+ * mip-mapped lookups) to pr, N bent by bump maps; 1 if one of them set Ks. */
+static int apply_textures(const struct tex_surface *sf, const struct tex_object *leaf,
+                          const tex_v3 *P, const tex_v3 *D, tex_v3 *N, double width, int filter,
+                          struct params *pr)
 {
-    map_point(ap, leaf, P, uvw);
-    if (!place(ap, uvw))
-        return -1;
-    return tex_texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw, f);
+    struct footprint fp;
+    footprint_at(&fp, D, N, width);
+    tex_v3 pl = tex_xform_point(&leaf->to_obj, *P), tilt = tex_v3_make(0, 0, 0);
+    const struct tex_surface_cache *cache = sf->cache;
+    const struct placement *pm = cache->placement;
+    int nfn = 0, ks_textured = 0, bumped = 0; /* nfn: the function's index in the cache */
+    for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next, pm++) {
+        double uvw[3];
+        float f[3];
+        int face = map_point_at(ap, leaf, P, &pl, uvw);
+        double u0 = uvw[0], v0 = uvw[1];
+        if (!place(ap, pm, uvw)) {
+            for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next)
+                nfn++;
+            continue;
+        }
+        double fw2 = filter ? footprint_width2(ap, pm, leaf, &fp, P, &pl, face, u0, v0) : 0;
+        /* one lookup: region maps and primitives ignore the footprint */
+        int region = texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw2, f);
+        for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++) {
+            if (fn->region && fn->region != region)
+                continue;
+            ks_textured |= fn->param == TEX_SP_KS;
+            apply_fn(fn, cache->compiled[nfn] ? &cache->poly[nfn] : NULL, f, uvw, fw2, pr);
+            if (fn->param == TEX_SP_BUMP && pr->bump != 0) {
+                tilt = tex_v3_add(tilt, bump_tilt(ap, pm, leaf, P, &fp, width, fw2, f, pr->bump));
+                bumped = 1;
+                pr->bump = 0;
+            }
+        }
+    }
+    if (bumped && tex_v3_dot(tilt, tilt) > 0)
+        *N = tex_v3_norm(tex_v3_sub(*N, tilt));
+    return ks_textured;
 }
 
-void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *sf,
-                          const struct tex_object *leaf, tex_v3 P, tex_v3 D, tex_v3 *N,
-                          double width, struct tex_material *m)
+/* cs->from_rgb of a reflectance; RGB mode's is the identity: copied without the call */
+static inline void reflectance(const struct tex_colour_space *cs, const float rgb[3],
+                               tex_colour *out)
+{
+    if (cs->mode == TEX_COLOUR_RGB)
+        out->v[0] = rgb[0], out->v[1] = rgb[1], out->v[2] = rgb[2];
+    else
+        cs->from_rgb(cs, rgb, TEX_SPECTRUM_REFLECTANCE, out);
+}
+
+/* The material from the parameters pr (ks_textured: Ks was set by a texture). */
+static inline __attribute__((always_inline)) void
+material(const struct tex_colour_space *cs, const struct tex_surface *sf,
+                            const struct params *pr, int ks_textured, struct tex_material *m)
 {
     const struct tex_surface_cache *sc = sf->cache;
-    if (!sf->apply && sc && sc->cached == 7) { /* untextured: the cached colours as they are */
-        int n = s->cs.n;
+    int n = cs->n, cached = sc->cached; /* untextured surfaces: every colour cached */
+    if (cached & 1) {
         tex_colour_copy(&m->ka, n, &sc->col[0]);
-        tex_colour_copy(&m->kd, n, &sc->col[1]);
-        tex_colour_copy(&m->ks, n, &sc->col[2]);
-        m->n = (float)sf->n;
-        m->kr = (float)sf->kr;
-        m->kt = (float)sf->kt;
-        m->ior = (float)sf->ior;
-        m->model = sf->model;
-        m->model_data = sf->ct;
-        return;
+    } else {
+        float ka[3] = {pr->ka * pr->kd[0], pr->ka * pr->kd[1], pr->ka * pr->kd[2]};
+        reflectance(cs, ka, &m->ka);
     }
-    struct params pr = {sf->ka, {sf->kd[0], sf->kd[1], sf->kd[2]}, sf->ks[0], (float)sf->n,
-                        (float)sf->kr, (float)sf->kt, (float)sf->ior, 0};
-    float ks_rgb[3] = {sf->ks[0], sf->ks[1], sf->ks[2]};
-    int ks_textured = 0;
-    if (sf->apply) {
-        /* the pixel footprint on the surface: across the ray's projection
-         * (stretched by 1/cos) and along the tangent perpendicular to it */
-        double cosv = fabs(tex_v3_dot(D, *N));
-        tex_v3 t1 = tex_v3_sub(D, tex_v3_scale(*N, tex_v3_dot(D, *N)));
-        double l1 = tex_v3_len(t1);
-        if (l1 < 1e-9) {
-            t1 = fabs(N->x) < 0.9 ? tex_v3_cross(*N, tex_v3_make(1, 0, 0))
-                                  : tex_v3_cross(*N, tex_v3_make(0, 1, 0));
-            t1 = tex_v3_norm(t1);
-        } else {
-            t1 = tex_v3_scale(t1, 1 / l1);
-        }
-        tex_v3 t2 = tex_v3_cross(*N, t1);
-        double w1 = width / (cosv > 0.02 ? cosv : 0.02), w2 = width;
-        tex_v3 bumpg = tex_v3_make(0, 0, 0);
-        int filter = s->settings.filter && width > 0;
-        /* the hit and the two footprint steps in object space, once for every texture */
-        double d1 = w1 < 1e-3 ? w1 : 1e-3, d2 = w2 < 1e-3 ? w2 : 1e-3;
-        tex_v3 pl = tex_xform_point(&leaf->to_obj, P), pl1 = pl, pl2 = pl;
-        tex_v3 P1 = P, P2 = P, o1 = t1, o2 = t2;
-        int steps = 0; /* the tangents in object space and the footprint steps: computed */
-        const struct tex_surface_cache *cache = sf->cache;
-        int nfn = 0; /* index of the function in the cache */
-        for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next) {
-            double uvw[3], a[3], b[3];
-            float f[3], fa[3], fb[3];
-            int face = map_point_at(ap, leaf, P, pl, uvw);
-            double u0 = uvw[0], v0 = uvw[1];
-            if (!place(ap, uvw)) {
-                for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next)
-                    nfn++;
-                continue;
-            }
-            double fw = 0;
-            if (filter) {
-                double su = ap->nu / (ap->u2 - ap->u1), sv = ap->nv / (ap->v2 - ap->v1);
-                double a0, a1, b0, b1, l1, l2;
-                tex_v3 du, dv;
-                int grad = map_gradient(ap, leaf, &du, &dv); /* affine: world gradients */
-                if (!grad && natural_gradient(ap, leaf, pl, face, &du, &dv)) {
-                    if (!steps) { /* object-space gradients: object-space tangents */
-                        o1 = tex_xform_dir(&leaf->to_obj, t1);
-                        o2 = tex_xform_dir(&leaf->to_obj, t2);
-                        P1 = tex_v3_madd(P, t1, d1), P2 = tex_v3_madd(P, t2, d2);
-                        pl1 = tex_v3_madd(pl, o1, d1), pl2 = tex_v3_madd(pl, o2, d2);
-                        steps = 1;
-                    }
-                    grad = 2;
-                }
-                if (grad) { /* the exact derivatives along the two tangents */
-                    tex_v3 e1 = grad == 1 ? t1 : o1, e2 = grad == 1 ? t2 : o2;
-                    a0 = tex_v3_dot(du, e1) * su, a1 = tex_v3_dot(dv, e1) * sv;
-                    b0 = tex_v3_dot(du, e2) * su, b1 = tex_v3_dot(dv, e2) * sv;
-                    l1 = (a0 * a0 + a1 * a1) * (w1 * w1); /* squared: one root below */
-                    l2 = (b0 * b0 + b1 * b1) * (w2 * w2);
-                } else {
-                    if (!steps) {
-                        o1 = tex_xform_dir(&leaf->to_obj, t1);
-                        o2 = tex_xform_dir(&leaf->to_obj, t2);
-                        P1 = tex_v3_madd(P, t1, d1), P2 = tex_v3_madd(P, t2, d2);
-                        pl1 = tex_v3_madd(pl, o1, d1), pl2 = tex_v3_madd(pl, o2, d2);
-                        steps = 1;
-                    }
-                    /* derivatives over a short step (no wrap-around), scaled to the footprint */
-                    map_point_at(ap, leaf, P1, pl1, a);
-                    map_point_at(ap, leaf, P2, pl2, b);
-                    a0 = wrapdiff(a[0] - u0) * su, a1 = wrapdiff(a[1] - v0) * sv;
-                    b0 = wrapdiff(b[0] - u0) * su, b1 = wrapdiff(b[1] - v0) * sv;
-                    double s1 = w1 / d1, s2 = w2 / d2;
-                    l1 = (a0 * a0 + a1 * a1) * (s1 * s1);
-                    l2 = (b0 * b0 + b1 * b1) * (s2 * s2);
-                }
-                fw = sqrt(l1 > l2 ? l1 : l2);
-            }
-            /* one lookup: region maps and primitives ignore the footprint */
-            int region = tex_texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw, f);
-            struct evalctx c = {f, NULL, {uvw[0], uvw[1], uvw[2]}, fw};
-            for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++) {
-                if (fn->region && fn->region != region)
-                    continue;
-                if (fn->param == TEX_SP_KS)
-                    ks_textured = 1;
-                apply_fn(fn, cache && cache->compiled[nfn] ? &cache->poly[nfn] : NULL, &pr, &c);
-                if (fn->param == TEX_SP_BUMP && pr.bump != 0) {
-                    /* Blinn: tilt N against the surface gradient of the map value */
-                    double h = width > 1e-4 ? width : 1e-4;
-                    double uv2[3];
-                    int ra = look(ap, leaf, tex_v3_madd(P, t1, h), fw, uv2, fa);
-                    int rb = look(ap, leaf, tex_v3_madd(P, t2, h), fw, uv2, fb);
-                    if (ra >= 0 && rb >= 0) {
-                        double g1 = (lum(fa) - lum(f)) / h, g2 = (lum(fb) - lum(f)) / h;
-                        bumpg = tex_v3_add(bumpg, tex_v3_scale(tex_v3_add(tex_v3_scale(t1, g1),
-                                                                          tex_v3_scale(t2, g2)),
-                                                               pr.bump));
-                    }
-                    pr.bump = 0;
-                }
-            }
-        }
-        if (tex_v3_dot(bumpg, bumpg) > 0)
-            *N = tex_v3_norm(tex_v3_sub(*N, bumpg));
-    }
-    const struct tex_colour_space *cs = &s->cs;
-    float ka[3] = {pr.ka * pr.kd[0], pr.ka * pr.kd[1], pr.ka * pr.kd[2]};
-    float ks[3];
-    for (int k = 0; k < 3; k++)
-        ks[k] = ks_textured ? pr.ks : ks_rgb[k];
-    int n = cs->n, cached = sf->cache ? sf->cache->cached : 0;
-    if (cached & 1)
-        tex_colour_copy(&m->ka, n, &sf->cache->col[0]);
-    else
-        cs->from_rgb(cs, ka, TEX_SPECTRUM_REFLECTANCE, &m->ka);
     if (cached & 2)
-        tex_colour_copy(&m->kd, n, &sf->cache->col[1]);
+        tex_colour_copy(&m->kd, n, &sc->col[1]);
     else
-        cs->from_rgb(cs, pr.kd, TEX_SPECTRUM_REFLECTANCE, &m->kd);
-    if (cached & 4)
-        tex_colour_copy(&m->ks, n, &sf->cache->col[2]);
-    else
-        cs->from_rgb(cs, ks, TEX_SPECTRUM_REFLECTANCE, &m->ks);
-    m->n = pr.n;
-    m->kr = pr.kr;
-    m->kt = pr.kt;
-    m->ior = pr.ior;
+        reflectance(cs, pr->kd, &m->kd);
+    if (cached & 4) {
+        tex_colour_copy(&m->ks, n, &sc->col[2]);
+    } else {
+        float ks[3] = {pr->ks, pr->ks, pr->ks};
+        reflectance(cs, ks_textured ? ks : sf->ks, &m->ks);
+    }
+    m->n = pr->n;
+    m->kr = pr->kr;
+    m->kt = pr->kt;
+    m->ior = pr->ior;
     m->model = sf->model;
     m->model_data = sf->ct;
 }
 
+void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *sf,
+                          const struct tex_object *leaf, const tex_v3 *P, const tex_v3 *D,
+                          tex_v3 *N, double width, struct tex_material *m)
+{
+    if (!sf->apply) { /* the cache as it is, without the textured path's set-up */
+        material(&s->cs, sf, &sf->cache->base, 0, m);
+        return;
+    }
+    struct params pr = sf->cache->base;
+    int ks_textured =
+        apply_textures(sf, leaf, P, D, N, width, s->settings.filter && width > 0, &pr);
+    material(&s->cs, sf, &pr, ks_textured, m);
+}
+
 int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
 {
-    int textured = 0, nfn = 0; /* bits of enum tex_sparam */
-    for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next)
+    int textured = 0, nfn = 0, nap = 0; /* textured: bits of enum tex_sparam */
+    for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next, nap++)
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++)
             textured |= 1 << fn->param;
     tex_surface_uncache(sf);
     struct tex_surface_cache *c = calloc(1, sizeof *c);
+    sf->cache = c;
     if (!c || !(c->poly = malloc((nfn ? nfn : 1) * sizeof *c->poly)) ||
-        !(c->compiled = malloc(nfn ? nfn : 1))) {
-        if (c)
-            free(c->poly);
-        free(c);
+        !(c->compiled = malloc(nfn ? nfn : 1)) ||
+        !(c->placement = malloc((nap ? nap : 1) * sizeof *c->placement))) {
+        tex_surface_uncache(sf);
         return tex_error("out of memory");
     }
-    nfn = 0;
-    for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next)
+    nfn = nap = 0;
+    for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next) {
+        placement_of(ap, &c->placement[nap++]);
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++)
             c->compiled[nfn] = (char)poly_of(fn->e, &c->poly[nfn]);
+    }
+    c->base = (struct params){sf->ka, {sf->kd[0], sf->kd[1], sf->kd[2]}, sf->ks[0], (float)sf->n,
+                              (float)sf->kr, (float)sf->kt, (float)sf->ior, 0};
     float ka[3] = {sf->ka * sf->kd[0], sf->ka * sf->kd[1], sf->ka * sf->kd[2]};
     cs->from_rgb(cs, ka, TEX_SPECTRUM_REFLECTANCE, &c->col[0]);
     cs->from_rgb(cs, sf->kd, TEX_SPECTRUM_REFLECTANCE, &c->col[1]);
     cs->from_rgb(cs, sf->ks, TEX_SPECTRUM_REFLECTANCE, &c->col[2]);
     c->cached = (textured & (1 << TEX_SP_KA | 1 << TEX_SP_KD) ? 0 : 1) |
                 (textured & 1 << TEX_SP_KD ? 0 : 2) | (textured & 1 << TEX_SP_KS ? 0 : 4);
-    sf->cache = c;
     return 0;
 }
 
@@ -749,6 +860,7 @@ void tex_surface_uncache(struct tex_surface *sf)
     if (sf->cache) {
         free(sf->cache->poly);
         free(sf->cache->compiled);
+        free(sf->cache->placement);
         free(sf->cache);
     }
     sf->cache = NULL;
