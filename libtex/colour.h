@@ -123,7 +123,7 @@ static inline float tex_colour_max(const tex_colour *a, int n)
         m = a->v[1] > m ? a->v[1] : m;
         return a->v[2] > m ? a->v[2] : m;
     }
-    for (int i = 1; i < n; i++)
+    _Pragma("omp simd reduction(max : m)") for (int i = 1; i < n; i++)
         m = a->v[i] > m ? a->v[i] : m;
     return m;
 }

@@ -162,15 +162,16 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, double weigh
     /* footprints after curved surfaces: a mirror of curvature k turns a beam
      * of width w by 2 k w more (its focal length is 1/2k); a refracting
      * surface bends it by (eta cos_i - cos_t) k w (paraxial lens power) */
-    double kmax = tex_maxd(tex_colour_max(&kr, n), tex_colour_max(&kt, n));
+    double kr_max = tex_colour_max(&kr, n), kt_max = tex_colour_max(&kt, n);
+    double kmax = tex_maxd(kr_max, kt_max);
     double kc = s->settings.filter && width > 0 && kmax > 0 && weight * kmax >= s->settings.bailout
                     ? curvature(&h, P, Ngv, r->d)
                     : 0;
     rr.spread = tex_mind(r->spread + 2 * kc * width, 1);
-    if (tex_colour_max(&kt, n) > 0) {
+    if (kt_max > 0) {
         tex_ray rt = {Pin, r->d, width, r->spread, &beyond};
         if (tex_refract(r->d, N, n1, n2, &rt.d)) {
-            double w = weight * tex_colour_max(&kt, n);
+            double w = weight * kt_max;
             if (w >= s->settings.bailout) {
                 double eta = n1 / n2, ci = fabs(tex_v3_dot(r->d, Ngv)),
                        ct = fabs(tex_v3_dot(rt.d, Ngv));
@@ -182,9 +183,10 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, double weigh
             }
         } else {
             tex_colour_add(&kr, n, &kr, &kt); /* total internal reflection */
+            kr_max = tex_colour_max(&kr, n);
         }
     }
-    double wr = weight * tex_colour_max(&kr, n);
+    double wr = weight * kr_max;
     if (wr > 0 && wr >= s->settings.bailout) {
         trace(c, &rr, depth + 1, wr, &I);
         tex_colour_mmadd(out, n, &kr, &I, 1);
