@@ -6,6 +6,7 @@
 #include "fresnel.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 int tex_ct_init(struct tex_ct *ct, const struct tex_colour_space *cs,
@@ -45,7 +46,8 @@ void tex_ct_set_space(struct tex_ct *ct, const struct tex_colour_space *cs)
 
 /* A surface that names the model but sets none of its parameters: a dielectric of the
  * surface's ior, Beckmann m = 0.2, half specular. */
-static const struct tex_ct ct_default = {{TEX_FACET_BECKMANN, 0.2, 0}, 0.5, 0, 0, {{0}}, {{0}}, NULL, 0};
+static const struct tex_ct ct_default = {
+    {TEX_FACET_BECKMANN, 0.2, 0}, 0.5, 0, 0, {{0}}, {{0}}, NULL, 0, NULL, 0, 0};
 
 static const struct tex_ct *params(const struct tex_material *mat)
 {
@@ -157,10 +159,75 @@ static void fresnel_dielectric_n(float c, const float *r, int count, float *out)
 }
 #endif
 
+/* The dispersive dielectric's ratios eta_i / eta_t per sample, seen from
+ * outside (cos_i >= 0) or from inside. */
+static void dielectric_ratios(const struct tex_ct *ct, int outside, int n, float *r)
+{
+    if (outside) {
+#pragma omp simd
+        for (int i = 0; i < n; i++)
+            r[i] = 1 / ct->eta.v[i];
+    } else {
+        for (int i = 0; i < n; i++)
+            r[i] = ct->eta.v[i];
+    }
+}
+
+int tex_ct_tabulate(struct tex_ct *ct, int n)
+{
+    tex_ct_untabulate(ct);
+    if (!ct->has_eta)
+        return 0; /* the surface's ior, which a texture may change per hit */
+    int cols = ct->flat ? 1 : n; /* one index: one column for every sample */
+    if (!(ct->table = malloc(sizeof *ct->table * (TEX_CT_STEPS + 1) * cols)))
+        return tex_error("out of memory");
+    ct->table_n = n;
+    ct->table_cols = cols;
+    float r[TEX_COLOUR_MAX];
+    if (!ct->conductor)
+        dielectric_ratios(ct, 1, n, r);
+    for (int j = 0; j <= TEX_CT_STEPS; j++) {
+        double c = (double)j / TEX_CT_STEPS;
+        float *row = ct->table + j * cols;
+        if (ct->conductor)
+            fresnel_conductor_n(c, ct->eta.v, ct->k.v, n, row);
+        else if (ct->flat)
+            row[0] = (float)tex_fresnel_dielectric(c, 1, ct->eta.v[0], NULL);
+        else
+            fresnel_dielectric_n((float)c, r, n, row);
+    }
+    return 0;
+}
+
+void tex_ct_untabulate(struct tex_ct *ct)
+{
+    free(ct->table);
+    ct->table = NULL;
+    ct->table_n = ct->table_cols = 0;
+}
+
 /* Fresnel reflectance per sample at cos_i (< 0: from inside). */
 static void fresnel(const struct tex_material *mat, const struct tex_ct *ct, double cos_i,
                     int n, tex_colour *fr)
 {
+    /* the table, but not inside a dielectric: beyond the critical angle the
+     * curve has a corner that steps cannot follow */
+    if (ct->table && ct->table_n == n && (ct->conductor || cos_i >= 0)) {
+        double x = (cos_i < 0 ? -cos_i : cos_i) * TEX_CT_STEPS;
+        x = x < TEX_CT_STEPS ? x : TEX_CT_STEPS; /* NaN too */
+        int j = (int)x, cols = ct->table_cols;
+        j = j < TEX_CT_STEPS ? j : TEX_CT_STEPS - 1;
+        float a = (float)(x - j);
+        const float *f0 = ct->table + j * cols, *f1 = f0 + cols;
+        if (cols == 1) {
+            tex_colour_set(fr, n, f0[0] + a * (f1[0] - f0[0]));
+            return;
+        }
+#pragma omp simd
+        for (int i = 0; i < n; i++)
+            fr->v[i] = f0[i] + a * (f1[i] - f0[i]);
+        return;
+    }
     if (ct->conductor) {
         fresnel_conductor_n(fabs(cos_i), ct->eta.v, ct->k.v, n, fr->v);
         return;
@@ -174,14 +241,7 @@ static void fresnel(const struct tex_material *mat, const struct tex_ct *ct, dou
     }
     float r[TEX_COLOUR_MAX];
     double c = cos_i >= 0 ? cos_i : -cos_i;
-    if (cos_i >= 0) {
-#pragma omp simd
-        for (int i = 0; i < n; i++)
-            r[i] = 1 / ct->eta.v[i];
-    } else {
-        for (int i = 0; i < n; i++)
-            r[i] = ct->eta.v[i];
-    }
+    dielectric_ratios(ct, cos_i >= 0, n, r);
     fresnel_dielectric_n((float)(c > 1 ? 1 : c), r, n, fr->v);
 }
 

@@ -14,6 +14,7 @@
 
 #include "error.h"
 #include "render.h"
+#include "render_ct.h"
 
 /* ---- mip-mapped maps ------------------------------------------------------------ */
 
@@ -850,6 +851,10 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
     cs->from_rgb(cs, ka, TEX_SPECTRUM_REFLECTANCE, &c->col[0]);
     cs->from_rgb(cs, sf->kd, TEX_SPECTRUM_REFLECTANCE, &c->col[1]);
     cs->from_rgb(cs, sf->ks, TEX_SPECTRUM_REFLECTANCE, &c->col[2]);
+    if (sf->ct && tex_ct_tabulate(sf->ct, cs->n) < 0) {
+        tex_surface_uncache(sf);
+        return -1;
+    }
     c->cached = (textured & (1 << TEX_SP_KA | 1 << TEX_SP_KD) ? 0 : 1) |
                 (textured & 1 << TEX_SP_KD ? 0 : 2) | (textured & 1 << TEX_SP_KS ? 0 : 4);
     return 0;
@@ -857,6 +862,8 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
 
 void tex_surface_uncache(struct tex_surface *sf)
 {
+    if (sf->ct)
+        tex_ct_untabulate(sf->ct);
     if (sf->cache) {
         free(sf->cache->poly);
         free(sf->cache->compiled);

@@ -130,6 +130,32 @@ int main(void)
     }
     CHECKF(worst < 1e-5, "copper: the per-spectrum Fresnel equals tex_fresnel_conductor (%.2g)",
            worst);
+    /* The renderer's table (tex_ct_tabulate) against the formula, every
+     * material of the database (glasses from outside), between and on its steps. */
+    static const char *const tabled[] = {"gold",      "silver",    "copper", "aluminium",
+                                         "chromium",  "stainless", "bk7",    "dielectric"};
+    double worst_table = 0;
+    int tables = 0;
+    for (size_t m = 0; m < sizeof tabled / sizeof *tabled; m++) {
+        const struct tex_matdb_entry *e = tex_matdb_find(&db, tabled[m]);
+        if (!e || tex_ct_init(&ct, &cs, e, TEX_FACET_BECKMANN, 0.1, 0, 0.5) < 0 ||
+            tex_ct_tabulate(&ct, cs.n) < 0)
+            continue;
+        tables += ct.table != NULL;
+        for (int j = 0; j <= 4000; j++) {
+            double c = j / 4000.0;
+            mat.model->weights(&mat, c, cs.n, &kr, &kt);
+            for (int i = 0; i < cs.n; i++) {
+                double f = ct.conductor ? tex_fresnel_conductor(c, 1, ct.eta.v[i], ct.k.v[i])
+                                        : tex_fresnel_dielectric(c, 1, ct.eta.v[i], NULL);
+                worst_table = fmax(worst_table, fabs(kr.v[i] - f));
+            }
+        }
+        tex_ct_untabulate(&ct);
+    }
+    CHECKF(tables == 8 && worst_table < 2e-5,
+           "the Fresnel table is within 2e-5 of the formula (%d tables, worst %.2g)", tables,
+           worst_table);
     CHECK(tex_ct_init(&ct, &cs, NULL, TEX_FACET_BECKMANN, 0, 0, 0.5) < 0 &&
               tex_ct_init(&ct, &cs, NULL, TEX_FACET_BECKMANN, 0.2, 0, 1.5) < 0,
           "bad roughness or specular fraction: usage errors");
