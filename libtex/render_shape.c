@@ -79,7 +79,8 @@ static void span1(struct tex_spans *s, const struct tex_object *ob, double t0, d
 
 /* ---- sphere ----------------------------------------------------------------- */
 
-static void sphere_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s)
+static inline __attribute__((always_inline)) void
+sphere_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s)
 {
     double a = tex_v3_dot(d, d), b = tex_v3_dot(o, d), c = tex_v3_dot(o, o) - 1;
     double disc = b * b - a * c;
@@ -116,7 +117,8 @@ static int unit_bounds(const struct tex_object *ob, struct tex_bounds *b)
 
 /* ---- box -------------------------------------------------------------------- */
 
-static void box_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s)
+static inline __attribute__((always_inline)) void
+box_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s)
 {
     double t0 = -INFINITY, t1 = INFINITY;
     double oo[3] = {o.x, o.y, o.z}, dd[3] = {d.x, d.y, d.z};
@@ -179,7 +181,8 @@ static int box_uv(const struct tex_object *ob, tex_v3 p, double *u, double *v)
 
 /* ---- cone and cylinder ---------------------------------------------------------- */
 
-static void cone_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s)
+static inline __attribute__((always_inline)) void
+cone_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s)
 {
     double r0 = ob->r0, k = ob->r1 - ob->r0;
     double t[4];
@@ -509,7 +512,7 @@ static int ray_box(const struct tex_bounds *b, tex_v3 o, tex_v3 inv)
 }
 
 /* A leaf's spans along a world ray: a switch, not the method table, so the
- * common shapes are inlined and the object-space ray stays in registers
+ * common shapes (always_inline) are inlined and the object-space ray stays in registers
  * (a tex_v3 passed by value goes through the stack, and the load after the
  * store stalls). */
 void tex_leaf_spans(const struct tex_object *ob, const tex_v3 *o, const tex_v3 *d,
