@@ -10,7 +10,7 @@
 #   make man        refresh the option lists of the man pages from the tools
 #   make fuzz       build the fuzz targets (clang, libFuzzer)
 #
-# Sources are found by wildcard: a new libtex/*.c joins the library, a new
+# Sources are found by wildcard: a new libtex/LAYER/*.c joins the library, a new
 # tools/t_*.c becomes a tool, tests/unit/*.c and tests/*.sh join the suite.
 
 VERSION  = 0.1
@@ -40,7 +40,8 @@ LDLIBS    = -lOpenEXRCore -lfftw3f_threads -lfftw3f -lflann -lm -ldl
 PROG_LDLIBS = $(if $(SANITIZE),$(LDLIBS),-lOpenEXRCore -lfftw3f_threads -lfftw3f \
               -l:libflann_s.a -llz4 -Wl,-Bstatic -lstdc++ -Wl,-Bdynamic -lm -ldl)
 
-LIB_SRC  = $(wildcard libtex/*.c)
+LAYERS   = base io prim ops lang render cli
+LIB_SRC  = $(foreach l,$(LAYERS),$(wildcard libtex/$(l)/*.c))
 LIB_OBJ  = $(LIB_SRC:%.c=$(BUILD)/obj/%.o)
 TOOL_SRC = $(wildcard tools/t_*.c)
 TOOLS    = $(TOOL_SRC:tools/%.c=$(BUILD)/bin/%)
@@ -50,7 +51,7 @@ BRIDGE   = $(BUILD)/lib/textura/textura-oiio.so
 STATIC   = $(BUILD)/lib/libtex.a
 SHARED   = $(BUILD)/lib/libtex.so.0
 PCFILE   = $(BUILD)/lib/pkgconfig/textura.pc
-HEADERS  = $(filter-out libtex/oiio_bridge.h,$(wildcard libtex/*.h))
+HEADERS  = $(filter-out libtex/io/oiio_bridge.h,$(wildcard libtex/*/*.h)) libtex/prim/primitives.def
 
 DEBS = build-essential pkg-config liblz4-dev libopenexr-dev libopenimageio-dev openimageio-tools \
        libflann-dev libfftw3-dev colord-data mandoc netpbm imagemagick libnoise-dev povray \
@@ -74,7 +75,7 @@ $(SHARED): $(LIB_OBJ)
 	$(CC) -shared -Wl,-soname,libtex.so.0 $(LDFLAGS) -o $@ $^ $(LDLIBS)
 	ln -sf libtex.so.0 $(BUILD)/lib/libtex.so
 
-$(BRIDGE): libtex/oiio_bridge.cpp libtex/oiio_bridge.h
+$(BRIDGE): libtex/io/oiio_bridge.cpp libtex/io/oiio_bridge.h
 	@mkdir -p $(@D)
 	$(CXX) $(CPPFLAGS) $(ALL_CXXFLAGS) -shared -fvisibility=hidden -o $@ $< \
 	    $$(pkg-config --cflags --libs OpenImageIO)
@@ -127,7 +128,7 @@ fuzz:
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(LIBDIR)/textura $(DESTDIR)$(LIBDIR)/pkgconfig \
-	    $(DESTDIR)$(PREFIX)/include/textura $(DESTDIR)$(PREFIX)/share/man/man1 \
+	    $(addprefix $(DESTDIR)$(PREFIX)/include/textura/,$(LAYERS)) $(DESTDIR)$(PREFIX)/share/man/man1 \
 	    $(DESTDIR)$(PREFIX)/share/man/man3 $(DESTDIR)$(PREFIX)/share/man/man5 \
 	    $(DESTDIR)$(DATADIR)/palettes $(DESTDIR)$(DATADIR)/patterns
 	install -m 755 $(TOOLS) $(DESTDIR)$(PREFIX)/bin
@@ -136,7 +137,8 @@ install: all
 	ln -sf libtex.so.0 $(DESTDIR)$(LIBDIR)/libtex.so
 	install -m 755 $(BRIDGE) $(DESTDIR)$(LIBDIR)/textura
 	$(call pc,$(PREFIX),$(LIBDIR)) > $(DESTDIR)$(LIBDIR)/pkgconfig/textura.pc
-	install -m 644 $(HEADERS) libtex/primitives.def $(DESTDIR)$(PREFIX)/include/textura
+	install -m 644 libtex/textura.h $(DESTDIR)$(PREFIX)/include/textura
+	for h in $(HEADERS); do install -m 644 $$h $(DESTDIR)$(PREFIX)/include/textura/$${h#libtex/}; done
 	install -m 644 $(wildcard man/man1/*.1) $(DESTDIR)$(PREFIX)/share/man/man1
 	install -m 644 $(wildcard man/man3/*.3) $(DESTDIR)$(PREFIX)/share/man/man3
 	install -m 644 $(wildcard man/man5/*.5) $(DESTDIR)$(PREFIX)/share/man/man5

@@ -4,7 +4,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "render.h"
+#include "render/render.h"
 #include "textura.h"
 
 struct opts {

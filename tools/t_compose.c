@@ -4,7 +4,7 @@
 #include <unistd.h>
 #include <fcntl.h>
 
-#include "script.h"
+#include "lang/script.h"
 #include "textura.h"
 
 struct opts {

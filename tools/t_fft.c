@@ -1,7 +1,7 @@
 /* t_fft - the forward Fourier transform of a map as a viewable spectrum */
 #include <stdlib.h>
 
-#include "spectral.h"
+#include "prim/spectral.h"
 #include "textura.h"
 
 struct opts {

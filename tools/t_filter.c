@@ -3,7 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "filter.h"
+#include "ops/filter.h"
 #include "textura.h"
 
 struct opts {

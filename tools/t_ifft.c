@@ -2,7 +2,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "spectral.h"
+#include "prim/spectral.h"
 #include "textura.h"
 
 struct opts {

@@ -2,7 +2,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "compose.h"
+#include "ops/compose.h"
 #include "textura.h"
 
 struct opts {

@@ -7,7 +7,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "palette.h"
+#include "ops/palette.h"
 #include "textura.h"
 
 struct opts {

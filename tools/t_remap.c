@@ -1,7 +1,7 @@
 /* t_remap - bias, gain, gamma, levels, clamp, quantise or invert the values of a map */
 #include <stdlib.h>
 
-#include "remap.h"
+#include "ops/remap.h"
 #include "textura.h"
 
 struct opts {

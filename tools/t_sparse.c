@@ -1,7 +1,7 @@
 /* t_sparse - Lewis's sparse convolution: grow a field with a sample's spectrum */
 #include <stdlib.h>
 
-#include "spectral.h"
+#include "prim/spectral.h"
 #include "textura.h"
 
 struct opts {

@@ -1,5 +1,5 @@
 /* t_spectral - fBm by spectral synthesis: the classic forgery of clouds */
-#include "spectral.h"
+#include "prim/spectral.h"
 #include "textura.h"
 
 int main(int argc, char **argv)

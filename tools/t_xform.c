@@ -2,7 +2,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "compose.h"
+#include "ops/compose.h"
 #include "textura.h"
 
 struct opts {

@@ -3,7 +3,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "error.h"
+#include "base/error.h"
 
 static _Thread_local char msg[512];
 static _Thread_local enum tex_err_kind kind = TEX_ERR_RUNTIME;

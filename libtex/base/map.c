@@ -4,8 +4,8 @@
 #include <string.h>
 #include <sys/mman.h>
 
-#include "error.h"
-#include "map.h"
+#include "base/error.h"
+#include "base/map.h"
 
 int tex_map_check_size(long long w, long long h, long long nc)
 {

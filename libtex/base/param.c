@@ -4,9 +4,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "map.h"
-#include "param.h"
+#include "base/error.h"
+#include "base/map.h"
+#include "base/param.h"
 
 #define AT(obj, p, T) ((T *)((char *)(obj) + (p)->off))
 

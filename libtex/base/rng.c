@@ -1,7 +1,7 @@
 /* rng.c - xoshiro256** seeded by splitmix64 */
 #include <math.h>
 
-#include "rng.h"
+#include "base/rng.h"
 
 static inline uint64_t rotl(uint64_t x, int k)
 {

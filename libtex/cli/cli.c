@@ -10,11 +10,11 @@
 #include <omp.h>
 #endif
 
-#include "cli.h"
-#include "error.h"
-#include "file.h"
-#include "palette.h"
-#include "stream.h"
+#include "cli/cli.h"
+#include "base/error.h"
+#include "io/file.h"
+#include "ops/palette.h"
+#include "io/stream.h"
 
 #ifndef TEX_VERSION
 #define TEX_VERSION "0.1"

@@ -12,9 +12,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "error.h"
-#include "file.h"
-#include "oiio_bridge.h"
+#include "base/error.h"
+#include "io/file.h"
+#include "io/oiio_bridge.h"
 
 #ifndef TEX_LIBDIR
 #define TEX_LIBDIR "/usr/local/lib"

@@ -17,7 +17,7 @@
 #include <OpenImageIO/imageio.h>
 
 extern "C" {
-#include "oiio_bridge.h"
+#include "io/oiio_bridge.h"
 }
 
 using namespace OIIO;

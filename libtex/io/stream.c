@@ -14,8 +14,8 @@
 
 #include <openexr.h>
 
-#include "error.h"
-#include "stream.h"
+#include "base/error.h"
+#include "io/stream.h"
 
 #define ATTR_SUBREGIONS "textura:subregions"
 #define ATTR_HISTORY "textura:history"

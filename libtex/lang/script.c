@@ -6,12 +6,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "compose.h"
-#include "error.h"
-#include "file.h"
-#include "prim.h"
-#include "script.h"
-#include "transform.h"
+#include "ops/compose.h"
+#include "base/error.h"
+#include "io/file.h"
+#include "prim/prim.h"
+#include "lang/script.h"
+#include "ops/transform.h"
 
 #define MAX_DEPTH 100      /* nesting of one expression */
 #define MAX_EVAL_DEPTH 500 /* chains of definitions */

@@ -3,9 +3,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "compose.h"
-#include "error.h"
-#include "param.h"
+#include "ops/compose.h"
+#include "base/error.h"
+#include "base/param.h"
 
 static const char *const op_names[TEX_OP_COUNT] = {
     "add", "sub", "mul", "div", "min", "max", "mix", "abs", "invert", "threshold",

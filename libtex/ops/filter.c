@@ -3,9 +3,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "filter.h"
-#include "rng.h"
+#include "base/error.h"
+#include "ops/filter.h"
+#include "base/rng.h"
 
 /* The hot loops are built twice, for AVX2 and for the baseline, and picked
  * at run time.  Neither clone contracts to FMA and each output sample is

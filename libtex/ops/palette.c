@@ -7,9 +7,9 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "error.h"
-#include "map.h"
-#include "palette.h"
+#include "base/error.h"
+#include "base/map.h"
+#include "ops/palette.h"
 
 #ifndef TEX_DATADIR
 #define TEX_DATADIR "/usr/local/share/textura"

@@ -1,8 +1,8 @@
 /* remap.c - bias, gain, gamma, levels, quantise, invert, clamp */
 #include <math.h>
 
-#include "error.h"
-#include "remap.h"
+#include "base/error.h"
+#include "ops/remap.h"
 
 static double unit(double t)
 {

@@ -2,8 +2,8 @@
 #include <math.h>
 #include <string.h>
 
-#include "error.h"
-#include "transform.h"
+#include "base/error.h"
+#include "ops/transform.h"
 
 /* Background colours are given straight and stored premultiplied, like
  * the colour channels of every RGBA map. */

@@ -7,9 +7,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cellular.h"
-#include "error.h"
-#include "prim.h"
+#include "prim/cellular.h"
+#include "base/error.h"
+#include "prim/prim.h"
 
 /* p grown to n elements of size bytes, or p itself with *ok cleared when that
  * fails (or an earlier call failed): parallel arrays grow together and the
@@ -23,7 +23,7 @@ static void *grown(void *p, size_t n, size_t size, int *ok)
     }
     return q;
 }
-#include "rng.h"
+#include "base/rng.h"
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #define HAVE_AVX2_KERNEL 1

@@ -17,10 +17,10 @@
 #define TEX_X86 1
 #endif
 
-#include "error.h"
-#include "noise.h"
-#include "prim.h"
-#include "rng.h"
+#include "base/error.h"
+#include "prim/noise.h"
+#include "prim/prim.h"
+#include "base/rng.h"
 
 /* max then min, as the row kernels clamp (noise.c) */
 static inline float clamp01(float x)

@@ -2,8 +2,8 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "error.h"
-#include "geometry.h"
+#include "base/error.h"
+#include "prim/geometry.h"
 
 /* Every primitive's parameter struct starts with this head, so that the
  * shared code reads repetitions and colours through struct geo_head. */

@@ -17,10 +17,10 @@
 #include <omp.h>
 #endif
 
-#include "error.h"
-#include "noise.h"
-#include "prim.h"
-#include "rng.h"
+#include "base/error.h"
+#include "prim/noise.h"
+#include "prim/prim.h"
+#include "base/rng.h"
 
 int tex_noise_init(tex_noise_table *t, uint64_t seed, int n, int period)
 {

@@ -2,12 +2,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "prim.h"
+#include "base/error.h"
+#include "prim/prim.h"
 
 const struct tex_primitive *const tex_primitives[] = {
 #define TEX_PRIMITIVE(n) &tex_prim_##n,
-#include "primitives.def"
+#include "prim/primitives.def"
 #undef TEX_PRIMITIVE
     NULL};
 

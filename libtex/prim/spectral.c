@@ -12,10 +12,10 @@
 #include <omp.h>
 #endif
 
-#include "error.h"
-#include "prim.h"
-#include "rng.h"
-#include "spectral.h"
+#include "base/error.h"
+#include "prim/prim.h"
+#include "base/rng.h"
+#include "prim/spectral.h"
 
 /* ---- FFTW set-up, threads, the random phase table ---- */
 

@@ -6,10 +6,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "noise.h"
-#include "prim.h"
-#include "rng.h"
+#include "base/error.h"
+#include "prim/noise.h"
+#include "prim/prim.h"
+#include "base/rng.h"
 
 static inline float clamp01(float x)
 {

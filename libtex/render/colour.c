@@ -2,7 +2,7 @@
 #include <math.h>
 #include <stddef.h>
 
-#include "colour.h"
+#include "render/colour.h"
 
 static void rgb_from_rgb(const struct tex_colour_space *cs, const float rgb[3],
                          enum tex_spectrum_kind kind, tex_colour *out)

@@ -1,7 +1,7 @@
 /* colour_spectral.c - the spectral colour space for the renderer */
-#include "colour_spectral.h"
+#include "render/colour_spectral.h"
 
-#include "error.h"
+#include "base/error.h"
 
 #include <stdlib.h>
 

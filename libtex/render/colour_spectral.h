@@ -24,8 +24,8 @@
 #ifndef TEX_COLOUR_SPECTRAL_H
 #define TEX_COLOUR_SPECTRAL_H
 
-#include "colour.h"
-#include "spectrum.h"
+#include "render/colour.h"
+#include "render/spectrum.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -1,5 +1,5 @@
 /* fresnel.c - Fresnel reflectance of dielectrics and conductors */
-#include "fresnel.h"
+#include "render/fresnel.h"
 
 #include <math.h>
 

@@ -1,7 +1,7 @@
 /* matdb.c - the materials database */
-#include "matdb.h"
+#include "render/matdb.h"
 
-#include "error.h"
+#include "base/error.h"
 
 #include <ctype.h>
 #include <errno.h>

@@ -33,7 +33,7 @@
 #ifndef TEX_MATDB_H
 #define TEX_MATDB_H
 
-#include "spectrum.h"
+#include "render/spectrum.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -1,5 +1,5 @@
 /* microfacet.c - the Cook-Torrance specular term */
-#include "microfacet.h"
+#include "render/microfacet.h"
 
 #include <math.h>
 

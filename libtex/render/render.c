@@ -9,9 +9,9 @@
 #include <omp.h>
 #include <stdlib.h>
 
-#include "error.h"
-#include "render.h"
-#include "rng.h"
+#include "base/error.h"
+#include "render/render.h"
+#include "base/rng.h"
 
 #define TILE 16
 

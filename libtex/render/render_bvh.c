@@ -18,8 +18,8 @@
 #define _GNU_SOURCE /* qsort_r */
 #include <stdlib.h>
 
-#include "error.h"
-#include "render.h"
+#include "base/error.h"
+#include "render/render.h"
 
 #define LEAF_MAX 8
 

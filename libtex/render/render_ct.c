@@ -1,9 +1,9 @@
 /* render_ct.c - the Cook-Torrance shading model */
-#include "render_ct.h"
+#include "render/render_ct.h"
 
-#include "colour_spectral.h"
-#include "error.h"
-#include "fresnel.h"
+#include "render/colour_spectral.h"
+#include "base/error.h"
+#include "render/fresnel.h"
 
 #include <math.h>
 #include <stdlib.h>

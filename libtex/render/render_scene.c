@@ -12,12 +12,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "colour_spectral.h"
-#include "error.h"
-#include "file.h"
-#include "matdb.h"
-#include "render.h"
-#include "render_ct.h"
+#include "render/colour_spectral.h"
+#include "base/error.h"
+#include "io/file.h"
+#include "render/matdb.h"
+#include "render/render.h"
+#include "render/render_ct.h"
 
 #ifndef TEX_DATADIR
 #define TEX_DATADIR "/usr/local/share/textura"

@@ -1,8 +1,8 @@
 /* render_shade.c - Whitted-Phong and the table of shading models */
 #include <string.h>
 
-#include "render_shade.h"
-#include "render_ct.h"
+#include "render/render_shade.h"
+#include "render/render_ct.h"
 
 static void phong_direct(const struct tex_material *m, const double N[3], const double V[3],
                          const double L[3], const tex_colour *E, int n, tex_colour *out)

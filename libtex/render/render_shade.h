@@ -31,7 +31,7 @@
 
 #include <math.h>
 
-#include "colour.h"
+#include "render/colour.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -13,7 +13,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "render.h"
+#include "render/render.h"
 
 /* ---- transforms ----------------------------------------------------------- */
 

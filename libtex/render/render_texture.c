@@ -12,9 +12,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "render.h"
-#include "render_ct.h"
+#include "base/error.h"
+#include "render/render.h"
+#include "render/render_ct.h"
 
 /* ---- mip-mapped maps ------------------------------------------------------------ */
 

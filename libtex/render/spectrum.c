@@ -1,7 +1,7 @@
 /* spectrum.c - the spectral colour model: curves, Hall bands, CIE, sRGB */
-#include "spectrum.h"
+#include "render/spectrum.h"
 
-#include "error.h"
+#include "base/error.h"
 
 #include <errno.h>
 #include <math.h>

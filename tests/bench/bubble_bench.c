@@ -14,7 +14,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "cellular.h"
+#include "prim/cellular.h"
 
 static int cmp(const void *a, const void *b)
 {

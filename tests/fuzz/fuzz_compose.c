@@ -7,8 +7,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "map.h"
-#include "script.h"
+#include "base/map.h"
+#include "lang/script.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {

@@ -2,7 +2,7 @@
  *
  * Build (from the top of the checkout):
  *   clang -g -O1 -fsanitize=fuzzer,address,undefined -fopenmp -Ilibtex \
- *       -I/usr/include/OpenEXR tests/fuzz/fuzz_scene.c libtex/*.c \
+ *       -I/usr/include/OpenEXR tests/fuzz/fuzz_scene.c libtex/*/*.c \
  *       -o build/fuzz/fuzz_scene -lOpenEXRCore -lfftw3f_threads -lfftw3f -lflann -lm -ldl
  * Run:  build/fuzz/fuzz_scene -max_total_time=600 tests/fuzz/corpus-scene tests/fuzz/seeds-scene
  *
@@ -15,7 +15,7 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "render.h"
+#include "render/render.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {

@@ -11,10 +11,10 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "error.h"
-#include "map.h"
-#include "render.h"
-#include "rng.h"
+#include "base/error.h"
+#include "base/map.h"
+#include "render/render.h"
+#include "base/rng.h"
 
 static inline tex_map *unit_random_map(int w, int h, int nc, uint64_t seed)
 {

@@ -3,8 +3,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cellular.h"
-#include "rng.h"
+#include "prim/cellular.h"
+#include "base/rng.h"
 #include "unit.h"
 
 /* Compare grid and kd-tree with brute force on nq random queries; returns

@@ -7,9 +7,9 @@
 #include <omp.h>
 #endif
 
-#include "error.h"
-#include "filter.h"
-#include "rng.h"
+#include "base/error.h"
+#include "ops/filter.h"
+#include "base/rng.h"
 #include "fixtures.h"
 #include "unit.h"
 

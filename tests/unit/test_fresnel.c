@@ -1,5 +1,5 @@
 /* test_fresnel.c - Fresnel reflectance: normal and grazing incidence, energy, exactness */
-#include "fresnel.h"
+#include "render/fresnel.h"
 #include "unit.h"
 
 #include <complex.h>

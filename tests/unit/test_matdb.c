@@ -1,7 +1,7 @@
 /* test_matdb.c - the materials database: parsing, errors, metal colours */
-#include "error.h"
-#include "fresnel.h"
-#include "matdb.h"
+#include "base/error.h"
+#include "render/fresnel.h"
+#include "render/matdb.h"
 #include "unit.h"
 
 #include <math.h>

@@ -1,5 +1,5 @@
 /* test_microfacet.c - facet distributions, beta relations, Torrance-Sparrow G, energy */
-#include "microfacet.h"
+#include "render/microfacet.h"
 #include "unit.h"
 
 #include <math.h>

@@ -3,9 +3,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "error.h"
-#include "map.h"
-#include "palette.h"
+#include "base/error.h"
+#include "base/map.h"
+#include "ops/palette.h"
 #include "unit.h"
 
 static tex_palette *parse(const char *s)

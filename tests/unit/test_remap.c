@@ -1,7 +1,7 @@
 /* test_remap - Perlin's bias and gain, levels, quantise, invert, clamp */
 #include <math.h>
 
-#include "remap.h"
+#include "ops/remap.h"
 #include "unit.h"
 
 int main(void)

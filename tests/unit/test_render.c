@@ -5,10 +5,10 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "error.h"
-#include "file.h"
-#include "render.h"
-#include "rng.h"
+#include "base/error.h"
+#include "io/file.h"
+#include "render/render.h"
+#include "base/rng.h"
 #include "fixtures.h"
 #include "unit.h"
 

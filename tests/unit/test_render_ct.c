@@ -1,8 +1,8 @@
 /* test_render_ct.c - the spectral colour space and the Cook-Torrance shading model */
-#include "colour_spectral.h"
-#include "error.h"
-#include "fresnel.h"
-#include "render_ct.h"
+#include "render/colour_spectral.h"
+#include "base/error.h"
+#include "render/fresnel.h"
+#include "render/render_ct.h"
 #include "unit.h"
 
 #include <math.h>

@@ -12,8 +12,8 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "error.h"
-#include "render.h"
+#include "base/error.h"
+#include "render/render.h"
 #include "fixtures.h"
 #include "unit.h"
 

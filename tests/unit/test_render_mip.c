@@ -11,8 +11,8 @@
 #include <stdlib.h>
 
 #include "fixtures.h"
-#include "render.h"
-#include "rng.h"
+#include "render/render.h"
+#include "base/rng.h"
 #include "unit.h"
 
 static struct tex_texture *texture(int w, int h, int nc, uint64_t seed)

@@ -3,9 +3,9 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "error.h"
-#include "render.h"
-#include "rng.h"
+#include "base/error.h"
+#include "render/render.h"
+#include "base/rng.h"
 #include "fixtures.h"
 #include "unit.h"
 

@@ -7,9 +7,9 @@
 #include <omp.h>
 #endif
 
-#include "error.h"
-#include "rng.h"
-#include "spectral.h"
+#include "base/error.h"
+#include "base/rng.h"
+#include "prim/spectral.h"
 #include "fixtures.h"
 #include "unit.h"
 

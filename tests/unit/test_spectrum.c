@@ -1,6 +1,6 @@
 /* test_spectrum.c - Hall bands, CIE integration, white balance, gamut, RGB <-> spectrum */
-#include "error.h"
-#include "spectrum.h"
+#include "base/error.h"
+#include "render/spectrum.h"
 #include "unit.h"
 
 #include <math.h>

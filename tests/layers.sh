@@ -1,0 +1,48 @@
+# layers.sh - libtex's folders are layers, and includes point only down them.
+#
+# base <- io <- prim <- ops <- lang <- render <- cli: a file may include headers
+# of its own layer or of a layer before it, always as "layer/name.h".
+. "$(dirname "$0")/lib.sh"
+top=${TEXTURA_TOP:-$(cd "$(dirname "$0")/.." && pwd)}
+layers=(base io prim ops lang render cli)
+
+# check_tree DIR: print one line per include that points up or is not "layer/name.h".
+check_tree() {
+    local dir=$1 i f inc l rank
+    declare -A rank_of
+    for i in "${!layers[@]}"; do rank_of[${layers[$i]}]=$i; done
+    for f in "$dir"/*/*.[ch] "$dir"/*/*.cpp "$dir"/*/*.def; do
+        [ -e "$f" ] || continue
+        l=$(basename "$(dirname "$f")")
+        rank=${rank_of[$l]:-}
+        [ -n "$rank" ] || { echo "$f: folder $l is not a layer"; continue; }
+        while IFS= read -r inc; do
+            local il=${inc%%/*}
+            if [ "$il" = "$inc" ] || [ -z "${rank_of[$il]:-}" ]; then
+                echo "$f: #include \"$inc\" names no layer"
+            elif [ "${rank_of[$il]}" -gt "$rank" ]; then
+                echo "$f: #include \"$inc\" points up ($l includes $il)"
+            fi
+        done < <(sed -n 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*"\([^"]*\)".*/\1/p' "$f")
+    done
+}
+
+bad=$(check_tree "$top/libtex")
+[ -z "$bad" ] && ok "every libtex include points down the layers" || notok "libtex includes point down" "$bad"
+
+n=$(ls -d "$top"/libtex/*/ | wc -l)
+[ "$n" = ${#layers[@]} ] && ok "libtex has exactly the ${#layers[@]} layer folders" || notok "libtex layer folders" "$n folders"
+ls "$top"/libtex/*.[ch] 2>/dev/null | grep -qv '/textura.h$' \
+    && notok "only textura.h stands above the layers" "$(ls "$top"/libtex/*.[ch])" \
+    || ok "only textura.h stands above the layers"
+
+# The check must catch an upward include: a copy of the tree with one planted.
+cp -R "$top/libtex" "$T/libtex"
+printf '#include "render/render.h"\n' >>"$T/libtex/base/map.c"
+printf '#include "noise.h"\n' >>"$T/libtex/ops/remap.c"
+bad=$(check_tree "$T/libtex")
+grep -q 'base/map.c: #include "render/render.h" points up' <<<"$bad" \
+    && grep -q 'ops/remap.c: #include "noise.h" names no layer' <<<"$bad" \
+    && [ "$(wc -l <<<"$bad")" = 2 ] \
+    && ok "the layer check finds a planted upward include and a bare one" \
+    || notok "the layer check finds planted includes" "$bad"
