@@ -1,8 +1,6 @@
 /* t_compose - run a pattern composition script (man 5 t_compose) */
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
-#include <fcntl.h>
 
 #include "lang/script.h"
 #include "textura.h"
@@ -28,24 +26,19 @@ int main(int argc, char **argv)
     struct opts o;
     int i = tex_cli_parse(&tool, argc, argv, &c, &o);
     const char *path = i < argc ? argv[i] : "-";
-    int from_stdin = !strcmp(path, "-"), fd = from_stdin ? 0 : open(path, O_RDONLY);
+    int from_stdin = !strcmp(path, "-");
     struct tex_script_opts so = TEX_SCRIPT_DEFAULTS;
-    tex_buf b = {0};
+    size_t len;
+    char *text = tex_read_text(path, (size_t)1 << 28, &len, "a script");
     tex_map *m;
 
-    if (fd < 0) {
-        tex_error("%s: cannot open the script", path);
+    if (!text)
         tex_die();
-    }
-    if (tex_read_fd(fd, &b, from_stdin ? "standard input" : path) < 0)
-        tex_die();
-    if (!from_stdin)
-        close(fd);
     so.max_pixels = o.max_pixels;
     so.allow_stdin = !from_stdin;
-    if (!(m = tex_script_run((const char *)b.data, b.len, from_stdin ? "stdin" : path, &so)))
+    if (!(m = tex_script_run(text, len, from_stdin ? "stdin" : path, &so)))
         tex_die();
-    tex_buf_free(&b);
+    free(text);
     tex_cli_write(m, &c);
     tex_map_free(m);
     free(c.cmdline);

@@ -4,6 +4,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
+#include <stdint.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -155,7 +156,8 @@ static const struct tex_oiio_bridge *bridge(void)
 
 /* ---- reading ---- */
 
-int tex_read_fd(int fd, tex_buf *b, const char *name)
+/* Read fd to its end, refusing more than max bytes (SIZE_MAX: no limit). */
+static int read_fd_max(int fd, tex_buf *b, const char *name, size_t max)
 {
     struct stat st;
     size_t want = 1 << 20;
@@ -179,7 +181,40 @@ int tex_read_fd(int fd, tex_buf *b, const char *name)
             return tex_error("%s: %s", name, strerror(errno));
         }
         b->len += (size_t)r;
+        if (b->len > max)
+            return tex_error("%s: larger than %zu bytes", name, max);
     }
+}
+
+int tex_read_fd(int fd, tex_buf *b, const char *name)
+{
+    return read_fd_max(fd, b, name, SIZE_MAX);
+}
+
+char *tex_read_text(const char *path, size_t max, size_t *len, const char *what)
+{
+    int from_stdin = !strcmp(path, "-");
+    const char *name = from_stdin ? "standard input" : path;
+    int fd = from_stdin ? 0 : open(path, O_RDONLY | O_CLOEXEC);
+    tex_buf b = {0};
+    int r;
+
+    if (fd < 0) {
+        tex_error("%s: %s", name, strerror(errno));
+        return NULL;
+    }
+    r = read_fd_max(fd, &b, name, max);
+    if (!from_stdin)
+        close(fd);
+    if (r == 0 && tex_buf_reserve(&b, b.len + 1) == 0) {
+        b.data[b.len] = '\0';
+        *len = b.len;
+        return (char *)b.data;
+    }
+    if (b.len > max)
+        tex_error("%s: larger than %zu bytes for %s", name, max, what);
+    tex_buf_free(&b);
+    return NULL;
 }
 
 static tex_map *read_bridged(const char *path, const void *mem, size_t len, enum tex_format f,

@@ -62,6 +62,12 @@ int tex_map_write_check(const char *path);
 
 /* Read all of a file descriptor into b (for standard input and pipes). */
 int tex_read_fd(int fd, tex_buf *b, const char *name);
+/* The one whole-file reader of text (scenes, scripts, palettes, materials):
+ * path, or standard input for "-", at most max bytes.  Returns a buffer
+ * that ends in a NUL byte not counted in *len (free() it), or NULL with the
+ * error set: "PATH: reason", "standard input" for "-", and "PATH: larger
+ * than MAX bytes" naming `what` ("a scene") past the limit. */
+char *tex_read_text(const char *path, size_t max, size_t *len, const char *what);
 
 #ifdef __cplusplus
 }

@@ -9,6 +9,7 @@
 
 #include "base/error.h"
 #include "base/map.h"
+#include "io/file.h"
 #include "ops/palette.h"
 
 #ifndef TEX_DATADIR
@@ -387,33 +388,16 @@ int tex_palette_find(const char *name, char *buf, size_t n)
 tex_palette *tex_palette_load(const char *name_or_file)
 {
     char path[PATH_MAX];
-    FILE *fp;
     char *text;
     size_t len;
     tex_palette *p;
 
     if (tex_palette_find(name_or_file, path, sizeof path) < 0)
         return NULL;
-    if (!(fp = fopen(path, "rb"))) {
-        tex_error("%s: %s", path, strerror(errno));
+    if (!(text = tex_read_text(path, MAX_FILE, &len, "a palette")))
         return NULL;
-    }
-    if (!(text = malloc(MAX_FILE + 1))) {
-        fclose(fp);
-        tex_error("out of memory");
-        return NULL;
-    }
-    len = fread(text, 1, MAX_FILE + 1, fp);
-    if (ferror(fp)) {
-        tex_error("%s: read error", path);
-        p = NULL;
-    } else if (len > MAX_FILE) {
-        tex_error("%s: too large for a palette (over %d bytes)", path, MAX_FILE);
-        p = NULL;
-    } else
-        p = tex_palette_parse(text, len, path);
+    p = tex_palette_parse(text, len, path);
     free(text);
-    fclose(fp);
     return p;
 }
 

@@ -2,6 +2,7 @@
 #include "render/matdb.h"
 
 #include "base/error.h"
+#include "io/file.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -251,32 +252,10 @@ int tex_matdb_read(struct tex_matdb *db, const char *path)
 {
     db->count = 0;
     db->m = NULL;
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return tex_error("%s: %s", path, strerror(errno));
-    size_t cap = 1 << 16, len = 0;
-    char *text = malloc(cap);
-    size_t got;
-    while (text && (got = fread(text + len, 1, cap - len - 1, f)) > 0) {
-        len += got;
-        if (len + 1 == cap) {
-            char *t = cap < (1u << 26) ? realloc(text, cap * 2) : NULL;
-            if (!t) {
-                free(text);
-                text = NULL;
-                break;
-            }
-            text = t;
-            cap *= 2;
-        }
-    }
-    int err = ferror(f);
-    fclose(f);
-    if (!text || err) {
-        free(text);
-        return tex_error("%s: cannot read (or larger than 64 MB)", path);
-    }
-    text[len] = 0;
+    size_t len;
+    char *text = tex_read_text(path, 1u << 26, &len, "a materials file");
+    if (!text)
+        return -1;
     if (memchr(text, 0, len)) {
         free(text);
         return tex_usage_error("%s: binary data in a materials file", path);

@@ -1434,41 +1434,10 @@ struct tex_scene *tex_scene_parse(const char *text, size_t len, const char *name
 
 struct tex_scene *tex_scene_load(const char *path)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        tex_error("%s: %s", path, strerror(errno));
+    size_t n;
+    char *buf = tex_read_text(path, 1u << 28, &n, "a scene");
+    if (!buf)
         return NULL;
-    }
-    size_t cap = 1 << 16, n = 0;
-    char *buf = malloc(cap);
-    for (;;) {
-        if (!buf) {
-            fclose(f);
-            tex_error("out of memory");
-            return NULL;
-        }
-        n += fread(buf + n, 1, cap - n, f);
-        if (n < cap)
-            break;
-        if (cap >= (1u << 28)) {
-            free(buf);
-            fclose(f);
-            tex_error("%s: scene larger than 256 MiB", path);
-            return NULL;
-        }
-        char *nb = realloc(buf, cap * 2);
-        if (!nb)
-            free(buf);
-        buf = nb;
-        cap *= 2;
-    }
-    int err = ferror(f);
-    fclose(f);
-    if (err) {
-        free(buf);
-        tex_error("%s: read error", path);
-        return NULL;
-    }
     struct tex_scene *s = tex_scene_parse(buf, n, path);
     free(buf);
     return s;
