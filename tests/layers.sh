@@ -1,7 +1,9 @@
 # layers.sh - libtex's folders are layers, and includes point only down them.
 #
 # base <- io <- prim <- ops <- lang <- render <- cli: a file may include headers
-# of its own layer or of a layer before it, always as "layer/name.h".
+# of its own layer or of a layer before it.  A .c file names the layer
+# ("base/map.h", found through -Ilibtex); a header includes relative to itself
+# ("map.h", "../base/map.h"), so that the installed tree needs no -I.
 . "$(dirname "$0")/lib.sh"
 top=${TEXTURA_TOP:-$(cd "$(dirname "$0")/.." && pwd)}
 layers=(base io prim ops lang render cli)
@@ -17,8 +19,15 @@ check_tree() {
         rank=${rank_of[$l]:-}
         [ -n "$rank" ] || { echo "$f: folder $l is not a layer"; continue; }
         while IFS= read -r inc; do
-            local il=${inc%%/*}
-            if [ "$il" = "$inc" ] || [ -z "${rank_of[$il]:-}" ]; then
+            local il
+            case $f:$inc in
+            *.h:../*/*) il=${inc#../}; il=${il%%/*} ;;
+            *.h:*/*) il=- ;; # a header's "layer/x.h" would not resolve once installed
+            *.h:* | *.def:*) il=$l ;;
+            *:*/*) il=${inc%%/*} ;;
+            *) il=- ;;
+            esac
+            if [ -z "${rank_of[$il]:-}" ]; then
                 echo "$f: #include \"$inc\" names no layer"
             elif [ "${rank_of[$il]}" -gt "$rank" ]; then
                 echo "$f: #include \"$inc\" points up ($l includes $il)"
@@ -40,9 +49,11 @@ ls "$top"/libtex/*.[ch] 2>/dev/null | grep -qv '/textura.h$' \
 cp -R "$top/libtex" "$T/libtex"
 printf '#include "render/render.h"\n' >>"$T/libtex/base/map.c"
 printf '#include "noise.h"\n' >>"$T/libtex/ops/remap.c"
+printf '#include "../lang/script.h"\n' >>"$T/libtex/ops/filter.h"
 bad=$(check_tree "$T/libtex")
 grep -q 'base/map.c: #include "render/render.h" points up' <<<"$bad" \
     && grep -q 'ops/remap.c: #include "noise.h" names no layer' <<<"$bad" \
-    && [ "$(wc -l <<<"$bad")" = 2 ] \
-    && ok "the layer check finds a planted upward include and a bare one" \
+    && grep -q 'ops/filter.h: #include "../lang/script.h" points up' <<<"$bad" \
+    && [ "$(wc -l <<<"$bad")" = 3 ] \
+    && ok "the layer check finds planted upward includes and a bare one" \
     || notok "the layer check finds planted includes" "$bad"

@@ -29,9 +29,9 @@
 
 #include <stdint.h>
 
-#include "base/map.h"
-#include "base/param.h"
-#include "prim/prim.h"
+#include "../base/map.h"
+#include "../base/param.h"
+#include "../prim/prim.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -24,8 +24,8 @@
 #ifndef TEX_FILE_H
 #define TEX_FILE_H
 
-#include "base/map.h"
-#include "io/stream.h"
+#include "../base/map.h"
+#include "stream.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -18,7 +18,7 @@
 
 #include <stddef.h>
 
-#include "base/map.h"
+#include "../base/map.h"
 
 #ifdef __cplusplus
 extern "C" {

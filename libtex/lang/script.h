@@ -38,7 +38,7 @@
 
 #include <stddef.h>
 
-#include "base/map.h"
+#include "../base/map.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -31,8 +31,8 @@
 #ifndef TEX_COMPOSE_H
 #define TEX_COMPOSE_H
 
-#include "base/map.h"
-#include "ops/transform.h"
+#include "../base/map.h"
+#include "transform.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -43,7 +43,7 @@
 
 #include <stdint.h>
 
-#include "base/map.h"
+#include "../base/map.h"
 
 #ifdef __cplusplus
 extern "C" {

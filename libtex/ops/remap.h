@@ -22,7 +22,7 @@
 #ifndef TEX_REMAP_H
 #define TEX_REMAP_H
 
-#include "base/map.h"
+#include "../base/map.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -28,7 +28,7 @@
 #ifndef TEX_TRANSFORM_H
 #define TEX_TRANSFORM_H
 
-#include "base/map.h"
+#include "../base/map.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -38,7 +38,7 @@
 #ifndef TEX_GEOMETRY_H
 #define TEX_GEOMETRY_H
 
-#include "prim/prim.h"
+#include "prim.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -50,7 +50,7 @@
 
 #include <stdint.h>
 
-#include "base/param.h"
+#include "../base/param.h"
 
 #ifdef __cplusplus
 extern "C" {

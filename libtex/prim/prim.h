@@ -33,8 +33,8 @@
 
 #include <stdint.h>
 
-#include "base/map.h"
-#include "base/param.h"
+#include "../base/map.h"
+#include "../base/param.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -86,7 +86,7 @@ struct tex_primitive {
 
 /* Every registered primitive: tex_prim_NAME, and the NULL-terminated list. */
 #define TEX_PRIMITIVE(n) extern const struct tex_primitive tex_prim_##n;
-#include "prim/primitives.def"
+#include "primitives.def"
 #undef TEX_PRIMITIVE
 extern const struct tex_primitive *const tex_primitives[];
 const struct tex_primitive *tex_primitive_find(const char *name);

@@ -84,7 +84,7 @@
 
 #include <stdint.h>
 
-#include "base/map.h"
+#include "../base/map.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -24,8 +24,8 @@
 #ifndef TEX_COLOUR_SPECTRAL_H
 #define TEX_COLOUR_SPECTRAL_H
 
-#include "render/colour.h"
-#include "render/spectrum.h"
+#include "colour.h"
+#include "spectrum.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -33,7 +33,7 @@
 #ifndef TEX_MATDB_H
 #define TEX_MATDB_H
 
-#include "render/spectrum.h"
+#include "spectrum.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -37,10 +37,10 @@
 #include <math.h>
 #include <stdint.h>
 
-#include "render/colour.h"
-#include "base/map.h"
-#include "prim/prim.h"
-#include "render/render_shade.h"
+#include "colour.h"
+#include "../base/map.h"
+#include "../prim/prim.h"
+#include "render_shade.h"
 
 #ifdef __cplusplus
 extern "C" {

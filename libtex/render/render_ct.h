@@ -38,9 +38,9 @@
 #ifndef TEX_RENDER_CT_H
 #define TEX_RENDER_CT_H
 
-#include "render/matdb.h"
-#include "render/microfacet.h"
-#include "render/render_shade.h"
+#include "matdb.h"
+#include "microfacet.h"
+#include "render_shade.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -31,7 +31,7 @@
 
 #include <math.h>
 
-#include "render/colour.h"
+#include "colour.h"
 
 #ifdef __cplusplus
 extern "C" {
