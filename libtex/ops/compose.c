@@ -6,6 +6,7 @@
 #include "ops/compose.h"
 #include "base/error.h"
 #include "base/param.h"
+#include "ops/filter.h"
 
 static const char *const op_names[TEX_OP_COUNT] = {
     "add", "sub", "mul", "div", "min", "max", "mix", "abs", "invert", "threshold",
@@ -411,55 +412,7 @@ tex_map *tex_warp(const tex_map *m, const tex_map *by, const struct tex_warp_opt
 
 tex_map *tex_blur(const tex_map *m, double sigma)
 {
-    int rad, nc = m->nc;
-    float *k;
-    tex_map *tmp, *r;
-
     if (!(sigma >= 0 && sigma <= TEX_BLUR_MAX))
         return tex_usage_error("blur radius must be 0..%d (got %g)", TEX_BLUR_MAX, sigma), NULL;
-    if (sigma == 0)
-        return tex_map_clone(m);
-    rad = (int)ceil(3 * sigma);
-    if (!(k = malloc((2 * rad + 1) * sizeof *k)))
-        return tex_error("out of memory"), NULL;
-    double sum = 0;
-    for (int i = -rad; i <= rad; i++)
-        sum += k[i + rad] = (float)exp(-0.5 * i * i / (sigma * sigma));
-    for (int i = 0; i <= 2 * rad; i++)
-        k[i] = (float)(k[i] / sum);
-    tmp = tex_map_new(m->w, m->h, nc);
-    r = tmp ? tex_map_clone(m) : NULL;
-    if (!r) {
-        free(k);
-        tex_map_free(tmp);
-        return NULL;
-    }
-    r->subregions = 0;
-#pragma omp parallel for schedule(static)
-    for (int y = 0; y < m->h; y++)
-        for (int x = 0; x < m->w; x++) {
-            float acc[4] = {0, 0, 0, 0};
-            for (int i = -rad; i <= rad; i++) {
-                int xx = x + i < 0 ? 0 : x + i >= m->w ? m->w - 1 : x + i;
-                const float *p = tex_map_px(m, xx, y);
-                for (int c = 0; c < nc; c++)
-                    acc[c] += k[i + rad] * p[c];
-            }
-            memcpy(tex_map_px(tmp, x, y), acc, nc * sizeof *acc);
-        }
-#pragma omp parallel for schedule(static)
-    for (int y = 0; y < m->h; y++)
-        for (int x = 0; x < m->w; x++) {
-            float acc[4] = {0, 0, 0, 0};
-            for (int i = -rad; i <= rad; i++) {
-                int yy = y + i < 0 ? 0 : y + i >= m->h ? m->h - 1 : y + i;
-                const float *p = tex_map_px(tmp, x, yy);
-                for (int c = 0; c < nc; c++)
-                    acc[c] += k[i + rad] * p[c];
-            }
-            memcpy(tex_map_px(r, x, y), acc, nc * sizeof *acc);
-        }
-    free(k);
-    tex_map_free(tmp);
-    return r;
+    return sigma == 0 ? tex_map_clone(m) : tex_filter_gaussian(m, sigma, TEX_EDGE_CLAMP);
 }

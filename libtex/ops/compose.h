@@ -111,8 +111,9 @@ struct tex_warp_opts {
 tex_map *tex_warp(const tex_map *m, const tex_map *by, const struct tex_warp_opts *o, int w,
                   int h);
 
-/* Gaussian blur with standard deviation sigma pixels (0..TEX_BLUR_MAX),
- * edges clamped. */
+/* The composition language's blur: tex_filter_gaussian (filter.h) with
+ * standard deviation sigma pixels (0..TEX_BLUR_MAX), edges clamped, any
+ * map size; 0 copies the map. */
 #define TEX_BLUR_MAX 256
 tex_map *tex_blur(const tex_map *m, double sigma);
 

@@ -93,11 +93,6 @@ tex_map *tex_filter_separable(const tex_map *m, const float *k, int r, enum tex_
     int nc = m->nc, n = m->w * m->nc, strips = (n + VB - 1) / VB, yblocks = (m->h + VROWS - 1) / VROWS;
     int fail = 0;
 
-    if (2L * r + 1 > m->w || 2L * r + 1 > m->h) {
-        tex_usage_error("the kernel (%ld pixels wide) is larger than the %dx%d map", 2L * r + 1,
-                        m->w, m->h);
-        return NULL;
-    }
     if (!(tmp = tex_map_new(m->w, m->h, nc)))
         return NULL;
     if (!(out = like(m, nc))) {
@@ -143,45 +138,51 @@ tex_map *tex_filter_separable(const tex_map *m, const float *k, int r, enum tex_
     return out;
 }
 
-tex_map *tex_filter_blur(const tex_map *m, double sigma, enum tex_edge e)
+/* t_filter's kernels must fit the map: wider ones would only repeat its edges. */
+static int kernel_fits(const tex_map *m, int r)
 {
-    int r;
-    double sum = 0;
-    float *k;
-    tex_map *out;
+    if (2L * r + 1 > m->w || 2L * r + 1 > m->h)
+        return tex_usage_error("the kernel (%ld pixels wide) is larger than the %dx%d map",
+                               2L * r + 1, m->w, m->h);
+    return 0;
+}
 
-    if (!(sigma > 0) || !isfinite(sigma)) {
-        tex_usage_error("the blur's sigma must be > 0 (got %g)", sigma);
-        return NULL;
-    }
-    r = tex_blur_radius(sigma);
-    if (2L * r + 1 > m->w || 2L * r + 1 > m->h) {
-        tex_usage_error("sigma %g needs a kernel %ld pixels wide, larger than the %dx%d map", sigma,
-                        2L * r + 1, m->w, m->h);
-        return NULL;
-    }
-    if (!(k = malloc(((size_t)r + 1) * sizeof *k))) {
+tex_map *tex_filter_gaussian(const tex_map *m, double sigma, enum tex_edge e)
+{
+    int r = tex_blur_radius(sigma);
+    double sum = 0, *g = malloc(((size_t)r + 1) * sizeof *g);
+    float *k = malloc(((size_t)r + 1) * sizeof *k);
+    tex_map *out = NULL;
+
+    if (!g || !k) {
         tex_error("out of memory");
-        return NULL;
-    }
-    {
-        double *g = malloc(((size_t)r + 1) * sizeof *g);
-        if (!g) {
-            free(k);
-            tex_error("out of memory");
-            return NULL;
-        }
+    } else {
         for (int j = 0; j <= r; j++) {
             g[j] = exp(-(double)j * j / (2 * sigma * sigma));
             sum += j ? 2 * g[j] : g[j];
         }
         for (int j = 0; j <= r; j++)
             k[j] = (float)(g[j] / sum);
-        free(g);
+        out = tex_filter_separable(m, k, r, e);
     }
-    out = tex_filter_separable(m, k, r, e);
+    free(g);
     free(k);
     return out;
+}
+
+tex_map *tex_filter_blur(const tex_map *m, double sigma, enum tex_edge e)
+{
+    if (!(sigma > 0) || !isfinite(sigma)) {
+        tex_usage_error("the blur's sigma must be > 0 (got %g)", sigma);
+        return NULL;
+    }
+    long width = 2L * tex_blur_radius(sigma) + 1;
+    if (width > m->w || width > m->h) {
+        tex_usage_error("sigma %g needs a kernel %ld pixels wide, larger than the %dx%d map", sigma,
+                        width, m->w, m->h);
+        return NULL;
+    }
+    return tex_filter_gaussian(m, sigma, e);
 }
 
 tex_map *tex_filter_box(const tex_map *m, int radius, enum tex_edge e)
@@ -193,6 +194,8 @@ tex_map *tex_filter_box(const tex_map *m, int radius, enum tex_edge e)
         tex_usage_error("the box radius must be >= 1 (got %d)", radius);
         return NULL;
     }
+    if (kernel_fits(m, radius) < 0)
+        return NULL;
     if (!(k = malloc(((size_t)radius + 1) * sizeof *k))) {
         tex_error("out of memory");
         return NULL;
@@ -207,7 +210,7 @@ tex_map *tex_filter_box(const tex_map *m, int radius, enum tex_edge e)
 tex_map *tex_filter_smooth(const tex_map *m, enum tex_edge e)
 {
     static const float k[2] = {0.5f, 0.25f};
-    return tex_filter_separable(m, k, 1, e);
+    return kernel_fits(m, 1) < 0 ? NULL : tex_filter_separable(m, k, 1, e);
 }
 
 tex_map *tex_filter_sharpen(const tex_map *m, double sigma, double amount, enum tex_edge e)

@@ -53,6 +53,9 @@ extern "C" {
 int tex_blur_radius(double sigma);
 
 tex_map *tex_filter_blur(const tex_map *m, double sigma, enum tex_edge e);
+/* The one Gaussian blur, without tex_filter_blur's checks (sigma > 0, the
+ * kernel within the map): the composition language's blur calls it too. */
+tex_map *tex_filter_gaussian(const tex_map *m, double sigma, enum tex_edge e);
 tex_map *tex_filter_box(const tex_map *m, int radius, enum tex_edge e);
 tex_map *tex_filter_smooth(const tex_map *m, enum tex_edge e);
 tex_map *tex_filter_sharpen(const tex_map *m, double sigma, double amount, enum tex_edge e);
@@ -66,7 +69,7 @@ tex_map *tex_filter_gradient(const tex_map *m, enum tex_edge e);
 
 /* A separable convolution with the symmetric kernel k[0..r] (k[j] weighs
  * offsets +j and -j) along x and then y; the building block of blur, box
- * and smooth.  The map must be at least 2r+1 pixels in each direction. */
+ * and smooth.  Any r: the edge rule extends the map as far as it needs. */
 tex_map *tex_filter_separable(const tex_map *m, const float *k, int r, enum tex_edge e);
 
 #ifdef __cplusplus
