@@ -2,7 +2,14 @@
 
 /* Every SIMD level must do the same float operations in the same order:
  * no fused multiply-adds anywhere, whatever -march the library is built with. */
+/* No contraction into FMA: maps are bit-identical across SIMD levels and
+ * compilers.  The Makefile passes -ffp-contract=off; this keeps it for any
+ * other build (gcc ignores the STDC pragma, clang the GCC one). */
+#ifdef __clang__
+#pragma STDC FP_CONTRACT OFF
+#else
 #pragma GCC optimize("fp-contract=off")
+#endif
 
 #include <math.h>
 #include <stdlib.h>
@@ -747,49 +754,17 @@ AVX2 static inline void row_avx2(const tex_noise_grid *g, const float *P, const 
  * Columns go in chunks, so that the coefficients stay on the stack and in L1
  * (a chunk of CHUNK columns touches at most 2 CHUNK slots).  One copy per
  * level, so that the vector parts inline. */
-#define GRID_ROW(NAME, ATTR, COEFFS, PIXELS)                                                       \
-    ATTR static void NAME(const tex_noise_grid *g, int y, int op, float a, float b, float *out)    \
-    {                                                                                              \
-        enum { CHUNK = 1024, NS = 2 * CHUNK + 24 };                                                \
-        float P[NS], Q[NS], L[6][NS];                                                              \
-        double Y = g->oy + g->fy * (y + 0.5), cy = floor(Y), fr = Y - cy;                          \
-        int64_t j = tex_noise_cell(cy);                                                           \
-        float wy[2] = {(float)fade(g->t->fade, fr), (float)fade(g->t->fade, 1.0 - fr)};           \
-        float dy[2] = {(float)fr, (float)(fr - 1.0)};                                              \
-        int two = wy[1] != 0;                                                                      \
-        struct cache_entry *e = cache_take(g);                                                     \
-        const float *r0 = NULL, *r1 = NULL;                                                        \
-                                                                                                   \
-        if (e)                                                                                     \
-            cache_rows(g, e, j, two, &r0, &r1);                                                    \
-        for (int x0 = 0; x0 < g->w; x0 += CHUNK) {                                                 \
-            int x1 = x0 + CHUNK < g->w ? x0 + CHUNK : g->w;                                        \
-            int s0 = g->slot[x0], s1 = g->slot[x1 - 1] + 2;                                        \
-            const float *L0[3], *L1[3];                                                            \
-            if (e) {                                                                               \
-                for (int k = 0; k < 3; k++) {                                                      \
-                    L0[k] = r0 + k * (size_t)g->stride + s0;                                       \
-                    L1[k] = two ? r1 + k * (size_t)g->stride + s0 : NULL;                          \
-                }                                                                                  \
-            } else {                                                                               \
-                lattice_row(g, j, s0, s1, L[0], L[1], L[2]);                                       \
-                if (two)                                                                           \
-                    lattice_row(g, j + 1, s0, s1, L[3], L[4], L[5]);                               \
-                for (int k = 0; k < 3; k++) {                                                      \
-                    L0[k] = L[k];                                                                  \
-                    L1[k] = L[3 + k];                                                              \
-                }                                                                                  \
-            }                                                                                      \
-            COEFFS(s1 - s0, wy, dy, L0, two ? L1 : NULL, P, Q);                                    \
-            PIXELS(g, P, Q, s0, out, x0, x1, op, a, b);                                            \
-        }                                                                                          \
-        if (e)                                                                                     \
-            __atomic_store_n(&e->busy, 0, __ATOMIC_RELEASE);                                       \
-    }
-
-GRID_ROW(grid_row_scalar, , row_coeffs, row_scalar)
+#define GRID_ROW grid_row_scalar
+#define GRID_ATTR
+#define GRID_COEFFS row_coeffs
+#define GRID_PIXELS row_scalar
+#include "prim/noise_row_template.c"
 #ifdef TEX_X86
-GRID_ROW(grid_row_avx2, AVX2, row_coeffs_avx2, row_avx2)
+#define GRID_ROW grid_row_avx2
+#define GRID_ATTR AVX2
+#define GRID_COEFFS row_coeffs_avx2
+#define GRID_PIXELS row_avx2
+#include "prim/noise_row_template.c"
 #endif
 
 void tex_noise_grid_row_op(const tex_noise_grid *g, int y, int op, float a, float b, float *out)
