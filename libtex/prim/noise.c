@@ -1,9 +1,8 @@
 /* noise.c - gradient noise: point evaluation, vectorised grid rows, the noise primitive */
 
 /* Every SIMD level must do the same float operations in the same order:
- * no fused multiply-adds anywhere, whatever -march the library is built with. */
-/* No contraction into FMA: maps are bit-identical across SIMD levels and
- * compilers.  The Makefile passes -ffp-contract=off; this keeps it for any
+ * no fused multiply-adds anywhere, whatever -march the library is built with
+ * and whichever compiler.  The Makefile passes -ffp-contract=off; this keeps it for any
  * other build (gcc ignores the STDC pragma, clang the GCC one). */
 #ifdef __clang__
 #pragma STDC FP_CONTRACT OFF
