@@ -48,7 +48,7 @@ static void progress(long done, long total, void *arg)
 /* Integer formats get the sRGB transfer function; float formats stay linear. */
 static int wants_srgb(const struct tex_common *c, const struct opts *o)
 {
-    if (o->linear || c->depth_choice == 3)
+    if (o->linear || tex_cli_depth(c) == 32)
         return 0;
     enum tex_format f = c->output && strcmp(c->output, "-")
                             ? tex_format_from_name(c->output)
@@ -71,13 +71,6 @@ int main(int argc, char **argv)
 {
     struct tex_common c;
     struct opts o;
-    /* t_apply SCENE -o OUT: the shared parser stops at the first operand, so
-     * move a leading scene name behind the options */
-    if (argc > 2 && argv[1][0] != '-') {
-        char *scene = argv[1];
-        memmove(argv + 1, argv + 2, (argc - 2) * sizeof *argv);
-        argv[argc - 1] = scene;
-    }
     int i = tex_cli_parse(&tool, argc, argv, &c, &o);
     if (tex_map_write_check(c.output) < 0)
         tex_die(); /* now, not after the render */

@@ -9,6 +9,7 @@
 struct opts {
     double sigma, strength, amount, angle;
     int radius, edge, direction;
+    uint64_t seed; /* -S, for noise */
 };
 
 static const struct tex_param rows[] = {
@@ -36,72 +37,97 @@ static const struct tex_tool tool = {
     "noise, normal or gradient",
     TEX_OPT_OUTPUT | TEX_OPT_SEED, rows, 1, 2};
 
-static const char *const ops[] = {"blur",   "box",    "smooth", "sharpen", "sobel",    "edges",
-                                  "emboss", "median", "noise",  "normal",  "gradient", NULL};
+typedef tex_map *filter_fn(const tex_map *m, const struct opts *o);
+
+static tex_map *blur(const tex_map *m, const struct opts *o)
+{
+    return tex_filter_blur(m, o->sigma, (enum tex_edge)o->edge);
+}
+static tex_map *box(const tex_map *m, const struct opts *o)
+{
+    return tex_filter_box(m, o->radius, (enum tex_edge)o->edge);
+}
+static tex_map *smooth(const tex_map *m, const struct opts *o)
+{
+    return tex_filter_smooth(m, (enum tex_edge)o->edge);
+}
+static tex_map *sharpen(const tex_map *m, const struct opts *o)
+{
+    return tex_filter_sharpen(m, o->sigma, o->strength, (enum tex_edge)o->edge);
+}
+static tex_map *sobel(const tex_map *m, const struct opts *o)
+{
+    return tex_filter_sobel(m, o->direction, o->strength, (enum tex_edge)o->edge);
+}
+static tex_map *edges(const tex_map *m, const struct opts *o)
+{
+    return tex_filter_edges(m, o->strength, (enum tex_edge)o->edge);
+}
+static tex_map *emboss(const tex_map *m, const struct opts *o)
+{
+    return tex_filter_emboss(m, o->angle, o->strength, (enum tex_edge)o->edge);
+}
+static tex_map *median(const tex_map *m, const struct opts *o)
+{
+    return tex_filter_median(m, o->radius, (enum tex_edge)o->edge);
+}
+static tex_map *noise(const tex_map *m, const struct opts *o)
+{
+    return tex_filter_noise(m, o->amount, o->seed);
+}
+static tex_map *normal(const tex_map *m, const struct opts *o)
+{
+    return tex_filter_normal(m, o->strength, (enum tex_edge)o->edge);
+}
+static tex_map *gradient(const tex_map *m, const struct opts *o)
+{
+    return tex_filter_gradient(m, (enum tex_edge)o->edge);
+}
+
+/* The operations: name, function, what it takes (see t_filter(1)). */
+static const struct {
+    const char *name;
+    filter_fn *fn;
+    const char *help;
+} ops[] = {
+    {"blur", blur, "Gaussian blur (--sigma)"},
+    {"box", box, "box filter (--radius)"},
+    {"smooth", smooth, "3x3 binomial smoothing"},
+    {"sharpen", sharpen, "unsharp mask (--sigma, --strength)"},
+    {"sobel", sobel, "gradient magnitude or direction (--strength, --direction)"},
+    {"edges", edges, "edge enhancement (--strength)"},
+    {"emboss", emboss, "relief lit from --angle (--strength)"},
+    {"median", median, "median of a window (--radius)"},
+    {"noise", noise, "added Gaussian noise (--amount, --seed)"},
+    {"normal", normal, "a height map's tangent-space normal map (--strength)"},
+    {"gradient", gradient, "a height map's gradient"},
+};
+enum { NOPS = sizeof ops / sizeof *ops };
 
 int main(int argc, char **argv)
 {
     struct tex_common c;
     struct opts o;
-    const char *op = NULL;
-    char **av = argv;
-    int i, k;
-    tex_map *m, *out = NULL;
-    enum tex_edge e;
+    int i = tex_cli_parse(&tool, argc, argv, &c, &o), k = 0;
+    const char *op = argv[i++];
+    tex_map *m, *out;
 
-    /* "t_filter blur --sigma 2 MAP": take the operation first, then the options. */
-    if (argc > 1 && argv[1][0] != '-') {
-        if (!(av = malloc((size_t)argc * sizeof *av)))
-            return 1;
-        op = argv[1];
-        av[0] = argv[0];
-        memcpy(av + 1, argv + 2, (size_t)(argc - 2) * sizeof *av);
-        argc--;
+    while (k < NOPS && strcmp(ops[k].name, op))
+        k++;
+    if (k == NOPS) {
+        char names[256] = "";
+        for (int j = 0; j < NOPS; j++)
+            snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s",
+                     j == 0 ? "" : j == NOPS - 1 ? " or " : ", ", ops[j].name);
+        tex_usage_die("unknown operation '%s' (%s)", op, names);
     }
-    {
-        struct tex_tool t = tool;
-        if (op)
-            t.min_operands = 0, t.max_operands = 1;
-        i = tex_cli_parse(&t, argc, av, &c, &o);
-    }
-    if (!op) {
-        op = av[i++];
-    } else { /* put the operation back into the history line */
-        size_t n = strlen(c.cmdline) + strlen(op) + 2, p = strlen(tex_progname);
-        char *s = malloc(n);
-        if (!s)
-            return 1;
-        snprintf(s, n, "%s %s%s", tex_progname, op, c.cmdline + p);
-        free(c.cmdline);
-        c.cmdline = s;
-    }
-    for (k = 0; ops[k] && strcmp(ops[k], op); k++)
-        ;
-    if (!ops[k])
-        tex_usage_die("unknown operation '%s' (blur, box, smooth, sharpen, sobel, edges, emboss, "
-                      "median, noise, normal or gradient)", op);
-    m = tex_cli_read(i < argc ? av[i] : "-");
-    e = (enum tex_edge)o.edge;
-    switch (k) {
-    case 0: out = tex_filter_blur(m, o.sigma, e); break;
-    case 1: out = tex_filter_box(m, o.radius, e); break;
-    case 2: out = tex_filter_smooth(m, e); break;
-    case 3: out = tex_filter_sharpen(m, o.sigma, o.strength, e); break;
-    case 4: out = tex_filter_sobel(m, o.direction, o.strength, e); break;
-    case 5: out = tex_filter_edges(m, o.strength, e); break;
-    case 6: out = tex_filter_emboss(m, o.angle, o.strength, e); break;
-    case 7: out = tex_filter_median(m, o.radius, e); break;
-    case 8: out = tex_filter_noise(m, o.amount, (uint64_t)c.seed); break;
-    case 9: out = tex_filter_normal(m, o.strength, e); break;
-    case 10: out = tex_filter_gradient(m, e); break;
-    }
-    if (!out)
+    o.seed = (uint64_t)c.seed;
+    m = tex_cli_read(i < argc ? argv[i] : "-");
+    if (!(out = ops[k].fn(m, &o)))
         tex_die();
     tex_cli_write(out, &c);
     tex_map_free(out);
     tex_map_free(m);
     free(c.cmdline);
-    if (av != argv)
-        free(av);
     return 0;
 }

@@ -125,55 +125,32 @@ int main(int argc, char **argv)
 {
     struct tex_common c;
     struct opts o;
-    const char *first = NULL, *name, *input = "-";
-    char **av = argv;
-    int i;
+    /* "t_palette marble -o x.png": a leading operand is the palette's name */
+    const char *first = argc > 1 && argv[1][0] != '-' ? argv[1] : NULL, *name, *input = "-";
     double lo, hi;
     tex_palette *p;
     tex_map *m, *out;
+    int i = tex_cli_parse(&tool, argc, argv, &c, &o);
 
-    /* "t_palette marble -o x.png": the palette name may come before the options. */
-    if (argc > 1 && argv[1][0] != '-') {
-        if (!(av = malloc((size_t)argc * sizeof *av)))
-            return 1;
-        first = argv[1];
-        av[0] = argv[0];
-        memcpy(av + 1, argv + 2, (size_t)(argc - 2) * sizeof *av);
-        argc--;
-    }
-    i = tex_cli_parse(&tool, argc, av, &c, &o);
-    if (first) { /* keep the name in the history line */
-        size_t n = strlen(c.cmdline) + strlen(first) + 2, k = strlen(tex_progname);
-        char *s = malloc(n);
-        if (!s)
-            return 1;
-        snprintf(s, n, "%s %s%s", tex_progname, first, c.cmdline + k);
-        free(c.cmdline);
-        c.cmdline = s;
-        if (c.palette)
-            tex_usage_die("a palette both as --palette and as '%s'", first);
-        i--;
-        av[i] = (char *)first;
-    }
+    if (first && c.palette)
+        tex_usage_die("a palette both as --palette and as '%s'", first);
     name = c.palette;
     if (o.from || o.to) {
         if (i < argc)
-            tex_usage_die("--from/--to make a palette and take no operand (got '%s')", av[i]);
+            tex_usage_die("--from/--to make a palette and take no operand (got '%s')", argv[i]);
         make_palette(&o, &c);
         free(c.cmdline);
-        if (av != argv)
-            free(av);
         return 0;
     }
     if (!name) {
         if (i >= argc)
             tex_usage_die("missing palette: t_palette NAME|FILE [MAP] (e.g. marble)");
-        name = av[i++];
+        name = argv[i++];
     }
     if (i < argc)
-        input = av[i++];
+        input = argv[i++];
     if (i < argc)
-        tex_usage_die("unexpected operand '%s'", av[i]);
+        tex_usage_die("unexpected operand '%s'", argv[i]);
     parse_range(o.range, &lo, &hi);
     die_if(!(p = tex_palette_load(name)));
     m = tex_cli_read(input);
@@ -186,7 +163,5 @@ int main(int argc, char **argv)
     tex_map_free(m);
     tex_palette_free(p);
     free(c.cmdline);
-    if (av != argv)
-        free(av);
     return 0;
 }

@@ -239,6 +239,11 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
     lo[n + 2] = (struct option){"help-mdoc", no_argument, NULL, 1};
     lo[n + 3] = (struct option){0};
 
+    /* The history records the command line as typed, before getopt permutes it. */
+    if (!(c->cmdline = join_cmdline(argc, argv))) {
+        tex_error("out of memory");
+        tex_die();
+    }
     /* Options may follow operands (GNU getopt permutes argv), but a negative
      * number such as "t_op add a.exr -0.5" is an operand: hide it from getopt
      * behind a marker byte, restored once parsing is done. */
@@ -303,11 +308,13 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
     if (c->threads > 0)
         omp_set_num_threads(c->threads);
 #endif
-    if (!(c->cmdline = join_cmdline(argc, argv))) {
-        tex_error("out of memory");
-        tex_die();
-    }
     return optind;
+}
+
+int tex_cli_depth(const struct tex_common *c)
+{
+    static const int bits[] = {0, 8, 16, 32}; /* the rows of --depth: auto|8|16|32 */
+    return bits[c->depth_choice];
 }
 
 tex_map *tex_cli_read(const char *path)
@@ -320,9 +327,7 @@ tex_map *tex_cli_read(const char *path)
 
 void tex_cli_write(tex_map *m, const struct tex_common *c)
 {
-    static const int depths[] = {0, 8, 16, 32};
-    struct tex_write_opts o = {depths[c->depth_choice], (enum tex_compression)c->compression,
-                               c->format};
+    struct tex_write_opts o = {tex_cli_depth(c), (enum tex_compression)c->compression, c->format};
 
     if (c->cmdline && tex_map_add_history(m, c->cmdline) < 0)
         tex_die();

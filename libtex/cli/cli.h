@@ -73,8 +73,9 @@ struct tex_tool {
 
 extern const char *tex_progname;
 
-/* Parse argv; returns the index of the first operand.  Exits on --help,
- * --version and errors. */
+/* Parse argv; returns the index of the first operand (getopt has moved the
+ * options before the operands, which keep their order).  c->cmdline records
+ * the command line as typed.  Exits on --help, --version and errors. */
 int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_common *c,
                   void *opts);
 /* Print "prog: error: <tex_errmsg()>" and exit with its kind's status. */
@@ -83,6 +84,8 @@ void tex_die(void) __attribute__((noreturn));
 void tex_usage_die(const char *fmt, ...) __attribute__((noreturn, format(printf, 1, 2)));
 /* Read a map or die. */
 tex_map *tex_cli_read(const char *path);
+/* The bit depth that --depth chose: 0 (auto), 8, 16 or 32. */
+int tex_cli_depth(const struct tex_common *c);
 /* Append the command line to the history and write the map to -o or
  * standard output, or die. */
 void tex_cli_write(tex_map *m, const struct tex_common *c);
