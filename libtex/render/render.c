@@ -80,32 +80,25 @@ static double curvature(const struct tex_hit *h, tex_v3 P, tex_v3 Nf, tex_v3 d)
     return fabs(k[0]) > fabs(k[1]) ? k[0] : k[1];
 }
 
-/* weight: the largest share of the pixel this ray can carry (1 for eye rays);
- * reflected and refracted rays below the scene's bailout are not traced. */
-static void trace(const struct ctx *c, const tex_ray *r, int depth, double weight, tex_colour *out)
+/* A hit once its material is resolved: the point, the shading normal N
+ * facing the ray (bumped), the geometric normal Ngv on the ray's side, the
+ * view direction, the points just outside and inside, the beam's width. */
+struct hit_frame {
+    const struct tex_hit *h;
+    tex_v3 P, N, Ngv, V, Pout, Pin;
+    double width;
+    int entering;
+};
+
+static void trace(const struct ctx *c, const tex_ray *r, int depth, double weight, tex_colour *out);
+
+/* Direct lighting: every light sample that reaches P unshadowed, through the
+ * surface's shading model (pbrt's SampleLd). */
+static void direct_light(const struct ctx *c, const struct tex_material *m,
+                         const struct hit_frame *f, tex_colour *out)
 {
     const struct tex_scene *s = c->s;
     int n = c->n;
-    struct tex_hit h;
-    if (!tex_scene_trace(s, &r->o, &r->d, 0, INFINITY, &h)) {
-        tex_colour_copy(out, n, c->background);
-        return;
-    }
-    tex_v3 P = tex_v3_madd(r->o, r->d, h.t);
-    tex_v3 Ng = hit_normal(&h, P);
-    int entering = tex_v3_dot(r->d, Ng) < 0;
-    tex_v3 N = entering ? Ng : tex_v3_scale(Ng, -1);
-    const struct tex_surface *sf = surface_of(s, h.leaf);
-    double width = fabs(r->width + h.t * r->spread); /* a focused beam crosses 0 */
-    struct tex_material m;
-    tex_resolve_material(s, sf, h.leaf, &P, &r->d, &N, s->settings.filter ? width : 0, &m);
-    tex_v3 V = tex_v3_scale(r->d, -1);
-    double e = eps_at(P);
-    /* offset along the geometric normal so bumped normals cannot start rays inside */
-    tex_v3 Ngv = entering ? Ng : tex_v3_scale(Ng, -1);
-    tex_v3 Pout = tex_v3_madd(P, Ngv, e), Pin = tex_v3_madd(P, Ngv, -e);
-
-    tex_colour_mul(out, n, c->ambient, &m.ka);
     for (int li = 0; li < s->nlights; li++) {
         const struct tex_light *l = &s->lights[li];
         int ns = tex_light_samples(l);
@@ -117,80 +110,118 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, double weigh
             }
             tex_v3 L;
             double dist, fatt;
-            if (l->kind == TEX_LIGHT_POINT) { /* tex_light_sample's arithmetic, inline */
-                tex_v3 dv = tex_v3_sub(l->pos, P);
-                dist = tex_v3_len(dv);
-                if (!(dist > 0))
-                    continue;
-                L = tex_v3_scale(dv, 1 / dist);
-                fatt = tex_light_falloff(l, dist);
-                if (!(fatt > 0))
-                    continue;
-            } else if (!tex_light_sample(l, k, jx, jy, P, &L, &dist, &fatt)) {
+            if (l->kind == TEX_LIGHT_POINT
+                    ? !tex_light_towards(l, &l->pos, &f->P, &L, &dist, &fatt) || !(fatt > 0)
+                    : !tex_light_sample(l, k, jx, jy, f->P, &L, &dist, &fatt))
                 continue;
-            }
-            if (tex_v3_dot(L, N) <= 0 || tex_v3_dot(L, Ngv) <= 0)
+            if (tex_v3_dot(L, f->N) <= 0 || tex_v3_dot(L, f->Ngv) <= 0)
                 continue;
-            double sh = tex_scene_transmit(s, &Pout, &L, 0, dist);
+            double sh = tex_scene_transmit(s, &f->Pout, &L, 0, dist);
             if (sh <= 0)
                 continue;
             tex_colour E;
             tex_colour_scale(&E, n, &l->e, (float)(fatt * sh));
-            if (m.model == &tex_shading_phong) /* inline: no call for the common model */
-                tex_phong_direct(&m, &N.x, &V.x, &L.x, &E, n, out);
+            if (m->model == &tex_shading_phong) /* inline: no call for the common model */
+                tex_phong_direct(m, &f->N.x, &f->V.x, &L.x, &E, n, out);
             else
-                m.model->direct(&m, &N.x, &V.x, &L.x, &E, n, out);
+                m->model->direct(m, &f->N.x, &f->V.x, &L.x, &E, n, out);
         }
     }
-    if (depth >= s->settings.depth || (m.kr <= 0 && m.kt <= 0 && m.model == &tex_shading_phong))
-        return;
+}
+
+/* The refracted ray from n1 into n2, weighted by kt: 0 at total internal
+ * reflection.  A refracting surface of curvature kc bends the beam by
+ * (eta cos_i - cos_t) kc w (paraxial lens power). */
+static int refraction(const struct ctx *c, const tex_ray *r, const struct hit_frame *f,
+                      const struct tex_media *beyond, double n1, double n2, double kc, int depth,
+                      double w, const tex_colour *kt, tex_colour *out)
+{
+    tex_ray rt = {f->Pin, r->d, f->width, r->spread, beyond};
+    tex_colour I;
+    if (!tex_refract(r->d, f->N, n1, n2, &rt.d))
+        return 0;
+    if (w >= c->s->settings.bailout) {
+        double eta = n1 / n2, ci = fabs(tex_v3_dot(r->d, f->Ngv)), ct = fabs(tex_v3_dot(rt.d, f->Ngv));
+        if (ct > 1e-3)
+            rt.spread = tex_mind(eta * ci / ct * r->spread + (eta * ci - ct) * kc * f->width, 1);
+        trace(c, &rt, depth + 1, w, &I);
+        tex_colour_mmadd(out, c->n, kt, &I, 1);
+    }
+    return 1;
+}
+
+/* Reflection and refraction (Whitted's kr Ir + kt It).  The media on both
+ * sides (nested solids) give Fresnel the solid's index relative to what lies
+ * beyond it; an opaque Phong mirror needs neither. */
+static void secondary(const struct ctx *c, const tex_ray *r, const struct hit_frame *f,
+                      struct tex_material *m, int depth, double weight, tex_colour *out)
+{
+    const struct tex_scene *s = c->s;
+    int n = c->n;
     tex_colour kr, kt, I;
-    double cosi = tex_v3_dot(N, V);
-    /* the media on both sides (nested solids); Fresnel sees the solid's index
-     * relative to what lies beyond it.  An opaque Phong mirror needs neither. */
+    double cosi = tex_v3_dot(f->N, f->V);
     struct tex_media beyond;
     double n1 = 1, n2 = 1;
-    if (m.kt > 0 || m.model != &tex_shading_phong) {
-        tex_media_cross(r->media, h.leaf->root ? h.leaf->root : h.leaf, entering, m.ior, &beyond,
-                        &n1, &n2);
-        m.ior = entering ? n2 / n1 : n1 / n2;
+    if (m->kt > 0 || m->model != &tex_shading_phong) {
+        tex_media_cross(r->media, f->h->leaf->root ? f->h->leaf->root : f->h->leaf, f->entering,
+                        m->ior, &beyond, &n1, &n2);
+        m->ior = f->entering ? n2 / n1 : n1 / n2;
     }
-    m.model->weights(&m, cosi, n, &kr, &kt);
-    tex_ray rr = {Pout, tex_reflect(r->d, N), width, r->spread, r->media};
-    if (tex_v3_dot(rr.d, Ngv) <= 0)
-        rr.d = tex_reflect(r->d, Ngv);
+    m->model->weights(m, cosi, n, &kr, &kt);
+    tex_ray rr = {f->Pout, tex_reflect(r->d, f->N), f->width, r->spread, r->media};
+    if (tex_v3_dot(rr.d, f->Ngv) <= 0)
+        rr.d = tex_reflect(r->d, f->Ngv);
     /* footprints after curved surfaces: a mirror of curvature k turns a beam
-     * of width w by 2 k w more (its focal length is 1/2k); a refracting
-     * surface bends it by (eta cos_i - cos_t) k w (paraxial lens power) */
+     * of width w by 2 k w more (its focal length is 1/2k) */
     double kr_max = tex_colour_max(&kr, n), kt_max = tex_colour_max(&kt, n);
     double kmax = tex_maxd(kr_max, kt_max);
-    double kc = s->settings.filter && width > 0 && kmax > 0 && weight * kmax >= s->settings.bailout
-                    ? curvature(&h, P, Ngv, r->d)
+    double kc = s->settings.filter && f->width > 0 && kmax > 0 && weight * kmax >= s->settings.bailout
+                    ? curvature(f->h, f->P, f->Ngv, r->d)
                     : 0;
-    rr.spread = tex_mind(r->spread + 2 * kc * width, 1);
-    if (kt_max > 0) {
-        tex_ray rt = {Pin, r->d, width, r->spread, &beyond};
-        if (tex_refract(r->d, N, n1, n2, &rt.d)) {
-            double w = weight * kt_max;
-            if (w >= s->settings.bailout) {
-                double eta = n1 / n2, ci = fabs(tex_v3_dot(r->d, Ngv)),
-                       ct = fabs(tex_v3_dot(rt.d, Ngv));
-                if (ct > 1e-3)
-                    rt.spread =
-                        tex_mind(eta * ci / ct * r->spread + (eta * ci - ct) * kc * width, 1);
-                trace(c, &rt, depth + 1, w, &I);
-                tex_colour_mmadd(out, n, &kt, &I, 1);
-            }
-        } else {
-            tex_colour_add(&kr, n, &kr, &kt); /* total internal reflection */
-            kr_max = tex_colour_max(&kr, n);
-        }
+    rr.spread = tex_mind(r->spread + 2 * kc * f->width, 1);
+    if (kt_max > 0 &&
+        !refraction(c, r, f, &beyond, n1, n2, kc, depth, weight * kt_max, &kt, out)) {
+        tex_colour_add(&kr, n, &kr, &kt); /* total internal reflection */
+        kr_max = tex_colour_max(&kr, n);
     }
     double wr = weight * kr_max;
     if (wr > 0 && wr >= s->settings.bailout) {
         trace(c, &rr, depth + 1, wr, &I);
         tex_colour_mmadd(out, n, &kr, &I, 1);
     }
+}
+
+/* Whitted's recursion: ambient, direct light, then reflection and
+ * refraction.  weight: the largest share of the pixel this ray can carry
+ * (1 for eye rays); rays below the scene's bailout are not traced. */
+static void trace(const struct ctx *c, const tex_ray *r, int depth, double weight, tex_colour *out)
+{
+    const struct tex_scene *s = c->s;
+    struct tex_hit h;
+    if (!tex_scene_trace(s, &r->o, &r->d, 0, INFINITY, &h)) {
+        tex_colour_copy(out, c->n, c->background);
+        return;
+    }
+    struct hit_frame f = {.h = &h};
+    f.P = tex_v3_madd(r->o, r->d, h.t);
+    tex_v3 Ng = hit_normal(&h, f.P);
+    f.entering = tex_v3_dot(r->d, Ng) < 0;
+    f.N = f.entering ? Ng : tex_v3_scale(Ng, -1);
+    f.width = fabs(r->width + h.t * r->spread); /* a focused beam crosses 0 */
+    struct tex_material m;
+    tex_resolve_material(s, surface_of(s, h.leaf), h.leaf, &f.P, &r->d, &f.N,
+                         s->settings.filter ? f.width : 0, &m);
+    f.V = tex_v3_scale(r->d, -1);
+    double e = eps_at(f.P);
+    /* offset along the geometric normal so bumped normals cannot start rays inside */
+    f.Ngv = f.entering ? Ng : tex_v3_scale(Ng, -1);
+    f.Pout = tex_v3_madd(f.P, f.Ngv, e);
+    f.Pin = tex_v3_madd(f.P, f.Ngv, -e);
+
+    tex_colour_mul(out, c->n, c->ambient, &m.ka);
+    direct_light(c, &m, &f, out);
+    if (depth < s->settings.depth && !(m.kr <= 0 && m.kt <= 0 && m.model == &tex_shading_phong))
+        secondary(c, r, &f, &m, depth, weight, out);
 }
 
 struct camera {

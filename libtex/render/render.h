@@ -389,6 +389,22 @@ static inline double tex_light_falloff(const struct tex_light *l, double dl)
     default: return 1;
     }
 }
+/* Direction L, distance and attenuation from P to a light's point pos; 0
+ * when P is at the light.  The one point-light evaluation: the shading loop
+ * calls it inline for point lights, tex_light_sample for spots and area
+ * samples. */
+static inline int tex_light_towards(const struct tex_light *l, const tex_v3 *pos, const tex_v3 *P,
+                                    tex_v3 *L, double *dist, double *fatt)
+{
+    tex_v3 d = tex_v3_sub(*pos, *P);
+    double dl = tex_v3_len(d);
+    if (!(dl > 0))
+        return 0;
+    *L = tex_v3_scale(d, 1 / dl);
+    *dist = dl;
+    *fatt = tex_light_falloff(l, dl);
+    return 1;
+}
 int tex_light_sample(const struct tex_light *l, int k, double jx, double jy, tex_v3 P, tex_v3 *L,
                      double *dist, double *fatt);
 

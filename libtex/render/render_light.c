@@ -31,13 +31,9 @@ int tex_light_sample(const struct tex_light *l, int k, double jx, double jy, tex
         double a = ((k % n) + jx) / n, b = ((k / n) + jy) / n;
         pos = tex_v3_add(pos, tex_v3_add(tex_v3_scale(l->edge1, a), tex_v3_scale(l->edge2, b)));
     }
-    tex_v3 d = tex_v3_sub(pos, P);
-    double dl = tex_v3_len(d);
-    if (!(dl > 0))
+    double f;
+    if (!tex_light_towards(l, &pos, &P, L, dist, &f))
         return 0;
-    *L = tex_v3_scale(d, 1 / dl);
-    *dist = dl;
-    double f = tex_light_falloff(l, dl);
     if (l->kind == TEX_LIGHT_SPOT) {
         double c = -tex_v3_dot(*L, l->dir);
         if (c < l->cos_angle)
