@@ -18,6 +18,10 @@ PREFIX  ?= /usr/local
 LIBDIR  ?= $(PREFIX)/lib
 DATADIR ?= $(PREFIX)/share/textura
 BUILD   ?= build
+# A build tree remembers the compiler and flags it was made with (written by
+# `all`), so that a later `make BUILD=build-clang install` does not relink it
+# with another compiler.  Variables given on the command line still win.
+-include $(BUILD)/config.mk
 
 CC      ?= cc
 CXX     ?= c++
@@ -60,6 +64,8 @@ DEBS = build-essential pkg-config liblz4-dev libopenexr-dev libopenimageio-dev o
 .PHONY: all deps demo test test-plain test-asan check bench install man fuzz clean
 
 all: $(STATIC) $(SHARED) $(BRIDGE) $(PCFILE) $(TOOLS)
+	@printf 'CC = %s\nCXX = %s\nSANITIZE = %s\nOPT = %s\n' '$(CC)' '$(CXX)' '$(SANITIZE)' '$(OPT)' \
+	    >$(BUILD)/config.mk
 
 $(BUILD)/obj/%.o: %.c
 	@mkdir -p $(@D)

@@ -30,7 +30,9 @@ C
 export PKG_CONFIG_PATH="$T/p/lib/pkgconfig"
 san=() # a sanitizer build installs an instrumented library: link the program alike
 nm "$T/p/lib/libtex.a" 2>/dev/null | grep -q __asan_ && san=(-fsanitize=address,undefined)
-if cc "${san[@]}" -o "$T/prog" "$T/prog.c" $(pkg-config --cflags textura) -I"$T/p/include" \
+# and with the compiler the library was built with (its OpenMP runtime)
+cc=$(sed -n 's/^CC = //p' "$TEXTURA_BUILD/config.mk" 2>/dev/null)
+if ${cc:-cc} "${san[@]}" -o "$T/prog" "$T/prog.c" $(pkg-config --cflags textura) -I"$T/p/include" \
     "$T/p/lib/libtex.a" $(pkg-config --static --libs-only-l textura | sed 's/-ltex//') -fopenmp 2>"$T/cc"; then
     [ "$("$T/prog")" = "16 1" ] && ok "a program links libtex through pkg-config and samples a primitive" \
         || notok "the linked program samples a primitive"
