@@ -1250,166 +1250,215 @@ act_filter(const double *lp, const long *lid, int n, const int D, double clo[8][
     }
 }
 
+/* What act_gather decided for a node. */
+enum { ACT_LISTED, ACT_SPLIT, ACT_DONE };
+
+/* F2 at m from its two nearest representatives: the reach R within which
+ * every point that may matter in a box of half-diagonal hd lies, F2 itself,
+ * and the squared distance to the second nearest. */
+static int act_reach(const struct tex_cellular *c, struct act_build *B, const double *m, double hd,
+                     double *R, double *f2, double *d2)
+{
+    int k2 = c->nrep < 2 ? 1 : 2, ind[2];
+    double dist[2], s1 = INFINITY, s2 = INFINITY, zero[3] = {0, 0, 0};
+    if (flann_find_nearest_neighbors_index_double(c->index, (double *)m, 1, ind, dist, k2, &B->fp) < 0)
+        return tex_error("FLANN could not search the kd-tree");
+    for (int t = 0; t < k2; t++) {
+        long id = c->repid[ind[t]];
+        double a = acc_point(c, m, c->rep + (size_t)ind[t] * c->dim,
+                             c->ia ? c->ia + id * c->dim : NULL, zero);
+        s2 = t == 0 ? INFINITY : a > s1 ? a : s1;
+        s1 = t == 0 ? a : a < s1 ? a : s1;
+    }
+    *f2 = acc_finish(c, s2) / c->kfac;
+    *R = ((acc_finish(c, s2) + c->lip * hd) / c->kfac) * (1 + 1e-9) + 1e-12 + hd * (1 + 1e-9);
+    *d2 = dist[k2 - 1];
+    return 0;
+}
+
+/* Keep, in `own`, the n points found around m that lie within the exact
+ * reach of the box lo + [0,side)^dim. */
+static int act_keep(const struct tex_cellular *c, const struct act_build *B, struct act_list *own,
+                    const double *m, const double *lo, double side, double hd, int n)
+{
+    int dim = c->dim, nl = 0;
+    double s1 = INFINITY, s2 = INFINITY, thr, zero[3] = {0, 0, 0};
+    for (int t = 0; t < n; t++) {
+        long id = c->repid[B->rind[t]];
+        double a = acc_point(c, m, c->rep + (size_t)B->rind[t] * dim,
+                             c->ia ? c->ia + id * dim : NULL, zero);
+        if (a < s1)
+            s2 = s1, s1 = a;
+        else if (a < s2)
+            s2 = a;
+    }
+    thr = ((acc_finish(c, s2) + c->lip * hd) / c->kfac) * (1 + 1e-9) + 1e-12;
+    if (act_reserve(own, n, dim) < 0)
+        return -1;
+    for (int t = 0; t < n; t++) {
+        const double *p = c->rep + (size_t)B->rind[t] * dim;
+        double e2 = 0;
+        for (int d = 0; d < dim; d++) {
+            double x = p[d] < lo[d] ? lo[d] - p[d] : p[d] > lo[d] + side ? p[d] - (lo[d] + side) : 0;
+            e2 += x * x;
+        }
+        if (e2 <= thr * thr) {
+            memcpy(own->p + (size_t)nl * dim, p, dim * sizeof *p);
+            own->id[nl++] = c->repid[B->rind[t]];
+        }
+    }
+    return nl;
+}
+
+/* A node without a list: F2 at its centre, then every point within reach
+ * from FLANN, kept in B->own[depth] (*n of them).  Returns ACT_LISTED,
+ * ACT_SPLIT (too many points: split without a list), ACT_DONE (the node
+ * stays a kd-tree query) or -1. */
+static int act_gather(struct tex_cellular *c, struct act_build *B, long node, const double *lo,
+                      double side, int depth, int *n)
+{
+    int dim = c->dim, maxnn, got;
+    double hd = 0.5 * side * sqrt((double)dim), m[3], R = 0, f2 = 0, d2 = 0, est;
+    for (int d = 0; d < dim; d++)
+        m[d] = lo[d] + 0.5 * side;
+    if (act_reach(c, B, m, hd, &R, &f2, &d2) < 0)
+        return -1;
+    if (c->tile && !(R < c->margin * (1 - 1e-9))) {
+        /* Images beyond the margin are not in the tree: smaller boxes
+         * help while F2 stays well inside it, else kdtree_query. */
+        c->achild[node] = -2;
+        return f2 < 0.5 * c->margin && depth < ACT_DEPTH ? ACT_SPLIT : ACT_DONE;
+    }
+    /* Points within R: about 2 (R / |m - second nearest|)^dim. */
+    est = R == INFINITY ? (double)c->nrep : 2 * pow(R / fmax(sqrt(d2), 1e-300), dim) + 16;
+    if (est > ACT_CMAX && est < c->nrep && depth < ACT_DEPTH) {
+        c->achild[node] = -2;
+        return ACT_SPLIT;
+    }
+    maxnn = est < ACT_RMAX ? (int)est + 16 : ACT_RMAX;
+    for (;;) {
+        float r2 = R == INFINITY ? INFINITY : nextafterf((float)(R * R), INFINITY);
+        if (maxnn > c->nrep)
+            maxnn = (int)c->nrep + 1;
+        got = flann_radius_search_double(c->index, m, B->rind, B->rdist, maxnn, r2, &B->fp);
+        if (got < 0)
+            return tex_error("FLANN could not search the kd-tree");
+        if (got < maxnn)
+            break; /* all of them */
+        if (maxnn < ACT_RMAX) {
+            maxnn = 4 * maxnn < ACT_RMAX ? 4 * maxnn : ACT_RMAX;
+            continue;
+        }
+        c->achild[node] = -2;
+        return depth < ACT_DEPTH ? ACT_SPLIT : ACT_DONE;
+    }
+    /* F2 at m is exact now; keep the points within reach of the box. */
+    if ((*n = act_keep(c, B, &B->own[depth], m, lo, side, hd, got)) < 0)
+        return -1;
+    return ACT_LISTED;
+}
+
+/* A leaf: its list goes into the flat arrays.  1 when the budget runs out. */
+static int act_fill_leaf(struct tex_cellular *c, struct act_build *B, long node, const double *lp,
+                         const long *lid, int n)
+{
+    int dim = c->dim;
+    if (B->nent + n > B->budget)
+        return 1;
+    if (act_grow(c, B, 0, n) < 0)
+        return -1;
+    c->achild[node] = -1;
+    c->astart[node] = B->nent;
+    c->alen[node] = n;
+    memcpy(c->aid + B->nent, lid, (size_t)n * sizeof *lid);
+    for (int t = 0; t < n; t++) {
+        c->ax[B->nent + t] = lp[t * dim];
+        c->ay[B->nent + t] = lp[t * dim + 1];
+    }
+    B->nent += n;
+    return 0;
+}
+
+static int act_node(struct tex_cellular *c, struct act_build *B, long node, const double *lo,
+                    double side, int depth, const double *lp, const long *lid, int n);
+
+/* Split a node into 2^dim children.  With a complete list, F2 at every
+ * child's centre is exact: each child's list keeps the entries within its
+ * reach.  Without one, each child gathers its own. */
+static int act_split(struct tex_cellular *c, struct act_build *B, long node, const double *lo,
+                     double side, int depth, const double *lp, const long *lid, int n)
+{
+    int dim = c->dim, nch = 1 << dim, ret = 0, cn[8] = {0};
+    int euclid = c->metric == TEX_METRIC_EUCLID && !c->ia;
+    double hd = 0.5 * side * sqrt((double)dim), zero[3] = {0, 0, 0};
+    long first = B->nnode;
+    struct act_list *kid = &B->kid[depth + 1];
+    double clo[8][3], chi[8][3], cm[8][3], s1[8], s2[8], thr[8];
+    if (B->nnode + nch > B->nodebudget)
+        return 1;
+    if (act_grow(c, B, nch, 0) < 0 || (lp && act_reserve(kid, (long)nch * n, dim) < 0))
+        return -1;
+    B->nnode += nch;
+    c->achild[node] = (int)first;
+    for (int k = 0; k < nch; k++) {
+        for (int d = 0; d < dim; d++) {
+            clo[k][d] = lo[d] + ((k >> d) & 1) * 0.5 * side;
+            chi[k][d] = clo[k][d] + 0.5 * side;
+            cm[k][d] = clo[k][d] + 0.25 * side;
+        }
+        s1[k] = s2[k] = INFINITY;
+    }
+    if (lp) {
+        if (euclid && dim == 2)
+            act_f2_euclid(lp, n, 2, cm, s1, s2);
+        else if (euclid)
+            act_f2_euclid(lp, n, 3, cm, s1, s2);
+        else
+            for (int t = 0; t < n; t++)
+                for (int k = 0; k < nch; k++) {
+                    double a = acc_point(c, cm[k], lp + (size_t)t * dim,
+                                         c->ia ? c->ia + lid[t] * dim : NULL, zero);
+                    if (a < s1[k])
+                        s2[k] = s1[k], s1[k] = a;
+                    else if (a < s2[k])
+                        s2[k] = a;
+                }
+        for (int k = 0; k < nch; k++) {
+            thr[k] = ((acc_finish(c, s2[k]) + c->lip * 0.5 * hd) / c->kfac) * (1 + 1e-9) + 1e-12;
+            thr[k] *= thr[k];
+        }
+        if (dim == 2)
+            act_filter(lp, lid, n, 2, clo, chi, thr, kid, cn);
+        else
+            act_filter(lp, lid, n, 3, clo, chi, thr, kid, cn);
+    }
+    for (int k = 0; k < nch && ret == 0; k++)
+        ret = act_node(c, B, first + k, clo[k], 0.5 * side, depth + 1,
+                       lp ? kid->p + (size_t)k * n * dim : NULL, lp ? kid->id + (size_t)k * n : NULL,
+                       cn[k]);
+    return ret;
+}
+
 /* Fill node `node` (box lo + [0,side)^dim) from its complete list lp, lid
  * (n entries) or, without one, from FLANN.  Returns -1 on failure, 1 when
  * a budget runs out. */
 static int act_node(struct tex_cellular *c, struct act_build *B, long node, const double *lo,
                     double side, int depth, const double *lp, const long *lid, int n)
 {
-    int dim = c->dim, nch = 1 << dim, ret = 0;
-    int euclid = c->metric == TEX_METRIC_EUCLID && !c->ia;
-    double hd = 0.5 * side * sqrt((double)dim), zero[3] = {0, 0, 0};
-
     if (!lp) {
-        /* F2 at m from its two nearest, then every point within reach. */
-        int k2 = c->nrep < 2 ? 1 : 2, ind[2], maxnn, nl = 0;
-        double dist[2], m[3], R, f2, est, s1 = INFINITY, s2 = INFINITY, thr;
-        struct act_list *own = &B->own[depth];
-        for (int d = 0; d < dim; d++)
-            m[d] = lo[d] + 0.5 * side;
-        if (flann_find_nearest_neighbors_index_double(c->index, m, 1, ind, dist, k2, &B->fp) < 0)
-            return tex_error("FLANN could not search the kd-tree");
-        for (int t = 0; t < k2; t++) {
-            long id = c->repid[ind[t]];
-            double a = acc_point(c, m, c->rep + (size_t)ind[t] * dim,
-                                 c->ia ? c->ia + id * dim : NULL, zero);
-            s2 = t == 0 ? INFINITY : a > s1 ? a : s1;
-            s1 = t == 0 ? a : a < s1 ? a : s1;
-        }
-        f2 = acc_finish(c, s2) / c->kfac;
-        R = ((acc_finish(c, s2) + c->lip * hd) / c->kfac) * (1 + 1e-9) + 1e-12 + hd * (1 + 1e-9);
-        if (c->tile && !(R < c->margin * (1 - 1e-9))) {
-            /* Images beyond the margin are not in the tree: smaller boxes
-             * help while F2 stays well inside it, else kdtree_query. */
-            c->achild[node] = -2;
-            if (f2 < 0.5 * c->margin && depth < ACT_DEPTH)
-                goto split;
+        int r = act_gather(c, B, node, lo, side, depth, &n);
+        if (r < 0)
+            return -1;
+        if (r == ACT_DONE)
             return 0;
-        }
-        /* Points within R: about 2 (R / |m - second nearest|)^dim. */
-        est = R == INFINITY ? (double)c->nrep
-                            : 2 * pow(R / fmax(sqrt(dist[k2 - 1]), 1e-300), dim) + 16;
-        if (est > ACT_CMAX && est < c->nrep && depth < ACT_DEPTH) {
-            c->achild[node] = -2;
-            goto split;
-        }
-        maxnn = est < ACT_RMAX ? (int)est + 16 : ACT_RMAX;
-        for (;;) {
-            float r2 = R == INFINITY ? INFINITY : nextafterf((float)(R * R), INFINITY);
-            if (maxnn > c->nrep)
-                maxnn = (int)c->nrep + 1;
-            n = flann_radius_search_double(c->index, m, B->rind, B->rdist, maxnn, r2, &B->fp);
-            if (n < 0)
-                return tex_error("FLANN could not search the kd-tree");
-            if (n < maxnn)
-                break; /* all of them */
-            if (maxnn < ACT_RMAX) {
-                maxnn = 4 * maxnn < ACT_RMAX ? 4 * maxnn : ACT_RMAX;
-                continue;
-            }
-            c->achild[node] = -2;
-            if (depth < ACT_DEPTH)
-                goto split;
-            return 0;
-        }
-        /* F2 at m is exact now; keep the points within thr of the box. */
-        s1 = s2 = INFINITY;
-        for (int t = 0; t < n; t++) {
-            long id = c->repid[B->rind[t]];
-            double a = acc_point(c, m, c->rep + (size_t)B->rind[t] * dim,
-                                 c->ia ? c->ia + id * dim : NULL, zero);
-            if (a < s1)
-                s2 = s1, s1 = a;
-            else if (a < s2)
-                s2 = a;
-        }
-        thr = ((acc_finish(c, s2) + c->lip * hd) / c->kfac) * (1 + 1e-9) + 1e-12;
-        if (act_reserve(own, n, dim) < 0)
-            return -1;
-        for (int t = 0; t < n; t++) {
-            const double *p = c->rep + (size_t)B->rind[t] * dim;
-            double e2 = 0;
-            for (int d = 0; d < dim; d++) {
-                double x = p[d] < lo[d] ? lo[d] - p[d] : p[d] > lo[d] + side ? p[d] - (lo[d] + side) : 0;
-                e2 += x * x;
-            }
-            if (e2 <= thr * thr) {
-                memcpy(own->p + (size_t)nl * dim, p, dim * sizeof *p);
-                own->id[nl++] = c->repid[B->rind[t]];
-            }
-        }
-        lp = own->p;
-        lid = own->id;
-        n = nl;
+        if (r == ACT_SPLIT)
+            return act_split(c, B, node, lo, side, depth, NULL, NULL, 0);
+        lp = B->own[depth].p;
+        lid = B->own[depth].id;
     }
-    if (n <= ACT_LEAF || depth >= ACT_DEPTH) {
-        if (B->nent + n > B->budget)
-            return 1;
-        if (act_grow(c, B, 0, n) < 0)
-            return -1;
-        c->achild[node] = -1;
-        c->astart[node] = B->nent;
-        c->alen[node] = n;
-        memcpy(c->aid + B->nent, lid, (size_t)n * sizeof *lid);
-        for (int t = 0; t < n; t++) {
-            c->ax[B->nent + t] = lp[t * dim];
-            c->ay[B->nent + t] = lp[t * dim + 1];
-        }
-        B->nent += n;
-        return 0;
-    }
-split:
-    {
-        long first = B->nnode;
-        struct act_list *kid = &B->kid[depth + 1];
-        double clo[8][3], chi[8][3], cm[8][3], s1[8], s2[8], thr[8];
-        int cn[8] = {0};
-        if (B->nnode + nch > B->nodebudget)
-            return 1;
-        if (act_grow(c, B, nch, 0) < 0 || (lp && act_reserve(kid, (long)nch * n, dim) < 0))
-            return -1;
-        B->nnode += nch;
-        c->achild[node] = (int)first;
-        for (int k = 0; k < nch; k++) {
-            for (int d = 0; d < dim; d++) {
-                clo[k][d] = lo[d] + ((k >> d) & 1) * 0.5 * side;
-                chi[k][d] = clo[k][d] + 0.5 * side;
-                cm[k][d] = clo[k][d] + 0.25 * side;
-            }
-            s1[k] = s2[k] = INFINITY;
-        }
-        if (lp) {
-            /* F2 at every child's centre (exact: the list is complete
-             * there), then each child's list. */
-            if (euclid && dim == 2)
-                act_f2_euclid(lp, n, 2, cm, s1, s2);
-            else if (euclid)
-                act_f2_euclid(lp, n, 3, cm, s1, s2);
-            else
-                for (int t = 0; t < n; t++)
-                    for (int k = 0; k < nch; k++) {
-                        double a = acc_point(c, cm[k], lp + (size_t)t * dim,
-                                             c->ia ? c->ia + lid[t] * dim : NULL, zero);
-                        if (a < s1[k])
-                            s2[k] = s1[k], s1[k] = a;
-                        else if (a < s2[k])
-                            s2[k] = a;
-                    }
-            for (int k = 0; k < nch; k++) {
-                thr[k] = ((acc_finish(c, s2[k]) + c->lip * 0.5 * hd) / c->kfac) * (1 + 1e-9) + 1e-12;
-                thr[k] *= thr[k];
-            }
-            if (dim == 2)
-                act_filter(lp, lid, n, 2, clo, chi, thr, kid, cn);
-            else
-                act_filter(lp, lid, n, 3, clo, chi, thr, kid, cn);
-        }
-        for (int k = 0; k < nch && ret == 0; k++)
-            ret = act_node(c, B, first + k, clo[k], 0.5 * side, depth + 1,
-                           lp ? kid->p + (size_t)k * n * dim : NULL, lp ? kid->id + (size_t)k * n : NULL,
-                           cn[k]);
-    }
-    return ret;
+    if (n <= ACT_LEAF || depth >= ACT_DEPTH)
+        return act_fill_leaf(c, B, node, lp, lid, n);
+    return act_split(c, B, node, lo, side, depth, lp, lid, n);
 }
 
 static void act_free(struct tex_cellular *c)
