@@ -14,6 +14,8 @@ struct opts {
     const char *spectral;
     int rgb;
     const char *model;
+    const char *help_scene;
+    const char *help_scene_mdoc;
 };
 
 static const struct tex_param rows[] = {
@@ -28,12 +30,17 @@ static const struct tex_param rows[] = {
     TEX_FLAG(struct opts, rgb, 0, "shade in RGB, overriding the scene's 'colour'"),
     TEX_STRING(struct opts, model, 0, NULL, "NAME",
                "shade every surface with this model (phong|cook-torrance)"),
+    TEX_STRING(struct opts, help_scene, 0, NULL, "BLOCK",
+               "list the words of a scene block (settings|camera|light|texture|surface|apply) "
+               "and exit"),
+    TEX_STRING(struct opts, help_scene_mdoc, 0, NULL, "BLOCK",
+               "the same list as mdoc, for t_apply(5)"),
     {0}};
 
 static const struct tex_tool tool = {
     "t_apply", "SCENE", "render a scene of CSG objects with texture maps applied through "
                         "application functions (Whitted ray tracer, t_apply(5))",
-    TEX_OPT_OUTPUT, rows, 1, 1};
+    TEX_OPT_OUTPUT, rows, 0, 1};
 
 static void progress(long done, long total, void *arg)
 {
@@ -61,6 +68,72 @@ static int wants_srgb(const struct tex_common *c, const struct opts *o)
     return !(f == TEX_FMT_EXR || f == TEX_FMT_PFM || f == TEX_FMT_HDR);
 }
 
+/* A row's default as the scene writes it: "0 0 -5", not "0,0,-5". */
+static const char *scene_default(const struct tex_param *p, char *buf, size_t n)
+{
+    tex_param_default(p, buf, n);
+    for (char *c = buf; *c; c++)
+        if (*c == ',')
+            *c = ' ';
+    return buf;
+}
+
+/* A row's range, also for rows the parser reads itself; "" if any value goes. */
+static const char *scene_range(const struct tex_param *p, char *buf, size_t n)
+{
+    if (p->type == TEX_P_SPECIAL && p->max > p->min)
+        snprintf(buf, n, "%.10g..%.10g", p->min, p->max);
+    else if (p->type == TEX_P_SPECIAL || p->type == TEX_P_FLAG)
+        buf[0] = '\0';
+    else
+        tex_param_range(p, buf, n);
+    return buf;
+}
+
+/* --help-scene BLOCK and --help-scene-mdoc BLOCK: the block's rows. */
+__attribute__((noreturn)) static void help_scene(const char *block, int mdoc)
+{
+    const struct tex_scene_block *b = tex_scene_blocks;
+    while (b->name && strcmp(b->name, block))
+        b++;
+    if (!b->name)
+        tex_usage_die("--help-scene%s must be settings|camera|light|texture|surface|apply "
+                      "(got '%s')", mdoc ? "-mdoc" : "", block);
+    if (mdoc)
+        puts(".Bl -tag -width Ds");
+    for (const struct tex_param *p = b->rows; p->name; p++) {
+        char rng[128], def[64];
+        const char *meta = p->type == TEX_P_ENUM ? p->choices : p->meta;
+        int has_def = p->type != TEX_P_FLAG && (p->type != TEX_P_SPECIAL || p->defstr);
+        scene_range(p, rng, sizeof rng);
+        scene_default(p, def, sizeof def);
+        if (!mdoc) {
+            char lhs[64];
+            snprintf(lhs, sizeof lhs, "%s %s", p->name, meta ? meta : "");
+            printf("  %-28s %s", lhs, p->help);
+            if (*rng && p->type != TEX_P_ENUM)
+                printf(" [%s]", rng);
+            if (has_def)
+                printf(" (default %s)", def);
+            putchar('\n');
+            continue;
+        }
+        printf(".It Ic %s", p->name);
+        if (meta)
+            printf(" Ar %s", meta);
+        printf("\n%c%s", p->help[0] >= 'a' && p->help[0] <= 'z' ? p->help[0] - 32 : p->help[0],
+               p->help + 1);
+        if (*rng && p->type != TEX_P_ENUM)
+            printf(", %s", rng);
+        if (has_def)
+            printf("; default %s", def);
+        puts(".");
+    }
+    if (mdoc)
+        puts(".El");
+    exit(0);
+}
+
 __attribute__((noreturn)) static void die_freeing(struct tex_scene *s)
 {
     tex_scene_free(s); /* keeps the error message */
@@ -72,13 +145,18 @@ int main(int argc, char **argv)
     struct tex_common c;
     struct opts o;
     int i = tex_cli_parse(&tool, argc, argv, &c, &o);
+    if (o.help_scene || o.help_scene_mdoc)
+        help_scene(o.help_scene ? o.help_scene : o.help_scene_mdoc, !o.help_scene);
+    if (i >= argc)
+        tex_usage_die("missing operand (usage: %s [options] %s)", tool.name, tool.operands);
     if (tex_map_write_check(c.output) < 0)
         tex_die(); /* now, not after the render */
     /* options first: a usage error must not leave the scene allocated (LSan) */
     int w = 0, h = 0;
     long bands = 0;
-    if (o.size && (tex_parse_size(o.size, &w, &h) < 0 || w > 16384 || h > 16384))
-        tex_usage_die("--size '%s' must be N or WxH with 1..16384 a side", o.size);
+    if (o.size && (tex_parse_size(o.size, &w, &h) < 0 || w > TEX_SCENE_MAX_SIDE ||
+                   h > TEX_SCENE_MAX_SIDE))
+        tex_usage_die("--size '%s' must be N or WxH with 1..%d a side", o.size, TEX_SCENE_MAX_SIDE);
     if (o.spectral && o.rgb)
         tex_usage_die("--spectral and --rgb exclude each other");
     if (o.spectral) {

@@ -87,11 +87,22 @@ int tex_parse_color(const char *text, float rgba[4])
 
 const char *tex_param_option(const struct tex_param *p, char *buf, size_t n)
 {
-    snprintf(buf, n, "--%s", p->name);
+    return tex_param_name(p, buf, n, TEX_PARAM_OPTION);
+}
+
+const char *tex_param_name(const struct tex_param *p, char *buf, size_t n,
+                           enum tex_param_style style)
+{
+    snprintf(buf, n, "%s%s", style == TEX_PARAM_OPTION ? "--" : "", p->name);
     for (char *c = buf; *c; c++)
         if (*c == '_')
             *c = '-';
     return buf;
+}
+
+int tex_param_count(const struct tex_param *p)
+{
+    return p->n > 1 ? p->n : 1;
 }
 
 static void fmt_real(double v, char *buf, size_t n)
@@ -111,7 +122,12 @@ const char *tex_param_range(const struct tex_param *p, char *buf, size_t n)
         snprintf(buf, n, "%lld..%lld", (long long)p->min, (long long)p->max);
         break;
     case TEX_P_REAL:
+    case TEX_P_FLOAT:
     case TEX_P_REALS:
+        if (isinf(p->min) && isinf(p->max)) { /* a point or direction: any numbers */
+            buf[0] = '\0';
+            break;
+        }
         fmt_real(p->min, a, sizeof a);
         fmt_real(p->max, b, sizeof b);
         if (p->type == TEX_P_REALS && p->nmax > 1)
@@ -125,6 +141,9 @@ const char *tex_param_range(const struct tex_param *p, char *buf, size_t n)
     case TEX_P_COLOR:
         snprintf(buf, n, "#rrggbb or r,g,b in 0..1");
         break;
+    case TEX_P_FLAG:
+        snprintf(buf, n, "0 or 1");
+        break;
     default:
         buf[0] = '\0';
     }
@@ -135,10 +154,17 @@ const char *tex_param_default(const struct tex_param *p, char *buf, size_t n)
 {
     switch (p->type) {
     case TEX_P_INT:
-        snprintf(buf, n, "%lld", (long long)p->def);
+        if (p->defstr)
+            snprintf(buf, n, "%s", p->defstr);
+        else
+            snprintf(buf, n, "%lld", (long long)p->def);
         break;
     case TEX_P_REAL:
-        fmt_real(p->def, buf, n);
+    case TEX_P_FLOAT:
+        if (p->defstr)
+            snprintf(buf, n, "%s", p->defstr);
+        else
+            fmt_real(p->def, buf, n);
         break;
     case TEX_P_FLAG:
         snprintf(buf, n, "off");
@@ -161,31 +187,120 @@ const struct tex_param *tex_param_find(const struct tex_param *t, const char *na
     return NULL;
 }
 
-static int bad(const struct tex_param *p, const char *text)
+/* "NAME must be RANGE (got V)": V is the text given, or else the number v. */
+static int bad(const struct tex_param *p, enum tex_param_style style, const char *text, double v)
 {
-    char o[64], r[96];
-    return tex_usage_error("%s must be %s (got '%s')", tex_param_option(p, o, sizeof o),
-                           tex_param_range(p, r, sizeof r), text);
+    char o[64], r[96], got[64];
+
+    if (text)
+        snprintf(got, sizeof got, style == TEX_PARAM_OPTION ? "'%.50s'" : "%.50s", text);
+    else
+        snprintf(got, sizeof got, "%g", v);
+    return tex_usage_error("%s must be %s (got %s)", tex_param_name(p, o, sizeof o, style),
+                           tex_param_range(p, r, sizeof r), got);
+}
+
+/* "Kd takes 1 or 3 numbers (got 2)" */
+static int bad_count(const struct tex_param *p, enum tex_param_style style, int k)
+{
+    unsigned counts = p->counts ? p->counts : 1u << tex_param_count(p);
+    char o[64], list[96] = "";
+    size_t len = 0;
+    int last = 0;
+
+    for (int i = 1; i < 32; i++)
+        if (counts >> i & 1)
+            last = i;
+    for (int i = 1; i < 32; i++)
+        if (counts >> i & 1)
+            len += (size_t)snprintf(list + len, sizeof list - len, "%s%d",
+                                    len ? (i == last ? " or " : ", ") : "", i);
+    return tex_usage_error("%s takes %s number%s (got %d)", tex_param_name(p, o, sizeof o, style),
+                           list, last > 1 ? "s" : "", k);
+}
+
+/* Check k numbers against row p and store them (text: what they came from, for messages). */
+static int store(const struct tex_param *p, void *obj, const double *v, int k,
+                 enum tex_param_style style, const char *text)
+{
+    int n = tex_param_count(p);
+    unsigned counts = p->counts ? p->counts : 1u << n;
+
+    if (p->type == TEX_P_FLAG) {
+        if (k != 1 || (v[0] != 0 && v[0] != 1))
+            return bad(p, style, text, v[0]);
+        *AT(obj, p, int) = (int)v[0];
+        return 0;
+    }
+    if (n == 1 && !p->counts && k != 1) /* "3,4" for a number */
+        return bad(p, style, text, v[0]);
+    if (k < 1 || k > 31 || !(counts >> k & 1) || (k != 1 && k != n))
+        return bad_count(p, style, k);
+    for (int i = 0; i < k; i++)
+        if (!isfinite(v[i]) || v[i] < p->min || v[i] > p->max ||
+            (p->type == TEX_P_INT && v[i] != floor(v[i])))
+            return bad(p, style, text, v[i]);
+    for (int i = 0; i < n; i++) {
+        double x = v[k == 1 ? 0 : i];
+        if (p->type == TEX_P_INT)
+            AT(obj, p, int)[i] = (int)x;
+        else if (p->type == TEX_P_FLOAT)
+            AT(obj, p, float)[i] = (float)x;
+        else
+            AT(obj, p, double)[i] = x;
+    }
+    return 0;
+}
+
+int tex_param_store(const struct tex_param *p, void *obj, const double *v, int k,
+                    enum tex_param_style style)
+{
+    if (p->type != TEX_P_INT && p->type != TEX_P_REAL && p->type != TEX_P_FLOAT &&
+        p->type != TEX_P_FLAG)
+        return tex_usage_error("internal: %s does not take numbers", p->name);
+    return store(p, obj, v, k, style, NULL);
+}
+
+/* Comma-separated numbers of an INT, REAL or FLOAT row; a FLAG given no text is on. */
+static int parse_numbers(const struct tex_param *p, void *obj, const char *text,
+                         enum tex_param_style style)
+{
+    double v[32];
+    int k = 0;
+    char buf[512], *tok, *save;
+
+    if (p->type == TEX_P_FLAG && (!text || text[0] == '\0'))
+        v[k++] = 1;
+    else {
+        if (strlen(text) >= sizeof buf)
+            return bad(p, style, text, 0);
+        strcpy(buf, text);
+        for (tok = buf; tok; tok = save) {
+            if ((save = strchr(tok, ',')))
+                *save++ = '\0';
+            if (k == 32 || tex_parse_real(tok, &v[k++]) < 0)
+                return bad(p, style, text, 0);
+        }
+    }
+    return store(p, obj, v, k, style, text);
 }
 
 int tex_param_set(const struct tex_param *p, void *obj, const char *text)
+{
+    return tex_param_parse(p, obj, text, TEX_PARAM_OPTION);
+}
+
+int tex_param_parse(const struct tex_param *p, void *obj, const char *text,
+                    enum tex_param_style style)
 {
     double v;
 
     switch (p->type) {
     case TEX_P_INT:
-        if (tex_parse_real(text, &v) < 0 || v != floor(v) || v < p->min || v > p->max)
-            return bad(p, text);
-        *AT(obj, p, int) = (int)v;
-        return 0;
     case TEX_P_REAL:
-        if (tex_parse_real(text, &v) < 0 || v < p->min || v > p->max)
-            return bad(p, text);
-        *AT(obj, p, double) = v;
-        return 0;
+    case TEX_P_FLOAT:
     case TEX_P_FLAG:
-        *AT(obj, p, int) = 1;
-        return 0;
+        return parse_numbers(p, obj, text, style);
     case TEX_P_ENUM: {
         const char *c = p->choices;
         size_t n = strlen(text);
@@ -198,13 +313,13 @@ int tex_param_set(const struct tex_param *p, void *obj, const char *text)
             }
             c = bar ? bar + 1 : c + len;
         }
-        return bad(p, text);
+        return bad(p, style, text, 0);
     }
     case TEX_P_REALS: {
         struct tex_reals *r = AT(obj, p, struct tex_reals);
         char buf[1024], *tok, *save;
         if (strlen(text) >= sizeof buf)
-            return bad(p, text);
+            return bad(p, style, text, 0);
         strcpy(buf, text);
         r->n = 0;
         /* strtok would skip empty fields: ",," must be an error, not a shorter list. */
@@ -212,20 +327,22 @@ int tex_param_set(const struct tex_param *p, void *obj, const char *text)
             if ((save = strchr(tok, ',')))
                 *save++ = '\0';
             if (r->n == p->nmax || tex_parse_real(tok, &v) < 0 || v < p->min || v > p->max)
-                return bad(p, text);
+                return bad(p, style, text, 0);
             r->v[r->n++] = v;
         }
         return 0;
     }
     case TEX_P_COLOR:
         if (tex_parse_color(text, AT(obj, p, float)) < 0)
-            return bad(p, text);
+            return bad(p, style, text, 0);
         return 0;
     case TEX_P_STRING:
         *AT(obj, p, const char *) = text;
         return 0;
+    case TEX_P_SPECIAL:
+        break;
     }
-    return tex_usage_error("internal: unknown parameter type");
+    return tex_usage_error("internal: %s has no value to parse", p->name);
 }
 
 int tex_params_defaults(const struct tex_param *t, void *obj)
@@ -233,13 +350,16 @@ int tex_params_defaults(const struct tex_param *t, void *obj)
     for (; t && t->name; t++) {
         char num[64];
         switch (t->type) {
+        case TEX_P_SPECIAL:
+            break;
         case TEX_P_INT:
         case TEX_P_REAL:
+        case TEX_P_FLOAT:
         case TEX_P_FLAG:
             snprintf(num, sizeof num, "%.17g", t->def);
             if (t->type == TEX_P_FLAG)
                 *AT(obj, t, int) = 0;
-            else if (tex_param_set(t, obj, num) < 0)
+            else if (tex_param_set(t, obj, t->defstr ? t->defstr : num) < 0)
                 return -1;
             break;
         case TEX_P_STRING:

@@ -21,8 +21,23 @@
  *   TEX_P_REALS   struct tex_reals, 1..nmax comma-separated reals in [min,max]
  *   TEX_P_COLOR   float[4] RGBA from #rgb, #rrggbb, #rrggbbaa or r,g,b[,a] in [0,1]
  *   TEX_P_STRING  const char * (pointing into argv or the scene)
+ *   TEX_P_FLOAT   float, range [min,max], NaN and infinity refused
+ *   TEX_P_SPECIAL no storage: the reader of the block parses it (a scene's
+ *                 `facets beckmann 0.2`); the row gives its help and range
  *
- * Option names are the row names with '_' written as '-'.
+ * INT, REAL and FLOAT rows may hold a vector: n values stored one after the
+ * other (a tex_v3, an RGB float[3], int w, h).  counts is the mask of value
+ * counts accepted (bit k: k values; 0 means exactly n); a single value
+ * given where n are stored is copied to all n (a grey level for a colour).
+ * Written as text, the values are separated by commas.
+ *
+ * kinds is for tables shared by several kinds of one block (the lights):
+ * bit k set if the row applies to kind k; 0 means every kind.
+ *
+ * Option names are the row names with '_' written as '-'.  Messages name a
+ * parameter the way its caller writes it: "--octaves must be 1..30 (got '40')"
+ * on the command line (tex_param_set), "octaves must be 1..30 (got 40)" in
+ * scenes and scripts (tex_param_parse with TEX_PARAM_WORD).
  */
 #ifndef TEX_PARAM_H
 #define TEX_PARAM_H
@@ -35,7 +50,7 @@ extern "C" {
 #endif
 
 enum tex_ptype { TEX_P_INT, TEX_P_REAL, TEX_P_FLAG, TEX_P_ENUM, TEX_P_REALS, TEX_P_COLOR,
-                 TEX_P_STRING };
+                 TEX_P_STRING, TEX_P_FLOAT, TEX_P_SPECIAL };
 
 #define TEX_REALS_MAX 32
 struct tex_reals {
@@ -54,27 +69,59 @@ struct tex_param {
     int nmax;           /* REALS: most values accepted */
     const char *meta;   /* argument name shown in help: "F", "N", "LIST" */
     const char *help;
+    int n;              /* INT, REAL, FLOAT: values stored (0: 1) */
+    unsigned counts;    /* INT, REAL, FLOAT: value counts accepted, bit k for k (0: n) */
+    unsigned kinds;     /* block kinds the row applies to, bit k for kind k (0: all) */
 };
 
-#define TEX_INT(S, f, k, d, lo, hi, meta, help)                                                  \
-    {#f, k, TEX_P_INT, offsetof(S, f), d, lo, hi, NULL, NULL, 0, meta, help}
-#define TEX_REAL(S, f, k, d, lo, hi, meta, help)                                                 \
-    {#f, k, TEX_P_REAL, offsetof(S, f), d, lo, hi, NULL, NULL, 0, meta, help}
-#define TEX_FLAG(S, f, k, help) {#f, k, TEX_P_FLAG, offsetof(S, f), 0, 0, 1, NULL, NULL, 0, NULL, help}
-#define TEX_ENUM(S, f, k, def, choices, help)                                                   \
-    {#f, k, TEX_P_ENUM, offsetof(S, f), 0, 0, 0, def, choices, 0, NULL, help}
-#define TEX_REALS(S, f, k, def, lo, hi, nmax, meta, help)                                        \
-    {#f, k, TEX_P_REALS, offsetof(S, f), 0, lo, hi, def, NULL, nmax, meta, help}
-#define TEX_COLOR(S, f, k, def, help)                                                           \
-    {#f, k, TEX_P_COLOR, offsetof(S, f), 0, 0, 1, def, NULL, 0, "COLOUR", help}
-#define TEX_STRING(S, f, k, def, meta, help)                                                    \
-    {#f, k, TEX_P_STRING, offsetof(S, f), 0, 0, 0, def, NULL, 0, meta, help}
+/* How messages name a parameter: as an option ("--major-radius") or as the
+ * word of a scene or script ("major-radius"). */
+enum tex_param_style { TEX_PARAM_OPTION, TEX_PARAM_WORD };
 
-/* Store every row's default in obj.  Returns -1 only for a broken table. */
+#define TEX_INT(S, f, k, d, lo, hi, meta, help)                                                  \
+    {#f, k, TEX_P_INT, offsetof(S, f), d, lo, hi, NULL, NULL, 0, meta, help, 0, 0, 0}
+#define TEX_REAL(S, f, k, d, lo, hi, meta, help)                                                 \
+    {#f, k, TEX_P_REAL, offsetof(S, f), d, lo, hi, NULL, NULL, 0, meta, help, 0, 0, 0}
+#define TEX_FLAG(S, f, k, help) {#f, k, TEX_P_FLAG, offsetof(S, f), 0, 0, 1, NULL, NULL, 0, NULL, help, 0, 0, 0}
+#define TEX_ENUM(S, f, k, def, choices, help)                                                   \
+    {#f, k, TEX_P_ENUM, offsetof(S, f), 0, 0, 0, def, choices, 0, NULL, help, 0, 0, 0}
+#define TEX_REALS(S, f, k, def, lo, hi, nmax, meta, help)                                        \
+    {#f, k, TEX_P_REALS, offsetof(S, f), 0, lo, hi, def, NULL, nmax, meta, help, 0, 0, 0}
+#define TEX_COLOR(S, f, k, def, help)                                                           \
+    {#f, k, TEX_P_COLOR, offsetof(S, f), 0, 0, 1, def, NULL, 0, "COLOUR", help, 0, 0, 0}
+#define TEX_STRING(S, f, k, def, meta, help)                                                    \
+    {#f, k, TEX_P_STRING, offsetof(S, f), 0, 0, 0, def, NULL, 0, meta, help, 0, 0, 0}
+
+/* Rows of scenes, named apart from their field ("Ka" stored in ka): type T
+ * (INT, REAL, FLOAT, FLAG), the default as text ("0.8", "0,0,-5"), n values
+ * stored, counts accepted (0: n). */
+#define TEX_ROW(name, S, f, T, d, lo, hi, n, counts, meta, help)                                 \
+    {name, 0, T, offsetof(S, f), 0, lo, hi, d, NULL, 0, meta, help, n, counts, 0}
+#define TEX_ROW_ENUM(name, S, f, d, choices, help)                                                \
+    {name, 0, TEX_P_ENUM, offsetof(S, f), 0, 0, 0, d, choices, 0, NULL, help, 0, 0, 0}
+/* A row read by its block's own code (no storage). */
+#define TEX_SPECIAL(name, lo, hi, def, meta, help)                                               \
+    {name, 0, TEX_P_SPECIAL, 0, 0, lo, hi, def, NULL, 0, meta, help, 0, 0, 0}
+
+/* Store every row's default in obj (SPECIAL rows have none).  Returns -1
+ * only for a broken table. */
 int tex_params_defaults(const struct tex_param *t, void *obj);
 /* Parse text as row p's value into obj; -1 with a usage error naming the
  * parameter and its valid range. */
 int tex_param_set(const struct tex_param *p, void *obj, const char *text);
+/* The same, with messages naming the parameter in the given style. */
+int tex_param_parse(const struct tex_param *p, void *obj, const char *text,
+                    enum tex_param_style style);
+/* Store k numbers as row p's value (INT, REAL, FLOAT, FLAG: 0 or 1), checking
+ * the count and the range: -1 with a usage error such as "fov must be
+ * 0.01..179 (got 180)".  For readers that have numbers, not text. */
+int tex_param_store(const struct tex_param *p, void *obj, const double *v, int k,
+                    enum tex_param_style style);
+/* Values stored by an INT, REAL or FLOAT row (1 for a scalar). */
+int tex_param_count(const struct tex_param *p);
+/* The parameter's name in a style: "--major-radius" or "major-radius". */
+const char *tex_param_name(const struct tex_param *p, char *buf, size_t n,
+                           enum tex_param_style style);
 /* The row called name (with '-' or '_'), or NULL. */
 const struct tex_param *tex_param_find(const struct tex_param *t, const char *name);
 /* The valid range or choices as text, e.g. "1..30" or "fbm|ridged". */

@@ -832,33 +832,24 @@ static int eval_prim(struct S *s, const struct node *n, struct val *out)
 
     if (!p)
         return fail_node(s, n, "unknown primitive '%s'", n->s);
-    if (check_pixels(s, n, w, h) < 0)
-        return -1;
     if (!(f = tex_field_new(p)))
         return err_at(s, n);
+    /* the primitive's parameters and seed, tile, ids, size: tex_field_rows */
     for (int i = 0; i < n->nparams; i++) {
         const struct param *q = &n->params[i];
-        char *e;
-        if (!strcmp(q->name, "seed") || !strcmp(q->name, "tile") || !strcmp(q->name, "ids")) {
-            long v = strtol(q->value, &e, 10);
-            if (*e || v < 0 || v > (q->name[0] == 's' ? 2147483647L : 1)) {
-                tex_field_free(f);
-                return fail_node(s, n, "%s must be %s (got '%s')", q->name,
-                                 q->name[0] == 's' ? "0..2147483647" : "0 or 1", q->value);
-            }
-            if (q->name[0] == 's')
-                f->seed = (uint64_t)v;
-            else if (q->name[0] == 't')
-                f->tile = (int)v;
-            else
-                f->ids = (int)v;
-        } else if (tex_field_set(f, q->name, q->value) < 0) {
+        if (tex_field_set(f, q->name, q->value) < 0) {
             char where[300];
             tex_field_free(f);
             snprintf(where, sizeof where, "%s:%d:%d", s->name, q->line, q->col);
             tex_error_context(where);
             return -1;
         }
+    }
+    if (f->size)
+        w = h = f->size;
+    if (check_pixels(s, n, w, h) < 0) {
+        tex_field_free(f);
+        return -1;
     }
     if (tex_field_init(f, w, h) == 0)
         m = tex_field_sample(f);

@@ -37,13 +37,31 @@ struct tex_field *tex_field_new(const struct tex_primitive *p)
     return f;
 }
 
+const struct tex_param tex_field_rows[] = {
+    TEX_SEED_ROW(struct tex_field_opts, seed, 0, 0),
+    TEX_TILE_ROW(struct tex_field_opts, tile),
+    TEX_IDS_ROW(struct tex_field_opts, ids),
+    TEX_INT(struct tex_field_opts, size, 0, 0, 1, TEX_MAP_MAX_SIDE, "N",
+            "sample the field once on an N x N grid"),
+    {0}};
+
 int tex_field_set(struct tex_field *f, const char *name, const char *value)
 {
     const struct tex_param *p = tex_param_find(f->prim->params, name);
 
+    if (!p && (p = tex_param_find(tex_field_rows, name))) {
+        struct tex_field_opts o = {(int)f->seed, f->tile, f->ids, f->size};
+        if (tex_param_parse(p, &o, value, TEX_PARAM_WORD) < 0)
+            return -1;
+        f->seed = (uint64_t)o.seed;
+        f->tile = o.tile;
+        f->ids = o.ids;
+        f->size = o.size;
+        return 0;
+    }
     if (!p)
         return tex_usage_error("%s has no parameter '%s'", f->prim->name, name);
-    return tex_param_set(p, f->params, value);
+    return tex_param_parse(p, f->params, value, TEX_PARAM_WORD);
 }
 
 int tex_field_init(struct tex_field *f, int w, int h)

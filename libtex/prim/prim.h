@@ -63,7 +63,31 @@ struct tex_field {
      * subsamples (antialiasing by coverage); eval2 still writes one id per point. */
     const float (*colors)[3];
     void *state;      /* the primitive's own, made by init */
+    int size;         /* a scene's or script's `size N`: sample on an N x N grid (0: none) */
 };
+
+/* The texture-level fields of every primitive, declared once: the tools'
+ * -S/--seed, --tile, --ids and -s, a scene's texture block and a script's
+ * primitive call read them through these rows, with one limit each:
+ *   seed  0..2147483647 (TEX_SEED_MAX); default 1 in tools, 0 in scenes and scripts
+ *   tile  flag (0 or 1 in a script)
+ *   ids   flag (0 or 1 in a script)
+ *   size  1..65536 a side (TEX_MAP_MAX_SIDE): N or WxH in tools, N in scenes
+ *         and scripts (a script's `W by H` has the same limit)
+ * The macros give a row over any struct, so that tools keep their own. */
+#define TEX_SEED_MAX 2147483647
+#define TEX_XSTR_(x) #x
+#define TEX_XSTR(x) TEX_XSTR_(x)
+#define TEX_SEED_ROW(S, f, k, d) TEX_INT(S, f, k, d, 0, TEX_SEED_MAX, "N", "random seed")
+#define TEX_TILE_ROW(S, f)                                                                       \
+    TEX_FLAG(S, f, 0, "make the map tile seamlessly left-right and top-bottom")
+#define TEX_IDS_ROW(S, f)                                                                        \
+    TEX_FLAG(S, f, 0, "write the subregion id of each pixel instead of colours")
+#define TEX_SIZE_HELP "size of the map in pixels, 1.." TEX_XSTR(TEX_MAP_MAX_SIDE) " a side"
+struct tex_field_opts {
+    int seed, tile, ids, size;
+};
+extern const struct tex_param tex_field_rows[]; /* over struct tex_field_opts */
 
 struct tex_primitive {
     const char *name;    /* "noise": the tool is t_noise, the scene word is noise */
@@ -93,7 +117,9 @@ const struct tex_primitive *tex_primitive_find(const char *name);
 
 /* A field with the primitive's defaults; NULL on allocation failure. */
 struct tex_field *tex_field_new(const struct tex_primitive *p);
-/* Set parameter name (option spelling or row name) from text. */
+/* Set parameter name (option spelling or row name) from text: one of the
+ * primitive's, or seed, tile, ids or size (tex_field_rows).  Messages name
+ * it as scenes and scripts do: "octaves must be 1..30 (got 40)". */
 int tex_field_set(struct tex_field *f, const char *name, const char *value);
 /* Run init once the parameters are set; w, h may be 0 outside a grid. */
 int tex_field_init(struct tex_field *f, int w, int h);

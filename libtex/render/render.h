@@ -370,6 +370,10 @@ struct tex_light {
     double c1, c2, c3;
     double cos_angle, exponent; /* spot */
     struct tex_curve *spectrum; /* `spectrum D65|A|blackbody K` (spectrum.h), or NULL */
+    /* as the scene gives them (tex_light_rows); rgb, dir and cos_angle follow */
+    float colour[3];
+    double intensity, angle;
+    tex_v3 direction, at;
 };
 
 /* Number of samples of a light (n*n for an area light, else 1), and sample
@@ -441,6 +445,34 @@ struct tex_scene {
     size_t npool, cpool;
     char *warnings;
 };
+
+/* ---- the scene's parameters as rows (render_params.c) ------------------------ */
+
+/* One table per block of t_apply(5), rows as in param.h: each row gives a
+ * word, its type, default, range and help, and where the value is stored.
+ * The scene parser reads a block by looking its words up here; t_apply
+ * --help-scene prints them and t_apply(5)'s lists are made from them. */
+#define TEX_SCENE_MAX_SIDE 16384            /* image W H and t_apply -s */
+extern const struct tex_param tex_settings_rows[]; /* top level, over struct tex_scene */
+extern const struct tex_param tex_camera_rows[];   /* camera { }, over struct tex_scene */
+extern const struct tex_param tex_light_rows[];    /* light KIND { }, over struct tex_light;
+                                                    * kinds: bit enum tex_light_kind */
+extern const struct tex_param tex_surface_rows[];  /* surface NAME { }, over struct tex_surface;
+                                                    * rows 0..TEX_SP_IOR are Ka..ior in
+                                                    * enum tex_sparam order */
+extern const struct tex_param tex_apply_rows[];    /* apply TEXTURE { }, over struct tex_apply */
+extern const struct tex_param tex_bump_row;        /* bump = h (also normal) */
+/* The row of an application function's parameter: its name and the range its
+ * results are clamped to. */
+const struct tex_param *tex_sparam_row(enum tex_sparam sp);
+/* The blocks by name ("settings", "camera", "light", "texture", "surface",
+ * "apply"), for help and the man page; the list ends with a NULL name.  The
+ * texture block's rows are prim.h's tex_field_rows (seed, tile, ids, size). */
+struct tex_scene_block {
+    const char *name;
+    const struct tex_param *rows;
+};
+extern const struct tex_scene_block tex_scene_blocks[];
 
 struct tex_scene *tex_scene_load(const char *path); /* "-" is not allowed: maps use stdin */
 struct tex_scene *tex_scene_parse(const char *text, size_t len, const char *name);

@@ -23,7 +23,6 @@
 #define TEX_DATADIR "/usr/local/share/textura"
 #endif
 
-#define MAX_SIDE 16384
 #define MAX_NEST 64
 
 enum tok_kind { T_EOF, T_NUM, T_ID, T_STR, T_PUNCT };
@@ -288,6 +287,104 @@ static char *word(struct parser *ps, const char *what)
     return w;
 }
 
+/* ---- blocks read through parameter rows (render_params.c) ------------------------ */
+
+/* The lexer's ranged readers are not used since blocks read through rows; they stay
+ * for the lexer's owner to keep or drop. */
+static double number_in(struct parser *ps, double lo, double hi, const char *what)
+    __attribute__((unused));
+static int integer_in(struct parser *ps, int lo, int hi, const char *what) __attribute__((unused));
+static void colour3(struct parser *ps, float rgb[3], double hi) __attribute__((unused));
+
+/* "NAME must be LO..HI (got V)" at t unless lo <= v <= hi (whole: an integer). */
+static double ranged(struct parser *ps, const char *name, double lo, double hi, int whole)
+{
+    struct tok t = ps->t;
+    double v = number(ps);
+    if (!(v >= lo && v <= hi) || (whole && v != floor(v)))
+        fail_at(ps, &t, 0, "%s must be %.10g..%.10g (got %g)", name, lo, hi, v);
+    return v;
+}
+
+/* The row of table rows for word t, for a block of the given kind (-1: any). */
+static const struct tex_param *row_of(const struct tex_param *rows, const struct tok *t,
+                                      int kind)
+{
+    if (t->kind != T_ID)
+        return NULL;
+    for (const struct tex_param *p = rows; p->name; p++)
+        if ((is_word(t, p->name) || (!strcmp(p->name, "colour") && is_word(t, "color"))) &&
+            (kind < 0 || !p->kinds || (p->kinds >> kind & 1)))
+            return p;
+    return NULL;
+}
+
+/* Row p's value into obj: as many numbers as it stores, a word, or nothing (a flag). */
+static void read_row(struct parser *ps, const struct tex_param *p, void *obj)
+{
+    struct tok vt = ps->t;
+    double v[8];
+    int k = 0, n = tex_param_count(p);
+    if (p->type == TEX_P_ENUM || p->type == TEX_P_STRING) {
+        char *w;
+        if (vt.kind == T_STR) {
+            w = pstrdup(ps, vt.text, vt.len);
+            next(ps);
+        } else {
+            w = word(ps, "a name");
+        }
+        if (tex_param_parse(p, obj, w, TEX_PARAM_WORD) < 0)
+            fail_at(ps, &vt, 0, "%s", tex_errmsg());
+        return;
+    }
+    if (p->type == TEX_P_FLAG)
+        v[k++] = 1;
+    else
+        do
+            v[k++] = number(ps);
+        while (k < n && k < 8 && ps->t.kind == T_NUM);
+    if (tex_param_store(p, obj, v, k, TEX_PARAM_WORD) < 0)
+        fail_at(ps, &vt, 0, "%s", tex_errmsg());
+}
+
+/* A block's own reading of a SPECIAL row p, or of a word kt of no row (p NULL):
+ * 1 if it took it. */
+typedef int (*special_fn)(struct parser *ps, const struct tex_param *p, const struct tok *kt,
+                          void *ctx);
+
+/* `{ word value ... }` through rows (for kind, -1: any) into obj; special
+ * reads the rest.  Returns the rows seen, bit i for row i. */
+static unsigned long long read_block(struct parser *ps, const struct tex_param *rows, int kind,
+                                     void *obj, special_fn special, void *ctx, const char *what)
+{
+    unsigned long long seen = 0;
+    expect(ps, '{');
+    while (!is_punct(&ps->t, '}')) {
+        struct tok kt = ps->t;
+        const struct tex_param *p = row_of(rows, &kt, kind);
+        if (p) {
+            next(ps);
+            seen |= 1ull << (p - rows);
+            if (p->type != TEX_P_SPECIAL)
+                read_row(ps, p, obj);
+            else if (!special(ps, p, &kt, ctx))
+                fail_at(ps, &kt, 0, "internal: no reader for '%s'", p->name);
+        } else if (!special || !special(ps, NULL, &kt, ctx)) {
+            char b[64];
+            fail_at(ps, &kt, 0, "unknown word %s in %s", tokdesc(&kt, b, sizeof b), what);
+        }
+    }
+    next(ps);
+    return seen;
+}
+
+/* Bit of row name in a read_block result. */
+static unsigned long long row_bit(const struct tex_param *rows, const char *name)
+{
+    const struct tex_param *p = tex_param_find(rows, name);
+    return p ? 1ull << (p - rows) : 0;
+}
+
 /* ---- textures ------------------------------------------------------------------- */
 
 static struct tex_texture *find_texture(struct parser *ps, const struct tok *t)
@@ -369,23 +466,18 @@ static void parse_texture(struct parser *ps)
     if (!f)
         fail_at(ps, &pt, 1, "out of memory");
     tx->field = f;
-    int size = 0;
     expect(ps, '{');
     while (!is_punct(&ps->t, '}')) {
         struct tok kt = ps->t;
         char *key = word(ps, "a parameter name");
-        if (!strcmp(key, "seed")) {
-            f->seed = (uint64_t)integer_in(ps, 0, 2147483647, "seed");
-        } else if (!strcmp(key, "size")) {
-            size = integer_in(ps, 1, 8192, "size");
-        } else if (!strcmp(key, "tile")) {
-            f->tile = 1;
-        } else if (!strcmp(key, "ids")) {
-            f->ids = 1;
-        } else if (!strcmp(key, "solid")) {
+        const struct tex_param *fr = tex_param_find(tex_field_rows, key);
+        if (!strcmp(key, "solid")) {
             if (!(prim->flags & TEX_PRIM_3D))
                 fail_at(ps, &kt, 0, "primitive '%s' has no solid (3D) form", pname);
             tx->solid = 1;
+        } else if (fr && fr->type == TEX_P_FLAG) { /* tile, ids: no value */
+            if (tex_field_set(f, key, "") < 0)
+                fail_at(ps, &kt, 0, "%s", tex_errmsg());
         } else {
             struct tok vt = ps->t;
             char *val;
@@ -394,10 +486,12 @@ static void parse_texture(struct parser *ps)
             else
                 FAIL(ps, "expected a value for '%s'", key);
             next(ps);
+            /* seed, size (tex_field_rows) or a parameter of the primitive */
             if (tex_field_set(f, key, val) < 0)
-                fail_at(ps, &kt, 0, "%s", tex_errmsg());
+                fail_at(ps, fr ? &vt : &kt, 0, "%s", tex_errmsg());
         }
     }
+    int size = f->size;
     next(ps);
     if (prim->flags & TEX_PRIM_GRID && !size)
         size = 512;
@@ -528,13 +622,11 @@ static struct tex_expr *expr(struct parser *ps)
 
 /* ---- surfaces ------------------------------------------------------------------- */
 
-static const char *const sparam_names[TEX_SP_COUNT] = {"Ka", "Kd", "Ks", "n", "Kr", "Kt",
-                                                       "ior", "bump"};
-
+/* The application-function parameter named by t (rows Ka..ior, bump or normal), or -1. */
 static int sparam(const struct tok *t)
 {
     for (int i = 0; i < TEX_SP_COUNT; i++)
-        if (is_word(t, sparam_names[i]))
+        if (is_word(t, tex_sparam_row(i)->name))
             return i;
     if (is_word(t, "normal"))
         return TEX_SP_BUMP;
@@ -550,7 +642,7 @@ static void parse_fns(struct parser *ps, struct tex_apply *ap, int region)
             return;
         next(ps);
         if (!is_punct(&ps->t, '='))
-            FAIL(ps, "expected '=' after %s, found %s", sparam_names[sp],
+            FAIL(ps, "expected '=' after %s, found %s", tex_sparam_row(sp)->name,
                  tokdesc(&ps->t, b, sizeof b));
         next(ps);
         struct tex_appfn *fn = palloc(ps, sizeof *fn), **tail = &ap->fns;
@@ -563,8 +655,25 @@ static void parse_fns(struct parser *ps, struct tex_apply *ap, int region)
     }
 }
 
-static const char *const mapping_names[] = {"natural", "sphere", "cylinder", "cone", "box",
-                                            "planar",  "solid",  "world",    NULL};
+/* stretch, region N { ... } and the application functions of an apply block */
+static int apply_special(struct parser *ps, const struct tex_param *p, const struct tok *kt,
+                         void *ctx)
+{
+    struct tex_apply *ap = ctx;
+    if (p && !strcmp(p->name, "stretch")) {
+        ap->nu = ap->nv = 1;
+    } else if (p && !strcmp(p->name, "region")) {
+        int r = (int)ranged(ps, p->name, p->min, p->max, 1);
+        expect(ps, '{');
+        parse_fns(ps, ap, r);
+        expect(ps, '}');
+    } else if (!p && sparam(kt) >= 0) {
+        parse_fns(ps, ap, 0);
+    } else {
+        return 0;
+    }
+    return 1;
+}
 
 static struct tex_apply *parse_apply(struct parser *ps)
 {
@@ -576,58 +685,17 @@ static struct tex_apply *parse_apply(struct parser *ps)
     }
     next(ps);
     struct tex_apply *ap = palloc(ps, sizeof *ap);
+    if (tex_params_defaults(tex_apply_rows, ap) < 0)
+        fail_at(ps, &at, 0, "%s", tex_errmsg());
     ap->tex = tx;
-    ap->u2 = ap->v2 = ap->nu = ap->nv = ap->scale = 1;
     ap->line = at.line;
     ap->col = at.col;
-    expect(ps, '{');
-    while (!is_punct(&ps->t, '}')) {
-        struct tok kt = ps->t;
-        if (is_word(&kt, "mapping")) {
-            next(ps);
-            struct tok mt = ps->t;
-            char *m = word(ps, "a mapping");
-            int i = 0;
-            while (mapping_names[i] && strcmp(mapping_names[i], m))
-                i++;
-            if (!mapping_names[i])
-                fail_at(ps, &mt, 0, "unknown mapping '%s' (natural|sphere|cylinder|cone|box|"
-                                    "planar|solid|world)", m);
-            ap->mapping = i;
-            if (ap->mapping == TEX_MAP_SOLID && tx->field && !tx->solid && !tx->mip)
-                fail_at(ps, &mt, 0, "texture '%s' is 2D; add 'solid' to it", tx->name);
-        } else if (is_word(&kt, "window")) {
-            next(ps);
-            ap->u1 = number_in(ps, 0, 1, "u1");
-            ap->v1 = number_in(ps, 0, 1, "v1");
-            ap->u2 = number_in(ps, 0, 1, "u2");
-            ap->v2 = number_in(ps, 0, 1, "v2");
-            if (!(ap->u2 > ap->u1 && ap->v2 > ap->v1))
-                fail_at(ps, &kt, 0, "window needs u1 < u2 and v1 < v2");
-        } else if (is_word(&kt, "repeat")) {
-            next(ps);
-            ap->nu = number_in(ps, 1e-3, 1e6, "repeat");
-            ap->nv = number_in(ps, 1e-3, 1e6, "repeat");
-        } else if (is_word(&kt, "stretch")) {
-            next(ps);
-            ap->nu = ap->nv = 1;
-        } else if (is_word(&kt, "scale")) {
-            next(ps);
-            ap->scale = number_in(ps, 1e-9, 1e9, "scale");
-        } else if (is_word(&kt, "region")) {
-            next(ps);
-            int r = integer_in(ps, 1, 1 << 24, "region");
-            expect(ps, '{');
-            parse_fns(ps, ap, r);
-            expect(ps, '}');
-        } else if (sparam(&kt) >= 0) {
-            parse_fns(ps, ap, 0);
-        } else {
-            char b[64];
-            FAIL(ps, "unknown word %s in an apply block", tokdesc(&kt, b, sizeof b));
-        }
-    }
-    next(ps);
+    unsigned long long seen =
+        read_block(ps, tex_apply_rows, -1, ap, apply_special, ap, "an apply block");
+    if ((seen & row_bit(tex_apply_rows, "window")) && !(ap->u2 > ap->u1 && ap->v2 > ap->v1))
+        fail_at(ps, &at, 0, "window needs u1 < u2 and v1 < v2");
+    if (ap->mapping == TEX_MAP_SOLID && tx->field && !tx->solid && !tx->mip)
+        fail_at(ps, &at, 0, "texture '%s' is 2D; add 'solid' to it", tx->name);
     return ap;
 }
 
@@ -704,16 +772,63 @@ static void parse_facets(struct parser *ps, struct tex_ct *ct)
     int beckmann = ct->facets.dist == TEX_FACET_BECKMANN;
     if (is_word(&ps->t, "beta")) {
         next(ps);
-        double b = number_in(ps, 0.01, 89, "beta") * M_PI / 180;
+        double b = ranged(ps, "beta", 0.01, 89, 0) * M_PI / 180;
         if (beckmann)
             ct->facets.m = tex_beckmann_m_from_beta(b);
         else
             ct->facets.ns = tex_blinn_ns_from_beta(b);
     } else if (beckmann) {
-        ct->facets.m = number_in(ps, 1e-3, 2, "Beckmann slope m");
+        const struct tex_param *p = tex_param_find(tex_surface_rows, "facets");
+        ct->facets.m = ranged(ps, "beckmann M", p->min, p->max, 0);
     } else {
-        ct->facets.ns = number_in(ps, 0, 1e5, "Blinn exponent Ns");
+        ct->facets.ns = ranged(ps, "blinn NS", 0, 1e5, 0);
     }
+}
+
+struct surface_ctx {
+    struct tex_surface *sf;
+    struct tex_apply **tail;
+};
+
+/* model, material, facets, specular and apply of a surface */
+static int surface_special(struct parser *ps, const struct tex_param *p, const struct tok *kt,
+                           void *ctx)
+{
+    struct surface_ctx *c = ctx;
+    struct tex_surface *sf = c->sf;
+    struct tok mt = ps->t;
+    (void)kt;
+    if (!p)
+        return 0;
+    if (!strcmp(p->name, "material")) {
+        char *m = mt.kind == T_STR ? pstrdup(ps, mt.text, mt.len) : word(ps, "a material");
+        if (mt.kind == T_STR)
+            next(ps);
+        surface_ct(ps, sf)->entry = find_material(ps, &mt, m);
+    } else if (!strcmp(p->name, "facets")) {
+        parse_facets(ps, surface_ct(ps, sf));
+    } else if (!strcmp(p->name, "specular")) {
+        surface_ct(ps, sf)->s = ranged(ps, p->name, p->min, p->max, 0);
+    } else if (!strcmp(p->name, "model")) {
+        char *m = word(ps, "a shading model");
+        sf->model = tex_shading_find(m);
+        if (!sf->model)
+            fail_at(ps, &mt, 0, "model must be %s (got %s)", p->meta, m);
+    } else if (!strcmp(p->name, "apply")) {
+        *c->tail = parse_apply(ps);
+        c->tail = &(*c->tail)->next;
+    } else {
+        return 0;
+    }
+    return 1;
+}
+
+/* A surface with the rows' defaults and the Phong model. */
+static void surface_defaults(struct parser *ps, struct tex_surface *sf)
+{
+    if (tex_params_defaults(tex_surface_rows, sf) < 0)
+        fail_at(ps, &ps->t, 0, "%s", tex_errmsg());
+    sf->model = &tex_shading_phong;
 }
 
 static void parse_surface(struct parser *ps)
@@ -729,76 +844,13 @@ static void parse_surface(struct parser *ps)
     a[ps->s->nsurfaces++] = sf;
     ps->s->surfaces = a;
     sf->name = name;
-    sf->ka = 0.1f;
-    sf->kd[0] = sf->kd[1] = sf->kd[2] = 0.8f;
-    sf->n = 20;
-    sf->ior = 1;
-    sf->model = &tex_shading_phong;
+    surface_defaults(ps, sf);
     sf->line = at.line;
     sf->col = at.col;
-    struct tex_apply **tail = &sf->apply;
-    int ior_set = 0;
-    expect(ps, '{');
-    while (!is_punct(&ps->t, '}')) {
-        struct tok kt = ps->t;
-        if (is_word(&kt, "Ka")) {
-            next(ps);
-            sf->ka = (float)number_in(ps, 0, 1, "Ka");
-        } else if (is_word(&kt, "Kd")) {
-            next(ps);
-            double v = number_in(ps, 0, 1, "Kd");
-            sf->kd[0] = sf->kd[1] = sf->kd[2] = (float)v;
-            if (ps->t.kind == T_NUM) {
-                sf->kd[1] = (float)number_in(ps, 0, 1, "Kd");
-                sf->kd[2] = (float)number_in(ps, 0, 1, "Kd");
-            }
-        } else if (is_word(&kt, "Ks")) {
-            next(ps);
-            double v = number_in(ps, 0, 1, "Ks");
-            sf->ks[0] = sf->ks[1] = sf->ks[2] = (float)v;
-        } else if (is_word(&kt, "n")) {
-            next(ps);
-            sf->n = number_in(ps, 0.1, 10000, "n");
-        } else if (is_word(&kt, "Kr")) {
-            next(ps);
-            sf->kr = number_in(ps, 0, 1, "Kr");
-        } else if (is_word(&kt, "Kt")) {
-            next(ps);
-            sf->kt = number_in(ps, 0, 1, "Kt");
-        } else if (is_word(&kt, "ior")) {
-            next(ps);
-            sf->ior = number_in(ps, 0.1, 10, "ior");
-            ior_set = 1;
-        } else if (is_word(&kt, "material")) {
-            next(ps);
-            struct tok mt = ps->t;
-            char *m = mt.kind == T_STR ? pstrdup(ps, mt.text, mt.len) : word(ps, "a material");
-            if (mt.kind == T_STR)
-                next(ps);
-            surface_ct(ps, sf)->entry = find_material(ps, &mt, m);
-        } else if (is_word(&kt, "facets")) {
-            next(ps);
-            parse_facets(ps, surface_ct(ps, sf));
-        } else if (is_word(&kt, "specular")) {
-            next(ps);
-            surface_ct(ps, sf)->s = number_in(ps, 0, 1, "specular fraction");
-        } else if (is_word(&kt, "model")) {
-            next(ps);
-            struct tok mt = ps->t;
-            char *m = word(ps, "a shading model");
-            sf->model = tex_shading_find(m);
-            if (!sf->model)
-                fail_at(ps, &mt, 0, "unknown shading model '%s'", m);
-        } else if (is_word(&kt, "apply")) {
-            next(ps);
-            *tail = parse_apply(ps);
-            tail = &(*tail)->next;
-        } else {
-            char b[64];
-            FAIL(ps, "unknown word %s in a surface", tokdesc(&kt, b, sizeof b));
-        }
-    }
-    next(ps);
+    struct surface_ctx c = {sf, &sf->apply};
+    unsigned long long seen =
+        read_block(ps, tex_surface_rows, -1, sf, surface_special, &c, "a surface");
+    int ior_set = (seen & row_bit(tex_surface_rows, "ior")) != 0;
     struct tex_ct *ct = sf->ct;
     if (ct) {
         /* a dielectric from the database also gives the refraction index (at 550 nm) */
@@ -1134,7 +1186,8 @@ static void parse_spectrum(struct parser *ps, tex_curve *c)
     char name[64];
     if (is_word(&t, "blackbody")) {
         next(ps);
-        snprintf(name, sizeof name, "blackbody:%.17g", number_in(ps, 100, 1e6, "temperature"));
+        const struct tex_param *p = tex_param_find(tex_light_rows, "spectrum");
+        snprintf(name, sizeof name, "blackbody:%.17g", ranged(ps, "blackbody K", p->min, p->max, 0));
     } else if ((t.kind == T_ID || t.kind == T_STR) && t.len < sizeof name) {
         snprintf(name, sizeof name, "%.*s", (int)t.len, t.text);
         next(ps);
@@ -1143,6 +1196,37 @@ static void parse_spectrum(struct parser *ps, tex_curve *c)
     }
     if (tex_illuminant(c, name, NULL) < 0)
         fail_at(ps, &t, tex_errkind() == TEX_ERR_RUNTIME, "%s", tex_errmsg());
+}
+
+/* spectrum and falloff of a light */
+static int light_special(struct parser *ps, const struct tex_param *p, const struct tok *kt,
+                         void *ctx)
+{
+    struct tex_light *l = ctx;
+    struct tok ft = ps->t;
+    if (p && !strcmp(p->name, "spectrum")) {
+        l->spectrum = palloc(ps, sizeof *l->spectrum);
+        parse_spectrum(ps, l->spectrum);
+        (void)kt;
+    } else if (p && !strcmp(p->name, "falloff")) {
+        if (is_word(&ft, "none")) {
+            next(ps);
+            l->falloff = TEX_FALL_NONE;
+        } else if (is_word(&ft, "square")) {
+            next(ps);
+            l->falloff = TEX_FALL_SQUARE;
+        } else {
+            l->falloff = TEX_FALL_POLY;
+            l->c1 = ranged(ps, "falloff C1", p->min, p->max, 0);
+            l->c2 = ranged(ps, "falloff C2", p->min, p->max, 0);
+            l->c3 = ranged(ps, "falloff C3", p->min, p->max, 0);
+            if (l->c1 + l->c2 + l->c3 <= 0)
+                fail_at(ps, &ft, 0, "falloff c1 c2 c3 must not all be 0");
+        }
+    } else {
+        return 0;
+    }
+    return 1;
 }
 
 static void parse_light(struct parser *ps)
@@ -1161,83 +1245,29 @@ static void parse_light(struct parser *ps)
         memcpy(a, s->lights, s->nlights * sizeof *a);
     s->lights = a;
     struct tex_light *l = &a[s->nlights++];
+    if (tex_params_defaults(tex_light_rows, l) < 0)
+        fail_at(ps, &at, 0, "%s", tex_errmsg());
     l->kind = kind;
-    float col[3] = {1, 1, 1};
-    double intensity = 1, angle = 30;
-    tex_v3 at_pt = {0, 0, 0}, dir = {0, 1, 0};
-    int have_at = 0, have_colour = 0;
-    struct tok spt = {0};
-    l->samples = 4;
-    l->edge1 = tex_v3_make(1, 0, 0);
-    l->edge2 = tex_v3_make(0, 0, 1);
-    expect(ps, '{');
-    while (!is_punct(&ps->t, '}')) {
-        struct tok kt = ps->t;
-        next(ps);
-        if (is_word(&kt, "colour") || is_word(&kt, "color")) {
-            colour3(ps, col, 1e6);
-            have_colour = 1;
-        } else if (is_word(&kt, "spectrum")) {
-            spt = kt;
-            l->spectrum = palloc(ps, sizeof *l->spectrum);
-            parse_spectrum(ps, l->spectrum);
-        } else if (is_word(&kt, "intensity")) {
-            intensity = number_in(ps, 0, 1e9, "intensity");
-        } else if (kind == TEX_LIGHT_DISTANT && is_word(&kt, "direction")) {
-            dir = vec(ps);
-            if (!(tex_v3_len(dir) > 0))
-                fail_at(ps, &kt, 0, "light direction must not be zero");
-        } else if (kind != TEX_LIGHT_DISTANT && is_word(&kt, "position")) {
-            l->pos = vec(ps);
-        } else if (kind != TEX_LIGHT_DISTANT && is_word(&kt, "falloff")) {
-            struct tok ft = ps->t;
-            if (is_word(&ft, "none")) {
-                next(ps);
-                l->falloff = TEX_FALL_NONE;
-            } else if (is_word(&ft, "square")) {
-                next(ps);
-                l->falloff = TEX_FALL_SQUARE;
-            } else {
-                l->falloff = TEX_FALL_POLY;
-                l->c1 = number_in(ps, 0, 1e9, "c1");
-                l->c2 = number_in(ps, 0, 1e9, "c2");
-                l->c3 = number_in(ps, 0, 1e9, "c3");
-                if (l->c1 + l->c2 + l->c3 <= 0)
-                    fail_at(ps, &ft, 0, "falloff c1 c2 c3 must not all be 0");
-            }
-        } else if (kind == TEX_LIGHT_SPOT && is_word(&kt, "at")) {
-            at_pt = vec(ps);
-            have_at = 1;
-        } else if (kind == TEX_LIGHT_SPOT && is_word(&kt, "angle")) {
-            angle = number_in(ps, 0.01, 90, "angle");
-        } else if (kind == TEX_LIGHT_SPOT && is_word(&kt, "exponent")) {
-            l->exponent = number_in(ps, 0, 1e4, "exponent");
-        } else if (kind == TEX_LIGHT_AREA && is_word(&kt, "edge1")) {
-            l->edge1 = vec(ps);
-        } else if (kind == TEX_LIGHT_AREA && is_word(&kt, "edge2")) {
-            l->edge2 = vec(ps);
-        } else if (kind == TEX_LIGHT_AREA && is_word(&kt, "samples")) {
-            l->samples = integer_in(ps, 1, 32, "samples");
-        } else {
-            char b[64];
-            fail_at(ps, &kt, 0, "unknown word %s in a %s light", tokdesc(&kt, b, sizeof b), k);
-        }
-    }
-    next(ps);
-    if (l->spectrum && have_colour)
-        fail_at(ps, &spt, 0, "a light takes a colour or a spectrum, not both");
+    char what[32];
+    snprintf(what, sizeof what, "a %s light", k);
+    unsigned long long seen = read_block(ps, tex_light_rows, kind, l, light_special, l, what);
+    const struct tex_param *dir = tex_param_find(tex_light_rows, "direction");
+    if ((seen & row_bit(tex_light_rows, "direction")) && !(tex_v3_len(l->direction) > 0))
+        fail_at(ps, &at, 0, "light %s must not be zero", dir->name);
+    if (l->spectrum && (seen & row_bit(tex_light_rows, "colour")))
+        fail_at(ps, &at, 0, "a light takes a colour or a spectrum, not both");
     for (int i = 0; i < 3; i++)
-        l->rgb[i] = (float)(l->spectrum ? intensity : col[i] * intensity);
+        l->rgb[i] = (float)(l->spectrum ? l->intensity : l->colour[i] * l->intensity);
     if (kind == TEX_LIGHT_DISTANT)
-        l->dir = tex_v3_norm(dir);
+        l->dir = tex_v3_norm(l->direction);
     if (kind == TEX_LIGHT_SPOT) {
-        if (!have_at)
+        if (!(seen & row_bit(tex_light_rows, "at")))
             fail_at(ps, &at, 0, "a spot light needs 'at X Y Z'");
-        tex_v3 d = tex_v3_sub(at_pt, l->pos);
+        tex_v3 d = tex_v3_sub(l->at, l->pos);
         if (!(tex_v3_len(d) > 0))
             fail_at(ps, &at, 0, "spot light 'at' equals its position");
         l->dir = tex_v3_norm(d);
-        l->cos_angle = cos(angle * M_PI / 180);
+        l->cos_angle = cos(l->angle * M_PI / 180);
     }
     if (kind == TEX_LIGHT_AREA && !(tex_v3_len(tex_v3_cross(l->edge1, l->edge2)) > 0))
         fail_at(ps, &at, 0, "area light edges must span a parallelogram");
@@ -1245,25 +1275,7 @@ static void parse_light(struct parser *ps)
 
 static void parse_camera(struct parser *ps)
 {
-    struct tex_scene *s = ps->s;
-    expect(ps, '{');
-    while (!is_punct(&ps->t, '}')) {
-        struct tok kt = ps->t;
-        next(ps);
-        if (is_word(&kt, "eye"))
-            s->eye = vec(ps);
-        else if (is_word(&kt, "look"))
-            s->look = vec(ps);
-        else if (is_word(&kt, "up"))
-            s->up = vec(ps);
-        else if (is_word(&kt, "fov"))
-            s->fov = number_in(ps, 0.01, 179, "fov");
-        else {
-            char b[64];
-            fail_at(ps, &kt, 0, "unknown word %s in the camera", tokdesc(&kt, b, sizeof b));
-        }
-    }
-    next(ps);
+    read_block(ps, tex_camera_rows, -1, ps->s, NULL, NULL, "the camera");
 }
 
 static void add_object(struct parser *ps, struct tex_object *ob)
@@ -1276,10 +1288,46 @@ static void add_object(struct parser *ps, struct tex_object *ob)
     a[s->nobjects++] = ob;
 }
 
+/* The setting named by kt (its word already read): 1 if it is one. */
+static int settings_word(struct parser *ps, const struct tok *kt)
+{
+    struct tex_scene *s = ps->s;
+    const struct tex_param *p = row_of(tex_settings_rows, kt, -1);
+    if (!p)
+        return 0;
+    if (p->type != TEX_P_SPECIAL) {
+        read_row(ps, p, s);
+    } else if (!strcmp(p->name, "seed")) {
+        s->settings.seed = (uint64_t)ranged(ps, p->name, p->min, p->max, 1);
+    } else if (!strcmp(p->name, "materials")) {
+        struct tok ft = ps->t;
+        if (ft.kind != T_STR && ft.kind != T_ID)
+            FAIL(ps, "expected a file name after 'materials'");
+        char *path = pstrdup(ps, ft.text, ft.len);
+        next(ps);
+        load_materials(ps, path, &ft);
+    } else { /* colour rgb | spectral [N] */
+        struct tok mt = ps->t;
+        int bands = 0;
+        if (is_word(&mt, "spectral")) {
+            next(ps);
+            bands = TEX_BANDS_DEFAULT;
+            if (ps->t.kind == T_NUM)
+                bands = (int)ranged(ps, "spectral N", p->min, p->max, 1);
+        } else if (is_word(&mt, "rgb")) {
+            next(ps);
+        } else {
+            FAIL(ps, "colour model must be rgb or spectral [N]");
+        }
+        if (tex_scene_set_colour(s, bands) < 0)
+            fail_at(ps, &mt, tex_errkind() == TEX_ERR_RUNTIME, "%s", tex_errmsg());
+    }
+    return 1;
+}
+
 static void parse_scene(struct parser *ps)
 {
     struct tex_scene *s = ps->s;
-    struct tex_settings *st = &s->settings;
     struct tok camt = {0};
     camt.line = camt.col = 1;
     next(ps);
@@ -1303,54 +1351,7 @@ static void parse_scene(struct parser *ps)
             parse_texture(ps);
         } else if (is_word(&kt, "surface")) {
             parse_surface(ps);
-        } else if (is_word(&kt, "image")) {
-            st->w = integer_in(ps, 1, MAX_SIDE, "image width");
-            st->h = integer_in(ps, 1, MAX_SIDE, "image height");
-        } else if (is_word(&kt, "samples")) {
-            st->spp = integer_in(ps, 1, 4096, "samples");
-        } else if (is_word(&kt, "depth")) {
-            st->depth = integer_in(ps, 0, 64, "depth");
-        } else if (is_word(&kt, "bailout")) {
-            st->bailout = number_in(ps, 0, 1, "bailout");
-        } else if (is_word(&kt, "threads")) {
-            st->threads = integer_in(ps, 0, 1024, "threads");
-        } else if (is_word(&kt, "seed")) {
-            st->seed = (uint64_t)integer_in(ps, 0, 2147483647, "seed");
-        } else if (is_word(&kt, "filter")) {
-            if (is_word(&ps->t, "on"))
-                st->filter = 1;
-            else if (is_word(&ps->t, "off"))
-                st->filter = 0;
-            else
-                FAIL(ps, "filter takes on or off");
-            next(ps);
-        } else if (is_word(&kt, "materials")) {
-            struct tok ft = ps->t;
-            if (ft.kind != T_STR && ft.kind != T_ID)
-                FAIL(ps, "expected a file name after 'materials'");
-            char *path = pstrdup(ps, ft.text, ft.len);
-            next(ps);
-            load_materials(ps, path, &ft);
-        } else if (is_word(&kt, "ambient")) {
-            colour3(ps, s->ambient, 1e6);
-        } else if (is_word(&kt, "background")) {
-            colour3(ps, s->background, 1e6);
-        } else if (is_word(&kt, "colour") || is_word(&kt, "color")) {
-            struct tok mt = ps->t;
-            int bands = 0;
-            if (is_word(&mt, "spectral")) {
-                next(ps);
-                bands = TEX_BANDS_DEFAULT;
-                if (ps->t.kind == T_NUM)
-                    bands = integer_in(ps, 1, TEX_COLOUR_MAX, "spectral samples");
-            } else if (is_word(&mt, "rgb")) {
-                next(ps);
-            } else {
-                FAIL(ps, "colour model must be rgb or spectral [N]");
-            }
-            if (tex_scene_set_colour(s, bands) < 0)
-                fail_at(ps, &mt, tex_errkind() == TEX_ERR_RUNTIME, "%s", tex_errmsg());
-        } else {
+        } else if (!settings_word(ps, &kt)) {
             char b[64];
             fail_at(ps, &kt, 0, "unknown word %s at the top of the scene",
                     tokdesc(&kt, b, sizeof b));
@@ -1388,11 +1389,7 @@ static int parse_all(struct parser *ps)
     /* surfaces[0] is the default surface for objects that name none */
     struct tex_surface *def = palloc(ps, sizeof *def);
     def->name = "default";
-    def->ka = 0.1f;
-    def->kd[0] = def->kd[1] = def->kd[2] = 0.8f;
-    def->n = 20;
-    def->ior = 1;
-    def->model = &tex_shading_phong;
+    surface_defaults(ps, def);
     ps->s->surfaces = palloc(ps, sizeof *ps->s->surfaces);
     ps->s->surfaces[0] = def;
     ps->s->nsurfaces = 1;
@@ -1414,11 +1411,11 @@ struct tex_scene *tex_scene_parse(const char *text, size_t len, const char *name
     ps.name = name;
     ps.line = ps.col = 1;
     ps.s = s;
-    s->eye = tex_v3_make(0, 0, -5);
-    s->up = tex_v3_make(0, 1, 0);
-    s->fov = 45;
-    s->settings = (struct tex_settings){640, 480, 1, 5, 0, 1, 0, 1.0 / 255};
-    s->ambient[0] = s->ambient[1] = s->ambient[2] = 1;
+    if (tex_params_defaults(tex_camera_rows, s) < 0 ||
+        tex_params_defaults(tex_settings_rows, s) < 0) {
+        tex_scene_free(s);
+        return NULL;
+    }
     tex_colour_space_rgb(&s->cs);
     int rc = parse_all(&ps);
     if (ps.have_db)
@@ -1525,9 +1522,9 @@ static void eye_media(struct tex_scene *s)
 int tex_scene_prepare(struct tex_scene *s)
 {
     struct tex_settings *st = &s->settings;
-    if (st->w < 1 || st->h < 1 || st->w > MAX_SIDE || st->h > MAX_SIDE)
+    if (st->w < 1 || st->h < 1 || st->w > TEX_SCENE_MAX_SIDE || st->h > TEX_SCENE_MAX_SIDE)
         return tex_usage_error("image size %dx%d is outside 1..%d on each side", st->w, st->h,
-                               MAX_SIDE);
+                               TEX_SCENE_MAX_SIDE);
     if (tex_map_check_size(st->w, st->h, 3) < 0)
         return -1;
     if (st->spp < 1 || st->spp > 4096)

@@ -673,16 +673,17 @@ static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const flo
                      const double uvw[3], double fw2, struct params *pr)
 {
     float *scalar = NULL, fg[3], p[3];
-    double lo = 0, hi = 1, r[3];
+    const struct tex_param *row = tex_sparam_row(fn->param); /* the range to clamp to */
+    double lo = row->min, hi = row->max, r[3];
     switch (fn->param) {
     case TEX_SP_KD: break;
     case TEX_SP_KA: scalar = &pr->ka; break;
     case TEX_SP_KS: scalar = &pr->ks; break;
-    case TEX_SP_N: scalar = &pr->n, lo = 0.1, hi = 10000; break;
+    case TEX_SP_N: scalar = &pr->n; break;
     case TEX_SP_KR: scalar = &pr->kr; break;
     case TEX_SP_KT: scalar = &pr->kt; break;
-    case TEX_SP_IOR: scalar = &pr->ior, lo = 0.1, hi = 10; break;
-    default: scalar = &pr->bump, lo = -1000, hi = 1000; break;
+    case TEX_SP_IOR: scalar = &pr->ior; break;
+    default: scalar = &pr->bump; break;
     }
     const float *fv = f, *pv = pr->kd;
     if (scalar) {
@@ -700,7 +701,7 @@ static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const flo
         *scalar = (float)clampd((r[0] + r[1] + r[2]) / 3, lo, hi);
     } else { /* channel k of Kd reads only Kd's channel k */
         for (int k = 0; k < 3; k++)
-            pr->kd[k] = (float)clampd(q ? poly_at(q, k, f[k], pr->kd[k]) : r[k], 0, 1);
+            pr->kd[k] = (float)clampd(q ? poly_at(q, k, f[k], pr->kd[k]) : r[k], lo, hi);
     }
 }
 

@@ -1,0 +1,142 @@
+/* render_params.c - the parameters of t_apply(5) scenes as rows
+ *
+ * Each block of the scene language is one table (param.h): the parser reads
+ * the block through it, application-function results are clamped to its
+ * ranges, and t_apply --help-scene and the lists of t_apply(5) print it.
+ * Rows read by the parser's own code (a shading model, a material, a
+ * falloff) are TEX_P_SPECIAL: they keep their help and range here.
+ */
+#include <math.h>
+#include <stddef.h>
+
+#include "render/render.h"
+
+#define INF HUGE_VAL /* -INF, INF: a point or a direction, any numbers */
+#define N3 (1u << 3)
+#define KIND(k) (1u << (k))
+
+const struct tex_param tex_settings_rows[] = {
+    TEX_ROW("image", struct tex_scene, settings.w, TEX_P_INT, "640,480", 1, TEX_SCENE_MAX_SIDE, 2,
+            0, "W H", "image size in pixels"),
+    TEX_ROW("samples", struct tex_scene, settings.spp, TEX_P_INT, "1", 1, 4096, 1, 0, "N",
+            "samples per pixel, stratified when N is a square"),
+    TEX_ROW("depth", struct tex_scene, settings.depth, TEX_P_INT, "5", 0, 64, 1, 0, "N",
+            "maximum recursion depth of reflected and refracted rays"),
+    {"bailout", 0, TEX_P_REAL, offsetof(struct tex_scene, settings.bailout), 1.0 / 255, 0, 1, NULL,
+     NULL, 0, "W", "rays weighing less than W are not traced (0: trace to the depth)", 1, 0, 0},
+    TEX_ROW("threads", struct tex_scene, settings.threads, TEX_P_INT, "0", 0, 1024, 1, 0, "N",
+            "OpenMP threads (0: one per core)"),
+    TEX_SPECIAL("seed", 0, TEX_SEED_MAX, "0", "N",
+                "seed of the sample positions and area-light jitter"),
+    TEX_ROW_ENUM("filter", struct tex_scene, settings.filter, "on", "off|on",
+                 "mip-mapped texture lookups"),
+    TEX_ROW("ambient", struct tex_scene, ambient, TEX_P_FLOAT, "1,1,1", 0, 1e6, 3, 0, "R G B",
+            "ambient light Ia (surfaces scale it by Ka)"),
+    TEX_ROW("background", struct tex_scene, background, TEX_P_FLOAT, "0,0,0", 0, 1e6, 3, 0,
+            "R G B", "colour of rays that hit nothing"),
+    TEX_SPECIAL("colour", 1, TEX_COLOUR_MAX, "rgb", "rgb|spectral [N]",
+                "the colour model: RGB, or N spectral bands (default 16)"),
+    TEX_SPECIAL("materials", 0, 0, NULL, "FILE",
+                "read the materials database for the material statements that follow"),
+    {0}};
+
+const struct tex_param tex_camera_rows[] = {
+    TEX_ROW("eye", struct tex_scene, eye, TEX_P_REAL, "0,0,-5", -INF, INF, 3, 0, "X Y Z",
+            "position of the eye"),
+    TEX_ROW("look", struct tex_scene, look, TEX_P_REAL, "0,0,0", -INF, INF, 3, 0, "X Y Z",
+            "the point looked at (not the eye)"),
+    TEX_ROW("up", struct tex_scene, up, TEX_P_REAL, "0,1,0", -INF, INF, 3, 0, "X Y Z",
+            "the up direction (not along the view)"),
+    TEX_ROW("fov", struct tex_scene, fov, TEX_P_REAL, "45", 0.01, 179, 1, 0, "DEG",
+            "horizontal field of view in degrees"),
+    {0}};
+
+#define LIT(k) KIND(TEX_LIGHT_##k)
+#define PLACED (LIT(POINT) | LIT(SPOT) | LIT(AREA))
+#define LROW(name, f, T, d, lo, hi, n, meta, kinds, help)                                         \
+    {name, 0, T, offsetof(struct tex_light, f), 0, lo, hi, d, NULL, 0, meta, help, n, 0, kinds}
+const struct tex_param tex_light_rows[] = {
+    LROW("colour", colour, TEX_P_FLOAT, "1,1,1", 0, 1e6, 3, "R G B", 0,
+         "colour of the light (also color)"),
+    LROW("intensity", intensity, TEX_P_REAL, "1", 0, 1e9, 1, "I", 0,
+         "the colour, or the spectrum at luminance 1, times I"),
+    TEX_SPECIAL("spectrum", 100, 1e6, NULL, "NAME|blackbody K",
+                "a CIE illuminant (D65, A, E, F2...) or Planck's law at K kelvin, instead of "
+                "the colour"),
+    LROW("direction", direction, TEX_P_REAL, "0,1,0", -INF, INF, 3, "X Y Z", LIT(DISTANT),
+         "distant: the direction from the scene towards the light"),
+    LROW("position", pos, TEX_P_REAL, "0,0,0", -INF, INF, 3, "X Y Z", PLACED,
+         "point, spot, area: where the light is (area: a corner)"),
+    {"falloff", 0, TEX_P_SPECIAL, 0, 0, 0, 1e9, "none", NULL, 0, "none|square|C1 C2 C3",
+     "point, spot, area: fatt = 1, 1/d^2 or min(1/(C1 + C2 d + C3 d^2), 1)", 0, 0, PLACED},
+    LROW("at", at, TEX_P_REAL, "0,0,0", -INF, INF, 3, "X Y Z", LIT(SPOT),
+         "spot: the point the spot light is aimed at (required)"),
+    LROW("angle", angle, TEX_P_REAL, "30", 0.01, 90, 1, "DEG", LIT(SPOT),
+         "spot: half-angle of the cone in degrees"),
+    LROW("exponent", exponent, TEX_P_REAL, "0", 0, 1e4, 1, "C", LIT(SPOT),
+         "spot: the light falls off as cos^C of the angle to the axis"),
+    LROW("edge1", edge1, TEX_P_REAL, "1,0,0", -INF, INF, 3, "X Y Z", LIT(AREA),
+         "area: first edge of the parallelogram"),
+    LROW("edge2", edge2, TEX_P_REAL, "0,0,1", -INF, INF, 3, "X Y Z", LIT(AREA),
+         "area: second edge of the parallelogram"),
+    LROW("samples", samples, TEX_P_INT, "4", 1, 32, 1, "N", LIT(AREA),
+         "area: sampled on an N x N jittered grid"),
+    {0}};
+
+/* Rows 0..6 are the application-function parameters Ka..ior, in enum tex_sparam order. */
+const struct tex_param tex_surface_rows[] = {
+    TEX_ROW("Ka", struct tex_surface, ka, TEX_P_FLOAT, "0.1", 0, 1, 1, 0, "K",
+            "ambient coefficient: the ambient term is Ka x Kd x Ia"),
+    TEX_ROW("Kd", struct tex_surface, kd, TEX_P_FLOAT, "0.8", 0, 1, 3, (1u << 1) | N3, "R [G B]",
+            "diffuse colour, a grey level or RGB"),
+    TEX_ROW("Ks", struct tex_surface, ks, TEX_P_FLOAT, "0", 0, 1, 3, 1u << 1, "K",
+            "specular coefficient (white highlights)"),
+    TEX_ROW("n", struct tex_surface, n, TEX_P_REAL, "20", 0.1, 10000, 1, 0, "N",
+            "Phong exponent of the highlights"),
+    TEX_ROW("Kr", struct tex_surface, kr, TEX_P_REAL, "0", 0, 1, 1, 0, "K",
+            "reflection coefficient"),
+    TEX_ROW("Kt", struct tex_surface, kt, TEX_P_REAL, "0", 0, 1, 1, 0, "K",
+            "transmission coefficient"),
+    TEX_ROW("ior", struct tex_surface, ior, TEX_P_REAL, "1", 0.1, 10, 1, 0, "N",
+            "index of refraction (a dielectric material gives its own)"),
+    TEX_SPECIAL("model", 0, 0, "phong", "phong|cook-torrance", "the shading model"),
+    TEX_SPECIAL("material", 0, 0, NULL, "NAME",
+                "optical constants n + ik from the materials database"),
+    TEX_SPECIAL("facets", 0.001, 2, "beckmann 0.2", "beckmann M|blinn NS",
+                "Cook-Torrance microfacets: Beckmann's slope M (0.001..2) or Blinn's exponent "
+                "NS (0..100000); beta DEG (0.01..89) instead of the number gives the lobe's "
+                "half-maximum angle"),
+    TEX_SPECIAL("specular", 0, 1, "0.5", "S",
+                "Cook-Torrance specular fraction (the diffuse one is 1 - S)"),
+    TEX_SPECIAL("apply", 0, 0, NULL, "TEXTURE { ... }",
+                "apply a texture through application functions (any number, in order)"),
+    {0}};
+
+const struct tex_param tex_bump_row = {
+    "bump", 0, TEX_P_REAL, 0, 0, -1000, 1000, NULL, NULL, 0, "S",
+    "bump mapping: the normal tilts by S times the map's gradient (also normal)", 0, 0, 0};
+
+const struct tex_param *tex_sparam_row(enum tex_sparam sp)
+{
+    return sp == TEX_SP_BUMP ? &tex_bump_row : &tex_surface_rows[sp];
+}
+
+const struct tex_param tex_apply_rows[] = {
+    TEX_ROW_ENUM("mapping", struct tex_apply, mapping, "natural",
+                 "natural|sphere|cylinder|cone|box|planar|solid|world",
+                 "how a hit point finds its (u,v) or (u,v,w)"),
+    TEX_ROW("window", struct tex_apply, u1, TEX_P_REAL, "0,0,1,1", 0, 1, 4, 0, "U1 V1 U2 V2",
+            "where the map lies in (u,v), with U1 < U2 and V1 < V2"),
+    TEX_ROW("repeat", struct tex_apply, nu, TEX_P_REAL, "1,1", 1e-3, 1e6, 2, 0, "NU NV",
+            "times the map repeats inside the window (fixed-size placement)"),
+    TEX_SPECIAL("stretch", 0, 0, NULL, NULL, "the map once across the window: repeat 1 1"),
+    TEX_ROW("scale", struct tex_apply, scale, TEX_P_REAL, "1", 1e-9, 1e9, 1, 0, "S",
+            "planar and world mappings: texture units per world unit"),
+    TEX_SPECIAL("region", 1, 1 << 24, NULL, "N { ... }",
+                "application functions for subregion N of the map only"),
+    {0}};
+
+const struct tex_scene_block tex_scene_blocks[] = {
+    {"settings", tex_settings_rows}, {"camera", tex_camera_rows}, {"light", tex_light_rows},
+    {"texture", tex_field_rows},     {"surface", tex_surface_rows}, {"apply", tex_apply_rows},
+    {NULL, NULL}};

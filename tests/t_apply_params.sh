@@ -1,0 +1,88 @@
+#!/bin/bash
+# Scene parameters as rows (render_params.c): range messages in the scene's words,
+# application functions clamped to the rows' ranges, t_apply(5)'s lists made from
+# the rows, and seed/size with one limit in tools, scenes and scripts.
+. tests/lib.sh
+
+# says NAME STATUS 'scene' 'exact message after "t_apply: error: "'
+says() {
+    printf '%s\n' "$3" >"$T/p.scene"
+    check_fails "$1" "$2" t_apply "$T/p.scene" -o "$T/p.png"
+    if grep -qxF "t_apply: error: $T/p.scene:$4" "$T/.err"; then ok "$1: says '$4'"
+    else notok "$1: message" "$(cat "$T/.err")"; fi
+}
+says "surface Ks above its range" 2 'surface s { Ks 5 }' '1:16: Ks must be 0..1 (got 5)'
+says "surface Kd colour out of range" 2 'surface s { Kd 0.5 2 0 }' '1:16: Kd must be 0..1 (got 2)'
+says "surface Kd of two numbers" 2 'surface s { Kd 0.5 0.5 }' '1:16: Kd takes 1 or 3 numbers (got 2)'
+says "light angle above its range" 2 'light spot { at 0 0 1 angle 95 }' '1:29: angle must be 0.01..90 (got 95)'
+says "area light samples not whole" 2 'light area { samples 2.5 }' '1:22: samples must be 1..32 (got 2.5)'
+says "word of another light kind" 2 'light distant { angle 5 }' "1:17: unknown word 'angle' in a distant light"
+says "camera fov above its range" 2 'camera { fov 180 }' '1:14: fov must be 0.01..179 (got 180)'
+says "camera eye of two numbers" 2 'camera { eye 0 0 look 0 0 1 }' '1:14: eye takes 3 numbers (got 2)'
+says "setting samples 0" 2 'samples 0' '1:9: samples must be 1..4096 (got 0)'
+says "apply window above 1" 2 'texture t noise { } surface s { apply t { window 0 0 2 1 } }' \
+    '1:50: window must be 0..1 (got 2)'
+says "primitive parameter in scene words" 2 'texture t fractal { octaves 40 }' \
+    '1:21: octaves must be 1..30 (got 40)'
+says "scene seed above the limit" 2 'texture t noise { seed 2147483648 }' \
+    '1:24: seed must be 0..2147483647 (got 2147483648)'
+says "scene size above the limit" 2 'texture t noise { size 65537 }' \
+    '1:24: size must be 1..65536 (got 65537)'
+
+# the same rows on the command line (with dashes) and in a script (without)
+check_fails "t_fractal --octaves 40" 2 t_fractal -s 8 --octaves 40 -o "$T/x.exr"
+grep -qF -- "--octaves must be 1..30 (got '40')" "$T/.err" && ok "the command line names --octaves" ||
+    notok "command-line message" "$(cat "$T/.err")"
+script() { # script NAME 'call' 'message part'
+    printf 'tessellation t; size 8 by 8;\nbuilt with (1,1) %s; end tessellation;\n' "$2" >"$T/p.tc"
+    check_fails "script: $1" 2 t_compose -o "$T/p.exr" "$T/p.tc"
+    if grep -qF -- "$3" "$T/.err" && ! grep -qF -- "--" "$T/.err"; then ok "script: $1 says '$3'"
+    else notok "script: $1 message" "$(cat "$T/.err")"; fi
+}
+script "octaves 40" 'fractal(octaves = 40)' 'p.tc:2:26: octaves must be 1..30 (got 40)'
+script "seed above the limit" 'noise(seed = 2147483648)' 'seed must be 0..2147483647 (got 2147483648)'
+script "size above the limit" 'noise(size = 65537)' 'size must be 1..65536 (got 65537)'
+script "tile 2" 'noise(tile = 2)' 'tile must be 0 or 1 (got 2)'
+check_fails "t_noise -S 2147483648" 2 t_noise -s 8 -S 2147483648 -o "$T/x.exr"
+grep -qF -- "--seed must be 0..2147483647" "$T/.err" && ok "-S has the same limit" ||
+    notok "-S limit" "$(cat "$T/.err")"
+check_fails "t_noise -s 65537" 2 t_noise -s 65537 -o "$T/x.exr"
+grep -qF -- "1..65536" "$T/.err" && ok "-s has the same limit" || notok "-s limit" "$(cat "$T/.err")"
+check "the largest seed is accepted in a tool" t_noise -s 8 -S 2147483647 -o "$T/x.exr"
+printf 'texture t noise { seed 2147483647 size 8 }\nsphere { }\n' >"$T/seed.scene"
+check "the largest seed is accepted in a scene" t_apply "$T/seed.scene" -s 8 -o "$T/x.exr"
+printf 'tessellation t; size 8 by 8;\nbuilt with (1,1) noise(seed = 2147483647, tile = 0); end tessellation;\n' >"$T/seed.tc"
+check "the largest seed is accepted in a script" t_compose -o "$T/x.exr" "$T/seed.tc"
+
+# application-function results are clamped to the surface rows' ranges
+render() { # render NAME 'surface body': a sphere lit from the eye's side, as PFM
+    printf '%s\n' "image 24 24" "camera { eye 0 0 -4 look 0 0 0 fov 40 }" \
+        "light point { position 2 3 -5 }" "texture t noise { size 8 }" \
+        "surface s { $2 }" "sphere { surface s }" >"$T/$1.scene"
+    t_apply "$T/$1.scene" -o "$T/$1.pfm" 2>"$T/.err" || notok "render $1" "$(cat "$T/.err")"
+}
+render ks5 'Kd 0.3 apply t { Ks = 5 + 0*f }'
+render ks1 'Kd 0.3 apply t { Ks = 1 }'
+render ks05 'Kd 0.3 apply t { Ks = 0.5 }'
+render n1e9 'Kd 0.3 Ks 1 apply t { n = 1e9 + 0*f }'
+render n1e4 'Kd 0.3 Ks 1 apply t { n = 10000 }'
+cmp -s "$T/ks5.pfm" "$T/ks1.pfm" && ok "Ks = 5*... is clamped to the row's 1" ||
+    notok "Ks clamped to 1"
+cmp -s "$T/ks05.pfm" "$T/ks1.pfm" && notok "Ks 0.5 and 1 differ (the clamp test can fail)" ||
+    ok "Ks 0.5 and 1 differ (the clamp test can fail)"
+cmp -s "$T/n1e9.pfm" "$T/n1e4.pfm" && ok "n = 1e9 is clamped to the row's 10000" ||
+    notok "n clamped to 10000"
+
+# t_apply(5)'s lists are the rows
+t_apply --help-scene surface | grep -q '^  Ks K .*\[0..1\] (default 0)' &&
+    ok "--help-scene surface lists Ks with its range and default" ||
+    notok "--help-scene surface" "$(t_apply --help-scene surface | head -3)"
+check_fails "--help-scene of no block" 2 t_apply --help-scene nosuch
+man=$("$TEXTURA_TOP/tests/mkman" "$TEXTURA_BUILD/bin" --check 2>&1)
+grep -q "^ok - man/man5/t_apply.5 " <<<"$man" && ok "t_apply(5) lists the rows of every scene block" ||
+    notok "t_apply(5) lists the rows (run make man)" "$(grep t_apply <<<"$man")"
+grep -c '^\.\\" begin options (generated by t_apply --help-scene-mdoc' \
+    "$TEXTURA_TOP/man/man5/t_apply.5" | grep -qx 6 && ok "t_apply(5) has a list per block" ||
+    notok "t_apply(5) has a list per block"
+lint=$(mandoc -Tlint -W warning "$TEXTURA_TOP/man/man5/t_apply.5" 2>&1)
+[ -z "$lint" ] && ok "mandoc -Tlint t_apply(5) is clean" || notok "mandoc -Tlint t_apply(5)" "$lint"
