@@ -100,6 +100,123 @@ static int add(struct tex_matdb *db, struct pending *p)
     return 0;
 }
 
+/* 'material NAME conductor|dielectric': opens p. */
+static int begin_material(const struct tex_matdb *db, struct pending *p, int in, const char *q,
+                          const char *file, int line)
+{
+    char name[64], kind[64], extra[2];
+    int got = sscanf(q, "%63s %63s %1s", name, kind, extra);
+    if (in)
+        return tex_usage_error("%s:%d: 'material' inside '%s' (missing 'end')", file, line,
+                               p->mat.name);
+    if (got != 2 || (strcmp(kind, "conductor") && strcmp(kind, "dielectric")))
+        return tex_usage_error("%s:%d: expected 'material NAME conductor|dielectric'", file, line);
+    if (strlen(name) >= TEX_MATDB_NAME)
+        return tex_usage_error("%s:%d: material name longer than %d characters", file, line,
+                               TEX_MATDB_NAME - 1);
+    for (int i = 0; i < db->count; i++)
+        if (!strcmp(db->m[i].name, name))
+            return tex_usage_error("%s:%d: material '%s' defined twice", file, line, name);
+    memset(&p->mat, 0, sizeof p->mat);
+    strcpy(p->mat.name, name);
+    p->mat.kind = kind[0] == 'c' ? TEX_CONDUCTOR : TEX_DIELECTRIC;
+    p->form = 0;
+    p->nrows = 0;
+    return 0;
+}
+
+/* 'ior N', 'cauchy A B [C]' or 'sellmeier B1 B2 B3 C1 C2 C3'. */
+static int index_formula(struct pending *p, const char *kw, char *q, const char *file,
+                         int line)
+{
+    double v[8];
+    int nv = 0, form = kw[0] == 'i' ? 1 : kw[0] == 'c' ? 2 : 3;
+    int lo = form == 1 ? 1 : form == 2 ? 2 : 6, hi = form == 2 ? 3 : lo;
+    if (read_numbers(q, v, 8, &nv) < 0 || nv < lo || nv > hi)
+        return tex_usage_error("%s:%d: '%s' takes %d%s numbers", file, line, kw, lo,
+                               hi > lo ? " or 3" : "");
+    if (p->form)
+        return tex_usage_error("%s:%d: material '%s' already has index data", file, line,
+                               p->mat.name);
+    if (form == 1 && !(v[0] > 0))
+        return tex_usage_error("%s:%d: ior %g must be > 0", file, line, v[0]);
+    memset(p->c, 0, sizeof p->c);
+    memcpy(p->c, v, nv * sizeof *v);
+    p->form = form;
+    return 0;
+}
+
+/* 'nk WAVELENGTH_NM N K': one row of a measured table. */
+static int nk_row(struct pending *p, char *q, const char *file, int line)
+{
+    double v[8];
+    int nv = 0;
+    if (read_numbers(q, v, 8, &nv) < 0 || nv != 3)
+        return tex_usage_error("%s:%d: expected 'nk WAVELENGTH_NM N K'", file, line);
+    if (p->form && p->form != 4)
+        return tex_usage_error("%s:%d: material '%s' already has index data", file, line,
+                               p->mat.name);
+    if (!(v[0] >= 0))
+        return tex_usage_error("%s:%d: wavelength %g nm is negative", file, line, v[0]);
+    if (p->nrows > 0 && !(v[0] > p->wl[p->nrows - 1]))
+        return tex_usage_error("%s:%d: wavelength %g nm not after %g nm (rows must be "
+                               "sorted by increasing wavelength)",
+                               file, line, v[0], p->wl[p->nrows - 1]);
+    if (!(v[1] > 0))
+        return tex_usage_error("%s:%d: n = %g must be > 0", file, line, v[1]);
+    if (!(v[2] >= 0))
+        return tex_usage_error("%s:%d: k = %g must be >= 0", file, line, v[2]);
+    if (p->nrows == p->cap) {
+        int cap = p->cap ? 2 * p->cap : 16;
+        double *a = realloc(p->wl, cap * sizeof *a), *b = NULL, *c = NULL;
+        if (a) {
+            p->wl = a;
+            b = realloc(p->n, cap * sizeof *b);
+        }
+        if (b) {
+            p->n = b;
+            c = realloc(p->k, cap * sizeof *c);
+        }
+        if (!c)
+            return tex_error("out of memory");
+        p->k = c;
+        p->cap = cap;
+    }
+    p->wl[p->nrows] = v[0];
+    p->n[p->nrows] = v[1];
+    p->k[p->nrows] = v[2];
+    p->nrows++;
+    p->form = 4;
+    return 0;
+}
+
+/* One line inside a material, keyword kw and the rest q. */
+static int material_line(struct tex_matdb *db, struct pending *p, int *in, const char *kw,
+                         char *q, const char *file, int line)
+{
+    int rc = 0;
+    if (!strcmp(kw, "end")) {
+        if ((rc = finish(p, file, line)) == 0)
+            rc = add(db, p);
+        *in = 0;
+    } else if (!strcmp(kw, "source")) {
+        while (isspace((unsigned char)*q))
+            q++;
+        free(p->mat.source);
+        if (!(p->mat.source = strdup(q)))
+            rc = tex_error("out of memory");
+    } else if (!strcmp(kw, "ior") || !strcmp(kw, "cauchy") || !strcmp(kw, "sellmeier")) {
+        rc = index_formula(p, kw, q, file, line);
+    } else if (!strcmp(kw, "nk")) {
+        rc = nk_row(p, q, file, line);
+    } else {
+        rc = tex_usage_error("%s:%d: unknown keyword '%s' (expected source, ior, cauchy, "
+                             "sellmeier, nk or end)",
+                             file, line, kw);
+    }
+    return rc;
+}
+
 int tex_matdb_parse(struct tex_matdb *db, const char *text, const char *file)
 {
     db->count = 0;
@@ -131,111 +248,13 @@ int tex_matdb_parse(struct tex_matdb *db, const char *text, const char *file)
             q++;
         if (*q)
             *q++ = 0;
-        double v[8];
-        int nv = 0;
-        if (!strcmp(kw, "material")) {
-            char name[64], kind[64], extra[2];
-            int got = sscanf(q, "%63s %63s %1s", name, kind, extra);
-            if (in)
-                rc = tex_usage_error("%s:%d: 'material' inside '%s' (missing 'end')", file,
-                                     line, p.mat.name);
-            else if (got != 2 || (strcmp(kind, "conductor") && strcmp(kind, "dielectric")))
-                rc = tex_usage_error("%s:%d: expected 'material NAME conductor|dielectric'",
-                                     file, line);
-            else if (strlen(name) >= TEX_MATDB_NAME)
-                rc = tex_usage_error("%s:%d: material name longer than %d characters", file,
-                                     line, TEX_MATDB_NAME - 1);
-            else {
-                for (int i = 0; i < db->count; i++)
-                    if (!strcmp(db->m[i].name, name))
-                        rc = tex_usage_error("%s:%d: material '%s' defined twice", file, line,
-                                             name);
-                memset(&p.mat, 0, sizeof p.mat);
-                strcpy(p.mat.name, name);
-                p.mat.kind = kind[0] == 'c' ? TEX_CONDUCTOR : TEX_DIELECTRIC;
-                p.form = 0;
-                p.nrows = 0;
-                in = 1;
-            }
-            continue;
-        }
-        if (!in) {
+        if (!strcmp(kw, "material"))
+            in = (rc = begin_material(db, &p, in, q, file, line)) == 0 || in;
+        else if (!in)
             rc = tex_usage_error("%s:%d: '%s' outside a material (expected 'material')", file,
                                  line, kw);
-            continue;
-        }
-        if (!strcmp(kw, "end")) {
-            if ((rc = finish(&p, file, line)) == 0)
-                rc = add(db, &p);
-            in = 0;
-        } else if (!strcmp(kw, "source")) {
-            while (isspace((unsigned char)*q))
-                q++;
-            free(p.mat.source);
-            if (!(p.mat.source = strdup(q)))
-                rc = tex_error("out of memory");
-        } else if (!strcmp(kw, "ior") || !strcmp(kw, "cauchy") || !strcmp(kw, "sellmeier")) {
-            int form = kw[0] == 'i' ? 1 : kw[0] == 'c' ? 2 : 3;
-            int lo = form == 1 ? 1 : form == 2 ? 2 : 6, hi = form == 2 ? 3 : lo;
-            if (read_numbers(q, v, 8, &nv) < 0 || nv < lo || nv > hi)
-                rc = tex_usage_error("%s:%d: '%s' takes %d%s numbers", file, line, kw, lo,
-                                     hi > lo ? " or 3" : "");
-            else if (p.form)
-                rc = tex_usage_error("%s:%d: material '%s' already has index data", file, line,
-                                     p.mat.name);
-            else if (form == 1 && !(v[0] > 0))
-                rc = tex_usage_error("%s:%d: ior %g must be > 0", file, line, v[0]);
-            else {
-                memset(p.c, 0, sizeof p.c);
-                memcpy(p.c, v, nv * sizeof *v);
-                p.form = form;
-            }
-        } else if (!strcmp(kw, "nk")) {
-            if (read_numbers(q, v, 8, &nv) < 0 || nv != 3)
-                rc = tex_usage_error("%s:%d: expected 'nk WAVELENGTH_NM N K'", file, line);
-            else if (p.form && p.form != 4)
-                rc = tex_usage_error("%s:%d: material '%s' already has index data", file, line,
-                                     p.mat.name);
-            else if (!(v[0] >= 0))
-                rc = tex_usage_error("%s:%d: wavelength %g nm is negative", file, line, v[0]);
-            else if (p.nrows > 0 && !(v[0] > p.wl[p.nrows - 1]))
-                rc = tex_usage_error("%s:%d: wavelength %g nm not after %g nm (rows must be "
-                                     "sorted by increasing wavelength)",
-                                     file, line, v[0], p.wl[p.nrows - 1]);
-            else if (!(v[1] > 0))
-                rc = tex_usage_error("%s:%d: n = %g must be > 0", file, line, v[1]);
-            else if (!(v[2] >= 0))
-                rc = tex_usage_error("%s:%d: k = %g must be >= 0", file, line, v[2]);
-            else {
-                if (p.nrows == p.cap) {
-                    int cap = p.cap ? 2 * p.cap : 16;
-                    double *a = realloc(p.wl, cap * sizeof *a), *b = NULL, *c = NULL;
-                    if (a) {
-                        p.wl = a;
-                        b = realloc(p.n, cap * sizeof *b);
-                    }
-                    if (b) {
-                        p.n = b;
-                        c = realloc(p.k, cap * sizeof *c);
-                    }
-                    if (!c) {
-                        rc = tex_error("out of memory");
-                        continue;
-                    }
-                    p.k = c;
-                    p.cap = cap;
-                }
-                p.wl[p.nrows] = v[0];
-                p.n[p.nrows] = v[1];
-                p.k[p.nrows] = v[2];
-                p.nrows++;
-                p.form = 4;
-            }
-        } else {
-            rc = tex_usage_error("%s:%d: unknown keyword '%s' (expected source, ior, cauchy, "
-                                 "sellmeier, nk or end)",
-                                 file, line, kw);
-        }
+        else
+            rc = material_line(db, &p, &in, kw, q, file, line);
     }
     if (rc == 0 && in)
         rc = tex_usage_error("%s:%d: material '%s' has no 'end'", file, line, p.mat.name);
