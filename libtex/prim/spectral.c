@@ -352,114 +352,130 @@ static int all_zero(const float *v, size_t n, size_t stride)
     return !nz;
 }
 
-static tex_map *ifft(const tex_map *s, const struct tex_ifft_opts *o)
+/* The spectrum's magnitude and phase, or its complex coefficients, into c;
+ * 0, or -1 with the error set (own, ownp: copies for the caller to free). */
+static int ifft_inputs(const tex_map *s, const struct tex_ifft_opts *o, struct ifft_ctx *c,
+                       float **own, float **ownp)
 {
-    int w = s->w, h = s->h, hw = w / 2 + 1, cplx = s->nc == 2;
-    size_t n = (size_t)w * h;
-    struct ifft_ctx c = {w, h, cplx, NULL, NULL, NULL, o->phase, tex_hash64(o->seed)};
-    enum tex_ifft_scale scale = o->scale;
-    float *own = NULL, *ownp = NULL, *r = NULL, *rbuf = NULL;
-    fftwf_complex *F = NULL;
-    fftwf_plan plan = NULL;
-    tex_map *out = NULL;
-
     int nonzero;
-
     if (scan(s, NULL, &nonzero) < 0)
-        return NULL;
-    if (scale == TEX_SCALE_AUTO)
-        scale = cplx ? TEX_SCALE_NONE : TEX_SCALE_UNIT;
-    if (cplx) {
-        c.cplx = s->px;
-        if (!nonzero) {
-            tex_error("every coefficient of the spectrum is zero (nothing to invert)");
-            return NULL;
-        }
-    } else {
-        if (!(c.mag = scalar_of(s, &own)))
-            return NULL;
-        if (!nonzero || (s->nc > 2 && all_zero(c.mag, n, 1))) {
-            tex_error("the magnitude is zero everywhere (nothing to invert)");
-            goto done;
-        }
-        if (o->phase == TEX_PHASE_MAP) {
-            if (!o->phase_map) {
-                tex_usage_error("a phase map is needed");
-                goto done;
-            }
-            if (o->phase_map->w != w || o->phase_map->h != h) {
-                tex_error("the phase map is %dx%d but the spectrum is %dx%d",
-                          o->phase_map->w, o->phase_map->h, w, h);
-                goto done;
-            }
-            if (tex_check_finite(o->phase_map, "phase map") < 0 ||
-                !(c.phase = scalar_of(o->phase_map, &ownp)))
-                goto done;
-        }
+        return -1;
+    if (s->nc == 2) {
+        c->cplx = s->px;
+        if (!nonzero)
+            return tex_error("every coefficient of the spectrum is zero (nothing to invert)");
+        return 0;
     }
-    if (!(out = tex_map_new(w, h, o->output == TEX_IFFT_COMPLEX ? 2 : 1)))
-        goto done;
-    plan_setup();
-    if (o->symmetric) {
-        /* c2r straight into the map when the real part is all we want. */
-        r = o->output == TEX_IFFT_REAL ? out->px : (rbuf = fftwf_alloc_real(n));
-        F = fftwf_alloc_complex((size_t)h * hw);
-        if (!r || !F)
-            goto oom;
-        plan = fftwf_plan_dft_c2r_2d(h, w, F, r, FFTW_ESTIMATE);
-        if (!plan)
-            goto noplan;
-        fill_half(&c, F);
+    if (!(c->mag = scalar_of(s, own)))
+        return -1;
+    if (!nonzero || (s->nc > 2 && all_zero(c->mag, (size_t)s->w * s->h, 1)))
+        return tex_error("the magnitude is zero everywhere (nothing to invert)");
+    if (o->phase != TEX_PHASE_MAP)
+        return 0;
+    if (!o->phase_map)
+        return tex_usage_error("a phase map is needed");
+    if (o->phase_map->w != s->w || o->phase_map->h != s->h)
+        return tex_error("the phase map is %dx%d but the spectrum is %dx%d", o->phase_map->w,
+                         o->phase_map->h, s->w, s->h);
+    if (tex_check_finite(o->phase_map, "phase map") < 0 ||
+        !(c->phase = scalar_of(o->phase_map, ownp)))
+        return -1;
+    return 0;
+}
+
+static int no_plan(int w, int h)
+{
+    return tex_error("FFTW could not plan a %dx%d transform", w, h);
+}
+
+/* A Hermitian spectrum: c2r, straight into the map when the real part is
+ * all we want. */
+static int ifft_half(const struct ifft_ctx *c, const struct tex_ifft_opts *o, tex_map *out)
+{
+    int w = c->w, h = c->h, rc = 0;
+    size_t n = (size_t)w * h;
+    float *rbuf = NULL, *r = o->output == TEX_IFFT_REAL ? out->px : (rbuf = fftwf_alloc_real(n));
+    fftwf_complex *F = fftwf_alloc_complex((size_t)h * (w / 2 + 1));
+    fftwf_plan plan = NULL;
+    if (!r || !F)
+        rc = tex_error("out of memory");
+    else if (!(plan = fftwf_plan_dft_c2r_2d(h, w, F, r, FFTW_ESTIMATE)))
+        rc = no_plan(w, h);
+    if (rc == 0) {
+        fill_half(c, F);
         fftwf_execute(plan);
-        if (o->output != TEX_IFFT_REAL) {
-#pragma omp parallel for
-            for (size_t i = 0; i < n; i++) {
-                float v = r[i];
-                switch (o->output) {
-                case TEX_IFFT_MAG: out->px[i] = fabsf(v); break;
-                case TEX_IFFT_LOGMAG: out->px[i] = log1pf(fabsf(v)); break;
-                case TEX_IFFT_PHASE: out->px[i] = v < 0 ? 0.5f : 0.0f; break;
-                default: out->px[2 * i] = v; out->px[2 * i + 1] = 0.0f;
-                }
-            }
-        }
-    } else {
-        F = fftwf_alloc_complex(n);
-        if (!F)
-            goto oom;
-        plan = fftwf_plan_dft_2d(h, w, F, F, FFTW_BACKWARD, FFTW_ESTIMATE);
-        if (!plan)
-            goto noplan;
-        fill_full(&c, F);
-        fftwf_execute(plan);
+    }
+    if (rc == 0 && o->output != TEX_IFFT_REAL) {
 #pragma omp parallel for
         for (size_t i = 0; i < n; i++) {
-            float re = F[i][0], im = F[i][1];
+            float v = r[i];
             switch (o->output) {
-            case TEX_IFFT_REAL: out->px[i] = re; break;
-            case TEX_IFFT_MAG: out->px[i] = hypotf(re, im); break;
-            case TEX_IFFT_LOGMAG: out->px[i] = log1pf(hypotf(re, im)); break;
-            case TEX_IFFT_PHASE: out->px[i] = turns(im, re); break;
-            default: out->px[2 * i] = re; out->px[2 * i + 1] = im;
+            case TEX_IFFT_MAG: out->px[i] = fabsf(v); break;
+            case TEX_IFFT_LOGMAG: out->px[i] = log1pf(fabsf(v)); break;
+            case TEX_IFFT_PHASE: out->px[i] = v < 0 ? 0.5f : 0.0f; break;
+            default: out->px[2 * i] = v; out->px[2 * i + 1] = 0.0f;
             }
         }
     }
-    if (scale == TEX_SCALE_UNIT && o->output != TEX_IFFT_PHASE && o->output != TEX_IFFT_COMPLEX)
-        to_unit(out->px, n, o->output != TEX_IFFT_REAL);
-    goto done;
-oom:
-    tex_error("out of memory");
-    goto fail;
-noplan:
-    tex_error("FFTW could not plan a %dx%d transform", w, h);
-fail:
-    tex_map_free(out);
-    out = NULL;
-done:
     if (plan)
         fftwf_destroy_plan(plan);
     fftwf_free(rbuf);
     fftwf_free(F);
+    return rc;
+}
+
+/* Any spectrum: a complex transform in place, then the part asked for. */
+static int ifft_full(const struct ifft_ctx *c, const struct tex_ifft_opts *o, tex_map *out)
+{
+    int w = c->w, h = c->h;
+    size_t n = (size_t)w * h;
+    fftwf_complex *F = fftwf_alloc_complex(n);
+    fftwf_plan plan;
+    if (!F)
+        return tex_error("out of memory");
+    if (!(plan = fftwf_plan_dft_2d(h, w, F, F, FFTW_BACKWARD, FFTW_ESTIMATE))) {
+        fftwf_free(F);
+        return no_plan(w, h);
+    }
+    fill_full(c, F);
+    fftwf_execute(plan);
+#pragma omp parallel for
+    for (size_t i = 0; i < n; i++) {
+        float re = F[i][0], im = F[i][1];
+        switch (o->output) {
+        case TEX_IFFT_REAL: out->px[i] = re; break;
+        case TEX_IFFT_MAG: out->px[i] = hypotf(re, im); break;
+        case TEX_IFFT_LOGMAG: out->px[i] = log1pf(hypotf(re, im)); break;
+        case TEX_IFFT_PHASE: out->px[i] = turns(im, re); break;
+        default: out->px[2 * i] = re; out->px[2 * i + 1] = im;
+        }
+    }
+    fftwf_destroy_plan(plan);
+    fftwf_free(F);
+    return 0;
+}
+
+static tex_map *ifft(const tex_map *s, const struct tex_ifft_opts *o)
+{
+    int w = s->w, h = s->h, cplx = s->nc == 2;
+    struct ifft_ctx c = {w, h, cplx, NULL, NULL, NULL, o->phase, tex_hash64(o->seed)};
+    enum tex_ifft_scale scale = o->scale;
+    float *own = NULL, *ownp = NULL;
+    tex_map *out = NULL;
+
+    if (scale == TEX_SCALE_AUTO)
+        scale = cplx ? TEX_SCALE_NONE : TEX_SCALE_UNIT;
+    if (ifft_inputs(s, o, &c, &own, &ownp) == 0 &&
+        (out = tex_map_new(w, h, o->output == TEX_IFFT_COMPLEX ? 2 : 1))) {
+        plan_setup();
+        if ((o->symmetric ? ifft_half(&c, o, out) : ifft_full(&c, o, out)) < 0) {
+            tex_map_free(out);
+            out = NULL;
+        } else if (scale == TEX_SCALE_UNIT && o->output != TEX_IFFT_PHASE &&
+                   o->output != TEX_IFFT_COMPLEX) {
+            to_unit(out->px, (size_t)w * h, o->output != TEX_IFFT_REAL);
+        }
+    }
     free(own);
     free(ownp);
     return out;
@@ -570,16 +586,86 @@ int tex_spectral_fbm(tex_map *m, const struct tex_fbm_spec *p)
 
 /* ---- Lewis's sparse convolution ---- */
 
+/* Sparse convolution's buffers: the map's real plane rb, the sample's
+ * window win, the noise's spectrum I, the working spectrum K. */
+struct sparse_work {
+    int w, h;
+    size_t n, nhalf;
+    float *rb, *win;
+    fftwf_complex *I, *K;
+    fftwf_plan fwd, inv;
+};
+
+/* The white noise, weights in [-1,1] at uniform pixel positions, into I. */
+static void sparse_noise(struct sparse_work *k, double count, uint64_t seed)
+{
+    tex_rng rng;
+    memset(k->rb, 0, k->n * sizeof *k->rb);
+    tex_rng_seed(&rng, seed);
+    for (long long i = 0, N = llround(count) > 0 ? llround(count) : 1; i < N; i++) {
+        uint32_t x = tex_rng_below(&rng, (uint32_t)k->w), y = tex_rng_below(&rng, (uint32_t)k->h);
+        k->rb[(size_t)y * k->w + x] += (float)(2.0 * tex_rng_uniform(&rng) - 1.0);
+    }
+    fftwf_execute(k->fwd);
+    memcpy(k->I, k->K, k->nhalf * sizeof *k->I);
+}
+
+/* Channel c of the sample, windowed and convolved with the noise, rescaled
+ * to the sample's range into channel c of out. */
+static void sparse_channel(struct sparse_work *k, const tex_map *s, int c, tex_map *out)
+{
+    int sw = s->w, sh = s->h, nc = s->nc, w = k->w, h = k->h;
+    size_t n = k->n, sn = (size_t)sw * sh;
+    double sum = 0, sum2 = 0, mean, sd;
+    float lo = INFINITY, hi = -INFINITY, *rb = k->rb;
+    for (size_t i = 0; i < sn; i++) {
+        float v = s->px[i * nc + c];
+        sum += v;
+        sum2 += (double)v * v;
+        lo = v < lo ? v : lo;
+        hi = v > hi ? v : hi;
+    }
+    mean = sum / sn;
+    sd = sqrt(fmax(0.0, sum2 / sn - mean * mean));
+    if (!(sd > 0) || !(hi > lo)) { /* a constant channel stays constant */
+        for (size_t i = 0; i < n; i++)
+            out->px[i * nc + c] = (float)mean;
+        return;
+    }
+    /* The windowed sample, centred on the origin, wrapping around. */
+    memset(rb, 0, n * sizeof *rb);
+    for (int y = 0; y < sh; y++)
+        for (int x = 0; x < sw; x++) {
+            int X = (x - sw / 2 + w) % w, Y = (y - sh / 2 + h) % h;
+            rb[(size_t)Y * w + X] =
+                (float)((s->px[((size_t)y * sw + x) * nc + c] - mean) * k->win[(size_t)y * sw + x]);
+        }
+    fftwf_execute(k->fwd);
+    fftwf_complex *K = k->K, *I = k->I;
+#pragma omp parallel for
+    for (size_t i = 0; i < k->nhalf; i++) {
+        float re = K[i][0] * I[i][0] - K[i][1] * I[i][1];
+        float im = K[i][0] * I[i][1] + K[i][1] * I[i][0];
+        K[i][0] = re;
+        K[i][1] = im;
+    }
+    fftwf_execute(k->inv);
+    float flo, fhi;
+    minmax(rb, n, 1, &flo, &fhi);
+    double g = fhi > flo ? (hi - lo) / ((double)fhi - flo) : 0;
+#pragma omp parallel for
+    for (size_t i = 0; i < n; i++) {
+        float v = (float)(lo + (rb[i] - flo) * g);
+        out->px[i * nc + c] = v > hi ? hi : v;
+    }
+}
+
 static tex_map *sparse_convolve(const tex_map *s, int w, int h, const struct tex_sparse_spec *p)
 {
-    int sw = s->w, sh = s->h, hw = w / 2 + 1, nc = s->nc;
-    size_t n = (size_t)w * h, nhalf = (size_t)h * hw;
-    double count = p->density * (double)n / ((double)sw * sh);
-    float *rb = NULL, *win = NULL;
-    fftwf_complex *I = NULL, *K = NULL;
-    fftwf_plan fwd = NULL, inv = NULL;
+    int sw = s->w, sh = s->h, hw = w / 2 + 1;
+    struct sparse_work k = {w, h, (size_t)w * h, (size_t)h * hw, NULL, NULL, NULL, NULL, NULL, NULL};
+    double count = p->density * (double)k.n / ((double)sw * sh);
     tex_map *out = NULL;
-    tex_rng rng;
 
     if (sw > w || sh > h) {
         tex_usage_error("the sample (%dx%d) is larger than the map (%dx%d); give a larger -s", sw,
@@ -592,94 +678,40 @@ static tex_map *sparse_convolve(const tex_map *s, int w, int h, const struct tex
     }
     if (tex_check_finite(s, NULL) < 0)
         return NULL;
-    rb = fftwf_alloc_real(n);
-    win = malloc((size_t)sw * sh * sizeof *win);
-    I = fftwf_alloc_complex(nhalf);
-    K = fftwf_alloc_complex(nhalf);
-    if (!rb || !win || !I || !K || !(out = tex_map_new(w, h, nc))) {
+    k.rb = fftwf_alloc_real(k.n);
+    k.win = malloc((size_t)sw * sh * sizeof *k.win);
+    k.I = fftwf_alloc_complex(k.nhalf);
+    k.K = fftwf_alloc_complex(k.nhalf);
+    if (!k.rb || !k.win || !k.I || !k.K || !(out = tex_map_new(w, h, s->nc))) {
         tex_error("out of memory");
-        goto fail;
-    }
-    plan_setup();
-    fwd = fftwf_plan_dft_r2c_2d(h, w, rb, K, FFTW_ESTIMATE);
-    inv = fftwf_plan_dft_c2r_2d(h, w, K, rb, FFTW_ESTIMATE);
-    if (!fwd || !inv) {
-        tex_error("FFTW could not plan a %dx%d transform", w, h);
-        goto fail;
-    }
-    /* The white noise: weights in [-1,1] at uniform pixel positions. */
-    memset(rb, 0, n * sizeof *rb);
-    tex_rng_seed(&rng, p->seed);
-    for (long long i = 0, N = llround(count) > 0 ? llround(count) : 1; i < N; i++) {
-        uint32_t x = tex_rng_below(&rng, (uint32_t)w), y = tex_rng_below(&rng, (uint32_t)h);
-        rb[(size_t)y * w + x] += (float)(2.0 * tex_rng_uniform(&rng) - 1.0);
-    }
-    fftwf_execute(fwd);
-    memcpy(I, K, nhalf * sizeof *I);
-    for (int y = 0; y < sh; y++)
-        for (int x = 0; x < sw; x++) {
-            double rx = (x + 0.5 - sw / 2.0) / (sw / 2.0), ry = (y + 0.5 - sh / 2.0) / (sh / 2.0);
-            win[(size_t)y * sw + x] = (float)exp(-p->falloff * sqrt(rx * rx + ry * ry));
+    } else {
+        plan_setup();
+        k.fwd = fftwf_plan_dft_r2c_2d(h, w, k.rb, k.K, FFTW_ESTIMATE);
+        k.inv = fftwf_plan_dft_c2r_2d(h, w, k.K, k.rb, FFTW_ESTIMATE);
+        if (!k.fwd || !k.inv) {
+            tex_error("FFTW could not plan a %dx%d transform", w, h);
+            tex_map_free(out);
+            out = NULL;
         }
-    for (int c = 0; c < nc; c++) {
-        double sum = 0, sum2 = 0, mean, sd;
-        float lo = INFINITY, hi = -INFINITY;
-        size_t sn = (size_t)sw * sh;
-        for (size_t i = 0; i < sn; i++) {
-            float v = s->px[i * nc + c];
-            sum += v;
-            sum2 += (double)v * v;
-            lo = v < lo ? v : lo;
-            hi = v > hi ? v : hi;
-        }
-        mean = sum / sn;
-        sd = sqrt(fmax(0.0, sum2 / sn - mean * mean));
-        if (!(sd > 0) || !(hi > lo)) { /* a constant channel stays constant */
-            for (size_t i = 0; i < n; i++)
-                out->px[i * nc + c] = (float)mean;
-            continue;
-        }
-        /* The windowed sample, centred on the origin, wrapping around. */
-        memset(rb, 0, n * sizeof *rb);
+    }
+    if (out) {
+        sparse_noise(&k, count, p->seed);
         for (int y = 0; y < sh; y++)
             for (int x = 0; x < sw; x++) {
-                int X = (x - sw / 2 + w) % w, Y = (y - sh / 2 + h) % h;
-                rb[(size_t)Y * w + X] =
-                    (float)((s->px[((size_t)y * sw + x) * nc + c] - mean) * win[(size_t)y * sw + x]);
+                double rx = (x + 0.5 - sw / 2.0) / (sw / 2.0), ry = (y + 0.5 - sh / 2.0) / (sh / 2.0);
+                k.win[(size_t)y * sw + x] = (float)exp(-p->falloff * sqrt(rx * rx + ry * ry));
             }
-        fftwf_execute(fwd);
-#pragma omp parallel for
-        for (size_t i = 0; i < nhalf; i++) {
-            float re = K[i][0] * I[i][0] - K[i][1] * I[i][1];
-            float im = K[i][0] * I[i][1] + K[i][1] * I[i][0];
-            K[i][0] = re;
-            K[i][1] = im;
-        }
-        fftwf_execute(inv);
-        {
-            float flo, fhi;
-            minmax(rb, n, 1, &flo, &fhi);
-            double g = fhi > flo ? (hi - lo) / ((double)fhi - flo) : 0;
-#pragma omp parallel for
-            for (size_t i = 0; i < n; i++) {
-                float v = (float)(lo + (rb[i] - flo) * g);
-                out->px[i * nc + c] = v > hi ? hi : v;
-            }
-        }
+        for (int c = 0; c < s->nc; c++)
+            sparse_channel(&k, s, c, out);
     }
-    goto done;
-fail:
-    tex_map_free(out);
-    out = NULL;
-done:
-    if (fwd)
-        fftwf_destroy_plan(fwd);
-    if (inv)
-        fftwf_destroy_plan(inv);
-    fftwf_free(rb);
-    fftwf_free(I);
-    fftwf_free(K);
-    free(win);
+    if (k.fwd)
+        fftwf_destroy_plan(k.fwd);
+    if (k.inv)
+        fftwf_destroy_plan(k.inv);
+    fftwf_free(k.rb);
+    fftwf_free(k.I);
+    fftwf_free(k.K);
+    free(k.win);
     return out;
 }
 
