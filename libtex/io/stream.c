@@ -400,78 +400,46 @@ tex_map *tex_exr_read_fd(int fd, const void *prefix, size_t prefix_len, const ch
     return m;
 }
 
-static tex_map *decode(exr_context_initializer_t *initp, const char *name)
+/* The stream's layout: scanline storage, the data window, full-resolution
+ * channels.  0, or -1 with the error set. */
+static int decode_header(exr_context_t ctx, exr_attr_box2i_t *dw, const exr_attr_chlist_t **cl,
+                         int *lines)
 {
-    exr_context_initializer_t init = *initp;
-    exr_context_t ctx = NULL;
-    exr_decode_pipeline_t dec;
-    exr_chunk_info_t ci;
-    exr_attr_box2i_t dw;
     exr_storage_t st;
-    const exr_attr_chlist_t *cl;
     exr_result_t rv;
-    tex_map *m = NULL;
-    int lines, nparts, order[4], nc, w, h, y, i;
-    int32_t sub, hlen;
-    const char *hist;
-
-    memset(&dec, 0, sizeof dec);
-    init.error_handler_fn = on_exr_error;
-    init.flags = EXR_CONTEXT_FLAG_SILENT_HEADER_PARSE | EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
-    init.max_image_width = TEX_MAP_MAX_SIDE;
-    init.max_image_height = TEX_MAP_MAX_SIDE;
-    tex_error("unknown error");
-
-    if ((rv = exr_start_read(&ctx, name, &init))) {
-        tex_error("not a valid OpenEXR stream (%s)", exr_get_default_error_message(rv));
-        goto fail;
-    }
+    int nparts;
     if ((rv = exr_get_count(ctx, &nparts)) || nparts < 1 || (rv = exr_get_storage(ctx, 0, &st)))
-        goto bad;
-    if (st != EXR_STORAGE_SCANLINE && st != EXR_STORAGE_TILED) {
-        tex_error("deep OpenEXR data is not a texture map");
-        goto fail;
-    }
-    if (st == EXR_STORAGE_TILED) {
-        tex_error("tiled OpenEXR is not read on the stream path; convert it with t_convert x.exr");
-        goto fail;
-    }
-    if ((rv = exr_get_data_window(ctx, 0, &dw)) || (rv = exr_get_channels(ctx, 0, &cl)) ||
-        (rv = exr_get_scanlines_per_chunk(ctx, 0, &lines)))
-        goto bad;
-    w = dw.max.x - dw.min.x + 1;
-    h = dw.max.y - dw.min.y + 1;
-    if (cl->num_channels < 1) {
-        tex_error("OpenEXR file has no channels");
-        goto fail;
-    }
-    for (i = 0; i < cl->num_channels; i++)
-        if (cl->entries[i].x_sampling != 1 || cl->entries[i].y_sampling != 1) {
-            tex_error("subsampled OpenEXR channels are not supported");
-            goto fail;
-        }
-    nc = order_channels(cl, order);
-    if (!(m = tex_map_new(w, h, nc)))
-        goto fail;
-    if (exr_attr_get_int(ctx, 0, ATTR_SUBREGIONS, &sub) == EXR_ERR_SUCCESS && sub > 0)
-        m->subregions = sub;
-    if (exr_attr_get_string(ctx, 0, ATTR_HISTORY, &hlen, &hist) == EXR_ERR_SUCCESS && hist) {
-        if (!(m->history = malloc((size_t)hlen + 1)))
-            goto oom;
-        memcpy(m->history, hist, (size_t)hlen);
-        m->history[hlen] = '\0';
-    }
+        return tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv));
+    if (st != EXR_STORAGE_SCANLINE && st != EXR_STORAGE_TILED)
+        return tex_error("deep OpenEXR data is not a texture map");
+    if (st == EXR_STORAGE_TILED)
+        return tex_error("tiled OpenEXR is not read on the stream path; convert it with t_convert x.exr");
+    if ((rv = exr_get_data_window(ctx, 0, dw)) || (rv = exr_get_channels(ctx, 0, cl)) ||
+        (rv = exr_get_scanlines_per_chunk(ctx, 0, lines)))
+        return tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv));
+    if ((*cl)->num_channels < 1)
+        return tex_error("OpenEXR file has no channels");
+    for (int i = 0; i < (*cl)->num_channels; i++)
+        if ((*cl)->entries[i].x_sampling != 1 || (*cl)->entries[i].y_sampling != 1)
+            return tex_error("subsampled OpenEXR channels are not supported");
+    return 0;
+}
 
-    for (y = dw.min.y; y <= dw.max.y; y += lines) {
+/* Every chunk of scanlines into m, channel order[k] into sample k. */
+static int decode_chunks(exr_context_t ctx, exr_decode_pipeline_t *dec, exr_attr_box2i_t dw,
+                         int lines, const int *order, tex_map *m)
+{
+    exr_chunk_info_t ci;
+    exr_result_t rv;
+    int nc = m->nc, w = m->w;
+    for (int y = dw.min.y; y <= dw.max.y; y += lines) {
         int row = y - dw.min.y;
-        if ((rv = exr_read_scanline_chunk_info(ctx, 0, y, &ci)))
-            goto bad;
-        rv = row == 0 ? exr_decoding_initialize(ctx, 0, &ci, &dec)
-                      : exr_decoding_update(ctx, 0, &ci, &dec);
-        if (rv)
-            goto bad;
-        for (i = 0; i < dec.channel_count; i++) {
-            exr_coding_channel_info_t *cc = &dec.channels[i];
+        if ((rv = exr_read_scanline_chunk_info(ctx, 0, y, &ci)) ||
+            (rv = row == 0 ? exr_decoding_initialize(ctx, 0, &ci, dec)
+                           : exr_decoding_update(ctx, 0, &ci, dec)))
+            return tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv));
+        for (int i = 0; i < dec->channel_count; i++) {
+            exr_coding_channel_info_t *cc = &dec->channels[i];
             int k = -1;
             for (int j = 0; j < nc; j++)
                 if (order[j] == i)
@@ -486,21 +454,58 @@ static tex_map *decode(exr_context_initializer_t *initp, const char *name)
             cc->user_line_stride = 4 * nc * w;
             cc->decode_to_ptr = (uint8_t *)(tex_map_row(m, row) + k);
         }
-        if (row == 0 && (rv = exr_decoding_choose_default_routines(ctx, 0, &dec)))
-            goto bad;
-        if ((rv = exr_decoding_run(ctx, 0, &dec))) {
-            tex_error("truncated or corrupt OpenEXR data at scanline %d", y);
+        if (row == 0 && (rv = exr_decoding_choose_default_routines(ctx, 0, dec)))
+            return tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv));
+        if (exr_decoding_run(ctx, 0, dec))
+            return tex_error("truncated or corrupt OpenEXR data at scanline %d", y);
+    }
+    return 0;
+}
+
+static tex_map *decode(exr_context_initializer_t *initp, const char *name)
+{
+    exr_context_initializer_t init = *initp;
+    exr_context_t ctx = NULL;
+    exr_decode_pipeline_t dec;
+    exr_attr_box2i_t dw;
+    const exr_attr_chlist_t *cl;
+    exr_result_t rv;
+    tex_map *m = NULL;
+    int lines, order[4], nc;
+    int32_t sub, hlen;
+    const char *hist;
+
+    memset(&dec, 0, sizeof dec);
+    init.error_handler_fn = on_exr_error;
+    init.flags = EXR_CONTEXT_FLAG_SILENT_HEADER_PARSE | EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
+    init.max_image_width = TEX_MAP_MAX_SIDE;
+    init.max_image_height = TEX_MAP_MAX_SIDE;
+    tex_error("unknown error");
+
+    if ((rv = exr_start_read(&ctx, name, &init))) {
+        tex_error("not a valid OpenEXR stream (%s)", exr_get_default_error_message(rv));
+        goto fail;
+    }
+    if (decode_header(ctx, &dw, &cl, &lines) < 0)
+        goto fail;
+    nc = order_channels(cl, order);
+    if (!(m = tex_map_new(dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1, nc)))
+        goto fail;
+    if (exr_attr_get_int(ctx, 0, ATTR_SUBREGIONS, &sub) == EXR_ERR_SUCCESS && sub > 0)
+        m->subregions = sub;
+    if (exr_attr_get_string(ctx, 0, ATTR_HISTORY, &hlen, &hist) == EXR_ERR_SUCCESS && hist) {
+        if (!(m->history = malloc((size_t)hlen + 1))) {
+            tex_error("out of memory");
             goto fail;
         }
+        memcpy(m->history, hist, (size_t)hlen);
+        m->history[hlen] = '\0';
     }
+    if (decode_chunks(ctx, &dec, dw, lines, order, m) < 0)
+        goto fail;
     exr_decoding_destroy(ctx, &dec);
     exr_finish(&ctx);
     return m;
-oom:
-    tex_error("out of memory");
-    goto fail;
-bad:
-    tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv));
 fail:
     if (ctx) {
         exr_decoding_destroy(ctx, &dec);
