@@ -401,6 +401,67 @@ static struct node *expr(struct S *s)
     return wrap(s, tex_expr_parse(&s->xp));
 }
 
+/* The other transforms (filter, tile, matrix, warp, mix), or a primary; line, col: where
+ * the operand starts. */
+static struct node *transform2(struct S *s, int line, int col)
+{
+    struct node *n;
+
+    if (accept_word(s, "filter")) {
+        n = new_node(s, N_FILTER, line, col);
+        n->filter = pick(s, filters, sizeof *filters, "filter");
+        n->a = unary(s);
+        n->v[0] = n->filter->by;
+        if ((n->flag = accept_word(s, "by")))
+            n->v[0] = number(s);
+        if (n->filter->radius && !(n->v[0] >= 0 && n->v[0] <= s->o->max_blur))
+            fail_at(s, line, col, "blur radius must be 0..%d (got %g)", s->o->max_blur, n->v[0]);
+    } else if (accept_word(s, "tile")) {
+        n = new_node(s, N_TILE, line, col);
+        n->a = unary(s);
+        expect_word(s, "by");
+        n->v[0] = integer(s, 1, 4096, "repetitions");
+        expect_punct(s, ',');
+        n->v[1] = integer(s, 1, 4096, "repetitions");
+        n->flag = accept_word(s, "mirror");
+    } else if (accept_word(s, "matrix")) {
+        n = new_node(s, N_MATRIX, line, col);
+        n->op = ((const struct rule *)pick(s, rules, sizeof *rules, "matrix rule"))->rule;
+        expect_word(s, "by");
+        n->v[0] = integer(s, 1, 4096, "matrix cells");
+        expect_punct(s, ',');
+        n->v[1] = integer(s, 1, 4096, "matrix cells");
+        expect_word(s, "of");
+        n->list = arena(s, 64 * sizeof *n->list);
+        do {
+            if (n->nlist == 64)
+                fail_at(s, line, col, "a matrix takes at most 64 images");
+            n->list[n->nlist++] = unary(s);
+        } while (is_punct(s, ',') && (next(s), 1));
+        n->flag = accept_word(s, "mirror");
+    } else if (accept_word(s, "warp")) {
+        n = new_node(s, N_WARP, line, col);
+        n->a = unary(s);
+        expect_word(s, "by");
+        n->b = unary(s);
+        n->v[0] = 0.1;
+        if (accept_word(s, "amount"))
+            n->v[0] = number(s);
+        if (!(fabs(n->v[0]) <= 100))
+            fail_at(s, line, col, "warp amount must be in -100..100 (got %g)", n->v[0]);
+        n->flag = accept_word(s, "isotropic");
+    } else if (accept_word(s, "mix")) {
+        n = new_node(s, N_MIX, line, col);
+        n->a = unary(s);
+        expect_punct(s, ',');
+        n->b = unary(s);
+        expect_word(s, "by");
+        n->c = unary(s);
+    } else
+        n = primary(s);
+    return n;
+}
+
 static struct node *transform(struct S *s)
 {
     int line = s->lx.t.line, col = s->lx.t.col;
@@ -466,58 +527,8 @@ static struct node *transform(struct S *s)
         n->v[2] = integer(s, 0, TEX_MAP_MAX_SIDE, "a clipping corner");
         expect_punct(s, ',');
         n->v[3] = integer(s, 0, TEX_MAP_MAX_SIDE, "a clipping corner");
-    } else if (accept_word(s, "filter")) {
-        n = new_node(s, N_FILTER, line, col);
-        n->filter = pick(s, filters, sizeof *filters, "filter");
-        n->a = unary(s);
-        n->v[0] = n->filter->by;
-        if ((n->flag = accept_word(s, "by")))
-            n->v[0] = number(s);
-        if (n->filter->radius && !(n->v[0] >= 0 && n->v[0] <= s->o->max_blur))
-            fail_at(s, line, col, "blur radius must be 0..%d (got %g)", s->o->max_blur, n->v[0]);
-    } else if (accept_word(s, "tile")) {
-        n = new_node(s, N_TILE, line, col);
-        n->a = unary(s);
-        expect_word(s, "by");
-        n->v[0] = integer(s, 1, 4096, "repetitions");
-        expect_punct(s, ',');
-        n->v[1] = integer(s, 1, 4096, "repetitions");
-        n->flag = accept_word(s, "mirror");
-    } else if (accept_word(s, "matrix")) {
-        n = new_node(s, N_MATRIX, line, col);
-        n->op = ((const struct rule *)pick(s, rules, sizeof *rules, "matrix rule"))->rule;
-        expect_word(s, "by");
-        n->v[0] = integer(s, 1, 4096, "matrix cells");
-        expect_punct(s, ',');
-        n->v[1] = integer(s, 1, 4096, "matrix cells");
-        expect_word(s, "of");
-        n->list = arena(s, 64 * sizeof *n->list);
-        do {
-            if (n->nlist == 64)
-                fail_at(s, line, col, "a matrix takes at most 64 images");
-            n->list[n->nlist++] = unary(s);
-        } while (is_punct(s, ',') && (next(s), 1));
-        n->flag = accept_word(s, "mirror");
-    } else if (accept_word(s, "warp")) {
-        n = new_node(s, N_WARP, line, col);
-        n->a = unary(s);
-        expect_word(s, "by");
-        n->b = unary(s);
-        n->v[0] = 0.1;
-        if (accept_word(s, "amount"))
-            n->v[0] = number(s);
-        if (!(fabs(n->v[0]) <= 100))
-            fail_at(s, line, col, "warp amount must be in -100..100 (got %g)", n->v[0]);
-        n->flag = accept_word(s, "isotropic");
-    } else if (accept_word(s, "mix")) {
-        n = new_node(s, N_MIX, line, col);
-        n->a = unary(s);
-        expect_punct(s, ',');
-        n->b = unary(s);
-        expect_word(s, "by");
-        n->c = unary(s);
     } else
-        n = primary(s);
+        n = transform2(s, line, col);
     return n;
 }
 
