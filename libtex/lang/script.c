@@ -1,4 +1,8 @@
-/* script.c - lexer, parser and interpreter of the pattern composition language */
+/* script.c - parser and interpreter of the pattern composition language
+ *
+ * Tokens come from lang/lex.h and image expressions from lang/expr.h, as in
+ * scenes; this file adds the script's operands (images, primitives, transforms)
+ * and their meaning on whole maps. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -12,26 +16,14 @@
 #include "prim/prim.h"
 #include "lang/script.h"
 #include "ops/transform.h"
+#include "lang/expr.h"
+#include "lang/lex.h"
 
-#define MAX_DEPTH 100      /* nesting of one expression */
 #define MAX_EVAL_DEPTH 500 /* chains of definitions */
-
-/* ---- lexer ---- */
-
-enum tk { T_EOF, T_NAME, T_NUM, T_STR, T_PUNCT };
-
-struct tok {
-    enum tk k;
-    const char *p; /* T_NAME: the text; T_STR: unescaped, in the arena */
-    size_t n;
-    double num;
-    char c; /* T_PUNCT */
-    int line, col;
-};
 
 /* ---- syntax tree ---- */
 
-enum nk { N_REF, N_FILE, N_PRIM, N_NUM, N_BIN, N_EXPAND, N_ROTATE, N_SCALE, N_RESIZE, N_SHIFT,
+enum nk { N_REF, N_FILE, N_PRIM, N_NUM, N_EXPR, N_EXPAND, N_ROTATE, N_SCALE, N_RESIZE, N_SHIFT,
           N_CLIP, N_FILTER, N_TILE, N_MATRIX, N_WARP, N_MIX };
 
 struct param {
@@ -42,7 +34,9 @@ struct param {
 struct node {
     enum nk k;
     int line, col;
-    int op;               /* N_BIN: enum tex_op; N_FILTER: filter; N_MATRIX: rule */
+    int op;               /* N_MATRIX: enum tex_rule */
+    const struct filter *filter; /* N_FILTER */
+    struct tex_enode *x;  /* N_EXPR: an expression of lang/expr.h */
     int flag;             /* wrap, mirror, isotropic, background given */
     char *s;              /* name, file, primitive */
     struct node *a, *b, *c;
@@ -75,9 +69,9 @@ struct chunk {
 };
 
 struct S {
-    const char *src, *end, *cur, *name;
-    int line, col;
-    struct tok t;         /* the current token */
+    const char *name;
+    struct tex_lexer lx;  /* lx.t: the current token */
+    struct tex_expr_parser xp;
     jmp_buf fail;
     struct chunk *arena;
     const struct tex_script_opts *o;
@@ -91,7 +85,7 @@ struct S {
     int nrefs, caprefs;
     struct cellref *cells;
     int ncells, capcells;
-    int depth, evaldepth, stdin_used;
+    int evaldepth, stdin_used;
 };
 
 static void *arena(struct S *s, size_t n)
@@ -105,6 +99,11 @@ static void *arena(struct S *s, size_t n)
     c->next = s->arena;
     s->arena = c;
     return c->data;
+}
+
+static void *lex_alloc(void *ctx, size_t n)
+{
+    return arena(ctx, n);
 }
 
 /* Grow an array of elements of size sz to hold one more. */
@@ -126,131 +125,35 @@ static void fail_at(struct S *s, int line, int col, const char *fmt, ...)
 
 static void fail_at(struct S *s, int line, int col, const char *fmt, ...)
 {
-    char msg[512];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    tex_usage_error("%s:%d:%d: %s", s->name, line, col, msg);
-    longjmp(s->fail, 1);
+    tex_lex_vfail(&s->lx, TEX_ERR_USAGE, line, col, fmt, ap);
 }
 
 static void next(struct S *s)
 {
-    const char *p = s->cur;
-
-    for (;;) { /* blanks and comments */
-        if (p < s->end && (*p == ' ' || *p == '\t' || *p == '\r')) {
-            p++;
-            s->col++;
-        } else if (p < s->end && *p == '\n') {
-            p++;
-            s->line++;
-            s->col = 1;
-        } else if (p < s->end && *p == '#') {
-            while (p < s->end && *p != '\n')
-                p++;
-        } else
-            break;
-    }
-    s->t = (struct tok){T_EOF, p, 0, 0, 0, s->line, s->col};
-    if (p == s->end) {
-        s->cur = p;
-        return;
-    }
-    const char *q = p;
-    unsigned char c = (unsigned char)*p;
-    if ((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_') {
-        while (q < s->end && ((*q >= 'a' && *q <= 'z') || (*q >= 'A' && *q <= 'Z') ||
-                              (*q >= '0' && *q <= '9') || *q == '_'))
-            q++;
-        s->t.k = T_NAME;
-    } else if ((c >= '0' && c <= '9') || (c == '.' && p + 1 < s->end && p[1] >= '0' &&
-                                          p[1] <= '9')) {
-        char buf[64];
-        size_t n;
-        while (q < s->end && ((*q >= '0' && *q <= '9') || *q == '.'))
-            q++;
-        if (q < s->end && (*q == 'e' || *q == 'E')) {
-            const char *e = q + 1;
-            if (e < s->end && (*e == '+' || *e == '-'))
-                e++;
-            if (e < s->end && *e >= '0' && *e <= '9') {
-                q = e;
-                while (q < s->end && *q >= '0' && *q <= '9')
-                    q++;
-            }
-        }
-        n = (size_t)(q - p);
-        if (n >= sizeof buf)
-            fail_at(s, s->line, s->col, "number too long");
-        memcpy(buf, p, n);
-        buf[n] = '\0';
-        char *e;
-        s->t.num = strtod(buf, &e);
-        if (*e || !isfinite(s->t.num))
-            fail_at(s, s->line, s->col, "malformed number '%s'", buf);
-        s->t.k = T_NUM;
-    } else if (c == '"') {
-        char *d;
-        size_t n = 0;
-        q = p + 1;
-        while (q < s->end && *q != '"' && *q != '\n') {
-            if (*q == '\\' && q + 1 < s->end)
-                q++;
-            q++;
-        }
-        if (q >= s->end || *q != '"')
-            fail_at(s, s->line, s->col, "unterminated string");
-        d = arena(s, (size_t)(q - p));
-        for (const char *r = p + 1; r < q; r++) {
-            if (*r == '\\')
-                r++;
-            if (*r == '\0')
-                fail_at(s, s->line, s->col, "NUL byte in a string");
-            d[n++] = *r;
-        }
-        d[n] = '\0';
-        q++;
-        s->t.k = T_STR;
-        s->t.p = d;
-        s->t.n = n;
-        s->col += (int)(q - p);
-        s->cur = q;
-        return;
-    } else if (strchr(";,=()+-*", c) && c) {
-        q = p + 1;
-        s->t.k = T_PUNCT;
-        s->t.c = (char)c;
-    } else if (c >= 0x20 && c < 0x7f)
-        fail_at(s, s->line, s->col, "unexpected character '%c'", c);
-    else
-        fail_at(s, s->line, s->col, "unexpected byte 0x%02x", c);
-    if (s->t.k != T_STR)
-        s->t.n = (size_t)(q - p);
-    s->col += (int)(q - p);
-    s->cur = q;
+    tex_lex_next(&s->lx);
 }
 
 static int is_word(const struct S *s, const char *w)
 {
-    return s->t.k == T_NAME && strlen(w) == s->t.n && !memcmp(s->t.p, w, s->t.n);
+    return tex_tok_is_word(&s->lx.t, w);
 }
 
 static int is_punct(const struct S *s, char c)
 {
-    return s->t.k == T_PUNCT && s->t.c == c;
+    return tex_tok_is_punct(&s->lx.t, c);
 }
 
 static const char *tok_desc(struct S *s)
 {
     static _Thread_local char buf[48];
-    switch (s->t.k) {
-    case T_EOF: return "the end of the script";
-    case T_STR: return "a string";
-    case T_NUM: return "a number";
+    switch (s->lx.t.kind) {
+    case TEX_TOK_EOF: return "the end of the script";
+    case TEX_TOK_STR: return "a string";
+    case TEX_TOK_NUM: return "a number";
     default:
-        snprintf(buf, sizeof buf, "'%.*s'", (int)(s->t.n > 32 ? 32 : s->t.n), s->t.p);
+        snprintf(buf, sizeof buf, "'%.*s'", (int)(s->lx.t.len > 32 ? 32 : s->lx.t.len), s->lx.t.text);
         return buf;
     }
 }
@@ -258,14 +161,14 @@ static const char *tok_desc(struct S *s)
 static void expect_word(struct S *s, const char *w)
 {
     if (!is_word(s, w))
-        fail_at(s, s->t.line, s->t.col, "expected '%s', found %s", w, tok_desc(s));
+        fail_at(s, s->lx.t.line, s->lx.t.col, "expected '%s', found %s", w, tok_desc(s));
     next(s);
 }
 
 static void expect_punct(struct S *s, char c)
 {
     if (!is_punct(s, c))
-        fail_at(s, s->t.line, s->t.col, "expected '%c', found %s", c, tok_desc(s));
+        fail_at(s, s->lx.t.line, s->lx.t.col, "expected '%c', found %s", c, tok_desc(s));
     next(s);
 }
 
@@ -280,10 +183,10 @@ static int accept_word(struct S *s, const char *w)
 static char *take_name(struct S *s, const char *what)
 {
     char *n;
-    if (s->t.k != T_NAME)
-        fail_at(s, s->t.line, s->t.col, "expected %s, found %s", what, tok_desc(s));
-    n = arena(s, s->t.n + 1);
-    memcpy(n, s->t.p, s->t.n);
+    if (s->lx.t.kind != TEX_TOK_NAME)
+        fail_at(s, s->lx.t.line, s->lx.t.col, "expected %s, found %s", what, tok_desc(s));
+    n = arena(s, s->lx.t.len + 1);
+    memcpy(n, s->lx.t.text, s->lx.t.len);
     next(s);
     return n;
 }
@@ -296,9 +199,9 @@ static double number(struct S *s)
         neg = 1;
         next(s);
     }
-    if (s->t.k != T_NUM)
-        fail_at(s, s->t.line, s->t.col, "expected a number, found %s", tok_desc(s));
-    v = neg ? -s->t.num : s->t.num;
+    if (s->lx.t.kind != TEX_TOK_NUM)
+        fail_at(s, s->lx.t.line, s->lx.t.col, "expected a number, found %s", tok_desc(s));
+    v = neg ? -s->lx.t.num : s->lx.t.num;
     next(s);
     return v;
 }
@@ -306,7 +209,7 @@ static double number(struct S *s)
 /* A whole number in lo..hi. */
 static int integer(struct S *s, long lo, long hi, const char *what)
 {
-    int line = s->t.line, col = s->t.col;
+    int line = s->lx.t.line, col = s->lx.t.col;
     double v = number(s);
     if (v != floor(v) || v < lo || v > hi)
         fail_at(s, line, col, "%s must be a whole number in %ld..%ld (got %g)", what, lo, hi, v);
@@ -324,7 +227,7 @@ static void size_pair(struct S *s, int *w, int *h, const char *what)
 static void colour(struct S *s, float rgba[4])
 {
     double v[4];
-    int n = 0, line = s->t.line, col = s->t.col;
+    int n = 0, line = s->lx.t.line, col = s->lx.t.col;
     do {
         if (n == 4)
             fail_at(s, line, col, "a colour has 1 to 4 values");
@@ -348,34 +251,26 @@ static struct node *new_node(struct S *s, enum nk k, int line, int col)
     return n;
 }
 
-static struct node *expr(struct S *s);
 static struct node *unary(struct S *s);
 
+/* A file, an image's name or a primitive call (numbers and parentheses are lang/expr.c's). */
 static struct node *primary(struct S *s)
 {
-    int line = s->t.line, col = s->t.col;
+    int line = s->lx.t.line, col = s->lx.t.col;
     struct node *n;
 
-    if (is_punct(s, '(')) {
-        next(s);
-        n = expr(s);
-        expect_punct(s, ')');
-        return n;
-    }
-    if (s->t.k == T_NUM || is_punct(s, '-')) {
-        n = new_node(s, N_NUM, line, col);
-        n->v[0] = number(s);
-        return n;
-    }
-    if (s->t.k == T_STR) {
+    if (s->lx.t.kind == TEX_TOK_STR) {
         n = new_node(s, N_FILE, line, col);
-        n->s = (char *)s->t.p;
+        n->s = arena(s, s->lx.t.len + 1);
+        memcpy(n->s, s->lx.t.text, s->lx.t.len);
+        if (memchr(n->s, '\0', s->lx.t.len))
+            fail_at(s, line, col, "NUL byte in a string");
         next(s);
-        if (s->t.k == T_NUM)
+        if (s->lx.t.kind == TEX_TOK_NUM)
             size_pair(s, &n->w, &n->h, "an image size");
         return n;
     }
-    if (s->t.k != T_NAME)
+    if (s->lx.t.kind != TEX_TOK_NAME)
         fail_at(s, line, col, "expected an image, found %s", tok_desc(s));
     n = new_node(s, N_REF, line, col);
     n->s = take_name(s, "an image name");
@@ -390,17 +285,17 @@ static struct node *primary(struct S *s)
     while (!is_punct(s, ')')) {
         struct param *p;
         if (n->nparams == 64)
-            fail_at(s, s->t.line, s->t.col, "too many parameters");
+            fail_at(s, s->lx.t.line, s->lx.t.col, "too many parameters");
         if (!n->params)
             n->params = arena(s, 64 * sizeof *n->params);
         p = &n->params[n->nparams++];
-        p->line = s->t.line;
-        p->col = s->t.col;
+        p->line = s->lx.t.line;
+        p->col = s->lx.t.col;
         p->name = take_name(s, "a parameter name");
         expect_punct(s, '=');
-        if (s->t.k == T_NAME || s->t.k == T_STR) {
-            p->value = arena(s, s->t.n + 1);
-            memcpy(p->value, s->t.p, s->t.n);
+        if (s->lx.t.kind == TEX_TOK_NAME || s->lx.t.kind == TEX_TOK_STR) {
+            p->value = arena(s, s->lx.t.len + 1);
+            memcpy(p->value, s->lx.t.text, s->lx.t.len);
             next(s);
         } else {
             double v = number(s);
@@ -411,30 +306,167 @@ static struct node *primary(struct S *s)
             expect_punct(s, ',');
     }
     next(s);
-    if (s->t.k == T_NUM)
+    if (s->lx.t.kind == TEX_TOK_NUM)
         size_pair(s, &n->w, &n->h, "an image size");
     return n;
 }
 
-static const char *const filters[] = {"blur", "threshold", "invert", "abs", NULL};
-static const char *const rules[] = {"diagonal", "checker", "rows", "columns", "cycle", NULL};
-
-static int pick(struct S *s, const char *const *names, const char *what)
+/* filter NAME IMAGE [by BY]: the filters, each a function of the map and BY. */
+static tex_map *filter_blur(const tex_map *m, double by)
 {
-    int line = s->t.line, col = s->t.col;
-    for (int i = 0; names[i]; i++)
-        if (accept_word(s, names[i]))
-            return i;
+    return tex_blur(m, by);
+}
+
+static tex_map *filter_op(enum tex_op op, const tex_map *m, double by)
+{
+    struct tex_operand a = {m, 0, {0}}, b = {NULL, 1, {(float)by}};
+    return tex_op_apply(op, &a, op == TEX_OP_THRESHOLD ? &b : NULL, NULL, by);
+}
+
+static tex_map *filter_threshold(const tex_map *m, double by)
+{
+    return filter_op(TEX_OP_THRESHOLD, m, by);
+}
+
+static tex_map *filter_invert(const tex_map *m, double by)
+{
+    return filter_op(TEX_OP_INVERT, m, by);
+}
+
+static tex_map *filter_abs(const tex_map *m, double by)
+{
+    return filter_op(TEX_OP_ABS, m, by);
+}
+
+struct filter {
+    const char *name;
+    tex_map *(*fn)(const tex_map *m, double by);
+    double by;  /* BY's default */
+    int radius; /* BY is a blur radius: at most max_blur */
+    const char *help;
+};
+
+static const struct filter filters[] = {
+    {"blur", filter_blur, 1.0, 1, "Gaussian blur, BY the radius (sigma) in pixels"},
+    {"threshold", filter_threshold, 0.5, 0, "1 where the image is above BY, else 0"},
+    {"invert", filter_invert, 1.0, 0, "1 - the image"},
+    {"abs", filter_abs, 1.0, 0, "the absolute value of the image"},
+    {NULL, NULL, 0, 0, NULL},
+};
+
+/* matrix RULE by I, J of IMAGES: how the images are laid out. */
+static const struct rule {
+    const char *name;
+    enum tex_rule rule;
+    const char *help;
+} rules[] = {
+    {"diagonal", TEX_RULE_DIAGONAL, "the first image on the diagonal, the second elsewhere"},
+    {"checker", TEX_RULE_CHECKER, "the images alternate like a chequerboard"},
+    {"rows", TEX_RULE_ROWS, "one image per row, in turn"},
+    {"columns", TEX_RULE_COLUMNS, "one image per column, in turn"},
+    {"cycle", TEX_RULE_CYCLE, "the images in turn, row by row"},
+    {NULL, 0, NULL},
+};
+
+/* The row of a table (rows of size stride, each starting with its name, the
+ * last one's NULL) named by the current word. */
+static const void *pick(struct S *s, const void *table, size_t stride, const char *what)
+{
+    int line = s->lx.t.line, col = s->lx.t.col;
+    for (const char *r = table; *(const char *const *)r; r += stride)
+        if (accept_word(s, *(const char *const *)r))
+            return r;
     fail_at(s, line, col, "unknown %s %s", what, tok_desc(s));
+}
+
+/* An operand inside a transform, and a whole expression: lang/expr.c's, as nodes. */
+static struct node *wrap(struct S *s, struct tex_enode *e)
+{
+    struct node *n;
+    if (e->kind == TEX_EK_LEAF)
+        return (struct node *)e->ptr;
+    n = new_node(s, e->kind == TEX_EK_NUM ? N_NUM : N_EXPR, e->line, e->col);
+    n->v[0] = e->v[0];
+    n->x = e;
+    return n;
 }
 
 static struct node *unary(struct S *s)
 {
-    int line = s->t.line, col = s->t.col;
+    return wrap(s, tex_expr_unary(&s->xp));
+}
+
+static struct node *expr(struct S *s)
+{
+    return wrap(s, tex_expr_parse(&s->xp));
+}
+
+/* The other transforms (filter, tile, matrix, warp, mix), or a primary; line, col: where
+ * the operand starts. */
+static struct node *transform2(struct S *s, int line, int col)
+{
     struct node *n;
 
-    if (++s->depth > MAX_DEPTH)
-        fail_at(s, line, col, "expression nested too deeply (more than %d levels)", MAX_DEPTH);
+    if (accept_word(s, "filter")) {
+        n = new_node(s, N_FILTER, line, col);
+        n->filter = pick(s, filters, sizeof *filters, "filter");
+        n->a = unary(s);
+        n->v[0] = n->filter->by;
+        if ((n->flag = accept_word(s, "by")))
+            n->v[0] = number(s);
+        if (n->filter->radius && !(n->v[0] >= 0 && n->v[0] <= s->o->max_blur))
+            fail_at(s, line, col, "blur radius must be 0..%d (got %g)", s->o->max_blur, n->v[0]);
+    } else if (accept_word(s, "tile")) {
+        n = new_node(s, N_TILE, line, col);
+        n->a = unary(s);
+        expect_word(s, "by");
+        n->v[0] = integer(s, 1, 4096, "repetitions");
+        expect_punct(s, ',');
+        n->v[1] = integer(s, 1, 4096, "repetitions");
+        n->flag = accept_word(s, "mirror");
+    } else if (accept_word(s, "matrix")) {
+        n = new_node(s, N_MATRIX, line, col);
+        n->op = ((const struct rule *)pick(s, rules, sizeof *rules, "matrix rule"))->rule;
+        expect_word(s, "by");
+        n->v[0] = integer(s, 1, 4096, "matrix cells");
+        expect_punct(s, ',');
+        n->v[1] = integer(s, 1, 4096, "matrix cells");
+        expect_word(s, "of");
+        n->list = arena(s, 64 * sizeof *n->list);
+        do {
+            if (n->nlist == 64)
+                fail_at(s, line, col, "a matrix takes at most 64 images");
+            n->list[n->nlist++] = unary(s);
+        } while (is_punct(s, ',') && (next(s), 1));
+        n->flag = accept_word(s, "mirror");
+    } else if (accept_word(s, "warp")) {
+        n = new_node(s, N_WARP, line, col);
+        n->a = unary(s);
+        expect_word(s, "by");
+        n->b = unary(s);
+        n->v[0] = 0.1;
+        if (accept_word(s, "amount"))
+            n->v[0] = number(s);
+        if (!(fabs(n->v[0]) <= 100))
+            fail_at(s, line, col, "warp amount must be in -100..100 (got %g)", n->v[0]);
+        n->flag = accept_word(s, "isotropic");
+    } else if (accept_word(s, "mix")) {
+        n = new_node(s, N_MIX, line, col);
+        n->a = unary(s);
+        expect_punct(s, ',');
+        n->b = unary(s);
+        expect_word(s, "by");
+        n->c = unary(s);
+    } else
+        n = primary(s);
+    return n;
+}
+
+static struct node *transform(struct S *s)
+{
+    int line = s->lx.t.line, col = s->lx.t.col;
+    struct node *n;
+
     if (accept_word(s, "expand")) {
         n = new_node(s, N_EXPAND, line, col);
         n->a = unary(s);
@@ -495,103 +527,27 @@ static struct node *unary(struct S *s)
         n->v[2] = integer(s, 0, TEX_MAP_MAX_SIDE, "a clipping corner");
         expect_punct(s, ',');
         n->v[3] = integer(s, 0, TEX_MAP_MAX_SIDE, "a clipping corner");
-    } else if (accept_word(s, "filter")) {
-        n = new_node(s, N_FILTER, line, col);
-        n->op = pick(s, filters, "filter");
-        n->a = unary(s);
-        n->v[0] = n->op == 1 ? 0.5 : 1.0;
-        if ((n->flag = accept_word(s, "by")))
-            n->v[0] = number(s);
-        if (n->op == 0 && !(n->v[0] >= 0 && n->v[0] <= s->o->max_blur))
-            fail_at(s, line, col, "blur radius must be 0..%d (got %g)", s->o->max_blur, n->v[0]);
-    } else if (accept_word(s, "tile")) {
-        n = new_node(s, N_TILE, line, col);
-        n->a = unary(s);
-        expect_word(s, "by");
-        n->v[0] = integer(s, 1, 4096, "repetitions");
-        expect_punct(s, ',');
-        n->v[1] = integer(s, 1, 4096, "repetitions");
-        n->flag = accept_word(s, "mirror");
-    } else if (accept_word(s, "matrix")) {
-        n = new_node(s, N_MATRIX, line, col);
-        n->op = pick(s, rules, "matrix rule");
-        expect_word(s, "by");
-        n->v[0] = integer(s, 1, 4096, "matrix cells");
-        expect_punct(s, ',');
-        n->v[1] = integer(s, 1, 4096, "matrix cells");
-        expect_word(s, "of");
-        n->list = arena(s, 64 * sizeof *n->list);
-        do {
-            if (n->nlist == 64)
-                fail_at(s, line, col, "a matrix takes at most 64 images");
-            n->list[n->nlist++] = unary(s);
-        } while (is_punct(s, ',') && (next(s), 1));
-        n->flag = accept_word(s, "mirror");
-    } else if (accept_word(s, "warp")) {
-        n = new_node(s, N_WARP, line, col);
-        n->a = unary(s);
-        expect_word(s, "by");
-        n->b = unary(s);
-        n->v[0] = 0.1;
-        if (accept_word(s, "amount"))
-            n->v[0] = number(s);
-        if (!(fabs(n->v[0]) <= 100))
-            fail_at(s, line, col, "warp amount must be in -100..100 (got %g)", n->v[0]);
-        n->flag = accept_word(s, "isotropic");
-    } else if (accept_word(s, "mix")) {
-        n = new_node(s, N_MIX, line, col);
-        n->a = unary(s);
-        expect_punct(s, ',');
-        n->b = unary(s);
-        expect_word(s, "by");
-        n->c = unary(s);
     } else
-        n = primary(s);
-    s->depth--;
+        n = transform2(s, line, col);
     return n;
 }
 
-static int binop(struct S *s)
+/* lang/expr.c's hook: the script's own operands, as leaves. */
+static struct tex_enode *operand(struct tex_expr_parser *xp)
 {
-    static const struct {
-        const char *w;
-        char c;
-        int op;
-    } ops[] = {{"over", 0, TEX_OP_OVER}, {"under", 0, TEX_OP_UNDER}, {"and", 0, TEX_OP_AND},
-               {"or", 0, TEX_OP_OR},     {"xor", 0, TEX_OP_XOR},     {"min", 0, TEX_OP_MIN},
-               {"max", 0, TEX_OP_MAX},   {NULL, '+', TEX_OP_ADD},    {NULL, '-', TEX_OP_SUB},
-               {NULL, '*', TEX_OP_MUL}};
-    for (size_t i = 0; i < sizeof ops / sizeof *ops; i++)
-        if (ops[i].w ? is_word(s, ops[i].w) : is_punct(s, ops[i].c)) {
-            next(s);
-            return ops[i].op;
-        }
-    return -1;
+    struct S *s = xp->ctx;
+    struct tex_enode *e = tex_expr_node(&s->lx, TEX_EK_LEAF, &s->lx.t);
+    e->ptr = transform(s);
+    return e;
 }
 
-static struct node *expr(struct S *s)
-{
-    struct node *n;
-    int op;
-
-    if (++s->depth > MAX_DEPTH)
-        fail_at(s, s->t.line, s->t.col, "expression nested too deeply (more than %d levels)",
-                MAX_DEPTH);
-    n = unary(s);
-    for (;;) {
-        int line = s->t.line, col = s->t.col;
-        struct node *b;
-        if ((op = binop(s)) < 0)
-            break;
-        b = new_node(s, N_BIN, line, col);
-        b->op = op;
-        b->a = n;
-        b->b = unary(s);
-        n = b;
-    }
-    s->depth--;
-    return n;
-}
+/* The operators between images, all of one precedence, left to right. */
+static const struct tex_expr_binop binops[] = {
+    {"over", 1, TEX_OP_OVER}, {"under", 1, TEX_OP_UNDER}, {"and", 1, TEX_OP_AND},
+    {"or", 1, TEX_OP_OR},     {"xor", 1, TEX_OP_XOR},     {"min", 1, TEX_OP_MIN},
+    {"max", 1, TEX_OP_MAX},   {"+", 1, TEX_OP_ADD},       {"-", 1, TEX_OP_SUB},
+    {"*", 1, TEX_OP_MUL},     {NULL, 0, 0}};
+static const struct tex_expr_lang script_lang = {binops, operand};
 
 static struct def *find_def(struct S *s, const char *name)
 {
@@ -630,7 +586,7 @@ static void parse(struct S *s)
     next(s);
     /* The header: tessellation NAME; size; tessellation KIND; cell; background. */
     for (;;) {
-        int line = s->t.line, col = s->t.col;
+        int line = s->lx.t.line, col = s->lx.t.col;
         if (is_tess(s)) {
             char *w = take_name(s, "a name");
             if (!s->title)
@@ -652,10 +608,10 @@ static void parse(struct S *s)
         expect_punct(s, ';');
     }
     if (!s->title)
-        fail_at(s, s->t.line, s->t.col, "a script starts with 'tessellation NAME;', found %s",
+        fail_at(s, s->lx.t.line, s->lx.t.col, "a script starts with 'tessellation NAME;', found %s",
                 tok_desc(s));
     if (!s->have_size)
-        fail_at(s, s->t.line, s->t.col, "expected 'size W by H;' before %s", tok_desc(s));
+        fail_at(s, s->lx.t.line, s->lx.t.col, "expected 'size W by H;' before %s", tok_desc(s));
     if ((long long)s->w * s->h > s->o->max_pixels)
         fail_at(s, 1, 1, "size %d by %d is larger than the limit of %lld pixels", s->w, s->h,
                 s->o->max_pixels);
@@ -668,7 +624,7 @@ static void parse(struct S *s)
                 s->h);
     if (accept_word(s, "images")) {
         while (!is_word(s, "end")) {
-            int line = s->t.line, col = s->t.col;
+            int line = s->lx.t.line, col = s->lx.t.col;
             char *name = take_name(s, "an image name or 'end images'");
             struct node *e = NULL;
             if (is_punct(s, '=')) {
@@ -684,9 +640,9 @@ static void parse(struct S *s)
     }
     /* Definitions, then the layout. */
     while (!is_word(s, "built")) {
-        int line = s->t.line, col = s->t.col;
+        int line = s->lx.t.line, col = s->lx.t.col;
         char *name;
-        if (s->t.k == T_EOF)
+        if (s->lx.t.kind == TEX_TOK_EOF)
             fail_at(s, line, col, "expected 'built with ... end tessellation;', found %s",
                     tok_desc(s));
         name = take_name(s, "an image name or 'built with'");
@@ -698,7 +654,7 @@ static void parse(struct S *s)
     expect_word(s, "with");
     while (!is_word(s, "end")) {
         struct cellref *c;
-        int line = s->t.line, col = s->t.col;
+        int line = s->lx.t.line, col = s->lx.t.col;
         int cols = (s->w + s->cw - 1) / s->cw, rows = (s->h + s->ch - 1) / s->ch;
         expect_punct(s, '(');
         s->cells = grow(s, s->cells, &s->capcells, s->ncells, sizeof *s->cells);
@@ -719,10 +675,10 @@ static void parse(struct S *s)
     }
     next(s);
     if (!is_tess(s))
-        fail_at(s, s->t.line, s->t.col, "expected 'end tessellation;', found %s", tok_desc(s));
+        fail_at(s, s->lx.t.line, s->lx.t.col, "expected 'end tessellation;', found %s", tok_desc(s));
     expect_punct(s, ';');
-    if (s->t.k != T_EOF)
-        fail_at(s, s->t.line, s->t.col, "unexpected %s after 'end tessellation;'", tok_desc(s));
+    if (s->lx.t.kind != TEX_TOK_EOF)
+        fail_at(s, s->lx.t.line, s->lx.t.col, "unexpected %s after 'end tessellation;'", tok_desc(s));
     /* Every name used must be defined somewhere. */
     for (int i = 0; i < s->nrefs; i++) {
         struct node *r = s->refs[i];
@@ -741,8 +697,16 @@ static void parse(struct S *s)
 struct val {
     const tex_map *m; /* NULL: the constant c */
     tex_map *own;     /* m, when this value owns it */
-    float c;
+    float c[4];
+    int nc;           /* the constant's values: 0 or 1 a number, 3 a colour */
 };
+
+static struct tex_operand operand_of(const struct val *v)
+{
+    if (v->m)
+        return (struct tex_operand){v->m, 0, {0}};
+    return (struct tex_operand){NULL, v->nc ? v->nc : 1, {v->c[0], v->c[1], v->c[2], v->c[3]}};
+}
 
 static void val_free(struct val *v)
 {
@@ -752,12 +716,17 @@ static void val_free(struct val *v)
 }
 
 /* Record the position in front of the current libtex message. */
-static int err_at(struct S *s, const struct node *n)
+static int err_pos(struct S *s, int line, int col)
 {
     char where[300];
-    snprintf(where, sizeof where, "%s:%d:%d", s->name, n->line, n->col);
+    snprintf(where, sizeof where, "%s:%d:%d", s->name, line, col);
     tex_error_context(where);
     return -1;
+}
+
+static int err_at(struct S *s, const struct node *n)
+{
+    return err_pos(s, n->line, n->col);
 }
 
 static int fail_node(struct S *s, const struct node *n, const char *fmt, ...)
@@ -770,7 +739,7 @@ static int fail_node(struct S *s, const struct node *n, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    return tex_usage_error("%s:%d:%d: %s", s->name, n->line, n->col, msg);
+    return tex_lang_error(s->name, n->line, n->col, "%s", msg);
 }
 
 static int check_pixels(struct S *s, const struct node *n, long long w, long long h)
@@ -882,6 +851,124 @@ static int eval_file(struct S *s, const struct node *n, struct val *out)
     return set_result(s, n, out, m);
 }
 
+/* ---- expressions of lang/expr.h on maps ---- */
+
+static int eval_x(struct S *s, const struct tex_enode *x, struct val *out);
+
+/* out = a op b, images or constants (at least one image); a and b are used up. */
+static int combine(struct S *s, const struct tex_enode *at, enum tex_op op, struct val *a,
+                   struct val *b, struct val *out)
+{
+    struct tex_operand oa = operand_of(a), ob = operand_of(b);
+    tex_map *r = NULL;
+    int rc = -1;
+
+    if (!a->m && !b->m)
+        tex_lang_error(s->name, at->line, at->col, "%s needs at least one image",
+                       tex_op_name(op));
+    else if (a->m && b->m && (a->m->w != b->m->w || a->m->h != b->m->h))
+        tex_lang_error(s->name, at->line, at->col,
+                       "%s of images of different sizes (%dx%d and %dx%d): resize one",
+                       tex_op_name(op), a->m->w, a->m->h, b->m->w, b->m->h);
+    else if (!(r = tex_op_apply(op, &oa, op == TEX_OP_ABS ? NULL : &ob, NULL, 0.5)))
+        err_pos(s, at->line, at->col);
+    else
+        rc = 0;
+    val_free(a);
+    val_free(b);
+    memset(out, 0, sizeof *out);
+    out->m = out->own = r;
+    return rc;
+}
+
+/* A chain a op b op c ...: along its left spine without recursion. */
+static int eval_chain(struct S *s, const struct tex_enode *x, struct val *out)
+{
+    const struct tex_enode *e, **spine;
+    int n = 0, i, rc;
+
+    for (e = x; e->kind == TEX_EK_BIN; e = e->a)
+        n++;
+    if (!(spine = malloc(n * sizeof *spine)))
+        return tex_error("out of memory"), err_pos(s, x->line, x->col);
+    for (e = x, i = n; e->kind == TEX_EK_BIN; e = e->a)
+        spine[--i] = e;
+    rc = eval_x(s, e, out);
+    for (i = 0; rc == 0 && i < n; i++) {
+        struct val b = {0};
+        if ((rc = eval_x(s, spine[i]->b, &b)) < 0)
+            val_free(out);
+        else
+            rc = combine(s, spine[i], (enum tex_op)spine[i]->op, out, &b, out);
+    }
+    free(spine);
+    return rc;
+}
+
+/* A function of lang/expr.h's table, on images (rgb: on numbers, a colour). */
+static int eval_call(struct S *s, const struct tex_enode *x, struct val *out)
+{
+    const struct tex_enode *arg[3] = {x->a, x->b, x->c};
+    struct val v[3] = {{0}};
+    int n = x->op == TEX_EOP_ABS ? 1 : x->op == TEX_EOP_RGB ? 3 : 2;
+
+    for (int i = 0; i < n; i++)
+        if (eval_x(s, arg[i], &v[i]) < 0) {
+            while (i--)
+                val_free(&v[i]);
+            return -1;
+        }
+    if (x->op == TEX_EOP_RGB) {
+        memset(out, 0, sizeof *out);
+        out->nc = 3;
+        for (int i = 0; i < 3; i++) {
+            if (v[i].m || v[i].nc > 1) {
+                for (int j = 0; j < 3; j++)
+                    val_free(&v[j]);
+                return tex_lang_error(s->name, x->line, x->col, "rgb takes numbers");
+            }
+            out->c[i] = v[i].c[0];
+        }
+        return 0;
+    }
+    if (x->op == TEX_EOP_ABS && !v[0].m) {
+        *out = v[0];
+        for (int k = 0; k < 4; k++)
+            out->c[k] = fabsf(out->c[k]);
+        return 0;
+    }
+    if (x->op == TEX_EOP_ABS)
+        return combine(s, x, TEX_OP_ABS, &v[0], &v[1], out);
+    return combine(s, x, x->op == TEX_EOP_MIN ? TEX_OP_MIN : TEX_OP_MAX, &v[0], &v[1], out);
+}
+
+static int eval_x(struct S *s, const struct tex_enode *x, struct val *out)
+{
+    struct val zero = {0}, a;
+
+    memset(out, 0, sizeof *out);
+    switch (x->kind) {
+    case TEX_EK_NUM: out->c[0] = (float)x->v[0]; return 0;
+    case TEX_EK_RGB:
+        out->nc = 3;
+        for (int k = 0; k < 3; k++)
+            out->c[k] = (float)x->v[k];
+        return 0;
+    case TEX_EK_LEAF: return eval(s, x->ptr, out);
+    case TEX_EK_BIN: return eval_chain(s, x, out);
+    case TEX_EK_CALL: return eval_call(s, x, out);
+    case TEX_EK_NEG: break;
+    }
+    if (eval_x(s, x->a, &a) < 0)
+        return -1;
+    if (a.m) /* -image: 0 - image */
+        return combine(s, x, TEX_OP_SUB, &zero, &a, out);
+    *out = a;
+    for (int k = 0; k < 4; k++)
+        out->c[k] = -out->c[k];
+    return 0;
+}
+
 static int eval(struct S *s, const struct node *n, struct val *out)
 {
     struct val a = {0}, b = {0}, c = {0};
@@ -898,27 +985,10 @@ static int eval(struct S *s, const struct node *n, struct val *out)
     case N_PRIM: rc = eval_prim(s, n, out); goto done;
     case N_FILE: rc = eval_file(s, n, out); goto done;
     case N_NUM:
-        out->c = (float)n->v[0];
+        out->c[0] = (float)n->v[0];
         rc = 0;
         goto done;
-    case N_BIN: {
-        struct tex_operand oa = {0}, ob = {0};
-        if (eval(s, n->a, &a) < 0 || eval(s, n->b, &b) < 0)
-            goto done;
-        if (!a.m && !b.m) {
-            fail_node(s, n, "%s needs at least one image", tex_op_name(n->op));
-            goto done;
-        }
-        if (a.m && b.m && (a.m->w != b.m->w || a.m->h != b.m->h)) {
-            fail_node(s, n, "%s of images of different sizes (%dx%d and %dx%d): resize one",
-                      tex_op_name(n->op), a.m->w, a.m->h, b.m->w, b.m->h);
-            goto done;
-        }
-        oa = a.m ? (struct tex_operand){a.m, 0, {0}} : (struct tex_operand){NULL, 1, {a.c}};
-        ob = b.m ? (struct tex_operand){b.m, 0, {0}} : (struct tex_operand){NULL, 1, {b.c}};
-        r = tex_op_apply(n->op, &oa, &ob, NULL, 0.5);
-        break;
-    }
+    case N_EXPR: rc = eval_x(s, n->x, out); goto done;
     case N_MIX: {
         struct tex_operand oa, ob, oc;
         if (eval_map(s, n->a, &a, "mix") < 0 || eval_map(s, n->b, &b, "mix") < 0 ||
@@ -931,7 +1001,7 @@ static int eval(struct S *s, const struct node *n, struct val *out)
         }
         oa = (struct tex_operand){a.m, 0, {0}};
         ob = (struct tex_operand){b.m, 0, {0}};
-        oc = c.m ? (struct tex_operand){c.m, 0, {0}} : (struct tex_operand){NULL, 1, {c.c}};
+        oc = operand_of(&c);
         r = tex_op_apply(TEX_OP_MIX, &oa, &ob, &oc, 0.5);
         break;
     }
@@ -976,19 +1046,11 @@ static int eval(struct S *s, const struct node *n, struct val *out)
             goto done;
         r = tex_clip(a.m, (int)n->v[0], (int)n->v[1], (int)n->v[2], (int)n->v[3]);
         break;
-    case N_FILTER: {
-        struct tex_operand oa, ob = {NULL, 1, {(float)n->v[0]}};
-        if (eval_map(s, n->a, &a, filters[n->op]) < 0)
+    case N_FILTER:
+        if (eval_map(s, n->a, &a, n->filter->name) < 0)
             goto done;
-        oa = (struct tex_operand){a.m, 0, {0}};
-        if (n->op == 0)
-            r = tex_blur(a.m, n->v[0]);
-        else
-            r = tex_op_apply(n->op == 1 ? TEX_OP_THRESHOLD : n->op == 2 ? TEX_OP_INVERT
-                                                                          : TEX_OP_ABS,
-                             &oa, n->op == 1 ? &ob : NULL, NULL, n->v[0]);
+        r = n->filter->fn(a.m, n->v[0]);
         break;
-    }
     case N_TILE:
         if (eval_map(s, n->a, &a, "tile") < 0)
             goto done;
@@ -1113,10 +1175,9 @@ tex_map *tex_script_run(const char *text, size_t len, const char *name,
 
     if (!s)
         return tex_error("out of memory"), NULL;
-    s->src = s->cur = text;
-    s->end = text + len;
     s->name = name ? name : "script";
-    s->line = s->col = 1;
+    tex_lex_init(&s->lx, text, len, s->name, &s->fail, lex_alloc, s);
+    s->xp = (struct tex_expr_parser){&s->lx, &script_lang, s, 0, 0};
     s->o = o ? o : &defaults;
     s->bg[3] = 1.0f;
     m = run(s);

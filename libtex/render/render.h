@@ -40,6 +40,7 @@
 #include "colour.h"
 #include "../base/map.h"
 #include "../prim/prim.h"
+#include "../lang/expr.h"
 #include "render_shade.h"
 
 #ifdef __cplusplus
@@ -312,16 +313,10 @@ int tex_texture_build_mip(struct tex_texture *t);
 enum tex_sparam { TEX_SP_KA, TEX_SP_KD, TEX_SP_KS, TEX_SP_N, TEX_SP_KR, TEX_SP_KT, TEX_SP_IOR,
                   TEX_SP_BUMP, TEX_SP_COUNT };
 
-/* An expression of f (the map value), p (the untextured value), numbers,
- * colours and other textures (a cascade), evaluated per RGB channel. */
-enum tex_expr_op { TEX_E_NUM, TEX_E_F, TEX_E_P, TEX_E_RGB, TEX_E_TEX, TEX_E_ADD, TEX_E_SUB,
-                   TEX_E_MUL, TEX_E_DIV, TEX_E_NEG };
-struct tex_expr {
-    enum tex_expr_op op;
-    double v[3];
-    const struct tex_texture *tex;
-    struct tex_expr *a, *b;
-};
+/* An application function's expression, compiled (lang/expr.h): a postfix
+ * program over f (the map value), p (the untextured value), numbers, colours
+ * and other textures (a cascade), run per RGB channel.  Its operands: */
+enum tex_eleaf { TEX_LEAF_F, TEX_LEAF_P, TEX_LEAF_TEX /* ptr: the texture */ };
 
 /* g[region][parameter] = h: one application function. */
 struct tex_appfn {

@@ -18,6 +18,8 @@
 #include "render/matdb.h"
 #include "render/render.h"
 #include "render/render_ct.h"
+#include "lang/expr.h"
+#include "lang/lex.h"
 
 #ifndef TEX_DATADIR
 #define TEX_DATADIR "/usr/local/share/textura"
@@ -25,7 +27,9 @@
 
 #define MAX_NEST 64
 
-enum tok_kind { T_EOF, T_NUM, T_ID, T_STR, T_PUNCT };
+/* The tokens of lang/lex.h, under the names this parser has always used. */
+enum tok_kind { T_EOF = TEX_TOK_EOF, T_NUM = TEX_TOK_NUM, T_ID = TEX_TOK_NAME,
+                T_STR = TEX_TOK_STR, T_PUNCT = TEX_TOK_PUNCT };
 
 struct tok {
     enum tok_kind kind;
@@ -46,6 +50,8 @@ struct parser {
     int stdin_used;
     struct tex_matdb db; /* the materials database, read on first use */
     int have_db;
+    struct tex_lexer lx; /* the shared lexer, started by the first next() */
+    int lx_ready;
 };
 
 static void fail_at(struct parser *ps, const struct tok *t, int runtime, const char *fmt, ...)
@@ -53,16 +59,11 @@ static void fail_at(struct parser *ps, const struct tok *t, int runtime, const c
 
 static void fail_at(struct parser *ps, const struct tok *t, int runtime, const char *fmt, ...)
 {
-    char msg[400];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(msg, sizeof msg, fmt, ap);
-    va_end(ap);
-    if (runtime)
-        tex_error("%s:%d:%d: %s", ps->name, t->line, t->col, msg);
-    else
-        tex_usage_error("%s:%d:%d: %s", ps->name, t->line, t->col, msg);
-    longjmp(ps->jb, 1);
+    ps->lx.name = ps->name; /* the lexer's one error function, started or not */
+    ps->lx.fail = &ps->jb;
+    tex_lex_vfail(&ps->lx, runtime ? TEX_ERR_RUNTIME : TEX_ERR_USAGE, t->line, t->col, fmt, ap);
 }
 #define FAIL(ps, ...) fail_at(ps, &(ps)->t, 0, __VA_ARGS__)
 
@@ -93,122 +94,33 @@ static char *pstrdup(struct parser *ps, const char *t, size_t n)
 
 /* ---- lexer ---------------------------------------------------------------------- */
 
-static int is_id0(int c)
+static void *lex_alloc(void *ctx, size_t n)
 {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_';
-}
-static int is_id(int c)
-{
-    return is_id0(c) || (c >= '0' && c <= '9');
-}
-static int is_digit(int c)
-{
-    return c >= '0' && c <= '9';
+    return palloc(ctx, n);
 }
 
-static void advance(struct parser *ps, size_t n)
+/* ps->t from the shared lexer's current token. */
+static void sync(struct parser *ps)
 {
-    while (n-- && ps->p < ps->end) {
-        if (*ps->p == '\n') {
-            ps->line++;
-            ps->col = 1;
-        } else {
-            ps->col++;
-        }
-        ps->p++;
-    }
+    const struct tex_tok *l = &ps->lx.t;
+    ps->t = (struct tok){(enum tok_kind)l->kind, l->text, l->len, l->num, l->line, l->col};
+    ps->p = ps->lx.p;
+    ps->line = ps->lx.line;
+    ps->col = ps->lx.col;
 }
 
 static void next(struct parser *ps)
 {
-    for (;;) {
-        while (ps->p < ps->end && (*ps->p == ' ' || *ps->p == '\t' || *ps->p == '\n' ||
-                                   *ps->p == '\r' || *ps->p == ';'))
-            advance(ps, 1);
-        if (ps->p < ps->end && *ps->p == '#') {
-            while (ps->p < ps->end && *ps->p != '\n')
-                advance(ps, 1);
-            continue;
-        }
-        break;
+    if (!ps->lx_ready) {
+        tex_lex_init(&ps->lx, ps->p, (size_t)(ps->end - ps->p), ps->name, &ps->jb, lex_alloc,
+                     ps);
+        ps->lx.line = ps->line;
+        ps->lx.col = ps->col;
+        ps->lx.semicolon_blank = 1;
+        ps->lx_ready = 1;
     }
-    struct tok *t = &ps->t;
-    t->line = ps->line;
-    t->col = ps->col;
-    t->text = ps->p;
-    t->len = 0;
-    if (ps->p >= ps->end) {
-        t->kind = T_EOF;
-        return;
-    }
-    const char *q = ps->p;
-    int c = (unsigned char)*q;
-    if (c == 0)
-        FAIL(ps, "NUL byte in the scene");
-    if (is_digit(c) || ((c == '-' || c == '+' || c == '.') && q + 1 < ps->end &&
-                        (is_digit(q[1]) || (q[1] == '.' && q + 2 < ps->end && is_digit(q[2]))))) {
-        /* copy to a bounded buffer: the text is not NUL-terminated */
-        char buf[64];
-        size_t n = 0;
-        while (q + n < ps->end && n < sizeof buf - 1 &&
-               (is_digit(q[n]) || q[n] == '.' || q[n] == 'e' || q[n] == 'E' ||
-                ((q[n] == '-' || q[n] == '+') && (n == 0 || q[n - 1] == 'e' || q[n - 1] == 'E'))))
-            n++;
-        memcpy(buf, q, n);
-        buf[n] = 0;
-        char *e;
-        errno = 0;
-        double v = strtod(buf, &e);
-        if (e == buf)
-            FAIL(ps, "malformed number");
-        n = (size_t)(e - buf);
-        if (!isfinite(v) || errno == ERANGE)
-            FAIL(ps, "number out of range");
-        t->kind = T_NUM;
-        t->num = v;
-        t->len = n;
-        advance(ps, n);
-        if (ps->p < ps->end && is_id0((unsigned char)*ps->p))
-            FAIL(ps, "malformed number");
-        return;
-    }
-    if (is_id0(c)) {
-        size_t n = 1;
-        for (;;) {
-            while (q + n < ps->end && is_id((unsigned char)q[n]))
-                n++;
-            /* "major-radius": a hyphen between letters belongs to the name */
-            if (q + n + 1 < ps->end && q[n] == '-' && is_id0((unsigned char)q[n + 1]))
-                n++;
-            else
-                break;
-        }
-        t->kind = T_ID;
-        t->len = n;
-        advance(ps, n);
-        return;
-    }
-    if (c == '"') {
-        size_t n = 1;
-        while (q + n < ps->end && q[n] != '"' && q[n] != '\n')
-            n++;
-        if (q + n >= ps->end || q[n] != '"')
-            FAIL(ps, "unterminated string");
-        t->kind = T_STR;
-        t->text = q + 1;
-        t->len = n - 1;
-        advance(ps, n + 1);
-        return;
-    }
-    if (strchr("{}=*/+-(),", c)) {
-        t->kind = T_PUNCT;
-        t->len = 1;
-        advance(ps, 1);
-        return;
-    }
-    if (c >= 32 && c < 127)
-        FAIL(ps, "unexpected character '%c'", c);
-    FAIL(ps, "unexpected byte 0x%02x", c);
+    tex_lex_next(&ps->lx);
+    sync(ps);
 }
 
 static int is_word(const struct tok *t, const char *w)
@@ -522,102 +434,43 @@ static void parse_texture(struct parser *ps)
 
 /* ---- expressions ---------------------------------------------------------------- */
 
-static struct tex_expr *expr(struct parser *ps);
-
-static struct tex_expr *enode(struct parser *ps, enum tex_expr_op op, struct tex_expr *a,
-                              struct tex_expr *b)
+/* An operand of an application function: f, p or a texture's name (a cascade).
+ * Numbers, parentheses, minus and functions are lang/expr.c's. */
+static struct tex_enode *operand(struct tex_expr_parser *xp)
 {
-    struct tex_expr *e = palloc(ps, sizeof *e);
-    e->op = op;
-    e->a = a;
-    e->b = b;
-    return e;
-}
-
-static struct tex_expr *primary(struct parser *ps)
-{
+    struct parser *ps = xp->ctx;
     char b[64];
-    if (++ps->nest > MAX_NEST)
-        FAIL(ps, "expression nested too deeply");
-    struct tex_expr *e;
+    struct tex_enode *e;
+    sync(ps);
     struct tok t = ps->t;
-    if (t.kind == T_NUM) {
-        e = enode(ps, TEX_E_NUM, NULL, NULL);
-        e->v[0] = number(ps);
-        /* three numbers in a row: a colour */
-        if (ps->t.kind == T_NUM && ps->t.text[0] != '-' && ps->t.text[0] != '+') {
-            e->op = TEX_E_RGB;
-            e->v[1] = number(ps);
-            e->v[2] = number(ps);
-        }
-    } else if (is_punct(&t, '(')) {
-        next(ps);
-        e = expr(ps);
-        expect(ps, ')');
-    } else if (is_punct(&t, '-')) {
-        next(ps);
-        e = enode(ps, TEX_E_NEG, primary(ps), NULL);
-    } else if (is_word(&t, "f")) {
-        next(ps);
-        e = enode(ps, TEX_E_F, NULL, NULL);
-    } else if (is_word(&t, "p")) {
-        next(ps);
-        e = enode(ps, TEX_E_P, NULL, NULL);
-    } else if (is_word(&t, "rgb")) {
-        next(ps);
-        e = enode(ps, TEX_E_RGB, NULL, NULL);
-        expect(ps, '(');
-        for (int i = 0; i < 3; i++) {
-            if (i)
-                expect(ps, ',');
-            e->v[i] = number(ps);
-        }
-        expect(ps, ')');
-    } else if (t.kind == T_ID) {
-        const struct tex_texture *tx = find_texture(ps, &t);
-        if (!tx)
-            FAIL(ps, "unknown name '%.*s' in an expression (f, p, rgb(...), a number or "
-                     "a texture)", (int)t.len, t.text);
-        next(ps);
-        e = enode(ps, TEX_E_TEX, NULL, NULL);
-        e->tex = tx;
-    } else {
+    if (t.kind != T_ID)
         FAIL(ps, "expected an expression, found %s", tokdesc(&t, b, sizeof b));
+    e = tex_expr_node(&ps->lx, TEX_EK_LEAF, &ps->lx.t);
+    if (is_word(&t, "f")) {
+        e->op = TEX_LEAF_F;
+    } else if (is_word(&t, "p")) {
+        e->op = TEX_LEAF_P;
+    } else {
+        e->op = TEX_LEAF_TEX;
+        if (!(e->ptr = find_texture(ps, &t)))
+            FAIL(ps, "unknown name '%.*s' in an expression (f, p, a number, a function or "
+                     "a texture)", (int)t.len, t.text);
     }
-    ps->nest--;
+    next(ps);
     return e;
 }
 
-static struct tex_expr *term(struct parser *ps)
-{
-    struct tex_expr *e = primary(ps);
-    while (is_punct(&ps->t, '*') || is_punct(&ps->t, '/')) {
-        enum tex_expr_op op = ps->t.text[0] == '*' ? TEX_E_MUL : TEX_E_DIV;
-        next(ps);
-        e = enode(ps, op, e, primary(ps));
-    }
-    return e;
-}
-
+/* An application function, compiled for the renderer. */
 static struct tex_expr *expr(struct parser *ps)
 {
-    if (++ps->nest > MAX_NEST)
-        FAIL(ps, "expression nested too deeply");
-    struct tex_expr *e = term(ps);
-    for (;;) {
-        if (is_punct(&ps->t, '+') || is_punct(&ps->t, '-')) {
-            enum tex_expr_op op = ps->t.text[0] == '+' ? TEX_E_ADD : TEX_E_SUB;
-            next(ps);
-            e = enode(ps, op, e, term(ps));
-        } else if (ps->t.kind == T_NUM && (ps->t.text[0] == '-' || ps->t.text[0] == '+')) {
-            /* "f -1" lexes the sign into the number */
-            e = enode(ps, TEX_E_ADD, e, term(ps));
-        } else {
-            break;
-        }
-    }
-    ps->nest--;
-    return e;
+    static const struct tex_expr_binop ops[] = {
+        {"+", 1, TEX_EOP_ADD}, {"-", 1, TEX_EOP_SUB}, {"*", 2, TEX_EOP_MUL},
+        {"/", 2, TEX_EOP_DIV}, {NULL, 0, 0}};
+    static const struct tex_expr_lang lang = {ops, operand};
+    struct tex_expr_parser xp = {&ps->lx, &lang, ps, 0, 0};
+    struct tex_expr *x = tex_expr_compile(&ps->lx, tex_expr_parse(&xp));
+    sync(ps);
+    return x;
 }
 
 /* ---- surfaces ------------------------------------------------------------------- */

@@ -516,45 +516,59 @@ struct evalctx {
     double fw2; /* the footprint's squared width */
 };
 
+/* Run the compiled function e (lang/expr.h) per channel: a loop over its postfix code
+ * with the values on a stack in this frame; no recursion, no allocation. */
 static void expr_eval(const struct tex_expr *e, const struct evalctx *c, double out[3])
 {
-    double a[3], b[3];
-    switch (e->op) {
-    case TEX_E_NUM:
-        out[0] = out[1] = out[2] = e->v[0];
-        return;
-    case TEX_E_RGB:
-        out[0] = e->v[0], out[1] = e->v[1], out[2] = e->v[2];
-        return;
-    case TEX_E_F:
-        out[0] = c->f[0], out[1] = c->f[1], out[2] = c->f[2];
-        return;
-    case TEX_E_P:
-        out[0] = c->p[0], out[1] = c->p[1], out[2] = c->p[2];
-        return;
-    case TEX_E_TEX: {
-        float v[3];
-        texture_lookup(e->tex, c->uvw[0], c->uvw[1], c->uvw[2], c->fw2, v);
-        out[0] = v[0], out[1] = v[1], out[2] = v[2];
-        return;
-    }
-    case TEX_E_NEG:
-        expr_eval(e->a, c, a);
-        out[0] = -a[0], out[1] = -a[1], out[2] = -a[2];
-        return;
-    default:
-        break;
-    }
-    expr_eval(e->a, c, a);
-    expr_eval(e->b, c, b);
-    for (int k = 0; k < 3; k++) {
-        switch (e->op) {
-        case TEX_E_ADD: out[k] = a[k] + b[k]; break;
-        case TEX_E_SUB: out[k] = a[k] - b[k]; break;
-        case TEX_E_MUL: out[k] = a[k] * b[k]; break;
-        default: out[k] = b[k] != 0 ? a[k] / b[k] : 0; break;
+    double st[TEX_EXPR_MAX_STACK][3], *a, *b;
+    int sp = 0;
+    for (const struct tex_einsn *in = e->code, *end = in + e->n; in < end; in++) {
+        switch (in->op) {
+        case TEX_EOP_CONST:
+            a = st[sp++];
+            a[0] = in->v[0], a[1] = in->v[1], a[2] = in->v[2];
+            continue;
+        case TEX_EOP_LEAF: {
+            const float *v = in->leaf == TEX_LEAF_F ? c->f : c->p;
+            float t[3];
+            if (in->leaf == TEX_LEAF_TEX) {
+                texture_lookup(in->ptr, c->uvw[0], c->uvw[1], c->uvw[2], c->fw2, t);
+                v = t;
+            }
+            a = st[sp++];
+            a[0] = v[0], a[1] = v[1], a[2] = v[2];
+            continue;
+        }
+        case TEX_EOP_NEG:
+            a = st[sp - 1];
+            a[0] = -a[0], a[1] = -a[1], a[2] = -a[2];
+            continue;
+        case TEX_EOP_ABS:
+            a = st[sp - 1];
+            a[0] = fabs(a[0]), a[1] = fabs(a[1]), a[2] = fabs(a[2]);
+            continue;
+        case TEX_EOP_RGB: /* channel k of argument k */
+            sp -= 2;
+            st[sp - 1][1] = st[sp][1];
+            st[sp - 1][2] = st[sp + 1][2];
+            continue;
+        default:
+            break;
+        }
+        b = st[--sp];
+        a = st[sp - 1];
+        for (int k = 0; k < 3; k++) {
+            switch (in->op) {
+            case TEX_EOP_ADD: a[k] = a[k] + b[k]; break;
+            case TEX_EOP_SUB: a[k] = a[k] - b[k]; break;
+            case TEX_EOP_MUL: a[k] = a[k] * b[k]; break;
+            case TEX_EOP_MIN: a[k] = fmin(a[k], b[k]); break;
+            case TEX_EOP_MAX: a[k] = fmax(a[k], b[k]); break;
+            default: a[k] = b[k] != 0 ? a[k] / b[k] : 0; break;
+            }
         }
     }
+    out[0] = st[0][0], out[1] = st[0][1], out[2] = st[0][2];
 }
 
 /* An application function compiled to c0 + c1 f + c2 p + c3 f p per channel,
@@ -564,76 +578,96 @@ struct poly {
     int df, dp; /* degrees in f and p */
 };
 
-static int poly_of(const struct tex_expr *e, struct poly *r)
+/* a op b, in a; 0 if the result is not such a polynomial. */
+static int poly_op(enum tex_eop op, struct poly *a, const struct poly *b)
 {
-    struct poly a, b;
-    memset(r, 0, sizeof *r);
-    switch (e->op) {
-    case TEX_E_NUM:
-        r->c[0][0] = r->c[0][1] = r->c[0][2] = e->v[0];
-        return 1;
-    case TEX_E_RGB:
-        for (int k = 0; k < 3; k++)
-            r->c[0][k] = e->v[k];
-        return 1;
-    case TEX_E_F:
-        r->c[1][0] = r->c[1][1] = r->c[1][2] = 1;
-        r->df = 1;
-        return 1;
-    case TEX_E_P:
-        r->c[2][0] = r->c[2][1] = r->c[2][2] = 1;
-        r->dp = 1;
-        return 1;
-    case TEX_E_NEG:
-        if (!poly_of(e->a, r))
-            return 0;
+    struct poly r = {{{0}}, a->df | b->df, a->dp | b->dp};
+    double sg = op == TEX_EOP_SUB ? -1 : 1;
+    switch (op) {
+    case TEX_EOP_ADD:
+    case TEX_EOP_SUB:
         for (int i = 0; i < 4; i++)
             for (int k = 0; k < 3; k++)
-                r->c[i][k] = -r->c[i][k];
-        return 1;
-    case TEX_E_ADD:
-    case TEX_E_SUB:
-    case TEX_E_MUL:
-    case TEX_E_DIV:
+                r.c[i][k] = a->c[i][k] + sg * b->c[i][k];
         break;
-    default:
-        return 0;
-    }
-    if (!poly_of(e->a, &a) || !poly_of(e->b, &b))
-        return 0;
-    double sg = e->op == TEX_E_SUB ? -1 : 1;
-    switch (e->op) {
-    case TEX_E_ADD:
-    case TEX_E_SUB:
-        for (int i = 0; i < 4; i++)
-            for (int k = 0; k < 3; k++)
-                r->c[i][k] = a.c[i][k] + sg * b.c[i][k];
-        r->df = a.df | b.df;
-        r->dp = a.dp | b.dp;
-        return 1;
-    case TEX_E_MUL:
-        if (a.df + b.df > 1 || a.dp + b.dp > 1)
+    case TEX_EOP_MUL:
+        if (a->df + b->df > 1 || a->dp + b->dp > 1)
             return 0;
         for (int k = 0; k < 3; k++) {
-            r->c[0][k] = a.c[0][k] * b.c[0][k];
-            r->c[1][k] = a.c[0][k] * b.c[1][k] + a.c[1][k] * b.c[0][k];
-            r->c[2][k] = a.c[0][k] * b.c[2][k] + a.c[2][k] * b.c[0][k];
-            r->c[3][k] = a.c[0][k] * b.c[3][k] + a.c[3][k] * b.c[0][k] + a.c[1][k] * b.c[2][k] +
-                         a.c[2][k] * b.c[1][k];
+            r.c[0][k] = a->c[0][k] * b->c[0][k];
+            r.c[1][k] = a->c[0][k] * b->c[1][k] + a->c[1][k] * b->c[0][k];
+            r.c[2][k] = a->c[0][k] * b->c[2][k] + a->c[2][k] * b->c[0][k];
+            r.c[3][k] = a->c[0][k] * b->c[3][k] + a->c[3][k] * b->c[0][k] +
+                        a->c[1][k] * b->c[2][k] + a->c[2][k] * b->c[1][k];
         }
-        r->df = a.df | b.df;
-        r->dp = a.dp | b.dp;
-        return 1;
-    default: /* division by a constant; by 0 gives 0 as in expr_eval */
-        if (b.df || b.dp)
+        break;
+    case TEX_EOP_DIV: /* by a constant; by 0 gives 0 as in expr_eval */
+        if (b->df || b->dp)
             return 0;
         for (int i = 0; i < 4; i++)
             for (int k = 0; k < 3; k++)
-                r->c[i][k] = b.c[0][k] != 0 ? a.c[i][k] / b.c[0][k] : 0;
-        r->df = a.df;
-        r->dp = a.dp;
-        return 1;
+                r.c[i][k] = b->c[0][k] != 0 ? a->c[i][k] / b->c[0][k] : 0;
+        r.df = a->df;
+        r.dp = a->dp;
+        break;
+    default: /* min, max, abs: not polynomials */
+        return 0;
     }
+    *a = r;
+    return 1;
+}
+
+/* The polynomial of e, by running its code on a stack of polynomials. */
+static int poly_of(const struct tex_expr *e, struct poly *r)
+{
+    struct poly *st = malloc((e->depth ? e->depth : 1) * sizeof *st);
+    int sp = 0, ok = st != NULL;
+    for (int i = 0; ok && i < e->n; i++) {
+        const struct tex_einsn *in = &e->code[i];
+        struct poly *a = &st[sp - 1];
+        switch (in->op) {
+        case TEX_EOP_CONST:
+            a = &st[sp++];
+            memset(a, 0, sizeof *a);
+            for (int k = 0; k < 3; k++)
+                a->c[0][k] = in->v[k];
+            break;
+        case TEX_EOP_LEAF:
+            a = &st[sp++];
+            memset(a, 0, sizeof *a);
+            ok = in->leaf != TEX_LEAF_TEX;
+            a->c[in->leaf == TEX_LEAF_F ? 1 : 2][0] = 1;
+            a->c[in->leaf == TEX_LEAF_F ? 1 : 2][1] = 1;
+            a->c[in->leaf == TEX_LEAF_F ? 1 : 2][2] = 1;
+            a->df = in->leaf == TEX_LEAF_F;
+            a->dp = in->leaf == TEX_LEAF_P;
+            break;
+        case TEX_EOP_NEG:
+            for (int j = 0; j < 4; j++)
+                for (int k = 0; k < 3; k++)
+                    a->c[j][k] = -a->c[j][k];
+            break;
+        case TEX_EOP_RGB: /* channel k of argument k */
+            sp -= 2;
+            a = &st[sp - 1];
+            for (int j = 0; j < 4; j++)
+                a->c[j][1] = a[1].c[j][1], a->c[j][2] = a[2].c[j][2];
+            a->df |= a[1].df | a[2].df;
+            a->dp |= a[1].dp | a[2].dp;
+            break;
+        case TEX_EOP_ABS:
+            ok = 0;
+            break;
+        default:
+            sp--;
+            ok = poly_op(in->op, &st[sp - 1], &st[sp]);
+            break;
+        }
+    }
+    if (ok)
+        *r = st[0];
+    free(st);
+    return ok;
 }
 
 /* Channel k of a compiled function at f, p */

@@ -1,0 +1,352 @@
+/* expr.c - the shared expression parser, function table and compiler (see expr.h) */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lang/expr.h"
+
+const struct tex_expr_func tex_expr_funcs[] = {
+    {"min", 2, TEX_EOP_MIN, "the smaller of a and b"},
+    {"max", 2, TEX_EOP_MAX, "the larger of a and b"},
+    {"abs", 1, TEX_EOP_ABS, "the absolute value of a"},
+    {"rgb", 3, TEX_EOP_RGB, "a colour: red from r, green from g, blue from b"},
+    {NULL, 0, 0, NULL},
+};
+
+const struct tex_expr_func *tex_expr_func_find(const struct tex_tok *t)
+{
+    for (const struct tex_expr_func *f = tex_expr_funcs; f->name; f++)
+        if (tex_tok_is_word(t, f->name))
+            return f;
+    return NULL;
+}
+
+static const char *desc(const struct tex_tok *t, char *buf, size_t n)
+{
+    if (t->kind == TEX_TOK_EOF)
+        return "the end of the file";
+    snprintf(buf, n, "'%.*s'", (int)(t->len > 32 ? 32 : t->len), t->text);
+    return buf;
+}
+
+struct tex_enode *tex_expr_node(struct tex_lexer *lx, enum tex_ekind kind, const struct tex_tok *t)
+{
+    struct tex_enode *e = lx->alloc(lx->ctx, sizeof *e);
+    e->kind = kind;
+    e->line = t->line;
+    e->col = t->col;
+    return e;
+}
+
+void tex_expr_enter(struct tex_expr_parser *xp)
+{
+    if (++xp->depth > TEX_EXPR_MAX_DEPTH)
+        tex_lex_fail(xp->lx, xp->lx->t.line, xp->lx->t.col,
+                     "expression nested too deeply (more than %d levels)", TEX_EXPR_MAX_DEPTH);
+}
+
+void tex_expr_leave(struct tex_expr_parser *xp)
+{
+    xp->depth--;
+}
+
+static void expect(struct tex_lexer *lx, int c)
+{
+    char b[48];
+    if (!tex_tok_is_punct(&lx->t, c))
+        tex_lex_fail(lx, lx->t.line, lx->t.col, "expected '%c', found %s", c,
+                     desc(&lx->t, b, sizeof b));
+    tex_lex_next(lx);
+}
+
+static double number(struct tex_lexer *lx)
+{
+    char b[48];
+    double v = lx->t.num;
+    if (lx->t.kind != TEX_TOK_NUM)
+        tex_lex_fail(lx, lx->t.line, lx->t.col, "expected a number, found %s",
+                     desc(&lx->t, b, sizeof b));
+    tex_lex_next(lx);
+    return v;
+}
+
+/* Is the token after the current one an opening parenthesis? */
+static int paren_follows(const struct tex_lexer *lx)
+{
+    struct tex_lexer peek = *lx;
+    tex_lex_next(&peek);
+    return tex_tok_is_punct(&peek.t, '(');
+}
+
+static struct tex_enode *call(struct tex_expr_parser *xp, const struct tex_expr_func *f)
+{
+    struct tex_lexer *lx = xp->lx;
+    struct tex_enode *e = tex_expr_node(lx, TEX_EK_CALL, &lx->t), **arg[3];
+    int n = 0;
+
+    e->op = f->op;
+    arg[0] = &e->a, arg[1] = &e->b, arg[2] = &e->c;
+    tex_lex_next(lx);
+    expect(lx, '(');
+    while (!tex_tok_is_punct(&lx->t, ')')) {
+        if (n && !tex_tok_is_punct(&lx->t, ','))
+            expect(lx, ')');
+        if (n)
+            tex_lex_next(lx);
+        if (n == f->nargs)
+            tex_lex_fail(lx, e->line, e->col, "%s takes %d argument%s", f->name, f->nargs,
+                         f->nargs > 1 ? "s" : "");
+        *arg[n++] = tex_expr_parse(xp);
+    }
+    if (n != f->nargs)
+        tex_lex_fail(lx, e->line, e->col, "%s takes %d argument%s", f->name, f->nargs,
+                     f->nargs > 1 ? "s" : "");
+    tex_lex_next(lx);
+    return e;
+}
+
+static struct tex_enode *primary(struct tex_expr_parser *xp)
+{
+    struct tex_lexer *lx = xp->lx;
+    struct tex_tok t = lx->t;
+    const struct tex_expr_func *f;
+    struct tex_enode *e;
+
+    if (t.kind == TEX_TOK_NUM) {
+        e = tex_expr_node(lx, TEX_EK_NUM, &t);
+        e->v[0] = number(lx);
+        /* three numbers in a row: a colour */
+        if (lx->t.kind == TEX_TOK_NUM && !tex_tok_is_signed(&lx->t)) {
+            e->kind = TEX_EK_RGB;
+            e->v[1] = number(lx);
+            e->v[2] = number(lx);
+        }
+        return e;
+    }
+    if (tex_tok_is_punct(&t, '(')) {
+        tex_lex_next(lx);
+        e = tex_expr_parse(xp);
+        expect(lx, ')');
+        return e;
+    }
+    if (t.kind == TEX_TOK_NAME && (f = tex_expr_func_find(&t)) && paren_follows(lx))
+        return call(xp, f);
+    return xp->lang->operand(xp);
+}
+
+struct tex_enode *tex_expr_unary(struct tex_expr_parser *xp)
+{
+    struct tex_lexer *lx = xp->lx;
+    struct tex_enode *e;
+
+    tex_expr_enter(xp);
+    if (tex_tok_is_punct(&lx->t, '-')) {
+        struct tex_tok t = lx->t;
+        tex_lex_next(lx);
+        e = tex_expr_unary(xp);
+        if (e->kind == TEX_EK_NUM) {
+            e->v[0] = -e->v[0];
+        } else {
+            struct tex_enode *n = tex_expr_node(lx, TEX_EK_NEG, &t);
+            n->a = e;
+            e = n;
+        }
+    } else {
+        e = primary(xp);
+    }
+    tex_expr_leave(xp);
+    return e;
+}
+
+/* The binary operator at the current token, or NULL.  A signed number after an
+ * operand is the operator of its sign ("f -1" is "f - 1"). */
+static const struct tex_expr_binop *binop(const struct tex_expr_parser *xp)
+{
+    const struct tex_tok *t = &xp->lx->t;
+    for (const struct tex_expr_binop *o = xp->lang->binops; o->tok; o++) {
+        int c = o->tok[0];
+        if (o->tok[1] == '\0' && !((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'))) {
+            if (tex_tok_is_punct(t, c) || (tex_tok_is_signed(t) && t->text[0] == c))
+                return o;
+        } else if (tex_tok_is_word(t, o->tok)) {
+            return o;
+        }
+    }
+    return NULL;
+}
+
+static struct tex_enode *chain(struct tex_expr_parser *xp, int prec)
+{
+    struct tex_lexer *lx = xp->lx;
+    struct tex_enode *e = tex_expr_unary(xp);
+    const struct tex_expr_binop *o;
+
+    while ((o = binop(xp)) && o->prec >= prec) {
+        struct tex_enode *b = tex_expr_node(lx, TEX_EK_BIN, &lx->t);
+        if (++xp->nterms > TEX_EXPR_MAX_TERMS)
+            tex_lex_fail(lx, lx->t.line, lx->t.col,
+                         "expression too long (more than %d operators)", TEX_EXPR_MAX_TERMS);
+        if (lx->t.kind == TEX_TOK_NUM) { /* the sign is the operator: keep the number */
+            if (lx->t.text[0] == '-')
+                lx->t.num = -lx->t.num;
+            lx->t.text++;
+            lx->t.len--;
+            lx->t.col++;
+        } else {
+            tex_lex_next(lx);
+        }
+        b->op = o->op;
+        b->a = e;
+        b->b = chain(xp, o->prec + 1);
+        e = b;
+    }
+    return e;
+}
+
+struct tex_enode *tex_expr_parse(struct tex_expr_parser *xp)
+{
+    return chain(xp, 1);
+}
+
+/* ---- compiling ---- */
+
+struct compiler {
+    struct tex_lexer *lx;
+    struct tex_einsn *code;
+    int n, cap, sp, depth;
+    const struct tex_enode **todo; /* the walk's stack: nodes, a flag in the low bit */
+    int ntodo, captodo;
+};
+
+static void oom(struct compiler *c) __attribute__((noreturn));
+
+static void oom(struct compiler *c)
+{
+    free(c->code);
+    free(c->todo);
+    tex_error("%s:%d:%d: out of memory", c->lx->name, c->lx->t.line, c->lx->t.col);
+    longjmp(*c->lx->fail, 1);
+}
+
+static void emit(struct compiler *c, const struct tex_einsn *in)
+{
+    if (c->n == c->cap) {
+        int cap = c->cap ? 2 * c->cap : 16;
+        struct tex_einsn *a = realloc(c->code, cap * sizeof *a);
+        if (!a)
+            oom(c);
+        c->code = a;
+        c->cap = cap;
+    }
+    c->code[c->n++] = *in;
+}
+
+static int arity(enum tex_eop op)
+{
+    switch (op) {
+    case TEX_EOP_CONST:
+    case TEX_EOP_LEAF: return 0;
+    case TEX_EOP_NEG:
+    case TEX_EOP_ABS: return 1;
+    case TEX_EOP_RGB: return 3;
+    default: return 2;
+    }
+}
+
+/* Channel k of op on a, b, c (as the renderer computes it). */
+static double apply(enum tex_eop op, int k, const double *a, const double *b, const double *c)
+{
+    switch (op) {
+    case TEX_EOP_NEG: return -a[k];
+    case TEX_EOP_ADD: return a[k] + b[k];
+    case TEX_EOP_SUB: return a[k] - b[k];
+    case TEX_EOP_MUL: return a[k] * b[k];
+    case TEX_EOP_DIV: return b[k] != 0 ? a[k] / b[k] : 0;
+    case TEX_EOP_MIN: return fmin(a[k], b[k]);
+    case TEX_EOP_MAX: return fmax(a[k], b[k]);
+    case TEX_EOP_ABS: return fabs(a[k]);
+    default: return (k == 0 ? a : k == 1 ? b : c)[k];
+    }
+}
+
+/* Emit operator op at node e; constant operands are folded. */
+static void emit_op(struct compiler *c, enum tex_eop op, const struct tex_enode *e)
+{
+    int k = arity(op), folded = c->n >= k;
+    for (int i = 1; folded && i <= k; i++)
+        folded = c->code[c->n - i].op == TEX_EOP_CONST;
+    if (folded) {
+        struct tex_einsn r = {TEX_EOP_CONST, 0, {0}, NULL}, *o = c->code + c->n - k;
+        for (int ch = 0; ch < 3; ch++)
+            r.v[ch] = apply(op, ch, o[0].v, k > 1 ? o[1].v : NULL, k > 2 ? o[2].v : NULL);
+        c->n -= k;
+        c->sp -= k;
+        emit(c, &r);
+    } else {
+        emit(c, &(struct tex_einsn){op, 0, {0}, NULL});
+    }
+    c->sp += 1 - k;
+    (void)e;
+}
+
+static void emit_leaf(struct compiler *c, const struct tex_enode *e)
+{
+    struct tex_einsn in = {TEX_EOP_CONST, 0, {e->v[0], e->v[0], e->v[0]}, NULL};
+    if (e->kind == TEX_EK_RGB)
+        in.v[1] = e->v[1], in.v[2] = e->v[2];
+    else if (e->kind == TEX_EK_LEAF)
+        in = (struct tex_einsn){TEX_EOP_LEAF, e->op, {0}, e->ptr};
+    emit(c, &in);
+    if (++c->sp > c->depth && (c->depth = c->sp) > TEX_EXPR_MAX_STACK) {
+        free(c->code);
+        free(c->todo);
+        tex_lex_fail(c->lx, e->line, e->col, "expression too complex (more than %d values "
+                     "pending)", TEX_EXPR_MAX_STACK);
+    }
+}
+
+static void push(struct compiler *c, const struct tex_enode *e, int visited)
+{
+    if (!e)
+        return;
+    if (c->ntodo == c->captodo) {
+        int cap = c->captodo ? 2 * c->captodo : 64;
+        const struct tex_enode **a = realloc(c->todo, cap * sizeof *a);
+        if (!a)
+            oom(c);
+        c->todo = a;
+        c->captodo = cap;
+    }
+    c->todo[c->ntodo++] = (const struct tex_enode *)((uintptr_t)e | (uintptr_t)visited);
+}
+
+struct tex_expr *tex_expr_compile(struct tex_lexer *lx, const struct tex_enode *root)
+{
+    struct compiler c = {lx, NULL, 0, 0, 0, 0, NULL, 0, 0};
+
+    push(&c, root, 0);
+    while (c.ntodo) { /* post-order with an explicit stack: chains cost no C stack */
+        uintptr_t top = (uintptr_t)c.todo[--c.ntodo];
+        const struct tex_enode *e = (const struct tex_enode *)(top & ~(uintptr_t)1);
+        if (e->kind == TEX_EK_NUM || e->kind == TEX_EK_RGB || e->kind == TEX_EK_LEAF) {
+            emit_leaf(&c, e);
+        } else if (top & 1) {
+            emit_op(&c, e->kind == TEX_EK_NEG ? TEX_EOP_NEG : (enum tex_eop)e->op, e);
+        } else {
+            push(&c, e, 1);
+            push(&c, e->c, 0);
+            push(&c, e->b, 0);
+            push(&c, e->a, 0);
+        }
+    }
+    struct tex_expr *x = lx->alloc(lx->ctx, sizeof *x);
+    x->code = lx->alloc(lx->ctx, (c.n ? c.n : 1) * sizeof *x->code);
+    memcpy(x->code, c.code, c.n * sizeof *x->code);
+    x->n = c.n;
+    x->depth = c.depth;
+    free(c.code);
+    free(c.todo);
+    return x;
+}

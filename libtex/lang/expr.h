@@ -1,0 +1,138 @@
+/* expr.h - the one expression grammar and evaluator of Textura's languages
+ *
+ * Modelled on FFmpeg's libavutil/eval.c: one parser, one function table and
+ * one set of limits serve every language that takes an expression.  A
+ * scene's application function ("Kd = 0.5*f + 0.1*p", t_apply(5)) and a
+ * composition script's image expression ("a over b + 0.2", t_compose(5))
+ * are both read here; each language supplies only its operands (a scene:
+ * f, p and texture maps, for a cascade; a script: images, primitives and
+ * transforms) and its table of binary operators.
+ *
+ * Grammar (tokens from lang/lex.h):
+ *
+ *   expr    = unary { binop unary }     binops by the language's precedence,
+ *                                       left to right within one precedence
+ *   unary   = '-' unary | primary
+ *   primary = number [number number]    three numbers: a colour (r g b)
+ *           | '(' expr ')'
+ *           | function '(' expr {',' expr} ')'
+ *           | operand                   the language's own (a name, ...)
+ *
+ * Functions, the same in both languages (tex_expr_funcs[]):
+ *   min(a, b)  max(a, b)  abs(a)  rgb(r, g, b)
+ * In a scene they act per colour channel on numbers; in a script on every
+ * pixel of images (rgb takes numbers only there, and makes a colour).
+ *
+ * Limits, the same in both languages, checked while parsing so that every
+ * later walk is bounded: TEX_EXPR_MAX_DEPTH levels of nesting (parentheses,
+ * unary minus, function arguments, a language's own operands) and
+ * TEX_EXPR_MAX_TERMS binary operators in one expression.  A longer chain
+ * such as "f + f + ..." is refused with "file:line:col: expression too
+ * long (more than 10000 operators)"; no walk over a tree recurses along a
+ * chain, so nothing can exhaust the C stack.
+ *
+ *   struct tex_expr_parser xp = {&lexer, &my_lang, my_ctx};
+ *   struct tex_enode *e = tex_expr_parse(&xp);
+ *   struct tex_expr *prog = tex_expr_compile(&lexer, e);   // for per-hit use
+ *
+ * The compiled form (struct tex_expr) is a flat postfix program for a stack
+ * machine: constants, operands, operators.  Its user runs it with a loop and
+ * a switch, without recursion or allocation (the renderer does so per ray
+ * hit, in render_texture.c); stack never exceeds TEX_EXPR_MAX_STACK.
+ */
+#ifndef TEX_EXPR_H
+#define TEX_EXPR_H
+
+#include "lex.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define TEX_EXPR_MAX_DEPTH 100   /* nesting of one expression */
+#define TEX_EXPR_MAX_TERMS 10000 /* binary operators in one expression */
+#define TEX_EXPR_MAX_STACK 512   /* a compiled program's stack, in values */
+
+/* Operators of the compiled form; also the scene's binary operator codes. */
+enum tex_eop {
+    TEX_EOP_CONST, /* push v */
+    TEX_EOP_LEAF,  /* push the language's operand (leaf, ptr) */
+    TEX_EOP_NEG, TEX_EOP_ADD, TEX_EOP_SUB, TEX_EOP_MUL, TEX_EOP_DIV, /* x / 0 = 0 */
+    TEX_EOP_MIN, TEX_EOP_MAX, TEX_EOP_ABS, TEX_EOP_RGB /* channel k of argument k */
+};
+
+/* The function table: name, arity, operator, one-line help. */
+struct tex_expr_func {
+    const char *name;
+    int nargs;
+    enum tex_eop op;
+    const char *help;
+};
+extern const struct tex_expr_func tex_expr_funcs[];
+/* The row named by t (a name), or NULL. */
+const struct tex_expr_func *tex_expr_func_find(const struct tex_tok *t);
+
+/* The syntax tree. */
+enum tex_ekind { TEX_EK_NUM, TEX_EK_RGB, TEX_EK_LEAF, TEX_EK_NEG, TEX_EK_BIN, TEX_EK_CALL };
+struct tex_enode {
+    enum tex_ekind kind;
+    int op;          /* BIN: the language's operator code; CALL: enum tex_eop; LEAF: leaf kind */
+    int line, col;
+    double v[3];     /* NUM: v[0]; RGB: v */
+    const void *ptr; /* LEAF: the language's operand */
+    struct tex_enode *a, *b, *c; /* operands, arguments */
+};
+
+/* A binary operator: punctuation or a word, its precedence (higher binds
+ * tighter, from 1) and the code left in the node. */
+struct tex_expr_binop {
+    const char *tok;
+    int prec;
+    int op;
+};
+
+struct tex_expr_parser;
+struct tex_expr_lang {
+    const struct tex_expr_binop *binops; /* ends with a NULL tok */
+    /* The operand at the current token (a name, a string, ...); fails with
+     * "expected ..., found ..." when there is none there. */
+    struct tex_enode *(*operand)(struct tex_expr_parser *xp);
+};
+
+struct tex_expr_parser {
+    struct tex_lexer *lx;
+    const struct tex_expr_lang *lang;
+    void *ctx;   /* the language's parser */
+    int depth;   /* nesting now */
+    int nterms;  /* binary operators so far */
+};
+
+/* Parse an expression / one operand (no binary operator) at lx->t. */
+struct tex_enode *tex_expr_parse(struct tex_expr_parser *xp);
+struct tex_enode *tex_expr_unary(struct tex_expr_parser *xp);
+/* Enter / leave one level of nesting (for a language's own operands). */
+void tex_expr_enter(struct tex_expr_parser *xp);
+void tex_expr_leave(struct tex_expr_parser *xp);
+/* A new node at t's position, from the lexer's memory. */
+struct tex_enode *tex_expr_node(struct tex_lexer *lx, enum tex_ekind kind, const struct tex_tok *t);
+
+/* The compiled form: n instructions in postfix order. */
+struct tex_einsn {
+    enum tex_eop op;
+    int leaf;        /* LEAF: the language's kind */
+    double v[3];     /* CONST */
+    const void *ptr; /* LEAF */
+};
+struct tex_expr {
+    int n, depth; /* instructions; the most values on the stack */
+    struct tex_einsn *code;
+};
+
+/* Compile e (whose BIN codes are enum tex_eop) into the lexer's memory;
+ * iterative, constants folded. */
+struct tex_expr *tex_expr_compile(struct tex_lexer *lx, const struct tex_enode *e);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
