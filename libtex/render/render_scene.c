@@ -159,34 +159,10 @@ static double number(struct parser *ps)
     return v;
 }
 
-static double number_in(struct parser *ps, double lo, double hi, const char *what)
-{
-    struct tok t = ps->t;
-    double v = number(ps);
-    if (!(v >= lo && v <= hi))
-        fail_at(ps, &t, 0, "%s %g is outside %g..%g", what, v, lo, hi);
-    return v;
-}
-
-static int integer_in(struct parser *ps, int lo, int hi, const char *what)
-{
-    struct tok t = ps->t;
-    double v = number(ps);
-    if (v != floor(v) || !(v >= lo && v <= hi))
-        fail_at(ps, &t, 0, "%s must be a whole number in %d..%d", what, lo, hi);
-    return (int)v;
-}
-
 static tex_v3 vec(struct parser *ps)
 {
     double x = number(ps), y = number(ps), z = number(ps);
     return tex_v3_make(x, y, z);
-}
-
-static void colour3(struct parser *ps, float rgb[3], double hi)
-{
-    for (int i = 0; i < 3; i++)
-        rgb[i] = (float)number_in(ps, 0, hi, "colour component");
 }
 
 static char *word(struct parser *ps, const char *what)
@@ -200,13 +176,6 @@ static char *word(struct parser *ps, const char *what)
 }
 
 /* ---- blocks read through parameter rows (render_params.c) ------------------------ */
-
-/* The lexer's ranged readers are not used since blocks read through rows; they stay
- * for the lexer's owner to keep or drop. */
-static double number_in(struct parser *ps, double lo, double hi, const char *what)
-    __attribute__((unused));
-static int integer_in(struct parser *ps, int lo, int hi, const char *what) __attribute__((unused));
-static void colour3(struct parser *ps, float rgb[3], double hi) __attribute__((unused));
 
 /* "NAME must be LO..HI (got V)" at t unless lo <= v <= hi (whole: an integer). */
 static double ranged(struct parser *ps, const char *name, double lo, double hi, int whole)
