@@ -55,7 +55,11 @@ BRIDGE   = $(BUILD)/lib/textura/textura-oiio.so
 STATIC   = $(BUILD)/lib/libtex.a
 SHARED   = $(BUILD)/lib/libtex.so.0
 PCFILE   = $(BUILD)/lib/pkgconfig/textura.pc
-HEADERS  = $(filter-out libtex/io/oiio_bridge.h,$(wildcard libtex/*/*.h)) libtex/prim/primitives.def
+# Headers that stay inside libtex: the scene's internals, the shading models'
+# interface, the languages' lexer and evaluator, the OpenImageIO bridge.
+PRIVATE_HEADERS = libtex/io/oiio_bridge.h libtex/lang/lex.h libtex/lang/expr.h \
+                  libtex/render/scene.h libtex/render/render_shade.h libtex/render/render_ct.h
+HEADERS  = $(filter-out $(PRIVATE_HEADERS),$(wildcard libtex/*/*.h)) libtex/prim/primitives.def
 
 DEBS = build-essential pkg-config liblz4-dev libopenexr-dev libopenimageio-dev openimageio-tools \
        libflann-dev libfftw3-dev colord-data mandoc netpbm imagemagick libnoise-dev povray \

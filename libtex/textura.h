@@ -26,11 +26,11 @@
  *   transform.h filtered rotate, scale, shift, expand, clip
  *   compose.h   per-pixel operators, cascades, tiling, warps
  * lang/     the languages
- *   script.h    the pattern composition language
+ *   script.h    the pattern composition language (its lexer and expression
+ *               evaluator, lex.h and expr.h, serve the scenes too)
  * render/   the renderer (t_apply)
- *   render.h        scenes, CSG objects, mapping, texture application
- *   render_shade.h  shading models: the interface every model fills
- *   render_ct.h     the Cook-Torrance model
+ *   render.h        load a scene, set options, render, free (its insides,
+ *                   scene.h, render_shade.h and render_ct.h, are libtex's own)
  *   colour.h        the renderer's colour: n samples, RGB or spectral
  *   colour_spectral.h, spectrum.h, fresnel.h, microfacet.h, matdb.h
  *                   the spectral colour model and its optics
@@ -63,8 +63,6 @@
 #include "render/fresnel.h"
 #include "render/microfacet.h"
 #include "render/matdb.h"
-#include "render/render_shade.h"
-#include "render/render_ct.h"
 #include "render/render.h"
 #include "cli/cli.h"
 

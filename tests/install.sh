@@ -43,3 +43,38 @@ printf '#include <textura/textura.h>\nint main(void) { return tex_primitive_find
 check "the public headers compile as C++" c++ -fsyntax-only -I"$T/p/include" -I/usr/include/OpenEXR "$T/prog.cc"
 check "installed tools find the OpenImageIO bridge" "$T/p/bin/t_noise" -s 8 -o "$T/x.png"
 check "installed tools find the shipped palettes" bash -c "'$T/p/bin/t_noise' -s 8 | TEXTURA_PALETTES= '$T/p/bin/t_palette' fire | '$T/p/bin/t_info' >/dev/null"
+
+# The renderer's public header is the only one of its own that is installed,
+# and it is enough to render.
+[ -e "$T/p/include/textura/render/render.h" ] && [ ! -e "$T/p/include/textura/render/scene.h" ] \
+    && [ ! -e "$T/p/include/textura/lang/lex.h" ] \
+    && ok "render.h is installed, the renderer's and languages' insides are not" \
+    || notok "only the public render header is installed" "$(ls "$T/p/include/textura/render")"
+cat >"$T/render.c" <<'C'
+#include <textura/textura.h>
+#include <stdio.h>
+#include <string.h>
+int main(void)
+{
+    const char *text = "camera { eye 0 0 -4 look 0 0 0 }\nlight point { position 0 3 -3 }\n"
+                       "surface red { Kd 1 0 0 }\nsphere { radius 1 surface red }\n";
+    struct tex_scene *s = tex_scene_parse(text, strlen(text), "inline.scene");
+    tex_map *m;
+    if (!s || tex_scene_set_size(s, 32, 24) < 0 || tex_scene_set_samples(s, 0) == 0 ||
+        tex_scene_prepare(s) < 0 || !(m = tex_render(s, NULL, NULL)))
+        return 1;
+    const float *c = tex_map_px(m, 16, 12);
+    printf("%d %d %d\n", m->w, m->h, c[0] > 0.1f && c[1] < 0.05f && c[2] < 0.05f);
+    tex_map_free(m);
+    tex_scene_free(s);
+    return 0;
+}
+C
+if ${cc:-cc} "${san[@]}" -o "$T/render" "$T/render.c" $(pkg-config --cflags textura) -I"$T/p/include" \
+    "$T/p/lib/libtex.a" $(pkg-config --static --libs-only-l textura | sed 's/-ltex//') -fopenmp 2>"$T/cc"; then
+    got=$("$T/render")
+    [ "$got" = "32 24 1" ] && ok "a program renders a scene through render.h alone (a red sphere, 32x24)" \
+        || notok "a program renders through render.h" "got '$got'"
+else
+    notok "a program compiles against render.h" "$(head -3 "$T/cc")"
+fi

@@ -47,11 +47,11 @@ ls "$top"/libtex/*.[ch] 2>/dev/null | grep -qv '/textura.h$' \
 
 # The check must catch an upward include: a copy of the tree with one planted.
 cp -R "$top/libtex" "$T/libtex"
-printf '#include "render/render.h"\n' >>"$T/libtex/base/map.c"
+printf '#include "render/scene.h"\n' >>"$T/libtex/base/map.c"
 printf '#include "noise.h"\n' >>"$T/libtex/ops/remap.c"
 printf '#include "../lang/script.h"\n' >>"$T/libtex/ops/filter.h"
 bad=$(check_tree "$T/libtex")
-grep -q 'base/map.c: #include "render/render.h" points up' <<<"$bad" \
+grep -q 'base/map.c: #include "render/scene.h" points up' <<<"$bad" \
     && grep -q 'ops/remap.c: #include "noise.h" names no layer' <<<"$bad" \
     && grep -q 'ops/filter.h: #include "../lang/script.h" points up' <<<"$bad" \
     && [ "$(wc -l <<<"$bad")" = 3 ] \

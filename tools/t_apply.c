@@ -4,7 +4,6 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "render/render.h"
 #include "textura.h"
 
 struct opts {
@@ -172,22 +171,17 @@ int main(int argc, char **argv)
     struct tex_scene *s = tex_scene_load(argv[i]);
     if (!s)
         tex_die();
-    if (o.size) {
-        s->settings.w = (int)w;
-        s->settings.h = (int)h;
-    }
-    if (o.spp)
-        s->settings.spp = o.spp;
+    if ((o.size && tex_scene_set_size(s, w, h) < 0) || (o.spp && tex_scene_set_samples(s, o.spp) < 0))
+        die_freeing(s);
     if ((o.spectral || o.rgb) && tex_scene_set_colour(s, (int)bands) < 0)
         die_freeing(s);
-    for (int k = 0; model && k < s->nsurfaces; k++)
-        s->surfaces[k]->model = model;
+    tex_scene_set_model(s, model);
     if (c.threads)
-        s->settings.threads = c.threads;
+        tex_scene_set_threads(s, c.threads);
     if (tex_scene_prepare(s) < 0)
         die_freeing(s);
-    if (s->warnings && !c.quiet)
-        fprintf(stderr, "%s", s->warnings);
+    if (!c.quiet)
+        fputs(tex_scene_warnings(s), stderr);
     tex_map *img = tex_render(s, !c.quiet && isatty(2) ? progress : NULL, NULL);
     if (!img)
         tex_die();

@@ -10,7 +10,7 @@
 #include <stdlib.h>
 
 #include "base/error.h"
-#include "render/render.h"
+#include "render/scene.h"
 #include "base/rng.h"
 
 #define TILE 16

@@ -19,7 +19,7 @@
 #include <stdlib.h>
 
 #include "base/error.h"
-#include "render/render.h"
+#include "render/scene.h"
 
 #define LEAF_MAX 8
 

@@ -9,7 +9,7 @@
  */
 #include <math.h>
 
-#include "render/render.h"
+#include "render/scene.h"
 
 int tex_light_samples(const struct tex_light *l)
 {

@@ -7,7 +7,7 @@
  */
 #include <string.h>
 
-#include "render/render.h"
+#include "render/scene.h"
 
 double tex_media_ior(const struct tex_media *m)
 {

@@ -9,7 +9,7 @@
 #include <math.h>
 #include <stddef.h>
 
-#include "render/render.h"
+#include "render/scene.h"
 
 #define INF HUGE_VAL /* -INF, INF: a point or a direction, any numbers */
 #define N3 (1u << 3)

@@ -16,7 +16,7 @@
 #include "base/error.h"
 #include "io/file.h"
 #include "render/matdb.h"
-#include "render/render.h"
+#include "render/scene.h"
 #include "render/render_ct.h"
 #include "lang/expr.h"
 #include "lang/lex.h"
@@ -1285,6 +1285,38 @@ void tex_scene_free(struct tex_scene *s)
     free(s->file);
     tex_colour_space_spectral_free(&s->cs);
     free(s);
+}
+
+/* An override through the settings' rows: the same ranges as the scene's. */
+static int set_setting(struct tex_scene *s, const char *word, const double *v, int k)
+{
+    return tex_param_store(tex_param_find(tex_settings_rows, word), s, v, k, TEX_PARAM_WORD);
+}
+
+int tex_scene_set_size(struct tex_scene *s, int w, int h)
+{
+    return set_setting(s, "image", (const double[]){w, h}, 2);
+}
+
+int tex_scene_set_samples(struct tex_scene *s, int spp)
+{
+    return set_setting(s, "samples", (const double[]){spp}, 1);
+}
+
+void tex_scene_set_threads(struct tex_scene *s, int n)
+{
+    s->settings.threads = n > 0 ? n : 0;
+}
+
+void tex_scene_set_model(struct tex_scene *s, const struct tex_shading_model *m)
+{
+    for (int k = 0; m && k < s->nsurfaces; k++)
+        s->surfaces[k]->model = m;
+}
+
+const char *tex_scene_warnings(const struct tex_scene *s)
+{
+    return s->warnings ? s->warnings : "";
 }
 
 int tex_scene_set_colour(struct tex_scene *s, int bands)

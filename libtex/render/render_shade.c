@@ -1,6 +1,7 @@
 /* render_shade.c - Whitted-Phong and the table of shading models */
 #include <string.h>
 
+#include "render/render.h"
 #include "render/render_shade.h"
 #include "render/render_ct.h"
 

@@ -95,8 +95,7 @@ static inline void tex_phong_direct(const struct tex_material *m, const double *
         tex_colour_mmadd(out, n, &m->ks, E, (float)tex_powi(q / sqrt(hh), m->n));
 }
 
-/* NULL if no model has that name. */
-const struct tex_shading_model *tex_shading_find(const char *name);
+/* tex_shading_find (render.h) finds a model by name. */
 
 #ifdef __cplusplus
 }

@@ -13,7 +13,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "render/render.h"
+#include "render/scene.h"
 
 /* ---- transforms ----------------------------------------------------------- */
 

@@ -13,7 +13,7 @@
 #include <string.h>
 
 #include "base/error.h"
-#include "render/render.h"
+#include "render/scene.h"
 #include "render/render_ct.h"
 
 /* ---- mip-mapped maps ------------------------------------------------------------ */

@@ -15,7 +15,7 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "render/render.h"
+#include "render/scene.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {

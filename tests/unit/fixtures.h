@@ -13,7 +13,7 @@
 
 #include "base/error.h"
 #include "base/map.h"
-#include "render/render.h"
+#include "render/scene.h"
 #include "base/rng.h"
 
 static inline tex_map *unit_random_map(int w, int h, int nc, uint64_t seed)

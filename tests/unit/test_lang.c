@@ -8,7 +8,7 @@
 #include "lang/expr.h"
 #include "lang/lex.h"
 #include "lang/script.h"
-#include "render/render.h"
+#include "render/scene.h"
 #include "unit.h"
 
 /* Memory for tokens and nodes: a list freed at the end. */

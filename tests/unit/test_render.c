@@ -7,7 +7,7 @@
 
 #include "base/error.h"
 #include "io/file.h"
-#include "render/render.h"
+#include "render/scene.h"
 #include "base/rng.h"
 #include "fixtures.h"
 #include "unit.h"

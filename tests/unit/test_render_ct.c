@@ -2,6 +2,7 @@
 #include "render/colour_spectral.h"
 #include "base/error.h"
 #include "render/fresnel.h"
+#include "render/render.h"
 #include "render/render_ct.h"
 #include "unit.h"
 

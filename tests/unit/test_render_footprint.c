@@ -12,7 +12,7 @@
 #include <string.h>
 
 #include "base/error.h"
-#include "render/render.h"
+#include "render/scene.h"
 #include "fixtures.h"
 #include "unit.h"
 

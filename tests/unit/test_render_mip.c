@@ -11,7 +11,7 @@
 #include <stdlib.h>
 
 #include "fixtures.h"
-#include "render/render.h"
+#include "render/scene.h"
 #include "base/rng.h"
 #include "unit.h"
 

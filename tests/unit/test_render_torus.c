@@ -4,7 +4,7 @@
 #include <string.h>
 
 #include "base/error.h"
-#include "render/render.h"
+#include "render/scene.h"
 #include "base/rng.h"
 #include "fixtures.h"
 #include "unit.h"
