@@ -6,14 +6,7 @@
  *             --mode mandelbrot | julia       escape time of x -> x^2 + C
  *             --mode koch                     the Koch snowflake or curve
  */
-/* No contraction into FMA: maps are bit-identical across SIMD levels and
- * compilers.  The Makefile passes -ffp-contract=off; this keeps it for any
- * other build (gcc ignores the STDC pragma, clang the GCC one). */
-#ifdef __clang__
-#pragma STDC FP_CONTRACT OFF
-#else
-#pragma GCC optimize("fp-contract=off")
-#endif
+#include "base/fp_strict.h" /* first: no fused multiply-adds in this file */
 
 #include <math.h>
 #include <stdlib.h>

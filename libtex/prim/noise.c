@@ -1,14 +1,6 @@
 /* noise.c - gradient noise: point evaluation, vectorised grid rows, the noise primitive */
 
-/* Every SIMD level must do the same float operations in the same order:
- * no fused multiply-adds anywhere, whatever -march the library is built with
- * and whichever compiler.  The Makefile passes -ffp-contract=off; this keeps it for any
- * other build (gcc ignores the STDC pragma, clang the GCC one). */
-#ifdef __clang__
-#pragma STDC FP_CONTRACT OFF
-#else
-#pragma GCC optimize("fp-contract=off")
-#endif
+#include "base/fp_strict.h" /* first: no fused multiply-adds in this file */
 
 #include <math.h>
 #include <stdlib.h>

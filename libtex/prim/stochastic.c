@@ -1,13 +1,6 @@
 /* stochastic.c - holes (thesis 5.2.2.6), Gardner's colour variation (5.2.2.7) and the
  * perturbed regular pattern (5.2.2.2) */
-/* No contraction into FMA: maps are bit-identical across SIMD levels and
- * compilers.  The Makefile passes -ffp-contract=off; this keeps it for any
- * other build (gcc ignores the STDC pragma, clang the GCC one). */
-#ifdef __clang__
-#pragma STDC FP_CONTRACT OFF
-#else
-#pragma GCC optimize("fp-contract=off")
-#endif
+#include "base/fp_strict.h" /* first: no fused multiply-adds in this file */
 
 #include <math.h>
 #include <stdlib.h>

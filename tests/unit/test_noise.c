@@ -1,12 +1,7 @@
 /* test_noise.c - gradient noise, its grid rows, derivative, octaves and the stochastic
  * primitives' statistics (range, continuity, tiling, spectra) */
-/* The expected row operations below are written out: no fused multiply-adds
- * (the Makefile passes -ffp-contract=off; this keeps it for any other build). */
-#ifdef __clang__
-#pragma STDC FP_CONTRACT OFF
-#else
-#pragma GCC optimize("fp-contract=off")
-#endif
+/* The expected row operations below are written out: no fused multiply-adds. */
+#include "base/fp_strict.h"
 
 #include <complex.h>
 #include <fftw3.h>
