@@ -66,15 +66,6 @@ static inline void ray_setup(struct ray *r, const tex_v3 *o, const tex_v3 *d)
     r->idd = 1 / r->dd;
 }
 
-static struct tex_bounds merge(struct tex_bounds a, struct tex_bounds b)
-{
-    struct tex_bounds r = {tex_v3_make(fmin(a.lo.x, b.lo.x), fmin(a.lo.y, b.lo.y),
-                                       fmin(a.lo.z, b.lo.z)),
-                           tex_v3_make(fmax(a.hi.x, b.hi.x), fmax(a.hi.y, b.hi.y),
-                                       fmax(a.hi.z, b.hi.z))};
-    return r;
-}
-
 static double area(struct tex_bounds b)
 {
     tex_v3 e = tex_v3_sub(b.hi, b.lo);
@@ -154,7 +145,7 @@ static void build(struct builder *bd, int first, int count, int depth)
     struct node *n = &t->nodes[id];
     n->b = bd->src[bd->idx[first]].ob->wb;
     for (int i = 1; i < count; i++)
-        n->b = merge(n->b, bd->src[bd->idx[first + i]].ob->wb);
+        n->b = tex_bounds_union(n->b, bd->src[bd->idx[first + i]].ob->wb);
     /* surface-area heuristic */
     double best = 0, parea = area(n->b);
     for (int i = 0; i < count; i++)
@@ -169,7 +160,7 @@ static void build(struct builder *bd, int first, int count, int depth)
         struct tex_bounds b = bd->src[it[count - 1]].ob->wb;
         double sum = 0;
         for (int i = count - 1; i > 0; i--) {
-            b = merge(b, bd->src[it[i]].ob->wb);
+            b = tex_bounds_union(b, bd->src[it[i]].ob->wb);
             sum += cost(&bd->src[it[i]]);
             bd->rarea[i] = area(b) * sum;
         }
@@ -183,7 +174,7 @@ static void build(struct builder *bd, int first, int count, int depth)
                 best_axis = axis;
                 best_split = i;
             }
-            b = merge(b, bd->src[it[i]].ob->wb);
+            b = tex_bounds_union(b, bd->src[it[i]].ob->wb);
         }
     }
     if (best_axis < 0 && count > LEAF_MAX) { /* no better split: halve along the longest axis */

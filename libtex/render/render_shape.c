@@ -616,10 +616,7 @@ int tex_object_bounds(struct tex_object *ob)
             tex_v3 p = tex_v3_make(c & 1 ? lb.hi.x : lb.lo.x, c & 2 ? lb.hi.y : lb.lo.y,
                                    c & 4 ? lb.hi.z : lb.lo.z);
             p = tex_xform_point(&ob->to_world, p);
-            ob->wb.lo = tex_v3_make(fmin(ob->wb.lo.x, p.x), fmin(ob->wb.lo.y, p.y),
-                                    fmin(ob->wb.lo.z, p.z));
-            ob->wb.hi = tex_v3_make(fmax(ob->wb.hi.x, p.x), fmax(ob->wb.hi.y, p.y),
-                                    fmax(ob->wb.hi.z, p.z));
+            ob->wb = tex_bounds_union(ob->wb, (struct tex_bounds){p, p});
         }
         return 1;
     }
@@ -628,23 +625,13 @@ int tex_object_bounds(struct tex_object *ob)
     case TEX_CSG_UNION:
         ob->bounded = ba && bb;
         if (ob->bounded) {
-            ob->wb.lo = tex_v3_make(fmin(ob->a->wb.lo.x, ob->b->wb.lo.x),
-                                    fmin(ob->a->wb.lo.y, ob->b->wb.lo.y),
-                                    fmin(ob->a->wb.lo.z, ob->b->wb.lo.z));
-            ob->wb.hi = tex_v3_make(fmax(ob->a->wb.hi.x, ob->b->wb.hi.x),
-                                    fmax(ob->a->wb.hi.y, ob->b->wb.hi.y),
-                                    fmax(ob->a->wb.hi.z, ob->b->wb.hi.z));
+            ob->wb = tex_bounds_union(ob->a->wb, ob->b->wb);
         }
         break;
     case TEX_CSG_INTERSECTION:
         ob->bounded = ba || bb;
         if (ba && bb) {
-            ob->wb.lo = tex_v3_make(fmax(ob->a->wb.lo.x, ob->b->wb.lo.x),
-                                    fmax(ob->a->wb.lo.y, ob->b->wb.lo.y),
-                                    fmax(ob->a->wb.lo.z, ob->b->wb.lo.z));
-            ob->wb.hi = tex_v3_make(fmin(ob->a->wb.hi.x, ob->b->wb.hi.x),
-                                    fmin(ob->a->wb.hi.y, ob->b->wb.hi.y),
-                                    fmin(ob->a->wb.hi.z, ob->b->wb.hi.z));
+            ob->wb = tex_bounds_meet(ob->a->wb, ob->b->wb);
         } else if (ob->bounded) {
             ob->wb = ba ? ob->a->wb : ob->b->wb;
         }

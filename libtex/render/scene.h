@@ -229,6 +229,24 @@ struct tex_spans {
 struct tex_bounds {
     tex_v3 lo, hi;
 };
+static inline tex_v3 tex_v3_min(tex_v3 a, tex_v3 b)
+{
+    return tex_v3_make(fmin(a.x, b.x), fmin(a.y, b.y), fmin(a.z, b.z));
+}
+static inline tex_v3 tex_v3_max(tex_v3 a, tex_v3 b)
+{
+    return tex_v3_make(fmax(a.x, b.x), fmax(a.y, b.y), fmax(a.z, b.z));
+}
+/* The box around both (BVH nodes, unions). */
+static inline struct tex_bounds tex_bounds_union(struct tex_bounds a, struct tex_bounds b)
+{
+    return (struct tex_bounds){tex_v3_min(a.lo, b.lo), tex_v3_max(a.hi, b.hi)};
+}
+/* The box both share (intersections; lo > hi where they do not meet). */
+static inline struct tex_bounds tex_bounds_meet(struct tex_bounds a, struct tex_bounds b)
+{
+    return (struct tex_bounds){tex_v3_max(a.lo, b.lo), tex_v3_min(a.hi, b.hi)};
+}
 
 struct tex_shape_methods {
     const char *name;
