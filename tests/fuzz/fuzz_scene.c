@@ -1,9 +1,7 @@
 /* fuzz_scene.c - libFuzzer target for the t_apply scene parser
  *
- * Build (from the top of the checkout):
- *   clang -g -O1 -fsanitize=fuzzer,address,undefined -fopenmp -Ilibtex \
- *       -I/usr/include/OpenEXR tests/fuzz/fuzz_scene.c libtex/*/*.c \
- *       -o build/fuzz/fuzz_scene -lOpenEXRCore -lfftw3f_threads -lfftw3f -lflann -lm -ldl
+ * Build: make fuzz (from the top; tests/fuzz/Makefile compiles libtex in,
+ * instrumented), which writes build/fuzz/fuzz_scene.
  * Run:  build/fuzz/fuzz_scene -max_total_time=600 tests/fuzz/corpus-scene tests/fuzz/seeds-scene
  *
  * Each input is parsed as a scene; a scene that parses is prepared and
