@@ -201,17 +201,9 @@ static int takes_value(const struct option *lo, int n, const char *shorts, const
     return 0;
 }
 
-int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_common *c,
-                  void *opts)
+/* Fill c and opts with their defaults: the common rows the tool takes, then its own. */
+static void set_defaults(const struct tex_tool *t, struct tex_common *c, void *opts)
 {
-    struct opt o[128];
-    struct option lo[132];
-    char shorts[260], *sp = shorts, names[128][48];
-    int n, k, nops;
-
-    tex_progname = t->name;
-    memset(c, 0, sizeof *c);
-    n = collect(t, c, opts, o);
     for (size_t i = 0; i < NCOMMON; i++)
         if (!common_rows[i].mask || (t->common & common_rows[i].mask)) {
             struct tex_param one[2] = {common_rows[i].row, {0}};
@@ -219,13 +211,22 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
         }
     if (t->params && tex_params_defaults(t->params, opts) < 0)
         tex_die();
+}
+
+/* getopt's tables for the n options o: long option i returns 256 + i and is named from
+ * names[i]; then --help, --version and --help-mdoc. */
+static void getopt_tables(const struct opt *o, int n, struct option *lo, char *shorts,
+                          char (*names)[48])
+{
+    char *sp = shorts;
 
     *sp++ = ':'; /* options may follow operands, as in GNU tools; "--" ends them */
     for (int i = 0; i < n; i++) {
         const struct tex_param *p = o[i].row;
         tex_param_option(p, names[i], sizeof names[i]);
-        lo[i] = (struct option){names[i] + 2, p->type == TEX_P_FLAG ? no_argument : required_argument,
-                                NULL, 256 + i};
+        lo[i] = (struct option){names[i] + 2,
+                                p->type == TEX_P_FLAG ? no_argument : required_argument, NULL,
+                                256 + i};
         if (p->key) {
             *sp++ = (char)p->key;
             if (p->type != TEX_P_FLAG)
@@ -237,19 +238,19 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
     lo[n + 1] = (struct option){"version", no_argument, NULL, 'V'};
     lo[n + 2] = (struct option){"help-mdoc", no_argument, NULL, 1};
     lo[n + 3] = (struct option){0};
+}
 
-    /* The history records the command line as typed, before getopt permutes it. */
-    if (!(c->cmdline = join_cmdline(argc, argv))) {
-        tex_error("out of memory");
-        tex_die();
-    }
-    /* Options may follow operands (GNU getopt permutes argv), but a negative
-     * number such as "t_op add a.exr -0.5" is an operand: hide it from getopt
-     * behind a marker byte, restored once parsing is done. */
+/* Options may follow operands (GNU getopt permutes argv), but a negative
+ * number such as "t_op add a.exr -0.5" is an operand: hide it from getopt
+ * behind a marker byte, restored once parsing is done. */
+static void hide_negatives(int argc, char **argv, const struct option *lo, int n,
+                           const char *shorts)
+{
     for (int i = 1; i < argc && strcmp(argv[i], "--") != 0; i++) {
         double num;
         if (argv[i][0] == '-' && (isdigit((unsigned char)argv[i][1]) || argv[i][1] == '.') &&
-            tex_parse_real(argv[i], &num) == 0 && !(i > 1 && takes_value(lo, n, shorts, argv[i - 1]))) {
+            tex_parse_real(argv[i], &num) == 0 &&
+            !(i > 1 && takes_value(lo, n, shorts, argv[i - 1]))) {
             char *h = malloc(strlen(argv[i]) + 2);
             if (!h) {
                 tex_error("out of memory");
@@ -260,39 +261,47 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
             argv[i] = h;
         }
     }
-    opterr = 0;
-    optind = 1;
-    while ((k = getopt_long(argc, argv, shorts, lo, NULL)) != -1) {
-        int i = -1;
-        if (k == 'h') {
-            print_help(t, o, n);
-            exit(0);
-        } else if (k == 'V') {
-            printf("%s (Textura) %s\n", t->name, TEX_VERSION);
-            exit(0);
-        } else if (k == 1) {
-            print_mdoc(o, n);
-            exit(0);
-        } else if (k == '?' || k == ':') {
-            const char *bad = argv[optind - 1];
-            if (optopt && optopt < 256)
-                tex_usage_die("%s -%c (see %s --help)",
-                              k == ':' ? "missing value for" : "unknown option", optopt, t->name);
-            tex_usage_die("%s %s (see %s --help)", k == ':' ? "missing value for" : "unknown option",
-                          bad, t->name);
-        } else if (k >= 256) {
-            i = k - 256;
-        } else {
-            for (int j = 0; j < n; j++)
-                if (o[j].row->key == k)
-                    i = j;
-        }
-        if (i < 0 || tex_param_set(o[i].row, o[i].obj, optarg ? optarg : "") < 0)
-            tex_die();
+}
+
+/* One option k from getopt_long: help, version and the mdoc list print and exit, an
+ * unknown option or a missing or bad value is a usage error. */
+static void take_option(const struct tex_tool *t, int k, char **argv, const struct opt *o, int n)
+{
+    int i = -1;
+
+    if (k == 'h') {
+        print_help(t, o, n);
+        exit(0);
+    } else if (k == 'V') {
+        printf("%s (Textura) %s\n", t->name, TEX_VERSION);
+        exit(0);
+    } else if (k == 1) {
+        print_mdoc(o, n);
+        exit(0);
+    } else if (k == '?' || k == ':') {
+        const char *bad = argv[optind - 1];
+        if (optopt && optopt < 256)
+            tex_usage_die("%s -%c (see %s --help)",
+                          k == ':' ? "missing value for" : "unknown option", optopt, t->name);
+        tex_usage_die("%s %s (see %s --help)", k == ':' ? "missing value for" : "unknown option",
+                      bad, t->name);
+    } else if (k >= 256) {
+        i = k - 256;
+    } else {
+        for (int j = 0; j < n; j++)
+            if (o[j].row->key == k)
+                i = j;
     }
-    for (int i = 1; i < argc; i++)
-        if (argv[i][0] == '\001')
-            argv[i]++; /* the marked copy is kept for the life of the program */
+    if (i < 0 || tex_param_set(o[i].row, o[i].obj, optarg ? optarg : "") < 0)
+        tex_die();
+}
+
+/* Once the options are read: -s's size, and as many operands as the tool takes. */
+static void check_operands(const struct tex_tool *t, int argc, char **argv,
+                           struct tex_common *c)
+{
+    int nops;
+
     if ((t->common & TEX_OPT_SIZE) && tex_parse_size(c->size, &c->w, &c->h) < 0)
         tex_usage_die("-s must be N or WxH with each side 1..%d (got '%s')", TEX_MAP_MAX_SIDE,
                       c->size);
@@ -303,6 +312,36 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
                           argv[optind + t->max_operands], t->name, t->operands);
         tex_usage_die("missing operand (usage: %s [options] %s)", t->name, t->operands);
     }
+}
+
+int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_common *c,
+                  void *opts)
+{
+    struct opt o[128];
+    struct option lo[132];
+    char shorts[260], names[128][48];
+    int n, k;
+
+    tex_progname = t->name;
+    memset(c, 0, sizeof *c);
+    n = collect(t, c, opts, o);
+    set_defaults(t, c, opts);
+    getopt_tables(o, n, lo, shorts, names);
+
+    /* The history records the command line as typed, before getopt permutes it. */
+    if (!(c->cmdline = join_cmdline(argc, argv))) {
+        tex_error("out of memory");
+        tex_die();
+    }
+    hide_negatives(argc, argv, lo, n, shorts);
+    opterr = 0;
+    optind = 1;
+    while ((k = getopt_long(argc, argv, shorts, lo, NULL)) != -1)
+        take_option(t, k, argv, o, n);
+    for (int i = 1; i < argc; i++)
+        if (argv[i][0] == '\001')
+            argv[i]++; /* the marked copy is kept for the life of the program */
+    check_operands(t, argc, argv, c);
 #ifdef _OPENMP
     if (c->threads > 0)
         omp_set_num_threads(c->threads);

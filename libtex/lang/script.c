@@ -581,10 +581,10 @@ static int is_tess(struct S *s)
     return accept_word(s, "tessellation") || accept_word(s, "tesselation");
 }
 
-static void parse(struct S *s)
+/* The header: tessellation NAME; size; tessellation KIND; cell; background.  Checks that the
+ * size fits the pixel limit and the cell fits the size (a missing cell is the whole size). */
+static void parse_header(struct S *s)
 {
-    next(s);
-    /* The header: tessellation NAME; size; tessellation KIND; cell; background. */
     for (;;) {
         int line = s->lx.t.line, col = s->lx.t.col;
         if (is_tess(s)) {
@@ -622,23 +622,33 @@ static void parse(struct S *s)
     if (s->cw > s->w || s->ch > s->h)
         fail_at(s, 1, 1, "cell %d by %d is larger than the size %d by %d", s->cw, s->ch, s->w,
                 s->h);
-    if (accept_word(s, "images")) {
-        while (!is_word(s, "end")) {
-            int line = s->lx.t.line, col = s->lx.t.col;
-            char *name = take_name(s, "an image name or 'end images'");
-            struct node *e = NULL;
-            if (is_punct(s, '=')) {
-                next(s);
-                e = expr(s);
-            }
-            define(s, name, e, line, col);
-            expect_punct(s, ';');
+}
+
+/* The optional block 'images NAME [= EXPR]; ... end images;': each name is declared, to be
+ * defined later, or defined there. */
+static void parse_images(struct S *s)
+{
+    if (!accept_word(s, "images"))
+        return;
+    while (!is_word(s, "end")) {
+        int line = s->lx.t.line, col = s->lx.t.col;
+        char *name = take_name(s, "an image name or 'end images'");
+        struct node *e = NULL;
+        if (is_punct(s, '=')) {
+            next(s);
+            e = expr(s);
         }
-        next(s);
-        expect_word(s, "images");
+        define(s, name, e, line, col);
         expect_punct(s, ';');
     }
-    /* Definitions, then the layout. */
+    next(s);
+    expect_word(s, "images");
+    expect_punct(s, ';');
+}
+
+/* The definitions NAME = EXPR; up to 'built'. */
+static void parse_defs(struct S *s)
+{
     while (!is_word(s, "built")) {
         int line = s->lx.t.line, col = s->lx.t.col;
         char *name;
@@ -650,6 +660,12 @@ static void parse(struct S *s)
         define(s, name, expr(s), line, col);
         expect_punct(s, ';');
     }
+}
+
+/* The layout 'built with (I,J) EXPR; ... end tessellation;': each cell inside the
+ * tessellation and given once; nothing may follow. */
+static void parse_layout(struct S *s)
+{
     next(s);
     expect_word(s, "with");
     while (!is_word(s, "end")) {
@@ -679,7 +695,12 @@ static void parse(struct S *s)
     expect_punct(s, ';');
     if (s->lx.t.kind != TEX_TOK_EOF)
         fail_at(s, s->lx.t.line, s->lx.t.col, "unexpected %s after 'end tessellation;'", tok_desc(s));
-    /* Every name used must be defined somewhere. */
+}
+
+/* Every name used must be defined somewhere: checked once all is read, as a use may come
+ * before its definition. */
+static void resolve_refs(struct S *s)
+{
     for (int i = 0; i < s->nrefs; i++) {
         struct node *r = s->refs[i];
         struct def *d = find_def(s, r->s);
@@ -690,6 +711,17 @@ static void parse(struct S *s)
                     r->s, d->line);
         r->def = d;
     }
+}
+
+static void parse(struct S *s)
+{
+    next(s);
+    parse_header(s);
+    parse_images(s);
+    /* Definitions, then the layout. */
+    parse_defs(s);
+    parse_layout(s);
+    resolve_refs(s);
 }
 
 /* ---- interpreter ---- */
@@ -969,10 +1001,141 @@ static int eval_x(struct S *s, const struct tex_enode *x, struct val *out)
     return 0;
 }
 
+/* ---- operations on maps ----
+ *
+ * Each evaluates its operands into v[0..2] (eval frees them) and sets out to its map, or
+ * reports the error and returns -1. */
+
+static int eval_mix(struct S *s, const struct node *n, struct val *v, struct val *out)
+{
+    struct tex_operand oa, ob, oc;
+
+    if (eval_map(s, n->a, &v[0], "mix") < 0 || eval_map(s, n->b, &v[1], "mix") < 0 ||
+        eval(s, n->c, &v[2]) < 0)
+        return -1;
+    if (v[0].m->w != v[1].m->w || v[0].m->h != v[1].m->h ||
+        (v[2].m && (v[2].m->w != v[0].m->w || v[2].m->h != v[0].m->h)))
+        return fail_node(s, n, "mix of images of different sizes: resize them");
+    oa = (struct tex_operand){v[0].m, 0, {0}};
+    ob = (struct tex_operand){v[1].m, 0, {0}};
+    oc = operand_of(&v[2]);
+    return set_result(s, n, out, tex_op_apply(TEX_OP_MIX, &oa, &ob, &oc, 0.5));
+}
+
+static int eval_expand(struct S *s, const struct node *n, struct val *v, struct val *out)
+{
+    if (check_pixels(s, n, n->w, n->h) < 0 || eval_map(s, n->a, &v[0], "expand") < 0)
+        return -1;
+    return set_result(s, n, out, tex_expand(v[0].m, n->w, n->h, n->colour));
+}
+
+/* About the centre unless a centre is given (flag). */
+static int eval_rotate(struct S *s, const struct node *n, struct val *v, struct val *out)
+{
+    const tex_map *m;
+
+    if (eval_map(s, n->a, &v[0], "rotate") < 0)
+        return -1;
+    m = v[0].m;
+    return set_result(s, n, out, tex_rotate(m, n->v[0], n->flag ? n->v[1] : m->w / 2.0,
+                                            n->flag ? n->v[2] : m->h / 2.0, n->colour));
+}
+
+/* By factors: the new size, rounded, must be a size a map may have. */
+static int eval_scale(struct S *s, const struct node *n, struct val *v, struct val *out)
+{
+    const tex_map *m;
+    double w, h;
+
+    if (eval_map(s, n->a, &v[0], "scale") < 0)
+        return -1;
+    m = v[0].m;
+    w = floor(m->w * n->v[0] + 0.5);
+    h = floor(m->h * n->v[1] + 0.5);
+    if (w < 1 || h < 1 || w > TEX_MAP_MAX_SIDE || h > TEX_MAP_MAX_SIDE)
+        return fail_node(s, n, "scaling a %dx%d image gives %.0f by %.0f", m->w, m->h, w, h);
+    if (check_pixels(s, n, (long long)w, (long long)h) < 0)
+        return -1;
+    return set_result(s, n, out, tex_resize(m, (int)w, (int)h));
+}
+
+static int eval_resize(struct S *s, const struct node *n, struct val *v, struct val *out)
+{
+    if (check_pixels(s, n, n->w, n->h) < 0 || eval_map(s, n->a, &v[0], "resize") < 0)
+        return -1;
+    return set_result(s, n, out, tex_resize(v[0].m, n->w, n->h));
+}
+
+static int eval_shift(struct S *s, const struct node *n, struct val *v, struct val *out)
+{
+    if (eval_map(s, n->a, &v[0], "shift") < 0)
+        return -1;
+    return set_result(s, n, out, tex_shift(v[0].m, n->v[0], n->v[1], n->flag, n->colour));
+}
+
+static int eval_clip(struct S *s, const struct node *n, struct val *v, struct val *out)
+{
+    if (eval_map(s, n->a, &v[0], "clipping") < 0)
+        return -1;
+    return set_result(s, n, out,
+                      tex_clip(v[0].m, (int)n->v[0], (int)n->v[1], (int)n->v[2], (int)n->v[3]));
+}
+
+static int eval_filter(struct S *s, const struct node *n, struct val *v, struct val *out)
+{
+    if (eval_map(s, n->a, &v[0], n->filter->name) < 0)
+        return -1;
+    return set_result(s, n, out, n->filter->fn(v[0].m, n->v[0]));
+}
+
+static int eval_tile(struct S *s, const struct node *n, struct val *v, struct val *out)
+{
+    const tex_map *m;
+
+    if (eval_map(s, n->a, &v[0], "tile") < 0)
+        return -1;
+    m = v[0].m;
+    return set_result(s, n, out, tex_tile(&m, 1, TEX_RULE_CYCLE, (int)n->v[0], (int)n->v[1],
+                                          n->flag, m->w, m->h));
+}
+
+/* The matrix's images, all evaluated before the tiling; its cells are the first's size. */
+static int eval_matrix(struct S *s, const struct node *n, struct val *out)
+{
+    struct val *vs = calloc(n->nlist, sizeof *vs);
+    const tex_map **ms = calloc(n->nlist, sizeof *ms);
+    tex_map *r = NULL;
+    int ok = vs && ms;
+
+    if (!ok)
+        tex_error("out of memory");
+    for (int i = 0; ok && i < n->nlist; i++) {
+        ok = eval_map(s, n->list[i], &vs[i], "matrix") == 0;
+        if (ok)
+            ms[i] = vs[i].m;
+    }
+    if (ok)
+        r = tex_tile(ms, n->nlist, (enum tex_rule)n->op, (int)n->v[0], (int)n->v[1], n->flag,
+                     ms[0]->w, ms[0]->h);
+    for (int i = 0; vs && i < n->nlist; i++)
+        val_free(&vs[i]);
+    free(vs);
+    free(ms);
+    return ok ? set_result(s, n, out, r) : -1;
+}
+
+static int eval_warp(struct S *s, const struct node *n, struct val *v, struct val *out)
+{
+    struct tex_warp_opts wo = {n->v[0], 0, 0, n->flag, TEX_EDGE_WRAP};
+
+    if (eval_map(s, n->a, &v[0], "warp") < 0 || eval_map(s, n->b, &v[1], "warp") < 0)
+        return -1;
+    return set_result(s, n, out, tex_warp(v[0].m, v[1].m, &wo, v[0].m->w, v[0].m->h));
+}
+
 static int eval(struct S *s, const struct node *n, struct val *out)
 {
-    struct val a = {0}, b = {0}, c = {0};
-    tex_map *r = NULL;
+    struct val v[3] = {{0}};
     int rc = -1;
 
     memset(out, 0, sizeof *out);
@@ -981,117 +1144,28 @@ static int eval(struct S *s, const struct node *n, struct val *out)
         return fail_node(s, n, "definitions nested too deeply (more than %d)", MAX_EVAL_DEPTH);
     }
     switch (n->k) {
-    case N_REF: rc = eval_def(s, n, out); goto done;
-    case N_PRIM: rc = eval_prim(s, n, out); goto done;
-    case N_FILE: rc = eval_file(s, n, out); goto done;
+    case N_REF: rc = eval_def(s, n, out); break;
+    case N_PRIM: rc = eval_prim(s, n, out); break;
+    case N_FILE: rc = eval_file(s, n, out); break;
     case N_NUM:
         out->c[0] = (float)n->v[0];
         rc = 0;
-        goto done;
-    case N_EXPR: rc = eval_x(s, n->x, out); goto done;
-    case N_MIX: {
-        struct tex_operand oa, ob, oc;
-        if (eval_map(s, n->a, &a, "mix") < 0 || eval_map(s, n->b, &b, "mix") < 0 ||
-            eval(s, n->c, &c) < 0)
-            goto done;
-        if (a.m->w != b.m->w || a.m->h != b.m->h ||
-            (c.m && (c.m->w != a.m->w || c.m->h != a.m->h))) {
-            fail_node(s, n, "mix of images of different sizes: resize them");
-            goto done;
-        }
-        oa = (struct tex_operand){a.m, 0, {0}};
-        ob = (struct tex_operand){b.m, 0, {0}};
-        oc = operand_of(&c);
-        r = tex_op_apply(TEX_OP_MIX, &oa, &ob, &oc, 0.5);
         break;
+    case N_EXPR: rc = eval_x(s, n->x, out); break;
+    case N_MIX: rc = eval_mix(s, n, v, out); break;
+    case N_EXPAND: rc = eval_expand(s, n, v, out); break;
+    case N_ROTATE: rc = eval_rotate(s, n, v, out); break;
+    case N_SCALE: rc = eval_scale(s, n, v, out); break;
+    case N_RESIZE: rc = eval_resize(s, n, v, out); break;
+    case N_SHIFT: rc = eval_shift(s, n, v, out); break;
+    case N_CLIP: rc = eval_clip(s, n, v, out); break;
+    case N_FILTER: rc = eval_filter(s, n, v, out); break;
+    case N_TILE: rc = eval_tile(s, n, v, out); break;
+    case N_MATRIX: rc = eval_matrix(s, n, out); break;
+    case N_WARP: rc = eval_warp(s, n, v, out); break;
     }
-    case N_EXPAND:
-        if (check_pixels(s, n, n->w, n->h) < 0 || eval_map(s, n->a, &a, "expand") < 0)
-            goto done;
-        r = tex_expand(a.m, n->w, n->h, n->colour);
-        break;
-    case N_ROTATE:
-        if (eval_map(s, n->a, &a, "rotate") < 0)
-            goto done;
-        r = tex_rotate(a.m, n->v[0], n->flag ? n->v[1] : a.m->w / 2.0,
-                       n->flag ? n->v[2] : a.m->h / 2.0, n->colour);
-        break;
-    case N_SCALE: {
-        double w, h;
-        if (eval_map(s, n->a, &a, "scale") < 0)
-            goto done;
-        w = floor(a.m->w * n->v[0] + 0.5);
-        h = floor(a.m->h * n->v[1] + 0.5);
-        if (w < 1 || h < 1 || w > TEX_MAP_MAX_SIDE || h > TEX_MAP_MAX_SIDE) {
-            fail_node(s, n, "scaling a %dx%d image gives %.0f by %.0f", a.m->w, a.m->h, w, h);
-            goto done;
-        }
-        if (check_pixels(s, n, (long long)w, (long long)h) < 0)
-            goto done;
-        r = tex_resize(a.m, (int)w, (int)h);
-        break;
-    }
-    case N_RESIZE:
-        if (check_pixels(s, n, n->w, n->h) < 0 || eval_map(s, n->a, &a, "resize") < 0)
-            goto done;
-        r = tex_resize(a.m, n->w, n->h);
-        break;
-    case N_SHIFT:
-        if (eval_map(s, n->a, &a, "shift") < 0)
-            goto done;
-        r = tex_shift(a.m, n->v[0], n->v[1], n->flag, n->colour);
-        break;
-    case N_CLIP:
-        if (eval_map(s, n->a, &a, "clipping") < 0)
-            goto done;
-        r = tex_clip(a.m, (int)n->v[0], (int)n->v[1], (int)n->v[2], (int)n->v[3]);
-        break;
-    case N_FILTER:
-        if (eval_map(s, n->a, &a, n->filter->name) < 0)
-            goto done;
-        r = n->filter->fn(a.m, n->v[0]);
-        break;
-    case N_TILE:
-        if (eval_map(s, n->a, &a, "tile") < 0)
-            goto done;
-        r = tex_tile(&a.m, 1, TEX_RULE_CYCLE, (int)n->v[0], (int)n->v[1], n->flag, a.m->w,
-                     a.m->h);
-        break;
-    case N_MATRIX: {
-        struct val *vs = calloc(n->nlist, sizeof *vs);
-        const tex_map **ms = calloc(n->nlist, sizeof *ms);
-        int ok = vs && ms;
-        if (!ok)
-            tex_error("out of memory");
-        for (int i = 0; ok && i < n->nlist; i++) {
-            ok = eval_map(s, n->list[i], &vs[i], "matrix") == 0;
-            if (ok)
-                ms[i] = vs[i].m;
-        }
-        if (ok)
-            r = tex_tile(ms, n->nlist, (enum tex_rule)n->op, (int)n->v[0], (int)n->v[1],
-                         n->flag, ms[0]->w, ms[0]->h);
-        for (int i = 0; vs && i < n->nlist; i++)
-            val_free(&vs[i]);
-        free(vs);
-        free(ms);
-        if (!ok)
-            goto done;
-        break;
-    }
-    case N_WARP: {
-        struct tex_warp_opts wo = {n->v[0], 0, 0, n->flag, TEX_EDGE_WRAP};
-        if (eval_map(s, n->a, &a, "warp") < 0 || eval_map(s, n->b, &b, "warp") < 0)
-            goto done;
-        r = tex_warp(a.m, b.m, &wo, a.m->w, a.m->h);
-        break;
-    }
-    }
-    rc = set_result(s, n, out, r);
-done:
-    val_free(&a);
-    val_free(&b);
-    val_free(&c);
+    for (int i = 0; i < 3; i++)
+        val_free(&v[i]);
     s->evaldepth--;
     return rc;
 }

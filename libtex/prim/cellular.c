@@ -194,6 +194,80 @@ int tex_points_vary(tex_points *ps, double size, double shape, uint64_t seed)
     return 0;
 }
 
+/* The numbers of one line of a point file into v, its comment cut: x y [z] and an optional
+ * radius w.  Returns how many, 0 for a blank line, or -1 with the error recorded. */
+static int point_line(char *line, double *v, int dim, const char *path, long lineno)
+{
+    int cols = 0;
+    char *s = line, *hash = strchr(line, '#');
+
+    if (hash)
+        *hash = '\0';
+    for (;;) {
+        char *end;
+        while (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\n')
+            s++;
+        if (!*s)
+            break;
+        if (cols == dim + 1)
+            return tex_error("%s:%ld: too many columns (want %s)", path, lineno,
+                             dim == 2 ? "x y [w]" : "x y z [w]");
+        errno = 0;
+        v[cols] = strtod(s, &end);
+        if (end == s || (*end && !strchr(" \t\r\n", *end))) {
+            int len = (int)strcspn(s, " \t\r\n");
+            return tex_error("%s:%ld: not a number: '%.*s'", path, lineno, len < 20 ? len : 20,
+                             s);
+        }
+        if (!isfinite(v[cols]))
+            return tex_error("%s:%ld: not a finite number: '%.*s'", path, lineno,
+                             (int)(end - s), s);
+        cols++;
+        s = end;
+    }
+    if (cols == 0)
+        return 0;
+    if (cols < dim)
+        return tex_error("%s:%ld: %d column%s, want %s", path, lineno, cols,
+                         cols == 1 ? "" : "s", dim == 2 ? "x y [w]" : "x y z [w]");
+    if (cols == dim + 1 && !(v[dim] > 0))
+        return tex_error("%s:%ld: the radius must be > 0 (got %g)", path, lineno, v[dim]);
+    return cols;
+}
+
+/* Store point n (cols numbers in v) in ps, which has room for *alloc.  The axes start
+ * with the first radius, at 1 for the points before it. */
+static int add_point(tex_points *ps, const double *v, int cols, long n, size_t *alloc,
+                     const char *path, long lineno)
+{
+    int dim = ps->dim;
+
+    if (n == TEX_POINTS_MAX)
+        return tex_error("%s:%ld: more than %d points", path, lineno, TEX_POINTS_MAX);
+    if ((size_t)n == *alloc) {
+        size_t na = *alloc ? 2 * *alloc : 1024;
+        int ok = 1;
+        ps->x = grown(ps->x, na * dim, sizeof *ps->x, &ok);
+        if (ps->axes)
+            ps->axes = grown(ps->axes, na * dim, sizeof *ps->axes, &ok);
+        if (!ok)
+            return tex_error("out of memory reading %s", path);
+        *alloc = na;
+    }
+    if (cols == dim + 1 && !ps->axes) {
+        if (!(ps->axes = malloc(*alloc * dim * sizeof *ps->axes)))
+            return tex_error("out of memory reading %s", path);
+        for (long i = 0; i < n * dim; i++)
+            ps->axes[i] = 1;
+    }
+    for (int j = 0; j < dim; j++) {
+        ps->x[n * dim + j] = v[j];
+        if (ps->axes)
+            ps->axes[n * dim + j] = cols == dim + 1 ? v[dim] : 1;
+    }
+    return 0;
+}
+
 int tex_points_read(tex_points *ps, const char *path, int dim)
 {
     FILE *fp;
@@ -208,76 +282,13 @@ int tex_points_read(tex_points *ps, const char *path, int dim)
         return tex_error("%s: %s", path, strerror(errno));
     while (getline(&line, &cap, fp) >= 0) {
         double v[5];
-        int cols = 0;
-        char *s = line, *hash = strchr(line, '#');
-        lineno++;
-        if (hash)
-            *hash = '\0';
-        for (;;) {
-            char *end;
-            while (*s == ' ' || *s == '\t' || *s == '\r' || *s == '\n')
-                s++;
-            if (!*s)
-                break;
-            if (cols == dim + 1) {
-                tex_error("%s:%ld: too many columns (want %s)", path, lineno,
-                          dim == 2 ? "x y [w]" : "x y z [w]");
-                goto out;
-            }
-            errno = 0;
-            v[cols] = strtod(s, &end);
-            if (end == s || (*end && !strchr(" \t\r\n", *end))) {
-                int len = (int)strcspn(s, " \t\r\n");
-                tex_error("%s:%ld: not a number: '%.*s'", path, lineno, len < 20 ? len : 20, s);
-                goto out;
-            }
-            if (!isfinite(v[cols])) {
-                tex_error("%s:%ld: not a finite number: '%.*s'", path, lineno, (int)(end - s), s);
-                goto out;
-            }
-            cols++;
-            s = end;
-        }
+        int cols = point_line(line, v, dim, path, ++lineno);
+        if (cols < 0)
+            goto out;
         if (cols == 0)
             continue;
-        if (cols < dim) {
-            tex_error("%s:%ld: %d column%s, want %s", path, lineno, cols, cols == 1 ? "" : "s",
-                      dim == 2 ? "x y [w]" : "x y z [w]");
+        if (add_point(ps, v, cols, n, &alloc, path, lineno) < 0)
             goto out;
-        }
-        if (cols == dim + 1 && !(v[dim] > 0)) {
-            tex_error("%s:%ld: the radius must be > 0 (got %g)", path, lineno, v[dim]);
-            goto out;
-        }
-        if (n == TEX_POINTS_MAX) {
-            tex_error("%s:%ld: more than %d points", path, lineno, TEX_POINTS_MAX);
-            goto out;
-        }
-        if ((size_t)n == alloc) {
-            size_t na = alloc ? 2 * alloc : 1024;
-            int ok = 1;
-            ps->x = grown(ps->x, na * dim, sizeof *ps->x, &ok);
-            if (ps->axes)
-                ps->axes = grown(ps->axes, na * dim, sizeof *ps->axes, &ok);
-            if (!ok) {
-                tex_error("out of memory reading %s", path);
-                goto out;
-            }
-            alloc = na;
-        }
-        if (cols == dim + 1 && !ps->axes) {
-            if (!(ps->axes = malloc(alloc * dim * sizeof *ps->axes))) {
-                tex_error("out of memory reading %s", path);
-                goto out;
-            }
-            for (long i = 0; i < n * dim; i++)
-                ps->axes[i] = 1;
-        }
-        for (int j = 0; j < dim; j++) {
-            ps->x[n * dim + j] = v[j];
-            if (ps->axes)
-                ps->axes[n * dim + j] = cols == dim + 1 ? v[dim] : 1;
-        }
         n++;
     }
     if (ferror(fp)) {

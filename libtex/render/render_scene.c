@@ -301,52 +301,38 @@ static void texture_map(struct parser *ps, struct tex_texture *tx, tex_map *m, c
         fail_at(ps, at, 1, "%s", tex_errmsg());
 }
 
-static void parse_texture(struct parser *ps)
+/* 'texture NAME file PATH': the texture map read from a file, or '-' for standard input
+ * (at most once per scene). */
+static void texture_file(struct parser *ps, struct tex_texture *tx)
 {
-    struct tok at = ps->t;
-    char *name = word(ps, "a texture name");
-    if (find_texture(ps, &at))
-        fail_at(ps, &at, 0, "texture '%s' is defined twice", name);
-    struct tex_texture *tx = calloc(1, sizeof *tx);
-    if (!tx)
-        fail_at(ps, &at, 1, "out of memory");
-    add_texture(ps, tx); /* freed with the scene from here on */
-    tx->name = name;
-    tx->line = at.line;
-    tx->col = at.col;
-    if (is_word(&ps->t, "file")) {
+    struct tok ft = ps->t;
+    char *path;
+    if (is_punct(&ft, '-')) {
+        path = pstrdup(ps, "-", 1);
         next(ps);
-        struct tok ft = ps->t;
-        char *path;
-        if (is_punct(&ft, '-')) {
-            path = pstrdup(ps, "-", 1);
-            next(ps);
-        } else if (ft.kind == T_STR || ft.kind == T_ID) {
-            path = pstrdup(ps, ft.text, ft.len);
-            next(ps);
-        } else {
-            FAIL(ps, "expected a file name or '-' after 'file'");
-        }
-        if (!strcmp(path, "-")) {
-            if (ps->stdin_used)
-                fail_at(ps, &ft, 0, "only one texture can come from standard input");
-            ps->stdin_used = 1;
-        }
-        tex_map *m = tex_map_read(path);
-        if (!m)
-            fail_at(ps, &ft, 1, "cannot read map '%s': %s", path, tex_errmsg());
-        texture_map(ps, tx, m, &ft);
-        return;
+    } else if (ft.kind == T_STR || ft.kind == T_ID) {
+        path = pstrdup(ps, ft.text, ft.len);
+        next(ps);
+    } else {
+        FAIL(ps, "expected a file name or '-' after 'file'");
     }
-    struct tok pt = ps->t;
-    char *pname = word(ps, "'file' or a primitive name");
-    const struct tex_primitive *prim = tex_primitive_find(pname);
-    if (!prim)
-        fail_at(ps, &pt, 0, "unknown primitive '%s'", pname);
-    struct tex_field *f = tex_field_new(prim);
-    if (!f)
-        fail_at(ps, &pt, 1, "out of memory");
-    tx->field = f;
+    if (!strcmp(path, "-")) {
+        if (ps->stdin_used)
+            fail_at(ps, &ft, 0, "only one texture can come from standard input");
+        ps->stdin_used = 1;
+    }
+    tex_map *m = tex_map_read(path);
+    if (!m)
+        fail_at(ps, &ft, 1, "cannot read map '%s': %s", path, tex_errmsg());
+    texture_map(ps, tx, m, &ft);
+}
+
+/* The block '{ KEY VALUE ... }' of a primitive's texture: 'solid', the flags of
+ * tex_field_rows (no value), and the others with a value. */
+static void texture_params(struct parser *ps, struct tex_texture *tx,
+                           const struct tex_primitive *prim, const char *pname)
+{
+    struct tex_field *f = tx->field;
     expect(ps, '{');
     while (!is_punct(&ps->t, '}')) {
         struct tok kt = ps->t;
@@ -372,16 +358,25 @@ static void parse_texture(struct parser *ps)
                 fail_at(ps, fr ? &vt : &kt, 0, "%s", tex_errmsg());
         }
     }
-    int size = f->size;
     next(ps);
+}
+
+/* Start the primitive's field, and sample it into a texture map unless it is evaluated
+ * at each hit (a solid texture, or a 2D primitive without a size). */
+static void texture_field(struct parser *ps, struct tex_texture *tx,
+                          const struct tex_primitive *prim, const char *pname,
+                          const struct tok *pt)
+{
+    struct tex_field *f = tx->field;
+    int size = f->size;
     if (prim->flags & TEX_PRIM_GRID && !size)
         size = 512;
     if (!(prim->flags & (TEX_PRIM_2D | TEX_PRIM_3D | TEX_PRIM_GRID)))
-        fail_at(ps, &pt, 0, "primitive '%s' cannot be evaluated", pname);
+        fail_at(ps, pt, 0, "primitive '%s' cannot be evaluated", pname);
     if (!size && !tx->solid && !(prim->flags & TEX_PRIM_2D))
         size = 512;
     if (tex_field_init(f, size, size) < 0)
-        fail_at(ps, &pt, 0, "%s", tex_errmsg());
+        fail_at(ps, pt, 0, "%s", tex_errmsg());
     if (size) {
         tex_map *m;
         if (prim->flags & TEX_PRIM_GRID) {
@@ -394,11 +389,40 @@ static void parse_texture(struct parser *ps)
             m = tex_field_sample(f);
         }
         if (!m)
-            fail_at(ps, &pt, 1, "%s", tex_errmsg());
+            fail_at(ps, pt, 1, "%s", tex_errmsg());
         if (f->ids && (prim->flags & TEX_PRIM_REGIONS))
             m->subregions = f->nregions > 0 ? f->nregions : 1;
-        texture_map(ps, tx, m, &pt);
+        texture_map(ps, tx, m, pt);
     }
+}
+
+static void parse_texture(struct parser *ps)
+{
+    struct tok at = ps->t;
+    char *name = word(ps, "a texture name");
+    if (find_texture(ps, &at))
+        fail_at(ps, &at, 0, "texture '%s' is defined twice", name);
+    struct tex_texture *tx = calloc(1, sizeof *tx);
+    if (!tx)
+        fail_at(ps, &at, 1, "out of memory");
+    add_texture(ps, tx); /* freed with the scene from here on */
+    tx->name = name;
+    tx->line = at.line;
+    tx->col = at.col;
+    if (is_word(&ps->t, "file")) {
+        next(ps);
+        texture_file(ps, tx);
+        return;
+    }
+    struct tok pt = ps->t;
+    char *pname = word(ps, "'file' or a primitive name");
+    const struct tex_primitive *prim = tex_primitive_find(pname);
+    if (!prim)
+        fail_at(ps, &pt, 0, "unknown primitive '%s'", pname);
+    if (!(tx->field = tex_field_new(prim)))
+        fail_at(ps, &pt, 1, "out of memory");
+    texture_params(ps, tx, prim, pname);
+    texture_field(ps, tx, prim, pname, &pt);
 }
 
 /* ---- expressions ---------------------------------------------------------------- */
@@ -793,6 +817,117 @@ static int is_object(const struct tok *t)
 
 static struct tex_object *parse_object(struct parser *ps);
 
+/* A shape's own numbers as its block gives them, at their defaults until then. */
+struct leaf {
+    tex_v3 c, lo, hi, base, top, normal;
+    double radius, r0, r1, dist;
+    double minor; /* torus: major is r0 */
+};
+
+/* One word of a shape's block other than a transform, kt, already read: each shape takes
+ * only its own words. */
+static void parse_leaf_word(struct parser *ps, struct tex_object *ob, int kind,
+                            const struct tok *kt, struct leaf *l)
+{
+    if (is_word(kt, "surface")) {
+        struct tok st = ps->t;
+        if (st.kind != T_ID || !(ob->surface = find_surface(ps, &st)))
+            FAIL(ps, "unknown surface '%.*s'", (int)st.len, st.text);
+        next(ps);
+    } else if ((kind == TEX_SHAPE_SPHERE || kind == TEX_SHAPE_TORUS) &&
+               (is_word(kt, "centre") || is_word(kt, "center"))) {
+        l->c = vec(ps);
+    } else if (kind == TEX_SHAPE_TORUS && is_word(kt, "major")) {
+        l->r0 = number(ps);
+    } else if (kind == TEX_SHAPE_TORUS && is_word(kt, "minor")) {
+        l->minor = number(ps);
+    } else if (kind == TEX_SHAPE_TORUS && is_word(kt, "axis")) {
+        l->top = vec(ps);
+    } else if ((kind == TEX_SHAPE_SPHERE || kind == TEX_SHAPE_CYLINDER) &&
+               is_word(kt, "radius")) {
+        l->radius = number(ps);
+    } else if (kind == TEX_SHAPE_BOX && is_word(kt, "min")) {
+        l->lo = vec(ps);
+    } else if (kind == TEX_SHAPE_BOX && is_word(kt, "max")) {
+        l->hi = vec(ps);
+    } else if ((kind == TEX_SHAPE_CYLINDER || kind == TEX_SHAPE_CONE) && is_word(kt, "base")) {
+        l->base = vec(ps);
+    } else if ((kind == TEX_SHAPE_CYLINDER || kind == TEX_SHAPE_CONE) && is_word(kt, "top")) {
+        l->top = vec(ps);
+    } else if (kind == TEX_SHAPE_CONE && is_word(kt, "radius1")) {
+        l->r0 = number(ps);
+    } else if (kind == TEX_SHAPE_CONE && is_word(kt, "radius2")) {
+        l->r1 = number(ps);
+    } else if (kind == TEX_SHAPE_PLANE && is_word(kt, "normal")) {
+        l->normal = vec(ps);
+    } else if (kind == TEX_SHAPE_PLANE && is_word(kt, "distance")) {
+        l->dist = number(ps);
+    } else {
+        char b[64];
+        fail_at(ps, kt, 0, "unknown word %s in a %s", tokdesc(kt, b, sizeof b),
+                tex_shape_methods[kind].name);
+    }
+}
+
+/* Check a shape's numbers and give the placement of its canonical shape; cones, cylinders
+ * and tori keep their radii in ob, in world units. */
+static void place_leaf(struct parser *ps, struct tex_object *ob, const struct tok *at,
+                       struct leaf *l, tex_xform *place)
+{
+    int kind = ob->kind;
+
+    switch (kind) {
+    case TEX_SHAPE_SPHERE:
+        if (!(l->radius > 0))
+            fail_at(ps, at, 0, "sphere radius must be > 0");
+        xf_scale(place, tex_v3_make(l->radius, l->radius, l->radius));
+        place->m[0][3] = l->c.x, place->m[1][3] = l->c.y, place->m[2][3] = l->c.z;
+        break;
+    case TEX_SHAPE_BOX:
+        if (!(l->hi.x > l->lo.x && l->hi.y > l->lo.y && l->hi.z > l->lo.z))
+            fail_at(ps, at, 0, "box needs min < max on every axis");
+        xf_scale(place, tex_v3_scale(tex_v3_sub(l->hi, l->lo), 0.5));
+        l->c = tex_v3_scale(tex_v3_add(l->hi, l->lo), 0.5);
+        place->m[0][3] = l->c.x, place->m[1][3] = l->c.y, place->m[2][3] = l->c.z;
+        break;
+    case TEX_SHAPE_CYLINDER:
+    case TEX_SHAPE_CONE: {
+        double len = tex_v3_len(tex_v3_sub(l->top, l->base));
+        if (kind == TEX_SHAPE_CYLINDER)
+            l->r0 = l->r1 = l->radius;
+        if (!(len > 0))
+            fail_at(ps, at, 0, "%s axis has zero length (base = top)",
+                    tex_shape_methods[kind].name);
+        if (!(l->r0 >= 0 && l->r1 >= 0 && l->r0 + l->r1 > 0))
+            fail_at(ps, at, 0, "%s radii must be >= 0 and not both 0",
+                    tex_shape_methods[kind].name);
+        /* the canonical shape keeps unit radius scale; r0, r1 are in world units */
+        xf_frame(place, l->base, tex_v3_sub(l->top, l->base), len, 1);
+        ob->r0 = l->r0;
+        ob->r1 = l->r1;
+        break;
+    }
+    case TEX_SHAPE_TORUS:
+        /* r0, r1 are in world units like a cone's; the frame only turns and moves */
+        l->r1 = l->minor;
+        if (!(l->r0 >= 0))
+            fail_at(ps, at, 0, "torus major radius must be >= 0");
+        if (!(l->r1 > 0))
+            fail_at(ps, at, 0, "torus minor radius must be > 0");
+        if (!(tex_v3_len(l->top) > 0))
+            fail_at(ps, at, 0, "torus axis must not be zero");
+        xf_frame(place, l->c, l->top, 1, 1);
+        ob->r0 = l->r0;
+        ob->r1 = l->r1;
+        break;
+    default:
+        if (!(tex_v3_len(l->normal) > 0))
+            fail_at(ps, at, 0, "plane normal must not be zero");
+        xf_frame(place, tex_v3_scale(tex_v3_norm(l->normal), l->dist), l->normal, 1, 1);
+        break;
+    }
+}
+
 static struct tex_object *parse_leaf(struct parser *ps, int kind, const struct tok *at)
 {
     struct tex_object *ob = palloc(ps, sizeof *ob);
@@ -800,10 +935,9 @@ static struct tex_object *parse_leaf(struct parser *ps, int kind, const struct t
     ob->kind = kind;
     ob->line = at->line;
     ob->col = at->col;
-    tex_v3 c = {0, 0, 0}, lo = {-1, -1, -1}, hi = {1, 1, 1}, base = {0, 0, 0}, top = {0, 1, 0};
-    tex_v3 normal = {0, 1, 0};
-    double radius = 1, r0 = 1, r1 = 0, dist = 0;
-    double minor = 0.25; /* torus: major is r0 */
+    struct leaf l = {.c = {0, 0, 0}, .lo = {-1, -1, -1}, .hi = {1, 1, 1}, .base = {0, 0, 0},
+                     .top = {0, 1, 0}, .normal = {0, 1, 0}, .radius = 1, .r0 = 1, .r1 = 0,
+                     .dist = 0, .minor = 0.25};
     tex_xform acc;
     tex_xform_identity(&acc);
     expect(ps, '{');
@@ -812,99 +946,11 @@ static struct tex_object *parse_leaf(struct parser *ps, int kind, const struct t
         if (parse_transform(ps, &acc))
             continue;
         next(ps);
-        if (is_word(&kt, "surface")) {
-            struct tok st = ps->t;
-            if (st.kind != T_ID || !(ob->surface = find_surface(ps, &st)))
-                FAIL(ps, "unknown surface '%.*s'", (int)st.len, st.text);
-            next(ps);
-        } else if ((kind == TEX_SHAPE_SPHERE || kind == TEX_SHAPE_TORUS) &&
-                   (is_word(&kt, "centre") || is_word(&kt, "center"))) {
-            c = vec(ps);
-        } else if (kind == TEX_SHAPE_TORUS && is_word(&kt, "major")) {
-            r0 = number(ps);
-        } else if (kind == TEX_SHAPE_TORUS && is_word(&kt, "minor")) {
-            minor = number(ps);
-        } else if (kind == TEX_SHAPE_TORUS && is_word(&kt, "axis")) {
-            top = vec(ps);
-        } else if ((kind == TEX_SHAPE_SPHERE || kind == TEX_SHAPE_CYLINDER) &&
-                   is_word(&kt, "radius")) {
-            radius = number(ps);
-        } else if (kind == TEX_SHAPE_BOX && is_word(&kt, "min")) {
-            lo = vec(ps);
-        } else if (kind == TEX_SHAPE_BOX && is_word(&kt, "max")) {
-            hi = vec(ps);
-        } else if ((kind == TEX_SHAPE_CYLINDER || kind == TEX_SHAPE_CONE) &&
-                   is_word(&kt, "base")) {
-            base = vec(ps);
-        } else if ((kind == TEX_SHAPE_CYLINDER || kind == TEX_SHAPE_CONE) &&
-                   is_word(&kt, "top")) {
-            top = vec(ps);
-        } else if (kind == TEX_SHAPE_CONE && is_word(&kt, "radius1")) {
-            r0 = number(ps);
-        } else if (kind == TEX_SHAPE_CONE && is_word(&kt, "radius2")) {
-            r1 = number(ps);
-        } else if (kind == TEX_SHAPE_PLANE && is_word(&kt, "normal")) {
-            normal = vec(ps);
-        } else if (kind == TEX_SHAPE_PLANE && is_word(&kt, "distance")) {
-            dist = number(ps);
-        } else {
-            char b[64];
-            fail_at(ps, &kt, 0, "unknown word %s in a %s", tokdesc(&kt, b, sizeof b),
-                    tex_shape_methods[kind].name);
-        }
+        parse_leaf_word(ps, ob, kind, &kt, &l);
     }
     next(ps);
     tex_xform place;
-    switch (kind) {
-    case TEX_SHAPE_SPHERE:
-        if (!(radius > 0))
-            fail_at(ps, at, 0, "sphere radius must be > 0");
-        xf_scale(&place, tex_v3_make(radius, radius, radius));
-        place.m[0][3] = c.x, place.m[1][3] = c.y, place.m[2][3] = c.z;
-        break;
-    case TEX_SHAPE_BOX:
-        if (!(hi.x > lo.x && hi.y > lo.y && hi.z > lo.z))
-            fail_at(ps, at, 0, "box needs min < max on every axis");
-        xf_scale(&place, tex_v3_scale(tex_v3_sub(hi, lo), 0.5));
-        c = tex_v3_scale(tex_v3_add(hi, lo), 0.5);
-        place.m[0][3] = c.x, place.m[1][3] = c.y, place.m[2][3] = c.z;
-        break;
-    case TEX_SHAPE_CYLINDER:
-    case TEX_SHAPE_CONE: {
-        double len = tex_v3_len(tex_v3_sub(top, base));
-        if (kind == TEX_SHAPE_CYLINDER)
-            r0 = r1 = radius;
-        if (!(len > 0))
-            fail_at(ps, at, 0, "%s axis has zero length (base = top)",
-                    tex_shape_methods[kind].name);
-        if (!(r0 >= 0 && r1 >= 0 && r0 + r1 > 0))
-            fail_at(ps, at, 0, "%s radii must be >= 0 and not both 0",
-                    tex_shape_methods[kind].name);
-        /* the canonical shape keeps unit radius scale; r0, r1 are in world units */
-        xf_frame(&place, base, tex_v3_sub(top, base), len, 1);
-        ob->r0 = r0;
-        ob->r1 = r1;
-        break;
-    }
-    case TEX_SHAPE_TORUS:
-        /* r0, r1 are in world units like a cone's; the frame only turns and moves */
-        r1 = minor;
-        if (!(r0 >= 0))
-            fail_at(ps, at, 0, "torus major radius must be >= 0");
-        if (!(r1 > 0))
-            fail_at(ps, at, 0, "torus minor radius must be > 0");
-        if (!(tex_v3_len(top) > 0))
-            fail_at(ps, at, 0, "torus axis must not be zero");
-        xf_frame(&place, c, top, 1, 1);
-        ob->r0 = r0;
-        ob->r1 = r1;
-        break;
-    default:
-        if (!(tex_v3_len(normal) > 0))
-            fail_at(ps, at, 0, "plane normal must not be zero");
-        xf_frame(&place, tex_v3_scale(tex_v3_norm(normal), dist), normal, 1, 1);
-        break;
-    }
+    place_leaf(ps, ob, at, &l, &place);
     tex_xform_mul(&ob->to_world, &acc, &place);
     return ob;
 }
