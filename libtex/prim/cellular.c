@@ -10,6 +10,7 @@
 #include "prim/cellular.h"
 #include "base/error.h"
 #include "prim/prim.h"
+#include "base/rng.h"
 
 /* p grown to n elements of size bytes, or p itself with *ok cleared when that
  * fails (or an earlier call failed): parallel arrays grow together and the
@@ -23,7 +24,6 @@ static void *grown(void *p, size_t n, size_t size, int *ok)
     }
     return q;
 }
-#include "base/rng.h"
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #define HAVE_AVX2_KERNEL 1
