@@ -82,10 +82,11 @@ static double curvature(const struct tex_hit *h, tex_v3 P, tex_v3 Nf, tex_v3 d)
 
 /* A hit once its material is resolved: the point, the shading normal N
  * facing the ray (bumped), the geometric normal Ngv on the ray's side, the
- * view direction, the points just outside and inside, the beam's width. */
+ * view direction, the points just outside and inside, the beam's width.
+ * Pointers to trace's locals: the frame itself costs no copies. */
 struct hit_frame {
     const struct tex_hit *h;
-    tex_v3 P, N, Ngv, V, Pout, Pin;
+    const tex_v3 *P, *N, *Ngv, *V, *Pout, *Pin;
     double width;
     int entering;
 };
@@ -99,6 +100,7 @@ static void direct_light(const struct ctx *c, const struct tex_material *m,
 {
     const struct tex_scene *s = c->s;
     int n = c->n;
+    const tex_v3 *N = f->N, *V = f->V;
     for (int li = 0; li < s->nlights; li++) {
         const struct tex_light *l = &s->lights[li];
         int ns = tex_light_samples(l);
@@ -111,20 +113,20 @@ static void direct_light(const struct ctx *c, const struct tex_material *m,
             tex_v3 L;
             double dist, fatt;
             if (l->kind == TEX_LIGHT_POINT
-                    ? !tex_light_towards(l, &l->pos, &f->P, &L, &dist, &fatt) || !(fatt > 0)
-                    : !tex_light_sample(l, k, jx, jy, f->P, &L, &dist, &fatt))
+                    ? !tex_light_towards(l, &l->pos, f->P, &L, &dist, &fatt) || !(fatt > 0)
+                    : !tex_light_sample(l, k, jx, jy, *f->P, &L, &dist, &fatt))
                 continue;
-            if (tex_v3_dot(L, f->N) <= 0 || tex_v3_dot(L, f->Ngv) <= 0)
+            if (tex_v3_dot(L, *N) <= 0 || tex_v3_dot(L, *f->Ngv) <= 0)
                 continue;
-            double sh = tex_scene_transmit(s, &f->Pout, &L, 0, dist);
+            double sh = tex_scene_transmit(s, f->Pout, &L, 0, dist);
             if (sh <= 0)
                 continue;
             tex_colour E;
             tex_colour_scale(&E, n, &l->e, (float)(fatt * sh));
             if (m->model == &tex_shading_phong) /* inline: no call for the common model */
-                tex_phong_direct(m, &f->N.x, &f->V.x, &L.x, &E, n, out);
+                tex_phong_direct(m, &N->x, &V->x, &L.x, &E, n, out);
             else
-                m->model->direct(m, &f->N.x, &f->V.x, &L.x, &E, n, out);
+                m->model->direct(m, &N->x, &V->x, &L.x, &E, n, out);
         }
     }
 }
@@ -136,12 +138,12 @@ static int refraction(const struct ctx *c, const tex_ray *r, const struct hit_fr
                       const struct tex_media *beyond, double n1, double n2, double kc, int depth,
                       double w, const tex_colour *kt, tex_colour *out)
 {
-    tex_ray rt = {f->Pin, r->d, f->width, r->spread, beyond};
+    tex_ray rt = {*f->Pin, r->d, f->width, r->spread, beyond};
     tex_colour I;
-    if (!tex_refract(r->d, f->N, n1, n2, &rt.d))
+    if (!tex_refract(r->d, *f->N, n1, n2, &rt.d))
         return 0;
     if (w >= c->s->settings.bailout) {
-        double eta = n1 / n2, ci = fabs(tex_v3_dot(r->d, f->Ngv)), ct = fabs(tex_v3_dot(rt.d, f->Ngv));
+        double eta = n1 / n2, ci = fabs(tex_v3_dot(r->d, *f->Ngv)), ct = fabs(tex_v3_dot(rt.d, *f->Ngv));
         if (ct > 1e-3)
             rt.spread = tex_mind(eta * ci / ct * r->spread + (eta * ci - ct) * kc * f->width, 1);
         trace(c, &rt, depth + 1, w, &I);
@@ -159,7 +161,7 @@ static void secondary(const struct ctx *c, const tex_ray *r, const struct hit_fr
     const struct tex_scene *s = c->s;
     int n = c->n;
     tex_colour kr, kt, I;
-    double cosi = tex_v3_dot(f->N, f->V);
+    double cosi = tex_v3_dot(*f->N, *f->V);
     struct tex_media beyond;
     double n1 = 1, n2 = 1;
     if (m->kt > 0 || m->model != &tex_shading_phong) {
@@ -168,15 +170,15 @@ static void secondary(const struct ctx *c, const tex_ray *r, const struct hit_fr
         m->ior = f->entering ? n2 / n1 : n1 / n2;
     }
     m->model->weights(m, cosi, n, &kr, &kt);
-    tex_ray rr = {f->Pout, tex_reflect(r->d, f->N), f->width, r->spread, r->media};
-    if (tex_v3_dot(rr.d, f->Ngv) <= 0)
-        rr.d = tex_reflect(r->d, f->Ngv);
+    tex_ray rr = {*f->Pout, tex_reflect(r->d, *f->N), f->width, r->spread, r->media};
+    if (tex_v3_dot(rr.d, *f->Ngv) <= 0)
+        rr.d = tex_reflect(r->d, *f->Ngv);
     /* footprints after curved surfaces: a mirror of curvature k turns a beam
      * of width w by 2 k w more (its focal length is 1/2k) */
     double kr_max = tex_colour_max(&kr, n), kt_max = tex_colour_max(&kt, n);
     double kmax = tex_maxd(kr_max, kt_max);
     double kc = s->settings.filter && f->width > 0 && kmax > 0 && weight * kmax >= s->settings.bailout
-                    ? curvature(f->h, f->P, f->Ngv, r->d)
+                    ? curvature(f->h, *f->P, *f->Ngv, r->d)
                     : 0;
     rr.spread = tex_mind(r->spread + 2 * kc * f->width, 1);
     if (kt_max > 0 &&
@@ -202,21 +204,20 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, double weigh
         tex_colour_copy(out, c->n, c->background);
         return;
     }
-    struct hit_frame f = {.h = &h};
-    f.P = tex_v3_madd(r->o, r->d, h.t);
-    tex_v3 Ng = hit_normal(&h, f.P);
-    f.entering = tex_v3_dot(r->d, Ng) < 0;
-    f.N = f.entering ? Ng : tex_v3_scale(Ng, -1);
-    f.width = fabs(r->width + h.t * r->spread); /* a focused beam crosses 0 */
+    tex_v3 P = tex_v3_madd(r->o, r->d, h.t);
+    tex_v3 Ng = hit_normal(&h, P);
+    int entering = tex_v3_dot(r->d, Ng) < 0;
+    tex_v3 N = entering ? Ng : tex_v3_scale(Ng, -1);
+    double width = fabs(r->width + h.t * r->spread); /* a focused beam crosses 0 */
     struct tex_material m;
-    tex_resolve_material(s, surface_of(s, h.leaf), h.leaf, &f.P, &r->d, &f.N,
-                         s->settings.filter ? f.width : 0, &m);
-    f.V = tex_v3_scale(r->d, -1);
-    double e = eps_at(f.P);
+    tex_resolve_material(s, surface_of(s, h.leaf), h.leaf, &P, &r->d, &N,
+                         s->settings.filter ? width : 0, &m);
+    tex_v3 V = tex_v3_scale(r->d, -1);
+    double e = eps_at(P);
     /* offset along the geometric normal so bumped normals cannot start rays inside */
-    f.Ngv = f.entering ? Ng : tex_v3_scale(Ng, -1);
-    f.Pout = tex_v3_madd(f.P, f.Ngv, e);
-    f.Pin = tex_v3_madd(f.P, f.Ngv, -e);
+    tex_v3 Ngv = entering ? Ng : tex_v3_scale(Ng, -1);
+    tex_v3 Pout = tex_v3_madd(P, Ngv, e), Pin = tex_v3_madd(P, Ngv, -e);
+    struct hit_frame f = {&h, &P, &N, &Ngv, &V, &Pout, &Pin, width, entering};
 
     tex_colour_mul(out, c->n, c->ambient, &m.ka);
     direct_light(c, &m, &f, out);

@@ -494,6 +494,8 @@ static void parse_fns(struct parser *ps, struct tex_apply *ap, int region)
         struct tex_appfn *fn = palloc(ps, sizeof *fn), **tail = &ap->fns;
         fn->region = region;
         fn->param = sp;
+        fn->lo = tex_sparam_row(sp)->min; /* looked up once, not per hit */
+        fn->hi = tex_sparam_row(sp)->max;
         fn->e = expr(ps);
         while (*tail)
             tail = &(*tail)->next;

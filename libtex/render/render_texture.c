@@ -707,8 +707,7 @@ static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const flo
                      const double uvw[3], double fw2, struct params *pr)
 {
     float *scalar = NULL, fg[3], p[3];
-    const struct tex_param *row = tex_sparam_row(fn->param); /* the range to clamp to */
-    double lo = row->min, hi = row->max, r[3];
+    double lo = fn->lo, hi = fn->hi, r[3]; /* the parameter's row's range */
     switch (fn->param) {
     case TEX_SP_KD: break;
     case TEX_SP_KA: scalar = &pr->ka; break;

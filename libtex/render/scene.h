@@ -342,6 +342,7 @@ enum tex_eleaf { TEX_LEAF_F, TEX_LEAF_P, TEX_LEAF_TEX /* ptr: the texture */ };
 struct tex_appfn {
     int region;          /* 0: every region (or a map without regions) */
     enum tex_sparam param;
+    double lo, hi;       /* the range results are clamped to: tex_sparam_row(param)'s */
     struct tex_expr *e;
     struct tex_appfn *next;
 };
