@@ -1,4 +1,5 @@
 /* param.c - defaults, parsing and range checks from parameter tables */
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdlib.h>
@@ -378,4 +379,23 @@ int tex_params_defaults(const struct tex_param *t, void *obj)
         }
     }
     return 0;
+}
+
+void tex_error_in_words(void)
+{
+    const char *m = tex_errmsg();
+    char buf[1024];
+    size_t n = 0;
+    for (const char *c = m; *c && n + 1 < sizeof buf; c++) {
+        int starts = c == m || !(isalnum((unsigned char)c[-1]) || c[-1] == '-');
+        if (starts && c[0] == '-' && c[1] == '-' && islower((unsigned char)c[2]))
+            c++; /* skip both dashes */
+        else
+            buf[n++] = *c;
+    }
+    buf[n] = '\0';
+    if (tex_errkind() == TEX_ERR_USAGE)
+        tex_usage_error("%s", buf);
+    else
+        tex_error("%s", buf);
 }

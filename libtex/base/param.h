@@ -119,6 +119,11 @@ int tex_param_store(const struct tex_param *p, void *obj, const double *v, int k
                     enum tex_param_style style);
 /* Values stored by an INT, REAL or FLOAT row (1 for a scalar). */
 int tex_param_count(const struct tex_param *p);
+/* The last error in the words of scenes and scripts: every option name in
+ * it ("--octaves", "--mf-offset") loses its dashes.  For checks written once
+ * for every caller (a primitive's init), called when the caller is a scene
+ * or a script. */
+void tex_error_in_words(void);
 /* The parameter's name in a style: "--major-radius" or "major-radius". */
 const char *tex_param_name(const struct tex_param *p, char *buf, size_t n,
                            enum tex_param_style style);

@@ -835,6 +835,7 @@ static int eval_prim(struct S *s, const struct node *n, struct val *out)
         return fail_node(s, n, "unknown primitive '%s'", n->s);
     if (!(f = tex_field_new(p)))
         return err_at(s, n);
+    f->style = TEX_PARAM_WORD;
     /* the primitive's parameters and seed, tile, ids, size: tex_field_rows */
     for (int i = 0; i < n->nparams; i++) {
         const struct param *q = &n->params[i];

@@ -68,11 +68,16 @@ int tex_field_init(struct tex_field *f, int w, int h)
 {
     f->w = w;
     f->h = h;
+    int rc = 0;
     if (f->tile && !(f->prim->flags & TEX_PRIM_TILE))
-        return tex_usage_error("%s cannot tile (--tile)", f->prim->name);
-    if (f->ids && !(f->prim->flags & TEX_PRIM_REGIONS))
-        return tex_usage_error("%s has no subregions (--ids)", f->prim->name);
-    return f->prim->init ? f->prim->init(f) : 0;
+        rc = tex_usage_error("%s cannot tile (--tile)", f->prim->name);
+    else if (f->ids && !(f->prim->flags & TEX_PRIM_REGIONS))
+        rc = tex_usage_error("%s has no subregions (--ids)", f->prim->name);
+    else if (f->prim->init)
+        rc = f->prim->init(f);
+    if (rc < 0 && f->style == TEX_PARAM_WORD)
+        tex_error_in_words(); /* init's checks name options: a scene says words */
+    return rc;
 }
 
 void tex_field_free(struct tex_field *f)

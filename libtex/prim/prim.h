@@ -64,6 +64,8 @@ struct tex_field {
     const float (*colors)[3];
     void *state;      /* the primitive's own, made by init */
     int size;         /* a scene's or script's `size N`: sample on an N x N grid (0: none) */
+    enum tex_param_style style; /* how init's messages name parameters: TEX_PARAM_OPTION
+                                 * (tools, the default) or TEX_PARAM_WORD (scenes, scripts) */
 };
 
 /* The texture-level fields of every primitive, declared once: the tools'

@@ -421,6 +421,7 @@ static void parse_texture(struct parser *ps)
         fail_at(ps, &pt, 0, "unknown primitive '%s'", pname);
     if (!(tx->field = tex_field_new(prim)))
         fail_at(ps, &pt, 1, "out of memory");
+    tx->field->style = TEX_PARAM_WORD;
     texture_params(ps, tx, prim, pname);
     texture_field(ps, tx, prim, pname, &pt);
 }
