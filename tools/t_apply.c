@@ -30,8 +30,8 @@ static const struct tex_param rows[] = {
     TEX_STRING(struct opts, model, 0, NULL, "NAME",
                "shade every surface with this model (phong|cook-torrance)"),
     TEX_STRING(struct opts, help_scene, 0, NULL, "BLOCK",
-               "list the words of a scene block (settings|camera|light|texture|surface|apply) "
-               "and exit"),
+               "list the words of a scene block "
+               "(settings|camera|light|texture|surface|apply|object) and exit"),
     TEX_STRING(struct opts, help_scene_mdoc, 0, NULL, "BLOCK",
                "the same list as mdoc, for t_apply(5)"),
     {0}};
@@ -96,7 +96,7 @@ __attribute__((noreturn)) static void help_scene(const char *block, int mdoc)
     while (b->name && strcmp(b->name, block))
         b++;
     if (!b->name)
-        tex_usage_die("--help-scene%s must be settings|camera|light|texture|surface|apply "
+        tex_usage_die("--help-scene%s must be settings|camera|light|texture|surface|apply|object "
                       "(got '%s')", mdoc ? "-mdoc" : "", block);
     if (mdoc)
         puts(".Bl -tag -width Ds");

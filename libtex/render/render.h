@@ -62,7 +62,7 @@ tex_map *tex_render(struct tex_scene *s, void (*progress)(long done, long total,
                     void *arg);
 
 /* The scene's blocks by name ("settings", "camera", "light", "texture",
- * "surface", "apply") with their parameter rows, for help and the man page;
+ * "surface", "apply", "object") with their parameter rows, for help and the man page;
  * the list ends with a NULL name. */
 struct tex_scene_block {
     const char *name;

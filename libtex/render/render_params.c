@@ -136,7 +136,47 @@ const struct tex_param tex_apply_rows[] = {
                 "application functions for subregion N of the map only"),
     {0}};
 
+/* The shapes' words, each for its shapes only.  Their ranges take any number:
+ * the parser checks them against each other ("sphere radius must be > 0",
+ * "box needs min < max on every axis"), so the help states the conditions. */
+#define SHP(k) KIND(TEX_SHAPE_##k)
+#define OROW(name, f, d, n, meta, kinds, help)                                                    \
+    {name, 0, TEX_P_REAL, offsetof(struct tex_shape_params, f), 0, -INF, INF, d, NULL, 0, meta,  \
+     help, n, 0, kinds}
+const struct tex_param tex_object_rows[] = {
+    OROW("centre", centre, "0,0,0", 3, "X Y Z", SHP(SPHERE) | SHP(TORUS),
+         "sphere, torus: the centre (also center)"),
+    OROW("radius", radius, "1", 1, "R", SHP(SPHERE) | SHP(CYLINDER),
+         "sphere, cylinder: the radius (> 0)"),
+    OROW("min", min, "-1,-1,-1", 3, "X Y Z", SHP(BOX), "box: the corner of least x, y and z"),
+    OROW("max", max, "1,1,1", 3, "X Y Z", SHP(BOX),
+         "box: the opposite corner (above min on every axis)"),
+    OROW("base", base, "0,0,0", 3, "X Y Z", SHP(CYLINDER) | SHP(CONE),
+         "cylinder, cone: the centre of the base cap"),
+    OROW("top", top, "0,1,0", 3, "X Y Z", SHP(CYLINDER) | SHP(CONE),
+         "cylinder, cone: the centre of the top cap (not the base)"),
+    OROW("radius1", radius1, "1", 1, "R0", SHP(CONE), "cone: the radius at the base (>= 0)"),
+    OROW("radius2", radius2, "0", 1, "R1", SHP(CONE),
+         "cone: the radius at the top (>= 0; not both radii 0)"),
+    OROW("normal", normal, "0,1,0", 3, "X Y Z", SHP(PLANE),
+         "plane: the normal n of the half-space n.x <= d (not zero)"),
+    OROW("distance", distance, "0", 1, "D", SHP(PLANE),
+         "plane: d, the plane's distance from the origin along n"),
+    OROW("axis", axis, "0,1,0", 3, "X Y Z", SHP(TORUS),
+         "torus: the axis the ring turns about (not zero)"),
+    OROW("major", major, "1", 1, "R", SHP(TORUS),
+         "torus: the radius of the circle the tube's centre runs round (>= 0)"),
+    OROW("minor", minor, "0.25", 1, "R", SHP(TORUS), "torus: the radius of the tube (> 0)"),
+    TEX_SPECIAL("surface", 0, 0, NULL, "NAME",
+                "the surface, inherited by the parts of a CSG object that name none"),
+    TEX_SPECIAL("translate", 0, 0, NULL, "X Y Z", "move the object by (X, Y, Z)"),
+    TEX_SPECIAL("rotate", 0, 0, NULL, "X Y Z",
+                "turn the object X degrees about x, then Y about y, then Z about z"),
+    TEX_SPECIAL("scale", 0, 0, NULL, "S | X Y Z",
+                "scale the object by S, or by X, Y and Z along the axes (not 0)"),
+    {0}};
+
 const struct tex_scene_block tex_scene_blocks[] = {
     {"settings", tex_settings_rows}, {"camera", tex_camera_rows}, {"light", tex_light_rows},
     {"texture", tex_field_rows},     {"surface", tex_surface_rows}, {"apply", tex_apply_rows},
-    {NULL, NULL}};
+    {"object", tex_object_rows},     {NULL, NULL}};

@@ -52,6 +52,9 @@ struct parser {
     int have_db;
     struct tex_lexer lx; /* the shared lexer, started by the first next() */
     int lx_ready;
+    /* read_row takes every number of a vector row or fails at the first one
+     * missing ("expected a number"), as the shapes' words always have */
+    int whole_vectors;
 };
 
 static void fail_at(struct parser *ps, const struct tok *t, int runtime, const char *fmt, ...)
@@ -187,6 +190,18 @@ static double ranged(struct parser *ps, const char *name, double lo, double hi, 
     return v;
 }
 
+/* Row name written as t, or in its other spelling (colour as color). */
+static int is_row_word(const struct tok *t, const char *name)
+{
+    static const char *const also[][2] = {{"colour", "color"}, {"centre", "center"}};
+    if (is_word(t, name))
+        return 1;
+    for (size_t i = 0; i < sizeof also / sizeof also[0]; i++)
+        if (!strcmp(name, also[i][0]) && is_word(t, also[i][1]))
+            return 1;
+    return 0;
+}
+
 /* The row of table rows for word t, for a block of the given kind (-1: any). */
 static const struct tex_param *row_of(const struct tex_param *rows, const struct tok *t,
                                       int kind)
@@ -194,8 +209,7 @@ static const struct tex_param *row_of(const struct tex_param *rows, const struct
     if (t->kind != T_ID)
         return NULL;
     for (const struct tex_param *p = rows; p->name; p++)
-        if ((is_word(t, p->name) || (!strcmp(p->name, "colour") && is_word(t, "color"))) &&
-            (kind < 0 || !p->kinds || (p->kinds >> kind & 1)))
+        if (is_row_word(t, p->name) && (kind < 0 || !p->kinds || (p->kinds >> kind & 1)))
             return p;
     return NULL;
 }
@@ -223,7 +237,7 @@ static void read_row(struct parser *ps, const struct tex_param *p, void *obj)
     else
         do
             v[k++] = number(ps);
-        while (k < n && k < 8 && ps->t.kind == T_NUM);
+        while (k < n && k < 8 && (ps->t.kind == T_NUM || ps->whole_vectors));
     if (tex_param_store(p, obj, v, k, TEX_PARAM_WORD) < 0)
         fail_at(ps, &vt, 0, "%s", tex_errmsg());
 }
@@ -760,16 +774,13 @@ static void xf_frame(tex_xform *t, tex_v3 origin, tex_v3 a, double ylen, double 
     }
 }
 
-/* Transform keywords shared by every object block; 1 if one was read. */
-static int parse_transform(struct parser *ps, tex_xform *acc)
+/* The transform named by kt (its word already read) into acc: 1 if it is one. */
+static int transform_word(struct parser *ps, const struct tok *kt, tex_xform *acc)
 {
-    struct tok kt = ps->t;
     tex_xform t;
-    if (is_word(&kt, "translate")) {
-        next(ps);
+    if (is_word(kt, "translate")) {
         xf_translate(&t, vec(ps));
-    } else if (is_word(&kt, "rotate")) {
-        next(ps);
+    } else if (is_word(kt, "rotate")) {
         tex_v3 r = vec(ps);
         tex_xform a, b, c;
         xf_rot(&a, 0, r.x);
@@ -777,21 +788,31 @@ static int parse_transform(struct parser *ps, tex_xform *acc)
         xf_rot(&c, 2, r.z);
         tex_xform_mul(&t, &b, &a);
         tex_xform_mul(&t, &c, &t);
-    } else if (is_word(&kt, "scale")) {
-        next(ps);
+    } else if (is_word(kt, "scale")) {
         double sx = number(ps), sy = sx, sz = sx;
         if (ps->t.kind == T_NUM) {
             sy = number(ps);
             sz = number(ps);
         }
         if (sx == 0 || sy == 0 || sz == 0)
-            fail_at(ps, &kt, 0, "scale by zero makes a degenerate object");
+            fail_at(ps, kt, 0, "scale by zero makes a degenerate object");
         xf_scale(&t, tex_v3_make(sx, sy, sz));
     } else {
         return 0;
     }
     tex_xform_mul(acc, &t, acc);
     return 1;
+}
+
+/* `surface NAME` of an object block, its word already read. */
+static const struct tex_surface *surface_word(struct parser *ps)
+{
+    struct tok st = ps->t;
+    const struct tex_surface *sf;
+    if (st.kind != T_ID || !(sf = find_surface(ps, &st)))
+        FAIL(ps, "unknown surface '%.*s'", (int)st.len, st.text);
+    next(ps);
+    return sf;
 }
 
 static int shape_kind(const struct tok *t)
@@ -818,64 +839,37 @@ static int is_object(const struct tok *t)
     return shape_kind(t) >= 0 || csg_kind(t) >= 0;
 }
 
+static int is_transform(const struct tok *t)
+{
+    return is_word(t, "translate") || is_word(t, "rotate") || is_word(t, "scale");
+}
+
 static struct tex_object *parse_object(struct parser *ps);
 
-/* A shape's own numbers as its block gives them, at their defaults until then. */
-struct leaf {
-    tex_v3 c, lo, hi, base, top, normal;
-    double radius, r0, r1, dist;
-    double minor; /* torus: major is r0 */
+/* A leaf's block: the object and its transforms, for the SPECIAL rows. */
+struct leaf_ctx {
+    struct tex_object *ob;
+    tex_xform acc;
 };
 
-/* One word of a shape's block other than a transform, kt, already read: each shape takes
- * only its own words. */
-static void parse_leaf_word(struct parser *ps, struct tex_object *ob, int kind,
-                            const struct tok *kt, struct leaf *l)
+/* The SPECIAL rows of tex_object_rows: surface and the transforms. */
+static int leaf_special(struct parser *ps, const struct tex_param *p, const struct tok *kt,
+                        void *ctx)
 {
-    if (is_word(kt, "surface")) {
-        struct tok st = ps->t;
-        if (st.kind != T_ID || !(ob->surface = find_surface(ps, &st)))
-            FAIL(ps, "unknown surface '%.*s'", (int)st.len, st.text);
-        next(ps);
-    } else if ((kind == TEX_SHAPE_SPHERE || kind == TEX_SHAPE_TORUS) &&
-               (is_word(kt, "centre") || is_word(kt, "center"))) {
-        l->c = vec(ps);
-    } else if (kind == TEX_SHAPE_TORUS && is_word(kt, "major")) {
-        l->r0 = number(ps);
-    } else if (kind == TEX_SHAPE_TORUS && is_word(kt, "minor")) {
-        l->minor = number(ps);
-    } else if (kind == TEX_SHAPE_TORUS && is_word(kt, "axis")) {
-        l->top = vec(ps);
-    } else if ((kind == TEX_SHAPE_SPHERE || kind == TEX_SHAPE_CYLINDER) &&
-               is_word(kt, "radius")) {
-        l->radius = number(ps);
-    } else if (kind == TEX_SHAPE_BOX && is_word(kt, "min")) {
-        l->lo = vec(ps);
-    } else if (kind == TEX_SHAPE_BOX && is_word(kt, "max")) {
-        l->hi = vec(ps);
-    } else if ((kind == TEX_SHAPE_CYLINDER || kind == TEX_SHAPE_CONE) && is_word(kt, "base")) {
-        l->base = vec(ps);
-    } else if ((kind == TEX_SHAPE_CYLINDER || kind == TEX_SHAPE_CONE) && is_word(kt, "top")) {
-        l->top = vec(ps);
-    } else if (kind == TEX_SHAPE_CONE && is_word(kt, "radius1")) {
-        l->r0 = number(ps);
-    } else if (kind == TEX_SHAPE_CONE && is_word(kt, "radius2")) {
-        l->r1 = number(ps);
-    } else if (kind == TEX_SHAPE_PLANE && is_word(kt, "normal")) {
-        l->normal = vec(ps);
-    } else if (kind == TEX_SHAPE_PLANE && is_word(kt, "distance")) {
-        l->dist = number(ps);
-    } else {
-        char b[64];
-        fail_at(ps, kt, 0, "unknown word %s in a %s", tokdesc(kt, b, sizeof b),
-                tex_shape_methods[kind].name);
+    struct leaf_ctx *c = ctx;
+    if (!p)
+        return 0;
+    if (!strcmp(p->name, "surface")) {
+        c->ob->surface = surface_word(ps);
+        return 1;
     }
+    return transform_word(ps, kt, &c->acc);
 }
 
 /* Check a shape's numbers and give the placement of its canonical shape; cones, cylinders
  * and tori keep their radii in ob, in world units. */
 static void place_leaf(struct parser *ps, struct tex_object *ob, const struct tok *at,
-                       struct leaf *l, tex_xform *place)
+                       const struct tex_shape_params *l, tex_xform *place)
 {
     int kind = ob->kind;
 
@@ -884,53 +878,54 @@ static void place_leaf(struct parser *ps, struct tex_object *ob, const struct to
         if (!(l->radius > 0))
             fail_at(ps, at, 0, "sphere radius must be > 0");
         xf_scale(place, tex_v3_make(l->radius, l->radius, l->radius));
-        place->m[0][3] = l->c.x, place->m[1][3] = l->c.y, place->m[2][3] = l->c.z;
+        place->m[0][3] = l->centre.x, place->m[1][3] = l->centre.y, place->m[2][3] = l->centre.z;
         break;
-    case TEX_SHAPE_BOX:
-        if (!(l->hi.x > l->lo.x && l->hi.y > l->lo.y && l->hi.z > l->lo.z))
+    case TEX_SHAPE_BOX: {
+        if (!(l->max.x > l->min.x && l->max.y > l->min.y && l->max.z > l->min.z))
             fail_at(ps, at, 0, "box needs min < max on every axis");
-        xf_scale(place, tex_v3_scale(tex_v3_sub(l->hi, l->lo), 0.5));
-        l->c = tex_v3_scale(tex_v3_add(l->hi, l->lo), 0.5);
-        place->m[0][3] = l->c.x, place->m[1][3] = l->c.y, place->m[2][3] = l->c.z;
+        xf_scale(place, tex_v3_scale(tex_v3_sub(l->max, l->min), 0.5));
+        tex_v3 c = tex_v3_scale(tex_v3_add(l->max, l->min), 0.5);
+        place->m[0][3] = c.x, place->m[1][3] = c.y, place->m[2][3] = c.z;
         break;
+    }
     case TEX_SHAPE_CYLINDER:
     case TEX_SHAPE_CONE: {
         double len = tex_v3_len(tex_v3_sub(l->top, l->base));
-        if (kind == TEX_SHAPE_CYLINDER)
-            l->r0 = l->r1 = l->radius;
+        double r0 = kind == TEX_SHAPE_CYLINDER ? l->radius : l->radius1;
+        double r1 = kind == TEX_SHAPE_CYLINDER ? l->radius : l->radius2;
         if (!(len > 0))
             fail_at(ps, at, 0, "%s axis has zero length (base = top)",
                     tex_shape_methods[kind].name);
-        if (!(l->r0 >= 0 && l->r1 >= 0 && l->r0 + l->r1 > 0))
+        if (!(r0 >= 0 && r1 >= 0 && r0 + r1 > 0))
             fail_at(ps, at, 0, "%s radii must be >= 0 and not both 0",
                     tex_shape_methods[kind].name);
         /* the canonical shape keeps unit radius scale; r0, r1 are in world units */
         xf_frame(place, l->base, tex_v3_sub(l->top, l->base), len, 1);
-        ob->r0 = l->r0;
-        ob->r1 = l->r1;
+        ob->r0 = r0;
+        ob->r1 = r1;
         break;
     }
     case TEX_SHAPE_TORUS:
         /* r0, r1 are in world units like a cone's; the frame only turns and moves */
-        l->r1 = l->minor;
-        if (!(l->r0 >= 0))
+        if (!(l->major >= 0))
             fail_at(ps, at, 0, "torus major radius must be >= 0");
-        if (!(l->r1 > 0))
+        if (!(l->minor > 0))
             fail_at(ps, at, 0, "torus minor radius must be > 0");
-        if (!(tex_v3_len(l->top) > 0))
+        if (!(tex_v3_len(l->axis) > 0))
             fail_at(ps, at, 0, "torus axis must not be zero");
-        xf_frame(place, l->c, l->top, 1, 1);
-        ob->r0 = l->r0;
-        ob->r1 = l->r1;
+        xf_frame(place, l->centre, l->axis, 1, 1);
+        ob->r0 = l->major;
+        ob->r1 = l->minor;
         break;
     default:
         if (!(tex_v3_len(l->normal) > 0))
             fail_at(ps, at, 0, "plane normal must not be zero");
-        xf_frame(place, tex_v3_scale(tex_v3_norm(l->normal), l->dist), l->normal, 1, 1);
+        xf_frame(place, tex_v3_scale(tex_v3_norm(l->normal), l->distance), l->normal, 1, 1);
         break;
     }
 }
 
+/* A shape's block through tex_object_rows: its own words, surface and the transforms. */
 static struct tex_object *parse_leaf(struct parser *ps, int kind, const struct tok *at)
 {
     struct tex_object *ob = palloc(ps, sizeof *ob);
@@ -938,23 +933,19 @@ static struct tex_object *parse_leaf(struct parser *ps, int kind, const struct t
     ob->kind = kind;
     ob->line = at->line;
     ob->col = at->col;
-    struct leaf l = {.c = {0, 0, 0}, .lo = {-1, -1, -1}, .hi = {1, 1, 1}, .base = {0, 0, 0},
-                     .top = {0, 1, 0}, .normal = {0, 1, 0}, .radius = 1, .r0 = 1, .r1 = 0,
-                     .dist = 0, .minor = 0.25};
-    tex_xform acc;
-    tex_xform_identity(&acc);
-    expect(ps, '{');
-    while (!is_punct(&ps->t, '}')) {
-        struct tok kt = ps->t;
-        if (parse_transform(ps, &acc))
-            continue;
-        next(ps);
-        parse_leaf_word(ps, ob, kind, &kt, &l);
-    }
-    next(ps);
+    struct tex_shape_params l;
+    if (tex_params_defaults(tex_object_rows, &l) < 0)
+        fail_at(ps, at, 0, "%s", tex_errmsg());
+    struct leaf_ctx c = {.ob = ob};
+    tex_xform_identity(&c.acc);
+    char what[32];
+    snprintf(what, sizeof what, "a %s", tex_shape_methods[kind].name);
+    ps->whole_vectors = 1;
+    read_block(ps, tex_object_rows, kind, &l, leaf_special, &c, what);
+    ps->whole_vectors = 0;
     tex_xform place;
     place_leaf(ps, ob, at, &l, &place);
-    tex_xform_mul(&ob->to_world, &acc, &place);
+    tex_xform_mul(&ob->to_world, &c.acc, &place);
     return ob;
 }
 
@@ -1002,14 +993,12 @@ static struct tex_object *parse_object(struct parser *ps)
         expect(ps, '{');
         while (!is_punct(&ps->t, '}')) {
             struct tok kt = ps->t;
-            if (parse_transform(ps, &ob->to_world))
-                continue;
             if (is_word(&kt, "surface")) {
                 next(ps);
-                struct tok st = ps->t;
-                if (st.kind != T_ID || !(ob->surface = find_surface(ps, &st)))
-                    FAIL(ps, "unknown surface '%.*s'", (int)st.len, st.text);
+                ob->surface = surface_word(ps);
+            } else if (is_transform(&kt)) {
                 next(ps);
+                transform_word(ps, &kt, &ob->to_world);
             } else if (is_object(&kt)) {
                 if (nk == ck) {
                     ck = ck ? 2 * ck : 4;

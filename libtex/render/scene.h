@@ -281,6 +281,21 @@ struct tex_object {
     double fr;
 };
 
+/* A shape's own words as its block gives them (tex_object_rows), at the rows'
+ * defaults until then; the parser checks them against each other and turns
+ * them into the placement of the canonical shape. */
+struct tex_shape_params {
+    tex_v3 centre;           /* sphere, torus */
+    tex_v3 min, max;         /* box */
+    tex_v3 base, top;        /* cylinder, cone */
+    tex_v3 normal;           /* plane */
+    tex_v3 axis;             /* torus */
+    double radius;           /* sphere, cylinder */
+    double radius1, radius2; /* cone: at the base and the top */
+    double distance;         /* plane */
+    double major, minor;     /* torus */
+};
+
 /* Intervals of an object (leaf or CSG tree) along a world ray o + t d. */
 void tex_object_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s);
 /* The same, for a ray whose line is known to meet ob's world box: inv is
@@ -476,6 +491,9 @@ extern const struct tex_param tex_surface_rows[];  /* surface NAME { }, over str
                                                     * rows 0..TEX_SP_IOR are Ka..ior in
                                                     * enum tex_sparam order */
 extern const struct tex_param tex_apply_rows[];    /* apply TEXTURE { }, over struct tex_apply */
+extern const struct tex_param tex_object_rows[];   /* SHAPE { }, over struct tex_shape_params;
+                                                    * kinds: bit enum tex_shape_kind; surface
+                                                    * and the transforms are also CSG words */
 extern const struct tex_param tex_bump_row;        /* bump = h (also normal) */
 /* The row of an application function's parameter: its name and the range its
  * results are clamped to. */
