@@ -31,7 +31,7 @@
  * given where n are stored is copied to all n (a grey level for a colour).
  * Written as text, the values are separated by commas.
  *
- * kinds is for tables shared by several kinds of one block (the lights):
+ * kinds is for tables shared by several kinds of one block (lights, shapes):
  * bit k set if the row applies to kind k; 0 means every kind.
  *
  * Option names are the row names with '_' written as '-'.  Messages name a
