@@ -6,6 +6,8 @@
 #                                 (under `bash -c PIPELINE`, any t_* program)
 #   approx A B TOL                true if |A-B| <= TOL
 #   info_json MAP KEY...          a figure from t_info --json (e.g. stats 0 mean)
+#   maxdiff A B                   the largest |A - B| over the colour channels
+#   same NAME A B [TOL]           ok if maps A and B differ by at most TOL (default 0)
 #   $T                            a fresh temporary folder, removed at exit
 set -u
 T=$(mktemp -d "${TMPDIR:-/tmp}/textura-test.XXXXXX")
@@ -55,4 +57,18 @@ v = json.load(sys.stdin)
 for k in sys.argv[1:]:
     v = v[int(k)] if isinstance(v, list) else v[k]
 print(v)' "$@"
+}
+
+# maxdiff A B: the largest |A - B| over the colour channels.
+maxdiff() {
+    t_op sub "$1" "$2" | t_op abs - | t_info --json | python3 -c '
+import json, sys
+s = json.load(sys.stdin)["stats"]
+print(max(c["max"] for c in s[:3]))'  # colour channels: sub keeps the alpha of A
+}
+
+# same NAME A B [TOL]: maps A and B agree within TOL (default 0).
+same() {
+    local d
+    d=$(maxdiff "$2" "$3" 2>&1) && approx "$d" 0 "${4:-0}" && ok "$1" || notok "$1" "max diff $d"
 }
