@@ -25,6 +25,11 @@ printf '0 #12345z\n' >"$T/hex.pal"
 check_fails "a bad hex colour" 1 t_palette "$T/hex.pal" "$T/n.exr"
 printf '# nothing\n' >"$T/empty.pal"
 check_fails "an empty palette" 1 t_palette "$T/empty.pal" "$T/n.exr"
+# the one whole-file reader's limit (tex_read_text): a palette is text of at most 4 MiB
+head -c 4200000 /dev/zero | tr '\0' '#' >"$T/huge.pal"
+check_fails "a palette file over 4 MiB" 1 t_palette "$T/huge.pal" "$T/n.exr"
+grep -q 'huge.pal: larger than 4194304 bytes for a palette' "$T/.err" &&
+    ok "the size limit names the file and the limit" || notok "palette size limit" "$(cat "$T/.err")"
 check_fails "an unknown palette name" 2 t_palette no_such_palette "$T/n.exr"
 check_fails "--range with MIN >= MAX" 2 t_palette marble --range 1,0 "$T/n.exr"
 check_fails "--from without --to" 2 t_palette --from '#fff'
