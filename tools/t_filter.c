@@ -31,12 +31,6 @@ static const struct tex_param rows[] = {
              "tileable) or mirror"),
     {0}};
 
-static const struct tex_tool tool = {
-    "t_filter", "OP [MAP]",
-    "filter a texture map; OP is blur, box, smooth, sharpen, sobel, edges, emboss, median, "
-    "noise, normal or gradient",
-    TEX_OPT_OUTPUT | TEX_OPT_SEED, rows, 1, 2};
-
 typedef tex_map *filter_fn(const tex_map *m, const struct opts *o);
 
 static tex_map *blur(const tex_map *m, const struct opts *o)
@@ -104,8 +98,20 @@ static const struct {
 };
 enum { NOPS = sizeof ops / sizeof *ops };
 
+/* --help's summary, from the table: each operation and what it takes. */
+static const char *summary(void)
+{
+    static char text[1024];
+    size_t n = snprintf(text, sizeof text, "filter a texture map by OP, one of:");
+    for (int k = 0; k < NOPS && n < sizeof text; k++)
+        n += snprintf(text + n, sizeof text - n, "\n  %-10s %s", ops[k].name, ops[k].help);
+    return text;
+}
+
 int main(int argc, char **argv)
 {
+    const struct tex_tool tool = {"t_filter", "OP [MAP]", summary(), TEX_OPT_OUTPUT | TEX_OPT_SEED,
+                                  rows, 1, 2};
     struct tex_common c;
     struct opts o;
     int i = tex_cli_parse(&tool, argc, argv, &c, &o), k = 0;
