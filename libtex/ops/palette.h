@@ -92,8 +92,12 @@ void tex_palette_free(tex_palette *p);
 /* Write p in the text format; values round-trip exactly.  -1 on a write error. */
 int tex_palette_write(const tex_palette *p, FILE *fp);
 
-/* The file a name resolves to, in buf; -1 with a usage error if none exists. */
+/* The file a name resolves to, in buf; -1 with a usage error if none exists
+ * (it lists the known names). */
 int tex_palette_find(const char *name, char *buf, size_t n);
+/* The names of the palettes found in the search path, sorted, comma-separated
+ * in buf (truncated to n); returns how many there are. */
+int tex_palette_names(char *buf, size_t n);
 
 void tex_palette_lookup(const tex_palette *p, float t, float rgba[4]);
 void tex_palette_index(const tex_palette *p, int id, float rgba[4]);

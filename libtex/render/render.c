@@ -87,7 +87,7 @@ static double curvature(const struct tex_hit *h, tex_v3 P, tex_v3 Nf, tex_v3 d)
 struct hit_frame {
     const struct tex_hit *h;
     const tex_v3 *P, *N, *Ngv, *V, *Pout, *Pin;
-    double width;
+    double width, dist; /* dist: the path's length from the eye to P */
     int entering;
 };
 
@@ -138,7 +138,7 @@ static int refraction(const struct ctx *c, const tex_ray *r, const struct hit_fr
                       const struct tex_media *beyond, double n1, double n2, double kc, int depth,
                       double w, const tex_colour *kt, tex_colour *out)
 {
-    tex_ray rt = {*f->Pin, r->d, f->width, r->spread, beyond};
+    tex_ray rt = {*f->Pin, r->d, f->width, r->spread, beyond, f->dist};
     tex_colour I;
     if (!tex_refract(r->d, *f->N, n1, n2, &rt.d))
         return 0;
@@ -170,7 +170,7 @@ static void secondary(const struct ctx *c, const tex_ray *r, const struct hit_fr
         m->ior = f->entering ? n2 / n1 : n1 / n2;
     }
     m->model->weights(m, cosi, n, &kr, &kt);
-    tex_ray rr = {*f->Pout, tex_reflect(r->d, *f->N), f->width, r->spread, r->media};
+    tex_ray rr = {*f->Pout, tex_reflect(r->d, *f->N), f->width, r->spread, r->media, f->dist};
     if (tex_v3_dot(rr.d, *f->Ngv) <= 0)
         rr.d = tex_reflect(r->d, *f->Ngv);
     /* footprints after curved surfaces: a mirror of curvature k turns a beam
@@ -210,14 +210,14 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, double weigh
     tex_v3 N = entering ? Ng : tex_v3_scale(Ng, -1);
     double width = fabs(r->width + h.t * r->spread); /* a focused beam crosses 0 */
     struct tex_material m;
-    tex_resolve_material(s, surface_of(s, h.leaf), h.leaf, &P, &r->d, &N,
-                         s->settings.filter ? width : 0, &m);
+    struct tex_shade_at at = {h.leaf, &P, &r->d, width, r->dist + h.t, depth};
+    tex_resolve_material(s, surface_of(s, h.leaf), &at, &N, &m);
     tex_v3 V = tex_v3_scale(r->d, -1);
     double e = eps_at(P);
     /* offset along the geometric normal so bumped normals cannot start rays inside */
     tex_v3 Ngv = entering ? Ng : tex_v3_scale(Ng, -1);
     tex_v3 Pout = tex_v3_madd(P, Ngv, e), Pin = tex_v3_madd(P, Ngv, -e);
-    struct hit_frame f = {&h, &P, &N, &Ngv, &V, &Pout, &Pin, width, entering};
+    struct hit_frame f = {&h, &P, &N, &Ngv, &V, &Pout, &Pin, width, at.dist, entering};
 
     tex_colour_mul(out, c->n, c->ambient, &m.ka);
     direct_light(c, &m, &f, out);
@@ -275,7 +275,7 @@ static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, 
         tex_ray r = {cam->eye,
                      tex_v3_norm(tex_v3_add(cam->fwd, tex_v3_add(tex_v3_scale(cam->right, a),
                                                                  tex_v3_scale(cam->up, b)))),
-                     0, cam->spread, s->eye_media.n ? &s->eye_media : NULL};
+                     0, cam->spread, s->eye_media.n ? &s->eye_media : NULL, 0};
         tex_colour col;
         float rgb[3];
         trace(&c, &r, 0, 1, &col);

@@ -16,6 +16,7 @@
 #include "base/error.h"
 #include "io/file.h"
 #include "render/matdb.h"
+#include "ops/palette.h"
 #include "render/scene.h"
 #include "render/render_ct.h"
 #include "lang/expr.h"
@@ -133,7 +134,7 @@ static int is_word(const struct tok *t, const char *w)
 
 static int is_punct(const struct tok *t, int c)
 {
-    return t->kind == T_PUNCT && t->text[0] == c;
+    return t->kind == T_PUNCT && t->len == 1 && t->text[0] == c;
 }
 
 static const char *tokdesc(const struct tok *t, char *buf, size_t n)
@@ -442,8 +443,60 @@ static void parse_texture(struct parser *ps)
 
 /* ---- expressions ---------------------------------------------------------------- */
 
-/* An operand of an application function: f, p or a texture's name (a cascade).
- * Numbers, parentheses, minus and functions are lang/expr.c's. */
+/* The palette named by the current token (a name or a string), loaded once per scene. */
+static const tex_palette *scene_palette(struct parser *ps)
+{
+    struct tok at = ps->t;
+    struct tex_scene *s = ps->s;
+    if (at.kind != T_ID && at.kind != T_STR)
+        FAIL(ps, "expected a palette name or file");
+    char *name = pstrdup(ps, at.text, at.len);
+    next(ps);
+    for (int i = 0; i < s->npalettes; i++)
+        if (!strcmp(s->palettes[i]->name, name))
+            return s->palettes[i];
+    tex_palette **a = realloc(s->palettes, (s->npalettes + 1) * sizeof *a);
+    if (!a)
+        fail_at(ps, &at, 1, "out of memory");
+    s->palettes = a;
+    if (!(a[s->npalettes] = tex_palette_load(name)))
+        fail_at(ps, &at, tex_errkind() == TEX_ERR_RUNTIME, "%s", tex_errmsg());
+    /* found again by the name the scene gives */
+    char *n = strdup(name);
+    if (!n) {
+        tex_palette_free(a[s->npalettes]);
+        fail_at(ps, &at, 1, "out of memory");
+    }
+    free(a[s->npalettes]->name);
+    a[s->npalettes]->name = n;
+    return a[s->npalettes++];
+}
+
+/* palette(NAME, x): x's mean through a palette, x clamped to [0, 1]. */
+static struct tex_enode *palette_call(struct tex_expr_parser *xp)
+{
+    struct parser *ps = xp->ctx;
+    struct tex_enode *e = tex_expr_node(&ps->lx, TEX_EK_CALL, &ps->lx.t);
+    e->op = TEX_EOP_PALETTE;
+    next(ps);
+    expect(ps, '(');
+    e->ptr = scene_palette(ps);
+    if (is_punct(&ps->t, ')'))
+        FAIL(ps, "palette takes 2 arguments: a palette and a value");
+    expect(ps, ',');
+    tex_expr_enter(xp);
+    e->a = tex_expr_parse(xp);
+    tex_expr_leave(xp);
+    sync(ps);
+    if (is_punct(&ps->t, ','))
+        FAIL(ps, "palette takes 2 arguments: a palette and a value");
+    expect(ps, ')');
+    return e;
+}
+
+/* An operand of an application function: f, p, a quantity of the hit (tex_quantities),
+ * palette(NAME, x) or a texture's name (a cascade).  Numbers, parentheses, minus and
+ * functions are lang/expr.c's. */
 static struct tex_enode *operand(struct tex_expr_parser *xp)
 {
     struct parser *ps = xp->ctx;
@@ -453,16 +506,36 @@ static struct tex_enode *operand(struct tex_expr_parser *xp)
     struct tok t = ps->t;
     if (t.kind != T_ID)
         FAIL(ps, "expected an expression, found %s", tokdesc(&t, b, sizeof b));
+    if (is_word(&t, "palette")) {
+        struct tex_lexer peek = ps->lx;
+        tex_lex_next(&peek);
+        if (tex_tok_is_punct(&peek.t, '('))
+            return palette_call(xp);
+    }
     e = tex_expr_node(&ps->lx, TEX_EK_LEAF, &ps->lx.t);
+    e->op = -1;
+    for (int q = 0; q < TEX_Q_COUNT; q++)
+        if (is_word(&t, tex_quantities[q].name))
+            e->op = TEX_LEAF_Q + q;
     if (is_word(&t, "f")) {
         e->op = TEX_LEAF_F;
     } else if (is_word(&t, "p")) {
         e->op = TEX_LEAF_P;
-    } else {
+    } else if (e->op < 0) {
         e->op = TEX_LEAF_TEX;
-        if (!(e->ptr = find_texture(ps, &t)))
-            FAIL(ps, "unknown name '%.*s' in an expression (f, p, a number, a function or "
-                     "a texture)", (int)t.len, t.text);
+        if (!(e->ptr = find_texture(ps, &t))) {
+            struct tex_lexer peek = ps->lx;
+            tex_lex_next(&peek);
+            if (tex_tok_is_punct(&peek.t, '(')) {
+                char known[512];
+                size_t k = 0;
+                for (const struct tex_expr_func *fn = tex_expr_funcs; fn->name; fn++)
+                    k += (size_t)snprintf(known + k, sizeof known - k, "%s, ", fn->name);
+                FAIL(ps, "unknown function '%.*s' (%spalette)", (int)t.len, t.text, known);
+            }
+            FAIL(ps, "unknown name '%.*s' in an expression (f, p, a quantity such as dist or "
+                     "ndotv, a number, a function or a texture)", (int)t.len, t.text);
+        }
     }
     next(ps);
     return e;
@@ -472,8 +545,10 @@ static struct tex_enode *operand(struct tex_expr_parser *xp)
 static struct tex_expr *expr(struct parser *ps)
 {
     static const struct tex_expr_binop ops[] = {
-        {"+", 1, TEX_EOP_ADD}, {"-", 1, TEX_EOP_SUB}, {"*", 2, TEX_EOP_MUL},
-        {"/", 2, TEX_EOP_DIV}, {NULL, 0, 0}};
+        {"<", 1, TEX_EOP_LT}, {">", 1, TEX_EOP_GT}, {"<=", 1, TEX_EOP_LE},
+        {">=", 1, TEX_EOP_GE}, {"==", 1, TEX_EOP_EQ}, {"!=", 1, TEX_EOP_NE},
+        {"+", 2, TEX_EOP_ADD}, {"-", 2, TEX_EOP_SUB}, {"*", 3, TEX_EOP_MUL},
+        {"/", 3, TEX_EOP_DIV}, {NULL, 0, 0}};
     static const struct tex_expr_lang lang = {ops, operand};
     struct tex_expr_parser xp = {&ps->lx, &lang, ps, 0, 0};
     struct tex_expr *x = tex_expr_compile(&ps->lx, tex_expr_parse(&xp));
@@ -1314,6 +1389,9 @@ void tex_scene_free(struct tex_scene *s)
         free(t);
     }
     free(s->textures);
+    for (int i = 0; i < s->npalettes; i++)
+        tex_palette_free(s->palettes[i]);
+    free(s->palettes);
     free(s->objects);
     tex_bvh_free(s->bvh);
     for (size_t i = 0; i < s->npool; i++)

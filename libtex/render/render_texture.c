@@ -15,6 +15,7 @@
 #include "base/error.h"
 #include "render/scene.h"
 #include "render/render_ct.h"
+#include "ops/palette.h"
 
 /* ---- mip-mapped maps ------------------------------------------------------------ */
 
@@ -509,11 +510,27 @@ static double footprint_width2(const struct tex_apply *ap, const struct placemen
 
 /* ---- application functions ---------------------------------------------------------- */
 
+const struct tex_quantity_row tex_quantities[TEX_Q_COUNT] = {
+    {"dist", "the path's length from the eye to the hit (through reflections and refractions)"},
+    {"footprint", "the ray's footprint at the hit in texture units (placed; the map is 1 wide)"},
+    {"lod", "log2(footprint), at least -60: -9 where a pixel covers one texel of a 512 map"},
+    {"ndotv", "the cosine between the normal and the direction to the viewer, 0..1"},
+    {"depth", "0 for eye rays, one more per reflection or refraction"},
+    {"x", "the hit's world x"}, {"y", "the hit's world y"}, {"z", "the hit's world z"},
+    {"ox", "the hit's x in the object's own space"}, {"oy", "object y"}, {"oz", "object z"},
+    {"u", "the mapping's u at the hit, 0..1 (before window and repeat)"},
+    {"v", "the mapping's v"}, {"w", "the mapping's w (solid mappings; else 0)"},
+    {"nx", "the shading normal's world x, facing the ray (before bump)"},
+    {"ny", "the normal's y"}, {"nz", "the normal's z"},
+    {"region", "the map's subregion id at the hit (0: a map without regions)"},
+};
+
 struct evalctx {
     const float *f;     /* map value, RGB */
     const float *p;     /* untextured value, RGB */
     const double *uvw;  /* where the map was looked up (for cascades) */
     double fw2; /* the footprint's squared width */
+    const double *q;    /* the quantities at the hit (TEX_Q_COUNT), or NULL if none is read */
 };
 
 /* Run the compiled function e (lang/expr.h) per channel: a loop over its postfix code
@@ -531,11 +548,15 @@ static void expr_eval(const struct tex_expr *e, const struct evalctx *c, double 
         case TEX_EOP_LEAF: {
             const float *v = in->leaf == TEX_LEAF_F ? c->f : c->p;
             float t[3];
+            a = st[sp++];
+            if (in->leaf >= TEX_LEAF_Q) {
+                a[0] = a[1] = a[2] = c->q[in->leaf - TEX_LEAF_Q];
+                continue;
+            }
             if (in->leaf == TEX_LEAF_TEX) {
                 texture_lookup(in->ptr, c->uvw[0], c->uvw[1], c->uvw[2], c->fw2, t);
                 v = t;
             }
-            a = st[sp++];
             a[0] = v[0], a[1] = v[1], a[2] = v[2];
             continue;
         }
@@ -552,8 +573,28 @@ static void expr_eval(const struct tex_expr *e, const struct evalctx *c, double 
             st[sp - 1][1] = st[sp][1];
             st[sp - 1][2] = st[sp + 1][2];
             continue;
-        default:
+        case TEX_EOP_ADD: case TEX_EOP_SUB: case TEX_EOP_MUL: case TEX_EOP_DIV:
+        case TEX_EOP_MIN: case TEX_EOP_MAX:
             break;
+        case TEX_EOP_PALETTE: { /* one lookup for the three channels */
+            float rgba[4];
+            a = st[sp - 1];
+            tex_palette_lookup(in->ptr, tex_palette_t((a[0] + a[1] + a[2]) / 3, 0, 1,
+                                                      TEX_OUTSIDE_CLAMP), rgba);
+            a[0] = rgba[0], a[1] = rgba[1], a[2] = rgba[2];
+            continue;
+        }
+        default: { /* the other functions of lang/expr.h, by its definitions */
+            int k = tex_expr_arity(in->op);
+            double r[3];
+            sp -= k;
+            for (int ch = 0; ch < 3; ch++)
+                r[ch] = tex_expr_apply(in, ch, st[sp], k > 1 ? st[sp + 1] : NULL,
+                                       k > 2 ? st[sp + 2] : NULL);
+            a = st[sp++];
+            a[0] = r[0], a[1] = r[1], a[2] = r[2];
+            continue;
+        }
         }
         b = st[--sp];
         a = st[sp - 1];
@@ -635,7 +676,7 @@ static int poly_of(const struct tex_expr *e, struct poly *r)
         case TEX_EOP_LEAF:
             a = &st[sp++];
             memset(a, 0, sizeof *a);
-            ok = in->leaf != TEX_LEAF_TEX;
+            ok = in->leaf == TEX_LEAF_F || in->leaf == TEX_LEAF_P;
             a->c[in->leaf == TEX_LEAF_F ? 1 : 2][0] = 1;
             a->c[in->leaf == TEX_LEAF_F ? 1 : 2][1] = 1;
             a->c[in->leaf == TEX_LEAF_F ? 1 : 2][2] = 1;
@@ -655,10 +696,11 @@ static int poly_of(const struct tex_expr *e, struct poly *r)
             a->df |= a[1].df | a[2].df;
             a->dp |= a[1].dp | a[2].dp;
             break;
-        case TEX_EOP_ABS:
-            ok = 0;
-            break;
         default:
+            if (tex_expr_arity(in->op) != 2) { /* abs, the functions: not polynomials */
+                ok = 0;
+                break;
+            }
             sp--;
             ok = poly_op(in->op, &st[sp - 1], &st[sp]);
             break;
@@ -688,6 +730,7 @@ struct tex_surface_cache {
     struct placement *placement; /* per texture applied, in order */
     struct poly *poly;           /* per application function, in order */
     char *compiled;              /* 1: poly[i] holds function i */
+    int quantities;              /* 1: a function reads the hit's quantities */
 };
 
 static double clampd(double x, double lo, double hi)
@@ -704,7 +747,7 @@ static float lum(const float v[3])
  * applied to the parameters pr: the colour Kd per channel; a scalar parameter sees the map's
  * luminance as f and takes the mean of the channels.  Results clamped to the valid range. */
 static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const float f[3],
-                     const double uvw[3], double fw2, struct params *pr)
+                     const double uvw[3], double fw2, const double *qv, struct params *pr)
 {
     float *scalar = NULL, fg[3], p[3];
     double lo = fn->lo, hi = fn->hi, r[3]; /* the parameter's row's range */
@@ -725,7 +768,7 @@ static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const flo
         fv = fg, pv = p;
     }
     if (!q) {
-        struct evalctx c = {fv, pv, uvw, fw2};
+        struct evalctx c = {fv, pv, uvw, fw2, qv};
         expr_eval(fn->e, &c, r);
     }
     if (scalar) {
@@ -761,23 +804,44 @@ static tex_v3 bump_tilt(const struct tex_apply *ap, const struct placement *pm,
                         strength);
 }
 
-/* The textures of sf applied at the hit P (seen along D, normal N, footprint width; filter:
- * mip-mapped lookups) to pr, N bent by bump maps; 1 if one of them set Ks. */
-static int apply_textures(const struct tex_surface *sf, const struct tex_object *leaf,
-                          const tex_v3 *P, const tex_v3 *D, tex_v3 *N, double width, int filter,
-                          struct params *pr)
+/* The quantities of the hit that do not depend on the texture (tex_quantities). */
+static void hit_quantities(const struct tex_shade_at *at, const tex_v3 *pl, const tex_v3 *N,
+                           double q[TEX_Q_COUNT])
 {
+    q[TEX_Q_DIST] = at->dist;
+    q[TEX_Q_NDOTV] = fabs(tex_v3_dot(*N, *at->D));
+    q[TEX_Q_DEPTH] = at->depth;
+    q[TEX_Q_X] = at->P->x, q[TEX_Q_Y] = at->P->y, q[TEX_Q_Z] = at->P->z;
+    q[TEX_Q_OX] = pl->x, q[TEX_Q_OY] = pl->y, q[TEX_Q_OZ] = pl->z;
+    q[TEX_Q_NX] = N->x, q[TEX_Q_NY] = N->y, q[TEX_Q_NZ] = N->z;
+}
+
+/* The textures of sf applied at the hit (normal N; filter: mip-mapped lookups) to pr, N bent
+ * by bump maps; 1 if one of them set Ks. */
+static int apply_textures(const struct tex_surface *sf, const struct tex_shade_at *at,
+                          tex_v3 *N, int filter, struct params *pr)
+{
+    const struct tex_object *leaf = at->leaf;
+    const tex_v3 *P = at->P;
+    double width = filter ? at->width : 0;
     struct footprint fp;
-    footprint_at(&fp, D, N, width);
+    footprint_at(&fp, at->D, N, width);
     tex_v3 pl = tex_xform_point(&leaf->to_obj, *P), tilt = tex_v3_make(0, 0, 0);
     const struct tex_surface_cache *cache = sf->cache;
     const struct placement *pm = cache->placement;
     int nfn = 0, ks_textured = 0, bumped = 0; /* nfn: the function's index in the cache */
+    double qv[TEX_Q_COUNT], *q = NULL;
+    struct footprint fq; /* the real footprint for the quantities, filtered or not */
+    if (cache->quantities) {
+        q = qv;
+        hit_quantities(at, &pl, N, q);
+        footprint_at(&fq, at->D, N, at->width);
+    }
     for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next, pm++) {
         double uvw[3];
         float f[3];
         int face = map_point_at(ap, leaf, P, &pl, uvw);
-        double u0 = uvw[0], v0 = uvw[1];
+        double u0 = uvw[0], v0 = uvw[1], w0 = uvw[2];
         if (!place(ap, pm, uvw)) {
             for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next)
                 nfn++;
@@ -786,11 +850,18 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_object 
         double fw2 = filter ? footprint_width2(ap, pm, leaf, &fp, P, &pl, face, u0, v0) : 0;
         /* one lookup: region maps and primitives ignore the footprint */
         int region = texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw2, f);
+        if (q) {
+            double w2 = filter ? fw2 : footprint_width2(ap, pm, leaf, &fq, P, &pl, face, u0, v0);
+            q[TEX_Q_FOOTPRINT] = sqrt(w2);
+            q[TEX_Q_LOD] = w2 > 0x1p-120 ? log2(w2) / 2 : -60;
+            q[TEX_Q_U] = u0, q[TEX_Q_V] = v0, q[TEX_Q_W] = w0;
+            q[TEX_Q_REGION] = region;
+        }
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++) {
             if (fn->region && fn->region != region)
                 continue;
             ks_textured |= fn->param == TEX_SP_KS;
-            apply_fn(fn, cache->compiled[nfn] ? &cache->poly[nfn] : NULL, f, uvw, fw2, pr);
+            apply_fn(fn, cache->compiled[nfn] ? &cache->poly[nfn] : NULL, f, uvw, fw2, q, pr);
             if (fn->param == TEX_SP_BUMP && pr->bump != 0) {
                 tilt = tex_v3_add(tilt, bump_tilt(ap, pm, leaf, P, &fp, width, fw2, f, pr->bump));
                 bumped = 1;
@@ -845,16 +916,14 @@ material(const struct tex_colour_space *cs, const struct tex_surface *sf,
 }
 
 void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *sf,
-                          const struct tex_object *leaf, const tex_v3 *P, const tex_v3 *D,
-                          tex_v3 *N, double width, struct tex_material *m)
+                          const struct tex_shade_at *at, tex_v3 *N, struct tex_material *m)
 {
     if (!sf->apply) { /* the cache as it is, without the textured path's set-up */
         material(&s->cs, sf, &sf->cache->base, 0, m);
         return;
     }
     struct params pr = sf->cache->base;
-    int ks_textured =
-        apply_textures(sf, leaf, P, D, N, width, s->settings.filter && width > 0, &pr);
+    int ks_textured = apply_textures(sf, at, N, s->settings.filter && at->width > 0, &pr);
     material(&s->cs, sf, &pr, ks_textured, m);
 }
 
@@ -876,8 +945,12 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
     nfn = nap = 0;
     for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next) {
         placement_of(ap, &c->placement[nap++]);
-        for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++)
+        for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++) {
             c->compiled[nfn] = (char)poly_of(fn->e, &c->poly[nfn]);
+            for (int i = 0; i < fn->e->n; i++)
+                c->quantities |= fn->e->code[i].op == TEX_EOP_LEAF &&
+                                 fn->e->code[i].leaf >= TEX_LEAF_Q;
+        }
     }
     c->base = (struct params){sf->ka, {sf->kd[0], sf->kd[1], sf->kd[2]}, sf->ks[0], (float)sf->n,
                               (float)sf->kr, (float)sf->kt, (float)sf->ior, 0};

@@ -161,6 +161,7 @@ typedef struct tex_ray {
     double width;     /* footprint width at o (for filtered texture lookups) */
     double spread;    /* footprint growth per unit distance (pixel angle) */
     const struct tex_media *media; /* the solids it travels inside; NULL: air */
+    double dist;      /* the path's length from the eye to o */
 } tex_ray;
 
 /* Nested transparent media: the top-level solids a ray is inside, innermost
@@ -331,13 +332,19 @@ struct tex_texture {
 int tex_texture_eval(const struct tex_texture *t, double u, double v, double w, double fw,
                      float out[3]);
 struct tex_scene;
-/* The material at a hit on leaf (surface sf) at world point P seen along D:
- * the application functions evaluated, N bent by bump maps, colours in the
- * scene's colour space.  width is the ray's footprint at P (0: no filtering).
+/* Where a ray met a surface, as the application functions see it. */
+struct tex_shade_at {
+    const struct tex_object *leaf;
+    const tex_v3 *P, *D; /* the world point, the ray's unit direction */
+    double width;        /* the ray's footprint at P (filtered lookups if the scene filters) */
+    double dist;         /* the path's length from the eye to P */
+    int depth;           /* 0 for eye rays, +1 per reflection or refraction */
+};
+/* The material at a hit (surface sf): the application functions evaluated,
+ * N bent by bump and normal maps, colours in the scene's colour space.
  * sf's cache must be filled (tex_surface_cache). */
 void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *sf,
-                          const struct tex_object *leaf, const tex_v3 *P, const tex_v3 *D,
-                          tex_v3 *N, double width, struct tex_material *m);
+                          const struct tex_shade_at *at, tex_v3 *N, struct tex_material *m);
 /* Fill (tex_render, before tracing) and free a surface's cache: its untextured
  * colours in the scene's colour space, its application functions compiled. */
 int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs);
@@ -349,9 +356,23 @@ enum tex_sparam { TEX_SP_KA, TEX_SP_KD, TEX_SP_KS, TEX_SP_N, TEX_SP_KR, TEX_SP_K
                   TEX_SP_BUMP, TEX_SP_COUNT };
 
 /* An application function's expression, compiled (lang/expr.h): a postfix
- * program over f (the map value), p (the untextured value), numbers, colours
- * and other textures (a cascade), run per RGB channel.  Its operands: */
-enum tex_eleaf { TEX_LEAF_F, TEX_LEAF_P, TEX_LEAF_TEX /* ptr: the texture */ };
+ * program over f (the map value), p (the untextured value), numbers, colours,
+ * other textures (a cascade) and the renderer's quantities at the hit, run
+ * per RGB channel.  Its operands: */
+enum tex_eleaf { TEX_LEAF_F, TEX_LEAF_P, TEX_LEAF_TEX /* ptr: the texture */,
+                 TEX_LEAF_Q /* TEX_LEAF_Q + q: quantity q */ };
+
+/* The renderer's quantities an application function can read (composition
+ * at application time, thesis 5.2.4.1): their names and help are
+ * tex_quantities[q], in this order. */
+enum tex_quantity { TEX_Q_DIST, TEX_Q_FOOTPRINT, TEX_Q_LOD, TEX_Q_NDOTV, TEX_Q_DEPTH,
+                    TEX_Q_X, TEX_Q_Y, TEX_Q_Z, TEX_Q_OX, TEX_Q_OY, TEX_Q_OZ,
+                    TEX_Q_U, TEX_Q_V, TEX_Q_W, TEX_Q_NX, TEX_Q_NY, TEX_Q_NZ, TEX_Q_REGION,
+                    TEX_Q_COUNT };
+struct tex_quantity_row {
+    const char *name, *help;
+};
+extern const struct tex_quantity_row tex_quantities[TEX_Q_COUNT];
 
 /* g[region][parameter] = h: one application function. */
 struct tex_appfn {
@@ -472,6 +493,8 @@ struct tex_scene {
     int ntextures;
     struct tex_surface **surfaces;
     int nsurfaces;
+    struct tex_palette **palettes; /* the palettes scenes name (ops/palette.h) */
+    int npalettes;
     void **pool;
     size_t npool, cpool;
     char *warnings;
