@@ -648,3 +648,19 @@ tex_map *tex_palette_map(const tex_palette *p, const tex_map *m, double lo, doub
     }
     return out;
 }
+
+float *tex_palette_region_colours(const tex_palette *p, int n)
+{
+    float *c = malloc(sizeof *c * 3 * (n > 0 ? n : 1));
+    if (!c) {
+        tex_error("out of memory");
+        return NULL;
+    }
+    for (int k = 0; k < n; k++) {
+        float rgba[4];
+        tex_palette_index_n(p, k + 1, n, rgba);
+        for (int j = 0; j < 3; j++)
+            c[3 * k + j] = rgba[j];
+    }
+    return c;
+}

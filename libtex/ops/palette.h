@@ -102,6 +102,9 @@ int tex_palette_names(char *buf, size_t n);
 void tex_palette_lookup(const tex_palette *p, float t, float rgba[4]);
 void tex_palette_index(const tex_palette *p, int id, float rgba[4]);
 void tex_palette_index_n(const tex_palette *p, int id, int n, float rgba[4]);
+/* The colours of subregions 1..n (tex_palette_index_n): n RGB triples from
+ * malloc, for a REGIONS field's colors (prim.h); NULL when memory fails. */
+float *tex_palette_region_colours(const tex_palette *p, int n);
 
 struct tex_map;
 enum tex_outside { TEX_OUTSIDE_CLAMP, TEX_OUTSIDE_REPEAT, TEX_OUTSIDE_MIRROR };

@@ -302,8 +302,60 @@ static void add_texture(struct parser *ps, struct tex_texture *tx)
     a[s->ntextures++] = tx;
 }
 
+/* The palette named by the current token (a name or a string), loaded once per scene. */
+static const tex_palette *scene_palette(struct parser *ps)
+{
+    struct tok at = ps->t;
+    struct tex_scene *s = ps->s;
+    if (at.kind != T_ID && at.kind != T_STR)
+        FAIL(ps, "expected a palette name or file");
+    char *name = pstrdup(ps, at.text, at.len);
+    next(ps);
+    for (int i = 0; i < s->npalettes; i++)
+        if (!strcmp(s->palettes[i]->name, name))
+            return s->palettes[i];
+    tex_palette **a = realloc(s->palettes, (s->npalettes + 1) * sizeof *a);
+    if (!a)
+        fail_at(ps, &at, 1, "out of memory");
+    s->palettes = a;
+    if (!(a[s->npalettes] = tex_palette_load(name)))
+        fail_at(ps, &at, tex_errkind() == TEX_ERR_RUNTIME, "%s", tex_errmsg());
+    /* found again by the name the scene gives */
+    char *n = strdup(name);
+    if (!n) {
+        tex_palette_free(a[s->npalettes]);
+        fail_at(ps, &at, 1, "out of memory");
+    }
+    free(a[s->npalettes]->name);
+    a[s->npalettes]->name = n;
+    return a[s->npalettes++];
+}
+
+/* A sampled or read map through the texture's palette, as t_palette colours it: a scalar
+ * map over its own range, a region map by indexed colours.  A geometric primitive's map is
+ * already in the palette's colours (texture_field).  Takes m, returns the map to use. */
+static tex_map *texture_colour(struct parser *ps, struct tex_texture *tx, tex_map *m,
+                               const struct tok *at)
+{
+    const struct tex_field *f = tx->field;
+    if (!tx->palette || (f && f->colors && (f->prim->flags & TEX_PRIM_REGIONS) && !f->ids))
+        return m;
+    if (m->nc != 1) {
+        int nc = m->nc;
+        tex_map_free(m);
+        fail_at(ps, at, 0, "palette colours a map of 1 channel, and texture '%s' has %d",
+                tx->name, nc);
+    }
+    tex_map *c = tex_palette_map(tx->palette, m, NAN, NAN, TEX_OUTSIDE_CLAMP);
+    tex_map_free(m);
+    if (!c)
+        fail_at(ps, at, 1, "%s", tex_errmsg());
+    return c;
+}
+
 static void texture_map(struct parser *ps, struct tex_texture *tx, tex_map *m, const struct tok *at)
 {
+    m = texture_colour(ps, tx, m, at);
     tx->mip = malloc(sizeof *tx->mip);
     if (!tx->mip) {
         tex_map_free(m);
@@ -336,6 +388,10 @@ static void texture_file(struct parser *ps, struct tex_texture *tx)
             fail_at(ps, &ft, 0, "only one texture can come from standard input");
         ps->stdin_used = 1;
     }
+    if (is_word(&ps->t, "palette")) {
+        next(ps);
+        tx->palette = scene_palette(ps);
+    }
     tex_map *m = tex_map_read(path);
     if (!m)
         fail_at(ps, &ft, 1, "cannot read map '%s': %s", path, tex_errmsg());
@@ -357,6 +413,8 @@ static void texture_params(struct parser *ps, struct tex_texture *tx,
             if (!(prim->flags & TEX_PRIM_3D))
                 fail_at(ps, &kt, 0, "primitive '%s' has no solid (3D) form", pname);
             tx->solid = 1;
+        } else if (!strcmp(key, "palette")) {
+            tx->palette = scene_palette(ps);
         } else if (fr && fr->type == TEX_P_FLAG) { /* tile, ids: no value */
             if (tex_field_set(f, key, "") < 0)
                 fail_at(ps, &kt, 0, "%s", tex_errmsg());
@@ -390,8 +448,21 @@ static void texture_field(struct parser *ps, struct tex_texture *tx,
         fail_at(ps, pt, 0, "primitive '%s' cannot be evaluated", pname);
     if (!size && !tx->solid && !(prim->flags & TEX_PRIM_2D))
         size = 512;
+    /* a geometric primitive's colours come from sampling (antialiased coverage); at points
+     * it gives only region ids */
+    if (!size && !tx->solid && (prim->flags & TEX_PRIM_REGIONS) && !f->ids)
+        size = 512;
     if (tex_field_init(f, size, size) < 0)
         fail_at(ps, pt, 0, "%s", tex_errmsg());
+    if (tx->palette && (prim->flags & TEX_PRIM_REGIONS) && !f->ids) { /* as t_checker --palette */
+        float *c = tex_palette_region_colours(tx->palette, f->nregions);
+        if (!c)
+            fail_at(ps, pt, 1, "%s", tex_errmsg());
+        float *pc = palloc(ps, sizeof *c * 3 * (f->nregions > 0 ? f->nregions : 1));
+        memcpy(pc, c, sizeof *c * 3 * f->nregions);
+        free(c);
+        f->colors = (const float(*)[3])pc;
+    }
     if (size) {
         tex_map *m;
         if (prim->flags & TEX_PRIM_GRID) {
@@ -442,35 +513,6 @@ static void parse_texture(struct parser *ps)
 }
 
 /* ---- expressions ---------------------------------------------------------------- */
-
-/* The palette named by the current token (a name or a string), loaded once per scene. */
-static const tex_palette *scene_palette(struct parser *ps)
-{
-    struct tok at = ps->t;
-    struct tex_scene *s = ps->s;
-    if (at.kind != T_ID && at.kind != T_STR)
-        FAIL(ps, "expected a palette name or file");
-    char *name = pstrdup(ps, at.text, at.len);
-    next(ps);
-    for (int i = 0; i < s->npalettes; i++)
-        if (!strcmp(s->palettes[i]->name, name))
-            return s->palettes[i];
-    tex_palette **a = realloc(s->palettes, (s->npalettes + 1) * sizeof *a);
-    if (!a)
-        fail_at(ps, &at, 1, "out of memory");
-    s->palettes = a;
-    if (!(a[s->npalettes] = tex_palette_load(name)))
-        fail_at(ps, &at, tex_errkind() == TEX_ERR_RUNTIME, "%s", tex_errmsg());
-    /* found again by the name the scene gives */
-    char *n = strdup(name);
-    if (!n) {
-        tex_palette_free(a[s->npalettes]);
-        fail_at(ps, &at, 1, "out of memory");
-    }
-    free(a[s->npalettes]->name);
-    a[s->npalettes]->name = n;
-    return a[s->npalettes++];
-}
 
 /* palette(NAME, x): x's mean through a palette, x clamped to [0, 1]. */
 static struct tex_enode *palette_call(struct tex_expr_parser *xp)

@@ -181,10 +181,19 @@ static int field_eval(const struct tex_texture *t, double u, double v, double w,
         f->prim->eval3(f, 1, &u, &v, &w, val);
     else
         f->prim->eval2(f, 1, &u, &v, val);
-    to_rgb(val, f->nc, out);
-    if ((f->prim->flags & TEX_PRIM_REGIONS) && f->ids)
-        return (int)lrintf(val[0]);
-    return 0;
+    int region = (f->prim->flags & TEX_PRIM_REGIONS) && f->ids ? (int)lrintf(val[0]) : 0;
+    if (t->palette) { /* a region's indexed colour, or the value in [0, 1] */
+        float rgba[4];
+        if (region)
+            tex_palette_index_n(t->palette, region, f->nregions, rgba);
+        else
+            tex_palette_lookup(t->palette, tex_palette_t(val[0], 0, 1, TEX_OUTSIDE_CLAMP), rgba);
+        val[0] = rgba[0], val[1] = rgba[1], val[2] = rgba[2];
+        to_rgb(val, 3, out);
+    } else {
+        to_rgb(val, f->nc, out);
+    }
+    return region;
 }
 
 /* A region map's id at (u, v) in [0, 1]: the nearest texel, never averaged. */
@@ -233,6 +242,11 @@ static double fract(double x)
     return x - floord(x);
 }
 
+static inline double clamp01(double x)
+{
+    return x > 0 ? (x < 1 ? x : 1) : 0;
+}
+
 /* A planar mapping on an unbounded plane: u, v are its object-space x and z, scaled. */
 static inline int plane_planar(const struct tex_apply *ap, const struct tex_object *leaf)
 {
@@ -263,9 +277,10 @@ static int map_point_other(const struct tex_apply *ap, const struct tex_object *
     if (mp == TEX_MAP_SOLID) {
         const struct tex_bounds *rb = &leaf->root->wb;
         tex_v3 e = tex_v3_sub(rb->hi, rb->lo);
-        uvw[0] = e.x > 0 ? (P->x - rb->lo.x) / e.x : 0;
-        uvw[1] = e.y > 0 ? (rb->hi.y - P->y) / e.y : 0; /* v downwards: top of the box is 0 */
-        uvw[2] = e.z > 0 ? (P->z - rb->lo.z) / e.z : 0;
+        /* clamped: a hit on the box's face may round to just outside it */
+        uvw[0] = e.x > 0 ? clamp01((P->x - rb->lo.x) / e.x) : 0;
+        uvw[1] = e.y > 0 ? clamp01((rb->hi.y - P->y) / e.y) : 0; /* v down: the top is 0 */
+        uvw[2] = e.z > 0 ? clamp01((P->z - rb->lo.z) / e.z) : 0;
         return 1;
     }
     int bounded = tex_shape_methods[leaf->kind].bounds(leaf, &b);

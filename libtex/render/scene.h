@@ -324,6 +324,7 @@ struct tex_texture {
     int subregions;      /* > 0: the map holds region ids (nearest lookup, no filtering) */
     struct tex_field *field; /* a primitive evaluated at hit points */
     int solid;           /* the field is evaluated at (u,v,w) */
+    const struct tex_palette *palette; /* `palette NAME`: colours the values (ops/palette.h) */
     int line, col;
 };
 
