@@ -1,0 +1,187 @@
+#!/usr/bin/env bash
+# t_apply's texture model: quantities of the hit and functions in application functions
+# (composition at application time), palettes in scenes, the wood primitive, bricks per
+# cell, solid holes and colour variation, and the bugs fixed with them.
+. "$(dirname "$0")/lib.sh"
+G=${TEXTURA_TOP:-.}/tests/golden
+
+# golden NAME MAP GOLDEN TOL: MAP matches the stored golden image (TEXTURA_REGOLD=1 rewrites it).
+golden() {
+    [ -n "${TEXTURA_REGOLD:-}" ] && t_convert -o "$G/$3" "$2"
+    same "$1" "$2" "$G/$3" "$4"
+}
+
+# pixels MAP: "x y r g b" per pixel, top row first (through PFM).
+pixels() {
+    t_convert -o "$T/px.pfm" "$1" && python3 - "$T/px.pfm" <<'P'
+import array, sys
+d = open(sys.argv[1], 'rb').read()
+kind, size, scale, rest = d.split(b'\n', 3)
+w, h = map(int, size.split())
+nc = 3 if kind == b'PF' else 1
+a = array.array('f'); a.frombytes(rest[:w * h * nc * 4])
+if float(scale) > 0: a.byteswap()
+for y in range(h):
+    row = h - 1 - y
+    for x in range(w):
+        v = a[(row * w + x) * nc:(row * w + x + 1) * nc]
+        print(x, y, *(list(v) * 3)[:3])
+P
+}
+
+# ---- selection by distance: a floor receding from a camera 1 above it ----
+floor_scene() { # EXPR: the floor's Kd
+    cat <<S
+image 64 48
+camera { eye 0 1 0 look 0 1 10 fov 60 }
+ambient 1 1 1
+texture n noise { frequency 4 }
+surface floor { Ka 1 Kd 1 apply n { mapping world Kd = $1 } }
+plane { normal 0 1 0 distance 0 surface floor }
+S
+}
+# the path length to the floor at pixel (x, y), from the camera's geometry (render.c)
+dist_check() { # MAP WHAT: compare every floor pixel with WHAT(dist) in python
+    pixels "$1" | python3 -c '
+import math, sys
+w, h, fov = 64, 48, 60
+sx = math.tan(fov * math.pi / 360); sy = sx * h / w
+kx, ky = 2 * sx / w, 2 * sy / h
+def smooth(a, b, x):
+    s = min(max((x - a) / (b - a), 0), 1); return s * s * (3 - 2 * s)
+bad = n = 0
+for line in sys.stdin:
+    x, y, r, g, b = line.split(); x, y = int(x), int(y); r, g, b = map(float, (r, g, b))
+    a = (x + 0.5) * kx - sx; bb = sy - (y + 0.5) * ky
+    l = math.sqrt(1 + a * a + bb * bb)
+    if bb >= -1e-9: continue          # the sky
+    d = -1 / (bb / l)                   # 1 + t dy = 0
+    if abs(d - 5) < 0.05 or abs(d - 4) < 0.05 or abs(d - 6) < 0.05: continue  # at the edges
+    want = eval(sys.argv[1]); n += 1
+    if abs(r - want[0]) > 2e-4 or abs(b - want[2]) > 2e-4: bad += 1
+print(n, bad)' "$2"
+}
+floor_scene 'if(dist < 5, 1 0 0, 0 0 1)' >"$T/step.scene"
+t_apply "$T/step.scene" -o "$T/step.exr"
+read -r n bad < <(dist_check "$T/step.exr" '(1, 0, 0) if d < 5 else (0, 0, 1)')
+[ "$n" -gt 500 ] && [ "$bad" = 0 ] && ok "selection by distance: map A before 5, map B after ($n pixels)" ||
+    notok "selection by distance" "$bad of $n pixels wrong"
+floor_scene 'mix(1 0 0, 0 0 1, smoothstep(4, 6, dist))' >"$T/blend.scene"
+t_apply "$T/blend.scene" -o "$T/blend.exr"
+read -r n bad < <(dist_check "$T/blend.exr" '(1 - smooth(4, 6, d), 0, smooth(4, 6, d))')
+[ "$n" -gt 500 ] && [ "$bad" = 0 ] && ok "a smoothstep blend over distance 4..6 ($n pixels)" ||
+    notok "smoothstep blend by distance" "$bad of $n pixels off"
+# every quantity and function parses and renders; results stay in range
+floor_scene '0.5 + 0*(footprint + lod + ndotv + depth + x + y + z + ox + oy + oz + u + v + w + nx + ny + nz + region) + 0*(pow(2, 3) + sin(1) + cos(1) + floor(1.5) + fract(1.5) + step(0.5, f) + clamp(f, 0, 1) + min(f, 1) + max(f, 0) + abs(-f)) + 0*(f < 1) + 0*(f > 1) + 0*(f <= 1) + 0*(f >= 1) + 0*(f == 1) + 0*(f != 1)' \
+    >"$T/all.scene"
+t_apply "$T/all.scene" -o "$T/all.exr" && approx "$(info_json "$T/all.exr" stats 1 max)" 0.5 1e-6 &&
+    ok "every quantity, function and comparison in one expression" || notok "all quantities and functions"
+floor_scene 'if(ndotv > 0.3, 1, 0) + 0*f' >"$T/ndotv.scene"
+t_apply "$T/ndotv.scene" -o "$T/ndotv.exr"
+# ndotv = |dy| / |d| on the floor: the near rows see it steeply, the far rows at a grazing angle
+far=$(pixels "$T/ndotv.exr" | awk '$1 == 32 && $2 == 25 { print $3 }')
+near=$(pixels "$T/ndotv.exr" | awk '$1 == 32 && $2 == 47 { print $3 }')
+approx "$near" 1 0 && approx "$far" 0 0 && ok "ndotv: steep near rows, grazing far rows" ||
+    notok "ndotv" "near $near far $far"
+
+# ---- palettes in scenes equal t_palette on the same map ----
+t_noise -s 64 -S 1 -o "$T/n.exr"
+t_palette marble "$T/n.exr" -o "$T/n_marble.exr"
+plane_scene() { # TEXTURE-LINE: a plane facing the camera, lit by the ambient light only
+    cat <<S
+image 48 48
+camera { eye 0 0 -3 look 0 0 0 fov 50 }
+ambient 1 1 1
+$1
+surface s { Ka 1 Kd 1 apply t { mapping planar Kd = f } }
+box { min -1 -1 0 max 1 1 0.1 surface s }
+S
+}
+plane_scene "texture t file \"$T/n.exr\" palette marble" >"$T/pal.scene"
+plane_scene "texture t file \"$T/n_marble.exr\"" >"$T/pal_ref.scene"
+t_apply "$T/pal.scene" -o "$T/pal.exr" && t_apply "$T/pal_ref.scene" -o "$T/pal_ref.exr" &&
+    same "a map file through 'palette marble' equals t_palette marble of it" "$T/pal.exr" "$T/pal_ref.exr" 1e-6
+plane_scene "texture t noise { size 64 seed 1 palette marble }" >"$T/palp.scene"
+t_apply "$T/palp.scene" -o "$T/palp.exr" &&
+    same "a sampled primitive through 'palette marble' equals t_noise | t_palette marble" \
+        "$T/palp.exr" "$T/pal_ref.exr" 1e-6
+t_checker -s 64 --palette brick -o "$T/ck.exr"
+plane_scene "texture t file \"$T/ck.exr\"" >"$T/ck_ref.scene"
+plane_scene "texture t checker { size 64 palette brick }" >"$T/ck.scene"
+t_apply "$T/ck.scene" -o "$T/ck1.exr" && t_apply "$T/ck_ref.scene" -o "$T/ck2.exr" &&
+    same "a geometric primitive's palette equals t_checker --palette" "$T/ck1.exr" "$T/ck2.exr" 1e-6
+plane_scene "texture t turbulence { palette fire }" >"$T/pt.scene"
+sed 's/Kd = f/Kd = palette(fire, f)/; s/ { palette fire }/ { }/' "$T/pt.scene" >"$T/pe.scene"
+t_apply "$T/pt.scene" -o "$T/pt.exr" && t_apply "$T/pe.scene" -o "$T/pe.exr" &&
+    same "palette(NAME, f) in an expression equals the texture's palette at hit points" \
+        "$T/pt.exr" "$T/pe.exr" 0
+[ "$(info_json "$T/pt.exr" stats 0 max)" != "$(info_json "$T/pt.exr" stats 2 max)" ] &&
+    ok "the palette colours the point primitive (red and blue differ)" || notok "palette colours"
+
+# ---- bugs ----
+# a geometric primitive without size is sampled (it gave the region id: white)
+plane_scene "texture t checker { }" >"$T/cknosize.scene"
+plane_scene "texture t checker { size 512 }" >"$T/ck512.scene"
+t_apply "$T/cknosize.scene" -o "$T/cknosize.exr" && t_apply "$T/ck512.scene" -o "$T/ck512.exr" &&
+    same "a checker without size is sampled at 512, as t_apply(5) says (not region ids)" \
+        "$T/cknosize.exr" "$T/ck512.exr" 0
+# solid mapping on a box: no untextured speckles where u or v is 0 on a face
+cat >"$T/speck.scene" <<'S'
+image 96 96
+camera { eye 3 2.5 -4 look 0 0 0 fov 40 }
+ambient 1 1 1
+texture t turbulence { solid }
+surface s { Ka 1 Kd 0 0 1 apply t { mapping solid Kd = 1 0 0 } }
+box { min -1 -1 -1 max 1 1 1 surface s }
+S
+t_apply "$T/speck.scene" -o "$T/speck.exr"
+[ "$(info_json "$T/speck.exr" stats 2 max)" = 0 ] && ok "solid mapping covers every face of a box" ||
+    notok "solid mapping speckles" "blue max $(info_json "$T/speck.exr" stats 2 max)"
+
+# ---- primitives ----
+t_wood -s 64 -a 0 --rings 5 -o "$T/wood.exr"
+pixels "$T/wood.exr" | python3 -c '
+import sys
+v = {}
+for l in sys.stdin:
+    x, y, r, g, b = l.split(); v[int(x), int(y)] = float(r)
+bad = sum(1 for (x, y) in v if abs(v[x, y] - v[63 - x, y]) > 1e-5 or abs(v[x, y] - v[y, x]) > 1e-5)
+span = max(v.values()) - min(v.values())
+sys.exit(0 if bad == 0 and span > 0.9 else 1)' &&
+    ok "wood rings are concentric: the value depends on the distance to the axis" || notok "wood rings concentric"
+t_wood -s 64 --tilt 90 -a 0 --rings 5 -o "$T/plank.exr"
+pixels "$T/plank.exr" | awk '{ v[$1] = v[$1] " " $3 } END { for (x in v) { n = split(v[x], a, " "); for (i = 2; i <= n; i++) if (a[i] != a[1]) bad++ } exit bad > 0 }' &&
+    ok "wood at tilt 90: the grain runs down the map (columns constant)" || notok "wood plank"
+sed 's/turbulence { solid }/wood { solid }/' "$T/speck.scene" >"$T/wood.scene"
+check "a solid wood texture renders" t_apply "$T/wood.scene" -o "$T/woods.exr"
+t_brick -s 256 --cells --nu 4 --nv 4 -o "$T/cells.exr"
+# brick centres: upper courses at v = (j + 0.25) / 4, lower at (j + 0.75) / 4
+pixels "$T/cells.exr" | python3 -c '
+import sys
+px = {}
+for l in sys.stdin:
+    x, y, r, g, b = l.split(); px[int(x), int(y)] = (r, g, b)
+cols = {px[32 + 64 * i, 16 + 64 * j] for i in range(4) for j in range(4)}
+mortar = px[0, 0]
+sys.exit(0 if len(cols) >= 6 and mortar not in cols else 1)' &&
+    ok "t_brick --cells: bricks differ in colour per brick, mortar apart" || notok "brick cells"
+t_brick -s 64 --cells --ids -o "$T/ids.exr"
+n=$(info_json "$T/ids.exr" stats 0 max); approx "$n" 33 8 && ok "brick cell ids lie in 2..2 nu nv + 1" || notok "brick ids" "max $n"
+check_fails "--cells with too many repetitions" 2 t_brick --cells --nu 4096 --nv 4096 -s 8 -o "$T/x.exr"
+
+# ---- bad scenes: one line with file:line:col, exit 2, no image ----
+bad() {
+    printf '%s\n' "$2" >"$T/bad.scene"
+    check_fails "$1" 2 t_apply "$T/bad.scene" -o "$T/bad.png"
+    [ -e "$T/bad.png" ] && notok "$1: no output file"
+    grep -q "bad.scene:[0-9]*:[0-9]*:" "$T/.err" || notok "$1: file:line:col" "$(cat "$T/.err")"
+}
+bad "unknown quantity" 'texture t noise { } surface s { apply t { Kd = distance } }'
+bad "unknown function" 'texture t noise { } surface s { apply t { Kd = sinh(f) } }'
+bad "wrong argument count" 'texture t noise { } surface s { apply t { Kd = mix(f, 1) } }'
+bad "palette without a value" 'texture t noise { } surface s { apply t { Kd = palette(fire) } }'
+bad "unknown palette in an expression" 'texture t noise { } surface s { apply t { Kd = palette(nosuch, f) } }'
+grep -q "known: .*marble" "$T/.err" && ok "an unknown palette's message lists the known ones" ||
+    notok "unknown palette lists names" "$(cat "$T/.err")"
+bad "unknown palette on a texture" 'texture t noise { palette nosuch }'
+bad "palette on a colour map" "texture t file \"$T/ck.exr\" palette fire"
