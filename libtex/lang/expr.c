@@ -9,22 +9,23 @@
 #include "ops/palette.h"
 
 const struct tex_expr_func tex_expr_funcs[] = {
-    {"min", 2, TEX_EOP_MIN, "the smaller of a and b"},
-    {"max", 2, TEX_EOP_MAX, "the larger of a and b"},
-    {"abs", 1, TEX_EOP_ABS, "the absolute value of a"},
-    {"rgb", 3, TEX_EOP_RGB, "a colour: red from r, green from g, blue from b"},
-    {"mix", 3, TEX_EOP_MIX, "a where t is 0, b where t is 1, linear between: a + (b - a) t"},
-    {"smoothstep", 3, TEX_EOP_SMOOTHSTEP,
+    {"min", 2, TEX_EOP_MIN, "a, b", "the smaller of a and b"},
+    {"max", 2, TEX_EOP_MAX, "a, b", "the larger of a and b"},
+    {"abs", 1, TEX_EOP_ABS, "a", "the absolute value of a"},
+    {"rgb", 3, TEX_EOP_RGB, "r, g, b", "a colour: red from r, green from g, blue from b"},
+    {"mix", 3, TEX_EOP_MIX, "a, b, t",
+     "a where t is 0, b where t is 1, linear between: a + (b - a) t"},
+    {"smoothstep", 3, TEX_EOP_SMOOTHSTEP, "e0, e1, x",
      "0 below e0, 1 above e1, the cubic 3s^2 - 2s^3 between (s = (x - e0) / (e1 - e0))"},
-    {"step", 2, TEX_EOP_STEP, "0 where x < edge, else 1"},
-    {"clamp", 3, TEX_EOP_CLAMP, "x limited to [lo, hi]"},
-    {"pow", 2, TEX_EOP_POW, "a to the power b; 0 where that is not a real number"},
-    {"sin", 1, TEX_EOP_SIN, "the sine of a (radians)"},
-    {"cos", 1, TEX_EOP_COS, "the cosine of a (radians)"},
-    {"floor", 1, TEX_EOP_FLOOR, "the largest integer not above a"},
-    {"fract", 1, TEX_EOP_FRACT, "a - floor(a), in [0, 1)"},
-    {"if", 3, TEX_EOP_IF, "a where c is not 0, else b (per channel)"},
-    {NULL, 0, 0, NULL},
+    {"step", 2, TEX_EOP_STEP, "edge, x", "0 where x < edge, else 1"},
+    {"clamp", 3, TEX_EOP_CLAMP, "x, lo, hi", "x limited to [lo, hi]"},
+    {"pow", 2, TEX_EOP_POW, "a, b", "a to the power b; 0 where that is not a real number"},
+    {"sin", 1, TEX_EOP_SIN, "a", "the sine of a (radians)"},
+    {"cos", 1, TEX_EOP_COS, "a", "the cosine of a (radians)"},
+    {"floor", 1, TEX_EOP_FLOOR, "a", "the largest integer not above a"},
+    {"fract", 1, TEX_EOP_FRACT, "a", "a - floor(a), in [0, 1)"},
+    {"if", 3, TEX_EOP_IF, "c, a, b", "a where c is not 0, else b (per channel)"},
+    {NULL, 0, 0, NULL, NULL},
 };
 
 const struct tex_expr_func *tex_expr_func_find(const struct tex_tok *t)

@@ -77,6 +77,7 @@ struct tex_expr_func {
     const char *name;
     int nargs;
     enum tex_eop op;
+    const char *args; /* the arguments' names, for help: "a, b, t" */
     const char *help;
 };
 extern const struct tex_expr_func tex_expr_funcs[];

@@ -70,6 +70,15 @@ struct tex_scene_block {
 };
 extern const struct tex_scene_block tex_scene_blocks[];
 
+/* The words of application functions' expressions, for help and the man
+ * page: the quantities of the hit (args NULL; the list ends with a NULL
+ * name), and function i (args: its arguments' names; 0 past the last). */
+struct tex_scene_word {
+    const char *name, *args, *help;
+};
+extern const struct tex_scene_word tex_quantities[];
+int tex_scene_function(int i, struct tex_scene_word *w);
+
 #ifdef __cplusplus
 }
 #endif

@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "lang/expr.h"
 #include "render/scene.h"
 
 #define INF HUGE_VAL /* -INF, INF: a point or a direction, any numbers */
@@ -180,3 +181,20 @@ const struct tex_scene_block tex_scene_blocks[] = {
     {"settings", tex_settings_rows}, {"camera", tex_camera_rows}, {"light", tex_light_rows},
     {"texture", tex_field_rows},     {"surface", tex_surface_rows}, {"apply", tex_apply_rows},
     {"object", tex_object_rows},     {NULL, NULL}};
+
+/* lang/expr.h's functions, then the scene's own palette(NAME, x) */
+int tex_scene_function(int i, struct tex_scene_word *w)
+{
+    int n = 0;
+    while (tex_expr_funcs[n].name)
+        n++;
+    if (i < 0 || i > n)
+        return 0;
+    if (i == n)
+        *w = (struct tex_scene_word){"palette", "NAME, x",
+                                     "the colour of palette NAME at the mean of x in [0, 1]"};
+    else
+        *w = (struct tex_scene_word){tex_expr_funcs[i].name, tex_expr_funcs[i].args,
+                                     tex_expr_funcs[i].help};
+    return 1;
+}

@@ -525,20 +525,28 @@ static double footprint_width2(const struct tex_apply *ap, const struct placemen
 
 /* ---- application functions ---------------------------------------------------------- */
 
-const struct tex_quantity_row tex_quantities[TEX_Q_COUNT] = {
-    {"dist", "the path's length from the eye to the hit (through reflections and refractions)"},
-    {"footprint", "the ray's footprint at the hit in texture units (placed; the map is 1 wide)"},
-    {"lod", "log2(footprint), at least -60: -9 where a pixel covers one texel of a 512 map"},
-    {"ndotv", "the cosine between the normal and the direction to the viewer, 0..1"},
-    {"depth", "0 for eye rays, one more per reflection or refraction"},
-    {"x", "the hit's world x"}, {"y", "the hit's world y"}, {"z", "the hit's world z"},
-    {"ox", "the hit's x in the object's own space"}, {"oy", "object y"}, {"oz", "object z"},
-    {"u", "the mapping's u at the hit, 0..1 (before window and repeat)"},
-    {"v", "the mapping's v"}, {"w", "the mapping's w (solid mappings; else 0)"},
-    {"nx", "the shading normal's world x, facing the ray (before bump)"},
-    {"ny", "the normal's y"}, {"nz", "the normal's z"},
-    {"region", "the map's subregion id at the hit (0: a map without regions)"},
+const struct tex_scene_word tex_quantities[TEX_Q_COUNT + 1] = {
+    {"dist", NULL, "the path's length from the eye to the hit (through reflections)"},
+    {"footprint", NULL, "the ray's footprint at the hit in texture units (the map is 1 wide)"},
+    {"lod", NULL, "log2(footprint), at least -60: -9 where a pixel covers a texel of a 512 map"},
+    {"ndotv", NULL, "the cosine between the normal and the direction to the viewer, 0..1"},
+    {"depth", NULL, "0 for eye rays, one more per reflection or refraction"},
+    {"x", NULL, "the hit's world x"},
+    {"y", NULL, "the hit's world y"},
+    {"z", NULL, "the hit's world z"},
+    {"ox", NULL, "the hit's x in the object's own space"},
+    {"oy", NULL, "the hit's y in the object's own space"},
+    {"oz", NULL, "the hit's z in the object's own space"},
+    {"u", NULL, "the mapping's u at the hit, 0..1 (before window and repeat)"},
+    {"v", NULL, "the mapping's v at the hit"},
+    {"w", NULL, "the mapping's w at the hit (solid mappings; else 0)"},
+    {"nx", NULL, "the normal's world x, facing the ray (before bump)"},
+    {"ny", NULL, "the normal's world y"},
+    {"nz", NULL, "the normal's world z"},
+    {"region", NULL, "the map's subregion id at the hit (0: a map without regions)"},
+    {NULL, NULL, NULL},
 };
+
 
 struct evalctx {
     const float *f;     /* map value, RGB */
