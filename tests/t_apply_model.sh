@@ -185,3 +185,9 @@ grep -q "known: .*marble" "$T/.err" && ok "an unknown palette's message lists th
     notok "unknown palette lists names" "$(cat "$T/.err")"
 bad "unknown palette on a texture" 'texture t noise { palette nosuch }'
 bad "palette on a colour map" "texture t file \"$T/ck.exr\" palette fire"
+
+# ---- the shipped scenes that show it, as goldens ----
+for sc in resolution sheen; do
+    t_apply "${TEXTURA_TOP:-.}/patterns/$sc.scene" -s 80x48 --spp 1 -o "$T/$sc.exr" &&
+        golden "patterns/$sc.scene golden" "$T/$sc.exr" "apply_$sc.exr" 1e-5
+done
