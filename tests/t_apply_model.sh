@@ -12,8 +12,10 @@ golden() {
 }
 
 # pixels MAP: "x y r g b" per pixel, top row first (through PFM).
-pixels() {
-    t_convert -o "$T/px.pfm" "$1" && python3 - "$T/px.pfm" <<'P'
+pixels() { # (its own PFM: two may run at once in a paste)
+    local pfm
+    pfm=$(mktemp "$T/px.XXXXXX").pfm
+    t_convert -o "$pfm" "$1" && python3 - "$pfm" <<'P'
 import array, sys
 d = open(sys.argv[1], 'rb').read()
 kind, size, scale, rest = d.split(b'\n', 3)
@@ -191,3 +193,96 @@ for sc in resolution sheen; do
     t_apply "${TEXTURA_TOP:-.}/patterns/$sc.scene" -s 80x48 --spp 1 -o "$T/$sc.exr" &&
         golden "patterns/$sc.scene golden" "$T/$sc.exr" "apply_$sc.exr" 1e-5
 done
+
+# ---- projections (thesis 5.2.1.3): checked through the quantities u v w and ox oy oz ----
+# coords SURFACE-APPLY: render Kd = rgb(u, v, w) and Kd = the object point mapped to [0, 1]
+# on a unit sphere, and print "u v w ox oy oz" per pixel of the sphere.
+coords() {
+    for kd in 'rgb(u, v, w)' 'rgb((ox + 1) / 2, (oy + 1) / 2, (oz + 1) / 2)'; do
+        cat <<S
+image 48 48
+camera { eye 0.5 1 -4 look 0 0 0 fov 40 }
+ambient 1 1 1
+texture t noise { }
+surface s { Ka 1 Kd 0 0 0 apply t { $1 Kd = $kd } }
+sphere { radius 1 surface s }
+S
+    done >"$T/c.both"
+    head -6 "$T/c.both" >"$T/c1.scene"; tail -6 "$T/c.both" >"$T/c2.scene"
+    t_apply "$T/c1.scene" -o "$T/c1.exr" && t_apply "$T/c2.scene" -o "$T/c2.exr" &&
+        paste -d' ' <(pixels "$T/c1.exr") <(pixels "$T/c2.exr") |
+        awk '$8 + $9 + $10 > 0 { print $3, $4, $5, 2 * $8 - 1, 2 * $9 - 1, 2 * $10 - 1 }'
+}
+# check_coords NAME MAPPING PYTHON-EXPR-FOR-(U, V): over every sphere pixel, within 1e-4
+check_coords() {
+    local r
+    r=$(coords "$2" | python3 -c '
+import math, sys
+def fract(x): return x - math.floor(x)
+n = bad = 0
+for l in sys.stdin:
+    u, v, w, ox, oy, oz = map(float, l.split())
+    eu, ev = eval(sys.argv[1]); n += 1
+    du = min(abs(u - eu), 1 - abs(u - eu))   # wrapped at 0 = 1
+    if du > 1e-4 or abs(v - ev) > 1e-4: bad += 1
+print(n, bad)' "$3")
+    set -- "$1" $r
+    [ "$2" -gt 300 ] && [ "$3" = 0 ] && ok "$1 ($2 points)" || notok "$1" "$3 of $2 points off"
+}
+check_coords "planar along x: (u, v) = ((z + 1) / 2, (y + 1) / 2), constant along the axis" \
+    'mapping planar axis 1 0 0' '((oz + 1) / 2, (oy + 1) / 2)'
+check_coords "planar along y, the default: (u, v) = ((x + 1) / 2, (z + 1) / 2)" \
+    'mapping planar' '((ox + 1) / 2, (oz + 1) / 2)'
+check_coords "translate moves the projected map with the object" \
+    'mapping planar translate 0.2 0 0' '(max(0, (ox - 0.2 + 1) / 2), (oz + 1) / 2)'
+check_coords "rotate 0 90 0 turns the projected map a quarter about y" \
+    'mapping planar rotate 0 90 0' '((1 - oz) / 2, (ox + 1) / 2)'
+check_coords "the wavy path follows its sine: u + A sin(2 pi y / L)" \
+    'mapping wavy wave 0.1 0.5' 'fract((ox + 1) / 2 + 0.1 * math.sin(2 * math.pi * oy / 0.5)), (oz + 1) / 2'
+check_coords "cross: the x-y map at (u, v), the y-z map at (w, v)" \
+    'mapping cross cross t' '((ox + 1) / 2, (1 - oy) / 2)'
+
+# the two-plane product equals the product of the two maps at the points they map to
+t_checker -s 64 --nu 2 --nv 2 --ids -o "$T/ca.exr"
+t_stripe -s 64 --ids -o "$T/cb.exr"
+cat >"$T/cross.scene" <<S
+image 48 48
+camera { eye 0.5 1 -4 look 0 0 0 fov 40 }
+ambient 1 1 1
+filter off
+texture a file "$T/ca.exr"
+texture b file "$T/cb.exr"
+surface s { Ka 1 Kd 0 0 0 apply a { mapping cross cross b combine product Kd = f / 4 } }
+sphere { radius 1 surface s }
+S
+sed 's|Kd = f / 4|Kd = rgb(u, v, w)|' "$T/cross.scene" >"$T/crossuv.scene"
+t_apply "$T/cross.scene" -o "$T/cross.exr" && t_apply "$T/crossuv.scene" -o "$T/crossuv.exr"
+t_convert -o "$T/ca.pfm" "$T/ca.exr"; t_convert -o "$T/cb.pfm" "$T/cb.exr"
+r=$(paste -d' ' <(pixels "$T/cross.exr") <(pixels "$T/crossuv.exr") | python3 -c '
+import array, sys
+def load(p):
+    d = open(p, "rb").read(); k, s, sc, rest = d.split(b"\n", 3)
+    w, h = map(int, s.split()); a = array.array("f"); a.frombytes(rest[:w * h * 4])
+    return w, h, a
+A, B = load(sys.argv[1]), load(sys.argv[2])
+def at(m, u, v):  # the region id of the texel (u, v) falls in (rows bottom-up in PFM)
+    w, h, a = m; x = min(int(u * w), w - 1); y = min(int(v * h), h - 1)
+    return a[(h - 1 - y) * w + x]
+n = bad = 0
+for l in sys.stdin:
+    f = l.split(); c = float(f[2]); u, v, w = map(float, f[7:10])
+    if u + v + w == 0: continue
+    near = lambda t: abs(t * 64 - round(t * 64)) < 0.01   # on a texel edge: either id
+    if near(u) or near(v) or near(w): continue
+    n += 1
+    if abs(c - at(A, u, v) * at(B, w, v) / 4) > 1e-5: bad += 1
+print(n, bad)' "$T/ca.pfm" "$T/cb.pfm")
+set -- $r
+[ "$1" -gt 200 ] && [ "$2" = 0 ] && ok "cross product equals the two maps' product at sampled points ($1)" ||
+    notok "cross product" "$2 of $1 off"
+
+bad "projection axis of length 0" 'texture t noise { } surface s { apply t { mapping planar axis 0 0 0 Kd = f } }'
+bad "wavy amplitude NaN" 'texture t noise { } surface s { apply t { mapping wavy wave nan 1 Kd = f } }'
+bad "wavy wavelength 0" 'texture t noise { } surface s { apply t { mapping wavy wave 0.1 0 Kd = f } }'
+bad "cross without its second map" 'texture t noise { } surface s { apply t { mapping cross Kd = f } }'
+bad "translate with mapping natural" 'texture t noise { } surface s { apply t { translate 1 0 0 Kd = f } }'

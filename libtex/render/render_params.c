@@ -124,8 +124,23 @@ const struct tex_param *tex_sparam_row(enum tex_sparam sp)
 
 const struct tex_param tex_apply_rows[] = {
     TEX_ROW_ENUM("mapping", struct tex_apply, mapping, "natural",
-                 "natural|sphere|cylinder|cone|box|planar|solid|world",
+                 "natural|sphere|cylinder|cone|box|planar|solid|world|wavy|cross",
                  "how a hit point finds its (u,v) or (u,v,w)"),
+    TEX_ROW("axis", struct tex_apply, axis, TEX_P_REAL, "0,1,0", -1e9, 1e9, 3, 0, "X Y Z",
+            "projections: the direction a planar, wavy, cylinder, cone or sphere mapping "
+            "projects along (not zero)"),
+    TEX_SPECIAL("translate", 0, 0, NULL, "X Y Z",
+                "projections: move the texture by (X, Y, Z) relative to the object"),
+    TEX_SPECIAL("rotate", 0, 0, NULL, "X Y Z",
+                "projections: turn the texture X degrees about x, then Y about y, then Z about "
+                "z, relative to the object"),
+    TEX_ROW("wave", struct tex_apply, wave, TEX_P_REAL, "0.1,1", -1e6, 1e6, 2, 0, "A L",
+            "wavy: the planar projection swept along a sine path, u shifted by "
+            "A sin(2 pi y / L) (L > 0)"),
+    TEX_SPECIAL("cross", 0, 0, NULL, "TEXTURE",
+                "cross: the second map, on the y-z plane; the first lies on x-y"),
+    TEX_ROW_ENUM("combine", struct tex_apply, combine, "product", "product|min|max",
+                 "cross: how the two maps' values combine"),
     TEX_ROW("window", struct tex_apply, u1, TEX_P_REAL, "0,0,1,1", 0, 1, 4, 0, "U1 V1 U2 V2",
             "where the map lies in (u,v), with U1 < U2 and V1 < V2"),
     TEX_ROW("repeat", struct tex_apply, nu, TEX_P_REAL, "1,1", 1e-3, 1e6, 2, 0, "NU NV",

@@ -635,12 +635,24 @@ static void parse_fns(struct parser *ps, struct tex_apply *ap, int region)
     }
 }
 
-/* stretch, region N { ... } and the application functions of an apply block */
+static void xf_frame(tex_xform *t, tex_v3 origin, tex_v3 a, double ylen, double r);
+static int transform_word(struct parser *ps, const struct tok *kt, tex_xform *acc);
+
+/* stretch, region N { ... }, translate, rotate, cross and the application functions of an
+ * apply block */
 static int apply_special(struct parser *ps, const struct tex_param *p, const struct tok *kt,
                          void *ctx)
 {
     struct tex_apply *ap = ctx;
-    if (p && !strcmp(p->name, "stretch")) {
+    if (p && (!strcmp(p->name, "translate") || !strcmp(p->name, "rotate"))) {
+        transform_word(ps, kt, &ap->place);
+        ap->placed = 1;
+    } else if (p && !strcmp(p->name, "cross")) {
+        struct tok ct = ps->t;
+        if (ct.kind != T_ID || !(ap->cross = find_texture(ps, &ct)))
+            FAIL(ps, "cross needs a texture's name");
+        next(ps);
+    } else if (p && !strcmp(p->name, "stretch")) {
         ap->nu = ap->nv = 1;
     } else if (p && !strcmp(p->name, "region")) {
         int r = (int)ranged(ps, p->name, p->min, p->max, 1);
@@ -653,6 +665,31 @@ static int apply_special(struct parser *ps, const struct tex_param *p, const str
         return 0;
     }
     return 1;
+}
+
+/* The projection's frame (thesis 5.2.1.3): y along the axis, then the block's rotations and
+ * translations, as POV-Ray's texture transforms; checked against the mapping. */
+static void apply_projection(struct parser *ps, struct tex_apply *ap, unsigned long long seen,
+                             const struct tok *at)
+{
+    tex_v3 a = ap->axis;
+    if (!(tex_v3_dot(a, a) > 1e-24))
+        fail_at(ps, at, 0, "the projection axis must not be zero (got %g %g %g)", a.x, a.y, a.z);
+    if (!(ap->wave[1] > 0))
+        fail_at(ps, at, 0, "wave needs a wavelength L > 0 (got %g)", ap->wave[1]);
+    if (ap->mapping == TEX_MAP_CROSS && !ap->cross)
+        fail_at(ps, at, 0, "mapping cross needs 'cross TEXTURE', the map on the y-z plane");
+    if (seen & row_bit(tex_apply_rows, "axis")) {
+        tex_xform f;
+        xf_frame(&f, tex_v3_make(0, 0, 0), a, 1, 1);
+        tex_xform_mul(&ap->place, &ap->place, &f);
+        ap->placed = 1;
+    }
+    if (ap->placed && ap->mapping == TEX_MAP_NATURAL)
+        fail_at(ps, at, 0, "axis, translate and rotate place projections; mapping natural "
+                           "follows the shape's own (u,v)");
+    if (ap->placed && tex_xform_invert(&ap->to_tex, &ap->place) < 0)
+        fail_at(ps, at, 0, "the texture's transform is singular");
 }
 
 static struct tex_apply *parse_apply(struct parser *ps)
@@ -670,10 +707,12 @@ static struct tex_apply *parse_apply(struct parser *ps)
     ap->tex = tx;
     ap->line = at.line;
     ap->col = at.col;
+    tex_xform_identity(&ap->place);
     unsigned long long seen =
         read_block(ps, tex_apply_rows, -1, ap, apply_special, ap, "an apply block");
     if ((seen & row_bit(tex_apply_rows, "window")) && !(ap->u2 > ap->u1 && ap->v2 > ap->v1))
         fail_at(ps, &at, 0, "window needs u1 < u2 and v1 < v2");
+    apply_projection(ps, ap, seen, &at);
     if (ap->mapping == TEX_MAP_SOLID && tx->field && !tx->solid && !tx->mip)
         fail_at(ps, &at, 0, "texture '%s' is 2D; add 'solid' to it", tx->name);
     return ap;

@@ -251,7 +251,13 @@ static inline double clamp01(double x)
 static inline int plane_planar(const struct tex_apply *ap, const struct tex_object *leaf)
 {
     return (ap->mapping == TEX_MAP_NATURAL || ap->mapping == TEX_MAP_PLANAR) &&
-           leaf->kind == TEX_SHAPE_PLANE;
+           leaf->kind == TEX_SHAPE_PLANE && !ap->placed;
+}
+
+/* The wavy projection's shift of u at height y of the texture's frame */
+static inline double wave_at(const struct tex_apply *ap, double y)
+{
+    return ap->wave[0] * sin(2 * M_PI * y / ap->wave[1]);
 }
 
 /* map_point_at for every mapping but plane_planar */
@@ -264,7 +270,17 @@ static int map_point_other(const struct tex_apply *ap, const struct tex_object *
     uvw[2] = 0;
     if (mp == TEX_MAP_NATURAL)
         return tex_shape_methods[leaf->kind].uv(leaf, *pl, &uvw[0], &uvw[1]);
-    if (mp == TEX_MAP_WORLD || (mp == TEX_MAP_SOLID && !(leaf->root && leaf->root->bounded))) {
+    int bounded_solid = mp == TEX_MAP_SOLID && leaf->root && leaf->root->bounded;
+    tex_v3 Pt, plt;
+    if (ap->placed && (mp == TEX_MAP_WORLD || mp == TEX_MAP_SOLID)) {
+        /* about the world's origin, or the solid's box centre */
+        tex_v3 c = bounded_solid ? tex_v3_scale(tex_v3_add(leaf->root->wb.lo, leaf->root->wb.hi),
+                                                0.5)
+                                 : tex_v3_make(0, 0, 0);
+        Pt = tex_v3_add(c, tex_xform_point(&ap->to_tex, tex_v3_sub(*P, c)));
+        P = &Pt;
+    }
+    if (mp == TEX_MAP_WORLD || (mp == TEX_MAP_SOLID && !bounded_solid)) {
         uvw[0] = fract(P->x * ap->scale);
         uvw[1] = fract(-P->y * ap->scale);
         uvw[2] = fract(P->z * ap->scale);
@@ -286,6 +302,10 @@ static int map_point_other(const struct tex_apply *ap, const struct tex_object *
     int bounded = tex_shape_methods[leaf->kind].bounds(leaf, &b);
     tex_v3 c = bounded ? tex_v3_scale(tex_v3_add(b.lo, b.hi), 0.5) : tex_v3_make(0, 0, 0);
     tex_v3 e = bounded ? tex_v3_scale(tex_v3_sub(b.hi, b.lo), 0.5) : tex_v3_make(1, 1, 1);
+    if (ap->placed) { /* the texture's frame about the shape's centre */
+        plt = tex_v3_add(c, tex_xform_point(&ap->to_tex, tex_v3_sub(*pl, c)));
+        pl = &plt;
+    }
     tex_v3 q = tex_v3_make((pl->x - c.x) / e.x, (pl->y - c.y) / e.y, (pl->z - c.z) / e.z);
     switch (mp) {
     case TEX_MAP_SPHERE:
@@ -299,14 +319,29 @@ static int map_point_other(const struct tex_apply *ap, const struct tex_object *
         uvw[1] = bounded ? fmin(1, fmax(0, (1 - q.y) / 2)) : fract(-pl->y * ap->scale);
         return face;
     }
-    default: /* planar: x and z across the box */
+    case TEX_MAP_CROSS: /* the x-y plane's map at (u, v), the y-z plane's at (w, v) */
         if (!bounded) {
             uvw[0] = fract(pl->x * ap->scale);
+            uvw[1] = fract(-pl->y * ap->scale);
+            uvw[2] = fract(pl->z * ap->scale);
+        } else {
+            uvw[0] = clamp01((q.x + 1) / 2);
+            uvw[1] = clamp01((1 - q.y) / 2);
+            uvw[2] = clamp01((q.z + 1) / 2);
+        }
+        return face;
+    default: /* planar: x and z across the box; wavy: swept along a sine path in y */
+        if (!bounded) {
+            uvw[0] = pl->x * ap->scale;
             uvw[1] = fract(pl->z * ap->scale);
         } else {
-            uvw[0] = fmin(1, fmax(0, (q.x + 1) / 2));
-            uvw[1] = fmin(1, fmax(0, (q.z + 1) / 2));
+            uvw[0] = clamp01((q.x + 1) / 2);
+            uvw[1] = clamp01((q.z + 1) / 2);
         }
+        if (mp == TEX_MAP_WAVY)
+            uvw[0] += wave_at(ap, pl->y);
+        if (!bounded || mp == TEX_MAP_WAVY)
+            uvw[0] = fract(uvw[0]);
         return face;
     }
 }
@@ -827,6 +862,20 @@ static tex_v3 bump_tilt(const struct tex_apply *ap, const struct placement *pm,
                         strength);
 }
 
+/* A cross mapping's value (thesis 5.2.1.3): the map on the x-y plane (f, at u, v) combined
+ * with the second map on the y-z plane, at (w, v), w placed as u is. */
+static void cross_combine(const struct tex_apply *ap, const struct placement *pm,
+                          const double uvw[3], double fw2, float f[3])
+{
+    float g[3];
+    double w = (uvw[2] - ap->u1) * pm->iu * ap->nu;
+    texture_lookup(ap->cross, w, uvw[1], 0, fw2, g);
+    for (int k = 0; k < 3; k++)
+        f[k] = ap->combine == TEX_COMBINE_PRODUCT ? f[k] * g[k]
+               : ap->combine == TEX_COMBINE_MIN   ? fminf(f[k], g[k])
+                                                   : fmaxf(f[k], g[k]);
+}
+
 /* The quantities of the hit that do not depend on the texture (tex_quantities). */
 static void hit_quantities(const struct tex_shade_at *at, const tex_v3 *pl, const tex_v3 *N,
                            double q[TEX_Q_COUNT])
@@ -873,6 +922,8 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
         double fw2 = filter ? footprint_width2(ap, pm, leaf, &fp, P, &pl, face, u0, v0) : 0;
         /* one lookup: region maps and primitives ignore the footprint */
         int region = texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw2, f);
+        if (ap->mapping == TEX_MAP_CROSS)
+            cross_combine(ap, pm, uvw, fw2, f);
         if (q) {
             double w2 = filter ? fw2 : footprint_width2(ap, pm, leaf, &fq, P, &pl, face, u0, v0);
             q[TEX_Q_FOOTPRINT] = sqrt(w2);

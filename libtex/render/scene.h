@@ -315,7 +315,10 @@ int tex_object_bounds(struct tex_object *ob);
 /* ---- textures, mappings, application functions --------------------------- */
 
 enum tex_mapping { TEX_MAP_NATURAL, TEX_MAP_SPHERE, TEX_MAP_CYLINDER, TEX_MAP_CONE,
-                   TEX_MAP_BOX, TEX_MAP_PLANAR, TEX_MAP_SOLID, TEX_MAP_WORLD };
+                   TEX_MAP_BOX, TEX_MAP_PLANAR, TEX_MAP_SOLID, TEX_MAP_WORLD, TEX_MAP_WAVY,
+                   TEX_MAP_CROSS };
+/* How a cross mapping combines its two maps */
+enum tex_combine { TEX_COMBINE_PRODUCT, TEX_COMBINE_MIN, TEX_COMBINE_MAX };
 
 struct tex_texture {
     char *name;
@@ -388,6 +391,14 @@ struct tex_apply {
     double u1, v1, u2, v2; /* the texture window */
     double nu, nv;         /* repeat counts (1 1: stretch) */
     double scale;          /* world / planar mapping: texture units per world unit */
+    /* projections (thesis 5.2.1.3): the texture's frame relative to the object, its y axis
+     * along `axis`, then rotated and translated; to_tex takes points into it */
+    tex_v3 axis;
+    tex_xform place, to_tex;
+    int placed;                        /* 1: to_tex is not the identity */
+    double wave[2];                    /* wavy: amplitude (in u) and wavelength (along y) */
+    const struct tex_texture *cross;   /* cross: the map on the y-z plane */
+    enum tex_combine combine;          /* cross: how the two maps combine */
     struct tex_appfn *fns;
     struct tex_apply *next;
     int line, col;
