@@ -286,3 +286,59 @@ bad "wavy amplitude NaN" 'texture t noise { } surface s { apply t { mapping wavy
 bad "wavy wavelength 0" 'texture t noise { } surface s { apply t { mapping wavy wave 0.1 0 Kd = f } }'
 bad "cross without its second map" 'texture t noise { } surface s { apply t { mapping cross Kd = f } }'
 bad "translate with mapping natural" 'texture t noise { } surface s { apply t { translate 1 0 0 Kd = f } }'
+
+# ---- the environment (Blinn-Newell reflection mapping) ----
+# a ramp: R = u, G = v at texel centres, so a direction's colour is its (u, v)
+python3 - "$T/ramp.pfm" <<'P'
+import struct, sys
+w, h = 64, 32
+with open(sys.argv[1], 'wb') as f:
+    f.write(b'PF\n%d %d\n-1.0\n' % (w, h))
+    for row in range(h):          # bottom row first
+        y = h - 1 - row
+        for x in range(w):
+            f.write(struct.pack('<3f', (x + 0.5) / w, (y + 0.5) / h, 0.25))
+P
+t_op mul "$T/ramp.pfm" 0 | t_op add - 0.3 -o "$T/grey.exr"   # constant 0.3
+cat >"$T/mirror.scene" <<S
+image 32 32
+camera { eye 0 0 -3 look 0 0 0 fov 60 }
+ambient 0 0 0
+environment "$T/grey.exr" { intensity 2 }
+surface mirror { Ka 0 Kd 0 Ks 0 Kr 1 }
+sphere { radius 1 surface mirror }
+S
+t_apply "$T/mirror.scene" -o "$T/mirror.exr" &&
+    approx "$(info_json "$T/mirror.exr" stats 0 min)" 0.6 1e-6 &&
+    approx "$(info_json "$T/mirror.exr" stats 2 max)" 0.6 1e-6 &&
+    ok "a mirror sphere (Kr 1) in a constant environment c shows c, as the background does" ||
+    notok "mirror in a constant environment" "$(t_info "$T/mirror.exr" | head -3)"
+# directions: a camera at the origin looking along d sees the texel of d at its centre
+r=""
+for d in "0 0 1" "1 0 0" "0.2 0 -1" "-1 0 0.0001" "1 1 1" "0.3 -0.7 0.2"; do
+    printf 'image 3 3\ncamera { eye 0 0 0 look %s fov 1 }\nfilter off\nenvironment "%s"\n' \
+        "$d" "$T/ramp.pfm" >"$T/env.scene"
+    t_apply "$T/env.scene" -o "$T/env.exr" 2>/dev/null || r="$r fail"
+    got=$(pixels "$T/env.exr" | awk '$1 == 1 && $2 == 1 { print $3, $4 }')
+    r="$r $(python3 -c '
+import math, sys
+x, y, z = map(float, sys.argv[1].split()); l = math.sqrt(x*x + y*y + z*z)
+u = 0.5 + math.atan2(x, z) / (2 * math.pi); v = math.acos(y / l) / math.pi
+gu, gv = map(float, sys.argv[2].split())
+print("ok" if abs(gu - u) < 2e-3 and abs(gv - v) < 2e-3 else "bad(%s:%g,%g/%g,%g)" % (sys.argv[1], gu, gv, u, v))' "$d" "$got")"
+done
+[ "$(tr ' ' '\n' <<<"$r" | grep -vc '^ok$\|^$')" = 0 ] &&
+    ok "a lat-long map's texels appear in the directions that map to them" || notok "environment directions" "$r"
+printf 'image 3 3\ncamera { eye 0 0 0 look 0 0 1 fov 1 }\nfilter off\nenvironment "%s" { rotate 0 90 0 }\n' \
+    "$T/ramp.pfm" >"$T/envr.scene"
+t_apply "$T/envr.scene" -o "$T/envr.exr" 2>/dev/null
+u=$(pixels "$T/envr.exr" | awk '$1 == 1 && $2 == 1 { print $3 }')
+approx "$u" 0.25 2e-3 && ok "rotate 0 90 0 turns the environment a quarter: +z sees u = 0.25" ||
+    notok "environment rotate" "u $u"
+printf 'environment "/nonexistent/sky.exr"\n' >"$T/noenv.scene"
+check_fails "a missing environment map: exit 1" 1 t_apply "$T/noenv.scene" -o "$T/bad.png"
+grep -q "noenv.scene:1:13: cannot read the environment map" "$T/.err" && [ ! -e "$T/bad.png" ] &&
+    ok "a missing environment map: file:line:col, no image" || notok "missing environment" "$(cat "$T/.err")"
+t_fractal --mode fbm -s 128x64 -f 6 | t_palette sky |
+    t_apply "${TEXTURA_TOP:-.}/patterns/mirror_ball.scene" -s 80x48 --spp 1 -o "$T/mirror_ball.exr" &&
+    golden "patterns/mirror_ball.scene golden" "$T/mirror_ball.exr" apply_mirror_ball.exr 1e-5

@@ -30,9 +30,9 @@ static const struct tex_param rows[] = {
     TEX_STRING(struct opts, model, 0, NULL, "NAME",
                "shade every surface with this model (phong|cook-torrance)"),
     TEX_STRING(struct opts, help_scene, 0, NULL, "BLOCK",
-               "list the words of a scene block "
-               "(settings|camera|light|texture|surface|apply|object), or of application "
-               "functions' expressions (quantities|functions), and exit"),
+               "list the words of a scene block (settings|camera|light|environment|texture|"
+               "surface|apply|object), or of application functions' expressions "
+               "(quantities|functions), and exit"),
     TEX_STRING(struct opts, help_scene_mdoc, 0, NULL, "BLOCK",
                "the same list as mdoc, for t_apply(5)"),
     {0}};
@@ -136,8 +136,8 @@ __attribute__((noreturn)) static void help_scene(const char *block, int mdoc)
     while (b->name && strcmp(b->name, block))
         b++;
     if (!b->name)
-        tex_usage_die("--help-scene%s must be settings|camera|light|texture|surface|apply|object"
-                      "|quantities|functions (got '%s')", mdoc ? "-mdoc" : "", block);
+        tex_usage_die("--help-scene%s must be settings|camera|light|environment|texture|surface|"
+                      "apply|object|quantities|functions (got '%s')", mdoc ? "-mdoc" : "", block);
     if (mdoc)
         puts(".Bl -tag -width Ds");
     for (const struct tex_param *p = b->rows; p->name; p++) {

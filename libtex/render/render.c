@@ -201,7 +201,16 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, double weigh
     const struct tex_scene *s = c->s;
     struct tex_hit h;
     if (!tex_scene_trace(s, &r->o, &r->d, 0, INFINITY, &h)) {
-        tex_colour_copy(out, c->n, c->background);
+        if (!s->env.map) {
+            tex_colour_copy(out, c->n, c->background);
+            return;
+        }
+        float rgb[3];
+        tex_environment_eval(&s->env, &r->d, s->settings.filter ? r->spread : 0, rgb);
+        if (s->cs.mode == TEX_COLOUR_RGB)
+            out->v[0] = rgb[0], out->v[1] = rgb[1], out->v[2] = rgb[2];
+        else
+            s->cs.from_rgb(&s->cs, rgb, TEX_SPECTRUM_ILLUMINANT, out);
         return;
     }
     tex_v3 P = tex_v3_madd(r->o, r->d, h.t);

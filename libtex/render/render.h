@@ -61,7 +61,7 @@ const char *tex_scene_warnings(const struct tex_scene *s);
 tex_map *tex_render(struct tex_scene *s, void (*progress)(long done, long total, void *arg),
                     void *arg);
 
-/* The scene's blocks by name ("settings", "camera", "light", "texture",
+/* The scene's blocks by name ("settings", "camera", "light", "environment", "texture",
  * "surface", "apply", "object") with their parameter rows, for help and the man page;
  * the list ends with a NULL name. */
 struct tex_scene_block {

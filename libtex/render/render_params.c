@@ -192,8 +192,16 @@ const struct tex_param tex_object_rows[] = {
                 "scale the object by S, or by X, Y and Z along the axes (not 0)"),
     {0}};
 
+const struct tex_param tex_environment_rows[] = {
+    TEX_ROW("intensity", struct tex_environment, intensity, TEX_P_REAL, "1", 0, 1e9, 1, 0, "I",
+            "the map's values times I"),
+    TEX_ROW("rotate", struct tex_environment, rotate, TEX_P_REAL, "0,0,0", -1e6, 1e6, 3, 0,
+            "X Y Z", "turn the map X degrees about x, then Y about y, then Z about z"),
+    {0}};
+
 const struct tex_scene_block tex_scene_blocks[] = {
     {"settings", tex_settings_rows}, {"camera", tex_camera_rows}, {"light", tex_light_rows},
+    {"environment", tex_environment_rows},
     {"texture", tex_field_rows},     {"surface", tex_surface_rows}, {"apply", tex_apply_rows},
     {"object", tex_object_rows},     {NULL, NULL}};
 

@@ -636,6 +636,7 @@ static void parse_fns(struct parser *ps, struct tex_apply *ap, int region)
 }
 
 static void xf_frame(tex_xform *t, tex_v3 origin, tex_v3 a, double ylen, double r);
+static void xf_rotate(tex_xform *t, tex_v3 r);
 static int transform_word(struct parser *ps, const struct tok *kt, tex_xform *acc);
 
 /* stretch, region N { ... }, translate, rotate, cross and the application functions of an
@@ -913,6 +914,18 @@ static void xf_rot(tex_xform *t, int axis, double deg)
     t->m[j][i] = s, t->m[j][j] = c;
 }
 
+/* t after turns of r.x degrees about x, then r.y about y, then r.z about z */
+static void xf_rotate(tex_xform *t, tex_v3 r)
+{
+    tex_xform a, b, c;
+    xf_rot(&a, 0, r.x);
+    xf_rot(&b, 1, r.y);
+    xf_rot(&c, 2, r.z);
+    tex_xform_mul(&a, &b, &a);
+    tex_xform_mul(&a, &c, &a);
+    tex_xform_mul(t, &a, t);
+}
+
 /* A frame taking the y axis to unit a. */
 static void xf_frame(tex_xform *t, tex_v3 origin, tex_v3 a, double ylen, double r)
 {
@@ -937,13 +950,8 @@ static int transform_word(struct parser *ps, const struct tok *kt, tex_xform *ac
     if (is_word(kt, "translate")) {
         xf_translate(&t, vec(ps));
     } else if (is_word(kt, "rotate")) {
-        tex_v3 r = vec(ps);
-        tex_xform a, b, c;
-        xf_rot(&a, 0, r.x);
-        xf_rot(&b, 1, r.y);
-        xf_rot(&c, 2, r.z);
-        tex_xform_mul(&t, &b, &a);
-        tex_xform_mul(&t, &c, &t);
+        tex_xform_identity(&t);
+        xf_rotate(&t, vec(ps));
     } else if (is_word(kt, "scale")) {
         double sx = number(ps), sy = sx, sz = sx;
         if (ps->t.kind == T_NUM) {
@@ -1289,6 +1297,45 @@ static void parse_light(struct parser *ps)
         fail_at(ps, &at, 0, "area light edges must span a parallelogram");
 }
 
+/* environment FILE [{ intensity I rotate X Y Z }] */
+static void parse_environment(struct parser *ps, const struct tok *kt)
+{
+    struct tex_environment *e = &ps->s->env;
+    struct tok ft = ps->t;
+    if (e->map)
+        fail_at(ps, kt, 0, "only one environment");
+    if (ft.kind != T_STR && ft.kind != T_ID && !is_punct(&ft, '-'))
+        FAIL(ps, "expected a map file or '-' after 'environment'");
+    char *path = pstrdup(ps, ft.text, ft.len);
+    next(ps);
+    if (!strcmp(path, "-")) {
+        if (ps->stdin_used)
+            fail_at(ps, &ft, 0, "only one map can come from standard input");
+        ps->stdin_used = 1;
+    }
+    if (tex_params_defaults(tex_environment_rows, e) < 0)
+        fail_at(ps, &ft, 0, "%s", tex_errmsg());
+    if (is_punct(&ps->t, '{'))
+        read_block(ps, tex_environment_rows, -1, e, NULL, NULL, "the environment");
+    tex_map *m = tex_map_read(path);
+    if (!m)
+        fail_at(ps, &ft, 1, "cannot read the environment map '%s': %s", path, tex_errmsg());
+    struct tex_texture *tx = calloc(1, sizeof *tx);
+    if (!tx) {
+        tex_map_free(m);
+        fail_at(ps, &ft, 1, "out of memory");
+    }
+    add_texture(ps, tx); /* freed with the scene's textures */
+    tx->name = path;
+    e->map = tx;
+    texture_map(ps, tx, m, &ft);
+    tex_xform r;
+    tex_xform_identity(&r);
+    xf_rotate(&r, e->rotate);
+    if (tex_xform_invert(&e->to_map, &r) < 0)
+        fail_at(ps, &ft, 0, "the environment's rotation is singular");
+}
+
 static void parse_camera(struct parser *ps)
 {
     read_block(ps, tex_camera_rows, -1, ps->s, NULL, NULL, "the camera");
@@ -1367,6 +1414,8 @@ static void parse_scene(struct parser *ps)
             parse_texture(ps);
         } else if (is_word(&kt, "surface")) {
             parse_surface(ps);
+        } else if (is_word(&kt, "environment")) {
+            parse_environment(ps, &kt);
         } else if (!settings_word(ps, &kt)) {
             char b[64];
             fail_at(ps, &kt, 0, "unknown word %s at the top of the scene",

@@ -484,12 +484,23 @@ struct tex_settings {
 
 struct tex_bvh;
 
+/* `environment FILE { ... }`: a lat-long map (Blinn and Newell's reflection map, thesis
+ * 2.2.2) that rays leaving the scene look up by their direction: u = 0.5 + atan2(x, z) / 2pi
+ * (+z, the default view, at the map's centre), v = acos(y) / pi (up at the top row). */
+struct tex_environment {
+    struct tex_texture *map;  /* NULL: the background colour */
+    tex_v3 rotate;            /* degrees about x, y, z, as objects turn */
+    double intensity;
+    tex_xform to_map;         /* world directions into the map's frame */
+};
+
 struct tex_scene {
     char *file;
     tex_v3 eye, look, up;
     double fov;                 /* horizontal, degrees */
     struct tex_settings settings;
     float ambient[3], background[3];
+    struct tex_environment env;
     struct tex_colour_space cs;
     struct tex_light *lights;
     int nlights;
@@ -527,6 +538,12 @@ extern const struct tex_param tex_object_rows[];   /* SHAPE { }, over struct tex
                                                     * kinds: bit enum tex_shape_kind; surface
                                                     * and the transforms are also CSG words */
 extern const struct tex_param tex_bump_row;        /* bump = h (also normal) */
+extern const struct tex_param tex_environment_rows[]; /* environment FILE { }, over
+                                                       * struct tex_environment */
+/* The environment's colour (RGB, times its intensity) in direction d (unit, world), for a
+ * ray whose footprint spreads by `spread` radians (0: no filtering). */
+void tex_environment_eval(const struct tex_environment *e, const tex_v3 *d, double spread,
+                          float rgb[3]);
 /* The row of an application function's parameter: its name and the range its
  * results are clamped to. */
 const struct tex_param *tex_sparam_row(enum tex_sparam sp);
