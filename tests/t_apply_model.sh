@@ -342,3 +342,98 @@ grep -q "noenv.scene:1:13: cannot read the environment map" "$T/.err" && [ ! -e 
 t_fractal --mode fbm -s 128x64 -f 6 | t_palette sky |
     t_apply "${TEXTURA_TOP:-.}/patterns/mirror_ball.scene" -s 80x48 --spp 1 -o "$T/mirror_ball.exr" &&
     golden "patterns/mirror_ball.scene golden" "$T/mirror_ball.exr" apply_mirror_ball.exr 1e-5
+
+# ---- every shading parameter a target ----
+# a floor seen from above under a point light: the highlight's spread, with m from a map
+ct_scene() { # M-EXPR
+    cat <<S
+image 64 64
+camera { eye 0 4 -0.001 look 0 0 0 fov 60 }
+ambient 0 0 0
+light point { position 0 3 0 intensity 3 }
+texture half file "$T/half.exr"
+surface s { model cook-torrance Kd 0 0 0 ior 1.5 specular 1 facets beckmann 0.1
+    apply half { mapping planar Ka = 0 $1 } }
+plane { normal 0 1 0 distance 0 surface s }
+S
+}
+t_op mul "$T/ramp.pfm" 0 | t_op add - 1 -o "$T/half.exr"
+ct_scene "" >"$T/ct0.scene"; ct_scene "m = 0.1 + 0.3 * f" >"$T/ct1.scene"
+t_apply "$T/ct0.scene" -o "$T/ct0.exr" && t_apply "$T/ct1.scene" -o "$T/ct1.exr"
+# light reaching pixels away from the highlight's centre: a rougher surface spreads it
+edge0=$(pixels "$T/ct0.exr" | awk '$1 == 32 && $2 == 4 { print $3 }')
+edge1=$(pixels "$T/ct1.exr" | awk '$1 == 32 && $2 == 4 { print $3 }')
+awk -v a="$edge0" -v b="$edge1" 'BEGIN { exit !(b > 2 * a && b > 0) }' &&
+    ok "a Cook-Torrance roughness map (m = 0.1 + 0.3 f) widens the highlight where f is large" ||
+    notok "roughness map widens the highlight" "edge $edge0 -> $edge1"
+ct_scene "s = 0.5 * f" >"$T/cts.scene"
+t_apply "$T/cts.scene" -o "$T/cts.exr"
+c0=$(pixels "$T/ct0.exr" | awk '$1 == 32 && $2 == 32 { print $3 }')
+c1=$(pixels "$T/cts.exr" | awk '$1 == 32 && $2 == 32 { print $3 }')
+awk -v c="$c0" "BEGIN { exit !(c > 0.01) }" && approx "$c1" "$(awk -v c="$c0" "BEGIN { print c / 2 }")" 1e-4 &&
+    ok "a specular-fraction map (s = 0.5 f) halves the highlight" || notok "s map" "$c0 -> $c1"
+# a normal map of the flat normal changes nothing; a tilted one moves the shading
+t_op mul "$T/ramp.pfm" 0 | t_op add - '0.5,0.5,1' -o "$T/flat.exr" 2>/dev/null ||
+    python3 -c '
+import struct, sys
+with open(sys.argv[1], "wb") as f:
+    f.write(b"PF\n8 8\n-1.0\n"); f.write(struct.pack("<3f", 0.5, 0.5, 1.0) * 64)' "$T/flat.pfm"
+[ -e "$T/flat.exr" ] || t_convert "$T/flat.pfm" -o "$T/flat.exr"
+nmap_scene() { # TEXTURE-FILE EXPR
+    cat <<S
+image 48 48
+camera { eye 0 1.5 -3 look 0 0 0 fov 50 }
+light point { position 2 3 -2 intensity 1.5 }
+texture nm file "$1"
+surface s { Kd 0.7 Ks 0.5 n 30 $2 }
+sphere { radius 1 surface s }
+S
+}
+nmap_scene "$T/flat.exr" "" >"$T/nm0.scene"
+nmap_scene "$T/flat.exr" "apply nm { mapping planar normal = f }" >"$T/nm1.scene"
+t_apply "$T/nm0.scene" -o "$T/nm0.exr" && t_apply "$T/nm1.scene" -o "$T/nm1.exr" &&
+    same "a normal map of the flat normal changes nothing" "$T/nm0.exr" "$T/nm1.exr" 0
+t_d_noise --normal --strength 3 -f 8 -s 128 -o "$T/dn.exr"
+nmap_scene "$T/dn.exr" "apply nm { mapping sphere normal = f }" >"$T/nm2.scene"
+t_apply "$T/nm2.scene" -o "$T/nm2.exr"
+d=$(maxdiff "$T/nm0.exr" "$T/nm2.exr")
+awk -v d="$d" 'BEGIN { exit !(d > 0.05) }' && ok "t_d_noise --normal as a normal map changes the shading" ||
+    notok "normal map from t_d_noise" "max diff $d"
+t_d_noise -f 8 -s 128 -o "$T/grad.exr"
+nmap_scene "$T/grad.exr" "apply nm { mapping sphere gradient = 8 * f }" >"$T/gr.scene"
+t_apply "$T/gr.scene" -o "$T/gr.exr"
+d=$(maxdiff "$T/nm0.exr" "$T/gr.exr")
+awk -v d="$d" 'BEGIN { exit !(d > 0.02) }' && ok "t_d_noise's gradient as a bump source changes the shading" ||
+    notok "gradient bump" "max diff $d"
+nmap_scene "$T/grad.exr" "apply nm { mapping sphere gradient = 0 * f }" >"$T/gr0.scene"
+t_apply "$T/gr0.scene" -o "$T/gr0.exr" && same "a zero gradient changes nothing" "$T/nm0.exr" "$T/gr0.exr" 0
+# two surfaces blended by a map: w = 0 is the first, w = 1 the second, w = 1/2 their mean
+blend_scene() { # W-EXPR
+    cat <<S
+image 48 48
+camera { eye 0 1.5 -3 look 0 0 0 fov 50 }
+light point { position 2 3 -2 intensity 1.5 }
+texture half file "$T/half.exr"
+surface rust { Kd 0.5 0.2 0.05 Ks 0.05 n 5 }
+surface steel { Kd 0.3 0.3 0.32 Ks 0.8 n 80 blend rust apply half { mapping sphere blend = $1 } }
+surface rustonly { Kd 0.5 0.2 0.05 Ks 0.05 n 5 }
+sphere { radius 1 surface SURF }
+S
+}
+blend_scene "0 * f" | sed 's/SURF/steel/' >"$T/b0.scene"
+blend_scene "f" | sed 's/SURF/steel/' >"$T/b1.scene"
+blend_scene "0.5 * f" | sed 's/SURF/steel/' >"$T/bh.scene"
+blend_scene "0 * f" | sed 's/SURF/rustonly/' >"$T/br.scene"
+sed 's/ blend rust apply half { mapping sphere blend = 0 \* f }//' "$T/b0.scene" >"$T/bs.scene"
+for b in b0 b1 bh br bs; do t_apply "$T/$b.scene" -o "$T/$b.exr"; done
+same "blend = 0 shades the first surface alone" "$T/b0.exr" "$T/bs.exr" 0
+same "blend = 1 shades the blended surface" "$T/b1.exr" "$T/br.exr" 1e-6
+t_op add "$T/bs.exr" "$T/br.exr" | t_op mul - 0.5 -o "$T/bmean.exr"
+same "blend = 1/2 is the mean of the two surfaces' light" "$T/bh.exr" "$T/bmean.exr" 1e-5
+
+bad "a normal map of 1 channel" "texture g file \"$T/grad.exr\" surface s { apply g { normal = f } }"
+t_noise -s 8 -o "$T/one.exr"
+bad "a normal map of 1 channel (a map)" "texture g file \"$T/one.exr\" surface s { apply g { normal = f } }"
+bad "blend naming an unknown surface" 'texture t noise { } surface s { blend nosuch apply t { blend = f } }'
+bad "blend = h without blend SURFACE" 'texture t noise { } surface s { apply t { blend = f } }'
+bad "m on a Phong surface" 'texture t noise { } surface s { apply t { m = f } }'

@@ -93,6 +93,16 @@ struct hit_frame {
 
 static void trace(const struct ctx *c, const tex_ray *r, int depth, double weight, tex_colour *out);
 
+/* One light sample of irradiance E from L through m's shading model. */
+static inline void shade_direct(const struct tex_material *m, const tex_v3 *N, const tex_v3 *V,
+                                const tex_v3 *L, const tex_colour *E, int n, tex_colour *out)
+{
+    if (m->model == &tex_shading_phong) /* inline: no call for the common model */
+        tex_phong_direct(m, &N->x, &V->x, &L->x, E, n, out);
+    else
+        m->model->direct(m, &N->x, &V->x, &L->x, E, n, out);
+}
+
 /* Direct lighting: every light sample that reaches P unshadowed, through the
  * surface's shading model (pbrt's SampleLd). */
 static void direct_light(const struct ctx *c, const struct tex_material *m,
@@ -123,10 +133,17 @@ static void direct_light(const struct ctx *c, const struct tex_material *m,
                 continue;
             tex_colour E;
             tex_colour_scale(&E, n, &l->e, (float)(fatt * sh));
-            if (m->model == &tex_shading_phong) /* inline: no call for the common model */
-                tex_phong_direct(m, &N->x, &V->x, &L.x, &E, n, out);
-            else
-                m->model->direct(m, &N->x, &V->x, &L.x, &E, n, out);
+            if (!m->blend_m) {
+                shade_direct(m, N, V, &L, &E, n, out);
+            } else { /* a mixture of two surfaces: each one's light, weighted */
+                tex_colour a, b;
+                tex_colour_set(&a, n, 0);
+                tex_colour_set(&b, n, 0);
+                shade_direct(m, N, V, &L, &E, n, &a);
+                shade_direct(m->blend_m, N, V, &L, &E, n, &b);
+                for (int i = 0; i < n; i++)
+                    out->v[i] += (1 - m->blend) * a.v[i] + m->blend * b.v[i];
+            }
         }
     }
 }
@@ -170,6 +187,14 @@ static void secondary(const struct ctx *c, const tex_ray *r, const struct hit_fr
         m->ior = f->entering ? n2 / n1 : n1 / n2;
     }
     m->model->weights(m, cosi, n, &kr, &kt);
+    if (m->blend_m) { /* the two surfaces' weights, mixed */
+        tex_colour kr1, kt1;
+        m->blend_m->model->weights(m->blend_m, cosi, n, &kr1, &kt1);
+        for (int i = 0; i < n; i++) {
+            kr.v[i] = (1 - m->blend) * kr.v[i] + m->blend * kr1.v[i];
+            kt.v[i] = (1 - m->blend) * kt.v[i] + m->blend * kt1.v[i];
+        }
+    }
     tex_ray rr = {*f->Pout, tex_reflect(r->d, *f->N), f->width, r->spread, r->media, f->dist};
     if (tex_v3_dot(rr.d, *f->Ngv) <= 0)
         rr.d = tex_reflect(r->d, *f->Ngv);
@@ -191,6 +216,12 @@ static void secondary(const struct ctx *c, const tex_ray *r, const struct hit_fr
         trace(c, &rr, depth + 1, wr, &I);
         tex_colour_mmadd(out, n, &kr, &I, 1);
     }
+}
+
+/* Does the material send rays on?  An opaque Phong mirror of Kr 0 does not. */
+static inline int reflects(const struct tex_material *m)
+{
+    return !(m->kr <= 0 && m->kt <= 0 && m->model == &tex_shading_phong);
 }
 
 /* Whitted's recursion: ambient, direct light, then reflection and
@@ -218,9 +249,9 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, double weigh
     int entering = tex_v3_dot(r->d, Ng) < 0;
     tex_v3 N = entering ? Ng : tex_v3_scale(Ng, -1);
     double width = fabs(r->width + h.t * r->spread); /* a focused beam crosses 0 */
-    struct tex_material m;
+    struct tex_material m[2]; /* m[1]: a blended surface's */
     struct tex_shade_at at = {h.leaf, &P, &r->d, width, r->dist + h.t, depth};
-    tex_resolve_material(s, surface_of(s, h.leaf), &at, &N, &m);
+    tex_resolve_material(s, surface_of(s, h.leaf), &at, &N, m);
     tex_v3 V = tex_v3_scale(r->d, -1);
     double e = eps_at(P);
     /* offset along the geometric normal so bumped normals cannot start rays inside */
@@ -228,10 +259,10 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, double weigh
     tex_v3 Pout = tex_v3_madd(P, Ngv, e), Pin = tex_v3_madd(P, Ngv, -e);
     struct hit_frame f = {&h, &P, &N, &Ngv, &V, &Pout, &Pin, width, at.dist, entering};
 
-    tex_colour_mul(out, c->n, c->ambient, &m.ka);
-    direct_light(c, &m, &f, out);
-    if (depth < s->settings.depth && !(m.kr <= 0 && m.kt <= 0 && m.model == &tex_shading_phong))
-        secondary(c, r, &f, &m, depth, weight, out);
+    tex_colour_mul(out, c->n, c->ambient, &m->ka);
+    direct_light(c, m, &f, out);
+    if (depth < s->settings.depth && (reflects(&m[0]) || (m->blend_m && reflects(&m[1]))))
+        secondary(c, r, &f, m, depth, weight, out);
 }
 
 struct camera {

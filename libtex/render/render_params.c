@@ -111,15 +111,33 @@ const struct tex_param tex_surface_rows[] = {
                 "Cook-Torrance specular fraction (the diffuse one is 1 - S)"),
     TEX_SPECIAL("apply", 0, 0, NULL, "TEXTURE { ... }",
                 "apply a texture through application functions (any number, in order)"),
+    TEX_SPECIAL("blend", 0, 0, NULL, "SURFACE",
+                "the surface an application function's blend = h mixes in (shaded with its "
+                "own textures, as a mixture of the two)"),
     {0}};
 
-const struct tex_param tex_bump_row = {
-    "bump", 0, TEX_P_REAL, 0, 0, -1000, 1000, NULL, NULL, 0, "S",
-    "bump mapping: the normal tilts by S times the map's gradient (also normal)", 0, 0, 0};
+/* The targets beyond the surface's own rows (no storage: the renderer's per hit) */
+#define TARGET(name, lo, hi, meta, help) {name, 0, TEX_P_REAL, 0, 0, lo, hi, NULL, NULL, 0, meta, \
+                                          help, 0, 0, 0}
+const struct tex_param tex_target_rows[] = {
+    TARGET("bump", -1000, 1000, "S",
+           "bump mapping: the normal tilts by S times the map's gradient across the surface"),
+    TARGET("m", 0.001, 2, "M", "Cook-Torrance: Beckmann's slope of the microfacets"),
+    TARGET("s", 0, 1, "S", "Cook-Torrance: the specular fraction (the diffuse one is 1 - S)"),
+    TARGET("blend", 0, 1, "W",
+           "the weight of the surface named by the surface's blend (its light times W, this "
+           "surface's times 1 - W)"),
+    TARGET("normal", 0, 1, "R G B",
+           "a tangent-space normal map (x along u, y against v, z out), encoded 0.5 + 0.5 n as "
+           "t_filter normal and t_d_noise --normal write it"),
+    TARGET("gradient", -1e6, 1e6, "DU DV",
+           "bump mapping from a height gradient per texture unit (t_filter gradient; "
+           "t_d_noise's times its frequency): N tilts by DU grad u + DV grad v"),
+    {0}};
 
 const struct tex_param *tex_sparam_row(enum tex_sparam sp)
 {
-    return sp == TEX_SP_BUMP ? &tex_bump_row : &tex_surface_rows[sp];
+    return sp >= TEX_SP_BUMP ? &tex_target_rows[sp - TEX_SP_BUMP] : &tex_surface_rows[sp];
 }
 
 const struct tex_param tex_apply_rows[] = {
@@ -203,6 +221,7 @@ const struct tex_scene_block tex_scene_blocks[] = {
     {"settings", tex_settings_rows}, {"camera", tex_camera_rows}, {"light", tex_light_rows},
     {"environment", tex_environment_rows},
     {"texture", tex_field_rows},     {"surface", tex_surface_rows}, {"apply", tex_apply_rows},
+    {"targets", tex_target_rows},
     {"object", tex_object_rows},     {NULL, NULL}};
 
 /* lang/expr.h's functions, then the scene's own palette(NAME, x) */

@@ -606,8 +606,6 @@ static int sparam(const struct tok *t)
     for (int i = 0; i < TEX_SP_COUNT; i++)
         if (is_word(t, tex_sparam_row(i)->name))
             return i;
-    if (is_word(t, "normal"))
-        return TEX_SP_BUMP;
     return -1;
 }
 
@@ -628,7 +626,13 @@ static void parse_fns(struct parser *ps, struct tex_apply *ap, int region)
         fn->param = sp;
         fn->lo = tex_sparam_row(sp)->min; /* looked up once, not per hit */
         fn->hi = tex_sparam_row(sp)->max;
+        struct tok et = ps->t;
         fn->e = expr(ps);
+        int nc = ap->tex->mip ? ap->tex->mip[0]->nc : ap->tex->palette ? 3 : ap->tex->field->nc;
+        for (int i = 0; sp == TEX_SP_NORMAL && i < fn->e->n; i++)
+            if (fn->e->code[i].op == TEX_EOP_LEAF && fn->e->code[i].leaf == TEX_LEAF_F && nc < 3)
+                fail_at(ps, &et, 0, "a normal map needs 3 channels, and texture '%s' has %d",
+                        ap->tex->name, nc);
         while (*tail)
             tail = &(*tail)->next;
         *tail = fn;
@@ -636,6 +640,7 @@ static void parse_fns(struct parser *ps, struct tex_apply *ap, int region)
 }
 
 static void xf_frame(tex_xform *t, tex_v3 origin, tex_v3 a, double ylen, double r);
+static const struct tex_surface *find_surface(struct parser *ps, const struct tok *t);
 static void xf_rotate(tex_xform *t, tex_v3 r);
 static int transform_word(struct parser *ps, const struct tok *kt, tex_xform *acc);
 
@@ -834,6 +839,14 @@ static int surface_special(struct parser *ps, const struct tex_param *p, const s
         sf->model = tex_shading_find(m);
         if (!sf->model)
             fail_at(ps, &mt, 0, "model must be %s (got %s)", p->meta, m);
+    } else if (!strcmp(p->name, "blend")) {
+        const struct tex_surface *o = mt.kind == T_ID ? find_surface(ps, &mt) : NULL;
+        if (!o)
+            FAIL(ps, "blend names a surface defined above (got %.*s)", (int)mt.len, mt.text);
+        if (o == sf || o->blend)
+            FAIL(ps, "blend mixes in a surface without a blend of its own");
+        sf->blend = o;
+        next(ps);
     } else if (!strcmp(p->name, "apply")) {
         *c->tail = parse_apply(ps);
         c->tail = &(*c->tail)->next;
@@ -880,6 +893,20 @@ static void parse_surface(struct parser *ps)
                         ct->s) < 0)
             fail_at(ps, &at, 0, "%s", tex_errmsg());
     }
+    /* the targets that need a word of the surface */
+    for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next)
+        for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next) {
+            struct tok ft = {T_ID, "", 0, 0, ap->line, ap->col};
+            if (fn->param == TEX_SP_BLEND && !sf->blend)
+                fail_at(ps, &ft, 0, "blend = h needs 'blend SURFACE' in surface '%s'", name);
+            if ((fn->param == TEX_SP_M || fn->param == TEX_SP_S) &&
+                sf->model != &tex_shading_cook_torrance)
+                fail_at(ps, &ft, 0, "m and s are Cook-Torrance's: surface '%s' needs "
+                                    "model cook-torrance", name);
+            if (fn->param == TEX_SP_M && ct && ct->facets.dist != TEX_FACET_BECKMANN)
+                fail_at(ps, &ft, 0, "m is Beckmann's slope: surface '%s' has blinn facets",
+                        name);
+        }
 }
 
 /* ---- objects -------------------------------------------------------------------- */

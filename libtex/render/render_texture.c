@@ -779,6 +779,9 @@ static inline double poly_at(const struct poly *q, int k, double f, double p)
 /* The parameters being textured, in RGB, before conversion to the colour space. */
 struct params {
     float ka, kd[3], ks, n, kr, kt, ior, bump;
+    double m, s; /* Cook-Torrance's slope and specular fraction (double: as the model's) */
+    float blend; /* the blended surface's weight */
+    float normal[3], gradient[3]; /* one apply block's normal map and height gradient */
 };
 
 struct tex_surface_cache {
@@ -807,7 +810,7 @@ static float lum(const float v[3])
 static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const float f[3],
                      const double uvw[3], double fw2, const double *qv, struct params *pr)
 {
-    float *scalar = NULL, fg[3], p[3];
+    float *scalar = NULL, *colour = pr->kd, fg[3], p[3], sc = 0; /* sc: m or s, as a float */
     double lo = fn->lo, hi = fn->hi, r[3]; /* the parameter's row's range */
     switch (fn->param) {
     case TEX_SP_KD: break;
@@ -817,9 +820,20 @@ static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const flo
     case TEX_SP_KR: scalar = &pr->kr; break;
     case TEX_SP_KT: scalar = &pr->kt; break;
     case TEX_SP_IOR: scalar = &pr->ior; break;
+    case TEX_SP_M: scalar = &sc, sc = (float)pr->m; break;
+    case TEX_SP_S: scalar = &sc, sc = (float)pr->s; break;
+    case TEX_SP_BLEND: scalar = &pr->blend; break;
+    case TEX_SP_NORMAL: /* p: the flat normal */
+        colour = pr->normal;
+        colour[0] = colour[1] = 0.5f, colour[2] = 1;
+        break;
+    case TEX_SP_GRADIENT:
+        colour = pr->gradient;
+        colour[0] = colour[1] = colour[2] = 0;
+        break;
     default: scalar = &pr->bump; break;
     }
-    const float *fv = f, *pv = pr->kd;
+    const float *fv = f, *pv = colour;
     if (scalar) {
         fg[0] = fg[1] = fg[2] = lum(f);
         p[0] = p[1] = p[2] = *scalar;
@@ -833,10 +847,47 @@ static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const flo
         for (int k = 0; q && k < 3; k++)
             r[k] = poly_at(q, k, fv[k], pv[k]);
         *scalar = (float)clampd((r[0] + r[1] + r[2]) / 3, lo, hi);
-    } else { /* channel k of Kd reads only Kd's channel k */
+        if (fn->param == TEX_SP_M)
+            pr->m = sc;
+        else if (fn->param == TEX_SP_S)
+            pr->s = sc;
+    } else { /* channel k of a colour reads only its channel k */
         for (int k = 0; k < 3; k++)
-            pr->kd[k] = (float)clampd(q ? poly_at(q, k, f[k], pr->kd[k]) : r[k], lo, hi);
+            colour[k] = (float)clampd(q ? poly_at(q, k, f[k], colour[k]) : r[k], lo, hi);
     }
+}
+
+/* The surface gradients (world space, texture units per world unit) of the placed u and v of
+ * texture ap at the hit, (u0, v0) by its mapping, by finite differences along the tangents. */
+static void uv_gradients(const struct tex_apply *ap, const struct placement *pm,
+                         const struct tex_object *leaf, const tex_v3 *P, struct footprint *fp,
+                         double width, double u0, double v0, tex_v3 *gu, tex_v3 *gv)
+{
+    double h = width > 1e-4 ? width : 1e-4, du[2], dv[2];
+    footprint_unit(fp);
+    for (int i = 0; i < 2; i++) {
+        tex_v3 Pi = tex_v3_madd(*P, i ? fp->t2 : fp->t1, h);
+        tex_v3 pli = tex_xform_point(&leaf->to_obj, Pi);
+        double a[3];
+        map_point_at(ap, leaf, &Pi, &pli, a);
+        du[i] = wrapdiff(a[0] - u0) * pm->su / h;
+        dv[i] = wrapdiff(a[1] - v0) * pm->sv / h;
+    }
+    *gu = tex_v3_add(tex_v3_scale(fp->t1, du[0]), tex_v3_scale(fp->t2, du[1]));
+    *gv = tex_v3_add(tex_v3_scale(fp->t1, dv[0]), tex_v3_scale(fp->t2, dv[1]));
+}
+
+/* A tangent-space normal map's normal (encoded 0.5 + 0.5 n: x along u, y against v, since v
+ * grows down the map, z along N) in world space; N itself where the map is flat. */
+static tex_v3 normal_mapped(const float enc[3], const tex_v3 *N, const tex_v3 *gu,
+                            const tex_v3 *gv)
+{
+    double x = 2.0 * enc[0] - 1, y = 2.0 * enc[1] - 1, z = 2.0 * enc[2] - 1;
+    if (x == 0 && y == 0) /* flat: N as it is, to the bit */
+        return *N;
+    tex_v3 t = tex_v3_norm(*gu), b = tex_v3_scale(tex_v3_norm(*gv), -1);
+    return tex_v3_norm(tex_v3_add(tex_v3_add(tex_v3_scale(t, x), tex_v3_scale(b, y)),
+                                  tex_v3_scale(*N, z)));
 }
 
 /* Blinn's bump mapping: the tilt of the normal against the surface gradient of texture ap's
@@ -940,6 +991,16 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
                 tilt = tex_v3_add(tilt, bump_tilt(ap, pm, leaf, P, &fp, width, fw2, f, pr->bump));
                 bumped = 1;
                 pr->bump = 0;
+            } else if (fn->param == TEX_SP_NORMAL || fn->param == TEX_SP_GRADIENT) {
+                tex_v3 gu, gv;
+                uv_gradients(ap, pm, leaf, P, &fp, width, u0, v0, &gu, &gv);
+                if (fn->param == TEX_SP_NORMAL) {
+                    *N = normal_mapped(pr->normal, N, &gu, &gv);
+                } else {
+                    tilt = tex_v3_add(tilt, tex_v3_add(tex_v3_scale(gu, pr->gradient[0]),
+                                                       tex_v3_scale(gv, pr->gradient[1])));
+                    bumped = 1;
+                }
             }
         }
     }
@@ -985,13 +1046,20 @@ material(const struct tex_colour_space *cs, const struct tex_surface *sf,
     m->kr = pr->kr;
     m->kt = pr->kt;
     m->ior = pr->ior;
+    m->m = pr->m;
+    m->s = pr->s;
     m->model = sf->model;
     m->model_data = sf->ct;
+    m->blend = 0;
+    m->blend_m = NULL;
 }
 
-void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *sf,
-                          const struct tex_shade_at *at, tex_v3 *N, struct tex_material *m)
+/* One surface's material at the hit; *blend: its blend's weight there. */
+static void resolve(const struct tex_scene *s, const struct tex_surface *sf,
+                    const struct tex_shade_at *at, tex_v3 *N, struct tex_material *m,
+                    float *blend)
 {
+    *blend = 0;
     if (!sf->apply) { /* the cache as it is, without the textured path's set-up */
         material(&s->cs, sf, &sf->cache->base, 0, m);
         return;
@@ -999,6 +1067,23 @@ void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *s
     struct params pr = sf->cache->base;
     int ks_textured = apply_textures(sf, at, N, s->settings.filter && at->width > 0, &pr);
     material(&s->cs, sf, &pr, ks_textured, m);
+    *blend = pr.blend;
+}
+
+void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *sf,
+                          const struct tex_shade_at *at, tex_v3 *N, struct tex_material m[2])
+{
+    float w, w1;
+    tex_v3 N1 = *N; /* this surface's normal shades both */
+    resolve(s, sf, at, N, &m[0], &w);
+    if (sf->blend && w > 0) { /* the other surface at the same hit, its own textures */
+        resolve(s, sf->blend, at, &N1, &m[1], &w1);
+        tex_colour_scale(&m[0].ka, s->cs.n, &m[0].ka, 1 - w); /* the ambient term, mixed */
+        for (int i = 0; i < s->cs.n; i++)
+            m[0].ka.v[i] += w * m[1].ka.v[i];
+        m[0].blend = w;
+        m[0].blend_m = &m[1];
+    }
 }
 
 int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
@@ -1026,8 +1111,11 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
                                  fn->e->code[i].leaf >= TEX_LEAF_Q;
         }
     }
+    struct tex_material ctm; /* Cook-Torrance's m and s: the surface's, or the defaults */
+    tex_ct_material(&ctm, sf->ct);
     c->base = (struct params){sf->ka, {sf->kd[0], sf->kd[1], sf->kd[2]}, sf->ks[0], (float)sf->n,
-                              (float)sf->kr, (float)sf->kt, (float)sf->ior, 0};
+                              (float)sf->kr, (float)sf->kt, (float)sf->ior, 0, ctm.m, ctm.s, 0,
+                              {0.5f, 0.5f, 1}, {0, 0, 0}};
     float ka[3] = {sf->ka * sf->kd[0], sf->ka * sf->kd[1], sf->ka * sf->kd[2]};
     cs->from_rgb(cs, ka, TEX_SPECTRUM_REFLECTANCE, &c->col[0]);
     cs->from_rgb(cs, sf->kd, TEX_SPECTRUM_REFLECTANCE, &c->col[1]);

@@ -345,10 +345,11 @@ struct tex_shade_at {
     int depth;           /* 0 for eye rays, +1 per reflection or refraction */
 };
 /* The material at a hit (surface sf): the application functions evaluated,
- * N bent by bump and normal maps, colours in the scene's colour space.
+ * N bent by bump and normal maps, colours in the scene's colour space;
+ * m[1] is the blended surface's where m[0].blend > 0 (its weight).
  * sf's cache must be filled (tex_surface_cache). */
 void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *sf,
-                          const struct tex_shade_at *at, tex_v3 *N, struct tex_material *m);
+                          const struct tex_shade_at *at, tex_v3 *N, struct tex_material m[2]);
 /* Fill (tex_render, before tracing) and free a surface's cache: its untextured
  * colours in the scene's colour space, its application functions compiled. */
 int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs);
@@ -356,8 +357,12 @@ void tex_surface_uncache(struct tex_surface *sf);
 /* Build the pyramid of mip[0] (box filter, wrapping). */
 int tex_texture_build_mip(struct tex_texture *t);
 
+/* The parameters an application function can set: the surface's Ka..ior, then bump,
+ * Cook-Torrance's m and s, the weight of a blended surface, a tangent-space normal map and
+ * a height gradient (tex_sparam_row gives each one's row). */
 enum tex_sparam { TEX_SP_KA, TEX_SP_KD, TEX_SP_KS, TEX_SP_N, TEX_SP_KR, TEX_SP_KT, TEX_SP_IOR,
-                  TEX_SP_BUMP, TEX_SP_COUNT };
+                  TEX_SP_BUMP, TEX_SP_M, TEX_SP_S, TEX_SP_BLEND, TEX_SP_NORMAL,
+                  TEX_SP_GRADIENT, TEX_SP_COUNT };
 
 /* An application function's expression, compiled (lang/expr.h): a postfix
  * program over f (the map value), p (the untextured value), numbers, colours,
@@ -410,6 +415,7 @@ struct tex_surface {
     double n, kr, kt, ior;
     const struct tex_shading_model *model;
     struct tex_ct *ct;      /* Cook-Torrance parameters (render_ct.h); NULL: its defaults */
+    const struct tex_surface *blend; /* `blend SURFACE`: mixed in by `blend = h`, or NULL */
     struct tex_apply *apply;
     int line, col;
     struct tex_surface_cache *cache; /* tex_render's (render_texture.c), or NULL */
@@ -537,7 +543,8 @@ extern const struct tex_param tex_apply_rows[];    /* apply TEXTURE { }, over st
 extern const struct tex_param tex_object_rows[];   /* SHAPE { }, over struct tex_shape_params;
                                                     * kinds: bit enum tex_shape_kind; surface
                                                     * and the transforms are also CSG words */
-extern const struct tex_param tex_bump_row;        /* bump = h (also normal) */
+extern const struct tex_param tex_target_rows[];   /* bump, m, s, blend, normal, gradient:
+                                                    * TEX_SP_BUMP.. in order */
 extern const struct tex_param tex_environment_rows[]; /* environment FILE { }, over
                                                        * struct tex_environment */
 /* The environment's colour (RGB, times its intensity) in direction d (unit, world), for a
