@@ -73,21 +73,28 @@ static void offsets(const struct tex_reals *r, double off[3])
         off[a] = r->v[a];
 }
 
+/* The octaves' amplitudes g^k and the inverse of their sum */
+static void turb_amplitudes(struct turb_state *s, double gain, int octaves)
+{
+    double sum = 0;
+    for (int k = 0; k < octaves; k++) {
+        s->amp[k] = (float)pow(gain, k);
+        sum += s->amp[k];
+    }
+    s->inv = (float)(1.0 / sum);
+}
+
 static int turb_init(struct tex_field *f)
 {
     const struct turb_params *p = f->params;
     struct turb_state *s = calloc(1, sizeof *s);
-    double off[3], sum = 0;
+    double off[3];
 
     if (!s)
         return tex_error("out of memory");
     f->state = s;
     offsets(&p->offset, off);
-    for (int k = 0; k < p->octaves; k++) {
-        s->amp[k] = (float)pow(p->gain, k);
-        sum += s->amp[k];
-    }
-    s->inv = (float)(1.0 / sum);
+    turb_amplitudes(s, p->gain, p->octaves);
     return tex_octaves_init(&s->o, f->seed, p->gradients, p->fade, p->octaves, p->frequency,
                             p->lacunarity, off, p->z, p->w.n ? p->w.v[0] : 0, p->w.n ? 4 : 3,
                             f->tile, f->w, f->h);
@@ -101,14 +108,19 @@ static void turb_fini(struct tex_field *f)
     free(s);
 }
 
-static float turb_point(const struct tex_field *f, double u, double v, double w)
+/* Turbulence at a point, from its octaves and amplitudes */
+static float turb_sum(const struct turb_state *s, double u, double v, double w)
 {
-    const struct turb_state *s = f->state;
     float acc = 0;
 
     for (int k = 0; k < s->o.n; k++)
         acc += s->amp[k] * fabsf((float)tex_octave_point(&s->o, k, u, v, w));
     return clamp01(acc * s->inv);
+}
+
+static float turb_point(const struct tex_field *f, double u, double v, double w)
+{
+    return turb_sum(f->state, u, v, w);
 }
 
 static void turb_eval2(const struct tex_field *f, int n, const double *u, const double *v,
@@ -182,16 +194,12 @@ static int wood_init(struct tex_field *f)
 {
     const struct wood_params *p = f->params;
     struct wood_state *s = calloc(1, sizeof *s);
-    double off[3] = {0, 0, 0}, sum = 0;
+    double off[3] = {0, 0, 0};
 
     if (!s)
         return tex_error("out of memory");
     f->state = s;
-    for (int k = 0; k < p->octaves; k++) {
-        s->turb.amp[k] = (float)pow(0.5, k);
-        sum += s->turb.amp[k];
-    }
-    s->turb.inv = (float)(1.0 / sum);
+    turb_amplitudes(&s->turb, 0.5, p->octaves);
     s->c = cos(p->tilt * M_PI / 180);
     s->s = sin(p->tilt * M_PI / 180);
     if (tex_noise_init(&s->grain, f->seed ^ 0x5bd1e995u, 256, 0) < 0)
@@ -220,12 +228,7 @@ static float wood_point(const struct tex_field *f, double u, double v, double w)
     double x = u - 0.5 - p->offset, y = v - 0.5, z = w - 0.5;
     double ya = y * s->c - z * s->s, za = y * s->s + z * s->c; /* the axis runs along za */
     double r = sqrt(x * x + ya * ya);
-    float t = 0;
-    if (p->amount > 0) {
-        for (int k = 0; k < s->turb.o.n; k++)
-            t += s->turb.amp[k] * fabsf((float)tex_octave_point(&s->turb.o, k, u, v, w));
-        t *= s->turb.inv;
-    }
+    float t = p->amount > 0 ? turb_sum(&s->turb, u, v, w) : 0;
     double ring = (r + p->amount * t) * p->rings;
     double val = ring - floor(ring);
     if (p->grain > 0) {
