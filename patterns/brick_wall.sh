@@ -5,7 +5,10 @@
 #   patterns/brick_wall.sh [-o PREFIX] [-s N]   -> PREFIX_colour, _height, _render
 recipe=brick_wall
 . "$(dirname "$0")/recipe.sh"
-t_brick -s "$size" --nu 4 --nv 8 --cells --palette brick -S 7 --tile -o "$tmp/colour.exr"
+# fired clay, from underburnt to overburnt: each brick one colour of it
+printf 'space oklab\n0 #6e2a1a\n0.35 #9a3b22\n0.7 #b5573a\n1 #c98a5a\nindex 1 #cfc6b8\n' \
+    >"$tmp/clay.pal"
+t_brick -s "$size" --nu 4 --nv 8 --cells --palette "$tmp/clay.pal" -S 7 --tile -o "$tmp/colour.exr"
 t_brick -s "$size" --nu 4 --nv 8 --tile --palette greys -o "$tmp/h.exr"
 t_filter blur --sigma 1.2 --edge wrap "$tmp/h.exr" -o "$tmp/height.exr"
 write "$tmp/colour.exr" colour
