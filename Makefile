@@ -65,7 +65,7 @@ DEBS = build-essential pkg-config liblz4-dev libopenexr-dev libopenimageio-dev o
        libflann-dev libfftw3-dev colord-data mandoc netpbm imagemagick libnoise-dev povray \
        hyperfine clang libclang-rt-14-dev libomp-dev python3
 
-.PHONY: all deps demo test test-plain test-asan check bench install man fuzz clean
+.PHONY: all deps demo test test-plain test-asan check bench install man fuzz figures gallery clean
 
 all: $(STATIC) $(SHARED) $(BRIDGE) $(PCFILE) $(TOOLS)
 	@printf 'CC = %s\nCXX = %s\nSANITIZE = %s\nOPT = %s\n' '$(CC)' '$(CXX)' '$(SANITIZE)' '$(OPT)' \
@@ -135,6 +135,14 @@ bench: all
 man: all
 	tests/mkman $(BUILD)/bin
 
+# the thesis's figures with their captions (doc/figures/figures.md), and a gallery of every
+# primitive, palette, filter and operator (gallery/index.html, gallery/gallery.png)
+figures: all
+	PATH="$(CURDIR)/$(BUILD)/bin:$$PATH" patterns/figures.sh -o doc/figures
+
+gallery: all
+	PATH="$(CURDIR)/$(BUILD)/bin:$$PATH" patterns/gallery.sh -o gallery
+
 fuzz:
 	$(MAKE) -C tests/fuzz BUILD=$(abspath $(BUILD))/fuzz
 
@@ -158,6 +166,6 @@ install: all
 	cp -R patterns/. $(DESTDIR)$(DATADIR)/patterns
 
 clean:
-	rm -rf build build-asan build-clang demo.png
+	rm -rf build build-asan build-clang demo.png gallery
 
 -include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)

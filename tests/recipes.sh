@@ -52,3 +52,17 @@ P
 )
     [ "$r" = ok ] && ok "tileable $m has no seam" || notok "tileable $m" "$r"
 done
+# the gallery: its page links only files that exist, and shows every primitive
+"$top/patterns/gallery.sh" -o "$T/gal" -s 24 >"$T/gout" 2>&1 && ok "gallery.sh runs" ||
+    notok "gallery.sh runs" "$(tail -3 "$T/gout")"
+missing=$(sed -n 's/.*<img src="\([^"]*\)".*/\1/p' "$T/gal/index.html" | while read -r f; do
+    [ -s "$T/gal/$f" ] || echo "$f"; done)
+n=$(grep -c '<img src=' "$T/gal/index.html")
+[ "$n" -gt 60 ] && [ -z "$missing" ] && ok "the gallery page links $n pictures, all present" ||
+    notok "gallery links" "$n pictures, missing: $missing"
+for p in $(t_info --primitives | awk '{ print $1 }'); do
+    grep -q "t_$p -s" "$T/gal/index.html" || notok "the gallery shows t_$p"
+done
+ok "the gallery shows every primitive of t_info --primitives"
+command -v montage >/dev/null && { [ -s "$T/gal/gallery.png" ] && ok "the contact sheet is written" ||
+    notok "contact sheet"; }

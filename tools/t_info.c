@@ -6,11 +6,15 @@
 #include "textura.h"
 
 struct opts {
-    int json;
+    int json, primitives;
 };
 
 static const struct tex_param rows[] = {
-    TEX_FLAG(struct opts, json, 0, "print JSON instead of text"), {0}};
+    TEX_FLAG(struct opts, json, 0, "print JSON instead of text"),
+    TEX_FLAG(struct opts, primitives, 0,
+             "list every primitive (the tool t_NAME, the scene word NAME) with its summary, and "
+             "exit"),
+    {0}};
 
 static const struct tex_tool tool = {
     "t_info", "[MAP]", "print the size, channels, per-channel statistics, subregions and history "
@@ -36,11 +40,26 @@ static void json_string(const char *s)
     putchar('"');
 }
 
+/* 0 once what was printed has reached standard output; else the message and exit 1 */
+static int stdout_flushed(void)
+{
+    if (fflush(stdout) != 0 || ferror(stdout)) {
+        tex_error("standard output: write error");
+        tex_die();
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     struct tex_common c;
     struct opts o;
     int i = tex_cli_parse(&tool, argc, argv, &c, &o);
+    if (o.primitives) { /* from the registry: a new primitive is listed by itself */
+        for (const struct tex_primitive *const *p = tex_primitives; *p; p++)
+            printf("%-14s %s\n", (*p)->name, (*p)->summary);
+        return stdout_flushed();
+    }
     const char *name = i < argc ? argv[i] : "-";
     tex_map *m = tex_cli_read(name);
     struct tex_stats st[4];
@@ -85,9 +104,5 @@ int main(int argc, char **argv)
     }
     tex_map_free(m);
     free(c.cmdline);
-    if (fflush(stdout) != 0 || ferror(stdout)) {
-        tex_error("standard output: write error");
-        tex_die();
-    }
-    return 0;
+    return stdout_flushed();
 }

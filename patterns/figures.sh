@@ -1,0 +1,146 @@
+#!/bin/sh
+# figures.sh - the thesis's figures and photos that are pictures, rebuilt from the real
+# primitives, and the seed paper's five spheres: DIR/fig_ID.png and .exr for each, and
+# DIR/figures.md, a page with each one's caption (translated) and the commands that made it.
+#   patterns/figures.sh [-o DIR] [-s N]      (default doc/figures, maps N = 256 wide)
+# `make figures` runs it; tests/figures.sh checks each figure against a golden image.
+set -eu
+here=$(cd "$(dirname "$0")" && pwd)
+dir=doc/figures
+size=256
+while getopts o:s: opt; do
+    case $opt in
+    o) dir=$OPTARG ;;
+    s) size=$OPTARG ;;
+    *) echo "usage: $0 [-o DIR] [-s N]" >&2; exit 2 ;;
+    esac
+done
+case $size in '' | *[!0-9]*) echo "$0: -s must be a number of pixels (got '$size')" >&2; exit 2 ;; esac
+mkdir -p "$dir"
+dir=$(cd "$dir" && pwd)
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/figures.XXXXXX")
+trap 'rm -rf "$tmp"' EXIT
+cd "$tmp"
+s=$size h=$((size / 2))
+page=$dir/figures.md
+printf '# The thesis'"'"'s figures, rebuilt\n\nMade by `make figures` (patterns/figures.sh); each is checked against a golden image by tests/figures.sh. Captions are translated from the thesis (seed 001) and the colour-model paper (seed 000).\n' >"$page"
+# figure ID CAPTION COMMANDS: run the commands (which leave fig.exr), keep it as fig_ID, and
+# put it on the page with its caption and commands
+figure() {
+    sh -eu -c "$3"
+    t_convert fig.exr -o "$dir/fig_$1.exr"
+    t_convert fig.exr -o "$dir/fig_$1.png"
+    printf '\n## %s\n\n%s\n\n![%s](fig_%s.png)\n\n```sh\n%s\n```\n' "$1" "$2" "$1" "$1" "$3" >>"$page"
+    echo "wrote fig_$1"
+}
+figure 5.1 "Figure 5.1: t_flower in different instances, for different values of the colours, the number of petals and the petal length." "
+t_flower -s $h -o f1.exr
+t_flower -s $h -n 3 -d 0.3 --color1 '#f4efe2' --color2 '#b8322a' -o f2.exr
+t_flower -s $h -n 8 -d 0.48 --color1 '#203050' --color2 '#e0e8f0' -o f3.exr
+t_flower -s $h -n 4 -d 0.4 --color1 '#e8c060' --color2 '#603010' -o f4.exr
+t_tile --matrix cycle --nu 4 --nv 1 -s $((2 * s))x$h f1.exr f2.exr f3.exr f4.exr -o fig.exr"
+figure 5.3 "Figure 5.3: Some of the geometric primitives implemented." "
+for p in circle ring ellipse flower star polygon stripe checker brick four_rings cycloid hypocycloid; do
+    t_\$p -s $((s / 3)) -o \$p.exr
+done
+t_tile --matrix cycle --nu 4 --nv 3 -s $((4 * s / 3))x$s circle.exr ring.exr ellipse.exr flower.exr \\
+    star.exr polygon.exr stripe.exr checker.exr brick.exr four_rings.exr cycloid.exr hypocycloid.exr -o fig.exr"
+figure 5.4 "Figure 5.4: Several maps generated from the ellipse primitive (the ellipse, blurred, its gradient magnitude, embossed, its edges enhanced, its normal map)." "
+t_ellipse -s $h --palette greys -o e.exr
+t_filter blur --sigma 3 e.exr -o b.exr
+t_filter sobel e.exr -o g.exr
+t_filter emboss --strength 2 e.exr -o m.exr
+t_filter edges --strength 2 e.exr -o d.exr
+t_filter normal --strength 4 b.exr -o n.exr
+t_tile --matrix cycle --nu 3 --nv 2 -s $((3 * h))x$((2 * h)) e.exr b.exr g.exr m.exr d.exr n.exr -o fig.exr"
+figure 5.6 "Figure 5.6: An instance of the function t_turbulence." "
+t_turbulence -s $s -n 7 -S 2 -o fig.exr"
+figure 5.7 "Figure 5.7: The Koch curve." "
+t_fractal -m koch -s $s -o fig.exr"
+figure 5.8 "Figure 5.8: The matrix of texture models of diagonal_flower: a circle where u' = v', a flower elsewhere." "
+t_circle -s $((s / 3)) -o c.exr
+t_flower -s $((s / 3)) -n 4 -o f.exr
+t_tile --matrix diagonal --nu 3 --nv 3 -s $s c.exr f.exr -o fig.exr"
+figure 5.9 "Figure 5.9: The texture cascade of cascade_circle_flower: where t_circle gives subregion 1 (the outside, as Figure 5.2 numbers it), the texture is t_flower." "
+t_circle -s $s --ids -o ids.exr
+t_flower -s $s -n 5 -o f.exr
+t_cascade ids.exr 1=f.exr --default '#204060' -o fig.exr"
+figure 5.10 "Figure 5.10: The function t_turbulence composed with the primitive t_stripe (domain perturbation): marble veins." "
+t_stripe -s $s -o st.exr
+t_turbulence -s $s -S 2 --tile -o tu.exr
+t_warp st.exr tu.exr --amount 0.1 -o fig.exr"
+figure 5.11 "Figure 5.11: Repetitions of a t_stripe primitive." "
+t_stripe -s $((s / 3)) -a 30 -o s1.exr
+t_tile --nu 3 --nv 2 -s ${s}x$((2 * s / 3)) s1.exr -o fig.exr"
+figure 5.12 "Figure 5.12: The same t_stripe primitive repeated in mirror." "
+t_stripe -s $((s / 3)) -a 30 -o s1.exr
+t_tile --nu 3 --nv 2 --mirror -s ${s}x$((2 * s / 3)) s1.exr -o fig.exr"
+figure 5.13 "Figure 5.13: Effects of varying the application function: one map of turbulence applied to the diffuse colour, the specular coefficient, the normal (bump) and the reflection." "
+t_turbulence -s 256 -n 6 -S 4 -o t.exr
+cat >s.scene <<S
+image 800 240
+ambient 0.3 0.3 0.3
+background 0.2 0.25 0.3
+camera { eye 0 1.6 -12 look 0 0.8 0 fov 40 }
+light point { position -4 5 -6 intensity 1 }
+texture t file \"t.exr\"
+surface kd { Kd 0.8 0.5 0.3 apply t { mapping sphere Kd = 2 * f * p } }
+surface ks { Kd 0.3 0.35 0.6 Ks 0.9 n 40 apply t { mapping sphere Ks = 2.5 * f } }
+surface bump { Kd 0.7 0.7 0.7 Ks 0.4 n 30 apply t { mapping sphere repeat 2 1 bump = 0.01 } }
+surface kr { Kd 0.2 0.2 0.25 Ks 0.6 n 80 Kr 0.5 apply t { mapping sphere Kr = 2 * f } }
+surface floor { Kd 0.5 0.5 0.45 }
+sphere { centre -3 0.9 0 radius 0.9 surface kd }
+sphere { centre -1 0.9 0 radius 0.9 surface ks }
+sphere { centre 1 0.9 0 radius 0.9 surface bump }
+sphere { centre 3 0.9 0 radius 0.9 surface kr }
+plane { surface floor }
+S
+t_apply s.scene -s $((2 * s))x$((3 * s / 5)) -q -o fig.exr"
+figure orange_peel "Section 2.3.3: the orange peel, midpoint displacement with one Hurst exponent per level (h = 10, 0, 0, 0, 0, 0, -10, 10), as a bump." "
+'$here/orange_peel.sh' -o op -s $s >/dev/null
+t_convert op_render.exr -o fig.exr"
+figure photo_4.1 "Photo 4.1: A synthetic scene with the wood texture: a varnished table (colour, brightness and roughness maps from one map of rings), a brick wall whose bricks vary in colour at random, and a vase of marble made as a solid texture." "
+t_wood -s 512 --tilt 84 --offset 0.42 --rings 9 -a 0.05 --grain 0.3 -S 4 -o rings.exr
+t_palette wood rings.exr -o wood.exr
+printf 'space oklab\n0 #6e2a1a\n0.35 #9a3b22\n0.7 #b5573a\n1 #c98a5a\nindex 1 #cfc6b8\n' >clay.pal
+t_brick -s 512 --nu 4 --nv 8 --cells --palette clay.pal -S 7 --tile -o bricks.exr
+t_brick -s 512 --nu 4 --nv 8 --tile --palette greys | t_filter blur --sigma 1.5 --edge wrap -o mortar.exr
+cat >s.scene <<S
+image 640 480
+samples 4
+ambient 0.3 0.3 0.3
+camera { eye 0.3 2.3 -4.2 look 0 1.1 1 fov 50 }
+light point { position -2.5 4.5 -3 intensity 0.9 }
+light distant { direction 2 2 -1 intensity 0.3 }
+texture wood file \"wood.exr\"
+texture rings file \"rings.exr\"
+texture bricks file \"bricks.exr\"
+texture mortar file \"mortar.exr\"
+texture veins turbulence { solid frequency 2 octaves 6 seed 3 }
+surface varnish { Ka 0.4 Kd 1 Ks 0.6 n 90 Kr 0.08
+    apply wood { mapping planar Kd = f }
+    apply rings { mapping planar Kd = p * (1.1 - 0.4 * f) n = 20 + 200 * (1 - f) } }
+surface wall { Ka 0.5 Kd 1
+    apply bricks { mapping natural repeat 3 1 Kd = f }
+    apply mortar { mapping natural repeat 3 1 bump = 0.02 } }
+surface marble { Ka 0.35 Kd 0.9 Ks 0.6 n 80 Kr 0.06
+    apply veins { mapping solid Kd = palette(marble, 0.5 + 0.5 * sin(6 * ox + 12 * f)) } }
+surface floor { Ka 0.4 Kd 0.35 0.33 0.3 }
+box { min -2 0.9 -1 max 2 1 1.2 surface varnish }
+box { min -1.8 0 -0.8 max -1.6 0.9 -0.6 surface varnish }
+box { min 1.6 0 -0.8 max 1.8 0.9 -0.6 surface varnish }
+box { min -1.8 0 0.8 max -1.6 0.9 1 surface varnish }
+box { min 1.6 0 0.8 max 1.8 0.9 1 surface varnish }
+box { min -4 0 2 max 4 3.5 2.3 surface wall }
+union { sphere { centre 0.6 1.45 0.3 radius 0.45 } cylinder { base 0.6 1.7 0.3 top 0.6 2.2 0.3 radius 0.16 }
+    surface marble }
+plane { surface floor }
+S
+t_apply s.scene -s ${s}x$((3 * s / 4)) -q -o fig.exr"
+figure photo_6.1 "Photo 6.1: Imitation of a fabric texture from a fractal primitive: anisotropic spectral synthesis for the warp and the weft, woven by a checker." "
+'$here/fabric.sh' -o fab -s $s >/dev/null
+t_convert fab_colour.exr -o fig.exr"
+figure seed000_5 "Seed 000, Figure 5: the five spheres rendered with Whitted-Phong in RGB (left) and Cook-Torrance with sampled spectra (right)." "
+'$here/five_spheres.sh' five.png ${s}x$((3 * s / 4)) >/dev/null
+t_convert five.png -o fig.exr"
+echo "wrote $page"
