@@ -46,6 +46,7 @@
 #include "base/rng.h"
 #include "io/stream.h"
 #include "io/file.h"
+#include "io/terminal.h"
 #include "prim/prim.h"
 #include "prim/noise.h"
 #include "prim/cellular.h"

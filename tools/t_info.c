@@ -6,11 +6,14 @@
 #include "textura.h"
 
 struct opts {
-    int json, primitives;
+    int json, primitives, preview;
 };
 
 static const struct tex_param rows[] = {
     TEX_FLAG(struct opts, json, 0, "print JSON instead of text"),
+    TEX_ENUM(struct opts, preview, 0, "none", "none|auto|sixel|kitty",
+             "draw a thumbnail (at most 256 pixels a side) in the terminal instead: sixel or "
+             "the kitty graphics protocol, auto picks from the environment"),
     TEX_FLAG(struct opts, primitives, 0,
              "list every primitive (the tool t_NAME, the scene word NAME) with its summary, and "
              "exit"),
@@ -64,6 +67,23 @@ int main(int argc, char **argv)
     tex_map *m = tex_cli_read(name);
     struct tex_stats st[4];
 
+    if (o.preview) {
+        int tw = m->w, th = m->h, side = m->w > m->h ? m->w : m->h;
+        if (side > 256) { /* shrunk, area-filtered, to 256 on the longer side */
+            tw = (int)((long)m->w * 256 / side), th = (int)((long)m->h * 256 / side);
+            tw = tw > 0 ? tw : 1, th = th > 0 ? th : 1;
+        }
+        tex_map *t = tw == m->w && th == m->h ? m : tex_resize(m, tw, th);
+        if (!t || tex_terminal_write(stdout, t, o.preview == 1   ? tex_terminal_guess()
+                                                : o.preview == 2 ? TEX_TERMINAL_SIXEL
+                                                                 : TEX_TERMINAL_KITTY) < 0)
+            tex_die();
+        if (t != m)
+            tex_map_free(t);
+        tex_map_free(m);
+        free(c.cmdline);
+        return stdout_flushed();
+    }
     for (int k = 0; k < m->nc; k++)
         tex_map_stats(m, k, &st[k]);
     if (o.json) {
