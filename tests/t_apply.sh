@@ -69,3 +69,20 @@ t_apply "$T/under.scene" -s 8 -o "$T/under.exr" 2>"$T/under.err" && [ ! -s "$T/u
 # a map on standard input
 t_noise -s 64 | t_apply tests/scenes/stdin.scene -s 32x24 -o "$T/stdin.exr" &&
     ok "texture '-' reads the map from standard input" || notok "texture from standard input"
+
+# big CSG: a union of 100,000 spheres renders (a balanced tree, then a BVH over its operands:
+# no walk recurses along the list), and as the same spheres as separate objects do
+awk 'BEGIN { srand(1); print "camera { eye 0 0 -60 look 0 0 0 fov 50 }\nlight distant { direction 1 1 -1 }";
+    printf "union {\n" >"/dev/stderr";
+    for (i = 0; i < 100000; i++) { s = sprintf("sphere { centre %.3f %.3f %.3f radius 0.15 }",
+        rand() * 40 - 20, rand() * 30 - 15, rand() * 40 - 20); print s; print s >"/dev/stderr" }
+    print "}" >"/dev/stderr" }' >"$T/sep.scene" 2>"$T/union.body"
+{ head -2 "$T/sep.scene"; cat "$T/union.body"; } >"$T/union.scene"
+t_apply "$T/union.scene" -s 32x24 -o "$T/union.pfm" && t_apply "$T/sep.scene" -s 32x24 -o "$T/sep.pfm" &&
+    cmp -s "$T/union.pfm" "$T/sep.pfm" && ok "a union of 100,000 spheres renders, as the spheres do apart" ||
+    notok "a union of 100,000 spheres"
+for op in intersection difference; do
+    { echo "camera { eye 0 0 -6 look 0 0 0 }"; echo "$op {";
+      for i in $(seq 20000); do echo "sphere { radius 1.5 }"; done; echo "}"; } >"$T/chain.scene"
+    check "$op of 20,000 objects renders" t_apply "$T/chain.scene" -s 16x12 -o "$T/chain.png"
+done

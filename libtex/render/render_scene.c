@@ -1162,6 +1162,134 @@ static void set_world(struct parser *ps, struct tex_object *ob, const tex_xform 
     ob->root = root;
 }
 
+/* kids[0..n) joined by op as a balanced tree (recursion log2(n) deep) */
+static struct tex_object *csg_balanced(struct parser *ps, enum tex_csg_op op,
+                                       struct tex_object **kids, int n, const struct tok *at)
+{
+    if (n == 1)
+        return kids[0];
+    struct tex_object *ob = palloc(ps, sizeof *ob);
+    ob->op = op;
+    ob->cluster = 1;
+    ob->line = at->line;
+    ob->col = at->col;
+    tex_xform_identity(&ob->to_world);
+    ob->a = csg_balanced(ps, op, kids, n / 2, at);
+    ob->b = csg_balanced(ps, op, kids + n / 2, n - n / 2, at);
+    return ob;
+}
+
+/* ---- CSG blocks as bounding-volume hierarchies ----
+ *
+ * Once the world transforms are known (set_world), the children of a union or an
+ * intersection are joined again by median splits of their boxes' centres along the
+ * longest axis: a union of many disjoint objects then culls whole halves by their boxes,
+ * as the scene's BVH does for separate objects. */
+
+struct operand {
+    struct tex_object *ob;
+    double key;
+};
+
+static int by_key(const void *a, const void *b)
+{
+    double x = ((const struct operand *)a)->key, y = ((const struct operand *)b)->key;
+    return x < y ? -1 : x > y;
+}
+
+/* The operands under a cluster (nodes csg_balanced made), into v. */
+static void gather(struct tex_object *ob, struct operand *v, int *n)
+{
+    if (!ob->cluster) {
+        v[(*n)++].ob = ob;
+        return;
+    }
+    gather(ob->a, v, n);
+    gather(ob->b, v, n);
+}
+
+static int count(const struct tex_object *ob)
+{
+    return ob->cluster ? count(ob->a) + count(ob->b) : 1;
+}
+
+static tex_v3 centre_of(const struct tex_object *ob)
+{
+    if (!ob->bounded)
+        return tex_v3_make(0, 0, 0);
+    return tex_v3_scale(tex_v3_add(ob->wb.lo, ob->wb.hi), 0.5);
+}
+
+/* v[0..n) joined by op, split at the median of the centres along their longest axis. */
+static struct tex_object *spatial(struct parser *ps, enum tex_csg_op op, struct operand *v, int n,
+                                  const struct tex_object *like)
+{
+    if (n == 1)
+        return v[0].ob;
+    tex_v3 lo = centre_of(v[0].ob), hi = lo;
+    for (int i = 1; i < n; i++) {
+        tex_v3 c = centre_of(v[i].ob);
+        lo = tex_v3_min(lo, c), hi = tex_v3_max(hi, c);
+    }
+    tex_v3 e = tex_v3_sub(hi, lo);
+    int axis = e.x >= e.y && e.x >= e.z ? 0 : e.y >= e.z ? 1 : 2;
+    for (int i = 0; i < n; i++)
+        v[i].key = tex_v3_get(centre_of(v[i].ob), axis);
+    qsort(v, (size_t)n, sizeof *v, by_key);
+    struct tex_object *node = palloc(ps, sizeof *node);
+    node->op = op;
+    node->cluster = 1;
+    node->line = like->line;
+    node->col = like->col;
+    node->root = like->root;
+    tex_xform_identity(&node->to_world);
+    node->a = spatial(ps, op, v, n / 2, like);
+    node->b = spatial(ps, op, v + n / 2, n - n / 2, like);
+    return node;
+}
+
+static void csg_spatial(struct parser *ps, struct tex_object *ob);
+
+/* csg_spatial of the operands under a cluster */
+static void operands_spatial(struct parser *ps, struct tex_object *ob)
+{
+    if (!ob->cluster) {
+        csg_spatial(ps, ob);
+        return;
+    }
+    operands_spatial(ps, ob->a);
+    operands_spatial(ps, ob->b);
+}
+
+/* The CSG blocks of ob's tree, each rebuilt spatially (after set_world: the boxes are
+ * the world's).  A union's or an intersection's operands are all those under ob; a
+ * difference's, those of the union it subtracts. */
+static void csg_spatial(struct parser *ps, struct tex_object *ob)
+{
+    if (ob->op == TEX_CSG_LEAF)
+        return;
+    int whole = ob->op != TEX_CSG_DIFFERENCE;
+    if ((whole && (ob->a->cluster || ob->b->cluster)) || (!whole && ob->b->cluster)) {
+        int n = (whole ? count(ob->a) : 0) + count(ob->b), k = 0;
+        struct operand *v = malloc((size_t)n * sizeof *v);
+        if (!v)
+            fail_at(ps, &ps->t, 1, "out of memory");
+        if (whole)
+            gather(ob->a, v, &k);
+        gather(ob->b, v, &k);
+        for (int i = 0; i < n; i++)
+            tex_object_bounds(v[i].ob);
+        struct tex_object *t = spatial(ps, whole ? ob->op : TEX_CSG_UNION, v, n, ob);
+        free(v);
+        if (whole)
+            ob->a = t->a, ob->b = t->b;
+        else
+            ob->b = t;
+    }
+    operands_spatial(ps, ob->a);
+    operands_spatial(ps, ob->b);
+}
+
 static struct tex_object *parse_object(struct parser *ps)
 {
     struct tok at = ps->t;
@@ -1209,20 +1337,16 @@ static struct tex_object *parse_object(struct parser *ps)
         next(ps);
         if (nk < 2)
             fail_at(ps, &at, 0, "a CSG operation needs at least two objects");
-        /* more than two children fold to the left: ((a op b) op c) */
-        struct tex_object *left = kids[0];
-        for (int i = 1; i < nk - 1; i++) {
-            struct tex_object *n = palloc(ps, sizeof *n);
-            n->op = op;
-            n->line = at.line;
-            n->col = at.col;
-            tex_xform_identity(&n->to_world);
-            n->a = left;
-            n->b = kids[i];
-            left = n;
+        /* more than two children make a balanced tree, so that every walk over it is
+         * log2(N) deep (csg_spatial orders it in space later): unions and intersections
+         * pair their children, and a - b - c - ... is a - (b u c u ...) */
+        if (op == TEX_CSG_DIFFERENCE) {
+            ob->a = kids[0];
+            ob->b = csg_balanced(ps, TEX_CSG_UNION, kids + 1, nk - 1, &at);
+        } else {
+            ob->a = csg_balanced(ps, op, kids, nk / 2, &at);
+            ob->b = csg_balanced(ps, op, kids + nk / 2, nk - nk / 2, &at);
         }
-        ob->a = left;
-        ob->b = kids[nk - 1];
     }
     ps->nest--;
     return ob;
@@ -1428,6 +1552,7 @@ static void parse_scene(struct parser *ps)
             tex_xform id;
             tex_xform_identity(&id);
             set_world(ps, ob, &id, NULL, ob);
+            csg_spatial(ps, ob);
             add_object(ps, ob);
             continue;
         }

@@ -274,6 +274,7 @@ struct tex_object {
     const struct tex_object *root; /* the top-level object (solid texturing's box) */
     struct tex_bounds wb;       /* world bounds */
     int bounded;
+    int cluster;                /* 1: a node joining a CSG block's children (no words of its own) */
     int line, col;              /* where it was declared */
     /* leaves, set by tex_object_bounds: the world normal without the transforms,
      * 1: a plane of unit normal fn; 2: a sphere placed by a similarity, n = (P - fn) fr */
