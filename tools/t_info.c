@@ -61,6 +61,7 @@ int main(int argc, char **argv)
     if (o.primitives) { /* from the registry: a new primitive is listed by itself */
         for (const struct tex_primitive *const *p = tex_primitives; *p; p++)
             printf("%-14s %s\n", (*p)->name, (*p)->summary);
+        free(c.cmdline);
         return stdout_flushed();
     }
     const char *name = i < argc ? argv[i] : "-";
