@@ -322,6 +322,9 @@ static tex_map *decode(const char *path, const void *data, size_t len, const cha
         return NULL;
     }
     if (f == TEX_FMT_EXR) {
+        /* DWAA/DWAB: OpenImageIO's OpenEXR decodes what the core cannot. */
+        if (tex_exr_unsupported(data, len) && (m = read_bridged(NULL, data, len, f, name)))
+            return m;
         if (!(m = tex_exr_decode(data, len, name)))
             tex_error_context(name);
         return m;

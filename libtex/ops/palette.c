@@ -9,12 +9,10 @@
 
 #include "base/error.h"
 #include "base/map.h"
+#include "base/paths.h"
 #include "io/file.h"
 #include "ops/palette.h"
 
-#ifndef TEX_DATADIR
-#define TEX_DATADIR "/usr/local/share/textura"
-#endif
 
 #define MAX_FILE (4 << 20)   /* a palette is text: refuse anything larger */
 #define MAX_ENTRIES 65536    /* stops, and index entries */
@@ -339,8 +337,6 @@ static int try_dir(const char *dir, size_t dlen, const char *name, char *buf, si
 int tex_palette_find(const char *name, char *buf, size_t n)
 {
     const char *env = getenv("TEXTURA_PALETTES");
-    char exe[PATH_MAX];
-    ssize_t len;
 
     if (!*name)
         return tex_usage_error("empty palette name");
@@ -360,29 +356,14 @@ int tex_palette_find(const char *name, char *buf, size_t n)
             return 0;
         env = e ? e + 1 : NULL;
     }
-    len = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (len > 0) {
-        char *s;
-        exe[len] = '\0';
-        if ((s = strrchr(exe, '/'))) {
-            char dir[PATH_MAX + 32];
-            *s = '\0';
-            snprintf(dir, sizeof dir, "%s/../share/textura/palettes", exe);
-            if (try_dir(dir, strlen(dir), name, buf, n))
-                return 0;
-            snprintf(dir, sizeof dir, "%s/../../palettes", exe);
-            if (try_dir(dir, strlen(dir), name, buf, n))
-                return 0;
-        }
-    }
     {
-        const char *share = TEX_DATADIR "/palettes";
-        if (try_dir(share, strlen(share), name, buf, n))
+        char dir[PATH_MAX + 16];
+        snprintf(dir, sizeof dir, "%s/palettes", tex_install_dir(TEX_DIR_DATA));
+        if (try_dir(dir, strlen(dir), name, buf, n))
             return 0;
     }
-    return tex_usage_error("unknown palette '%s' (no %s.pal in $TEXTURA_PALETTES, the program's "
-                           "share/textura/palettes or the source tree's palettes/)",
-                           name, name);
+    return tex_usage_error("unknown palette '%s' (no %s.pal in $TEXTURA_PALETTES or %s/palettes)",
+                           name, name, tex_install_dir(TEX_DIR_DATA));
 }
 
 tex_palette *tex_palette_load(const char *name_or_file)
