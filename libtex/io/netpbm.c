@@ -36,22 +36,22 @@ static void skip_ws(struct cur *c)
 /* A decimal header number in [lo, hi]; what names it in the message. */
 static int header_num(struct cur *c, const char *what, long lo, long hi, long *out)
 {
+    const unsigned char *start;
     long v = 0;
-    int digits = 0;
 
     skip_ws(c);
+    start = c->p;
     while (c->p < c->end && *c->p >= '0' && *c->p <= '9') {
         if (v <= hi)
             v = v * 10 + (*c->p - '0');
         c->p++;
-        digits++;
     }
-    if (!digits)
+    if (c->p == start)
         return tex_error("%s: %s", c->name, c->p < c->end ? "bad PNM header (a number expected)"
                                                           : "truncated PNM header");
     if (v < lo || v > hi)
-        return tex_error("%s: %s %ld%s is not %ld..%ld", c->name, what, v, v > hi ? "+" : "", lo,
-                         hi);
+        return tex_error("%s: %s %.*s is not %ld..%ld", c->name, what,
+                         (int)(c->p - start > 12 ? 12 : c->p - start), (const char *)start, lo, hi);
     *out = v;
     return 0;
 }

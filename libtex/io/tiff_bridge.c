@@ -91,7 +91,7 @@ static TIFF *open_mem(struct memsrc *src, struct layout *l, char *err, size_t er
     last_error[0] = '\0';
     if (!(t = TIFFClientOpen("tiff", "rm", src, m_read, m_write, m_seek, m_close, m_size, NULL,
                              NULL))) {
-        say(err, errlen, "not a readable TIFF file");
+        snprintf(err, errlen, "bad TIFF file (%s)", last_error[0] ? last_error : "unreadable");
         return NULL;
     }
     TIFFGetFieldDefaulted(t, TIFFTAG_IMAGEWIDTH, &l->w);
