@@ -9,6 +9,10 @@
 #include "io/netpbm.h"
 #include "io/stream.h"
 
+/* Sides are judged by tex_map_check_size, as for every format (a usage
+ * error naming the limit); the parser only keeps them from overflowing. */
+#define SIDE_ANY (1L << 40)
+
 struct cur {
     const unsigned char *p, *end;
     const char *name;
@@ -49,6 +53,10 @@ static int header_num(struct cur *c, const char *what, long lo, long hi, long *o
     if (c->p == start)
         return tex_error("%s: %s", c->name, c->p < c->end ? "bad PNM header (a number expected)"
                                                           : "truncated PNM header");
+    if (hi == SIDE_ANY && v > hi)
+        return tex_usage_error("%s: %s %.*s is out of range: each side must be 1..%d", c->name,
+                               what, (int)(c->p - start > 12 ? 12 : c->p - start),
+                               (const char *)start, TEX_MAP_MAX_SIDE);
     if (v < lo || v > hi)
         return tex_error("%s: %s %.*s is not %ld..%ld", c->name, what,
                          (int)(c->p - start > 12 ? 12 : c->p - start), (const char *)start, lo, hi);
@@ -155,10 +163,10 @@ static int pam_header(struct cur *c, long *w, long *h, long *depth, long *mv)
             c->p++;
             break;
         } else if (KEY("WIDTH")) {
-            if (header_num(c, "PAM width", 1, TEX_MAP_MAX_SIDE, w) < 0)
+            if (header_num(c, "PAM width", 0, SIDE_ANY, w) < 0)
                 return -1;
         } else if (KEY("HEIGHT")) {
-            if (header_num(c, "PAM height", 1, TEX_MAP_MAX_SIDE, h) < 0)
+            if (header_num(c, "PAM height", 0, SIDE_ANY, h) < 0)
                 return -1;
         } else if (KEY("DEPTH")) {
             if (header_num(c, "PAM depth", 1, 4, depth) < 0)
@@ -191,8 +199,8 @@ static tex_map *decode_pfm(struct cur *c, int nc)
     tex_map *m;
     int little;
 
-    if (header_num(c, "PFM width", 1, TEX_MAP_MAX_SIDE, &w) < 0 ||
-        header_num(c, "PFM height", 1, TEX_MAP_MAX_SIDE, &h) < 0)
+    if (header_num(c, "PFM width", 0, SIDE_ANY, &w) < 0 ||
+        header_num(c, "PFM height", 0, SIDE_ANY, &h) < 0)
         return NULL;
     skip_ws(c);
     while (c->p < c->end && !is_ws(*c->p) && k < sizeof num - 1)
@@ -247,8 +255,8 @@ tex_map *tex_netpbm_decode(const void *data, size_t len, const char *name)
         if (pam_header(&c, &w, &h, &nc, &mv) < 0)
             return NULL;
     } else {
-        if (header_num(&c, "PNM width", 1, TEX_MAP_MAX_SIDE, &w) < 0 ||
-            header_num(&c, "PNM height", 1, TEX_MAP_MAX_SIDE, &h) < 0)
+        if (header_num(&c, "PNM width", 0, SIDE_ANY, &w) < 0 ||
+            header_num(&c, "PNM height", 0, SIDE_ANY, &h) < 0)
             return NULL;
         if (kind != '1' && kind != '4' && header_num(&c, "PNM maxval", 1, 65535, &mv) < 0)
             return NULL;
