@@ -249,7 +249,7 @@ static tex_map *read_bridged(const char *path, const void *mem, size_t len, enum
     struct tex_oiio_in *in;
     char err[400] = "";
     int w, h, nc;
-    tex_map *m;
+    tex_map *m = NULL;
 
     if (!br) {
         tex_error_context(name);
