@@ -184,6 +184,10 @@ t_convert "$T/five.exr" -o "$T/four.exr" 2>"$T/err"
 t_convert -q "$T/five.exr" -o "$T/four.exr" 2>"$T/err" && [ ! -s "$T/err" ] && ok "-q silences the warning" ||
     notok "-q and the warning" "$(cat "$T/err")"
 expect "the kept alpha is the file's A" "$T/four.exr" 'all(p[3] == 0.5 for p in px)'
+oiiotool "$T/five.exr" -d float -o "$T/five.tif" 2>/dev/null
+t_convert "$T/five.tif" -o "$T/four.exr" 2>"$T/err" && [ "$(info_json "$T/four.exr" channels)" = 4 ] &&
+    grep -q "^t_convert: warning: $T/five.tif: 5 channels, the first 4 kept$" "$T/err" &&
+    ok "a 5-sample TIFF keeps four, with a warning" || notok "5-sample TIFF" "$(cat "$T/err")"
 
 # ---- bad files: one line naming the file, exit 1, no output ----
 bad() { # bad NAME FILE PATTERN: t_convert refuses FILE with a message matching PATTERN

@@ -28,9 +28,10 @@
 
 struct tex_codec_bridge {
     int version;
-    /* The size and channel count (1..4) of the file image mem/len, from its header. */
+    /* The size and channel count of the file image mem/len, from its header; the
+     * count may exceed 4 (a TIFF's extra samples). */
     int (*info)(const void *mem, size_t len, int *w, int *h, int *nc, char *err, size_t errlen);
-    /* Decode it into px, w*h*nc floats as info gave them. */
+    /* Decode it into px, w*h*min(nc, 4) floats: the first four channels. */
     int (*read)(const void *mem, size_t len, float *px, char *err, size_t errlen);
     /* Encode w*h*nc samples of bits (8: uint8, 16: uint16, 32: float) to fd,
      * which may be a pipe for PNG and JPEG (TIFF needs a file it can seek). */

@@ -134,7 +134,7 @@ static int b_info(const void *mem, size_t len, int *w, int *h, int *nc, char *er
     }
     *w = (int)l.w;
     *h = (int)l.h;
-    *nc = l.nc;
+    *nc = l.native ? l.spp : l.nc; /* the caller warns past four; read gives the first four */
     TIFFClose(t);
     return 0;
 }
