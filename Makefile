@@ -6,8 +6,8 @@
 #   make demo       run the main job: writes demo.png
 #   make test       the whole test suite: plain, under ASan+UBSan, and built by clang
 #   make bench      the benchmarks in tests/bench (not timed tests)
-#   make install    PREFIX=/usr/local DESTDIR= (after a build: nothing is rebuilt
-#                   for the prefix, the installed tree finds its parts at run time)
+#   make install    PREFIX=/usr/local DESTDIR= (after a build, nothing is rebuilt
+#                   for the prefix: the installed tree finds its parts at run time)
 #   make uninstall  remove what make install put in PREFIX
 #   make man        refresh the option lists of the man pages from the tools
 #   make fuzz       build the fuzz targets (clang, libFuzzer)
@@ -159,12 +159,12 @@ man: all
 fuzz:
 	$(MAKE) -C tests/fuzz BUILD=$(abspath $(BUILD))/fuzz
 
-# Installing builds nothing: run `make` first (a distribution builds, then
-# installs with PREFIX and DESTDIR); the tree finds its parts relative to
-# itself at run time.
+# A tree built for one prefix installs at another without being rebuilt (a
+# distribution builds, then installs with PREFIX and DESTDIR): the objects
+# do not depend on PREFIX, and the installed tree finds its parts relative
+# to itself at run time (libtex/base/paths.h).
 INSTALLED_TOOLS = $(TOOLS:$(BUILD)/bin/%=%)
-install:
-	@[ -e $(SHARED) ] || { echo "make install: build first (make -j2)" >&2; exit 1; }
+install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(LIBDIR)/textura $(DESTDIR)$(LIBDIR)/pkgconfig \
 	    $(addprefix $(DESTDIR)$(PREFIX)/include/textura/,$(LAYERS)) $(DESTDIR)$(PREFIX)/share/man/man1 \
 	    $(DESTDIR)$(PREFIX)/share/man/man3 $(DESTDIR)$(PREFIX)/share/man/man5 \
