@@ -30,8 +30,9 @@ static const struct tex_param rows[] = {
     TEX_STRING(struct opts, model, 0, NULL, "NAME",
                "shade every surface with this model (phong|cook-torrance)"),
     TEX_STRING(struct opts, help_scene, 0, NULL, "BLOCK",
-               "list the words of a scene block "
-               "(settings|camera|light|texture|surface|apply|object) and exit"),
+               "list the words of a scene block (settings|camera|light|environment|texture|"
+               "surface|apply|targets|object), or of application functions' expressions "
+               "(quantities|functions), and exit"),
     TEX_STRING(struct opts, help_scene_mdoc, 0, NULL, "BLOCK",
                "the same list as mdoc, for t_apply(5)"),
     {0}};
@@ -89,15 +90,54 @@ static const char *scene_range(const struct tex_param *p, char *buf, size_t n)
     return buf;
 }
 
+/* One word of an expression: "  mix(a, b, t)   help", or its mdoc item. */
+static void help_word(const struct tex_scene_word *w, int mdoc)
+{
+    char lhs[64];
+    if (!mdoc) {
+        snprintf(lhs, sizeof lhs, "%s%s%s%s", w->name, w->args ? "(" : "", w->args ? w->args : "",
+                 w->args ? ")" : "");
+        printf("  %-28s %s\n", lhs, w->help);
+        return;
+    }
+    if (w->args) { /* .Fn takes each argument on its own */
+        printf(".It Fn %s", w->name);
+        for (const char *a = w->args, *e; *a; a = *e ? e + 2 : e) {
+            e = strchr(a, ',');
+            e = e ? e : a + strlen(a);
+            printf(" %.*s", (int)(e - a), a);
+        }
+        putchar('\n');
+    } else
+        printf(".It Ic %s\n", w->name);
+    printf("%c%s.\n", w->help[0] >= 'a' && w->help[0] <= 'z' ? w->help[0] - 32 : w->help[0],
+           w->help + 1);
+}
+
+/* --help-scene quantities|functions: the words of application functions. */
+__attribute__((noreturn)) static void help_words(int functions, int mdoc)
+{
+    struct tex_scene_word w;
+    if (mdoc)
+        puts(".Bl -tag -width Ds");
+    for (int i = 0; functions ? tex_scene_function(i, &w) : !!tex_quantities[i].name; i++)
+        help_word(functions ? &w : &tex_quantities[i], mdoc);
+    if (mdoc)
+        puts(".El");
+    exit(0);
+}
+
 /* --help-scene BLOCK and --help-scene-mdoc BLOCK: the block's rows. */
 __attribute__((noreturn)) static void help_scene(const char *block, int mdoc)
 {
     const struct tex_scene_block *b = tex_scene_blocks;
+    if (!strcmp(block, "quantities") || !strcmp(block, "functions"))
+        help_words(block[0] == 'f', mdoc);
     while (b->name && strcmp(b->name, block))
         b++;
     if (!b->name)
-        tex_usage_die("--help-scene%s must be settings|camera|light|texture|surface|apply|object "
-                      "(got '%s')", mdoc ? "-mdoc" : "", block);
+        tex_usage_die("--help-scene%s must be settings|camera|light|environment|texture|surface|"
+                      "apply|targets|object|quantities|functions (got '%s')", mdoc ? "-mdoc" : "", block);
     if (mdoc)
         puts(".Bl -tag -width Ds");
     for (const struct tex_param *p = b->rows; p->name; p++) {

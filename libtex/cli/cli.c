@@ -379,21 +379,11 @@ void tex_cli_write(tex_map *m, const struct tex_common *c)
         tex_die();
 }
 
-/* The colours of subregions 1..n through a palette (its indexed colours, or
- * n stops spread over its gradient): n RGB triples. */
+/* The colours of subregions 1..n through the palette named. */
 static float *region_colors(const char *palette, int n)
 {
     tex_palette *pal = tex_palette_load(palette);
-    float *c = pal ? malloc(sizeof *c * 3 * (n > 0 ? n : 1)) : NULL;
-
-    if (pal && !c)
-        tex_error("out of memory");
-    for (int k = 0; c && k < n; k++) {
-        float rgba[4];
-        tex_palette_index_n(pal, k + 1, n, rgba);
-        for (int j = 0; j < 3; j++)
-            c[3 * k + j] = rgba[j];
-    }
+    float *c = pal ? tex_palette_region_colours(pal, n) : NULL;
     tex_palette_free(pal);
     return c;
 }

@@ -149,6 +149,21 @@ static int exr_fail(exr_context_t *ctx, exr_result_t rv, const char *what)
     return -1;
 }
 
+/* OpenEXR 3.1's ZIP compressor, when deflate does not shrink a chunk, stores its
+ * predicted and interleaved bytes instead of the raw ones, which a reader takes for raw
+ * pixels (a noise map of cells under 3 pixels wide came back as +-3e38 and NaN).  The
+ * file format stores such a chunk raw: put the packed bytes back after it. */
+static exr_result_t (*default_compress)(exr_encode_pipeline_t *);
+
+static exr_result_t raw_if_incompressible(exr_encode_pipeline_t *enc)
+{
+    exr_result_t rv = __atomic_load_n(&default_compress, __ATOMIC_RELAXED)(enc);
+    if (rv == EXR_ERR_SUCCESS && enc->compressed_bytes >= enc->packed_bytes &&
+        enc->compressed_buffer != enc->packed_buffer)
+        memcpy(enc->compressed_buffer, enc->packed_buffer, enc->packed_bytes);
+    return rv;
+}
+
 static int encode(const tex_map *m, enum tex_compression c, struct wsink *sink)
 {
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
@@ -213,6 +228,10 @@ static int encode(const tex_map *m, enum tex_compression c, struct wsink *sink)
         }
         if (y == 0 && (rv = exr_encoding_choose_default_routines(ctx, part, &enc)))
             return exr_fail(&ctx, rv, "EXR encoder");
+        if (y == 0 && enc.compress_fn) { /* see raw_if_incompressible */
+            __atomic_store_n(&default_compress, enc.compress_fn, __ATOMIC_RELAXED);
+            enc.compress_fn = raw_if_incompressible;
+        }
         if ((rv = exr_encoding_run(ctx, part, &enc))) {
             exr_encoding_destroy(ctx, &enc);
             return exr_fail(&ctx, rv, "EXR encode");

@@ -6,13 +6,26 @@
 #include <string.h>
 
 #include "lang/expr.h"
+#include "ops/palette.h"
 
 const struct tex_expr_func tex_expr_funcs[] = {
-    {"min", 2, TEX_EOP_MIN, "the smaller of a and b"},
-    {"max", 2, TEX_EOP_MAX, "the larger of a and b"},
-    {"abs", 1, TEX_EOP_ABS, "the absolute value of a"},
-    {"rgb", 3, TEX_EOP_RGB, "a colour: red from r, green from g, blue from b"},
-    {NULL, 0, 0, NULL},
+    {"min", 2, TEX_EOP_MIN, "a, b", "the smaller of a and b"},
+    {"max", 2, TEX_EOP_MAX, "a, b", "the larger of a and b"},
+    {"abs", 1, TEX_EOP_ABS, "a", "the absolute value of a"},
+    {"rgb", 3, TEX_EOP_RGB, "r, g, b", "a colour: red from r, green from g, blue from b"},
+    {"mix", 3, TEX_EOP_MIX, "a, b, t",
+     "a where t is 0, b where t is 1, linear between: a + (b - a) t"},
+    {"smoothstep", 3, TEX_EOP_SMOOTHSTEP, "e0, e1, x",
+     "0 below e0, 1 above e1, the cubic 3s^2 - 2s^3 between (s = (x - e0) / (e1 - e0))"},
+    {"step", 2, TEX_EOP_STEP, "edge, x", "0 where x < edge, else 1"},
+    {"clamp", 3, TEX_EOP_CLAMP, "x, lo, hi", "x limited to [lo, hi]"},
+    {"pow", 2, TEX_EOP_POW, "a, b", "a to the power b; 0 where that is not a real number"},
+    {"sin", 1, TEX_EOP_SIN, "a", "the sine of a (radians)"},
+    {"cos", 1, TEX_EOP_COS, "a", "the cosine of a (radians)"},
+    {"floor", 1, TEX_EOP_FLOOR, "a", "the largest integer not above a"},
+    {"fract", 1, TEX_EOP_FRACT, "a", "a - floor(a), in [0, 1)"},
+    {"if", 3, TEX_EOP_IF, "c, a, b", "a where c is not 0, else b (per channel)"},
+    {NULL, 0, 0, NULL, NULL},
 };
 
 const struct tex_expr_func *tex_expr_func_find(const struct tex_tok *t)
@@ -167,8 +180,9 @@ static const struct tex_expr_binop *binop(const struct tex_expr_parser *xp)
     const struct tex_tok *t = &xp->lx->t;
     for (const struct tex_expr_binop *o = xp->lang->binops; o->tok; o++) {
         int c = o->tok[0];
-        if (o->tok[1] == '\0' && !((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'))) {
-            if (tex_tok_is_punct(t, c) || (tex_tok_is_signed(t) && t->text[0] == c))
+        if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'))) {
+            if (tex_tok_is_op(t, o->tok) ||
+                (o->tok[1] == '\0' && tex_tok_is_signed(t) && t->text[0] == c))
                 return o;
         } else if (tex_tok_is_word(t, o->tok)) {
             return o;
@@ -243,22 +257,32 @@ static void emit(struct compiler *c, const struct tex_einsn *in)
     c->code[c->n++] = *in;
 }
 
-static int arity(enum tex_eop op)
+int tex_expr_arity(enum tex_eop op)
 {
     switch (op) {
     case TEX_EOP_CONST:
     case TEX_EOP_LEAF: return 0;
     case TEX_EOP_NEG:
-    case TEX_EOP_ABS: return 1;
-    case TEX_EOP_RGB: return 3;
+    case TEX_EOP_ABS:
+    case TEX_EOP_SIN:
+    case TEX_EOP_COS:
+    case TEX_EOP_FLOOR:
+    case TEX_EOP_FRACT:
+    case TEX_EOP_PALETTE: return 1;
+    case TEX_EOP_RGB:
+    case TEX_EOP_MIX:
+    case TEX_EOP_SMOOTHSTEP:
+    case TEX_EOP_CLAMP:
+    case TEX_EOP_IF: return 3;
     default: return 2;
     }
 }
 
-/* Channel k of op on a, b, c (as the renderer computes it). */
-static double apply(enum tex_eop op, int k, const double *a, const double *b, const double *c)
+double tex_expr_apply(const struct tex_einsn *in, int k, const double *a, const double *b,
+                      const double *c)
 {
-    switch (op) {
+    double x;
+    switch (in->op) {
     case TEX_EOP_NEG: return -a[k];
     case TEX_EOP_ADD: return a[k] + b[k];
     case TEX_EOP_SUB: return a[k] - b[k];
@@ -267,28 +291,57 @@ static double apply(enum tex_eop op, int k, const double *a, const double *b, co
     case TEX_EOP_MIN: return fmin(a[k], b[k]);
     case TEX_EOP_MAX: return fmax(a[k], b[k]);
     case TEX_EOP_ABS: return fabs(a[k]);
-    default: return (k == 0 ? a : k == 1 ? b : c)[k];
+    case TEX_EOP_LT: return a[k] < b[k];
+    case TEX_EOP_GT: return a[k] > b[k];
+    case TEX_EOP_LE: return a[k] <= b[k];
+    case TEX_EOP_GE: return a[k] >= b[k];
+    case TEX_EOP_EQ: return a[k] == b[k];
+    case TEX_EOP_NE: return a[k] != b[k];
+    case TEX_EOP_MIX: return a[k] + (b[k] - a[k]) * c[k];
+    case TEX_EOP_SMOOTHSTEP:
+        /* e0 = e1: a step at e0 */
+        x = b[k] != a[k] ? (c[k] - a[k]) / (b[k] - a[k]) : c[k] >= a[k];
+        x = !(x > 0) ? 0 : x < 1 ? x : 1;
+        return x * x * (3 - 2 * x);
+    case TEX_EOP_STEP: return b[k] >= a[k];
+    case TEX_EOP_CLAMP: return fmin(fmax(a[k], b[k]), c[k]);
+    case TEX_EOP_POW:
+        x = pow(a[k], b[k]);
+        return isfinite(x) ? x : 0;
+    case TEX_EOP_SIN: return sin(a[k]);
+    case TEX_EOP_COS: return cos(a[k]);
+    case TEX_EOP_FLOOR: return floor(a[k]);
+    case TEX_EOP_FRACT: return a[k] - floor(a[k]);
+    case TEX_EOP_IF: return a[k] != 0 ? b[k] : c[k];
+    case TEX_EOP_PALETTE: {
+        float rgba[4];
+        tex_palette_lookup(in->ptr, tex_palette_t((a[0] + a[1] + a[2]) / 3, 0, 1,
+                                                  TEX_OUTSIDE_CLAMP), rgba);
+        return rgba[k];
+    }
+    default: return (k == 0 ? a : k == 1 ? b : c)[k]; /* rgb */
     }
 }
 
-/* Emit operator op at node e; constant operands are folded. */
+/* Emit operator op at node e (ptr: e's operand); constant operands are folded. */
 static void emit_op(struct compiler *c, enum tex_eop op, const struct tex_enode *e)
 {
-    int k = arity(op), folded = c->n >= k;
+    int k = tex_expr_arity(op), folded = c->n >= k;
+    struct tex_einsn in = {op, 0, {0}, e->kind == TEX_EK_CALL ? e->ptr : NULL};
     for (int i = 1; folded && i <= k; i++)
         folded = c->code[c->n - i].op == TEX_EOP_CONST;
     if (folded) {
         struct tex_einsn r = {TEX_EOP_CONST, 0, {0}, NULL}, *o = c->code + c->n - k;
         for (int ch = 0; ch < 3; ch++)
-            r.v[ch] = apply(op, ch, o[0].v, k > 1 ? o[1].v : NULL, k > 2 ? o[2].v : NULL);
+            r.v[ch] = tex_expr_apply(&in, ch, o[0].v, k > 1 ? o[1].v : NULL,
+                                     k > 2 ? o[2].v : NULL);
         c->n -= k;
         c->sp -= k;
         emit(c, &r);
     } else {
-        emit(c, &(struct tex_einsn){op, 0, {0}, NULL});
+        emit(c, &in);
     }
     c->sp += 1 - k;
-    (void)e;
 }
 
 static void emit_leaf(struct compiler *c, const struct tex_enode *e)

@@ -18,10 +18,17 @@
  *           | function '(' expr {',' expr} ')'
  *           | operand                   the language's own (a name, ...)
  *
- * Functions, the same in both languages (tex_expr_funcs[]):
+ * Functions, the same in both languages (tex_expr_funcs[], whose help
+ * column t_apply(5) and t_compose(5) list):
  *   min(a, b)  max(a, b)  abs(a)  rgb(r, g, b)
+ *   mix(a, b, t)  smoothstep(e0, e1, x)  step(edge, x)  clamp(x, lo, hi)
+ *   pow(a, b)  sin(a)  cos(a)  floor(a)  fract(a)  if(c, a, b)
  * In a scene they act per colour channel on numbers; in a script on every
- * pixel of images (rgb takes numbers only there, and makes a colour).
+ * pixel of images (rgb takes numbers only there, and makes a colour).  A
+ * language may add comparisons (< > <= >= == !=, 1 or 0) to its binary
+ * operators, and its own operands that are calls (a scene's palette(NAME, x)
+ * compiles to TEX_EOP_PALETTE).  tex_expr_apply is the one definition of
+ * every operator, for constant folding and for the languages' evaluators.
  *
  * Limits, the same in both languages, checked while parsing so that every
  * later walk is bounded: TEX_EXPR_MAX_DEPTH levels of nesting (parentheses,
@@ -58,7 +65,11 @@ enum tex_eop {
     TEX_EOP_CONST, /* push v */
     TEX_EOP_LEAF,  /* push the language's operand (leaf, ptr) */
     TEX_EOP_NEG, TEX_EOP_ADD, TEX_EOP_SUB, TEX_EOP_MUL, TEX_EOP_DIV, /* x / 0 = 0 */
-    TEX_EOP_MIN, TEX_EOP_MAX, TEX_EOP_ABS, TEX_EOP_RGB /* channel k of argument k */
+    TEX_EOP_MIN, TEX_EOP_MAX, TEX_EOP_ABS, TEX_EOP_RGB, /* channel k of argument k */
+    TEX_EOP_LT, TEX_EOP_GT, TEX_EOP_LE, TEX_EOP_GE, TEX_EOP_EQ, TEX_EOP_NE, /* 1 or 0 */
+    TEX_EOP_MIX, TEX_EOP_SMOOTHSTEP, TEX_EOP_STEP, TEX_EOP_CLAMP, TEX_EOP_POW, TEX_EOP_SIN,
+    TEX_EOP_COS, TEX_EOP_FLOOR, TEX_EOP_FRACT, TEX_EOP_IF,
+    TEX_EOP_PALETTE /* ptr: a tex_palette (ops/palette.h) at the mean of the argument */
 };
 
 /* The function table: name, arity, operator, one-line help. */
@@ -66,6 +77,7 @@ struct tex_expr_func {
     const char *name;
     int nargs;
     enum tex_eop op;
+    const char *args; /* the arguments' names, for help: "a, b, t" */
     const char *help;
 };
 extern const struct tex_expr_func tex_expr_funcs[];
@@ -127,6 +139,13 @@ struct tex_expr {
     int n, depth; /* instructions; the most values on the stack */
     struct tex_einsn *code;
 };
+
+/* The number of values operator op takes from the stack. */
+int tex_expr_arity(enum tex_eop op);
+/* Channel k of operator in->op (not CONST or LEAF) on the colours a, b, c
+ * (as many as its arity; the others may be NULL). */
+double tex_expr_apply(const struct tex_einsn *in, int k, const double *a, const double *b,
+                      const double *c);
 
 /* Compile e (whose BIN codes are enum tex_eop) into the lexer's memory;
  * iterative, constants folded. */

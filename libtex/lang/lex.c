@@ -193,10 +193,14 @@ void tex_lex_next(struct tex_lexer *lx)
         skip(lx, n);
     } else if (c == '"') {
         lex_string(lx);
-    } else if (c && strchr("{}(),;=+-*/", c)) {
+    } else if (c && strchr("{}(),;=+-*/<>", c)) {
         t->kind = TEX_TOK_PUNCT;
-        t->len = 1;
-        skip(lx, 1);
+        t->len = strchr("<>=", c) && q + 1 < lx->end && q[1] == '=' ? 2 : 1;
+        skip(lx, t->len);
+    } else if (c == '!' && q + 1 < lx->end && q[1] == '=') {
+        t->kind = TEX_TOK_PUNCT;
+        t->len = 2;
+        skip(lx, 2);
     } else if (c == 0) {
         tex_lex_fail(lx, t->line, t->col, "NUL byte");
     } else if (c >= 0x20 && c < 0x7f) {
@@ -213,7 +217,12 @@ int tex_tok_is_word(const struct tex_tok *t, const char *w)
 
 int tex_tok_is_punct(const struct tex_tok *t, int c)
 {
-    return t->kind == TEX_TOK_PUNCT && t->text[0] == c;
+    return t->kind == TEX_TOK_PUNCT && t->len == 1 && t->text[0] == c;
+}
+
+int tex_tok_is_op(const struct tex_tok *t, const char *op)
+{
+    return t->kind == TEX_TOK_PUNCT && strlen(op) == t->len && !memcmp(t->text, op, t->len);
 }
 
 int tex_tok_is_signed(const struct tex_tok *t)

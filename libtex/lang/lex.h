@@ -13,7 +13,8 @@
  *             read as the operator and the number: "f -1" is "f - 1".
  *   string    "text" on one line; a backslash takes the next character as
  *             it is ("\"", "\\").
- *   punct     one of  { } ( ) , ; = + - * /
+ *   punct     one of  { } ( ) , ; = + - * / < >  or a comparison of two
+ *             characters: <= >= == !=
  *   comments  '#' to the end of the line; blanks, tabs and newlines
  *             separate tokens (in a scene, so does ';': semicolon_blank).
  *
@@ -75,6 +76,8 @@ void tex_lex_next(struct tex_lexer *lx);
 /* Is t the name w / the punctuation c / a number written with a sign? */
 int tex_tok_is_word(const struct tex_tok *t, const char *w);
 int tex_tok_is_punct(const struct tex_tok *t, int c);
+/* Is t the punctuation op, of one or two characters ("<=")? */
+int tex_tok_is_op(const struct tex_tok *t, const char *op);
 int tex_tok_is_signed(const struct tex_tok *t);
 
 /* Record "file:line:col: message" as an error of the given kind and jump out. */

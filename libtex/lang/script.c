@@ -938,12 +938,66 @@ static int eval_chain(struct S *s, const struct tex_enode *x, struct val *out)
     return rc;
 }
 
+/* Channel c of value v at pixel i: a number serves every channel; a grey map's value every
+ * colour channel; a missing alpha is 1. */
+static double val_at(const struct val *v, size_t i, int c)
+{
+    int nc = v->m ? v->m->nc : v->nc > 1 ? v->nc : 1;
+    const float *p = v->m ? v->m->px + i * nc : v->c;
+    if (nc == 2) /* grey and alpha */
+        return p[c == 3 ? 1 : 0];
+    if (c < nc)
+        return p[c];
+    return c == 3 && nc > 1 ? 1 : p[0];
+}
+
+/* A function of lang/expr.h's table that has no image operator (mix, smoothstep, sin, ...):
+ * tex_expr_apply on every pixel and channel, numbers standing for whole images.  The result
+ * has the most channels of its arguments. */
+static int eval_pointwise(struct S *s, const struct tex_enode *x, struct val *v, int n,
+                          struct val *out)
+{
+    const tex_map *m = NULL;
+    int nc = 1;
+    for (int i = 0; i < n; i++) {
+        const tex_map *mi = v[i].m;
+        int ci = mi ? mi->nc : v[i].nc > 1 ? v[i].nc : 1;
+        nc = ci > nc ? ci : nc;
+        if (mi && m && (mi->w != m->w || mi->h != m->h))
+            return tex_lang_error(s->name, x->line, x->col,
+                                  "function of images of different sizes (%dx%d and %dx%d): "
+                                  "resize one", m->w, m->h, mi->w, mi->h);
+        m = mi ? mi : m;
+    }
+    const struct tex_einsn in = {(enum tex_eop)x->op, 0, {0}, NULL};
+    size_t npx = m ? (size_t)m->w * m->h : 1;
+    tex_map *r = m ? tex_map_new(m->w, m->h, nc) : NULL;
+    if (m && !r)
+        return err_pos(s, x->line, x->col);
+    memset(out, 0, sizeof *out);
+    for (size_t i = 0; i < npx; i++)
+        for (int c = 0; c < nc; c++) {
+            double a[3] = {0}, b[3] = {0}, cc[3] = {0};
+            a[0] = val_at(&v[0], i, c);
+            b[0] = n > 1 ? val_at(&v[1], i, c) : 0;
+            cc[0] = n > 2 ? val_at(&v[2], i, c) : 0;
+            float y = (float)tex_expr_apply(&in, 0, a, b, cc);
+            if (r)
+                r->px[i * nc + c] = y;
+            else
+                out->c[c] = y;
+        }
+    out->m = out->own = r;
+    out->nc = r ? 0 : nc;
+    return 0;
+}
+
 /* A function of lang/expr.h's table, on images (rgb: on numbers, a colour). */
 static int eval_call(struct S *s, const struct tex_enode *x, struct val *out)
 {
     const struct tex_enode *arg[3] = {x->a, x->b, x->c};
     struct val v[3] = {{0}};
-    int n = x->op == TEX_EOP_ABS ? 1 : x->op == TEX_EOP_RGB ? 3 : 2;
+    int n = tex_expr_arity((enum tex_eop)x->op);
 
     for (int i = 0; i < n; i++)
         if (eval_x(s, arg[i], &v[i]) < 0) {
@@ -972,7 +1026,12 @@ static int eval_call(struct S *s, const struct tex_enode *x, struct val *out)
     }
     if (x->op == TEX_EOP_ABS)
         return combine(s, x, TEX_OP_ABS, &v[0], &v[1], out);
-    return combine(s, x, x->op == TEX_EOP_MIN ? TEX_OP_MIN : TEX_OP_MAX, &v[0], &v[1], out);
+    if (x->op == TEX_EOP_MIN || x->op == TEX_EOP_MAX)
+        return combine(s, x, x->op == TEX_EOP_MIN ? TEX_OP_MIN : TEX_OP_MAX, &v[0], &v[1], out);
+    int rc = eval_pointwise(s, x, v, n, out);
+    for (int i = 0; i < n; i++)
+        val_free(&v[i]);
+    return rc;
 }
 
 static int eval_x(struct S *s, const struct tex_enode *x, struct val *out)

@@ -1,5 +1,6 @@
 /* palette.c - palette files, gradient lookup in RGB or OKLab, indexed colours */
 #include <ctype.h>
+#include <dirent.h>
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
@@ -334,9 +335,93 @@ static int try_dir(const char *dir, size_t dlen, const char *name, char *buf, si
     return access(buf, R_OK) == 0;
 }
 
-int tex_palette_find(const char *name, char *buf, size_t n)
+/* The folders palettes are looked up in, in order (palette.h): fn(dir, dlen, ctx) for each
+ * until it returns 1; returns 1 if one did. */
+static int each_dir(int (*fn)(const char *dir, size_t dlen, void *ctx), void *ctx)
 {
     const char *env = getenv("TEXTURA_PALETTES");
+
+    while (env && *env) {
+        const char *e = strchr(env, ':');
+        size_t dl = e ? (size_t)(e - env) : strlen(env);
+        if (fn(env, dl, ctx))
+            return 1;
+        env = e ? e + 1 : NULL;
+    }
+    {
+        char dir[PATH_MAX + 16];
+        snprintf(dir, sizeof dir, "%s/palettes", tex_install_dir(TEX_DIR_DATA));
+        return fn(dir, strlen(dir), ctx);
+    }
+}
+
+struct find_ctx {
+    const char *name;
+    char *buf;
+    size_t n;
+};
+
+static int find_in(const char *dir, size_t dlen, void *ctx)
+{
+    struct find_ctx *c = ctx;
+    return try_dir(dir, dlen, c->name, c->buf, c->n);
+}
+
+/* The names of the palettes in the search path, sorted and without repeats, in buf. */
+struct names_ctx {
+    char names[256][64];
+    int n;
+};
+
+static int list_in(const char *dir, size_t dlen, void *ctx)
+{
+    struct names_ctx *c = ctx;
+    char path[PATH_MAX];
+    DIR *d;
+    struct dirent *e;
+    if (dlen == 0 || (size_t)snprintf(path, sizeof path, "%.*s", (int)dlen, dir) >= sizeof path ||
+        !(d = opendir(path)))
+        return 0;
+    while ((e = readdir(d)) && c->n < 256) {
+        size_t l = strlen(e->d_name);
+        int dup = 0;
+        if (l <= 4 || l - 4 >= sizeof c->names[0] || strcmp(e->d_name + l - 4, ".pal"))
+            continue;
+        for (int i = 0; i < c->n && !dup; i++)
+            dup = !strncmp(c->names[i], e->d_name, l - 4) && !c->names[i][l - 4];
+        if (!dup)
+            snprintf(c->names[c->n++], sizeof c->names[0], "%.*s", (int)(l - 4), e->d_name);
+    }
+    closedir(d);
+    return 0;
+}
+
+static int cmp_name(const void *a, const void *b)
+{
+    return strcmp(a, b);
+}
+
+int tex_palette_names(char *buf, size_t n)
+{
+    struct names_ctx *c = calloc(1, sizeof *c);
+    size_t used = 0;
+    if (n)
+        buf[0] = '\0';
+    if (!c)
+        return 0;
+    each_dir(list_in, c);
+    qsort(c->names, (size_t)c->n, sizeof c->names[0], cmp_name);
+    for (int i = 0; i < c->n && used < n; i++)
+        used += (size_t)snprintf(buf + used, n - used, "%s%s", i ? ", " : "", c->names[i]);
+    int k = c->n;
+    free(c);
+    return k;
+}
+
+int tex_palette_find(const char *name, char *buf, size_t n)
+{
+    struct find_ctx c = {name, buf, n};
+    char known[1024];
 
     if (!*name)
         return tex_usage_error("empty palette name");
@@ -345,23 +430,15 @@ int tex_palette_find(const char *name, char *buf, size_t n)
             return tex_usage_error("palette file name too long");
         return 0;
     }
-    for (const char *c = name; *c; c++)
-        if (!isalnum((unsigned char)*c) && !strchr("._+-", *c))
+    for (const char *ch = name; *ch; ch++)
+        if (!isalnum((unsigned char)*ch) && !strchr("._+-", *ch))
             return tex_usage_error("bad palette name '%s' (letters, digits, '.', '_', '+', '-')",
                                    name);
-    while (env && *env) {
-        const char *e = strchr(env, ':');
-        size_t dl = e ? (size_t)(e - env) : strlen(env);
-        if (try_dir(env, dl, name, buf, n))
-            return 0;
-        env = e ? e + 1 : NULL;
-    }
-    {
-        char dir[PATH_MAX + 16];
-        snprintf(dir, sizeof dir, "%s/palettes", tex_install_dir(TEX_DIR_DATA));
-        if (try_dir(dir, strlen(dir), name, buf, n))
-            return 0;
-    }
+    if (each_dir(find_in, &c))
+        return 0;
+    if (tex_palette_names(known, sizeof known) > 0)
+        return tex_usage_error("unknown palette '%s' (known: %s; or a file NAME.pal)", name,
+                               known);
     return tex_usage_error("unknown palette '%s' (no %s.pal in $TEXTURA_PALETTES or %s/palettes)",
                            name, name, tex_install_dir(TEX_DIR_DATA));
 }
@@ -554,4 +631,20 @@ tex_map *tex_palette_map(const tex_palette *p, const tex_map *m, double lo, doub
         memcpy(out->px + i * nc, c, nc * sizeof *c);
     }
     return out;
+}
+
+float *tex_palette_region_colours(const tex_palette *p, int n)
+{
+    float *c = malloc(sizeof *c * 3 * (n > 0 ? n : 1));
+    if (!c) {
+        tex_error("out of memory");
+        return NULL;
+    }
+    for (int k = 0; k < n; k++) {
+        float rgba[4];
+        tex_palette_index_n(p, k + 1, n, rgba);
+        for (int j = 0; j < 3; j++)
+            c[3 * k + j] = rgba[j];
+    }
+    return c;
 }

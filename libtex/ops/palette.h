@@ -92,12 +92,19 @@ void tex_palette_free(tex_palette *p);
 /* Write p in the text format; values round-trip exactly.  -1 on a write error. */
 int tex_palette_write(const tex_palette *p, FILE *fp);
 
-/* The file a name resolves to, in buf; -1 with a usage error if none exists. */
+/* The file a name resolves to, in buf; -1 with a usage error if none exists
+ * (it lists the known names). */
 int tex_palette_find(const char *name, char *buf, size_t n);
+/* The names of the palettes found in the search path, sorted, comma-separated
+ * in buf (truncated to n); returns how many there are. */
+int tex_palette_names(char *buf, size_t n);
 
 void tex_palette_lookup(const tex_palette *p, float t, float rgba[4]);
 void tex_palette_index(const tex_palette *p, int id, float rgba[4]);
 void tex_palette_index_n(const tex_palette *p, int id, int n, float rgba[4]);
+/* The colours of subregions 1..n (tex_palette_index_n): n RGB triples from
+ * malloc, for a REGIONS field's colors (prim.h); NULL when memory fails. */
+float *tex_palette_region_colours(const tex_palette *p, int n);
 
 struct tex_map;
 enum tex_outside { TEX_OUTSIDE_CLAMP, TEX_OUTSIDE_REPEAT, TEX_OUTSIDE_MIRROR };

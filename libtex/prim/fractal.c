@@ -73,21 +73,28 @@ static void offsets(const struct tex_reals *r, double off[3])
         off[a] = r->v[a];
 }
 
+/* The octaves' amplitudes g^k and the inverse of their sum */
+static void turb_amplitudes(struct turb_state *s, double gain, int octaves)
+{
+    double sum = 0;
+    for (int k = 0; k < octaves; k++) {
+        s->amp[k] = (float)pow(gain, k);
+        sum += s->amp[k];
+    }
+    s->inv = (float)(1.0 / sum);
+}
+
 static int turb_init(struct tex_field *f)
 {
     const struct turb_params *p = f->params;
     struct turb_state *s = calloc(1, sizeof *s);
-    double off[3], sum = 0;
+    double off[3];
 
     if (!s)
         return tex_error("out of memory");
     f->state = s;
     offsets(&p->offset, off);
-    for (int k = 0; k < p->octaves; k++) {
-        s->amp[k] = (float)pow(p->gain, k);
-        sum += s->amp[k];
-    }
-    s->inv = (float)(1.0 / sum);
+    turb_amplitudes(s, p->gain, p->octaves);
     return tex_octaves_init(&s->o, f->seed, p->gradients, p->fade, p->octaves, p->frequency,
                             p->lacunarity, off, p->z, p->w.n ? p->w.v[0] : 0, p->w.n ? 4 : 3,
                             f->tile, f->w, f->h);
@@ -101,14 +108,19 @@ static void turb_fini(struct tex_field *f)
     free(s);
 }
 
-static float turb_point(const struct tex_field *f, double u, double v, double w)
+/* Turbulence at a point, from its octaves and amplitudes */
+static float turb_sum(const struct turb_state *s, double u, double v, double w)
 {
-    const struct turb_state *s = f->state;
     float acc = 0;
 
     for (int k = 0; k < s->o.n; k++)
         acc += s->amp[k] * fabsf((float)tex_octave_point(&s->o, k, u, v, w));
     return clamp01(acc * s->inv);
+}
+
+static float turb_point(const struct tex_field *f, double u, double v, double w)
+{
+    return turb_sum(f->state, u, v, w);
 }
 
 static void turb_eval2(const struct tex_field *f, int n, const double *u, const double *v,
@@ -145,6 +157,111 @@ const struct tex_primitive tex_prim_turbulence = {
     .eval2 = turb_eval2,
     .eval3 = turb_eval3,
     .row = turb_row,
+};
+
+/* ---- wood: rings about an axis, perturbed by turbulence (POV-Ray's wood) ---- */
+
+struct wood_params {
+    double rings, amount, frequency, tilt, offset, grain;
+    int octaves;
+};
+
+static const struct tex_param wood_rows[] = {
+    TEX_REAL(struct wood_params, rings, 0, 8, 0.01, 1e4, "R",
+             "rings per unit of distance from the axis (the map is 1 wide)"),
+    TEX_REAL(struct wood_params, amount, 'a', 0.04, 0, 10,
+             "A", "turbulence added to the distance from the axis, in map widths"),
+    TEX_REAL(struct wood_params, frequency, 'f', 4, 0, 1e6, "F",
+             "lattice cells of the turbulence across the map at its first octave"),
+    TEX_INT(struct wood_params, octaves, 'n', 4, 1, TEX_OCTAVES_MAX, "N",
+            "octaves of the turbulence"),
+    TEX_REAL(struct wood_params, tilt, 0, 0, -90, 90, "DEG",
+             "angle of the axis from w towards v: 0 shows the rings as in a cross-cut log, "
+             "90 runs the grain down the map as on a plank"),
+    TEX_REAL(struct wood_params, offset, 0, 0, -100, 100, "D",
+             "distance of the axis from the map's centre along u, in map widths"),
+    TEX_REAL(struct wood_params, grain, 0, 0, 0, 1, "G",
+             "weight of fine streaks along the axis (noise stretched along it)"),
+    {0}};
+
+struct wood_state {
+    struct turb_state turb;
+    tex_noise_table grain;
+    double c, s; /* cosine and sine of the tilt */
+};
+
+static int wood_init(struct tex_field *f)
+{
+    const struct wood_params *p = f->params;
+    struct wood_state *s = calloc(1, sizeof *s);
+    double off[3] = {0, 0, 0};
+
+    if (!s)
+        return tex_error("out of memory");
+    f->state = s;
+    turb_amplitudes(&s->turb, 0.5, p->octaves);
+    s->c = cos(p->tilt * M_PI / 180);
+    s->s = sin(p->tilt * M_PI / 180);
+    if (tex_noise_init(&s->grain, f->seed ^ 0x5bd1e995u, 256, 0) < 0)
+        return -1;
+    return tex_octaves_init(&s->turb.o, f->seed, 256, 0, p->octaves, p->frequency, 2, off, 0, 0,
+                            3, 0, 0, 0);
+}
+
+static void wood_fini(struct tex_field *f)
+{
+    struct wood_state *s = f->state;
+    if (s) {
+        tex_octaves_free(&s->turb.o);
+        tex_noise_free(&s->grain);
+    }
+    free(s);
+}
+
+/* The distance r from the axis, perturbed by turbulence and counted in rings, modulo 1: a
+ * sawtooth from early to late wood that a palette colours; grain mixes in noise stretched
+ * 32 times along the axis. */
+static float wood_point(const struct tex_field *f, double u, double v, double w)
+{
+    const struct wood_params *p = f->params;
+    const struct wood_state *s = f->state;
+    double x = u - 0.5 - p->offset, y = v - 0.5, z = w - 0.5;
+    double ya = y * s->c - z * s->s, za = y * s->s + z * s->c; /* the axis runs along za */
+    double r = sqrt(x * x + ya * ya);
+    float t = p->amount > 0 ? turb_sum(&s->turb, u, v, w) : 0;
+    double ring = (r + p->amount * t) * p->rings;
+    double val = ring - floor(ring);
+    if (p->grain > 0) {
+        double g = 0.5 + 0.5 * tex_noise3(&s->grain, 64 * x, 64 * ya, 2 * za);
+        val = (1 - p->grain) * val + p->grain * g;
+    }
+    return clamp01((float)val);
+}
+
+static void wood_eval2(const struct tex_field *f, int n, const double *u, const double *v,
+                       float *out)
+{
+    for (int i = 0; i < n; i++)
+        out[i] = wood_point(f, u[i], v[i], 0.5);
+}
+
+static void wood_eval3(const struct tex_field *f, int n, const double *u, const double *v,
+                       const double *w, float *out)
+{
+    for (int i = 0; i < n; i++)
+        out[i] = wood_point(f, u[i], v[i], w[i]);
+}
+
+const struct tex_primitive tex_prim_wood = {
+    .name = "wood",
+    .summary = "wood: rings about an axis perturbed by turbulence, with grain along it",
+    .flags = TEX_PRIM_2D | TEX_PRIM_3D,
+    .params_size = sizeof(struct wood_params),
+    .params = wood_rows,
+    .init = wood_init,
+    .fini = wood_fini,
+    .eval2 = wood_eval2,
+    .eval3 = wood_eval3,
 };
 
 /* ---- fractal ---- */

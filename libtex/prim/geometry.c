@@ -3,6 +3,7 @@
 #include <stdlib.h>
 
 #include "base/error.h"
+#include "base/rng.h"
 #include "prim/geometry.h"
 
 /* Every primitive's parameter struct starts with this head, so that the
@@ -785,7 +786,11 @@ const struct tex_primitive tex_prim_grid = {
 struct brick_params {
     GEO_HEAD;
     double width;
+    int cells;
 };
+
+/* --cells numbers the bricks: at most this many repetitions (two bricks each) */
+#define BRICK_CELLS_MAX 65536
 
 static const struct tex_param brick_rows[] = {
     TEX_REAL(struct brick_params, width, 'd', 0.12, 0, 1, "D",
@@ -794,7 +799,15 @@ static const struct tex_param brick_rows[] = {
     ROW_NV(struct brick_params, 4),
     ROW_COLOR(struct brick_params, 1, "#a8452e", "colour of region 1, the bricks"),
     ROW_COLOR(struct brick_params, 2, "#d9d2c3", "colour of region 2, the mortar"),
+    TEX_FLAG(struct brick_params, cells, 0,
+             "a subregion per brick: 1 is the mortar, each brick a random id 2..2 nu nv + 1 "
+             "(nu nv at most 65536), its colour1 shaded by the id, or a palette's colour"),
     {0}};
+
+struct brick_state {
+    struct geo_state g;
+    float (*col)[3]; /* --cells: the colours of the mortar and of every brick id */
+};
 
 /* A cell is one brick wide and two courses high, the lower course shifted by
  * half a brick.  Joints keep one width on the map: k[0] is half the bed
@@ -802,13 +815,47 @@ static const struct tex_param brick_rows[] = {
 static int brick_init(struct tex_field *f)
 {
     const struct brick_params *p = f->params;
-    double *k;
-    if (geo_init(f, 2) < 0)
-        return -1;
-    k = ((struct geo_state *)f->state)->k;
+    struct brick_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return tex_error("out of memory");
+    f->state = s;
+    const float(*c)[4] = (const float(*)[4]) & p->color1;
+    for (int k = 0; k < 2; k++)
+        for (int j = 0; j < 3; j++)
+            s->g.col[k][j] = c[k][j];
+    f->nregions = 2;
+    f->colors = (const float(*)[3])s->g.col;
+    f->nc = 1;
+    double *k = s->g.k;
     k[0] = p->width / 4;
     k[1] = p->width / 4 * p->nu / p->nv * (f->w > 0 && f->h > 0 ? (double)f->h / f->w : 1);
+    if (p->cells) {
+        if ((long)p->nu * p->nv > BRICK_CELLS_MAX)
+            return tex_usage_error("--cells numbers at most %d repetitions: nu x nv must be "
+                                   "1..%d (got %d x %d)", BRICK_CELLS_MAX, BRICK_CELLS_MAX,
+                                   p->nu, p->nv);
+        int n = 2 * p->nu * p->nv + 1;
+        if (!(s->col = malloc(sizeof *s->col * n)))
+            return tex_error("out of memory");
+        for (int j = 0; j < 3; j++)
+            s->col[0][j] = p->color2[j];
+        for (int id = 2; id <= n; id++) /* shades of colour1, 0.75..1.25 times */
+            for (int j = 0; j < 3; j++)
+                s->col[id - 1][j] =
+                    fminf(1, p->color1[j] * (0.75f + 0.5f * (float)(id - 2) / (float)(n - 1)));
+        f->nregions = n;
+        f->colors = (const float(*)[3])s->col;
+    }
     return 0;
+}
+
+static void brick_fini(struct tex_field *f)
+{
+    struct brick_state *s = f->state;
+    if (s)
+        free(s->col);
+    free(s);
+    f->state = NULL;
 }
 
 static inline int brick_id(const struct brick_params *p, const double *k, double x, double y)
@@ -820,16 +867,45 @@ static inline int brick_id(const struct brick_params *p, const double *k, double
         return x < k[1] || x > 1 - k[1] ? 2 : 1;
     return fabs(x - 0.5) < k[1] ? 2 : 1;
 }
-GEO_EVAL2(brick, struct brick_params)
+
+/* --cells: the brick at (u, v) as a random id in 2..2 nu nv + 1, the mortar 1.  A cell's upper
+ * course (y > 1/2) is brick (i, 2j), its lower course the bricks centred on its sides,
+ * (i, 2j + 1) left of x = 1/2 and (i + 1, 2j + 1) right of it, i wrapping so the map tiles. */
+static int brick_cell(const struct tex_field *f, const double *k, double u, double v)
+{
+    const struct brick_params *p = f->params;
+    double su = u * p->nu, sv = v * p->nv, x = su - floor(su), y = 1.0 - (sv - floor(sv));
+    if (brick_id(p, k, x, y) == 2)
+        return 1;
+    int64_t i = (int64_t)floor(su), j = (int64_t)floor(sv), row = 2 * j;
+    if (y < 0.5) {
+        row++;
+        i += x >= 0.5;
+    }
+    i = ((i % p->nu) + p->nu) % p->nu;
+    row = ((row % (2 * p->nv)) + 2 * p->nv) % (2 * p->nv);
+    uint64_t h = tex_hash64(f->seed ^ tex_hash64((uint64_t)i * 0x9e3779b1u ^ (uint64_t)row));
+    return 2 + (int)(h % (uint64_t)(2 * p->nu * p->nv));
+}
+
+static void brick_eval2(const struct tex_field *f, int n, const double *u, const double *v,
+                        float *out)
+{
+    const struct brick_params *p = f->params;
+    const double *k = ((const struct brick_state *)f->state)->g.k;
+    for (int i = 0; i < n; i++)
+        out[i] = p->cells ? (float)brick_cell(f, k, u[i], v[i])
+                          : (float)brick_id(p, k, cell(u[i], p->nu), 1.0 - cell(v[i], p->nv));
+}
 
 const struct tex_primitive tex_prim_brick = {
     .name = "brick",
-    .summary = "a brick wall in running bond: 2 subregions",
+    .summary = "a brick wall in running bond: 2 subregions, or one per brick",
     .flags = TEX_PRIM_2D | TEX_PRIM_REGIONS | TEX_PRIM_TILE,
     .params_size = sizeof(struct brick_params),
     .params = brick_rows,
     .init = brick_init,
-    .fini = geo_fini,
+    .fini = brick_fini,
     .eval2 = brick_eval2,
 };
 

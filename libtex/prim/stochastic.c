@@ -41,13 +41,18 @@ static const struct tex_param holes_rows[] = {
     TEX_REAL(struct holes_params, depth, 0, 1, 0, 1, "A", "depth of the holes (Fact)"),
     {0}};
 
-/* The hole of cell (i, j), wrapped by the grid: centre in cell units, diameter. */
-static int hole(const struct tex_field *f, int64_t i, int64_t j, double *cx, double *cy,
-                double *d)
+/* The hole of cell (i, j[, k]), wrapped by the grid: centre in cell units, diameter.  A solid
+ * field (dims 3) hashes k too; the map's cells keep their 2D hash. */
+static int hole(const struct tex_field *f, int dims, const int64_t c[3], double ctr[3], double *d)
 {
     const struct holes_params *p = f->params;
-    int64_t n = p->count, ki = f->tile ? ((i % n) + n) % n : i, kj = f->tile ? ((j % n) + n) % n : j;
-    uint64_t h = tex_hash64(f->seed ^ tex_hash64((uint64_t)ki * 0x9e3779b1u ^ tex_hash64((uint64_t)kj)));
+    int64_t n = p->count, kc[3];
+    for (int a = 0; a < dims; a++)
+        kc[a] = f->tile ? ((c[a] % n) + n) % n : c[a];
+    uint64_t h = tex_hash64(f->seed ^ tex_hash64((uint64_t)kc[0] * 0x9e3779b1u ^
+                                                  tex_hash64((uint64_t)kc[1])));
+    if (dims == 3)
+        h = tex_hash64(h ^ tex_hash64((uint64_t)kc[2] * 0x85ebca6bu));
     double r0 = (h & 0xffff) / 65536.0, r1 = (h >> 16 & 0xffff) / 65536.0;
     double r2 = (h >> 32 & 0xffff) / 65536.0, r3 = (h >> 48) / 65536.0;
 
@@ -55,27 +60,41 @@ static int hole(const struct tex_field *f, int64_t i, int64_t j, double *cx, dou
         return 0;
     *d = p->diameter * (1 + p->jitter * (2 * r2 - 1));
     /* Keep the rim inside the cell so that the 3 x 3 neighbourhood sees every hole. */
-    *cx = i + 0.5 + (r0 - 0.5) * (1 - fmin(*d, 1));
-    *cy = j + 0.5 + (r1 - 0.5) * (1 - fmin(*d, 1));
+    ctr[0] = c[0] + 0.5 + (r0 - 0.5) * (1 - fmin(*d, 1));
+    ctr[1] = c[1] + 0.5 + (r1 - 0.5) * (1 - fmin(*d, 1));
+    /* in space: the third coordinate from the hash's other bits */
+    ctr[2] = dims == 3 ? c[2] + 0.5 + ((double)(tex_hash64(h) & 0xffff) / 65536.0 - 0.5) *
+                                          (1 - fmin(*d, 1))
+                       : 0;
     return 1;
 }
 
-static float holes_point(const struct tex_field *f, double u, double v)
+/* The thesis's T = -Fact e^(-N^2 R / D) at p (dims coordinates in map units): the deepest
+ * hole among the neighbouring cells', as 1 - depth e^(-8 R / D). */
+static float holes_point(const struct tex_field *f, int dims, const double *pt)
 {
     const struct holes_params *p = f->params;
-    double x = u * p->count, y = v * p->count, best = 0;
-    int64_t i = (int64_t)floor(x), j = (int64_t)floor(y);
-
-    for (int dj = -1; dj <= 1; dj++)
-        for (int di = -1; di <= 1; di++) {
-            double cx, cy, d;
-            if (hole(f, i + di, j + dj, &cx, &cy, &d)) {
-                /* The thesis's exponential well e^(-N^2 R / D), N = 4/D, scaled so
-                 * that it falls to e^-4 at the rim R = D/2: e^(-8 R / D). */
-                double r = hypot(x - cx, y - cy) / d;
-                best = fmax(best, exp(-8.0 * r));
+    double x[3] = {0, 0, 0}, best = 0;
+    int64_t i[3] = {0, 0, 0};
+    for (int a = 0; a < dims; a++) {
+        x[a] = pt[a] * p->count;
+        i[a] = (int64_t)floor(x[a]);
+    }
+    int kz = dims == 3 ? 1 : 0;
+    for (int dk = -kz; dk <= kz; dk++)
+        for (int dj = -1; dj <= 1; dj++)
+            for (int di = -1; di <= 1; di++) {
+                int64_t c[3] = {i[0] + di, i[1] + dj, i[2] + dk};
+                double ctr[3], d;
+                if (hole(f, dims, c, ctr, &d)) {
+                    /* N = 4/D scaled so that the well falls to e^-4 at the rim R = D/2 */
+                    double r = (dims == 3 ? sqrt((x[0] - ctr[0]) * (x[0] - ctr[0]) +
+                                                 (x[1] - ctr[1]) * (x[1] - ctr[1]) +
+                                                 (x[2] - ctr[2]) * (x[2] - ctr[2]))
+                                          : hypot(x[0] - ctr[0], x[1] - ctr[1])) / d;
+                    best = fmax(best, exp(-8.0 * r));
+                }
             }
-        }
     return clamp01((float)(1.0 - p->depth * best));
 }
 
@@ -83,16 +102,25 @@ static void holes_eval2(const struct tex_field *f, int n, const double *u, const
                         float *out)
 {
     for (int i = 0; i < n; i++)
-        out[i] = holes_point(f, u[i], v[i]);
+        out[i] = holes_point(f, 2, (const double[2]){u[i], v[i]});
+}
+
+/* Spherical holes in space (thesis 5.2.2.6): the cells are cubes. */
+static void holes_eval3(const struct tex_field *f, int n, const double *u, const double *v,
+                        const double *w, float *out)
+{
+    for (int i = 0; i < n; i++)
+        out[i] = holes_point(f, 3, (const double[3]){u[i], v[i], w[i]});
 }
 
 const struct tex_primitive tex_prim_holes = {
     .name = "holes",
     .summary = "randomly placed round holes (the thesis's hole model)",
-    .flags = TEX_PRIM_2D | TEX_PRIM_TILE,
+    .flags = TEX_PRIM_2D | TEX_PRIM_3D | TEX_PRIM_TILE,
     .params_size = sizeof(struct holes_params),
     .params = holes_rows,
     .eval2 = holes_eval2,
+    .eval3 = holes_eval3,
 };
 
 /* ---- colour variation (Gardner) ---- */
@@ -155,43 +183,57 @@ static void colorvar_fini(struct tex_field *f)
 }
 
 /* Fact = sum C_i (sin(w_i u + P_z + a_i) + 1) * sum C_i (sin(w_i v + P_x + b_i) + 1), over its
- * largest value (2 sum C_i)^2 so that it lies in [0,1]. */
-static void colorvar_eval2(const struct tex_field *f, int n, const double *u, const double *v,
-                           float *out)
+ * largest value (2 sum C_i)^2 so that it lies in [0,1]; (u, v) are the thesis's (x, z), and
+ * h the height y that only the noise sees (the map: 0.5 / 4). */
+static void colorvar_point(const struct tex_field *f, double u, double v, double h, float *out)
 {
     const struct colorvar_params *p = f->params;
     const struct colorvar_state *s = f->state;
-
-    for (int k = 0; k < n; k++, out += f->nc) {
-        double pz = p->k1 * sin(2 * M_PI * v[k]), px = p->k2 * sin(2 * M_PI * p->b * u[k]);
-        double su = 0, sv = 0, c = 1, w = 2 * M_PI * p->frequency;
-        if (p->noise > 0) {
-            double nz = p->noise * tex_noise3(&s->t, 4 * u[k], 4 * v[k], 0.5);
-            pz += nz;
-            px += nz;
-        }
-        for (int i = 0; i < p->terms; i++, c /= sqrt(2.0), w *= 2) {
-            su += c * (sin(w * u[k] + pz + s->phase[0][i]) + 1);
-            sv += c * (sin(w * v[k] + px + s->phase[1][i]) + 1);
-        }
-        double fact = su * sv / (4 * s->sumc * s->sumc);
-        if (f->nc == 1)
-            out[0] = clamp01((float)fact);
-        else
-            for (int ch = 0; ch < 3; ch++)
-                out[ch] = clamp01((float)(fact * p->color[ch]));
+    double pz = p->k1 * sin(2 * M_PI * v), px = p->k2 * sin(2 * M_PI * p->b * u);
+    double su = 0, sv = 0, c = 1, w = 2 * M_PI * p->frequency;
+    if (p->noise > 0) {
+        double nz = p->noise * tex_noise3(&s->t, 4 * u, 4 * v, 4 * h);
+        pz += nz;
+        px += nz;
     }
+    for (int i = 0; i < p->terms; i++, c /= sqrt(2.0), w *= 2) {
+        su += c * (sin(w * u + pz + s->phase[0][i]) + 1);
+        sv += c * (sin(w * v + px + s->phase[1][i]) + 1);
+    }
+    double fact = su * sv / (4 * s->sumc * s->sumc);
+    if (f->nc == 1)
+        out[0] = clamp01((float)fact);
+    else
+        for (int ch = 0; ch < 3; ch++)
+            out[ch] = clamp01((float)(fact * p->color[ch]));
+}
+
+static void colorvar_eval2(const struct tex_field *f, int n, const double *u, const double *v,
+                           float *out)
+{
+    for (int k = 0; k < n; k++, out += f->nc)
+        colorvar_point(f, u[k], v[k], 0.125, out);
+}
+
+/* In space, as the thesis writes it: the sums run along x (u) and z (w); y (v) enters
+ * through the noise only, so the slice v = 0 is the map at (u, w). */
+static void colorvar_eval3(const struct tex_field *f, int n, const double *u, const double *v,
+                           const double *w, float *out)
+{
+    for (int k = 0; k < n; k++, out += f->nc)
+        colorvar_point(f, u[k], w[k], v[k] + 0.125, out);
 }
 
 const struct tex_primitive tex_prim_colorvar = {
     .name = "colorvar",
     .summary = "Gardner's colour variation: products of sums of sines with shifted phases",
-    .flags = TEX_PRIM_2D | TEX_PRIM_TILE,
+    .flags = TEX_PRIM_2D | TEX_PRIM_3D | TEX_PRIM_TILE,
     .params_size = sizeof(struct colorvar_params),
     .params = colorvar_rows,
     .init = colorvar_init,
     .fini = colorvar_fini,
     .eval2 = colorvar_eval2,
+    .eval3 = colorvar_eval3,
 };
 
 /* ---- perturbed regular pattern ---- */

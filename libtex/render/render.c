@@ -87,11 +87,21 @@ static double curvature(const struct tex_hit *h, tex_v3 P, tex_v3 Nf, tex_v3 d)
 struct hit_frame {
     const struct tex_hit *h;
     const tex_v3 *P, *N, *Ngv, *V, *Pout, *Pin;
-    double width;
+    double width, dist; /* dist: the path's length from the eye to P */
     int entering;
 };
 
 static void trace(const struct ctx *c, const tex_ray *r, int depth, double weight, tex_colour *out);
+
+/* One light sample of irradiance E from L through m's shading model. */
+static inline void shade_direct(const struct tex_material *m, const tex_v3 *N, const tex_v3 *V,
+                                const tex_v3 *L, const tex_colour *E, int n, tex_colour *out)
+{
+    if (m->model == &tex_shading_phong) /* inline: no call for the common model */
+        tex_phong_direct(m, &N->x, &V->x, &L->x, E, n, out);
+    else
+        m->model->direct(m, &N->x, &V->x, &L->x, E, n, out);
+}
 
 /* Direct lighting: every light sample that reaches P unshadowed, through the
  * surface's shading model (pbrt's SampleLd). */
@@ -123,10 +133,17 @@ static void direct_light(const struct ctx *c, const struct tex_material *m,
                 continue;
             tex_colour E;
             tex_colour_scale(&E, n, &l->e, (float)(fatt * sh));
-            if (m->model == &tex_shading_phong) /* inline: no call for the common model */
-                tex_phong_direct(m, &N->x, &V->x, &L.x, &E, n, out);
-            else
-                m->model->direct(m, &N->x, &V->x, &L.x, &E, n, out);
+            if (!m->blend_m) {
+                shade_direct(m, N, V, &L, &E, n, out);
+            } else { /* a mixture of two surfaces: each one's light, weighted */
+                tex_colour a, b;
+                tex_colour_set(&a, n, 0);
+                tex_colour_set(&b, n, 0);
+                shade_direct(m, N, V, &L, &E, n, &a);
+                shade_direct(m->blend_m, N, V, &L, &E, n, &b);
+                for (int i = 0; i < n; i++)
+                    out->v[i] += (1 - m->blend) * a.v[i] + m->blend * b.v[i];
+            }
         }
     }
 }
@@ -138,7 +155,7 @@ static int refraction(const struct ctx *c, const tex_ray *r, const struct hit_fr
                       const struct tex_media *beyond, double n1, double n2, double kc, int depth,
                       double w, const tex_colour *kt, tex_colour *out)
 {
-    tex_ray rt = {*f->Pin, r->d, f->width, r->spread, beyond};
+    tex_ray rt = {*f->Pin, r->d, f->width, r->spread, beyond, f->dist};
     tex_colour I;
     if (!tex_refract(r->d, *f->N, n1, n2, &rt.d))
         return 0;
@@ -170,7 +187,15 @@ static void secondary(const struct ctx *c, const tex_ray *r, const struct hit_fr
         m->ior = f->entering ? n2 / n1 : n1 / n2;
     }
     m->model->weights(m, cosi, n, &kr, &kt);
-    tex_ray rr = {*f->Pout, tex_reflect(r->d, *f->N), f->width, r->spread, r->media};
+    if (m->blend_m) { /* the two surfaces' weights, mixed */
+        tex_colour kr1, kt1;
+        m->blend_m->model->weights(m->blend_m, cosi, n, &kr1, &kt1);
+        for (int i = 0; i < n; i++) {
+            kr.v[i] = (1 - m->blend) * kr.v[i] + m->blend * kr1.v[i];
+            kt.v[i] = (1 - m->blend) * kt.v[i] + m->blend * kt1.v[i];
+        }
+    }
+    tex_ray rr = {*f->Pout, tex_reflect(r->d, *f->N), f->width, r->spread, r->media, f->dist};
     if (tex_v3_dot(rr.d, *f->Ngv) <= 0)
         rr.d = tex_reflect(r->d, *f->Ngv);
     /* footprints after curved surfaces: a mirror of curvature k turns a beam
@@ -193,6 +218,12 @@ static void secondary(const struct ctx *c, const tex_ray *r, const struct hit_fr
     }
 }
 
+/* Does the material send rays on?  An opaque Phong mirror of Kr 0 does not. */
+static inline int reflects(const struct tex_material *m)
+{
+    return !(m->kr <= 0 && m->kt <= 0 && m->model == &tex_shading_phong);
+}
+
 /* Whitted's recursion: ambient, direct light, then reflection and
  * refraction.  weight: the largest share of the pixel this ray can carry
  * (1 for eye rays); rays below the scene's bailout are not traced. */
@@ -201,7 +232,16 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, double weigh
     const struct tex_scene *s = c->s;
     struct tex_hit h;
     if (!tex_scene_trace(s, &r->o, &r->d, 0, INFINITY, &h)) {
-        tex_colour_copy(out, c->n, c->background);
+        if (!s->env.map) {
+            tex_colour_copy(out, c->n, c->background);
+            return;
+        }
+        float rgb[3];
+        tex_environment_eval(&s->env, &r->d, s->settings.filter ? r->spread : 0, rgb);
+        if (s->cs.mode == TEX_COLOUR_RGB)
+            out->v[0] = rgb[0], out->v[1] = rgb[1], out->v[2] = rgb[2];
+        else
+            s->cs.from_rgb(&s->cs, rgb, TEX_SPECTRUM_ILLUMINANT, out);
         return;
     }
     tex_v3 P = tex_v3_madd(r->o, r->d, h.t);
@@ -209,20 +249,20 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, double weigh
     int entering = tex_v3_dot(r->d, Ng) < 0;
     tex_v3 N = entering ? Ng : tex_v3_scale(Ng, -1);
     double width = fabs(r->width + h.t * r->spread); /* a focused beam crosses 0 */
-    struct tex_material m;
-    tex_resolve_material(s, surface_of(s, h.leaf), h.leaf, &P, &r->d, &N,
-                         s->settings.filter ? width : 0, &m);
+    struct tex_material m[2]; /* m[1]: a blended surface's */
+    struct tex_shade_at at = {h.leaf, &P, &r->d, width, r->dist + h.t, depth};
+    tex_resolve_material(s, surface_of(s, h.leaf), &at, &N, m);
     tex_v3 V = tex_v3_scale(r->d, -1);
     double e = eps_at(P);
     /* offset along the geometric normal so bumped normals cannot start rays inside */
     tex_v3 Ngv = entering ? Ng : tex_v3_scale(Ng, -1);
     tex_v3 Pout = tex_v3_madd(P, Ngv, e), Pin = tex_v3_madd(P, Ngv, -e);
-    struct hit_frame f = {&h, &P, &N, &Ngv, &V, &Pout, &Pin, width, entering};
+    struct hit_frame f = {&h, &P, &N, &Ngv, &V, &Pout, &Pin, width, at.dist, entering};
 
-    tex_colour_mul(out, c->n, c->ambient, &m.ka);
-    direct_light(c, &m, &f, out);
-    if (depth < s->settings.depth && !(m.kr <= 0 && m.kt <= 0 && m.model == &tex_shading_phong))
-        secondary(c, r, &f, &m, depth, weight, out);
+    tex_colour_mul(out, c->n, c->ambient, &m->ka);
+    direct_light(c, m, &f, out);
+    if (depth < s->settings.depth && (reflects(&m[0]) || (m->blend_m && reflects(&m[1]))))
+        secondary(c, r, &f, m, depth, weight, out);
 }
 
 struct camera {
@@ -275,7 +315,7 @@ static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, 
         tex_ray r = {cam->eye,
                      tex_v3_norm(tex_v3_add(cam->fwd, tex_v3_add(tex_v3_scale(cam->right, a),
                                                                  tex_v3_scale(cam->up, b)))),
-                     0, cam->spread, s->eye_media.n ? &s->eye_media : NULL};
+                     0, cam->spread, s->eye_media.n ? &s->eye_media : NULL, 0};
         tex_colour col;
         float rgb[3];
         trace(&c, &r, 0, 1, &col);

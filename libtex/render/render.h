@@ -61,7 +61,7 @@ const char *tex_scene_warnings(const struct tex_scene *s);
 tex_map *tex_render(struct tex_scene *s, void (*progress)(long done, long total, void *arg),
                     void *arg);
 
-/* The scene's blocks by name ("settings", "camera", "light", "texture",
+/* The scene's blocks by name ("settings", "camera", "light", "environment", "texture",
  * "surface", "apply", "object") with their parameter rows, for help and the man page;
  * the list ends with a NULL name. */
 struct tex_scene_block {
@@ -69,6 +69,15 @@ struct tex_scene_block {
     const struct tex_param *rows;
 };
 extern const struct tex_scene_block tex_scene_blocks[];
+
+/* The words of application functions' expressions, for help and the man
+ * page: the quantities of the hit (args NULL; the list ends with a NULL
+ * name), and function i (args: its arguments' names; 0 past the last). */
+struct tex_scene_word {
+    const char *name, *args, *help;
+};
+extern const struct tex_scene_word tex_quantities[];
+int tex_scene_function(int i, struct tex_scene_word *w);
 
 #ifdef __cplusplus
 }

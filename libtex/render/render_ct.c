@@ -54,6 +54,15 @@ static const struct tex_ct *params(const struct tex_material *mat)
     return mat->model_data ? mat->model_data : &ct_default;
 }
 
+void tex_ct_material(struct tex_material *m, const struct tex_ct *ct)
+{
+    const struct tex_ct *c = ct ? ct : &ct_default;
+    m->model = &tex_shading_cook_torrance;
+    m->model_data = ct;
+    m->m = c->facets.m;
+    m->s = c->s;
+}
+
 /* The two spectrum loops below are the hottest shading steps of a spectral
  * scene (per hit, per light, per band).  GCC at -O2 does not vectorise sqrtf
  * (errno), so on SSE2 they are written with intrinsics, four bands at a time,
@@ -253,15 +262,19 @@ static void ct_direct(const struct tex_material *mat, const double N[3], const d
     double nv = N[0] * V[0] + N[1] * V[1] + N[2] * V[2];
     if (nl <= 0)
         return;
-    tex_colour_mmadd(out, n, &mat->kd, E, (float)((1 - ct->s) * nl));
+    /* m and s at this hit: the surface's, or its application functions' */
+    double s = mat->s;
+    struct tex_facets fc = ct->facets;
+    fc.m = mat->m;
+    tex_colour_mmadd(out, n, &mat->kd, E, (float)((1 - s) * nl));
     double h[3] = {L[0] + V[0], L[1] + V[1], L[2] + V[2]};
     double hl = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
-    if (hl <= 0 || nv <= 0 || ct->s <= 0)
+    if (hl <= 0 || nv <= 0 || s <= 0)
         return;
     double nh = (N[0] * h[0] + N[1] * h[1] + N[2] * h[2]) / hl;
     double vh = (V[0] * h[0] + V[1] * h[1] + V[2] * h[2]) / hl;
-    double g = tex_ct_geometry(&ct->facets, nh, nv, nl, vh);
-    double w = ct->s * M_PI * g * nl;
+    double g = tex_ct_geometry(&fc, nh, nv, nl, vh);
+    double w = s * M_PI * g * nl;
     /* F <= 1: a highlight below 1e-12 of the light (far from H) needs no Fresnel term */
     if (!(w > 1e-12))
         return;

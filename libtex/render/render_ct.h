@@ -70,6 +70,11 @@ struct tex_ct {
 
 extern const struct tex_shading_model tex_shading_cook_torrance;
 
+/* Make m a Cook-Torrance material of parameters ct (NULL: the defaults): its
+ * model, model_data, and m and s at a hit, which application functions may
+ * then change per hit (the model reads them from the material). */
+void tex_ct_material(struct tex_material *m, const struct tex_ct *ct);
+
 int tex_ct_init(struct tex_ct *ct, const struct tex_colour_space *cs,
                 const struct tex_matdb_entry *entry, enum tex_facet_dist dist, double m,
                 double ns, double s);

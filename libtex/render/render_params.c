@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stddef.h>
 
+#include "lang/expr.h"
 #include "render/scene.h"
 
 #define INF HUGE_VAL /* -INF, INF: a point or a direction, any numbers */
@@ -110,21 +111,54 @@ const struct tex_param tex_surface_rows[] = {
                 "Cook-Torrance specular fraction (the diffuse one is 1 - S)"),
     TEX_SPECIAL("apply", 0, 0, NULL, "TEXTURE { ... }",
                 "apply a texture through application functions (any number, in order)"),
+    TEX_SPECIAL("blend", 0, 0, NULL, "SURFACE",
+                "the surface an application function's blend = h mixes in (shaded with its "
+                "own textures, as a mixture of the two)"),
     {0}};
 
-const struct tex_param tex_bump_row = {
-    "bump", 0, TEX_P_REAL, 0, 0, -1000, 1000, NULL, NULL, 0, "S",
-    "bump mapping: the normal tilts by S times the map's gradient (also normal)", 0, 0, 0};
+/* The targets beyond the surface's own rows (no storage: the renderer's per hit) */
+#define TARGET(name, lo, hi, meta, help) {name, 0, TEX_P_REAL, 0, 0, lo, hi, NULL, NULL, 0, meta, \
+                                          help, 0, 0, 0}
+const struct tex_param tex_target_rows[] = {
+    TARGET("bump", -1000, 1000, "S",
+           "bump mapping: the normal tilts by S times the map's gradient across the surface"),
+    TARGET("m", 0.001, 2, "M", "Cook-Torrance: Beckmann's slope of the microfacets"),
+    TARGET("s", 0, 1, "S", "Cook-Torrance: the specular fraction (the diffuse one is 1 - S)"),
+    TARGET("blend", 0, 1, "W",
+           "the weight of the surface named by the surface's blend (its light times W, this "
+           "surface's times 1 - W)"),
+    TARGET("normal", 0, 1, "R G B",
+           "a tangent-space normal map (x along u, y against v, z out), encoded 0.5 + 0.5 n as "
+           "t_filter normal and t_d_noise --normal write it"),
+    TARGET("gradient", -1e6, 1e6, "DU DV",
+           "bump mapping from a height gradient per texture unit (t_filter gradient; "
+           "t_d_noise's times its frequency): N tilts by DU grad u + DV grad v"),
+    {0}};
 
 const struct tex_param *tex_sparam_row(enum tex_sparam sp)
 {
-    return sp == TEX_SP_BUMP ? &tex_bump_row : &tex_surface_rows[sp];
+    return sp >= TEX_SP_BUMP ? &tex_target_rows[sp - TEX_SP_BUMP] : &tex_surface_rows[sp];
 }
 
 const struct tex_param tex_apply_rows[] = {
     TEX_ROW_ENUM("mapping", struct tex_apply, mapping, "natural",
-                 "natural|sphere|cylinder|cone|box|planar|solid|world",
+                 "natural|sphere|cylinder|cone|box|planar|solid|world|wavy|cross",
                  "how a hit point finds its (u,v) or (u,v,w)"),
+    TEX_ROW("axis", struct tex_apply, axis, TEX_P_REAL, "0,1,0", -1e9, 1e9, 3, 0, "X Y Z",
+            "projections: the direction a planar, wavy, cylinder, cone or sphere mapping "
+            "projects along (not zero)"),
+    TEX_SPECIAL("translate", 0, 0, NULL, "X Y Z",
+                "projections: move the texture by (X, Y, Z) relative to the object"),
+    TEX_SPECIAL("rotate", 0, 0, NULL, "X Y Z",
+                "projections: turn the texture X degrees about x, then Y about y, then Z about "
+                "z, relative to the object"),
+    TEX_ROW("wave", struct tex_apply, wave, TEX_P_REAL, "0.1,1", -1e6, 1e6, 2, 0, "A L",
+            "wavy: the planar projection swept along a sine path, u shifted by "
+            "A sin(2 pi y / L) (L > 0)"),
+    TEX_SPECIAL("cross", 0, 0, NULL, "TEXTURE",
+                "cross: the second map, on the y-z plane; the first lies on x-y"),
+    TEX_ROW_ENUM("combine", struct tex_apply, combine, "product", "product|min|max",
+                 "cross: how the two maps' values combine"),
     TEX_ROW("window", struct tex_apply, u1, TEX_P_REAL, "0,0,1,1", 0, 1, 4, 0, "U1 V1 U2 V2",
             "where the map lies in (u,v), with U1 < U2 and V1 < V2"),
     TEX_ROW("repeat", struct tex_apply, nu, TEX_P_REAL, "1,1", 1e-3, 1e6, 2, 0, "NU NV",
@@ -176,7 +210,33 @@ const struct tex_param tex_object_rows[] = {
                 "scale the object by S, or by X, Y and Z along the axes (not 0)"),
     {0}};
 
+const struct tex_param tex_environment_rows[] = {
+    TEX_ROW("intensity", struct tex_environment, intensity, TEX_P_REAL, "1", 0, 1e9, 1, 0, "I",
+            "the map's values times I"),
+    TEX_ROW("rotate", struct tex_environment, rotate, TEX_P_REAL, "0,0,0", -1e6, 1e6, 3, 0,
+            "X Y Z", "turn the map X degrees about x, then Y about y, then Z about z"),
+    {0}};
+
 const struct tex_scene_block tex_scene_blocks[] = {
     {"settings", tex_settings_rows}, {"camera", tex_camera_rows}, {"light", tex_light_rows},
+    {"environment", tex_environment_rows},
     {"texture", tex_field_rows},     {"surface", tex_surface_rows}, {"apply", tex_apply_rows},
+    {"targets", tex_target_rows},
     {"object", tex_object_rows},     {NULL, NULL}};
+
+/* lang/expr.h's functions, then the scene's own palette(NAME, x) */
+int tex_scene_function(int i, struct tex_scene_word *w)
+{
+    int n = 0;
+    while (tex_expr_funcs[n].name)
+        n++;
+    if (i < 0 || i > n)
+        return 0;
+    if (i == n)
+        *w = (struct tex_scene_word){"palette", "NAME, x",
+                                     "the colour of palette NAME at the mean of x in [0, 1]"};
+    else
+        *w = (struct tex_scene_word){tex_expr_funcs[i].name, tex_expr_funcs[i].args,
+                                     tex_expr_funcs[i].help};
+    return 1;
+}

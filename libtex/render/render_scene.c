@@ -17,6 +17,7 @@
 #include "base/paths.h"
 #include "io/file.h"
 #include "render/matdb.h"
+#include "ops/palette.h"
 #include "render/scene.h"
 #include "render/render_ct.h"
 #include "lang/expr.h"
@@ -131,7 +132,7 @@ static int is_word(const struct tok *t, const char *w)
 
 static int is_punct(const struct tok *t, int c)
 {
-    return t->kind == T_PUNCT && t->text[0] == c;
+    return t->kind == T_PUNCT && t->len == 1 && t->text[0] == c;
 }
 
 static const char *tokdesc(const struct tok *t, char *buf, size_t n)
@@ -299,8 +300,60 @@ static void add_texture(struct parser *ps, struct tex_texture *tx)
     a[s->ntextures++] = tx;
 }
 
+/* The palette named by the current token (a name or a string), loaded once per scene. */
+static const tex_palette *scene_palette(struct parser *ps)
+{
+    struct tok at = ps->t;
+    struct tex_scene *s = ps->s;
+    if (at.kind != T_ID && at.kind != T_STR)
+        FAIL(ps, "expected a palette name or file");
+    char *name = pstrdup(ps, at.text, at.len);
+    next(ps);
+    for (int i = 0; i < s->npalettes; i++)
+        if (!strcmp(s->palettes[i]->name, name))
+            return s->palettes[i];
+    tex_palette **a = realloc(s->palettes, (s->npalettes + 1) * sizeof *a);
+    if (!a)
+        fail_at(ps, &at, 1, "out of memory");
+    s->palettes = a;
+    if (!(a[s->npalettes] = tex_palette_load(name)))
+        fail_at(ps, &at, tex_errkind() == TEX_ERR_RUNTIME, "%s", tex_errmsg());
+    /* found again by the name the scene gives */
+    char *n = strdup(name);
+    if (!n) {
+        tex_palette_free(a[s->npalettes]);
+        fail_at(ps, &at, 1, "out of memory");
+    }
+    free(a[s->npalettes]->name);
+    a[s->npalettes]->name = n;
+    return a[s->npalettes++];
+}
+
+/* A sampled or read map through the texture's palette, as t_palette colours it: a scalar
+ * map over its own range, a region map by indexed colours.  A geometric primitive's map is
+ * already in the palette's colours (texture_field).  Takes m, returns the map to use. */
+static tex_map *texture_colour(struct parser *ps, struct tex_texture *tx, tex_map *m,
+                               const struct tok *at)
+{
+    const struct tex_field *f = tx->field;
+    if (!tx->palette || (f && f->colors && (f->prim->flags & TEX_PRIM_REGIONS) && !f->ids))
+        return m;
+    if (m->nc != 1) {
+        int nc = m->nc;
+        tex_map_free(m);
+        fail_at(ps, at, 0, "palette colours a map of 1 channel, and texture '%s' has %d",
+                tx->name, nc);
+    }
+    tex_map *c = tex_palette_map(tx->palette, m, NAN, NAN, TEX_OUTSIDE_CLAMP);
+    tex_map_free(m);
+    if (!c)
+        fail_at(ps, at, 1, "%s", tex_errmsg());
+    return c;
+}
+
 static void texture_map(struct parser *ps, struct tex_texture *tx, tex_map *m, const struct tok *at)
 {
+    m = texture_colour(ps, tx, m, at);
     tx->mip = malloc(sizeof *tx->mip);
     if (!tx->mip) {
         tex_map_free(m);
@@ -333,6 +386,10 @@ static void texture_file(struct parser *ps, struct tex_texture *tx)
             fail_at(ps, &ft, 0, "only one texture can come from standard input");
         ps->stdin_used = 1;
     }
+    if (is_word(&ps->t, "palette")) {
+        next(ps);
+        tx->palette = scene_palette(ps);
+    }
     tex_map *m = tex_map_read(path);
     if (!m)
         fail_at(ps, &ft, 1, "cannot read map '%s': %s", path, tex_errmsg());
@@ -354,6 +411,8 @@ static void texture_params(struct parser *ps, struct tex_texture *tx,
             if (!(prim->flags & TEX_PRIM_3D))
                 fail_at(ps, &kt, 0, "primitive '%s' has no solid (3D) form", pname);
             tx->solid = 1;
+        } else if (!strcmp(key, "palette")) {
+            tx->palette = scene_palette(ps);
         } else if (fr && fr->type == TEX_P_FLAG) { /* tile, ids: no value */
             if (tex_field_set(f, key, "") < 0)
                 fail_at(ps, &kt, 0, "%s", tex_errmsg());
@@ -387,8 +446,21 @@ static void texture_field(struct parser *ps, struct tex_texture *tx,
         fail_at(ps, pt, 0, "primitive '%s' cannot be evaluated", pname);
     if (!size && !tx->solid && !(prim->flags & TEX_PRIM_2D))
         size = 512;
+    /* a geometric primitive's colours come from sampling (antialiased coverage); at points
+     * it gives only region ids */
+    if (!size && !tx->solid && (prim->flags & TEX_PRIM_REGIONS) && !f->ids)
+        size = 512;
     if (tex_field_init(f, size, size) < 0)
         fail_at(ps, pt, 0, "%s", tex_errmsg());
+    if (tx->palette && (prim->flags & TEX_PRIM_REGIONS) && !f->ids) { /* as t_checker --palette */
+        float *c = tex_palette_region_colours(tx->palette, f->nregions);
+        if (!c)
+            fail_at(ps, pt, 1, "%s", tex_errmsg());
+        float *pc = palloc(ps, sizeof *c * 3 * (f->nregions > 0 ? f->nregions : 1));
+        memcpy(pc, c, sizeof *c * 3 * f->nregions);
+        free(c);
+        f->colors = (const float(*)[3])pc;
+    }
     if (size) {
         tex_map *m;
         if (prim->flags & TEX_PRIM_GRID) {
@@ -440,8 +512,31 @@ static void parse_texture(struct parser *ps)
 
 /* ---- expressions ---------------------------------------------------------------- */
 
-/* An operand of an application function: f, p or a texture's name (a cascade).
- * Numbers, parentheses, minus and functions are lang/expr.c's. */
+/* palette(NAME, x): x's mean through a palette, x clamped to [0, 1]. */
+static struct tex_enode *palette_call(struct tex_expr_parser *xp)
+{
+    struct parser *ps = xp->ctx;
+    struct tex_enode *e = tex_expr_node(&ps->lx, TEX_EK_CALL, &ps->lx.t);
+    e->op = TEX_EOP_PALETTE;
+    next(ps);
+    expect(ps, '(');
+    e->ptr = scene_palette(ps);
+    if (is_punct(&ps->t, ')'))
+        FAIL(ps, "palette takes 2 arguments: a palette and a value");
+    expect(ps, ',');
+    tex_expr_enter(xp);
+    e->a = tex_expr_parse(xp);
+    tex_expr_leave(xp);
+    sync(ps);
+    if (is_punct(&ps->t, ','))
+        FAIL(ps, "palette takes 2 arguments: a palette and a value");
+    expect(ps, ')');
+    return e;
+}
+
+/* An operand of an application function: f, p, a quantity of the hit (tex_quantities),
+ * palette(NAME, x) or a texture's name (a cascade).  Numbers, parentheses, minus and
+ * functions are lang/expr.c's. */
 static struct tex_enode *operand(struct tex_expr_parser *xp)
 {
     struct parser *ps = xp->ctx;
@@ -451,16 +546,36 @@ static struct tex_enode *operand(struct tex_expr_parser *xp)
     struct tok t = ps->t;
     if (t.kind != T_ID)
         FAIL(ps, "expected an expression, found %s", tokdesc(&t, b, sizeof b));
+    if (is_word(&t, "palette")) {
+        struct tex_lexer peek = ps->lx;
+        tex_lex_next(&peek);
+        if (tex_tok_is_punct(&peek.t, '('))
+            return palette_call(xp);
+    }
     e = tex_expr_node(&ps->lx, TEX_EK_LEAF, &ps->lx.t);
+    e->op = -1;
+    for (int q = 0; q < TEX_Q_COUNT; q++)
+        if (is_word(&t, tex_quantities[q].name))
+            e->op = TEX_LEAF_Q + q;
     if (is_word(&t, "f")) {
         e->op = TEX_LEAF_F;
     } else if (is_word(&t, "p")) {
         e->op = TEX_LEAF_P;
-    } else {
+    } else if (e->op < 0) {
         e->op = TEX_LEAF_TEX;
-        if (!(e->ptr = find_texture(ps, &t)))
-            FAIL(ps, "unknown name '%.*s' in an expression (f, p, a number, a function or "
-                     "a texture)", (int)t.len, t.text);
+        if (!(e->ptr = find_texture(ps, &t))) {
+            struct tex_lexer peek = ps->lx;
+            tex_lex_next(&peek);
+            if (tex_tok_is_punct(&peek.t, '(')) {
+                char known[512];
+                size_t k = 0;
+                for (const struct tex_expr_func *fn = tex_expr_funcs; fn->name; fn++)
+                    k += (size_t)snprintf(known + k, sizeof known - k, "%s, ", fn->name);
+                FAIL(ps, "unknown function '%.*s' (%spalette)", (int)t.len, t.text, known);
+            }
+            FAIL(ps, "unknown name '%.*s' in an expression (f, p, a quantity such as dist or "
+                     "ndotv, a number, a function or a texture)", (int)t.len, t.text);
+        }
     }
     next(ps);
     return e;
@@ -470,8 +585,10 @@ static struct tex_enode *operand(struct tex_expr_parser *xp)
 static struct tex_expr *expr(struct parser *ps)
 {
     static const struct tex_expr_binop ops[] = {
-        {"+", 1, TEX_EOP_ADD}, {"-", 1, TEX_EOP_SUB}, {"*", 2, TEX_EOP_MUL},
-        {"/", 2, TEX_EOP_DIV}, {NULL, 0, 0}};
+        {"<", 1, TEX_EOP_LT}, {">", 1, TEX_EOP_GT}, {"<=", 1, TEX_EOP_LE},
+        {">=", 1, TEX_EOP_GE}, {"==", 1, TEX_EOP_EQ}, {"!=", 1, TEX_EOP_NE},
+        {"+", 2, TEX_EOP_ADD}, {"-", 2, TEX_EOP_SUB}, {"*", 3, TEX_EOP_MUL},
+        {"/", 3, TEX_EOP_DIV}, {NULL, 0, 0}};
     static const struct tex_expr_lang lang = {ops, operand};
     struct tex_expr_parser xp = {&ps->lx, &lang, ps, 0, 0};
     struct tex_expr *x = tex_expr_compile(&ps->lx, tex_expr_parse(&xp));
@@ -487,8 +604,6 @@ static int sparam(const struct tok *t)
     for (int i = 0; i < TEX_SP_COUNT; i++)
         if (is_word(t, tex_sparam_row(i)->name))
             return i;
-    if (is_word(t, "normal"))
-        return TEX_SP_BUMP;
     return -1;
 }
 
@@ -509,19 +624,39 @@ static void parse_fns(struct parser *ps, struct tex_apply *ap, int region)
         fn->param = sp;
         fn->lo = tex_sparam_row(sp)->min; /* looked up once, not per hit */
         fn->hi = tex_sparam_row(sp)->max;
+        struct tok et = ps->t;
         fn->e = expr(ps);
+        int nc = ap->tex->mip ? ap->tex->mip[0]->nc : ap->tex->palette ? 3 : ap->tex->field->nc;
+        for (int i = 0; sp == TEX_SP_NORMAL && i < fn->e->n; i++)
+            if (fn->e->code[i].op == TEX_EOP_LEAF && fn->e->code[i].leaf == TEX_LEAF_F && nc < 3)
+                fail_at(ps, &et, 0, "a normal map needs 3 channels, and texture '%s' has %d",
+                        ap->tex->name, nc);
         while (*tail)
             tail = &(*tail)->next;
         *tail = fn;
     }
 }
 
-/* stretch, region N { ... } and the application functions of an apply block */
+static void xf_frame(tex_xform *t, tex_v3 origin, tex_v3 a, double ylen, double r);
+static const struct tex_surface *find_surface(struct parser *ps, const struct tok *t);
+static void xf_rotate(tex_xform *t, tex_v3 r);
+static int transform_word(struct parser *ps, const struct tok *kt, tex_xform *acc);
+
+/* stretch, region N { ... }, translate, rotate, cross and the application functions of an
+ * apply block */
 static int apply_special(struct parser *ps, const struct tex_param *p, const struct tok *kt,
                          void *ctx)
 {
     struct tex_apply *ap = ctx;
-    if (p && !strcmp(p->name, "stretch")) {
+    if (p && (!strcmp(p->name, "translate") || !strcmp(p->name, "rotate"))) {
+        transform_word(ps, kt, &ap->place);
+        ap->placed = 1;
+    } else if (p && !strcmp(p->name, "cross")) {
+        struct tok ct = ps->t;
+        if (ct.kind != T_ID || !(ap->cross = find_texture(ps, &ct)))
+            FAIL(ps, "cross needs a texture's name");
+        next(ps);
+    } else if (p && !strcmp(p->name, "stretch")) {
         ap->nu = ap->nv = 1;
     } else if (p && !strcmp(p->name, "region")) {
         int r = (int)ranged(ps, p->name, p->min, p->max, 1);
@@ -534,6 +669,31 @@ static int apply_special(struct parser *ps, const struct tex_param *p, const str
         return 0;
     }
     return 1;
+}
+
+/* The projection's frame (thesis 5.2.1.3): y along the axis, then the block's rotations and
+ * translations, as POV-Ray's texture transforms; checked against the mapping. */
+static void apply_projection(struct parser *ps, struct tex_apply *ap, unsigned long long seen,
+                             const struct tok *at)
+{
+    tex_v3 a = ap->axis;
+    if (!(tex_v3_dot(a, a) > 1e-24))
+        fail_at(ps, at, 0, "the projection axis must not be zero (got %g %g %g)", a.x, a.y, a.z);
+    if (!(ap->wave[1] > 0))
+        fail_at(ps, at, 0, "wave needs a wavelength L > 0 (got %g)", ap->wave[1]);
+    if (ap->mapping == TEX_MAP_CROSS && !ap->cross)
+        fail_at(ps, at, 0, "mapping cross needs 'cross TEXTURE', the map on the y-z plane");
+    if (seen & row_bit(tex_apply_rows, "axis")) {
+        tex_xform f;
+        xf_frame(&f, tex_v3_make(0, 0, 0), a, 1, 1);
+        tex_xform_mul(&ap->place, &ap->place, &f);
+        ap->placed = 1;
+    }
+    if (ap->placed && ap->mapping == TEX_MAP_NATURAL)
+        fail_at(ps, at, 0, "axis, translate and rotate place projections; mapping natural "
+                           "follows the shape's own (u,v)");
+    if (ap->placed && tex_xform_invert(&ap->to_tex, &ap->place) < 0)
+        fail_at(ps, at, 0, "the texture's transform is singular");
 }
 
 static struct tex_apply *parse_apply(struct parser *ps)
@@ -551,10 +711,12 @@ static struct tex_apply *parse_apply(struct parser *ps)
     ap->tex = tx;
     ap->line = at.line;
     ap->col = at.col;
+    tex_xform_identity(&ap->place);
     unsigned long long seen =
         read_block(ps, tex_apply_rows, -1, ap, apply_special, ap, "an apply block");
     if ((seen & row_bit(tex_apply_rows, "window")) && !(ap->u2 > ap->u1 && ap->v2 > ap->v1))
         fail_at(ps, &at, 0, "window needs u1 < u2 and v1 < v2");
+    apply_projection(ps, ap, seen, &at);
     if (ap->mapping == TEX_MAP_SOLID && tx->field && !tx->solid && !tx->mip)
         fail_at(ps, &at, 0, "texture '%s' is 2D; add 'solid' to it", tx->name);
     return ap;
@@ -675,6 +837,14 @@ static int surface_special(struct parser *ps, const struct tex_param *p, const s
         sf->model = tex_shading_find(m);
         if (!sf->model)
             fail_at(ps, &mt, 0, "model must be %s (got %s)", p->meta, m);
+    } else if (!strcmp(p->name, "blend")) {
+        const struct tex_surface *o = mt.kind == T_ID ? find_surface(ps, &mt) : NULL;
+        if (!o)
+            FAIL(ps, "blend names a surface defined above (got %.*s)", (int)mt.len, mt.text);
+        if (o == sf || o->blend)
+            FAIL(ps, "blend mixes in a surface without a blend of its own");
+        sf->blend = o;
+        next(ps);
     } else if (!strcmp(p->name, "apply")) {
         *c->tail = parse_apply(ps);
         c->tail = &(*c->tail)->next;
@@ -721,6 +891,20 @@ static void parse_surface(struct parser *ps)
                         ct->s) < 0)
             fail_at(ps, &at, 0, "%s", tex_errmsg());
     }
+    /* the targets that need a word of the surface */
+    for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next)
+        for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next) {
+            struct tok ft = {T_ID, "", 0, 0, ap->line, ap->col};
+            if (fn->param == TEX_SP_BLEND && !sf->blend)
+                fail_at(ps, &ft, 0, "blend = h needs 'blend SURFACE' in surface '%s'", name);
+            if ((fn->param == TEX_SP_M || fn->param == TEX_SP_S) &&
+                sf->model != &tex_shading_cook_torrance)
+                fail_at(ps, &ft, 0, "m and s are Cook-Torrance's: surface '%s' needs "
+                                    "model cook-torrance", name);
+            if (fn->param == TEX_SP_M && ct && ct->facets.dist != TEX_FACET_BECKMANN)
+                fail_at(ps, &ft, 0, "m is Beckmann's slope: surface '%s' has blinn facets",
+                        name);
+        }
 }
 
 /* ---- objects -------------------------------------------------------------------- */
@@ -755,6 +939,18 @@ static void xf_rot(tex_xform *t, int axis, double deg)
     t->m[j][i] = s, t->m[j][j] = c;
 }
 
+/* t after turns of r.x degrees about x, then r.y about y, then r.z about z */
+static void xf_rotate(tex_xform *t, tex_v3 r)
+{
+    tex_xform a, b, c;
+    xf_rot(&a, 0, r.x);
+    xf_rot(&b, 1, r.y);
+    xf_rot(&c, 2, r.z);
+    tex_xform_mul(&a, &b, &a);
+    tex_xform_mul(&a, &c, &a);
+    tex_xform_mul(t, &a, t);
+}
+
 /* A frame taking the y axis to unit a. */
 static void xf_frame(tex_xform *t, tex_v3 origin, tex_v3 a, double ylen, double r)
 {
@@ -779,13 +975,8 @@ static int transform_word(struct parser *ps, const struct tok *kt, tex_xform *ac
     if (is_word(kt, "translate")) {
         xf_translate(&t, vec(ps));
     } else if (is_word(kt, "rotate")) {
-        tex_v3 r = vec(ps);
-        tex_xform a, b, c;
-        xf_rot(&a, 0, r.x);
-        xf_rot(&b, 1, r.y);
-        xf_rot(&c, 2, r.z);
-        tex_xform_mul(&t, &b, &a);
-        tex_xform_mul(&t, &c, &t);
+        tex_xform_identity(&t);
+        xf_rotate(&t, vec(ps));
     } else if (is_word(kt, "scale")) {
         double sx = number(ps), sy = sx, sz = sx;
         if (ps->t.kind == T_NUM) {
@@ -1131,6 +1322,45 @@ static void parse_light(struct parser *ps)
         fail_at(ps, &at, 0, "area light edges must span a parallelogram");
 }
 
+/* environment FILE [{ intensity I rotate X Y Z }] */
+static void parse_environment(struct parser *ps, const struct tok *kt)
+{
+    struct tex_environment *e = &ps->s->env;
+    struct tok ft = ps->t;
+    if (e->map)
+        fail_at(ps, kt, 0, "only one environment");
+    if (ft.kind != T_STR && ft.kind != T_ID && !is_punct(&ft, '-'))
+        FAIL(ps, "expected a map file or '-' after 'environment'");
+    char *path = pstrdup(ps, ft.text, ft.len);
+    next(ps);
+    if (!strcmp(path, "-")) {
+        if (ps->stdin_used)
+            fail_at(ps, &ft, 0, "only one map can come from standard input");
+        ps->stdin_used = 1;
+    }
+    if (tex_params_defaults(tex_environment_rows, e) < 0)
+        fail_at(ps, &ft, 0, "%s", tex_errmsg());
+    if (is_punct(&ps->t, '{'))
+        read_block(ps, tex_environment_rows, -1, e, NULL, NULL, "the environment");
+    tex_map *m = tex_map_read(path);
+    if (!m)
+        fail_at(ps, &ft, 1, "cannot read the environment map '%s': %s", path, tex_errmsg());
+    struct tex_texture *tx = calloc(1, sizeof *tx);
+    if (!tx) {
+        tex_map_free(m);
+        fail_at(ps, &ft, 1, "out of memory");
+    }
+    add_texture(ps, tx); /* freed with the scene's textures */
+    tx->name = path;
+    e->map = tx;
+    texture_map(ps, tx, m, &ft);
+    tex_xform r;
+    tex_xform_identity(&r);
+    xf_rotate(&r, e->rotate);
+    if (tex_xform_invert(&e->to_map, &r) < 0)
+        fail_at(ps, &ft, 0, "the environment's rotation is singular");
+}
+
 static void parse_camera(struct parser *ps)
 {
     read_block(ps, tex_camera_rows, -1, ps->s, NULL, NULL, "the camera");
@@ -1209,6 +1439,8 @@ static void parse_scene(struct parser *ps)
             parse_texture(ps);
         } else if (is_word(&kt, "surface")) {
             parse_surface(ps);
+        } else if (is_word(&kt, "environment")) {
+            parse_environment(ps, &kt);
         } else if (!settings_word(ps, &kt)) {
             char b[64];
             fail_at(ps, &kt, 0, "unknown word %s at the top of the scene",
@@ -1312,6 +1544,9 @@ void tex_scene_free(struct tex_scene *s)
         free(t);
     }
     free(s->textures);
+    for (int i = 0; i < s->npalettes; i++)
+        tex_palette_free(s->palettes[i]);
+    free(s->palettes);
     free(s->objects);
     tex_bvh_free(s->bvh);
     for (size_t i = 0; i < s->npool; i++)

@@ -47,8 +47,13 @@ struct tex_material {
     double n;        /* Phong exponent, 1..10000 */
     double kr, kt;   /* reflection and transmission weights, 0..1 */
     double ior;      /* index of refraction, > 0 */
+    double m, s;     /* Cook-Torrance: Beckmann's slope and the specular fraction here */
     const struct tex_shading_model *model;
     const void *model_data; /* the model's own parameters, or NULL */
+    /* a blend of two surfaces (`blend = h`): the light this one reflects, times 1 - blend,
+     * plus blend_m's times blend; NULL: none */
+    float blend;
+    const struct tex_material *blend_m;
 };
 
 struct tex_shading_model {

@@ -15,6 +15,7 @@
 #include "base/error.h"
 #include "render/scene.h"
 #include "render/render_ct.h"
+#include "ops/palette.h"
 
 /* ---- mip-mapped maps ------------------------------------------------------------ */
 
@@ -180,10 +181,19 @@ static int field_eval(const struct tex_texture *t, double u, double v, double w,
         f->prim->eval3(f, 1, &u, &v, &w, val);
     else
         f->prim->eval2(f, 1, &u, &v, val);
-    to_rgb(val, f->nc, out);
-    if ((f->prim->flags & TEX_PRIM_REGIONS) && f->ids)
-        return (int)lrintf(val[0]);
-    return 0;
+    int region = (f->prim->flags & TEX_PRIM_REGIONS) && f->ids ? (int)lrintf(val[0]) : 0;
+    if (t->palette) { /* a region's indexed colour, or the value in [0, 1] */
+        float rgba[4];
+        if (region)
+            tex_palette_index_n(t->palette, region, f->nregions, rgba);
+        else
+            tex_palette_lookup(t->palette, tex_palette_t(val[0], 0, 1, TEX_OUTSIDE_CLAMP), rgba);
+        val[0] = rgba[0], val[1] = rgba[1], val[2] = rgba[2];
+        to_rgb(val, 3, out);
+    } else {
+        to_rgb(val, f->nc, out);
+    }
+    return region;
 }
 
 /* A region map's id at (u, v) in [0, 1]: the nearest texel, never averaged. */
@@ -232,11 +242,22 @@ static double fract(double x)
     return x - floord(x);
 }
 
+static inline double clamp01(double x)
+{
+    return x > 0 ? (x < 1 ? x : 1) : 0;
+}
+
 /* A planar mapping on an unbounded plane: u, v are its object-space x and z, scaled. */
 static inline int plane_planar(const struct tex_apply *ap, const struct tex_object *leaf)
 {
     return (ap->mapping == TEX_MAP_NATURAL || ap->mapping == TEX_MAP_PLANAR) &&
-           leaf->kind == TEX_SHAPE_PLANE;
+           leaf->kind == TEX_SHAPE_PLANE && !ap->placed;
+}
+
+/* The wavy projection's shift of u at height y of the texture's frame */
+static inline double wave_at(const struct tex_apply *ap, double y)
+{
+    return ap->wave[0] * sin(2 * M_PI * y / ap->wave[1]);
 }
 
 /* map_point_at for every mapping but plane_planar */
@@ -249,7 +270,17 @@ static int map_point_other(const struct tex_apply *ap, const struct tex_object *
     uvw[2] = 0;
     if (mp == TEX_MAP_NATURAL)
         return tex_shape_methods[leaf->kind].uv(leaf, *pl, &uvw[0], &uvw[1]);
-    if (mp == TEX_MAP_WORLD || (mp == TEX_MAP_SOLID && !(leaf->root && leaf->root->bounded))) {
+    int bounded_solid = mp == TEX_MAP_SOLID && leaf->root && leaf->root->bounded;
+    tex_v3 Pt, plt;
+    if (ap->placed && (mp == TEX_MAP_WORLD || mp == TEX_MAP_SOLID)) {
+        /* about the world's origin, or the solid's box centre */
+        tex_v3 c = bounded_solid ? tex_v3_scale(tex_v3_add(leaf->root->wb.lo, leaf->root->wb.hi),
+                                                0.5)
+                                 : tex_v3_make(0, 0, 0);
+        Pt = tex_v3_add(c, tex_xform_point(&ap->to_tex, tex_v3_sub(*P, c)));
+        P = &Pt;
+    }
+    if (mp == TEX_MAP_WORLD || (mp == TEX_MAP_SOLID && !bounded_solid)) {
         uvw[0] = fract(P->x * ap->scale);
         uvw[1] = fract(-P->y * ap->scale);
         uvw[2] = fract(P->z * ap->scale);
@@ -262,14 +293,19 @@ static int map_point_other(const struct tex_apply *ap, const struct tex_object *
     if (mp == TEX_MAP_SOLID) {
         const struct tex_bounds *rb = &leaf->root->wb;
         tex_v3 e = tex_v3_sub(rb->hi, rb->lo);
-        uvw[0] = e.x > 0 ? (P->x - rb->lo.x) / e.x : 0;
-        uvw[1] = e.y > 0 ? (rb->hi.y - P->y) / e.y : 0; /* v downwards: top of the box is 0 */
-        uvw[2] = e.z > 0 ? (P->z - rb->lo.z) / e.z : 0;
+        /* clamped: a hit on the box's face may round to just outside it */
+        uvw[0] = e.x > 0 ? clamp01((P->x - rb->lo.x) / e.x) : 0;
+        uvw[1] = e.y > 0 ? clamp01((rb->hi.y - P->y) / e.y) : 0; /* v down: the top is 0 */
+        uvw[2] = e.z > 0 ? clamp01((P->z - rb->lo.z) / e.z) : 0;
         return 1;
     }
     int bounded = tex_shape_methods[leaf->kind].bounds(leaf, &b);
     tex_v3 c = bounded ? tex_v3_scale(tex_v3_add(b.lo, b.hi), 0.5) : tex_v3_make(0, 0, 0);
     tex_v3 e = bounded ? tex_v3_scale(tex_v3_sub(b.hi, b.lo), 0.5) : tex_v3_make(1, 1, 1);
+    if (ap->placed) { /* the texture's frame about the shape's centre */
+        plt = tex_v3_add(c, tex_xform_point(&ap->to_tex, tex_v3_sub(*pl, c)));
+        pl = &plt;
+    }
     tex_v3 q = tex_v3_make((pl->x - c.x) / e.x, (pl->y - c.y) / e.y, (pl->z - c.z) / e.z);
     switch (mp) {
     case TEX_MAP_SPHERE:
@@ -283,14 +319,29 @@ static int map_point_other(const struct tex_apply *ap, const struct tex_object *
         uvw[1] = bounded ? fmin(1, fmax(0, (1 - q.y) / 2)) : fract(-pl->y * ap->scale);
         return face;
     }
-    default: /* planar: x and z across the box */
+    case TEX_MAP_CROSS: /* the x-y plane's map at (u, v), the y-z plane's at (w, v) */
         if (!bounded) {
             uvw[0] = fract(pl->x * ap->scale);
+            uvw[1] = fract(-pl->y * ap->scale);
+            uvw[2] = fract(pl->z * ap->scale);
+        } else {
+            uvw[0] = clamp01((q.x + 1) / 2);
+            uvw[1] = clamp01((1 - q.y) / 2);
+            uvw[2] = clamp01((q.z + 1) / 2);
+        }
+        return face;
+    default: /* planar: x and z across the box; wavy: swept along a sine path in y */
+        if (!bounded) {
+            uvw[0] = pl->x * ap->scale;
             uvw[1] = fract(pl->z * ap->scale);
         } else {
-            uvw[0] = fmin(1, fmax(0, (q.x + 1) / 2));
-            uvw[1] = fmin(1, fmax(0, (q.z + 1) / 2));
+            uvw[0] = clamp01((q.x + 1) / 2);
+            uvw[1] = clamp01((q.z + 1) / 2);
         }
+        if (mp == TEX_MAP_WAVY)
+            uvw[0] += wave_at(ap, pl->y);
+        if (!bounded || mp == TEX_MAP_WAVY)
+            uvw[0] = fract(uvw[0]);
         return face;
     }
 }
@@ -509,11 +560,35 @@ static double footprint_width2(const struct tex_apply *ap, const struct placemen
 
 /* ---- application functions ---------------------------------------------------------- */
 
+const struct tex_scene_word tex_quantities[TEX_Q_COUNT + 1] = {
+    {"dist", NULL, "the path's length from the eye to the hit (through reflections)"},
+    {"footprint", NULL, "the ray's footprint at the hit in texture units (the map is 1 wide)"},
+    {"lod", NULL, "log2(footprint), at least -60: -9 where a pixel covers a texel of a 512 map"},
+    {"ndotv", NULL, "the cosine between the normal and the direction to the viewer, 0..1"},
+    {"depth", NULL, "0 for eye rays, one more per reflection or refraction"},
+    {"x", NULL, "the hit's world x"},
+    {"y", NULL, "the hit's world y"},
+    {"z", NULL, "the hit's world z"},
+    {"ox", NULL, "the hit's x in the object's own space"},
+    {"oy", NULL, "the hit's y in the object's own space"},
+    {"oz", NULL, "the hit's z in the object's own space"},
+    {"u", NULL, "the mapping's u at the hit, 0..1 (before window and repeat)"},
+    {"v", NULL, "the mapping's v at the hit"},
+    {"w", NULL, "the mapping's w at the hit (solid mappings; else 0)"},
+    {"nx", NULL, "the normal's world x, facing the ray (before bump)"},
+    {"ny", NULL, "the normal's world y"},
+    {"nz", NULL, "the normal's world z"},
+    {"region", NULL, "the map's subregion id at the hit (0: a map without regions)"},
+    {NULL, NULL, NULL},
+};
+
+
 struct evalctx {
     const float *f;     /* map value, RGB */
     const float *p;     /* untextured value, RGB */
     const double *uvw;  /* where the map was looked up (for cascades) */
     double fw2; /* the footprint's squared width */
+    const double *q;    /* the quantities at the hit (TEX_Q_COUNT), or NULL if none is read */
 };
 
 /* Run the compiled function e (lang/expr.h) per channel: a loop over its postfix code
@@ -531,11 +606,15 @@ static void expr_eval(const struct tex_expr *e, const struct evalctx *c, double 
         case TEX_EOP_LEAF: {
             const float *v = in->leaf == TEX_LEAF_F ? c->f : c->p;
             float t[3];
+            a = st[sp++];
+            if (in->leaf >= TEX_LEAF_Q) {
+                a[0] = a[1] = a[2] = c->q[in->leaf - TEX_LEAF_Q];
+                continue;
+            }
             if (in->leaf == TEX_LEAF_TEX) {
                 texture_lookup(in->ptr, c->uvw[0], c->uvw[1], c->uvw[2], c->fw2, t);
                 v = t;
             }
-            a = st[sp++];
             a[0] = v[0], a[1] = v[1], a[2] = v[2];
             continue;
         }
@@ -552,8 +631,28 @@ static void expr_eval(const struct tex_expr *e, const struct evalctx *c, double 
             st[sp - 1][1] = st[sp][1];
             st[sp - 1][2] = st[sp + 1][2];
             continue;
-        default:
+        case TEX_EOP_ADD: case TEX_EOP_SUB: case TEX_EOP_MUL: case TEX_EOP_DIV:
+        case TEX_EOP_MIN: case TEX_EOP_MAX:
             break;
+        case TEX_EOP_PALETTE: { /* one lookup for the three channels */
+            float rgba[4];
+            a = st[sp - 1];
+            tex_palette_lookup(in->ptr, tex_palette_t((a[0] + a[1] + a[2]) / 3, 0, 1,
+                                                      TEX_OUTSIDE_CLAMP), rgba);
+            a[0] = rgba[0], a[1] = rgba[1], a[2] = rgba[2];
+            continue;
+        }
+        default: { /* the other functions of lang/expr.h, by its definitions */
+            int k = tex_expr_arity(in->op);
+            double r[3];
+            sp -= k;
+            for (int ch = 0; ch < 3; ch++)
+                r[ch] = tex_expr_apply(in, ch, st[sp], k > 1 ? st[sp + 1] : NULL,
+                                       k > 2 ? st[sp + 2] : NULL);
+            a = st[sp++];
+            a[0] = r[0], a[1] = r[1], a[2] = r[2];
+            continue;
+        }
         }
         b = st[--sp];
         a = st[sp - 1];
@@ -635,7 +734,7 @@ static int poly_of(const struct tex_expr *e, struct poly *r)
         case TEX_EOP_LEAF:
             a = &st[sp++];
             memset(a, 0, sizeof *a);
-            ok = in->leaf != TEX_LEAF_TEX;
+            ok = in->leaf == TEX_LEAF_F || in->leaf == TEX_LEAF_P;
             a->c[in->leaf == TEX_LEAF_F ? 1 : 2][0] = 1;
             a->c[in->leaf == TEX_LEAF_F ? 1 : 2][1] = 1;
             a->c[in->leaf == TEX_LEAF_F ? 1 : 2][2] = 1;
@@ -655,10 +754,11 @@ static int poly_of(const struct tex_expr *e, struct poly *r)
             a->df |= a[1].df | a[2].df;
             a->dp |= a[1].dp | a[2].dp;
             break;
-        case TEX_EOP_ABS:
-            ok = 0;
-            break;
         default:
+            if (tex_expr_arity(in->op) != 2) { /* abs, the functions: not polynomials */
+                ok = 0;
+                break;
+            }
             sp--;
             ok = poly_op(in->op, &st[sp - 1], &st[sp]);
             break;
@@ -679,6 +779,9 @@ static inline double poly_at(const struct poly *q, int k, double f, double p)
 /* The parameters being textured, in RGB, before conversion to the colour space. */
 struct params {
     float ka, kd[3], ks, n, kr, kt, ior, bump;
+    double m, s; /* Cook-Torrance's slope and specular fraction (double: as the model's) */
+    float blend; /* the blended surface's weight */
+    float normal[3], gradient[3]; /* one apply block's normal map and height gradient */
 };
 
 struct tex_surface_cache {
@@ -688,6 +791,7 @@ struct tex_surface_cache {
     struct placement *placement; /* per texture applied, in order */
     struct poly *poly;           /* per application function, in order */
     char *compiled;              /* 1: poly[i] holds function i */
+    int quantities;              /* 1: a function reads the hit's quantities */
 };
 
 static double clampd(double x, double lo, double hi)
@@ -704,9 +808,9 @@ static float lum(const float v[3])
  * applied to the parameters pr: the colour Kd per channel; a scalar parameter sees the map's
  * luminance as f and takes the mean of the channels.  Results clamped to the valid range. */
 static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const float f[3],
-                     const double uvw[3], double fw2, struct params *pr)
+                     const double uvw[3], double fw2, const double *qv, struct params *pr)
 {
-    float *scalar = NULL, fg[3], p[3];
+    float *scalar = NULL, *colour = pr->kd, fg[3], p[3], sc = 0; /* sc: m or s, as a float */
     double lo = fn->lo, hi = fn->hi, r[3]; /* the parameter's row's range */
     switch (fn->param) {
     case TEX_SP_KD: break;
@@ -716,26 +820,74 @@ static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const flo
     case TEX_SP_KR: scalar = &pr->kr; break;
     case TEX_SP_KT: scalar = &pr->kt; break;
     case TEX_SP_IOR: scalar = &pr->ior; break;
+    case TEX_SP_M: scalar = &sc, sc = (float)pr->m; break;
+    case TEX_SP_S: scalar = &sc, sc = (float)pr->s; break;
+    case TEX_SP_BLEND: scalar = &pr->blend; break;
+    case TEX_SP_NORMAL: /* p: the flat normal */
+        colour = pr->normal;
+        colour[0] = colour[1] = 0.5f, colour[2] = 1;
+        break;
+    case TEX_SP_GRADIENT:
+        colour = pr->gradient;
+        colour[0] = colour[1] = colour[2] = 0;
+        break;
     default: scalar = &pr->bump; break;
     }
-    const float *fv = f, *pv = pr->kd;
+    const float *fv = f, *pv = colour;
     if (scalar) {
         fg[0] = fg[1] = fg[2] = lum(f);
         p[0] = p[1] = p[2] = *scalar;
         fv = fg, pv = p;
     }
     if (!q) {
-        struct evalctx c = {fv, pv, uvw, fw2};
+        struct evalctx c = {fv, pv, uvw, fw2, qv};
         expr_eval(fn->e, &c, r);
     }
     if (scalar) {
         for (int k = 0; q && k < 3; k++)
             r[k] = poly_at(q, k, fv[k], pv[k]);
         *scalar = (float)clampd((r[0] + r[1] + r[2]) / 3, lo, hi);
-    } else { /* channel k of Kd reads only Kd's channel k */
+        if (fn->param == TEX_SP_M)
+            pr->m = sc;
+        else if (fn->param == TEX_SP_S)
+            pr->s = sc;
+    } else { /* channel k of a colour reads only its channel k */
         for (int k = 0; k < 3; k++)
-            pr->kd[k] = (float)clampd(q ? poly_at(q, k, f[k], pr->kd[k]) : r[k], lo, hi);
+            colour[k] = (float)clampd(q ? poly_at(q, k, f[k], colour[k]) : r[k], lo, hi);
     }
+}
+
+/* The surface gradients (world space, texture units per world unit) of the placed u and v of
+ * texture ap at the hit, (u0, v0) by its mapping, by finite differences along the tangents. */
+static void uv_gradients(const struct tex_apply *ap, const struct placement *pm,
+                         const struct tex_object *leaf, const tex_v3 *P, struct footprint *fp,
+                         double width, double u0, double v0, tex_v3 *gu, tex_v3 *gv)
+{
+    double h = width > 1e-4 ? width : 1e-4, du[2], dv[2];
+    footprint_unit(fp);
+    for (int i = 0; i < 2; i++) {
+        tex_v3 Pi = tex_v3_madd(*P, i ? fp->t2 : fp->t1, h);
+        tex_v3 pli = tex_xform_point(&leaf->to_obj, Pi);
+        double a[3];
+        map_point_at(ap, leaf, &Pi, &pli, a);
+        du[i] = wrapdiff(a[0] - u0) * pm->su / h;
+        dv[i] = wrapdiff(a[1] - v0) * pm->sv / h;
+    }
+    *gu = tex_v3_add(tex_v3_scale(fp->t1, du[0]), tex_v3_scale(fp->t2, du[1]));
+    *gv = tex_v3_add(tex_v3_scale(fp->t1, dv[0]), tex_v3_scale(fp->t2, dv[1]));
+}
+
+/* A tangent-space normal map's normal (encoded 0.5 + 0.5 n: x along u, y against v, since v
+ * grows down the map, z along N) in world space; N itself where the map is flat. */
+static tex_v3 normal_mapped(const float enc[3], const tex_v3 *N, const tex_v3 *gu,
+                            const tex_v3 *gv)
+{
+    double x = 2.0 * enc[0] - 1, y = 2.0 * enc[1] - 1, z = 2.0 * enc[2] - 1;
+    if (x == 0 && y == 0) /* flat: N as it is, to the bit */
+        return *N;
+    tex_v3 t = tex_v3_norm(*gu), b = tex_v3_scale(tex_v3_norm(*gv), -1);
+    return tex_v3_norm(tex_v3_add(tex_v3_add(tex_v3_scale(t, x), tex_v3_scale(b, y)),
+                                  tex_v3_scale(*N, z)));
 }
 
 /* Blinn's bump mapping: the tilt of the normal against the surface gradient of texture ap's
@@ -761,23 +913,58 @@ static tex_v3 bump_tilt(const struct tex_apply *ap, const struct placement *pm,
                         strength);
 }
 
-/* The textures of sf applied at the hit P (seen along D, normal N, footprint width; filter:
- * mip-mapped lookups) to pr, N bent by bump maps; 1 if one of them set Ks. */
-static int apply_textures(const struct tex_surface *sf, const struct tex_object *leaf,
-                          const tex_v3 *P, const tex_v3 *D, tex_v3 *N, double width, int filter,
-                          struct params *pr)
+/* A cross mapping's value (thesis 5.2.1.3): the map on the x-y plane (f, at u, v) combined
+ * with the second map on the y-z plane, at (w, v), w placed as u is. */
+static void cross_combine(const struct tex_apply *ap, const struct placement *pm,
+                          const double uvw[3], double fw2, float f[3])
 {
+    float g[3];
+    double w = (uvw[2] - ap->u1) * pm->iu * ap->nu;
+    texture_lookup(ap->cross, w, uvw[1], 0, fw2, g);
+    for (int k = 0; k < 3; k++)
+        f[k] = ap->combine == TEX_COMBINE_PRODUCT ? f[k] * g[k]
+               : ap->combine == TEX_COMBINE_MIN   ? fminf(f[k], g[k])
+                                                   : fmaxf(f[k], g[k]);
+}
+
+/* The quantities of the hit that do not depend on the texture (tex_quantities). */
+static void hit_quantities(const struct tex_shade_at *at, const tex_v3 *pl, const tex_v3 *N,
+                           double q[TEX_Q_COUNT])
+{
+    q[TEX_Q_DIST] = at->dist;
+    q[TEX_Q_NDOTV] = fabs(tex_v3_dot(*N, *at->D));
+    q[TEX_Q_DEPTH] = at->depth;
+    q[TEX_Q_X] = at->P->x, q[TEX_Q_Y] = at->P->y, q[TEX_Q_Z] = at->P->z;
+    q[TEX_Q_OX] = pl->x, q[TEX_Q_OY] = pl->y, q[TEX_Q_OZ] = pl->z;
+    q[TEX_Q_NX] = N->x, q[TEX_Q_NY] = N->y, q[TEX_Q_NZ] = N->z;
+}
+
+/* The textures of sf applied at the hit (normal N; filter: mip-mapped lookups) to pr, N bent
+ * by bump maps; 1 if one of them set Ks. */
+static int apply_textures(const struct tex_surface *sf, const struct tex_shade_at *at,
+                          tex_v3 *N, int filter, struct params *pr)
+{
+    const struct tex_object *leaf = at->leaf;
+    const tex_v3 *P = at->P;
+    double width = filter ? at->width : 0;
     struct footprint fp;
-    footprint_at(&fp, D, N, width);
+    footprint_at(&fp, at->D, N, width);
     tex_v3 pl = tex_xform_point(&leaf->to_obj, *P), tilt = tex_v3_make(0, 0, 0);
     const struct tex_surface_cache *cache = sf->cache;
     const struct placement *pm = cache->placement;
     int nfn = 0, ks_textured = 0, bumped = 0; /* nfn: the function's index in the cache */
+    double qv[TEX_Q_COUNT], *q = NULL;
+    struct footprint fq; /* the real footprint for the quantities, filtered or not */
+    if (cache->quantities) {
+        q = qv;
+        hit_quantities(at, &pl, N, q);
+        footprint_at(&fq, at->D, N, at->width);
+    }
     for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next, pm++) {
         double uvw[3];
         float f[3];
         int face = map_point_at(ap, leaf, P, &pl, uvw);
-        double u0 = uvw[0], v0 = uvw[1];
+        double u0 = uvw[0], v0 = uvw[1], w0 = uvw[2];
         if (!place(ap, pm, uvw)) {
             for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next)
                 nfn++;
@@ -786,15 +973,34 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_object 
         double fw2 = filter ? footprint_width2(ap, pm, leaf, &fp, P, &pl, face, u0, v0) : 0;
         /* one lookup: region maps and primitives ignore the footprint */
         int region = texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw2, f);
+        if (ap->mapping == TEX_MAP_CROSS)
+            cross_combine(ap, pm, uvw, fw2, f);
+        if (q) {
+            double w2 = filter ? fw2 : footprint_width2(ap, pm, leaf, &fq, P, &pl, face, u0, v0);
+            q[TEX_Q_FOOTPRINT] = sqrt(w2);
+            q[TEX_Q_LOD] = w2 > 0x1p-120 ? log2(w2) / 2 : -60;
+            q[TEX_Q_U] = u0, q[TEX_Q_V] = v0, q[TEX_Q_W] = w0;
+            q[TEX_Q_REGION] = region;
+        }
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++) {
             if (fn->region && fn->region != region)
                 continue;
             ks_textured |= fn->param == TEX_SP_KS;
-            apply_fn(fn, cache->compiled[nfn] ? &cache->poly[nfn] : NULL, f, uvw, fw2, pr);
+            apply_fn(fn, cache->compiled[nfn] ? &cache->poly[nfn] : NULL, f, uvw, fw2, q, pr);
             if (fn->param == TEX_SP_BUMP && pr->bump != 0) {
                 tilt = tex_v3_add(tilt, bump_tilt(ap, pm, leaf, P, &fp, width, fw2, f, pr->bump));
                 bumped = 1;
                 pr->bump = 0;
+            } else if (fn->param == TEX_SP_NORMAL || fn->param == TEX_SP_GRADIENT) {
+                tex_v3 gu, gv;
+                uv_gradients(ap, pm, leaf, P, &fp, width, u0, v0, &gu, &gv);
+                if (fn->param == TEX_SP_NORMAL) {
+                    *N = normal_mapped(pr->normal, N, &gu, &gv);
+                } else {
+                    tilt = tex_v3_add(tilt, tex_v3_add(tex_v3_scale(gu, pr->gradient[0]),
+                                                       tex_v3_scale(gv, pr->gradient[1])));
+                    bumped = 1;
+                }
             }
         }
     }
@@ -840,22 +1046,44 @@ material(const struct tex_colour_space *cs, const struct tex_surface *sf,
     m->kr = pr->kr;
     m->kt = pr->kt;
     m->ior = pr->ior;
+    m->m = pr->m;
+    m->s = pr->s;
     m->model = sf->model;
     m->model_data = sf->ct;
+    m->blend = 0;
+    m->blend_m = NULL;
 }
 
-void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *sf,
-                          const struct tex_object *leaf, const tex_v3 *P, const tex_v3 *D,
-                          tex_v3 *N, double width, struct tex_material *m)
+/* One surface's material at the hit; *blend: its blend's weight there. */
+static void resolve(const struct tex_scene *s, const struct tex_surface *sf,
+                    const struct tex_shade_at *at, tex_v3 *N, struct tex_material *m,
+                    float *blend)
 {
+    *blend = 0;
     if (!sf->apply) { /* the cache as it is, without the textured path's set-up */
         material(&s->cs, sf, &sf->cache->base, 0, m);
         return;
     }
     struct params pr = sf->cache->base;
-    int ks_textured =
-        apply_textures(sf, leaf, P, D, N, width, s->settings.filter && width > 0, &pr);
+    int ks_textured = apply_textures(sf, at, N, s->settings.filter && at->width > 0, &pr);
     material(&s->cs, sf, &pr, ks_textured, m);
+    *blend = pr.blend;
+}
+
+void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *sf,
+                          const struct tex_shade_at *at, tex_v3 *N, struct tex_material m[2])
+{
+    float w, w1;
+    tex_v3 N1 = *N; /* this surface's normal shades both */
+    resolve(s, sf, at, N, &m[0], &w);
+    if (sf->blend && w > 0) { /* the other surface at the same hit, its own textures */
+        resolve(s, sf->blend, at, &N1, &m[1], &w1);
+        tex_colour_scale(&m[0].ka, s->cs.n, &m[0].ka, 1 - w); /* the ambient term, mixed */
+        for (int i = 0; i < s->cs.n; i++)
+            m[0].ka.v[i] += w * m[1].ka.v[i];
+        m[0].blend = w;
+        m[0].blend_m = &m[1];
+    }
 }
 
 int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
@@ -876,11 +1104,18 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
     nfn = nap = 0;
     for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next) {
         placement_of(ap, &c->placement[nap++]);
-        for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++)
+        for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++) {
             c->compiled[nfn] = (char)poly_of(fn->e, &c->poly[nfn]);
+            for (int i = 0; i < fn->e->n; i++)
+                c->quantities |= fn->e->code[i].op == TEX_EOP_LEAF &&
+                                 fn->e->code[i].leaf >= TEX_LEAF_Q;
+        }
     }
+    struct tex_material ctm; /* Cook-Torrance's m and s: the surface's, or the defaults */
+    tex_ct_material(&ctm, sf->ct);
     c->base = (struct params){sf->ka, {sf->kd[0], sf->kd[1], sf->kd[2]}, sf->ks[0], (float)sf->n,
-                              (float)sf->kr, (float)sf->kt, (float)sf->ior, 0};
+                              (float)sf->kr, (float)sf->kt, (float)sf->ior, 0, ctm.m, ctm.s, 0,
+                              {0.5f, 0.5f, 1}, {0, 0, 0}};
     float ka[3] = {sf->ka * sf->kd[0], sf->ka * sf->kd[1], sf->ka * sf->kd[2]};
     cs->from_rgb(cs, ka, TEX_SPECTRUM_REFLECTANCE, &c->col[0]);
     cs->from_rgb(cs, sf->kd, TEX_SPECTRUM_REFLECTANCE, &c->col[1]);
@@ -905,4 +1140,18 @@ void tex_surface_uncache(struct tex_surface *sf)
         free(sf->cache);
     }
     sf->cache = NULL;
+}
+
+/* ---- the environment -------------------------------------------------------------- */
+
+void tex_environment_eval(const struct tex_environment *e, const tex_v3 *d, double spread,
+                          float rgb[3])
+{
+    tex_v3 m = tex_xform_dir(&e->to_map, *d);
+    double y = m.y > 1 ? 1 : m.y < -1 ? -1 : m.y;
+    double u = 0.5 + atan2(m.x, m.z) / (2 * M_PI), v = acos(y) / M_PI;
+    /* the footprint: spread radians are spread / pi of the map's height */
+    tex_texture_eval(e->map, u, v, 0, spread > 0 ? spread / M_PI : 0, rgb);
+    for (int k = 0; k < 3; k++)
+        rgb[k] = (float)(rgb[k] * e->intensity);
 }

@@ -161,6 +161,7 @@ typedef struct tex_ray {
     double width;     /* footprint width at o (for filtered texture lookups) */
     double spread;    /* footprint growth per unit distance (pixel angle) */
     const struct tex_media *media; /* the solids it travels inside; NULL: air */
+    double dist;      /* the path's length from the eye to o */
 } tex_ray;
 
 /* Nested transparent media: the top-level solids a ray is inside, innermost
@@ -314,7 +315,10 @@ int tex_object_bounds(struct tex_object *ob);
 /* ---- textures, mappings, application functions --------------------------- */
 
 enum tex_mapping { TEX_MAP_NATURAL, TEX_MAP_SPHERE, TEX_MAP_CYLINDER, TEX_MAP_CONE,
-                   TEX_MAP_BOX, TEX_MAP_PLANAR, TEX_MAP_SOLID, TEX_MAP_WORLD };
+                   TEX_MAP_BOX, TEX_MAP_PLANAR, TEX_MAP_SOLID, TEX_MAP_WORLD, TEX_MAP_WAVY,
+                   TEX_MAP_CROSS };
+/* How a cross mapping combines its two maps */
+enum tex_combine { TEX_COMBINE_PRODUCT, TEX_COMBINE_MIN, TEX_COMBINE_MAX };
 
 struct tex_texture {
     char *name;
@@ -323,6 +327,7 @@ struct tex_texture {
     int subregions;      /* > 0: the map holds region ids (nearest lookup, no filtering) */
     struct tex_field *field; /* a primitive evaluated at hit points */
     int solid;           /* the field is evaluated at (u,v,w) */
+    const struct tex_palette *palette; /* `palette NAME`: colours the values (ops/palette.h) */
     int line, col;
 };
 
@@ -331,13 +336,20 @@ struct tex_texture {
 int tex_texture_eval(const struct tex_texture *t, double u, double v, double w, double fw,
                      float out[3]);
 struct tex_scene;
-/* The material at a hit on leaf (surface sf) at world point P seen along D:
- * the application functions evaluated, N bent by bump maps, colours in the
- * scene's colour space.  width is the ray's footprint at P (0: no filtering).
+/* Where a ray met a surface, as the application functions see it. */
+struct tex_shade_at {
+    const struct tex_object *leaf;
+    const tex_v3 *P, *D; /* the world point, the ray's unit direction */
+    double width;        /* the ray's footprint at P (filtered lookups if the scene filters) */
+    double dist;         /* the path's length from the eye to P */
+    int depth;           /* 0 for eye rays, +1 per reflection or refraction */
+};
+/* The material at a hit (surface sf): the application functions evaluated,
+ * N bent by bump and normal maps, colours in the scene's colour space;
+ * m[1] is the blended surface's where m[0].blend > 0 (its weight).
  * sf's cache must be filled (tex_surface_cache). */
 void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *sf,
-                          const struct tex_object *leaf, const tex_v3 *P, const tex_v3 *D,
-                          tex_v3 *N, double width, struct tex_material *m);
+                          const struct tex_shade_at *at, tex_v3 *N, struct tex_material m[2]);
 /* Fill (tex_render, before tracing) and free a surface's cache: its untextured
  * colours in the scene's colour space, its application functions compiled. */
 int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs);
@@ -345,13 +357,28 @@ void tex_surface_uncache(struct tex_surface *sf);
 /* Build the pyramid of mip[0] (box filter, wrapping). */
 int tex_texture_build_mip(struct tex_texture *t);
 
+/* The parameters an application function can set: the surface's Ka..ior, then bump,
+ * Cook-Torrance's m and s, the weight of a blended surface, a tangent-space normal map and
+ * a height gradient (tex_sparam_row gives each one's row). */
 enum tex_sparam { TEX_SP_KA, TEX_SP_KD, TEX_SP_KS, TEX_SP_N, TEX_SP_KR, TEX_SP_KT, TEX_SP_IOR,
-                  TEX_SP_BUMP, TEX_SP_COUNT };
+                  TEX_SP_BUMP, TEX_SP_M, TEX_SP_S, TEX_SP_BLEND, TEX_SP_NORMAL,
+                  TEX_SP_GRADIENT, TEX_SP_COUNT };
 
 /* An application function's expression, compiled (lang/expr.h): a postfix
- * program over f (the map value), p (the untextured value), numbers, colours
- * and other textures (a cascade), run per RGB channel.  Its operands: */
-enum tex_eleaf { TEX_LEAF_F, TEX_LEAF_P, TEX_LEAF_TEX /* ptr: the texture */ };
+ * program over f (the map value), p (the untextured value), numbers, colours,
+ * other textures (a cascade) and the renderer's quantities at the hit, run
+ * per RGB channel.  Its operands: */
+enum tex_eleaf { TEX_LEAF_F, TEX_LEAF_P, TEX_LEAF_TEX /* ptr: the texture */,
+                 TEX_LEAF_Q /* TEX_LEAF_Q + q: quantity q */ };
+
+/* The renderer's quantities an application function can read (composition
+ * at application time, thesis 5.2.4.1): their names and help are
+ * tex_quantities[q], in this order. */
+enum tex_quantity { TEX_Q_DIST, TEX_Q_FOOTPRINT, TEX_Q_LOD, TEX_Q_NDOTV, TEX_Q_DEPTH,
+                    TEX_Q_X, TEX_Q_Y, TEX_Q_Z, TEX_Q_OX, TEX_Q_OY, TEX_Q_OZ,
+                    TEX_Q_U, TEX_Q_V, TEX_Q_W, TEX_Q_NX, TEX_Q_NY, TEX_Q_NZ, TEX_Q_REGION,
+                    TEX_Q_COUNT };
+extern const struct tex_scene_word tex_quantities[TEX_Q_COUNT + 1]; /* render.h */
 
 /* g[region][parameter] = h: one application function. */
 struct tex_appfn {
@@ -369,6 +396,14 @@ struct tex_apply {
     double u1, v1, u2, v2; /* the texture window */
     double nu, nv;         /* repeat counts (1 1: stretch) */
     double scale;          /* world / planar mapping: texture units per world unit */
+    /* projections (thesis 5.2.1.3): the texture's frame relative to the object, its y axis
+     * along `axis`, then rotated and translated; to_tex takes points into it */
+    tex_v3 axis;
+    tex_xform place, to_tex;
+    int placed;                        /* 1: to_tex is not the identity */
+    double wave[2];                    /* wavy: amplitude (in u) and wavelength (along y) */
+    const struct tex_texture *cross;   /* cross: the map on the y-z plane */
+    enum tex_combine combine;          /* cross: how the two maps combine */
     struct tex_appfn *fns;
     struct tex_apply *next;
     int line, col;
@@ -380,6 +415,7 @@ struct tex_surface {
     double n, kr, kt, ior;
     const struct tex_shading_model *model;
     struct tex_ct *ct;      /* Cook-Torrance parameters (render_ct.h); NULL: its defaults */
+    const struct tex_surface *blend; /* `blend SURFACE`: mixed in by `blend = h`, or NULL */
     struct tex_apply *apply;
     int line, col;
     struct tex_surface_cache *cache; /* tex_render's (render_texture.c), or NULL */
@@ -454,12 +490,23 @@ struct tex_settings {
 
 struct tex_bvh;
 
+/* `environment FILE { ... }`: a lat-long map (Blinn and Newell's reflection map, thesis
+ * 2.2.2) that rays leaving the scene look up by their direction: u = 0.5 + atan2(x, z) / 2pi
+ * (+z, the default view, at the map's centre), v = acos(y) / pi (up at the top row). */
+struct tex_environment {
+    struct tex_texture *map;  /* NULL: the background colour */
+    tex_v3 rotate;            /* degrees about x, y, z, as objects turn */
+    double intensity;
+    tex_xform to_map;         /* world directions into the map's frame */
+};
+
 struct tex_scene {
     char *file;
     tex_v3 eye, look, up;
     double fov;                 /* horizontal, degrees */
     struct tex_settings settings;
     float ambient[3], background[3];
+    struct tex_environment env;
     struct tex_colour_space cs;
     struct tex_light *lights;
     int nlights;
@@ -472,6 +519,8 @@ struct tex_scene {
     int ntextures;
     struct tex_surface **surfaces;
     int nsurfaces;
+    struct tex_palette **palettes; /* the palettes scenes name (ops/palette.h) */
+    int npalettes;
     void **pool;
     size_t npool, cpool;
     char *warnings;
@@ -494,7 +543,14 @@ extern const struct tex_param tex_apply_rows[];    /* apply TEXTURE { }, over st
 extern const struct tex_param tex_object_rows[];   /* SHAPE { }, over struct tex_shape_params;
                                                     * kinds: bit enum tex_shape_kind; surface
                                                     * and the transforms are also CSG words */
-extern const struct tex_param tex_bump_row;        /* bump = h (also normal) */
+extern const struct tex_param tex_target_rows[];   /* bump, m, s, blend, normal, gradient:
+                                                    * TEX_SP_BUMP.. in order */
+extern const struct tex_param tex_environment_rows[]; /* environment FILE { }, over
+                                                       * struct tex_environment */
+/* The environment's colour (RGB, times its intensity) in direction d (unit, world), for a
+ * ray whose footprint spreads by `spread` radians (0: no filtering). */
+void tex_environment_eval(const struct tex_environment *e, const tex_v3 *d, double spread,
+                          float rgb[3]);
 /* The row of an application function's parameter: its name and the range its
  * results are clamped to. */
 const struct tex_param *tex_sparam_row(enum tex_sparam sp);

@@ -21,8 +21,7 @@ static void highlight(const struct tex_colour_space *cs, const struct tex_matdb_
     memset(&mat, 0, sizeof mat);
     mat.ior = 1.5;
     mat.kr = 1;
-    mat.model = &tex_shading_cook_torrance;
-    mat.model_data = &ct;
+    tex_ct_material(&mat, &ct);
     float white[3] = {1, 1, 1};
     tex_colour E, out;
     cs->from_rgb(cs, white, TEX_SPECTRUM_ILLUMINANT, &E);
@@ -102,9 +101,8 @@ int main(void)
     memset(&mat, 0, sizeof mat);
     mat.ior = 1.5;
     mat.kr = mat.kt = 1;
-    mat.model = &tex_shading_cook_torrance;
-    mat.model_data = &ct;
     tex_ct_init(&ct, &cs, tex_matdb_find(&db, "bk7"), TEX_FACET_BECKMANN, 0.1, 0, 0.5);
+    tex_ct_material(&mat, &ct);
     tex_colour kr, kt;
     double worst = 0;
     for (double c = -1; c <= 1; c += 0.05) {
@@ -160,7 +158,7 @@ int main(void)
     CHECK(tex_ct_init(&ct, &cs, NULL, TEX_FACET_BECKMANN, 0, 0, 0.5) < 0 &&
               tex_ct_init(&ct, &cs, NULL, TEX_FACET_BECKMANN, 0.2, 0, 1.5) < 0,
           "bad roughness or specular fraction: usage errors");
-    mat.model_data = NULL;
+    tex_ct_material(&mat, NULL);
     mat.model->weights(&mat, 1, cs.n, &kr, &kt);
     tex_colour_set(&out, cs.n, 0);
     double N0[3] = {0, 0, 1};
