@@ -6,7 +6,9 @@
 #   make demo       run the main job: writes demo.png
 #   make test       the whole test suite: plain, under ASan+UBSan, and built by clang
 #   make bench      the benchmarks in tests/bench (not timed tests)
-#   make install    PREFIX=/usr/local DESTDIR=
+#   make install    PREFIX=/usr/local DESTDIR= (after a build, nothing is rebuilt
+#                   for the prefix: the installed tree finds its parts at run time)
+#   make uninstall  remove what make install put in PREFIX
 #   make man        refresh the option lists of the man pages from the tools
 #   make fuzz       build the fuzz targets (clang, libFuzzer)
 #
@@ -32,7 +34,7 @@ WARN     = -Wall -Wextra $(if $(findstring clang,$(CC)),-Wno-pass-failed)
 SANFLAGS = -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer -fno-sanitize-recover=undefined,float-cast-overflow
 SAN      = $(if $(SANITIZE),$(SANFLAGS))
 ALL_CFLAGS   = -std=gnu11 -fPIC -fopenmp -ffp-contract=off $(WARN) $(SAN) $(CFLAGS) \
-               -DTEX_VERSION='"$(VERSION)"' -DTEX_LIBDIR='"$(LIBDIR)"' \
+               -DTEX_VERSION='"$(VERSION)"' -DTEX_PREFIX='"$(PREFIX)"' -DTEX_LIBDIR='"$(LIBDIR)"' \
                -DTEX_DATADIR='"$(DATADIR)"'
 ALL_CXXFLAGS = -std=c++17 -fPIC $(WARN) $(CXXFLAGS)
 CPPFLAGS += -Ilibtex -I/usr/include/OpenEXR
@@ -45,29 +47,42 @@ PROG_LDLIBS = $(if $(SANITIZE),$(LDLIBS),-lOpenEXRCore -lfftw3f_threads -lfftw3f
               -l:libflann_s.a -llz4 -Wl,-Bstatic -lstdc++ -Wl,-Bdynamic -lm -ldl)
 
 LAYERS   = base io prim ops lang render cli
-LIB_SRC  = $(filter-out %_template.c,$(foreach l,$(LAYERS),$(wildcard libtex/$(l)/*.c)))
+LIB_SRC  = $(filter-out %_template.c %_bridge.c,$(foreach l,$(LAYERS),$(wildcard libtex/$(l)/*.c)))
 LIB_OBJ  = $(LIB_SRC:%.c=$(BUILD)/obj/%.o)
 TOOL_SRC = $(wildcard tools/t_*.c)
 TOOLS    = $(TOOL_SRC:tools/%.c=$(BUILD)/bin/%)
 UNIT_SRC = $(wildcard tests/unit/test_*.c)
 UNITS    = $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
 BRIDGE   = $(BUILD)/lib/textura/textura-oiio.so
+# One small bridge per codec library, each loaded when a file needs it.
+CODECS   = png jpeg tiff
+CODEC_LIBS_png = -lpng16
+CODEC_LIBS_jpeg = -ljpeg
+CODEC_LIBS_tiff = -ltiff
+CODEC_BRIDGES = $(CODECS:%=$(BUILD)/lib/textura/textura-%.so)
 STATIC   = $(BUILD)/lib/libtex.a
 SHARED   = $(BUILD)/lib/libtex.so.0
 PCFILE   = $(BUILD)/lib/pkgconfig/textura.pc
 # Headers that stay inside libtex: the scene's internals, the shading models'
 # interface, the languages' lexer and evaluator, the OpenImageIO bridge.
-PRIVATE_HEADERS = libtex/io/oiio_bridge.h libtex/lang/lex.h libtex/lang/expr.h \
+PRIVATE_HEADERS = libtex/io/oiio_bridge.h libtex/io/codec_bridge.h libtex/lang/lex.h libtex/lang/expr.h \
                   libtex/render/scene.h libtex/render/render_shade.h libtex/render/render_ct.h
 HEADERS  = $(filter-out $(PRIVATE_HEADERS),$(wildcard libtex/*/*.h)) libtex/prim/primitives.def
 
 DEBS = build-essential pkg-config liblz4-dev libopenexr-dev libopenimageio-dev openimageio-tools \
+       libpng-dev libjpeg62-turbo-dev libtiff-dev \
        libflann-dev libfftw3-dev colord-data mandoc netpbm imagemagick libnoise-dev povray \
        hyperfine clang libclang-rt-14-dev libomp-dev python3
 
-.PHONY: all deps demo test test-plain test-asan check bench install man fuzz figures gallery clean
+.PHONY: all deps demo test test-plain test-asan check bench install uninstall man fuzz figures \
+        gallery clean
 
-all: $(STATIC) $(SHARED) $(BRIDGE) $(PCFILE) $(TOOLS)
+# build/share/textura holds links to the data, so that a build tree is laid
+# out as an install is and finds its data files the same way (paths.h).
+all: $(STATIC) $(SHARED) $(BRIDGE) $(CODEC_BRIDGES) $(PCFILE) $(TOOLS)
+	@mkdir -p $(BUILD)/share/textura
+	@ln -sfn ../../../palettes $(BUILD)/share/textura/palettes
+	@ln -sfn ../../../patterns $(BUILD)/share/textura/patterns
 	@printf 'CC = %s\nCXX = %s\nSANITIZE = %s\nOPT = %s\n' '$(CC)' '$(CXX)' '$(SANITIZE)' '$(OPT)' \
 	    >$(BUILD)/config.mk
 
@@ -90,8 +105,15 @@ $(BRIDGE): libtex/io/oiio_bridge.cpp libtex/io/oiio_bridge.h
 	$(CXX) $(CPPFLAGS) $(ALL_CXXFLAGS) -shared -fvisibility=hidden -o $@ $< \
 	    $$(pkg-config --cflags --libs OpenImageIO)
 
-# pkg-config file for a prefix: $(call pc,PREFIX,LIBDIR)
-pc = printf 'prefix=%s\nlibdir=%s\nincludedir=$${prefix}/include/textura\n\nName: textura\nDescription: Textura texture synthesis library (libtex)\nVersion: %s\nCflags: -I$${includedir} -fopenmp\nLibs: -L$${libdir} -ltex\nLibs.private: %s -fopenmp\n' '$(1)' '$(2)' '$(VERSION)' '$(LDLIBS)'
+$(BUILD)/lib/textura/textura-%.so: libtex/io/%_bridge.c libtex/io/codec_bridge.h
+	@mkdir -p $(@D)
+	$(CC) $(CPPFLAGS) $(filter-out -fopenmp,$(ALL_CFLAGS)) -shared -fvisibility=hidden -o $@ $< \
+	    $(CODEC_LIBS_$*)
+
+# pkg-config file for a prefix: $(call pc,PREFIX,LIBDIR).  Headers are
+# included as <textura/textura.h>; Libs carries an rpath so that a program
+# runs from a prefix outside the loader's path without LD_LIBRARY_PATH.
+pc = printf 'prefix=%s\nlibdir=%s\nincludedir=$${prefix}/include\n\nName: textura\nDescription: Textura texture synthesis library (libtex)\nVersion: %s\nCflags: -I$${includedir} -fopenmp\nLibs: -L$${libdir} -Wl,-rpath,$${libdir} -ltex\nLibs.private: %s -fopenmp\n' '$(1)' '$(2)' '$(VERSION)' '$(LDLIBS)'
 
 $(PCFILE): Makefile
 	@mkdir -p $(@D)
@@ -146,6 +168,11 @@ gallery: all
 fuzz:
 	$(MAKE) -C tests/fuzz BUILD=$(abspath $(BUILD))/fuzz
 
+# A tree built for one prefix installs at another without being rebuilt (a
+# distribution builds, then installs with PREFIX and DESTDIR): the objects
+# do not depend on PREFIX, and the installed tree finds its parts relative
+# to itself at run time (libtex/base/paths.h).
+INSTALLED_TOOLS = $(TOOLS:$(BUILD)/bin/%=%)
 install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(LIBDIR)/textura $(DESTDIR)$(LIBDIR)/pkgconfig \
 	    $(addprefix $(DESTDIR)$(PREFIX)/include/textura/,$(LAYERS)) $(DESTDIR)$(PREFIX)/share/man/man1 \
@@ -155,7 +182,7 @@ install: all
 	install -m 644 $(STATIC) $(DESTDIR)$(LIBDIR)
 	install -m 755 $(SHARED) $(DESTDIR)$(LIBDIR)
 	ln -sf libtex.so.0 $(DESTDIR)$(LIBDIR)/libtex.so
-	install -m 755 $(BRIDGE) $(DESTDIR)$(LIBDIR)/textura
+	install -m 755 $(BRIDGE) $(CODEC_BRIDGES) $(DESTDIR)$(LIBDIR)/textura
 	$(call pc,$(PREFIX),$(LIBDIR)) > $(DESTDIR)$(LIBDIR)/pkgconfig/textura.pc
 	install -m 644 libtex/textura.h $(DESTDIR)$(PREFIX)/include/textura
 	for h in $(HEADERS); do install -m 644 $$h $(DESTDIR)$(PREFIX)/include/textura/$${h#libtex/}; done
@@ -164,6 +191,15 @@ install: all
 	install -m 644 $(wildcard man/man5/*.5) $(DESTDIR)$(PREFIX)/share/man/man5
 	cp -R palettes/. $(DESTDIR)$(DATADIR)/palettes
 	cp -R patterns/. $(DESTDIR)$(DATADIR)/patterns
+
+uninstall:
+	rm -f $(addprefix $(DESTDIR)$(PREFIX)/bin/,$(INSTALLED_TOOLS))
+	rm -f $(DESTDIR)$(LIBDIR)/libtex.a $(DESTDIR)$(LIBDIR)/libtex.so.0 $(DESTDIR)$(LIBDIR)/libtex.so
+	rm -f $(DESTDIR)$(LIBDIR)/pkgconfig/textura.pc
+	rm -rf $(DESTDIR)$(LIBDIR)/textura $(DESTDIR)$(PREFIX)/include/textura $(DESTDIR)$(DATADIR)
+	for f in $(notdir $(wildcard man/man1/*.1)); do rm -f $(DESTDIR)$(PREFIX)/share/man/man1/$$f; done
+	for f in $(notdir $(wildcard man/man3/*.3)); do rm -f $(DESTDIR)$(PREFIX)/share/man/man3/$$f; done
+	for f in $(notdir $(wildcard man/man5/*.5)); do rm -f $(DESTDIR)$(PREFIX)/share/man/man5/$$f; done
 
 clean:
 	rm -rf build build-asan build-clang demo.png gallery

@@ -57,3 +57,23 @@ enum tex_err_kind tex_errkind(void)
 {
     return kind;
 }
+
+static tex_warning_fn warning_handler;
+
+void tex_set_warning_handler(tex_warning_fn fn)
+{
+    warning_handler = fn;
+}
+
+void tex_warning(const char *fmt, ...)
+{
+    char line[512];
+    va_list ap;
+
+    if (!warning_handler)
+        return;
+    va_start(ap, fmt);
+    vsnprintf(line, sizeof line, fmt, ap);
+    va_end(ap);
+    warning_handler(line);
+}

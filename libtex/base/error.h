@@ -28,6 +28,14 @@ void tex_error_context(const char *what);
 const char *tex_errmsg(void);
 enum tex_err_kind tex_errkind(void);
 
+/* Warnings: one line about something done that is not a failure (e.g. a
+ * file's channels past the fourth dropped).  libtex hands them to the
+ * handler the application set (the command-line layer prints them unless
+ * -q); with no handler they are dropped. */
+typedef void (*tex_warning_fn)(const char *msg);
+void tex_set_warning_handler(tex_warning_fn fn);
+void tex_warning(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
 #ifdef __cplusplus
 }
 #endif

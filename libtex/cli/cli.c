@@ -59,6 +59,11 @@ static void vmsg(const char *kind, const char *fmt, va_list ap)
     fputc('\n', stderr);
 }
 
+static void print_warning(const char *msg)
+{
+    fprintf(stderr, "%s: warning: %s\n", tex_progname, msg);
+}
+
 void tex_die(void)
 {
     fprintf(stderr, "%s: error: %s\n", tex_progname, tex_errmsg());
@@ -342,6 +347,7 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
         if (argv[i][0] == '\001')
             argv[i]++; /* the marked copy is kept for the life of the program */
     check_operands(t, argc, argv, c);
+    tex_set_warning_handler(c->quiet ? NULL : print_warning);
 #ifdef _OPENMP
     if (c->threads > 0)
         omp_set_num_threads(c->threads);

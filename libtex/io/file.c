@@ -14,12 +14,11 @@
 #include <unistd.h>
 
 #include "base/error.h"
+#include "base/paths.h"
+#include "io/codec_bridge.h"
 #include "io/file.h"
+#include "io/netpbm.h"
 #include "io/oiio_bridge.h"
-
-#ifndef TEX_LIBDIR
-#define TEX_LIBDIR "/usr/local/lib"
-#endif
 
 static const struct {
     enum tex_format f;
@@ -31,9 +30,9 @@ static const struct {
 } formats[] = {
     {TEX_FMT_UNKNOWN, "unknown", "", 0, 0, 0},
     {TEX_FMT_EXR, "exr", " exr ", 1, 0, 15},
-    {TEX_FMT_PNG, "png", " png ", 0, 16, 15},
+    {TEX_FMT_PNG, "png", " png ", 0, 16, 13}, /* 2 channels: RGB, B = 0, not grey+alpha */
     {TEX_FMT_TIFF, "tif", " tif tiff ", 1, 16, 15},
-    {TEX_FMT_PNM, "pnm", " pnm ppm pgm pbm pam ", 0, 16, 5},
+    {TEX_FMT_PNM, "pnm", " pnm ppm pgm ", 0, 16, 5},
     {TEX_FMT_PFM, "pfm", " pfm ", 1, 0, 5},
     {TEX_FMT_BMP, "bmp", " bmp ", 0, 8, 13},
     {TEX_FMT_TGA, "tga", " tga ", 0, 8, 15},
@@ -42,6 +41,8 @@ static const struct {
     {TEX_FMT_GIF, "gif", " gif ", 0, 8, 12},
     {TEX_FMT_WEBP, "webp", " webp ", 0, 8, 12},
     {TEX_FMT_DPX, "dpx", " dpx ", 0, 16, 13},
+    {TEX_FMT_PAM, "pam", " pam ", 0, 16, 13},
+    {TEX_FMT_PBM, "pbm", " pbm ", 0, 8, 5},
 };
 
 const char *tex_format_name(enum tex_format f)
@@ -85,7 +86,7 @@ enum tex_format tex_format_sniff(const void *head, size_t n)
     if (n >= 3 && b[0] == 'P' && (b[1] == 'F' || b[1] == 'f') && is_space(b[2]))
         return TEX_FMT_PFM;
     if (n >= 3 && b[0] == 'P' && b[1] >= '1' && b[1] <= '7' && is_space(b[2]))
-        return TEX_FMT_PNM;
+        return b[1] == '7' ? TEX_FMT_PAM : b[1] == '1' || b[1] == '4' ? TEX_FMT_PBM : TEX_FMT_PNM;
     if (n >= 3 && b[0] == 0xff && b[1] == 0xd8 && b[2] == 0xff)
         return TEX_FMT_JPEG;
     if (n >= 6 && (memcmp(b, "GIF87a", 6) == 0 || memcmp(b, "GIF89a", 6) == 0))
@@ -107,51 +108,75 @@ enum tex_format tex_format_sniff(const void *head, size_t n)
     return TEX_FMT_UNKNOWN;
 }
 
-/* ---- the OpenImageIO bridge, loaded on first use ---- */
+/* ---- the bridges, each loaded on first use ---- */
 
-static const struct tex_oiio_bridge *bridge(void)
+/* A shared object in LIBDIR/textura exporting one versioned struct. */
+struct bridge_slot {
+    const char *file, *symbol, *what, *env;
+    int version;
+    const void *b;
+    char msg[PATH_MAX + 128]; /* why loading failed, kept for later calls */
+};
+
+static struct bridge_slot oiio_slot = {"textura-oiio.so", "tex_oiio_bridge", "OpenImageIO",
+                                       "TEXTURA_OIIO_BRIDGE", TEX_OIIO_BRIDGE_VERSION, NULL, ""};
+static struct bridge_slot png_slot = {"textura-png.so", "tex_png_bridge", "PNG", NULL,
+                                      TEX_CODEC_BRIDGE_VERSION, NULL, ""};
+static struct bridge_slot jpeg_slot = {"textura-jpeg.so", "tex_jpeg_bridge", "JPEG", NULL,
+                                       TEX_CODEC_BRIDGE_VERSION, NULL, ""};
+static struct bridge_slot tiff_slot = {"textura-tiff.so", "tex_tiff_bridge", "TIFF", NULL,
+                                       TEX_CODEC_BRIDGE_VERSION, NULL, ""};
+
+/* The bridge's struct (which starts with its version), or NULL with the error set.
+ * It is found at $env when set, else in the install's LIBDIR/textura (paths.h). */
+static const void *bridge_load(struct bridge_slot *s)
 {
-    static const struct tex_oiio_bridge *b;
-    static char tried_msg[PATH_MAX + 128];
-    char cand[3][PATH_MAX];
-    const char *env = getenv("TEXTURA_OIIO_BRIDGE");
-    int n = 0;
+    const char *env = s->env ? getenv(s->env) : NULL;
+    char path[PATH_MAX];
+    void *h;
 
-    if (b)
-        return b;
-    if (tried_msg[0]) {
-        tex_error("%s", tried_msg);
+    if (s->b)
+        return s->b;
+    if (s->msg[0]) {
+        tex_error("%s", s->msg);
         return NULL;
     }
     if (env && *env)
-        snprintf(cand[n++], PATH_MAX, "%s", env);
-    else {
-        char exe[PATH_MAX];
-        ssize_t len = readlink("/proc/self/exe", exe, sizeof exe - 1);
-        if (len > 0) {
-            char *s;
-            exe[len] = '\0';
-            if ((s = strrchr(exe, '/'))) {
-                *s = '\0';
-                snprintf(cand[n++], PATH_MAX, "%.*s/../lib/textura/textura-oiio.so",
-                         PATH_MAX - 40, exe);
-            }
-        }
-        snprintf(cand[n++], PATH_MAX, "%s/textura/textura-oiio.so", TEX_LIBDIR);
+        snprintf(path, sizeof path, "%s", env);
+    else
+        snprintf(path, sizeof path, "%s/textura/%s", tex_install_dir(TEX_DIR_LIB), s->file);
+    if ((h = dlopen(path, RTLD_NOW | RTLD_LOCAL)) && (s->b = dlsym(h, s->symbol)) &&
+        *(const int *)s->b == s->version)
+        return s->b;
+    s->b = NULL;
+    {
+        const char *why = dlerror();
+        snprintf(s->msg, sizeof s->msg, "cannot load the %s bridge %s: %s", s->what, path,
+                 why ? why : "wrong version");
     }
-    for (int i = 0; i < n; i++) {
-        void *h = dlopen(cand[i], RTLD_NOW | RTLD_LOCAL);
-        if (h && (b = dlsym(h, "tex_oiio_bridge")) && b->version == TEX_OIIO_BRIDGE_VERSION)
-            return b;
-        b = NULL;
-        if (i == n - 1) {
-            const char *why = dlerror();
-            snprintf(tried_msg, sizeof tried_msg, "cannot load the OpenImageIO bridge %s: %s",
-                     cand[i], why ? why : "wrong version");
-        }
-    }
-    tex_error("%s", tried_msg);
+    tex_error("%s", s->msg);
     return NULL;
+}
+
+static const struct tex_oiio_bridge *bridge(void)
+{
+    return bridge_load(&oiio_slot);
+}
+
+static struct bridge_slot *codec_slot(enum tex_format f)
+{
+    return f == TEX_FMT_PNG ? &png_slot : f == TEX_FMT_JPEG ? &jpeg_slot
+                                        : f == TEX_FMT_TIFF ? &tiff_slot : NULL;
+}
+
+/* Files with more channels than a map holds keep the first four. */
+static int keep_channels(int nc, const char *name)
+{
+    if (nc > TEX_MAP_MAX_CHANNELS) {
+        tex_warning("%s: %d channels, the first %d kept", name, nc, TEX_MAP_MAX_CHANNELS);
+        return TEX_MAP_MAX_CHANNELS;
+    }
+    return nc;
 }
 
 /* ---- reading ---- */
@@ -224,7 +249,7 @@ static tex_map *read_bridged(const char *path, const void *mem, size_t len, enum
     struct tex_oiio_in *in;
     char err[400] = "";
     int w, h, nc;
-    tex_map *m;
+    tex_map *m = NULL;
 
     if (!br) {
         tex_error_context(name);
@@ -234,9 +259,8 @@ static tex_map *read_bridged(const char *path, const void *mem, size_t len, enum
         tex_error("%s: %s", name, err);
         return NULL;
     }
-    if (nc > TEX_MAP_MAX_CHANNELS)
-        nc = TEX_MAP_MAX_CHANNELS;
-    if (!(m = tex_map_new(w, h, nc))) {
+    nc = keep_channels(nc, name);
+    if (tex_map_check_size(w, h, nc) < 0 || !(m = tex_map_new(w, h, nc))) {
         tex_error_context(name);
     } else if (br->read(in, m->px, nc, err, sizeof err) < 0) {
         tex_error("%s: %s", name, err);
@@ -244,6 +268,38 @@ static tex_map *read_bridged(const char *path, const void *mem, size_t len, enum
         m = NULL;
     }
     br->close(in);
+    return m;
+}
+
+/* PNG, JPEG or TIFF through its codec bridge; OpenImageIO takes what it declines. */
+static tex_map *read_codec(const char *path, const void *data, size_t len, enum tex_format f,
+                           const char *name)
+{
+    const struct tex_codec_bridge *br = bridge_load(codec_slot(f));
+    char err[400] = "";
+    int w, h, nc, r;
+    tex_map *m;
+
+    if (!br) {
+        tex_error_context(name);
+        return NULL;
+    }
+    if ((r = br->info(data, len, &w, &h, &nc, err, sizeof err)) == TEX_CODEC_DECLINED)
+        return path ? read_bridged(path, NULL, 0, f, name) : read_bridged(NULL, data, len, f, name);
+    if (r < 0) {
+        tex_error("%s: %s", name, err);
+        return NULL;
+    }
+    nc = keep_channels(nc, name);
+    if (tex_map_check_size(w, h, nc) < 0 || !(m = tex_map_new(w, h, nc))) {
+        tex_error_context(name);
+        return NULL;
+    }
+    if (br->read(data, len, m->px, err, sizeof err) < 0) {
+        tex_error("%s: %s", name, err);
+        tex_map_free(m);
+        return NULL;
+    }
     return m;
 }
 
@@ -266,10 +322,17 @@ static tex_map *decode(const char *path, const void *data, size_t len, const cha
         return NULL;
     }
     if (f == TEX_FMT_EXR) {
+        /* DWAA/DWAB: OpenImageIO's OpenEXR decodes what the core cannot. */
+        if (tex_exr_unsupported(data, len) && (m = read_bridged(NULL, data, len, f, name)))
+            return m;
         if (!(m = tex_exr_decode(data, len, name)))
             tex_error_context(name);
         return m;
     }
+    if (f == TEX_FMT_PNM || f == TEX_FMT_PAM || f == TEX_FMT_PBM || f == TEX_FMT_PFM)
+        return tex_netpbm_decode(data, len, name);
+    if (codec_slot(f))
+        return read_codec(path, data, len, f, name);
     /* A named file is opened by OpenImageIO itself (some formats can't read from memory). */
     return path ? read_bridged(path, NULL, 0, f, name) : read_bridged(NULL, data, len, f, name);
 }
@@ -407,18 +470,6 @@ static tex_map *adapt_channels(const tex_map *m, enum tex_format f)
     return a;
 }
 
-/* OpenImageIO 2.4 cannot write PFM: a header and the rows bottom to top. */
-static int write_pfm(const tex_map *m, int fd, const char *name)
-{
-    char head[64];
-    int n = snprintf(head, sizeof head, "%s\n%d %d\n-1.0\n", m->nc == 3 ? "PF" : "Pf", m->w, m->h);
-    int r = tex_write_all(fd, head, (size_t)n, name);
-
-    for (int y = m->h - 1; y >= 0 && r == 0; y--)
-        r = tex_write_all(fd, tex_map_row(m, y), (size_t)m->w * m->nc * sizeof(float), name);
-    return r;
-}
-
 /* Write m in format f to the file at tmp (already created); name is for messages. */
 static int write_to_path(const tex_map *m, enum tex_format f, int depth, const char *tmp, int fd,
                          const struct tex_write_opts *o, const char *name)
@@ -435,7 +486,13 @@ static int write_to_path(const tex_map *m, enum tex_format f, int depth, const c
         return r;
     }
     if (f == TEX_FMT_PFM)
-        return write_pfm(m, fd, name);
+        return tex_pfm_write_fd(m, fd, name);
+    if (f == TEX_FMT_PNM || f == TEX_FMT_PAM || f == TEX_FMT_PBM)
+        return tex_pnm_write_fd(m, fd, depth,
+                                f == TEX_FMT_PAM   ? TEX_PNM_PAM
+                                : f == TEX_FMT_PBM ? TEX_PNM_PBM
+                                                   : TEX_PNM_AUTO,
+                                name);
     if (f == TEX_FMT_EXR) {
         tex_buf b = {0};
         int r;
@@ -445,6 +502,22 @@ static int write_to_path(const tex_map *m, enum tex_format f, int depth, const c
             r = tex_write_all(fd, b.data, b.len, name);
         tex_buf_free(&b);
         return r;
+    } else if (codec_slot(f)) {
+        const struct tex_codec_bridge *br = bridge_load(codec_slot(f));
+        char err[400] = "";
+        void *px;
+        int r;
+
+        if (!br) {
+            tex_error_context(name);
+            return -1;
+        }
+        if (!(px = depth == 32 ? m->px : quantise(m, depth)))
+            return -1;
+        r = br->write(fd, px, m->w, m->h, m->nc, depth, err, sizeof err);
+        if (depth != 32)
+            free(px);
+        return r < 0 ? tex_error("%s: %s", name, err) : 0;
     } else {
         const struct tex_oiio_bridge *br = bridge();
         char err[400] = "";
@@ -480,15 +553,17 @@ static int write_stdout(const tex_map *m, const struct tex_write_opts *o)
         char probe[32];
         snprintf(probe, sizeof probe, "x.%s", o->format);
         if ((f = tex_format_from_name(probe)) == TEX_FMT_UNKNOWN)
-            return tex_usage_error("--format %s: unknown format (exr, png, tif, pnm, pfm, bmp, "
-                                   "tga, hdr, jpg, webp, dpx)",
+            return tex_usage_error("--format %s: unknown format (exr, png, tif, pnm, pam, pbm, "
+                                   "pfm, bmp, tga, hdr, jpg, webp, dpx)",
                                    o->format);
     }
     if ((depth = choose_depth(f, o->depth, name)) < 0)
         return -1;
-    if (f == TEX_FMT_EXR)
+    /* These writers stream; TIFF seeks and OpenImageIO writes files: they go
+     * through a temporary one. */
+    if (f != TEX_FMT_TIFF && (f == TEX_FMT_EXR || f == TEX_FMT_PFM || f == TEX_FMT_PNM ||
+                              f == TEX_FMT_PAM || f == TEX_FMT_PBM || codec_slot(f)))
         return write_to_path(m, f, depth, NULL, 1, o, name);
-    /* OpenImageIO writes files: go through a temporary one. */
     {
         const char *dir = getenv("TMPDIR");
         char path[PATH_MAX];
@@ -519,7 +594,7 @@ int tex_map_write_check(const char *path)
         return tex_error("%s: is a directory", path);
     if (tex_format_from_name(path) == TEX_FMT_UNKNOWN)
         return tex_usage_error("%s: cannot tell the format from the extension (use .exr, .png, "
-                               ".tif, .pnm, .pfm, .bmp, .tga, .hdr, .jpg, .webp or .dpx)",
+                               ".tif, .pnm, .pam, .pfm, .bmp, .tga, .hdr, .jpg, .webp or .dpx)",
                                path);
     return 0;
 }

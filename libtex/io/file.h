@@ -6,9 +6,15 @@
  *
  * Reading: the format is recognised by its magic bytes (EXR, PNG, TIFF,
  * PNM/PAM/PFM, BMP, TGA, HDR, JPEG, GIF, WebP, DPX).  EXR is decoded by the
- * stream module; every other format goes through OpenImageIO, whose bridge
- * (textura-oiio.so) is loaded with dlopen the first time it is needed, so a
- * tool on the EXR path never pays OpenImageIO's start-up.
+ * stream module, PNM, PAM and PFM natively (netpbm.h), PNG, JPEG and TIFF
+ * through small bridges to libpng, libjpeg-turbo and libtiff
+ * (textura-png.so, textura-jpeg.so, textura-tiff.so), every other format
+ * through OpenImageIO's bridge (textura-oiio.so), which also takes the
+ * variants a codec bridge declines (CMYK JPEG).  Each bridge is loaded with
+ * dlopen the first time it is needed, so a tool pays only for the codec of
+ * the files it meets.  Values are read as stored: PNG's gAMA, sRGB and iCCP
+ * chunks are ignored.  A file with more than four channels keeps the first
+ * four, with a warning (error.h).
  *
  * Writing: a file's format follows its extension; standard output carries
  * the uncompressed EXR stream unless o.format names another.  Files are
@@ -18,8 +24,9 @@
  * (8 or 16; 0 picks the format's usual depth); depth 32 asks for float.
  * Values are written as they are: no transfer function is applied.
  *
- * The bridge is found at $TEXTURA_OIIO_BRIDGE, else next to the program
- * in ../lib/textura/textura-oiio.so, else in the installed library folder.
+ * The bridges are found in the textura/ folder of the install's LIBDIR,
+ * resolved at run time (paths.h); $TEXTURA_OIIO_BRIDGE may name the
+ * OpenImageIO one.
  */
 #ifndef TEX_FILE_H
 #define TEX_FILE_H
@@ -33,7 +40,8 @@ extern "C" {
 
 enum tex_format {
     TEX_FMT_UNKNOWN, TEX_FMT_EXR, TEX_FMT_PNG, TEX_FMT_TIFF, TEX_FMT_PNM, TEX_FMT_PFM,
-    TEX_FMT_BMP, TEX_FMT_TGA, TEX_FMT_HDR, TEX_FMT_JPEG, TEX_FMT_GIF, TEX_FMT_WEBP, TEX_FMT_DPX
+    TEX_FMT_BMP, TEX_FMT_TGA, TEX_FMT_HDR, TEX_FMT_JPEG, TEX_FMT_GIF, TEX_FMT_WEBP, TEX_FMT_DPX,
+    TEX_FMT_PAM, TEX_FMT_PBM
 };
 
 /* The format of a file image from its first bytes (at least 18 wanted). */

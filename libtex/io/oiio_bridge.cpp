@@ -63,6 +63,15 @@ static void say(char *err, size_t n, const std::string &s)
     snprintf(err, n, "%s", t.empty() ? "unreadable image" : t.c_str());
 }
 
+// A message about a temporary copy of standard input must not name the
+// copy: the caller says "standard input".
+static std::string unspill(std::string s, const std::string &spill)
+{
+    for (size_t at; !spill.empty() && (at = s.find(spill)) != std::string::npos;)
+        s.replace(at, spill.size(), "the data");
+    return s;
+}
+
 static tex_oiio_in *b_open(const char *path, const void *mem, size_t len, const char *ext, int *w,
                            int *h, int *nc, char *err, size_t errlen)
 {
@@ -107,7 +116,7 @@ static tex_oiio_in *b_open(const char *path, const void *mem, size_t len, const 
         r->in = ImageInput::open(name);
     }
     if (!r->in) {
-        say(err, errlen, geterror());
+        say(err, errlen, unspill(geterror(), r->spill));
         if (!r->spill.empty())
             unlink(r->spill.c_str());
         return nullptr;
@@ -127,7 +136,7 @@ static int b_read(tex_oiio_in *r, float *px, int nc, char *err, size_t errlen)
 {
     quiet_stderr mute;
     if (!r->in->read_image(0, 0, 0, nc, TypeDesc::FLOAT, px)) {
-        say(err, errlen, r->in->geterror());
+        say(err, errlen, unspill(r->in->geterror(), r->spill));
         return -1;
     }
     return 0;

@@ -8,6 +8,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <sys/stat.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -419,22 +420,51 @@ tex_map *tex_exr_read_fd(int fd, const void *prefix, size_t prefix_len, const ch
     return m;
 }
 
-/* The stream's layout: scanline storage, the data window, full-resolution
- * channels.  0, or -1 with the error set. */
+/* The compressions this system's core library cannot decode (OpenEXR 3.1
+ * has no DWA in C): the name, or NULL. */
+static const char *undecodable(exr_compression_t c)
+{
+    return c == EXR_COMPRESSION_DWAA ? "DWAA" : c == EXR_COMPRESSION_DWAB ? "DWAB" : NULL;
+}
+
+const char *tex_exr_unsupported(const void *data, size_t len)
+{
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    struct rsrc src = {data, len};
+    exr_context_t ctx = NULL;
+    exr_compression_t c = EXR_COMPRESSION_NONE;
+
+    init.user_data = &src;
+    init.read_fn = read_mem;
+    init.size_fn = size_mem;
+    init.error_handler_fn = NULL;
+    init.flags = EXR_CONTEXT_FLAG_SILENT_HEADER_PARSE;
+    if (exr_start_read(&ctx, "probe", &init) == EXR_ERR_SUCCESS)
+        exr_get_compression(ctx, 0, &c);
+    if (ctx)
+        exr_finish(&ctx);
+    return undecodable(c);
+}
+
+/* The first part's layout: scanline or tiled storage (*lines 0: tiled),
+ * the data window, full-resolution channels.  0, or -1 with the error set. */
 static int decode_header(exr_context_t ctx, exr_attr_box2i_t *dw, const exr_attr_chlist_t **cl,
                          int *lines)
 {
     exr_storage_t st;
+    exr_compression_t comp;
     exr_result_t rv;
     int nparts;
-    if ((rv = exr_get_count(ctx, &nparts)) || nparts < 1 || (rv = exr_get_storage(ctx, 0, &st)))
+    if ((rv = exr_get_count(ctx, &nparts)) || nparts < 1 || (rv = exr_get_storage(ctx, 0, &st)) ||
+        (rv = exr_get_compression(ctx, 0, &comp)))
         return tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv));
     if (st != EXR_STORAGE_SCANLINE && st != EXR_STORAGE_TILED)
         return tex_error("deep OpenEXR data is not a texture map");
-    if (st == EXR_STORAGE_TILED)
-        return tex_error("tiled OpenEXR is not read on the stream path; convert it with t_convert x.exr");
+    if (undecodable(comp))
+        return tex_error("unsupported compression %s", undecodable(comp));
+    *lines = 0;
     if ((rv = exr_get_data_window(ctx, 0, dw)) || (rv = exr_get_channels(ctx, 0, cl)) ||
-        (rv = exr_get_scanlines_per_chunk(ctx, 0, lines)))
+        (st == EXR_STORAGE_SCANLINE && (rv = exr_get_scanlines_per_chunk(ctx, 0, lines))))
         return tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv));
     if ((*cl)->num_channels < 1)
         return tex_error("OpenEXR file has no channels");
@@ -444,40 +474,71 @@ static int decode_header(exr_context_t ctx, exr_attr_box2i_t *dw, const exr_attr
     return 0;
 }
 
-/* Every chunk of scanlines into m, channel order[k] into sample k. */
+/* Point the decoder's channels at m's pixel (x, y): channel order[k] into
+ * sample k, the others skipped. */
+static void aim_channels(exr_decode_pipeline_t *dec, const int *order, tex_map *m, int x, int y)
+{
+    int nc = m->nc;
+    for (int i = 0; i < dec->channel_count; i++) {
+        exr_coding_channel_info_t *cc = &dec->channels[i];
+        int k = -1;
+        for (int j = 0; j < nc; j++)
+            if (order[j] == i)
+                k = j;
+        if (k < 0) {
+            cc->decode_to_ptr = NULL; /* skipped channel */
+            continue;
+        }
+        cc->user_bytes_per_element = 4;
+        cc->user_data_type = EXR_PIXEL_FLOAT;
+        cc->user_pixel_stride = 4 * nc;
+        cc->user_line_stride = 4 * nc * m->w;
+        cc->decode_to_ptr = (uint8_t *)(tex_map_px(m, x, y) + k);
+    }
+}
+
+/* Decode one chunk whose info is ci into m at (x, y); first: the pipeline is new. */
+static int decode_one(exr_context_t ctx, exr_decode_pipeline_t *dec, exr_chunk_info_t *ci,
+                      int first, const int *order, tex_map *m, int x, int y)
+{
+    exr_result_t rv = first ? exr_decoding_initialize(ctx, 0, ci, dec)
+                            : exr_decoding_update(ctx, 0, ci, dec);
+    if (rv)
+        return tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv));
+    aim_channels(dec, order, m, x, y);
+    if (first && (rv = exr_decoding_choose_default_routines(ctx, 0, dec)))
+        return tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv));
+    if (exr_decoding_run(ctx, 0, dec))
+        return tex_error("truncated or corrupt OpenEXR data at %s %d", ci->type == EXR_STORAGE_TILED
+                                                                        ? "tile row" : "scanline",
+                         y);
+    return 0;
+}
+
+/* Every chunk of the first part's full-resolution level into m. */
 static int decode_chunks(exr_context_t ctx, exr_decode_pipeline_t *dec, exr_attr_box2i_t dw,
                          int lines, const int *order, tex_map *m)
 {
     exr_chunk_info_t ci;
     exr_result_t rv;
-    int nc = m->nc, w = m->w;
-    for (int y = dw.min.y; y <= dw.max.y; y += lines) {
-        int row = y - dw.min.y;
-        if ((rv = exr_read_scanline_chunk_info(ctx, 0, y, &ci)) ||
-            (rv = row == 0 ? exr_decoding_initialize(ctx, 0, &ci, dec)
-                           : exr_decoding_update(ctx, 0, &ci, dec)))
-            return tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv));
-        for (int i = 0; i < dec->channel_count; i++) {
-            exr_coding_channel_info_t *cc = &dec->channels[i];
-            int k = -1;
-            for (int j = 0; j < nc; j++)
-                if (order[j] == i)
-                    k = j;
-            if (k < 0) {
-                cc->decode_to_ptr = NULL; /* skipped channel */
-                continue;
-            }
-            cc->user_bytes_per_element = 4;
-            cc->user_data_type = EXR_PIXEL_FLOAT;
-            cc->user_pixel_stride = 4 * nc;
-            cc->user_line_stride = 4 * nc * w;
-            cc->decode_to_ptr = (uint8_t *)(tex_map_row(m, row) + k);
-        }
-        if (row == 0 && (rv = exr_decoding_choose_default_routines(ctx, 0, dec)))
-            return tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv));
-        if (exr_decoding_run(ctx, 0, dec))
-            return tex_error("truncated or corrupt OpenEXR data at scanline %d", y);
+    int32_t tw, th;
+
+    if (lines > 0) {
+        for (int y = dw.min.y; y <= dw.max.y; y += lines)
+            if ((rv = exr_read_scanline_chunk_info(ctx, 0, y, &ci)) ||
+                decode_one(ctx, dec, &ci, y == dw.min.y, order, m, 0, y - dw.min.y) < 0)
+                return rv ? tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv))
+                          : -1;
+        return 0;
     }
+    if ((rv = exr_get_tile_sizes(ctx, 0, 0, 0, &tw, &th)) || tw < 1 || th < 1)
+        return tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv));
+    for (int ty = 0; ty * (int64_t)th < m->h; ty++)
+        for (int tx = 0; tx * (int64_t)tw < m->w; tx++)
+            if ((rv = exr_read_tile_chunk_info(ctx, 0, tx, ty, 0, 0, &ci)) ||
+                decode_one(ctx, dec, &ci, tx == 0 && ty == 0, order, m, tx * tw, ty * th) < 0)
+                return rv ? tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv))
+                          : -1;
     return 0;
 }
 
@@ -508,6 +569,13 @@ static tex_map *decode(exr_context_initializer_t *initp, const char *name)
     if (decode_header(ctx, &dw, &cl, &lines) < 0)
         goto fail;
     nc = order_channels(cl, order);
+    if (cl->num_channels > nc) {
+        char kept[64] = "";
+        for (int k = 0; k < nc; k++)
+            snprintf(kept + strlen(kept), sizeof kept - strlen(kept), " %.8s",
+                     cl->entries[order[k]].name.str);
+        tex_warning("%s: %d channels, kept%s", name, cl->num_channels, kept);
+    }
     if (!(m = tex_map_new(dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1, nc)))
         goto fail;
     if (exr_attr_get_int(ctx, 0, ATTR_SUBREGIONS, &sub) == EXR_ERR_SUCCESS && sub > 0)

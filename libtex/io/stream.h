@@ -10,8 +10,11 @@
  *
  * Channels are named Y (1 channel), R G (2), R G B (3), R G B A (4).  On
  * reading, R G B A and Y A are recognised, half and uint channels become
- * float, and any other set of at most four channels is taken in the order
- * the file lists them.
+ * float, and any other set of channels is taken in the order the file
+ * lists them.  A file with channels left out (more than four, or others
+ * beside R G B A) keeps the first four or R G B A, with a warning naming
+ * those kept (error.h).  Scanline and tiled files are read, the first
+ * part of a multi-part file, the full-resolution level of a tiled one.
  */
 #ifndef TEX_STREAM_H
 #define TEX_STREAM_H
@@ -56,6 +59,12 @@ int tex_write_all(int fd, const void *p, size_t n, const char *name);
 
 /* Decode an EXR held in memory; name is for messages only. */
 tex_map *tex_exr_decode(const void *data, size_t len, const char *name);
+
+/* The name of the compression of an EXR file image if the core library
+ * cannot decode it ("DWAA", "DWAB" with OpenEXR 3.1), else NULL; the
+ * decoders refuse such files as "unsupported compression NAME" and file.h
+ * hands whole files to OpenImageIO instead. */
+const char *tex_exr_unsupported(const void *data, size_t len);
 
 #ifdef __cplusplus
 }

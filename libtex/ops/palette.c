@@ -10,12 +10,10 @@
 
 #include "base/error.h"
 #include "base/map.h"
+#include "base/paths.h"
 #include "io/file.h"
 #include "ops/palette.h"
 
-#ifndef TEX_DATADIR
-#define TEX_DATADIR "/usr/local/share/textura"
-#endif
 
 #define MAX_FILE (4 << 20)   /* a palette is text: refuse anything larger */
 #define MAX_ENTRIES 65536    /* stops, and index entries */
@@ -342,8 +340,6 @@ static int try_dir(const char *dir, size_t dlen, const char *name, char *buf, si
 static int each_dir(int (*fn)(const char *dir, size_t dlen, void *ctx), void *ctx)
 {
     const char *env = getenv("TEXTURA_PALETTES");
-    char exe[PATH_MAX];
-    ssize_t len;
 
     while (env && *env) {
         const char *e = strchr(env, ':');
@@ -352,22 +348,11 @@ static int each_dir(int (*fn)(const char *dir, size_t dlen, void *ctx), void *ct
             return 1;
         env = e ? e + 1 : NULL;
     }
-    len = readlink("/proc/self/exe", exe, sizeof exe - 1);
-    if (len > 0) {
-        char *s;
-        exe[len] = '\0';
-        if ((s = strrchr(exe, '/'))) {
-            char dir[PATH_MAX + 32];
-            *s = '\0';
-            snprintf(dir, sizeof dir, "%s/../share/textura/palettes", exe);
-            if (fn(dir, strlen(dir), ctx))
-                return 1;
-            snprintf(dir, sizeof dir, "%s/../../palettes", exe);
-            if (fn(dir, strlen(dir), ctx))
-                return 1;
-        }
+    {
+        char dir[PATH_MAX + 16];
+        snprintf(dir, sizeof dir, "%s/palettes", tex_install_dir(TEX_DIR_DATA));
+        return fn(dir, strlen(dir), ctx);
     }
-    return fn(TEX_DATADIR "/palettes", strlen(TEX_DATADIR "/palettes"), ctx);
 }
 
 struct find_ctx {
@@ -454,9 +439,8 @@ int tex_palette_find(const char *name, char *buf, size_t n)
     if (tex_palette_names(known, sizeof known) > 0)
         return tex_usage_error("unknown palette '%s' (known: %s; or a file NAME.pal)", name,
                                known);
-    return tex_usage_error("unknown palette '%s' (no %s.pal in $TEXTURA_PALETTES, the program's "
-                           "share/textura/palettes or the source tree's palettes/)",
-                           name, name);
+    return tex_usage_error("unknown palette '%s' (no %s.pal in $TEXTURA_PALETTES or %s/palettes)",
+                           name, name, tex_install_dir(TEX_DIR_DATA));
 }
 
 tex_palette *tex_palette_load(const char *name_or_file)

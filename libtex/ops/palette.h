@@ -20,9 +20,9 @@
  *
  * Names: a name containing '/' or ending in ".pal" is a file.  Any other
  * name ("marble") is looked up as NAME.pal in, in order: each folder of
- * $TEXTURA_PALETTES (colon-separated), next to the program in
- * ../share/textura/palettes (installed) and ../../palettes (the source
- * tree's build/bin), and the installed share folder derived from TEX_LIBDIR.
+ * $TEXTURA_PALETTES (colon-separated), then the palettes/ folder of the
+ * install's data folder, found at run time (base/paths.h; a build tree's
+ * build/share/textura links to the source tree's palettes/).
  *
  * Colour values are stored as given (display values in [0,1], no transfer
  * function), as maps are.  OKLab interpolation treats them as sRGB-encoded:

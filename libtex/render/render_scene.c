@@ -14,6 +14,7 @@
 
 #include "render/colour_spectral.h"
 #include "base/error.h"
+#include "base/paths.h"
 #include "io/file.h"
 #include "render/matdb.h"
 #include "ops/palette.h"
@@ -22,9 +23,6 @@
 #include "lang/expr.h"
 #include "lang/lex.h"
 
-#ifndef TEX_DATADIR
-#define TEX_DATADIR "/usr/local/share/textura"
-#endif
 
 #define MAX_NEST 64
 
@@ -762,7 +760,7 @@ static void default_materials(struct parser *ps, const struct tok *at)
     snprintf(path, sizeof path, "%.*smaterials.txt", dl, ps->name);
     FILE *f = fopen(path, "rb");
     if (!f)
-        snprintf(path, sizeof path, "%s/patterns/materials.txt", TEX_DATADIR);
+        snprintf(path, sizeof path, "%s/patterns/materials.txt", tex_install_dir(TEX_DIR_DATA));
     else
         fclose(f);
     load_materials(ps, path, at);
