@@ -642,13 +642,19 @@ static void expr_eval(const struct tex_expr *e, const struct evalctx *c, double 
             a[0] = rgba[0], a[1] = rgba[1], a[2] = rgba[2];
             continue;
         }
-        default: { /* the other functions of lang/expr.h, by its definitions */
-            int k = tex_expr_arity(in->op);
+        default: { /* the other functions of lang/expr.h, by its definitions; once for
+                    * arguments that are grey (the same in every channel), as scalar
+                    * parameters' are: sin and pow are not cheap */
+            int k = tex_expr_arity(in->op), grey = 1;
             double r[3];
             sp -= k;
-            for (int ch = 0; ch < 3; ch++)
+            for (int i = 0; i < k; i++)
+                grey &= st[sp + i][0] == st[sp + i][1] && st[sp + i][1] == st[sp + i][2];
+            for (int ch = 0; ch < (grey ? 1 : 3); ch++)
                 r[ch] = tex_expr_apply(in, ch, st[sp], k > 1 ? st[sp + 1] : NULL,
                                        k > 2 ? st[sp + 2] : NULL);
+            if (grey)
+                r[1] = r[2] = r[0];
             a = st[sp++];
             a[0] = r[0], a[1] = r[1], a[2] = r[2];
             continue;
