@@ -4,22 +4,12 @@
 # DIR/figures.md, a page with each one's caption (translated) and the commands that made it.
 #   patterns/figures.sh [-o DIR] [-s N]      (default doc/figures, maps N = 256 wide)
 # `make figures` runs it; tests/figures.sh checks each figure against a golden image.
-set -eu
-here=$(cd "$(dirname "$0")" && pwd)
-dir=doc/figures
+recipe=doc/figures # -o: the folder
 size=256
-while getopts o:s: opt; do
-    case $opt in
-    o) dir=$OPTARG ;;
-    s) size=$OPTARG ;;
-    *) echo "usage: $0 [-o DIR] [-s N]" >&2; exit 2 ;;
-    esac
-done
-case $size in '' | *[!0-9]*) echo "$0: -s must be a number of pixels (got '$size')" >&2; exit 2 ;; esac
+. "$(dirname "$0")/recipe.sh"
+dir=$out
 mkdir -p "$dir"
 dir=$(cd "$dir" && pwd)
-tmp=$(mktemp -d "${TMPDIR:-/tmp}/figures.XXXXXX")
-trap 'rm -rf "$tmp"' EXIT
 cd "$tmp"
 s=$size h=$((size / 2))
 page=$dir/figures.md

@@ -7,18 +7,10 @@
 # labelled with the command that made it, ready to copy.
 #   patterns/gallery.sh [-o DIR] [-s N]       (default: gallery/, pictures N = 128 wide)
 # writes DIR/index.html, DIR/gallery.png (ImageMagick's montage) and DIR/*.png.
-set -eu
-here=$(cd "$(dirname "$0")" && pwd)
-dir=gallery
+recipe=gallery # -o: the folder
 size=128
-while getopts o:s: opt; do
-    case $opt in
-    o) dir=$OPTARG ;;
-    s) size=$OPTARG ;;
-    *) echo "usage: $0 [-o DIR] [-s N]" >&2; exit 2 ;;
-    esac
-done
-case $size in '' | *[!0-9]*) echo "$0: -s must be a number of pixels (got '$size')" >&2; exit 2 ;; esac
+. "$(dirname "$0")/recipe.sh"
+dir=$out
 mkdir -p "$dir"
 cd "$dir"
 : >list

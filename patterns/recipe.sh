@@ -2,7 +2,7 @@
 #
 #   recipe=NAME; . recipe.sh reads the recipe's arguments:
 #                                   -o PREFIX  (default NAME: files NAME_*.png and .exr)
-#                                   -s N       (map side in pixels, default 512)
+#                                   -s N       (map side in pixels, default $size or 512)
 #                                   -h         (this help: the recipe's header)
 # and sets $here (the recipe's folder: the source tree's patterns/ or the installed
 # share/textura/patterns), $out, $size and $tmp (removed at exit).  The tools must be
@@ -12,7 +12,7 @@
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 out=$recipe
-size=512
+size=${size:-512} # a caller may set another default
 while getopts o:s:h opt; do
     case $opt in
     o) out=$OPTARG ;;
@@ -22,7 +22,7 @@ while getopts o:s:h opt; do
     esac
 done
 case $size in '' | *[!0-9]*) echo "$0: -s must be a number of pixels (got '$size')" >&2; exit 2 ;; esac
-tmp=$(mktemp -d "${TMPDIR:-/tmp}/$recipe.XXXXXX")
+tmp=$(mktemp -d "${TMPDIR:-/tmp}/${recipe##*/}.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
 write() {
     t_convert -o "${out}_$2.exr" "$1"

@@ -1160,18 +1160,25 @@ static void set_world(struct parser *ps, struct tex_object *ob, const tex_xform 
     ob->root = root;
 }
 
+/* A node joining a block's children by op (no transform or surface of its own) */
+static struct tex_object *cluster_node(struct parser *ps, enum tex_csg_op op, int line, int col)
+{
+    struct tex_object *ob = palloc(ps, sizeof *ob);
+    ob->op = op;
+    ob->cluster = 1;
+    ob->line = line;
+    ob->col = col;
+    tex_xform_identity(&ob->to_world);
+    return ob;
+}
+
 /* kids[0..n) joined by op as a balanced tree (recursion log2(n) deep) */
 static struct tex_object *csg_balanced(struct parser *ps, enum tex_csg_op op,
                                        struct tex_object **kids, int n, const struct tok *at)
 {
     if (n == 1)
         return kids[0];
-    struct tex_object *ob = palloc(ps, sizeof *ob);
-    ob->op = op;
-    ob->cluster = 1;
-    ob->line = at->line;
-    ob->col = at->col;
-    tex_xform_identity(&ob->to_world);
+    struct tex_object *ob = cluster_node(ps, op, at->line, at->col);
     ob->a = csg_balanced(ps, op, kids, n / 2, at);
     ob->b = csg_balanced(ps, op, kids + n / 2, n - n / 2, at);
     return ob;
@@ -1234,13 +1241,8 @@ static struct tex_object *spatial(struct parser *ps, enum tex_csg_op op, struct 
     for (int i = 0; i < n; i++)
         v[i].key = tex_v3_get(centre_of(v[i].ob), axis);
     qsort(v, (size_t)n, sizeof *v, by_key);
-    struct tex_object *node = palloc(ps, sizeof *node);
-    node->op = op;
-    node->cluster = 1;
-    node->line = like->line;
-    node->col = like->col;
+    struct tex_object *node = cluster_node(ps, op, like->line, like->col);
     node->root = like->root;
-    tex_xform_identity(&node->to_world);
     node->a = spatial(ps, op, v, n / 2, like);
     node->b = spatial(ps, op, v + n / 2, n - n / 2, like);
     return node;
