@@ -48,7 +48,7 @@
  *   tile           output neighbourhoods wrap around the output (a torus),
  *                  so the map tiles without a seam
  *   seed           the random choices (start and jitter), hashed per pixel
- *   guide_weight   0..100 (1): weight of the guide term
+ *   guide_weight   0..100 (0.2): weight of the guide term
  *   search         TEX_SYNTH_COHERENT, or TEX_SYNTH_EXHAUSTIVE: every valid
  *                  sample position is a candidate for every pixel (Wei and
  *                  Levoy's full search, the slow reference)
@@ -90,7 +90,7 @@ struct tex_synth_opts {
     enum tex_synth_search search;
 };
 
-#define TEX_SYNTH_DEFAULTS {5, 4, 4, 2, 0.3, 1.0, 0, 0, TEX_SYNTH_COHERENT}
+#define TEX_SYNTH_DEFAULTS {5, 4, 4, 2, 0.3, 0.2, 0, 0, TEX_SYNTH_COHERENT}
 
 tex_map *tex_synth(const tex_map *sample, int w, int h, const struct tex_synth_opts *o,
                    const tex_map *guide, const tex_map *mask);
