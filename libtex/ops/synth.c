@@ -24,6 +24,8 @@
 #define FLANN_EPS 1
 #endif
 #define NONE 0xffffffffu
+#define CELL 8           /* side of the sample's occurrence cells */
+#define OCCURRENCE 1.0f /* weight of over-use, in units of the mean neighbourhood distance */
 #define LANES 8          /* distances sum in 8 fixed lanes: vectorised, same bits anywhere */
 
 /* One level of the sample's Gaussian stack and what the search needs of it. */
@@ -57,11 +59,31 @@ struct synth {
     int *S, *Snew;           /* sample pixel index per output pixel */
     unsigned char *fixed;    /* mask mode: pixels that keep their own position */
     float *gt;               /* guide, rank-matched, per output pixel */
+    /* occurrence: how much each cell of the sample is used against its share */
+    int *cellof, ncell;      /* the cell of each sample pixel */
+    float *cellpen;          /* per cell: the penalty of taking a pixel there */
+    double *cellshare;       /* per cell: its share of the candidates */
+    float occ_scale;         /* the penalty of a cell used as often as its share */
 };
 
 static inline int clampi(int v, int lo, int hi)
 {
     return v < lo ? lo : v > hi ? hi : v;
+}
+
+/* How far a candidate stays from the sample's edges: half its level's
+ * neighbourhood, the rest read beyond the edge in a mirror.  The whole
+ * neighbourhood inside (r h) kept the coarse levels, and with them the
+ * output's histogram, off the sample's rim (measured: histogram distance
+ * 0.10 against 0.066); none (r) broke the courses of bricks. */
+static inline int margin(const struct synth *y, int h)
+{
+    return y->r * h / 2 > y->r ? y->r * h / 2 : y->r;
+}
+
+static inline int mirror(int i, int n)
+{
+    return (int)tex_edge_index(i, n, TEX_EDGE_MIRROR);
 }
 
 /* A uniform number in [-1,1) from the seed, a salt and a pixel. */
@@ -111,7 +133,7 @@ static tex_map *stack_level(const tex_map *m, int l)
  * inside the sample and, with a mask, clear of the (blurred) masked pixels. */
 static int level_valid(const struct synth *y, struct level *L, int l)
 {
-    int W = y->W, H = y->H, m = y->r * L->h;
+    int W = y->W, H = y->H, m = margin(y, L->h);
     tex_map *taint = NULL;
 
     if (!(L->ok = calloc((size_t)W * H, 1)))
@@ -134,7 +156,7 @@ static int level_valid(const struct synth *y, struct level *L, int l)
             int good = 1;
             for (int dy = -y->r; taint && good && dy <= y->r; dy++)
                 for (int dx = -y->r; good && dx <= y->r; dx++)
-                    good = taint->px[(size_t)(uy + dy * L->h) * W + ux + dx * L->h] < 1e-3f;
+                    good = taint->px[(size_t)mirror(uy + dy * L->h, H) * W + mirror(ux + dx * L->h, W)] < 1e-3f;
             L->ok[(size_t)uy * W + ux] = (unsigned char)good;
             L->nvalid += good;
         }
@@ -158,9 +180,9 @@ static int level_vectors(const struct synth *y, struct level *L)
             float *v = L->ne + ((size_t)uy * W + ux) * dp;
             int j = 0;
             for (int dy = -r; dy <= r; dy++) {
-                const float *row = E + (size_t)clampi(uy + dy * h, 0, H - 1) * W * nc;
+                const float *row = E + (size_t)mirror(uy + dy * h, H) * W * nc;
                 for (int dx = -r; dx <= r; dx++, j++) {
-                    const float *p = row + (size_t)clampi(ux + dx * h, 0, W - 1) * nc;
+                    const float *p = row + (size_t)mirror(ux + dx * h, W) * nc;
                     for (int c = 0; c < nc; c++)
                         v[j * nc + c] = y->wv[j] * p[c];
                 }
@@ -549,7 +571,7 @@ static int correct_pixel(const struct synth *y, const struct level *L, int l, in
             for (int b = 0; b < y->dp * (int)sizeof(float); b += 64)
                 __builtin_prefetch(next + b);
         }
-        float d = dist2(v, L->ne + (size_t)u * y->dp, y->dp, bestd);
+        float d = dist2(v, L->ne + (size_t)u * y->dp, y->dp, bestd) + y->cellpen[y->cellof[u]];
         if (y->gt) {
             float g = y->gt[p] - L->ge[u];
             d += (float)y->o->guide_weight * y->wsum * g * g;
@@ -565,11 +587,70 @@ static int correct_pixel(const struct synth *y, const struct level *L, int l, in
     return best;
 }
 
+/* The occurrence penalty of each cell for the coming pass (after Kaspar
+ * et al. 2015): the cell's count among the output's positions over its
+ * share, times the level's mean neighbourhood distance, so that no part
+ * of the sample is copied much more often than the rest. */
+static void occurrence(struct synth *y, const struct level *L)
+{
+    size_t np = (size_t)y->ow * y->oh, nfree = 0;
+    double *cnt = calloc(y->ncell, sizeof *cnt);
+
+    if (!cnt) { /* no penalty this pass: still deterministic */
+        memset(y->cellpen, 0, y->ncell * sizeof *y->cellpen);
+        return;
+    }
+    for (size_t p = 0; p < np; p++)
+        if (!y->fixed || !y->fixed[p]) {
+            cnt[y->cellof[y->S[p]]] += 1;
+            nfree++;
+        }
+    for (int c = 0; c < y->ncell; c++)
+        y->cellpen[c] = y->cellshare[c] > 0
+                            ? (float)(y->occ_scale * cnt[c] / (y->cellshare[c] * nfree))
+                            : 0;
+    free(cnt);
+    (void)L;
+}
+
+/* The cells' shares of the candidates and the penalty's scale at a level. */
+static int occurrence_setup(struct synth *y, const struct level *L)
+{
+    size_t np = (size_t)y->W * y->H;
+    int cw = (y->W + CELL - 1) / CELL;
+    double var = 0;
+
+    y->ncell = cw * ((y->H + CELL - 1) / CELL);
+    if (!y->cellof && !(y->cellof = malloc(np * sizeof *y->cellof)))
+        return tex_error("out of memory");
+    free(y->cellpen);
+    free(y->cellshare);
+    y->cellpen = calloc(y->ncell, sizeof *y->cellpen);
+    y->cellshare = calloc(y->ncell, sizeof *y->cellshare);
+    if (!y->cellpen || !y->cellshare)
+        return tex_error("out of memory");
+    for (size_t u = 0; u < np; u++)
+        y->cellof[u] = (int)(u / y->W / CELL * cw + u % y->W / CELL);
+    for (int i = 0; i < L->nvalid; i++)
+        y->cellshare[y->cellof[L->vlist[i]]] += 1.0 / L->nvalid;
+    /* the mean squared distance between two random candidates' neighbourhoods
+     * is twice the sum of the per-value variances (each weighted) */
+    for (int c = 0; c < y->nc; c++) {
+        struct tex_stats st;
+        tex_map_stats(L->E, c, &st);
+        var += st.stddev * st.stddev;
+    }
+    y->occ_scale = OCCURRENCE * (float)(2 * var / y->nc) * y->wsum;
+    return 0;
+}
+
 static int correct(struct synth *y, const struct level *L, int l, int top)
 {
     int fail = 0;
     for (int pass = 0; pass < y->o->passes; pass++)
         for (int sub = 0; sub < 4; sub++) {
+            if (sub == 0)
+                occurrence(y, L);
             int sx = sub & 1, sy = sub >> 1;
 #pragma omp parallel reduction(| : fail)
             {
@@ -681,7 +762,7 @@ static int start_quilt(struct synth *y, const struct level *L)
     int ncand;
 
     Q.h = L->h;
-    Q.m = y->r * Q.h;
+    Q.m = margin(y, Q.h);
     Q.B = (y->W - 2 * Q.m) / (2 * Q.h);
     if ((y->H - 2 * Q.m) / (2 * Q.h) < Q.B)
         Q.B = (y->H - 2 * Q.m) / (2 * Q.h);
@@ -731,7 +812,7 @@ static int start_quilt(struct synth *y, const struct level *L)
  * position plus h times the child's offset, jittered. */
 static void start_level(struct synth *y, const struct level *L, int l, const int *parent, int pw)
 {
-    int h = L->h, m = y->r * h;
+    int h = L->h, m = margin(y, h);
 #pragma omp parallel for schedule(static)
     for (int py = 0; py < y->oh; py++)
         for (int px = 0; px < y->ow; px++) {
@@ -947,7 +1028,8 @@ tex_map *tex_synth(const tex_map *s, int w, int h, const struct tex_synth_opts *
             start_level(&y, V, l, parent, pw);
         free(parent);
         parent = NULL;
-        if ((guide && guide_targets(&y, V, V->h) < 0) || correct(&y, V, l, l == L - 1) < 0)
+        if ((guide && guide_targets(&y, V, V->h) < 0) || occurrence_setup(&y, V) < 0 ||
+            correct(&y, V, l, l == L - 1) < 0)
             goto out;
         level_free(V);
         parent = y.S;
@@ -966,6 +1048,9 @@ out:
     free(y.fixed);
     free(y.gt);
     free(y.masked);
+    free(y.cellof);
+    free(y.cellpen);
+    free(y.cellshare);
     tex_map_free(y.luma);
     return out;
 }
