@@ -8,6 +8,8 @@
                                            tiled into a W x H map
   synth_stats.py period MAP.pfm P          autocorrelation of the luma at lags P and P/2
                                            along x and along y: "ax ax2 ay ay2"
+  synth_stats.py peak MAP.pfm LO HI        the lags in LO..HI of highest autocorrelation
+                                           along x and along y: "lagx lagy"
   synth_stats.py seam MAP.pfm              mean |step| across the wrap-around seams, and
                                            the largest mean |step| of an inner column/row
   synth_stats.py corr A.pfm B.pfm          correlation of the two maps' lumas
@@ -162,9 +164,13 @@ def main():
         write_pfm(a[5], w, h, s[2], crops(s, w, h, c, seed))
     elif cmd == 'period':
         L, p = luma(read_pfm(a[0])), int(a[1])
-        # a window away from the edges, so the wrap-around of autocorr does not matter
         print('%.3f %.3f %.3f %.3f' % (autocorr(L, p, 0), autocorr(L, p // 2, 0), autocorr(L, 0, p),
                                        autocorr(L, 0, p // 2)))
+    elif cmd == 'peak':
+        L, lo, hi = luma(read_pfm(a[0])), int(a[1]), int(a[2])
+        lx = max(range(lo, hi + 1), key=lambda t: autocorr(L, t, 0))
+        ly = max(range(lo, hi + 1), key=lambda t: autocorr(L, 0, t))
+        print(lx, ly)
     elif cmd == 'seam':
         L = luma(read_pfm(a[0]))
         h, w = len(L), len(L[0])

@@ -18,7 +18,7 @@ static const struct tex_param rows[] = {
     TEX_INT(struct opts, candidates, 'k', 4, 1, 16, "K",
             "k-coherence candidates per sample pixel"),
     TEX_INT(struct opts, passes, 0, 2, 1, 8, "N", "correction passes per level"),
-    TEX_REAL(struct opts, randomness, 'r', 0.3, 0, 1, "R",
+    TEX_REAL(struct opts, randomness, 'r', 0.1, 0, 1, "R",
              "jitter of the upsampled positions, in units of two level pixels"),
     TEX_STRING(struct opts, guide, 0, NULL, "MAP",
                "follow this map (the output's size): its light parts take the sample's light parts"),

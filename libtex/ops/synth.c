@@ -447,15 +447,18 @@ static int level_build(const struct synth *y, struct level *L, int l)
  * of an output that does not tile by continuing its border's positions. */
 static void pos_at(const struct synth *y, int h, int x, int yy, int *ux, int *uy)
 {
-    int qx = x, qy = yy;
-    if (y->o->tile) {
+    int qx, qy, u;
+    if (y->o->tile) { /* a torus: the neighbour is on the other side */
         qx = (int)tex_edge_index(x, y->ow, TEX_EDGE_WRAP);
         qy = (int)tex_edge_index(yy, y->oh, TEX_EDGE_WRAP);
-    } else {
-        qx = clampi(x, 0, y->ow - 1);
-        qy = clampi(yy, 0, y->oh - 1);
+        u = y->S[(size_t)qy * y->ow + qx];
+        *ux = u % y->W;
+        *uy = u / y->W;
+        return;
     }
-    int u = y->S[(size_t)qy * y->ow + qx];
+    qx = clampi(x, 0, y->ow - 1);
+    qy = clampi(yy, 0, y->oh - 1);
+    u = y->S[(size_t)qy * y->ow + qx];
     *ux = clampi(u % y->W + (x - qx) * h, 0, y->W - 1);
     *uy = clampi(u / y->W + (yy - qy) * h, 0, y->H - 1);
 }

@@ -44,7 +44,7 @@
  *   levels         1..10 (4): most pyramid levels
  *   k              1..16 (4): candidates per sample pixel
  *   passes         1..8 (2): correction passes per level
- *   randomness     0..1 (0.3): jitter, in units of 2 h
+ *   randomness     0..1 (0.1): jitter, in units of 2 h
  *   tile           output neighbourhoods wrap around the output (a torus),
  *                  so the map tiles without a seam
  *   seed           the random choices (start and jitter), hashed per pixel
@@ -90,7 +90,7 @@ struct tex_synth_opts {
     enum tex_synth_search search;
 };
 
-#define TEX_SYNTH_DEFAULTS {5, 4, 4, 2, 0.3, 0.2, 0, 0, TEX_SYNTH_COHERENT}
+#define TEX_SYNTH_DEFAULTS {5, 4, 4, 2, 0.1, 0.2, 0, 0, TEX_SYNTH_COHERENT}
 
 tex_map *tex_synth(const tex_map *sample, int w, int h, const struct tex_synth_opts *o,
                    const tex_map *guide, const tex_map *mask);
