@@ -17,27 +17,34 @@
  * pixels apart.  Per level, coarsest first:
  *   - candidates: each sample pixel's neighbourhood vector (n^2 values per
  *     channel, weighted by a Gaussian) is reduced by PCA to at most 10
- *     dimensions; FLANN's single kd-tree (exact search, no random
- *     generator) gives each sample pixel its k most similar pixels (itself
- *     first, none closer than h).  These k-coherence sets are built once
- *     per level.
- *   - the coarsest level starts from random sample positions; a finer one
- *     inherits its parent's position plus h times the child's offset
+ *     dimensions; FLANN's single kd-tree (searched with eps = 1; it draws
+ *     no random numbers) gives each sample pixel its k most similar pixels
+ *     (itself first, none closer than h/2).  These k-coherence sets are
+ *     built once per level.
+ *   - the coarsest level starts as a quilt (Efros and Freeman 2001): blocks
+ *     of sample windows, each drawn by the seed among the windows whose
+ *     edges best continue the blocks placed before (across the wrap-around
+ *     edges too with tile), so regular samples keep their period; a finer
+ *     level inherits its parent's position plus h times the child's offset
  *     (upsampling), plus a jitter of up to 2 h randomness pixels.
  *   - correction passes: each output pixel p gathers its neighbourhood
  *     (the stack's values at the positions its neighbours hold) and takes,
  *     of the candidates C_k(S[p+d]) - h d of its 3 x 3 neighbours d and its
  *     own position, the one whose sample neighbourhood is nearest (sum of
- *     squared differences; ties keep the first).  At the coarsest level
- *     the FLANN tree also proposes the k nearest sample neighbourhoods of
- *     the output's own (projected) neighbourhood, as Wei and Levoy's full
- *     search would.  A pass is 4 subpasses over the 2 x 2 interleaved
- *     pixels; every pixel of a subpass reads the state before it, so any
- *     number of threads gives the same bytes.
- * Sample positions whose level neighbourhood would leave the sample (or
- * touch the mask) are never candidates; when no position fits at some
- * level, fewer levels are used (none fitting even at level 0 is an error:
- * the sample is smaller than the neighbourhood).
+ *     squared differences plus an occurrence penalty, after Kaspar et al.
+ *     2015: a cell of 8 x 8 sample pixels used more than its share costs
+ *     more, which keeps the output's histogram near the sample's; ties keep
+ *     the first).  At the coarsest level's first pass the FLANN tree also
+ *     proposes the k nearest sample neighbourhoods of the output's own
+ *     (projected) neighbourhood, as Wei and Levoy's full search would.  A
+ *     pass is 4 subpasses over the 2 x 2 interleaved pixels; every pixel of
+ *     a subpass reads the state before it, so any number of threads gives
+ *     the same bytes.
+ * A candidate keeps half its level's neighbourhood (at least n/2 pixels)
+ * inside the sample, the rest read in a mirror of its edges; with a mask,
+ * no candidate's neighbourhood touches the (blurred) mask.  When no
+ * position fits at some level, fewer levels are used (none fitting even at
+ * level 0 is an error: the sample is smaller than the neighbourhood).
  *
  * Options (struct tex_synth_opts):
  *   neighbourhood  n, odd, 3..15 (5): side of the square neighbourhood
