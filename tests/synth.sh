@@ -150,3 +150,11 @@ bad "a mask of another size" 2 "$T/s.pfm" --mask "$T/four.pfm"
 bad "zero levels" 2 "$T/s.pfm" --levels 0
 bad "an even neighbourhood" 2 "$T/s.pfm" -n 6
 bad "a missing sample" 1 "$T/none.pfm"
+
+# The recipe: a tileable map from a t_bubble | t_palette sample.
+sh "$top/patterns/synth_tile.sh" "$T/recipe.pfm" 96 3 >/dev/null
+[ "$(info_json "$T/recipe.pfm" width)x$(info_json "$T/recipe.pfm" height)" = 96x96 ] &&
+    ok "patterns/synth_tile.sh writes the map" || notok "patterns/synth_tile.sh writes the map"
+read -r seam inner <<<"$(stats seam "$T/recipe.pfm")"
+if ! lt "$inner" "$seam"; then ok "patterns/synth_tile.sh: the map tiles (seam $seam, inner $inner)"
+else notok "patterns/synth_tile.sh: the map tiles" "seam $seam inner $inner"; fi

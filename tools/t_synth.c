@@ -1,7 +1,6 @@
 /* t_synth - texture synthesis from an example: a map of any size that looks like the sample */
 #include <stdlib.h>
 
-#include "ops/synth.h"
 #include "textura.h"
 
 struct opts {
