@@ -158,3 +158,7 @@ sh "$top/patterns/synth_tile.sh" "$T/recipe.pfm" 96 3 >/dev/null
 read -r seam inner <<<"$(stats seam "$T/recipe.pfm")"
 if ! lt "$inner" "$seam"; then ok "patterns/synth_tile.sh: the map tiles (seam $seam, inner $inner)"
 else notok "patterns/synth_tile.sh: the map tiles" "seam $seam inner $inner"; fi
+
+# A mask over the whole sample leaves nothing to copy from.
+t_circle -s 128 -r 0.1 --color1 1,1,1 --color2 1,1,1 -o "$T/all.pfm"
+bad "a mask over the whole sample" 1 "$T/s.pfm" --mask "$T/all.pfm"

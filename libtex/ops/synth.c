@@ -965,7 +965,7 @@ static int count_levels(struct synth *y, struct level *lv)
             break;
         L = l + 1;
     }
-    if (L == 0 && !tex_errmsg()[0])
+    if (L == 0)
         tex_error("no %dx%d neighbourhood of the %dx%d sample lies inside it%s", y->n, y->n, y->W,
                   y->H, y->masked ? " and clear of the mask" : "");
     return L;
