@@ -784,7 +784,7 @@ static int start_quilt(struct synth *y, const struct level *L)
         for (int bx = 0; bx < Q.nbx; bx++) {
             float best = INFINITY;
             int nc = 0, pick, i = 0;
-#pragma omp parallel for schedule(static)
+            /* serial: a parallel region per block cost more than it saved */
             for (int c = 0; c < ncand; c++) {
                 int cx = c % ((Q.nox + Q.step - 1) / Q.step), cy = c / ((Q.nox + Q.step - 1) / Q.step);
                 cost[c] = quilt_cost(y, L, &Q, bx, by, Q.m + cx * Q.step, Q.m + cy * Q.step);
