@@ -43,7 +43,8 @@ int main(int argc, char **argv)
     tex_map *s = tex_cli_read(name), *g = o.guide ? tex_cli_read(o.guide) : NULL;
     tex_map *k = o.mask ? tex_cli_read(o.mask) : NULL, *m;
     struct tex_synth_opts so = {o.neighbourhood, o.levels, o.candidates, o.passes, o.randomness,
-                                o.guide_weight, c.tile, (uint64_t)c.seed, o.search};
+                                o.guide_weight, c.tile, (uint64_t)c.seed, o.search,
+                                tex_cli_progress_wanted(&c) ? tex_cli_progress : NULL, NULL};
 
     if (!(m = tex_synth(s, c.w, c.h, &so, g, k))) {
         if (tex_errkind() == TEX_ERR_RUNTIME)

@@ -62,6 +62,7 @@ struct synth {
     float *cellpen;          /* per cell: the penalty of taking a pixel there */
     double *cellshare;       /* per cell: its share of the candidates */
     float occ_scale;         /* the penalty of a cell used as often as its share */
+    long done, total;        /* progress: pixel updates */
 };
 
 static inline int clampi(int v, int lo, int hi)
@@ -684,6 +685,9 @@ static int correct(struct synth *y, const struct level *L, int l, int top)
             for (int yy = sy; yy < y->oh; yy += 2)
                 for (int x = sx; x < y->ow; x += 2)
                     y->S[(size_t)yy * y->ow + x] = y->Snew[(size_t)yy * y->ow + x];
+            y->done += (long)((y->ow - sx + 1) / 2) * ((y->oh - sy + 1) / 2);
+            if (y->o->progress)
+                y->o->progress(y->done, y->total, y->o->progress_arg);
         }
     return 0;
 }
@@ -1003,6 +1007,8 @@ tex_map *tex_synth(const tex_map *s, int w, int h, const struct tex_synth_opts *
     memset(lv, 0, sizeof lv);
     if (setup(&y, s, o, guide, mask) < 0 || !(L = count_levels(&y, lv)))
         goto out;
+    for (int l = 0; l < L; l++)
+        y.total += (long)level_side(w, l) * level_side(h, l) * o->passes;
     for (int l = L - 1; l >= 0; l--) {
         struct level *V = lv + l;
         size_t np;

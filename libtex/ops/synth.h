@@ -59,6 +59,7 @@
  *   search         TEX_SYNTH_COHERENT, or TEX_SYNTH_EXHAUSTIVE: every valid
  *                  sample position is a candidate for every pixel (Wei and
  *                  Levoy's full search, the slow reference)
+ *   progress       progress(done, total, arg) after each subpass, or NULL
  *
  * guide (optional, w x h, channel 0 or the luma of RGB): the output
  * follows it: the guide, rank-matched to the distribution of the
@@ -95,9 +96,13 @@ struct tex_synth_opts {
     int tile;
     uint64_t seed;
     enum tex_synth_search search;
+    /* called from the calling thread after each subpass (may be NULL):
+     * done of total pixel updates, over every level and pass */
+    void (*progress)(long done, long total, void *arg);
+    void *progress_arg;
 };
 
-#define TEX_SYNTH_DEFAULTS {5, 4, 4, 2, 0.1, 0.2, 0, 0, TEX_SYNTH_COHERENT}
+#define TEX_SYNTH_DEFAULTS {5, 4, 4, 2, 0.1, 0.2, 0, 0, TEX_SYNTH_COHERENT, NULL, NULL}
 
 tex_map *tex_synth(const tex_map *sample, int w, int h, const struct tex_synth_opts *o,
                    const tex_map *guide, const tex_map *mask);
