@@ -20,10 +20,13 @@ static const struct tex_param rows[] = {
     TEX_REAL(struct opts, randomness, 'r', 0.1, 0, 1, "R",
              "jitter of the upsampled positions, in units of two level pixels"),
     TEX_STRING(struct opts, guide, 0, NULL, "MAP",
-               "follow this map (the output's size): its light parts take the sample's light parts"),
-    TEX_REAL(struct opts, guide_weight, 0, 0.2, 0, 100, "W", "weight of the guide against the neighbourhood"),
+               "follow this map (the output's size): its light parts take the sample's light "
+               "parts"),
+    TEX_REAL(struct opts, guide_weight, 0, 0.2, 0, 100, "W",
+             "weight of the guide against the neighbourhood"),
     TEX_STRING(struct opts, mask, 0, NULL, "MAP",
-               "fill the sample's pixels where MAP > 0.5 from the rest (the output is the sample's size)"),
+               "fill the sample's pixels where MAP > 0.5 from the rest (the output is the "
+               "sample's size)"),
     TEX_ENUM(struct opts, search, 0, "coherent", "coherent|exhaustive",
              "k-coherence candidates (FLANN), or every sample position (slow reference)"),
     {0}};

@@ -101,7 +101,8 @@ static float dist2(const float *a, const float *b, int dp, float bound)
             acc[j] += t * t;
         }
         if ((i & 31) == 24 || i + LANES >= dp) {
-            float s = ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
+            float s = ((acc[0] + acc[1]) + (acc[2] + acc[3])) +
+                      ((acc[4] + acc[5]) + (acc[6] + acc[7]));
             if (s >= bound || i + LANES >= dp)
                 return s;
         }
@@ -153,9 +154,11 @@ static int level_valid(const struct synth *y, struct level *L, int l)
     for (int uy = m; uy < H - m; uy++)
         for (int ux = m; ux < W - m; ux++) {
             int good = 1;
-            for (int dy = -y->r; taint && good && dy <= y->r; dy++)
+            for (int dy = -y->r; taint && good && dy <= y->r; dy++) {
+                const float *row = taint->px + (size_t)mirror(uy + dy * L->h, H) * W;
                 for (int dx = -y->r; good && dx <= y->r; dx++)
-                    good = taint->px[(size_t)mirror(uy + dy * L->h, H) * W + mirror(ux + dx * L->h, W)] < 1e-3f;
+                    good = row[mirror(ux + dx * L->h, W)] < 1e-3f;
+            }
             L->ok[(size_t)uy * W + ux] = (unsigned char)good;
             L->nvalid += good;
         }
@@ -658,7 +661,8 @@ static int correct(struct synth *y, const struct level *L, int l, int top)
 #pragma omp parallel reduction(| : fail)
             {
                 struct cands c = {0, 9 * y->k + 8 + y->k, NULL, NULL};
-                float *v = malloc(y->dp * sizeof *v), q[PCA_DIMS], *dst = malloc(y->k * sizeof *dst);
+                float *v = malloc(y->dp * sizeof *v), q[PCA_DIMS];
+                float *dst = malloc(y->k * sizeof *dst);
                 int *ind = malloc(y->k * sizeof *ind);
                 c.u = malloc(c.max * sizeof *c.u);
                 c.seen = malloc((size_t)y->W * y->H * sizeof *c.seen);
@@ -672,7 +676,8 @@ static int correct(struct synth *y, const struct level *L, int l, int top)
                         size_t p = (size_t)yy * y->ow + x;
                         y->Snew[p] = y->fixed && y->fixed[p]
                                          ? y->S[p]
-                                         : correct_pixel(y, L, l, top && pass == 0, x, yy, v, &c, q, ind, dst);
+                                         : correct_pixel(y, L, l, top && pass == 0, x, yy, v, &c, q,
+                                                         ind, dst);
                     }
                 free(v);
                 free(c.u);
@@ -765,7 +770,7 @@ static int start_quilt(struct synth *y, const struct level *L)
 {
     struct quilt Q;
     float *cost;
-    int ncand;
+    int ncand, ncx;
 
     Q.h = L->h;
     Q.m = margin(y, Q.h);
@@ -781,7 +786,8 @@ static int start_quilt(struct synth *y, const struct level *L)
     Q.step = 1;
     while ((long)((Q.nox + Q.step - 1) / Q.step) * ((Q.noy + Q.step - 1) / Q.step) > 1024)
         Q.step++;
-    ncand = ((Q.nox + Q.step - 1) / Q.step) * ((Q.noy + Q.step - 1) / Q.step);
+    ncx = (Q.nox + Q.step - 1) / Q.step;
+    ncand = ncx * ((Q.noy + Q.step - 1) / Q.step);
     if (!(cost = malloc(ncand * sizeof *cost)))
         return tex_error("out of memory");
     for (int by = 0; by < Q.nby; by++)
@@ -790,18 +796,18 @@ static int start_quilt(struct synth *y, const struct level *L)
             int nc = 0, pick, i = 0;
             /* serial: a parallel region per block cost more than it saved */
             for (int c = 0; c < ncand; c++) {
-                int cx = c % ((Q.nox + Q.step - 1) / Q.step), cy = c / ((Q.nox + Q.step - 1) / Q.step);
+                int cx = c % ncx, cy = c / ncx;
                 cost[c] = quilt_cost(y, L, &Q, bx, by, Q.m + cx * Q.step, Q.m + cy * Q.step);
             }
             for (int c = 0; c < ncand; c++)
                 best = cost[c] < best ? cost[c] : best;
             for (int c = 0; c < ncand; c++)
                 nc += cost[c] <= best * 1.1f + 1e-6f;
-            pick = (int)(tex_hash64(y->o->seed ^ tex_hash64(0x5747ULL + (uint64_t)by * Q.nbx + bx)) %
-                         (uint64_t)nc);
+            uint64_t z = tex_hash64(y->o->seed ^ tex_hash64(0x5747ULL + (uint64_t)by * Q.nbx + bx));
+            pick = (int)(z % (uint64_t)nc);
             for (int c = 0; c < ncand; c++)
                 if (cost[c] <= best * 1.1f + 1e-6f && i++ == pick) {
-                    int cx = c % ((Q.nox + Q.step - 1) / Q.step), cy = c / ((Q.nox + Q.step - 1) / Q.step);
+                    int cx = c % ncx, cy = c / ncx;
                     int ox = Q.m + cx * Q.step, oy = Q.m + cy * Q.step;
                     for (int yy = by * Q.B; yy < (by + 1) * Q.B && yy < y->oh; yy++)
                         for (int x = bx * Q.B; x < (bx + 1) * Q.B && x < y->ow; x++)
