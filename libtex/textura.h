@@ -25,6 +25,7 @@
  *   remap.h     bias, gain, gamma, levels, clamp, quantise
  *   transform.h filtered rotate, scale, shift, expand, clip
  *   compose.h   per-pixel operators, cascades, tiling, warps
+ *   synth.h     texture synthesis from an example (t_synth)
  * lang/     the languages
  *   script.h    the pattern composition language (its lexer and expression
  *               evaluator, lex.h and expr.h, serve the scenes too)
@@ -59,6 +60,7 @@
 #include "ops/remap.h"
 #include "ops/transform.h"
 #include "ops/compose.h"
+#include "ops/synth.h"
 #include "lang/script.h"
 #include "render/colour.h"
 #include "render/spectrum.h"

@@ -12,7 +12,8 @@ cc=$(sed -n 's/^CC = //p' "$TEXTURA_BUILD/config.mk" 2>/dev/null)
 mkdir -p "$T/a" "$T/b"
 while IFS= read -r cmd; do
     [ -n "$cmd" ] || continue
-    set -- ${cmd//SCENES/$top/tests/scenes}
+    cmd2=${cmd//SCENES/$top/tests/scenes}
+    set -- ${cmd2//GOLDEN/$top/tests/golden}
     tool=$1
     shift
     # the same -o: the history line is part of the bytes
@@ -36,4 +37,5 @@ t_perturb -s 64
 t_spectral -s 64
 t_d_noise -s 64 --normal
 t_apply SCENES/spheres.scene -s 80x60
+t_synth GOLDEN/thesis_turbulence_stripe.exr -s 72x56 --tile
 LIST

@@ -388,6 +388,22 @@ static float *region_colors(const char *palette, int n)
     return c;
 }
 
+void tex_cli_progress(long done, long total, void *arg)
+{
+    static const char bar[] = "########################################";
+    int w = (int)sizeof bar - 1, k = total > 0 ? (int)(w * done / total) : w;
+    (void)arg;
+    fprintf(stderr, "\r%s: [%.*s%*s] %3d%%", tex_progname, k, bar, w - k, "",
+            total > 0 ? (int)(100 * done / total) : 100);
+    if (done >= total)
+        fputc('\n', stderr);
+}
+
+int tex_cli_progress_wanted(const struct tex_common *c)
+{
+    return !c->quiet && isatty(2);
+}
+
 int tex_generate_main(const struct tex_primitive *p, int argc, char **argv)
 {
     float *colors = NULL;

@@ -90,6 +90,12 @@ int tex_cli_depth(const struct tex_common *c);
  * standard output, or die. */
 void tex_cli_write(tex_map *m, const struct tex_common *c);
 
+/* A progress bar on standard error, "t_NAME: [####    ]  50%", ending the
+ * line at done == total: for libtex's progress callbacks (pass it only when
+ * standard error is a terminal and -q is off: tex_cli_progress_wanted). */
+void tex_cli_progress(long done, long total, void *arg);
+int tex_cli_progress_wanted(const struct tex_common *c);
+
 /* The whole main of a generator tool t_NAME: parse, sample, write. */
 int tex_generate_main(const struct tex_primitive *p, int argc, char **argv);
 
