@@ -80,6 +80,9 @@ for op in $(t_op '?' a.exr b.exr 2>&1 | sed -n 's/.*(valid: \(.*\))$/\1/p' | tr 
     mix) shot "t_op mix a.exr b.exr 0.5 --format png" ;;
     *) shot "t_op $op a.exr b.exr --format png" ;; esac
 done
+section=synthesis
+shot "t_bubble -s 48 -n 20 --tile | t_palette granite | t_synth - $s --tile --format png"
+shot "t_brick -s 48 --nu 2 --nv 2 | t_synth - $s --format png"
 # the page and the sheet
 {
     echo '<!DOCTYPE html><html><head><meta charset="utf-8"><title>Textura gallery</title>'
