@@ -1,5 +1,6 @@
 /* cli.c - options, help, errors and the generator main for every tool */
 #include <ctype.h>
+#include <errno.h>
 #include <getopt.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -77,6 +78,25 @@ void tex_usage_die(const char *fmt, ...)
     vmsg("error: ", fmt, ap);
     va_end(ap);
     exit(2);
+}
+
+/* At exit: text written to standard output (help, reports, palettes) must
+ * have reached it; a full disk or a closed pipe is an error (exit 1). */
+static void close_stdout(void)
+{
+    int bad = fflush(stdout) != 0 || ferror(stdout);
+    int e = errno;
+
+    if (fclose(stdout) != 0 && !bad) {
+        e = errno;
+        bad = e != EBADF; /* standard output closed and never written to */
+    }
+    if (bad) {
+        fprintf(stderr, "%s: error: standard output: %s\n", tex_progname,
+                e ? strerror(e) : "write error");
+        fflush(stderr);
+        _exit(1);
+    }
 }
 
 /* One (row, struct) pair per option the tool accepts. */
@@ -329,6 +349,7 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
 
     tex_progname = t->name;
     memset(c, 0, sizeof *c);
+    atexit(close_stdout);
     n = collect(t, c, opts, o);
     set_defaults(t, c, opts);
     getopt_tables(o, n, lo, shorts, names);
