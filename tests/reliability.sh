@@ -175,3 +175,58 @@ ln -s n.png l2.png
 t_palette --from '#000000' --to '#ff0000' -o pal.txt && ln -s pal.txt pal.link &&
     t_palette --from '#000000' --to '#00ff00' -o pal.link && [ -L pal.link ] &&
     grep -q . pal.txt && ok "t_palette -o SYMLINK keeps the link" || notok "t_palette -o SYMLINK keeps the link"
+
+# --- 4: one policy for NaN and infinities in input maps (textura(5), --nonfinite) ---
+export TEXTURA_PALETTES="$TEXTURA_TOP/palettes"
+python3 - <<'PY'
+import struct
+def pfm(name, f, w=16, h=16):
+    px = [f(x, y) for y in reversed(range(h)) for x in range(w)]  # PFM rows bottom-up
+    open(name, "wb").write(b"Pf\n%d %d\n-1.0\n" % (w, h) + b"".join(struct.pack("<f", v) for v in px))
+pfm("nan.pfm", lambda x, y: float("nan") if (x, y) in ((9, 6), (3, 12), (5, 13)) else 0.5)
+pfm("inf.pfm", lambda x, y: float("-inf") if (x, y) == (2, 7) else 0.5)
+pfm("allnan.pfm", lambda x, y: float("nan"))
+pfm("half.pfm", lambda x, y: 0.25)
+PY
+# refused, exit 1, naming the file and the first pixel in reading order
+refuses() {
+    local name=$1 where=$2
+    shift 2
+    check_fails "$name: refused" 1 "$@"
+    grep -q "$where" "$T/.err" || notok "$name: names the pixel" "$(cat "$T/.err")"
+    if compgen -G 'out.*' >/dev/null; then notok "$name: no output" "$(ls out.*)"; rm -f out.*; fi
+}
+refuses "t_filter blur, 3 NaN pixels" 'nan.pfm: pixel (9,6) channel 0 is NaN' t_filter blur nan.pfm -o out.pfm
+refuses "t_palette, an all-NaN map" 'allnan.pfm: pixel (0,0) channel 0 is NaN' t_palette marble allnan.pfm -o out.png
+refuses "t_fft, NaN" 'pixel (9,6) channel 0 is NaN' t_fft nan.pfm -o out.exr
+refuses "t_ifft, -inf" 'inf.pfm: pixel (2,7) channel 0 is -inf' t_ifft inf.pfm -o out.exr
+refuses "t_sparse, -inf" 'pixel (2,7)' t_sparse -s 32 inf.pfm -o out.exr
+refuses "t_op add, NaN second" 'nan.pfm: pixel (9,6)' t_op add half.pfm nan.pfm -o out.pfm
+refuses "t_remap, NaN" 'pixel (9,6)' t_remap nan.pfm -o out.pfm
+refuses "t_xform, NaN" 'pixel (9,6)' t_xform nan.pfm -o out.pfm
+refuses "t_warp, NaN" 'pixel (9,6)' t_warp half.pfm nan.pfm -o out.pfm
+refuses "t_tile, NaN" 'pixel (9,6)' t_tile nan.pfm -o out.pfm
+refuses "t_convert, NaN" 'pixel (9,6)' t_convert nan.pfm -o out.exr
+refuses "t_convert, NaN on standard input" 'standard input: pixel (9,6)' bash -c 't_convert -o out.exr <nan.pfm'
+cat >nan.scene <<S
+image 16 16
+camera { eye 0 0 -3 look 0 0 0 fov 50 }
+ambient 1 1 1
+texture t file "$T/nan.pfm"
+surface s { Ka 1 Kd 1 apply t { mapping planar Kd = f } }
+box { min -1 -1 0 max 1 1 0.1 surface s }
+S
+check_fails "t_apply, a NaN texture: refused" 1 t_apply nan.scene -o out.exr
+grep -q 'pixel (9,6)' "$T/.err" || notok "t_apply, a NaN texture: names the pixel" "$(cat "$T/.err")"
+# --nonfinite V replaces them, keep keeps them; t_info counts them.
+t_filter blur --nonfinite 0.5 nan.pfm -o blur.pfm && [ "$(info_json blur.pfm stats 0 nonfinite)" = 0 ] &&
+    approx "$(info_json blur.pfm stats 0 min)" 0.5 1e-5 && ok "t_filter blur --nonfinite 0.5: finite, flat" ||
+    notok "t_filter blur --nonfinite 0.5" "$(t_info blur.pfm 2>&1 | tail -1)"
+t_filter blur --nonfinite keep nan.pfm -o keep.pfm && [ "$(info_json keep.pfm stats 0 nonfinite)" -gt 3 ] &&
+    ok "t_filter blur --nonfinite keep spreads them as before" || notok "t_filter blur --nonfinite keep"
+t_palette marble --nonfinite 0 allnan.pfm -o pal.png && ok "t_palette --nonfinite 0 colours the map" ||
+    notok "t_palette --nonfinite 0"
+t_apply --nonfinite 0.5 nan.scene -o nan.exr && [ "$(info_json nan.exr stats 0 nonfinite)" = 0 ] &&
+    ok "t_apply --nonfinite 0.5 renders a finite image" || notok "t_apply --nonfinite 0.5"
+[ "$(info_json nan.pfm stats 0 nonfinite)" = 3 ] && ok "t_info counts them (3)" || notok "t_info counts them"
+check_fails "--nonfinite with a bad value" 2 t_filter blur --nonfinite nan nan.pfm -o out.pfm

@@ -35,7 +35,7 @@ static const struct tex_tool tool = {
     "t_palette", "[NAME|FILE] [MAP]",
     "colour a scalar map (or a region-id map) through a palette; with --from and --to, write a "
     "palette interpolating two colours",
-    TEX_OPT_OUTPUT | TEX_OPT_PALETTE, rows, 0, 2};
+    TEX_OPT_OUTPUT | TEX_OPT_MAPS | TEX_OPT_PALETTE, rows, 0, 2};
 
 static void die_if(int fail)
 {

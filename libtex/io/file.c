@@ -338,9 +338,43 @@ static tex_map *decode(const char *path, const void *data, size_t len, const cha
     return path ? read_bridged(path, NULL, 0, f, name) : read_bridged(NULL, data, len, f, name);
 }
 
+static enum tex_nonfinite nonfinite_policy = TEX_NONFINITE_REFUSE;
+static float nonfinite_value;
+
+void tex_map_set_nonfinite(enum tex_nonfinite policy, float value)
+{
+    nonfinite_policy = policy;
+    nonfinite_value = value;
+}
+
+/* The map read, after the non-finite policy: m, or NULL (m freed) when refused. */
+static tex_map *nonfinite(tex_map *m, const char *name)
+{
+    size_t n;
+
+    if (!m || nonfinite_policy == TEX_NONFINITE_KEEP)
+        return m;
+    n = tex_map_samples(m);
+    for (size_t i = 0; i < n; i++) {
+        if (isfinite(m->px[i]))
+            continue;
+        if (nonfinite_policy == TEX_NONFINITE_REPLACE) {
+            m->px[i] = nonfinite_value;
+            continue;
+        }
+        tex_error("%s: pixel (%zu,%zu) channel %zu is %s, not a finite number (--nonfinite "
+                  "keep or --nonfinite VALUE to take it)",
+                  name, i / m->nc % m->w, i / m->nc / m->w, i % m->nc,
+                  isnan(m->px[i]) ? "NaN" : m->px[i] > 0 ? "+inf" : "-inf");
+        tex_map_free(m);
+        return NULL;
+    }
+    return m;
+}
+
 tex_map *tex_map_read_memory(const void *data, size_t len, const char *name)
 {
-    return decode(NULL, data, len, name);
+    return nonfinite(decode(NULL, data, len, name), name);
 }
 
 tex_map *tex_map_read(const char *path)
@@ -401,7 +435,7 @@ done:
     if (fd != 0)
         close(fd);
     tex_buf_free(&b);
-    return m;
+    return nonfinite(m, name);
 }
 
 /* ---- writing ---- */

@@ -58,8 +58,15 @@ struct tex_write_opts {
 };
 #define TEX_WRITE_DEFAULTS {0, TEX_COMPRESS_ZIP, NULL}
 
+/* What reading does with NaN and infinite samples, for the whole process
+ * (textura(5), the tools' --nonfinite): refuse the map, naming the first
+ * such pixel (the default), keep them, or replace each by a value. */
+enum tex_nonfinite { TEX_NONFINITE_REFUSE, TEX_NONFINITE_KEEP, TEX_NONFINITE_REPLACE };
+void tex_map_set_nonfinite(enum tex_nonfinite policy, float value);
+
 /* Read a map from a path, or standard input for NULL or "-" (refused, a
- * usage error, when it is a terminal). */
+ * usage error, when it is a terminal).  Non-finite samples follow the
+ * policy above. */
 tex_map *tex_map_read(const char *path);
 /* Read a map from a file image in memory; name is for messages. */
 tex_map *tex_map_read_memory(const void *data, size_t len, const char *name);
