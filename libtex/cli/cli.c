@@ -353,7 +353,11 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
 
     tex_progname = t->name;
     memset(c, 0, sizeof *c);
-    atexit(close_stdout);
+    {
+        static int registered; /* a tool may parse twice (t_warp) */
+        if (!registered++)
+            atexit(close_stdout);
+    }
     n = collect(t, c, opts, o);
     set_defaults(t, c, opts);
     getopt_tables(o, n, lo, shorts, names);

@@ -724,8 +724,10 @@ int tex_out_open(struct tex_out *o, const char *path)
         r = snprintf(o->tmp, sizeof o->tmp, ".%s.XXXXXX", o->path);
     if (r < 0 || (size_t)r >= sizeof o->tmp)
         return tex_error("%s: path too long", path);
-    if ((o->fd = temp_create(o->tmp, &o->slot)) < 0)
+    if ((o->fd = temp_create(o->tmp, &o->slot)) < 0) {
+        o->tmp[0] = '\0'; /* nothing to remove */
         return tex_error("%s: cannot create a file there: %s", path, strerror(errno));
+    }
     return 0;
 }
 
@@ -734,7 +736,7 @@ int tex_out_close(struct tex_out *o, int r)
     if (o->fd >= 0 && close(o->fd) < 0 && r == 0)
         r = tex_error("%s: %s", o->name, strerror(errno));
     o->fd = -1;
-    if (o->direct)
+    if (o->direct || !o->tmp[0])
         return r;
     if (r == 0) {
         /* mkstemp makes the file 0600: give it the mode of the file it

@@ -1,0 +1,40 @@
+/* fuzz_points.c - libFuzzer target: points files (t_bubble --points,
+ * textura-points(5)), read through a memory file in 2D and in 3D.
+ * Any input must read or fail with a message; points read are finite and
+ * their radii positive. */
+#define _GNU_SOURCE
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include "textura.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    char path[64];
+    int fd = memfd_create("points", 0);
+
+    if (fd < 0)
+        return 0;
+    if (tex_write_all(fd, data, size, "points") < 0) {
+        close(fd);
+        return 0;
+    }
+    snprintf(path, sizeof path, "/proc/self/fd/%d", fd);
+    for (int dim = 2; dim <= 3; dim++) {
+        tex_points ps;
+        if (tex_points_read(&ps, path, dim) == 0) {
+            if (ps.n < 1 || ps.dim != dim)
+                abort();
+            for (long i = 0; i < ps.n * dim; i++)
+                if (!isfinite(ps.x[i]) || (ps.axes && !(ps.axes[i] > 0)))
+                    abort();
+        }
+        tex_points_free(&ps);
+    }
+    close(fd);
+    return 0;
+}
