@@ -42,6 +42,7 @@ kill_during_write() {
         sleep 0.025
     done
     kill -"$sig" "$pid"
+    [ -n "${TWICE:-}" ] && kill -"$sig" "$pid" 2>/dev/null
     wait "$pid"
     st=$?
     echo "$seen $st $(compgen -G ".$out.*")"
@@ -63,6 +64,11 @@ for sig in INT TERM HUP PIPE; do
         ok "SIG$sig during the write leaves no temporary file, ends by the signal"
     fi
 done
+# timeout(1) signals the child, then its process group: two signals at once.
+rm -f big.png .big.png.*
+read -r seen st left <<<"$(TWICE=1 kill_during_write TERM big.png t_noise -s 6000 -o big.png)"
+[ "$seen" = seen ] && [ -z "$left" ] && [ "$st" = 143 ] && ok "two SIGTERMs at once leave nothing" ||
+    notok "two SIGTERMs at once leave nothing" "$seen exit $st left $left"
 rm -f big.png .big.png.*
 # The issue's case: killed by timeout(1) at any moment, nothing hidden remains.
 timeout -s TERM 2 t_noise -s 12000 -o big.png 2>/dev/null

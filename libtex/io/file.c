@@ -594,31 +594,41 @@ static const int temp_signals[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE};
 static void on_signal(int sig)
 {
     int saved = errno;
+    sigset_t one;
+
     for (int i = 0; i < TEMP_SLOTS; i++)
         if (temp_used[i])
             unlink(temp_path[i]);
-    errno = saved;
-    /* SA_RESETHAND restored the default action and SA_NODEFER left the
-     * signal unblocked: raising it again ends the process as it would have. */
+    /* The four signals stay blocked in this thread while it runs (sa_mask):
+     * a second one (timeout(1) signals the child, then its group) cannot end
+     * the process before the unlink.  Then the default action, and the
+     * signal again, delivered once unblocked: the process ends as it would have. */
+    signal(sig, SIG_DFL);
     raise(sig);
+    sigemptyset(&one);
+    sigaddset(&one, sig);
+    sigprocmask(SIG_UNBLOCK, &one, NULL);
+    errno = saved;
 }
 
 /* Catch the signals once, leaving alone those the parent ignores (nohup). */
 static void catch_signals(void)
 {
     static int done;
+    struct sigaction sa;
+
     if (done)
         return;
     done = 1;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    for (size_t i = 0; i < sizeof temp_signals / sizeof *temp_signals; i++)
+        sigaddset(&sa.sa_mask, temp_signals[i]);
     for (size_t i = 0; i < sizeof temp_signals / sizeof *temp_signals; i++) {
-        struct sigaction old, sa;
-        if (sigaction(temp_signals[i], NULL, &old) < 0 || old.sa_handler != SIG_DFL)
-            continue;
-        memset(&sa, 0, sizeof sa);
-        sa.sa_handler = on_signal;
-        sigemptyset(&sa.sa_mask);
-        sa.sa_flags = SA_RESETHAND | SA_NODEFER;
-        sigaction(temp_signals[i], &sa, NULL);
+        struct sigaction old;
+        if (sigaction(temp_signals[i], NULL, &old) == 0 && old.sa_handler == SIG_DFL)
+            sigaction(temp_signals[i], &sa, NULL);
     }
 }
 
