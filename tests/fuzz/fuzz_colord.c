@@ -3,26 +3,17 @@
  * Any input must read or fail with a message; a curve read is finite. */
 #define _GNU_SOURCE
 #include <math.h>
-#include <stdint.h>
-#include <stdio.h>
 #include <stdlib.h>
-#include <sys/mman.h>
-#include <unistd.h>
 
-#include "textura.h"
+#include "memfile.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     char path[64];
-    int fd = memfd_create("cmf", 0);
+    int fd = memfile(data, size, path, sizeof path);
 
     if (fd < 0)
         return 0;
-    if (tex_write_all(fd, data, size, "cmf") < 0) {
-        close(fd);
-        return 0;
-    }
-    snprintf(path, sizeof path, "/proc/self/fd/%d", fd);
     for (int set = 0; set < 3; set++) {
         tex_curve c;
         if (tex_curve_read_colord(&c, path, set) == 0)

@@ -4,26 +4,17 @@
  * their radii positive. */
 #define _GNU_SOURCE
 #include <math.h>
-#include <stdint.h>
-#include <stdio.h>
 #include <stdlib.h>
-#include <sys/mman.h>
-#include <unistd.h>
 
-#include "textura.h"
+#include "memfile.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     char path[64];
-    int fd = memfd_create("points", 0);
+    int fd = memfile(data, size, path, sizeof path);
 
     if (fd < 0)
         return 0;
-    if (tex_write_all(fd, data, size, "points") < 0) {
-        close(fd);
-        return 0;
-    }
-    snprintf(path, sizeof path, "/proc/self/fd/%d", fd);
     for (int dim = 2; dim <= 3; dim++) {
         tex_points ps;
         if (tex_points_read(&ps, path, dim) == 0) {
