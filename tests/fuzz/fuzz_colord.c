@@ -7,13 +7,8 @@
 
 #include "memfile.h"
 
-int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+static void read_path(const char *path)
 {
-    char path[64];
-    int fd = memfile(data, size, path, sizeof path);
-
-    if (fd < 0)
-        return 0;
     for (int set = 0; set < 3; set++) {
         tex_curve c;
         if (tex_curve_read_colord(&c, path, set) == 0)
@@ -21,6 +16,4 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 if (!isfinite(c.v[i]))
                     abort();
     }
-    close(fd);
-    return 0;
 }
