@@ -74,7 +74,7 @@ DEBS = build-essential pkg-config liblz4-dev libopenexr-dev libopenimageio-dev o
        libflann-dev libfftw3-dev colord-data mandoc netpbm imagemagick libnoise-dev povray \
        hyperfine clang libclang-rt-14-dev libomp-dev python3
 
-.PHONY: all deps demo test test-plain test-asan check bench install uninstall man fuzz figures \
+.PHONY: all deps demo test test-plain test-asan check bench install uninstall man fuzz fuzz-smoke figures \
         gallery clean
 
 # build/share/textura holds links to the data, so that a build tree is laid
@@ -167,6 +167,10 @@ gallery: all
 
 fuzz:
 	$(MAKE) -C tests/fuzz BUILD=$(abspath $(BUILD))/fuzz
+
+# CI: each fuzz target ~30 s over its seed corpus (not part of `make test`: ~5 min in all)
+fuzz-smoke: fuzz
+	tests/fuzz/smoke.sh $(abspath $(BUILD))/fuzz 30
 
 # A tree built for one prefix installs at another without being rebuilt (a
 # distribution builds, then installs with PREFIX and DESTDIR): the objects

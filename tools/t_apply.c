@@ -40,7 +40,7 @@ static const struct tex_param rows[] = {
 static const struct tex_tool tool = {
     "t_apply", "SCENE", "render a scene of CSG objects with texture maps applied through "
                         "application functions (Whitted ray tracer, t_apply(5))",
-    TEX_OPT_OUTPUT, rows, 0, 1};
+    TEX_OPT_OUTPUT | TEX_OPT_MAPS, rows, 0, 1};
 
 static void progress(long done, long total, void *arg)
 {

@@ -23,7 +23,7 @@ static const struct tex_param rows[] = {
 static const struct tex_tool tool = {
     "t_cascade", "IDS K=MAP...",
     "a cascade of texture maps: region K of the region-id map IDS is filled with MAP",
-    TEX_OPT_OUTPUT, rows, 2, -1};
+    TEX_OPT_OUTPUT | TEX_OPT_MAPS, rows, 2, -1};
 
 int main(int argc, char **argv)
 {

@@ -18,7 +18,7 @@ static const struct tex_tool tool = {
     "t_compose", "[SCRIPT]",
     "build a texture map from a pattern composition script: a tessellation of images from "
     "files and primitives, transformed and combined",
-    TEX_OPT_OUTPUT, rows, 0, 1};
+    TEX_OPT_OUTPUT | TEX_OPT_MAPS, rows, 0, 1};
 
 int main(int argc, char **argv)
 {

@@ -6,7 +6,7 @@
 static const struct tex_tool tool = {
     "t_convert", "[MAP]", "read a map (EXR, PNG, TIFF, PNM, PFM, BMP, TGA, HDR, JPEG...) and "
                           "write it in the format of the output's extension",
-    TEX_OPT_OUTPUT, NULL, 0, 1};
+    TEX_OPT_OUTPUT | TEX_OPT_MAPS, NULL, 0, 1};
 
 int main(int argc, char **argv)
 {

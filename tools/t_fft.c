@@ -19,7 +19,7 @@ static const struct tex_param rows[] = {
 static const struct tex_tool tool = {
     "t_fft", "[MAP]",
     "the Fourier spectrum of a map, centred with the DC term in the middle (FFTW, any size)",
-    TEX_OPT_OUTPUT, rows, 0, 1};
+    TEX_OPT_OUTPUT | TEX_OPT_MAPS, rows, 0, 1};
 
 int main(int argc, char **argv)
 {

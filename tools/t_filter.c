@@ -110,7 +110,7 @@ static const char *summary(void)
 
 int main(int argc, char **argv)
 {
-    const struct tex_tool tool = {"t_filter", "OP [MAP]", summary(), TEX_OPT_OUTPUT | TEX_OPT_SEED,
+    const struct tex_tool tool = {"t_filter", "OP [MAP]", summary(), TEX_OPT_OUTPUT | TEX_OPT_MAPS | TEX_OPT_SEED,
                                   rows, 1, 2};
     struct tex_common c;
     struct opts o;

@@ -29,7 +29,7 @@ static const struct tex_tool tool = {
     "t_ifft", "[SPECTRUM]",
     "the texture of a centred spectrum: a painted magnitude (1, 3 or 4 channels) with a phase, or "
     "a complex spectrum (2 channels) from t_fft --output complex, by the inverse FFT",
-    TEX_OPT_OUTPUT | TEX_OPT_SEED, rows, 0, 1};
+    TEX_OPT_OUTPUT | TEX_OPT_MAPS | TEX_OPT_SEED, rows, 0, 1};
 
 int main(int argc, char **argv)
 {

@@ -65,6 +65,7 @@ int main(int argc, char **argv)
         return stdout_flushed();
     }
     const char *name = i < argc ? argv[i] : "-";
+    tex_map_set_nonfinite(TEX_NONFINITE_KEEP, 0); /* it counts them */
     tex_map *m = tex_cli_read(name);
     struct tex_stats st[4];
 

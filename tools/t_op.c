@@ -22,7 +22,7 @@ static const struct tex_tool tool = {
     "combine texture maps pixel by pixel: add sub mul div min max mix abs invert threshold, "
     "over under (Porter-Duff), and or xor; an operand is a map file, - (standard input) or a "
     "constant such as 0.5 or 1,0,0",
-    TEX_OPT_OUTPUT, rows, 2, 4};
+    TEX_OPT_OUTPUT | TEX_OPT_MAPS, rows, 2, 4};
 
 int main(int argc, char **argv)
 {

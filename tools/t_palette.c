@@ -35,7 +35,7 @@ static const struct tex_tool tool = {
     "t_palette", "[NAME|FILE] [MAP]",
     "colour a scalar map (or a region-id map) through a palette; with --from and --to, write a "
     "palette interpolating two colours",
-    TEX_OPT_OUTPUT | TEX_OPT_PALETTE, rows, 0, 2};
+    TEX_OPT_OUTPUT | TEX_OPT_MAPS | TEX_OPT_PALETTE, rows, 0, 2};
 
 static void die_if(int fail)
 {
@@ -43,13 +43,12 @@ static void die_if(int fail)
         tex_die();
 }
 
-/* Write the palette text to path through a temporary file renamed on success. */
+/* Write the palette text to path, atomically (tex_out). */
 static void write_text(const tex_palette *p, const char *path)
 {
-    char tmp[PATH_MAX];
-    const char *slash;
+    struct tex_out out;
     FILE *fp;
-    int fd;
+    int r;
 
     if (!path || !strcmp(path, "-")) {
         if (tex_palette_write(p, stdout) < 0) {
@@ -58,21 +57,23 @@ static void write_text(const tex_palette *p, const char *path)
         }
         return;
     }
-    slash = strrchr(path, '/');
-    if ((size_t)snprintf(tmp, sizeof tmp, "%.*s.t_palette.XXXXXX", slash ? (int)(slash - path + 1) : 0,
-                         path) >= sizeof tmp)
-        tex_usage_die("-o: file name too long");
-    if ((fd = mkstemp(tmp)) < 0 || !(fp = fdopen(fd, "w"))) {
+    if (tex_out_open(&out, path) < 0) {
+        tex_out_close(&out, -1);
+        tex_die();
+    }
+    if (!(fp = fdopen(out.fd, "w"))) {
         tex_error("%s: %s", path, strerror(errno));
-        if (fd >= 0)
-            close(fd), unlink(tmp);
+        tex_out_close(&out, -1);
         tex_die();
     }
-    if (tex_palette_write(p, fp) < 0 || fclose(fp) != 0 || rename(tmp, path) != 0) {
+    r = tex_palette_write(p, fp) < 0 ? -1 : 0;
+    if (fclose(fp) != 0 && r == 0)
+        r = -1;
+    out.fd = -1; /* fclose closed it */
+    if (r < 0)
         tex_error("%s: write error: %s", path, strerror(errno));
-        unlink(tmp);
+    if (tex_out_close(&out, r) < 0)
         tex_die();
-    }
 }
 
 /* The colour editor: n colours interpolated between two, recorded as stops. */

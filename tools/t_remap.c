@@ -27,7 +27,7 @@ static const struct tex_param rows[] = {
 static const struct tex_tool tool = {
     "t_remap", "[MAP]",
     "remap the values of a map: levels, bias, gain, gamma, quantise, invert, clamp (in that order)",
-    TEX_OPT_OUTPUT, rows, 0, 1};
+    TEX_OPT_OUTPUT | TEX_OPT_MAPS, rows, 0, 1};
 
 int main(int argc, char **argv)
 {

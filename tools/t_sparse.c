@@ -20,7 +20,7 @@ static const struct tex_tool tool = {
     "Lewis's sparse convolution: the sample, windowed by a radial exp(-K rho), summed at "
     "white-noise positions with white-noise weights into a larger map with the sample's spectrum "
     "(tiles)",
-    TEX_OPT_OUTPUT | TEX_OPT_SIZE | TEX_OPT_SEED, rows, 0, 1};
+    TEX_OPT_OUTPUT | TEX_OPT_MAPS | TEX_OPT_SIZE | TEX_OPT_SEED, rows, 0, 1};
 
 int main(int argc, char **argv)
 {

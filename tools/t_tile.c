@@ -25,7 +25,7 @@ static const struct tex_tool tool = {
     "t_tile", "MAP...",
     "repeat a texture map nu x nv times, plain or mirrored, or fill an nu x nv matrix with maps "
     "chosen by a rule",
-    TEX_OPT_OUTPUT, rows, 1, 64};
+    TEX_OPT_OUTPUT | TEX_OPT_MAPS, rows, 1, 64};
 
 int main(int argc, char **argv)
 {

@@ -29,13 +29,13 @@ static const struct tex_tool tool = {
     "t_warp", "MAP BY",
     "domain perturbation: MAP looked up at (u,v) + amount * BY(u,v), as turbulence makes "
     "marble from stripes",
-    TEX_OPT_OUTPUT, rows, 2, -1};
+    TEX_OPT_OUTPUT | TEX_OPT_MAPS, rows, 2, -1};
 
 static const struct tex_tool tool2 = {
     "t_warp", "MAP BY",
     "domain perturbation: MAP looked up at (u,v) + amount * BY(u,v), as turbulence makes "
     "marble from stripes",
-    TEX_OPT_OUTPUT, rows, 2, 2};
+    TEX_OPT_OUTPUT | TEX_OPT_MAPS, rows, 2, 2};
 
 int main(int argc, char **argv)
 {

@@ -35,7 +35,7 @@ static const struct tex_tool tool = {
     "t_xform", "[MAP]",
     "expand, rotate, scale, shift and clip a texture map (in that order), with area-filtered "
     "resampling",
-    TEX_OPT_OUTPUT, rows, 0, 1};
+    TEX_OPT_OUTPUT | TEX_OPT_MAPS, rows, 0, 1};
 
 static void step(tex_map **m, tex_map *next)
 {

@@ -1,6 +1,8 @@
 /* cli.c - options, help, errors and the generator main for every tool */
 #include <ctype.h>
+#include <errno.h>
 #include <getopt.h>
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -45,6 +47,9 @@ static const struct {
     {TEX_OPT_PALETTE, TEX_STRING(struct tex_common, palette, 0, NULL, "NAME|FILE",
                                  "colour the map through a palette")},
     {TEX_OPT_TILE, TEX_TILE_ROW(struct tex_common, tile)},
+    {TEX_OPT_MAPS, TEX_STRING(struct tex_common, nonfinite, 0, "refuse", "refuse|keep|V",
+                              "NaN and infinite samples in input maps: refuse the map naming "
+                              "the first, keep them, or replace them by the number V")},
     {0, TEX_INT(struct tex_common, threads, 'j', 0, 0, 1024, "N",
                 "threads to use (0: one per core)")},
     {0, TEX_FLAG(struct tex_common, quiet, 'q', "print no progress or warnings")},
@@ -77,6 +82,25 @@ void tex_usage_die(const char *fmt, ...)
     vmsg("error: ", fmt, ap);
     va_end(ap);
     exit(2);
+}
+
+/* At exit: text written to standard output (help, reports, palettes) must
+ * have reached it; a full disk or a closed pipe is an error (exit 1). */
+static void close_stdout(void)
+{
+    int bad = fflush(stdout) != 0 || ferror(stdout);
+    int e = errno;
+
+    if (fclose(stdout) != 0 && !bad) {
+        e = errno;
+        bad = e != EBADF; /* standard output closed and never written to */
+    }
+    if (bad) {
+        fprintf(stderr, "%s: error: standard output: %s\n", tex_progname,
+                e ? strerror(e) : "write error");
+        fflush(stderr);
+        _exit(1);
+    }
 }
 
 /* One (row, struct) pair per option the tool accepts. */
@@ -329,6 +353,11 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
 
     tex_progname = t->name;
     memset(c, 0, sizeof *c);
+    {
+        static int registered; /* a tool may parse twice (t_warp) */
+        if (!registered++)
+            atexit(close_stdout);
+    }
     n = collect(t, c, opts, o);
     set_defaults(t, c, opts);
     getopt_tables(o, n, lo, shorts, names);
@@ -347,6 +376,18 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
         if (argv[i][0] == '\001')
             argv[i]++; /* the marked copy is kept for the life of the program */
     check_operands(t, argc, argv, c);
+    if (t->common & TEX_OPT_MAPS) {
+        double v = 0;
+        if (!strcmp(c->nonfinite, "refuse"))
+            tex_map_set_nonfinite(TEX_NONFINITE_REFUSE, 0);
+        else if (!strcmp(c->nonfinite, "keep"))
+            tex_map_set_nonfinite(TEX_NONFINITE_KEEP, 0);
+        else if (tex_parse_real(c->nonfinite, &v) == 0 && isfinite(v) && fabs(v) <= 3.4e38)
+            tex_map_set_nonfinite(TEX_NONFINITE_REPLACE, (float)v);
+        else
+            tex_usage_die("--nonfinite must be refuse, keep or a finite number (got '%s')",
+                          c->nonfinite);
+    }
     tex_set_warning_handler(c->quiet ? NULL : print_warning);
 #ifdef _OPENMP
     if (c->threads > 0)

@@ -22,6 +22,7 @@
  *   TEX_OPT_IDS      --ids
  *   TEX_OPT_PALETTE  --palette NAME|FILE
  *   TEX_OPT_TILE     --tile
+ *   TEX_OPT_MAPS     --nonfinite refuse|keep|V (input maps' NaN and infinities, file.h)
  *   always           -j/--threads N, -q/--quiet, -h/--help, -V/--version
  */
 #ifndef TEX_CLI_H
@@ -44,6 +45,7 @@ enum {
     TEX_OPT_IDS = 1 << 3,
     TEX_OPT_PALETTE = 1 << 4,
     TEX_OPT_TILE = 1 << 5,
+    TEX_OPT_MAPS = 1 << 6,
 };
 
 struct tex_common {
@@ -59,6 +61,7 @@ struct tex_common {
     int ids;
     const char *palette;
     int tile;
+    const char *nonfinite;
     char *cmdline;      /* the command line, for the map's history */
 };
 

@@ -4,6 +4,7 @@
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
+#include <signal.h>
 #include <stdint.h>
 #include <math.h>
 #include <stdio.h>
@@ -337,9 +338,43 @@ static tex_map *decode(const char *path, const void *data, size_t len, const cha
     return path ? read_bridged(path, NULL, 0, f, name) : read_bridged(NULL, data, len, f, name);
 }
 
+static enum tex_nonfinite nonfinite_policy = TEX_NONFINITE_REFUSE;
+static float nonfinite_value;
+
+void tex_map_set_nonfinite(enum tex_nonfinite policy, float value)
+{
+    nonfinite_policy = policy;
+    nonfinite_value = value;
+}
+
+/* The map read, after the non-finite policy: m, or NULL (m freed) when refused. */
+static tex_map *nonfinite(tex_map *m, const char *name)
+{
+    size_t n;
+
+    if (!m || nonfinite_policy == TEX_NONFINITE_KEEP)
+        return m;
+    n = tex_map_samples(m);
+    for (size_t i = 0; i < n; i++) {
+        if (isfinite(m->px[i]))
+            continue;
+        if (nonfinite_policy == TEX_NONFINITE_REPLACE) {
+            m->px[i] = nonfinite_value;
+            continue;
+        }
+        tex_error("%s: pixel (%zu,%zu) channel %zu is %s, not a finite number (--nonfinite "
+                  "keep or --nonfinite VALUE to take it)",
+                  name, i / m->nc % m->w, i / m->nc / m->w, i % m->nc,
+                  isnan(m->px[i]) ? "NaN" : m->px[i] > 0 ? "+inf" : "-inf");
+        tex_map_free(m);
+        return NULL;
+    }
+    return m;
+}
+
 tex_map *tex_map_read_memory(const void *data, size_t len, const char *name)
 {
-    return decode(NULL, data, len, name);
+    return nonfinite(decode(NULL, data, len, name), name);
 }
 
 tex_map *tex_map_read(const char *path)
@@ -359,6 +394,12 @@ tex_map *tex_map_read(const char *path)
         }
     } else {
         path = NULL;
+        /* It would wait silently for keystrokes. */
+        if (isatty(0)) {
+            tex_usage_error("standard input: refusing to read image data from a terminal; "
+                            "give a file or a pipe");
+            return NULL;
+        }
     }
     /* A pipe carrying the stream is decoded as it arrives; anything else
      * (a file, another format) is read whole first. */
@@ -394,7 +435,7 @@ done:
     if (fd != 0)
         close(fd);
     tex_buf_free(&b);
-    return m;
+    return nonfinite(m, name);
 }
 
 /* ---- writing ---- */
@@ -541,14 +582,225 @@ static int write_to_path(const tex_map *m, enum tex_format f, int depth, const c
     }
 }
 
+/* ---- outputs: atomic files, and what a signal leaves behind ---- */
+
+/* The temporary files alive now, for the signal handler: it may only read
+ * these (async-signal-safe), so each path is copied in before its flag is set. */
+#define TEMP_SLOTS 4
+static char temp_path[TEMP_SLOTS][PATH_MAX];
+static volatile sig_atomic_t temp_used[TEMP_SLOTS];
+static const int temp_signals[] = {SIGINT, SIGTERM, SIGHUP, SIGPIPE};
+
+static void on_signal(int sig)
+{
+    int saved = errno;
+    sigset_t one;
+
+    for (int i = 0; i < TEMP_SLOTS; i++)
+        if (temp_used[i])
+            unlink(temp_path[i]);
+    /* The four signals stay blocked in this thread while it runs (sa_mask):
+     * a second one (timeout(1) signals the child, then its group) cannot end
+     * the process before the unlink.  Then the default action, and the
+     * signal again, delivered once unblocked: the process ends as it would have. */
+    signal(sig, SIG_DFL);
+    raise(sig);
+    sigemptyset(&one);
+    sigaddset(&one, sig);
+    sigprocmask(SIG_UNBLOCK, &one, NULL);
+    errno = saved;
+}
+
+/* Catch the signals once, leaving alone those the parent ignores (nohup). */
+static void catch_signals(void)
+{
+    static int done;
+    struct sigaction sa;
+
+    if (done)
+        return;
+    done = 1;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    for (size_t i = 0; i < sizeof temp_signals / sizeof *temp_signals; i++)
+        sigaddset(&sa.sa_mask, temp_signals[i]);
+    for (size_t i = 0; i < sizeof temp_signals / sizeof *temp_signals; i++) {
+        struct sigaction old;
+        if (sigaction(temp_signals[i], NULL, &old) == 0 && old.sa_handler == SIG_DFL)
+            sigaction(temp_signals[i], &sa, NULL);
+    }
+}
+
+/* Record a temporary file for removal on a signal; its slot, or -1 when all are taken. */
+static int temp_record(const char *path)
+{
+    catch_signals();
+    for (int i = 0; i < TEMP_SLOTS; i++)
+        if (!temp_used[i]) {
+            snprintf(temp_path[i], sizeof temp_path[i], "%s", path);
+            __atomic_signal_fence(__ATOMIC_SEQ_CST); /* the path before the flag */
+            temp_used[i] = 1;
+            return i;
+        }
+    return -1;
+}
+
+static void temp_forget(int slot)
+{
+    if (slot >= 0)
+        temp_used[slot] = 0;
+}
+
+/* A temporary file made from the template tmp (mkstemp), recorded. */
+static int temp_create(char *tmp, int *slot)
+{
+    sigset_t all, old;
+    int fd;
+
+    /* No signal between the file's creation and its record. */
+    sigfillset(&all);
+    sigprocmask(SIG_BLOCK, &all, &old);
+    if ((fd = mkstemp(tmp)) >= 0)
+        *slot = temp_record(tmp);
+    sigprocmask(SIG_SETMASK, &old, NULL);
+    return fd;
+}
+
+/* The file a chain of symbolic links ends at (the path itself if it is
+ * none); a relative target is taken from the link's folder. */
+static int resolve_links(const char *path, char *out, size_t n)
+{
+    char cur[PATH_MAX], target[PATH_MAX];
+
+    if ((size_t)snprintf(cur, sizeof cur, "%s", path) >= sizeof cur)
+        return tex_error("%s: path too long", path);
+    for (int hops = 0;; hops++) {
+        struct stat st;
+        ssize_t k;
+        if (lstat(cur, &st) < 0 || !S_ISLNK(st.st_mode))
+            break;
+        if (hops == 40)
+            return tex_error("%s: too many levels of symbolic links", path);
+        if ((k = readlink(cur, target, sizeof target - 1)) < 0)
+            return tex_error("%s: %s", path, strerror(errno));
+        target[k] = '\0';
+        if (target[0] == '/' || !strrchr(cur, '/')) {
+            memcpy(cur, target, (size_t)k + 1);
+        } else {
+            char *slash = strrchr(cur, '/');
+            if ((size_t)(slash - cur) + 2 + (size_t)k > sizeof cur)
+                return tex_error("%s: path too long", path);
+            memcpy(slash + 1, target, (size_t)k + 1);
+        }
+    }
+    if ((size_t)snprintf(out, n, "%s", cur) >= n)
+        return tex_error("%s: path too long", path);
+    return 0;
+}
+
+int tex_out_open(struct tex_out *o, const char *path)
+{
+    struct stat st;
+    const char *slash;
+    int r;
+
+    memset(o, 0, sizeof *o);
+    o->fd = -1;
+    o->slot = -1;
+    o->name = path;
+    /* A FIFO or a device is written straight: renaming only makes sense for files. */
+    if (stat(path, &st) == 0 && (S_ISFIFO(st.st_mode) || S_ISCHR(st.st_mode))) {
+        o->direct = 1;
+        if ((o->fd = open(path, O_WRONLY | O_CLOEXEC)) < 0)
+            return tex_error("%s: %s", path, strerror(errno));
+        return 0;
+    }
+    /* A symbolic link keeps pointing at its target, which is replaced atomically. */
+    if (resolve_links(path, o->path, sizeof o->path) < 0)
+        return -1;
+    if (stat(o->path, &st) == 0 && S_ISREG(st.st_mode)) {
+        o->mode = st.st_mode & 07777;
+    } else {
+        mode_t mask = umask(0);
+        umask(mask);
+        o->mode = 0666 & ~mask;
+    }
+    slash = strrchr(o->path, '/');
+    if (slash)
+        r = snprintf(o->tmp, sizeof o->tmp, "%.*s/.%s.XXXXXX", (int)(slash - o->path), o->path,
+                     slash + 1);
+    else
+        r = snprintf(o->tmp, sizeof o->tmp, ".%s.XXXXXX", o->path);
+    if (r < 0 || (size_t)r >= sizeof o->tmp)
+        return tex_error("%s: path too long", path);
+    if ((o->fd = temp_create(o->tmp, &o->slot)) < 0) {
+        o->tmp[0] = '\0'; /* nothing to remove */
+        return tex_error("%s: cannot create a file there: %s", path, strerror(errno));
+    }
+    return 0;
+}
+
+int tex_out_close(struct tex_out *o, int r)
+{
+    if (o->fd >= 0 && close(o->fd) < 0 && r == 0)
+        r = tex_error("%s: %s", o->name, strerror(errno));
+    o->fd = -1;
+    if (o->direct || !o->tmp[0])
+        return r;
+    if (r == 0) {
+        /* mkstemp makes the file 0600: give it the mode of the file it
+         * replaces, or the one a new file would get. */
+        chmod(o->tmp, o->mode);
+        if (rename(o->tmp, o->path) < 0)
+            r = tex_error("%s: %s", o->name, strerror(errno));
+    }
+    if (r < 0)
+        unlink(o->tmp);
+    temp_forget(o->slot);
+    return r;
+}
+
+/* Write m to fd, which may not seek (standard output, a FIFO). */
+static int write_stream(const tex_map *m, enum tex_format f, int depth, int fd,
+                        const struct tex_write_opts *o, const char *name)
+{
+    int r;
+
+    /* These writers stream; TIFF seeks and OpenImageIO writes files: they go
+     * through a temporary one. */
+    if (f != TEX_FMT_TIFF && (f == TEX_FMT_EXR || f == TEX_FMT_PFM || f == TEX_FMT_PNM ||
+                              f == TEX_FMT_PAM || f == TEX_FMT_PBM || codec_slot(f)))
+        return write_to_path(m, f, depth, NULL, fd, o, name);
+    {
+        const char *dir = getenv("TMPDIR");
+        char path[PATH_MAX];
+        tex_buf b = {0};
+        int tfd, slot = -1;
+
+        snprintf(path, sizeof path, "%s/textura.XXXXXX", dir && *dir ? dir : "/tmp");
+        if ((tfd = temp_create(path, &slot)) < 0)
+            return tex_error("cannot create a temporary file in %s: %s", dir ? dir : "/tmp",
+                             strerror(errno));
+        r = write_to_path(m, f, depth, path, tfd, o, name);
+        if (r == 0 && lseek(tfd, 0, SEEK_SET) == 0 && (r = tex_read_fd(tfd, &b, path)) == 0)
+            r = tex_write_all(fd, b.data, b.len, name);
+        tex_buf_free(&b);
+        close(tfd);
+        unlink(path);
+        temp_forget(slot);
+        return r;
+    }
+}
+
 static int write_stdout(const tex_map *m, const struct tex_write_opts *o)
 {
     const char *name = "standard output";
     enum tex_format f = TEX_FMT_EXR;
-    int depth, r;
+    int depth;
 
-    if (isatty(1))
-        return tex_usage_error("refusing to write image data to a terminal; use -o FILE or a pipe");
+    if (tex_map_write_check(NULL) < 0)
+        return -1;
     if (o->format) {
         char probe[32];
         snprintf(probe, sizeof probe, "x.%s", o->format);
@@ -559,29 +811,7 @@ static int write_stdout(const tex_map *m, const struct tex_write_opts *o)
     }
     if ((depth = choose_depth(f, o->depth, name)) < 0)
         return -1;
-    /* These writers stream; TIFF seeks and OpenImageIO writes files: they go
-     * through a temporary one. */
-    if (f != TEX_FMT_TIFF && (f == TEX_FMT_EXR || f == TEX_FMT_PFM || f == TEX_FMT_PNM ||
-                              f == TEX_FMT_PAM || f == TEX_FMT_PBM || codec_slot(f)))
-        return write_to_path(m, f, depth, NULL, 1, o, name);
-    {
-        const char *dir = getenv("TMPDIR");
-        char path[PATH_MAX];
-        tex_buf b = {0};
-        int fd;
-
-        snprintf(path, sizeof path, "%s/textura.XXXXXX", dir && *dir ? dir : "/tmp");
-        if ((fd = mkstemp(path)) < 0)
-            return tex_error("cannot create a temporary file in %s: %s", dir ? dir : "/tmp",
-                             strerror(errno));
-        r = write_to_path(m, f, depth, path, fd, o, name);
-        if (r == 0 && lseek(fd, 0, SEEK_SET) == 0 && (r = tex_read_fd(fd, &b, path)) == 0)
-            r = tex_write_all(1, b.data, b.len, name);
-        tex_buf_free(&b);
-        close(fd);
-        unlink(path);
-        return r;
-    }
+    return write_stream(m, f, depth, 1, o, name);
 }
 
 int tex_map_write_check(const char *path)
@@ -589,7 +819,9 @@ int tex_map_write_check(const char *path)
     struct stat st;
 
     if (!path || strcmp(path, "-") == 0)
-        return 0;
+        return isatty(1) ? tex_usage_error("refusing to write image data to a terminal; use -o "
+                                           "FILE or a pipe")
+                         : 0;
     if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
         return tex_error("%s: is a directory", path);
     if (tex_format_from_name(path) == TEX_FMT_UNKNOWN)
@@ -602,10 +834,9 @@ int tex_map_write_check(const char *path)
 int tex_map_write(const tex_map *m, const char *path, const struct tex_write_opts *o)
 {
     static const struct tex_write_opts defaults = TEX_WRITE_DEFAULTS;
+    struct tex_out out;
     enum tex_format f;
-    char tmp[PATH_MAX];
-    const char *slash;
-    int fd, depth, r;
+    int depth, r;
 
     if (!o)
         o = &defaults;
@@ -616,27 +847,9 @@ int tex_map_write(const tex_map *m, const char *path, const struct tex_write_opt
     f = tex_format_from_name(path);
     if ((depth = choose_depth(f, o->depth, path)) < 0)
         return -1;
-    slash = strrchr(path, '/');
-    if (slash)
-        r = snprintf(tmp, sizeof tmp, "%.*s/.%s.XXXXXX", (int)(slash - path), path, slash + 1);
-    else
-        r = snprintf(tmp, sizeof tmp, ".%s.XXXXXX", path);
-    if (r < 0 || (size_t)r >= sizeof tmp)
-        return tex_error("%s: path too long", path);
-    if ((fd = mkstemp(tmp)) < 0)
-        return tex_error("%s: cannot create a file there: %s", path, strerror(errno));
-    r = write_to_path(m, f, depth, tmp, fd, o, path);
-    if (close(fd) < 0 && r == 0)
-        r = tex_error("%s: %s", path, strerror(errno));
-    if (r == 0) {
-        /* mkstemp makes the file 0600; give it the permissions a new file would get. */
-        mode_t mask = umask(0);
-        umask(mask);
-        chmod(tmp, 0666 & ~mask);
-        if (rename(tmp, path) < 0)
-            r = tex_error("%s: %s", path, strerror(errno));
-    }
-    if (r < 0)
-        unlink(tmp);
-    return r;
+    if (tex_out_open(&out, path) < 0)
+        return tex_out_close(&out, -1);
+    r = out.direct ? write_stream(m, f, depth, out.fd, o, path)
+                   : write_to_path(m, f, depth, out.tmp, out.fd, o, path);
+    return tex_out_close(&out, r);
 }

@@ -19,7 +19,8 @@
  * Writing: a file's format follows its extension; standard output carries
  * the uncompressed EXR stream unless o.format names another.  Files are
  * written to a temporary name in the same folder and renamed on success,
- * so a failure leaves no partial file.  Image data is never written to a
+ * so a failure or a signal leaves no partial file (tex_out below); a FIFO
+ * or character device is written straight.  Image data is never written to a
  * terminal.  Integer formats are quantised with clamping to o.depth bits
  * (8 or 16; 0 picks the format's usual depth); depth 32 asks for float.
  * Values are written as they are: no transfer function is applied.
@@ -57,16 +58,47 @@ struct tex_write_opts {
 };
 #define TEX_WRITE_DEFAULTS {0, TEX_COMPRESS_ZIP, NULL}
 
-/* Read a map from a path, or standard input for NULL or "-". */
+/* What reading does with NaN and infinite samples, for the whole process
+ * (textura(5), the tools' --nonfinite): refuse the map, naming the first
+ * such pixel (the default), keep them, or replace each by a value. */
+enum tex_nonfinite { TEX_NONFINITE_REFUSE, TEX_NONFINITE_KEEP, TEX_NONFINITE_REPLACE };
+void tex_map_set_nonfinite(enum tex_nonfinite policy, float value);
+
+/* Read a map from a path, or standard input for NULL or "-" (refused, a
+ * usage error, when it is a terminal).  Non-finite samples follow the
+ * policy above. */
 tex_map *tex_map_read(const char *path);
 /* Read a map from a file image in memory; name is for messages. */
 tex_map *tex_map_read_memory(const void *data, size_t len, const char *name);
 /* Write a map; NULL or "-" is standard output. */
 int tex_map_write(const tex_map *m, const char *path, const struct tex_write_opts *o);
 /* Whether tex_map_write could take path by its name (a known extension, not
- * a directory): 0, or -1 with its error.  Tools that write images check it
+ * a directory; standard output not a terminal): 0, or -1 with its error.  Tools that write images check it
  * before the work (a palette file is not an image: it is not checked). */
 int tex_map_write_check(const char *path);
+
+/* An output file.  tex_out_open writes a regular file (new or not) through
+ * a temporary ".NAME.XXXXXX" beside it that tex_out_close renames onto it
+ * on success (r == 0) and removes otherwise; a symbolic link is followed
+ * and its target replaced so, the link kept.  A FIFO or character device
+ * is written straight (direct).  While the temporary file exists,
+ * SIGINT, SIGTERM, SIGHUP and SIGPIPE remove it before ending the process
+ * as they would have (signals the process ignores stay ignored).
+ *
+ *   struct tex_out out;
+ *   if (tex_out_open(&out, path) < 0) return tex_out_close(&out, -1);
+ *   r = write_all_of_it(out.fd);
+ *   return tex_out_close(&out, r);          // r, or -1 if closing failed
+ */
+struct tex_out {
+    int fd, direct, slot;
+    unsigned mode;         /* of the file written */
+    const char *name;      /* as given, for messages */
+    char path[4096];       /* the file replaced (a link's target) */
+    char tmp[4096 + 16];
+};
+int tex_out_open(struct tex_out *o, const char *path);
+int tex_out_close(struct tex_out *o, int r);
 
 /* Read all of a file descriptor into b (for standard input and pipes). */
 int tex_read_fd(int fd, tex_buf *b, const char *name);

@@ -81,7 +81,7 @@ static int finish(struct pending *p, const char *file, int line)
     tex_curve_constant(&m->k, 0);
     for (int i = 0; i < TEX_CURVE_N; i++) {
         double v = formula_n(p, TEX_LAMBDA_MIN + i);
-        if (!(v > 0) || !isfinite(v))
+        if (!(v > 0) || !isfinite((float)v)) /* the curve holds floats */
             return tex_usage_error("%s:%d: material '%s': index %g at %d nm is not > 0", file,
                                    line, m->name, v, TEX_LAMBDA_MIN + i);
         m->n.v[i] = (float)v;

@@ -22,9 +22,12 @@ int tex_curve_from_table(tex_curve *c, const double *wl, const double *val, int 
     if (n < 1)
         return tex_usage_error("spectrum table is empty");
     for (int j = 0; j < n; j++) {
-        if (!(wl[j] >= 0) || !isfinite(wl[j]) || !isfinite(val[j]))
+        if (!(wl[j] >= 0) || !isfinite(wl[j]))
             return tex_usage_error("spectrum table: wavelength %g is not a finite number >= 0",
                                    wl[j]);
+        if (!isfinite((float)val[j])) /* the curve holds floats */
+            return tex_usage_error("spectrum table: value %g at %g nm is not a finite float "
+                                   "(|v| <= 3.4e38)", val[j], wl[j]);
         if (j > 0 && !(wl[j] > wl[j - 1]))
             return tex_usage_error("spectrum table: wavelengths not increasing (%g after %g)",
                                    wl[j], wl[j - 1]);

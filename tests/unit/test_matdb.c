@@ -85,6 +85,12 @@ int main(void)
 
     CHECK(fails_with("material x conductor\nnk 500 1 1\nnk 450 1 1\nend\n", "t.txt:3:"),
           "unsorted wavelengths: file:line");
+    /* found by fuzz_matdb: finite doubles past a float's range made infinite curves */
+    CHECK(fails_with("material x conductor\nnk 400 1e300 1\nnk 500 1 1\nend\n",
+                     "not a finite float"),
+          "an n past a float's range is refused");
+    CHECK(fails_with("material x dielectric\ncauchy 1e200 0\nend\n", "is not > 0"),
+          "a formula index past a float's range is refused");
     CHECK(fails_with("material x conductor\nnk -5 1 1\nend\n", "t.txt:2: wavelength"),
           "negative wavelength");
     CHECK(fails_with("material x conductor\nnk 500 1 -0.1\nend\n", "t.txt:2: k"), "k < 0");
