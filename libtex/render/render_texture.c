@@ -260,18 +260,13 @@ static inline double wave_at(const struct tex_apply *ap, double y)
     return ap->wave[0] * sin(2 * M_PI * y / ap->wave[1]);
 }
 
-/* map_point_at for every mapping but plane_planar */
-static int map_point_other(const struct tex_apply *ap, const struct tex_object *leaf,
-                           const tex_v3 *P, const tex_v3 *pl, double uvw[3])
+/* The world and solid mappings, from the world point P: face 1 */
+static int map_point_world(const struct tex_apply *ap, const struct tex_object *leaf,
+                           const tex_v3 *P, double uvw[3])
 {
-    struct tex_bounds b;
-    int face = 1;
     enum tex_mapping mp = ap->mapping;
-    uvw[2] = 0;
-    if (mp == TEX_MAP_NATURAL)
-        return tex_shape_methods[leaf->kind].uv(leaf, *pl, &uvw[0], &uvw[1]);
     int bounded_solid = mp == TEX_MAP_SOLID && leaf->root && leaf->root->bounded;
-    tex_v3 Pt, plt;
+    tex_v3 Pt;
     if (ap->placed && (mp == TEX_MAP_WORLD || mp == TEX_MAP_SOLID)) {
         /* about the world's origin, or the solid's box centre */
         tex_v3 c = bounded_solid ? tex_v3_scale(tex_v3_add(leaf->root->wb.lo, leaf->root->wb.hi),
@@ -290,15 +285,28 @@ static int map_point_other(const struct tex_apply *ap, const struct tex_object *
         }
         return 1;
     }
-    if (mp == TEX_MAP_SOLID) {
-        const struct tex_bounds *rb = &leaf->root->wb;
-        tex_v3 e = tex_v3_sub(rb->hi, rb->lo);
-        /* clamped: a hit on the box's face may round to just outside it */
-        uvw[0] = e.x > 0 ? clamp01((P->x - rb->lo.x) / e.x) : 0;
-        uvw[1] = e.y > 0 ? clamp01((rb->hi.y - P->y) / e.y) : 0; /* v down: the top is 0 */
-        uvw[2] = e.z > 0 ? clamp01((P->z - rb->lo.z) / e.z) : 0;
-        return 1;
-    }
+    /* solid, across the object's box; clamped: a hit on the box's face may round to just
+     * outside it */
+    const struct tex_bounds *rb = &leaf->root->wb;
+    tex_v3 e = tex_v3_sub(rb->hi, rb->lo);
+    uvw[0] = e.x > 0 ? clamp01((P->x - rb->lo.x) / e.x) : 0;
+    uvw[1] = e.y > 0 ? clamp01((rb->hi.y - P->y) / e.y) : 0; /* v down: the top is 0 */
+    uvw[2] = e.z > 0 ? clamp01((P->z - rb->lo.z) / e.z) : 0;
+    return 1;
+}
+
+/* map_point_at for every mapping but plane_planar */
+static int map_point_other(const struct tex_apply *ap, const struct tex_object *leaf,
+                           const tex_v3 *P, const tex_v3 *pl, double uvw[3])
+{
+    struct tex_bounds b;
+    enum tex_mapping mp = ap->mapping;
+    tex_v3 plt;
+    uvw[2] = 0;
+    if (mp == TEX_MAP_NATURAL)
+        return tex_shape_methods[leaf->kind].uv(leaf, *pl, &uvw[0], &uvw[1]);
+    if (mp == TEX_MAP_WORLD || mp == TEX_MAP_SOLID)
+        return map_point_world(ap, leaf, P, uvw);
     int bounded = tex_shape_methods[leaf->kind].bounds(leaf, &b);
     tex_v3 c = bounded ? tex_v3_scale(tex_v3_add(b.lo, b.hi), 0.5) : tex_v3_make(0, 0, 0);
     tex_v3 e = bounded ? tex_v3_scale(tex_v3_sub(b.hi, b.lo), 0.5) : tex_v3_make(1, 1, 1);
@@ -317,7 +325,7 @@ static int map_point_other(const struct tex_apply *ap, const struct tex_object *
         double a = atan2(-q.z, q.x) / (2 * M_PI);
         uvw[0] = a < 0 ? a + 1 : a;
         uvw[1] = bounded ? fmin(1, fmax(0, (1 - q.y) / 2)) : fract(-pl->y * ap->scale);
-        return face;
+        return 1;
     }
     case TEX_MAP_CROSS: /* the x-y plane's map at (u, v), the y-z plane's at (w, v) */
         if (!bounded) {
@@ -329,7 +337,7 @@ static int map_point_other(const struct tex_apply *ap, const struct tex_object *
             uvw[1] = clamp01((1 - q.y) / 2);
             uvw[2] = clamp01((q.z + 1) / 2);
         }
-        return face;
+        return 1;
     default: /* planar: x and z across the box; wavy: swept along a sine path in y */
         if (!bounded) {
             uvw[0] = pl->x * ap->scale;
@@ -342,7 +350,7 @@ static int map_point_other(const struct tex_apply *ap, const struct tex_object *
             uvw[0] += wave_at(ap, pl->y);
         if (!bounded || mp == TEX_MAP_WAVY)
             uvw[0] = fract(uvw[0]);
-        return face;
+        return 1;
     }
 }
 
@@ -591,6 +599,22 @@ struct evalctx {
     const double *q;    /* the quantities at the hit (TEX_Q_COUNT), or NULL if none is read */
 };
 
+/* Function in (not a binary operator, rgb or palette) of the values at arg, its result in
+ * arg[0], by lang/expr.h's definitions; once for arguments that are grey (the same in every
+ * channel), as scalar parameters' are: sin and pow are not cheap. */
+static void call(const struct tex_einsn *in, double (*arg)[3])
+{
+    int k = tex_expr_arity(in->op), grey = 1;
+    double r[3];
+    for (int i = 0; i < k; i++)
+        grey &= arg[i][0] == arg[i][1] && arg[i][1] == arg[i][2];
+    for (int ch = 0; ch < (grey ? 1 : 3); ch++)
+        r[ch] = tex_expr_apply(in, ch, arg[0], k > 1 ? arg[1] : NULL, k > 2 ? arg[2] : NULL);
+    if (grey)
+        r[1] = r[2] = r[0];
+    arg[0][0] = r[0], arg[0][1] = r[1], arg[0][2] = r[2];
+}
+
 /* Run the compiled function e (lang/expr.h) per channel: a loop over its postfix code
  * with the values on a stack in this frame; no recursion, no allocation. */
 static void expr_eval(const struct tex_expr *e, const struct evalctx *c, double out[3])
@@ -642,23 +666,11 @@ static void expr_eval(const struct tex_expr *e, const struct evalctx *c, double 
             a[0] = rgba[0], a[1] = rgba[1], a[2] = rgba[2];
             continue;
         }
-        default: { /* the other functions of lang/expr.h, by its definitions; once for
-                    * arguments that are grey (the same in every channel), as scalar
-                    * parameters' are: sin and pow are not cheap */
-            int k = tex_expr_arity(in->op), grey = 1;
-            double r[3];
-            sp -= k;
-            for (int i = 0; i < k; i++)
-                grey &= st[sp + i][0] == st[sp + i][1] && st[sp + i][1] == st[sp + i][2];
-            for (int ch = 0; ch < (grey ? 1 : 3); ch++)
-                r[ch] = tex_expr_apply(in, ch, st[sp], k > 1 ? st[sp + 1] : NULL,
-                                       k > 2 ? st[sp + 2] : NULL);
-            if (grey)
-                r[1] = r[2] = r[0];
-            a = st[sp++];
-            a[0] = r[0], a[1] = r[1], a[2] = r[2];
+        default: /* the other functions of lang/expr.h */
+            sp -= tex_expr_arity(in->op);
+            call(in, st + sp);
+            sp++;
             continue;
-        }
         }
         b = st[--sp];
         a = st[sp - 1];
