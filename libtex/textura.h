@@ -42,6 +42,7 @@
 #define TEXTURA_H
 
 #include "base/error.h"
+#include "base/progress.h"
 #include "base/map.h"
 #include "base/param.h"
 #include "base/paths.h"

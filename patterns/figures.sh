@@ -25,9 +25,9 @@ figure() {
 }
 figure 5.1 "Figure 5.1: t_flower in different instances, for different values of the colours, the number of petals and the petal length." "
 t_flower -s $h -o f1.exr
-t_flower -s $h -n 3 -d 0.3 --color1 '#f4efe2' --color2 '#b8322a' -o f2.exr
-t_flower -s $h -n 8 -d 0.48 --color1 '#203050' --color2 '#e0e8f0' -o f3.exr
-t_flower -s $h -n 4 -d 0.4 --color1 '#e8c060' --color2 '#603010' -o f4.exr
+t_flower -s $h --petals 3 --petal-length 0.3 --colour1 '#f4efe2' --colour2 '#b8322a' -o f2.exr
+t_flower -s $h --petals 8 --petal-length 0.48 --colour1 '#203050' --colour2 '#e0e8f0' -o f3.exr
+t_flower -s $h --petals 4 --petal-length 0.4 --colour1 '#e8c060' --colour2 '#603010' -o f4.exr
 t_tile --matrix cycle --nu 4 --nv 1 -s $((2 * s))x$h f1.exr f2.exr f3.exr f4.exr -o fig.exr"
 figure 5.3 "Figure 5.3: Some of the geometric primitives implemented." "
 for p in circle ring ellipse flower star polygon stripe checker brick four_rings cycloid hypocycloid; do
@@ -49,16 +49,16 @@ figure 5.7 "Figure 5.7: The Koch curve." "
 t_fractal -m koch -s $s -o fig.exr"
 figure 5.8 "Figure 5.8: The matrix of texture models of diagonal_flower: a circle where u' = v', a flower elsewhere." "
 t_circle -s $((s / 3)) -o c.exr
-t_flower -s $((s / 3)) -n 4 -o f.exr
+t_flower -s $((s / 3)) --petals 4 -o f.exr
 t_tile --matrix diagonal --nu 3 --nv 3 -s $s c.exr f.exr -o fig.exr"
 figure 5.9 "Figure 5.9: The texture cascade of cascade_circle_flower: where t_circle gives subregion 1 (the outside, as Figure 5.2 numbers it), the texture is t_flower." "
 t_circle -s $s --ids -o ids.exr
-t_flower -s $s -n 5 -o f.exr
+t_flower -s $s --petals 5 -o f.exr
 t_cascade ids.exr 1=f.exr --default '#204060' -o fig.exr"
 figure 5.10 "Figure 5.10: The function t_turbulence composed with the primitive t_stripe (domain perturbation): marble veins." "
 t_stripe -s $s -o st.exr
 t_turbulence -s $s -S 2 --tile -o tu.exr
-t_warp st.exr tu.exr --amount 0.1 -o fig.exr"
+t_warp st.exr tu.exr --displacement 0.1 -o fig.exr"
 figure 5.11 "Figure 5.11: Repetitions of a t_stripe primitive." "
 t_stripe -s $((s / 3)) -a 30 -o s1.exr
 t_tile --nu 3 --nv 2 -s ${s}x$((2 * s / 3)) s1.exr -o fig.exr"
@@ -90,7 +90,7 @@ figure orange_peel "Section 2.3.3: the orange peel, midpoint displacement with o
 '$here/orange_peel.sh' -o op -s $s >/dev/null
 t_convert op_render.exr -o fig.exr"
 figure photo_4.1 "Photo 4.1: A synthetic scene with the wood texture: a varnished table (colour, brightness and roughness maps from one map of rings), a brick wall whose bricks vary in colour at random, and a vase of marble made as a solid texture." "
-t_wood -s 512 --tilt 84 --offset 0.42 --rings 9 -a 0.05 --grain 0.3 -S 4 -o rings.exr
+t_wood -s 512 --tilt 84 --axis-offset 0.42 --rings 9 --turbulence 0.05 --grain 0.3 -S 4 -o rings.exr
 t_palette wood rings.exr -o wood.exr
 printf 'space oklab\n0 #6e2a1a\n0.35 #9a3b22\n0.7 #b5573a\n1 #c98a5a\nindex 1 #cfc6b8\n' >clay.pal
 t_brick -s 512 --nu 4 --nv 8 --cells --palette clay.pal -S 7 --tile -o bricks.exr

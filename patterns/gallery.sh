@@ -38,20 +38,20 @@ while read -r name summary; do
     turbulence) shot "t_turbulence $s -f 2 -n 8 | t_palette fire --format png" ;;
     fractal)
         shot "t_fractal $s -m ridged --format png"
-        shot "t_fractal $s -m midpoint --h 10,0,0,0,0,0,-10,10 --format png"
+        shot "t_fractal $s -m midpoint --hurst 10,0,0,0,0,0,-10,10 --format png"
         shot "t_fractal $s -m julia --format png" ;;
     bubble)
-        shot "t_bubble $s --value f2-f1 -n 40 --format png"
-        shot "t_bubble $s --value cell -n 200 | t_palette viridis --format png" ;;
+        shot "t_bubble $s --value f2-f1 -c 40 --format png"
+        shot "t_bubble $s --value cell -c 200 | t_palette viridis --format png" ;;
     brick) shot "t_brick $s --cells --palette brick --format png" ;;
-    flower) shot "t_flower $s -n 7 --format png" ;;
-    star) shot "t_star $s -n 7 --format png" ;;
+    flower) shot "t_flower $s --petals 7 --format png" ;;
+    star) shot "t_star $s --sides 7 --format png" ;;
     stripe) shot "t_stripe $s --nu 4 --format png" ;;
     wood)
         shot "t_wood $s | t_palette wood --format png"
-        shot "t_wood $s --tilt 84 --offset 0.4 --grain 0.3 | t_palette wood --format png" ;;
+        shot "t_wood $s --tilt 84 --axis-offset 0.4 --grain 0.3 | t_palette wood --format png" ;;
     spectral) shot "t_spectral $s --anisotropy 30,8 --format png" ;;
-    holes) shot "t_holes $s -n 5 --format png" ;;
+    holes) shot "t_holes $s --grid-cells 5 --format png" ;;
     esac
 done <prims
 section=palettes
@@ -67,7 +67,7 @@ t_turbulence $s -n 6 -S 2 -o base.exr
 for op in $(t_filter --help | sed -n '/one of:/,/^$/p' | awk 'NR > 1 && NF { print $1 }'); do
     shot "t_filter $op base.exr --format png"
 done
-for r in "--bias 0.2" "--gain 0.8" "--gamma 2" "--levels 0.2,0.6,0,1" "--quantize 4" "--invert"; do
+for r in "--bias 0.2" "--perlin-gain 0.8" "--gamma 2" "--levels 0.2,0.6,0,1" "--quantise 4" "--invert"; do
     shot "t_remap $r base.exr --format png"
 done
 section=operators
@@ -81,7 +81,7 @@ for op in $(t_op '?' a.exr b.exr 2>&1 | sed -n 's/.*(valid: \(.*\))$/\1/p' | tr 
     *) shot "t_op $op a.exr b.exr --format png" ;; esac
 done
 section=synthesis
-shot "t_bubble -s 48 -n 20 --tile | t_palette granite | t_synth - $s --tile --format png"
+shot "t_bubble -s 48 -c 20 --tile | t_palette granite | t_synth - $s --tile --format png"
 shot "t_brick -s 48 --nu 2 --nv 2 | t_synth - $s --format png"
 # the page and the sheet
 {

@@ -4,7 +4,7 @@
 #   patterns/granite.sh [-o PREFIX] [-s N]   -> PREFIX_colour
 recipe=granite
 . "$(dirname "$0")/recipe.sh"
-t_bubble -s "$size" -n 3000 --value cell --distribution poisson -S 11 --tile -o "$tmp/cells.exr"
+t_bubble -s "$size" -c 3000 --value cell --distribution poisson -S 11 --tile -o "$tmp/cells.exr"
 t_noise -s "$size" -f 96 -S 12 --tile -o "$tmp/fine.exr"
 t_op mul "$tmp/fine.exr" 0.35 | t_op add - "$tmp/cells.exr" | t_op mul - 0.85 -o "$tmp/v.exr"
 t_palette granite "$tmp/v.exr" -o "$tmp/colour.exr"

@@ -26,6 +26,6 @@ box { min -2 -0.2 -2 max 2 0.15 2 surface plinth }"
 t_apply "$tmp/s.scene" -s "${size}x$size" -q -o "$tmp/render.exr"
 write "$tmp/render.exr" render
 # the same field as a flat map: a slice through the block
-t_turbulence -s "$size" -f 2 -n 6 -S 3 --z 0.5 -o "$tmp/t.exr"
+t_turbulence -s "$size" -f 2 -n 6 -S 3 --slice 0.5 -o "$tmp/t.exr"
 t_palette marble "$tmp/t.exr" -o "$tmp/slice.exr"
 write "$tmp/slice.exr" slice

@@ -5,7 +5,7 @@
 #   patterns/orange_peel.sh [-o PREFIX] [-s N]   -> PREFIX_height, PREFIX_render
 recipe=orange_peel
 . "$(dirname "$0")/recipe.sh"
-t_fractal -m midpoint --h 10,0,0,0,0,0,-10,10 -s "$size" -S 5 --tile -o "$tmp/h.exr"
+t_fractal -m midpoint --hurst 10,0,0,0,0,0,-10,10 -s "$size" -S 5 --tile -o "$tmp/h.exr"
 t_remap --levels 0.3,0.7,0,1 "$tmp/h.exr" -o "$tmp/height.exr"
 write "$tmp/height.exr" height
 scene "image 400 400

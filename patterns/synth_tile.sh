@@ -10,6 +10,6 @@ set -eu
 out=${1:-synth_tile.png}
 size=${2:-1024}
 seed=${3:-7}
-t_bubble -s 128 -n 40 -S "$seed" --size-spread 0.4 | t_palette marble |
+t_bubble -s 128 -c 40 -S "$seed" --size-spread 0.4 | t_palette marble |
     t_synth -s "$size" --tile -S "$seed" -o "$out"
 echo "wrote $out (${size}x$size, tiles seamlessly)"

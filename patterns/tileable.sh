@@ -6,10 +6,10 @@
 #   patterns/tileable.sh [-o PREFIX] [-s N]   -> PREFIX_wood, _stone, _fabric, _ground
 recipe=tileable
 . "$(dirname "$0")/recipe.sh"
-t_spectral -s "$size" --h 0.9 --anisotropy 90,20 -S 31 --tile -o "$tmp/w.exr"
+t_spectral -s "$size" --hurst 0.9 --anisotropy 90,20 -S 31 --tile -o "$tmp/w.exr"
 t_palette wood "$tmp/w.exr" -o "$tmp/wood.exr"
 write "$tmp/wood.exr" wood
-t_bubble -s "$size" -n 60 --value f2-f1 --distribution poisson -S 32 --tile -o "$tmp/cr.exr"
+t_bubble -s "$size" -c 60 --value f2-f1 --distribution poisson -S 32 --tile -o "$tmp/cr.exr"
 t_remap --levels 0,0.05,0.25,1 "$tmp/cr.exr" -o "$tmp/cracks.exr"
 t_fractal -s "$size" -f 8 -n 6 -S 33 --tile | t_op mul - "$tmp/cracks.exr" -o "$tmp/s.exr"
 t_palette greys "$tmp/s.exr" -o "$tmp/stone.exr"

@@ -7,7 +7,7 @@
 #                                                  _render (.png and .exr)
 recipe=wood_plank
 . "$(dirname "$0")/recipe.sh"
-t_wood -s "$size" --tilt 84 --offset 0.42 --rings 9 -a 0.05 --grain 0.3 -S 4 -o "$tmp/rings.exr"
+t_wood -s "$size" --tilt 84 --axis-offset 0.42 --rings 9 --turbulence 0.05 --grain 0.3 -S 4 -o "$tmp/rings.exr"
 t_palette wood "$tmp/rings.exr" -o "$tmp/colour.exr"
 t_remap --levels 0,1,1,0.55 "$tmp/rings.exr" -o "$tmp/brightness.exr"
 t_remap --levels 0,1,0.15,0.45 "$tmp/rings.exr" -o "$tmp/roughness.exr"

@@ -8,7 +8,7 @@ t_noise -s 64 -o "$T/n.exr"
 check "t_palette marble colours a map" t_palette marble -o "$T/m.exr" "$T/n.exr"
 [ "$(info_json "$T/m.exr" channels)" = 3 ] && ok "a palette gives RGB" || notok "a palette gives RGB"
 check "--palette NAME MAP" t_palette --palette viridis -o "$T/v.exr" "$T/n.exr"
-t_palette --from '#000000' --to '#ffffff' -n 5 -o "$T/bw.pal" && ok "--from/--to writes a palette" || notok "--from/--to"
+t_palette --from '#000000' --to '#ffffff' --stops 5 -o "$T/bw.pal" && ok "--from/--to writes a palette" || notok "--from/--to"
 grep -q '^0.5 0.5 0.5 0.5$' "$T/bw.pal" && ok "the editor's middle stop is grey" || notok "middle stop" "$(cat "$T/bw.pal")"
 t_palette "$T/bw.pal" --range 0,1 -o "$T/g.exr" "$T/n.exr"
 a=$(info_json "$T/g.exr" stats 0 mean) b=$(info_json "$T/n.exr" stats 0 mean)
@@ -69,5 +69,5 @@ check_fails "bias 1" 2 t_remap --bias 1 "$T/n.exr"
 check_fails "levels with 3 values" 2 t_remap --levels 0,1,0 "$T/n.exr"
 
 # A pipeline: noise -> blur -> gain -> palette -> PNG
-t_noise -s 64 | t_filter blur --sigma 1.5 --edge wrap | t_remap --gain 0.7 | t_palette fire -o "$T/fire.png" &&
+t_noise -s 64 | t_filter blur --sigma 1.5 --edge wrap | t_remap --perlin-gain 0.7 | t_palette fire -o "$T/fire.png" &&
     ok "pipeline noise | blur | remap | palette -> png" || notok "pipeline"

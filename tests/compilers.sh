@@ -30,7 +30,7 @@ t_fractal -s 96 --mode fbm
 t_fractal -s 96 --mode ridged
 t_fractal -s 96 --mode hybrid
 t_fractal -s 64 --mode midpoint
-t_bubble -s 96 -n 300 --value f2-f1
+t_bubble -s 96 -c 300 --value f2-f1
 t_holes -s 64
 t_colorvar -s 64
 t_perturb -s 64

@@ -142,11 +142,11 @@ t_cascade --regions 2 --default 1,0,0 "$T/ids.exr" 2="$T/b.exr" | t_info --json 
 grep -q '"channels": 3' "$T/c.json" && ok "a coloured default makes RGB" || notok "cascade default colour"
 
 # ---- t_warp (Fig. 5.10: turbulence composed with stripes) ----
-same "warp by amount 0 = identity" "$(t_warp --amount 0 "$T/a.exr" "$T/b.exr" >"$T/w0.exr"; echo "$T/w0.exr")" "$T/a.exr"
+same "warp by amount 0 = identity" "$(t_warp --displacement 0 "$T/a.exr" "$T/b.exr" >"$T/w0.exr"; echo "$T/w0.exr")" "$T/a.exr"
 t_op add "$T/zero.exr" 0.25 >"$T/quarter.exr"
-t_warp "$T/a.exr" "$T/quarter.exr" --amount 1 >"$T/wq.exr"
+t_warp "$T/a.exr" "$T/quarter.exr" --displacement 1 >"$T/wq.exr"
 same "warp by a constant = shift" "$T/wq.exr" "$(t_xform --shift -16,0 --wrap "$T/a.exr" >"$T/sq.exr"; echo "$T/sq.exr")"
-t_warp --amount 0.15 "$T/stripe.exr" "$T/a.exr" >"$T/marble.exr"
+t_warp --displacement 0.15 "$T/stripe.exr" "$T/a.exr" >"$T/marble.exr"
 golden "turbulence o stripe golden (Fig. 5.10)" "$T/marble.exr" compose_warp_stripe.exr 1e-5
 
 # ---- t_compose ----

@@ -27,16 +27,16 @@ for t in holes colorvar perturb; do
         notok "$t determinism"
     fi
 done
-t_colorvar -s 16 --color '#ff8000' -o "$T/c.exr"
+t_colorvar -s 16 --colour '#ff8000' -o "$T/c.exr"
 if [ "$(info_json "$T/c.exr" channels)" = 3 ] && [ "$(info_json "$T/c.exr" stats 2 max)" = 0 ]; then
-    ok "colorvar --color scales the colour"
+    ok "colorvar --colour scales the colour"
 else
-    notok "colorvar --color" "$(t_info "$T/c.exr" | head -5)"
+    notok "colorvar --colour" "$(t_info "$T/c.exr" | head -5)"
 fi
 # The thesis's orange peel: h per level.
 check "midpoint orange peel" t_fractal -m midpoint --h 10,0,0,0,0,0,-10,10 -s 64 -o "$T/peel.exr"
 # Koch: the centre of the snowflake is inside, a corner outside.
-t_fractal -m koch -s 33 -d 3 -o "$T/k.exr"
+t_fractal -m koch -s 33 --recursions 3 -o "$T/k.exr"
 if [ "$(info_json "$T/k.exr" stats 0 max)" = 1 ] && approx "$(info_json "$T/k.exr" stats 0 mean)" 0.45 0.15; then
     ok "koch snowflake fills part of the map"
 else
@@ -46,13 +46,13 @@ fi
 check_fails "octaves 0" 2 t_fractal -n 0
 check_fails "octaves 1000" 2 t_fractal -n 1000
 check_fails "negative frequency" 2 t_fractal -f -2
-check_fails "NaN gain" 2 t_fractal -g nan
+check_fails "NaN gain" 2 t_fractal --ridge-gain nan
 check_fails "malformed --h" 2 t_fractal -m midpoint --h 10,,0
 check_fails "--h not a number" 2 t_fractal -m midpoint --h 1,x
 check_fails "--h too long" 2 t_fractal -m midpoint --h 1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1,1
 check_fails "unknown mode" 2 t_fractal -m spiral
 check_fails "mandelbrot cannot tile" 2 t_fractal -m mandelbrot --tile
 check_fails "zero zoom" 2 t_fractal -m julia --zoom 0
-check_fails "holes count 0" 2 t_holes -n 0
-check_fails "perturb fractional stripes with --tile" 2 t_perturb --tile -a 2.5
-check_fails "colorvar bad colour" 2 t_colorvar --color '#12'
+check_fails "holes count 0" 2 t_holes --grid-cells 0
+check_fails "perturb fractional stripes with --tile" 2 t_perturb --tile --stripes 2.5
+check_fails "colorvar bad colour" 2 t_colorvar --colour '#12'

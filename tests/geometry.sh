@@ -26,9 +26,9 @@ done
 m=$(t_circle --ids -s 256 -r 0.3 | info_json - stats 0 mean)
 approx "$m" 1.28274 0.003 && ok "t_circle --ids: mean id 1 + pi r^2" || notok "t_circle area" "$m"
 # Colours: black outside, white inside gives the coverage of the disc.
-m=$(t_circle -s 256 -r 0.3 --color1 '#000' --color2 1,1,1 | info_json - stats 0 mean)
+m=$(t_circle -s 256 -r 0.3 --colour1 '#000' --colour2 1,1,1 | info_json - stats 0 mean)
 approx "$m" 0.28274 0.002 && ok "t_circle colours: mean is the disc's coverage" || notok "t_circle colours" "$m"
-m=$(t_ring --nu 4 --nv 2 -s 256x128 --color1 '#000' --color2 '#000' --color3 '#fff' | info_json - stats 2 mean)
+m=$(t_ring --nu 4 --nv 2 -s 256x128 --colour1 '#000' --colour2 '#000' --colour3 '#fff' | info_json - stats 2 mean)
 approx "$m" "$(awk 'BEGIN { print 3.14159265 * 0.28 * 0.28 }')" 0.003 &&
     ok "t_ring --nu 4 --nv 2 keeps the inner disc's area" || notok "t_ring repetition" "$m"
 
@@ -44,22 +44,22 @@ check_fails "t_ring: unknown palette" 2 t_ring --palette no-such-palette
 check_fails "t_ring: --palette with --ids" 2 t_ring --palette viridis --ids
 
 check "t_checker | t_convert -o png" sh -c "t_checker -s 64 | t_convert -o '$T/c.png'"
-check "t_stripe --angle 0 --width 0.2" t_stripe --angle 0 --width 0.2 -s 32 -o "$T/s.exr"
+check "t_stripe --angle 0 --stripe-width 0.2" t_stripe --angle 0 --stripe-width 0.2 -s 32 -o "$T/s.exr"
 check "t_ring --tile" t_ring --tile -s 32 -o "$T/r.exr"
-check "t_flower --tile with even petals past the cell" t_flower --tile -n 4 -d 0.7 -s 32 -o "$T/f.exr"
+check "t_flower --tile with even petals past the cell" t_flower --tile --petals 4 --petal-length 0.7 -s 32 -o "$T/f.exr"
 
-check_fails "t_ring: width above radius" 2 t_ring -r 0.1 -d 0.2
-check_fails "t_flower: no petals" 2 t_flower -n 0
+check_fails "t_ring: width above radius" 2 t_ring -r 0.1 --ring-width 0.2
+check_fails "t_flower: no petals" 2 t_flower --petals 0
 check_fails "t_circle: negative radius" 2 t_circle -r -0.5
-check_fails "t_ellipse: minor above major" 2 t_ellipse --major 0.3 --minor 0.4
-check_fails "t_ellipse: tilted and too big to tile" 2 t_ellipse --tile --angle 45 --major 0.6 --minor 0.5
-check_fails "t_hypocycloid: width above radius" 2 t_hypocycloid -r 0.2 -d 0.3
-check_fails "t_cycloid: width above the arch" 2 t_cycloid -r 20 -d 0.1
-check_fails "t_four_rings: width above radius" 2 t_four_rings -r 0.1 -d 0.2
-check_fails "t_stripe: zero width" 2 t_stripe -l 0
+check_fails "t_ellipse: minor above major" 2 t_ellipse --semi-major 0.3 --semi-minor 0.4
+check_fails "t_ellipse: tilted and too big to tile" 2 t_ellipse --tile --angle 45 --semi-major 0.6 --semi-minor 0.5
+check_fails "t_hypocycloid: width above radius" 2 t_hypocycloid -r 0.2 --band-width 0.3
+check_fails "t_cycloid: width above the arch" 2 t_cycloid -r 20 --arch-width 0.1
+check_fails "t_four_rings: width above radius" 2 t_four_rings -r 0.1 --ring-width 0.2
+check_fails "t_stripe: zero width" 2 t_stripe --stripe-width 0
 check_fails "t_stripe cannot tile" 2 t_stripe --tile
-check_fails "t_flower: odd rose past the cell with --tile" 2 t_flower --tile -n 5 -d 0.7
-check_fails "t_checker: bad colour" 2 t_checker --color1 purpleish
+check_fails "t_flower: odd rose past the cell with --tile" 2 t_flower --tile --petals 5 --petal-length 0.7
+check_fails "t_checker: bad colour" 2 t_checker --colour1 purpleish
 check_fails "t_checker: zero repetitions" 2 t_checker --nu 0
 
 # Man pages: present, options in step with the tools, clean under mandoc.

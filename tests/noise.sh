@@ -24,8 +24,8 @@ same_bytes "noise far away" t_noise -s 64 -f 9 --offset 1e6,-3e7,2e6
 same_bytes "noise tile" t_noise -s 64 -f 4 --tile
 same_bytes "noise more cells than pixels" t_noise -s 50 -f 333
 same_bytes "turbulence" t_turbulence -s 100 -n 7
-same_bytes "d_noise" t_d_noise -s 40 -c 3
-same_bytes "d_noise wide, quintic, far away" t_d_noise -s 1030x24 -f 300 -c 3 --fade quintic --offset 1e6,2e6 --z 0.3
+same_bytes "d_noise" t_d_noise -s 40 --channels 3
+same_bytes "d_noise wide, quintic, far away" t_d_noise -s 1030x24 -f 300 --channels 3 --fade quintic --offset 1e6,2e6 --z 0.3
 same_bytes "d_noise normal map, tile" t_d_noise -s 67x45 -f 5 --normal --strength 2 --tile
 # The octave rows' fast paths: cells wider than 8 pixels (broadcasts), 1-8 pixels (permutes),
 # narrower (gathers); lattice rows kept for the next pixel rows (cells taller than a pixel) or
@@ -34,7 +34,7 @@ same_bytes "fbm, every kernel path" t_fractal -s 1100x40 -f 3 -n 10 -l 2.3 -S 4
 same_bytes "fbm quintic 4D" t_fractal -s 97x61 -f 5 -n 5 --w 0.3 --fade quintic --z 0.2
 same_bytes "turbulence 4D quintic" t_turbulence -s 333x50 -f 5 -n 6 --w 0.3 --fade quintic
 same_bytes "turbulence tile far away" t_turbulence -s 130x70 -f 4 --tile --offset 1e6,-2e6,3
-same_bytes "ridged" t_fractal -m ridged -s 257x40 -f 6 -n 7 -l 2.5 -g 3
+same_bytes "ridged" t_fractal -m ridged -s 257x40 -f 6 -n 7 -l 2.5 --ridge-gain 3
 same_bytes "hybrid tile" t_fractal -m hybrid -s 200x48 -f 4 --tile --mf-offset 0.7
 same_bytes "one octave of fbm" t_fractal -s 77x20 -n 1
 same_bytes "one octave of turbulence" t_turbulence -s 77x20 -n 1
@@ -75,4 +75,4 @@ check_fails "unknown fade" 2 t_noise --fade linear
 check_fails "turbulence octaves 0" 2 t_turbulence -n 0
 check_fails "turbulence octaves 1000" 2 t_turbulence -n 1000
 check_fails "turbulence fractional lacunarity with --tile" 2 t_turbulence --tile -l 2.5
-check_fails "d_noise 4 channels" 2 t_d_noise -c 4
+check_fails "d_noise 4 channels" 2 t_d_noise --channels 4

@@ -41,11 +41,11 @@ if lt "$d" 1e-5; then ok "t_fft --as complex | t_ifft reproduces the map (max er
 else notok "t_fft | t_ifft roundtrip" "max error $d"; fi
 t_fft --as mag -o "$T/mag.exr" "$T/a.pfm"
 t_fft --as phase -o "$T/ph.exr" "$T/a.pfm"
-t_ifft --phase "$T/ph.exr" --scale none -o "$T/c.pfm" "$T/mag.exr"
+t_ifft --phase "$T/ph.exr" --rescale none -o "$T/c.pfm" "$T/mag.exr"
 d=$(pfm_eval "$T/a.pfm" "$T/c.pfm" 'abs(A - B)')
 if lt "$d" 1e-4; then ok "t_fft --as mag and --as phase, inverted with --phase MAP (max error $d)"
 else notok "mag + phase roundtrip" "max error $d"; fi
-check "t_fft --window hann writes a log spectrum" t_fft --window hann -o "$T/w.exr" "$T/a.pfm"
+check "t_fft --window-function hann writes a log spectrum" t_fft --window-function hann -o "$T/w.exr" "$T/a.pfm"
 if approx "$(info_json "$T/w.exr" stats 0 max)" 1 1e-6; then ok "log magnitude peaks at 1"
 else notok "log magnitude peaks at 1"; fi
 
@@ -68,7 +68,7 @@ else notok "without --symmetric imaginary part"; fi
 
 # --- determinism: same seed, any thread count, same pixels; another seed differs
 for cmd in "t_spectral -s 200x120 --anisotropy 30,2" "t_ifft --symmetric $T/half.pfm" \
-           "t_ifft $T/half.pfm" "t_fft --window hann $T/a.pfm" "t_sparse -s 100 $T/a.pfm"; do
+           "t_ifft $T/half.pfm" "t_fft --window-function hann $T/a.pfm" "t_sparse -s 100 $T/a.pfm"; do
     set -- $cmd
     tool=$1
     shift
@@ -107,7 +107,7 @@ check_fails "t_sparse: infinity in the sample" 1 t_sparse -s 64 "$T/inf.pfm"
 check_fails "t_ifft: --phase with a complex spectrum" 2 t_ifft --phase zero "$T/sym.exr"
 check_fails "t_ifft: --phase - with the spectrum on standard input" 2 t_ifft --phase -
 check_fails "t_ifft: bad --as" 2 t_ifft --as imag "$T/half.pfm"
-check_fails "t_spectral: --dimension below 2" 2 t_spectral --dimension 1.5
+check_fails "t_spectral: --fractal-dimension below 2" 2 t_spectral --fractal-dimension 1.5
 check_fails "t_spectral: --band LO > HI" 2 t_spectral --band 5,2
 check_fails "t_spectral: --band with no frequency" 2 t_spectral -s 16 --band 500,600
 check_fails "t_spectral: --anisotropy ratio 0" 2 t_spectral --anisotropy 30,0

@@ -7,7 +7,7 @@ stats() { python3 "$top/tests/synth_stats.py" "$@"; }
 lt() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a < b) }'; }
 
 # A photo-like sample: bubbles through a palette (the recipe's sample).
-t_bubble -s 128 -n 40 -S 3 | t_palette marble -o "$T/s.pfm"
+t_bubble -s 128 -c 40 -S 3 | t_palette marble -o "$T/s.pfm"
 
 # Quality: the mean distances over three seeds of the output's statistics from the
 # sample's, beside three baselines of random 32x32 crops of the sample tiled together
@@ -70,7 +70,7 @@ else notok "without --tile the seams show" "seam $seam inner $inner"; fi
 # Determinism: the same bytes for -j 1 and -j 2, in every mode; seeds matter.
 t_noise -s 96x80 -f 6 -o "$T/n.pfm"
 t_noise -s 150x120 -f 2 -S 5 -o "$T/g.pfm"
-t_circle -s 128 -r 0.2 --color1 0,0,0 --color2 1,1,1 -o "$T/mask.pfm"
+t_circle -s 128 -r 0.2 --colour1 0,0,0 --colour2 1,1,1 -o "$T/mask.pfm"
 t_xform --expand 136x136 --background 0,0,0,0.5 "$T/s.pfm" -o "$T/rgba.exr"
 jcheck() {
     local name=$1
@@ -83,7 +83,7 @@ jcheck "RGB" "$T/s.pfm" -s 150x120 -S 9
 jcheck "one channel, --tile" "$T/n.pfm" -s 150x120 --tile
 jcheck "--guide" "$T/s.pfm" -s 150x120 --guide "$T/g.pfm"
 jcheck "--mask" "$T/s.pfm" --mask "$T/mask.pfm"
-jcheck "--search exhaustive" "$T/n.pfm" -s 40x30 --levels 2 --search exhaustive
+jcheck "--search exhaustive" "$T/n.pfm" -s 40x30 --pyramid-levels 2 --search exhaustive
 t_synth "$T/rgba.exr" -s 100 -j 1 -o "$T/a1.exr" && t_synth "$T/rgba.exr" -s 100 -j 2 -o "$T/a2.exr"
 same "RGBA: -j 1 and -j 2 give the same map" "$T/a1.exr" "$T/a2.exr"
 [ "$(info_json "$T/a1.exr" channels)" = 4 ] && ok "RGBA in, RGBA out" || notok "RGBA in, RGBA out"
@@ -147,8 +147,8 @@ bad "an output over the size limit" 2 "$T/s.pfm" -s 20000
 bad "an output over the map limit" 2 "$T/s.pfm" -s 70000
 bad "a guide of another size" 2 "$T/s.pfm" -s 100 --guide "$T/g.pfm"
 bad "a mask of another size" 2 "$T/s.pfm" --mask "$T/four.pfm"
-bad "zero levels" 2 "$T/s.pfm" --levels 0
-bad "an even neighbourhood" 2 "$T/s.pfm" -n 6
+bad "zero levels" 2 "$T/s.pfm" --pyramid-levels 0
+bad "an even neighbourhood" 2 "$T/s.pfm" --neighbourhood 6
 bad "a missing sample" 1 "$T/none.pfm"
 
 # The recipe: a tileable map from a t_bubble | t_palette sample.
@@ -160,5 +160,5 @@ if ! lt "$inner" "$seam"; then ok "patterns/synth_tile.sh: the map tiles (seam $
 else notok "patterns/synth_tile.sh: the map tiles" "seam $seam inner $inner"; fi
 
 # A mask over the whole sample leaves nothing to copy from.
-t_circle -s 128 -r 0.1 --color1 1,1,1 --color2 1,1,1 -o "$T/all.pfm"
+t_circle -s 128 -r 0.1 --colour1 1,1,1 --colour2 1,1,1 -o "$T/all.pfm"
 bad "a mask over the whole sample" 1 "$T/s.pfm" --mask "$T/all.pfm"

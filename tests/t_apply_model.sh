@@ -141,7 +141,7 @@ t_apply "$T/speck.scene" -o "$T/speck.exr"
     notok "solid mapping speckles" "blue max $(info_json "$T/speck.exr" stats 2 max)"
 
 # ---- primitives ----
-t_wood -s 64 -a 0 --rings 5 -o "$T/wood.exr"
+t_wood -s 64 --turbulence 0 --rings 5 -o "$T/wood.exr"
 pixels "$T/wood.exr" | python3 -c '
 import sys
 v = {}
@@ -151,7 +151,7 @@ bad = sum(1 for (x, y) in v if abs(v[x, y] - v[63 - x, y]) > 1e-5 or abs(v[x, y]
 span = max(v.values()) - min(v.values())
 sys.exit(0 if bad == 0 and span > 0.9 else 1)' &&
     ok "wood rings are concentric: the value depends on the distance to the axis" || notok "wood rings concentric"
-t_wood -s 64 --tilt 90 -a 0 --rings 5 -o "$T/plank.exr"
+t_wood -s 64 --tilt 90 --turbulence 0 --rings 5 -o "$T/plank.exr"
 pixels "$T/plank.exr" | awk '{ v[$1] = v[$1] " " $3 } END { for (x in v) { n = split(v[x], a, " "); for (i = 2; i <= n; i++) if (a[i] != a[1]) bad++ } exit bad > 0 }' &&
     ok "wood at tilt 90: the grain runs down the map (columns constant)" || notok "wood plank"
 sed 's/turbulence { solid }/wood { solid }/' "$T/speck.scene" >"$T/wood.scene"

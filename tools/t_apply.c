@@ -15,6 +15,7 @@ struct opts {
     const char *model;
     const char *help_scene;
     const char *help_scene_mdoc;
+    int list_materials;
 };
 
 static const struct tex_param rows[] = {
@@ -35,6 +36,9 @@ static const struct tex_param rows[] = {
                "(quantities|functions), and exit"),
     TEX_STRING(struct opts, help_scene_mdoc, 0, NULL, "BLOCK",
                "the same list as mdoc, for t_apply(5)"),
+    TEX_FLAG(struct opts, list_materials, 0,
+             "list the materials of the database a scene reads by default (or SCENE's), "
+             "and exit"),
     {0}};
 
 static const struct tex_tool tool = {
@@ -42,14 +46,20 @@ static const struct tex_tool tool = {
                         "application functions (Whitted ray tracer, t_apply(5))",
     TEX_OPT_OUTPUT | TEX_OPT_MAPS, rows, 0, 1};
 
-static void progress(long done, long total, void *arg)
+/* --list-materials: name, kind and source of each material, one a line. */
+__attribute__((noreturn)) static void list_materials(const char *scene)
 {
-    (void)arg;
-    int w = 40, k = (int)(w * done / total);
-    fprintf(stderr, "\rt_apply: [%.*s%*s] %3d%%", k, "########################################",
-            w - k, "", (int)(100 * done / total));
-    if (done == total)
-        fputc('\n', stderr);
+    char path[4096];
+    struct tex_matdb db;
+
+    if (tex_matdb_read(&db, tex_scene_materials_path(scene, path, sizeof path)) < 0)
+        tex_die();
+    for (int i = 0; i < db.count; i++)
+        printf("%-16s %-10s %s\n", db.m[i].name,
+               db.m[i].kind == TEX_CONDUCTOR ? "conductor" : "dielectric",
+               db.m[i].source ? db.m[i].source : "");
+    tex_matdb_free(&db);
+    exit(0);
 }
 
 /* Integer formats get the sRGB transfer function; float formats stay linear. */
@@ -186,6 +196,8 @@ int main(int argc, char **argv)
     int i = tex_cli_parse(&tool, argc, argv, &c, &o);
     if (o.help_scene || o.help_scene_mdoc)
         help_scene(o.help_scene ? o.help_scene : o.help_scene_mdoc, !o.help_scene);
+    if (o.list_materials)
+        list_materials(i < argc ? argv[i] : NULL);
     if (i >= argc)
         tex_usage_die("missing operand (usage: %s [options] %s)", tool.name, tool.operands);
     if (tex_map_write_check(c.output) < 0)
@@ -222,7 +234,7 @@ int main(int argc, char **argv)
         die_freeing(s);
     if (!c.quiet)
         fputs(tex_scene_warnings(s), stderr);
-    tex_map *img = tex_render(s, !c.quiet && isatty(2) ? progress : NULL, NULL);
+    tex_map *img = tex_render(s, tex_cli_progress_wanted(&c) ? tex_cli_progress : NULL, NULL);
     if (!img)
         tex_die();
     if (wants_srgb(&c, &o))

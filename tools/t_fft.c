@@ -12,8 +12,8 @@ static const struct tex_param rows[] = {
     TEX_ENUM(struct opts, as, 0, "logmag", "logmag|mag|phase|complex",
              "what to write: log magnitude in [0,1], magnitude, phase in turns, or the lossless "
              "real and imaginary parts as two channels (centred, DC in the middle)"),
-    TEX_ENUM(struct opts, window, 0, "none", "none|hann",
-             "window the map first against leakage from its edges"),
+    TEX_ENUM_N("window_function", struct opts, window, 0, "none", "none|hann",
+               "window the map first against leakage from its edges", .old = "window"),
     {0}};
 
 static const struct tex_tool tool = {

@@ -14,21 +14,24 @@ struct opts {
 
 static const struct tex_param rows[] = {
     TEX_REAL(struct opts, sigma, 0, 1, 0.01, 1000, "S",
-             "blur, sharpen: standard deviation of the Gaussian in pixels"),
+             "blur, sharpen: standard deviation of the Gaussian in pixels", .kinds = 0x009),
     TEX_INT(struct opts, radius, 'r', 1, 1, 1000, "R",
-            "box, median: half-width of the square window (median: at most 15)"),
-    TEX_REAL(struct opts, strength, 'k', 1, -1000, 1000, "K",
+            "box, median: half-width of the square window (median: at most 15)",
+            .kinds = 0x082),
+    TEX_REAL(struct opts, strength, 0, 1, -1000, 1000, "K",
              "sharpen, edges: amount of enhancement; sobel: scale of the magnitude; emboss: "
-             "relief; normal: height scale (per pixel)"),
-    TEX_REAL(struct opts, amount, 0, 0.05, 0, 100, "SD",
-             "noise: standard deviation of the added Gaussian noise"),
+             "relief; normal: height scale (per pixel)", .old = "-k", .kinds = 0x278),
+    TEX_REAL_N("stddev", struct opts, amount, 0, 0.05, 0, 100, "SD",
+               "noise: standard deviation of the added Gaussian noise", .old = "amount",
+               .kinds = 0x100),
     TEX_REAL(struct opts, angle, 0, 135, -360, 360, "DEG",
-             "emboss: direction of the light, degrees counter-clockwise from +x"),
+             "emboss: direction of the light, degrees counter-clockwise from +x", .kinds = 0x040),
     TEX_FLAG(struct opts, direction, 0, "sobel: write the gradient direction (0..1 = 0..360 "
-                                        "degrees) instead of the magnitude"),
+                                        "degrees) instead of the magnitude",
+              .kinds = 0x010),
     TEX_ENUM(struct opts, edge, 0, "clamp", "clamp|wrap|mirror",
              "pixels beyond the border: repeat the border, wrap around (keeps tileable maps "
-             "tileable) or mirror"),
+             "tileable) or mirror", .kinds = 0x6ff),
     {0}};
 
 typedef tex_map *filter_fn(const tex_map *m, const struct opts *o);
@@ -78,7 +81,8 @@ static tex_map *gradient(const tex_map *m, const struct opts *o)
     return tex_filter_gradient(m, (enum tex_edge)o->edge);
 }
 
-/* The operations: name, function, what it takes (see t_filter(1)). */
+/* The operations: name, function, what it takes (see t_filter(1)).  The rows'
+ * kinds are bits in this order. */
 static const struct {
     const char *name;
     filter_fn *fn;
@@ -92,7 +96,7 @@ static const struct {
     {"edges", edges, "edge enhancement (--strength)"},
     {"emboss", emboss, "relief lit from --angle (--strength)"},
     {"median", median, "median of a window (--radius)"},
-    {"noise", noise, "added Gaussian noise (--amount, --seed)"},
+    {"noise", noise, "added Gaussian noise (--stddev, --seed)"},
     {"normal", normal, "a height map's tangent-space normal map (--strength)"},
     {"gradient", gradient, "a height map's gradient"},
 };
@@ -118,15 +122,16 @@ int main(int argc, char **argv)
     const char *op = argv[i++];
     tex_map *m, *out;
 
+    char choices[256] = "";
+
+    for (int j = 0; j < NOPS; j++)
+        snprintf(choices + strlen(choices), sizeof choices - strlen(choices), "%s%s",
+                 j ? "|" : "", ops[j].name);
     while (k < NOPS && strcmp(ops[k].name, op))
         k++;
-    if (k == NOPS) {
-        char names[256] = "";
-        for (int j = 0; j < NOPS; j++)
-            snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s",
-                     j == 0 ? "" : j == NOPS - 1 ? " or " : ", ", ops[j].name);
-        tex_usage_die("unknown operation '%s' (%s)", op, names);
-    }
+    if (k == NOPS)
+        tex_usage_die("unknown operation '%s' (one of %s)", op, choices);
+    tex_cli_check_kinds(&tool, choices, k, "the operation");
     o.seed = (uint64_t)c.seed;
     m = tex_cli_read(i < argc ? argv[i] : "-");
     if (!(out = ops[k].fn(m, &o)))

@@ -20,15 +20,16 @@ static const struct tex_param rows[] = {
     TEX_ENUM(struct opts, as, 0, "real", "real|mag|logmag|phase|complex",
              "what to write: the real part, magnitude, log(1 + magnitude), phase in turns, or real "
              "and imaginary parts as two channels"),
-    TEX_ENUM(struct opts, scale, 0, "auto", "auto|unit|none",
-             "unit rescales real to [0,1] by min and max and mag, logmag by their max; none keeps "
-             "raw values; auto is none for a complex spectrum, unit otherwise"),
+    TEX_ENUM_N("rescale", struct opts, scale, 0, "auto", "auto|unit|none",
+               "unit rescales real to [0,1] by min and max and mag, logmag by their max; none "
+               "keeps raw values; auto is none for a complex spectrum, unit otherwise",
+               .old = "scale"),
     {0}};
 
 static const struct tex_tool tool = {
     "t_ifft", "[SPECTRUM]",
     "the texture of a centred spectrum: a painted magnitude (1, 3 or 4 channels) with a phase, or "
-    "a complex spectrum (2 channels) from t_fft --output complex, by the inverse FFT",
+    "a complex spectrum (2 channels) from t_fft --as complex, by the inverse FFT",
     TEX_OPT_OUTPUT | TEX_OPT_MAPS | TEX_OPT_SEED, rows, 0, 1};
 
 int main(int argc, char **argv)

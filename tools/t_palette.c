@@ -16,6 +16,7 @@ struct opts {
     const char *from, *to;
     int n;
     int space;
+    int list;
 };
 
 static const struct tex_param rows[] = {
@@ -24,11 +25,14 @@ static const struct tex_param rows[] = {
     TEX_ENUM(struct opts, outside, 0, "clamp", "clamp|repeat|mirror",
              "values outside the range: clamp to the ends, repeat the palette, or mirror it"),
     TEX_STRING(struct opts, from, 0, NULL, "COLOUR",
-               "make a palette from this colour (#rrggbb or r,g,b[,a]) to the --to colour"),
+               "make a palette from this colour (#rrggbb, r,g,b[,a] or grey) to the --to colour"),
     TEX_STRING(struct opts, to, 0, NULL, "COLOUR", "the end colour of the palette made with --from"),
-    TEX_INT(struct opts, n, 'n', 8, 2, 4096, "N", "stops of the palette made with --from/--to"),
+    TEX_INT_N("stops", struct opts, n, 0, 8, 2, 4096, "N",
+              "stops of the palette made with --from/--to", .old = "-n n"),
     TEX_ENUM(struct opts, space, 0, "rgb", "rgb|oklab",
              "interpolation space of the palette made with --from/--to"),
+    TEX_FLAG(struct opts, list, 0,
+             "list the palettes found (with a colour swatch each on a colour terminal), and exit"),
     {0}};
 
 static const struct tex_tool tool = {
@@ -85,10 +89,12 @@ static void make_palette(const struct opts *o, const struct tex_common *c)
     if (!o->from || !o->to)
         tex_usage_die("--from and --to go together (each a colour: #rrggbb or r,g,b[,a])");
     if (tex_parse_color(o->from, a) < 0)
-        tex_usage_die("--from must be a colour: #rgb, #rrggbb, #rrggbbaa or r,g,b[,a] in 0..1 "
+        tex_usage_die("--from must be a colour: #rgb, #rrggbb, #rrggbbaa, r,g,b[,a] or a grey "
+                      "level in 0..1 "
                       "(got '%s')", o->from);
     if (tex_parse_color(o->to, b) < 0)
-        tex_usage_die("--to must be a colour: #rgb, #rrggbb, #rrggbbaa or r,g,b[,a] in 0..1 "
+        tex_usage_die("--to must be a colour: #rgb, #rrggbb, #rrggbbaa, r,g,b[,a] or a grey "
+                      "level in 0..1 "
                       "(got '%s')", o->to);
     two = tex_palette_new((enum tex_palette_space)o->space);
     p = tex_palette_new((enum tex_palette_space)o->space);
@@ -101,6 +107,37 @@ static void make_palette(const struct opts *o, const struct tex_common *c)
     write_text(p, c->output);
     tex_palette_free(two);
     tex_palette_free(p);
+}
+
+/* Does standard output show 24-bit colour?  A terminal that is not "dumb", unless
+ * NO_COLOR is set (no-color.org). */
+static int colour_terminal(void)
+{
+    const char *term = getenv("TERM");
+    return isatty(1) && term && *term && strcmp(term, "dumb") && !getenv("NO_COLOR");
+}
+
+/* Every palette's name, one a line; on a colour terminal a swatch of 32 cells
+ * after it, each the palette at the cell's middle. */
+static void list_palettes(void)
+{
+    char names[8192], *save, *name;
+    int swatch = colour_terminal();
+
+    tex_palette_names(names, sizeof names);
+    for (name = strtok_r(names, ", ", &save); name; name = strtok_r(NULL, ", ", &save)) {
+        tex_palette *p = swatch ? tex_palette_load(name) : NULL;
+        printf(p ? "%-12s" : "%s", name);
+        for (int k = 0; p && k < 32; k++) {
+            float c[4];
+            tex_palette_lookup(p, (k + 0.5f) / 32, c);
+            printf("\033[48;2;%d;%d;%dm ", (int)lrintf(255 * fminf(fmaxf(c[0], 0), 1)),
+                   (int)lrintf(255 * fminf(fmaxf(c[1], 0), 1)),
+                   (int)lrintf(255 * fminf(fmaxf(c[2], 0), 1)));
+        }
+        printf("%s\n", p ? "\033[0m" : "");
+        tex_palette_free(p);
+    }
 }
 
 static void parse_range(const char *s, double *lo, double *hi)
@@ -133,6 +170,17 @@ int main(int argc, char **argv)
     tex_map *m, *out;
     int i = tex_cli_parse(&tool, argc, argv, &c, &o);
 
+    if (o.list) {
+        if (i < argc)
+            tex_usage_die("--list takes no operand (got '%s')", argv[i]);
+        list_palettes();
+        free(c.cmdline);
+        return 0;
+    }
+    if (!o.from && !o.to && (tex_cli_given("stops") || tex_cli_given("space")))
+        tex_usage_die("--stops and --space apply to a palette made with --from and --to only");
+    if ((o.from || o.to) && (tex_cli_given("range") || tex_cli_given("outside")))
+        tex_usage_die("--range and --outside apply to colouring a map, not to --from/--to");
     if (first && c.palette)
         tex_usage_die("a palette both as --palette and as '%s'", first);
     name = c.palette;

@@ -13,14 +13,15 @@ struct opts {
 static const struct tex_param rows[] = {
     TEX_REAL(struct opts, bias, 'b', 0.5, 0.001, 0.999, "B",
              "Perlin's bias: t^(ln B / ln 0.5), so that 0.5 becomes B"),
-    TEX_REAL(struct opts, gain, 'g', 0.5, 0.001, 0.999, "G",
-             "Perlin's gain: two bias halves; G > 0.5 steepens the middle"),
+    TEX_REAL_N("perlin_gain", struct opts, gain, 0, 0.5, 0.001, 0.999, "G",
+               "Perlin's gain: two bias halves; G > 0.5 steepens the middle", .old = "-g gain"),
     TEX_REAL(struct opts, gamma, 0, 1, 0.001, 1000, "G", "gamma: t^(1/G)"),
     TEX_REALS(struct opts, levels, 0, "0,1,0,1", -1e30, 1e30, 4, "IN0,IN1,OUT0,OUT1",
               "levels: map [IN0,IN1] (clamped) linearly onto [OUT0,OUT1]"),
     TEX_REALS(struct opts, clamp, 0, NULL, -1e30, 1e30, 2, "LO,HI",
               "clamp the result to [LO,HI] (keep a parameter within its valid range)"),
-    TEX_INT(struct opts, quantize, 0, 0, 0, 65536, "N", "quantise [0,1] to N levels (0: off)"),
+    TEX_INT_N("quantise", struct opts, quantize, 0, 0, 0, 65536, "N",
+              "quantise [0,1] to N levels (0: off)"),
     TEX_FLAG(struct opts, invert, 0, "invert: 1 - t"),
     {0}};
 

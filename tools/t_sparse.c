@@ -9,8 +9,8 @@ struct opts {
 };
 
 static const struct tex_param rows[] = {
-    TEX_REAL(struct opts, density, 'd', 30, 0.001, 1e6, "N",
-             "random impulses per area of the sample"),
+    TEX_REAL(struct opts, density, 0, 30, 0.001, 1e6, "N",
+             "random impulses per area of the sample", .old = "-d"),
     TEX_REAL(struct opts, falloff, 0, 2, 0, 100, "K",
              "the window exp(-K rho) over the sample, rho = 1 at the middle of its edges"),
     {0}};

@@ -10,15 +10,16 @@ struct opts {
 };
 
 static const struct tex_param rows[] = {
-    TEX_INT(struct opts, neighbourhood, 'n', 5, 3, 15, "N",
-            "side of the square neighbourhood compared (odd)"),
-    TEX_INT(struct opts, levels, 'l', 4, 1, 10, "N",
-            "most pyramid levels (fewer when the sample is too small for them)"),
+    TEX_INT(struct opts, neighbourhood, 0, 5, 3, 15, "N",
+            "side of the square neighbourhood compared (odd)", .old = "-n"),
+    TEX_INT_N("pyramid_levels", struct opts, levels, 0, 4, 1, 10, "N",
+              "most pyramid levels (fewer when the sample is too small for them)",
+              .old = "-l levels"),
     TEX_INT(struct opts, candidates, 'k', 4, 1, 16, "K",
             "k-coherence candidates per sample pixel"),
     TEX_INT(struct opts, passes, 0, 2, 1, 8, "N", "correction passes per level"),
-    TEX_REAL(struct opts, randomness, 'r', 0.1, 0, 1, "R",
-             "jitter of the upsampled positions, in units of two level pixels"),
+    TEX_REAL(struct opts, randomness, 0, 0.1, 0, 1, "R",
+             "jitter of the upsampled positions, in units of two level pixels", .old = "-r"),
     TEX_STRING(struct opts, guide, 0, NULL, "MAP",
                "follow this map (the output's size): its light parts take the sample's light "
                "parts"),

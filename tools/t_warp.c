@@ -12,10 +12,10 @@ struct opts {
 };
 
 static const struct tex_param rows[] = {
-    TEX_REAL(struct opts, amount, 'a', 0.1, -100, 100, "A",
-             "displacement in texture units (map widths) per unit of BY"),
-    TEX_REAL(struct opts, centre, 0, 0, -1e6, 1e6, "C",
-             "value of BY that displaces nothing (0.5 for a symmetric push)"),
+    TEX_REAL_N("displacement", struct opts, amount, 0, 0.1, -100, 100, "A",
+               "displacement in texture units (map widths) per unit of BY", .old = "-a amount"),
+    TEX_REAL_N("neutral", struct opts, centre, 0, 0, -1e6, 1e6, "C",
+               "value of BY that displaces nothing (0.5 for a symmetric push)", .old = "centre"),
     TEX_REAL(struct opts, angle, 0, 0, -1e6, 1e6, "DEG",
              "direction of the push of a 1-channel BY, degrees counter-clockwise from u"),
     TEX_FLAG(struct opts, isotropic, 0,

@@ -82,7 +82,9 @@ int tex_parse_color(const char *text, float rgba[4])
                 return -1;
             rgba[k++] = (float)v;
         }
-        return k == 3 || k == 4 ? 0 : -1;
+        if (k == 1) /* a grey level */
+            rgba[1] = rgba[2] = rgba[0];
+        return k == 1 || k == 3 || k == 4 ? 0 : -1;
     }
 }
 
@@ -140,7 +142,7 @@ const char *tex_param_range(const struct tex_param *p, char *buf, size_t n)
         snprintf(buf, n, "%s", p->choices);
         break;
     case TEX_P_COLOR:
-        snprintf(buf, n, "#rrggbb or r,g,b in 0..1");
+        snprintf(buf, n, "#rrggbb, r,g,b or a grey level in 0..1");
         break;
     case TEX_P_FLAG:
         snprintf(buf, n, "0 or 1");
@@ -176,16 +178,90 @@ const char *tex_param_default(const struct tex_param *p, char *buf, size_t n)
     return buf;
 }
 
+/* The US spellings the names also take: the rows spell the UK way. */
+static const char *const spellings[][2] = {
+    {"color", "colour"},     {"center", "centre"},     {"gray", "grey"},
+    {"quantize", "quantise"}, {"neighbor", "neighbour"}, {"normalize", "normalise"},
+};
+
+/* name with '-' for '_' and each spelling of one column written as the
+ * other's (to = 1: UK, 0: US), into buf. */
+static const char *respell(const char *name, int to, char *buf, size_t n)
+{
+    const size_t ns = sizeof spellings / sizeof *spellings;
+    size_t k = 0;
+
+    while (*name && k + 1 < n) {
+        size_t i, len = 0;
+        for (i = 0; i < ns; i++)
+            if (!strncmp(name, spellings[i][!to], len = strlen(spellings[i][!to])))
+                break;
+        if (i < ns && k + strlen(spellings[i][to]) + 1 < n) {
+            strcpy(buf + k, spellings[i][to]);
+            k += strlen(spellings[i][to]);
+            name += len;
+        } else {
+            buf[k++] = *name == '_' ? '-' : *name;
+            name++;
+        }
+    }
+    buf[k] = '\0';
+    return buf;
+}
+
+const char *tex_param_us_spelling(const char *name, char *buf, size_t n)
+{
+    return respell(name, 0, buf, n);
+}
+
+int tex_param_same_name(const char *a, const char *b)
+{
+    char ca[128], cb[128];
+    return !strcmp(respell(a, 1, ca, sizeof ca), respell(b, 1, cb, sizeof cb));
+}
+
+/* Does the space-separated list have the long name? */
+static int listed(const char *list, const char *name)
+{
+    char word[128];
+
+    while (list && *list) {
+        size_t n = strcspn(list, " ");
+        if (n < sizeof word && list[0] != '-') {
+            memcpy(word, list, n);
+            word[n] = '\0';
+            if (tex_param_same_name(word, name))
+                return 1;
+        }
+        list += n;
+        list += strspn(list, " ");
+    }
+    return 0;
+}
+
 const struct tex_param *tex_param_find(const struct tex_param *t, const char *name)
 {
-    for (; t && t->name; t++) {
-        const char *a = t->name, *b = name;
-        while (*a && (*a == *b || (*a == '_' && *b == '-')))
-            a++, b++;
-        if (!*a && !*b)
-            return t;
-    }
+    const struct tex_param *r;
+
+    for (r = t; r && r->name; r++)
+        if (tex_param_same_name(r->name, name) || listed(r->alias, name))
+            return r;
+    for (r = t; r && r->name; r++)
+        if (listed(r->old, name)) {
+            char buf[64];
+            tex_param_name(r, buf, sizeof buf, TEX_PARAM_WORD);
+            if (tex_param_deprecated_is_error())
+                return NULL; /* the caller's "unknown parameter" */
+            tex_warning("'%s' is deprecated and will be removed: write '%s'", name, buf);
+            return r;
+        }
     return NULL;
+}
+
+int tex_param_deprecated_is_error(void)
+{
+    const char *e = getenv("TEXTURA_DEPRECATED");
+    return e && !strcmp(e, "error");
 }
 
 /* "NAME must be RANGE (got V)": V is the text given, or else the number v. */

@@ -19,7 +19,7 @@
  *   TEX_P_FLAG    int set to 1 by the option (no argument)
  *   TEX_P_ENUM    int index into choices "a|b|c"; defstr the default name
  *   TEX_P_REALS   struct tex_reals, 1..nmax comma-separated reals in [min,max]
- *   TEX_P_COLOR   float[4] RGBA from #rgb, #rrggbb, #rrggbbaa or r,g,b[,a] in [0,1]
+ *   TEX_P_COLOR   float[4] RGBA from #rgb, #rrggbb, #rrggbbaa, r,g,b[,a] or one grey level in [0,1]
  *   TEX_P_STRING  const char * (pointing into argv or the scene)
  *   TEX_P_FLOAT   float, range [min,max], NaN and infinity refused
  *   TEX_P_SPECIAL no storage: the reader of the block parses it (a scene's
@@ -71,37 +71,61 @@ struct tex_param {
     const char *help;
     int n;              /* INT, REAL, FLOAT: values stored (0: 1) */
     unsigned counts;    /* INT, REAL, FLOAT: value counts accepted, bit k for k (0: n) */
-    unsigned kinds;     /* block kinds the row applies to, bit k for kind k (0: all) */
+    unsigned kinds;     /* block kinds or modes the row applies to, bit k for kind k (0: all) */
+    const char *alias;  /* another long name, documented: the thesis's letter ("h" for hurst) */
+    const char *old;    /* deprecated names, still taken with a warning: "-d width" */
 };
 
 /* How messages name a parameter: as an option ("--major-radius") or as the
  * word of a scene or script ("major-radius"). */
 enum tex_param_style { TEX_PARAM_OPTION, TEX_PARAM_WORD };
 
-#define TEX_INT(S, f, k, d, lo, hi, meta, help)                                                  \
-    {#f, k, TEX_P_INT, offsetof(S, f), d, lo, hi, NULL, NULL, 0, meta, help, 0, 0, 0}
-#define TEX_REAL(S, f, k, d, lo, hi, meta, help)                                                 \
-    {#f, k, TEX_P_REAL, offsetof(S, f), d, lo, hi, NULL, NULL, 0, meta, help, 0, 0, 0}
-#define TEX_FLAG(S, f, k, help) {#f, k, TEX_P_FLAG, offsetof(S, f), 0, 0, 1, NULL, NULL, 0, NULL, help, 0, 0, 0}
-#define TEX_ENUM(S, f, k, def, choices, help)                                                   \
-    {#f, k, TEX_P_ENUM, offsetof(S, f), 0, 0, 0, def, choices, 0, NULL, help, 0, 0, 0}
-#define TEX_REALS(S, f, k, def, lo, hi, nmax, meta, help)                                        \
-    {#f, k, TEX_P_REALS, offsetof(S, f), 0, lo, hi, def, NULL, nmax, meta, help, 0, 0, 0}
-#define TEX_COLOR(S, f, k, def, help)                                                           \
-    {#f, k, TEX_P_COLOR, offsetof(S, f), 0, 0, 1, def, NULL, 0, "COLOUR", help, 0, 0, 0}
-#define TEX_STRING(S, f, k, def, meta, help)                                                    \
-    {#f, k, TEX_P_STRING, offsetof(S, f), 0, 0, 0, def, NULL, 0, meta, help, 0, 0, 0}
+#define TEX_INT_N(name, S, f, k, d, lo, hi, meta, help, ...)                                     \
+    {name, k, TEX_P_INT, offsetof(S, f), d, lo, hi, NULL, NULL, 0, meta, help, .n = 0,          \
+     __VA_ARGS__}
+#define TEX_INT(S, f, ...) TEX_INT_N(#f, S, f, __VA_ARGS__)
+#define TEX_REAL_N(name, S, f, k, d, lo, hi, meta, help, ...)                                    \
+    {name, k, TEX_P_REAL, offsetof(S, f), d, lo, hi, NULL, NULL, 0, meta, help, .n = 0,         \
+     __VA_ARGS__}
+#define TEX_REAL(S, f, ...) TEX_REAL_N(#f, S, f, __VA_ARGS__)
+#define TEX_FLAG_N(name, S, f, k, help, ...)                                                     \
+    {name, k, TEX_P_FLAG, offsetof(S, f), 0, 0, 1, NULL, NULL, 0, NULL, help, .n = 0, __VA_ARGS__}
+#define TEX_FLAG(S, f, ...) TEX_FLAG_N(#f, S, f, __VA_ARGS__)
+#define TEX_ENUM_N(name, S, f, k, def, choices, help, ...)                                       \
+    {name, k, TEX_P_ENUM, offsetof(S, f), 0, 0, 0, def, choices, 0, NULL, help, .n = 0,         \
+     __VA_ARGS__}
+#define TEX_ENUM(S, f, ...) TEX_ENUM_N(#f, S, f, __VA_ARGS__)
+#define TEX_REALS_N(name, S, f, k, def, lo, hi, nmax, meta, help, ...)                           \
+    {name, k, TEX_P_REALS, offsetof(S, f), 0, lo, hi, def, NULL, nmax, meta, help, .n = 0,      \
+     __VA_ARGS__}
+#define TEX_REALS(S, f, ...) TEX_REALS_N(#f, S, f, __VA_ARGS__)
+#define TEX_COLOR_N(name, S, f, k, def, help, ...)                                               \
+    {name, k, TEX_P_COLOR, offsetof(S, f), 0, 0, 1, def, NULL, 0, "COLOUR", help, .n = 0,       \
+     __VA_ARGS__}
+#define TEX_COLOR(S, f, ...) TEX_COLOR_N(#f, S, f, __VA_ARGS__)
+#define TEX_STRING_N(name, S, f, k, def, meta, help, ...)                                        \
+    {name, k, TEX_P_STRING, offsetof(S, f), 0, 0, 0, def, NULL, 0, meta, help, .n = 0,          \
+     __VA_ARGS__}
+#define TEX_STRING(S, f, ...) TEX_STRING_N(#f, S, f, __VA_ARGS__)
+
+/* A row is named after its field; the _N forms name it apart from the field
+ * (TEX_REAL_N("slice", S, z, ...)).  Each macro takes designated initializers
+ * after its arguments for the rest of the row: .kinds, .alias and .old, e.g.
+ *   TEX_REALS(S, hurst, 0, "0.8", -1, 3, 32, "H", "Hurst exponent", .alias = "h")
+ * A name in .old is a short option ("-d") or a long name ("width"): the
+ * front end and tex_param_find take it and warn that it is deprecated. */
 
 /* Rows of scenes, named apart from their field ("Ka" stored in ka): type T
  * (INT, REAL, FLOAT, FLAG), the default as text ("0.8", "0,0,-5"), n values
  * stored, counts accepted (0: n). */
-#define TEX_ROW(name, S, f, T, d, lo, hi, n, counts, meta, help)                                 \
-    {name, 0, T, offsetof(S, f), 0, lo, hi, d, NULL, 0, meta, help, n, counts, 0}
-#define TEX_ROW_ENUM(name, S, f, d, choices, help)                                                \
-    {name, 0, TEX_P_ENUM, offsetof(S, f), 0, 0, 0, d, choices, 0, NULL, help, 0, 0, 0}
+#define TEX_ROW(name, S, f, T, d, lo, hi, nv, cnt, meta, help, ...)                              \
+    {name, 0, T, offsetof(S, f), 0, lo, hi, d, NULL, 0, meta, help, .n = nv, .counts = cnt,     \
+     __VA_ARGS__}
+#define TEX_ROW_ENUM(name, S, f, d, choices, help, ...)                                          \
+    {name, 0, TEX_P_ENUM, offsetof(S, f), 0, 0, 0, d, choices, 0, NULL, help, .n = 0, __VA_ARGS__}
 /* A row read by its block's own code (no storage). */
-#define TEX_SPECIAL(name, lo, hi, def, meta, help)                                               \
-    {name, 0, TEX_P_SPECIAL, 0, 0, lo, hi, def, NULL, 0, meta, help, 0, 0, 0}
+#define TEX_SPECIAL(name, lo, hi, def, meta, help, ...)                                          \
+    {name, 0, TEX_P_SPECIAL, 0, 0, lo, hi, def, NULL, 0, meta, help, .n = 0, __VA_ARGS__}
 
 /* Store every row's default in obj (SPECIAL rows have none).  Returns -1
  * only for a broken table. */
@@ -127,8 +151,18 @@ void tex_error_in_words(void);
 /* The parameter's name in a style: "--major-radius" or "major-radius". */
 const char *tex_param_name(const struct tex_param *p, char *buf, size_t n,
                            enum tex_param_style style);
-/* The row called name (with '-' or '_'), or NULL. */
+/* The row called name, or NULL.  Names match with '-' or '_', in UK or US
+ * spelling (colour/color, centre/center, grey/gray, quantise/quantize...),
+ * and by the row's aliases; a row's old name matches with a warning
+ * (tex_warning) that it is deprecated. */
 const struct tex_param *tex_param_find(const struct tex_param *t, const char *name);
+/* Are old names refused instead of warned about?  TEXTURA_DEPRECATED=error says
+ * so, for checking that scripts use the current names. */
+int tex_param_deprecated_is_error(void);
+/* Do two names match as tex_param_find matches them ('-' or '_', UK or US)? */
+int tex_param_same_name(const char *a, const char *b);
+/* name in US spelling with '-' for '_' ("colour1" -> "color1"), into buf. */
+const char *tex_param_us_spelling(const char *name, char *buf, size_t n);
 /* The valid range or choices as text, e.g. "1..30" or "fbm|ridged". */
 const char *tex_param_range(const struct tex_param *p, char *buf, size_t n);
 /* The default as text, e.g. "8" or "#ff8000". */

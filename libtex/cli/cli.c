@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 #ifdef _OPENMP
 #include <omp.h>
@@ -14,6 +15,7 @@
 
 #include "cli/cli.h"
 #include "base/error.h"
+#include "base/progress.h"
 #include "io/file.h"
 #include "ops/palette.h"
 #include "io/stream.h"
@@ -24,7 +26,6 @@
 
 const char *tex_progname = "textura";
 
-#define C(f) offsetof(struct tex_common, f)
 /* The common options: rows over struct tex_common, each with its mask bit. */
 static const struct {
     unsigned mask;
@@ -33,11 +34,11 @@ static const struct {
     {TEX_OPT_OUTPUT, TEX_STRING(struct tex_common, output, 'o', NULL, "FILE",
                                 "write to FILE, its format from the extension (default: the EXR "
                                 "stream on standard output)")},
-    {TEX_OPT_OUTPUT, {"depth", 0, TEX_P_ENUM, C(depth_choice), 0, 0, 0, "auto", "auto|8|16|32", 0,
-                      NULL, "bits per sample of integer formats, or 32 for float", 0, 0, 0}},
-    {TEX_OPT_OUTPUT, {"compression", 0, TEX_P_ENUM, C(compression), 0, 0, 0, "zip", "none|zip|piz",
-                      0, NULL, "compression of EXR files on disk (the stream is never compressed)",
-                      0, 0, 0}},
+    {TEX_OPT_OUTPUT, TEX_ROW_ENUM("depth", struct tex_common, depth_choice, "auto", "auto|8|16|32",
+                                  "bits per sample of integer formats, or 32 for float")},
+    {TEX_OPT_OUTPUT,
+     TEX_ROW_ENUM("compression", struct tex_common, compression, "zip", "none|zip|piz",
+                  "compression of EXR files on disk (the stream is never compressed)")},
     {TEX_OPT_OUTPUT, TEX_STRING(struct tex_common, format, 0, NULL, "EXT",
                                 "format of standard output, e.g. png (default: exr)")},
     /* size, seed, ids and tile: the rows of prim.h, as in scenes and scripts */
@@ -54,11 +55,21 @@ static const struct {
                 "threads to use (0: one per core)")},
     {0, TEX_FLAG(struct tex_common, quiet, 'q', "print no progress or warnings")},
 };
-#undef C
 #define NCOMMON (sizeof common_rows / sizeof *common_rows)
+
+static int bar_drawn; /* a progress bar is on the last line of standard error */
+
+/* Messages start on a line of their own. */
+static void end_bar(void)
+{
+    if (bar_drawn)
+        fputc('\n', stderr);
+    bar_drawn = 0;
+}
 
 static void vmsg(const char *kind, const char *fmt, va_list ap)
 {
+    end_bar();
     fprintf(stderr, "%s: %s", tex_progname, kind);
     vfprintf(stderr, fmt, ap);
     fputc('\n', stderr);
@@ -66,11 +77,14 @@ static void vmsg(const char *kind, const char *fmt, va_list ap)
 
 static void print_warning(const char *msg)
 {
+    end_bar();
     fprintf(stderr, "%s: warning: %s\n", tex_progname, msg);
 }
 
 void tex_die(void)
 {
+    tex_set_progress_handler(NULL, NULL); /* the bar ends where the work failed */
+    end_bar();
     fprintf(stderr, "%s: error: %s\n", tex_progname, tex_errmsg());
     exit(tex_errkind() == TEX_ERR_USAGE ? 2 : 1);
 }
@@ -78,6 +92,7 @@ void tex_die(void)
 void tex_usage_die(const char *fmt, ...)
 {
     va_list ap;
+    tex_set_progress_handler(NULL, NULL);
     va_start(ap, fmt);
     vmsg("error: ", fmt, ap);
     va_end(ap);
@@ -88,6 +103,8 @@ void tex_usage_die(const char *fmt, ...)
  * have reached it; a full disk or a closed pipe is an error (exit 1). */
 static void close_stdout(void)
 {
+    tex_progress_done();
+    end_bar();
     int bad = fflush(stdout) != 0 || ferror(stdout);
     int e = errno;
 
@@ -135,8 +152,8 @@ static void print_help(const struct tex_tool *t, const struct opt *o, int n)
         const struct tex_param *p = o[i].row;
         char opt[64], lhs[128], rng[128], def[64];
         tex_param_option(p, opt, sizeof opt);
-        snprintf(lhs, sizeof lhs, "%c%c%s%s %s", p->key ? '-' : ' ', p->key ? p->key : ' ',
-                 p->key ? ", " : "  ", opt,
+        snprintf(lhs, sizeof lhs, "%c%c%s%s%s%s %s", p->key ? '-' : ' ', p->key ? p->key : ' ',
+                 p->key ? ", " : "  ", opt, p->alias ? ", --" : "", p->alias ? p->alias : "",
                  p->type == TEX_P_FLAG ? "" : p->type == TEX_P_ENUM ? "NAME" : p->meta ? p->meta : "X");
         printf("  %-28s %s", lhs, p->help);
         tex_param_range(p, rng, sizeof rng);
@@ -162,6 +179,8 @@ static void print_mdoc(const struct opt *o, int n)
         if (p->key)
             printf("Fl %c , ", p->key);
         printf("Fl %s", opt + 1);
+        if (p->alias)
+            printf(" , Fl -%s", p->alias);
         if (p->type != TEX_P_FLAG)
             printf(" Ar %s", p->type == TEX_P_ENUM ? "name" : p->meta ? p->meta : "x");
         printf("\n%c%s", p->help[0] >= 'a' && p->help[0] <= 'z' ? p->help[0] - 32 : p->help[0],
@@ -177,6 +196,21 @@ static void print_mdoc(const struct opt *o, int n)
     puts(".El");
 }
 
+/* Options that cannot change the pixels: -j N, --threads N, -q, --quiet (and their
+ * joined forms).  Returns how many words argv[i] and its value take, 0 if it is
+ * not one. */
+static int unrecorded(int argc, char **argv, int i)
+{
+    const char *a = argv[i];
+
+    if (!strcmp(a, "-q") || !strcmp(a, "--quiet") || !strncmp(a, "--threads=", 10) ||
+        (!strncmp(a, "-j", 2) && a[2]))
+        return 1;
+    if (!strcmp(a, "-j") || !strcmp(a, "--threads"))
+        return i + 1 < argc ? 2 : 1;
+    return 0;
+}
+
 static char *join_cmdline(int argc, char **argv)
 {
     size_t n = 1;
@@ -187,8 +221,13 @@ static char *join_cmdline(int argc, char **argv)
     if (!(s = malloc(n)))
         return NULL;
     e = s;
-    for (int i = 0; i < argc; i++) {
+    for (int i = 0, skip, ended = 0; i < argc; i++) {
         const char *a = i == 0 ? tex_progname : argv[i];
+        if (i > 0 && !ended && (skip = unrecorded(argc, argv, i))) {
+            i += skip - 1;
+            continue;
+        }
+        ended |= i > 0 && !strcmp(a, "--");
         int quote = *a == '\0' || strpbrk(a, " \t\n'\"\\$*?;&|<>()") != NULL;
         if (i)
             *e++ = ' ';
@@ -213,9 +252,174 @@ static char *join_cmdline(int argc, char **argv)
     return s;
 }
 
-/* Does the option word w (e.g. "-f" or "--frequency") take a separate value? */
-static int takes_value(const struct option *lo, int n, const char *shorts, const char *w)
+/* Fill c and opts with their defaults: the common rows the tool takes, then its own. */
+static void set_defaults(const struct tex_tool *t, struct tex_common *c, void *opts)
 {
+    for (size_t i = 0; i < NCOMMON; i++)
+        if (!common_rows[i].mask || (t->common & common_rows[i].mask)) {
+            struct tex_param one[2] = {common_rows[i].row, {0}};
+            tex_params_defaults(one, c);
+        }
+    if (t->params && tex_params_defaults(t->params, opts) < 0)
+        tex_die();
+}
+
+/* Every long name getopt takes: the row's own, its US spelling, its
+ * aliases and its deprecated old names; long option i returns 256 + i. */
+#define MAXOPTS 160
+#define MAXNAMES (4 * MAXOPTS)
+struct lname {
+    int opt;       /* index into the options o */
+    int old;       /* deprecated: warn when used */
+    char text[48]; /* without the dashes */
+};
+struct tables {
+    struct option lo[MAXNAMES + 4];
+    struct lname names[MAXNAMES];
+    int nnames;
+    struct lname clashes[16]; /* a current name taken already by another row */
+    int nclashes;
+    char shorts[2 * 128 + 4];
+    int short_opt[128], short_old[128]; /* option index of a short letter, -1 if none */
+};
+
+static void add_name(struct tables *tb, const struct opt *o, int i, const char *text, int old)
+{
+    const struct tex_param *p = o[i].row;
+    struct lname *ln;
+
+    for (int j = 0; j < tb->nnames; j++)
+        if (!strcmp(tb->names[j].text, text)) {
+            /* the first row of a name wins, as getopt would take it; an old name
+             * may give way, a current one is a clash (--help-options shows it) */
+            if (!old && tb->names[j].opt != i && tb->nclashes < 16) {
+                tb->clashes[tb->nclashes] = (struct lname){i, 0, ""};
+                snprintf(tb->clashes[tb->nclashes++].text, sizeof tb->names[0].text, "%s", text);
+            }
+            return;
+        }
+    if (tb->nnames == MAXNAMES)
+        return;
+    ln = &tb->names[tb->nnames];
+    *ln = (struct lname){i, old, ""};
+    snprintf(ln->text, sizeof ln->text, "%s", text);
+    tb->lo[tb->nnames] = (struct option){ln->text,
+                                         p->type == TEX_P_FLAG ? no_argument : required_argument,
+                                         NULL, 256 + tb->nnames};
+    tb->nnames++;
+}
+
+static void add_short(struct tables *tb, const struct opt *o, int i, int key, int old)
+{
+    char *sp = tb->shorts + strlen(tb->shorts);
+
+    if (key <= 0 || key >= 128)
+        return;
+    if (tb->short_opt[key] >= 0) {
+        if (!old && tb->short_opt[key] != i && tb->nclashes < 16) {
+            tb->clashes[tb->nclashes] = (struct lname){i, 0, ""};
+            snprintf(tb->clashes[tb->nclashes++].text, sizeof tb->names[0].text, "-%c", key);
+        }
+        return;
+    }
+    tb->short_opt[key] = i;
+    tb->short_old[key] = old;
+    *sp++ = (char)key;
+    if (o[i].row->type != TEX_P_FLAG)
+        *sp++ = ':';
+    *sp = '\0';
+}
+
+/* Each word of a space-separated list: "-d" a short letter, else a long name. */
+static void add_list(struct tables *tb, const struct opt *o, int i, const char *list, int old)
+{
+    char word[48];
+
+    while (list && *list) {
+        size_t n = strcspn(list, " ");
+        if (n < sizeof word) {
+            memcpy(word, list, n);
+            word[n] = '\0';
+            if (word[0] == '-' && word[1] && !word[2])
+                add_short(tb, o, i, word[1], old);
+            else
+                add_name(tb, o, i, word, old);
+        }
+        list += n;
+        list += strspn(list, " ");
+    }
+}
+
+/* getopt's tables for the n options o, then --help, --version, --help-mdoc and
+ * --help-options. */
+static void getopt_tables(const struct opt *o, int n, struct tables *tb)
+{
+    char name[64], us[64];
+
+    memset(tb, 0, sizeof *tb);
+    memset(tb->short_opt, -1, sizeof tb->short_opt);
+    strcpy(tb->shorts, ":hV"); /* options may follow operands, as in GNU tools; "--" ends them */
+    for (int i = 0; i < n; i++) {
+        tex_param_option(o[i].row, name, sizeof name);
+        add_name(tb, o, i, name + 2, 0);
+        add_short(tb, o, i, o[i].row->key, 0);
+    }
+    for (int i = 0; i < n; i++) { /* other names after every row's own */
+        tex_param_option(o[i].row, name, sizeof name);
+        add_name(tb, o, i, tex_param_us_spelling(name + 2, us, sizeof us), 0);
+        add_list(tb, o, i, o[i].row->alias, 0);
+    }
+    for (int i = 0; i < n; i++)
+        add_list(tb, o, i, o[i].row->old, 1);
+    tb->lo[tb->nnames] = (struct option){"help", no_argument, NULL, 'h'};
+    tb->lo[tb->nnames + 1] = (struct option){"version", no_argument, NULL, 'V'};
+    tb->lo[tb->nnames + 2] = (struct option){"help-mdoc", no_argument, NULL, 1};
+    tb->lo[tb->nnames + 3] = (struct option){"help-options", no_argument, NULL, 2};
+}
+
+/* Every name the tool takes, one a line: NAME, the row's option, how the name
+ * stands to it (name, short, alias, spelling, old; clash for a name that
+ * another row took first), type, argument: for the test that each flag
+ * means one thing across the tools. */
+static void print_names(const struct opt *o, const struct tables *tb)
+{
+    static const char *const types[] = {"int", "real", "flag", "enum", "reals",
+                                        "colour", "string", "float", "special"};
+    char name[64], rng[128], flag[64];
+
+    /* the long names, then the short letters */
+    for (int j = 0; j < tb->nnames + 128; j++) {
+        int key = j - tb->nnames, i = key < 0 ? tb->names[j].opt : tb->short_opt[key];
+        const char *how;
+        if (i < 0)
+            continue;
+        const struct tex_param *p = o[i].row;
+        tex_param_option(p, name, sizeof name);
+        if (key >= 0) {
+            how = tb->short_old[key] ? "old" : "short";
+            snprintf(flag, sizeof flag, "-%c", key);
+        } else {
+            how = tb->names[j].old                        ? "old"
+                : !strcmp(tb->names[j].text, name + 2)   ? "name"
+                : tex_param_same_name(tb->names[j].text, name + 2) ? "spelling"
+                                                                   : "alias";
+            snprintf(flag, sizeof flag, "--%s", tb->names[j].text);
+        }
+        printf("%s\t%s\t%s\t%s\t%s\t%s\n", flag, name, how, types[p->type],
+               p->meta ? p->meta : "-", tex_param_range(p, rng, sizeof rng));
+    }
+    for (int j = 0; j < tb->nclashes; j++)
+        printf("%s%s\t%s\tclash\t-\t-\t-\n", tb->clashes[j].text[0] == '-' ? "" : "--",
+               tb->clashes[j].text, tex_param_option(o[tb->clashes[j].opt].row, name, sizeof name));
+}
+
+/* Does the option word w (e.g. "-f" or "--frequency") take a separate value? */
+static int takes_value(const struct tables *tb, const char *w)
+{
+    const struct option *lo = tb->lo;
+    const char *shorts = tb->shorts;
+    int n = tb->nnames;
+
     if (w[0] != '-' || w[1] == '\0')
         return 0;
     if (w[1] != '-') {
@@ -230,56 +434,16 @@ static int takes_value(const struct option *lo, int n, const char *shorts, const
     return 0;
 }
 
-/* Fill c and opts with their defaults: the common rows the tool takes, then its own. */
-static void set_defaults(const struct tex_tool *t, struct tex_common *c, void *opts)
-{
-    for (size_t i = 0; i < NCOMMON; i++)
-        if (!common_rows[i].mask || (t->common & common_rows[i].mask)) {
-            struct tex_param one[2] = {common_rows[i].row, {0}};
-            tex_params_defaults(one, c);
-        }
-    if (t->params && tex_params_defaults(t->params, opts) < 0)
-        tex_die();
-}
-
-/* getopt's tables for the n options o: long option i returns 256 + i and is named from
- * names[i]; then --help, --version and --help-mdoc. */
-static void getopt_tables(const struct opt *o, int n, struct option *lo, char *shorts,
-                          char (*names)[48])
-{
-    char *sp = shorts;
-
-    *sp++ = ':'; /* options may follow operands, as in GNU tools; "--" ends them */
-    for (int i = 0; i < n; i++) {
-        const struct tex_param *p = o[i].row;
-        tex_param_option(p, names[i], sizeof names[i]);
-        lo[i] = (struct option){names[i] + 2,
-                                p->type == TEX_P_FLAG ? no_argument : required_argument, NULL,
-                                256 + i};
-        if (p->key) {
-            *sp++ = (char)p->key;
-            if (p->type != TEX_P_FLAG)
-                *sp++ = ':';
-        }
-    }
-    strcpy(sp, "hV");
-    lo[n] = (struct option){"help", no_argument, NULL, 'h'};
-    lo[n + 1] = (struct option){"version", no_argument, NULL, 'V'};
-    lo[n + 2] = (struct option){"help-mdoc", no_argument, NULL, 1};
-    lo[n + 3] = (struct option){0};
-}
-
 /* Options may follow operands (GNU getopt permutes argv), but a negative
  * number such as "t_op add a.exr -0.5" is an operand: hide it from getopt
  * behind a marker byte, restored once parsing is done. */
-static void hide_negatives(int argc, char **argv, const struct option *lo, int n,
-                           const char *shorts)
+static void hide_negatives(int argc, char **argv, const struct tables *tb)
 {
     for (int i = 1; i < argc && strcmp(argv[i], "--") != 0; i++) {
         double num;
         if (argv[i][0] == '-' && (isdigit((unsigned char)argv[i][1]) || argv[i][1] == '.') &&
             tex_parse_real(argv[i], &num) == 0 &&
-            !(i > 1 && takes_value(lo, n, shorts, argv[i - 1]))) {
+            !(i > 1 && takes_value(tb, argv[i - 1]))) {
             char *h = malloc(strlen(argv[i]) + 2);
             if (!h) {
                 tex_error("out of memory");
@@ -292,11 +456,32 @@ static void hide_negatives(int argc, char **argv, const struct option *lo, int n
     }
 }
 
-/* One option k from getopt_long: help, version and the mdoc list print and exit, an
- * unknown option or a missing or bad value is a usage error. */
-static void take_option(const struct tex_tool *t, int k, char **argv, const struct opt *o, int n)
+/* The rows given on the command line, and the deprecated names used. */
+static struct {
+    const struct tex_param *row;
+    char as[48]; /* the name as typed: "-d", "--c" */
+} given[MAXOPTS];
+static int ngiven;
+static struct {
+    char name[48]; /* as typed: "-d", "--width" */
+    int opt;
+} old_used[8];
+static int nold;
+
+int tex_cli_given(const char *name)
 {
-    int i = -1;
+    for (int i = 0; i < ngiven; i++)
+        if (tex_param_same_name(given[i].row->name, name))
+            return i + 1;
+    return 0;
+}
+
+/* One option k from getopt_long: help, version and the lists print and exit, an
+ * unknown option or a missing or bad value is a usage error. */
+static void take_option(const struct tex_tool *t, int k, char **argv, const struct opt *o, int n,
+                        const struct tables *tb)
+{
+    int i = -1, old = 0;
 
     if (k == 'h') {
         print_help(t, o, n);
@@ -307,6 +492,9 @@ static void take_option(const struct tex_tool *t, int k, char **argv, const stru
     } else if (k == 1) {
         print_mdoc(o, n);
         exit(0);
+    } else if (k == 2) {
+        print_names(o, tb);
+        exit(0);
     } else if (k == '?' || k == ':') {
         const char *bad = argv[optind - 1];
         if (optopt && optopt < 256)
@@ -315,14 +503,47 @@ static void take_option(const struct tex_tool *t, int k, char **argv, const stru
         tex_usage_die("%s %s (see %s --help)", k == ':' ? "missing value for" : "unknown option",
                       bad, t->name);
     } else if (k >= 256) {
-        i = k - 256;
-    } else {
-        for (int j = 0; j < n; j++)
-            if (o[j].row->key == k)
-                i = j;
+        i = tb->names[k - 256].opt;
+        old = tb->names[k - 256].old;
+    } else if (k > 0 && k < 128) {
+        i = tb->short_opt[k];
+        old = tb->short_old[k];
     }
     if (i < 0 || tex_param_set(o[i].row, o[i].obj, optarg ? optarg : "") < 0)
         tex_die();
+    if (ngiven < MAXOPTS) {
+        given[ngiven].row = o[i].row;
+        if (k >= 256)
+            snprintf(given[ngiven].as, sizeof given[ngiven].as, "--%s", tb->names[k - 256].text);
+        else
+            snprintf(given[ngiven].as, sizeof given[ngiven].as, "-%c", k);
+        if (old && nold < 8) { /* warned once -q is known */
+            snprintf(old_used[nold].name, sizeof old_used[nold].name, "%s", given[ngiven].as);
+            old_used[nold++].opt = i;
+        }
+        ngiven++;
+    }
+}
+
+/* The options of a mode (rows with kinds) when another mode was chosen. */
+void tex_cli_check_kinds(const struct tex_tool *t, const char *choices, int kind,
+                         const char *what)
+{
+    for (const struct tex_param *p = t->params; p && p->name; p++) {
+        char list[256] = "";
+        const char *c = choices;
+        int g = tex_cli_given(p->name);
+        if (!p->kinds || (p->kinds >> kind & 1) || !g)
+            continue;
+        for (int k = 0; *c; k++) {
+            size_t len = strcspn(c, "|");
+            if (p->kinds >> k & 1)
+                snprintf(list + strlen(list), sizeof list - strlen(list), "%s%.*s",
+                         *list ? ", " : "", (int)len, c);
+            c += len + (c[len] == '|');
+        }
+        tex_usage_die("%s applies to %s %s only", given[g - 1].as, what, list);
+    }
 }
 
 /* Once the options are read: -s's size, and as many operands as the tool takes. */
@@ -343,12 +564,25 @@ static void check_operands(const struct tex_tool *t, int argc, char **argv,
     }
 }
 
+/* Options that only apply together with others. */
+static void check_combinations(const struct tex_tool *t, const struct tex_common *c,
+                               const void *opts)
+{
+    const struct tex_param *mode = t->params ? tex_param_find(t->params, "mode") : NULL;
+
+    if (c->output && c->format)
+        tex_usage_die("--format applies to standard output only: -o %s takes its format from "
+                      "the extension", c->output);
+    if (mode && mode->type == TEX_P_ENUM)
+        tex_cli_check_kinds(t, mode->choices, *(const int *)((const char *)opts + mode->off),
+                            "--mode");
+}
+
 int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_common *c,
                   void *opts)
 {
-    struct opt o[128];
-    struct option lo[132];
-    char shorts[260], names[128][48];
+    static struct tables tb; /* large: not on the stack */
+    struct opt o[MAXOPTS];
     int n, k;
 
     tex_progname = t->name;
@@ -358,20 +592,21 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
         if (!registered++)
             atexit(close_stdout);
     }
+    ngiven = nold = 0;
     n = collect(t, c, opts, o);
     set_defaults(t, c, opts);
-    getopt_tables(o, n, lo, shorts, names);
+    getopt_tables(o, n, &tb);
 
     /* The history records the command line as typed, before getopt permutes it. */
     if (!(c->cmdline = join_cmdline(argc, argv))) {
         tex_error("out of memory");
         tex_die();
     }
-    hide_negatives(argc, argv, lo, n, shorts);
+    hide_negatives(argc, argv, &tb);
     opterr = 0;
     optind = 1;
-    while ((k = getopt_long(argc, argv, shorts, lo, NULL)) != -1)
-        take_option(t, k, argv, o, n);
+    while ((k = getopt_long(argc, argv, tb.shorts, tb.lo, NULL)) != -1)
+        take_option(t, k, argv, o, n, &tb);
     for (int i = 1; i < argc; i++)
         if (argv[i][0] == '\001')
             argv[i]++; /* the marked copy is kept for the life of the program */
@@ -388,13 +623,24 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
             tex_usage_die("--nonfinite must be refuse, keep or a finite number (got '%s')",
                           c->nonfinite);
     }
+    check_combinations(t, c, opts);
     tex_set_warning_handler(c->quiet ? NULL : print_warning);
+    tex_set_progress_handler(tex_cli_progress_wanted(c) ? tex_cli_progress : NULL, NULL);
+    for (int i = 0; i < nold; i++) {
+        char name[64];
+        tex_param_option(o[old_used[i].opt].row, name, sizeof name);
+        if (tex_param_deprecated_is_error())
+            tex_usage_die("%s is deprecated: write %s (TEXTURA_DEPRECATED=error)",
+                          old_used[i].name, name);
+        tex_warning("%s is deprecated and will be removed: write %s", old_used[i].name, name);
+    }
 #ifdef _OPENMP
     if (c->threads > 0)
         omp_set_num_threads(c->threads);
 #endif
     return optind;
 }
+
 
 int tex_cli_depth(const struct tex_common *c)
 {
@@ -414,6 +660,7 @@ void tex_cli_write(tex_map *m, const struct tex_common *c)
 {
     struct tex_write_opts o = {tex_cli_depth(c), (enum tex_compression)c->compression, c->format};
 
+    tex_progress_done();
     if (c->cmdline && tex_map_add_history(m, c->cmdline) < 0)
         tex_die();
     if (tex_map_write(m, c->output, &o) < 0)
@@ -429,11 +676,24 @@ static float *region_colors(const char *palette, int n)
     return c;
 }
 
+static double seconds(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return t.tv_sec + 1e-9 * t.tv_nsec;
+}
+
 void tex_cli_progress(long done, long total, void *arg)
 {
     static const char bar[] = "########################################";
+    static double start = -1;
     int w = (int)sizeof bar - 1, k = total > 0 ? (int)(w * done / total) : w;
     (void)arg;
+    if (start < 0)
+        start = seconds();
+    if (!bar_drawn && seconds() - start < 0.3)
+        return; /* work that ends within a moment draws no bar */
+    bar_drawn = done < total;
     fprintf(stderr, "\r%s: [%.*s%*s] %3d%%", tex_progname, k, bar, w - k, "",
             total > 0 ? (int)(100 * done / total) : 100);
     if (done >= total)

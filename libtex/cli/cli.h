@@ -2,8 +2,12 @@
  *
  * Every tool parses its options here, with getopt_long, from parameter
  * tables (param.h): the common options below, chosen by a mask, plus the
- * tool's own rows.  The front end prints --help and --version from the
- * same rows, reports errors as "t_noise: error: ..." on stderr and exits
+ * tool's own rows.  An option is taken by its row's name, in UK or US
+ * spelling, by the row's aliases, and by its old names with a warning that
+ * they are deprecated (textura(5) gives the naming rule).  Options a mode
+ * does not use are refused (tex_cli_check_kinds), and so is --format with -o.
+ * The front end prints --help and --version from the same rows, reports
+ * errors as "t_noise: error: ..." on stderr and exits
  * with 2 for usage errors and 1 for runtime errors.  It is the one part of
  * libtex that prints and exits: it stands for the tool's main.
  *
@@ -78,9 +82,20 @@ extern const char *tex_progname;
 
 /* Parse argv; returns the index of the first operand (getopt has moved the
  * options before the operands, which keep their order).  c->cmdline records
- * the command line as typed.  Exits on --help, --version and errors. */
+ * the command line as typed, less the options that cannot change the output
+ * (-j, -q), so that the same map has the same bytes.  Exits on --help,
+ * --version, --help-options (every name taken, for the tests) and errors. */
 int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_common *c,
                   void *opts);
+/* Was the option named (its row's name, in either spelling) on the command line?
+ * Nonzero if it was. */
+int tex_cli_given(const char *name);
+/* Refuse each of the tool's options that was given and whose row's kinds
+ * (bit k: mode k of choices "a|b|c") leave out mode kind: "--c applies to
+ * --mode julia only".  what names the choice ("--mode", "the operation").
+ * tex_cli_parse does this itself for a tool whose rows have an ENUM "mode". */
+void tex_cli_check_kinds(const struct tex_tool *t, const char *choices, int kind,
+                         const char *what);
 /* Print "prog: error: <tex_errmsg()>" and exit with its kind's status. */
 void tex_die(void) __attribute__((noreturn));
 /* Print "prog: error: ..." and exit 2 (usage). */
@@ -94,8 +109,11 @@ int tex_cli_depth(const struct tex_common *c);
 void tex_cli_write(tex_map *m, const struct tex_common *c);
 
 /* A progress bar on standard error, "t_NAME: [####    ]  50%", ending the
- * line at done == total: for libtex's progress callbacks (pass it only when
- * standard error is a terminal and -q is off: tex_cli_progress_wanted). */
+ * line at done == total, drawn once the work has run 0.3 s: for libtex's
+ * progress callbacks (pass it only when standard error is a terminal and -q
+ * is off: tex_cli_progress_wanted).  tex_cli_parse makes it the process's
+ * progress handler (progress.h) under the same conditions, and
+ * tex_cli_write completes it. */
 void tex_cli_progress(long done, long total, void *arg);
 int tex_cli_progress_wanted(const struct tex_common *c);
 

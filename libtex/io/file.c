@@ -632,13 +632,15 @@ static void catch_signals(void)
     }
 }
 
-/* Record a temporary file for removal on a signal; its slot, or -1 when all are taken. */
-static int temp_record(const char *path)
+/* Record a temporary file for removal on a signal, before it exists: the name is
+ * made in its slot (mkstemp fills in the template there), so that a signal
+ * taken by any thread at any moment finds it.  The slot, or -1 when all are taken. */
+static int temp_record(const char *tmpl)
 {
     catch_signals();
     for (int i = 0; i < TEMP_SLOTS; i++)
         if (!temp_used[i]) {
-            snprintf(temp_path[i], sizeof temp_path[i], "%s", path);
+            snprintf(temp_path[i], sizeof temp_path[i], "%s", tmpl);
             __atomic_signal_fence(__ATOMIC_SEQ_CST); /* the path before the flag */
             temp_used[i] = 1;
             return i;
@@ -658,11 +660,20 @@ static int temp_create(char *tmp, int *slot)
     sigset_t all, old;
     int fd;
 
-    /* No signal between the file's creation and its record. */
+    /* No signal in this thread meanwhile; another thread that takes one finds
+     * the slot set already (unlinking a name not made yet does no harm). */
     sigfillset(&all);
     sigprocmask(SIG_BLOCK, &all, &old);
-    if ((fd = mkstemp(tmp)) >= 0)
-        *slot = temp_record(tmp);
+    if ((*slot = temp_record(tmp)) >= 0) {
+        fd = mkstemp(temp_path[*slot]);
+        snprintf(tmp, PATH_MAX, "%s", temp_path[*slot]);
+        if (fd < 0) {
+            temp_used[*slot] = 0;
+            *slot = -1;
+        }
+    } else {
+        fd = mkstemp(tmp);
+    }
     sigprocmask(SIG_SETMASK, &old, NULL);
     return fd;
 }

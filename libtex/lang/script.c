@@ -12,6 +12,7 @@
 
 #include "ops/compose.h"
 #include "base/error.h"
+#include "base/progress.h"
 #include "io/file.h"
 #include "prim/prim.h"
 #include "lang/script.h"
@@ -1241,9 +1242,15 @@ static tex_map *build(struct S *s)
         return tex_error("out of memory"), NULL;
     if (s->bg[0] != s->bg[1] || s->bg[1] != s->bg[2])
         nc = nc < 3 ? 3 : nc;
+    tex_progress_stage(1, s->ncells);
     for (int k = 0; k < s->ncells; k++) {
-        if (eval_map(s, s->cells[k].expr, &v[k], "a cell") < 0)
+        int rc;
+        tex_progress_hold(1);
+        rc = eval_map(s, s->cells[k].expr, &v[k], "a cell");
+        tex_progress_hold(0);
+        if (rc < 0)
             goto fail;
+        tex_progress_add(1);
         if (v[k].m->nc > nc)
             nc = v[k].m->nc;
     }

@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "base/error.h"
+#include "base/progress.h"
 #include "ops/filter.h"
 #include "base/rng.h"
 
@@ -431,6 +432,7 @@ tex_map *tex_filter_median(const tex_map *m, int radius, enum tex_edge e)
     }
     if (!(o = like(m, m->nc)))
         return NULL;
+    tex_progress_stage(1, m->h);
 #pragma omp parallel
     {
         float *win = malloc((size_t)n * sizeof *win);
@@ -439,7 +441,7 @@ tex_map *tex_filter_median(const tex_map *m, int radius, enum tex_edge e)
             fail = 1;
         }
 #pragma omp for schedule(static)
-        for (int y = 0; y < m->h; y++)
+        for (int y = 0; y < m->h; y++) {
             for (int x = 0; x < m->w && win; x++)
                 for (int c = 0; c < m->nc; c++) {
                     int k = 0;
@@ -448,6 +450,8 @@ tex_map *tex_filter_median(const tex_map *m, int radius, enum tex_edge e)
                             win[k++] = at(m, (long)x + dx, (long)y + dy, c, e);
                     tex_map_px(o, x, y)[c] = select_kth(win, n, n / 2);
                 }
+            tex_progress_add(1);
+        }
         free(win);
     }
     if (fail) {

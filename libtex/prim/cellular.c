@@ -9,6 +9,7 @@
 
 #include "prim/cellular.h"
 #include "base/error.h"
+#include "base/progress.h"
 #include "prim/prim.h"
 #include "base/rng.h"
 
@@ -648,8 +649,11 @@ static int cand_build(struct tex_cellular *c)
     long cells = (long)gx * gy;
     if (!(c->cstart = malloc((cells + 1) * sizeof *c->cstart)))
         return tex_error("out of memory for the candidate lists");
+    tex_progress_stage(0.8, cells); /* the longest part of a large point set's map */
     for (long k = 0; k < cells; k++) {
         int kx = (int)(k % gx), ky = (int)(k / gx), k0[2], k1[2];
+        if ((k & 1023) == 1023)
+            tex_progress_add(1024);
         double lo[2] = {(double)kx / gx, (double)ky / gy};
         double hi[2] = {(double)(kx + 1) / gx, (double)(ky + 1) / gy};
         double m[2] = {(kx + 0.5) / gx, (ky + 0.5) / gy}, u, ur;
@@ -1764,11 +1768,13 @@ struct bubble_params {
     int search;
 };
 
+#define BUBBLE_COUNT 64
+#define BUBBLE_SLICE 0.5
 static const struct tex_param bubble_rows[] = {
-    TEX_INT(struct bubble_params, count, 'n', 64, 1, TEX_POINTS_MAX, "N",
-            "number of random points (bubbles)"),
+    TEX_INT(struct bubble_params, count, 'c', BUBBLE_COUNT, 1, TEX_POINTS_MAX, "N",
+            "number of random points (bubbles)", .old = "-n"),
     TEX_STRING(struct bubble_params, points, 0, NULL, "FILE",
-               "read the points from FILE instead (textura-points(5)); overrides -n"),
+               "read the points from FILE instead of random ones (textura-points(5))"),
     TEX_ENUM(struct bubble_params, value, 0, "bubble", "bubble|f1|f2|f2-f1|cell",
              "what to write: bubble shading, distances F1, F2, F2-F1, or a random value per cell"),
     TEX_STRING(struct bubble_params, metric, 0, "euclid", "NAME",
@@ -1779,8 +1785,8 @@ static const struct tex_param bubble_rows[] = {
             "clusters of the cluster distribution (0: about sqrt(N))"),
     TEX_ENUM(struct bubble_params, dimension, 0, "2", "2|3",
              "points in the plane, or in space for solid textures"),
-    TEX_REAL(struct bubble_params, z, 0, 0.5, -1e6, 1e6, "Z",
-             "the slice of the map through 3D points"),
+    TEX_REAL_N("slice", struct bubble_params, z, 0, BUBBLE_SLICE, -1e6, 1e6, "Z",
+               "the slice of the map through 3D points", .alias = "z"),
     TEX_REAL(struct bubble_params, size_spread, 0, 0, 0, 0.95, "S",
              "random bubble sizes: each radius is 1+S(2u-1), u uniform"),
     TEX_REAL(struct bubble_params, axis_spread, 0, 0, 0, 0.95, "E",
@@ -1815,6 +1821,15 @@ static int bubble_init(struct tex_field *f)
 
     if (tex_metric_parse(p->metric, &o.metric, &o.p) < 0)
         return -1;
+    /* Options of another mode, told by values other than the defaults (the rows
+     * serve scenes too, where nothing records what was given). */
+    if (p->clusters && p->distribution != TEX_POINTS_CLUSTER)
+        return tex_usage_error("--clusters applies to --distribution cluster only");
+    if (p->z != BUBBLE_SLICE && dim == 2)
+        return tex_usage_error("--slice applies to --dimension 3 only");
+    if (p->points && (p->count != BUBBLE_COUNT || p->distribution || p->clusters))
+        return tex_usage_error("--count, --distribution and --clusters apply to random points, "
+                               "not to --points");
     if (p->points) {
         if (tex_points_read(&ps, p->points, dim) < 0)
             return -1;

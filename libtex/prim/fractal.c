@@ -169,8 +169,9 @@ struct wood_params {
 static const struct tex_param wood_rows[] = {
     TEX_REAL(struct wood_params, rings, 0, 8, 0.01, 1e4, "R",
              "rings per unit of distance from the axis (the map is 1 wide)"),
-    TEX_REAL(struct wood_params, amount, 'a', 0.04, 0, 10,
-             "A", "turbulence added to the distance from the axis, in map widths"),
+    TEX_REAL_N("turbulence", struct wood_params, amount, 0, 0.04, 0, 10,
+               "A", "turbulence added to the distance from the axis, in map widths",
+               .old = "-a amount"),
     TEX_REAL(struct wood_params, frequency, 'f', 4, 0, 1e6, "F",
              "lattice cells of the turbulence across the map at its first octave"),
     TEX_INT(struct wood_params, octaves, 'n', 4, 1, TEX_OCTAVES_MAX, "N",
@@ -178,8 +179,9 @@ static const struct tex_param wood_rows[] = {
     TEX_REAL(struct wood_params, tilt, 0, 0, -90, 90, "DEG",
              "angle of the axis from w towards v: 0 shows the rings as in a cross-cut log, "
              "90 runs the grain down the map as on a plank"),
-    TEX_REAL(struct wood_params, offset, 0, 0, -100, 100, "D",
-             "distance of the axis from the map's centre along u, in map widths"),
+    TEX_REAL_N("axis_offset", struct wood_params, offset, 0, 0, -100, 100, "D",
+               "distance of the axis from the map's centre along u, in map widths",
+               .old = "offset"),
     TEX_REAL(struct wood_params, grain, 0, 0, 0, 1, "G",
              "weight of fine streaks along the axis (noise stretched along it)"),
     {0}};
@@ -280,35 +282,47 @@ struct frac_params {
     double line_width;
 };
 
+/* The modes each row applies to: bit k for mode k of the enum above. */
+#define IN(m) (1u << (m))
+#define NOISY (IN(FBM) | IN(RIDGED) | IN(HYBRID))
+#define ESCAPE (IN(MANDELBROT) | IN(JULIA))
 static const struct tex_param frac_rows[] = {
     TEX_ENUM(struct frac_params, mode, 'm', "fbm",
              "fbm|ridged|hybrid|midpoint|mandelbrot|julia|koch", "the fractal"),
     TEX_REAL(struct frac_params, frequency, 'f', 4, 0, 1e6, "F",
-             "fbm, ridged, hybrid: lattice cells across the map at the first octave"),
+             "fbm, ridged, hybrid: lattice cells across the map at the first octave",
+             .kinds = NOISY),
     TEX_INT(struct frac_params, octaves, 'n', 8, 1, TEX_OCTAVES_MAX, "N",
-            "fbm, ridged, hybrid: octaves summed"),
+            "fbm, ridged, hybrid: octaves summed", .kinds = NOISY),
     TEX_REAL(struct frac_params, lacunarity, 'l', 2, 1, 16, "L",
-             "fbm, ridged, hybrid: frequency ratio between octaves (whole with --tile)"),
-    TEX_REALS(struct frac_params, h, 0, "0.8", -20, 20, 16, "H[,H...]",
-              "Hurst exponent per octave or level, the last repeating: amplitude falls by "
-              "L^-H (fbm, ridged, hybrid) or 2^-H (midpoint) each step"),
-    TEX_REAL(struct frac_params, gain, 'g', 2, 0, 16, "G", "ridged: Musgrave's weight gain"),
+             "fbm, ridged, hybrid: frequency ratio between octaves (whole with --tile)",
+             .kinds = NOISY),
+    TEX_REALS_N("hurst", struct frac_params, h, 0, "0.8", -20, 20, 16, "H[,H...]",
+                "Hurst exponent per octave or level, the last repeating: amplitude falls by "
+                "L^-H (fbm, ridged, hybrid) or 2^-H (midpoint) each step",
+                .alias = "h", .kinds = NOISY | IN(MIDPOINT)),
+    TEX_REAL_N("ridge_gain", struct frac_params, gain, 0, 2, 0, 16, "G",
+               "ridged: Musgrave's weight gain", .old = "-g gain", .kinds = IN(RIDGED)),
     TEX_REAL(struct frac_params, mf_offset, 0, 1, 0, 4, "O",
-             "ridged, hybrid: Musgrave's offset (try 0.7 for hybrid)"),
-    TEX_NOISE_ROWS(struct frac_params),
-    TEX_NOISE_W_ROW(struct frac_params),
+             "ridged, hybrid: Musgrave's offset (try 0.7 for hybrid)",
+             .kinds = IN(RIDGED) | IN(HYBRID)),
+    TEX_NOISE_ROWS(struct frac_params, .kinds = NOISY),
+    TEX_NOISE_W_ROW(struct frac_params, .kinds = NOISY),
     TEX_REALS(struct frac_params, centre, 0, NULL, -1e3, 1e3, 2, "X,Y",
-              "mandelbrot, julia: complex point at the centre of the map (-0.5,0 and 0,0)"),
+              "mandelbrot, julia: complex point at the centre of the map (-0.5,0 and 0,0)",
+              .kinds = ESCAPE),
     TEX_REAL(struct frac_params, zoom, 0, 1, 1e-12, 1e12, "Z",
-             "mandelbrot, julia: magnification; the map spans 4/Z"),
+             "mandelbrot, julia: magnification; the map spans 4/Z", .kinds = ESCAPE),
     TEX_INT(struct frac_params, iterations, 'i', 256, 1, 100000, "N",
-            "mandelbrot, julia: most iterations"),
-    TEX_REALS(struct frac_params, c, 0, "-0.8,0.156", -10, 10, 2, "RE,IM", "julia: the constant C"),
-    TEX_INT(struct frac_params, depth, 'd', 5, 0, 12, "N", "koch: recursion depth"),
+            "mandelbrot, julia: most iterations", .kinds = ESCAPE),
+    TEX_REALS_N("julia_constant", struct frac_params, c, 0, "-0.8,0.156", -10, 10, 2, "RE,IM",
+                "julia: the constant C", .alias = "c", .kinds = IN(JULIA)),
+    TEX_INT_N("recursions", struct frac_params, depth, 0, 5, 0, 12, "N", "koch: recursion depth",
+              .old = "-d", .kinds = IN(KOCH)),
     TEX_ENUM(struct frac_params, koch, 0, "snowflake", "snowflake|curve",
-             "koch: the filled snowflake or the curve on one edge"),
+             "koch: the filled snowflake or the curve on one edge", .kinds = IN(KOCH)),
     TEX_REAL(struct frac_params, line_width, 0, 0.006, 1e-6, 1, "W",
-             "koch curve: line width in map widths"),
+             "koch curve: line width in map widths", .kinds = IN(KOCH)),
     {0}};
 
 struct frac_state {

@@ -24,7 +24,7 @@ struct geo_state {
     TEX_INT(S, nu, 0, d, 1, 4096, "N", "repetitions of the pattern across the map (the thesis's nu)")
 #define ROW_NV(S, d) TEX_INT(S, nv, 0, d, 1, 4096, "N", "repetitions of the pattern down the map (nv)")
 #define ROW_NW(S, d) TEX_INT(S, nw, 0, d, 1, 4096, "N", "repetitions along w (solid texture only)")
-#define ROW_COLOR(S, k, def, help) TEX_COLOR(S, color##k, 0, def, help)
+#define ROW_COLOR(S, k, def, help) TEX_COLOR_N("colour" #k, S, color##k, 0, def, help)
 
 /* Position inside a repetition cell: [0,1). */
 static inline double cell(double t, int n)
@@ -153,8 +153,8 @@ struct ring_params {
 static const struct tex_param ring_rows[] = {
     TEX_REAL(struct ring_params, radius, 'r', 0.4, 0, 1, "R",
              "radius of the outer circle, in cells (the thesis's r)"),
-    TEX_REAL(struct ring_params, width, 'd', 0.12, 0, 1, "D",
-             "width of the ring (the thesis's d), at most the radius"),
+    TEX_REAL_N("ring_width", struct ring_params, width, 0, 0.12, 0, 1, "D",
+               "width of the ring (the thesis's d), at most the radius", .old = "-d width"),
     ROW_NU(struct ring_params, 1),
     ROW_NV(struct ring_params, 1),
     ROW_NW(struct ring_params, 1),
@@ -221,13 +221,15 @@ struct ellipse_params {
 };
 
 static const struct tex_param ellipse_rows[] = {
-    TEX_REAL(struct ellipse_params, major, 'M', 0.45, 0, 1, "M",
-             "semi-major axis of the outer ellipse, in cells (the thesis's M)"),
-    TEX_REAL(struct ellipse_params, minor, 'm', 0.3, 0, 1, "M",
-             "semi-minor axis of the outer ellipse (the thesis's m), at most M"),
-    TEX_REAL(struct ellipse_params, width, 'd', 0.08, 0, 1, "D",
-             "width of the band (the thesis's d), at most m: the inner ellipse has semi-axes "
-             "M-d, m-d"),
+    TEX_REAL_N("semi_major", struct ellipse_params, major, 0, 0.45, 0, 1, "M",
+               "semi-major axis of the outer ellipse, in cells (the thesis's M)", .alias = "M",
+               .old = "-M major"),
+    TEX_REAL_N("semi_minor", struct ellipse_params, minor, 0, 0.3, 0, 1, "M",
+               "semi-minor axis of the outer ellipse (the thesis's m), at most M", .alias = "m",
+               .old = "-m minor"),
+    TEX_REAL_N("band_width", struct ellipse_params, width, 0, 0.08, 0, 1, "D",
+               "width of the band (the thesis's d), at most m: the inner ellipse has semi-axes "
+               "M-d, m-d", .old = "-d width"),
     TEX_REAL(struct ellipse_params, angle, 'a', 0, -360, 360, "DEG",
              "angle of the major axis with the horizontal, in degrees, counterclockwise"),
     ROW_NU(struct ellipse_params, 1),
@@ -304,10 +306,10 @@ struct flower_params {
 };
 
 static const struct tex_param flower_rows[] = {
-    TEX_INT(struct flower_params, petals, 'n', 5, 1, 1000, "N",
-            "the rose's n: n petals for odd n, 2n for even n"),
-    TEX_REAL(struct flower_params, length, 'd', 0.45, 0, 1, "D",
-             "length of the petals, in cells (the thesis's d, the rose's a)"),
+    TEX_INT(struct flower_params, petals, 0, 5, 1, 1000, "N",
+            "the rose's n: n petals for odd n, 2n for even n", .old = "-n"),
+    TEX_REAL_N("petal_length", struct flower_params, length, 0, 0.45, 0, 1, "D",
+               "length of the petals, in cells (the thesis's d, the rose's a)", .old = "-d length"),
     ROW_NU(struct flower_params, 1),
     ROW_NV(struct flower_params, 1),
     ROW_COLOR(struct flower_params, 1, "#1f4d2b", "colour of region 1, the ground"),
@@ -412,10 +414,10 @@ struct stripe_params {
 static const struct tex_param stripe_rows[] = {
     TEX_REAL(struct stripe_params, angle, 'a', 45, -360, 360, "DEG",
              "angle of the stripes with the horizontal, in degrees (the thesis's a)"),
-    TEX_REAL(struct stripe_params, width, 'l', 0.1, 0, 1, "L",
-             "width of a stripe across it, in cells (the thesis's l)"),
-    TEX_REAL(struct stripe_params, spacing, 'd', 0.1, 0, 1, "D",
-             "distance between neighbouring stripes, edge to edge (the thesis's d)"),
+    TEX_REAL_N("stripe_width", struct stripe_params, width, 0, 0.1, 0, 1, "L",
+               "width of a stripe across it, in cells (the thesis's l)", .old = "-l width"),
+    TEX_REAL(struct stripe_params, spacing, 0, 0.1, 0, 1, "D",
+             "distance between neighbouring stripes, edge to edge (the thesis's d)", .old = "-d"),
     ROW_NU(struct stripe_params, 1),
     ROW_NV(struct stripe_params, 1),
     ROW_COLOR(struct stripe_params, 1, "#f4efe2", "colour of region 1, between the stripes"),
@@ -467,8 +469,9 @@ struct cycloid_params {
 static const struct tex_param cycloid_rows[] = {
     TEX_REAL(struct cycloid_params, radius, 'r', 100, 0, 100, "PCT",
              "size of the outer arch in percent (the thesis's r): 100 spans the cell's width"),
-    TEX_REAL(struct cycloid_params, width, 'd', 0.08, 0, 1, "D",
-             "distance from the outer to the inner arch at their tops, in cells (the thesis's d)"),
+    TEX_REAL_N("arch_width", struct cycloid_params, width, 0, 0.08, 0, 1, "D",
+               "distance from the outer to the inner arch at their tops, in cells (the thesis's d)",
+               .old = "-d width"),
     ROW_NU(struct cycloid_params, 1),
     ROW_NV(struct cycloid_params, 1),
     ROW_COLOR(struct cycloid_params, 1, "#f4efe2", "colour of region 1, above the outer arch"),
@@ -535,8 +538,9 @@ struct hypocycloid_params {
 static const struct tex_param hypocycloid_rows[] = {
     TEX_REAL(struct hypocycloid_params, radius, 'r', 0.45, 0, 1, "R",
              "distance from a cusp to the centre of the outer astroid, in cells (the thesis's r)"),
-    TEX_REAL(struct hypocycloid_params, width, 'd', 0.1, 0, 1, "D",
-             "distance between the outer and the inner astroid (the thesis's d), at most r"),
+    TEX_REAL_N("band_width", struct hypocycloid_params, width, 0, 0.1, 0, 1, "D",
+               "distance between the outer and the inner astroid (the thesis's d), at most r",
+               .old = "-d width"),
     ROW_NU(struct hypocycloid_params, 1),
     ROW_NV(struct hypocycloid_params, 1),
     ROW_COLOR(struct hypocycloid_params, 1, "#f4efe2", "colour of region 1, outside"),
@@ -590,8 +594,8 @@ struct four_rings_params {
 static const struct tex_param four_rings_rows[] = {
     TEX_REAL(struct four_rings_params, radius, 'r', 0.2, 0, 0.5, "R",
              "outer radius of each ring, in cells (the thesis's r); above 0.25 they interlace"),
-    TEX_REAL(struct four_rings_params, width, 'd', 0.06, 0, 0.5, "D",
-             "width of the rings (the thesis's d), at most r"),
+    TEX_REAL_N("ring_width", struct four_rings_params, width, 0, 0.06, 0, 0.5, "D",
+               "width of the rings (the thesis's d), at most r", .old = "-d width"),
     ROW_NU(struct four_rings_params, 1),
     ROW_NV(struct four_rings_params, 1),
     ROW_COLOR(struct four_rings_params, 1, "#f4efe2", "colour of region 1, the ground"),
@@ -645,7 +649,7 @@ struct polygon_params {
 };
 
 static const struct tex_param polygon_rows[] = {
-    TEX_INT(struct polygon_params, sides, 'n', 6, 3, 1000, "N", "number of sides"),
+    TEX_INT(struct polygon_params, sides, 0, 6, 3, 1000, "N", "number of sides", .old = "-n"),
     TEX_REAL(struct polygon_params, radius, 'r', 0.4, 0, 0.5, "R",
              "distance from a vertex to the centre, in cells"),
     TEX_REAL(struct polygon_params, angle, 'a', 90, -360, 360, "DEG",
@@ -657,11 +661,12 @@ static const struct tex_param polygon_rows[] = {
     {0}};
 
 static const struct tex_param star_rows[] = {
-    TEX_INT(struct polygon_params, sides, 'n', 5, 2, 1000, "N", "number of points"),
+    TEX_INT(struct polygon_params, sides, 0, 5, 2, 1000, "N", "number of points", .old = "-n"),
     TEX_REAL(struct polygon_params, radius, 'r', 0.45, 0, 0.5, "R",
              "distance from a point's tip to the centre, in cells"),
-    TEX_REAL(struct polygon_params, inner, 'i', 0.382, 0, 1, "K",
-             "radius of the inner vertices as a fraction of --radius (0.382: a pentagram)"),
+    TEX_REAL_N("inner_radius", struct polygon_params, inner, 0, 0.382, 0, 1, "K",
+               "radius of the inner vertices as a fraction of --radius (0.382: a pentagram)",
+               .old = "-i inner"),
     TEX_REAL(struct polygon_params, angle, 'a', 90, -360, 360, "DEG",
              "direction of the first point, in degrees counterclockwise from the right"),
     ROW_NU(struct polygon_params, 1),
@@ -748,8 +753,8 @@ struct grid_params {
 };
 
 static const struct tex_param grid_rows[] = {
-    TEX_REAL(struct grid_params, width, 'd', 0.1, 0, 1, "D",
-             "width of the lines as a fraction of a cell"),
+    TEX_REAL_N("line_width", struct grid_params, width, 0, 0.1, 0, 1, "D",
+               "width of the lines as a fraction of a cell", .old = "-d width"),
     ROW_NU(struct grid_params, 8),
     ROW_NV(struct grid_params, 8),
     ROW_COLOR(struct grid_params, 1, "#f4efe2", "colour of region 1, the cells"),
@@ -793,8 +798,8 @@ struct brick_params {
 #define BRICK_CELLS_MAX 65536
 
 static const struct tex_param brick_rows[] = {
-    TEX_REAL(struct brick_params, width, 'd', 0.12, 0, 1, "D",
-             "width of the mortar joints as a fraction of a course's height"),
+    TEX_REAL_N("mortar_width", struct brick_params, width, 0, 0.12, 0, 1, "D",
+               "width of the mortar joints as a fraction of a course's height", .old = "-d width"),
     ROW_NU(struct brick_params, 4),
     ROW_NV(struct brick_params, 4),
     ROW_COLOR(struct brick_params, 1, "#a8452e", "colour of region 1, the bricks"),

@@ -1105,8 +1105,8 @@ static const struct tex_param dnoise_rows[] = {
     TEX_REAL(struct dnoise_params, frequency, 'f', 8, 0, 1e6, "F",
              "lattice cells across the map (a whole number with --tile)"),
     TEX_NOISE_ROWS(struct dnoise_params),
-    TEX_INT(struct dnoise_params, channels, 'c', 2, 2, 3, "N",
-            "2: d/dx, d/dy; 3: also d/dz (raw gradient, lattice units)"),
+    TEX_INT(struct dnoise_params, channels, 0, 2, 2, 3, "N",
+            "2: d/dx, d/dy; 3: also d/dz (raw gradient, lattice units)", .old = "-c"),
     TEX_FLAG(struct dnoise_params, normal, 0,
              "write a tangent-space normal map (x right, y up, z out) encoded as 0.5 + 0.5 n"),
     TEX_REAL(struct dnoise_params, strength, 0, 1, 0, 1e6, "S",
@@ -1118,6 +1118,11 @@ static int dnoise_init(struct tex_field *f)
     const struct dnoise_params *p = f->params;
     struct noise_state *s;
 
+    /* Values other than the defaults are the test: the rows are shared with scenes. */
+    if (!p->normal && p->strength != 1)
+        return tex_usage_error("--strength applies with --normal only");
+    if (p->normal && p->channels != 2)
+        return tex_usage_error("--channels applies without --normal only (a normal map has 3)");
     f->nc = p->normal ? 3 : p->channels;
     if (state_init(f, p->frequency, &p->offset, p->z, p->gradients, p->fade) < 0)
         return -1;

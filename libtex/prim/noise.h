@@ -169,17 +169,21 @@ const char *tex_simd_name(int level);
 /* The parameter rows every noise-based primitive shares (param.h), declared once:
  * struct S must have double z, struct tex_reals offset, int fade, int gradients
  * (and struct tex_reals w for TEX_NOISE_W_ROW). */
-#define TEX_NOISE_ROWS(S)                                                                          \
-    TEX_REAL(S, z, 0, 0, -1e9, 1e9, "Z", "the slice of the solid field, in map widths"),          \
+#define TEX_NOISE_ROWS(S, ...)                                                                     \
+    TEX_REAL_N("slice", S, z, 0, 0, -1e9, 1e9, "Z",                                                \
+               "the slice of the solid field, in map widths", .alias = "z", __VA_ARGS__),          \
         TEX_REALS(S, offset, 0, NULL, -1e12, 1e12, 3, "X[,Y[,Z]]",                                 \
-                  "lattice offset added to the scaled coordinates (of the first octave)"),         \
+                  "lattice offset added to the scaled coordinates (of the first octave)",          \
+                  __VA_ARGS__),                                                                    \
         TEX_ENUM(S, fade, 0, "cubic", "cubic|quintic",                                             \
-                 "noise weight function: the thesis's cubic (eq. 5.2) or Perlin's quintic"),        \
+                 "noise weight function: the thesis's cubic (eq. 5.2) or Perlin's quintic",        \
+                 __VA_ARGS__),                                                                     \
         TEX_INT(S, gradients, 0, 256, 2, TEX_NOISE_MAX_GRADIENTS, "N",                             \
-                "gradients on the sphere (the thesis's n)")
-#define TEX_NOISE_W_ROW(S)                                                                         \
-    TEX_REALS(S, w, 0, NULL, -1e9, 1e9, 1, "W",                                                    \
-              "use 4D noise at fourth coordinate W, in map widths (loops in time)")
+                "gradients on the sphere (the thesis's n)", __VA_ARGS__)
+#define TEX_NOISE_W_ROW(S, ...)                                                                    \
+    TEX_REALS_N("time", S, w, 0, NULL, -1e9, 1e9, 1, "W",                                          \
+                "use 4D noise at fourth coordinate W, in map widths (loops in time)",             \
+                .alias = "w", __VA_ARGS__)
 
 #ifdef __cplusplus
 }

@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "base/error.h"
+#include "base/progress.h"
 #include "prim/prim.h"
 
 const struct tex_primitive *const tex_primitives[] = {
@@ -133,6 +134,7 @@ static int sample_colors(const struct tex_field *f, tex_map *m)
             }
             for (int i = 0; i < 3 * f->w; i++)
                 out[i] = (float)(acc[i] / (S * S));
+            tex_progress_add(1);
         }
         free(u);
         free(acc);
@@ -153,6 +155,7 @@ tex_map *tex_field_sample(const struct tex_field *f)
 
     if (!m)
         return NULL;
+    tex_progress_stage(1, f->h); /* what remains of the bar after the primitive's init */
     if (colored) {
         if (sample_colors(f, m) < 0) {
             tex_map_free(m);
@@ -171,8 +174,10 @@ tex_map *tex_field_sample(const struct tex_field *f)
     }
     if (p->row) {
 #pragma omp parallel for schedule(dynamic, 4)
-        for (int y = 0; y < f->h; y++)
+        for (int y = 0; y < f->h; y++) {
             p->row(f, y, tex_map_row(m, y));
+            tex_progress_add(1);
+        }
         return m;
     }
 #pragma omp parallel
@@ -189,6 +194,7 @@ tex_map *tex_field_sample(const struct tex_field *f)
                 for (int x = 0; x < f->w; x++)
                     v[x] = (y + 0.5) / f->h;
                 p->eval2(f, f->w, u, v, tex_map_row(m, y));
+                tex_progress_add(1);
             }
         }
         free(u);

@@ -13,6 +13,7 @@
 #endif
 
 #include "base/error.h"
+#include "base/progress.h"
 #include "prim/prim.h"
 #include "base/rng.h"
 #include "prim/spectral.h"
@@ -50,6 +51,13 @@ static void plan_setup(void)
     if (fftw_threads_ok)
         fftwf_plan_with_nthreads(omp_get_max_threads());
 #endif
+}
+
+/* Transforms are the long part of this module's work: each is a unit of progress. */
+static void execute(fftwf_plan plan)
+{
+    fftwf_execute(plan);
+    tex_progress_add(1);
 }
 
 static inline const float *random_phase(uint64_t key, uint64_t k)
@@ -162,6 +170,7 @@ static inline float turns(float im, float re)
 static tex_map *fft(const tex_map *m, enum tex_fft_output out, int hann)
 {
     int w = m->w, h = m->h, hw = w / 2 + 1;
+    tex_progress_stage(1, 1);
     float *own = NULL, *in = NULL, *wx = NULL, *wy = NULL;
     fftwf_complex *F = NULL;
     const float *s;
@@ -197,7 +206,7 @@ static tex_map *fft(const tex_map *m, enum tex_fft_output out, int hann)
         tex_error("FFTW could not plan a %dx%d transform", w, h);
         goto done;
     }
-    fftwf_execute(plan);
+    execute(plan);
     fftwf_destroy_plan(plan);
     if (!(o = tex_map_new(w, h, out == TEX_FFT_COMPLEX ? 2 : 1)))
         goto done;
@@ -403,7 +412,7 @@ static int ifft_half(const struct ifft_ctx *c, const struct tex_ifft_opts *o, te
         rc = no_plan(w, h);
     if (rc == 0) {
         fill_half(c, F);
-        fftwf_execute(plan);
+        execute(plan);
     }
     if (rc == 0 && o->output != TEX_IFFT_REAL) {
 #pragma omp parallel for
@@ -438,7 +447,7 @@ static int ifft_full(const struct ifft_ctx *c, const struct tex_ifft_opts *o, te
         return no_plan(w, h);
     }
     fill_full(c, F);
-    fftwf_execute(plan);
+    execute(plan);
 #pragma omp parallel for
     for (size_t i = 0; i < n; i++) {
         float re = F[i][0], im = F[i][1];
@@ -463,6 +472,7 @@ static tex_map *ifft(const tex_map *s, const struct tex_ifft_opts *o)
     float *own = NULL, *ownp = NULL;
     tex_map *out = NULL;
 
+    tex_progress_stage(1, 1);
     if (scale == TEX_SCALE_AUTO)
         scale = cplx ? TEX_SCALE_NONE : TEX_SCALE_UNIT;
     if (ifft_inputs(s, o, &c, &own, &ownp) == 0 &&
@@ -528,6 +538,7 @@ int tex_spectral_fbm(tex_map *m, const struct tex_fbm_spec *p)
     fftwf_plan plan;
     struct powtab pt;
 
+    tex_progress_stage(1, 1);
     if (m->nc != 1)
         return tex_error("internal: fBm fills a 1-channel map");
     if (!(F = fftwf_alloc_complex((size_t)h * hw)))
@@ -577,7 +588,7 @@ int tex_spectral_fbm(tex_map *m, const struct tex_fbm_spec *p)
                                "lowest, %g the highest)",
                                p->lo, p->hi, w, h, sqrt(2.0) * side / 2);
     }
-    fftwf_execute(plan);
+    execute(plan);
     fftwf_destroy_plan(plan);
     fftwf_free(F);
     to_unit(m->px, n, 0);
@@ -606,7 +617,7 @@ static void sparse_noise(struct sparse_work *k, double count, uint64_t seed)
         uint32_t x = tex_rng_below(&rng, (uint32_t)k->w), y = tex_rng_below(&rng, (uint32_t)k->h);
         k->rb[(size_t)y * k->w + x] += (float)(2.0 * tex_rng_uniform(&rng) - 1.0);
     }
-    fftwf_execute(k->fwd);
+    execute(k->fwd);
     memcpy(k->I, k->K, k->nhalf * sizeof *k->I);
 }
 
@@ -640,7 +651,7 @@ static void sparse_channel(struct sparse_work *k, const tex_map *s, int c, tex_m
             rb[(size_t)Y * w + X] =
                 (float)((s->px[((size_t)y * sw + x) * nc + c] - mean) * k->win[(size_t)y * sw + x]);
         }
-    fftwf_execute(k->fwd);
+    execute(k->fwd);
     fftwf_complex *K = k->K, *I = k->I;
 #pragma omp parallel for
     for (size_t i = 0; i < k->nhalf; i++) {
@@ -649,7 +660,7 @@ static void sparse_channel(struct sparse_work *k, const tex_map *s, int c, tex_m
         K[i][0] = re;
         K[i][1] = im;
     }
-    fftwf_execute(k->inv);
+    execute(k->inv);
     float flo, fhi;
     minmax(rb, n, 1, &flo, &fhi);
     double g = fhi > flo ? (hi - lo) / ((double)fhi - flo) : 0;
@@ -695,6 +706,7 @@ static tex_map *sparse_convolve(const tex_map *s, int w, int h, const struct tex
         }
     }
     if (out) {
+        tex_progress_stage(1, 1 + 2 * s->nc); /* the impulses' transform, two per channel */
         sparse_noise(&k, count, p->seed);
         for (int y = 0; y < sh; y++)
             for (int x = 0; x < sw; x++) {
@@ -724,11 +736,13 @@ struct spectral_params {
     struct tex_reals band;
 };
 
+#define HURST 0.8 /* the default: another value beside --fractal-dimension is refused */
 static const struct tex_param spectral_rows[] = {
-    TEX_REAL(struct spectral_params, h, 0, 0.8, -1, 3, "H",
-             "Hurst exponent: the amplitude falls as f^-(H+1)"),
-    TEX_REAL(struct spectral_params, dimension, 'D', 0, 0, 3, "D",
-             "fractal dimension 2..3 of the surface, sets H = 3 - D (0: use --h)"),
+    TEX_REAL_N("hurst", struct spectral_params, h, 0, HURST, -1, 3, "H",
+               "Hurst exponent: the amplitude falls as f^-(H+1)", .alias = "h"),
+    TEX_REAL_N("fractal_dimension", struct spectral_params, dimension, 'D', 0, 0, 3, "D",
+               "fractal dimension 2..3 of the surface, sets H = 3 - D (0: use --hurst)",
+               .old = "dimension"),
     TEX_REALS(struct spectral_params, anisotropy, 0, "0,1", -1e6, 1e6, 2, "ANGLE,RATIO",
               "stretch structures RATIO times along ANGLE degrees (counter-clockwise from u)"),
     TEX_REALS(struct spectral_params, band, 0, "0,1e6", 0, 1e6, 2, "LO,HI",
@@ -740,8 +754,10 @@ static int spectral_init(struct tex_field *f)
     const struct spectral_params *p = f->params;
 
     if (p->dimension != 0 && p->dimension < 2)
-        return tex_usage_error("--dimension must be 2..3, or 0 to use --h (got %g)",
+        return tex_usage_error("--fractal-dimension must be 2..3, or 0 to use --hurst (got %g)",
                                p->dimension);
+    if (p->dimension != 0 && p->h != HURST)
+        return tex_usage_error("--fractal-dimension and --hurst both set the exponent: give one");
     if (p->anisotropy.n != 2 || !(p->anisotropy.v[1] > 0))
         return tex_usage_error("--anisotropy must be ANGLE,RATIO with RATIO > 0");
     if (p->band.n != 2 || p->band.v[0] > p->band.v[1])

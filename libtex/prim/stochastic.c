@@ -31,14 +31,16 @@ struct holes_params {
 };
 
 static const struct tex_param holes_rows[] = {
-    TEX_INT(struct holes_params, count, 'n', 8, 1, 100000, "N",
-            "grid cells across the map, at most one hole each"),
-    TEX_REAL(struct holes_params, diameter, 'd', 0.6, 0.001, 1, "D",
-             "hole diameter, in cells"),
+    TEX_INT_N("grid_cells", struct holes_params, count, 0, 8, 1, 100000, "N",
+              "grid cells across the map, at most one hole each", .old = "-n count"),
+    TEX_REAL(struct holes_params, diameter, 0, 0.6, 0.001, 1, "D",
+             "hole diameter, in cells", .old = "-d"),
     TEX_REAL(struct holes_params, jitter, 0, 0.3, 0, 1, "J",
              "random variation of the diameter, a fraction of D"),
-    TEX_REAL(struct holes_params, density, 0, 0.8, 0, 1, "P", "probability that a cell has a hole"),
-    TEX_REAL(struct holes_params, depth, 0, 1, 0, 1, "A", "depth of the holes (Fact)"),
+    TEX_REAL_N("probability", struct holes_params, density, 0, 0.8, 0, 1, "P",
+               "probability that a cell has a hole", .old = "density"),
+    TEX_REAL_N("hole_depth", struct holes_params, depth, 0, 1, 0, 1, "A",
+               "depth of the holes (Fact)", .old = "depth"),
     {0}};
 
 /* The hole of cell (i, j[, k]), wrapped by the grid: centre in cell units, diameter.  A solid
@@ -134,17 +136,18 @@ struct colorvar_params {
 static const struct tex_param colorvar_rows[] = {
     TEX_REAL(struct colorvar_params, frequency, 'f', 2, 0, 1e4, "F",
              "cycles of the first term across the map: w1 = 2 pi F (whole with --tile)"),
-    TEX_INT(struct colorvar_params, terms, 'n', 5, 1, 16, "N",
-            "terms of each sum: C(i+1) = C(i)/sqrt 2, w(i+1) = 2 w(i)"),
-    TEX_REAL(struct colorvar_params, k1, 0, 0.5, -100, 100, "K", "phase shift P_z = K1 sin(2 pi v)"),
-    TEX_REAL(struct colorvar_params, k2, 0, 0.5, -100, 100, "K",
-             "phase shift P_x = K2 sin(2 pi B u)"),
-    TEX_REAL(struct colorvar_params, b, 0, 1, -1e4, 1e4, "B",
-             "frequency of P_x (whole with --tile)"),
+    TEX_INT(struct colorvar_params, terms, 0, 5, 1, 16, "N",
+            "terms of each sum: C(i+1) = C(i)/sqrt 2, w(i+1) = 2 w(i)", .old = "-n"),
+    TEX_REAL_N("z_phase", struct colorvar_params, k1, 0, 0.5, -100, 100, "K",
+               "phase shift P_z = K1 sin(2 pi v)", .alias = "k1"),
+    TEX_REAL_N("x_phase", struct colorvar_params, k2, 0, 0.5, -100, 100, "K",
+               "phase shift P_x = K2 sin(2 pi B u)", .alias = "k2"),
+    TEX_REAL_N("x_phase_frequency", struct colorvar_params, b, 0, 1, -1e4, 1e4, "B",
+               "frequency of P_x (whole with --tile)", .alias = "b"),
     TEX_REAL(struct colorvar_params, noise, 0, 0, 0, 100, "A",
              "add A times gradient noise to both phases (breaks the regularity)"),
-    TEX_COLOR(struct colorvar_params, color, 0, NULL,
-              "write an RGB map: the colour scaled by Fact (default: Fact alone)"),
+    TEX_COLOR_N("colour", struct colorvar_params, color, 0, NULL,
+                "write an RGB map: the colour scaled by Fact (default: Fact alone)"),
     {0}};
 
 struct colorvar_state {
@@ -244,12 +247,15 @@ struct perturb_params {
 };
 
 static const struct tex_param perturb_rows[] = {
-    TEX_REAL(struct perturb_params, a, 'a', 3, -1e4, 1e4, "A",
-             "stripes across the map (whole with --tile)"),
-    TEX_REAL(struct perturb_params, b, 'b', 10, -1e4, 1e4, "B", "strength of the perturbation"),
-    TEX_REAL(struct perturb_params, c, 'c', 4, -1e4, 1e4, "C", "weight of the turbulence"),
-    TEX_REAL(struct perturb_params, d, 'd', 1, -1e4, 1e4, "D",
-             "waves of the regular cosine along v (whole with --tile)"),
+    TEX_REAL_N("stripes", struct perturb_params, a, 0, 3, -1e4, 1e4, "A",
+               "stripes across the map (whole with --tile)", .alias = "a", .old = "-a"),
+    TEX_REAL_N("perturbation", struct perturb_params, b, 0, 10, -1e4, 1e4, "B",
+               "strength of the perturbation", .alias = "b", .old = "-b"),
+    TEX_REAL_N("turbulence_weight", struct perturb_params, c, 0, 4, -1e4, 1e4, "C",
+               "weight of the turbulence", .alias = "c", .old = "-c"),
+    TEX_REAL_N("waves", struct perturb_params, d, 0, 1, -1e4, 1e4, "D",
+               "waves of the regular cosine along v (whole with --tile)", .alias = "d",
+               .old = "-d"),
     TEX_REAL(struct perturb_params, frequency, 'f', 4, 0, 1e6, "F",
              "lattice cells across the map of the turbulence (whole with --tile)"),
     TEX_INT(struct perturb_params, octaves, 'n', 5, 1, TEX_OCTAVES_MAX, "N",

@@ -35,6 +35,10 @@ struct tex_shading_model;
 struct tex_scene *tex_scene_load(const char *path); /* "-" is not allowed: maps use stdin */
 struct tex_scene *tex_scene_parse(const char *text, size_t len, const char *name);
 void tex_scene_free(struct tex_scene *s);
+/* The materials database a scene reads by default, into path: $TEXTURA_MATERIALS,
+ * materials.txt beside the scene (scene may be NULL), or the installed
+ * patterns/materials.txt. */
+const char *tex_scene_materials_path(const char *scene, char *path, size_t n);
 
 /* Overrides of the scene's settings, before tex_scene_prepare; -1 with a
  * usage error out of range. */

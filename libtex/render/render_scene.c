@@ -745,25 +745,29 @@ static void load_materials(struct parser *ps, const char *path, const struct tok
     ps->have_db = 1;
 }
 
-/* The default database: $TEXTURA_MATERIALS, materials.txt beside the scene, or the
- * installed patterns/materials.txt. */
-static void default_materials(struct parser *ps, const struct tok *at)
+const char *tex_scene_materials_path(const char *scene, char *path, size_t n)
 {
     const char *env = getenv("TEXTURA_MATERIALS");
+    const char *slash = scene ? strrchr(scene, '/') : NULL;
+    int dl = slash ? (int)(slash - scene) + 1 : 0;
+    FILE *f;
+
     if (env && *env) {
-        load_materials(ps, env, at);
-        return;
+        snprintf(path, n, "%s", env);
+        return path;
     }
-    char path[4096];
-    const char *slash = strrchr(ps->name, '/');
-    int dl = slash ? (int)(slash - ps->name) + 1 : 0;
-    snprintf(path, sizeof path, "%.*smaterials.txt", dl, ps->name);
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        snprintf(path, sizeof path, "%s/patterns/materials.txt", tex_install_dir(TEX_DIR_DATA));
-    else
+    snprintf(path, n, "%.*smaterials.txt", dl, scene ? scene : "");
+    if (scene && (f = fopen(path, "rb")))
         fclose(f);
-    load_materials(ps, path, at);
+    else
+        snprintf(path, n, "%s/patterns/materials.txt", tex_install_dir(TEX_DIR_DATA));
+    return path;
+}
+
+static void default_materials(struct parser *ps, const struct tok *at)
+{
+    char path[4096];
+    load_materials(ps, tex_scene_materials_path(ps->name, path, sizeof path), at);
 }
 
 /* A copy of the named material in the scene's pool (the database is freed after parsing). */

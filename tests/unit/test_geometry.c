@@ -59,13 +59,13 @@ static void known_points(void)
           "circle: centre 2, corner 1, edge at r = 0.4");
     tex_field_free(f);
 
-    f = field("ring", 1, 0, 0, "radius=0.4", "width=0.12", NULL);
+    f = field("ring", 1, 0, 0, "radius=0.4", "ring_width=0.12", NULL);
     CHECK(at(f, 0.5, 0.5) == 3 && at(f, 0.5 + 0.35, 0.5) == 2 && at(f, 0.5, 0.5 - 0.35) == 2 &&
               at(f, 0.5 + 0.27, 0.5) == 3 && at(f, 0.99, 0.99) == 1,
           "ring: centre 3, band 2 at 0.28 < dist <= 0.4, corner 1");
     tex_field_free(f);
 
-    f = field("ellipse", 1, 0, 0, "major=0.45", "minor=0.3", "width=0.08", NULL);
+    f = field("ellipse", 1, 0, 0, "semi_major=0.45", "semi_minor=0.3", "band_width=0.08", NULL);
     CHECK(at(f, 0.5, 0.5) == 3 && at(f, 0.5 + 0.42, 0.5) == 2 && at(f, 0.5, 0.5 + 0.42) == 1 &&
               at(f, 0.5, 0.5 + 0.25) == 2 && at(f, 0.02, 0.5) == 1,
           "ellipse: major axis horizontal, centre 3");
@@ -77,7 +77,7 @@ static void known_points(void)
     tex_field_free(f);
 
     /* n = 5: petals point at theta = pi/10 + 2k pi/5, gaps at 3pi/10 + 2k pi/5. */
-    f = field("flower", 1, 0, 0, "petals=5", "length=0.45", NULL);
+    f = field("flower", 1, 0, 0, "petals=5", "petal_length=0.45", NULL);
     CHECK(at(f, 0.5 + 0.4 * cos(M_PI / 10), 0.5 + 0.4 * sin(M_PI / 10)) == 2 &&
               at(f, 0.5 + 0.2 * cos(3 * M_PI / 10), 0.5 + 0.2 * sin(3 * M_PI / 10)) == 1 &&
               at(f, 0.5, 0.5 + 0.4) == 2 && at(f, 0.5, 0.5 - 0.2) == 1 && at(f, 0.01, 0.01) == 1,
@@ -99,7 +99,7 @@ static void known_points(void)
           "checker: 8x8 board by default, top-left square 1");
     tex_field_free(f);
 
-    f = field("stripe", 1, 0, 0, "angle=90", "width=0.1", "spacing=0.15", NULL);
+    f = field("stripe", 1, 0, 0, "angle=90", "stripe_width=0.1", "spacing=0.15", NULL);
     CHECK(at(f, 0.5, 0.1) == 2 && at(f, 0.56, 0.9) == 1 && at(f, 0.75, 0.3) == 2 &&
               at(f, 0.62, 0.5) == 1,
           "stripe: vertical at 90 degrees, one centred, period 0.25");
@@ -112,13 +112,13 @@ static void known_points(void)
           "cycloid: arch on the bottom side, inside 3, band 2, above 1");
     tex_field_free(f);
 
-    f = field("hypocycloid", 1, 0, 0, "radius=0.45", "width=0.1", NULL);
+    f = field("hypocycloid", 1, 0, 0, "radius=0.45", "band_width=0.1", NULL);
     CHECK(at(f, 0.5, 0.5) == 3 && at(f, 0.5 + 0.4, 0.5) == 2 && at(f, 0.5, 0.5 - 0.4) == 2 &&
               at(f, 0.7, 0.7) == 1 && at(f, 0.5 + 0.3, 0.5) == 3,
           "hypocycloid: cusps on the axes, concave sides");
     tex_field_free(f);
 
-    f = field("four_rings", 1, 0, 0, "radius=0.2", "width=0.06", NULL);
+    f = field("four_rings", 1, 0, 0, "radius=0.2", "ring_width=0.06", NULL);
     CHECK(at(f, 0.25 + 0.17, 0.25) == 2 && at(f, 0.75, 0.75 - 0.17) == 2 && at(f, 0.25, 0.25) == 1 &&
               at(f, 0.5, 0.5) == 1 && at(f, 0.75 - 0.17, 0.25) == 2,
           "four_rings: a ring round each quarter's centre");
@@ -164,20 +164,21 @@ static void areas(void)
     tex_field_free(f);
 
     r = 0.4, d = 0.15;
-    f = field("ring", 1, N, N, "radius=0.4", "width=0.15", NULL);
+    f = field("ring", 1, N, N, "radius=0.4", "ring_width=0.15", NULL);
     check_area("ring band", f, 2, M_PI * (r * r - (r - d) * (r - d)));
     check_area("ring inside", f, 3, M_PI * (r - d) * (r - d));
     tex_field_free(f);
 
-    f = field("ellipse", 1, N, N, "major=0.4", "minor=0.25", "width=0.05", "angle=30", NULL);
+    f = field("ellipse", 1, N, N, "semi_major=0.4", "semi_minor=0.25", "band_width=0.05",
+    "angle=30", NULL);
     check_area("ellipse band, pi M m - pi (M-d)(m-d)", f, 2, M_PI * (0.4 * 0.25 - 0.35 * 0.2));
     check_area("ellipse inside", f, 3, M_PI * 0.35 * 0.2);
     tex_field_free(f);
 
-    f = field("flower", 1, N, N, "petals=5", "length=0.45", NULL);
+    f = field("flower", 1, N, N, "petals=5", "petal_length=0.45", NULL);
     check_area("flower, odd n: pi d^2/4", f, 2, M_PI * 0.45 * 0.45 / 4);
     tex_field_free(f);
-    f = field("flower", 1, N, N, "petals=4", "length=0.45", NULL);
+    f = field("flower", 1, N, N, "petals=4", "petal_length=0.45", NULL);
     check_area("flower, even n: pi d^2/2", f, 2, M_PI * 0.45 * 0.45 / 2);
     tex_field_free(f);
 
@@ -185,37 +186,37 @@ static void areas(void)
     check_area("checker: half", f, 1, 0.5);
     tex_field_free(f);
 
-    f = field("stripe", 1, N, N, "angle=90", "width=0.1875", "spacing=0.0625", NULL);
+    f = field("stripe", 1, N, N, "angle=90", "stripe_width=0.1875", "spacing=0.0625", NULL);
     check_area("stripe at 90: l/(l+d)", f, 2, 0.75);
     tex_field_free(f);
-    f = field("stripe", 1, N, N, "angle=30", "width=0.05", "spacing=0.1", NULL);
+    f = field("stripe", 1, N, N, "angle=30", "stripe_width=0.05", "spacing=0.1", NULL);
     check_area("stripe at 30: l/(l+d)", f, 2, 1.0 / 3);
     tex_field_free(f);
 
     /* The area under a cycloid arch is 3 pi a^2. */
     a = 1 / (2 * M_PI);
-    f = field("cycloid", 1, N, N, "radius=100", "width=0.1", NULL);
+    f = field("cycloid", 1, N, N, "radius=100", "arch_width=0.1", NULL);
     check_area("cycloid band", f, 2, 3 * M_PI * (a * a - (a - 0.05) * (a - 0.05)));
     check_area("cycloid inside", f, 3, 3 * M_PI * (a - 0.05) * (a - 0.05));
     tex_field_free(f);
 
     /* The area inside an astroid is 3 pi a^2 / 8. */
-    f = field("hypocycloid", 1, N, N, "radius=0.45", "width=0.15", NULL);
+    f = field("hypocycloid", 1, N, N, "radius=0.45", "band_width=0.15", NULL);
     check_area("hypocycloid band", f, 2, 3 * M_PI * (0.45 * 0.45 - 0.3 * 0.3) / 8);
     check_area("hypocycloid inside", f, 3, 3 * M_PI * 0.3 * 0.3 / 8);
     tex_field_free(f);
 
-    f = field("four_rings", 1, N, N, "radius=0.2", "width=0.05", NULL);
+    f = field("four_rings", 1, N, N, "radius=0.2", "ring_width=0.05", NULL);
     check_area("four_rings", f, 2, 4 * M_PI * (0.2 * 0.2 - 0.15 * 0.15));
     tex_field_free(f);
 
     f = field("polygon", 1, N, N, "sides=7", "radius=0.45", "angle=10", NULL);
     check_area("polygon: n r^2 sin(2pi/n) / 2", f, 2, 3.5 * 0.45 * 0.45 * sin(2 * M_PI / 7));
     tex_field_free(f);
-    f = field("star", 1, N, N, "sides=5", "radius=0.45", "inner=0.4", NULL);
+    f = field("star", 1, N, N, "sides=5", "radius=0.45", "inner_radius=0.4", NULL);
     check_area("star: n r r_i sin(pi/n)", f, 2, 5 * 0.45 * 0.18 * sin(M_PI / 5));
     tex_field_free(f);
-    f = field("grid", 1, N, N, "nu=4", "nv=4", "width=0.25", NULL);
+    f = field("grid", 1, N, N, "nu=4", "nv=4", "line_width=0.25", NULL);
     check_area("grid: 1 - (1-d)^2", f, 2, 1 - 0.75 * 0.75);
     tex_field_free(f);
     f = field("dots", 1, N, N, "radius=0.25", NULL);
@@ -223,7 +224,7 @@ static void areas(void)
     tex_field_free(f);
     /* Square map, nu = nv: bed joints d of a course, head joints as wide on the map,
      * d/2 of a brick's length. */
-    f = field("brick", 1, N, N, "nu=4", "nv=4", "width=0.25", NULL);
+    f = field("brick", 1, N, N, "nu=4", "nv=4", "mortar_width=0.25", NULL);
     check_area("brick mortar", f, 2, 1 - (1 - 0.25) * (1 - 0.125));
     tex_field_free(f);
 }

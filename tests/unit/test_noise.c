@@ -337,7 +337,7 @@ int main(void)
                   {&tex_prim_fractal, {"mode", "ridged", "frequency", "2", NULL}},
                   {&tex_prim_fractal, {"mode", "hybrid", "frequency", "2", NULL}},
                   {&tex_prim_fractal, {"mode", "midpoint", NULL}},
-                  {&tex_prim_holes, {"count", "5", NULL}},
+                  {&tex_prim_holes, {"grid_cells", "5", NULL}},
                   {&tex_prim_colorvar, {"noise", "1", NULL}},
                   {&tex_prim_perturb, {"frequency", "3", NULL}}};
         for (size_t i = 0; i < sizeof tp / sizeof *tp; i++) {
