@@ -138,6 +138,12 @@ grep -q "^gold  *conductor" "$T/mat" && grep -q "dielectric" "$T/mat" &&
     notok "t_info --primitives"
 check_fails "an unknown filter lists the operations" 2 "$B/t_filter" frobnicate "$T/n.pfm"
 grep -q "blur|box" "$T/.err" && ok "its message names them" || notok "unknown filter message" "$(cat "$T/.err")"
+printf 'image 8 8\ntexture t nosuch { }\nsurface s { apply t { Kd = f } }\nsphere { surface s }\n' >"$T/u.scene"
+check_fails "an unknown primitive in a scene lists the primitives" 2 "$B/t_apply" "$T/u.scene" -o "$T/u.exr"
+grep -q "known: brick, bubble" "$T/.err" && ok "its message names them" || notok "unknown primitive message" "$(cat "$T/.err")"
+printf 'image 8 8\nsurface s { material nosuch }\nsphere { surface s }\n' >"$T/m.scene"
+TEXTURA_MATERIALS=${TEXTURA_TOP:-.}/patterns/materials.txt check_fails "an unknown material lists the materials" 2 "$B/t_apply" "$T/m.scene" -o "$T/u.exr"
+grep -q "known: gold" "$T/.err" && ok "its message names them" || notok "unknown material message" "$(cat "$T/.err")"
 check_fails "an unknown mode lists the modes" 2 "$B/t_fractal" -m nosuch
 grep -q "fbm|ridged" "$T/.err" && ok "its message names them" || notok "unknown mode message" "$(cat "$T/.err")"
 

@@ -833,7 +833,7 @@ static int eval_prim(struct S *s, const struct node *n, struct val *out)
     tex_map *m = NULL;
 
     if (!p)
-        return fail_node(s, n, "unknown primitive '%s'", n->s);
+        return fail_node(s, n, "%s", tex_errmsg());
     if (!(f = tex_field_new(p)))
         return err_at(s, n);
     f->style = TEX_PARAM_WORD;

@@ -1,4 +1,5 @@
 /* prim.c - the primitive registry, fields, and sampling on a grid */
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -14,9 +15,17 @@ const struct tex_primitive *const tex_primitives[] = {
 
 const struct tex_primitive *tex_primitive_find(const char *name)
 {
+    char known[1024];
+    size_t n = 0;
+
     for (int i = 0; tex_primitives[i]; i++)
         if (strcmp(tex_primitives[i]->name, name) == 0)
             return tex_primitives[i];
+    known[0] = '\0';
+    for (int i = 0; tex_primitives[i] && n < sizeof known; i++)
+        n += (size_t)snprintf(known + n, sizeof known - n, "%s%s", i ? ", " : "",
+                              tex_primitives[i]->name);
+    tex_usage_error("unknown primitive '%s' (known: %s)", name, known);
     return NULL;
 }
 

@@ -115,6 +115,7 @@ struct tex_primitive {
 #include "primitives.def"
 #undef TEX_PRIMITIVE
 extern const struct tex_primitive *const tex_primitives[];
+/* The primitive called name; NULL with a usage error listing the known ones. */
 const struct tex_primitive *tex_primitive_find(const char *name);
 
 /* A field with the primitive's defaults; NULL on allocation failure. */

@@ -502,7 +502,7 @@ static void parse_texture(struct parser *ps)
     char *pname = word(ps, "'file' or a primitive name");
     const struct tex_primitive *prim = tex_primitive_find(pname);
     if (!prim)
-        fail_at(ps, &pt, 0, "unknown primitive '%s'", pname);
+        fail_at(ps, &pt, 0, "%s", tex_errmsg());
     if (!(tx->field = tex_field_new(prim)))
         fail_at(ps, &pt, 1, "out of memory");
     tx->field->style = TEX_PARAM_WORD;
