@@ -37,6 +37,13 @@ for s in grid kdtree brute; do
 done
 check "grid and kd-tree give the same map" cmp "$T/j1-grid.pfm" "$T/j1-kdtree.pfm"
 check "grid and brute force give the same map" cmp "$T/j1-grid.pfm" "$T/j1-brute.pfm"
+# Far more points than pixels: the grid goes without its candidate lists, and agrees.
+for s in grid kdtree; do
+    t_bubble -s 40x30 -c 30000 --value f2-f1 --search "$s" -o "$T/many-$s.pfm"
+done
+check "30000 points in 40x30 pixels: grid and kd-tree agree" cmp "$T/many-grid.pfm" "$T/many-kdtree.pfm"
+t_bubble -s 40x30 -c 30000 --value f2-f1 --search grid -j 2 -o "$T/many-j2.pfm"
+check "and -j 2 agrees" cmp "$T/many-grid.pfm" "$T/many-j2.pfm"
 t_bubble -s 96x80 -c 300 --distribution cluster --metric chebyshev --size-spread 0.5 \
     --axis-spread 0.5 --tile -j 1 -o "$T/c1.pfm"
 t_bubble -s 96x80 -c 300 --distribution cluster --metric chebyshev --size-spread 0.5 \

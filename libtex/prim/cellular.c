@@ -1688,8 +1688,12 @@ tex_cellular *tex_cellular_new(const tex_points *ps, const struct tex_cellular_o
     if (c->search == TEX_SEARCH_GRID) {
         if (grid_build(c) < 0)
             goto fail;
+        /* Candidate lists pay for themselves over many queries per cell; for far
+         * more points than queries (10^7 points, a 256^2 map) they would cost
+         * most of the time and memory, and the grid answers alike. */
         if (c->search == TEX_SEARCH_GRID && dim == 2 && c->metric == TEX_METRIC_EUCLID &&
-            !c->ia && cand_build(c) < 0)
+            !c->ia && !(o->queries > 0 && c->n / CAND_FILL > 4.0 * o->queries) &&
+            cand_build(c) < 0)
             goto fail;
     }
     if (c->search == TEX_SEARCH_KDTREE &&
@@ -1814,7 +1818,8 @@ static void bubble_fini(struct tex_field *f)
 static int bubble_init(struct tex_field *f)
 {
     const struct bubble_params *p = f->params;
-    struct tex_cellular_opts o = {TEX_METRIC_EUCLID, 2, f->tile, (enum tex_search)p->search};
+    struct tex_cellular_opts o = {TEX_METRIC_EUCLID, 2, f->tile, (enum tex_search)p->search,
+                                  (long)f->w * f->h};
     struct bubble_state *s;
     tex_points ps;
     int dim = p->dimension + 2;

@@ -109,6 +109,7 @@ struct tex_cellular_opts {
     double p;      /* Minkowski order, >= 1 */
     int tile;      /* periodic with period 1 */
     enum tex_search search;
+    long queries;  /* queries expected (a map's pixels), 0 if unknown: sizes the tables */
 };
 
 typedef struct tex_cellular tex_cellular;
