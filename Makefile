@@ -75,7 +75,7 @@ DEBS = build-essential pkg-config liblz4-dev libopenexr-dev libopenimageio-dev o
        hyperfine clang libclang-rt-14-dev libomp-dev python3
 
 .PHONY: all deps demo test test-plain test-asan check bench install uninstall man fuzz fuzz-smoke figures \
-        gallery clean
+        gallery clean tsan
 
 # build/share/textura holds links to the data, so that a build tree is laid
 # out as an install is and finds its data files the same way (paths.h).
@@ -151,6 +151,19 @@ test:
 test-plain: check
 	tests/run build
 
+# The unit tests under ThreadSanitizer, built with clang and LLVM's OpenMP
+# runtime; Archer (libarcher) makes TSan see OpenMP's synchronisation.
+TSAN_BUILD ?= build-tsan
+ARCHER ?= $(firstword $(wildcard /usr/lib/llvm-*/lib/libarcher.so))
+tsan:
+	$(MAKE) check BUILD=$(TSAN_BUILD) CC=clang CXX=clang++ SANITIZE=1 OPT=-O1 \
+		SANFLAGS="-fsanitize=thread -fno-omit-frame-pointer"
+	@fail=0; for t in $(TSAN_BUILD)/tests/test_*; do \
+		OMP_NUM_THREADS=2 OMP_TOOL_LIBRARIES=$(ARCHER) TEXTURA_TOP=$(CURDIR) \
+		TSAN_OPTIONS="halt_on_error=1 suppressions=$(CURDIR)/tests/tsan.supp" \
+		$$t >$$t.log 2>&1 && echo "ok - $$t under TSan" || { echo "not ok - $$t: see $$t.log"; fail=1; }; \
+	done; exit $$fail
+
 bench: all
 	tests/bench/run $(BUILD)
 
@@ -206,6 +219,6 @@ uninstall:
 	for f in $(notdir $(wildcard man/man5/*.5)); do rm -f $(DESTDIR)$(PREFIX)/share/man/man5/$$f; done
 
 clean:
-	rm -rf build build-asan build-clang demo.png gallery
+	rm -rf build build-asan build-clang build-tsan demo.png gallery
 
 -include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)

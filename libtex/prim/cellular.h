@@ -11,7 +11,7 @@
  *   tex_points ps;
  *   tex_points_random(&ps, 2, 1000, TEX_POINTS_POISSON, 0, seed, tile);
  *   tex_points_vary(&ps, 0.5, 0.3, seed);       // random sizes, ellipses
- *   struct tex_cellular_opts o = {TEX_METRIC_EUCLID, 2, tile, TEX_SEARCH_AUTO};
+ *   struct tex_cellular_opts o = {TEX_METRIC_EUCLID, 2, tile, TEX_SEARCH_AUTO, 0};
  *   tex_cellular *c = tex_cellular_new(&ps, &o);
  *   tex_cellular_query(c, n, q, f1, f2, id);    // q: n*dim doubles
  *   tex_cellular_free(c); tex_points_free(&ps);

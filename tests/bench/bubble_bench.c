@@ -43,7 +43,7 @@ int main(int argc, char **argv)
     tex_points ps;
     if (tex_points_random(&ps, 2, n, dist, 0, 1, 0) < 0)
         return 1;
-    struct tex_cellular_opts o = {TEX_METRIC_EUCLID, 2, 0, search};
+    struct tex_cellular_opts o = {TEX_METRIC_EUCLID, 2, 0, search, 0};
     struct timespec c0, c1;
     double t0 = omp_get_wtime();
     clock_gettime(CLOCK_THREAD_CPUTIME_ID, &c0);

@@ -13,7 +13,7 @@ static int compare(const tex_points *ps, enum tex_metric m, double p, int tile, 
                    uint64_t seed, int *chosen_grid)
 {
     int dim = ps->dim, bad = 0;
-    struct tex_cellular_opts o = {m, p, tile, TEX_SEARCH_BRUTE};
+    struct tex_cellular_opts o = {m, p, tile, TEX_SEARCH_BRUTE, 0};
     tex_cellular *ref = tex_cellular_new(ps, &o), *c[3];
     double *q = malloc(sizeof *q * nq * dim), *r1 = malloc(sizeof *r1 * nq),
            *r2 = malloc(sizeof *r2 * nq), *f1 = malloc(sizeof *f1 * nq),
@@ -163,7 +163,7 @@ int main(void)
                    "a lattice, Chebyshev%s: all searches agree", tile ? " tiled" : "");
         }
         /* One point without tile has no F2. */
-        struct tex_cellular_opts o = {TEX_METRIC_EUCLID, 2, 0, TEX_SEARCH_AUTO};
+        struct tex_cellular_opts o = {TEX_METRIC_EUCLID, 2, 0, TEX_SEARCH_AUTO, 0};
         tex_cellular *c = tex_cellular_new(&a, &o);
         double q[2] = {0.3, 0.6}, f1, f2;
         tex_cellular_query(c, 1, q, &f1, &f2, NULL);

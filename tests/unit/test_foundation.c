@@ -185,8 +185,47 @@ static void test_noise(void)
     tex_noise_free(&t);
 }
 
+/* Progress from many threads: each report larger than the last, 100 at the end. */
+static int reports, last_percent = -1, backwards;
+static void on_progress(long done, long total, void *arg)
+{
+    (void)arg;
+    backwards |= done <= last_percent || total != 100;
+    last_percent = (int)done;
+    reports++;
+}
+
+static void test_progress(void)
+{
+    tex_set_progress_handler(on_progress, NULL);
+    tex_progress_stage(0.5, 1000);
+#pragma omp parallel for
+    for (int i = 0; i < 1000; i++)
+        tex_progress_add(1);
+    CHECK(last_percent == 50, "a stage of half the bar ends at 50%");
+    tex_progress_stage(1, 10);
+    tex_progress_hold(1);
+    tex_progress_stage(1, 5); /* held: an inner part's stages do not count */
+    tex_progress_add(5);
+    tex_progress_hold(0);
+    CHECK(last_percent == 50, "nothing is reported while held");
+#pragma omp parallel for
+    for (int i = 0; i < 10; i++)
+        tex_progress_add(1);
+    tex_progress_done();
+    CHECK(last_percent == 100 && !backwards, "progress only grows, and ends at 100%");
+    CHECK(reports <= 101, "at most one report per percent");
+    tex_set_progress_handler(NULL, NULL);
+    reports = 0;
+    tex_progress_stage(1, 10);
+    tex_progress_add(10);
+    tex_progress_done();
+    CHECK(reports == 0, "no handler, no reports");
+}
+
 int main(void)
 {
+    test_progress();
     test_map_limits();
     test_params();
     test_sniff();
