@@ -47,6 +47,9 @@ static const struct {
     {TEX_OPT_PALETTE, TEX_STRING(struct tex_common, palette, 0, NULL, "NAME|FILE",
                                  "colour the map through a palette")},
     {TEX_OPT_TILE, TEX_TILE_ROW(struct tex_common, tile)},
+    {TEX_OPT_WINDOW, TEX_STRING(struct tex_common, window, 0, NULL, "X,Y,W,H",
+                                "make only the W x H window at X,Y of the -s map, the same "
+                                "pixels as cropping the whole map")},
     {TEX_OPT_MAPS, TEX_STRING(struct tex_common, nonfinite, 0, "refuse", "refuse|keep|V",
                               "NaN and infinite samples in input maps: refuse the map naming "
                               "the first, keep them, or replace them by the number V")},
@@ -334,6 +337,10 @@ static void check_operands(const struct tex_tool *t, int argc, char **argv,
     if ((t->common & TEX_OPT_SIZE) && tex_parse_size(c->size, &c->w, &c->h) < 0)
         tex_usage_die("-s must be N or WxH with each side 1..%d (got '%s')", TEX_MAP_MAX_SIDE,
                       c->size);
+    if ((t->common & TEX_OPT_WINDOW) && c->window &&
+        tex_parse_window(c->window, c->w, c->h, c->win) < 0)
+        tex_usage_die("--window must be X,Y,W,H with W, H >= 1 inside the %dx%d map (got '%s')",
+                      c->w, c->h, c->window);
     nops = argc - optind;
     if (nops < t->min_operands || (t->max_operands >= 0 && nops > t->max_operands)) {
         if (nops > t->min_operands)
@@ -452,8 +459,9 @@ int tex_generate_main(const struct tex_primitive *p, int argc, char **argv)
     struct tex_common c;
     struct tex_field *f;
     tex_map *m;
-    struct tex_tool t = {name, "", p->summary, TEX_OPT_OUTPUT | TEX_OPT_SIZE | TEX_OPT_SEED,
-                         p->params, 0, 0};
+    struct tex_tool t = {name, "", p->summary,
+                         TEX_OPT_OUTPUT | TEX_OPT_SIZE | TEX_OPT_SEED | TEX_OPT_WINDOW, p->params,
+                         0, 0};
 
     snprintf(name, sizeof name, "t_%s", p->name);
     if (p->flags & TEX_PRIM_TILE)
@@ -471,6 +479,8 @@ int tex_generate_main(const struct tex_primitive *p, int argc, char **argv)
     if (c.palette && c.ids)
         tex_usage_die("--palette colours the subregions; --ids writes their ids instead: "
                       "give one of them");
+    if (c.win[2] > 0 && tex_field_window(f, c.win[0], c.win[1], c.win[2], c.win[3]) < 0)
+        tex_die();
     if (tex_field_init(f, c.w, c.h) < 0)
         tex_die();
     if (c.palette && !(colors = region_colors(c.palette, f->nregions)))

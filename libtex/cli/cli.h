@@ -22,6 +22,7 @@
  *   TEX_OPT_IDS      --ids
  *   TEX_OPT_PALETTE  --palette NAME|FILE
  *   TEX_OPT_TILE     --tile
+ *   TEX_OPT_WINDOW   --window X,Y,W,H (a window of the -s map; c->win, win[2] 0: none)
  *   TEX_OPT_MAPS     --nonfinite refuse|keep|V (input maps' NaN and infinities, file.h)
  *   always           -j/--threads N, -q/--quiet, -h/--help, -V/--version
  */
@@ -46,6 +47,7 @@ enum {
     TEX_OPT_PALETTE = 1 << 4,
     TEX_OPT_TILE = 1 << 5,
     TEX_OPT_MAPS = 1 << 6,
+    TEX_OPT_WINDOW = 1 << 7,
 };
 
 struct tex_common {
@@ -62,6 +64,8 @@ struct tex_common {
     const char *palette;
     int tile;
     const char *nonfinite;
+    const char *window;
+    int win[4];         /* parsed from window: x, y, w, h; w 0 when none */
     char *cmdline;      /* the command line, for the map's history */
 };
 

@@ -84,6 +84,7 @@ struct wsink {
     uint64_t table_off;  /* where the offset table sits */
     unsigned char *table;
     size_t table_len;
+    int seekable;        /* fd is a regular file: bytes land at their offsets (pwrite) */
 };
 
 static int64_t write_mem(exr_const_context_t ctxt, void *ud, const void *src, uint64_t sz,
@@ -92,6 +93,20 @@ static int64_t write_mem(exr_const_context_t ctxt, void *ud, const void *src, ui
     struct wsink *w = ud;
     size_t end = w->base + off + sz;
 
+    if (w->seekable) {
+        const unsigned char *c = src;
+        uint64_t done = 0;
+        while (done < sz) {
+            ssize_t k = pwrite(w->fd, c + done, sz - done, (off_t)(off + done));
+            if (k < 0 && errno == EINTR)
+                continue;
+            if (k <= 0)
+                return ecb(ctxt, EXR_ERR_WRITE_IO, "%s: write error: %s", w->name,
+                           strerror(errno)), -1;
+            done += (uint64_t)k;
+        }
+        return (int64_t)sz;
+    }
     if (w->streaming) {
         if (off == w->pos) {
             if (tex_write_all(w->fd, src, sz, w->name) < 0)
@@ -164,8 +179,10 @@ static exr_result_t raw_if_incompressible(exr_encode_pipeline_t *enc)
     return rv;
 }
 
-static int encode(const tex_map *m, enum tex_compression c, struct wsink *sink)
+static int encode(const tex_map *m, tex_rows_fn fill, void *arg, enum tex_compression c,
+                  struct wsink *sink)
 {
+    float *band = NULL; /* fill's rows, one chunk at a time */
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     exr_context_t ctx = NULL;
     exr_encode_pipeline_t enc;
@@ -177,7 +194,8 @@ static int encode(const tex_map *m, enum tex_compression c, struct wsink *sink)
                                               EXR_COMPRESSION_PIZ};
     size_t est = (size_t)m->w * m->h * m->nc * 4 + 4096 + (size_t)m->h * 16;
 
-    if (sink->fd < 0 && c == TEX_COMPRESS_NONE && tex_buf_reserve(out, out->len + est) < 0)
+    if (sink->fd < 0 && !fill && c == TEX_COMPRESS_NONE &&
+        tex_buf_reserve(out, out->len + est) < 0)
         return -1;
     memset(&enc, 0, sizeof enc);
     init.user_data = sink;
@@ -191,6 +209,19 @@ static int encode(const tex_map *m, enum tex_compression c, struct wsink *sink)
     if ((rv = exr_add_part(ctx, "", EXR_STORAGE_SCANLINE, &part)) ||
         (rv = exr_initialize_required_attr_simple(ctx, part, m->w, m->h, ctype[c])))
         return exr_fail(&ctx, rv, "EXR header");
+    if (m->full_w > 0) { /* a window: the data window inside the full map's display window */
+        exr_attr_box2i_t dw, disp;
+        dw.min.x = m->x0;
+        dw.min.y = m->y0;
+        dw.max.x = m->x0 + m->w - 1;
+        dw.max.y = m->y0 + m->h - 1;
+        disp.min.x = disp.min.y = 0;
+        disp.max.x = m->full_w - 1;
+        disp.max.y = m->full_h - 1;
+        if ((rv = exr_set_data_window(ctx, part, &dw)) ||
+            (rv = exr_set_display_window(ctx, part, &disp)))
+            return exr_fail(&ctx, rv, "EXR header");
+    }
     for (ch = 0; ch < m->nc; ch++)
         if ((rv = exr_add_channel(ctx, part, chnames[m->nc - 1][ch], EXR_PIXEL_FLOAT,
                                   EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1)))
@@ -203,12 +234,24 @@ static int encode(const tex_map *m, enum tex_compression c, struct wsink *sink)
     if ((rv = exr_write_header(ctx)) || (rv = exr_get_scanlines_per_chunk(ctx, part, &lines)) ||
         (rv = exr_get_chunk_count(ctx, part, &nchunks)))
         return exr_fail(&ctx, rv, "EXR header");
-    if (sink->fd >= 0 && start_streaming(sink, m, nchunks, lines) < 0) {
+    if (sink->fd >= 0 && !sink->seekable && start_streaming(sink, m, nchunks, lines) < 0) {
         exr_finish(&ctx);
         return -1;
     }
+    if (fill && !(band = malloc(sizeof *band * (size_t)lines * m->w * m->nc))) {
+        exr_finish(&ctx);
+        return tex_error("out of memory");
+    }
     for (y = 0; y < m->h; y += lines) {
-        if ((rv = exr_write_scanline_chunk_info(ctx, part, y, &ci)))
+        const float *row0 = band ? band : tex_map_row(m, y);
+        if (band && fill(arg, y, m->h - y < lines ? m->h - y : lines, band) < 0) {
+            free(band);
+            if (y > 0)
+                exr_encoding_destroy(ctx, &enc);
+            exr_finish(&ctx);
+            return -1;
+        }
+        if ((rv = exr_write_scanline_chunk_info(ctx, part, y + (m->full_w > 0 ? m->y0 : 0), &ci)))
             return exr_fail(&ctx, rv, "EXR chunk");
         rv = y == 0 ? exr_encoding_initialize(ctx, part, &ci, &enc)
                     : exr_encoding_update(ctx, part, &ci, &enc);
@@ -224,7 +267,7 @@ static int encode(const tex_map *m, enum tex_compression c, struct wsink *sink)
             cc->user_data_type = EXR_PIXEL_FLOAT;
             cc->user_pixel_stride = 4 * m->nc;
             cc->user_line_stride = 4 * m->nc * m->w;
-            cc->encode_from_ptr = (const uint8_t *)(tex_map_row(m, y) + k);
+            cc->encode_from_ptr = (const uint8_t *)(row0 + k);
         }
         if (y == 0 && (rv = exr_encoding_choose_default_routines(ctx, part, &enc)))
             return exr_fail(&ctx, rv, "EXR encoder");
@@ -234,9 +277,11 @@ static int encode(const tex_map *m, enum tex_compression c, struct wsink *sink)
         }
         if ((rv = exr_encoding_run(ctx, part, &enc))) {
             exr_encoding_destroy(ctx, &enc);
+            free(band);
             return exr_fail(&ctx, rv, "EXR encode");
         }
     }
+    free(band);
     exr_encoding_destroy(ctx, &enc);
     if ((rv = exr_finish(&ctx)))
         return exr_fail(NULL, rv, "EXR finish");
@@ -245,8 +290,8 @@ static int encode(const tex_map *m, enum tex_compression c, struct wsink *sink)
 
 int tex_exr_encode(const tex_map *m, enum tex_compression c, tex_buf *out)
 {
-    struct wsink sink = {out, out->len, -1, "memory", 0, 0, 0, NULL, 0};
-    return encode(m, c, &sink);
+    struct wsink sink = {out, out->len, -1, "memory", 0, 0, 0, NULL, 0, 0};
+    return encode(m, NULL, NULL, c, &sink);
 }
 
 /* A pipe's default 64 KiB buffer costs a context switch per 64 KiB; ask for
@@ -265,14 +310,33 @@ void tex_pipe_widen(int fd)
 int tex_exr_write_fd(const tex_map *m, int fd, const char *name)
 {
     tex_buf head = {0};
-    struct wsink sink = {&head, 0, fd, name, 0, 0, 0, NULL, 0};
+    struct wsink sink = {&head, 0, fd, name, 0, 0, 0, NULL, 0, 0};
     int r;
 
     tex_pipe_widen(fd);
-    r = encode(m, TEX_COMPRESS_NONE, &sink);
+    r = encode(m, NULL, NULL, TEX_COMPRESS_NONE, &sink);
 
     free(sink.table);
     tex_buf_free(&head);
+    return r;
+}
+
+int tex_exr_write_rows(const tex_map *head, tex_rows_fn fill, void *arg,
+                       enum tex_compression c, int fd, const char *name)
+{
+    tex_buf hb = {0};
+    struct stat st;
+    struct wsink sink = {&hb, 0, fd, name, 0, 0, 0, NULL, 0, 0};
+    int r;
+
+    sink.seekable = fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && lseek(fd, 0, SEEK_CUR) == 0;
+    if (!sink.seekable) {
+        tex_pipe_widen(fd);
+        c = TEX_COMPRESS_NONE; /* a pipe carries the stream, never compressed */
+    }
+    r = encode(head, fill, arg, c, &sink);
+    free(sink.table);
+    tex_buf_free(&hb);
     return r;
 }
 
@@ -547,7 +611,7 @@ static tex_map *decode(exr_context_initializer_t *initp, const char *name)
     exr_context_initializer_t init = *initp;
     exr_context_t ctx = NULL;
     exr_decode_pipeline_t dec;
-    exr_attr_box2i_t dw;
+    exr_attr_box2i_t dw, disp;
     const exr_attr_chlist_t *cl;
     exr_result_t rv;
     tex_map *m = NULL;
@@ -588,6 +652,17 @@ static tex_map *decode(exr_context_initializer_t *initp, const char *name)
         memcpy(m->history, hist, (size_t)hlen);
         m->history[hlen] = '\0';
     }
+    if (exr_get_display_window(ctx, 0, &disp) == EXR_ERR_SUCCESS &&
+        (dw.min.x != disp.min.x || dw.min.y != disp.min.y || dw.max.x != disp.max.x ||
+         dw.max.y != disp.max.y) &&
+        disp.min.x == 0 && disp.min.y == 0 && dw.min.x >= 0 && dw.min.y >= 0 &&
+        dw.max.x <= disp.max.x && dw.max.y <= disp.max.y) {
+        /* a window of a larger map (the display window): keep its place */
+        m->x0 = dw.min.x;
+        m->y0 = dw.min.y;
+        m->full_w = disp.max.x + 1;
+        m->full_h = disp.max.y + 1;
+    }
     if (decode_chunks(ctx, &dec, dw, lines, order, m) < 0)
         goto fail;
     exr_decoding_destroy(ctx, &dec);
@@ -600,4 +675,44 @@ fail:
     }
     tex_map_free(m);
     return NULL;
+}
+
+int tex_exr_probe(const char *path, tex_map *head)
+{
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    exr_context_t ctx = NULL;
+    exr_attr_box2i_t dw, disp;
+    const exr_attr_chlist_t *cl;
+    int lines, order[4];
+    exr_result_t rv;
+
+    memset(head, 0, sizeof *head);
+    init.error_handler_fn = on_exr_error;
+    init.flags = EXR_CONTEXT_FLAG_SILENT_HEADER_PARSE;
+    init.max_image_width = TEX_MAP_MAX_SIDE;
+    init.max_image_height = TEX_MAP_MAX_SIDE;
+    tex_error("unknown error");
+    if ((rv = exr_start_read(&ctx, path, &init))) {
+        if (ctx)
+            exr_finish(&ctx);
+        return tex_error("%s: not a readable OpenEXR file (%s)", path,
+                         exr_get_default_error_message(rv));
+    }
+    if (decode_header(ctx, &dw, &cl, &lines) < 0 ||
+        (rv = exr_get_display_window(ctx, 0, &disp))) {
+        if (rv)
+            tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv));
+        exr_finish(&ctx);
+        tex_error_context(path);
+        return -1;
+    }
+    head->nc = order_channels(cl, order);
+    head->w = dw.max.x - dw.min.x + 1;
+    head->h = dw.max.y - dw.min.y + 1;
+    head->x0 = dw.min.x;
+    head->y0 = dw.min.y;
+    head->full_w = disp.max.x - disp.min.x + 1;
+    head->full_h = disp.max.y - disp.min.y + 1;
+    exr_finish(&ctx);
+    return 0;
 }

@@ -46,6 +46,21 @@ int tex_exr_encode(const tex_map *m, enum tex_compression c, tex_buf *out);
  * so the table is computed in advance and checked against the core's). */
 int tex_exr_write_fd(const tex_map *m, int fd, const char *name);
 
+/* Write a map made a band of rows at a time, never held whole: head gives
+ * its size, channels, metadata and place (head->px unused); fill(arg, y, n,
+ * rows) writes rows y..y+n-1 (w * nc floats each, one after the other), in
+ * order from the top, and returns 0 or -1 with the error set.  A regular
+ * file gets compression c, chunks written at their offsets; a pipe gets the
+ * uncompressed stream. */
+typedef int (*tex_rows_fn)(void *arg, int y, int n, float *rows);
+int tex_exr_write_rows(const tex_map *head, tex_rows_fn fill, void *arg,
+                       enum tex_compression c, int fd, const char *name);
+
+/* The header of the EXR file at path into head (px NULL): size and channels
+ * kept, and its place, the data window within the display window (x0, y0,
+ * full_w, full_h; full_w set even for a whole map).  0, or -1 with the error. */
+int tex_exr_probe(const char *path, tex_map *head);
+
 /* Decode an EXR read from fd, of which the first prefix_len bytes were
  * already read into prefix (to recognise the format).  Reads as it decodes,
  * keeping only a window of the stream. */

@@ -825,6 +825,16 @@ static int frac_grid(const struct tex_field *f, tex_map *m)
     return 0;
 }
 
+/* Midpoint displacement draws its random numbers in sequence over the whole
+ * lattice and rescales by the whole map's range: no window alone has them. */
+static const char *frac_whole(const struct tex_field *f)
+{
+    const struct frac_params *p = f->params;
+    return p->mode == MIDPOINT ? "--mode midpoint draws the whole lattice in sequence and "
+                                 "rescales by the whole map's range"
+                               : NULL;
+}
+
 const struct tex_primitive tex_prim_fractal = {
     .name = "fractal",
     .summary = "fractals: fBm, multifractals, midpoint displacement, Mandelbrot, Julia, Koch",
@@ -837,4 +847,5 @@ const struct tex_primitive tex_prim_fractal = {
     .eval3 = frac_eval3,
     .row = frac_row,
     .grid = frac_grid,
+    .whole = frac_whole,
 };
