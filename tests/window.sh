@@ -62,3 +62,6 @@ check_fails "t_assemble: windows of different maps" 2 t_assemble "$T/o1.exr" "$T
 check_fails "t_assemble: not EXR" 2 t_assemble "$T/p1.exr" "$T/p2.exr" -o "$T/bad.png"
 [ -e "$T/bad.exr" ] || [ -e "$T/bad.png" ] && notok "t_assemble leaves no output on error" ||
     ok "t_assemble leaves no output on error"
+t_noise -s 32 -o "$T/sample.exr"
+check_fails "sparse convolution cannot window" 2 t_sparse "$T/sample.exr" -s 64 \
+    --window 0,0,8,8 -o "$T/bad.exr"
