@@ -1696,6 +1696,12 @@ int tex_scene_set_size(struct tex_scene *s, int w, int h)
     return set_setting(s, "image", (const double[]){w, h}, 2);
 }
 
+void tex_scene_size(const struct tex_scene *s, int *w, int *h)
+{
+    *w = s->settings.w;
+    *h = s->settings.h;
+}
+
 int tex_scene_set_samples(struct tex_scene *s, int spp)
 {
     return set_setting(s, "samples", (const double[]){spp}, 1);
