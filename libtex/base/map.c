@@ -177,3 +177,25 @@ int tex_parse_window(const char *text, int full_w, int full_h, int r[4])
         r[i] = (int)v[i];
     return 0;
 }
+
+tex_map *tex_map_reduce(const tex_map *s)
+{
+    tex_map *d = tex_map_new(s->w > 1 ? s->w / 2 : 1, s->h > 1 ? s->h / 2 : 1, s->nc);
+    if (!d)
+        return NULL;
+    int fx = s->w / d->w, fy = s->h / d->h;
+    for (int y = 0; y < d->h; y++) {
+        for (int x = 0; x < d->w; x++) {
+            float *o = tex_map_px(d, x, y);
+            for (int j = 0; j < fy; j++)
+                for (int i = 0; i < fx; i++) {
+                    const float *p = tex_map_px(s, x * fx + i, y * fy + j);
+                    for (int c = 0; c < s->nc; c++)
+                        o[c] += p[c];
+                }
+            for (int c = 0; c < s->nc; c++)
+                o[c] /= fx * fy;
+        }
+    }
+    return d;
+}

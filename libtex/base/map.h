@@ -99,6 +99,13 @@ static inline long tex_edge_index(long i, long n, enum tex_edge e)
     }
 }
 
+/* The next level of a mip-map pyramid: floor(w/2) x floor(h/2) (at least 1),
+ * as OpenEXR's round-down levels; each pixel is the mean of the fx x fy
+ * pixels from its corner, fx = w / floor(w/2) (a box filter; a remainder
+ * column or row at the far edge is dropped).  The renderer's pyramid and
+ * EXR --mipmap files are built by this one function. */
+tex_map *tex_map_reduce(const tex_map *s);
+
 /* Parse "X,Y,W,H" (decimal integers) as a window of a full_w x full_h map
  * into r[0..3]: 0, or -1 when malformed, of zero size or not wholly inside. */
 int tex_parse_window(const char *text, int full_w, int full_h, int r[4]);

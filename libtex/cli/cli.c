@@ -40,6 +40,11 @@ static const struct {
                       0, 0, 0}},
     {TEX_OPT_OUTPUT, TEX_STRING(struct tex_common, format, 0, NULL, "EXT",
                                 "format of standard output, e.g. png (default: exr)")},
+    {TEX_OPT_OUTPUT, TEX_FLAG(struct tex_common, tiled, 0,
+                              "write the EXR in 64 x 64 tiles instead of scanlines")},
+    {TEX_OPT_OUTPUT, TEX_FLAG(struct tex_common, mipmap, 0,
+                              "write a tiled EXR with its mip-map levels, as renderers' "
+                              "texture files (.tx) have them")},
     /* size, seed, ids and tile: the rows of prim.h, as in scenes and scripts */
     {TEX_OPT_SIZE, TEX_STRING(struct tex_common, size, 's', "256", "N|WxH", TEX_SIZE_HELP)},
     {TEX_OPT_SEED, TEX_SEED_ROW(struct tex_common, seed, 'S', 1)},
@@ -341,6 +346,14 @@ static void check_operands(const struct tex_tool *t, int argc, char **argv,
         tex_parse_window(c->window, c->w, c->h, c->win) < 0)
         tex_usage_die("--window must be X,Y,W,H with W, H >= 1 inside the %dx%d map (got '%s')",
                       c->w, c->h, c->window);
+    if ((t->common & TEX_OPT_OUTPUT) && (c->tiled || c->mipmap)) {
+        const char *out = c->output && strcmp(c->output, "-") ? c->output : NULL;
+        char probe[40];
+        snprintf(probe, sizeof probe, "x.%.32s", c->format ? c->format : "exr");
+        if (tex_format_from_name(out ? out : probe) != TEX_FMT_EXR)
+            tex_usage_die("%s writes EXR only (got %s)", c->mipmap ? "--mipmap" : "--tiled",
+                          out ? out : "--format");
+    }
     nops = argc - optind;
     if (nops < t->min_operands || (t->max_operands >= 0 && nops > t->max_operands)) {
         if (nops > t->min_operands)
@@ -419,7 +432,8 @@ tex_map *tex_cli_read(const char *path)
 
 void tex_cli_write(tex_map *m, const struct tex_common *c)
 {
-    struct tex_write_opts o = {tex_cli_depth(c), (enum tex_compression)c->compression, c->format};
+    struct tex_write_opts o = {tex_cli_depth(c), (enum tex_compression)c->compression, c->format,
+                               c->tiled, c->mipmap};
 
     if (c->cmdline && tex_map_add_history(m, c->cmdline) < 0)
         tex_die();

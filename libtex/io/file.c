@@ -537,9 +537,14 @@ static int write_to_path(const tex_map *m, enum tex_format f, int depth, const c
     if (f == TEX_FMT_EXR) {
         tex_buf b = {0};
         int r;
-        if (fd == 1 || o->compression == TEX_COMPRESS_NONE)
+        if (o->tiled || o->mipmap)
+            r = tex_exr_encode_tiled(m, TEX_EXR_TILE, o->mipmap,
+                                     fd == 1 ? TEX_COMPRESS_NONE : o->compression, &b);
+        else if (fd == 1 || o->compression == TEX_COMPRESS_NONE)
             return tex_exr_write_fd(m, fd, name);
-        if ((r = tex_exr_encode(m, o->compression, &b)) == 0)
+        else
+            r = tex_exr_encode(m, o->compression, &b);
+        if (r == 0)
             r = tex_write_all(fd, b.data, b.len, name);
         tex_buf_free(&b);
         return r;
@@ -829,6 +834,51 @@ int tex_map_write_check(const char *path)
                                ".tif, .pnm, .pam, .pfm, .bmp, .tga, .hdr, .jpg, .webp or .dpx)",
                                path);
     return 0;
+}
+
+tex_map **tex_map_read_levels(const char *path, int *n)
+{
+    tex_map **lv = NULL, *m;
+    int fd = -1;
+    tex_buf b = {0};
+    unsigned char head[4];
+
+    *n = 0;
+    if (!path || strcmp(path, "-") == 0 || (fd = open(path, O_RDONLY)) < 0 ||
+        read(fd, head, 4) != 4 || tex_format_sniff(head, 4) != TEX_FMT_EXR ||
+        lseek(fd, 0, SEEK_SET) != 0 || tex_read_fd(fd, &b, path) < 0 ||
+        tex_exr_unsupported(b.data, b.len)) {
+        /* not a whole EXR file: one level, read as any map */
+        if (path && strcmp(path, "-") != 0 && fd >= 0)
+            close(fd);
+        tex_buf_free(&b);
+        if (!(m = tex_map_read(path)))
+            return NULL;
+        if (!(lv = malloc(sizeof *lv))) {
+            tex_map_free(m);
+            tex_error("out of memory");
+            return NULL;
+        }
+        lv[0] = m;
+        *n = 1;
+        return lv;
+    }
+    close(fd);
+    lv = tex_exr_decode_levels(b.data, b.len, path, n);
+    tex_buf_free(&b);
+    if (!lv) {
+        tex_error_context(path);
+        return NULL;
+    }
+    for (int l = 0; l < *n; l++)
+        if (!nonfinite(lv[l], path)) { /* it freed that level */
+            for (int k = 0; k < *n; k++)
+                if (k != l)
+                    tex_map_free(lv[k]);
+            free(lv);
+            return NULL;
+        }
+    return lv;
 }
 
 int tex_map_write(const tex_map *m, const char *path, const struct tex_write_opts *o)

@@ -55,8 +55,10 @@ struct tex_write_opts {
     int depth;                        /* 0, 8, 16 or 32 */
     enum tex_compression compression; /* EXR files on disk */
     const char *format;               /* for standard output: an extension; NULL = EXR */
+    int tiled, mipmap;                /* EXR only: 64 x 64 tiles; with mip-map levels */
 };
-#define TEX_WRITE_DEFAULTS {0, TEX_COMPRESS_ZIP, NULL}
+#define TEX_WRITE_DEFAULTS {0, TEX_COMPRESS_ZIP, NULL, 0, 0}
+#define TEX_EXR_TILE 64 /* the tile side of --tiled and --mipmap files (maketx's) */
 
 /* What reading does with NaN and infinite samples, for the whole process
  * (textura(5), the tools' --nonfinite): refuse the map, naming the first
@@ -68,6 +70,12 @@ void tex_map_set_nonfinite(enum tex_nonfinite policy, float value);
  * usage error, when it is a terminal).  Non-finite samples follow the
  * policy above. */
 tex_map *tex_map_read(const char *path);
+/* Read a map file with its mip levels, when it is an EXR file that has
+ * them (written with --mipmap, or by maketx): an array of *n maps, the full
+ * resolution first, each level half the one above (rounded down); any
+ * other file or standard input gives one level.  Free each map, then the
+ * array; NULL with the error set. */
+tex_map **tex_map_read_levels(const char *path, int *n);
 /* Read a map from a file image in memory; name is for messages. */
 tex_map *tex_map_read_memory(const void *data, size_t len, const char *name);
 /* Write a map; NULL or "-" is standard output. */

@@ -14,7 +14,9 @@
  * lists them.  A file with channels left out (more than four, or others
  * beside R G B A) keeps the first four or R G B A, with a warning naming
  * those kept (error.h).  Scanline and tiled files are read, the first
- * part of a multi-part file, the full-resolution level of a tiled one.
+ * part of a multi-part file, the full-resolution level of a tiled one
+ * (tex_exr_decode_levels also its mip levels).  Files on disk may be
+ * written tiled and mip-mapped (tex_exr_encode_tiled).
  */
 #ifndef TEX_STREAM_H
 #define TEX_STREAM_H
@@ -40,6 +42,13 @@ void tex_buf_free(tex_buf *b);
 
 /* Encode m as an EXR file image in out (appended to whatever it holds). */
 int tex_exr_encode(const tex_map *m, enum tex_compression c, tex_buf *out);
+
+/* Encode m as a tiled EXR (tile x tile pixels), with mipmap its mip-map
+ * levels too (OpenEXR MIPMAP_LEVELS, ROUND_DOWN: each level tex_map_reduce
+ * of the one above, down to 1 x 1), as .tx-style texture files have them.
+ * A map of subregion ids refuses mipmap (a usage error). */
+int tex_exr_encode_tiled(const tex_map *m, int tile, int mipmap, enum tex_compression c,
+                         tex_buf *out);
 
 /* Write m as the uncompressed stream to fd as it is encoded, without holding
  * the whole file in memory (a pipe cannot seek back for the offset table,
@@ -74,6 +83,11 @@ int tex_write_all(int fd, const void *p, size_t n, const char *name);
 
 /* Decode an EXR held in memory; name is for messages only. */
 tex_map *tex_exr_decode(const void *data, size_t len, const char *name);
+
+/* Decode an EXR in memory with its mip levels when it has them (a tiled
+ * MIPMAP_LEVELS, ROUND_DOWN file): an array of *n maps, the full resolution
+ * first (free each, then the array); NULL with the error set. */
+tex_map **tex_exr_decode_levels(const void *data, size_t len, const char *name, int *n);
 
 /* The name of the compression of an EXR file image if the core library
  * cannot decode it ("DWAA", "DWAB" with OpenEXR 3.1), else NULL; the
