@@ -16,6 +16,10 @@ int main(int argc, char **argv)
     const char *name = "standard output";
     int i = tex_cli_parse(&tool, argc, argv, &c, NULL), r;
 
+    if (c.mipmap) /* levels need the whole map: t_convert --mipmap makes them */
+        tex_usage_die("--mipmap needs the whole map in memory: assemble, then t_convert "
+                      "--mipmap");
+
     if (c.output && strcmp(c.output, "-") != 0) {
         if (tex_format_from_name(c.output) != TEX_FMT_EXR)
             tex_usage_die("%s: assembled maps are written as EXR (.exr)", c.output);
@@ -30,7 +34,8 @@ int main(int argc, char **argv)
         tex_die();
     }
     r = tex_assemble((const char *const *)argv + i, argc - i, out.fd, name,
-                     (enum tex_compression)c.compression, c.cmdline);
+                     c.tiled ? TEX_EXR_TILE : 0, (enum tex_compression)c.compression,
+                     c.cmdline);
     if (out.fd != 1 && tex_out_close(&out, r) < 0)
         tex_die();
     if (r < 0)

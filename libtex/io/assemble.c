@@ -83,7 +83,7 @@ static int check_cover(const struct part *p, int n)
     return 0;
 }
 
-int tex_assemble(const char *const *paths, int n, int fd, const char *name,
+int tex_assemble(const char *const *paths, int n, int fd, const char *name, int tile,
                  enum tex_compression c, const char *history)
 {
     struct part *p = calloc((size_t)n, sizeof *p);
@@ -114,7 +114,7 @@ int tex_assemble(const char *const *paths, int n, int fd, const char *name,
     head.history = first->history;
     tex_map_free(p[0].m);
     p[0].m = NULL;
-    r = tex_exr_write_rows(&head, fill, &j, c, fd, name);
+    r = tex_exr_write_rows(&head, fill, &j, tile, c, fd, name);
 done:
     for (int i = 0; i < n; i++)
         tex_map_free(p[i].m);

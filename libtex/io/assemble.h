@@ -7,10 +7,11 @@
  * channels, no overlap, no gap), and writes the full map from the top,
  * loading each window when the rows reach it and freeing it once they have
  * passed it: memory holds one band of windows and one chunk of rows, never
- * the whole map.  EXR output only (a file, with compression, or the stream).
+ * the whole map.  EXR output only (a file, with compression, scanlines or
+ * tiles, or the stream).
  *
  *   const char *parts[] = {"a.exr", "b.exr"};
- *   tex_assemble(parts, 2, fd, "out.exr", TEX_COMPRESS_ZIP, "t_assemble a.exr b.exr");
+ *   tex_assemble(parts, 2, fd, "out.exr", 0, TEX_COMPRESS_ZIP, "t_assemble a.exr b.exr");
  */
 #ifndef TEX_ASSEMBLE_H
 #define TEX_ASSEMBLE_H
@@ -21,10 +22,10 @@
 extern "C" {
 #endif
 
-/* Assemble the n window files into fd (a regular file or a pipe); name is
- * for messages; history (may be NULL) is appended to the first window's.
+/* Assemble the n window files into fd (a regular file or a pipe), in
+ * tile x tile tiles when tile > 0 (a file only); name is for messages; history (may be NULL) is appended to the first window's.
  * 0, or -1 with the error set (a usage error when the windows do not fit). */
-int tex_assemble(const char *const *paths, int n, int fd, const char *name,
+int tex_assemble(const char *const *paths, int n, int fd, const char *name, int tile,
                  enum tex_compression c, const char *history);
 
 #ifdef __cplusplus

@@ -305,10 +305,12 @@ static int encode(const tex_map *m, tex_rows_fn fill, void *arg, enum tex_compre
     return 0;
 }
 
-int tex_exr_encode_tiled(const tex_map *m, int tile, int mipmap, enum tex_compression c,
-                         tex_buf *out)
+/* m tiled (with its mip levels), or, with fill, the map head describes made
+ * a band of tile rows at a time (one level). */
+static int encode_tiled(const tex_map *m, tex_rows_fn fill, void *arg, int tile, int mipmap,
+                        enum tex_compression c, struct wsink *sink)
 {
-    struct wsink sink = {out, out->len, -1, "memory", 0, 0, 0, NULL, 0, 0};
+    float *band = NULL;
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     exr_context_t ctx = NULL;
     exr_encode_pipeline_t enc;
@@ -323,8 +325,12 @@ int tex_exr_encode_tiled(const tex_map *m, int tile, int mipmap, enum tex_compre
     for (; mipmap && (lv[n - 1]->w > 1 || lv[n - 1]->h > 1); n++)
         if (!(lv[n] = tex_map_reduce(lv[n - 1])))
             goto done;
+    if (fill && !(band = malloc(sizeof *band * (size_t)tile * m->w * m->nc))) {
+        tex_error("out of memory");
+        goto done;
+    }
     memset(&enc, 0, sizeof enc);
-    init.user_data = &sink;
+    init.user_data = sink;
     init.write_fn = write_mem;
     init.error_handler_fn = on_exr_error;
     init.max_image_width = TEX_MAP_MAX_SIDE;
@@ -343,7 +349,10 @@ int tex_exr_encode_tiled(const tex_map *m, int tile, int mipmap, enum tex_compre
     /* A pipeline per tile: one reused across levels of other sizes wrote
      * corrupt ZIP chunks below the top level (OpenEXR 3.1). */
     for (int l = 0; l < n; l++)
-        for (int ty = 0; ty * tile < lv[l]->h; ty++)
+        for (int ty = 0; ty * tile < lv[l]->h; ty++) {
+            if (band && fill(arg, ty * tile, m->h - ty * tile < tile ? m->h - ty * tile : tile,
+                             band) < 0)
+                goto done;
             for (int tx = 0; tx * tile < lv[l]->w; tx++) {
                 if ((rv = exr_write_tile_chunk_info(ctx, part, tx, ty, l, l, &ci)))
                     goto done;
@@ -354,7 +363,10 @@ int tex_exr_encode_tiled(const tex_map *m, int tile, int mipmap, enum tex_compre
                 ci.unpacked_size = (uint64_t)ci.width * ci.height * m->nc * 4;
                 if ((rv = exr_encoding_initialize(ctx, part, &ci, &enc)))
                     goto done;
-                aim_encoder(&enc, tex_map_px(lv[l], tx * tile, ty * tile), lv[l]->w, m->nc);
+                aim_encoder(&enc,
+                            band ? band + (size_t)tx * tile * m->nc
+                                 : tex_map_px(lv[l], tx * tile, ty * tile),
+                            lv[l]->w, m->nc);
                 if ((rv = exr_encoding_choose_default_routines(ctx, part, &enc)))
                     goto done;
                 if (enc.compress_fn) { /* see raw_if_incompressible */
@@ -365,6 +377,7 @@ int tex_exr_encode_tiled(const tex_map *m, int tile, int mipmap, enum tex_compre
                     goto done;
                 exr_encoding_destroy(ctx, &enc);
             }
+        }
     exr_encoding_destroy(ctx, &enc);
     rv = exr_finish(&ctx);
     r = rv ? -1 : 0;
@@ -377,7 +390,15 @@ done:
         exr_fail(NULL, rv, "EXR tiled write");
     for (int l = 1; l < n; l++)
         tex_map_free(lv[l]);
+    free(band);
     return r;
+}
+
+int tex_exr_encode_tiled(const tex_map *m, int tile, int mipmap, enum tex_compression c,
+                         tex_buf *out)
+{
+    struct wsink sink = {out, out->len, -1, "memory", 0, 0, 0, NULL, 0, 0};
+    return encode_tiled(m, NULL, NULL, tile, mipmap, c, &sink);
 }
 
 int tex_exr_encode(const tex_map *m, enum tex_compression c, tex_buf *out)
@@ -413,7 +434,7 @@ int tex_exr_write_fd(const tex_map *m, int fd, const char *name)
     return r;
 }
 
-int tex_exr_write_rows(const tex_map *head, tex_rows_fn fill, void *arg,
+int tex_exr_write_rows(const tex_map *head, tex_rows_fn fill, void *arg, int tile,
                        enum tex_compression c, int fd, const char *name)
 {
     tex_buf hb = {0};
@@ -422,11 +443,14 @@ int tex_exr_write_rows(const tex_map *head, tex_rows_fn fill, void *arg,
     int r;
 
     sink.seekable = fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && lseek(fd, 0, SEEK_CUR) == 0;
+    if (!sink.seekable && tile > 0)
+        return tex_usage_error("%s: tiles are written to a file, not a pipe", name);
     if (!sink.seekable) {
         tex_pipe_widen(fd);
         c = TEX_COMPRESS_NONE; /* a pipe carries the stream, never compressed */
     }
-    r = encode(head, fill, arg, c, &sink);
+    r = tile > 0 ? encode_tiled(head, fill, arg, tile, 0, c, &sink)
+                 : encode(head, fill, arg, c, &sink);
     free(sink.table);
     tex_buf_free(&hb);
     return r;

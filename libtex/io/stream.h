@@ -59,10 +59,11 @@ int tex_exr_write_fd(const tex_map *m, int fd, const char *name);
  * its size, channels, metadata and place (head->px unused); fill(arg, y, n,
  * rows) writes rows y..y+n-1 (w * nc floats each, one after the other), in
  * order from the top, and returns 0 or -1 with the error set.  A regular
- * file gets compression c, chunks written at their offsets; a pipe gets the
- * uncompressed stream. */
+ * file gets compression c, chunks written at their offsets, in tile x tile
+ * tiles when tile > 0 (n is then tile, fill's rows a band of tiles); a pipe
+ * gets the uncompressed scanline stream (tiles to a pipe: a usage error). */
 typedef int (*tex_rows_fn)(void *arg, int y, int n, float *rows);
-int tex_exr_write_rows(const tex_map *head, tex_rows_fn fill, void *arg,
+int tex_exr_write_rows(const tex_map *head, tex_rows_fn fill, void *arg, int tile,
                        enum tex_compression c, int fd, const char *name);
 
 /* The header of the EXR file at path into head (px NULL): size and channels
