@@ -466,6 +466,84 @@ int tex_cli_progress_wanted(const struct tex_common *c)
     return !c->quiet && isatty(2);
 }
 
+static int stream_out_ok(const struct tex_common *c);
+
+struct gen_job {
+    struct tex_field *f;
+    int x, y, w; /* the window the bands cut (the whole grid without --window) */
+};
+
+static int gen_fill(void *arg, int y, int n, float *rows)
+{
+    struct gen_job *j = arg;
+    tex_map *b;
+
+    j->f->wx = j->x;
+    j->f->wy = j->y + y;
+    j->f->ww = j->w;
+    j->f->wh = n;
+    if (!(b = tex_field_sample(j->f)))
+        return -1;
+    memcpy(rows, b->px, tex_map_samples(b) * sizeof *rows);
+    tex_map_free(b);
+    return 0;
+}
+
+static int gen_probe(struct gen_job *j, tex_map **probe)
+{
+    struct tex_field *f = j->f;
+    int saved[4] = {f->wx, f->wy, f->ww, f->wh};
+    f->wx = j->x;
+    f->wy = j->y;
+    f->ww = f->wh = 1;
+    *probe = tex_field_sample(f);
+    f->wx = saved[0], f->wy = saved[1], f->ww = saved[2], f->wh = saved[3];
+    return *probe ? 0 : -1;
+}
+
+/* A generator's map written as it is sampled, a band of rows at a time. */
+static void generate_bands(struct tex_field *f, const struct tex_common *c)
+{
+    int win = f->ww > 0;
+    struct gen_job j = {f, win ? f->wx : 0, win ? f->wy : 0, win ? f->ww : f->w};
+    tex_map head = {0};
+    struct tex_out o = {.fd = 1};
+    const char *oname = "standard output";
+    int rc;
+
+    tex_map *probe;
+    head.w = j.w;
+    head.h = win ? f->wh : f->h;
+    /* channels and subregions as the sampler makes them: its first pixel */
+    if (gen_probe(&j, &probe) < 0)
+        tex_die();
+    head.nc = probe->nc;
+    head.subregions = probe->subregions;
+    tex_map_free(probe);
+    if (win) {
+        head.x0 = f->wx;
+        head.y0 = f->wy;
+        head.full_w = f->w;
+        head.full_h = f->h;
+    }
+    if (c->cmdline && tex_map_add_history(&head, c->cmdline) < 0)
+        tex_die();
+    if (c->output && strcmp(c->output, "-")) {
+        if (tex_out_open(&o, c->output) < 0) {
+            tex_out_close(&o, -1);
+            tex_die();
+        }
+        oname = c->output;
+    }
+    rc = tex_exr_write_rows(&head, gen_fill, &j, 0, (enum tex_compression)c->compression, o.fd,
+                            oname);
+    if (o.fd != 1)
+        rc = tex_out_close(&o, rc);
+    free(head.history);
+    if (rc < 0)
+        tex_die();
+}
+
 int tex_generate_main(const struct tex_primitive *p, int argc, char **argv)
 {
     float *colors = NULL;
@@ -501,12 +579,111 @@ int tex_generate_main(const struct tex_primitive *p, int argc, char **argv)
         tex_die();
     if (colors)
         f->colors = (const float(*)[3])colors;
-    if (!(m = tex_field_sample(f)))
-        tex_die();
-    tex_cli_write(m, &c);
-    tex_map_free(m);
+    if (stream_out_ok(&c) && !tex_field_whole(f)) {
+        generate_bands(f, &c); /* the same pixels, a band of rows at a time */
+    } else {
+        if (!(m = tex_field_sample(f)))
+            tex_die();
+        tex_cli_write(m, &c);
+        tex_map_free(m);
+    }
     tex_field_free(f);
     free(colors);
     free(c.cmdline);
     return 0;
+}
+
+/* ---- per-pixel tools in bands ---- */
+
+struct band_job {
+    tex_rows_reader *r;
+    const char *name;
+    int w, nc, subregions;
+    tex_map *(*op)(tex_map *, void *);
+    void *arg;
+};
+
+static int band_fill(void *arg, int y, int n, float *rows)
+{
+    struct band_job *j = arg;
+    tex_map *b = tex_map_new(j->w, n, j->nc), *o;
+
+    if (!b)
+        return -1;
+    b->subregions = j->subregions;
+    if (tex_rows_read(j->r, y, n, b->px, j->name) < 0 ||
+        tex_rows_nonfinite(b->px, j->w, n, j->nc, y, j->name) < 0 || !(o = j->op(b, j->arg))) {
+        tex_map_free(b);
+        return -1;
+    }
+    memcpy(rows, o->px, tex_map_samples(o) * sizeof *rows);
+    tex_map_free(o);
+    return 0;
+}
+
+static int stream_out_ok(const struct tex_common *c)
+{
+    if (c->tiled || c->mipmap || (c->format && strcmp(c->format, "exr") != 0))
+        return 0;
+    return !c->output || !strcmp(c->output, "-") ||
+           tex_format_from_name(c->output) == TEX_FMT_EXR;
+}
+
+void tex_cli_stream(const char *path, const struct tex_common *c,
+                    tex_map *(*op)(tex_map *band, void *arg), void *arg)
+{
+    const char *name = path && strcmp(path, "-") ? path : "standard input";
+    tex_map head, *whole = NULL, *probe, *m;
+    tex_rows_reader *r = NULL;
+
+    if (tex_map_write_check(c->output) < 0)
+        tex_die();
+    if (stream_out_ok(c)) {
+        r = tex_map_open_rows(path, &head, &whole);
+        if (!r && !whole)
+            tex_die();
+    } else {
+        whole = tex_cli_read(path);
+    }
+    if (!r) { /* the same op over the whole map */
+        if (!(m = op(whole, arg)))
+            tex_die();
+        tex_cli_write(m, c);
+        tex_map_free(m);
+        return;
+    }
+    if (!(probe = tex_map_new(1, 1, head.nc)))
+        tex_die();
+    for (int k = 0; k < head.nc; k++)
+        probe->px[k] = 1;
+    probe->subregions = head.subregions;
+    if (!(probe = op(probe, arg)))
+        tex_die();
+    {
+        struct band_job j = {r, name, head.w, head.nc, head.subregions, op, arg};
+        tex_map out = head;
+        struct tex_out o = {.fd = 1};
+        const char *oname = "standard output";
+        int rc;
+        out.nc = probe->nc;
+        out.subregions = probe->subregions;
+        tex_map_free(probe);
+        if (c->cmdline && tex_map_add_history(&out, c->cmdline) < 0)
+            tex_die();
+        if (c->output && strcmp(c->output, "-")) {
+            if (tex_out_open(&o, c->output) < 0) {
+                tex_out_close(&o, -1);
+                tex_die();
+            }
+            oname = c->output;
+        }
+        rc = tex_exr_write_rows(&out, band_fill, &j, 0, (enum tex_compression)c->compression,
+                                o.fd, oname);
+        if (o.fd != 1)
+            rc = tex_out_close(&o, rc);
+        tex_rows_close(r);
+        free(out.history);
+        if (rc < 0)
+            tex_die();
+    }
 }

@@ -104,6 +104,18 @@ void tex_cli_write(tex_map *m, const struct tex_common *c);
 void tex_cli_progress(long done, long total, void *arg);
 int tex_cli_progress_wanted(const struct tex_common *c);
 
+/* A per-pixel tool's work in bounded memory: the map at path (NULL or "-":
+ * standard input) goes through op a band of rows at a time, each band a
+ * small map of the input's width (op changes it in place and returns it, or
+ * returns a new map and frees the band; NULL with the error set on
+ * failure), and out to -o or standard output, with the history.  Output
+ * channels and subregions are op's on a 1 x 1 band of ones.  When input or
+ * output is not a scanline EXR (another format, tiles, --mipmap), the map
+ * goes through op whole instead: the same pixels either way, op being
+ * per-pixel.  Dies on errors. */
+void tex_cli_stream(const char *path, const struct tex_common *c,
+                    tex_map *(*op)(tex_map *band, void *arg), void *arg);
+
 /* The whole main of a generator tool t_NAME: parse, sample, write. */
 int tex_generate_main(const struct tex_primitive *p, int argc, char **argv);
 

@@ -76,6 +76,15 @@ tex_map *tex_map_read(const char *path);
  * other file or standard input gives one level.  Free each map, then the
  * array; NULL with the error set. */
 tex_map **tex_map_read_levels(const char *path, int *n);
+/* Open a map to be read a band of rows at a time (stream.h, tex_rows_read),
+ * from path or standard input (NULL or "-"), when it is a scanline EXR;
+ * otherwise the map is read whole into *whole and NULL is returned (NULL
+ * with *whole NULL: an error).  Rows read are checked for non-finite
+ * samples by the caller with tex_rows_nonfinite. */
+tex_rows_reader *tex_map_open_rows(const char *path, tex_map *head, tex_map **whole);
+/* The --nonfinite policy over n rows of w x nc samples starting at row y0:
+ * 0, or -1 naming the first refused sample (the map's row, y0-based). */
+int tex_rows_nonfinite(float *px, int w, int n, int nc, int y0, const char *name);
 /* Read a map from a file image in memory; name is for messages. */
 tex_map *tex_map_read_memory(const void *data, size_t len, const char *name);
 /* Write a map; NULL or "-" is standard output. */

@@ -266,13 +266,16 @@ static int encode(const tex_map *m, tex_rows_fn fill, void *arg, enum tex_compre
         exr_finish(&ctx);
         return -1;
     }
-    if (fill && !(band = malloc(sizeof *band * (size_t)lines * m->w * m->nc))) {
+    /* fill makes whole chunks, at least 64 rows at a time: its work per call
+     * (a parallel loop, say) then outweighs starting it */
+    int brows = lines * ((64 + lines - 1) / lines);
+    if (fill && !(band = malloc(sizeof *band * (size_t)brows * m->w * m->nc))) {
         exr_finish(&ctx);
         return tex_error("out of memory");
     }
     for (y = 0; y < m->h; y += lines) {
-        const float *row0 = band ? band : tex_map_row(m, y);
-        if (band && fill(arg, y, m->h - y < lines ? m->h - y : lines, band) < 0) {
+        const float *row0 = band ? band + (size_t)(y % brows) * m->w * m->nc : tex_map_row(m, y);
+        if (band && y % brows == 0 && fill(arg, y, m->h - y < brows ? m->h - y : brows, band) < 0) {
             free(band);
             if (y > 0)
                 exr_encoding_destroy(ctx, &enc);
@@ -901,4 +904,141 @@ int tex_exr_probe(const char *path, tex_map *head)
     head->full_h = disp.max.y - disp.min.y + 1;
     exr_finish(&ctx);
     return 0;
+}
+
+/* ---- reading a band of rows at a time ---- */
+
+struct tex_rows_reader {
+    exr_context_t ctx;
+    exr_decode_pipeline_t dec;
+    exr_attr_box2i_t dw;
+    struct rstream rs;   /* a pipe's window, when reading one */
+    int lines, order[4], first;
+    tex_map *chunk;      /* the rows of the chunk decoded last */
+    int cy;              /* its first row (relative to the data window), -1: none */
+};
+
+tex_rows_reader *tex_rows_open(int fd, const void *prefix, size_t prefix_len, const char *path,
+                               const char *name, tex_map *head)
+{
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    tex_rows_reader *r = calloc(1, sizeof *r);
+    const exr_attr_chlist_t *cl;
+    exr_attr_box2i_t disp;
+    int32_t sub, hlen;
+    const char *hist;
+    exr_result_t rv;
+
+    memset(head, 0, sizeof *head);
+    if (!r) {
+        tex_error("out of memory");
+        return NULL;
+    }
+    r->cy = -1;
+    r->first = 1;
+    init.error_handler_fn = on_exr_error;
+    init.flags = EXR_CONTEXT_FLAG_SILENT_HEADER_PARSE | EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
+    init.max_image_width = TEX_MAP_MAX_SIDE;
+    init.max_image_height = TEX_MAP_MAX_SIDE;
+    if (!path) { /* a pipe: the stream's window */
+        r->rs = (struct rstream){fd, name, malloc(1 << 20), 1 << 20, prefix_len, 0, 0};
+        if (!r->rs.buf || prefix_len > r->rs.cap) {
+            tex_error("out of memory");
+            goto fail;
+        }
+        memcpy(r->rs.buf, prefix, prefix_len);
+        tex_pipe_widen(fd);
+        init.user_data = &r->rs;
+        init.read_fn = read_stream;
+        init.size_fn = size_unknown;
+    }
+    tex_error("unknown error");
+    if ((rv = exr_start_read(&r->ctx, path ? path : name, &init))) {
+        tex_error("%s: not a valid OpenEXR stream (%s)", name, exr_get_default_error_message(rv));
+        goto fail;
+    }
+    if (decode_header(r->ctx, &r->dw, &cl, &r->lines) < 0) {
+        tex_error_context(name);
+        goto fail;
+    }
+    if (r->lines <= 0) {
+        tex_error("%s: tiled: read whole", name);
+        goto fail;
+    }
+    head->nc = order_channels(cl, r->order);
+    head->w = r->dw.max.x - r->dw.min.x + 1;
+    head->h = r->dw.max.y - r->dw.min.y + 1;
+    if (cl->num_channels > head->nc) {
+        char kept[64] = "";
+        for (int k = 0; k < head->nc; k++)
+            snprintf(kept + strlen(kept), sizeof kept - strlen(kept), " %.8s",
+                     cl->entries[r->order[k]].name.str);
+        tex_warning("%s: %d channels, kept%s", name, cl->num_channels, kept);
+    }
+    if (exr_get_display_window(r->ctx, 0, &disp) == EXR_ERR_SUCCESS &&
+        (r->dw.min.x != disp.min.x || r->dw.min.y != disp.min.y || r->dw.max.x != disp.max.x ||
+         r->dw.max.y != disp.max.y) &&
+        disp.min.x == 0 && disp.min.y == 0 && r->dw.min.x >= 0 && r->dw.min.y >= 0 &&
+        r->dw.max.x <= disp.max.x && r->dw.max.y <= disp.max.y) {
+        head->x0 = r->dw.min.x;
+        head->y0 = r->dw.min.y;
+        head->full_w = disp.max.x + 1;
+        head->full_h = disp.max.y + 1;
+    }
+    if (exr_attr_get_int(r->ctx, 0, ATTR_SUBREGIONS, &sub) == EXR_ERR_SUCCESS && sub > 0)
+        head->subregions = sub;
+    if (exr_attr_get_string(r->ctx, 0, ATTR_HISTORY, &hlen, &hist) == EXR_ERR_SUCCESS && hist) {
+        if (!(head->history = malloc((size_t)hlen + 1))) {
+            tex_error("out of memory");
+            goto fail;
+        }
+        memcpy(head->history, hist, (size_t)hlen);
+        head->history[hlen] = '\0';
+    }
+    if (!(r->chunk = tex_map_new(head->w, r->lines, head->nc)))
+        goto fail;
+    return r;
+fail:
+    free(head->history);
+    head->history = NULL;
+    tex_rows_close(r);
+    return NULL;
+}
+
+int tex_rows_read(tex_rows_reader *r, int y, int n, float *rows, const char *name)
+{
+    const tex_map *c = r->chunk;
+    size_t row = (size_t)c->w * c->nc;
+
+    for (int k = y; k < y + n; k++) {
+        if (r->cy < 0 || k < r->cy || k >= r->cy + r->lines) {
+            exr_chunk_info_t ci;
+            exr_result_t rv;
+            int cy = k - k % r->lines;
+            if ((rv = exr_read_scanline_chunk_info(r->ctx, 0, r->dw.min.y + cy, &ci)))
+                return tex_error("%s: corrupt OpenEXR stream (%s)", name,
+                                 exr_get_default_error_message(rv));
+            if (decode_one(r->ctx, &r->dec, &ci, r->first, r->order, r->chunk, 0, 0) < 0) {
+                tex_error_context(name);
+                return -1;
+            }
+            r->first = 0;
+            r->cy = cy;
+        }
+        memcpy(rows + (size_t)(k - y) * row, tex_map_row(c, k - r->cy), row * sizeof *rows);
+    }
+    return 0;
+}
+
+void tex_rows_close(tex_rows_reader *r)
+{
+    if (!r)
+        return;
+    if (r->ctx) {
+        exr_decoding_destroy(r->ctx, &r->dec);
+        exr_finish(&r->ctx);
+    }
+    tex_map_free(r->chunk);
+    free(r->rs.buf);
+    free(r);
 }

@@ -58,13 +58,25 @@ int tex_exr_write_fd(const tex_map *m, int fd, const char *name);
 /* Write a map made a band of rows at a time, never held whole: head gives
  * its size, channels, metadata and place (head->px unused); fill(arg, y, n,
  * rows) writes rows y..y+n-1 (w * nc floats each, one after the other), in
- * order from the top, and returns 0 or -1 with the error set.  A regular
+ * order from the top, n at least 64 rows but the last, and returns 0 or -1 with the error set.  A regular
  * file gets compression c, chunks written at their offsets, in tile x tile
  * tiles when tile > 0 (n is then tile, fill's rows a band of tiles); a pipe
  * gets the uncompressed scanline stream (tiles to a pipe: a usage error). */
 typedef int (*tex_rows_fn)(void *arg, int y, int n, float *rows);
 int tex_exr_write_rows(const tex_map *head, tex_rows_fn fill, void *arg, int tile,
                        enum tex_compression c, int fd, const char *name);
+
+/* A scanline EXR read a band of rows at a time, holding one chunk: from the
+ * file at path, or (path NULL) from the pipe fd of which prefix_len bytes
+ * were read into prefix.  head gets the size, channels, metadata and place
+ * (head->px NULL; free head->history).  NULL with the error set, also for a
+ * tiled file (read those whole).  Rows must be asked for from the top down:
+ * tex_rows_read copies rows y..y+n-1 (w * nc floats each) into rows. */
+typedef struct tex_rows_reader tex_rows_reader;
+tex_rows_reader *tex_rows_open(int fd, const void *prefix, size_t prefix_len, const char *path,
+                               const char *name, tex_map *head);
+int tex_rows_read(tex_rows_reader *r, int y, int n, float *rows, const char *name);
+void tex_rows_close(tex_rows_reader *r);
 
 /* The header of the EXR file at path into head (px NULL): size and channels
  * kept, and its place, the data window within the display window (x0, y0,

@@ -64,14 +64,20 @@ int tex_field_set(struct tex_field *f, const char *name, const char *value)
     return tex_param_parse(p, f->params, value, TEX_PARAM_WORD);
 }
 
+const char *tex_field_whole(const struct tex_field *f)
+{
+    const struct tex_primitive *p = f->prim;
+
+    if (!(p->flags & TEX_PRIM_GRID))
+        return NULL;
+    return !p->row ? "it synthesises the whole map at once" : p->whole ? p->whole(f) : NULL;
+}
+
 int tex_field_window(struct tex_field *f, int x, int y, int w, int h)
 {
     const struct tex_primitive *p = f->prim;
-    const char *why = NULL;
+    const char *why = tex_field_whole(f);
 
-    if (p->flags & TEX_PRIM_GRID)
-        why = !p->row ? "it synthesises the whole map at once"
-                      : p->whole ? p->whole(f) : NULL;
     if (why)
         return tex_usage_error("%s cannot make a window of its map (--window): %s", p->name, why);
     f->wx = x;

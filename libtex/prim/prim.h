@@ -139,6 +139,8 @@ int tex_field_set(struct tex_field *f, const char *name, const char *value);
  * given: 0, or -1 with a usage error when the primitive cannot window (call
  * before tex_field_init; the caller checks that the window lies in the grid). */
 int tex_field_window(struct tex_field *f, int x, int y, int w, int h);
+/* NULL when the field can be sampled a window at a time, else why not. */
+const char *tex_field_whole(const struct tex_field *f);
 /* Run init once the parameters are set; w, h may be 0 outside a grid. */
 int tex_field_init(struct tex_field *f, int w, int h);
 void tex_field_free(struct tex_field *f);
