@@ -11,7 +11,7 @@
 # -j: jobs per host (parallel's -j; default one per core); -S: parallel's --sshlogin list
 # (e.g. 8/node1,8/node2,:), whose hosts need the tools on PATH and the inputs at the same
 # absolute paths; their pieces come back with --return.  $FARM_PARALLEL adds options to
-# parallel; $FARM_ASSEMBLE to t_assemble (e.g. --tiled).
+# parallel; $FARM_ASSEMBLE to t_assemble (e.g. --exr-tiles).
 set -eu
 usage() {
     sed -n '2,/^set /p' "$0" | sed '$d' | sed 's/^# \{0,1\}//' >&2

@@ -17,7 +17,7 @@ bytes_same() {
 t_turbulence -S 3 -f 5 -s 203x150 -o "$T/map1.exr"
 bytes_same "farm.sh map (5 bands, parallel -j 2) == one process" "$T/map.exr" "$T/map1.exr"
 
-FARM_ASSEMBLE=--tiled "$top/patterns/farm.sh" map -o "$T/ring.exr" -s 96 -n 3 -j 2 -- \
+FARM_ASSEMBLE=--exr-tiles "$top/patterns/farm.sh" map -o "$T/ring.exr" -s 96 -n 3 -j 2 -- \
     t_ring --nu 3 --nv 2 >/dev/null 2>&1
 t_ring --nu 3 --nv 2 -s 96 -o "$T/ring1.exr"
 bytes_same "farm.sh map of a geometric primitive, tiled == one process" "$T/ring.exr" "$T/ring1.exr"

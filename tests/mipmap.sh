@@ -4,7 +4,7 @@
 
 t_noise -s 300x200 -o "$T/flat.exr"
 t_noise -s 300x200 --mipmap -o "$T/mip.exr"
-t_noise -s 300x200 --tiled -o "$T/tiled.exr"
+t_noise -s 300x200 --exr-tiles -o "$T/tiled.exr"
 info=$(oiiotool --info -v "$T/mip.exr")
 grep -q "MIP-map levels: 300x200 150x100 75x50 37x25 18x12 9x6 4x3 2x1 1x1" <<<"$info" &&
     ok "oiiotool --info -v shows the mip levels" || notok "oiiotool shows the mip levels" "$info"
@@ -12,9 +12,9 @@ grep -q "tile size: 64 x 64" <<<"$info" && ok "--mipmap is tiled 64 x 64" ||
     notok "--mipmap is tiled 64 x 64"
 info=$(oiiotool --info -v "$T/tiled.exr")
 grep -q "tile size: 64 x 64" <<<"$info" && ! grep -q "MIP-map" <<<"$info" &&
-    ok "--tiled: one level of 64 x 64 tiles" || notok "--tiled: one level of tiles" "$info"
+    ok "--exr-tiles: one level of 64 x 64 tiles" || notok "--exr-tiles: one level of tiles" "$info"
 same "the top level is the map" "$T/mip.exr" "$T/flat.exr"
-same "--tiled keeps the map" "$T/tiled.exr" "$T/flat.exr"
+same "--exr-tiles keeps the map" "$T/tiled.exr" "$T/flat.exr"
 # Each level is the one above halved by a box filter, which t_xform --scale 0.5 also is
 # for even sides; oiiotool reads each level (ZIP-compressed edge tiles included).
 t_xform "$T/flat.exr" --scale 0.5 -o "$T/half.exr"
@@ -60,7 +60,7 @@ else
 fi
 
 check_fails "--mipmap to a non-EXR file" 2 t_noise -s 64 --mipmap -o "$T/bad.png"
-check_fails "--tiled to a non-EXR file" 2 t_noise -s 64 --tiled -o "$T/bad.tif"
+check_fails "--exr-tiles to a non-EXR file" 2 t_noise -s 64 --exr-tiles -o "$T/bad.tif"
 check_fails "--mipmap to a non-EXR standard output" 2 \
     bash -c "set -o pipefail; t_noise -s 64 --mipmap --format png | cat >/dev/null"
 check_fails "--mipmap of region ids" 2 t_ring -s 64 --ids --mipmap -o "$T/bad.exr"

@@ -67,8 +67,8 @@ check_fails "sparse convolution cannot window" 2 t_sparse "$T/sample.exr" -s 64 
     --window 0,0,8,8 -o "$T/bad.exr"
 
 # A tiled assembly (64 x 64 tiles, bands of tile rows) equals the whole map.
-t_assemble "$T/p1.exr" "$T/p2.exr" --tiled -o "$T/pt.exr"
-check "t_assemble --tiled writes tiles" bash -c "oiiotool --info -v '$T/pt.exr' | grep -q 'tile size: 64 x 64'"
-same "t_assemble --tiled == the whole map" "$T/pt.exr" "$T/p.exr"
-check_fails "t_assemble --tiled to a pipe" 2 bash -c "set -o pipefail; t_assemble '$T/p1.exr' '$T/p2.exr' --tiled | cat >/dev/null"
+t_assemble "$T/p1.exr" "$T/p2.exr" --exr-tiles -o "$T/pt.exr"
+check "t_assemble --exr-tiles writes tiles" bash -c "oiiotool --info -v '$T/pt.exr' | grep -q 'tile size: 64 x 64'"
+same "t_assemble --exr-tiles == the whole map" "$T/pt.exr" "$T/p.exr"
+check_fails "t_assemble --exr-tiles to a pipe" 2 bash -c "set -o pipefail; t_assemble '$T/p1.exr' '$T/p2.exr' --exr-tiles | cat >/dev/null"
 check_fails "t_assemble --mipmap" 2 t_assemble "$T/p1.exr" "$T/p2.exr" --mipmap -o "$T/bad.exr"

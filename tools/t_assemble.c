@@ -34,7 +34,7 @@ int main(int argc, char **argv)
         tex_die();
     }
     r = tex_assemble((const char *const *)argv + i, argc - i, out.fd, name,
-                     c.tiled ? TEX_EXR_TILE : 0, (enum tex_compression)c.compression,
+                     c.exr_tiles ? TEX_EXR_TILE : 0, (enum tex_compression)c.compression,
                      c.cmdline);
     if (out.fd != 1 && tex_out_close(&out, r) < 0)
         tex_die();

@@ -40,7 +40,7 @@ static const struct {
                       0, 0, 0}},
     {TEX_OPT_OUTPUT, TEX_STRING(struct tex_common, format, 0, NULL, "EXT",
                                 "format of standard output, e.g. png (default: exr)")},
-    {TEX_OPT_OUTPUT, TEX_FLAG(struct tex_common, tiled, 0,
+    {TEX_OPT_OUTPUT, TEX_FLAG(struct tex_common, exr_tiles, 0,
                               "write the EXR in 64 x 64 tiles instead of scanlines")},
     {TEX_OPT_OUTPUT, TEX_FLAG(struct tex_common, mipmap, 0,
                               "write a tiled EXR with its mip-map levels, as renderers' "
@@ -346,12 +346,12 @@ static void check_operands(const struct tex_tool *t, int argc, char **argv,
         tex_parse_window(c->window, c->w, c->h, c->win) < 0)
         tex_usage_die("--window must be X,Y,W,H with W, H >= 1 inside the %dx%d map (got '%s')",
                       c->w, c->h, c->window);
-    if ((t->common & TEX_OPT_OUTPUT) && (c->tiled || c->mipmap)) {
+    if ((t->common & TEX_OPT_OUTPUT) && (c->exr_tiles || c->mipmap)) {
         const char *out = c->output && strcmp(c->output, "-") ? c->output : NULL;
         char probe[40];
         snprintf(probe, sizeof probe, "x.%.32s", c->format ? c->format : "exr");
         if (tex_format_from_name(out ? out : probe) != TEX_FMT_EXR)
-            tex_usage_die("%s writes EXR only (got %s)", c->mipmap ? "--mipmap" : "--tiled",
+            tex_usage_die("%s writes EXR only (got %s)", c->mipmap ? "--mipmap" : "--exr-tiles",
                           out ? out : "--format");
     }
     nops = argc - optind;
@@ -433,7 +433,7 @@ tex_map *tex_cli_read(const char *path)
 void tex_cli_write(tex_map *m, const struct tex_common *c)
 {
     struct tex_write_opts o = {tex_cli_depth(c), (enum tex_compression)c->compression, c->format,
-                               c->tiled, c->mipmap};
+                               c->exr_tiles, c->mipmap};
 
     if (c->cmdline && tex_map_add_history(m, c->cmdline) < 0)
         tex_die();
@@ -489,6 +489,32 @@ static int gen_fill(void *arg, int y, int n, float *rows)
     return 0;
 }
 
+/* head (history gaining the command line) written to -o or standard output as
+ * fill makes its rows, or die. */
+static void write_rows_out(tex_map *head, const struct tex_common *c, tex_rows_fn fill,
+                           void *arg)
+{
+    struct tex_out o = {.fd = 1};
+    const char *oname = "standard output";
+    int rc;
+
+    if (c->cmdline && tex_map_add_history(head, c->cmdline) < 0)
+        tex_die();
+    if (c->output && strcmp(c->output, "-")) {
+        if (tex_out_open(&o, c->output) < 0) {
+            tex_out_close(&o, -1);
+            tex_die();
+        }
+        oname = c->output;
+    }
+    rc = tex_exr_write_rows(head, fill, arg, 0, (enum tex_compression)c->compression, o.fd,
+                            oname);
+    if (o.fd != 1)
+        rc = tex_out_close(&o, rc);
+    if (rc < 0)
+        tex_die();
+}
+
 static int gen_probe(struct gen_job *j, tex_map **probe)
 {
     struct tex_field *f = j->f;
@@ -507,10 +533,6 @@ static void generate_bands(struct tex_field *f, const struct tex_common *c)
     int win = f->ww > 0;
     struct gen_job j = {f, win ? f->wx : 0, win ? f->wy : 0, win ? f->ww : f->w};
     tex_map head = {0};
-    struct tex_out o = {.fd = 1};
-    const char *oname = "standard output";
-    int rc;
-
     tex_map *probe;
     head.w = j.w;
     head.h = win ? f->wh : f->h;
@@ -526,22 +548,8 @@ static void generate_bands(struct tex_field *f, const struct tex_common *c)
         head.full_w = f->w;
         head.full_h = f->h;
     }
-    if (c->cmdline && tex_map_add_history(&head, c->cmdline) < 0)
-        tex_die();
-    if (c->output && strcmp(c->output, "-")) {
-        if (tex_out_open(&o, c->output) < 0) {
-            tex_out_close(&o, -1);
-            tex_die();
-        }
-        oname = c->output;
-    }
-    rc = tex_exr_write_rows(&head, gen_fill, &j, 0, (enum tex_compression)c->compression, o.fd,
-                            oname);
-    if (o.fd != 1)
-        rc = tex_out_close(&o, rc);
+    write_rows_out(&head, c, gen_fill, &j);
     free(head.history);
-    if (rc < 0)
-        tex_die();
 }
 
 int tex_generate_main(const struct tex_primitive *p, int argc, char **argv)
@@ -623,7 +631,7 @@ static int band_fill(void *arg, int y, int n, float *rows)
 
 static int stream_out_ok(const struct tex_common *c)
 {
-    if (c->tiled || c->mipmap || (c->format && strcmp(c->format, "exr") != 0))
+    if (c->exr_tiles || c->mipmap || (c->format && strcmp(c->format, "exr") != 0))
         return 0;
     return !c->output || !strcmp(c->output, "-") ||
            tex_format_from_name(c->output) == TEX_FMT_EXR;
@@ -662,28 +670,11 @@ void tex_cli_stream(const char *path, const struct tex_common *c,
     {
         struct band_job j = {r, name, head.w, head.nc, head.subregions, op, arg};
         tex_map out = head;
-        struct tex_out o = {.fd = 1};
-        const char *oname = "standard output";
-        int rc;
         out.nc = probe->nc;
         out.subregions = probe->subregions;
         tex_map_free(probe);
-        if (c->cmdline && tex_map_add_history(&out, c->cmdline) < 0)
-            tex_die();
-        if (c->output && strcmp(c->output, "-")) {
-            if (tex_out_open(&o, c->output) < 0) {
-                tex_out_close(&o, -1);
-                tex_die();
-            }
-            oname = c->output;
-        }
-        rc = tex_exr_write_rows(&out, band_fill, &j, 0, (enum tex_compression)c->compression,
-                                o.fd, oname);
-        if (o.fd != 1)
-            rc = tex_out_close(&o, rc);
+        write_rows_out(&out, c, band_fill, &j);
         tex_rows_close(r);
         free(out.history);
-        if (rc < 0)
-            tex_die();
     }
 }

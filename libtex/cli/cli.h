@@ -16,7 +16,7 @@
  *
  * Common options (mask bits):
  *   TEX_OPT_OUTPUT   -o FILE, --depth auto|8|16|32, --compression none|zip|piz,
- *                    --format EXT (of standard output), --tiled, --mipmap (EXR only)
+ *                    --format EXT (of standard output), --exr-tiles, --mipmap (EXR only)
  *   TEX_OPT_SIZE     -s N|WxH
  *   TEX_OPT_SEED     -S/--seed N
  *   TEX_OPT_IDS      --ids
@@ -55,7 +55,7 @@ struct tex_common {
     int depth_choice;   /* index into auto|8|16|32 */
     int compression;    /* enum tex_compression */
     const char *format;
-    int tiled, mipmap;  /* EXR output in tiles, with mip-map levels */
+    int exr_tiles, mipmap; /* EXR output in tiles, with mip-map levels */
     const char *size;
     int w, h;           /* parsed from size */
     int seed;

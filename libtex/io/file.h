@@ -58,7 +58,7 @@ struct tex_write_opts {
     int tiled, mipmap;                /* EXR only: 64 x 64 tiles; with mip-map levels */
 };
 #define TEX_WRITE_DEFAULTS {0, TEX_COMPRESS_ZIP, NULL, 0, 0}
-#define TEX_EXR_TILE 64 /* the tile side of --tiled and --mipmap files (maketx's) */
+#define TEX_EXR_TILE 64 /* the tile side of --exr-tiles and --mipmap files (maketx's) */
 
 /* What reading does with NaN and infinite samples, for the whole process
  * (textura(5), the tools' --nonfinite): refuse the map, naming the first

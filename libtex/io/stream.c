@@ -229,6 +229,15 @@ static void aim_encoder(exr_encode_pipeline_t *enc, const float *p, int w, int n
     }
 }
 
+static void writer_init(exr_context_initializer_t *init, struct wsink *sink)
+{
+    init->user_data = sink;
+    init->write_fn = write_mem;
+    init->error_handler_fn = on_exr_error;
+    init->max_image_width = TEX_MAP_MAX_SIDE;
+    init->max_image_height = TEX_MAP_MAX_SIDE;
+}
+
 static const exr_compression_t ctype[] = {EXR_COMPRESSION_NONE, EXR_COMPRESSION_ZIP,
                                           EXR_COMPRESSION_PIZ};
 
@@ -249,11 +258,7 @@ static int encode(const tex_map *m, tex_rows_fn fill, void *arg, enum tex_compre
         tex_buf_reserve(out, out->len + est) < 0)
         return -1;
     memset(&enc, 0, sizeof enc);
-    init.user_data = sink;
-    init.write_fn = write_mem;
-    init.error_handler_fn = on_exr_error;
-    init.max_image_width = TEX_MAP_MAX_SIDE;
-    init.max_image_height = TEX_MAP_MAX_SIDE;
+    writer_init(&init, sink);
 
     if ((rv = exr_start_write(&ctx, "stream", EXR_WRITE_FILE_DIRECTLY, &init)))
         return exr_fail(&ctx, rv, "EXR write");
@@ -333,11 +338,7 @@ static int encode_tiled(const tex_map *m, tex_rows_fn fill, void *arg, int tile,
         goto done;
     }
     memset(&enc, 0, sizeof enc);
-    init.user_data = sink;
-    init.write_fn = write_mem;
-    init.error_handler_fn = on_exr_error;
-    init.max_image_width = TEX_MAP_MAX_SIDE;
-    init.max_image_height = TEX_MAP_MAX_SIDE;
+    writer_init(&init, sink);
     if ((rv = exr_start_write(&ctx, "stream", EXR_WRITE_FILE_DIRECTLY, &init)) ||
         (rv = add_part(ctx, m, EXR_STORAGE_TILED, ctype[c], &part)) ||
         (rv = exr_set_tile_descriptor(ctx, part, (uint32_t)tile, (uint32_t)tile,
