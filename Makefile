@@ -72,7 +72,7 @@ HEADERS  = $(filter-out $(PRIVATE_HEADERS),$(wildcard libtex/*/*.h)) libtex/prim
 DEBS = build-essential pkg-config liblz4-dev libopenexr-dev libopenimageio-dev openimageio-tools \
        libpng-dev libjpeg62-turbo-dev libtiff-dev \
        libflann-dev libfftw3-dev colord-data mandoc netpbm imagemagick libnoise-dev povray \
-       hyperfine clang libclang-rt-14-dev libomp-dev python3
+       hyperfine clang libclang-rt-14-dev libomp-dev python3 parallel
 
 .PHONY: all deps demo test test-plain test-asan check bench install uninstall man fuzz fuzz-smoke figures \
         gallery clean tsan

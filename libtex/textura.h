@@ -51,6 +51,7 @@
 #include "io/file.h"
 #include "io/netpbm.h"
 #include "io/terminal.h"
+#include "io/assemble.h"
 #include "prim/prim.h"
 #include "prim/noise.h"
 #include "prim/cellular.h"

@@ -98,6 +98,12 @@ grep -q "'width' is deprecated and will be removed: write 'ring-width'" "$T/err"
 check_fails "an old word in a scene is refused under TEXTURA_DEPRECATED=error" 2 \
     bash -c "TEXTURA_DEPRECATED=error $B/t_apply $T/old.scene -o $T/old.exr"
 
+# 6b. Long options are written whole.
+check_fails "an abbreviated option is refused" 2 "$B/t_noise" --freq 3
+grep -q "written whole (--frequency?)" "$T/.err" && ok "its message names the whole option" ||
+    notok "abbreviation message" "$(cat "$T/.err")"
+check "--frequency=3 is taken" "$B/t_noise" -s 8 --frequency=3 -o "$T/f3.pfm"
+
 # 7. Options of another mode are refused, naming the mode.
 says() { # NAME MESSAGE CMD...
     local name=$1 msg=$2
@@ -178,7 +184,7 @@ if command -v script >/dev/null; then
         ok "a long median filter draws a bar on a terminal" || notok "median progress" "$(head -c 300 "$T/tty")"
     run_tty "$B/t_filter median -q -r 8 -j 1 $T/n512.pfm -o $T/m.pfm" >"$T/tty"
     [ ! -s "$T/tty" ] && ok "-q draws no bar" || notok "-q and the bar" "$(head -c 200 "$T/tty")"
-    run_tty "$B/t_bubble -c 400000 -s 64 -j 1 -o $T/b.pfm" >"$T/tty"
+    run_tty "$B/t_bubble -c 2000000 -s 64 -j 1 -o $T/b.pfm" >"$T/tty"
     grep -q "^t_bubble: \[" "$T/tty" && ok "a large point set draws a bar" || notok "bubble progress" "$(head -c 300 "$T/tty")"
     run_tty "$B/t_noise -s 32 -o $T/small.pfm" >"$T/tty"
     [ ! -s "$T/tty" ] && ok "quick work draws no bar" || notok "a bar for quick work" "$(head -c 200 "$T/tty")"

@@ -13,6 +13,7 @@ struct opts {
     const char *spectral;
     int rgb;
     const char *model;
+    const char *region;
     const char *help_scene;
     const char *help_scene_mdoc;
     int list_materials;
@@ -30,6 +31,9 @@ static const struct tex_param rows[] = {
     TEX_FLAG(struct opts, rgb, 0, "shade in RGB, overriding the scene's 'colour'"),
     TEX_STRING(struct opts, model, 0, NULL, "NAME",
                "shade every surface with this model (phong|cook-torrance)"),
+    TEX_STRING(struct opts, region, 0, NULL, "X,Y,W,H",
+               "render only the W x H region at X,Y of the image, the same pixels as the whole "
+               "render (for render farms: t_assemble puts regions together)"),
     TEX_STRING(struct opts, help_scene, 0, NULL, "BLOCK",
                "list the words of a scene block (settings|camera|light|environment|texture|"
                "surface|apply|targets|object), or of application functions' expressions "
@@ -232,9 +236,17 @@ int main(int argc, char **argv)
         tex_scene_set_threads(s, c.threads);
     if (tex_scene_prepare(s) < 0)
         die_freeing(s);
+    int r[4] = {0, 0, 0, 0};
+    tex_scene_size(s, &r[2], &r[3]);
+    if (o.region && tex_parse_window(o.region, r[2], r[3], r) < 0) {
+        tex_usage_error("--region must be X,Y,W,H with W, H >= 1 inside the %dx%d image (got '%s')",
+                        r[2], r[3], o.region);
+        die_freeing(s);
+    }
     if (!c.quiet)
         fputs(tex_scene_warnings(s), stderr);
-    tex_map *img = tex_render(s, tex_cli_progress_wanted(&c) ? tex_cli_progress : NULL, NULL);
+    tex_map *img = tex_render_region(s, r[0], r[1], r[2], r[3],
+                                     tex_cli_progress_wanted(&c) ? tex_cli_progress : NULL, NULL);
     if (!img)
         tex_die();
     if (wants_srgb(&c, &o))

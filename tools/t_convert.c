@@ -8,14 +8,19 @@ static const struct tex_tool tool = {
                           "write it in the format of the output's extension",
     TEX_OPT_OUTPUT | TEX_OPT_MAPS, NULL, 0, 1};
 
+static tex_map *same(tex_map *band, void *arg)
+{
+    (void)arg;
+    return band;
+}
+
 int main(int argc, char **argv)
 {
     struct tex_common c;
     int i = tex_cli_parse(&tool, argc, argv, &c, NULL);
-    tex_map *m = tex_cli_read(i < argc ? argv[i] : "-");
 
-    tex_cli_write(m, &c);
-    tex_map_free(m);
+    /* EXR to EXR goes a band of rows at a time: a map of any size in little memory */
+    tex_cli_stream(i < argc ? argv[i] : "-", &c, same, NULL);
     free(c.cmdline);
     return 0;
 }

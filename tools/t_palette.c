@@ -159,6 +159,23 @@ bad:
     tex_usage_die("--range must be auto or MIN,MAX with MIN < MAX (got '%s')", s);
 }
 
+struct colouring {
+    tex_palette *p;
+    double lo, hi;
+    int outside;
+    const char *input;
+};
+
+static tex_map *colour(tex_map *band, void *arg)
+{
+    const struct colouring *k = arg;
+    tex_map *out = tex_palette_map(k->p, band, k->lo, k->hi, (enum tex_outside)k->outside);
+    if (!out)
+        tex_error_context(strcmp(k->input, "-") ? k->input : "standard input");
+    tex_map_free(band);
+    return out;
+}
+
 int main(int argc, char **argv)
 {
     struct tex_common c;
@@ -202,14 +219,16 @@ int main(int argc, char **argv)
         tex_usage_die("unexpected operand '%s'", argv[i]);
     parse_range(o.range, &lo, &hi);
     die_if(!(p = tex_palette_load(name)));
-    m = tex_cli_read(input);
-    if (!(out = tex_palette_map(p, m, lo, hi, (enum tex_outside)o.outside))) {
-        tex_error_context(strcmp(input, "-") ? input : "standard input");
-        tex_die();
+    struct colouring k = {p, lo, hi, o.outside, input};
+    if (!isnan(lo)) { /* a given range is per pixel: a band of rows at a time */
+        tex_cli_stream(input, &c, colour, &k);
+    } else { /* auto: the map's own range, from the whole map */
+        m = tex_cli_read(input);
+        if (!(out = colour(m, &k)))
+            tex_die();
+        tex_cli_write(out, &c);
+        tex_map_free(out);
     }
-    tex_cli_write(out, &c);
-    tex_map_free(out);
-    tex_map_free(m);
     tex_palette_free(p);
     free(c.cmdline);
     return 0;

@@ -30,13 +30,21 @@ static const struct tex_tool tool = {
     "remap the values of a map: levels, bias, gain, gamma, quantise, invert, clamp (in that order)",
     TEX_OPT_OUTPUT | TEX_OPT_MAPS, rows, 0, 1};
 
+static tex_map *remap(tex_map *band, void *arg)
+{
+    if (tex_remap_map(band, arg) < 0) {
+        tex_map_free(band);
+        return NULL;
+    }
+    return band;
+}
+
 int main(int argc, char **argv)
 {
     struct tex_common c;
     struct opts o;
     int i = tex_cli_parse(&tool, argc, argv, &c, &o);
     struct tex_remap r = TEX_REMAP_IDENTITY;
-    tex_map *m;
 
     if (o.levels.n != 4)
         tex_usage_die("--levels needs 4 values IN0,IN1,OUT0,OUT1 (got %d)", o.levels.n);
@@ -57,11 +65,8 @@ int main(int argc, char **argv)
     }
     if (tex_remap_check(&r) < 0)
         tex_die();
-    m = tex_cli_read(i < argc ? argv[i] : "-");
-    if (tex_remap_map(m, &r) < 0)
-        tex_die();
-    tex_cli_write(m, &c);
-    tex_map_free(m);
+    /* every operation is per pixel: a band of rows at a time */
+    tex_cli_stream(i < argc ? argv[i] : "-", &c, remap, &r);
     free(c.cmdline);
     return 0;
 }

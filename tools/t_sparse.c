@@ -20,7 +20,7 @@ static const struct tex_tool tool = {
     "Lewis's sparse convolution: the sample, windowed by a radial exp(-K rho), summed at "
     "white-noise positions with white-noise weights into a larger map with the sample's spectrum "
     "(tiles)",
-    TEX_OPT_OUTPUT | TEX_OPT_MAPS | TEX_OPT_SIZE | TEX_OPT_SEED, rows, 0, 1};
+    TEX_OPT_OUTPUT | TEX_OPT_MAPS | TEX_OPT_SIZE | TEX_OPT_SEED | TEX_OPT_WINDOW, rows, 0, 1};
 
 int main(int argc, char **argv)
 {
@@ -30,6 +30,9 @@ int main(int argc, char **argv)
 
     tex_spectral_keep_memory();
     i = tex_cli_parse(&tool, argc, argv, &c, &o);
+    if (c.win[2] > 0) /* accepted for the generators' sake, refused with the reason */
+        tex_usage_die("sparse convolution cannot make a window of its map (--window): it "
+                      "convolves the whole periodic map at once with one FFT");
     const char *name = i < argc ? argv[i] : "-";
     tex_map *s = tex_cli_read(name), *m;
     struct tex_sparse_spec sp = {o.density, o.falloff, (uint64_t)c.seed};

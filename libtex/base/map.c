@@ -1,4 +1,6 @@
 /* map.c - allocation and metadata of texture maps */
+#include <ctype.h>
+#include <errno.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -74,6 +76,7 @@ tex_map *tex_map_clone(const tex_map *m)
         return NULL;
     memcpy(c->px, m->px, tex_map_samples(m) * sizeof *m->px);
     c->subregions = m->subregions;
+    tex_map_inherit_place(c, m);
     if (m->history && tex_map_set_history(c, m->history) < 0) {
         tex_map_free(c);
         return NULL;
@@ -92,8 +95,19 @@ int tex_map_set_history(tex_map *m, const char *history)
     return 0;
 }
 
+void tex_map_inherit_place(tex_map *dst, const tex_map *src)
+{
+    if (dst->w == src->w && dst->h == src->h && src->full_w > 0) {
+        dst->x0 = src->x0;
+        dst->y0 = src->y0;
+        dst->full_w = src->full_w;
+        dst->full_h = src->full_h;
+    }
+}
+
 int tex_map_inherit(tex_map *dst, const tex_map *src)
 {
+    tex_map_inherit_place(dst, src);
     return tex_map_set_history(dst, src->history);
 }
 
@@ -140,4 +154,48 @@ void tex_map_stats(const tex_map *m, int c, struct tex_stats *s)
     s->mean = mean;
     s->stddev = n ? sqrt(sum2 / n) : 0;
     s->nonfinite = bad;
+}
+
+int tex_parse_window(const char *text, int full_w, int full_h, int r[4])
+{
+    long long v[4];
+    const char *s = text;
+    char *end;
+
+    for (int i = 0; i < 4; i++) {
+        if (!isdigit((unsigned char)*s)) /* no sign, no space: pixels are counted from 0 */
+            return -1;
+        errno = 0;
+        v[i] = strtoll(s, &end, 10);
+        if (errno || *end != (i < 3 ? ',' : '\0'))
+            return -1;
+        s = end + 1;
+    }
+    if (v[2] < 1 || v[3] < 1 || v[0] + v[2] > full_w || v[1] + v[3] > full_h)
+        return -1;
+    for (int i = 0; i < 4; i++)
+        r[i] = (int)v[i];
+    return 0;
+}
+
+tex_map *tex_map_reduce(const tex_map *s)
+{
+    tex_map *d = tex_map_new(s->w > 1 ? s->w / 2 : 1, s->h > 1 ? s->h / 2 : 1, s->nc);
+    if (!d)
+        return NULL;
+    int fx = s->w / d->w, fy = s->h / d->h;
+    for (int y = 0; y < d->h; y++) {
+        for (int x = 0; x < d->w; x++) {
+            float *o = tex_map_px(d, x, y);
+            for (int j = 0; j < fy; j++)
+                for (int i = 0; i < fx; i++) {
+                    const float *p = tex_map_px(s, x * fx + i, y * fy + j);
+                    for (int c = 0; c < s->nc; c++)
+                        o[c] += p[c];
+                }
+            for (int c = 0; c < s->nc; c++)
+                o[c] /= fx * fy;
+        }
+    }
+    return d;
 }

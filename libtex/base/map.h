@@ -7,7 +7,10 @@
  *
  * Metadata travels with the map: the number of subregions when the map
  * holds region ids (0 otherwise), and the history, the command lines that
- * made it, one per line.
+ * made it, one per line; and, for a window of a larger map (a generator's
+ * --window, a region of a render), its place: the window's top-left pixel
+ * (x0, y0) in the full_w x full_h map (full_w 0: the map is whole).  EXR
+ * carries the place as the data window inside the display window.
  *
  *   tex_map *m = tex_map_new(256, 256, 1);   // NULL and tex_errmsg() on failure
  *   tex_map_px(m, x, y)[c] = 0.5f;
@@ -34,6 +37,7 @@ typedef struct tex_map {
     float *px;      /* w*h*nc floats, 64-byte aligned */
     int subregions; /* > 0: the pixels are region ids 1..subregions */
     char *history;  /* command lines, newline-terminated; NULL if none */
+    int x0, y0, full_w, full_h; /* a window's place in the full map; full_w 0: whole */
     size_t mapped;  /* private: bytes mmap'ed for px, 0 if malloc'ed */
 } tex_map;
 
@@ -44,8 +48,11 @@ tex_map *tex_map_new(int w, int h, int nc); /* zero-filled */
 void tex_map_free(tex_map *m);
 tex_map *tex_map_clone(const tex_map *m);
 
-/* A map made from src carries src's history; returns -1 on allocation failure. */
+/* A map made from src carries src's history (and its place in a full map when
+ * both are the same size); returns -1 on allocation failure. */
 int tex_map_inherit(tex_map *dst, const tex_map *src);
+/* Only the place in a full map (same size only). */
+void tex_map_inherit_place(tex_map *dst, const tex_map *src);
 /* Append one line to the history; returns -1 on allocation failure. */
 int tex_map_add_history(tex_map *m, const char *line);
 int tex_map_set_history(tex_map *m, const char *history);
@@ -91,6 +98,17 @@ static inline long tex_edge_index(long i, long n, enum tex_edge e)
         return -1;
     }
 }
+
+/* The next level of a mip-map pyramid: floor(w/2) x floor(h/2) (at least 1),
+ * as OpenEXR's round-down levels; each pixel is the mean of the fx x fy
+ * pixels from its corner, fx = w / floor(w/2) (a box filter; a remainder
+ * column or row at the far edge is dropped).  The renderer's pyramid and
+ * EXR --mipmap files are built by this one function. */
+tex_map *tex_map_reduce(const tex_map *s);
+
+/* Parse "X,Y,W,H" (decimal integers) as a window of a full_w x full_h map
+ * into r[0..3]: 0, or -1 when malformed, of zero size or not wholly inside. */
+int tex_parse_window(const char *text, int full_w, int full_h, int r[4]);
 
 /* Statistics of one channel over its finite samples; nonfinite counts NaN and infinities. */
 struct tex_stats {

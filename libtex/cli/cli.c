@@ -41,6 +41,11 @@ static const struct {
                   "compression of EXR files on disk (the stream is never compressed)")},
     {TEX_OPT_OUTPUT, TEX_STRING(struct tex_common, format, 0, NULL, "EXT",
                                 "format of standard output, e.g. png (default: exr)")},
+    {TEX_OPT_OUTPUT, TEX_FLAG(struct tex_common, exr_tiles, 0,
+                              "write the EXR in 64 x 64 tiles instead of scanlines")},
+    {TEX_OPT_OUTPUT, TEX_FLAG(struct tex_common, mipmap, 0,
+                              "write a tiled EXR with its mip-map levels, as renderers' "
+                              "texture files (.tx) have them")},
     /* size, seed, ids and tile: the rows of prim.h, as in scenes and scripts */
     {TEX_OPT_SIZE, TEX_STRING(struct tex_common, size, 's', "256", "N|WxH", TEX_SIZE_HELP)},
     {TEX_OPT_SEED, TEX_SEED_ROW(struct tex_common, seed, 'S', 1)},
@@ -48,6 +53,9 @@ static const struct {
     {TEX_OPT_PALETTE, TEX_STRING(struct tex_common, palette, 0, NULL, "NAME|FILE",
                                  "colour the map through a palette")},
     {TEX_OPT_TILE, TEX_TILE_ROW(struct tex_common, tile)},
+    {TEX_OPT_WINDOW, TEX_STRING(struct tex_common, window, 0, NULL, "X,Y,W,H",
+                                "make only the W x H window at X,Y of the -s map, the same "
+                                "pixels as cropping the whole map")},
     {TEX_OPT_MAPS, TEX_STRING(struct tex_common, nonfinite, 0, "refuse", "refuse|keep|V",
                               "NaN and infinite samples in input maps: refuse the map naming "
                               "the first, keep them, or replace them by the number V")},
@@ -503,6 +511,12 @@ static void take_option(const struct tex_tool *t, int k, char **argv, const stru
         tex_usage_die("%s %s (see %s --help)", k == ':' ? "missing value for" : "unknown option",
                       bad, t->name);
     } else if (k >= 256) {
+        /* the word as typed: before its value when that came as the next word */
+        const char *w = argv[optind - (optarg && optarg == argv[optind - 1] ? 2 : 1)];
+        size_t len = strcspn(w + 2, "=");
+        if (strncmp(w + 2, tb->names[k - 256].text, len) || tb->names[k - 256].text[len])
+            tex_usage_die("unknown option %.*s: options are written whole (--%s?)",
+                          (int)len + 2, w, tb->names[k - 256].text);
         i = tb->names[k - 256].opt;
         old = tb->names[k - 256].old;
     } else if (k > 0 && k < 128) {
@@ -555,6 +569,18 @@ static void check_operands(const struct tex_tool *t, int argc, char **argv,
     if ((t->common & TEX_OPT_SIZE) && tex_parse_size(c->size, &c->w, &c->h) < 0)
         tex_usage_die("-s must be N or WxH with each side 1..%d (got '%s')", TEX_MAP_MAX_SIDE,
                       c->size);
+    if ((t->common & TEX_OPT_WINDOW) && c->window &&
+        tex_parse_window(c->window, c->w, c->h, c->win) < 0)
+        tex_usage_die("--window must be X,Y,W,H with W, H >= 1 inside the %dx%d map (got '%s')",
+                      c->w, c->h, c->window);
+    if ((t->common & TEX_OPT_OUTPUT) && (c->exr_tiles || c->mipmap)) {
+        const char *out = c->output && strcmp(c->output, "-") ? c->output : NULL;
+        char probe[40];
+        snprintf(probe, sizeof probe, "x.%.32s", c->format ? c->format : "exr");
+        if (tex_format_from_name(out ? out : probe) != TEX_FMT_EXR)
+            tex_usage_die("%s writes EXR only (got %s)", c->mipmap ? "--mipmap" : "--exr-tiles",
+                          out ? out : "--format");
+    }
     nops = argc - optind;
     if (nops < t->min_operands || (t->max_operands >= 0 && nops > t->max_operands)) {
         if (nops > t->min_operands)
@@ -658,7 +684,8 @@ tex_map *tex_cli_read(const char *path)
 
 void tex_cli_write(tex_map *m, const struct tex_common *c)
 {
-    struct tex_write_opts o = {tex_cli_depth(c), (enum tex_compression)c->compression, c->format};
+    struct tex_write_opts o = {tex_cli_depth(c), (enum tex_compression)c->compression, c->format,
+                               c->exr_tiles, c->mipmap};
 
     tex_progress_done();
     if (c->cmdline && tex_map_add_history(m, c->cmdline) < 0)
@@ -705,6 +732,97 @@ int tex_cli_progress_wanted(const struct tex_common *c)
     return !c->quiet && isatty(2);
 }
 
+static int stream_out_ok(const struct tex_common *c);
+
+struct gen_job {
+    struct tex_field *f;
+    int x, y, w; /* the window the bands cut (the whole grid without --window) */
+};
+
+static int gen_fill(void *arg, int y, int n, float *rows)
+{
+    struct gen_job *j = arg;
+    tex_map *b;
+
+    j->f->wx = j->x;
+    j->f->wy = j->y + y;
+    j->f->ww = j->w;
+    j->f->wh = n;
+    tex_progress_hold(1); /* the band counts as its rows of the whole map */
+    b = tex_field_sample(j->f);
+    tex_progress_hold(0);
+    if (!b)
+        return -1;
+    tex_progress_add(n);
+    memcpy(rows, b->px, tex_map_samples(b) * sizeof *rows);
+    tex_map_free(b);
+    return 0;
+}
+
+/* head (history gaining the command line) written to -o or standard output as
+ * fill makes its rows, or die. */
+static void write_rows_out(tex_map *head, const struct tex_common *c, tex_rows_fn fill,
+                           void *arg)
+{
+    struct tex_out o = {.fd = 1};
+    const char *oname = "standard output";
+    int rc;
+
+    if (c->cmdline && tex_map_add_history(head, c->cmdline) < 0)
+        tex_die();
+    if (c->output && strcmp(c->output, "-")) {
+        if (tex_out_open(&o, c->output) < 0) {
+            tex_out_close(&o, -1);
+            tex_die();
+        }
+        oname = c->output;
+    }
+    rc = tex_exr_write_rows(head, fill, arg, 0, (enum tex_compression)c->compression, o.fd,
+                            oname);
+    if (o.fd != 1)
+        rc = tex_out_close(&o, rc);
+    if (rc < 0)
+        tex_die();
+}
+
+static int gen_probe(struct gen_job *j, tex_map **probe)
+{
+    struct tex_field *f = j->f;
+    int saved[4] = {f->wx, f->wy, f->ww, f->wh};
+    f->wx = j->x;
+    f->wy = j->y;
+    f->ww = f->wh = 1;
+    *probe = tex_field_sample(f);
+    f->wx = saved[0], f->wy = saved[1], f->ww = saved[2], f->wh = saved[3];
+    return *probe ? 0 : -1;
+}
+
+/* A generator's map written as it is sampled, a band of rows at a time. */
+static void generate_bands(struct tex_field *f, const struct tex_common *c)
+{
+    int win = f->ww > 0;
+    struct gen_job j = {f, win ? f->wx : 0, win ? f->wy : 0, win ? f->ww : f->w};
+    tex_map head = {0};
+    tex_map *probe;
+    head.w = j.w;
+    head.h = win ? f->wh : f->h;
+    /* channels and subregions as the sampler makes them: its first pixel */
+    if (gen_probe(&j, &probe) < 0)
+        tex_die();
+    head.nc = probe->nc;
+    head.subregions = probe->subregions;
+    tex_map_free(probe);
+    if (win) {
+        head.x0 = f->wx;
+        head.y0 = f->wy;
+        head.full_w = f->w;
+        head.full_h = f->h;
+    }
+    tex_progress_stage(1, head.h);
+    write_rows_out(&head, c, gen_fill, &j);
+    free(head.history);
+}
+
 int tex_generate_main(const struct tex_primitive *p, int argc, char **argv)
 {
     float *colors = NULL;
@@ -712,8 +830,9 @@ int tex_generate_main(const struct tex_primitive *p, int argc, char **argv)
     struct tex_common c;
     struct tex_field *f;
     tex_map *m;
-    struct tex_tool t = {name, "", p->summary, TEX_OPT_OUTPUT | TEX_OPT_SIZE | TEX_OPT_SEED,
-                         p->params, 0, 0};
+    struct tex_tool t = {name, "", p->summary,
+                         TEX_OPT_OUTPUT | TEX_OPT_SIZE | TEX_OPT_SEED | TEX_OPT_WINDOW, p->params,
+                         0, 0};
 
     snprintf(name, sizeof name, "t_%s", p->name);
     if (p->flags & TEX_PRIM_TILE)
@@ -731,18 +850,102 @@ int tex_generate_main(const struct tex_primitive *p, int argc, char **argv)
     if (c.palette && c.ids)
         tex_usage_die("--palette colours the subregions; --ids writes their ids instead: "
                       "give one of them");
+    if (c.win[2] > 0 && tex_field_window(f, c.win[0], c.win[1], c.win[2], c.win[3]) < 0)
+        tex_die();
     if (tex_field_init(f, c.w, c.h) < 0)
         tex_die();
     if (c.palette && !(colors = region_colors(c.palette, f->nregions)))
         tex_die();
     if (colors)
         f->colors = (const float(*)[3])colors;
-    if (!(m = tex_field_sample(f)))
-        tex_die();
-    tex_cli_write(m, &c);
-    tex_map_free(m);
+    if (stream_out_ok(&c) && !tex_field_whole(f)) {
+        generate_bands(f, &c); /* the same pixels, a band of rows at a time */
+    } else {
+        if (!(m = tex_field_sample(f)))
+            tex_die();
+        tex_cli_write(m, &c);
+        tex_map_free(m);
+    }
     tex_field_free(f);
     free(colors);
     free(c.cmdline);
     return 0;
+}
+
+/* ---- per-pixel tools in bands ---- */
+
+struct band_job {
+    tex_rows_reader *r;
+    const char *name;
+    int w, nc, subregions;
+    tex_map *(*op)(tex_map *, void *);
+    void *arg;
+};
+
+static int band_fill(void *arg, int y, int n, float *rows)
+{
+    struct band_job *j = arg;
+    tex_map *b = tex_map_new(j->w, n, j->nc), *o;
+
+    if (!b)
+        return -1;
+    b->subregions = j->subregions;
+    if (tex_rows_read(j->r, y, n, b->px, j->name) < 0 ||
+        tex_rows_nonfinite(b->px, j->w, n, j->nc, y, j->name) < 0 || !(o = j->op(b, j->arg))) {
+        tex_map_free(b);
+        return -1;
+    }
+    memcpy(rows, o->px, tex_map_samples(o) * sizeof *rows);
+    tex_map_free(o);
+    return 0;
+}
+
+static int stream_out_ok(const struct tex_common *c)
+{
+    if (c->exr_tiles || c->mipmap || (c->format && strcmp(c->format, "exr") != 0))
+        return 0;
+    return !c->output || !strcmp(c->output, "-") ||
+           tex_format_from_name(c->output) == TEX_FMT_EXR;
+}
+
+void tex_cli_stream(const char *path, const struct tex_common *c,
+                    tex_map *(*op)(tex_map *band, void *arg), void *arg)
+{
+    const char *name = path && strcmp(path, "-") ? path : "standard input";
+    tex_map head, *whole = NULL, *probe, *m;
+    tex_rows_reader *r = NULL;
+
+    if (tex_map_write_check(c->output) < 0)
+        tex_die();
+    if (stream_out_ok(c)) {
+        r = tex_map_open_rows(path, &head, &whole);
+        if (!r && !whole)
+            tex_die();
+    } else {
+        whole = tex_cli_read(path);
+    }
+    if (!r) { /* the same op over the whole map */
+        if (!(m = op(whole, arg)))
+            tex_die();
+        tex_cli_write(m, c);
+        tex_map_free(m);
+        return;
+    }
+    if (!(probe = tex_map_new(1, 1, head.nc)))
+        tex_die();
+    for (int k = 0; k < head.nc; k++)
+        probe->px[k] = 1;
+    probe->subregions = head.subregions;
+    if (!(probe = op(probe, arg)))
+        tex_die();
+    {
+        struct band_job j = {r, name, head.w, head.nc, head.subregions, op, arg};
+        tex_map out = head;
+        out.nc = probe->nc;
+        out.subregions = probe->subregions;
+        tex_map_free(probe);
+        write_rows_out(&out, c, band_fill, &j);
+        tex_rows_close(r);
+        free(out.history);
+    }
 }

@@ -20,12 +20,13 @@
  *
  * Common options (mask bits):
  *   TEX_OPT_OUTPUT   -o FILE, --depth auto|8|16|32, --compression none|zip|piz,
- *                    --format EXT (of standard output)
+ *                    --format EXT (of standard output), --exr-tiles, --mipmap (EXR only)
  *   TEX_OPT_SIZE     -s N|WxH
  *   TEX_OPT_SEED     -S/--seed N
  *   TEX_OPT_IDS      --ids
  *   TEX_OPT_PALETTE  --palette NAME|FILE
  *   TEX_OPT_TILE     --tile
+ *   TEX_OPT_WINDOW   --window X,Y,W,H (a window of the -s map; c->win, win[2] 0: none)
  *   TEX_OPT_MAPS     --nonfinite refuse|keep|V (input maps' NaN and infinities, file.h)
  *   always           -j/--threads N, -q/--quiet, -h/--help, -V/--version
  */
@@ -50,6 +51,7 @@ enum {
     TEX_OPT_PALETTE = 1 << 4,
     TEX_OPT_TILE = 1 << 5,
     TEX_OPT_MAPS = 1 << 6,
+    TEX_OPT_WINDOW = 1 << 7,
 };
 
 struct tex_common {
@@ -57,6 +59,7 @@ struct tex_common {
     int depth_choice;   /* index into auto|8|16|32 */
     int compression;    /* enum tex_compression */
     const char *format;
+    int exr_tiles, mipmap; /* EXR output in tiles, with mip-map levels */
     const char *size;
     int w, h;           /* parsed from size */
     int seed;
@@ -66,6 +69,8 @@ struct tex_common {
     const char *palette;
     int tile;
     const char *nonfinite;
+    const char *window;
+    int win[4];         /* parsed from window: x, y, w, h; w 0 when none */
     char *cmdline;      /* the command line, for the map's history */
 };
 
@@ -116,6 +121,18 @@ void tex_cli_write(tex_map *m, const struct tex_common *c);
  * tex_cli_write completes it. */
 void tex_cli_progress(long done, long total, void *arg);
 int tex_cli_progress_wanted(const struct tex_common *c);
+
+/* A per-pixel tool's work in bounded memory: the map at path (NULL or "-":
+ * standard input) goes through op a band of rows at a time, each band a
+ * small map of the input's width (op changes it in place and returns it, or
+ * returns a new map and frees the band; NULL with the error set on
+ * failure), and out to -o or standard output, with the history.  Output
+ * channels and subregions are op's on a 1 x 1 band of ones.  When input or
+ * output is not a scanline EXR (another format, tiles, --mipmap), the map
+ * goes through op whole instead: the same pixels either way, op being
+ * per-pixel.  Dies on errors. */
+void tex_cli_stream(const char *path, const struct tex_common *c,
+                    tex_map *(*op)(tex_map *band, void *arg), void *arg);
 
 /* The whole main of a generator tool t_NAME: parse, sample, write. */
 int tex_generate_main(const struct tex_primitive *p, int argc, char **argv);

@@ -348,29 +348,37 @@ void tex_map_set_nonfinite(enum tex_nonfinite policy, float value)
 }
 
 /* The map read, after the non-finite policy: m, or NULL (m freed) when refused. */
-static tex_map *nonfinite(tex_map *m, const char *name)
+int tex_rows_nonfinite(float *px, int w, int n, int nc, int y0, const char *name)
 {
-    size_t n;
+    size_t total = (size_t)w * n * nc;
 
-    if (!m || nonfinite_policy == TEX_NONFINITE_KEEP)
-        return m;
-    n = tex_map_samples(m);
-    for (size_t i = 0; i < n; i++) {
-        if (isfinite(m->px[i]))
+    if (nonfinite_policy == TEX_NONFINITE_KEEP)
+        return 0;
+    for (size_t i = 0; i < total; i++) {
+        if (isfinite(px[i]))
             continue;
         if (nonfinite_policy == TEX_NONFINITE_REPLACE) {
-            m->px[i] = nonfinite_value;
+            px[i] = nonfinite_value;
             continue;
         }
-        tex_error("%s: pixel (%zu,%zu) channel %zu is %s, not a finite number (--nonfinite "
-                  "keep or --nonfinite VALUE to take it)",
-                  name, i / m->nc % m->w, i / m->nc / m->w, i % m->nc,
-                  isnan(m->px[i]) ? "NaN" : m->px[i] > 0 ? "+inf" : "-inf");
+        return tex_error("%s: pixel (%zu,%zu) channel %zu is %s, not a finite number "
+                         "(--nonfinite keep or --nonfinite VALUE to take it)",
+                         name, i / nc % w, y0 + i / nc / w, i % nc,
+                         isnan(px[i]) ? "NaN" : px[i] > 0 ? "+inf" : "-inf");
+    }
+    return 0;
+}
+
+static tex_map *nonfinite(tex_map *m, const char *name)
+{
+    if (m && tex_rows_nonfinite(m->px, m->w, m->h, m->nc, 0, name) < 0) {
         tex_map_free(m);
         return NULL;
     }
     return m;
 }
+
+static tex_map *read_rest(int fd, const void *head, size_t n, const char *path, const char *name);
 
 tex_map *tex_map_read_memory(const void *data, size_t len, const char *name)
 {
@@ -424,10 +432,8 @@ tex_map *tex_map_read(const char *path)
                 tex_error_context(name);
             goto done;
         }
-        if (tex_buf_reserve(&b, 1 << 20) < 0)
-            goto done;
-        memcpy(b.data, head, n);
-        b.len = n;
+        m = read_rest(fd, head, n, path, name);
+        goto done;
     }
     if (tex_read_fd(fd, &b, name) == 0)
         m = decode(path, b.data, b.len, name);
@@ -436,6 +442,67 @@ done:
         close(fd);
     tex_buf_free(&b);
     return nonfinite(m, name);
+}
+
+/* A pipe's map whose first n bytes were read into head. */
+static tex_map *read_rest(int fd, const void *head, size_t n, const char *path, const char *name)
+{
+    tex_buf b = {0};
+    tex_map *m = NULL;
+
+    if (tex_buf_reserve(&b, 1 << 20) == 0) {
+        memcpy(b.data, head, n);
+        b.len = n;
+        if (tex_read_fd(fd, &b, name) == 0)
+            m = decode(path, b.data, b.len, name);
+    }
+    tex_buf_free(&b);
+    return m;
+}
+
+tex_rows_reader *tex_map_open_rows(const char *path, tex_map *head, tex_map **whole)
+{
+    const char *name = path && strcmp(path, "-") ? path : "standard input";
+    unsigned char pre[64];
+    struct stat st;
+    size_t n = 0;
+    tex_rows_reader *r;
+
+    *whole = NULL;
+    if (path && strcmp(path, "-") != 0) {
+        int fd = open(path, O_RDONLY);
+        if (fd < 0) {
+            tex_error("%s: %s", path, strerror(errno));
+            return NULL;
+        }
+        ssize_t k = read(fd, pre, 4);
+        close(fd);
+        if (k == 4 && tex_format_sniff(pre, 4) == TEX_FMT_EXR &&
+            (r = tex_rows_open(-1, NULL, 0, path, name, head)))
+            return r;
+        *whole = tex_map_read(path); /* another format, or a tiled EXR */
+        return NULL;
+    }
+    if (isatty(0) || fstat(0, &st) != 0 || !S_ISFIFO(st.st_mode)) {
+        *whole = tex_map_read(NULL); /* a file on standard input: as tex_map_read does */
+        return NULL;
+    }
+    while (n < sizeof pre) {
+        ssize_t k = read(0, pre + n, sizeof pre - n);
+        if (k < 0 && errno == EINTR)
+            continue;
+        if (k < 0) {
+            tex_error("%s: %s", name, strerror(errno));
+            return NULL;
+        }
+        if (k == 0)
+            break;
+        n += (size_t)k;
+    }
+    if (tex_format_sniff(pre, n) == TEX_FMT_EXR)
+        return tex_rows_open(0, pre, n, NULL, name, head);
+    *whole = nonfinite(read_rest(0, pre, n, NULL, name), name);
+    return NULL;
 }
 
 /* ---- writing ---- */
@@ -537,9 +604,14 @@ static int write_to_path(const tex_map *m, enum tex_format f, int depth, const c
     if (f == TEX_FMT_EXR) {
         tex_buf b = {0};
         int r;
-        if (fd == 1 || o->compression == TEX_COMPRESS_NONE)
+        if (o->tiled || o->mipmap)
+            r = tex_exr_encode_tiled(m, TEX_EXR_TILE, o->mipmap,
+                                     fd == 1 ? TEX_COMPRESS_NONE : o->compression, &b);
+        else if (fd == 1 || o->compression == TEX_COMPRESS_NONE)
             return tex_exr_write_fd(m, fd, name);
-        if ((r = tex_exr_encode(m, o->compression, &b)) == 0)
+        else
+            r = tex_exr_encode(m, o->compression, &b);
+        if (r == 0)
             r = tex_write_all(fd, b.data, b.len, name);
         tex_buf_free(&b);
         return r;
@@ -840,6 +912,51 @@ int tex_map_write_check(const char *path)
                                ".tif, .pnm, .pam, .pfm, .bmp, .tga, .hdr, .jpg, .webp or .dpx)",
                                path);
     return 0;
+}
+
+tex_map **tex_map_read_levels(const char *path, int *n)
+{
+    tex_map **lv = NULL, *m;
+    int fd = -1;
+    tex_buf b = {0};
+    unsigned char head[4];
+
+    *n = 0;
+    if (!path || strcmp(path, "-") == 0 || (fd = open(path, O_RDONLY)) < 0 ||
+        read(fd, head, 4) != 4 || tex_format_sniff(head, 4) != TEX_FMT_EXR ||
+        lseek(fd, 0, SEEK_SET) != 0 || tex_read_fd(fd, &b, path) < 0 ||
+        tex_exr_unsupported(b.data, b.len)) {
+        /* not a whole EXR file: one level, read as any map */
+        if (path && strcmp(path, "-") != 0 && fd >= 0)
+            close(fd);
+        tex_buf_free(&b);
+        if (!(m = tex_map_read(path)))
+            return NULL;
+        if (!(lv = malloc(sizeof *lv))) {
+            tex_map_free(m);
+            tex_error("out of memory");
+            return NULL;
+        }
+        lv[0] = m;
+        *n = 1;
+        return lv;
+    }
+    close(fd);
+    lv = tex_exr_decode_levels(b.data, b.len, path, n);
+    tex_buf_free(&b);
+    if (!lv) {
+        tex_error_context(path);
+        return NULL;
+    }
+    for (int l = 0; l < *n; l++)
+        if (!nonfinite(lv[l], path)) { /* it freed that level */
+            for (int k = 0; k < *n; k++)
+                if (k != l)
+                    tex_map_free(lv[k]);
+            free(lv);
+            return NULL;
+        }
+    return lv;
 }
 
 int tex_map_write(const tex_map *m, const char *path, const struct tex_write_opts *o)

@@ -55,8 +55,10 @@ struct tex_write_opts {
     int depth;                        /* 0, 8, 16 or 32 */
     enum tex_compression compression; /* EXR files on disk */
     const char *format;               /* for standard output: an extension; NULL = EXR */
+    int tiled, mipmap;                /* EXR only: 64 x 64 tiles; with mip-map levels */
 };
-#define TEX_WRITE_DEFAULTS {0, TEX_COMPRESS_ZIP, NULL}
+#define TEX_WRITE_DEFAULTS {0, TEX_COMPRESS_ZIP, NULL, 0, 0}
+#define TEX_EXR_TILE 64 /* the tile side of --exr-tiles and --mipmap files (maketx's) */
 
 /* What reading does with NaN and infinite samples, for the whole process
  * (textura(5), the tools' --nonfinite): refuse the map, naming the first
@@ -68,6 +70,21 @@ void tex_map_set_nonfinite(enum tex_nonfinite policy, float value);
  * usage error, when it is a terminal).  Non-finite samples follow the
  * policy above. */
 tex_map *tex_map_read(const char *path);
+/* Read a map file with its mip levels, when it is an EXR file that has
+ * them (written with --mipmap, or by maketx): an array of *n maps, the full
+ * resolution first, each level half the one above (rounded down); any
+ * other file or standard input gives one level.  Free each map, then the
+ * array; NULL with the error set. */
+tex_map **tex_map_read_levels(const char *path, int *n);
+/* Open a map to be read a band of rows at a time (stream.h, tex_rows_read),
+ * from path or standard input (NULL or "-"), when it is a scanline EXR;
+ * otherwise the map is read whole into *whole and NULL is returned (NULL
+ * with *whole NULL: an error).  Rows read are checked for non-finite
+ * samples by the caller with tex_rows_nonfinite. */
+tex_rows_reader *tex_map_open_rows(const char *path, tex_map *head, tex_map **whole);
+/* The --nonfinite policy over n rows of w x nc samples starting at row y0:
+ * 0, or -1 naming the first refused sample (the map's row, y0-based). */
+int tex_rows_nonfinite(float *px, int w, int n, int nc, int y0, const char *name);
 /* Read a map from a file image in memory; name is for messages. */
 tex_map *tex_map_read_memory(const void *data, size_t len, const char *name);
 /* Write a map; NULL or "-" is standard output. */

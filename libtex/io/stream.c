@@ -84,6 +84,7 @@ struct wsink {
     uint64_t table_off;  /* where the offset table sits */
     unsigned char *table;
     size_t table_len;
+    int seekable;        /* fd is a regular file: bytes land at their offsets (pwrite) */
 };
 
 static int64_t write_mem(exr_const_context_t ctxt, void *ud, const void *src, uint64_t sz,
@@ -92,6 +93,20 @@ static int64_t write_mem(exr_const_context_t ctxt, void *ud, const void *src, ui
     struct wsink *w = ud;
     size_t end = w->base + off + sz;
 
+    if (w->seekable) {
+        const unsigned char *c = src;
+        uint64_t done = 0;
+        while (done < sz) {
+            ssize_t k = pwrite(w->fd, c + done, sz - done, (off_t)(off + done));
+            if (k < 0 && errno == EINTR)
+                continue;
+            if (k <= 0)
+                return ecb(ctxt, EXR_ERR_WRITE_IO, "%s: write error: %s", w->name,
+                           strerror(errno)), -1;
+            done += (uint64_t)k;
+        }
+        return (int64_t)sz;
+    }
     if (w->streaming) {
         if (off == w->pos) {
             if (tex_write_all(w->fd, src, sz, w->name) < 0)
@@ -164,68 +179,121 @@ static exr_result_t raw_if_incompressible(exr_encode_pipeline_t *enc)
     return rv;
 }
 
-static int encode(const tex_map *m, enum tex_compression c, struct wsink *sink)
+/* One part for m: its storage, size and place, channels and attributes. */
+static exr_result_t add_part(exr_context_t ctx, const tex_map *m, exr_storage_t st,
+                             exr_compression_t comp, int *part)
 {
+    exr_result_t rv;
+
+    if ((rv = exr_add_part(ctx, "", st, part)) ||
+        (rv = exr_initialize_required_attr_simple(ctx, *part, m->w, m->h, comp)))
+        return rv;
+    if (m->full_w > 0) { /* a window: the data window inside the full map's display window */
+        exr_attr_box2i_t dw, disp;
+        dw.min.x = m->x0;
+        dw.min.y = m->y0;
+        dw.max.x = m->x0 + m->w - 1;
+        dw.max.y = m->y0 + m->h - 1;
+        disp.min.x = disp.min.y = 0;
+        disp.max.x = m->full_w - 1;
+        disp.max.y = m->full_h - 1;
+        if ((rv = exr_set_data_window(ctx, *part, &dw)) ||
+            (rv = exr_set_display_window(ctx, *part, &disp)))
+            return rv;
+    }
+    for (int ch = 0; ch < m->nc; ch++)
+        if ((rv = exr_add_channel(ctx, *part, chnames[m->nc - 1][ch], EXR_PIXEL_FLOAT,
+                                  EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1)))
+            return rv;
+    if (m->subregions > 0 && (rv = exr_attr_set_int(ctx, *part, ATTR_SUBREGIONS, m->subregions)))
+        return rv;
+    if (m->history && (rv = exr_attr_set_string(ctx, *part, ATTR_HISTORY, m->history)))
+        return rv;
+    return EXR_ERR_SUCCESS;
+}
+
+/* Point the encoder's channels (listed alphabetically: A B G R) at pixel p of
+ * a map nc channels deep whose rows are w pixels apart. */
+static void aim_encoder(exr_encode_pipeline_t *enc, const float *p, int w, int nc)
+{
+    for (int ch = 0; ch < enc->channel_count; ch++) {
+        exr_coding_channel_info_t *cc = &enc->channels[ch];
+        int k = 0;
+        while (k < nc && strcmp(cc->channel_name, chnames[nc - 1][k]))
+            k++;
+        cc->user_bytes_per_element = 4;
+        cc->user_data_type = EXR_PIXEL_FLOAT;
+        cc->user_pixel_stride = 4 * nc;
+        cc->user_line_stride = 4 * nc * w;
+        cc->encode_from_ptr = (const uint8_t *)(p + k);
+    }
+}
+
+static void writer_init(exr_context_initializer_t *init, struct wsink *sink)
+{
+    init->user_data = sink;
+    init->write_fn = write_mem;
+    init->error_handler_fn = on_exr_error;
+    init->max_image_width = TEX_MAP_MAX_SIDE;
+    init->max_image_height = TEX_MAP_MAX_SIDE;
+}
+
+static const exr_compression_t ctype[] = {EXR_COMPRESSION_NONE, EXR_COMPRESSION_ZIP,
+                                          EXR_COMPRESSION_PIZ};
+
+static int encode(const tex_map *m, tex_rows_fn fill, void *arg, enum tex_compression c,
+                  struct wsink *sink)
+{
+    float *band = NULL; /* fill's rows, one chunk at a time */
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     exr_context_t ctx = NULL;
     exr_encode_pipeline_t enc;
     exr_chunk_info_t ci;
     exr_result_t rv;
     tex_buf *out = sink->buf;
-    int part, lines, y, ch, nchunks;
-    static const exr_compression_t ctype[] = {EXR_COMPRESSION_NONE, EXR_COMPRESSION_ZIP,
-                                              EXR_COMPRESSION_PIZ};
+    int part, lines, y, nchunks;
     size_t est = (size_t)m->w * m->h * m->nc * 4 + 4096 + (size_t)m->h * 16;
 
-    if (sink->fd < 0 && c == TEX_COMPRESS_NONE && tex_buf_reserve(out, out->len + est) < 0)
+    if (sink->fd < 0 && !fill && c == TEX_COMPRESS_NONE &&
+        tex_buf_reserve(out, out->len + est) < 0)
         return -1;
     memset(&enc, 0, sizeof enc);
-    init.user_data = sink;
-    init.write_fn = write_mem;
-    init.error_handler_fn = on_exr_error;
-    init.max_image_width = TEX_MAP_MAX_SIDE;
-    init.max_image_height = TEX_MAP_MAX_SIDE;
+    writer_init(&init, sink);
 
     if ((rv = exr_start_write(&ctx, "stream", EXR_WRITE_FILE_DIRECTLY, &init)))
         return exr_fail(&ctx, rv, "EXR write");
-    if ((rv = exr_add_part(ctx, "", EXR_STORAGE_SCANLINE, &part)) ||
-        (rv = exr_initialize_required_attr_simple(ctx, part, m->w, m->h, ctype[c])))
+    if ((rv = add_part(ctx, m, EXR_STORAGE_SCANLINE, ctype[c], &part)))
         return exr_fail(&ctx, rv, "EXR header");
-    for (ch = 0; ch < m->nc; ch++)
-        if ((rv = exr_add_channel(ctx, part, chnames[m->nc - 1][ch], EXR_PIXEL_FLOAT,
-                                  EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1)))
-            return exr_fail(&ctx, rv, "EXR channel");
-    if (m->subregions > 0 &&
-        (rv = exr_attr_set_int(ctx, part, ATTR_SUBREGIONS, m->subregions)))
-        return exr_fail(&ctx, rv, "EXR attribute");
-    if (m->history && (rv = exr_attr_set_string(ctx, part, ATTR_HISTORY, m->history)))
-        return exr_fail(&ctx, rv, "EXR attribute");
     if ((rv = exr_write_header(ctx)) || (rv = exr_get_scanlines_per_chunk(ctx, part, &lines)) ||
         (rv = exr_get_chunk_count(ctx, part, &nchunks)))
         return exr_fail(&ctx, rv, "EXR header");
-    if (sink->fd >= 0 && start_streaming(sink, m, nchunks, lines) < 0) {
+    if (sink->fd >= 0 && !sink->seekable && start_streaming(sink, m, nchunks, lines) < 0) {
         exr_finish(&ctx);
         return -1;
     }
+    /* fill makes whole chunks, at least 64 rows at a time: its work per call
+     * (a parallel loop, say) then outweighs starting it */
+    int brows = lines * ((64 + lines - 1) / lines);
+    if (fill && !(band = malloc(sizeof *band * (size_t)brows * m->w * m->nc))) {
+        exr_finish(&ctx);
+        return tex_error("out of memory");
+    }
     for (y = 0; y < m->h; y += lines) {
-        if ((rv = exr_write_scanline_chunk_info(ctx, part, y, &ci)))
+        const float *row0 = band ? band + (size_t)(y % brows) * m->w * m->nc : tex_map_row(m, y);
+        if (band && y % brows == 0 && fill(arg, y, m->h - y < brows ? m->h - y : brows, band) < 0) {
+            free(band);
+            if (y > 0)
+                exr_encoding_destroy(ctx, &enc);
+            exr_finish(&ctx);
+            return -1;
+        }
+        if ((rv = exr_write_scanline_chunk_info(ctx, part, y + (m->full_w > 0 ? m->y0 : 0), &ci)))
             return exr_fail(&ctx, rv, "EXR chunk");
         rv = y == 0 ? exr_encoding_initialize(ctx, part, &ci, &enc)
                     : exr_encoding_update(ctx, part, &ci, &enc);
         if (rv)
             return exr_fail(&ctx, rv, "EXR encoder");
-        /* The channel list is alphabetical (A B G R); point each at its plane. */
-        for (ch = 0; ch < enc.channel_count; ch++) {
-            exr_coding_channel_info_t *cc = &enc.channels[ch];
-            int k = 0;
-            while (k < m->nc && strcmp(cc->channel_name, chnames[m->nc - 1][k]))
-                k++;
-            cc->user_bytes_per_element = 4;
-            cc->user_data_type = EXR_PIXEL_FLOAT;
-            cc->user_pixel_stride = 4 * m->nc;
-            cc->user_line_stride = 4 * m->nc * m->w;
-            cc->encode_from_ptr = (const uint8_t *)(tex_map_row(m, y) + k);
-        }
+        aim_encoder(&enc, row0, m->w, m->nc);
         if (y == 0 && (rv = exr_encoding_choose_default_routines(ctx, part, &enc)))
             return exr_fail(&ctx, rv, "EXR encoder");
         if (y == 0 && enc.compress_fn) { /* see raw_if_incompressible */
@@ -234,19 +302,113 @@ static int encode(const tex_map *m, enum tex_compression c, struct wsink *sink)
         }
         if ((rv = exr_encoding_run(ctx, part, &enc))) {
             exr_encoding_destroy(ctx, &enc);
+            free(band);
             return exr_fail(&ctx, rv, "EXR encode");
         }
     }
+    free(band);
     exr_encoding_destroy(ctx, &enc);
     if ((rv = exr_finish(&ctx)))
         return exr_fail(NULL, rv, "EXR finish");
     return 0;
 }
 
+/* m tiled (with its mip levels), or, with fill, the map head describes made
+ * a band of tile rows at a time (one level). */
+static int encode_tiled(const tex_map *m, tex_rows_fn fill, void *arg, int tile, int mipmap,
+                        enum tex_compression c, struct wsink *sink)
+{
+    float *band = NULL;
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    exr_context_t ctx = NULL;
+    exr_encode_pipeline_t enc;
+    exr_chunk_info_t ci;
+    exr_result_t rv = EXR_ERR_SUCCESS;
+    tex_map *lv[32] = {(tex_map *)m};
+    int part, n = 1, r = -1;
+    int32_t nx, ny;
+
+    if (mipmap && m->subregions > 0)
+        return tex_usage_error("--mipmap: a map of subregion ids cannot be averaged into levels");
+    for (; mipmap && (lv[n - 1]->w > 1 || lv[n - 1]->h > 1); n++)
+        if (!(lv[n] = tex_map_reduce(lv[n - 1])))
+            goto done;
+    if (fill && !(band = malloc(sizeof *band * (size_t)tile * m->w * m->nc))) {
+        tex_error("out of memory");
+        goto done;
+    }
+    memset(&enc, 0, sizeof enc);
+    writer_init(&init, sink);
+    if ((rv = exr_start_write(&ctx, "stream", EXR_WRITE_FILE_DIRECTLY, &init)) ||
+        (rv = add_part(ctx, m, EXR_STORAGE_TILED, ctype[c], &part)) ||
+        (rv = exr_set_tile_descriptor(ctx, part, (uint32_t)tile, (uint32_t)tile,
+                                      mipmap ? EXR_TILE_MIPMAP_LEVELS : EXR_TILE_ONE_LEVEL,
+                                      EXR_TILE_ROUND_DOWN)) ||
+        (rv = exr_write_header(ctx)) || (rv = exr_get_tile_levels(ctx, part, &nx, &ny)))
+        goto done;
+    if (nx != n || ny != n) {
+        tex_error("EXR levels: %d from the core library, %d made", nx, n);
+        goto done;
+    }
+    /* A pipeline per tile: one reused across levels of other sizes wrote
+     * corrupt ZIP chunks below the top level (OpenEXR 3.1). */
+    for (int l = 0; l < n; l++)
+        for (int ty = 0; ty * tile < lv[l]->h; ty++) {
+            if (band && fill(arg, ty * tile, m->h - ty * tile < tile ? m->h - ty * tile : tile,
+                             band) < 0)
+                goto done;
+            for (int tx = 0; tx * tile < lv[l]->w; tx++) {
+                if ((rv = exr_write_tile_chunk_info(ctx, part, tx, ty, l, l, &ci)))
+                    goto done;
+                /* OpenEXR 3.1 sizes edge tiles of every level by the full-resolution
+                 * level's edges: give the tile its own level's size. */
+                ci.width = lv[l]->w - tx * tile < tile ? lv[l]->w - tx * tile : tile;
+                ci.height = lv[l]->h - ty * tile < tile ? lv[l]->h - ty * tile : tile;
+                ci.unpacked_size = (uint64_t)ci.width * ci.height * m->nc * 4;
+                if ((rv = exr_encoding_initialize(ctx, part, &ci, &enc)))
+                    goto done;
+                aim_encoder(&enc,
+                            band ? band + (size_t)tx * tile * m->nc
+                                 : tex_map_px(lv[l], tx * tile, ty * tile),
+                            lv[l]->w, m->nc);
+                if ((rv = exr_encoding_choose_default_routines(ctx, part, &enc)))
+                    goto done;
+                if (enc.compress_fn) { /* see raw_if_incompressible */
+                    __atomic_store_n(&default_compress, enc.compress_fn, __ATOMIC_RELAXED);
+                    enc.compress_fn = raw_if_incompressible;
+                }
+                if ((rv = exr_encoding_run(ctx, part, &enc)))
+                    goto done;
+                exr_encoding_destroy(ctx, &enc);
+            }
+        }
+    exr_encoding_destroy(ctx, &enc);
+    rv = exr_finish(&ctx);
+    r = rv ? -1 : 0;
+done:
+    if (ctx) {
+        exr_encoding_destroy(ctx, &enc);
+        exr_finish(&ctx);
+    }
+    if (r < 0 && rv != EXR_ERR_SUCCESS)
+        exr_fail(NULL, rv, "EXR tiled write");
+    for (int l = 1; l < n; l++)
+        tex_map_free(lv[l]);
+    free(band);
+    return r;
+}
+
+int tex_exr_encode_tiled(const tex_map *m, int tile, int mipmap, enum tex_compression c,
+                         tex_buf *out)
+{
+    struct wsink sink = {out, out->len, -1, "memory", 0, 0, 0, NULL, 0, 0};
+    return encode_tiled(m, NULL, NULL, tile, mipmap, c, &sink);
+}
+
 int tex_exr_encode(const tex_map *m, enum tex_compression c, tex_buf *out)
 {
-    struct wsink sink = {out, out->len, -1, "memory", 0, 0, 0, NULL, 0};
-    return encode(m, c, &sink);
+    struct wsink sink = {out, out->len, -1, "memory", 0, 0, 0, NULL, 0, 0};
+    return encode(m, NULL, NULL, c, &sink);
 }
 
 /* A pipe's default 64 KiB buffer costs a context switch per 64 KiB; ask for
@@ -265,14 +427,36 @@ void tex_pipe_widen(int fd)
 int tex_exr_write_fd(const tex_map *m, int fd, const char *name)
 {
     tex_buf head = {0};
-    struct wsink sink = {&head, 0, fd, name, 0, 0, 0, NULL, 0};
+    struct wsink sink = {&head, 0, fd, name, 0, 0, 0, NULL, 0, 0};
     int r;
 
     tex_pipe_widen(fd);
-    r = encode(m, TEX_COMPRESS_NONE, &sink);
+    r = encode(m, NULL, NULL, TEX_COMPRESS_NONE, &sink);
 
     free(sink.table);
     tex_buf_free(&head);
+    return r;
+}
+
+int tex_exr_write_rows(const tex_map *head, tex_rows_fn fill, void *arg, int tile,
+                       enum tex_compression c, int fd, const char *name)
+{
+    tex_buf hb = {0};
+    struct stat st;
+    struct wsink sink = {&hb, 0, fd, name, 0, 0, 0, NULL, 0, 0};
+    int r;
+
+    sink.seekable = fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && lseek(fd, 0, SEEK_CUR) == 0;
+    if (!sink.seekable && tile > 0)
+        return tex_usage_error("%s: tiles are written to a file, not a pipe", name);
+    if (!sink.seekable) {
+        tex_pipe_widen(fd);
+        c = TEX_COMPRESS_NONE; /* a pipe carries the stream, never compressed */
+    }
+    r = tile > 0 ? encode_tiled(head, fill, arg, tile, 0, c, &sink)
+                 : encode(head, fill, arg, c, &sink);
+    free(sink.table);
+    tex_buf_free(&hb);
     return r;
 }
 
@@ -386,7 +570,8 @@ static int order_channels(const exr_attr_chlist_t *cl, int map[4])
     return n;
 }
 
-static tex_map *decode(exr_context_initializer_t *init, const char *name);
+static tex_map *decode(exr_context_initializer_t *init, const char *name, tex_map ***levels,
+                       int *nlevels);
 
 tex_map *tex_exr_decode(const void *data, size_t len, const char *name)
 {
@@ -396,7 +581,30 @@ tex_map *tex_exr_decode(const void *data, size_t len, const char *name)
     init.user_data = &src;
     init.read_fn = read_mem;
     init.size_fn = size_mem;
-    return decode(&init, name);
+    return decode(&init, name, NULL, NULL);
+}
+
+tex_map **tex_exr_decode_levels(const void *data, size_t len, const char *name, int *n)
+{
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    struct rsrc src = {data, len};
+    tex_map **lv = NULL;
+
+    init.user_data = &src;
+    init.read_fn = read_mem;
+    init.size_fn = size_mem;
+    *n = 0;
+    tex_map *m = decode(&init, name, &lv, n);
+    if (m && !lv) { /* scanline: one level */
+        if (!(lv = malloc(sizeof *lv))) {
+            tex_map_free(m);
+            tex_error("out of memory");
+            return NULL;
+        }
+        lv[0] = m;
+        *n = 1;
+    }
+    return m ? lv : NULL;
 }
 
 tex_map *tex_exr_read_fd(int fd, const void *prefix, size_t prefix_len, const char *name)
@@ -415,7 +623,7 @@ tex_map *tex_exr_read_fd(int fd, const void *prefix, size_t prefix_len, const ch
     init.user_data = &r;
     init.read_fn = read_stream;
     init.size_fn = size_unknown;
-    m = decode(&init, name);
+    m = decode(&init, name, NULL, NULL);
     free(r.buf);
     return m;
 }
@@ -515,9 +723,9 @@ static int decode_one(exr_context_t ctx, exr_decode_pipeline_t *dec, exr_chunk_i
     return 0;
 }
 
-/* Every chunk of the first part's full-resolution level into m. */
+/* Every chunk of the first part's level l (tiled; 0 is the full resolution) into m. */
 static int decode_chunks(exr_context_t ctx, exr_decode_pipeline_t *dec, exr_attr_box2i_t dw,
-                         int lines, const int *order, tex_map *m)
+                         int lines, const int *order, tex_map *m, int l)
 {
     exr_chunk_info_t ci;
     exr_result_t rv;
@@ -531,23 +739,61 @@ static int decode_chunks(exr_context_t ctx, exr_decode_pipeline_t *dec, exr_attr
                           : -1;
         return 0;
     }
-    if ((rv = exr_get_tile_sizes(ctx, 0, 0, 0, &tw, &th)) || tw < 1 || th < 1)
+    if ((rv = exr_get_tile_sizes(ctx, 0, l, l, &tw, &th)) || tw < 1 || th < 1)
         return tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv));
     for (int ty = 0; ty * (int64_t)th < m->h; ty++)
         for (int tx = 0; tx * (int64_t)tw < m->w; tx++)
-            if ((rv = exr_read_tile_chunk_info(ctx, 0, tx, ty, 0, 0, &ci)) ||
-                decode_one(ctx, dec, &ci, tx == 0 && ty == 0, order, m, tx * tw, ty * th) < 0)
+            if ((rv = exr_read_tile_chunk_info(ctx, 0, tx, ty, l, l, &ci)) ||
+                decode_one(ctx, dec, &ci, l == 0 && tx == 0 && ty == 0, order, m, tx * tw,
+                           ty * th) < 0)
                 return rv ? tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv))
                           : -1;
     return 0;
 }
 
-static tex_map *decode(exr_context_initializer_t *initp, const char *name)
+/* The mip levels 1.. of a tiled, mip-mapped first part into (*levels)[1..]:
+ * (*levels)[0] is m.  Levels come only from square-rounded-down mip-maps of
+ * one level per halving (OpenEXR's MIPMAP_LEVELS, ROUND_DOWN). */
+static int decode_levels(exr_context_t ctx, exr_decode_pipeline_t *dec, exr_attr_box2i_t dw,
+                         const int *order, tex_map *m, tex_map ***levels, int *nlevels)
+{
+    exr_tile_level_mode_t mode;
+    exr_tile_round_mode_t round;
+    uint32_t tx, ty;
+    int32_t nx, ny;
+    tex_map **lv;
+
+    *nlevels = 1;
+    if (!(*levels = lv = calloc(1, sizeof *lv)))
+        return tex_error("out of memory");
+    lv[0] = m;
+    if (exr_get_tile_descriptor(ctx, 0, &tx, &ty, &mode, &round) != EXR_ERR_SUCCESS ||
+        mode != EXR_TILE_MIPMAP_LEVELS || round != EXR_TILE_ROUND_DOWN ||
+        exr_get_tile_levels(ctx, 0, &nx, &ny) != EXR_ERR_SUCCESS || nx < 2 || nx > 32)
+        return 0;
+    if (!(lv = realloc(lv, (size_t)nx * sizeof *lv)))
+        return tex_error("out of memory");
+    *levels = lv;
+    for (int l = 1; l < nx; l++) {
+        int32_t w, h;
+        if (exr_get_level_sizes(ctx, 0, l, l, &w, &h) != EXR_ERR_SUCCESS)
+            return tex_error("corrupt OpenEXR stream (mip level %d)", l);
+        if (!(lv[l] = tex_map_new(w, h, m->nc)))
+            return -1;
+        *nlevels = l + 1;
+        if (decode_chunks(ctx, dec, dw, 0, order, lv[l], l) < 0)
+            return -1;
+    }
+    return 0;
+}
+
+static tex_map *decode(exr_context_initializer_t *initp, const char *name, tex_map ***levels,
+                       int *nlevels)
 {
     exr_context_initializer_t init = *initp;
     exr_context_t ctx = NULL;
     exr_decode_pipeline_t dec;
-    exr_attr_box2i_t dw;
+    exr_attr_box2i_t dw, disp;
     const exr_attr_chlist_t *cl;
     exr_result_t rv;
     tex_map *m = NULL;
@@ -588,16 +834,212 @@ static tex_map *decode(exr_context_initializer_t *initp, const char *name)
         memcpy(m->history, hist, (size_t)hlen);
         m->history[hlen] = '\0';
     }
-    if (decode_chunks(ctx, &dec, dw, lines, order, m) < 0)
+    if (exr_get_display_window(ctx, 0, &disp) == EXR_ERR_SUCCESS &&
+        (dw.min.x != disp.min.x || dw.min.y != disp.min.y || dw.max.x != disp.max.x ||
+         dw.max.y != disp.max.y) &&
+        disp.min.x == 0 && disp.min.y == 0 && dw.min.x >= 0 && dw.min.y >= 0 &&
+        dw.max.x <= disp.max.x && dw.max.y <= disp.max.y) {
+        /* a window of a larger map (the display window): keep its place */
+        m->x0 = dw.min.x;
+        m->y0 = dw.min.y;
+        m->full_w = disp.max.x + 1;
+        m->full_h = disp.max.y + 1;
+    }
+    if (decode_chunks(ctx, &dec, dw, lines, order, m, 0) < 0)
+        goto fail;
+    if (levels && lines == 0 && decode_levels(ctx, &dec, dw, order, m, levels, nlevels) < 0)
         goto fail;
     exr_decoding_destroy(ctx, &dec);
     exr_finish(&ctx);
     return m;
 fail:
+    if (levels && *levels) {
+        for (int l = 1; l < *nlevels; l++)
+            tex_map_free((*levels)[l]);
+        free(*levels);
+        *levels = NULL;
+    }
     if (ctx) {
         exr_decoding_destroy(ctx, &dec);
         exr_finish(&ctx);
     }
     tex_map_free(m);
     return NULL;
+}
+
+int tex_exr_probe(const char *path, tex_map *head)
+{
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    exr_context_t ctx = NULL;
+    exr_attr_box2i_t dw, disp;
+    const exr_attr_chlist_t *cl;
+    int lines, order[4];
+    exr_result_t rv;
+
+    memset(head, 0, sizeof *head);
+    init.error_handler_fn = on_exr_error;
+    init.flags = EXR_CONTEXT_FLAG_SILENT_HEADER_PARSE;
+    init.max_image_width = TEX_MAP_MAX_SIDE;
+    init.max_image_height = TEX_MAP_MAX_SIDE;
+    tex_error("unknown error");
+    if ((rv = exr_start_read(&ctx, path, &init))) {
+        if (ctx)
+            exr_finish(&ctx);
+        return tex_error("%s: not a readable OpenEXR file (%s)", path,
+                         exr_get_default_error_message(rv));
+    }
+    if (decode_header(ctx, &dw, &cl, &lines) < 0 ||
+        (rv = exr_get_display_window(ctx, 0, &disp))) {
+        if (rv)
+            tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv));
+        exr_finish(&ctx);
+        tex_error_context(path);
+        return -1;
+    }
+    head->nc = order_channels(cl, order);
+    head->w = dw.max.x - dw.min.x + 1;
+    head->h = dw.max.y - dw.min.y + 1;
+    head->x0 = dw.min.x;
+    head->y0 = dw.min.y;
+    head->full_w = disp.max.x - disp.min.x + 1;
+    head->full_h = disp.max.y - disp.min.y + 1;
+    exr_finish(&ctx);
+    return 0;
+}
+
+/* ---- reading a band of rows at a time ---- */
+
+struct tex_rows_reader {
+    exr_context_t ctx;
+    exr_decode_pipeline_t dec;
+    exr_attr_box2i_t dw;
+    struct rstream rs;   /* a pipe's window, when reading one */
+    int lines, order[4], first;
+    tex_map *chunk;      /* the rows of the chunk decoded last */
+    int cy;              /* its first row (relative to the data window), -1: none */
+};
+
+tex_rows_reader *tex_rows_open(int fd, const void *prefix, size_t prefix_len, const char *path,
+                               const char *name, tex_map *head)
+{
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    tex_rows_reader *r = calloc(1, sizeof *r);
+    const exr_attr_chlist_t *cl;
+    exr_attr_box2i_t disp;
+    int32_t sub, hlen;
+    const char *hist;
+    exr_result_t rv;
+
+    memset(head, 0, sizeof *head);
+    if (!r) {
+        tex_error("out of memory");
+        return NULL;
+    }
+    r->cy = -1;
+    r->first = 1;
+    init.error_handler_fn = on_exr_error;
+    init.flags = EXR_CONTEXT_FLAG_SILENT_HEADER_PARSE | EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
+    init.max_image_width = TEX_MAP_MAX_SIDE;
+    init.max_image_height = TEX_MAP_MAX_SIDE;
+    if (!path) { /* a pipe: the stream's window */
+        r->rs = (struct rstream){fd, name, malloc(1 << 20), 1 << 20, prefix_len, 0, 0};
+        if (!r->rs.buf || prefix_len > r->rs.cap) {
+            tex_error("out of memory");
+            goto fail;
+        }
+        memcpy(r->rs.buf, prefix, prefix_len);
+        tex_pipe_widen(fd);
+        init.user_data = &r->rs;
+        init.read_fn = read_stream;
+        init.size_fn = size_unknown;
+    }
+    tex_error("unknown error");
+    if ((rv = exr_start_read(&r->ctx, path ? path : name, &init))) {
+        tex_error("%s: not a valid OpenEXR stream (%s)", name, exr_get_default_error_message(rv));
+        goto fail;
+    }
+    if (decode_header(r->ctx, &r->dw, &cl, &r->lines) < 0) {
+        tex_error_context(name);
+        goto fail;
+    }
+    if (r->lines <= 0) {
+        tex_error("%s: tiled: read whole", name);
+        goto fail;
+    }
+    head->nc = order_channels(cl, r->order);
+    head->w = r->dw.max.x - r->dw.min.x + 1;
+    head->h = r->dw.max.y - r->dw.min.y + 1;
+    if (cl->num_channels > head->nc) {
+        char kept[64] = "";
+        for (int k = 0; k < head->nc; k++)
+            snprintf(kept + strlen(kept), sizeof kept - strlen(kept), " %.8s",
+                     cl->entries[r->order[k]].name.str);
+        tex_warning("%s: %d channels, kept%s", name, cl->num_channels, kept);
+    }
+    if (exr_get_display_window(r->ctx, 0, &disp) == EXR_ERR_SUCCESS &&
+        (r->dw.min.x != disp.min.x || r->dw.min.y != disp.min.y || r->dw.max.x != disp.max.x ||
+         r->dw.max.y != disp.max.y) &&
+        disp.min.x == 0 && disp.min.y == 0 && r->dw.min.x >= 0 && r->dw.min.y >= 0 &&
+        r->dw.max.x <= disp.max.x && r->dw.max.y <= disp.max.y) {
+        head->x0 = r->dw.min.x;
+        head->y0 = r->dw.min.y;
+        head->full_w = disp.max.x + 1;
+        head->full_h = disp.max.y + 1;
+    }
+    if (exr_attr_get_int(r->ctx, 0, ATTR_SUBREGIONS, &sub) == EXR_ERR_SUCCESS && sub > 0)
+        head->subregions = sub;
+    if (exr_attr_get_string(r->ctx, 0, ATTR_HISTORY, &hlen, &hist) == EXR_ERR_SUCCESS && hist) {
+        if (!(head->history = malloc((size_t)hlen + 1))) {
+            tex_error("out of memory");
+            goto fail;
+        }
+        memcpy(head->history, hist, (size_t)hlen);
+        head->history[hlen] = '\0';
+    }
+    if (!(r->chunk = tex_map_new(head->w, r->lines, head->nc)))
+        goto fail;
+    return r;
+fail:
+    free(head->history);
+    head->history = NULL;
+    tex_rows_close(r);
+    return NULL;
+}
+
+int tex_rows_read(tex_rows_reader *r, int y, int n, float *rows, const char *name)
+{
+    const tex_map *c = r->chunk;
+    size_t row = (size_t)c->w * c->nc;
+
+    for (int k = y; k < y + n; k++) {
+        if (r->cy < 0 || k < r->cy || k >= r->cy + r->lines) {
+            exr_chunk_info_t ci;
+            exr_result_t rv;
+            int cy = k - k % r->lines;
+            if ((rv = exr_read_scanline_chunk_info(r->ctx, 0, r->dw.min.y + cy, &ci)))
+                return tex_error("%s: corrupt OpenEXR stream (%s)", name,
+                                 exr_get_default_error_message(rv));
+            if (decode_one(r->ctx, &r->dec, &ci, r->first, r->order, r->chunk, 0, 0) < 0) {
+                tex_error_context(name);
+                return -1;
+            }
+            r->first = 0;
+            r->cy = cy;
+        }
+        memcpy(rows + (size_t)(k - y) * row, tex_map_row(c, k - r->cy), row * sizeof *rows);
+    }
+    return 0;
+}
+
+void tex_rows_close(tex_rows_reader *r)
+{
+    if (!r)
+        return;
+    if (r->ctx) {
+        exr_decoding_destroy(r->ctx, &r->dec);
+        exr_finish(&r->ctx);
+    }
+    tex_map_free(r->chunk);
+    free(r->rs.buf);
+    free(r);
 }

@@ -14,7 +14,9 @@
  * lists them.  A file with channels left out (more than four, or others
  * beside R G B A) keeps the first four or R G B A, with a warning naming
  * those kept (error.h).  Scanline and tiled files are read, the first
- * part of a multi-part file, the full-resolution level of a tiled one.
+ * part of a multi-part file, the full-resolution level of a tiled one
+ * (tex_exr_decode_levels also its mip levels).  Files on disk may be
+ * written tiled and mip-mapped (tex_exr_encode_tiled).
  */
 #ifndef TEX_STREAM_H
 #define TEX_STREAM_H
@@ -41,10 +43,45 @@ void tex_buf_free(tex_buf *b);
 /* Encode m as an EXR file image in out (appended to whatever it holds). */
 int tex_exr_encode(const tex_map *m, enum tex_compression c, tex_buf *out);
 
+/* Encode m as a tiled EXR (tile x tile pixels), with mipmap its mip-map
+ * levels too (OpenEXR MIPMAP_LEVELS, ROUND_DOWN: each level tex_map_reduce
+ * of the one above, down to 1 x 1), as .tx-style texture files have them.
+ * A map of subregion ids refuses mipmap (a usage error). */
+int tex_exr_encode_tiled(const tex_map *m, int tile, int mipmap, enum tex_compression c,
+                         tex_buf *out);
+
 /* Write m as the uncompressed stream to fd as it is encoded, without holding
  * the whole file in memory (a pipe cannot seek back for the offset table,
  * so the table is computed in advance and checked against the core's). */
 int tex_exr_write_fd(const tex_map *m, int fd, const char *name);
+
+/* Write a map made a band of rows at a time, never held whole: head gives
+ * its size, channels, metadata and place (head->px unused); fill(arg, y, n,
+ * rows) writes rows y..y+n-1 (w * nc floats each, one after the other), in
+ * order from the top, n at least 64 rows but the last, and returns 0 or -1 with the error set.  A regular
+ * file gets compression c, chunks written at their offsets, in tile x tile
+ * tiles when tile > 0 (n is then tile, fill's rows a band of tiles); a pipe
+ * gets the uncompressed scanline stream (tiles to a pipe: a usage error). */
+typedef int (*tex_rows_fn)(void *arg, int y, int n, float *rows);
+int tex_exr_write_rows(const tex_map *head, tex_rows_fn fill, void *arg, int tile,
+                       enum tex_compression c, int fd, const char *name);
+
+/* A scanline EXR read a band of rows at a time, holding one chunk: from the
+ * file at path, or (path NULL) from the pipe fd of which prefix_len bytes
+ * were read into prefix.  head gets the size, channels, metadata and place
+ * (head->px NULL; free head->history).  NULL with the error set, also for a
+ * tiled file (read those whole).  Rows must be asked for from the top down:
+ * tex_rows_read copies rows y..y+n-1 (w * nc floats each) into rows. */
+typedef struct tex_rows_reader tex_rows_reader;
+tex_rows_reader *tex_rows_open(int fd, const void *prefix, size_t prefix_len, const char *path,
+                               const char *name, tex_map *head);
+int tex_rows_read(tex_rows_reader *r, int y, int n, float *rows, const char *name);
+void tex_rows_close(tex_rows_reader *r);
+
+/* The header of the EXR file at path into head (px NULL): size and channels
+ * kept, and its place, the data window within the display window (x0, y0,
+ * full_w, full_h; full_w set even for a whole map).  0, or -1 with the error. */
+int tex_exr_probe(const char *path, tex_map *head);
 
 /* Decode an EXR read from fd, of which the first prefix_len bytes were
  * already read into prefix (to recognise the format).  Reads as it decodes,
@@ -59,6 +96,11 @@ int tex_write_all(int fd, const void *p, size_t n, const char *name);
 
 /* Decode an EXR held in memory; name is for messages only. */
 tex_map *tex_exr_decode(const void *data, size_t len, const char *name);
+
+/* Decode an EXR in memory with its mip levels when it has them (a tiled
+ * MIPMAP_LEVELS, ROUND_DOWN file): an array of *n maps, the full resolution
+ * first (free each, then the array); NULL with the error set. */
+tex_map **tex_exr_decode_levels(const void *data, size_t len, const char *name, int *n);
 
 /* The name of the compression of an EXR file image if the core library
  * cannot decode it ("DWAA", "DWAB" with OpenEXR 3.1), else NULL; the

@@ -1835,6 +1835,7 @@ static int bubble_init(struct tex_field *f)
     if (p->points && (p->count != BUBBLE_COUNT || p->distribution || p->clusters))
         return tex_usage_error("--count, --distribution and --clusters apply to random points, "
                                "not to --points");
+    tex_progress_stage(0.3, 2); /* the points, then their search structure */
     if (p->points) {
         if (tex_points_read(&ps, p->points, dim) < 0)
             return -1;
@@ -1846,6 +1847,7 @@ static int bubble_init(struct tex_field *f)
                               p->clusters, f->seed, f->tile) < 0)
             return -1;
     }
+    tex_progress_add(1);
     if (tex_points_vary(&ps, p->size_spread, p->axis_spread, f->seed) < 0) {
         tex_points_free(&ps);
         return -1;
@@ -1857,7 +1859,10 @@ static int bubble_init(struct tex_field *f)
     s->dim = dim;
     s->unit = pow((double)ps.n, -1.0 / dim);
     s->key = tex_hash64(f->seed ^ 0x63656c6c73ULL);
-    s->c = tex_cellular_new(&ps, &o);
+    tex_progress_add(1);
+    tex_progress_stage(0.3, 1);
+    s->c = tex_cellular_new(&ps, &o); /* its candidate lists, if built, are a stage of their own */
+    tex_progress_add(1);
     tex_points_free(&ps);
     f->state = s;
     if (!s->c) {

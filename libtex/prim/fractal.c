@@ -36,6 +36,8 @@ struct turb_params {
     int octaves;
     struct tex_reals w, offset;
     int fade, gradients;
+    int frames, frame;
+    double loop_radius;
 };
 
 static const struct tex_param turb_rows[] = {
@@ -47,6 +49,7 @@ static const struct tex_param turb_rows[] = {
     TEX_REAL(struct turb_params, gain, 'g', 0.5, 0, 1, "G", "amplitude ratio between octaves"),
     TEX_NOISE_ROWS(struct turb_params),
     TEX_NOISE_W_ROW(struct turb_params),
+    TEX_NOISE_LOOP_ROWS(struct turb_params),
     {0}};
 
 struct turb_state {
@@ -95,9 +98,12 @@ static int turb_init(struct tex_field *f)
     f->state = s;
     offsets(&p->offset, off);
     turb_amplitudes(s, p->gain, p->octaves);
+    double z = p->z, w = p->w.n ? p->w.v[0] : 0;
+    int dims = p->w.n ? 4 : 3;
+    if (tex_noise_loop(p->frames, p->frame, p->loop_radius, &z, &w, &dims) < 0)
+        return -1;
     return tex_octaves_init(&s->o, f->seed, p->gradients, p->fade, p->octaves, p->frequency,
-                            p->lacunarity, off, p->z, p->w.n ? p->w.v[0] : 0, p->w.n ? 4 : 3,
-                            f->tile, f->w, f->h);
+                            p->lacunarity, off, z, w, dims, f->tile, f->w, f->h);
 }
 
 static void turb_fini(struct tex_field *f)
@@ -276,6 +282,8 @@ struct frac_params {
     int octaves;
     struct tex_reals h, w, offset;
     int fade, gradients;
+    int frames, frame;
+    double loop_radius;
     struct tex_reals centre, c;
     double zoom;
     int iterations, depth, koch;
@@ -308,6 +316,7 @@ static const struct tex_param frac_rows[] = {
              .kinds = IN(RIDGED) | IN(HYBRID)),
     TEX_NOISE_ROWS(struct frac_params, .kinds = NOISY),
     TEX_NOISE_W_ROW(struct frac_params, .kinds = NOISY),
+    TEX_NOISE_LOOP_ROWS(struct frac_params, .kinds = NOISY),
     TEX_REALS(struct frac_params, centre, 0, NULL, -1e3, 1e3, 2, "X,Y",
               "mandelbrot, julia: complex point at the centre of the map (-0.5,0 and 0,0)",
               .kinds = ESCAPE),
@@ -584,6 +593,10 @@ static int frac_init(struct tex_field *f)
         return tex_usage_error("--tile: --mode %s is not periodic (fbm, ridged, hybrid and "
                                "midpoint tile)",
                                mode_names[p->mode]);
+    if (p->mode >= MIDPOINT && (p->frames || p->frame))
+        return tex_usage_error("--frames animates --mode fbm, ridged and hybrid, which are "
+                               "made of noise (got --mode %s)",
+                               mode_names[p->mode]);
     if (p->mode == MIDPOINT) {
         /* Scenes evaluate at points: they get a 512 x 512 map, sampled bilinearly. */
         s->mw = f->w > 0 ? f->w : 512;
@@ -621,9 +634,12 @@ static int frac_init(struct tex_field *f)
         s->inv = 1.0f / (s->hi - s->lo);
     }
     offsets(&p->offset, off);
+    double z = p->z, w = p->w.n ? p->w.v[0] : 0;
+    int dims = p->w.n ? 4 : 3;
+    if (tex_noise_loop(p->frames, p->frame, p->loop_radius, &z, &w, &dims) < 0)
+        return -1;
     return tex_octaves_init(&s->o, f->seed, p->gradients, p->fade, p->octaves, p->frequency,
-                            p->lacunarity, off, p->z, p->w.n ? p->w.v[0] : 0, p->w.n ? 4 : 3,
-                            f->tile, f->w, f->h);
+                            p->lacunarity, off, z, w, dims, f->tile, f->w, f->h);
 }
 
 static void frac_fini(struct tex_field *f)
@@ -839,6 +855,16 @@ static int frac_grid(const struct tex_field *f, tex_map *m)
     return 0;
 }
 
+/* Midpoint displacement draws its random numbers in sequence over the whole
+ * lattice and rescales by the whole map's range: no window alone has them. */
+static const char *frac_whole(const struct tex_field *f)
+{
+    const struct frac_params *p = f->params;
+    return p->mode == MIDPOINT ? "--mode midpoint draws the whole lattice in sequence and "
+                                 "rescales by the whole map's range"
+                               : NULL;
+}
+
 const struct tex_primitive tex_prim_fractal = {
     .name = "fractal",
     .summary = "fractals: fBm, multifractals, midpoint displacement, Mandelbrot, Julia, Koch",
@@ -851,4 +877,5 @@ const struct tex_primitive tex_prim_fractal = {
     .eval3 = frac_eval3,
     .row = frac_row,
     .grid = frac_grid,
+    .whole = frac_whole,
 };

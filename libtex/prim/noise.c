@@ -976,6 +976,8 @@ struct noise_params {
     struct tex_reals offset;
     int fade;
     int gradients;
+    int frames, frame;
+    double loop_radius;
 };
 
 static const struct tex_param noise_rows[] = {
@@ -983,6 +985,7 @@ static const struct tex_param noise_rows[] = {
              "lattice cells across the map (a whole number with --tile)"),
     TEX_NOISE_ROWS(struct noise_params),
     TEX_NOISE_W_ROW(struct noise_params),
+    TEX_NOISE_LOOP_ROWS(struct noise_params),
     {0}};
 
 struct noise_state {
@@ -1017,16 +1020,34 @@ static int state_init(struct tex_field *f, double frequency, const struct tex_re
     return 0;
 }
 
+int tex_noise_loop(int frames, int frame, double radius, double *z, double *w, int *dims)
+{
+    if (frames == 0 && frame == 0)
+        return 0;
+    if (frame >= frames)
+        return frames ? tex_usage_error("--frame must be 0..%d for --frames %d (got %d)",
+                                        frames - 1, frames, frame)
+                      : tex_usage_error("--frame %d needs --frames N", frame);
+    double a = 2 * M_PI * ((double)frame / frames);
+    *z += radius * cos(a);
+    *w += radius * sin(a);
+    *dims = 4;
+    return 0;
+}
+
 static int noise_init(struct tex_field *f)
 {
     const struct noise_params *p = f->params;
     struct noise_state *s;
+    double z = p->z, w = p->w.n ? p->w.v[0] : 0;
+    int dims = p->w.n ? 4 : 3;
 
-    if (state_init(f, p->frequency, &p->offset, p->z, p->gradients, p->fade) < 0)
+    if (tex_noise_loop(p->frames, p->frame, p->loop_radius, &z, &w, &dims) < 0 ||
+        state_init(f, p->frequency, &p->offset, z, p->gradients, p->fade) < 0)
         return -1;
     s = f->state;
-    s->dims = p->w.n ? 4 : 3;
-    s->off[3] = p->w.n ? p->frequency * p->w.v[0] : 0;
+    s->dims = dims;
+    s->off[3] = dims == 4 ? p->frequency * w : 0;
     if (f->w > 0 && f->h > 0)
         return tex_noise_grid_init(&s->g, &s->t, f->w, f->h, p->frequency, p->frequency, s->off,
                                    s->dims, s->period);

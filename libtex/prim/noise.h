@@ -184,6 +184,22 @@ const char *tex_simd_name(int level);
     TEX_REALS_N("time", S, w, 0, NULL, -1e9, 1e9, 1, "W",                                          \
                 "use 4D noise at fourth coordinate W, in map widths (loops in time)",             \
                 .alias = "w", __VA_ARGS__)
+/* Looping animation (thesis ch. 6, "dynamic textures in time"): frame K of
+ * N moves through 4D noise on a circle of radius R map widths in the (z, w)
+ * plane, z + R cos(2 pi K/N), w + R sin(2 pi K/N), so that frame N would be
+ * frame 0 again and every step is the same arc 2 pi R / N.  The angle is
+ * 2 pi (K / N): frame K of N and frame 2K of 2N are the same map. */
+#define TEX_NOISE_LOOP_ROWS(S, ...)                                                                \
+    TEX_INT(S, frames, 0, 0, 0, 1000000, "N",                                                      \
+            "frames of a looping animation through 4D noise (0: a still map)", __VA_ARGS__),       \
+        TEX_INT(S, frame, 0, 0, 0, 999999, "K", "with --frames N: the frame to make, 0..N-1",      \
+                __VA_ARGS__),                                                                      \
+        TEX_REAL(S, loop_radius, 0, 0.25, 0.0001, 1e6, "R",                                         \
+                 "with --frames: radius of the loop in map widths (larger: faster change)",        \
+                 __VA_ARGS__)
+/* z and w (map widths) and dims (3 or 4) of frame `frame` of `frames` (0: a
+ * still map, unchanged); -1 with a usage error when frame is not 0..frames-1. */
+int tex_noise_loop(int frames, int frame, double radius, double *z, double *w, int *dims);
 
 #ifdef __cplusplus
 }

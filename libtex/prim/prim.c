@@ -74,6 +74,29 @@ int tex_field_set(struct tex_field *f, const char *name, const char *value)
     return tex_param_parse(p, f->params, value, TEX_PARAM_WORD);
 }
 
+const char *tex_field_whole(const struct tex_field *f)
+{
+    const struct tex_primitive *p = f->prim;
+
+    if (!(p->flags & TEX_PRIM_GRID))
+        return NULL;
+    return !p->row ? "it synthesises the whole map at once" : p->whole ? p->whole(f) : NULL;
+}
+
+int tex_field_window(struct tex_field *f, int x, int y, int w, int h)
+{
+    const struct tex_primitive *p = f->prim;
+    const char *why = tex_field_whole(f);
+
+    if (why)
+        return tex_usage_error("%s cannot make a window of its map (--window): %s", p->name, why);
+    f->wx = x;
+    f->wy = y;
+    f->ww = w;
+    f->wh = h;
+    return 0;
+}
+
 int tex_field_init(struct tex_field *f, int w, int h)
 {
     f->w = w;
@@ -104,33 +127,33 @@ void tex_field_free(struct tex_field *f)
  * hit by S x S stratified subsamples, in a fixed order (same bytes for any
  * thread count).  Sums of at most 64 floats are exact in double, so a pixel
  * wholly inside a region gets exactly that region's colour. */
-static int sample_colors(const struct tex_field *f, tex_map *m)
+static int sample_colors(const struct tex_field *f, tex_map *m, int x0, int y0)
 {
     enum { S = TEX_FIELD_SS };
-    const int n = f->w * S;
+    const int n = m->w * S, nfull = f->w * S;
     int failed = 0;
 
 #pragma omp parallel
     {
         double *u = malloc(sizeof *u * 2 * n), *v = u ? u + n : NULL;
-        double *acc = malloc(sizeof *acc * 3 * f->w);
+        double *acc = malloc(sizeof *acc * 3 * m->w);
         float *id = malloc(sizeof *id * n);
 
         if (u)
             for (int i = 0; i < n; i++)
-                u[i] = (i + 0.5) / n;
+                u[i] = ((double)x0 * S + i + 0.5) / nfull;
 #pragma omp for schedule(dynamic, 4)
-        for (int y = 0; y < f->h; y++) {
+        for (int y = 0; y < m->h; y++) {
             float *out = tex_map_row(m, y);
             if (!u || !acc || !id) {
 #pragma omp atomic write
                 failed = 1;
                 continue;
             }
-            for (int i = 0; i < 3 * f->w; i++)
+            for (int i = 0; i < 3 * m->w; i++)
                 acc[i] = 0;
             for (int sy = 0; sy < S; sy++) {
-                double vv = (y * S + sy + 0.5) / ((double)S * f->h);
+                double vv = ((double)(y0 + y) * S + sy + 0.5) / ((double)S * f->h);
                 for (int i = 0; i < n; i++)
                     v[i] = vv;
                 f->prim->eval2(f, n, u, v, id);
@@ -141,7 +164,7 @@ static int sample_colors(const struct tex_field *f, tex_map *m)
                             acc[i / S * 3 + c] += f->colors[k - 1][c];
                 }
             }
-            for (int i = 0; i < 3 * f->w; i++)
+            for (int i = 0; i < 3 * m->w; i++)
                 out[i] = (float)(acc[i] / (S * S));
             tex_progress_add(1);
         }
@@ -154,19 +177,61 @@ static int sample_colors(const struct tex_field *f, tex_map *m)
     return 0;
 }
 
+/* Rows y0.. of a window through the row callback, which fills whole rows:
+ * each thread fills one in its own buffer and keeps the window's columns. */
+static int sample_rows(const struct tex_field *f, tex_map *m, int x0, int y0)
+{
+    const struct tex_primitive *p = f->prim;
+    const size_t nc = (size_t)m->nc;
+    int failed = 0;
+
+    if (x0 == 0 && m->w == f->w) {
+#pragma omp parallel for schedule(dynamic, 4)
+        for (int y = 0; y < m->h; y++) {
+            p->row(f, y0 + y, tex_map_row(m, y));
+            tex_progress_add(1);
+        }
+        return 0;
+    }
+#pragma omp parallel
+    {
+        float *row = malloc(sizeof *row * nc * (size_t)f->w);
+        if (!row) {
+#pragma omp atomic write
+            failed = 1;
+        }
+#pragma omp for schedule(dynamic, 4)
+        for (int y = 0; y < m->h; y++)
+            if (row) {
+                p->row(f, y0 + y, row);
+                memcpy(tex_map_row(m, y), row + nc * x0, sizeof *row * nc * m->w);
+                tex_progress_add(1);
+            }
+        free(row);
+    }
+    return failed ? tex_error("out of memory") : 0;
+}
+
 tex_map *tex_field_sample(const struct tex_field *f)
 {
     const struct tex_primitive *p = f->prim;
     int colored = (p->flags & TEX_PRIM_REGIONS) && !(p->flags & TEX_PRIM_GRID) && !f->ids &&
                   f->colors && p->eval2;
-    tex_map *m = tex_map_new(f->w, f->h, colored ? 3 : f->nc);
+    int window = f->ww > 0, x0 = window ? f->wx : 0, y0 = window ? f->wy : 0;
+    tex_map *m = tex_map_new(window ? f->ww : f->w, window ? f->wh : f->h, colored ? 3 : f->nc);
     int failed = 0;
 
     if (!m)
         return NULL;
-    tex_progress_stage(1, f->h); /* what remains of the bar after the primitive's init */
+    if (window) {
+        m->x0 = x0;
+        m->y0 = y0;
+        m->full_w = f->w;
+        m->full_h = f->h;
+    }
+    tex_progress_stage(1, m->h); /* what remains of the bar after the primitive's init */
     if (colored) {
-        if (sample_colors(f, m) < 0) {
+        if (sample_colors(f, m, x0, y0) < 0) {
             tex_map_free(m);
             return NULL;
         }
@@ -174,7 +239,7 @@ tex_map *tex_field_sample(const struct tex_field *f)
     }
     if (p->flags & TEX_PRIM_REGIONS && f->ids)
         m->subregions = f->nregions;
-    if (p->flags & TEX_PRIM_GRID) {
+    if ((p->flags & TEX_PRIM_GRID) && !window) {
         if (p->grid(f, m) < 0) {
             tex_map_free(m);
             return NULL;
@@ -182,27 +247,26 @@ tex_map *tex_field_sample(const struct tex_field *f)
         return m;
     }
     if (p->row) {
-#pragma omp parallel for schedule(dynamic, 4)
-        for (int y = 0; y < f->h; y++) {
-            p->row(f, y, tex_map_row(m, y));
-            tex_progress_add(1);
+        if (sample_rows(f, m, x0, y0) < 0) {
+            tex_map_free(m);
+            return NULL;
         }
         return m;
     }
 #pragma omp parallel
     {
-        double *u = malloc(2 * sizeof *u * f->w), *v = u ? u + f->w : NULL;
+        double *u = malloc(2 * sizeof *u * m->w), *v = u ? u + m->w : NULL;
         if (!u) {
 #pragma omp atomic write
             failed = 1;
         } else {
-            for (int x = 0; x < f->w; x++)
-                u[x] = (x + 0.5) / f->w;
+            for (int x = 0; x < m->w; x++)
+                u[x] = (x0 + x + 0.5) / f->w;
 #pragma omp for schedule(dynamic, 4)
-            for (int y = 0; y < f->h; y++) {
-                for (int x = 0; x < f->w; x++)
-                    v[x] = (y + 0.5) / f->h;
-                p->eval2(f, f->w, u, v, tex_map_row(m, y));
+            for (int y = 0; y < m->h; y++) {
+                for (int x = 0; x < m->w; x++)
+                    v[x] = (y0 + y + 0.5) / f->h;
+                p->eval2(f, m->w, u, v, tex_map_row(m, y));
                 tex_progress_add(1);
             }
         }

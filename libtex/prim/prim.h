@@ -25,6 +25,13 @@
  * function of the point and the field, so that any thread split gives the
  * same bytes.
  *
+ * Windows: tex_field_window before tex_field_init makes tex_field_sample
+ * fill only columns wx..wx+ww-1 and rows wy..wy+wh-1 of the w x h grid,
+ * bit-identical to the same pixels of the whole map (every pixel is still
+ * evaluated at its place in the whole grid).  Point and row primitives
+ * window for free; a grid primitive windows through its row callback, or
+ * says why it cannot in whole(); one without either refuses.
+ *
  * Registering a primitive: define `const struct tex_primitive tex_prim_NAME`
  * in its module and add TEX_PRIMITIVE(NAME) to primitives.def.
  */
@@ -63,6 +70,7 @@ struct tex_field {
      * subsamples (antialiasing by coverage); eval2 still writes one id per point. */
     const float (*colors)[3];
     void *state;      /* the primitive's own, made by init */
+    int wx, wy, ww, wh; /* the window being sampled (tex_field_window); ww 0: the whole grid */
     int size;         /* a scene's or script's `size N`: sample on an N x N grid (0: none) */
     enum tex_param_style style; /* how init's messages name parameters: TEX_PARAM_OPTION
                                  * (tools, the default) or TEX_PARAM_WORD (scenes, scripts) */
@@ -108,6 +116,10 @@ struct tex_primitive {
     void (*row)(const struct tex_field *f, int y, float *out);
     /* TEX_PRIM_GRID: fill m (f->w x f->h, f->nc channels). */
     int (*grid)(const struct tex_field *f, tex_map *m);
+    /* Optional, for GRID primitives with a row callback: NULL when this field
+     * (its parameters) can be made a window at a time through rows, else why
+     * it must be made whole, e.g. "midpoint displacement makes the whole map". */
+    const char *(*whole)(const struct tex_field *f);
 };
 
 /* Every registered primitive: tex_prim_NAME, and the NULL-terminated list. */
@@ -124,6 +136,12 @@ struct tex_field *tex_field_new(const struct tex_primitive *p);
  * primitive's, or seed, tile, ids or size (tex_field_rows).  Messages name
  * it as scenes and scripts do: "octaves must be 1..30 (got 40)". */
 int tex_field_set(struct tex_field *f, const char *name, const char *value);
+/* Sample only the window of w x h pixels at (x, y) of the grid that init is
+ * given: 0, or -1 with a usage error when the primitive cannot window (call
+ * before tex_field_init; the caller checks that the window lies in the grid). */
+int tex_field_window(struct tex_field *f, int x, int y, int w, int h);
+/* NULL when the field can be sampled a window at a time, else why not. */
+const char *tex_field_whole(const struct tex_field *f);
 /* Run init once the parameters are set; w, h may be 0 outside a grid. */
 int tex_field_init(struct tex_field *f, int w, int h);
 void tex_field_free(struct tex_field *f);

@@ -2,7 +2,8 @@
  *
  * Each pixel draws its sample positions (and area-light jitter) from an
  * RNG seeded by the scene seed and the pixel's index, and pixels are
- * independent, so any thread count gives the same image.  Tiles of 16x16
+ * independent, so any thread count gives the same image, and a region of
+ * the image the same pixels as the whole render.  Tiles of 16x16
  * pixels are shared among OpenMP threads dynamically.
  */
 #include <math.h>
@@ -334,12 +335,29 @@ static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, 
 
 tex_map *tex_render(struct tex_scene *s, void (*progress)(long, long, void *), void *arg)
 {
+    return tex_render_region(s, 0, 0, s->settings.w, s->settings.h, progress, arg);
+}
+
+tex_map *tex_render_region(struct tex_scene *s, int rx, int ry, int rw, int rh,
+                           void (*progress)(long, long, void *), void *arg)
+{
     if (!s->bvh && tex_scene_prepare(s) < 0)
         return NULL;
     const struct tex_settings *st = &s->settings;
-    tex_map *img = tex_map_new(st->w, st->h, 3);
+    if (rx < 0 || ry < 0 || rw < 1 || rh < 1 || rx > st->w - rw || ry > st->h - rh) {
+        tex_usage_error("region %d,%d,%d,%d lies outside the %dx%d image", rx, ry, rw, rh, st->w,
+                        st->h);
+        return NULL;
+    }
+    tex_map *img = tex_map_new(rw, rh, 3);
     if (!img)
         return NULL;
+    if (rw != st->w || rh != st->h) {
+        img->x0 = rx;
+        img->y0 = ry;
+        img->full_w = st->w;
+        img->full_h = st->h;
+    }
     for (int i = 0; i < s->nsurfaces; i++) {
         if (tex_surface_cache(s->surfaces[i], &s->cs) < 0) {
             for (int j = 0; j <= i; j++)
@@ -356,15 +374,16 @@ tex_map *tex_render(struct tex_scene *s, void (*progress)(long, long, void *), v
         c.need_rng |= s->lights[i].kind == TEX_LIGHT_AREA;
     struct camera cam;
     camera_setup(s, &cam);
-    int tw = (st->w + TILE - 1) / TILE, th = (st->h + TILE - 1) / TILE;
+    int tw = (rw + TILE - 1) / TILE, th = (rh + TILE - 1) / TILE;
     long ntiles = (long)tw * th, done = 0;
     int threads = st->threads > 0 ? st->threads : omp_get_max_threads();
 #pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
     for (long t = 0; t < ntiles; t++) {
         int x0 = (int)(t % tw) * TILE, y0 = (int)(t / tw) * TILE;
-        for (int y = y0; y < y0 + TILE && y < st->h; y++)
-            for (int x = x0; x < x0 + TILE && x < st->w; x++)
-                render_pixel(&c, &cam, x, y, tex_map_px(img, x, y));
+        /* pixels keep their place in the whole image: camera rays and seeds */
+        for (int y = y0; y < y0 + TILE && y < rh; y++)
+            for (int x = x0; x < x0 + TILE && x < rw; x++)
+                render_pixel(&c, &cam, rx + x, ry + y, tex_map_px(img, x, y));
         long d;
 #pragma omp atomic capture
         d = ++done;

@@ -43,6 +43,7 @@ const char *tex_scene_materials_path(const char *scene, char *path, size_t n);
 /* Overrides of the scene's settings, before tex_scene_prepare; -1 with a
  * usage error out of range. */
 int tex_scene_set_size(struct tex_scene *s, int w, int h); /* 1..TEX_SCENE_MAX_SIDE */
+void tex_scene_size(const struct tex_scene *s, int *w, int *h); /* the image's, as set */
 int tex_scene_set_samples(struct tex_scene *s, int spp);   /* per pixel, 1..4096 */
 void tex_scene_set_threads(struct tex_scene *s, int n);    /* 0: one per core */
 /* The colour model: 0 for RGB, else spectral with that many bands (1..64);
@@ -64,6 +65,11 @@ const char *tex_scene_warnings(const struct tex_scene *s);
  * from the master thread now and then (may be NULL). */
 tex_map *tex_render(struct tex_scene *s, void (*progress)(long done, long total, void *arg),
                     void *arg);
+/* Only the rw x rh region at (rx, ry) of the image, bit-identical to the same
+ * pixels of tex_render (each pixel is seeded by its place in the whole image);
+ * the map records its place (map.h).  A region outside the image is a usage error. */
+tex_map *tex_render_region(struct tex_scene *s, int rx, int ry, int rw, int rh,
+                           void (*progress)(long done, long total, void *arg), void *arg);
 
 /* The scene's blocks by name ("settings", "camera", "light", "environment", "texture",
  * "surface", "apply", "object") with their parameter rows, for help and the man page;

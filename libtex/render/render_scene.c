@@ -390,10 +390,30 @@ static void texture_file(struct parser *ps, struct tex_texture *tx)
         next(ps);
         tx->palette = scene_palette(ps);
     }
-    tex_map *m = tex_map_read(path);
-    if (!m)
+    /* A mip-mapped EXR brings its levels: used as the pyramid when they are
+     * the ones tex_texture_build_mip would make (sizes halved, rounded down),
+     * and the texture is not recoloured through a palette nor of region ids. */
+    int n = 0;
+    tex_map **lv = tex_map_read_levels(path, &n);
+    if (!lv)
         fail_at(ps, &ft, 1, "cannot read map '%s': %s", path, tex_errmsg());
-    texture_map(ps, tx, m, &ft);
+    int usable = n > 1 && !tx->palette && !lv[0]->subregions;
+    for (int l = 1; usable && l < n; l++)
+        usable = lv[l]->w == (lv[l - 1]->w > 1 ? lv[l - 1]->w / 2 : 1) &&
+                 lv[l]->h == (lv[l - 1]->h > 1 ? lv[l - 1]->h / 2 : 1) && lv[l]->nc == lv[0]->nc;
+    usable = usable && lv[n - 1]->w == 1 && lv[n - 1]->h == 1;
+    if (!usable) {
+        tex_map *m = lv[0];
+        for (int l = 1; l < n; l++)
+            tex_map_free(lv[l]);
+        free(lv);
+        texture_map(ps, tx, m, &ft);
+        return;
+    }
+    tx->mip = lv;
+    tx->nlevels = n;
+    tx->subregions = 0;
+    tx->levels_read = 1;
 }
 
 /* The block '{ KEY VALUE ... }' of a primitive's texture: 'solid', the flags of
@@ -1698,6 +1718,12 @@ static int set_setting(struct tex_scene *s, const char *word, const double *v, i
 int tex_scene_set_size(struct tex_scene *s, int w, int h)
 {
     return set_setting(s, "image", (const double[]){w, h}, 2);
+}
+
+void tex_scene_size(const struct tex_scene *s, int *w, int *h)
+{
+    *w = s->settings.w;
+    *h = s->settings.h;
 }
 
 int tex_scene_set_samples(struct tex_scene *s, int spp)

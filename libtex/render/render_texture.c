@@ -33,24 +33,9 @@ int tex_texture_build_mip(struct tex_texture *t)
     if (t->subregions)
         return 0; /* region ids are never averaged */
     for (int l = 1; l < n; l++) {
-        const tex_map *s = mip[l - 1];
-        tex_map *d = tex_map_new(s->w > 1 ? s->w / 2 : 1, s->h > 1 ? s->h / 2 : 1, s->nc);
+        tex_map *d = tex_map_reduce(mip[l - 1]);
         if (!d)
             return -1;
-        int fx = s->w / d->w, fy = s->h / d->h;
-        for (int y = 0; y < d->h; y++) {
-            for (int x = 0; x < d->w; x++) {
-                float *o = tex_map_px(d, x, y);
-                for (int j = 0; j < fy; j++)
-                    for (int i = 0; i < fx; i++) {
-                        const float *p = tex_map_px(s, x * fx + i, y * fy + j);
-                        for (int c = 0; c < s->nc; c++)
-                            o[c] += p[c];
-                    }
-                for (int c = 0; c < s->nc; c++)
-                    o[c] /= fx * fy;
-            }
-        }
         mip[l] = d;
         t->nlevels = l + 1;
         if (d->w == 1 && d->h == 1)

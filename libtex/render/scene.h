@@ -324,6 +324,7 @@ enum tex_combine { TEX_COMBINE_PRODUCT, TEX_COMBINE_MIN, TEX_COMBINE_MAX };
 struct tex_texture {
     char *name;
     tex_map **mip;       /* a map's pyramid: mip[0] is the map; NULL for point primitives */
+    int levels_read;     /* 1: the pyramid's levels came from a mip-mapped file, not built */
     int nlevels;
     int subregions;      /* > 0: the map holds region ids (nearest lookup, no filtering) */
     struct tex_field *field; /* a primitive evaluated at hit points */

@@ -365,13 +365,13 @@ static void bad_params(void)
     struct {
         const char *prim, *key, *val, *key2, *val2;
     } bad[] = {
-        {"ring", "width", "0.5", "radius", "0.4"},
-        {"ellipse", "minor", "0.5", "major", "0.4"},
-        {"ellipse", "width", "0.35", "minor", "0.3"},
-        {"hypocycloid", "width", "0.5", "radius", "0.45"},
-        {"four_rings", "width", "0.3", "radius", "0.2"},
-        {"cycloid", "width", "0.2", "radius", "50"},
-        {"stripe", "width", "0", "angle", "10"},
+        {"ring", "ring_width", "0.5", "radius", "0.4"},
+        {"ellipse", "semi_minor", "0.5", "semi_major", "0.4"},
+        {"ellipse", "band_width", "0.35", "semi_minor", "0.3"},
+        {"hypocycloid", "band_width", "0.5", "radius", "0.45"},
+        {"four_rings", "ring_width", "0.3", "radius", "0.2"},
+        {"cycloid", "arch_width", "0.2", "radius", "50"},
+        {"stripe", "stripe_width", "0", "angle", "10"},
         {"flower", "petals", "0", NULL, NULL},
         {"circle", "radius", "-0.1", NULL, NULL},
     };

@@ -41,7 +41,7 @@ static void along_w(const struct tex_field *f, int slice_is_v, double ws, double
 int main(void)
 {
     double vary, slice;
-    struct tex_field *f = field("holes", "count", "6");
+    struct tex_field *f = field("holes", "grid_cells", "6");
     CHECK(f && (f->prim->flags & TEX_PRIM_3D), "holes has a solid form");
     if (f) {
         along_w(f, 0, 0.5, &vary, &slice);

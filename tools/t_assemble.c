@@ -1,0 +1,46 @@
+/* t_assemble - put the windows of a map back together, a band of rows at a time */
+#include <stdlib.h>
+#include <string.h>
+
+#include "textura.h"
+
+static const struct tex_tool tool = {
+    "t_assemble", "WINDOW...", "assemble the EXR windows of a map (as t_noise --window or "
+                               "t_apply --region make them) into the whole map, holding one "
+                               "band of windows at a time",
+    TEX_OPT_OUTPUT, NULL, 1, -1};
+
+int main(int argc, char **argv)
+{
+    struct tex_common c;
+    struct tex_out out = {.fd = 1};
+    const char *name = "standard output";
+    int i = tex_cli_parse(&tool, argc, argv, &c, NULL), r;
+
+    if (c.mipmap) /* levels need the whole map: t_convert --mipmap makes them */
+        tex_usage_die("--mipmap needs the whole map in memory: assemble, then t_convert "
+                      "--mipmap");
+
+    if (c.output && strcmp(c.output, "-") != 0) {
+        if (tex_format_from_name(c.output) != TEX_FMT_EXR)
+            tex_usage_die("%s: assembled maps are written as EXR (.exr)", c.output);
+        if (tex_map_write_check(c.output) < 0 || tex_out_open(&out, c.output) < 0) {
+            tex_out_close(&out, -1);
+            tex_die();
+        }
+        name = c.output;
+    } else if (c.format && strcmp(c.format, "exr") != 0) {
+        tex_usage_die("--format %s: assembled maps are written as EXR", c.format);
+    } else if (tex_map_write_check(NULL) < 0) {
+        tex_die();
+    }
+    r = tex_assemble((const char *const *)argv + i, argc - i, out.fd, name,
+                     c.exr_tiles ? TEX_EXR_TILE : 0, (enum tex_compression)c.compression,
+                     c.cmdline);
+    if (out.fd != 1 && tex_out_close(&out, r) < 0)
+        tex_die();
+    if (r < 0)
+        tex_die();
+    free(c.cmdline);
+    return 0;
+}
