@@ -584,12 +584,7 @@ static struct tex_enode *operand(struct tex_expr_parser *xp)
 /* An application function, compiled for the renderer. */
 static struct tex_expr *expr(struct parser *ps)
 {
-    static const struct tex_expr_binop ops[] = {
-        {"<", 1, TEX_EOP_LT}, {">", 1, TEX_EOP_GT}, {"<=", 1, TEX_EOP_LE},
-        {">=", 1, TEX_EOP_GE}, {"==", 1, TEX_EOP_EQ}, {"!=", 1, TEX_EOP_NE},
-        {"+", 2, TEX_EOP_ADD}, {"-", 2, TEX_EOP_SUB}, {"*", 3, TEX_EOP_MUL},
-        {"/", 3, TEX_EOP_DIV}, {NULL, 0, 0}};
-    static const struct tex_expr_lang lang = {ops, operand};
+    static const struct tex_expr_lang lang = {tex_expr_arith_binops, operand};
     struct tex_expr_parser xp = {&ps->lx, &lang, ps, 0, 0};
     struct tex_expr *x = tex_expr_compile(&ps->lx, tex_expr_parse(&xp));
     sync(ps);
