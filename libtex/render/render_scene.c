@@ -22,6 +22,7 @@
 #include "render/render_ct.h"
 #include "lang/expr.h"
 #include "lang/lex.h"
+#include "lang/proc.h"
 
 
 #define MAX_NEST 64
@@ -480,6 +481,26 @@ static void texture_field(struct parser *ps, struct tex_texture *tx,
     }
 }
 
+/* 'primitive NAME(...) = EXPR', a composed primitive (lang/proc.h), or
+ * 'primitives "FILE"', a file of them: named by later textures. */
+static void parse_primitive(struct parser *ps, const struct tok *kt)
+{
+    if (!ps->s->procs && !(ps->s->procs = tex_procs_new()))
+        fail_at(ps, kt, 1, "out of memory");
+    if (is_word(kt, "primitive")) {
+        tex_procs_define(ps->s->procs, &ps->lx);
+        sync(ps);
+        return;
+    }
+    struct tok ft = ps->t;
+    if (ft.kind != T_STR)
+        FAIL(ps, "expected a file name in quotes after 'primitives'");
+    char *path = pstrdup(ps, ft.text, ft.len);
+    if (tex_procs_read(ps->s->procs, path) < 0)
+        fail_at(ps, &ft, tex_errkind() == TEX_ERR_RUNTIME, "%s", tex_errmsg());
+    next(ps);
+}
+
 static void parse_texture(struct parser *ps)
 {
     struct tok at = ps->t;
@@ -500,7 +521,7 @@ static void parse_texture(struct parser *ps)
     }
     struct tok pt = ps->t;
     char *pname = word(ps, "'file' or a primitive name");
-    const struct tex_primitive *prim = tex_primitive_find(pname);
+    const struct tex_primitive *prim = tex_procs_find(ps->s->procs, pname);
     if (!prim)
         fail_at(ps, &pt, 0, "unknown primitive '%s'", pname);
     if (!(tx->field = tex_field_new(prim)))
@@ -1559,6 +1580,8 @@ static void parse_scene(struct parser *ps)
             parse_light(ps);
         } else if (is_word(&kt, "texture")) {
             parse_texture(ps);
+        } else if (is_word(&kt, "primitive") || is_word(&kt, "primitives")) {
+            parse_primitive(ps, &kt);
         } else if (is_word(&kt, "surface")) {
             parse_surface(ps);
         } else if (is_word(&kt, "environment")) {
@@ -1671,6 +1694,7 @@ void tex_scene_free(struct tex_scene *s)
     free(s->palettes);
     free(s->objects);
     tex_bvh_free(s->bvh);
+    tex_procs_free(s->procs); /* after the textures' fields */
     for (size_t i = 0; i < s->npool; i++)
         free(s->pool[i]);
     free(s->pool);
