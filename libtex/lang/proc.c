@@ -394,11 +394,11 @@ static void named_arg(struct tex_expr_parser *xp, struct call *c)
         a->text = tok_copy(lx, &lx->t); /* a word: the callee's row reads it */
         tex_lex_next(lx);
     } else {
-        struct tex_enode *e = tex_expr_parse(xp);
-        a->value = compile(rd, e);
+        int line = lx->t.line, col = lx->t.col;
+        a->value = compile(rd, tex_expr_parse(xp));
         for (int i = 0; i < a->value->n; i++)
             if (a->value->code[i].op == TEX_EOP_LEAF && a->value->code[i].leaf != L_PARAM)
-                tex_lex_fail(lx, e->line, e->col, "the value of %s must not depend on the "
+                tex_lex_fail(lx, line, col, "the value of %s must not depend on the "
                              "point (a number or %s's parameters)", a->name, rd->p->name);
     }
 }
