@@ -77,6 +77,8 @@ struct run {
     const struct state *st;
     const double *u, *v, *w; /* w NULL in 2D */
     int solid;
+    float *const *pre; /* grid rows: call k's values over the whole row, or NULL */
+    int i0;            /* the chunk's first point in those rows */
 };
 
 static int leaf(void *ctx, const struct tex_rinsn *in, int n, double *out);
@@ -90,6 +92,12 @@ static int call_row(const struct run *r, int k, int n, double *out)
     const double *at[3] = {r->u, r->v, r->w ? r->w : zero};
     float res[4 * CHUNK];
 
+    if (r->pre && r->pre[k]) { /* sampled already by the callee's own row path */
+        const float *pk = r->pre[k] + (size_t)r->i0 * sub->nc + r->st->channel[k];
+        for (int i = 0; i < n; i++)
+            out[i] = pk[(size_t)i * sub->nc];
+        return 0;
+    }
     for (int i = 0; i < c->ncoord; i++) {
         if (tex_rowcode_run(c->coord[i], n, regs, leaf, (void *)r) < 0)
             return -1;
@@ -126,33 +134,69 @@ static int leaf(void *ctx, const struct tex_rinsn *in, int n, double *out)
     return 0;
 }
 
-static void eval(const struct tex_field *f, int n, const double *u, const double *v,
-                 const double *w, float *out)
+/* One chunk of m <= CHUNK points; i0: the chunk's place in pre's rows. */
+static void run_chunk(const struct tex_field *f, int m, const double *u, const double *v,
+                      const double *w, float *const *pre, int i0, float *out)
 {
-    const struct proc *p = (const struct proc *)f->prim;
     double regs[TEX_PROC_MAX_REGS * CHUNK];
+    struct run r = {f, (const struct proc *)f->prim, f->state, u, v, w, w != NULL, pre, i0};
 
-    for (int i0 = 0; i0 < n; i0 += CHUNK) {
-        int m = n - i0 < CHUNK ? n - i0 : CHUNK;
-        struct run r = {f, p, f->state, u + i0, v + i0, w ? w + i0 : NULL, w != NULL};
-        tex_rowcode_run(p->code, m, regs, leaf, &r);
-        for (int i = 0; i < m; i++) { /* a float map holds finite floats */
-            double x = regs[i];
-            out[i0 + i] = !isfinite(x) ? 0.f : x > FLT_MAX ? FLT_MAX : x < -FLT_MAX ? -FLT_MAX
-                                                                                    : (float)x;
-        }
+    tex_rowcode_run(r.p->code, m, regs, leaf, &r);
+    for (int i = 0; i < m; i++) { /* a float map holds finite floats */
+        double x = regs[i];
+        out[i] = !isfinite(x) ? 0.f : x > FLT_MAX ? FLT_MAX : x < -FLT_MAX ? -FLT_MAX : (float)x;
     }
+}
+
+static void run_rows(const struct tex_field *f, int n, const double *u, const double *v,
+                     const double *w, float *out)
+{
+    for (int i0 = 0; i0 < n; i0 += CHUNK)
+        run_chunk(f, n - i0 < CHUNK ? n - i0 : CHUNK, u + i0, v + i0, w ? w + i0 : NULL, NULL,
+                  0, out + i0);
 }
 
 static void eval2(const struct tex_field *f, int n, const double *u, const double *v, float *out)
 {
-    eval(f, n, u, v, NULL, out);
+    run_rows(f, n, u, v, NULL, out);
 }
 
 static void eval3(const struct tex_field *f, int n, const double *u, const double *v,
                   const double *w, float *out)
 {
-    eval(f, n, u, v, w, out);
+    run_rows(f, n, u, v, w, out);
+}
+
+/* Can call k be sampled by its callee's row path?  At the grid's own points
+ * (no coordinates given), when the callee has one and writes values. */
+static int by_row(const struct call *c)
+{
+    return !c->ncoord && c->prim->row && !(c->prim->flags & TEX_PRIM_REGIONS);
+}
+
+/* Row y of the grid: the calls that allow it are sampled a whole row at a time
+ * by their own row paths (vector kernels, lattice reuse), the rest at points.
+ * Without memory for a call's row, that call goes the point path instead. */
+static void row(const struct tex_field *f, int y, float *out)
+{
+    const struct proc *p = (const struct proc *)f->prim;
+    const struct state *st = f->state;
+    float *pre[TEX_PROC_MAX_CALLS] = {0};
+    double u[CHUNK], v[CHUNK];
+
+    for (int k = 0; k < p->ncalls; k++)
+        if (by_row(&p->calls[k]) && (pre[k] = malloc(sizeof **pre * st->sub[k]->nc * f->w)))
+            p->calls[k].prim->row(st->sub[k], y, pre[k]);
+    for (int i = 0; i < CHUNK; i++)
+        v[i] = (y + 0.5) / f->h;
+    for (int i0 = 0; i0 < f->w; i0 += CHUNK) {
+        int m = f->w - i0 < CHUNK ? f->w - i0 : CHUNK;
+        for (int i = 0; i < m; i++)
+            u[i] = (i0 + i + 0.5) / f->w;
+        run_chunk(f, m, u, v, NULL, pre, i0, out + i0);
+    }
+    for (int k = 0; k < p->ncalls; k++)
+        free(pre[k]);
 }
 
 static void fini(struct tex_field *f)
@@ -171,7 +215,7 @@ static void fini(struct tex_field *f)
 static int arg_text(const struct tex_field *f, const struct arg *a, char *buf, size_t n)
 {
     double x[TEX_PROC_MAX_REGS];
-    struct run r = {f, (const struct proc *)f->prim, NULL, NULL, NULL, NULL, 0};
+    struct run r = {f, (const struct proc *)f->prim, NULL, NULL, NULL, NULL, 0, NULL, 0};
     if (a->text) {
         snprintf(buf, n, "%s", a->text);
         return 0;
@@ -223,7 +267,8 @@ static int init(struct tex_field *f)
             }
         }
         snprintf(where, sizeof where, "%s:%d:%d", p->file, c->line, c->col);
-        if (tex_field_init(sub, 0, 0) < 0) {
+        /* on a grid, the calls sampled by rows see it too */
+        if (tex_field_init(sub, by_row(c) ? f->w : 0, by_row(c) ? f->h : 0) < 0) {
             tex_error_context(where);
             return -1;
         }
@@ -588,6 +633,7 @@ static void body(struct reader *rd)
     p->prim.fini = fini;
     p->prim.eval2 = eval2;
     p->prim.eval3 = p->prim.flags & TEX_PRIM_3D ? eval3 : NULL;
+    p->prim.row = row;
 }
 
 /* Start the field once with the defaults: arguments out of their callee's
