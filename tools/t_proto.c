@@ -506,6 +506,12 @@ static int save_name(struct pipeline *pl, const char *name, const char *const *e
     return fail(pl, "'%s': the extension must be one of the kind's (%s...)", name, exts[0]);
 }
 
+/* The last stage writes name's format on standard output (the shell redirects it). */
+static int to_file(struct pipeline *pl, const char *name)
+{
+    return arg(pl, word(pl, "--format=%s", strrchr(name, '.') + 1));
+}
+
 /* Write text to name in the working folder, atomically, never through a symlink. */
 static int save_text(struct pipeline *pl, const char *name, const char *text, size_t n)
 {
@@ -678,12 +684,20 @@ static enum MHD_Result handle(void *cls, struct MHD_Connection *c, const char *u
     const char *what = url + (strncmp(url, "/api/", 5) ? 0 : 5);
     unsigned code = 200;
     const char *type = "text/plain; charset=utf-8";
+    static const char *const map_exts[] = {"png", "exr", "tif", "pfm", NULL};
     if (!strcmp(what, "preview") || !strcmp(what, "cmdline") || !strcmp(what, "scene")) {
         int size = get_size(c, pl, 256);
         if (size < 0 || build(c, pl, size) < 0) {
             code = 400;
         } else if (!strcmp(what, "cmdline")) {
-            cmdline(pl, &out);
+            const char *map = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "map");
+            if (map && (save_name(pl, map, map_exts) < 0 || to_file(pl, map) < 0)) {
+                code = 400;
+            } else {
+                cmdline(pl, &out);
+                if (map)
+                    sadd(&out, " > %s", map);
+            }
         } else {
             char map[PATH_MAX];
             snprintf(map, sizeof map, "%s/map.%lx.exr", tmpdir, (unsigned long)pthread_self());
@@ -700,7 +714,6 @@ static enum MHD_Result handle(void *cls, struct MHD_Connection *c, const char *u
             type = r == 0 ? "image/png" : type;
         }
     } else if (!strcmp(what, "save")) {
-        static const char *const map_exts[] = {"png", "exr", "tif", "pfm", NULL};
         static const char *const pal_exts[] = {"pal", NULL};
         static const char *const sh_exts[] = {"sh", "txt", NULL};
         static const char *const scene_exts[] = {"scene", "txt", NULL};
@@ -708,7 +721,7 @@ static enum MHD_Result handle(void *cls, struct MHD_Connection *c, const char *u
         const char *kind = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "kind");
         const char *name = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "name");
         const char *body = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "text");
-        int size = get_size(c, pl, 512), rc = -1;
+        int size = get_size(c, pl, 512), rc = -1, break_out = 0;
         kind = kind ? kind : "";
         if (!strcmp(kind, "palette") || !strcmp(kind, "project")) {
             /* text the page made: a palette file, or a project (the query) */
@@ -726,25 +739,26 @@ static enum MHD_Result handle(void *cls, struct MHD_Connection *c, const char *u
         } else if (size < 0 || build(c, pl, size) < 0) {
             ;
         } else if (!strcmp(kind, "map")) {
-            if (save_name(pl, name, map_exts) == 0) {
-                char path[PATH_MAX + 128];
-                snprintf(path, sizeof path, "-o%s/%s", o.dir, name);
-                rc = arg(pl, word(pl, "%s", path)) < 0 ? -1 : run(pl, &out) ? -1 : 0;
-                free(out.s);
-                out = (struct str){0};
-            }
+            /* the map as the command line makes it: standard output, into the file */
+            if (save_name(pl, name, map_exts) == 0 && to_file(pl, name) == 0 && !run(pl, &out))
+                rc = save_text(pl, name, out.s, out.n);
+            free(out.s);
+            out = (struct str){0};
         } else if (!strcmp(kind, "cmdline") || !strcmp(kind, "scene")) {
             if (save_name(pl, name, kind[0] == 'c' ? sh_exts : scene_exts) == 0) {
                 if (kind[0] == 'c') {
+                    const char *map = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "map");
                     sadd(&b, "#!/bin/sh\n");
+                    if (save_name(pl, map, map_exts) < 0 || to_file(pl, map) < 0)
+                        break_out = 1;
                     cmdline(pl, &b);
-                    sadd(&b, " > map.exr\n");
+                    sadd(&b, " > %s\n", map);
                 } else { /* the scene's texture statement, its map from standard input */
                     sadd(&b, "# ");
                     cmdline(pl, &b);
                     sadd(&b, " | t_apply THIS.scene\ntexture map file -\n");
                 }
-                rc = save_text(pl, name, b.s, b.n);
+                rc = break_out ? -1 : save_text(pl, name, b.s, b.n);
             }
         } else {
             fail(pl, "kind must be map, palette, cmdline, scene or project (got '%.20s')", kind);
