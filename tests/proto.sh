@@ -77,6 +77,8 @@ subprocess.run(["t_noise", "-s", "16", "-o", os.path.join(tmp, "n.exr")], check=
 r = subprocess.run(["t_palette", os.path.join(work, "two.pal"), os.path.join(tmp, "n.exr"),
                     "-o", os.path.join(tmp, "p.exr")], capture_output=True)
 say(s == 200 and r.returncode == 0, "a palette from the editor is saved and t_palette reads it", b)
+s, b = get("/api/preview", base + [("step", "palette:two.pal")])
+say(s == 200 and b[:4] == b"\x89PNG", "a saved palette serves as a pipeline step", (s, b[:80]))
 proj = up.urlencode(q)
 s, b = get("/api/save", [("kind", "project"), ("name", "p.tproj"), ("text", proj)])
 s2, b2 = get("/api/load", [("name", "p.tproj")])

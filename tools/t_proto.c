@@ -292,6 +292,20 @@ static enum MHD_Result each_param(void *cls, enum MHD_ValueKind kind, const char
     return r->failed ? MHD_NO : MHD_YES;
 }
 
+/* NAME.pal, a plain file in the working folder (the palette editor saves there). */
+static int is_saved_palette(const char *name)
+{
+    struct stat st;
+    size_t n = strlen(name);
+    if (n < 5 || n > 100 || strcmp(name + n - 4, ".pal") || name[0] == '.' || strchr(name, '/'))
+        return 0;
+    for (const char *s = name; *s; s++)
+        if (!(*s == '.' || *s == '_' || *s == '-' || (*s >= '0' && *s <= '9') ||
+              (*s >= 'a' && *s <= 'z') || (*s >= 'A' && *s <= 'Z')))
+            return 0;
+    return fstatat(workfd, name, &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISREG(st.st_mode);
+}
+
 /* step=KIND:ARG:ARG...: one pipeline step, each word checked. */
 static int step(struct pipeline *pl, const char *spec, int size)
 {
@@ -306,8 +320,10 @@ static int step(struct pipeline *pl, const char *spec, int size)
     if (!n)
         return fail(pl, "empty step");
     for (int i = 1; i < n; i++)
-        if (tex_parse_real(w[i], &x) < 0 && !is_name(w[i]) && w[i][0] != '#')
+        if (tex_parse_real(w[i], &x) < 0 && !is_name(w[i]) && !is_saved_palette(w[i]))
             return fail(pl, "malformed step argument '%.40s'", w[i]);
+    if (!strcmp(w[0], "palette") && n == 2 && is_saved_palette(w[1])) /* one the editor saved */
+        return stage(pl, "t_palette") | arg(pl, word(pl, "%s/%s", o.dir, w[1])) | arg(pl, "-");
     if (!strcmp(w[0], "palette") && n == 2) {
         char path[PATH_MAX];
         if (!is_name(w[1]) || tex_palette_find(w[1], path, sizeof path) < 0)
