@@ -65,14 +65,14 @@ SHARED   = $(BUILD)/lib/libtex.so.0
 PCFILE   = $(BUILD)/lib/pkgconfig/textura.pc
 # Headers that stay inside libtex: the scene's internals, the shading models'
 # interface, the languages' lexer and evaluator, the OpenImageIO bridge.
-PRIVATE_HEADERS = libtex/io/oiio_bridge.h libtex/io/codec_bridge.h libtex/lang/lex.h libtex/lang/expr.h \
+PRIVATE_HEADERS = libtex/io/oiio_bridge.h libtex/io/codec_bridge.h libtex/lang/lex.h libtex/lang/expr.h libtex/lang/rowcode.h \
                   libtex/render/scene.h libtex/render/render_shade.h libtex/render/render_ct.h
 HEADERS  = $(filter-out $(PRIVATE_HEADERS),$(wildcard libtex/*/*.h)) libtex/prim/primitives.def
 
 DEBS = build-essential pkg-config liblz4-dev libopenexr-dev libopenimageio-dev openimageio-tools \
        libpng-dev libjpeg62-turbo-dev libtiff-dev \
        libflann-dev libfftw3-dev colord-data mandoc netpbm imagemagick libnoise-dev povray \
-       hyperfine clang libclang-rt-14-dev libomp-dev python3 libmicrohttpd-dev
+       hyperfine clang libclang-rt-14-dev libomp-dev python3 libmicrohttpd-dev chromium
 
 .PHONY: all deps demo test test-plain test-asan check bench install uninstall man fuzz fuzz-smoke figures \
         gallery clean

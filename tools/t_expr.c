@@ -4,7 +4,6 @@
 #include <string.h>
 
 #include "textura.h"
-#include "lang/proc.h"
 
 struct opts {
     double params[TEX_PROC_MAX_PARAMS]; /* the composed primitive's, first */

@@ -28,7 +28,6 @@
 #include <microhttpd.h>
 
 #include "textura.h"
-#include "lang/proc.h"
 
 extern char **environ;
 
