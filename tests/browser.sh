@@ -10,11 +10,8 @@ if [ -z "$chromium" ]; then
     exit 0
 fi
 mkdir -p "$T/work"
-t_proto -C "$T/work" -p 0 --defs "$top/patterns/primitives.tp" >"$T/url" 2>"$T/log" &
-pid=$!
-trap 'kill $pid 2>/dev/null; rm -rf "$T"' EXIT
-for _ in $(seq 50); do grep -q token= "$T/url" && break; sleep 0.1; done
-url=$(sed -n 's/.* on \(http:[^ ]*\)$/\1/p' "$T/url")
+start_proto "$T/work" --defs "$top/patterns/primitives.tp"
+url=$proto_url
 shot=${TEXTURA_BUILD:-build}/artefacts/t_proto.png
 timeout 180 python3 "$top/tests/cdp.py" "$chromium" "$url" "$T/work" "$shot" 2>"$T/cdp.err"
 status=$?

@@ -4,13 +4,10 @@
 . "$(dirname "$0")/lib.sh"
 top=${TEXTURA_TOP:-.}
 mkdir -p "$T/work"
-t_proto -C "$T/work" -p 0 --defs "$top/patterns/primitives.tp" >"$T/url" 2>"$T/log" &
-pid=$!
-trap 'kill $pid 2>/dev/null; rm -rf "$T"' EXIT
-for _ in $(seq 50); do grep -q token= "$T/url" && break; sleep 0.1; done
-url=$(sed -n 's/.* on \(http:[^ ]*\)$/\1/p' "$T/url")
+start_proto "$T/work" --defs "$top/patterns/primitives.tp"
+url=$proto_url
 case $url in http://127.0.0.1:*/\?token=*) ok "t_proto prints a 127.0.0.1 URL with a token" ;;
-    *) notok "t_proto URL" "$(cat "$T/url" "$T/log")"; exit 0 ;; esac
+    *) notok "t_proto URL" "$(cat "$T/.proto_url" "$T/.proto_log")"; exit 0 ;; esac
 python3 - "$url" "$T/work" "$T" <<'PY'
 import http.client, json, os, subprocess, sys, threading, time, urllib.parse as up
 url, work, tmp = sys.argv[1:4]
@@ -50,6 +47,8 @@ s1, a = get("/api/preview", base + [("p", "frequency:4")])
 s2, b2 = get("/api/preview", base + [("p", "frequency:9")])
 say(s1 == 200 and a[:8] == b"\x89PNG\r\n\x1a\n", "a preview is a PNG", s1)
 say(s2 == 200 and a != b2, "moving the frequency changes the preview")
+s, b = get("/api/preview", [("prim", "marble"), ("p", "veins:2"), ("step", "palette:marble")])
+say(s == 200 and b[:4] == b"\x89PNG", "a composed primitive previews through t_expr --defs", (s, b[:80]))
 s, pal = get("/api/preview", base + [("p", "frequency:4"), ("step", "palette:marble")])
 say(s == 200 and pal != a, "a palette step changes the preview", s)
 times = []
@@ -137,5 +136,3 @@ time.sleep(1.5)
 s, b = get("/api/preview", base)
 say(s == 200, "the server keeps serving after all that", s)
 PY
-kill $pid 2>/dev/null
-wait $pid 2>/dev/null

@@ -63,41 +63,40 @@ struct str {
     size_t n, cap;
 };
 
+/* Room for n more bytes and a NUL; 0 when memory ran out (the text stays short). */
+static int room(struct str *b, size_t n)
+{
+    if (b->n + n + 1 <= b->cap)
+        return 1;
+    size_t cap = (b->n + n + 1) * 2;
+    char *s = realloc(b->s, cap);
+    if (!s)
+        return 0;
+    b->s = s;
+    b->cap = cap;
+    return 1;
+}
+
 static void sadd(struct str *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 static void sadd(struct str *b, const char *fmt, ...)
 {
     va_list ap;
-    for (;;) {
-        size_t room = b->cap - b->n;
-        va_start(ap, fmt);
-        int k = vsnprintf(b->s ? b->s + b->n : NULL, room, fmt, ap);
-        va_end(ap);
-        if (k < 0)
-            return;
-        if ((size_t)k < room) {
-            b->n += k;
-            return;
-        }
-        size_t cap = (b->cap + k + 64) * 2;
-        char *s = realloc(b->s, cap);
-        if (!s)
-            return;
-        b->s = s;
-        b->cap = cap;
-    }
+    va_start(ap, fmt);
+    int k = vsnprintf(NULL, 0, fmt, ap);
+    va_end(ap);
+    if (k < 0 || !room(b, (size_t)k))
+        return;
+    va_start(ap, fmt);
+    vsnprintf(b->s + b->n, (size_t)k + 1, fmt, ap);
+    va_end(ap);
+    b->n += k;
 }
 
 /* Bytes, NULs included (a PNG). */
 static void sbytes(struct str *b, const char *data, size_t n)
 {
-    if (b->n + n + 1 > b->cap) {
-        size_t cap = (b->n + n + 1) * 2;
-        char *s = realloc(b->s, cap);
-        if (!s)
-            return;
-        b->s = s;
-        b->cap = cap;
-    }
+    if (!room(b, n))
+        return;
     memcpy(b->s + b->n, data, n);
     b->n += n;
     b->s[b->n] = 0;
@@ -836,6 +835,9 @@ int main(int argc, char **argv)
     if (!realpath(o.dir, dir) || (workfd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC)) < 0)
         tex_usage_die("cannot open the working folder '%s'", o.dir);
     o.dir = dir; /* the tools run elsewhere: the map's path must be whole */
+    static char defs[PATH_MAX];
+    if (o.defs && realpath(o.defs, defs))
+        o.defs = defs; /* the same for t_expr --defs */
     if (!(procs = tex_procs_new()) || (o.defs && tex_procs_read(procs, o.defs) < 0))
         tex_die();
     FILE *ur = fopen("/dev/urandom", "rb");

@@ -41,13 +41,6 @@ const struct tex_expr_func *tex_expr_func_find(const struct tex_tok *t)
     return NULL;
 }
 
-static const char *desc(const struct tex_tok *t, char *buf, size_t n)
-{
-    if (t->kind == TEX_TOK_EOF)
-        return "the end of the file";
-    snprintf(buf, n, "'%.*s'", (int)(t->len > 32 ? 32 : t->len), t->text);
-    return buf;
-}
 
 struct tex_enode *tex_expr_node(struct tex_lexer *lx, enum tex_ekind kind, const struct tex_tok *t)
 {
@@ -70,14 +63,6 @@ void tex_expr_leave(struct tex_expr_parser *xp)
     xp->depth--;
 }
 
-static void expect(struct tex_lexer *lx, int c)
-{
-    char b[48];
-    if (!tex_tok_is_punct(&lx->t, c))
-        tex_lex_fail(lx, lx->t.line, lx->t.col, "expected '%c', found %s", c,
-                     desc(&lx->t, b, sizeof b));
-    tex_lex_next(lx);
-}
 
 static double number(struct tex_lexer *lx)
 {
@@ -85,7 +70,7 @@ static double number(struct tex_lexer *lx)
     double v = lx->t.num;
     if (lx->t.kind != TEX_TOK_NUM)
         tex_lex_fail(lx, lx->t.line, lx->t.col, "expected a number, found %s",
-                     desc(&lx->t, b, sizeof b));
+                     tex_tok_desc(&lx->t, b, sizeof b));
     tex_lex_next(lx);
     return v;
 }
@@ -107,10 +92,10 @@ static struct tex_enode *call(struct tex_expr_parser *xp, const struct tex_expr_
     e->op = f->op;
     arg[0] = &e->a, arg[1] = &e->b, arg[2] = &e->c;
     tex_lex_next(lx);
-    expect(lx, '(');
+    tex_lex_expect(lx, '(');
     while (!tex_tok_is_punct(&lx->t, ')')) {
         if (n && !tex_tok_is_punct(&lx->t, ','))
-            expect(lx, ')');
+            tex_lex_expect(lx, ')');
         if (n)
             tex_lex_next(lx);
         if (n == f->nargs)
@@ -146,7 +131,7 @@ static struct tex_enode *primary(struct tex_expr_parser *xp)
     if (tex_tok_is_punct(&t, '(')) {
         tex_lex_next(lx);
         e = tex_expr_parse(xp);
-        expect(lx, ')');
+        tex_lex_expect(lx, ')');
         return e;
     }
     if (t.kind == TEX_TOK_NAME && (f = tex_expr_func_find(&t)) && paren_follows(lx))

@@ -323,20 +323,13 @@ static char *tok_copy(struct tex_lexer *lx, const struct tex_tok *t)
     return s;
 }
 
-static const char *tok_desc(const struct tex_tok *t, char *buf, size_t n)
-{
-    if (t->kind == TEX_TOK_EOF)
-        return "the end of the text";
-    snprintf(buf, n, "'%.*s'", (int)(t->len > 32 ? 32 : t->len), t->text);
-    return buf;
-}
 
 static void name_of(struct tex_lexer *lx, char *out, const char *what)
 {
     char b[48];
     if (lx->t.kind != TEX_TOK_NAME)
         tex_lex_fail(lx, lx->t.line, lx->t.col, "expected %s, found %s", what,
-                     tok_desc(&lx->t, b, sizeof b));
+                     tex_tok_desc(&lx->t, b, sizeof b));
     if (lx->t.len > NAME_MAX_LEN)
         tex_lex_fail(lx, lx->t.line, lx->t.col, "name too long (more than %d characters)",
                      NAME_MAX_LEN);
@@ -345,14 +338,6 @@ static void name_of(struct tex_lexer *lx, char *out, const char *what)
     tex_lex_next(lx);
 }
 
-static void expect(struct tex_lexer *lx, int c)
-{
-    char b[48];
-    if (!tex_tok_is_punct(&lx->t, c))
-        tex_lex_fail(lx, lx->t.line, lx->t.col, "expected '%c', found %s", c,
-                     tok_desc(&lx->t, b, sizeof b));
-    tex_lex_next(lx);
-}
 
 static double number(struct tex_lexer *lx, const char *what)
 {
@@ -360,7 +345,7 @@ static double number(struct tex_lexer *lx, const char *what)
     double x = lx->t.num;
     if (lx->t.kind != TEX_TOK_NUM)
         tex_lex_fail(lx, lx->t.line, lx->t.col, "expected %s, found %s", what,
-                     tok_desc(&lx->t, b, sizeof b));
+                     tex_tok_desc(&lx->t, b, sizeof b));
     tex_lex_next(lx);
     return x;
 }
@@ -370,7 +355,7 @@ static void expect_word(struct tex_lexer *lx, const char *w)
     char b[48];
     if (!tex_tok_is_word(&lx->t, w))
         tex_lex_fail(lx, lx->t.line, lx->t.col, "expected '%s', found %s", w,
-                     tok_desc(&lx->t, b, sizeof b));
+                     tex_tok_desc(&lx->t, b, sizeof b));
     tex_lex_next(lx);
 }
 
@@ -430,7 +415,7 @@ static void named_arg(struct tex_expr_parser *xp, struct call *c)
     for (int i = 0; i < c->nargs; i++)
         if (!strcmp(c->args[i].name, a->name))
             tex_lex_fail(lx, a->line, a->col, "%s is given twice", a->name);
-    expect(lx, '=');
+    tex_lex_expect(lx, '=');
     c->nargs++; /* from here on, what it holds is freed with the definition */
     after = peek(lx);
     if (lx->t.kind == TEX_TOK_STR ||
@@ -483,13 +468,13 @@ static struct tex_enode *call(struct tex_expr_parser *xp)
     c->args = xalloc(lx, calloc(64, sizeof *c->args));
     e->op = L_CALL;
     e->ptr = (const void *)(intptr_t)p->ncalls++;
-    expect(lx, '(');
+    tex_lex_expect(lx, '(');
     tex_expr_enter(xp);
     rd->nest++;
     for (int first = 1; !tex_tok_is_punct(&lx->t, ')'); first = 0) {
         struct tex_tok after;
         if (!first)
-            expect(lx, ',');
+            tex_lex_expect(lx, ',');
         after = peek(lx);
         if (lx->t.kind == TEX_TOK_NAME && tex_tok_is_punct(&after, '=')) {
             if (c->nargs == 64)
@@ -529,7 +514,7 @@ static struct tex_enode *operand(struct tex_expr_parser *xp)
 
     if (t.kind != TEX_TOK_NAME)
         tex_lex_fail(lx, t.line, t.col, "expected a number, a name or '(', found %s",
-                     tok_desc(&t, b, sizeof b));
+                     tex_tok_desc(&t, b, sizeof b));
     after = peek(lx);
     if (tex_tok_is_punct(&after, '('))
         return call(xp);
@@ -584,19 +569,19 @@ static void params(struct reader *rd)
     struct tex_lexer *lx = rd->lx;
     struct proc *p = rd->p;
 
-    expect(lx, '(');
+    tex_lex_expect(lx, '(');
     for (int first = 1; !tex_tok_is_punct(&lx->t, ')'); first = 0) {
         int i = p->nparams, line = lx->t.line, col = lx->t.col;
         double def, lo, hi;
         if (!first)
-            expect(lx, ',');
+            tex_lex_expect(lx, ',');
         if (i == TEX_PROC_MAX_PARAMS)
             tex_lex_fail(lx, line, col, "too many parameters (more than %d)",
                          TEX_PROC_MAX_PARAMS);
         line = lx->t.line, col = lx->t.col;
         name_of(lx, p->pnames[i], "a parameter name");
         check_name(rd, p->pnames[i], line, col, 1);
-        expect(lx, '=');
+        tex_lex_expect(lx, '=');
         def = number(lx, "the default (a number)");
         expect_word(lx, "in");
         lo = number(lx, "the least value (a number)");
@@ -685,7 +670,7 @@ const struct tex_primitive *tex_procs_define(struct tex_procs *set, struct tex_l
         rd.p->summary = tok_copy(lx, &lx->t);
         tex_lex_next(lx);
     }
-    expect(lx, '=');
+    tex_lex_expect(lx, '=');
     body(&rd);
     if (tex_tok_is_punct(&lx->t, ';'))
         tex_lex_next(lx);
@@ -742,7 +727,7 @@ int tex_procs_load(struct tex_procs *set, const char *text, size_t len, const ch
     while (lx.t.kind != TEX_TOK_EOF) {
         if (!tex_tok_is_word(&lx.t, "primitive"))
             tex_lex_fail(&lx, lx.t.line, lx.t.col, "expected 'primitive', found %s",
-                         tok_desc(&lx.t, b, sizeof b));
+                         tex_tok_desc(&lx.t, b, sizeof b));
         tex_lex_next(&lx);
         tex_procs_define(set, &lx);
     }
@@ -785,7 +770,7 @@ const struct tex_primitive *tex_procs_expr(struct tex_procs *set, const char *te
     body(&rd);
     if (lx.t.kind != TEX_TOK_EOF)
         tex_lex_fail(&lx, lx.t.line, lx.t.col, "expected an operator or the end, found %s",
-                     tok_desc(&lx.t, b, sizeof b));
+                     tex_tok_desc(&lx.t, b, sizeof b));
     p = finish(&rd);
     pool_free(&pool);
     return p;
