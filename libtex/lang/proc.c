@@ -298,7 +298,7 @@ static void proc_free(struct proc *p)
         }
         free(c->args);
     }
-    for (int i = 0; i < p->nparams; i++)
+    for (int i = 0; i < TEX_PROC_MAX_PARAMS; i++) /* a help read before its row failed too */
         free(p->phelp[i]);
     tex_rowcode_free(p->code);
     free(p->summary);
