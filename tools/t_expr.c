@@ -63,8 +63,8 @@ int main(int argc, char **argv)
     if (!(set = tex_procs_new()) || (defs && tex_procs_read(set, defs) < 0))
         tex_die();
     if (!expr) { /* --help, --version, or a usage error: the front end says which */
-        static const struct tex_param own[] = {defs_row, {0}};
-        static const struct tex_tool t = {"t_expr", "EXPR|NAME",
+        const struct tex_param own[] = {defs_row, {0}};
+        const struct tex_tool t = {"t_expr", "EXPR|NAME",
                                           "a composed primitive as a texture map",
                                           TEX_OPT_OUTPUT | TEX_OPT_SIZE | TEX_OPT_SEED |
                                           TEX_OPT_TILE, own, 1, 1};
