@@ -65,14 +65,14 @@ SHARED   = $(BUILD)/lib/libtex.so.0
 PCFILE   = $(BUILD)/lib/pkgconfig/textura.pc
 # Headers that stay inside libtex: the scene's internals, the shading models'
 # interface, the languages' lexer and evaluator, the OpenImageIO bridge.
-PRIVATE_HEADERS = libtex/io/oiio_bridge.h libtex/io/codec_bridge.h libtex/lang/lex.h libtex/lang/expr.h \
+PRIVATE_HEADERS = libtex/io/oiio_bridge.h libtex/io/codec_bridge.h libtex/lang/lex.h libtex/lang/expr.h libtex/lang/rowcode.h \
                   libtex/render/scene.h libtex/render/render_shade.h libtex/render/render_ct.h
 HEADERS  = $(filter-out $(PRIVATE_HEADERS),$(wildcard libtex/*/*.h)) libtex/prim/primitives.def
 
 DEBS = build-essential pkg-config liblz4-dev libopenexr-dev libopenimageio-dev openimageio-tools \
        libpng-dev libjpeg62-turbo-dev libtiff-dev \
        libflann-dev libfftw3-dev colord-data mandoc netpbm imagemagick libnoise-dev povray \
-       hyperfine clang libclang-rt-14-dev libomp-dev python3 parallel
+       hyperfine clang libclang-rt-14-dev libomp-dev python3 parallel libmicrohttpd-dev chromium
 
 .PHONY: all deps demo test test-plain test-asan check bench install uninstall man fuzz fuzz-smoke figures \
         gallery clean tsan
@@ -83,6 +83,7 @@ all: $(STATIC) $(SHARED) $(BRIDGE) $(CODEC_BRIDGES) $(PCFILE) $(TOOLS)
 	@mkdir -p $(BUILD)/share/textura
 	@ln -sfn ../../../palettes $(BUILD)/share/textura/palettes
 	@ln -sfn ../../../patterns $(BUILD)/share/textura/patterns
+	@ln -sfn ../../../share/proto $(BUILD)/share/textura/proto
 	@printf 'CC = %s\nCXX = %s\nSANITIZE = %s\nOPT = %s\n' '$(CC)' '$(CXX)' '$(SANITIZE)' '$(OPT)' \
 	    >$(BUILD)/config.mk
 
@@ -118,6 +119,9 @@ pc = printf 'prefix=%s\nlibdir=%s\nincludedir=$${prefix}/include\n\nName: textur
 $(PCFILE): Makefile
 	@mkdir -p $(@D)
 	$(call pc,$(PREFIX),$(LIBDIR)) > $@
+
+# t_proto serves the editor over HTTP with libmicrohttpd.
+$(BUILD)/bin/t_proto: PROG_LDLIBS += -lmicrohttpd
 
 $(BUILD)/bin/%: $(BUILD)/obj/tools/%.o $(STATIC)
 	@mkdir -p $(@D)
@@ -194,7 +198,7 @@ install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(LIBDIR)/textura $(DESTDIR)$(LIBDIR)/pkgconfig \
 	    $(addprefix $(DESTDIR)$(PREFIX)/include/textura/,$(LAYERS)) $(DESTDIR)$(PREFIX)/share/man/man1 \
 	    $(DESTDIR)$(PREFIX)/share/man/man3 $(DESTDIR)$(PREFIX)/share/man/man5 \
-	    $(DESTDIR)$(DATADIR)/palettes $(DESTDIR)$(DATADIR)/patterns
+	    $(DESTDIR)$(DATADIR)/palettes $(DESTDIR)$(DATADIR)/patterns $(DESTDIR)$(DATADIR)/proto
 	install -m 755 $(TOOLS) $(DESTDIR)$(PREFIX)/bin
 	install -m 644 $(STATIC) $(DESTDIR)$(LIBDIR)
 	install -m 755 $(SHARED) $(DESTDIR)$(LIBDIR)
@@ -208,6 +212,7 @@ install: all
 	install -m 644 $(wildcard man/man5/*.5) $(DESTDIR)$(PREFIX)/share/man/man5
 	cp -R palettes/. $(DESTDIR)$(DATADIR)/palettes
 	cp -R patterns/. $(DESTDIR)$(DATADIR)/patterns
+	install -m 644 share/proto/index.html $(DESTDIR)$(DATADIR)/proto
 
 uninstall:
 	rm -f $(addprefix $(DESTDIR)$(PREFIX)/bin/,$(INSTALLED_TOOLS))

@@ -64,6 +64,7 @@
 #include "ops/compose.h"
 #include "ops/synth.h"
 #include "lang/script.h"
+#include "lang/proc.h"
 #include "render/colour.h"
 #include "render/spectrum.h"
 #include "render/colour_spectral.h"

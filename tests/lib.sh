@@ -8,6 +8,8 @@
 #   info_json MAP KEY...          a figure from t_info --json (e.g. stats 0 mean)
 #   maxdiff A B                   the largest |A - B| over the colour channels
 #   same NAME A B [TOL]           ok if maps A and B differ by at most TOL (default 0)
+#   start_proto DIR [ARGS...]     start t_proto on a free port serving DIR; sets $proto_pid
+#                                 and $proto_url (its address with the token); killed at exit
 #   $T                            a fresh temporary folder, removed at exit
 set -u
 T=$(mktemp -d "${TMPDIR:-/tmp}/textura-test.XXXXXX")
@@ -71,4 +73,14 @@ print(max(c["max"] for c in s[:3]))'  # colour channels: sub keeps the alpha of 
 same() {
     local d
     d=$(maxdiff "$2" "$3" 2>&1) && approx "$d" 0 "${4:-0}" && ok "$1" || notok "$1" "max diff $d"
+}
+
+start_proto() {
+    local dir=$1
+    shift
+    t_proto -C "$dir" -p 0 "$@" >"$T/.proto_url" 2>"$T/.proto_log" &
+    proto_pid=$!
+    trap 'kill $proto_pid 2>/dev/null; rm -rf "$T"' EXIT
+    for _ in $(seq 50); do grep -q token= "$T/.proto_url" && break; sleep 0.1; done
+    proto_url=$(sed -n 's/.* on \(http:[^ ]*\)$/\1/p' "$T/.proto_url")
 }

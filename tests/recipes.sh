@@ -6,7 +6,8 @@
 top=${TEXTURA_TOP:-.}
 mkdir -p "$T/share/textura"
 cp -R "$top/patterns" "$T/share/textura/patterns"
-recipes="wood_plank marble_vase brick_wall granite orange_peel fabric clouds water rust_steel terrain tileable"
+recipes="wood_plank marble_vase brick_wall granite orange_peel fabric clouds water rust_steel terrain tileable
+         composed_marble composed_rings composed_cracks"
 for r in $recipes; do
     for where in "$top/patterns" "$T/share/textura/patterns"; do
         label=source; [ "$where" = "$top/patterns" ] || label=installed

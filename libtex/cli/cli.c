@@ -825,23 +825,35 @@ static void generate_bands(struct tex_field *f, const struct tex_common *c)
 
 int tex_generate_main(const struct tex_primitive *p, int argc, char **argv)
 {
-    float *colors = NULL;
     char name[64];
+    snprintf(name, sizeof name, "t_%s", p->name);
+    return tex_generate_main_rows(p, name, "", NULL, NULL, argc, argv);
+}
+
+int tex_generate_main_rows(const struct tex_primitive *p, const char *name,
+                           const char *operands, const struct tex_param *rows, void *opts,
+                           int argc, char **argv)
+{
+    float *colors = NULL;
     struct tex_common c;
     struct tex_field *f;
     tex_map *m;
-    struct tex_tool t = {name, "", p->summary,
-                         TEX_OPT_OUTPUT | TEX_OPT_SIZE | TEX_OPT_SEED | TEX_OPT_WINDOW, p->params,
-                         0, 0};
+    int nops = operands[0] != 0;
+    struct tex_tool t = {name, operands, p->summary,
+                         TEX_OPT_OUTPUT | TEX_OPT_SIZE | TEX_OPT_SEED | TEX_OPT_WINDOW,
+                         rows ? rows : p->params, nops, nops};
 
-    snprintf(name, sizeof name, "t_%s", p->name);
     if (p->flags & TEX_PRIM_TILE)
         t.common |= TEX_OPT_TILE;
     if (p->flags & TEX_PRIM_REGIONS)
         t.common |= TEX_OPT_IDS | TEX_OPT_PALETTE;
     if (!(f = tex_field_new(p)))
         tex_die();
-    tex_cli_parse(&t, argc, argv, &c, f->params);
+    if (opts) /* the primitive's parameters lead the tool's own */
+        memcpy(opts, f->params, p->params_size);
+    tex_cli_parse(&t, argc, argv, &c, opts ? opts : f->params);
+    if (opts)
+        memcpy(f->params, opts, p->params_size);
     if (tex_map_write_check(c.output) < 0)
         tex_die(); /* now, not after the work */
     f->seed = (uint64_t)c.seed;

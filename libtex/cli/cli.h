@@ -136,6 +136,13 @@ void tex_cli_stream(const char *path, const struct tex_common *c,
 
 /* The whole main of a generator tool t_NAME: parse, sample, write. */
 int tex_generate_main(const struct tex_primitive *p, int argc, char **argv);
+/* The same for a tool named name whose options are more than the
+ * primitive's: rows over opts, a struct that begins with the primitive's
+ * parameter struct (p->params_size bytes, the defaults copied in before
+ * parsing); operands: the usage text of its one operand ("" for none). */
+int tex_generate_main_rows(const struct tex_primitive *p, const char *name,
+                           const char *operands, const struct tex_param *rows, void *opts,
+                           int argc, char **argv);
 
 #ifdef __cplusplus
 }

@@ -28,6 +28,11 @@ const struct tex_expr_func tex_expr_funcs[] = {
     {NULL, 0, 0, NULL, NULL},
 };
 
+const struct tex_expr_binop tex_expr_arith_binops[] = {
+    {"<", 1, TEX_EOP_LT},  {">", 1, TEX_EOP_GT},  {"<=", 1, TEX_EOP_LE}, {">=", 1, TEX_EOP_GE},
+    {"==", 1, TEX_EOP_EQ}, {"!=", 1, TEX_EOP_NE}, {"+", 2, TEX_EOP_ADD}, {"-", 2, TEX_EOP_SUB},
+    {"*", 3, TEX_EOP_MUL}, {"/", 3, TEX_EOP_DIV}, {NULL, 0, 0}};
+
 const struct tex_expr_func *tex_expr_func_find(const struct tex_tok *t)
 {
     for (const struct tex_expr_func *f = tex_expr_funcs; f->name; f++)
@@ -36,13 +41,6 @@ const struct tex_expr_func *tex_expr_func_find(const struct tex_tok *t)
     return NULL;
 }
 
-static const char *desc(const struct tex_tok *t, char *buf, size_t n)
-{
-    if (t->kind == TEX_TOK_EOF)
-        return "the end of the file";
-    snprintf(buf, n, "'%.*s'", (int)(t->len > 32 ? 32 : t->len), t->text);
-    return buf;
-}
 
 struct tex_enode *tex_expr_node(struct tex_lexer *lx, enum tex_ekind kind, const struct tex_tok *t)
 {
@@ -65,14 +63,6 @@ void tex_expr_leave(struct tex_expr_parser *xp)
     xp->depth--;
 }
 
-static void expect(struct tex_lexer *lx, int c)
-{
-    char b[48];
-    if (!tex_tok_is_punct(&lx->t, c))
-        tex_lex_fail(lx, lx->t.line, lx->t.col, "expected '%c', found %s", c,
-                     desc(&lx->t, b, sizeof b));
-    tex_lex_next(lx);
-}
 
 static double number(struct tex_lexer *lx)
 {
@@ -80,7 +70,7 @@ static double number(struct tex_lexer *lx)
     double v = lx->t.num;
     if (lx->t.kind != TEX_TOK_NUM)
         tex_lex_fail(lx, lx->t.line, lx->t.col, "expected a number, found %s",
-                     desc(&lx->t, b, sizeof b));
+                     tex_tok_desc(&lx->t, b, sizeof b));
     tex_lex_next(lx);
     return v;
 }
@@ -102,10 +92,10 @@ static struct tex_enode *call(struct tex_expr_parser *xp, const struct tex_expr_
     e->op = f->op;
     arg[0] = &e->a, arg[1] = &e->b, arg[2] = &e->c;
     tex_lex_next(lx);
-    expect(lx, '(');
+    tex_lex_expect(lx, '(');
     while (!tex_tok_is_punct(&lx->t, ')')) {
         if (n && !tex_tok_is_punct(&lx->t, ','))
-            expect(lx, ')');
+            tex_lex_expect(lx, ')');
         if (n)
             tex_lex_next(lx);
         if (n == f->nargs)
@@ -141,7 +131,7 @@ static struct tex_enode *primary(struct tex_expr_parser *xp)
     if (tex_tok_is_punct(&t, '(')) {
         tex_lex_next(lx);
         e = tex_expr_parse(xp);
-        expect(lx, ')');
+        tex_lex_expect(lx, ')');
         return e;
     }
     if (t.kind == TEX_TOK_NAME && (f = tex_expr_func_find(&t)) && paren_follows(lx))
@@ -278,49 +268,80 @@ int tex_expr_arity(enum tex_eop op)
     }
 }
 
+/* Every scalar operator, defined once: tex_expr_apply (per channel) and
+ * tex_expr_apply_row (per row, where op is a constant in each loop so that the
+ * switch folds away and the loop vectorises) both call it. */
+static inline double scalar_op(enum tex_eop op, double a, double b, double c)
+{
+    double x;
+    switch (op) {
+    case TEX_EOP_NEG: return -a;
+    case TEX_EOP_ADD: return a + b;
+    case TEX_EOP_SUB: return a - b;
+    case TEX_EOP_MUL: return a * b;
+    case TEX_EOP_DIV: return b != 0 ? a / b : 0;
+    case TEX_EOP_MIN: return fmin(a, b);
+    case TEX_EOP_MAX: return fmax(a, b);
+    case TEX_EOP_ABS: return fabs(a);
+    case TEX_EOP_LT: return a < b;
+    case TEX_EOP_GT: return a > b;
+    case TEX_EOP_LE: return a <= b;
+    case TEX_EOP_GE: return a >= b;
+    case TEX_EOP_EQ: return a == b;
+    case TEX_EOP_NE: return a != b;
+    case TEX_EOP_MIX: return a + (b - a) * c;
+    case TEX_EOP_SMOOTHSTEP:
+        /* e0 = e1: a step at e0 */
+        x = b != a ? (c - a) / (b - a) : c >= a;
+        x = !(x > 0) ? 0 : x < 1 ? x : 1;
+        return x * x * (3 - 2 * x);
+    case TEX_EOP_STEP: return b >= a;
+    case TEX_EOP_CLAMP: return fmin(fmax(a, b), c);
+    case TEX_EOP_POW:
+        x = pow(a, b);
+        return isfinite(x) ? x : 0;
+    case TEX_EOP_SIN: return sin(a);
+    case TEX_EOP_COS: return cos(a);
+    case TEX_EOP_FLOOR: return floor(a);
+    case TEX_EOP_FRACT: return a - floor(a);
+    case TEX_EOP_IF: return a != 0 ? b : c;
+    default: return 0; /* CONST, LEAF, RGB, PALETTE: not scalar operators */
+    }
+}
+
 double tex_expr_apply(const struct tex_einsn *in, int k, const double *a, const double *b,
                       const double *c)
 {
-    double x;
+    int n = tex_expr_arity(in->op);
     switch (in->op) {
-    case TEX_EOP_NEG: return -a[k];
-    case TEX_EOP_ADD: return a[k] + b[k];
-    case TEX_EOP_SUB: return a[k] - b[k];
-    case TEX_EOP_MUL: return a[k] * b[k];
-    case TEX_EOP_DIV: return b[k] != 0 ? a[k] / b[k] : 0;
-    case TEX_EOP_MIN: return fmin(a[k], b[k]);
-    case TEX_EOP_MAX: return fmax(a[k], b[k]);
-    case TEX_EOP_ABS: return fabs(a[k]);
-    case TEX_EOP_LT: return a[k] < b[k];
-    case TEX_EOP_GT: return a[k] > b[k];
-    case TEX_EOP_LE: return a[k] <= b[k];
-    case TEX_EOP_GE: return a[k] >= b[k];
-    case TEX_EOP_EQ: return a[k] == b[k];
-    case TEX_EOP_NE: return a[k] != b[k];
-    case TEX_EOP_MIX: return a[k] + (b[k] - a[k]) * c[k];
-    case TEX_EOP_SMOOTHSTEP:
-        /* e0 = e1: a step at e0 */
-        x = b[k] != a[k] ? (c[k] - a[k]) / (b[k] - a[k]) : c[k] >= a[k];
-        x = !(x > 0) ? 0 : x < 1 ? x : 1;
-        return x * x * (3 - 2 * x);
-    case TEX_EOP_STEP: return b[k] >= a[k];
-    case TEX_EOP_CLAMP: return fmin(fmax(a[k], b[k]), c[k]);
-    case TEX_EOP_POW:
-        x = pow(a[k], b[k]);
-        return isfinite(x) ? x : 0;
-    case TEX_EOP_SIN: return sin(a[k]);
-    case TEX_EOP_COS: return cos(a[k]);
-    case TEX_EOP_FLOOR: return floor(a[k]);
-    case TEX_EOP_FRACT: return a[k] - floor(a[k]);
-    case TEX_EOP_IF: return a[k] != 0 ? b[k] : c[k];
     case TEX_EOP_PALETTE: {
         float rgba[4];
         tex_palette_lookup(in->ptr, tex_palette_t((a[0] + a[1] + a[2]) / 3, 0, 1,
                                                   TEX_OUTSIDE_CLAMP), rgba);
         return rgba[k];
     }
-    default: return (k == 0 ? a : k == 1 ? b : c)[k]; /* rgb */
+    case TEX_EOP_RGB: return (k == 0 ? a : k == 1 ? b : c)[k];
+    default: return scalar_op(in->op, a[k], n > 1 ? b[k] : 0, n > 2 ? c[k] : 0);
     }
+}
+
+int tex_expr_apply_row(enum tex_eop op, int n, const double *a, const double *b,
+                       const double *c, double *out)
+{
+#define ROW(OP)                                                                                  \
+    case OP:                                                                                     \
+        for (int i = 0; i < n; i++)                                                              \
+            out[i] = scalar_op(OP, a[i], b[i], c[i]);                                            \
+        return 0
+    switch (op) {
+    ROW(TEX_EOP_NEG); ROW(TEX_EOP_ADD); ROW(TEX_EOP_SUB); ROW(TEX_EOP_MUL); ROW(TEX_EOP_DIV);
+    ROW(TEX_EOP_MIN); ROW(TEX_EOP_MAX); ROW(TEX_EOP_ABS); ROW(TEX_EOP_LT); ROW(TEX_EOP_GT);
+    ROW(TEX_EOP_LE); ROW(TEX_EOP_GE); ROW(TEX_EOP_EQ); ROW(TEX_EOP_NE); ROW(TEX_EOP_MIX);
+    ROW(TEX_EOP_SMOOTHSTEP); ROW(TEX_EOP_STEP); ROW(TEX_EOP_CLAMP); ROW(TEX_EOP_POW);
+    ROW(TEX_EOP_SIN); ROW(TEX_EOP_COS); ROW(TEX_EOP_FLOOR); ROW(TEX_EOP_FRACT); ROW(TEX_EOP_IF);
+    default: return -1;
+    }
+#undef ROW
 }
 
 /* Emit operator op at node e (ptr: e's operand); constant operands are folded. */

@@ -103,6 +103,10 @@ struct tex_expr_binop {
     int op;
 };
 
+/* The arithmetic operators over numbers, as scenes and composed primitives
+ * write them: comparisons (1), + - (2), * / (3), codes enum tex_eop. */
+extern const struct tex_expr_binop tex_expr_arith_binops[];
+
 struct tex_expr_parser;
 struct tex_expr_lang {
     const struct tex_expr_binop *binops; /* ends with a NULL tok */
@@ -146,6 +150,13 @@ int tex_expr_arity(enum tex_eop op);
  * (as many as its arity; the others may be NULL). */
 double tex_expr_apply(const struct tex_einsn *in, int k, const double *a, const double *b,
                       const double *c);
+
+/* Scalar operator op (not CONST, LEAF, RGB or PALETTE) on rows: out[i] = op(a[i],
+ * b[i], c[i]) for i < n, with the formulas of tex_expr_apply.  Every row is read
+ * whatever the arity (pass a for the unused ones); out may be one of them.
+ * Returns -1 for an operator that is not scalar. */
+int tex_expr_apply_row(enum tex_eop op, int n, const double *a, const double *b,
+                       const double *c, double *out);
 
 /* Compile e (whose BIN codes are enum tex_eop) into the lexer's memory;
  * iterative, constants folded. */

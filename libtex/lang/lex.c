@@ -229,3 +229,20 @@ int tex_tok_is_signed(const struct tex_tok *t)
 {
     return t->kind == TEX_TOK_NUM && (t->text[0] == '-' || t->text[0] == '+');
 }
+
+const char *tex_tok_desc(const struct tex_tok *t, char *buf, size_t n)
+{
+    if (t->kind == TEX_TOK_EOF)
+        return "the end of the file";
+    snprintf(buf, n, "'%.*s'", (int)(t->len > 32 ? 32 : t->len), t->text);
+    return buf;
+}
+
+void tex_lex_expect(struct tex_lexer *lx, int c)
+{
+    char b[48];
+    if (!tex_tok_is_punct(&lx->t, c))
+        tex_lex_fail(lx, lx->t.line, lx->t.col, "expected '%c', found %s", c,
+                     tex_tok_desc(&lx->t, b, sizeof b));
+    tex_lex_next(lx);
+}

@@ -80,6 +80,12 @@ int tex_tok_is_punct(const struct tex_tok *t, int c);
 int tex_tok_is_op(const struct tex_tok *t, const char *op);
 int tex_tok_is_signed(const struct tex_tok *t);
 
+/* The token for a message: "'text'" (at most 32 characters) or "the end of
+ * the file". */
+const char *tex_tok_desc(const struct tex_tok *t, char *buf, size_t n);
+/* Take the punctuation c, or fail with "expected 'c', found ...". */
+void tex_lex_expect(struct tex_lexer *lx, int c);
+
 /* Record "file:line:col: message" as an error of the given kind and jump out. */
 void tex_lex_fail(struct tex_lexer *lx, int line, int col, const char *fmt, ...)
     __attribute__((noreturn, format(printf, 4, 5)));

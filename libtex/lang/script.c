@@ -19,6 +19,7 @@
 #include "ops/transform.h"
 #include "lang/expr.h"
 #include "lang/lex.h"
+#include "lang/proc.h"
 
 #define MAX_EVAL_DEPTH 500 /* chains of definitions */
 
@@ -87,6 +88,7 @@ struct S {
     struct cellref *cells;
     int ncells, capcells;
     int evaldepth, stdin_used;
+    struct tex_procs *procs; /* the script's composed primitives */
 };
 
 static void *arena(struct S *s, size_t n)
@@ -584,6 +586,33 @@ static int is_tess(struct S *s)
 
 /* The header: tessellation NAME; size; tessellation KIND; cell; background.  Checks that the
  * size fits the pixel limit and the cell fits the size (a missing cell is the whole size). */
+static int err_pos(struct S *s, int line, int col);
+
+static struct tex_procs *script_procs(struct S *s)
+{
+    if (!s->procs && !(s->procs = tex_procs_new()))
+        longjmp(s->fail, 1);
+    return s->procs;
+}
+
+/* primitives "FILE": composed primitives from a definitions file. */
+static void read_procs(struct S *s, int line, int col)
+{
+    char path[4096];
+    if (s->lx.t.kind != TEX_TOK_STR || s->lx.t.len >= sizeof path)
+        fail_at(s, s->lx.t.line, s->lx.t.col, "expected a file name in quotes, found %s",
+                tok_desc(s));
+    if (!s->o->allow_files)
+        fail_at(s, line, col, "reading files is not allowed here");
+    memcpy(path, s->lx.t.text, s->lx.t.len);
+    path[s->lx.t.len] = 0;
+    if (tex_procs_read(script_procs(s), path) < 0) {
+        err_pos(s, line, col);
+        longjmp(s->fail, 1);
+    }
+    next(s);
+}
+
 static void parse_header(struct S *s)
 {
     for (;;) {
@@ -604,6 +633,11 @@ static void parse_header(struct S *s)
             size_pair(s, &s->cw, &s->ch, "the cell size");
         } else if (accept_word(s, "background")) {
             colour(s, s->bg);
+        } else if (accept_word(s, "primitive")) {
+            tex_procs_define(script_procs(s), &s->lx); /* takes its ';' */
+            continue;
+        } else if (accept_word(s, "primitives")) {
+            read_procs(s, line, col);
         } else
             break;
         expect_punct(s, ';');
@@ -827,7 +861,7 @@ static int eval_def(struct S *s, const struct node *ref, struct val *out)
 
 static int eval_prim(struct S *s, const struct node *n, struct val *out)
 {
-    const struct tex_primitive *p = tex_primitive_find(n->s);
+    const struct tex_primitive *p = tex_procs_find(s->procs, n->s);
     struct tex_field *f;
     int w = n->w ? n->w : s->cw, h = n->h ? n->h : s->ch;
     tex_map *m = NULL;
@@ -1327,6 +1361,7 @@ tex_map *tex_script_run(const char *text, size_t len, const char *name,
     free(s->defs);
     free(s->refs);
     free(s->cells);
+    tex_procs_free(s->procs); /* after every field made from it */
     while (s->arena) {
         struct chunk *c = s->arena;
         s->arena = c->next;

@@ -22,6 +22,7 @@
 #include "render/render_ct.h"
 #include "lang/expr.h"
 #include "lang/lex.h"
+#include "lang/proc.h"
 
 
 #define MAX_NEST 64
@@ -500,6 +501,26 @@ static void texture_field(struct parser *ps, struct tex_texture *tx,
     }
 }
 
+/* 'primitive NAME(...) = EXPR', a composed primitive (lang/proc.h), or
+ * 'primitives "FILE"', a file of them: named by later textures. */
+static void parse_primitive(struct parser *ps, const struct tok *kt)
+{
+    if (!ps->s->procs && !(ps->s->procs = tex_procs_new()))
+        fail_at(ps, kt, 1, "out of memory");
+    if (is_word(kt, "primitive")) {
+        tex_procs_define(ps->s->procs, &ps->lx);
+        sync(ps);
+        return;
+    }
+    struct tok ft = ps->t;
+    if (ft.kind != T_STR)
+        FAIL(ps, "expected a file name in quotes after 'primitives'");
+    char *path = pstrdup(ps, ft.text, ft.len);
+    if (tex_procs_read(ps->s->procs, path) < 0)
+        fail_at(ps, &ft, tex_errkind() == TEX_ERR_RUNTIME, "%s", tex_errmsg());
+    next(ps);
+}
+
 static void parse_texture(struct parser *ps)
 {
     struct tok at = ps->t;
@@ -520,7 +541,7 @@ static void parse_texture(struct parser *ps)
     }
     struct tok pt = ps->t;
     char *pname = word(ps, "'file' or a primitive name");
-    const struct tex_primitive *prim = tex_primitive_find(pname);
+    const struct tex_primitive *prim = tex_procs_find(ps->s->procs, pname);
     if (!prim)
         fail_at(ps, &pt, 0, "%s", tex_errmsg());
     if (!(tx->field = tex_field_new(prim)))
@@ -604,12 +625,7 @@ static struct tex_enode *operand(struct tex_expr_parser *xp)
 /* An application function, compiled for the renderer. */
 static struct tex_expr *expr(struct parser *ps)
 {
-    static const struct tex_expr_binop ops[] = {
-        {"<", 1, TEX_EOP_LT}, {">", 1, TEX_EOP_GT}, {"<=", 1, TEX_EOP_LE},
-        {">=", 1, TEX_EOP_GE}, {"==", 1, TEX_EOP_EQ}, {"!=", 1, TEX_EOP_NE},
-        {"+", 2, TEX_EOP_ADD}, {"-", 2, TEX_EOP_SUB}, {"*", 3, TEX_EOP_MUL},
-        {"/", 3, TEX_EOP_DIV}, {NULL, 0, 0}};
-    static const struct tex_expr_lang lang = {ops, operand};
+    static const struct tex_expr_lang lang = {tex_expr_arith_binops, operand};
     struct tex_expr_parser xp = {&ps->lx, &lang, ps, 0, 0};
     struct tex_expr *x = tex_expr_compile(&ps->lx, tex_expr_parse(&xp));
     sync(ps);
@@ -1588,6 +1604,8 @@ static void parse_scene(struct parser *ps)
             parse_light(ps);
         } else if (is_word(&kt, "texture")) {
             parse_texture(ps);
+        } else if (is_word(&kt, "primitive") || is_word(&kt, "primitives")) {
+            parse_primitive(ps, &kt);
         } else if (is_word(&kt, "surface")) {
             parse_surface(ps);
         } else if (is_word(&kt, "environment")) {
@@ -1700,6 +1718,7 @@ void tex_scene_free(struct tex_scene *s)
     free(s->palettes);
     free(s->objects);
     tex_bvh_free(s->bvh);
+    tex_procs_free(s->procs); /* after the textures' fields */
     for (size_t i = 0; i < s->npool; i++)
         free(s->pool[i]);
     free(s->pool);

@@ -502,8 +502,10 @@ struct tex_environment {
     tex_xform to_map;         /* world directions into the map's frame */
 };
 
+struct tex_procs;
 struct tex_scene {
     char *file;
+    struct tex_procs *procs; /* composed primitives (lang/proc.h), or NULL */
     tex_v3 eye, look, up;
     double fov;                 /* horizontal, degrees */
     struct tex_settings settings;
