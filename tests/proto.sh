@@ -58,7 +58,11 @@ times.sort()
 say(times[4] < 0.5, "a 256x256 preview comes back quickly (median %.0f ms)" % (1000 * times[4]))
 
 # save, then the command line in a shell gives the same bytes
-q = base + [("p", "frequency:5"), ("step", "palette:marble"), ("step", "blur:1.5"), ("size", "200")]
+q = base + [("p", "frequency:5"), ("step", "filter:median:2"), ("step", "palette:marble"),
+            ("step", "blur:1.5"), ("step", "filter:emboss:2"), ("size", "200")]
+for bad in ["filter:frob:1", "filter:median", "filter:smooth:2"]:
+    s, b = get("/api/preview", base + [("step", bad)])
+    say(s == 400, "a bad filter step is refused: " + bad, (s, b[:80]))
 s, b = get("/api/save", q + [("kind", "map"), ("name", "saved.png")])
 say(s == 200 and os.path.exists(os.path.join(work, "saved.png")), "a map is saved in the working folder", b)
 s, cmd = get("/api/cmdline", q + [("map", "shell.png")])

@@ -335,6 +335,23 @@ static int step(struct pipeline *pl, const char *spec, int size)
                arg(pl, "-");
     if (!strcmp(w[0], "invert") && n == 1)
         return stage(pl, "t_remap") | arg(pl, "--invert") | arg(pl, "-");
+    if (!strcmp(w[0], "filter") && n >= 2 && n <= 3) { /* filter:OP[:X], X its one parameter */
+        static const char *const ops[][2] = {
+            {"blur", "sigma"},      {"sharpen", "sigma"},      {"box", "radius"},
+            {"median", "radius"},   {"sobel", "strength"},     {"edges", "strength"},
+            {"emboss", "strength"}, {"normal", "strength"},    {"noise", "stddev"},
+            {"smooth", NULL},       {"gradient", NULL}};
+        for (size_t k = 0; k < sizeof ops / sizeof *ops; k++)
+            if (!strcmp(w[1], ops[k][0])) {
+                if ((n == 3) != (ops[k][1] != NULL))
+                    return fail(pl, "filter %s takes %s", ops[k][0],
+                                ops[k][1] ? "one value" : "no value");
+                return stage(pl, "t_filter") | arg(pl, word(pl, "%s", w[1])) |
+                       (n == 3 ? arg(pl, word(pl, "--%s=%s", ops[k][1], w[2])) : 0) |
+                       arg(pl, "-");
+            }
+        return fail(pl, "unknown filter '%.40s'", w[1]);
+    }
     if (!strcmp(w[0], "blur") && n == 2)
         return stage(pl, "t_filter") | arg(pl, "blur") | arg(pl, word(pl, "--sigma=%s", w[1])) |
                arg(pl, "-");
