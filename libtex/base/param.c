@@ -221,21 +221,29 @@ int tex_param_same_name(const char *a, const char *b)
 }
 
 /* Does the space-separated list have the long name? */
+const char *tex_param_list_next(const char **list, char *word, size_t n)
+{
+    while (*list && **list) {
+        size_t k = strcspn(*list, " ");
+        const char *at = *list;
+        *list += k;
+        *list += strspn(*list, " ");
+        if (k < n) {
+            memcpy(word, at, k);
+            word[k] = '\0';
+            return word;
+        }
+    }
+    return NULL;
+}
+
 static int listed(const char *list, const char *name)
 {
     char word[128];
 
-    while (list && *list) {
-        size_t n = strcspn(list, " ");
-        if (n < sizeof word && list[0] != '-') {
-            memcpy(word, list, n);
-            word[n] = '\0';
-            if (tex_param_same_name(word, name))
-                return 1;
-        }
-        list += n;
-        list += strspn(list, " ");
-    }
+    while (tex_param_list_next(&list, word, sizeof word))
+        if (word[0] != '-' && tex_param_same_name(word, name))
+            return 1;
     return 0;
 }
 

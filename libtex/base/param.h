@@ -159,6 +159,9 @@ const struct tex_param *tex_param_find(const struct tex_param *t, const char *na
 /* Are old names refused instead of warned about?  TEXTURA_DEPRECATED=error says
  * so, for checking that scripts use the current names. */
 int tex_param_deprecated_is_error(void);
+/* The next word of a row's space-separated name list (.alias, .old) into word,
+ * advancing *list; NULL at the end.  Words longer than n are skipped. */
+const char *tex_param_list_next(const char **list, char *word, size_t n);
 /* Do two names match as tex_param_find matches them ('-' or '_', UK or US)? */
 int tex_param_same_name(const char *a, const char *b);
 /* name in US spelling with '-' for '_' ("colour1" -> "color1"), into buf. */

@@ -343,19 +343,11 @@ static void add_list(struct tables *tb, const struct opt *o, int i, const char *
 {
     char word[48];
 
-    while (list && *list) {
-        size_t n = strcspn(list, " ");
-        if (n < sizeof word) {
-            memcpy(word, list, n);
-            word[n] = '\0';
-            if (word[0] == '-' && word[1] && !word[2])
-                add_short(tb, o, i, word[1], old);
-            else
-                add_name(tb, o, i, word, old);
-        }
-        list += n;
-        list += strspn(list, " ");
-    }
+    while (tex_param_list_next(&list, word, sizeof word))
+        if (word[0] == '-' && word[1] && !word[2])
+            add_short(tb, o, i, word[1], old);
+        else
+            add_name(tb, o, i, word, old);
 }
 
 /* getopt's tables for the n options o, then --help, --version, --help-mdoc and
