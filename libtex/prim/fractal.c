@@ -114,33 +114,39 @@ static void turb_fini(struct tex_field *f)
     free(s);
 }
 
-/* Turbulence at a point, from its octaves and amplitudes */
-static float turb_sum(const struct turb_state *s, double u, double v, double w)
+/* Turbulence at n points (w NULL: 0), octave by octave: per point the sum
+ * of amp_k |n_k| in octave order, rescaled and clamped. */
+static void turb_points(const struct turb_state *s, int n, const double *u, const double *v,
+                        const double *w, float *out)
 {
-    float acc = 0;
+    enum { B = TEX_POINTS_BATCH };
+    double r[B];
+    float acc[B];
 
-    for (int k = 0; k < s->o.n; k++)
-        acc += s->amp[k] * fabsf((float)tex_octave_point(&s->o, k, u, v, w));
-    return clamp01(acc * s->inv);
-}
-
-static float turb_point(const struct tex_field *f, double u, double v, double w)
-{
-    return turb_sum(f->state, u, v, w);
-}
-
-static void turb_eval2(const struct tex_field *f, int n, const double *u, const double *v,
-                       float *out)
-{
-    for (int i = 0; i < n; i++)
-        out[i] = turb_point(f, u[i], v[i], 0);
+    for (int i0 = 0; i0 < n; i0 += B) {
+        int m = n - i0 < B ? n - i0 : B;
+        for (int i = 0; i < m; i++)
+            acc[i] = 0;
+        for (int k = 0; k < s->o.n; k++) {
+            tex_octave_points(&s->o, k, m, u + i0, v + i0, w ? w + i0 : NULL, r);
+            for (int i = 0; i < m; i++)
+                acc[i] += s->amp[k] * fabsf((float)r[i]);
+        }
+        for (int i = 0; i < m; i++)
+            out[i0 + i] = clamp01(acc[i] * s->inv);
+    }
 }
 
 static void turb_eval3(const struct tex_field *f, int n, const double *u, const double *v,
                        const double *w, float *out)
 {
-    for (int i = 0; i < n; i++)
-        out[i] = turb_point(f, u[i], v[i], w[i]);
+    turb_points(f->state, n, u, v, w, out);
+}
+
+static void turb_eval2(const struct tex_field *f, int n, const double *u, const double *v,
+                       float *out)
+{
+    turb_eval3(f, n, u, v, NULL, out);
 }
 
 static void turb_row(const struct tex_field *f, int y, float *out)
@@ -228,36 +234,46 @@ static void wood_fini(struct tex_field *f)
 
 /* The distance r from the axis, perturbed by turbulence and counted in rings, modulo 1: a
  * sawtooth from early to late wood that a palette colours; grain mixes in noise stretched
- * 32 times along the axis. */
-static float wood_point(const struct tex_field *f, double u, double v, double w)
+ * 32 times along the axis.  Points go in batches: the turbulence and the grain's noise
+ * through the vectorised point path. */
+static void wood_eval3(const struct tex_field *f, int n, const double *u, const double *v,
+                       const double *w, float *out)
 {
+    enum { B = TEX_POINTS_BATCH };
     const struct wood_params *p = f->params;
     const struct wood_state *s = f->state;
-    double x = u - 0.5 - p->offset, y = v - 0.5, z = w - 0.5;
-    double ya = y * s->c - z * s->s, za = y * s->s + z * s->c; /* the axis runs along za */
-    double r = sqrt(x * x + ya * ya);
-    float t = p->amount > 0 ? turb_sum(&s->turb, u, v, w) : 0;
-    double ring = (r + p->amount * t) * p->rings;
-    double val = ring - floor(ring);
-    if (p->grain > 0) {
-        double g = 0.5 + 0.5 * tex_noise3(&s->grain, 64 * x, 64 * ya, 2 * za);
-        val = (1 - p->grain) * val + p->grain * g;
+    double W[B], gx[B], gy[B], gz[B], g[B];
+    float t[B];
+
+    for (int i0 = 0; i0 < n; i0 += B) {
+        int m = n - i0 < B ? n - i0 : B;
+        for (int i = 0; i < m; i++)
+            W[i] = w ? w[i0 + i] : 0.5;
+        if (p->amount > 0)
+            turb_points(&s->turb, m, u + i0, v + i0, W, t);
+        for (int i = 0; i < m; i++) {
+            double x = u[i0 + i] - 0.5 - p->offset, y = v[i0 + i] - 0.5, z = W[i] - 0.5;
+            double ya = y * s->c - z * s->s, za = y * s->s + z * s->c; /* the axis: za */
+            double r = sqrt(x * x + ya * ya);
+            double ring = (r + p->amount * (p->amount > 0 ? t[i] : 0)) * p->rings;
+            gx[i] = 64 * x, gy[i] = 64 * ya, gz[i] = 2 * za;
+            g[i] = ring - floor(ring); /* the value until the grain is mixed in */
+        }
+        if (p->grain > 0) {
+            double gn[B];
+            tex_noise_points(&s->grain, s->grain.period, 3, m, gx, gy, gz, NULL, gn);
+            for (int i = 0; i < m; i++)
+                g[i] = (1 - p->grain) * g[i] + p->grain * (0.5 + 0.5 * gn[i]);
+        }
+        for (int i = 0; i < m; i++)
+            out[i0 + i] = clamp01((float)g[i]);
     }
-    return clamp01((float)val);
 }
 
 static void wood_eval2(const struct tex_field *f, int n, const double *u, const double *v,
                        float *out)
 {
-    for (int i = 0; i < n; i++)
-        out[i] = wood_point(f, u[i], v[i], 0.5);
-}
-
-static void wood_eval3(const struct tex_field *f, int n, const double *u, const double *v,
-                       const double *w, float *out)
-{
-    for (int i = 0; i < n; i++)
-        out[i] = wood_point(f, u[i], v[i], w[i]);
+    wood_eval3(f, n, u, v, NULL, out);
 }
 
 const struct tex_primitive tex_prim_wood = {
@@ -692,18 +708,37 @@ static float frac_point(const struct tex_field *f, double u, double v, double w)
     }
 }
 
-static void frac_eval2(const struct tex_field *f, int n, const double *u, const double *v,
-                       float *out)
-{
-    for (int i = 0; i < n; i++)
-        out[i] = frac_point(f, u[i], v[i], 0);
-}
-
+/* frac_point over many points (w NULL: 0); the octave sums octave by octave. */
 static void frac_eval3(const struct tex_field *f, int n, const double *u, const double *v,
                        const double *w, float *out)
 {
-    for (int i = 0; i < n; i++)
-        out[i] = frac_point(f, u[i], v[i], w[i]);
+    enum { B = TEX_POINTS_BATCH / 4 };
+    const struct frac_params *p = f->params;
+    const struct frac_state *s = f->state;
+    double r[B];
+    float nk[B][TEX_OCTAVES_MAX];
+
+    if (s->mode > HYBRID) {
+        for (int i = 0; i < n; i++)
+            out[i] = frac_point(f, u[i], v[i], w ? w[i] : 0);
+        return;
+    }
+    for (int i0 = 0; i0 < n; i0 += B) {
+        int m = n - i0 < B ? n - i0 : B;
+        for (int k = 0; k < s->o.n; k++) {
+            tex_octave_points(&s->o, k, m, u + i0, v + i0, w ? w + i0 : NULL, r);
+            for (int i = 0; i < m; i++)
+                nk[i][k] = (float)r[i];
+        }
+        for (int i = 0; i < m; i++)
+            out[i0 + i] = combine(s, p, nk[i]);
+    }
+}
+
+static void frac_eval2(const struct tex_field *f, int n, const double *u, const double *v,
+                       float *out)
+{
+    frac_eval3(f, n, u, v, NULL, out);
 }
 
 /* Ridged and hybrid over a row, octave by octave: on each pixel the
