@@ -33,7 +33,7 @@ static inline float clamp01(float x)
 
 struct turb_params {
     double frequency, lacunarity, gain, z;
-    int octaves;
+    int octaves, band_limit;
     struct tex_reals w, offset;
     int fade, gradients;
     int frames, frame;
@@ -47,6 +47,9 @@ static const struct tex_param turb_rows[] = {
     TEX_REAL(struct turb_params, lacunarity, 'l', 2, 1, 16, "L",
              "frequency ratio between octaves (whole with --tile)"),
     TEX_REAL(struct turb_params, gain, 'g', 0.5, 0, 1, "G", "amplitude ratio between octaves"),
+    TEX_FLAG(struct turb_params, band_limit, 0,
+             "fade octaves finer than a pixel to their mean (Perlin's filtered turbulence): "
+             "no aliasing, and faster; maps only, solid textures in t_apply keep every octave"),
     TEX_NOISE_ROWS(struct turb_params),
     TEX_NOISE_W_ROW(struct turb_params),
     TEX_NOISE_LOOP_ROWS(struct turb_params),
@@ -55,18 +58,41 @@ static const struct tex_param turb_rows[] = {
 struct turb_state {
     tex_octaves o;
     float amp[TEX_OCTAVES_MAX], inv;
+    int active;  /* octaves the rows sum: all, or those the band limit leaves */
+    float fill;  /* what the faded octaves add: their amplitudes' share of the mean */
 };
 
-/* A row of octaves summed into out (w samples): the first octave sets the sum
- * (no clearing pass), the last finishes it (rescale and clamp); a lone octave
- * adds its finish to a cleared row. */
-static void octave_sum_row(const tex_octaves *o, int y, int w, int first, int mid, int last,
-                           const float *amp, float inv, float *out)
+/* A row of octaves 0..n-1 summed into out (w samples): the first octave sets the
+ * sum (no clearing pass), the last finishes it (rescale and clamp); a lone octave
+ * adds its finish to a cleared row.  With fill, the row starts at fill instead. */
+static void octave_sum_row(const tex_octaves *o, int n, int y, int w, int first, int mid,
+                           int last, const float *amp, float inv, float fill, float *out)
 {
-    if (o->n == 1)
-        memset(out, 0, w * sizeof *out);
-    for (int k = 0; k < o->n; k++)
-        tex_octave_row_op(o, k, y, k == o->n - 1 ? last : k == 0 ? first : mid, amp[k], inv, out);
+    if (n == 1 || fill != 0)
+        for (int x = 0; x < w; x++)
+            out[x] = fill;
+    if (fill != 0)
+        first = mid;
+    for (int k = 0; k < n; k++)
+        tex_octave_row_op(o, k, y, k == n - 1 ? last : k == 0 ? first : mid, amp[k], inv, out);
+}
+
+/* The band limit on the amplitudes: each octave weighted, the faded share of
+ * the mean (0 for signed noise) gathered in fill, the silent octaves dropped. */
+static void band_limit(const tex_octaves *o, float *amp, double mean, int *active, float *fill)
+{
+    double c = 0;
+    *active = 0;
+    for (int k = 0; k < o->n; k++) {
+        double wk = tex_octave_band_weight(o, k);
+        c += amp[k] * (1 - wk) * mean;
+        amp[k] = (float)(amp[k] * wk);
+        if (wk > 0)
+            *active = k + 1;
+    }
+    if (*active == 0) /* the first octave always stays, however faint */
+        *active = 1;
+    *fill = (float)c;
 }
 
 static void offsets(const struct tex_reals *r, double off[3])
@@ -85,6 +111,8 @@ static void turb_amplitudes(struct turb_state *s, double gain, int octaves)
         sum += s->amp[k];
     }
     s->inv = (float)(1.0 / sum);
+    s->active = octaves;
+    s->fill = 0;
 }
 
 static int turb_init(struct tex_field *f)
@@ -100,10 +128,13 @@ static int turb_init(struct tex_field *f)
     turb_amplitudes(s, p->gain, p->octaves);
     double z = p->z, w = p->w.n ? p->w.v[0] : 0;
     int dims = p->w.n ? 4 : 3;
-    if (tex_noise_loop(p->frames, p->frame, p->loop_radius, &z, &w, &dims) < 0)
+    if (tex_noise_loop(p->frames, p->frame, p->loop_radius, &z, &w, &dims) < 0 ||
+        tex_octaves_init(&s->o, f->seed, p->gradients, p->fade, p->octaves, p->frequency,
+                         p->lacunarity, off, z, w, dims, f->tile, f->w, f->h) < 0)
         return -1;
-    return tex_octaves_init(&s->o, f->seed, p->gradients, p->fade, p->octaves, p->frequency,
-                            p->lacunarity, off, z, w, dims, f->tile, f->w, f->h);
+    if (p->band_limit)
+        band_limit(&s->o, s->amp, tex_noise_mean_abs(&s->o.t), &s->active, &s->fill);
+    return 0;
 }
 
 static void turb_fini(struct tex_field *f)
@@ -126,8 +157,8 @@ static void turb_points(const struct turb_state *s, int n, const double *u, cons
     for (int i0 = 0; i0 < n; i0 += B) {
         int m = n - i0 < B ? n - i0 : B;
         for (int i = 0; i < m; i++)
-            acc[i] = 0;
-        for (int k = 0; k < s->o.n; k++) {
+            acc[i] = s->fill;
+        for (int k = 0; k < s->active; k++) {
             tex_octave_points(&s->o, k, m, u + i0, v + i0, w ? w + i0 : NULL, r);
             for (int i = 0; i < m; i++)
                 acc[i] += s->amp[k] * fabsf((float)r[i]);
@@ -154,8 +185,8 @@ static void turb_row(const struct tex_field *f, int y, float *out)
     const struct turb_state *s = f->state;
 
     /* a |n| is never -0: the same as 0 + a |n| */
-    octave_sum_row(&s->o, y, f->w, TEX_ROW_MUL_ABS, TEX_ROW_ADD_ABS, TEX_ROW_ADD_ABS_CLAMP, s->amp,
-                   s->inv, out);
+    octave_sum_row(&s->o, s->active, y, f->w, TEX_ROW_MUL_ABS, TEX_ROW_ADD_ABS,
+                   TEX_ROW_ADD_ABS_CLAMP, s->amp, s->inv, s->fill, out);
 }
 
 const struct tex_primitive tex_prim_turbulence = {
@@ -304,6 +335,7 @@ struct frac_params {
     double zoom;
     int iterations, depth, koch;
     double line_width;
+    int band_limit;
 };
 
 /* The modes each row applies to: bit k for mode k of the enum above. */
@@ -330,6 +362,10 @@ static const struct tex_param frac_rows[] = {
     TEX_REAL(struct frac_params, mf_offset, 0, 1, 0, 4, "O",
              "ridged, hybrid: Musgrave's offset (try 0.7 for hybrid)",
              .kinds = IN(RIDGED) | IN(HYBRID)),
+    TEX_FLAG(struct frac_params, band_limit, 0,
+             "fbm: fade octaves finer than a pixel out (Perlin's filtered fBm): no aliasing, "
+             "and faster; maps only, solid textures in t_apply keep every octave",
+             .kinds = IN(FBM)),
     TEX_NOISE_ROWS(struct frac_params, .kinds = NOISY),
     TEX_NOISE_W_ROW(struct frac_params, .kinds = NOISY),
     TEX_NOISE_LOOP_ROWS(struct frac_params, .kinds = NOISY),
@@ -355,6 +391,7 @@ struct frac_state {
     int mode;
     float amp[TEX_OCTAVES_MAX];
     float inv, lo, hi; /* rescaling to [0,1] */
+    int active;        /* fbm: octaves the rows sum (the band limit drops the rest) */
     float *mp;         /* midpoint: the displaced grid, mw x mh */
     int mw, mh;
 };
@@ -654,8 +691,15 @@ static int frac_init(struct tex_field *f)
     int dims = p->w.n ? 4 : 3;
     if (tex_noise_loop(p->frames, p->frame, p->loop_radius, &z, &w, &dims) < 0)
         return -1;
-    return tex_octaves_init(&s->o, f->seed, p->gradients, p->fade, p->octaves, p->frequency,
-                            p->lacunarity, off, z, w, dims, f->tile, f->w, f->h);
+    s->active = p->octaves;
+    if (tex_octaves_init(&s->o, f->seed, p->gradients, p->fade, p->octaves, p->frequency,
+                         p->lacunarity, off, z, w, dims, f->tile, f->w, f->h) < 0)
+        return -1;
+    if (p->band_limit) {
+        float fill;
+        band_limit(&s->o, s->amp, 0, &s->active, &fill); /* signed noise: the mean is 0 */
+    }
+    return 0;
 }
 
 static void frac_fini(struct tex_field *f)
@@ -841,8 +885,8 @@ static void frac_row(const struct tex_field *f, int y, float *out)
     if (s->mode == FBM) {
         /* a n instead of 0 + a n: only the sign of a zero differs, and
          * 0.5 + 0.5 x erases it */
-        octave_sum_row(&s->o, y, f->w, TEX_ROW_MUL, TEX_ROW_ADD, TEX_ROW_ADD_UNIT, s->amp, s->inv,
-                       out);
+        octave_sum_row(&s->o, s->active, y, f->w, TEX_ROW_MUL, TEX_ROW_ADD, TEX_ROW_ADD_UNIT,
+                       s->amp, s->inv, 0, out);
         return;
     }
     n = s->mode <= HYBRID ? malloc(2 * (size_t)f->w * sizeof *n) : NULL;

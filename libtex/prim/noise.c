@@ -1325,6 +1325,36 @@ void tex_octave_points(const tex_octaves *o, int k, int n, const double *u, cons
     }
 }
 
+double tex_octave_band_weight(const tex_octaves *o, int k)
+{
+    double fw, t;
+
+    if (!o->grid)
+        return 1;
+    fw = o->g[k].fy; /* lattice cells per pixel */
+    t = fw <= 0.2 ? 0 : fw >= 0.6 ? 1 : (fw - 0.2) / 0.4;
+    return 1 - t * t * (3 - 2 * t);
+}
+
+double tex_noise_mean_abs(const tex_noise_table *t)
+{
+    enum { N = 16 };
+    double x[N * N], y[N * N], z[N * N], r[N * N], sum = 0;
+
+    /* a fixed jittered lattice over 16^3 cells: the same mean for the same table */
+    for (int k = 0; k < N; k++) {
+        for (int i = 0; i < N * N; i++) {
+            x[i] = (i % N) + 0.5 + 0.37 * sin(i * 1.7 + k);
+            y[i] = (double)(i / N) + 0.5 + 0.37 * sin(i * 2.3 + 2 * k);
+            z[i] = k + 0.5 + 0.37 * sin(i * 0.9 + 3 * k);
+        }
+        tex_noise_points(t, 0, 3, N * N, x, y, z, NULL, r);
+        for (int i = 0; i < N * N; i++)
+            sum += fabs(r[i]);
+    }
+    return sum / (N * N * N);
+}
+
 void tex_octave_row(const tex_octaves *o, int k, int y, float *out)
 {
     tex_noise_grid_row(&o->g[k], y, out);

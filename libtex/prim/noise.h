@@ -176,6 +176,12 @@ double tex_octave_point(const tex_octaves *o, int k, double u, double v, double 
 #define TEX_POINTS_BATCH 256
 void tex_octave_points(const tex_octaves *o, int k, int n, const double *u, const double *v,
                        const double *w, double *out);
+/* Perlin's band limit (filtered fBm, as RenderMan's): octave k's weight on a grid,
+ * 1 - smoothstep(0.2, 0.6, fw) for pixels fw lattice cells wide; 1 off a grid.
+ * Octaves fade out as their cells shrink towards a pixel, instead of aliasing. */
+double tex_octave_band_weight(const tex_octaves *o, int k);
+/* The mean of |noise| (what a faded octave of |noise| is replaced with). */
+double tex_noise_mean_abs(const tex_noise_table *t);
 /* Signed noise of octave k over row y of the grid. */
 void tex_octave_row(const tex_octaves *o, int k, int y, float *out);
 void tex_octave_row_add(const tex_octaves *o, int k, int y, float amp, float *out);
