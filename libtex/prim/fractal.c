@@ -145,27 +145,13 @@ static void turb_fini(struct tex_field *f)
     free(s);
 }
 
-/* Turbulence at n points (w NULL: 0), octave by octave: per point the sum
- * of amp_k |n_k| in octave order, rescaled and clamped. */
+/* Turbulence at n points (w NULL: 0): the octaves' sum rescaled and clamped. */
 static void turb_points(const struct turb_state *s, int n, const double *u, const double *v,
                         const double *w, float *out)
 {
-    enum { B = TEX_POINTS_BATCH };
-    double r[B];
-    float acc[B];
-
-    for (int i0 = 0; i0 < n; i0 += B) {
-        int m = n - i0 < B ? n - i0 : B;
-        for (int i = 0; i < m; i++)
-            acc[i] = s->fill;
-        for (int k = 0; k < s->active; k++) {
-            tex_octave_points(&s->o, k, m, u + i0, v + i0, w ? w + i0 : NULL, r);
-            for (int i = 0; i < m; i++)
-                acc[i] += s->amp[k] * fabsf((float)r[i]);
-        }
-        for (int i = 0; i < m; i++)
-            out[i0 + i] = clamp01(acc[i] * s->inv);
-    }
+    tex_octave_abs_sum(&s->o, s->active, s->amp, s->fill, n, u, v, w, out);
+    for (int i = 0; i < n; i++)
+        out[i] = clamp01(out[i] * s->inv);
 }
 
 static void turb_eval3(const struct tex_field *f, int n, const double *u, const double *v,

@@ -1325,6 +1325,24 @@ void tex_octave_points(const tex_octaves *o, int k, int n, const double *u, cons
     }
 }
 
+void tex_octave_abs_sum(const tex_octaves *o, int octaves, const float *amp, float start, int n,
+                        const double *u, const double *v, const double *w, float *out)
+{
+    enum { B = TEX_POINTS_BATCH };
+    double r[B];
+
+    for (int i0 = 0; i0 < n; i0 += B) {
+        int m = n - i0 < B ? n - i0 : B;
+        for (int i = 0; i < m; i++)
+            out[i0 + i] = start;
+        for (int k = 0; k < octaves; k++) {
+            tex_octave_points(o, k, m, u + i0, v + i0, w ? w + i0 : NULL, r);
+            for (int i = 0; i < m; i++)
+                out[i0 + i] += amp[k] * fabsf((float)r[i]);
+        }
+    }
+}
+
 double tex_octave_band_weight(const tex_octaves *o, int k)
 {
     double fw, t;

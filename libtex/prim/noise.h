@@ -176,6 +176,10 @@ double tex_octave_point(const tex_octaves *o, int k, double u, double v, double 
 #define TEX_POINTS_BATCH 256
 void tex_octave_points(const tex_octaves *o, int k, int n, const double *u, const double *v,
                        const double *w, double *out);
+/* Turbulence's sum at n points: start + sum over k < octaves of amp[k] |octave k|,
+ * in float, octave by octave. */
+void tex_octave_abs_sum(const tex_octaves *o, int octaves, const float *amp, float start, int n,
+                        const double *u, const double *v, const double *w, float *out);
 /* Perlin's band limit (filtered fBm, as RenderMan's): octave k's weight on a grid,
  * 1 - smoothstep(0.2, 0.6, fw) for pixels fw lattice cells wide; 1 off a grid.
  * Octaves fade out as their cells shrink towards a pixel, instead of aliasing. */

@@ -433,7 +433,9 @@ int main(void)
                   {&tex_prim_fractal, {"octaves", "7"}},
                   {&tex_prim_fractal, {"mode", "ridged", "octaves", "5"}},
                   {&tex_prim_fractal, {"mode", "hybrid", "octaves", "5"}},
-                  {&tex_prim_wood, {"grain", "0.4"}}};
+                  {&tex_prim_wood, {"grain", "0.4"}},
+                  {&tex_prim_perturb, {"octaves", "5"}},
+                  {&tex_prim_colorvar, {"noise", "0.7"}}};
         for (size_t k = 0; k < sizeof pp / sizeof pp[0]; k++) {
             struct tex_field *f = tex_field_new(pp[k].p);
             int diff = 0;
