@@ -81,7 +81,7 @@ typedef struct tex_noise_table {
     int *perm;   /* F, stored twice (2n entries) so that F[a + b] needs no mod */
     float (*grad)[4];  /* n unit vectors on the sphere (w = 0) */
     float (*grad4)[4]; /* n unit vectors on the 4D sphere */
-    float (*pgrad)[4]; /* grad[perm[m]] for m < 2n: the last hash step and its gradient in one */
+    double (*pgrad)[4]; /* grad[perm[m]] for m < 2n: the last hash step and its gradient in one */
 } tex_noise_table;
 
 int tex_noise_init(tex_noise_table *t, uint64_t seed, int n, int period);
