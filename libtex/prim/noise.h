@@ -15,6 +15,12 @@
  *   tex_noise_table t;
  *   tex_noise_init(&t, seed, 256, 0);       // n = 256, not periodic
  *   double s = tex_noise3(&t, x, y, z);      // signed, double precision
+ *   tex_noise_points(&t, 0, 3, n, x, y, z, NULL, out); // n points at once
+ *
+ * Many points at once (the solid textures at a packet's hit points) go four
+ * at a time through an AVX2 kernel that performs noise_point's double
+ * operations in their order, so its values are tex_noise3p's bit for bit;
+ * the primitives' eval2/eval3 batch their octaves through it.
  *
  * With period p > 0 (t.period, or the p argument of the *p variants) the
  * lattice wraps every p cells along x and y, so a field sampled over
