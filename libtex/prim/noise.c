@@ -1329,6 +1329,7 @@ void tex_octave_points(const tex_octaves *o, int k, int n, const double *u, cons
 
     for (int i0 = 0; i0 < n; i0 += B) {
         int m = n - i0 < B ? n - i0 : B;
+#pragma omp simd
         for (int i = 0; i < m; i++) { /* tex_octave_point's coordinates */
             X[i] = o->off[k][0] + f * u[i0 + i];
             Y[i] = o->off[k][1] + f * v[i0 + i];
@@ -1514,7 +1515,8 @@ static void noise_eval3(const struct tex_field *f, int n, const double *u, const
 
     for (int i0 = 0; i0 < n; i0 += B) {
         int m = n - i0 < B ? n - i0 : B;
-        for (int i = 0; i < m; i++) { /* noise_at's coordinates */
+#pragma omp simd
+        for (int i = 0; i < m; i++) { /* lattice coordinates: offset + frequency x point */
             X[i] = s->off[0] + fr * u[i0 + i];
             Y[i] = s->off[1] + fr * v[i0 + i];
             Z[i] = s->off[2] + fr * (w ? w[i0 + i] : 0);
