@@ -77,6 +77,54 @@ int tex_geometry_region(const struct tex_field *f, double u, double v)
             out[i] = (float)name##_id(p, k, cell(u[i], p->nu), 1.0 - cell(v[i], p->nv));           \
     }
 
+/* box2 (prim.h): the one region of a box of points, or 0 when unsure.
+ *
+ * The rule: a box is one region when it lies inside one repetition cell and
+ * every edge of the figure is farther from it than the box reaches.  Each
+ * primitive bounds that from its own geometry (a distance to a circle or
+ * line, an angle or a monotone function over the box), so that thin rings,
+ * lines and mortar, sharp points and cusps cannot hide between samples: no
+ * point of the box is skipped, whatever the feature's size.  The box is
+ * widened by GEO_EPS, in cell units: far above the rounding of the id tests
+ * (about 1e-12 of a cell, 1e-9 near the cycloid's cusps) and below a
+ * subsample's spacing (at least 1/262144 of a cell), so that every subsample
+ * of a box called one region evaluates to it, bit for bit as eval2 does. */
+#define GEO_EPS 1e-7
+
+/* The box u +- hu, v +- hv in a cell: its centre (x, y), y up as in eval2, and
+ * its half sides hx, hy widened by GEO_EPS; 0 when it reaches a cell's side. */
+static inline int geo_box(int nu, int nv, double u, double v, double hu, double hv, double *x,
+                          double *y, double *hx, double *hy)
+{
+    *x = cell(u, nu);
+    *y = 1.0 - cell(v, nv);
+    *hx = hu * nu + GEO_EPS;
+    *hy = hv * nv + GEO_EPS;
+    return *x - *hx > 0 && *x + *hx < 1 && *y - *hy > 0 && *y + *hy < 1;
+}
+
+/* box2 for a primitive NAME with NAME_box(p, k, x, y, hx, hy), the one region
+ * of the box (x +- hx, y +- hy) inside a cell, or 0. */
+#define GEO_BOX2(name, S)                                                                          \
+    static void name##_box2(const struct tex_field *f, int n, const double *u, const double *v,   \
+                            double hu, double hv, float *out)                                      \
+    {                                                                                              \
+        const S *p = f->params;                                                                    \
+        const double *k = ((const struct geo_state *)f->state)->k;                                \
+        for (int i = 0; i < n; i++) {                                                              \
+            double x, y, hx, hy;                                                                   \
+            out[i] = geo_box(p->nu, p->nv, u[i], v[i], hu, hv, &x, &y, &hx, &hy)                   \
+                         ? (float)name##_box(p, k, x, y, hx, hy)                                   \
+                         : 0.0f;                                                                   \
+        }                                                                                          \
+    }
+
+/* 1 when a disc of radius r at distance d from a circle's centre misses the circle of radius R. */
+static inline int clear_of(double d, double radius, double r)
+{
+    return fabs(d - radius) > r;
+}
+
 /* Usage errors for parameters that depend on each other. */
 static int not_above(const char *a, double va, const char *b, double vb)
 {
@@ -120,6 +168,13 @@ static inline int circle_id(const struct circle_params *p, const double *k, doub
 }
 GEO_EVAL2(circle, struct circle_params)
 
+static inline int circle_box(const struct circle_params *p, const double *k, double x, double y,
+                             double hx, double hy)
+{
+    return clear_of(hypot(x - 0.5, y - 0.5), p->radius, hypot(hx, hy)) ? circle_id(p, k, x, y) : 0;
+}
+GEO_BOX2(circle, struct circle_params)
+
 static void circle_eval3(const struct tex_field *f, int n, const double *u, const double *v,
                          const double *w, float *out)
 {
@@ -140,6 +195,7 @@ const struct tex_primitive tex_prim_circle = {
     .init = circle_init,
     .fini = geo_fini,
     .eval2 = circle_eval2,
+    .box2 = circle_box2,
     .eval3 = circle_eval3,
 };
 
@@ -190,6 +246,16 @@ static inline int ring_id(const struct ring_params *p, const double *k, double x
 }
 GEO_EVAL2(ring, struct ring_params)
 
+static inline int ring_box(const struct ring_params *p, const double *k, double x, double y,
+                           double hx, double hy)
+{
+    double d = hypot(x - 0.5, y - 0.5), r = hypot(hx, hy);
+    if (!clear_of(d, p->radius, r) || (k[1] >= 0 && !clear_of(d, p->radius - p->width, r)))
+        return 0;
+    return ring_id(p, k, x, y);
+}
+GEO_BOX2(ring, struct ring_params)
+
 static void ring_eval3(const struct tex_field *f, int n, const double *u, const double *v,
                        const double *w, float *out)
 {
@@ -210,6 +276,7 @@ const struct tex_primitive tex_prim_ring = {
     .init = ring_init,
     .fini = geo_fini,
     .eval2 = ring_eval2,
+    .box2 = ring_box2,
     .eval3 = ring_eval3,
 };
 
@@ -286,6 +353,23 @@ static inline int ellipse_id(const struct ellipse_params *p, const double *k, do
 }
 GEO_EVAL2(ellipse, struct ellipse_params)
 
+/* In the frame of the axes scaled by 1/M and 1/m, an ellipse is the unit
+ * circle and a disc of radius r moves a point by at most r/m (m <= M): the
+ * box is one region when the scaled distance is that far from 1 for each
+ * ellipse. */
+static inline int ellipse_box(const struct ellipse_params *p, const double *k, double x, double y,
+                              double hx, double hy)
+{
+    double r = hypot(hx, hy), cx = x - 0.5, cy = y - 0.5;
+    double xr = cx * k[0] + cy * k[1], yr = cy * k[0] - cx * k[1];
+    if (fabs(sqrt(xr * xr * k[2] + yr * yr * k[3]) - 1) <= r * sqrt(k[3]))
+        return 0;
+    if (k[5] > 0 && fabs(sqrt(xr * xr * k[4] + yr * yr * k[5]) - 1) <= r * sqrt(k[5]))
+        return 0;
+    return ellipse_id(p, k, x, y);
+}
+GEO_BOX2(ellipse, struct ellipse_params)
+
 const struct tex_primitive tex_prim_ellipse = {
     .name = "ellipse",
     .summary = "two concentric ellipses: 3 subregions",
@@ -295,6 +379,7 @@ const struct tex_primitive tex_prim_ellipse = {
     .init = ellipse_init,
     .fini = geo_fini,
     .eval2 = ellipse_eval2,
+    .box2 = ellipse_box2,
 };
 
 /* ---- flower: the rose r = d sin(n theta); 1 ground, 2 the flower ---- */
@@ -344,6 +429,28 @@ static inline int flower_id(const struct flower_params *p, const double *k, doub
 }
 GEO_EVAL2(flower, struct flower_params)
 
+/* A disc of radius r at distance rho > r from the centre spans rho +- r and
+ * angles theta +- asin(r/rho), over which sin(n theta) (and its absolute
+ * value) moves by at most n asin(r/rho). */
+static inline int flower_box(const struct flower_params *p, const double *k, double x, double y,
+                             double hx, double hy)
+{
+    double cx = x - 0.5, cy = y - 0.5, rho = hypot(cx, cy), r = hypot(hx, hy), s, ds;
+    if (rho <= r)
+        return 0;
+    s = sin(p->petals * atan2(cy, cx));
+    if (p->petals % 2 == 0)
+        s = fabs(s);
+    ds = p->petals * asin(r / rho);
+    if (rho + r < p->length * (s - ds))
+        return 2;
+    if (rho - r > p->length * (s + ds))
+        return 1;
+    (void)k;
+    return 0;
+}
+GEO_BOX2(flower, struct flower_params)
+
 const struct tex_primitive tex_prim_flower = {
     .name = "flower",
     .summary = "a flower, the rose curve r = d sin(n theta): 2 subregions",
@@ -353,6 +460,7 @@ const struct tex_primitive tex_prim_flower = {
     .init = flower_init,
     .fini = geo_fini,
     .eval2 = flower_eval2,
+    .box2 = flower_box2,
 };
 
 /* ---- checker: 1 the top-left square's kind, 2 the other ---- */
@@ -383,6 +491,13 @@ static inline int checker_id(const struct checker_params *p, const double *k, do
 }
 GEO_EVAL2(checker, struct checker_params)
 
+static inline int checker_box(const struct checker_params *p, const double *k, double x, double y,
+                              double hx, double hy)
+{
+    return fabs(x - 0.5) > hx && fabs(y - 0.5) > hy ? checker_id(p, k, x, y) : 0;
+}
+GEO_BOX2(checker, struct checker_params)
+
 static void checker_eval3(const struct tex_field *f, int n, const double *u, const double *v,
                           const double *w, float *out)
 {
@@ -401,6 +516,7 @@ const struct tex_primitive tex_prim_checker = {
     .init = checker_init,
     .fini = geo_fini,
     .eval2 = checker_eval2,
+    .box2 = checker_box2,
     .eval3 = checker_eval3,
 };
 
@@ -448,6 +564,17 @@ static inline int stripe_id(const struct stripe_params *p, const double *k, doub
 }
 GEO_EVAL2(stripe, struct stripe_params)
 
+/* t moves by at most hx |sin a| + hy |cos a| over the box; the edges are
+ * where t mod (width + spacing) is 0 or the width. */
+static inline int stripe_box(const struct stripe_params *p, const double *k, double x, double y,
+                             double hx, double hy)
+{
+    double t = (x - 0.5) * k[0] - (y - 0.5) * k[1] + 0.5 * p->width, q = t / k[2];
+    double ph = (q - floor(q)) * k[2], r = hx * fabs(k[0]) + hy * fabs(k[1]);
+    return ph > r && k[2] - ph > r && fabs(ph - p->width) > r ? stripe_id(p, k, x, y) : 0;
+}
+GEO_BOX2(stripe, struct stripe_params)
+
 const struct tex_primitive tex_prim_stripe = {
     .name = "stripe",
     .summary = "parallel stripes at an angle: 2 subregions",
@@ -457,6 +584,7 @@ const struct tex_primitive tex_prim_stripe = {
     .init = stripe_init,
     .fini = geo_fini,
     .eval2 = stripe_eval2,
+    .box2 = stripe_box2,
 };
 
 /* ---- cycloid: 1 above the outer arch, 2 between the arches, 3 inside ---- */
@@ -517,6 +645,36 @@ static inline int cycloid_id(const struct cycloid_params *p, const double *k, do
 }
 GEO_EVAL2(cycloid, struct cycloid_params)
 
+/* The arch's half width at height y, pi a - xl(y), falls as y rises (its
+ * derivative is (c - 1)/sqrt(1 - c^2) <= 0): over the box it is largest at
+ * the bottom y0 and smallest at the top y1.  1: the box is under the arch,
+ * -1: wholly outside it, 0: unsure. */
+static int arch_box(double a, double x, double y, double hx, double hy)
+{
+    double y0 = y - hy, y1 = y + hy, dx = fabs(x - 0.5), dmin = dx - hx, dmax = dx + hx;
+    if (a <= 0 || y0 > 2 * a)
+        return -1;
+    double c0 = (a - y0) / a, c1 = (a - y1) / a;
+    if (dmin > M_PI * a - (a * acos(c0 < -1 ? -1 : c0) - sqrt(fmax(0, 2 * a * y0 - y0 * y0))))
+        return -1;
+    if (y1 <= 2 * a &&
+        dmax <= M_PI * a - (a * acos(c1 < -1 ? -1 : c1) - sqrt(fmax(0, 2 * a * y1 - y1 * y1))))
+        return 1;
+    return 0;
+}
+
+static inline int cycloid_box(const struct cycloid_params *p, const double *k, double x, double y,
+                              double hx, double hy)
+{
+    int outer = arch_box(k[0], x, y, hx, hy), inner;
+    (void)p;
+    if (outer <= 0)
+        return outer < 0 ? 1 : 0;
+    inner = arch_box(k[1], x, y, hx, hy);
+    return inner > 0 ? 3 : inner < 0 ? 2 : 0;
+}
+GEO_BOX2(cycloid, struct cycloid_params)
+
 const struct tex_primitive tex_prim_cycloid = {
     .name = "cycloid",
     .summary = "two nested cycloid arches: 3 subregions",
@@ -526,6 +684,7 @@ const struct tex_primitive tex_prim_cycloid = {
     .init = cycloid_init,
     .fini = geo_fini,
     .eval2 = cycloid_eval2,
+    .box2 = cycloid_box2,
 };
 
 /* ---- hypocycloid: 1 outside, 2 between the astroids, 3 inside ---- */
@@ -573,6 +732,23 @@ static inline int hypocycloid_id(const struct hypocycloid_params *p, const doubl
 }
 GEO_EVAL2(hypocycloid, struct hypocycloid_params)
 
+/* q grows with |x| and |y|: over the box it lies between its values at the
+ * nearest and the farthest corner from the centre lines. */
+static inline int hypocycloid_box(const struct hypocycloid_params *p, const double *k, double x,
+                                  double y, double hx, double hy)
+{
+    double ax = fabs(x - 0.5), ay = fabs(y - 0.5);
+    double nx = fmax(0, ax - hx), ny = fmax(0, ay - hy), fx = ax + hx, fy = ay + hy;
+    double qmin = cbrt(nx * nx) + cbrt(ny * ny), qmax = cbrt(fx * fx) + cbrt(fy * fy);
+    (void)p;
+    if (qmin > k[0])
+        return 1;
+    if (qmax <= k[1])
+        return 3;
+    return qmin > k[1] && qmax <= k[0] ? 2 : 0;
+}
+GEO_BOX2(hypocycloid, struct hypocycloid_params)
+
 const struct tex_primitive tex_prim_hypocycloid = {
     .name = "hypocycloid",
     .summary = "two nested four-cusped hypocycloids (astroids): 3 subregions",
@@ -582,6 +758,7 @@ const struct tex_primitive tex_prim_hypocycloid = {
     .init = hypocycloid_init,
     .fini = geo_fini,
     .eval2 = hypocycloid_eval2,
+    .box2 = hypocycloid_box2,
 };
 
 /* ---- four_rings: 1 ground, 2 the rings ---- */
@@ -629,6 +806,19 @@ static inline int four_rings_id(const struct four_rings_params *p, const double 
 }
 GEO_EVAL2(four_rings, struct four_rings_params)
 
+static inline int four_rings_box(const struct four_rings_params *p, const double *k, double x,
+                                 double y, double hx, double hy)
+{
+    double r = hypot(hx, hy);
+    for (int j = 0; j < 4; j++) {
+        double d = hypot(x - (j & 1 ? 0.75 : 0.25), y - (j & 2 ? 0.75 : 0.25));
+        if (!clear_of(d, p->radius, r) || (k[1] >= 0 && !clear_of(d, p->radius - p->width, r)))
+            return 0;
+    }
+    return four_rings_id(p, k, x, y);
+}
+GEO_BOX2(four_rings, struct four_rings_params)
+
 const struct tex_primitive tex_prim_four_rings = {
     .name = "four_rings",
     .summary = "four rings, one in each quarter of the cell: 2 subregions",
@@ -638,6 +828,7 @@ const struct tex_primitive tex_prim_four_rings = {
     .init = four_rings_init,
     .fini = geo_fini,
     .eval2 = four_rings_eval2,
+    .box2 = four_rings_box2,
 };
 
 /* ---- polygon and star: 1 outside, 2 inside ---- */
@@ -689,6 +880,7 @@ static int polygon_setup(struct tex_field *f, double inner_radius)
     k[2] = p->radius;
     k[3] = inner_radius * cos(M_PI / p->sides);
     k[4] = inner_radius * sin(M_PI / p->sides);
+    k[5] = hypot(k[3] - k[2], k[4]); /* |AB|: the edge test's value over the distance to it */
     return 0;
 }
 
@@ -705,11 +897,11 @@ static int star_init(struct tex_field *f)
 }
 
 /* Fold the point into half a sector (the figure is symmetric about each
- * vertex's ray) and test it against the edge from vertex A to vertex B. */
-static inline int polygon_id(const struct polygon_params *p, const double *k, double x, double y)
+ * vertex's ray) and test it against the line through vertices A and B: the
+ * value of that test, |AB| times the signed distance to the line. */
+static inline double polygon_side(const double *k, double x, double y)
 {
     double rho, t;
-    (void)p;
     x -= 0.5;
     y -= 0.5;
     rho = sqrt(x * x + y * y);
@@ -719,9 +911,28 @@ static inline int polygon_id(const struct polygon_params *p, const double *k, do
         t = k[0] - t;
     x = rho * cos(t) - k[2];
     y = rho * sin(t);
-    return (k[3] - k[2]) * y - k[4] * x >= 0 ? 2 : 1;
+    return (k[3] - k[2]) * y - k[4] * x;
+}
+
+static inline int polygon_id(const struct polygon_params *p, const double *k, double x, double y)
+{
+    (void)p;
+    return polygon_side(k, x, y) >= 0 ? 2 : 1;
 }
 GEO_EVAL2(polygon, struct polygon_params)
+
+/* Folding into half a sector never moves two points apart (it maps each to
+ * its nearest image under the figure's symmetries), so the box's points fold
+ * within hypot(hx, hy) of its centre's image, all in the half sector where
+ * the only edge is the line AB. */
+static inline int polygon_box(const struct polygon_params *p, const double *k, double x, double y,
+                              double hx, double hy)
+{
+    double side = polygon_side(k, x, y);
+    (void)p;
+    return fabs(side) > hypot(hx, hy) * k[5] ? (side >= 0 ? 2 : 1) : 0;
+}
+GEO_BOX2(polygon, struct polygon_params)
 
 const struct tex_primitive tex_prim_polygon = {
     .name = "polygon",
@@ -732,6 +943,7 @@ const struct tex_primitive tex_prim_polygon = {
     .init = polygon_init,
     .fini = geo_fini,
     .eval2 = polygon_eval2,
+    .box2 = polygon_box2,
 };
 
 const struct tex_primitive tex_prim_star = {
@@ -743,6 +955,7 @@ const struct tex_primitive tex_prim_star = {
     .init = star_init,
     .fini = geo_fini,
     .eval2 = polygon_eval2,
+    .box2 = polygon_box2,
 };
 
 /* ---- grid: 1 the cells, 2 the lines ---- */
@@ -775,6 +988,17 @@ static inline int grid_id(const struct grid_params *p, const double *k, double x
 }
 GEO_EVAL2(grid, struct grid_params)
 
+static inline int grid_box(const struct grid_params *p, const double *k, double x, double y,
+                           double hx, double hy)
+{
+    double h = p->width / 2;
+    (void)k;
+    if (x + hx < h || x - hx > 1 - h || y + hy < h || y - hy > 1 - h)
+        return 2;
+    return x - hx > h && x + hx < 1 - h && y - hy > h && y + hy < 1 - h ? 1 : 0;
+}
+GEO_BOX2(grid, struct grid_params)
+
 const struct tex_primitive tex_prim_grid = {
     .name = "grid",
     .summary = "grid lines: 2 subregions",
@@ -784,6 +1008,7 @@ const struct tex_primitive tex_prim_grid = {
     .init = grid_init,
     .fini = geo_fini,
     .eval2 = grid_eval2,
+    .box2 = grid_box2,
 };
 
 /* ---- brick: 1 the bricks, 2 the mortar ---- */
@@ -903,6 +1128,40 @@ static void brick_eval2(const struct tex_field *f, int n, const double *u, const
                           : (float)brick_id(p, k, cell(u[i], p->nu), 1.0 - cell(v[i], p->nv));
 }
 
+/* The mortar is axis-aligned bands: the box is one region when it lies in one
+ * band, or clear of all of them and of x = 1/2 in the lower course (where
+ * --cells numbers the bricks either side apart).  With --cells, inside one cell
+ * and one brick, the box has its centre's brick. */
+static inline int brick_box(const struct brick_params *p, const double *k, double x, double y,
+                            double hx, double hy)
+{
+    double x0 = x - hx, x1 = x + hx, y0 = y - hy, y1 = y + hy;
+    if (y1 < k[0] || y0 > 1 - k[0] || (y0 > 0.5 - k[0] && y1 < 0.5 + k[0]) ||
+        (y0 > 0.5 && (x1 < k[1] || x0 > 1 - k[1])) ||
+        (y1 < 0.5 && x0 > 0.5 - k[1] && x1 < 0.5 + k[1]))
+        return 2;
+    if (y0 > k[0] && y1 < 1 - k[0] && (y1 < 0.5 - k[0] || y0 > 0.5 + k[0]) &&
+        (y0 > 0.5 ? x0 > k[1] && x1 < 1 - k[1] : x1 < 0.5 - k[1] || x0 > 0.5 + k[1]))
+        return 1;
+    (void)p;
+    return 0;
+}
+
+static void brick_box2(const struct tex_field *f, int n, const double *u, const double *v,
+                       double hu, double hv, float *out)
+{
+    const struct brick_params *p = f->params;
+    const double *k = ((const struct brick_state *)f->state)->g.k;
+    for (int i = 0; i < n; i++) {
+        double x, y, hx, hy;
+        int id = geo_box(p->nu, p->nv, u[i], v[i], hu, hv, &x, &y, &hx, &hy)
+                     ? brick_box(p, k, x, y, hx, hy) : 0;
+        if (p->cells && id)
+            id = id == 2 ? 1 : brick_cell(f, k, u[i], v[i]);
+        out[i] = (float)id;
+    }
+}
+
 const struct tex_primitive tex_prim_brick = {
     .name = "brick",
     .summary = "a brick wall in running bond: 2 subregions, or one per brick",
@@ -912,6 +1171,7 @@ const struct tex_primitive tex_prim_brick = {
     .init = brick_init,
     .fini = brick_fini,
     .eval2 = brick_eval2,
+    .box2 = brick_box2,
 };
 
 /* ---- dots: 1 the ground, 2 the dots ---- */
@@ -948,6 +1208,19 @@ static inline int dots_id(const struct dots_params *p, const double *k, double x
 }
 GEO_EVAL2(dots, struct dots_params)
 
+/* The corner dots through the fold to the nearest corner, which never moves
+ * two points apart. */
+static inline int dots_box(const struct dots_params *p, const double *k, double x, double y,
+                           double hx, double hy)
+{
+    double r = hypot(hx, hy);
+    if (!clear_of(hypot(x - 0.5, y - 0.5), p->radius, r) ||
+        !clear_of(hypot(fmin(x, 1 - x), fmin(y, 1 - y)), p->radius, r))
+        return 0;
+    return dots_id(p, k, x, y);
+}
+GEO_BOX2(dots, struct dots_params)
+
 const struct tex_primitive tex_prim_dots = {
     .name = "dots",
     .summary = "staggered polka dots: 2 subregions",
@@ -957,4 +1230,5 @@ const struct tex_primitive tex_prim_dots = {
     .init = dots_init,
     .fini = geo_fini,
     .eval2 = dots_eval2,
+    .box2 = dots_box2,
 };

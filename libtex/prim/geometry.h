@@ -5,7 +5,9 @@
  * point as a float.  Sampled with ids off, the field carries one colour per
  * region (the --color1.. rows, or a palette) and the sampler antialiases the
  * edges by coverage; with --ids the map holds the exact id of each pixel
- * centre and textura:subregions = nregions.
+ * centre and textura:subregions = nregions.  Each primitive's box2 proves
+ * boxes of points one region from its geometry (geometry.c: the rule), so
+ * that the sampler subsamples only the pixels an edge may cross.
  *
  * General parameters (Appendix A.1-A.2), on every primitive:
  *   nu, nv   repetitions: the pattern fills one cell of a nu x nv grid over

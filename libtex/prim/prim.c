@@ -125,52 +125,165 @@ void tex_field_free(struct tex_field *f)
 
 /* A REGIONS field in colour: each pixel averages the colours of the regions
  * hit by S x S stratified subsamples, in a fixed order (same bytes for any
- * thread count).  Sums of at most 64 floats are exact in double, so a pixel
- * wholly inside a region gets exactly that region's colour. */
+ * thread count).  A sum of S x S copies of one float is exact in double, so a
+ * pixel wholly inside a region gets exactly that region's colour.  With the
+ * primitive's box2, a row goes by spans of SPAN pixels: where box2 proves that
+ * the box around a span's subsamples lies in one region, the span takes that
+ * colour; else each of its pixels is asked the same; only the pixels left
+ * unsure (an edge may cross them) are subsampled, in the order of the full
+ * computation (subsample_pixels is the one that averages).  So the bytes are
+ * those of S x S everywhere; TEXTURA_AA=full subsamples every pixel, for the
+ * tests that compare both. */
+enum {
+    SPAN = 16,     /* pixels a first box2 covers */
+    SS_CHUNK = 256 /* unsure pixels subsampled per eval2 call */
+};
+
+/* Scratch of one thread for colour rows. */
+struct color_scratch {
+    double *u;  /* the subsamples' u across the window, m->w * S */
+    double *cu; /* the pixels' centres, m->w, then the spans', ns */
+    double *cv; /* one v, repeated: max(ns, SPAN) */
+    float *bid; /* box2's answers: max(ns, SPAN) */
+    int px[SS_CHUNK];
+    double *eu; /* u and v of the subsamples of SS_CHUNK pixels */
+    float *id;
+};
+
+static void subsample_pixels(const struct tex_field *f, struct color_scratch *t, int ne,
+                             const double *vv, float *out)
+{
+    enum { S = TEX_FIELD_SS };
+    double *ev = t->eu + S * S * SS_CHUNK;
+    for (int e = 0, j = 0; e < ne; e++)
+        for (int sy = 0; sy < S; sy++)
+            for (int sx = 0; sx < S; sx++, j++) {
+                t->eu[j] = t->u[t->px[e] * S + sx];
+                ev[j] = vv[sy];
+            }
+    f->prim->eval2(f, ne * S * S, t->eu, ev, t->id);
+    for (int e = 0; e < ne; e++) {
+        double acc[3] = {0, 0, 0};
+        for (int j = 0; j < S * S; j++) {
+            int k = (int)t->id[e * S * S + j];
+            if (k >= 1 && k <= f->nregions)
+                for (int c = 0; c < 3; c++)
+                    acc[c] += f->colors[k - 1][c];
+        }
+        for (int c = 0; c < 3; c++)
+            out[3 * t->px[e] + c] = (float)(acc[c] / (S * S));
+    }
+}
+
+/* Pixels x0..x1-1 in the colour of region k (black outside 1..nregions, as
+ * the sum of no colours). */
+static void fill_region(const struct tex_field *f, float *out, int x0, int x1, int k)
+{
+    float c[3] = {0, 0, 0};
+    if (k >= 1 && k <= f->nregions)
+        for (int j = 0; j < 3; j++)
+            c[j] = f->colors[k - 1][j];
+    for (int x = x0; x < x1; x++)
+        for (int j = 0; j < 3; j++)
+            out[3 * x + j] = c[j];
+}
+
+/* Subsample pixel x, or queue it: SS_CHUNK pixels go to eval2 at once. */
+static void queue_pixel(const struct tex_field *f, struct color_scratch *t, int *ne, int x,
+                        const double *vv, float *out)
+{
+    t->px[(*ne)++] = x;
+    if (*ne == SS_CHUNK) {
+        subsample_pixels(f, t, *ne, vv, out);
+        *ne = 0;
+    }
+}
+
+/* Row out: subsamples at vv[0..S-1]; every pixel subsampled when full. */
+static void color_row(const struct tex_field *f, struct color_scratch *t, int w, const double *vv,
+                      int full, float *out)
+{
+    enum { S = TEX_FIELD_SS };
+    const int ns = (w + SPAN - 1) / SPAN;
+    const double hu = (double)(S - 1) / (2.0 * S * f->w), hv = (double)(S - 1) / (2.0 * S * f->h);
+    const double hspan = (double)(SPAN * S - 1) / (2.0 * S * f->w); /* the last span may be
+                                                                       short: a wider box */
+    int ne = 0;
+
+    if (full) {
+        for (int x = 0; x < w; x++)
+            queue_pixel(f, t, &ne, x, vv, out);
+        subsample_pixels(f, t, ne, vv, out);
+        return;
+    }
+    for (int i = 0; i < (ns > SPAN ? ns : SPAN); i++)
+        t->cv[i] = 0.5 * (vv[0] + vv[S - 1]);
+    f->prim->box2(f, ns, t->cu + w, t->cv, hspan, hv, t->bid);
+    for (int s = 0; s < ns; s++) {
+        int x0 = s * SPAN, x1 = x0 + SPAN < w ? x0 + SPAN : w;
+        float pid[SPAN];
+        if (t->bid[s] != 0) {
+            fill_region(f, out, x0, x1, (int)t->bid[s]);
+            continue;
+        }
+        f->prim->box2(f, x1 - x0, t->cu + x0, t->cv, hu, hv, pid);
+        for (int x = x0; x < x1; x++)
+            if (pid[x - x0] != 0)
+                fill_region(f, out, x, x + 1, (int)pid[x - x0]);
+            else
+                queue_pixel(f, t, &ne, x, vv, out);
+    }
+    subsample_pixels(f, t, ne, vv, out);
+}
+
 static int sample_colors(const struct tex_field *f, tex_map *m, int x0, int y0)
 {
     enum { S = TEX_FIELD_SS };
-    const int n = m->w * S, nfull = f->w * S;
+    const int n = m->w * S, nfull = f->w * S, ns = (m->w + SPAN - 1) / SPAN;
+    const int nv = ns > SPAN ? ns : SPAN;
+    const char *aa = getenv("TEXTURA_AA");
+    const int full = !f->prim->box2 || (aa && strcmp(aa, "full") == 0);
     int failed = 0;
 
 #pragma omp parallel
     {
-        double *u = malloc(sizeof *u * 2 * n), *v = u ? u + n : NULL;
-        double *acc = malloc(sizeof *acc * 3 * m->w);
-        float *id = malloc(sizeof *id * n);
+        struct color_scratch t = {
+            .u = malloc(sizeof *t.u * n),
+            .cu = malloc(sizeof *t.cu * (m->w + ns + nv)),
+            .bid = malloc(sizeof *t.bid * nv),
+            .eu = malloc(sizeof *t.eu * 2 * S * S * SS_CHUNK),
+            .id = malloc(sizeof *t.id * S * S * SS_CHUNK),
+        };
+        int bad = !t.u || !t.cu || !t.bid || !t.eu || !t.id;
 
-        if (u)
+        if (!bad) {
+            t.cv = t.cu + m->w + ns;
             for (int i = 0; i < n; i++)
-                u[i] = ((double)x0 * S + i + 0.5) / nfull;
+                t.u[i] = ((double)x0 * S + i + 0.5) / nfull;
+            /* the centres of the pixels' subsamples, then of the spans' */
+            for (int x = 0; x < m->w; x++)
+                t.cu[x] = 0.5 * (t.u[x * S] + t.u[x * S + S - 1]);
+            for (int s = 0; s < ns; s++)
+                t.cu[m->w + s] = t.u[s * SPAN * S] + (double)(SPAN * S - 1) / (2.0 * nfull);
+        }
 #pragma omp for schedule(dynamic, 4)
         for (int y = 0; y < m->h; y++) {
-            float *out = tex_map_row(m, y);
-            if (!u || !acc || !id) {
+            double vv[S];
+            if (bad) {
 #pragma omp atomic write
                 failed = 1;
                 continue;
             }
-            for (int i = 0; i < 3 * m->w; i++)
-                acc[i] = 0;
-            for (int sy = 0; sy < S; sy++) {
-                double vv = ((double)(y0 + y) * S + sy + 0.5) / ((double)S * f->h);
-                for (int i = 0; i < n; i++)
-                    v[i] = vv;
-                f->prim->eval2(f, n, u, v, id);
-                for (int i = 0; i < n; i++) {
-                    int k = (int)id[i];
-                    if (k >= 1 && k <= f->nregions)
-                        for (int c = 0; c < 3; c++)
-                            acc[i / S * 3 + c] += f->colors[k - 1][c];
-                }
-            }
-            for (int i = 0; i < 3 * m->w; i++)
-                out[i] = (float)(acc[i] / (S * S));
+            for (int sy = 0; sy < S; sy++)
+                vv[sy] = ((double)(y0 + y) * S + sy + 0.5) / ((double)S * f->h);
+            color_row(f, &t, m->w, vv, full, tex_map_row(m, y));
             tex_progress_add(1);
         }
-        free(u);
-        free(acc);
-        free(id);
+        free(t.u);
+        free(t.cu);
+        free(t.bid);
+        free(t.eu);
+        free(t.id);
     }
     if (failed)
         return tex_error("out of memory");

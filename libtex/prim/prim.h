@@ -67,7 +67,8 @@ struct tex_field {
     /* REGIONS: the colour of region k is colors[k-1] (init or a palette sets
      * it).  When set and ids is 0, the sampler writes an RGB map in which each
      * pixel is the mean colour of TEX_FIELD_SS x TEX_FIELD_SS stratified
-     * subsamples (antialiasing by coverage); eval2 still writes one id per point. */
+     * subsamples (antialiasing by coverage; with box2, only pixels an edge may
+     * cross are subsampled); eval2 still writes one id per point. */
     const float (*colors)[3];
     void *state;      /* the primitive's own, made by init */
     int wx, wy, ww, wh; /* the window being sampled (tex_field_window); ww 0: the whole grid */
@@ -112,6 +113,12 @@ struct tex_primitive {
     void (*eval2)(const struct tex_field *f, int n, const double *u, const double *v, float *out);
     void (*eval3)(const struct tex_field *f, int n, const double *u, const double *v,
                   const double *w, float *out);
+    /* Optional, REGIONS: out[i] = the region id that every point of the box
+     * u[i] +- hu, v[i] +- hv has, proven with a margin above rounding, else 0
+     * (unsure).  The colour sampler gives such a pixel its region's colour and
+     * subsamples only the others: the same bytes as S x S everywhere. */
+    void (*box2)(const struct tex_field *f, int n, const double *u, const double *v, double hu,
+                 double hv, float *out);
     /* Optional fast path for grid sampling: row y of the f->w x f->h grid. */
     void (*row)(const struct tex_field *f, int y, float *out);
     /* TEX_PRIM_GRID: fill m (f->w x f->h, f->nc channels). */
