@@ -9,6 +9,7 @@
  * texture code see what the parser lets through.  Map files are not
  * read (a scene naming one fails to parse cleanly).
  */
+#define _GNU_SOURCE /* memmem */
 #include <stddef.h>
 #include <stdint.h>
 #include <string.h>
