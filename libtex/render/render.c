@@ -5,6 +5,14 @@
  * independent, so any thread count gives the same image, and a region of
  * the image the same pixels as the whole render.  Tiles of 16x16
  * pixels are shared among OpenMP threads dynamically.
+ *
+ * Eye rays go in packets of 8x8 pixels (render_packet): all find their hits,
+ * then the primitives evaluated at hit points are evaluated over the packet's
+ * hits in one call each (tex_prefetch_eval), then every hit is shaded.  The
+ * primitives give a point the same value in a call of any length, and each
+ * pixel draws from its own rng in the same order, so the image is the one
+ * pixel-by-pixel tracing makes; TEXTURA_PACKETS=0 in the environment traces
+ * pixel by pixel (tests/t_apply_packets.sh compares the two).
  */
 #include <math.h>
 #include <omp.h>
