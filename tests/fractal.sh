@@ -43,6 +43,31 @@ else
     notok "koch" "$(t_info "$T/k.exr" | head -3)"
 fi
 
+# --band-limit: octaves whose cells are far larger than a pixel are untouched, so a
+# coarse map is the same bytes; a fine one keeps its mean and loses its aliased roughness.
+roughness() { # mean |difference| of horizontal neighbours in a 1-channel PFM
+    python3 -c '
+import struct, sys
+d = open(sys.argv[1], "rb").read().split(b"\n", 3)
+w, h = map(int, d[1].split()); v = struct.unpack("<%df" % (w * h), d[3][:4 * w * h])
+print(sum(abs(v[i + 1] - v[i]) for i in range(len(v) - 1) if (i + 1) % w) / (h * (w - 1)))' "$1"
+}
+for tool in "t_fractal" "t_turbulence"; do
+    $tool -n 3 -f 2 -s 256 -o "$T/a.pfm"
+    $tool -n 3 -f 2 -s 256 --band-limit -o "$T/b.pfm"
+    cmp -s "$T/a.pfm" "$T/b.pfm" && ok "$tool --band-limit leaves coarse octaves alone" ||
+        notok "$tool --band-limit changed a map whose cells are 32 pixels and more"
+    $tool -n 8 -f 64 -s 256 -o "$T/a.pfm"
+    $tool -n 8 -f 64 -s 256 --band-limit -o "$T/b.pfm"
+    ma=$(info_json "$T/a.pfm" stats 0 mean) mb=$(info_json "$T/b.pfm" stats 0 mean)
+    ra=$(roughness "$T/a.pfm") rb=$(roughness "$T/b.pfm")
+    if approx "$ma" "$mb" 0.01 && awk -v a="$ra" -v b="$rb" 'BEGIN { exit !(b < 0.75 * a) }'; then
+        ok "$tool --band-limit: same mean ($ma, $mb), less aliasing (roughness $ra -> $rb)"
+    else
+        notok "$tool --band-limit" "mean $ma -> $mb, roughness $ra -> $rb"
+    fi
+done
+check_fails "--band-limit is fbm's" 2 t_fractal -m ridged --band-limit
 check_fails "octaves 0" 2 t_fractal -n 0
 check_fails "octaves 1000" 2 t_fractal -n 1000
 check_fails "negative frequency" 2 t_fractal -f -2

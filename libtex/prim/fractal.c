@@ -33,7 +33,7 @@ static inline float clamp01(float x)
 
 struct turb_params {
     double frequency, lacunarity, gain, z;
-    int octaves;
+    int octaves, band_limit;
     struct tex_reals w, offset;
     int fade, gradients;
     int frames, frame;
@@ -47,6 +47,9 @@ static const struct tex_param turb_rows[] = {
     TEX_REAL(struct turb_params, lacunarity, 'l', 2, 1, 16, "L",
              "frequency ratio between octaves (whole with --tile)"),
     TEX_REAL(struct turb_params, gain, 'g', 0.5, 0, 1, "G", "amplitude ratio between octaves"),
+    TEX_FLAG(struct turb_params, band_limit, 0,
+             "fade octaves finer than a pixel to their mean (Perlin's filtered turbulence): "
+             "no aliasing, and faster; maps only, solid textures in t_apply keep every octave"),
     TEX_NOISE_ROWS(struct turb_params),
     TEX_NOISE_W_ROW(struct turb_params),
     TEX_NOISE_LOOP_ROWS(struct turb_params),
@@ -55,18 +58,41 @@ static const struct tex_param turb_rows[] = {
 struct turb_state {
     tex_octaves o;
     float amp[TEX_OCTAVES_MAX], inv;
+    int active;  /* octaves the rows sum: all, or those the band limit leaves */
+    float fill;  /* what the faded octaves add: their amplitudes' share of the mean */
 };
 
-/* A row of octaves summed into out (w samples): the first octave sets the sum
- * (no clearing pass), the last finishes it (rescale and clamp); a lone octave
- * adds its finish to a cleared row. */
-static void octave_sum_row(const tex_octaves *o, int y, int w, int first, int mid, int last,
-                           const float *amp, float inv, float *out)
+/* A row of octaves 0..n-1 summed into out (w samples): the first octave sets the
+ * sum (no clearing pass), the last finishes it (rescale and clamp); a lone octave
+ * adds its finish to a cleared row.  With fill, the row starts at fill instead. */
+static void octave_sum_row(const tex_octaves *o, int n, int y, int w, int first, int mid,
+                           int last, const float *amp, float inv, float fill, float *out)
 {
-    if (o->n == 1)
-        memset(out, 0, w * sizeof *out);
-    for (int k = 0; k < o->n; k++)
-        tex_octave_row_op(o, k, y, k == o->n - 1 ? last : k == 0 ? first : mid, amp[k], inv, out);
+    if (n == 1 || fill != 0)
+        for (int x = 0; x < w; x++)
+            out[x] = fill;
+    if (fill != 0)
+        first = mid;
+    for (int k = 0; k < n; k++)
+        tex_octave_row_op(o, k, y, k == n - 1 ? last : k == 0 ? first : mid, amp[k], inv, out);
+}
+
+/* The band limit on the amplitudes: each octave weighted, the faded share of
+ * the mean (0 for signed noise) gathered in fill, the silent octaves dropped. */
+static void band_limit(const tex_octaves *o, float *amp, double mean, int *active, float *fill)
+{
+    double c = 0;
+    *active = 0;
+    for (int k = 0; k < o->n; k++) {
+        double wk = tex_octave_band_weight(o, k);
+        c += amp[k] * (1 - wk) * mean;
+        amp[k] = (float)(amp[k] * wk);
+        if (wk > 0)
+            *active = k + 1;
+    }
+    if (*active == 0) /* the first octave always stays, however faint */
+        *active = 1;
+    *fill = (float)c;
 }
 
 static void offsets(const struct tex_reals *r, double off[3])
@@ -85,6 +111,8 @@ static void turb_amplitudes(struct turb_state *s, double gain, int octaves)
         sum += s->amp[k];
     }
     s->inv = (float)(1.0 / sum);
+    s->active = octaves;
+    s->fill = 0;
 }
 
 static int turb_init(struct tex_field *f)
@@ -100,10 +128,13 @@ static int turb_init(struct tex_field *f)
     turb_amplitudes(s, p->gain, p->octaves);
     double z = p->z, w = p->w.n ? p->w.v[0] : 0;
     int dims = p->w.n ? 4 : 3;
-    if (tex_noise_loop(p->frames, p->frame, p->loop_radius, &z, &w, &dims) < 0)
+    if (tex_noise_loop(p->frames, p->frame, p->loop_radius, &z, &w, &dims) < 0 ||
+        tex_octaves_init(&s->o, f->seed, p->gradients, p->fade, p->octaves, p->frequency,
+                         p->lacunarity, off, z, w, dims, f->tile, f->w, f->h) < 0)
         return -1;
-    return tex_octaves_init(&s->o, f->seed, p->gradients, p->fade, p->octaves, p->frequency,
-                            p->lacunarity, off, z, w, dims, f->tile, f->w, f->h);
+    if (p->band_limit)
+        band_limit(&s->o, s->amp, tex_noise_mean_abs(&s->o.t), &s->active, &s->fill);
+    return 0;
 }
 
 static void turb_fini(struct tex_field *f)
@@ -114,33 +145,25 @@ static void turb_fini(struct tex_field *f)
     free(s);
 }
 
-/* Turbulence at a point, from its octaves and amplitudes */
-static float turb_sum(const struct turb_state *s, double u, double v, double w)
+/* Turbulence at n points (w NULL: 0): the octaves' sum rescaled and clamped. */
+static void turb_points(const struct turb_state *s, int n, const double *u, const double *v,
+                        const double *w, float *out)
 {
-    float acc = 0;
-
-    for (int k = 0; k < s->o.n; k++)
-        acc += s->amp[k] * fabsf((float)tex_octave_point(&s->o, k, u, v, w));
-    return clamp01(acc * s->inv);
-}
-
-static float turb_point(const struct tex_field *f, double u, double v, double w)
-{
-    return turb_sum(f->state, u, v, w);
-}
-
-static void turb_eval2(const struct tex_field *f, int n, const double *u, const double *v,
-                       float *out)
-{
+    tex_octave_abs_sum(&s->o, s->active, s->amp, s->fill, n, u, v, w, out);
     for (int i = 0; i < n; i++)
-        out[i] = turb_point(f, u[i], v[i], 0);
+        out[i] = clamp01(out[i] * s->inv);
 }
 
 static void turb_eval3(const struct tex_field *f, int n, const double *u, const double *v,
                        const double *w, float *out)
 {
-    for (int i = 0; i < n; i++)
-        out[i] = turb_point(f, u[i], v[i], w[i]);
+    turb_points(f->state, n, u, v, w, out);
+}
+
+static void turb_eval2(const struct tex_field *f, int n, const double *u, const double *v,
+                       float *out)
+{
+    turb_eval3(f, n, u, v, NULL, out);
 }
 
 static void turb_row(const struct tex_field *f, int y, float *out)
@@ -148,8 +171,8 @@ static void turb_row(const struct tex_field *f, int y, float *out)
     const struct turb_state *s = f->state;
 
     /* a |n| is never -0: the same as 0 + a |n| */
-    octave_sum_row(&s->o, y, f->w, TEX_ROW_MUL_ABS, TEX_ROW_ADD_ABS, TEX_ROW_ADD_ABS_CLAMP, s->amp,
-                   s->inv, out);
+    octave_sum_row(&s->o, s->active, y, f->w, TEX_ROW_MUL_ABS, TEX_ROW_ADD_ABS,
+                   TEX_ROW_ADD_ABS_CLAMP, s->amp, s->inv, s->fill, out);
 }
 
 const struct tex_primitive tex_prim_turbulence = {
@@ -228,36 +251,46 @@ static void wood_fini(struct tex_field *f)
 
 /* The distance r from the axis, perturbed by turbulence and counted in rings, modulo 1: a
  * sawtooth from early to late wood that a palette colours; grain mixes in noise stretched
- * 32 times along the axis. */
-static float wood_point(const struct tex_field *f, double u, double v, double w)
+ * 32 times along the axis.  Points go in batches: the turbulence and the grain's noise
+ * through the vectorised point path. */
+static void wood_eval3(const struct tex_field *f, int n, const double *u, const double *v,
+                       const double *w, float *out)
 {
+    enum { B = TEX_POINTS_BATCH };
     const struct wood_params *p = f->params;
     const struct wood_state *s = f->state;
-    double x = u - 0.5 - p->offset, y = v - 0.5, z = w - 0.5;
-    double ya = y * s->c - z * s->s, za = y * s->s + z * s->c; /* the axis runs along za */
-    double r = sqrt(x * x + ya * ya);
-    float t = p->amount > 0 ? turb_sum(&s->turb, u, v, w) : 0;
-    double ring = (r + p->amount * t) * p->rings;
-    double val = ring - floor(ring);
-    if (p->grain > 0) {
-        double g = 0.5 + 0.5 * tex_noise3(&s->grain, 64 * x, 64 * ya, 2 * za);
-        val = (1 - p->grain) * val + p->grain * g;
+    double W[B], gx[B], gy[B], gz[B], g[B];
+    float t[B];
+
+    for (int i0 = 0; i0 < n; i0 += B) {
+        int m = n - i0 < B ? n - i0 : B;
+        for (int i = 0; i < m; i++)
+            W[i] = w ? w[i0 + i] : 0.5;
+        if (p->amount > 0)
+            turb_points(&s->turb, m, u + i0, v + i0, W, t);
+        for (int i = 0; i < m; i++) {
+            double x = u[i0 + i] - 0.5 - p->offset, y = v[i0 + i] - 0.5, z = W[i] - 0.5;
+            double ya = y * s->c - z * s->s, za = y * s->s + z * s->c; /* the axis: za */
+            double r = sqrt(x * x + ya * ya);
+            double ring = (r + p->amount * (p->amount > 0 ? t[i] : 0)) * p->rings;
+            gx[i] = 64 * x, gy[i] = 64 * ya, gz[i] = 2 * za;
+            g[i] = ring - floor(ring); /* the value until the grain is mixed in */
+        }
+        if (p->grain > 0) {
+            double gn[B];
+            tex_noise_points(&s->grain, s->grain.period, 3, m, gx, gy, gz, NULL, gn);
+            for (int i = 0; i < m; i++)
+                g[i] = (1 - p->grain) * g[i] + p->grain * (0.5 + 0.5 * gn[i]);
+        }
+        for (int i = 0; i < m; i++)
+            out[i0 + i] = clamp01((float)g[i]);
     }
-    return clamp01((float)val);
 }
 
 static void wood_eval2(const struct tex_field *f, int n, const double *u, const double *v,
                        float *out)
 {
-    for (int i = 0; i < n; i++)
-        out[i] = wood_point(f, u[i], v[i], 0.5);
-}
-
-static void wood_eval3(const struct tex_field *f, int n, const double *u, const double *v,
-                       const double *w, float *out)
-{
-    for (int i = 0; i < n; i++)
-        out[i] = wood_point(f, u[i], v[i], w[i]);
+    wood_eval3(f, n, u, v, NULL, out);
 }
 
 const struct tex_primitive tex_prim_wood = {
@@ -288,6 +321,7 @@ struct frac_params {
     double zoom;
     int iterations, depth, koch;
     double line_width;
+    int band_limit;
 };
 
 /* The modes each row applies to: bit k for mode k of the enum above. */
@@ -314,6 +348,10 @@ static const struct tex_param frac_rows[] = {
     TEX_REAL(struct frac_params, mf_offset, 0, 1, 0, 4, "O",
              "ridged, hybrid: Musgrave's offset (try 0.7 for hybrid)",
              .kinds = IN(RIDGED) | IN(HYBRID)),
+    TEX_FLAG(struct frac_params, band_limit, 0,
+             "fbm: fade octaves finer than a pixel out (Perlin's filtered fBm): no aliasing, "
+             "and faster; maps only, solid textures in t_apply keep every octave",
+             .kinds = IN(FBM)),
     TEX_NOISE_ROWS(struct frac_params, .kinds = NOISY),
     TEX_NOISE_W_ROW(struct frac_params, .kinds = NOISY),
     TEX_NOISE_LOOP_ROWS(struct frac_params, .kinds = NOISY),
@@ -339,6 +377,7 @@ struct frac_state {
     int mode;
     float amp[TEX_OCTAVES_MAX];
     float inv, lo, hi; /* rescaling to [0,1] */
+    int active;        /* fbm: octaves the rows sum (the band limit drops the rest) */
     float *mp;         /* midpoint: the displaced grid, mw x mh */
     int mw, mh;
 };
@@ -638,8 +677,15 @@ static int frac_init(struct tex_field *f)
     int dims = p->w.n ? 4 : 3;
     if (tex_noise_loop(p->frames, p->frame, p->loop_radius, &z, &w, &dims) < 0)
         return -1;
-    return tex_octaves_init(&s->o, f->seed, p->gradients, p->fade, p->octaves, p->frequency,
-                            p->lacunarity, off, z, w, dims, f->tile, f->w, f->h);
+    s->active = p->octaves;
+    if (tex_octaves_init(&s->o, f->seed, p->gradients, p->fade, p->octaves, p->frequency,
+                         p->lacunarity, off, z, w, dims, f->tile, f->w, f->h) < 0)
+        return -1;
+    if (p->band_limit) {
+        float fill;
+        band_limit(&s->o, s->amp, 0, &s->active, &fill); /* signed noise: the mean is 0 */
+    }
+    return 0;
 }
 
 static void frac_fini(struct tex_field *f)
@@ -692,18 +738,37 @@ static float frac_point(const struct tex_field *f, double u, double v, double w)
     }
 }
 
-static void frac_eval2(const struct tex_field *f, int n, const double *u, const double *v,
-                       float *out)
-{
-    for (int i = 0; i < n; i++)
-        out[i] = frac_point(f, u[i], v[i], 0);
-}
-
+/* frac_point over many points (w NULL: 0); the octave sums octave by octave. */
 static void frac_eval3(const struct tex_field *f, int n, const double *u, const double *v,
                        const double *w, float *out)
 {
-    for (int i = 0; i < n; i++)
-        out[i] = frac_point(f, u[i], v[i], w[i]);
+    enum { B = TEX_POINTS_BATCH / 4 };
+    const struct frac_params *p = f->params;
+    const struct frac_state *s = f->state;
+    double r[B];
+    float nk[B][TEX_OCTAVES_MAX];
+
+    if (s->mode > HYBRID) {
+        for (int i = 0; i < n; i++)
+            out[i] = frac_point(f, u[i], v[i], w ? w[i] : 0);
+        return;
+    }
+    for (int i0 = 0; i0 < n; i0 += B) {
+        int m = n - i0 < B ? n - i0 : B;
+        for (int k = 0; k < s->o.n; k++) {
+            tex_octave_points(&s->o, k, m, u + i0, v + i0, w ? w + i0 : NULL, r);
+            for (int i = 0; i < m; i++)
+                nk[i][k] = (float)r[i];
+        }
+        for (int i = 0; i < m; i++)
+            out[i0 + i] = combine(s, p, nk[i]);
+    }
+}
+
+static void frac_eval2(const struct tex_field *f, int n, const double *u, const double *v,
+                       float *out)
+{
+    frac_eval3(f, n, u, v, NULL, out);
 }
 
 /* Ridged and hybrid over a row, octave by octave: on each pixel the
@@ -806,8 +871,8 @@ static void frac_row(const struct tex_field *f, int y, float *out)
     if (s->mode == FBM) {
         /* a n instead of 0 + a n: only the sign of a zero differs, and
          * 0.5 + 0.5 x erases it */
-        octave_sum_row(&s->o, y, f->w, TEX_ROW_MUL, TEX_ROW_ADD, TEX_ROW_ADD_UNIT, s->amp, s->inv,
-                       out);
+        octave_sum_row(&s->o, s->active, y, f->w, TEX_ROW_MUL, TEX_ROW_ADD, TEX_ROW_ADD_UNIT,
+                       s->amp, s->inv, 0, out);
         return;
     }
     n = s->mode <= HYBRID ? malloc(2 * (size_t)f->w * sizeof *n) : NULL;

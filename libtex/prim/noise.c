@@ -35,7 +35,8 @@ int tex_noise_init(tex_noise_table *t, uint64_t seed, int n, int period)
     t->perm = malloc(2 * n * sizeof *t->perm);
     t->grad = malloc(n * sizeof *t->grad);
     t->grad4 = malloc(n * sizeof *t->grad4);
-    if (!t->perm || !t->grad || !t->grad4) {
+    t->pgrad = malloc(2 * n * sizeof *t->pgrad);
+    if (!t->perm || !t->grad || !t->grad4 || !t->pgrad) {
         tex_noise_free(t);
         return tex_error("out of memory");
     }
@@ -66,6 +67,8 @@ int tex_noise_init(tex_noise_table *t, uint64_t seed, int n, int period)
     }
     tex_rng_shuffle(&r, t->perm, n);
     memcpy(t->perm + n, t->perm, n * sizeof *t->perm);
+    for (int m = 0; m < 2 * n; m++)
+        memcpy(t->pgrad[m], t->grad[t->perm[m]], sizeof t->pgrad[m]);
     return 0;
 }
 
@@ -74,6 +77,8 @@ void tex_noise_free(tex_noise_table *t)
     free(t->perm);
     free(t->grad);
     free(t->grad4);
+    free(t->pgrad);
+    t->pgrad = NULL;
     t->perm = NULL;
     t->grad = NULL;
     t->grad4 = NULL;
@@ -193,6 +198,117 @@ double tex_noise3_grad(const tex_noise_table *t, int period, double x, double y,
     return s;
 }
 
+/* ---- many points at once ---- */
+
+#ifdef TEX_X86
+#define AVX2 __attribute__((target("avx2")))
+
+/* c mod m for whole numbers |c| < 2^31 in double, exactly: the quotient from
+ * the reciprocal may be one off either way, and the remainder says which. */
+AVX2 static inline __attribute__((always_inline)) __m256d mod_pd(__m256d c, double m, double inv)
+{
+    __m256d vm = _mm256_set1_pd(m), z = _mm256_setzero_pd();
+    __m256d r = _mm256_sub_pd(
+        c, _mm256_mul_pd(_mm256_floor_pd(_mm256_mul_pd(c, _mm256_set1_pd(inv))), vm));
+    r = _mm256_add_pd(r, _mm256_and_pd(_mm256_cmp_pd(r, z, _CMP_LT_OQ), vm));
+    return _mm256_sub_pd(r, _mm256_and_pd(_mm256_cmp_pd(r, vm, _CMP_GE_OQ), vm));
+}
+
+/* lat_index of the cells c (whole, in double) as 32-bit lanes. */
+AVX2 static inline __attribute__((always_inline)) __m128i lat_pd(__m256d c, int period, int n)
+{
+    if (period)
+        c = mod_pd(c, period, 1.0 / period);
+    return _mm256_cvttpd_epi32(mod_pd(c, n, 1.0 / n));
+}
+
+AVX2 static inline __attribute__((always_inline)) __m256d fade_pd(int kind, __m256d t)
+{
+    __m256d one = _mm256_set1_pd(1.0);
+    if (kind == TEX_FADE_QUINTIC) {
+        __m256d q = _mm256_add_pd(
+            _mm256_mul_pd(t, _mm256_sub_pd(_mm256_mul_pd(t, _mm256_set1_pd(6.0)),
+                                           _mm256_set1_pd(15.0))),
+            _mm256_set1_pd(10.0));
+        return _mm256_sub_pd(one, _mm256_mul_pd(_mm256_mul_pd(_mm256_mul_pd(t, t), t), q));
+    }
+    __m256d a = _mm256_sub_pd(_mm256_mul_pd(_mm256_set1_pd(2.0), t), _mm256_set1_pd(3.0));
+    return _mm256_add_pd(_mm256_mul_pd(_mm256_mul_pd(a, t), t), one);
+}
+
+/* noise_point for four 3D points: the same double operations in the same
+ * order, lane by lane; 0 when a cell is beyond 2^30 (the caller's scalar
+ * path takes those). */
+AVX2 static int noise3_avx2(const tex_noise_table *t, int period, const double *x, const double *y,
+                            const double *z, double *out)
+{
+    const int *F = t->perm;
+    const double lim = 0x1p30;
+    __m256d p[3] = {_mm256_loadu_pd(x), _mm256_loadu_pd(y), _mm256_loadu_pd(z)};
+    __m256d f[3], wt[3][2], one = _mm256_set1_pd(1.0);
+    __m128i idx[3][2];
+
+    for (int a = 0; a < 3; a++) {
+        __m256d c = _mm256_floor_pd(p[a]);
+        __m256d big = _mm256_cmp_pd(_mm256_andnot_pd(_mm256_set1_pd(-0.0), c),
+                                    _mm256_set1_pd(lim), _CMP_NLT_UQ);
+        if (_mm256_movemask_pd(big))
+            return 0;
+        int per = a < 2 ? period : 0;
+        f[a] = _mm256_sub_pd(p[a], c);
+        idx[a][0] = lat_pd(c, per, t->n);
+        idx[a][1] = lat_pd(_mm256_add_pd(c, one), per, t->n);
+        wt[a][0] = fade_pd(t->fade, f[a]);
+        wt[a][1] = fade_pd(t->fade, _mm256_sub_pd(one, f[a]));
+    }
+    __m128i hz[2], hy[2][2];
+    for (int b = 0; b < 2; b++)
+        hz[b] = _mm_i32gather_epi32(F, idx[2][b], 4);
+    for (int b2 = 0; b2 < 2; b2++)
+        for (int b1 = 0; b1 < 2; b1++)
+            hy[b1][b2] = _mm_i32gather_epi32(F, _mm_add_epi32(idx[1][b1], hz[b2]), 4);
+    __m256d sum = _mm256_setzero_pd();
+#pragma GCC unroll 8
+    for (int c = 0; c < 8; c++) {
+        const int b[3] = {c & 1, c >> 1 & 1, c >> 2 & 1};
+        /* the corners' gradients grad[F[...]]: four rows of pgrad, transposed */
+        int m[4];
+        _mm_storeu_si128((__m128i *)m, _mm_add_epi32(idx[0][b[0]], hy[b[1]][b[2]]));
+        __m128 gr[4] = {_mm_loadu_ps(t->pgrad[m[0]]), _mm_loadu_ps(t->pgrad[m[1]]),
+                        _mm_loadu_ps(t->pgrad[m[2]]), _mm_loadu_ps(t->pgrad[m[3]])};
+        _MM_TRANSPOSE4_PS(gr[0], gr[1], gr[2], gr[3]);
+        __m256d dot = _mm256_setzero_pd(), w = one;
+#pragma GCC unroll 3
+        for (int a = 0; a < 3; a++) {
+            __m256d g = _mm256_cvtps_pd(gr[a]);
+            __m256d d = _mm256_sub_pd(f[a], b[a] ? one : _mm256_setzero_pd());
+            dot = _mm256_add_pd(dot, _mm256_mul_pd(g, d));
+            w = _mm256_mul_pd(w, wt[a][b[a]]);
+        }
+        sum = _mm256_add_pd(sum, _mm256_mul_pd(w, dot));
+    }
+    _mm256_storeu_pd(out, sum);
+    return 1;
+}
+#endif
+
+void tex_noise_points(const tex_noise_table *t, int period, int dims, int n, const double *x,
+                      const double *y, const double *z, const double *w, double *out)
+{
+    int i = 0;
+
+#ifdef TEX_X86
+    if (dims == 3 && tex_simd_level() >= TEX_SIMD_AVX2)
+        for (; i + 4 <= n; i += 4)
+            if (!noise3_avx2(t, period, x + i, y + i, z + i, out + i))
+                for (int k = i; k < i + 4; k++)
+                    out[k] = tex_noise3p(t, period, x[k], y[k], z[k]);
+#endif
+    for (; i < n; i++)
+        out[i] = dims == 4 ? tex_noise4p(t, period, x[i], y[i], z[i], w[i])
+                           : tex_noise3p(t, period, x[i], y[i], z[i]);
+}
+
 /* ---- SIMD level ---- */
 
 const char *tex_simd_name(int level)
@@ -250,12 +366,14 @@ static void grid_clear(tex_noise_grid *g)
     free(g->slot);
     free(g->lat);
     free(g->u);
+    free(g->lut);
     if (g->cache) {
         for (int i = 0; i < g->cache->n; i++)
             free(g->cache->e[i].buf[0]);
         free(g->cache);
     }
     g->slot = g->lat = NULL;
+    g->lut = NULL;
     g->u = g->um1 = g->w0 = g->w1 = g->dw0 = g->dw1 = NULL;
     g->cache = NULL;
 }
@@ -264,6 +382,8 @@ void tex_noise_grid_free(tex_noise_grid *g)
 {
     grid_clear(g);
 }
+
+static int lut_init(tex_noise_grid *g);
 
 /* The slice's corners in z (and w): their weights, offsets and hash prefixes. */
 static void slice_setup(tex_noise_grid *g, double z, double w4)
@@ -336,12 +456,15 @@ int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int 
     g->dw1 = g->dw0 + (w + 8);
     /* Columns: the cell and fraction in double, so that large offsets keep
      * their texture; the slots list each lattice column the row touches once,
-     * a pixel's right corner sitting in the slot after its left one. */
+     * a pixel's right corner sitting in the slot after its left one.  When eight
+     * pixels span seven cells or more, sharing saves little and costs the rows
+     * gathers: every column then has its own pair. */
+    g->paired = fx >= 0.875 * w;
     for (int x = 0; x < w; x++) {
         double X = off[0] + fx * ((x + 0.5) / w), c = floor(X);
         int64_t i = tex_noise_cell(c);
         double u = X - c;
-        if (ns == 0 || i > list[ns - 1]) {
+        if (ns == 0 || i > list[ns - 1] || g->paired) {
             list[ns++] = i;
             list[ns++] = i + 1;
         } else if (i == list[ns - 1]) {
@@ -362,6 +485,11 @@ int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int 
     g->nslots = ns;
     g->stride = ns + 16;
     free(list);
+    /* Lattice rows from the table when the rows would fold more lattice points
+     * than it has (cells spanning less than a pixel row are not kept). */
+    double rows = g->fy < 1 ? g->fy * h + 2 : 2.0 * h;
+    if (t->n <= 1024 && rows * ns > 2.0 * t->n * t->n)
+        lut_init(g); /* without memory for it, rows fold their own */
     /* Pixel rows share lattice rows when a cell spans more than one row: keep
      * each thread's last two (without memory for them, rows compute their own). */
     if (g->fy < 1) {
@@ -393,8 +521,8 @@ int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int 
  * so that a pixel row between lattice rows j and j+1 needs two such rows.
  * Element-wise float operations: the SSE form below gives the same bits. */
 static inline __attribute__((always_inline)) void
-lattice_row_n(const tex_noise_grid *g, const float (*zm)[4], const int *A, int s0, int s1, float *X,
-              float *Y, float *C, const int nz)
+lattice_row_n(const tex_noise_grid *g, const float (*zm)[4], const int *A, const int32_t *lat,
+              int s0, int s1, float *X, float *Y, float *C, const int nz)
 {
     const int *F = g->t->perm;
     const float(*G)[4] = g->dims == 4 ? g->t->grad4 : g->t->grad;
@@ -407,7 +535,7 @@ lattice_row_n(const tex_noise_grid *g, const float (*zm)[4], const int *A, int s
     for (; s + 4 <= s1; s += 4) {
         __m128 a[4];
         for (int k = 0; k < 4; k++) {
-            int i = g->lat[s + k];
+            int i = lat[s + k];
             a[k] = _mm_setzero_ps();
             for (int c = 0; c < nz; c++)
                 a[k] = _mm_add_ps(a[k], _mm_mul_ps(_mm_loadu_ps(G[F[i + A[c]]]), m[c]));
@@ -419,7 +547,7 @@ lattice_row_n(const tex_noise_grid *g, const float (*zm)[4], const int *A, int s
     }
 #endif
     for (; s < s1; s++) {
-        int i = g->lat[s];
+        int i = lat[s];
         float a[4] = {0, 0, 0, 0};
         for (int c = 0; c < nz; c++)
             for (int k = 0; k < 4; k++)
@@ -430,36 +558,111 @@ lattice_row_n(const tex_noise_grid *g, const float (*zm)[4], const int *A, int s
     }
 }
 
-/* zm: the slice's weights, g->zm (noise) or g->zdm (its z derivative). */
-static void lattice_row_m(const tex_noise_grid *g, const float (*zm)[4], int64_t j, int s0, int s1,
-                          float *X, float *Y, float *C)
+/* zm: the slice's weights, g->zm (noise) or g->zdm (its z derivative); lj the
+ * lattice row reduced (lat_index), lat the slots' lattice columns. */
+static void lattice_row_at(const tex_noise_grid *g, const float (*zm)[4], int lj,
+                           const int32_t *lat, int s0, int s1, float *X, float *Y, float *C)
 {
     const int *F = g->t->perm;
-    int lj = lat_index(j, g->period, g->t->n), A[4];
+    int A[4];
 
     for (int c = 0; c < g->nz; c++)
         A[c] = F[lj + g->zh[c]];
     /* One copy per number of corners, so that the sums stay in registers. */
     switch (g->nz) {
     case 1:
-        lattice_row_n(g, zm, A, s0, s1, X, Y, C, 1);
+        lattice_row_n(g, zm, A, lat, s0, s1, X, Y, C, 1);
         break;
     case 2:
-        lattice_row_n(g, zm, A, s0, s1, X, Y, C, 2);
+        lattice_row_n(g, zm, A, lat, s0, s1, X, Y, C, 2);
         break;
     case 3:
-        lattice_row_n(g, zm, A, s0, s1, X, Y, C, 3);
+        lattice_row_n(g, zm, A, lat, s0, s1, X, Y, C, 3);
         break;
     default:
-        lattice_row_n(g, zm, A, s0, s1, X, Y, C, 4);
+        lattice_row_n(g, zm, A, lat, s0, s1, X, Y, C, 4);
         break;
     }
+}
+
+static void lattice_row_m(const tex_noise_grid *g, const float (*zm)[4], int64_t j, int s0, int s1,
+                          float *X, float *Y, float *C)
+{
+    lattice_row_at(g, zm, lat_index(j, g->period, g->t->n), g->lat, s0, s1, X, Y, C);
+}
+
+/* The table of every lattice point's folded (X, Y, C), computed as lattice_row
+ * does: the same operations, so the same bits. */
+static int lut_init(tex_noise_grid *g)
+{
+    int n = g->t->n;
+    int32_t *id = malloc((n + 16) * sizeof *id);
+    float *r = malloc(3 * (size_t)n * sizeof *r);
+
+    g->lut = malloc((size_t)n * (n + 1) * sizeof *g->lut);
+    if (!id || !r || !g->lut) {
+        free(id);
+        free(r);
+        free(g->lut);
+        g->lut = NULL;
+        return -1;
+    }
+    for (int i = 0; i < n + 16; i++)
+        id[i] = i < n ? i : 0;
+    for (int lj = 0; lj < n; lj++) {
+        float(*T)[4] = g->lut + (size_t)lj * (n + 1);
+        lattice_row_at(g, (const float(*)[4])g->zm, lj, id, 0, n, r, r + n, r + 2 * n);
+        for (int i = 0; i < n; i++) {
+            T[i][0] = r[i];
+            T[i][1] = r[n + i];
+            T[i][2] = r[2 * n + i];
+            T[i][3] = 0;
+        }
+        memcpy(T[n], T[0], sizeof T[0]);
+    }
+    free(id);
+    free(r);
+    g->adjacent = g->paired;
+    for (int x = 0; x < g->w && g->adjacent; x++)
+        g->adjacent = g->lat[2 * x + 1] == g->lat[2 * x] + 1 ||
+                      (g->lat[2 * x] == n - 1 && g->lat[2 * x + 1] == 0);
+    return 0;
+}
+
+/* The table's row for lattice row j. */
+static inline const float (*lut_row(const tex_noise_grid *g, int64_t j))[4]
+{
+    int n = g->t->n;
+    return (const float(*)[4])g->lut + (size_t)lat_index(j, g->period, n) * (n + 1);
 }
 
 static void lattice_row(const tex_noise_grid *g, int64_t j, int s0, int s1, float *X, float *Y,
                         float *C)
 {
-    lattice_row_m(g, (const float(*)[4])g->zm, j, s0, s1, X, Y, C);
+    const int32_t *lat = g->lat;
+    const float(*T)[4];
+    int s = s0;
+
+    if (!g->lut) {
+        lattice_row_m(g, (const float(*)[4])g->zm, j, s0, s1, X, Y, C);
+        return;
+    }
+    T = lut_row(g, j);
+#ifdef TEX_X86
+    for (; s + 4 <= s1; s += 4) {
+        __m128 a0 = _mm_loadu_ps(T[lat[s]]), a1 = _mm_loadu_ps(T[lat[s + 1]]);
+        __m128 a2 = _mm_loadu_ps(T[lat[s + 2]]), a3 = _mm_loadu_ps(T[lat[s + 3]]);
+        _MM_TRANSPOSE4_PS(a0, a1, a2, a3);
+        _mm_storeu_ps(X + s - s0, a0);
+        _mm_storeu_ps(Y + s - s0, a1);
+        _mm_storeu_ps(C + s - s0, a2);
+    }
+#endif
+    for (; s < s1; s++) {
+        X[s - s0] = T[lat[s]][0];
+        Y[s - s0] = T[lat[s]][1];
+        C[s - s0] = T[lat[s]][2];
+    }
 }
 
 static struct cache_entry *cache_take(const tex_noise_grid *g)
@@ -652,8 +855,6 @@ static void row_scalar(const tex_noise_grid *g, const float *P, const float *Q, 
 }
 
 #ifdef TEX_X86
-#define AVX2 __attribute__((target("avx2")))
-
 AVX2 static inline __attribute__((always_inline)) __m256 clamp01_avx2(__m256 x)
 {
     return _mm256_min_ps(_mm256_max_ps(x, _mm256_setzero_ps()), _mm256_set1_ps(1));
@@ -734,10 +935,163 @@ row_avx2_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, flo
     row_scalar_op(g, P, Q, sb, out, x, x1, op, a, b);
 }
 
+/* Eight columns' slot values when each column has its own pair (g->paired):
+ * V[s], V[s + 1] are V's even and odd entries from s, unzipped. */
+AVX2 static inline __attribute__((always_inline)) void unzip(const float *V, __m256 *a0,
+                                                             __m256 *a1)
+{
+    __m256 lo = _mm256_loadu_ps(V), hi = _mm256_loadu_ps(V + 8);
+    __m256 e = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(2, 0, 2, 0));
+    __m256 o = _mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(3, 1, 3, 1));
+    *a0 = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(e), _MM_SHUFFLE(3, 1, 2, 0)));
+    *a1 = _mm256_castpd_ps(_mm256_permute4x64_pd(_mm256_castps_pd(o), _MM_SHUFFLE(3, 1, 2, 0)));
+}
+
+/* row_avx2_op for paired slots: the same operations without gathers. */
+AVX2 static inline __attribute__((always_inline)) void
+row_avx2_paired_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, float *out,
+                   int x, int x1, const int op, float a, float b)
+{
+    const int32_t *restrict slot = g->slot;
+    const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
+                          *restrict w1 = g->w1;
+    __m256 va = _mm256_set1_ps(a), vb = _mm256_set1_ps(b);
+
+    for (; x + 8 <= x1; x += 8) {
+        int s = slot[x] - sb;
+        __m256 p0, p1, q0, q1;
+        unzip(P + s, &p0, &p1);
+        unzip(Q + s, &q0, &q1);
+        __m256 t0 = _mm256_add_ps(_mm256_mul_ps(p0, _mm256_loadu_ps(u + x)), q0);
+        __m256 t1 = _mm256_add_ps(_mm256_mul_ps(p1, _mm256_loadu_ps(um1 + x)), q1);
+        __m256 r = _mm256_add_ps(_mm256_mul_ps(_mm256_loadu_ps(w0 + x), t0),
+                                 _mm256_mul_ps(_mm256_loadu_ps(w1 + x), t1));
+        _mm256_storeu_ps(out + x, apply_avx2(op, r, out + x, va, vb));
+    }
+    row_scalar_op(g, P, Q, sb, out, x, x1, op, a, b);
+}
+
+/* A lattice row's folded (X, Y, C) at eight columns' left and right corners,
+ * from the table row T: each column's two entries loaded as one vector and
+ * the eight transposed. */
+AVX2 static inline __attribute__((always_inline)) __m256 lut_pair(const float (*T)[4],
+                                                                  const int32_t *lat, const int adj)
+{
+    if (adj) /* one load: the right corner is the next entry */
+        return _mm256_loadu_ps(T[lat[0]]);
+    return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_loadu_ps(T[lat[0]])),
+                                _mm_loadu_ps(T[lat[1]]), 1);
+}
+
+AVX2 static inline __attribute__((always_inline)) void
+lut_load8(const float (*T)[4], const int32_t *lat, __m256 v[6], const int adj)
+{
+    __m256 a = lut_pair(T, lat, adj), b = lut_pair(T, lat + 2, adj);
+    __m256 t0 = _mm256_unpacklo_ps(a, b), t1 = _mm256_unpackhi_ps(a, b); /* X0 X1 Y0 Y1, C0 C1 0 0 */
+    a = lut_pair(T, lat + 4, adj), b = lut_pair(T, lat + 6, adj);
+    __m256 t2 = _mm256_unpacklo_ps(a, b), t3 = _mm256_unpackhi_ps(a, b);
+    __m256 x03 = _mm256_shuffle_ps(t0, t2, _MM_SHUFFLE(1, 0, 1, 0));
+    __m256 y03 = _mm256_shuffle_ps(t0, t2, _MM_SHUFFLE(3, 2, 3, 2));
+    __m256 c03 = _mm256_shuffle_ps(t1, t3, _MM_SHUFFLE(1, 0, 1, 0));
+    a = lut_pair(T, lat + 8, adj), b = lut_pair(T, lat + 10, adj);
+    t0 = _mm256_unpacklo_ps(a, b), t1 = _mm256_unpackhi_ps(a, b);
+    a = lut_pair(T, lat + 12, adj), b = lut_pair(T, lat + 14, adj);
+    t2 = _mm256_unpacklo_ps(a, b), t3 = _mm256_unpackhi_ps(a, b);
+    __m256 x47 = _mm256_shuffle_ps(t0, t2, _MM_SHUFFLE(1, 0, 1, 0));
+    __m256 y47 = _mm256_shuffle_ps(t0, t2, _MM_SHUFFLE(3, 2, 3, 2));
+    __m256 c47 = _mm256_shuffle_ps(t1, t3, _MM_SHUFFLE(1, 0, 1, 0));
+    v[0] = _mm256_permute2f128_ps(x03, x47, 0x20);
+    v[1] = _mm256_permute2f128_ps(y03, y47, 0x20);
+    v[2] = _mm256_permute2f128_ps(c03, c47, 0x20);
+    v[3] = _mm256_permute2f128_ps(x03, x47, 0x31);
+    v[4] = _mm256_permute2f128_ps(y03, y47, 0x31);
+    v[5] = _mm256_permute2f128_ps(c03, c47, 0x31);
+}
+
+/* A row of a paired grid with a table, in one pass: per column the
+ * operations of row_coeffs then row_scalar_op, in their order. */
+AVX2 static inline __attribute__((always_inline)) void
+row_lut_avx2_op(const tex_noise_grid *g, const float (*T0)[4], const float (*T1)[4],
+                const float *wy, const float *dy, float *out, const int op, const int adj,
+                float a, float b)
+{
+    const int32_t *restrict lat = g->lat;
+    const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
+                          *restrict w1 = g->w1;
+    __m256 va = _mm256_set1_ps(a), vb = _mm256_set1_ps(b);
+    __m256 a0 = _mm256_set1_ps(wy[0]), a1 = _mm256_set1_ps(wy[1]);
+    __m256 d0 = _mm256_set1_ps(dy[0]), d1 = _mm256_set1_ps(dy[1]);
+    int x = 0;
+
+    for (; x + 8 <= g->w; x += 8) {
+        __m256 l[6], P[2], Q[2];
+        /* row j's products first, row j + 1's added: row_coeffs' operations */
+        lut_load8(T0, lat + 2 * x, l, adj);
+        for (int c = 0; c < 2; c++) {
+            P[c] = _mm256_mul_ps(a0, l[3 * c]);
+            Q[c] = _mm256_mul_ps(a0, _mm256_add_ps(_mm256_mul_ps(l[3 * c + 1], d0), l[3 * c + 2]));
+        }
+        if (T1) {
+            lut_load8(T1, lat + 2 * x, l, adj);
+            for (int c = 0; c < 2; c++) {
+                P[c] = _mm256_add_ps(P[c], _mm256_mul_ps(a1, l[3 * c]));
+                Q[c] = _mm256_add_ps(
+                    Q[c], _mm256_mul_ps(a1, _mm256_add_ps(_mm256_mul_ps(l[3 * c + 1], d1),
+                                                          l[3 * c + 2])));
+            }
+        }
+        __m256 t0 = _mm256_add_ps(_mm256_mul_ps(P[0], _mm256_loadu_ps(u + x)), Q[0]);
+        __m256 t1 = _mm256_add_ps(_mm256_mul_ps(P[1], _mm256_loadu_ps(um1 + x)), Q[1]);
+        __m256 r = _mm256_add_ps(_mm256_mul_ps(_mm256_loadu_ps(w0 + x), t0),
+                                 _mm256_mul_ps(_mm256_loadu_ps(w1 + x), t1));
+        _mm256_storeu_ps(out + x, apply_avx2(op, r, out + x, va, vb));
+    }
+    for (; x < g->w; x++) {
+        float P[2], Q[2];
+        for (int c = 0; c < 2; c++) {
+            const float *e0 = T0[lat[2 * x + c]], *e1 = T1 ? T1[lat[2 * x + c]] : NULL;
+            if (e1) {
+                P[c] = wy[0] * e0[0] + wy[1] * e1[0];
+                Q[c] = wy[0] * (e0[1] * dy[0] + e0[2]) + wy[1] * (e1[1] * dy[1] + e1[2]);
+            } else {
+                P[c] = wy[0] * e0[0];
+                Q[c] = wy[0] * (e0[1] * dy[0] + e0[2]);
+            }
+        }
+        float t0 = P[0] * u[x] + Q[0], t1 = P[1] * um1[x] + Q[1];
+        out[x] = apply_op(op, w0[x] * t0 + w1[x] * t1, out[x], a, b);
+    }
+}
+
+AVX2 static void row_lut_avx2(const tex_noise_grid *g, int64_t j, const float *wy, const float *dy,
+                              int two, float *out, int op, float a, float b)
+{
+    const float(*T0)[4] = lut_row(g, j), (*T1)[4] = two ? lut_row(g, j + 1) : NULL;
+
+#define ROW_LUT(OP)                                                                                \
+    (g->adjacent ? row_lut_avx2_op(g, T0, T1, wy, dy, out, OP, 1, a, b)                            \
+                 : row_lut_avx2_op(g, T0, T1, wy, dy, out, OP, 0, a, b))
+    switch (op) {
+    case TEX_ROW_SET: ROW_LUT(TEX_ROW_SET); break;
+    case TEX_ROW_MUL: ROW_LUT(TEX_ROW_MUL); break;
+    case TEX_ROW_MUL_ABS: ROW_LUT(TEX_ROW_MUL_ABS); break;
+    case TEX_ROW_UNIT: ROW_LUT(TEX_ROW_UNIT); break;
+    case TEX_ROW_ADD: ROW_LUT(TEX_ROW_ADD); break;
+    case TEX_ROW_ADD_ABS: ROW_LUT(TEX_ROW_ADD_ABS); break;
+    case TEX_ROW_ADD_UNIT: ROW_LUT(TEX_ROW_ADD_UNIT); break;
+    default: ROW_LUT(TEX_ROW_ADD_ABS_CLAMP); break;
+    }
+#undef ROW_LUT
+}
+
 AVX2 static inline void row_avx2(const tex_noise_grid *g, const float *P, const float *Q, int sb,
                                  float *out, int x, int x1, int op, float a, float b)
 {
-    ROW_OP_SWITCH(row_avx2_op);
+    if (g->paired) {
+        ROW_OP_SWITCH(row_avx2_paired_op);
+    } else {
+        ROW_OP_SWITCH(row_avx2_op);
+    }
 }
 #endif
 
@@ -755,6 +1109,7 @@ AVX2 static inline void row_avx2(const tex_noise_grid *g, const float *P, const 
 #define GRID_ATTR AVX2
 #define GRID_COEFFS row_coeffs_avx2
 #define GRID_PIXELS row_avx2
+#define GRID_LUT_ROW row_lut_avx2
 #include "prim/noise_row_template.c"
 #endif
 
@@ -952,6 +1307,72 @@ double tex_octave_point(const tex_octaves *o, int k, double u, double v, double 
     return tex_noise3p(&o->t, o->period[k], x, y, o->off[k][2] + f * w);
 }
 
+void tex_octave_points(const tex_octaves *o, int k, int n, const double *u, const double *v,
+                       const double *w, double *out)
+{
+    enum { B = TEX_POINTS_BATCH };
+    double f = o->freq[k], X[B], Y[B], Z[B], W[B];
+
+    for (int i0 = 0; i0 < n; i0 += B) {
+        int m = n - i0 < B ? n - i0 : B;
+        for (int i = 0; i < m; i++) { /* tex_octave_point's coordinates */
+            X[i] = o->off[k][0] + f * u[i0 + i];
+            Y[i] = o->off[k][1] + f * v[i0 + i];
+            Z[i] = o->off[k][2] + f * (w ? w[i0 + i] : 0);
+            W[i] = o->off[k][3];
+        }
+        tex_noise_points(&o->t, o->period[k], o->dims, m, X, Y, Z, W, out + i0);
+    }
+}
+
+void tex_octave_abs_sum(const tex_octaves *o, int octaves, const float *amp, float start, int n,
+                        const double *u, const double *v, const double *w, float *out)
+{
+    enum { B = TEX_POINTS_BATCH };
+    double r[B];
+
+    for (int i0 = 0; i0 < n; i0 += B) {
+        int m = n - i0 < B ? n - i0 : B;
+        for (int i = 0; i < m; i++)
+            out[i0 + i] = start;
+        for (int k = 0; k < octaves; k++) {
+            tex_octave_points(o, k, m, u + i0, v + i0, w ? w + i0 : NULL, r);
+            for (int i = 0; i < m; i++)
+                out[i0 + i] += amp[k] * fabsf((float)r[i]);
+        }
+    }
+}
+
+double tex_octave_band_weight(const tex_octaves *o, int k)
+{
+    double fw, t;
+
+    if (!o->grid)
+        return 1;
+    fw = o->g[k].fy; /* lattice cells per pixel */
+    t = fw <= 0.2 ? 0 : fw >= 0.6 ? 1 : (fw - 0.2) / 0.4;
+    return 1 - t * t * (3 - 2 * t);
+}
+
+double tex_noise_mean_abs(const tex_noise_table *t)
+{
+    enum { N = 16 };
+    double x[N * N], y[N * N], z[N * N], r[N * N], sum = 0;
+
+    /* a fixed jittered lattice over 16^3 cells: the same mean for the same table */
+    for (int k = 0; k < N; k++) {
+        for (int i = 0; i < N * N; i++) {
+            x[i] = (i % N) + 0.5 + 0.37 * sin(i * 1.7 + k);
+            y[i] = (double)(i / N) + 0.5 + 0.37 * sin(i * 2.3 + 2 * k);
+            z[i] = k + 0.5 + 0.37 * sin(i * 0.9 + 3 * k);
+        }
+        tex_noise_points(t, 0, 3, N * N, x, y, z, NULL, r);
+        for (int i = 0; i < N * N; i++)
+            sum += fabs(r[i]);
+    }
+    return sum / (N * N * N);
+}
+
 void tex_octave_row(const tex_octaves *o, int k, int y, float *out)
 {
     tex_noise_grid_row(&o->g[k], y, out);
@@ -1069,29 +1490,32 @@ static inline float to_unit(float s)
     return clamp01(0.5f + 0.5f * s);
 }
 
-static double noise_at(const struct tex_field *f, double u, double v, double w)
-{
-    const struct noise_params *p = f->params;
-    const struct noise_state *s = f->state;
-    double fr = p->frequency, x = s->off[0] + fr * u, y = s->off[1] + fr * v;
-
-    if (s->dims == 4)
-        return tex_noise4p(&s->t, s->period, x, y, s->off[2] + fr * w, s->off[3]);
-    return tex_noise3p(&s->t, s->period, x, y, s->off[2] + fr * w);
-}
-
 static void noise_eval3(const struct tex_field *f, int n, const double *u, const double *v,
                         const double *w, float *out)
 {
-    for (int i = 0; i < n; i++)
-        out[i] = to_unit((float)noise_at(f, u[i], v[i], w[i]));
+    enum { B = TEX_POINTS_BATCH };
+    const struct noise_params *p = f->params;
+    const struct noise_state *s = f->state;
+    double fr = p->frequency, X[B], Y[B], Z[B], W[B], r[B];
+
+    for (int i0 = 0; i0 < n; i0 += B) {
+        int m = n - i0 < B ? n - i0 : B;
+        for (int i = 0; i < m; i++) { /* noise_at's coordinates */
+            X[i] = s->off[0] + fr * u[i0 + i];
+            Y[i] = s->off[1] + fr * v[i0 + i];
+            Z[i] = s->off[2] + fr * (w ? w[i0 + i] : 0);
+            W[i] = s->off[3];
+        }
+        tex_noise_points(&s->t, s->period, s->dims, m, X, Y, Z, W, r);
+        for (int i = 0; i < m; i++)
+            out[i0 + i] = to_unit((float)r[i]);
+    }
 }
 
 static void noise_eval2(const struct tex_field *f, int n, const double *u, const double *v,
                         float *out)
 {
-    for (int i = 0; i < n; i++)
-        out[i] = to_unit((float)noise_at(f, u[i], v[i], 0));
+    noise_eval3(f, n, u, v, NULL, out);
 }
 
 static void noise_row(const struct tex_field *f, int y, float *out)

@@ -38,7 +38,12 @@
  * combines two of them with its y weights into two coefficients per
  * lattice column.  The per-pixel work is then four float multiplies and
  * three adds, with the row's operation (rescale, weighted sum, |n|, the last
- * octave's finish: tex_noise_grid_row_op) in the same pass.  Rows are
+ * octave's finish: tex_noise_grid_row_op) in the same pass.  When cells are
+ * smaller than pixels, so that every pixel row needs lattice rows of its own,
+ * the folded lattice rows are read from a table of all n x n lattice points
+ * made once per grid (the lattice repeats every n cells), and every column
+ * gets its own pair of slots, so that the vector rows read them without
+ * gathers: a map's cost then no longer grows with its frequency.  Rows are
  * vectorised (AVX2, chosen at run time; TEXTURA_SIMD=scalar forces the
  * portable path; there is no AVX-512 kernel) and every level performs the
  * same float operations in the same order, so the bytes are identical
@@ -76,6 +81,7 @@ typedef struct tex_noise_table {
     int *perm;   /* F, stored twice (2n entries) so that F[a + b] needs no mod */
     float (*grad)[4];  /* n unit vectors on the sphere (w = 0) */
     float (*grad4)[4]; /* n unit vectors on the 4D sphere */
+    float (*pgrad)[4]; /* grad[perm[m]] for m < 2n: the last hash step and its gradient in one */
 } tex_noise_table;
 
 int tex_noise_init(tex_noise_table *t, uint64_t seed, int n, int period);
@@ -85,6 +91,11 @@ double tex_noise4(const tex_noise_table *t, double x, double y, double z, double
 /* With an explicit period (0: none) instead of t->period. */
 double tex_noise3p(const tex_noise_table *t, int period, double x, double y, double z);
 double tex_noise4p(const tex_noise_table *t, int period, double x, double y, double z, double w);
+/* Noise at n points (x[i], y[i], z[i][, w[i]]), dims 3 or 4 (w unused with 3):
+ * the values of tex_noise3p / tex_noise4p, bit for bit, four points at a
+ * time with AVX2 (3D). */
+void tex_noise_points(const tex_noise_table *t, int period, int dims, int n, const double *x,
+                      const double *y, const double *z, const double *w, double *out);
 /* Noise and its analytic gradient d/dx, d/dy, d/dz in g. */
 double tex_noise3_grad(const tex_noise_table *t, int period, double x, double y, double z,
                        double g[3]);
@@ -103,6 +114,11 @@ typedef struct tex_noise_grid {
     int nz, zh[4];     /* the slice's corners in z (and w) of non-zero weight, hash prefixes */
     float zm[4][4];    /* their weight W (1, 1, dz, dw) */
     float zdm[4][4];   /* dims 3: the z derivative's (W', W', W' dz + W, 0) */
+    float (*lut)[4];   /* NULL, or per lattice row mod n the folded (X, Y, C, 0) of every
+                        * lattice column mod n and column 0 again (n + 1 entries), when
+                        * the grid needs more lattice rows than the table has */
+    int paired;        /* every column has its own two slots, 2x and 2x + 1 */
+    int adjacent;      /* paired, and every right corner is the table's next entry */
     struct tex_noise_cache *cache;
 } tex_noise_grid;
 
@@ -155,6 +171,21 @@ int tex_octaves_init(tex_octaves *o, uint64_t seed, int gradients, int fade, int
 void tex_octaves_free(tex_octaves *o);
 /* Signed noise of octave k at texture point (u, v, w), w added to the slice. */
 double tex_octave_point(const tex_octaves *o, int k, double u, double v, double w);
+/* Signed noise of octave k at n texture points (w NULL: 0), tex_octave_point's
+ * values through tex_noise_points. */
+#define TEX_POINTS_BATCH 256
+void tex_octave_points(const tex_octaves *o, int k, int n, const double *u, const double *v,
+                       const double *w, double *out);
+/* Turbulence's sum at n points: start + sum over k < octaves of amp[k] |octave k|,
+ * in float, octave by octave. */
+void tex_octave_abs_sum(const tex_octaves *o, int octaves, const float *amp, float start, int n,
+                        const double *u, const double *v, const double *w, float *out);
+/* Perlin's band limit (filtered fBm, as RenderMan's): octave k's weight on a grid,
+ * 1 - smoothstep(0.2, 0.6, fw) for pixels fw lattice cells wide; 1 off a grid.
+ * Octaves fade out as their cells shrink towards a pixel, instead of aliasing. */
+double tex_octave_band_weight(const tex_octaves *o, int k);
+/* The mean of |noise| (what a faded octave of |noise| is replaced with). */
+double tex_noise_mean_abs(const tex_noise_table *t);
 /* Signed noise of octave k over row y of the grid. */
 void tex_octave_row(const tex_octaves *o, int k, int y, float *out);
 void tex_octave_row_add(const tex_octaves *o, int k, int y, float amp, float *out);

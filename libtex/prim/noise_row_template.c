@@ -6,6 +6,7 @@
  *   GRID_ATTR    its target attribute (empty for the portable path)
  *   GRID_COEFFS  the kernel that blends two lattice rows into P and Q
  *   GRID_PIXELS  the kernel that turns P and Q into pixels (with op, a, b)
+ *   GRID_LUT_ROW (optional) the whole row of a paired grid with a table
  * The result is a real function, visible to debuggers and profilers.
  */
 GRID_ATTR static void GRID_ROW(const tex_noise_grid *g, int y, int op, float a, float b, float *out)
@@ -17,8 +18,16 @@ GRID_ATTR static void GRID_ROW(const tex_noise_grid *g, int y, int op, float a, 
     float wy[2] = {(float)fade(g->t->fade, fr), (float)fade(g->t->fade, 1.0 - fr)};
     float dy[2] = {(float)fr, (float)(fr - 1.0)};
     int two = wy[1] != 0;
-    struct cache_entry *e = cache_take(g);
+    struct cache_entry *e;
     const float *r0 = NULL, *r1 = NULL;
+
+#ifdef GRID_LUT_ROW
+    if (g->paired && g->lut) {
+        GRID_LUT_ROW(g, j, wy, dy, two, out, op, a, b);
+        return;
+    }
+#endif
+    e = cache_take(g);
 
     if (e)
         cache_rows(g, e, j, two, &r0, &r1);
@@ -51,3 +60,4 @@ GRID_ATTR static void GRID_ROW(const tex_noise_grid *g, int y, int op, float a, 
 #undef GRID_ATTR
 #undef GRID_COEFFS
 #undef GRID_PIXELS
+#undef GRID_LUT_ROW

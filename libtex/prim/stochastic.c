@@ -188,14 +188,15 @@ static void colorvar_fini(struct tex_field *f)
 /* Fact = sum C_i (sin(w_i u + P_z + a_i) + 1) * sum C_i (sin(w_i v + P_x + b_i) + 1), over its
  * largest value (2 sum C_i)^2 so that it lies in [0,1]; (u, v) are the thesis's (x, z), and
  * h the height y that only the noise sees (the map: 0.5 / 4). */
-static void colorvar_point(const struct tex_field *f, double u, double v, double h, float *out)
+static void colorvar_point(const struct tex_field *f, double u, double v, double noise,
+                           float *out)
 {
     const struct colorvar_params *p = f->params;
     const struct colorvar_state *s = f->state;
     double pz = p->k1 * sin(2 * M_PI * v), px = p->k2 * sin(2 * M_PI * p->b * u);
     double su = 0, sv = 0, c = 1, w = 2 * M_PI * p->frequency;
     if (p->noise > 0) {
-        double nz = p->noise * tex_noise3(&s->t, 4 * u, 4 * v, 4 * h);
+        double nz = p->noise * noise;
         pz += nz;
         px += nz;
     }
@@ -211,11 +212,33 @@ static void colorvar_point(const struct tex_field *f, double u, double v, double
             out[ch] = clamp01((float)(fact * p->color[ch]));
 }
 
+/* Points (u, v) at height h[k] (NULL: 0.125), the noise batched through the point path. */
+static void colorvar_points(const struct tex_field *f, int n, const double *u, const double *v,
+                            const double *h, float *out)
+{
+    enum { B = TEX_POINTS_BATCH };
+    const struct colorvar_state *s = f->state;
+    double x[B], y[B], z[B], nz[B];
+
+    for (int i0 = 0; i0 < n; i0 += B) {
+        int m = n - i0 < B ? n - i0 : B;
+        for (int i = 0; i < m; i++) {
+            x[i] = 4 * u[i0 + i];
+            y[i] = 4 * v[i0 + i];
+            z[i] = 4 * (h ? h[i0 + i] + 0.125 : 0.125);
+            nz[i] = 0;
+        }
+        if (((const struct colorvar_params *)f->params)->noise > 0)
+            tex_noise_points(&s->t, s->t.period, 3, m, x, y, z, NULL, nz);
+        for (int i = 0; i < m; i++)
+            colorvar_point(f, u[i0 + i], v[i0 + i], nz[i], out + (size_t)(i0 + i) * f->nc);
+    }
+}
+
 static void colorvar_eval2(const struct tex_field *f, int n, const double *u, const double *v,
                            float *out)
 {
-    for (int k = 0; k < n; k++, out += f->nc)
-        colorvar_point(f, u[k], v[k], 0.125, out);
+    colorvar_points(f, n, u, v, NULL, out);
 }
 
 /* In space, as the thesis writes it: the sums run along x (u) and z (w); y (v) enters
@@ -223,8 +246,7 @@ static void colorvar_eval2(const struct tex_field *f, int n, const double *u, co
 static void colorvar_eval3(const struct tex_field *f, int n, const double *u, const double *v,
                            const double *w, float *out)
 {
-    for (int k = 0; k < n; k++, out += f->nc)
-        colorvar_point(f, u[k], w[k], v[k] + 0.125, out);
+    colorvar_points(f, n, u, w, v, out);
 }
 
 const struct tex_primitive tex_prim_colorvar = {
@@ -307,12 +329,9 @@ static void perturb_eval3(const struct tex_field *f, int n, const double *u, con
 {
     const struct perturb_state *s = f->state;
 
-    for (int i = 0; i < n; i++) {
-        float t = 0;
-        for (int k = 0; k < s->o.n; k++)
-            t += s->amp[k] * fabsf((float)tex_octave_point(&s->o, k, u[i], v[i], w ? w[i] : 0));
-        out[i] = perturb_value(f->params, u[i], v[i], t * s->inv);
-    }
+    tex_octave_abs_sum(&s->o, s->o.n, s->amp, 0, n, u, v, w, out);
+    for (int i = 0; i < n; i++)
+        out[i] = perturb_value(f->params, u[i], v[i], out[i] * s->inv);
 }
 
 static void perturb_eval2(const struct tex_field *f, int n, const double *u, const double *v,

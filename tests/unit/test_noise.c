@@ -391,5 +391,72 @@ int main(void)
                out[1]);
         tex_field_free(f);
     }
+    /* The point path: tex_noise_points equals tex_noise3p bit for bit (vectorised where
+     * the CPU has AVX2), at odd counts, far from the origin, with a period and both
+     * fades; and every point primitive's eval3 over N points equals N calls of one
+     * point (the scalar path), for N = 1, odd N and a whole batch and more. */
+    {
+        enum { N = 1031 };
+        static double x[N], y[N], z[N], a[N], u[N], v[N], w[N];
+        static float big[N], one[N];
+        tex_rng r;
+        int bad = 0;
+        tex_rng_seed(&r, 17);
+        for (int i = 0; i < N; i++) {
+            double s = i % 7 == 0 ? 3e8 : i % 5 == 0 ? 2e3 : 20; /* 3e8: past the 2^30 cells */
+            x[i] = s * (2 * tex_rng_uniform(&r) - 1);
+            y[i] = s * (2 * tex_rng_uniform(&r) - 1);
+            z[i] = i % 11 == 0 ? floor(z[i - 1 > 0 ? i - 1 : 0]) : 20 * tex_rng_uniform(&r);
+            u[i] = 4 * tex_rng_uniform(&r) - 2;
+            v[i] = 4 * tex_rng_uniform(&r) - 2;
+            w[i] = i % 13 == 0 ? 1e6 : tex_rng_uniform(&r);
+        }
+        for (int c = 0; c < 4; c++) {
+            tex_noise_table t;
+            int period = c & 1 ? 7 : 0, cnt = c < 2 ? N : 5;
+            tex_noise_init(&t, 11 + c, c == 3 ? 97 : 256, 0);
+            t.fade = c >= 2 ? TEX_FADE_QUINTIC : TEX_FADE_CUBIC;
+            tex_noise_points(&t, period, 3, cnt, x, y, z, NULL, a);
+            for (int i = 0; i < cnt; i++)
+                bad += memcmp(&a[i], &(double){tex_noise3p(&t, period, x[i], y[i], z[i])},
+                              sizeof a[i]) != 0;
+            tex_noise_free(&t);
+        }
+        CHECKF(bad == 0, "tex_noise_points equals tex_noise3p bit for bit (%s; %d differ)",
+               tex_simd_name(tex_simd_level()), bad);
+        static const struct {
+            const struct tex_primitive *p;
+            const char *kv[6];
+        } pp[] = {{&tex_prim_noise, {"frequency", "5"}},
+                  {&tex_prim_noise, {"frequency", "3", "time", "0.3"}},
+                  {&tex_prim_turbulence, {"octaves", "6", "frequency", "3"}},
+                  {&tex_prim_fractal, {"octaves", "7"}},
+                  {&tex_prim_fractal, {"mode", "ridged", "octaves", "5"}},
+                  {&tex_prim_fractal, {"mode", "hybrid", "octaves", "5"}},
+                  {&tex_prim_wood, {"grain", "0.4"}},
+                  {&tex_prim_perturb, {"octaves", "5"}},
+                  {&tex_prim_colorvar, {"noise", "0.7"}}};
+        for (size_t k = 0; k < sizeof pp / sizeof pp[0]; k++) {
+            struct tex_field *f = tex_field_new(pp[k].p);
+            int diff = 0;
+            for (int i = 0; i < 6 && pp[k].kv[i]; i += 2)
+                tex_field_set(f, pp[k].kv[i], pp[k].kv[i + 1]);
+            tex_field_init(f, 0, 0);
+            for (int pass = 0; pass < 2; pass++) {
+                int n = pass ? N : 3;
+                f->prim->eval3(f, n, u, v, w, big);
+                for (int i = 0; i < n; i++)
+                    f->prim->eval3(f, 1, u + i, v + i, w + i, one + i);
+                diff += memcmp(big, one, n * sizeof *big) != 0;
+                f->prim->eval2(f, n, u, v, big);
+                for (int i = 0; i < n; i++)
+                    f->prim->eval2(f, 1, u + i, v + i, one + i);
+                diff += memcmp(big, one, n * sizeof *big) != 0;
+            }
+            CHECKF(diff == 0, "%s %s %s: eval3/eval2 over N points equal N single points",
+                   pp[k].p->name, pp[k].kv[0], pp[k].kv[1]);
+            tex_field_free(f);
+        }
+    }
     return unit_done();
 }
