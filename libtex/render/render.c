@@ -234,29 +234,26 @@ static inline int reflects(const struct tex_material *m)
     return !(m->kr <= 0 && m->kt <= 0 && m->model == &tex_shading_phong);
 }
 
-/* Whitted's recursion: ambient, direct light, then reflection and
- * refraction.  weight: the largest share of the pixel this ray can carry
- * (1 for eye rays); rays below the scene's bailout are not traced. */
 /* What a ray that meets nothing sees: the background or the environment map. */
 static void miss(const struct ctx *c, const tex_ray *r, tex_colour *out)
 {
     const struct tex_scene *s = c->s;
-    {
-        if (!s->env.map) {
-            tex_colour_copy(out, c->n, c->background);
-            return;
-        }
-        float rgb[3];
-        tex_environment_eval(&s->env, &r->d, s->settings.filter ? r->spread : 0, rgb);
-        if (s->cs.mode == TEX_COLOUR_RGB)
-            out->v[0] = rgb[0], out->v[1] = rgb[1], out->v[2] = rgb[2];
-        else
-            s->cs.from_rgb(&s->cs, rgb, TEX_SPECTRUM_ILLUMINANT, out);
+    if (!s->env.map) {
+        tex_colour_copy(out, c->n, c->background);
+        return;
     }
+    float rgb[3];
+    tex_environment_eval(&s->env, &r->d, s->settings.filter ? r->spread : 0, rgb);
+    if (s->cs.mode == TEX_COLOUR_RGB)
+        out->v[0] = rgb[0], out->v[1] = rgb[1], out->v[2] = rgb[2];
+    else
+        s->cs.from_rgb(&s->cs, rgb, TEX_SPECTRUM_ILLUMINANT, out);
 }
 
-/* The colour ray r carries back from its hit h at P (pre: the hit's lookups done ahead
- * with its packet, or NULL). */
+/* Whitted's recursion from ray r's hit h at P: ambient, direct light, then reflection
+ * and refraction (pre: the hit's lookups done ahead with its packet, or NULL).  weight:
+ * the largest share of the pixel this ray can carry (1 for eye rays); rays below the
+ * scene's bailout are not traced. */
 static void shade(const struct ctx *c, const tex_ray *r, const struct tex_hit *hp, tex_v3 P,
                   const struct tex_prefetch *pre, int depth, double weight, tex_colour *out)
 {
@@ -282,6 +279,7 @@ static void shade(const struct ctx *c, const tex_ray *r, const struct tex_hit *h
         secondary(c, r, &f, m, depth, weight, out);
 }
 
+/* The colour ray r brings back */
 static void trace(const struct ctx *c, const tex_ray *r, int depth, double weight, tex_colour *out)
 {
     struct tex_hit h;
@@ -487,14 +485,11 @@ tex_map *tex_render_region(struct tex_scene *s, int rx, int ry, int rw, int rh,
     int threads = st->threads > 0 ? st->threads : omp_get_max_threads();
     /* TEXTURA_PACKETS=0: every pixel on its own (the tests compare the two) */
     const char *pe = getenv("TEXTURA_PACKETS");
-    int packets = !(pe && !strcmp(pe, "0")), failed = 0;
+    int packets = !(pe && !strcmp(pe, "0"));
 #pragma omp parallel num_threads(threads)
     {
+        /* without the memory for a packet, a thread goes pixel by pixel: the same bytes */
         struct packet *pk = packets ? malloc(sizeof *pk) : NULL;
-        if (packets && !pk) {
-#pragma omp atomic write
-            failed = 1;
-        }
 #pragma omp for schedule(dynamic, 1)
         for (long t = 0; t < ntiles; t++) {
             int x0 = (int)(t % tw) * TILE, y0 = (int)(t / tw) * TILE;
@@ -520,10 +515,5 @@ tex_map *tex_render_region(struct tex_scene *s, int rx, int ry, int rw, int rh,
         progress(ntiles, ntiles, arg);
     for (int i = 0; i < s->nsurfaces; i++)
         tex_surface_uncache(s->surfaces[i]);
-    if (failed) {
-        tex_map_free(img);
-        tex_error("out of memory");
-        return NULL;
-    }
     return img;
 }
