@@ -860,6 +860,33 @@ __attribute__((target("avx2"))) static void hybrid_step_avx2(const struct mf_ste
 }
 #endif
 
+#ifdef TEX_X86
+__attribute__((target("avx2"))) static int finish_row_avx2(float *out, int w, float lo, float inv)
+{
+    __m256 l = _mm256_set1_ps(lo), k = _mm256_set1_ps(inv);
+    __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1);
+    int x = 0;
+    for (; x + 8 <= w; x += 8) {
+        __m256 v = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(out + x), l), k);
+        _mm256_storeu_ps(out + x, _mm256_min_ps(_mm256_max_ps(v, zero), one));
+    }
+    return x;
+}
+#endif
+
+/* Ridged and hybrid's rescaling: clamp01((x - lo) inv), with lo 0 for ridged
+ * (x - 0 is x: a sum of squares is never -0). */
+static void finish_row(float *out, int w, float lo, float inv, int level)
+{
+    int x = 0;
+#ifdef TEX_X86
+    if (level >= TEX_SIMD_AVX2)
+        x = finish_row_avx2(out, w, lo, inv);
+#endif
+    for (; x < w; x++)
+        out[x] = clamp01((out[x] - lo) * inv);
+}
+
 static void frac_row(const struct tex_field *f, int y, float *out)
 {
     const struct frac_params *p = f->params;
@@ -899,9 +926,7 @@ static void frac_row(const struct tex_field *f, int y, float *out)
         else
             hybrid_step(&m, 0, f->w, n, st, out);
     }
-    for (int x = 0; x < f->w; x++)
-        out[x] = s->mode == RIDGED ? clamp01(out[x] * s->inv)
-                                   : clamp01((out[x] - s->lo) * s->inv);
+    finish_row(out, f->w, s->mode == RIDGED ? 0 : s->lo, s->inv, level);
     free(n);
     (void)level;
 }

@@ -68,7 +68,8 @@ int tex_noise_init(tex_noise_table *t, uint64_t seed, int n, int period)
     tex_rng_shuffle(&r, t->perm, n);
     memcpy(t->perm + n, t->perm, n * sizeof *t->perm);
     for (int m = 0; m < 2 * n; m++)
-        memcpy(t->pgrad[m], t->grad[t->perm[m]], sizeof t->pgrad[m]);
+        for (int k = 0; k < 4; k++)
+            t->pgrad[m][k] = t->grad[t->perm[m]][k];
     return 0;
 }
 
@@ -256,8 +257,14 @@ AVX2 static int noise3_avx2(const tex_noise_table *t, int period, const double *
             return 0;
         int per = a < 2 ? period : 0;
         f[a] = _mm256_sub_pd(p[a], c);
-        idx[a][0] = lat_pd(c, per, t->n);
-        idx[a][1] = lat_pd(_mm256_add_pd(c, one), per, t->n);
+        if (!per && !(t->n & (t->n - 1))) { /* mod a power of two: a mask, negatives too */
+            __m128i mask = _mm_set1_epi32(t->n - 1), i = _mm256_cvttpd_epi32(c);
+            idx[a][0] = _mm_and_si128(i, mask);
+            idx[a][1] = _mm_and_si128(_mm_add_epi32(i, _mm_set1_epi32(1)), mask);
+        } else {
+            idx[a][0] = lat_pd(c, per, t->n);
+            idx[a][1] = lat_pd(_mm256_add_pd(c, one), per, t->n);
+        }
         wt[a][0] = fade_pd(t->fade, f[a]);
         wt[a][1] = fade_pd(t->fade, _mm256_sub_pd(one, f[a]));
     }
@@ -267,6 +274,13 @@ AVX2 static int noise3_avx2(const tex_noise_table *t, int period, const double *
     for (int b2 = 0; b2 < 2; b2++)
         for (int b1 = 0; b1 < 2; b1++)
             hy[b1][b2] = _mm_i32gather_epi32(F, _mm_add_epi32(idx[1][b1], hz[b2]), 4);
+    /* w = ((1 wx) wy) wz with the x-y products shared; d = f - 0 is f (never -0) */
+    __m256d wxy[2][2], dm[3];
+    for (int a = 0; a < 3; a++)
+        dm[a] = _mm256_sub_pd(f[a], one);
+    for (int b1 = 0; b1 < 2; b1++)
+        for (int b0 = 0; b0 < 2; b0++)
+            wxy[b0][b1] = _mm256_mul_pd(wt[0][b0], wt[1][b1]);
     __m256d sum = _mm256_setzero_pd();
 #pragma GCC unroll 8
     for (int c = 0; c < 8; c++) {
@@ -274,17 +288,17 @@ AVX2 static int noise3_avx2(const tex_noise_table *t, int period, const double *
         /* the corners' gradients grad[F[...]]: four rows of pgrad, transposed */
         int m[4];
         _mm_storeu_si128((__m128i *)m, _mm_add_epi32(idx[0][b[0]], hy[b[1]][b[2]]));
-        __m128 gr[4] = {_mm_loadu_ps(t->pgrad[m[0]]), _mm_loadu_ps(t->pgrad[m[1]]),
-                        _mm_loadu_ps(t->pgrad[m[2]]), _mm_loadu_ps(t->pgrad[m[3]])};
-        _MM_TRANSPOSE4_PS(gr[0], gr[1], gr[2], gr[3]);
-        __m256d dot = _mm256_setzero_pd(), w = one;
+        __m256d r0 = _mm256_loadu_pd(t->pgrad[m[0]]), r1 = _mm256_loadu_pd(t->pgrad[m[1]]);
+        __m256d r2 = _mm256_loadu_pd(t->pgrad[m[2]]), r3 = _mm256_loadu_pd(t->pgrad[m[3]]);
+        __m256d t0 = _mm256_unpacklo_pd(r0, r1), t1 = _mm256_unpackhi_pd(r0, r1);
+        __m256d t2 = _mm256_unpacklo_pd(r2, r3), t3 = _mm256_unpackhi_pd(r2, r3);
+        __m256d gr[3] = {_mm256_permute2f128_pd(t0, t2, 0x20), _mm256_permute2f128_pd(t1, t3, 0x20),
+                         _mm256_permute2f128_pd(t0, t2, 0x31)};
+        __m256d dot = _mm256_setzero_pd();
 #pragma GCC unroll 3
-        for (int a = 0; a < 3; a++) {
-            __m256d g = _mm256_cvtps_pd(gr[a]);
-            __m256d d = _mm256_sub_pd(f[a], b[a] ? one : _mm256_setzero_pd());
-            dot = _mm256_add_pd(dot, _mm256_mul_pd(g, d));
-            w = _mm256_mul_pd(w, wt[a][b[a]]);
-        }
+        for (int a = 0; a < 3; a++)
+            dot = _mm256_add_pd(dot, _mm256_mul_pd(gr[a], b[a] ? dm[a] : f[a]));
+        __m256d w = _mm256_mul_pd(wxy[b[0]][b[1]], wt[2][b[2]]);
         sum = _mm256_add_pd(sum, _mm256_mul_pd(w, dot));
     }
     _mm256_storeu_pd(out, sum);
@@ -1315,6 +1329,7 @@ void tex_octave_points(const tex_octaves *o, int k, int n, const double *u, cons
 
     for (int i0 = 0; i0 < n; i0 += B) {
         int m = n - i0 < B ? n - i0 : B;
+#pragma omp simd
         for (int i = 0; i < m; i++) { /* tex_octave_point's coordinates */
             X[i] = o->off[k][0] + f * u[i0 + i];
             Y[i] = o->off[k][1] + f * v[i0 + i];
@@ -1500,7 +1515,8 @@ static void noise_eval3(const struct tex_field *f, int n, const double *u, const
 
     for (int i0 = 0; i0 < n; i0 += B) {
         int m = n - i0 < B ? n - i0 : B;
-        for (int i = 0; i < m; i++) { /* noise_at's coordinates */
+#pragma omp simd
+        for (int i = 0; i < m; i++) { /* lattice coordinates: offset + frequency x point */
             X[i] = s->off[0] + fr * u[i0 + i];
             Y[i] = s->off[1] + fr * v[i0 + i];
             Z[i] = s->off[2] + fr * (w ? w[i0 + i] : 0);

@@ -15,6 +15,12 @@
  *   tex_noise_table t;
  *   tex_noise_init(&t, seed, 256, 0);       // n = 256, not periodic
  *   double s = tex_noise3(&t, x, y, z);      // signed, double precision
+ *   tex_noise_points(&t, 0, 3, n, x, y, z, NULL, out); // n points at once
+ *
+ * Many points at once (the solid textures at a packet's hit points) go four
+ * at a time through an AVX2 kernel that performs noise_point's double
+ * operations in their order, so its values are tex_noise3p's bit for bit;
+ * the primitives' eval2/eval3 batch their octaves through it.
  *
  * With period p > 0 (t.period, or the p argument of the *p variants) the
  * lattice wraps every p cells along x and y, so a field sampled over
@@ -81,7 +87,7 @@ typedef struct tex_noise_table {
     int *perm;   /* F, stored twice (2n entries) so that F[a + b] needs no mod */
     float (*grad)[4];  /* n unit vectors on the sphere (w = 0) */
     float (*grad4)[4]; /* n unit vectors on the 4D sphere */
-    float (*pgrad)[4]; /* grad[perm[m]] for m < 2n: the last hash step and its gradient in one */
+    double (*pgrad)[4]; /* grad[perm[m]] for m < 2n: the last hash step and its gradient in one */
 } tex_noise_table;
 
 int tex_noise_init(tex_noise_table *t, uint64_t seed, int n, int period);
