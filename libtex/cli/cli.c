@@ -596,6 +596,26 @@ static void check_combinations(const struct tex_tool *t, const struct tex_common
                             "--mode");
 }
 
+/* OpenMP's idle threads spin after every parallel region (libgomp polls 300000 times,
+ * libomp for 200 ms) unless OMP_WAIT_POLICY is passive, and in a pipeline of tools on
+ * busy cores that spinning takes the CPU the other stages need: a five-stage pipeline
+ * spends about twice the CPU (tests/bench/omp_wait).  The runtimes read the policy once,
+ * as they load, before any code of a tool runs (a constructor, even one in .preinit_array,
+ * comes too late or sees its setenv undone), so a tool whose environment names no policy
+ * runs itself again, once, with OMP_WAIT_POLICY=passive; one set (to anything, e.g.
+ * active) is kept.  Only at the start of a tool's main: nothing is open or printed yet. */
+static void passive_threads(char **argv)
+{
+#ifdef _OPENMP
+    if (getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT") || getenv("KMP_BLOCKTIME") ||
+        setenv("OMP_WAIT_POLICY", "passive", 1) < 0)
+        return;
+    execv("/proc/self/exe", argv); /* returns only on failure (no /proc): spin, then */
+#else
+    (void)argv;
+#endif
+}
+
 int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_common *c,
                   void *opts)
 {
@@ -607,8 +627,10 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
     memset(c, 0, sizeof *c);
     {
         static int registered; /* a tool may parse twice (t_warp) */
-        if (!registered++)
+        if (!registered++) {
+            passive_threads(argv);
             atexit(close_stdout);
+        }
     }
     ngiven = nold = 0;
     n = collect(t, c, opts, o);

@@ -5,10 +5,19 @@
  * independent, so any thread count gives the same image, and a region of
  * the image the same pixels as the whole render.  Tiles of 16x16
  * pixels are shared among OpenMP threads dynamically.
+ *
+ * Eye rays go in packets of 8x8 pixels (render_packet): all find their hits,
+ * then the primitives evaluated at hit points are evaluated over the packet's
+ * hits in one call each (tex_prefetch_eval), then every hit is shaded.  The
+ * primitives give a point the same value in a call of any length, and each
+ * pixel draws from its own rng in the same order, so the image is the one
+ * pixel-by-pixel tracing makes; TEXTURA_PACKETS=0 in the environment traces
+ * pixel by pixel (tests/t_apply_packets.sh compares the two).
  */
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "base/error.h"
 #include "render/scene.h"
@@ -225,33 +234,37 @@ static inline int reflects(const struct tex_material *m)
     return !(m->kr <= 0 && m->kt <= 0 && m->model == &tex_shading_phong);
 }
 
-/* Whitted's recursion: ambient, direct light, then reflection and
- * refraction.  weight: the largest share of the pixel this ray can carry
- * (1 for eye rays); rays below the scene's bailout are not traced. */
-static void trace(const struct ctx *c, const tex_ray *r, int depth, double weight, tex_colour *out)
+/* What a ray that meets nothing sees: the background or the environment map. */
+static void miss(const struct ctx *c, const tex_ray *r, tex_colour *out)
 {
     const struct tex_scene *s = c->s;
-    struct tex_hit h;
-    if (!tex_scene_trace(s, &r->o, &r->d, 0, INFINITY, &h)) {
-        if (!s->env.map) {
-            tex_colour_copy(out, c->n, c->background);
-            return;
-        }
-        float rgb[3];
-        tex_environment_eval(&s->env, &r->d, s->settings.filter ? r->spread : 0, rgb);
-        if (s->cs.mode == TEX_COLOUR_RGB)
-            out->v[0] = rgb[0], out->v[1] = rgb[1], out->v[2] = rgb[2];
-        else
-            s->cs.from_rgb(&s->cs, rgb, TEX_SPECTRUM_ILLUMINANT, out);
+    if (!s->env.map) {
+        tex_colour_copy(out, c->n, c->background);
         return;
     }
-    tex_v3 P = tex_v3_madd(r->o, r->d, h.t);
+    float rgb[3];
+    tex_environment_eval(&s->env, &r->d, s->settings.filter ? r->spread : 0, rgb);
+    if (s->cs.mode == TEX_COLOUR_RGB)
+        out->v[0] = rgb[0], out->v[1] = rgb[1], out->v[2] = rgb[2];
+    else
+        s->cs.from_rgb(&s->cs, rgb, TEX_SPECTRUM_ILLUMINANT, out);
+}
+
+/* Whitted's recursion from ray r's hit h at P: ambient, direct light, then reflection
+ * and refraction (pre: the hit's lookups done ahead with its packet, or NULL).  weight:
+ * the largest share of the pixel this ray can carry (1 for eye rays); rays below the
+ * scene's bailout are not traced. */
+static void shade(const struct ctx *c, const tex_ray *r, const struct tex_hit *hp, tex_v3 P,
+                  const struct tex_prefetch *pre, int depth, double weight, tex_colour *out)
+{
+    const struct tex_scene *s = c->s;
+    struct tex_hit h = *hp;
     tex_v3 Ng = hit_normal(&h, P);
     int entering = tex_v3_dot(r->d, Ng) < 0;
     tex_v3 N = entering ? Ng : tex_v3_scale(Ng, -1);
     double width = fabs(r->width + h.t * r->spread); /* a focused beam crosses 0 */
     struct tex_material m[2]; /* m[1]: a blended surface's */
-    struct tex_shade_at at = {h.leaf, &P, &r->d, width, r->dist + h.t, depth};
+    struct tex_shade_at at = {h.leaf, &P, &r->d, width, r->dist + h.t, depth, pre};
     tex_resolve_material(s, surface_of(s, h.leaf), &at, &N, m);
     tex_v3 V = tex_v3_scale(r->d, -1);
     double e = eps_at(P);
@@ -264,6 +277,16 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, double weigh
     direct_light(c, m, &f, out);
     if (depth < s->settings.depth && (reflects(&m[0]) || (m->blend_m && reflects(&m[1]))))
         secondary(c, r, &f, m, depth, weight, out);
+}
+
+/* The colour ray r brings back */
+static void trace(const struct ctx *c, const tex_ray *r, int depth, double weight, tex_colour *out)
+{
+    struct tex_hit h;
+    if (!tex_scene_trace(c->s, &r->o, &r->d, 0, INFINITY, &h))
+        miss(c, r, out);
+    else
+        shade(c, r, &h, tex_v3_madd(r->o, r->d, h.t), NULL, depth, weight, out);
 }
 
 struct camera {
@@ -290,47 +313,130 @@ static void camera_setup(const struct tex_scene *s, struct camera *cam)
     cam->k = k * k == s->settings.spp ? k : 0;
 }
 
-static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, int y, float *px)
+/* The eye ray of sample i of pixel (x, y), its position drawn from the pixel's rng
+ * (the centre at 1 spp). */
+static void camera_ray(const struct ctx *c, const struct camera *cam, int x, int y, int i,
+                       tex_rng *rng, tex_ray *r)
 {
-    const struct tex_scene *s = c0->s;
-    const struct tex_settings *st = &s->settings;
-    tex_rng rng;
-    if (c0->need_rng)
-        tex_rng_seed(&rng, tex_hash64(st->seed ^ tex_hash64((uint64_t)y * st->w + x)));
-    struct ctx c = *c0;
-    c.rng = &rng;
-    int spp = st->spp, k = cam->k, grid = k > 0;
-    double acc[3] = {0, 0, 0};
-    for (int i = 0; i < spp; i++) {
-        double ox = 0.5, oy = 0.5;
-        if (spp > 1) {
-            ox = tex_rng_uniform(&rng);
-            oy = tex_rng_uniform(&rng);
-            if (grid) { /* stratified: jitter within cell i of a k x k grid */
-                ox = ((i % k) + ox) / k;
-                oy = ((i / k) + oy) / k;
-            }
+    const struct tex_scene *s = c->s;
+    int spp = s->settings.spp, k = cam->k;
+    double ox = 0.5, oy = 0.5;
+    if (spp > 1) {
+        ox = tex_rng_uniform(rng);
+        oy = tex_rng_uniform(rng);
+        if (k > 0) { /* stratified: jitter within cell i of a k x k grid */
+            ox = ((i % k) + ox) / k;
+            oy = ((i / k) + oy) / k;
         }
-        double a = (x + ox) * cam->kx - cam->sx;
-        double b = cam->sy - (y + oy) * cam->ky;
-        tex_ray r = {cam->eye,
-                     tex_v3_norm(tex_v3_add(cam->fwd, tex_v3_add(tex_v3_scale(cam->right, a),
-                                                                 tex_v3_scale(cam->up, b)))),
-                     0, cam->spread, s->eye_media.n ? &s->eye_media : NULL, 0};
-        tex_colour col;
-        float rgb[3];
-        trace(&c, &r, 0, 1, &col);
-        if (s->cs.mode == TEX_COLOUR_RGB) { /* the identity: no call, no store and reload */
-            for (int j = 0; j < 3; j++)
-                acc[j] += col.v[j];
-            continue;
-        }
-        s->cs.to_rgb(&s->cs, &col, rgb);
-        for (int j = 0; j < 3; j++)
-            acc[j] += rgb[j];
     }
+    double a = (x + ox) * cam->kx - cam->sx;
+    double b = cam->sy - (y + oy) * cam->ky;
+    *r = (tex_ray){cam->eye,
+                   tex_v3_norm(tex_v3_add(cam->fwd, tex_v3_add(tex_v3_scale(cam->right, a),
+                                                               tex_v3_scale(cam->up, b)))),
+                   0, cam->spread, s->eye_media.n ? &s->eye_media : NULL, 0};
+}
+
+/* A sample's colour col added to the pixel's sum acc, in RGB */
+static inline void accumulate(const struct tex_scene *s, const tex_colour *col, double acc[3])
+{
+    float rgb[3];
+    if (s->cs.mode == TEX_COLOUR_RGB) { /* the identity: no call, no store and reload */
+        for (int j = 0; j < 3; j++)
+            acc[j] += col->v[j];
+        return;
+    }
+    s->cs.to_rgb(&s->cs, col, rgb);
+    for (int j = 0; j < 3; j++)
+        acc[j] += rgb[j];
+}
+
+static void seed_pixel(const struct ctx *c, int x, int y, tex_rng *rng)
+{
+    const struct tex_settings *st = &c->s->settings;
+    if (c->need_rng)
+        tex_rng_seed(rng, tex_hash64(st->seed ^ tex_hash64((uint64_t)y * st->w + x)));
+}
+
+static void put_pixel(int spp, const double acc[3], float *px)
+{
     for (int j = 0; j < 3; j++)
         px[j] = (float)(spp == 1 ? acc[j] : acc[j] / spp);
+}
+
+/* One pixel, its samples traced one by one (TEXTURA_PACKETS=0) */
+static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, int y, float *px)
+{
+    tex_rng rng;
+    seed_pixel(c0, x, y, &rng);
+    struct ctx c = *c0;
+    c.rng = &rng;
+    int spp = c0->s->settings.spp;
+    double acc[3] = {0, 0, 0};
+    for (int i = 0; i < spp; i++) {
+        tex_ray r;
+        tex_colour col;
+        camera_ray(&c, cam, x, y, i, &rng, &r);
+        trace(&c, &r, 0, 1, &col);
+        accumulate(c0->s, &col, acc);
+    }
+    put_pixel(spp, acc, px);
+}
+
+/* A packet of eye rays: a square of PACKET x PACKET pixels, traced a sample at a time.
+ * Every ray finds its hit first; then the textures of all the hits are looked up together
+ * (tex_prefetch_eval: one batched call per primitive); then each hit is shaded.  Each
+ * pixel keeps its own rng and draws from it in the order render_pixel does, and the
+ * lookups ahead are the same computations, so the bytes are the per-pixel render's. */
+#define PACKET 8
+struct packet {
+    tex_rng rng[PACKET * PACKET];
+    double acc[PACKET * PACKET][3];
+    tex_ray r[PACKET * PACKET];
+    struct tex_hit h[PACKET * PACKET];
+    int hit[PACKET * PACKET];
+    tex_v3 P[PACKET * PACKET];
+    struct tex_prefetch pre[PACKET * PACKET], *pp[PACKET * PACKET];
+};
+
+/* The pixels [x0, x1) x [y0, y1) of the image (at most PACKET square) into img, whose
+ * origin is the image's (rx, ry). */
+static void render_packet(const struct ctx *c0, const struct camera *cam, struct packet *pk,
+                          int x0, int y0, int x1, int y1, tex_map *img, int rx, int ry)
+{
+    const struct tex_scene *s = c0->s;
+    int spp = s->settings.spp, w = x1 - x0, np = w * (y1 - y0);
+    struct ctx c = *c0;
+    for (int k = 0; k < np; k++) {
+        seed_pixel(c0, x0 + k % w, y0 + k / w, &pk->rng[k]);
+        pk->acc[k][0] = pk->acc[k][1] = pk->acc[k][2] = 0;
+    }
+    for (int i = 0; i < spp; i++) {
+        int m = 0;
+        for (int k = 0; k < np; k++) {
+            tex_ray *r = &pk->r[k];
+            camera_ray(&c, cam, x0 + k % w, y0 + k / w, i, &pk->rng[k], r);
+            pk->hit[k] = tex_scene_trace(s, &r->o, &r->d, 0, INFINITY, &pk->h[k]);
+            if (!pk->hit[k])
+                continue;
+            pk->P[k] = tex_v3_madd(r->o, r->d, pk->h[k].t);
+            tex_prefetch_map(&pk->pre[k], surface_of(s, pk->h[k].leaf), pk->h[k].leaf,
+                             &pk->P[k]);
+            pk->pp[m++] = &pk->pre[k];
+        }
+        tex_prefetch_eval(pk->pp, m);
+        for (int k = 0; k < np; k++) {
+            tex_colour col;
+            c.rng = &pk->rng[k];
+            if (pk->hit[k])
+                shade(&c, &pk->r[k], &pk->h[k], pk->P[k], &pk->pre[k], 0, 1, &col);
+            else
+                miss(&c, &pk->r[k], &col);
+            accumulate(s, &col, pk->acc[k]);
+        }
+    }
+    for (int k = 0; k < np; k++)
+        put_pixel(spp, pk->acc[k], tex_map_px(img, x0 + k % w - rx, y0 + k / w - ry));
 }
 
 tex_map *tex_render(struct tex_scene *s, void (*progress)(long, long, void *), void *arg)
@@ -377,18 +483,33 @@ tex_map *tex_render_region(struct tex_scene *s, int rx, int ry, int rw, int rh,
     int tw = (rw + TILE - 1) / TILE, th = (rh + TILE - 1) / TILE;
     long ntiles = (long)tw * th, done = 0;
     int threads = st->threads > 0 ? st->threads : omp_get_max_threads();
-#pragma omp parallel for schedule(dynamic, 1) num_threads(threads)
-    for (long t = 0; t < ntiles; t++) {
-        int x0 = (int)(t % tw) * TILE, y0 = (int)(t / tw) * TILE;
-        /* pixels keep their place in the whole image: camera rays and seeds */
-        for (int y = y0; y < y0 + TILE && y < rh; y++)
-            for (int x = x0; x < x0 + TILE && x < rw; x++)
-                render_pixel(&c, &cam, rx + x, ry + y, tex_map_px(img, x, y));
-        long d;
+    /* TEXTURA_PACKETS=0: every pixel on its own (the tests compare the two) */
+    const char *pe = getenv("TEXTURA_PACKETS");
+    int packets = !(pe && !strcmp(pe, "0"));
+#pragma omp parallel num_threads(threads)
+    {
+        /* without the memory for a packet, a thread goes pixel by pixel: the same bytes */
+        struct packet *pk = packets ? malloc(sizeof *pk) : NULL;
+#pragma omp for schedule(dynamic, 1)
+        for (long t = 0; t < ntiles; t++) {
+            int x0 = (int)(t % tw) * TILE, y0 = (int)(t / tw) * TILE;
+            int x1 = x0 + TILE < rw ? x0 + TILE : rw, y1 = y0 + TILE < rh ? y0 + TILE : rh;
+            /* pixels keep their place in the whole image: camera rays and seeds */
+            for (int py = y0; pk && py < y1; py += PACKET)
+                for (int px = x0; px < x1; px += PACKET)
+                    render_packet(&c, &cam, pk, rx + px, ry + py,
+                                  rx + (px + PACKET < x1 ? px + PACKET : x1),
+                                  ry + (py + PACKET < y1 ? py + PACKET : y1), img, rx, ry);
+            for (int y = y0; !pk && y < y1; y++)
+                for (int x = x0; x < x1; x++)
+                    render_pixel(&c, &cam, rx + x, ry + y, tex_map_px(img, x, y));
+            long d;
 #pragma omp atomic capture
-        d = ++done;
-        if (progress && omp_get_thread_num() == 0)
-            progress(d, ntiles, arg);
+            d = ++done;
+            if (progress && omp_get_thread_num() == 0)
+                progress(d, ntiles, arg);
+        }
+        free(pk);
     }
     if (progress)
         progress(ntiles, ntiles, arg);

@@ -38,7 +38,7 @@ int tex_light_sample(const struct tex_light *l, int k, double jx, double jy, tex
         double c = -tex_v3_dot(*L, l->dir);
         if (c < l->cos_angle)
             return 0;
-        f *= pow(c, l->exponent);
+        f *= tex_powi(c, l->exponent); /* whole exponents: by squaring */
     }
     if (l->kind == TEX_LIGHT_AREA)
         f /= tex_light_samples(l);

@@ -157,15 +157,23 @@ map_eval(const struct tex_texture *t, double u, double v, double fw2, float out[
         out[1] = out[2] = out[0];
 }
 
-/* A primitive's value at a hit point (u, v[, w]) */
-static int field_eval(const struct tex_texture *t, double u, double v, double w, float out[3])
+/* A primitive's values at n points (u, v[, w]) into out (n x its channels) */
+static void field_points(const struct tex_texture *t, int n, const double *u, const double *v,
+                         const double *w, float *out)
 {
-    float val[TEX_MAP_MAX_CHANNELS] = {0};
     const struct tex_field *f = t->field;
     if (t->solid)
-        f->prim->eval3(f, 1, &u, &v, &w, val);
+        f->prim->eval3(f, n, u, v, w, out);
     else
-        f->prim->eval2(f, 1, &u, &v, val);
+        f->prim->eval2(f, n, u, v, out);
+}
+
+/* A primitive's value val at a hit (its channels, the rest 0) as RGB, through the
+ * texture's palette; returns the region id or 0. */
+static int field_finish(const struct tex_texture *t, float val[TEX_MAP_MAX_CHANNELS],
+                        float out[3])
+{
+    const struct tex_field *f = t->field;
     int region = (f->prim->flags & TEX_PRIM_REGIONS) && f->ids ? (int)lrintf(val[0]) : 0;
     if (t->palette) { /* a region's indexed colour, or the value in [0, 1] */
         float rgba[4];
@@ -179,6 +187,14 @@ static int field_eval(const struct tex_texture *t, double u, double v, double w,
         to_rgb(val, f->nc, out);
     }
     return region;
+}
+
+/* A primitive's value at a hit point (u, v[, w]) */
+static int field_eval(const struct tex_texture *t, double u, double v, double w, float out[3])
+{
+    float val[TEX_MAP_MAX_CHANNELS] = {0};
+    field_points(t, 1, &u, &v, &w, val);
+    return field_finish(t, val, out);
 }
 
 /* A region map's id at (u, v) in [0, 1]: the nearest texel, never averaged. */
@@ -945,14 +961,15 @@ static void hit_quantities(const struct tex_shade_at *at, const tex_v3 *pl, cons
 /* The textures of sf applied at the hit (normal N; filter: mip-mapped lookups) to pr, N bent
  * by bump maps; 1 if one of them set Ks. */
 static int apply_textures(const struct tex_surface *sf, const struct tex_shade_at *at,
-                          tex_v3 *N, int filter, struct params *pr)
+                          const struct tex_prefetch *pre, tex_v3 *N, int filter,
+                          struct params *pr)
 {
     const struct tex_object *leaf = at->leaf;
     const tex_v3 *P = at->P;
     double width = filter ? at->width : 0;
     struct footprint fp;
     footprint_at(&fp, at->D, N, width);
-    tex_v3 pl = tex_xform_point(&leaf->to_obj, *P), tilt = tex_v3_make(0, 0, 0);
+    tex_v3 pl = pre ? pre->pl : tex_xform_point(&leaf->to_obj, *P), tilt = tex_v3_make(0, 0, 0);
     const struct tex_surface_cache *cache = sf->cache;
     const struct placement *pm = cache->placement;
     int nfn = 0, ks_textured = 0, bumped = 0; /* nfn: the function's index in the cache */
@@ -963,19 +980,38 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
         hit_quantities(at, &pl, N, q);
         footprint_at(&fq, at->D, N, at->width);
     }
-    for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next, pm++) {
-        double uvw[3];
+    int j = 0;
+    for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next, pm++, j++) {
+        double uvw[3], u0, v0, w0;
         float f[3];
-        int face = map_point_at(ap, leaf, P, &pl, uvw);
-        double u0 = uvw[0], v0 = uvw[1], w0 = uvw[2];
-        if (!place(ap, pm, uvw)) {
+        int face, inside;
+        /* the packet's mapping (the same computation, done ahead) or the hit's own */
+        const struct tex_prefetch_ap *pa = pre && j < pre->n ? &pre->ap[j] : NULL;
+        if (pa) {
+            face = pa->face, inside = pa->inside;
+            u0 = pa->uvw0[0], v0 = pa->uvw0[1], w0 = pa->uvw0[2];
+            uvw[0] = pa->uvw[0], uvw[1] = pa->uvw[1], uvw[2] = pa->uvw[2];
+        } else {
+            face = map_point_at(ap, leaf, P, &pl, uvw);
+            u0 = uvw[0], v0 = uvw[1], w0 = uvw[2];
+            inside = place(ap, pm, uvw);
+        }
+        if (!inside) {
             for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next)
                 nfn++;
             continue;
         }
         double fw2 = filter ? footprint_width2(ap, pm, leaf, &fp, P, &pl, face, u0, v0) : 0;
-        /* one lookup: region maps and primitives ignore the footprint */
-        int region = texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw2, f);
+        /* one lookup: region maps and primitives ignore the footprint; a primitive's value
+         * may have come with the packet's */
+        int region;
+        if (pa && pa->has_val) {
+            float val[TEX_MAP_MAX_CHANNELS];
+            memcpy(val, pa->val, sizeof val);
+            region = field_finish(ap->tex, val, f);
+        } else {
+            region = texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw2, f);
+        }
         if (ap->mapping == TEX_MAP_CROSS)
             cross_combine(ap, pm, uvw, fw2, f);
         if (q) {
@@ -1068,7 +1104,8 @@ static void resolve(const struct tex_scene *s, const struct tex_surface *sf,
         return;
     }
     struct params pr = sf->cache->base;
-    int ks_textured = apply_textures(sf, at, N, s->settings.filter && at->width > 0, &pr);
+    const struct tex_prefetch *pre = at->pre && at->pre->sf == sf ? at->pre : NULL;
+    int ks_textured = apply_textures(sf, at, pre, N, s->settings.filter && at->width > 0, &pr);
     material(&s->cs, sf, &pr, ks_textured, m);
     *blend = pr.blend;
 }
@@ -1086,6 +1123,60 @@ void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *s
             m[0].ka.v[i] += w * m[1].ka.v[i];
         m[0].blend = w;
         m[0].blend_m = &m[1];
+    }
+}
+
+void tex_prefetch_map(struct tex_prefetch *pf, const struct tex_surface *sf,
+                      const struct tex_object *leaf, const tex_v3 *P)
+{
+    const struct placement *pm = sf->cache->placement;
+    pf->sf = sf;
+    pf->pl = tex_xform_point(&leaf->to_obj, *P);
+    pf->n = 0;
+    for (const struct tex_apply *ap = sf->apply; ap && pf->n < TEX_PREFETCH_MAX;
+         ap = ap->next, pm++) {
+        struct tex_prefetch_ap *a = &pf->ap[pf->n++];
+        a->tex = ap->tex;
+        a->face = map_point_at(ap, leaf, P, &pf->pl, a->uvw);
+        memcpy(a->uvw0, a->uvw, sizeof a->uvw0);
+        a->inside = place(ap, pm, a->uvw);
+        a->pending = a->inside && !ap->tex->mip;
+        a->has_val = 0;
+    }
+}
+
+void tex_prefetch_eval(struct tex_prefetch *const *pf, int n)
+{
+    enum { CHUNK = 256 }; /* points per call */
+    double u[CHUNK], v[CHUNK], w[CHUNK];
+    float out[CHUNK * TEX_MAP_MAX_CHANNELS];
+    struct tex_prefetch_ap *who[CHUNK];
+    for (int i = 0; i < n; i++) {
+        for (int j = 0; j < pf[i]->n; j++) {
+            if (!pf[i]->ap[j].pending)
+                continue;
+            /* every pending point of this primitive from here on, up to a chunk */
+            const struct tex_texture *t = pf[i]->ap[j].tex;
+            int m = 0;
+            for (int k = i; k < n && m < CHUNK; k++) {
+                for (int l = k == i ? j : 0; l < pf[k]->n && m < CHUNK; l++) {
+                    struct tex_prefetch_ap *b = &pf[k]->ap[l];
+                    if (!b->pending || b->tex != t)
+                        continue;
+                    b->pending = 0;
+                    who[m] = b;
+                    u[m] = b->uvw[0], v[m] = b->uvw[1], w[m] = b->uvw[2];
+                    m++;
+                }
+            }
+            field_points(t, m, u, v, w, out);
+            int nc = t->field->nc;
+            for (int q = 0; q < m; q++) {
+                memset(who[q]->val, 0, sizeof who[q]->val);
+                memcpy(who[q]->val, out + (size_t)q * nc, nc * sizeof *out);
+                who[q]->has_val = 1;
+            }
+        }
     }
 }
 

@@ -338,6 +338,22 @@ struct tex_texture {
 int tex_texture_eval(const struct tex_texture *t, double u, double v, double w, double fw,
                      float out[3]);
 struct tex_scene;
+/* A hit's textures looked up ahead, with the other hits of its packet (render.c traces
+ * a tile's eye rays first): for the first TEX_PREFETCH_MAX textures its surface sf
+ * applies, where the mapping took the hit (as tex_resolve_material would find it) and,
+ * for primitives evaluated at hit points, their values from one call over the packet. */
+#define TEX_PREFETCH_MAX 8
+struct tex_prefetch {
+    const struct tex_surface *sf; /* the surface these are for; NULL: none */
+    tex_v3 pl;                    /* the hit in its leaf's object space */
+    int n;                        /* applied textures prefetched */
+    struct tex_prefetch_ap {
+        const struct tex_texture *tex;
+        double uvw0[3], uvw[3]; /* the mapping's coordinates, then placed (if inside) */
+        int face, inside, pending, has_val; /* pending: a value still to evaluate */
+        float val[TEX_MAP_MAX_CHANNELS];    /* the primitive's value (has_val) */
+    } ap[TEX_PREFETCH_MAX];
+};
 /* Where a ray met a surface, as the application functions see it. */
 struct tex_shade_at {
     const struct tex_object *leaf;
@@ -345,7 +361,14 @@ struct tex_shade_at {
     double width;        /* the ray's footprint at P (filtered lookups if the scene filters) */
     double dist;         /* the path's length from the eye to P */
     int depth;           /* 0 for eye rays, +1 per reflection or refraction */
+    const struct tex_prefetch *pre; /* the hit's prefetched lookups, or NULL */
 };
+/* A packet's lookups ahead (render.c): pf's mapping of the hit P on leaf, surface sf;
+ * then the values of every primitive at the pending points of the n hits pf[i], each
+ * primitive in batched calls (eval3 / eval2 over many points). */
+void tex_prefetch_map(struct tex_prefetch *pf, const struct tex_surface *sf,
+                      const struct tex_object *leaf, const tex_v3 *P);
+void tex_prefetch_eval(struct tex_prefetch *const *pf, int n);
 /* The material at a hit (surface sf): the application functions evaluated,
  * N bent by bump and normal maps, colours in the scene's colour space;
  * m[1] is the blended surface's where m[0].blend > 0 (its weight).

@@ -1,0 +1,73 @@
+#!/bin/bash
+# t_apply's packets of eye rays (render.c): a packet render equals the pixel-by-pixel
+# render (TEXTURA_PACKETS=0) byte for byte, at any thread count, on scenes whose
+# primitives are evaluated at hit points in batches: solid (eval3) and 2D (eval2)
+# primitives, region ids at points, a texture applied twice, more applied textures than
+# a packet looks up ahead, bumps, blended surfaces, area lights and jittered samples,
+# spectral colour, image sizes that packets do not divide, and regions of the image.
+. tests/lib.sh
+
+cat >"$T/a.scene" <<'SCENE'
+image 45 37
+samples 1
+depth 3
+ambient 0.4 0.4 0.4
+background 0.2 0.3 0.5
+camera { eye 0 2.5 -6 look 0 0.8 0 fov 55 }
+light point { position -4 7 -5 falloff 1 0.02 0.002 }
+light spot { position 4 6 -4 at 0 0.5 0 angle 30 exponent 4 intensity 0.6 }
+light area { position 2 6 -3 edge1 1 0 0 edge2 0 0 1 samples 2 intensity 0.4 }
+texture veins turbulence { solid frequency 2 octaves 5 seed 3 }
+texture cells noise { solid frequency 7 seed 9 }
+texture flat noise { frequency 5 seed 4 }
+texture ids checker { nu 4 nv 4 ids }
+texture rings wood { solid rings 6 turbulence 0.05 frequency 2 octaves 3 seed 5 tilt 90 }
+surface other { Kd 0.2 0.6 0.3 Ks 0.3 n 20 apply cells { mapping solid Kd = f*p } }
+surface marble { Ka 0.15 Kd 0.9 Ks 0.6 n 60 Kr 0.2 blend other
+    apply veins { mapping solid Kd = palette(marble, 0.5 + 0.5 * sin(6 * ox + 12 * f)) }
+    apply veins { mapping solid scale 3 bump = 0.2 }
+    apply cells { mapping solid blend = f } }
+surface oak { Ka 0.15 Kd 0.7 Ks 0.3 n 20 apply rings { mapping solid Kd = palette(wood, f) } }
+surface boxy { Kd 0.7 0.7 0.7 apply flat { mapping natural Kd = f*p + 0.1 }
+    apply ids { mapping natural Kr = f / 20 region 3 { Kd = 1 0 0 } } }
+surface many { Kd 0.5 0.5 0.5
+SCENE
+# ten textures on one surface: more than the packet looks up ahead
+for i in 1 2 3 4 5 6 7 8 9 10; do
+    echo "    apply cells { mapping solid scale $i Kd = 0.5*p + 0.05*f }" >>"$T/a.scene"
+done
+cat >>"$T/a.scene" <<'SCENE'
+}
+plane { surface boxy }
+difference { sphere { centre 0 1 0 radius 1 } box { min -0.2 1 -1.2 max 1.2 2.2 0.2 }
+             surface marble translate -2 0 0 }
+cylinder { base 0 0 0 top 0 2 0 radius 0.6 surface oak }
+box { min 1.4 0 -0.5 max 2.6 1.2 0.7 surface many }
+sphere { centre 0.5 2.7 0.5 radius 0.4 surface boxy }
+SCENE
+
+render() { # NAME PACKETS ARGS...: the render as PFM (raw floats)
+    local name=$1 p=$2
+    shift 2
+    TEXTURA_PACKETS=$p t_apply "$T/a.scene" -q -o "$T/$name.pfm" "$@"
+}
+for cfg in "spp1|--spp 1" "spp4|--spp 4" "spectral|--spectral 6 --spp 2" \
+    "region|--region 5,3,27,22 --spp 2" "odd|-s 33x17 --spp 3"; do
+    name=${cfg%%|*} args=${cfg#*|}
+    # shellcheck disable=SC2086
+    if render "$name-px" 0 -j 1 $args && render "$name-pk1" 1 -j 1 $args &&
+        render "$name-pk2" 1 -j 2 $args && render "$name-px2" 0 -j 2 $args; then
+        cmp -s "$T/$name-px.pfm" "$T/$name-pk1.pfm" &&
+            ok "$name: packets give the pixel-by-pixel render's bytes" ||
+            notok "$name: packets against pixel by pixel" "$(maxdiff "$T/$name-px.pfm" "$T/$name-pk1.pfm")"
+        cmp -s "$T/$name-pk1.pfm" "$T/$name-pk2.pfm" && cmp -s "$T/$name-px.pfm" "$T/$name-px2.pfm" &&
+            ok "$name: the same bytes with -j 1 and -j 2, packets or not" ||
+            notok "$name: -j 1 against -j 2"
+    else
+        notok "$name: renders"
+    fi
+done
+# the scene is not flat: the textures show (else the comparison would prove little)
+sd=$(info_json "$T/spp1-pk1.pfm" stats 0 stddev)
+awk -v s="$sd" 'BEGIN { exit !(s > 0.02) }' && ok "the test scene's textures vary (stddev $sd)" ||
+    notok "the test scene is textured" "stddev $sd"
