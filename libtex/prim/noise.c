@@ -902,6 +902,21 @@ AVX2 static inline __attribute__((always_inline)) __m256 apply_avx2(const int op
     }
 }
 
+/* Eight pixels from their slots' coefficients, row_scalar_op's formula
+ *   w0 (p0 u + q0) + w1 (p1 (u - 1) + q1)
+ * and the row's operation. */
+AVX2 static inline __attribute__((always_inline)) void
+pixels8(const float *restrict u, const float *restrict um1, const float *restrict w0,
+        const float *restrict w1, __m256 p0, __m256 p1, __m256 q0, __m256 q1, float *out,
+        const int op, __m256 va, __m256 vb)
+{
+    __m256 t0 = _mm256_add_ps(_mm256_mul_ps(p0, _mm256_loadu_ps(u)), q0);
+    __m256 t1 = _mm256_add_ps(_mm256_mul_ps(p1, _mm256_loadu_ps(um1)), q1);
+    __m256 r = _mm256_add_ps(_mm256_mul_ps(_mm256_loadu_ps(w0), t0),
+                             _mm256_mul_ps(_mm256_loadu_ps(w1), t1));
+    _mm256_storeu_ps(out, apply_avx2(op, r, out, va, vb));
+}
+
 /* Eight pixels' slot values: a0 = V[s], a1 = V[s + 1] for their slots s
  * (k = s - s0, relative to the first pixel's slot s0; span = the last's k). */
 AVX2 static inline __attribute__((always_inline)) void
@@ -940,11 +955,7 @@ row_avx2_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, flo
         __m256 p0, p1, q0, q1;
         expand(P, s0, s, k, span, &p0, &p1);
         expand(Q, s0, s, k, span, &q0, &q1);
-        __m256 t0 = _mm256_add_ps(_mm256_mul_ps(p0, _mm256_loadu_ps(u + x)), q0);
-        __m256 t1 = _mm256_add_ps(_mm256_mul_ps(p1, _mm256_loadu_ps(um1 + x)), q1);
-        __m256 r = _mm256_add_ps(_mm256_mul_ps(_mm256_loadu_ps(w0 + x), t0),
-                                 _mm256_mul_ps(_mm256_loadu_ps(w1 + x), t1));
-        _mm256_storeu_ps(out + x, apply_avx2(op, r, out + x, va, vb));
+        pixels8(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, out + x, op, va, vb);
     }
     row_scalar_op(g, P, Q, sb, out, x, x1, op, a, b);
 }
@@ -976,11 +987,7 @@ row_avx2_paired_op(const tex_noise_grid *g, const float *P, const float *Q, int 
         __m256 p0, p1, q0, q1;
         unzip(P + s, &p0, &p1);
         unzip(Q + s, &q0, &q1);
-        __m256 t0 = _mm256_add_ps(_mm256_mul_ps(p0, _mm256_loadu_ps(u + x)), q0);
-        __m256 t1 = _mm256_add_ps(_mm256_mul_ps(p1, _mm256_loadu_ps(um1 + x)), q1);
-        __m256 r = _mm256_add_ps(_mm256_mul_ps(_mm256_loadu_ps(w0 + x), t0),
-                                 _mm256_mul_ps(_mm256_loadu_ps(w1 + x), t1));
-        _mm256_storeu_ps(out + x, apply_avx2(op, r, out + x, va, vb));
+        pixels8(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, out + x, op, va, vb);
     }
     row_scalar_op(g, P, Q, sb, out, x, x1, op, a, b);
 }
@@ -1054,11 +1061,7 @@ row_lut_avx2_op(const tex_noise_grid *g, const float (*T0)[4], const float (*T1)
                                                           l[3 * c + 2])));
             }
         }
-        __m256 t0 = _mm256_add_ps(_mm256_mul_ps(P[0], _mm256_loadu_ps(u + x)), Q[0]);
-        __m256 t1 = _mm256_add_ps(_mm256_mul_ps(P[1], _mm256_loadu_ps(um1 + x)), Q[1]);
-        __m256 r = _mm256_add_ps(_mm256_mul_ps(_mm256_loadu_ps(w0 + x), t0),
-                                 _mm256_mul_ps(_mm256_loadu_ps(w1 + x), t1));
-        _mm256_storeu_ps(out + x, apply_avx2(op, r, out + x, va, vb));
+        pixels8(u + x, um1 + x, w0 + x, w1 + x, P[0], P[1], Q[0], Q[1], out + x, op, va, vb);
     }
     for (; x < g->w; x++) {
         float P[2], Q[2];
