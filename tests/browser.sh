@@ -13,10 +13,10 @@ mkdir -p "$T/work"
 start_proto "$T/work" --defs "$top/patterns/primitives.tp"
 url=$proto_url
 shot=${TEXTURA_BUILD:-build}/artefacts/t_proto.png
-timeout 180 python3 "$top/tests/cdp.py" "$chromium" "$url" "$T/work" "$shot" 2>"$T/cdp.err"
+timeout 400 python3 "$top/tests/cdp.py" "$chromium" "$url" "$T/work" "$shot" 2>"$T/cdp.err"
 status=$?
 if [ $status = 3 ]; then
     ok "browser test skipped: $(head -c 200 "$T/cdp.err")"
 elif [ $status != 0 ]; then
-    notok "the browser test ran to its end" "exit $status: $(tail -c 300 "$T/cdp.err")"
+    notok "the browser test ran to its end" "exit $status: $(tail -c 300 "$T/cdp.err" | tr "\n" " ")"
 fi

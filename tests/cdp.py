@@ -88,7 +88,18 @@ class Page:
             raise RuntimeError(r["exceptionDetails"].get("exception", {}).get("description", str(r)))
         return r["result"].get("value")
 
-    def until(self, expr, seconds=30):
+    def preview_other_than(self, h, seconds=90):
+        """The preview's hash once it differs from h, or h after the timeout: a render
+        asked for before the change (slow under ASan) may land first."""
+        end = time.time() + seconds
+        while time.time() < end:
+            v = self.js(PREVIEW)
+            if v != h:
+                return v
+            time.sleep(0.1)
+        return h
+
+    def until(self, expr, seconds=90):
         end = time.time() + seconds
         while time.time() < end:
             v = self.js(expr)
@@ -148,13 +159,13 @@ def main():
         page.js("(() => { const e = document.querySelector('#params [data-name=frequency]');"
                 " e.value = 23; e.dispatchEvent(new Event('input')); })()")
         page.until("%s > %d" % (VERSION, v0))
-        h1 = page.js(PREVIEW)
+        h1 = page.preview_other_than(h0)
         say(h0 != h1, "moving the frequency slider changes the preview", (h0, h1))
         v1 = page.js(VERSION)
         page.js("(() => { document.getElementById('stepkind').value = 'palette';"
                 " document.getElementById('addstep').click(); })()")
         page.until("%s > %d" % (VERSION, v1))
-        h2 = page.js(PREVIEW)
+        h2 = page.preview_other_than(h1)
         n = page.js("document.querySelectorAll('#steps .step').length")
         say(n == 1 and h2 != h1, "adding a palette step shows in the pipeline and the preview", (n, h1, h2))
         page.js("(() => { const n = document.getElementById('name'); n.value = 'browser.png';"
