@@ -437,6 +437,29 @@ static void slice_setup(tex_noise_grid *g, double z, double w4)
     }
 }
 
+/* Pixel rows share lattice rows when a cell spans more than one row: keep
+ * each thread's last two (without memory for them, rows compute their own). */
+static void cache_init(tex_noise_grid *g)
+{
+#ifdef _OPENMP
+    int n = omp_get_max_threads() + 1;
+#else
+    int n = 1;
+#endif
+    g->cache = calloc(1, sizeof *g->cache + n * sizeof g->cache->e[0]);
+    if (!g->cache)
+        return;
+    g->cache->n = n;
+    for (int i = 0; i < n; i++) {
+        struct cache_entry *e = &g->cache->e[i];
+        if (!(e->buf[0] = malloc(6 * (size_t)g->stride * sizeof *e->buf[0]))) {
+            e->busy = 1; /* never taken */
+            continue;
+        }
+        e->buf[1] = e->buf[0] + 3 * (size_t)g->stride;
+    }
+}
+
 int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int h, double fx,
                         double fy, const double off[4], int dims, int period)
 {
@@ -504,27 +527,8 @@ int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int 
     double rows = g->fy < 1 ? g->fy * h + 2 : 2.0 * h;
     if (t->n <= 1024 && rows * ns > 2.0 * t->n * t->n)
         lut_init(g); /* without memory for it, rows fold their own */
-    /* Pixel rows share lattice rows when a cell spans more than one row: keep
-     * each thread's last two (without memory for them, rows compute their own). */
-    if (g->fy < 1) {
-#ifdef _OPENMP
-        int n = omp_get_max_threads() + 1;
-#else
-        int n = 1;
-#endif
-        g->cache = calloc(1, sizeof *g->cache + n * sizeof g->cache->e[0]);
-        if (g->cache) {
-            g->cache->n = n;
-            for (int i = 0; i < n; i++) {
-                struct cache_entry *e = &g->cache->e[i];
-                if (!(e->buf[0] = malloc(6 * (size_t)g->stride * sizeof *e->buf[0]))) {
-                    e->busy = 1; /* never taken */
-                    continue;
-                }
-                e->buf[1] = e->buf[0] + 3 * (size_t)g->stride;
-            }
-        }
-    }
+    if (g->fy < 1)
+        cache_init(g);
     return 0;
 }
 
