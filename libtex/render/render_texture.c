@@ -958,6 +958,20 @@ static void hit_quantities(const struct tex_shade_at *at, const tex_v3 *pl, cons
     q[TEX_Q_NX] = N->x, q[TEX_Q_NY] = N->y, q[TEX_Q_NZ] = N->z;
 }
 
+/* Application ap's mapping of the hit P (pl in object space) into a: the mapping's
+ * coordinates, then placed, and whether the placement holds the point; no value yet. */
+static void map_hit(const struct tex_apply *ap, const struct placement *pm,
+                    const struct tex_object *leaf, const tex_v3 *P, const tex_v3 *pl,
+                    struct tex_prefetch_ap *a)
+{
+    a->tex = ap->tex;
+    a->face = map_point_at(ap, leaf, P, pl, a->uvw);
+    memcpy(a->uvw0, a->uvw, sizeof a->uvw0);
+    a->inside = place(ap, pm, a->uvw);
+    a->pending = a->inside && !ap->tex->mip;
+    a->has_val = 0;
+}
+
 /* The textures of sf applied at the hit (normal N; filter: mip-mapped lookups) to pr, N bent
  * by bump maps; 1 if one of them set Ks. */
 static int apply_textures(const struct tex_surface *sf, const struct tex_shade_at *at,
@@ -982,21 +996,18 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
     }
     int j = 0;
     for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next, pm++, j++) {
-        double uvw[3], u0, v0, w0;
         float f[3];
-        int face, inside;
         /* the packet's mapping (the same computation, done ahead) or the hit's own */
+        struct tex_prefetch_ap own;
         const struct tex_prefetch_ap *pa = pre && j < pre->n ? &pre->ap[j] : NULL;
-        if (pa) {
-            face = pa->face, inside = pa->inside;
-            u0 = pa->uvw0[0], v0 = pa->uvw0[1], w0 = pa->uvw0[2];
-            uvw[0] = pa->uvw[0], uvw[1] = pa->uvw[1], uvw[2] = pa->uvw[2];
-        } else {
-            face = map_point_at(ap, leaf, P, &pl, uvw);
-            u0 = uvw[0], v0 = uvw[1], w0 = uvw[2];
-            inside = place(ap, pm, uvw);
+        if (!pa) {
+            map_hit(ap, pm, leaf, P, &pl, &own);
+            pa = &own;
         }
-        if (!inside) {
+        double uvw[3] = {pa->uvw[0], pa->uvw[1], pa->uvw[2]};
+        double u0 = pa->uvw0[0], v0 = pa->uvw0[1], w0 = pa->uvw0[2];
+        int face = pa->face;
+        if (!pa->inside) {
             for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next)
                 nfn++;
             continue;
@@ -1005,7 +1016,7 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
         /* one lookup: region maps and primitives ignore the footprint; a primitive's value
          * may have come with the packet's */
         int region;
-        if (pa && pa->has_val) {
+        if (pa->has_val) {
             float val[TEX_MAP_MAX_CHANNELS];
             memcpy(val, pa->val, sizeof val);
             region = field_finish(ap->tex, val, f);
@@ -1135,13 +1146,7 @@ void tex_prefetch_map(struct tex_prefetch *pf, const struct tex_surface *sf,
     pf->n = 0;
     for (const struct tex_apply *ap = sf->apply; ap && pf->n < TEX_PREFETCH_MAX;
          ap = ap->next, pm++) {
-        struct tex_prefetch_ap *a = &pf->ap[pf->n++];
-        a->tex = ap->tex;
-        a->face = map_point_at(ap, leaf, P, &pf->pl, a->uvw);
-        memcpy(a->uvw0, a->uvw, sizeof a->uvw0);
-        a->inside = place(ap, pm, a->uvw);
-        a->pending = a->inside && !ap->tex->mip;
-        a->has_val = 0;
+        map_hit(ap, pm, leaf, P, &pf->pl, &pf->ap[pf->n++]);
     }
 }
 
