@@ -357,7 +357,6 @@ static void emit_op(struct compiler *c, enum tex_eop op, const struct tex_enode 
             r.v[ch] = tex_expr_apply(&in, ch, o[0].v, k > 1 ? o[1].v : NULL,
                                      k > 2 ? o[2].v : NULL);
         c->n -= k;
-        c->sp -= k;
         emit(c, &r);
     } else {
         emit(c, &in);

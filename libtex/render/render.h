@@ -34,6 +34,14 @@ struct tex_shading_model;
 
 struct tex_scene *tex_scene_load(const char *path); /* "-" is not allowed: maps use stdin */
 struct tex_scene *tex_scene_parse(const char *text, size_t len, const char *name);
+/* Limits for scenes from untrusted places (the fuzz target): a texture with no
+ * size that must be sampled into a map is sampled at sample_size (default 512). */
+struct tex_scene_opts {
+    int sample_size; /* 1..TEX_SCENE_MAX_SIDE */
+};
+#define TEX_SCENE_DEFAULTS {512}
+struct tex_scene *tex_scene_parse_opts(const char *text, size_t len, const char *name,
+                                       const struct tex_scene_opts *o);
 void tex_scene_free(struct tex_scene *s);
 /* The materials database a scene reads by default, into path: $TEXTURA_MATERIALS,
  * materials.txt beside the scene (scene may be NULL), or the installed

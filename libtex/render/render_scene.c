@@ -55,6 +55,7 @@ struct parser {
     /* read_row takes every number of a vector row or fails at the first one
      * missing ("expected a number"), as the shapes' words always have */
     int whole_vectors;
+    int sample_size; /* tex_scene_opts */
 };
 
 static void fail_at(struct parser *ps, const struct tok *t, int runtime, const char *fmt, ...)
@@ -462,15 +463,15 @@ static void texture_field(struct parser *ps, struct tex_texture *tx,
     struct tex_field *f = tx->field;
     int size = f->size;
     if (prim->flags & TEX_PRIM_GRID && !size)
-        size = 512;
+        size = ps->sample_size;
     if (!(prim->flags & (TEX_PRIM_2D | TEX_PRIM_3D | TEX_PRIM_GRID)))
         fail_at(ps, pt, 0, "primitive '%s' cannot be evaluated", pname);
     if (!size && !tx->solid && !(prim->flags & TEX_PRIM_2D))
-        size = 512;
+        size = ps->sample_size;
     /* a geometric primitive's colours come from sampling (antialiased coverage); at points
      * it gives only region ids */
     if (!size && !tx->solid && (prim->flags & TEX_PRIM_REGIONS) && !f->ids)
-        size = 512;
+        size = ps->sample_size;
     if (tex_field_init(f, size, size) < 0)
         fail_at(ps, pt, 0, "%s", tex_errmsg());
     if (tx->palette && (prim->flags & TEX_PRIM_REGIONS) && !f->ids) { /* as t_checker --palette */
@@ -1658,6 +1659,17 @@ static int parse_all(struct parser *ps)
 
 struct tex_scene *tex_scene_parse(const char *text, size_t len, const char *name)
 {
+    static const struct tex_scene_opts defaults = TEX_SCENE_DEFAULTS;
+    return tex_scene_parse_opts(text, len, name, &defaults);
+}
+
+struct tex_scene *tex_scene_parse_opts(const char *text, size_t len, const char *name,
+                                       const struct tex_scene_opts *o)
+{
+    if (o->sample_size < 1 || o->sample_size > TEX_SCENE_MAX_SIDE) {
+        tex_error("sample size %d: valid range 1..%d", o->sample_size, TEX_SCENE_MAX_SIDE);
+        return NULL;
+    }
     struct tex_scene *s = calloc(1, sizeof *s);
     if (!s || !(s->file = strdup(name))) {
         free(s);
@@ -1670,6 +1682,7 @@ struct tex_scene *tex_scene_parse(const char *text, size_t len, const char *name
     ps.name = name;
     ps.line = ps.col = 1;
     ps.s = s;
+    ps.sample_size = o->sample_size;
     if (tex_params_defaults(tex_camera_rows, s) < 0 ||
         tex_params_defaults(tex_settings_rows, s) < 0) {
         tex_scene_free(s);

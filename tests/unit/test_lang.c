@@ -153,6 +153,18 @@ static void test_errors(void)
     }
 }
 
+/* The largest stack e's code needs, by running it on counts (depth may be
+ * more: it counts constants before they fold) */
+static int stack_needed(const struct tex_expr *e)
+{
+    int sp = 0, most = 0;
+    for (int i = 0; i < e->n; i++) {
+        sp += 1 - tex_expr_arity(e->code[i].op);
+        most = sp > most ? sp : most;
+    }
+    return most;
+}
+
 static void test_eval(void)
 {
     struct {
@@ -164,6 +176,9 @@ static void test_eval(void)
         {"x - -1", 3, 3},         {"8 / 2 / 2", 2, 1},   {"1 / 0", 0, 1},
         {"-x * 3", -6, 0},        {"min(x, 1) + max(x, 5) + abs(0 - x)", 8, 0},
         {"rgb(x, 0, 0)", 2, 0},   {"0.5 0.25 1 * x", 1, 3},
+        /* folded constants before a deeper stack (the evaluators size theirs by depth) */
+        {"3 * 8 * x - 0.9 * x", 46.2, 7}, {"0. / 5 * x * x + 0.6 * x", 1.2, 0},
+        {"(1 + 2) * x + x * (x - 1 * 2)", 6, 0}, {"min(1, 2) * max(x, x * (1 - x))", 2, 0},
     };
     for (size_t i = 0; i < sizeof good / sizeof *good; i++) {
         struct tex_expr *e = compile(good[i].text);
@@ -171,6 +186,8 @@ static void test_eval(void)
         CHECKF(e && v == good[i].want && (!good[i].n || e->n == good[i].n),
                "'%s' = %g in %d instructions (got %g in %d: %s)", good[i].text, good[i].want,
                good[i].n, v, e ? e->n : -1, e ? "" : tex_errmsg());
+        CHECKF(e && e->depth >= stack_needed(e), "'%s' declares the stack it needs, %d (got %d)",
+               good[i].text, e ? stack_needed(e) : -1, e ? e->depth : -1);
     }
 }
 

@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# tests/fuzz/campaign.sh [-j JOBS] [EXECUTIONS] [SECONDS] [TARGET...] - the long fuzz run:
+# each target (default: every fuzz_* in build/fuzz, built by `make fuzz`) runs in
+# pieces of at most SECONDS (default 600) until the ledger tests/fuzz/campaign.log
+# holds EXECUTIONS (default 10^7) executions for it since its last crash.  Pieces
+# grow the scratch corpus tests/fuzz/corpus-NAME (not kept; the seeds are), JOBS
+# targets at a time (default 1).  A crash stops its target: the input is kept as
+# tests/fuzz/crash-NAME-*, the ledger says so, and the exit status is 1.
+# Ledger lines: "DATE COMMIT fuzz_NAME EXECUTIONS SECONDS ok|crash".
+set -u
+jobs=1
+[ "${1:-}" = -j ] && { jobs=$2; shift 2; }
+want=${1:-10000000}
+secs=${2:-600}
+shift 2 2>/dev/null || shift $#
+here=$(cd "$(dirname "$0")" && pwd)
+fuzz=${FUZZDIR:-$here/../../build/fuzz}
+ledger=${LEDGER:-$here/campaign.log}
+commit=$(git -C "$here" rev-parse --short HEAD 2>/dev/null || echo unknown)
+
+# executions of a target in the ledger since its last crash
+done_runs() {
+    awk -v t="$1" '$3 == t { n = ($6 == "crash") ? 0 : n + $4 } END { print n + 0 }' "$ledger" 2>/dev/null || echo 0
+}
+
+one() {
+    local name=$1 t=$fuzz/$1 have left log st runs
+    local seeds=$here/seeds-${name#fuzz_} corpus=$here/corpus-${name#fuzz_}
+    mkdir -p "$corpus"
+    while have=$(done_runs "$name"); [ "$have" -lt "$want" ]; do
+        left=$((want - have))
+        log=$(mktemp "${TMPDIR:-/tmp}/textura-campaign.XXXXXX")
+        "$t" -runs="$left" -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 \
+            -print_final_stats=1 -artifact_prefix="$here/crash-${name#fuzz_}-" \
+            "$corpus" "$seeds" >"$log" 2>&1
+        st=$?
+        runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+        if [ "$st" = 0 ] && [ -n "$runs" ]; then
+            echo "$(date -u +%FT%TZ) $commit $name $runs $secs ok" >>"$ledger"
+            rm -f "$log"
+        else
+            echo "$(date -u +%FT%TZ) $commit $name ${runs:-0} $secs crash" >>"$ledger"
+            echo "not ok - $name: exit $st (log $log)"
+            grep -E 'ERROR|runtime error|Test unit written' "$log" | head -5
+            return 1
+        fi
+    done
+    echo "ok - $name: $(done_runs "$name") executions"
+}
+export -f one done_runs
+export fuzz here ledger want secs commit
+
+[ $# -gt 0 ] || set -- $(cd "$fuzz" && ls fuzz_* 2>/dev/null)
+[ $# -gt 0 ] || { echo "not ok - no fuzz targets in $fuzz (make fuzz)"; exit 1; }
+export OMP_NUM_THREADS=1
+parallel --line-buffer -j "$jobs" one ::: "$@"
