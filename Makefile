@@ -185,7 +185,7 @@ gallery: all
 fuzz:
 	$(MAKE) -C tests/fuzz BUILD=$(abspath $(BUILD))/fuzz
 
-# CI: each fuzz target ~30 s over its seed corpus (not part of `make test`: ~5 min in all)
+# CI (.ci/run, after make test): each fuzz target ~30 s over its seed corpus, ~6 min in all
 fuzz-smoke: fuzz
 	tests/fuzz/smoke.sh $(abspath $(BUILD))/fuzz 30
 

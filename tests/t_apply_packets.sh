@@ -2,7 +2,7 @@
 # t_apply's packets of eye rays (render.c): a packet render equals the pixel-by-pixel
 # render (TEXTURA_PACKETS=0) byte for byte, at any thread count, on scenes whose
 # primitives are evaluated at hit points in batches: solid (eval3) and 2D (eval2)
-# primitives, region ids at points, a texture applied twice, more applied textures than
+# primitives, band-limited solids (through each hit's footprint), region ids at points, a texture applied twice, more applied textures than
 # a packet looks up ahead, bumps, blended surfaces, area lights and jittered samples,
 # spectral colour, image sizes that packets do not divide, and regions of the image.
 . tests/lib.sh
@@ -22,12 +22,16 @@ texture cells noise { solid frequency 7 seed 9 }
 texture flat noise { frequency 5 seed 4 }
 texture ids checker { nu 4 nv 4 ids }
 texture rings wood { solid rings 6 turbulence 0.05 frequency 2 octaves 3 seed 5 tilt 90 }
-surface other { Kd 0.2 0.6 0.3 Ks 0.3 n 20 apply cells { mapping solid Kd = f*p } }
+texture fine turbulence { solid frequency 9 octaves 6 seed 8 band_limit 1 }
+texture hills fractal { solid mode fbm frequency 5 octaves 7 band_limit 1 }
+surface other { Kd 0.2 0.6 0.3 Ks 0.3 n 20 apply cells { mapping solid Kd = f*p }
+    apply fine { mapping solid Ks = f } }
 surface marble { Ka 0.15 Kd 0.9 Ks 0.6 n 60 Kr 0.2 blend other
     apply veins { mapping solid Kd = palette(marble, 0.5 + 0.5 * sin(6 * ox + 12 * f)) }
     apply veins { mapping solid scale 3 bump = 0.2 }
     apply cells { mapping solid blend = f } }
-surface oak { Ka 0.15 Kd 0.7 Ks 0.3 n 20 apply rings { mapping solid Kd = palette(wood, f) } }
+surface oak { Ka 0.15 Kd 0.7 Ks 0.3 n 20 apply rings { mapping solid Kd = palette(wood, f) }
+    apply hills { mapping solid Kd = 0.4 * p + 0.6 * f * p } apply fine { mapping solid bump = 0.1 } }
 surface boxy { Kd 0.7 0.7 0.7 apply flat { mapping natural Kd = f*p + 0.1 }
     apply ids { mapping natural Kr = f / 20 region 3 { Kd = 1 0 0 } } }
 surface many { Kd 0.5 0.5 0.5

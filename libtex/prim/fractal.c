@@ -48,8 +48,9 @@ static const struct tex_param turb_rows[] = {
              "frequency ratio between octaves (whole with --tile)"),
     TEX_REAL(struct turb_params, gain, 'g', 0.5, 0, 1, "G", "amplitude ratio between octaves"),
     TEX_FLAG(struct turb_params, band_limit, 0,
-             "fade octaves finer than a pixel to their mean (Perlin's filtered turbulence): "
-             "no aliasing, and faster; maps only, solid textures in t_apply keep every octave"),
+             "fade octaves finer than a pixel (in t_apply, a solid texture: than the ray's "
+             "footprint at the hit) to their mean, as Perlin's filtered turbulence: no "
+             "aliasing, and faster"),
     TEX_NOISE_ROWS(struct turb_params),
     TEX_NOISE_W_ROW(struct turb_params),
     TEX_NOISE_LOOP_ROWS(struct turb_params),
@@ -60,6 +61,7 @@ struct turb_state {
     float amp[TEX_OCTAVES_MAX], inv;
     int active;  /* octaves the rows sum: all, or those the band limit leaves */
     float fill;  /* what the faded octaves add: their amplitudes' share of the mean */
+    float mean;  /* band limit: E|noise|, what a faded octave is replaced with */
 };
 
 /* A row of octaves 0..n-1 summed into out (w samples): the first octave sets the
@@ -132,8 +134,11 @@ static int turb_init(struct tex_field *f)
         tex_octaves_init(&s->o, f->seed, p->gradients, p->fade, p->octaves, p->frequency,
                          p->lacunarity, off, z, w, dims, f->tile, f->w, f->h) < 0)
         return -1;
-    if (p->band_limit)
-        band_limit(&s->o, s->amp, tex_noise_mean_abs(&s->o.t), &s->active, &s->fill);
+    if (p->band_limit) {
+        s->mean = (float)tex_noise_mean_abs(&s->o.t);
+        band_limit(&s->o, s->amp, s->mean, &s->active, &s->fill);
+        f->band_limit = 1;
+    }
     return 0;
 }
 
@@ -158,6 +163,33 @@ static void turb_eval3(const struct tex_field *f, int n, const double *u, const 
                        const double *w, float *out)
 {
     turb_points(f->state, n, u, v, w, out);
+}
+
+/* Turbulence through footprints: octave k adds amp_k (t |noise| + (1 - t) mean), t its
+ * band weight at the point (t = 1: amp_k |noise|, turb_points' bits). */
+static void turb_eval3_fw(const struct tex_field *f, int n, const double *u, const double *v,
+                          const double *w, const double *fw, float *out)
+{
+    enum { B = TEX_POINTS_BATCH };
+    const struct turb_state *s = f->state;
+    double r[B];
+    float t[B];
+    for (int i0 = 0; i0 < n; i0 += B) {
+        int m = n - i0 < B ? n - i0 : B;
+        float *o = out + i0;
+        for (int i = 0; i < m; i++)
+            o[i] = 0;
+        for (int k = 0; k < s->o.n; k++) {
+            if (tex_octave_band_weights(&s->o, k, m, fw + i0, t))
+                tex_octave_points(&s->o, k, m, u + i0, v + i0, w ? w + i0 : NULL, r);
+            else
+                memset(r, 0, m * sizeof *r);
+            for (int i = 0; i < m; i++)
+                o[i] += s->amp[k] * (t[i] * fabsf((float)r[i]) + (1 - t[i]) * s->mean);
+        }
+        for (int i = 0; i < m; i++)
+            o[i] = clamp01(o[i] * s->inv);
+    }
 }
 
 static void turb_eval2(const struct tex_field *f, int n, const double *u, const double *v,
@@ -185,6 +217,7 @@ const struct tex_primitive tex_prim_turbulence = {
     .fini = turb_fini,
     .eval2 = turb_eval2,
     .eval3 = turb_eval3,
+    .eval3_fw = turb_eval3_fw,
     .row = turb_row,
 };
 
@@ -349,8 +382,8 @@ static const struct tex_param frac_rows[] = {
              "ridged, hybrid: Musgrave's offset (try 0.7 for hybrid)",
              .kinds = IN(RIDGED) | IN(HYBRID)),
     TEX_FLAG(struct frac_params, band_limit, 0,
-             "fbm: fade octaves finer than a pixel out (Perlin's filtered fBm): no aliasing, "
-             "and faster; maps only, solid textures in t_apply keep every octave",
+             "fbm: fade octaves finer than a pixel of the map out (Perlin's filtered fBm): "
+             "no aliasing, and faster",
              .kinds = IN(FBM)),
     TEX_NOISE_ROWS(struct frac_params, .kinds = NOISY),
     TEX_NOISE_W_ROW(struct frac_params, .kinds = NOISY),
@@ -684,6 +717,7 @@ static int frac_init(struct tex_field *f)
     if (p->band_limit) {
         float fill;
         band_limit(&s->o, s->amp, 0, &s->active, &fill); /* signed noise: the mean is 0 */
+        f->band_limit = 1;
     }
     return 0;
 }
@@ -759,6 +793,36 @@ static void frac_eval3(const struct tex_field *f, int n, const double *u, const 
             tex_octave_points(&s->o, k, m, u + i0, v + i0, w ? w + i0 : NULL, r);
             for (int i = 0; i < m; i++)
                 nk[i][k] = (float)r[i];
+        }
+        for (int i = 0; i < m; i++)
+            out[i0 + i] = combine(s, p, nk[i]);
+    }
+}
+
+/* fBm through footprints (the band limit is fbm's only): octave k weighted by its band
+ * weight t at the point, its mean 0 for the rest (t = 1: frac_eval3's bits). */
+static void frac_eval3_fw(const struct tex_field *f, int n, const double *u, const double *v,
+                          const double *w, const double *fw, float *out)
+{
+    enum { B = TEX_POINTS_BATCH / 4 };
+    const struct frac_params *p = f->params;
+    const struct frac_state *s = f->state;
+    double r[B];
+    float t[B], nk[B][TEX_OCTAVES_MAX];
+
+    if (s->mode != FBM) {
+        frac_eval3(f, n, u, v, w, out);
+        return;
+    }
+    for (int i0 = 0; i0 < n; i0 += B) {
+        int m = n - i0 < B ? n - i0 : B;
+        for (int k = 0; k < s->o.n; k++) {
+            if (tex_octave_band_weights(&s->o, k, m, fw + i0, t))
+                tex_octave_points(&s->o, k, m, u + i0, v + i0, w ? w + i0 : NULL, r);
+            else
+                memset(r, 0, m * sizeof *r);
+            for (int i = 0; i < m; i++)
+                nk[i][k] = t[i] * (float)r[i];
         }
         for (int i = 0; i < m; i++)
             out[i0 + i] = combine(s, p, nk[i]);
@@ -965,6 +1029,7 @@ const struct tex_primitive tex_prim_fractal = {
     .fini = frac_fini,
     .eval2 = frac_eval2,
     .eval3 = frac_eval3,
+    .eval3_fw = frac_eval3_fw,
     .row = frac_row,
     .grid = frac_grid,
     .whole = frac_whole,

@@ -1365,15 +1365,27 @@ void tex_octave_abs_sum(const tex_octaves *o, int octaves, const float *amp, flo
     }
 }
 
+/* 1 - smoothstep(0.2, 0.6, cells): an octave's weight where a pixel or footprint
+ * spans that many of its lattice cells */
+static double band_weight(double cells)
+{
+    double t = cells <= 0.2 ? 0 : cells >= 0.6 ? 1 : (cells - 0.2) / 0.4;
+    return 1 - t * t * (3 - 2 * t);
+}
+
 double tex_octave_band_weight(const tex_octaves *o, int k)
 {
-    double fw, t;
+    return o->grid ? band_weight(o->g[k].fy) : 1; /* g.fy: lattice cells per pixel */
+}
 
-    if (!o->grid)
-        return 1;
-    fw = o->g[k].fy; /* lattice cells per pixel */
-    t = fw <= 0.2 ? 0 : fw >= 0.6 ? 1 : (fw - 0.2) / 0.4;
-    return 1 - t * t * (3 - 2 * t);
+int tex_octave_band_weights(const tex_octaves *o, int k, int n, const double *fw, float *wt)
+{
+    int any = 0;
+    for (int i = 0; i < n; i++) {
+        wt[i] = (float)band_weight(fw[i] * o->freq[k]);
+        any |= wt[i] > 0;
+    }
+    return any;
 }
 
 double tex_noise_mean_abs(const tex_noise_table *t)

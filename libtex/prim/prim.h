@@ -73,6 +73,7 @@ struct tex_field {
     void *state;      /* the primitive's own, made by init */
     int wx, wy, ww, wh; /* the window being sampled (tex_field_window); ww 0: the whole grid */
     int size;         /* a scene's or script's `size N`: sample on an N x N grid (0: none) */
+    int band_limit;   /* set by init: eval3_fw fades octaves finer than a footprint */
     enum tex_param_style style; /* how init's messages name parameters: TEX_PARAM_OPTION
                                  * (tools, the default) or TEX_PARAM_WORD (scenes, scripts) */
 };
@@ -113,6 +114,12 @@ struct tex_primitive {
     void (*eval2)(const struct tex_field *f, int n, const double *u, const double *v, float *out);
     void (*eval3)(const struct tex_field *f, int n, const double *u, const double *v,
                   const double *w, float *out);
+    /* Optional, 3D: eval3 at points each seen through a footprint fw[i] texture
+     * units wide (t_apply's solid textures, when init set f->band_limit): octaves
+     * finer than the footprint fade to their mean.  With every fw[i] 0 it is eval3,
+     * bit for bit. */
+    void (*eval3_fw)(const struct tex_field *f, int n, const double *u, const double *v,
+                     const double *w, const double *fw, float *out);
     /* Optional, REGIONS: out[i] = the region id that every point of the box
      * u[i] +- hu, v[i] +- hv has, proven with a margin above rounding, else 0
      * (unsure).  The colour sampler gives such a pixel its region's colour and

@@ -420,8 +420,14 @@ static void render_packet(const struct ctx *c0, const struct camera *cam, struct
             if (!pk->hit[k])
                 continue;
             pk->P[k] = tex_v3_madd(r->o, r->d, pk->h[k].t);
-            tex_prefetch_map(&pk->pre[k], surface_of(s, pk->h[k].leaf), pk->h[k].leaf,
-                             &pk->P[k]);
+            const struct tex_surface *sf = surface_of(s, pk->h[k].leaf);
+            tex_prefetch_map(&pk->pre[k], sf, pk->h[k].leaf, &pk->P[k]);
+            if (tex_surface_footprints(sf) && s->settings.filter) { /* as shade() has them */
+                tex_v3 N = hit_normal(&pk->h[k], pk->P[k]);
+                N = tex_v3_dot(r->d, N) < 0 ? N : tex_v3_scale(N, -1);
+                tex_prefetch_footprints(&pk->pre[k], pk->h[k].leaf, &pk->P[k], &r->d, &N,
+                                        fabs(r->width + pk->h[k].t * r->spread));
+            }
             pk->pp[m++] = &pk->pre[k];
         }
         tex_prefetch_eval(pk->pp, m);

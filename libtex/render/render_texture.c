@@ -157,12 +157,28 @@ map_eval(const struct tex_texture *t, double u, double v, double fw2, float out[
         out[1] = out[2] = out[0];
 }
 
-/* A primitive's values at n points (u, v[, w]) into out (n x its channels) */
+/* Whether a solid primitive fades its octaves by the footprint (the packets' prefetch
+ * takes footprints for those) */
+static inline int band_limited(const struct tex_texture *t)
+{
+    return t->solid && t->field->band_limit && t->field->prim->eval3_fw;
+}
+
+/* Whether a texture's lookups use the footprint */
+static inline int uses_footprint(const struct tex_texture *t)
+{
+    return t->mip || band_limited(t);
+}
+
+/* A primitive's values at n points (u, v[, w]) into out (n x its channels); fw: the
+ * footprints' widths (NULL: none) */
 static void field_points(const struct tex_texture *t, int n, const double *u, const double *v,
-                         const double *w, float *out)
+                         const double *w, const double *fw, float *out)
 {
     const struct tex_field *f = t->field;
-    if (t->solid)
+    if (fw && band_limited(t))
+        f->prim->eval3_fw(f, n, u, v, w, fw, out);
+    else if (t->solid)
         f->prim->eval3(f, n, u, v, w, out);
     else
         f->prim->eval2(f, n, u, v, out);
@@ -189,11 +205,13 @@ static int field_finish(const struct tex_texture *t, float val[TEX_MAP_MAX_CHANN
     return region;
 }
 
-/* A primitive's value at a hit point (u, v[, w]) */
-static int field_eval(const struct tex_texture *t, double u, double v, double w, float out[3])
+/* A primitive's value at a hit point (u, v[, w]) seen through a footprint sqrt(fw2) wide */
+static int field_eval(const struct tex_texture *t, double u, double v, double w, double fw2,
+                      float out[3])
 {
     float val[TEX_MAP_MAX_CHANNELS] = {0};
-    field_points(t, 1, &u, &v, &w, val);
+    double fw = sqrt(fw2);
+    field_points(t, 1, &u, &v, &w, &fw, val);
     return field_finish(t, val, out);
 }
 
@@ -213,7 +231,7 @@ static inline __attribute__((always_inline)) int
 texture_eval(const struct tex_texture *t, double u, double v, double w, double fw2, float out[3])
 {
     if (!t->mip)
-        return field_eval(t, u, v, w, out);
+        return field_eval(t, u, v, w, fw2, out);
     u -= (int)u, v -= (int)v; /* maps repeat */
     if (t->subregions)
         return region_eval(t->mip[0], u, v, out);
@@ -448,12 +466,16 @@ static int natural_gradient(const struct tex_apply *ap, const struct tex_object 
  * (s nu, t nv) on the map; su = nu iu and sv = nv iv scale the footprint likewise. */
 struct placement {
     double iu, iv, su, sv;
+    int bump; /* a function of this texture sets bump (more lookups, footprint and all) */
 };
 
 static void placement_of(const struct tex_apply *ap, struct placement *pm)
 {
     pm->iu = 1 / (ap->u2 - ap->u1), pm->iv = 1 / (ap->v2 - ap->v1);
     pm->su = ap->nu * pm->iu, pm->sv = ap->nv * pm->iv;
+    pm->bump = 0;
+    for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next)
+        pm->bump |= fn->param == TEX_SP_BUMP;
 }
 
 /* Window and placement: 0 if the point is outside the window (or not a number), else the
@@ -811,6 +833,7 @@ struct tex_surface_cache {
     struct poly *poly;           /* per application function, in order */
     char *compiled;              /* 1: poly[i] holds function i */
     int quantities;              /* 1: a function reads the hit's quantities */
+    int footprints;              /* 1: a band-limited solid texture is applied */
 };
 
 static double clampd(double x, double lo, double hi)
@@ -970,6 +993,7 @@ static void map_hit(const struct tex_apply *ap, const struct placement *pm,
     a->inside = place(ap, pm, a->uvw);
     a->pending = a->inside && !ap->tex->mip;
     a->has_val = 0;
+    a->fw = 0;
 }
 
 /* The textures of sf applied at the hit (normal N; filter: mip-mapped lookups) to pr, N bent
@@ -1012,9 +1036,13 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
                 nfn++;
             continue;
         }
-        double fw2 = filter ? footprint_width2(ap, pm, leaf, &fp, P, &pl, face, u0, v0) : 0;
-        /* one lookup: region maps and primitives ignore the footprint; a primitive's value
-         * may have come with the packet's */
+        /* the footprint, where a lookup uses it (mip-mapped maps, band-limited solids whose
+         * value did not come with the packet's, bumps on either) */
+        int need = filter && ((uses_footprint(ap->tex) && (!pa->has_val || pm->bump)) ||
+                              (ap->mapping == TEX_MAP_CROSS && uses_footprint(ap->cross)));
+        double fw2 = need ? footprint_width2(ap, pm, leaf, &fp, P, &pl, face, u0, v0) : 0;
+        /* one lookup: region maps and other primitives ignore the footprint; a primitive's
+         * value may have come with the packet's */
         int region;
         if (pa->has_val) {
             float val[TEX_MAP_MAX_CHANNELS];
@@ -1026,7 +1054,7 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
         if (ap->mapping == TEX_MAP_CROSS)
             cross_combine(ap, pm, uvw, fw2, f);
         if (q) {
-            double w2 = filter ? fw2 : footprint_width2(ap, pm, leaf, &fq, P, &pl, face, u0, v0);
+            double w2 = need ? fw2 : footprint_width2(ap, pm, leaf, &fq, P, &pl, face, u0, v0);
             q[TEX_Q_FOOTPRINT] = sqrt(w2);
             q[TEX_Q_LOD] = w2 > 0x1p-120 ? log2(w2) / 2 : -60;
             q[TEX_Q_U] = u0, q[TEX_Q_V] = v0, q[TEX_Q_W] = w0;
@@ -1150,10 +1178,32 @@ void tex_prefetch_map(struct tex_prefetch *pf, const struct tex_surface *sf,
     }
 }
 
+int tex_surface_footprints(const struct tex_surface *sf)
+{
+    return sf->cache->footprints;
+}
+
+void tex_prefetch_footprints(struct tex_prefetch *pf, const struct tex_object *leaf,
+                             const tex_v3 *P, const tex_v3 *D, const tex_v3 *N, double width)
+{
+    const struct placement *pm = pf->sf->cache->placement;
+    const struct tex_apply *ap = pf->sf->apply;
+    struct footprint fp;
+    if (width <= 0)
+        return;
+    footprint_at(&fp, D, N, width); /* as apply_textures, on the same N */
+    for (int j = 0; j < pf->n; j++, pm++, ap = ap->next) {
+        struct tex_prefetch_ap *a = &pf->ap[j];
+        if (a->pending && band_limited(a->tex))
+            a->fw = sqrt(footprint_width2(ap, pm, leaf, &fp, P, &pf->pl, a->face, a->uvw0[0],
+                                          a->uvw0[1]));
+    }
+}
+
 void tex_prefetch_eval(struct tex_prefetch *const *pf, int n)
 {
     enum { CHUNK = 256 }; /* points per call */
-    double u[CHUNK], v[CHUNK], w[CHUNK];
+    double u[CHUNK], v[CHUNK], w[CHUNK], fw[CHUNK];
     float out[CHUNK * TEX_MAP_MAX_CHANNELS];
     struct tex_prefetch_ap *who[CHUNK];
     for (int i = 0; i < n; i++) {
@@ -1170,11 +1220,11 @@ void tex_prefetch_eval(struct tex_prefetch *const *pf, int n)
                         continue;
                     b->pending = 0;
                     who[m] = b;
-                    u[m] = b->uvw[0], v[m] = b->uvw[1], w[m] = b->uvw[2];
+                    u[m] = b->uvw[0], v[m] = b->uvw[1], w[m] = b->uvw[2], fw[m] = b->fw;
                     m++;
                 }
             }
-            field_points(t, m, u, v, w, out);
+            field_points(t, m, u, v, w, fw, out);
             int nc = t->field->nc;
             for (int q = 0; q < m; q++) {
                 memset(who[q]->val, 0, sizeof who[q]->val);
@@ -1205,6 +1255,7 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
         placement_of(ap, &c->placement[nap++]);
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++) {
             c->compiled[nfn] = (char)poly_of(fn->e, &c->poly[nfn]);
+            c->footprints |= band_limited(ap->tex);
             for (int i = 0; i < fn->e->n; i++)
                 c->quantities |= fn->e->code[i].op == TEX_EOP_LEAF &&
                                  fn->e->code[i].leaf >= TEX_LEAF_Q;

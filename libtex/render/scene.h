@@ -351,6 +351,7 @@ struct tex_prefetch {
         const struct tex_texture *tex;
         double uvw0[3], uvw[3]; /* the mapping's coordinates, then placed (if inside) */
         int face, inside, pending, has_val; /* pending: a value still to evaluate */
+        double fw;                          /* band-limited solids: the footprint's width */
         float val[TEX_MAP_MAX_CHANNELS];    /* the primitive's value (has_val) */
     } ap[TEX_PREFETCH_MAX];
 };
@@ -368,6 +369,12 @@ struct tex_shade_at {
  * primitive in batched calls (eval3 / eval2 over many points). */
 void tex_prefetch_map(struct tex_prefetch *pf, const struct tex_surface *sf,
                       const struct tex_object *leaf, const tex_v3 *P);
+/* Whether sf applies a band-limited solid texture; then, after tex_prefetch_map, the
+ * footprints of its lookups from the hit's shading frame as tex_resolve_material gets
+ * it (D, N as shade() orients it; width 0 when the scene does not filter). */
+int tex_surface_footprints(const struct tex_surface *sf);
+void tex_prefetch_footprints(struct tex_prefetch *pf, const struct tex_object *leaf,
+                             const tex_v3 *P, const tex_v3 *D, const tex_v3 *N, double width);
 void tex_prefetch_eval(struct tex_prefetch *const *pf, int n);
 /* The material at a hit (surface sf): the application functions evaluated,
  * N bent by bump and normal maps, colours in the scene's colour space;

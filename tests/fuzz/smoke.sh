@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # tests/fuzz/smoke.sh FUZZDIR [SECONDS] - the CI smoke run (make fuzz-smoke):
 # every libFuzzer target in FUZZDIR (clang, ASan+UBSan, built by `make fuzz`)
-# runs SECONDS (default 30) over its seed corpus tests/fuzz/seeds-NAME; new
-# inputs go to a scratch corpus, not into the seeds.  Prints one line per
-# target, "ok - fuzz_NAME: N runs" or "not ok - ...", and fails if any failed.
+# runs SECONDS (default 30) over its seed corpus tests/fuzz/seeds-NAME, from a
+# fixed random seed (a red run can be repeated); new inputs go to a scratch
+# corpus, not into the seeds.  Prints one line per target, "ok - fuzz_NAME:
+# N runs" or "not ok - ...", and fails if any failed.
 set -u
 dir=${1:?usage: smoke.sh FUZZDIR [SECONDS]}
 secs=${2:-30}
@@ -17,7 +18,7 @@ for t in "$dir"/fuzz_*; do
     seeds="$here/seeds-${name#fuzz_}"
     mkdir -p "$tmp/$name"
     n=$((n + 1))
-    "$t" -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+    "$t" -seed=1 -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
         -artifact_prefix="$tmp/$name-" "$tmp/$name" ${seeds:+"$seeds"} >"$tmp/$name.log" 2>&1
     st=$?
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$tmp/$name.log" | tail -1)

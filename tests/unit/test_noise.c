@@ -104,6 +104,77 @@ static double variogram_slope(const tex_map *m)
     return (np * sxy - sx * sy) / (np * sxx - sx * sx);
 }
 
+/* Band-limited solids at points (t_apply's footprints, eval3_fw): with no footprint
+ * they are eval3 bit for bit; N points equal N single points; the roughness falls as
+ * the footprint grows; a footprint wider than every octave's cells leaves the mean:
+ * 0.5 for fBm, E|noise| for turbulence. */
+static void test_footprints(int n, const double *u, const double *v, const double *w)
+{
+    static const struct {
+        const struct tex_primitive *p;
+        const char *mode;
+    } pp[] = {{&tex_prim_turbulence, NULL}, {&tex_prim_fractal, "fbm"}};
+    static float big[1031], one[1031], flat[1031];
+    static double fw[1031];
+    for (size_t k = 0; k < sizeof pp / sizeof pp[0]; k++) {
+        struct tex_field *f = tex_field_new(pp[k].p);
+        const char *name = pp[k].p->name;
+        tex_field_set(f, "frequency", "4");
+        tex_field_set(f, "octaves", "6");
+        tex_field_set(f, "band_limit", "1");
+        if (pp[k].mode)
+            tex_field_set(f, "mode", pp[k].mode);
+        CHECKF(tex_field_init(f, 0, 0) == 0 && f->band_limit && f->prim->eval3_fw,
+               "%s band_limit: a footprint-filtered solid", name);
+        if (!f->band_limit || !f->prim->eval3_fw) {
+            tex_field_free(f);
+            continue;
+        }
+        for (int i = 0; i < n; i++)
+            fw[i] = 0;
+        f->prim->eval3(f, n, u, v, w, flat);
+        f->prim->eval3_fw(f, n, u, v, w, fw, big);
+        CHECKF(!memcmp(big, flat, n * sizeof *big), "%s: footprint 0 gives eval3's bits", name);
+        for (int i = 0; i < n; i++)
+            fw[i] = 0.04 * (i % 9) / 8.0; /* from none to every octave but the first faded */
+        f->prim->eval3_fw(f, n, u, v, w, fw, big);
+        for (int i = 0; i < n; i++)
+            f->prim->eval3_fw(f, 1, u + i, v + i, w + i, fw + i, one + i);
+        CHECKF(!memcmp(big, one, n * sizeof *big), "%s: eval3_fw over N points equals N single "
+               "points", name);
+        double rough[3] = {0};
+        for (int c = 0; c < 3; c++) {
+            static double du[1031];
+            static float near[1031];
+            for (int i = 0; i < n; i++) {
+                fw[i] = c * 0.02;
+                du[i] = u[i] + 0.003; /* neighbours a small step apart */
+            }
+            f->prim->eval3_fw(f, n, u, v, w, fw, big);
+            f->prim->eval3_fw(f, n, du, v, w, fw, near);
+            for (int i = 0; i < n; i++)
+                rough[c] += fabs(big[i] - near[i]) / n;
+        }
+        CHECKF(rough[1] < 0.8 * rough[0] && rough[2] < 0.8 * rough[1],
+               "%s: wider footprints, smoother values (steps %.4f %.4f %.4f)", name, rough[0],
+               rough[1], rough[2]);
+        for (int i = 0; i < n; i++)
+            fw[i] = 1e3;
+        f->prim->eval3_fw(f, n, u, v, w, fw, big);
+        float want = pp[k].mode ? 0.5f : big[0];
+        double mean = 0;
+        int same = 1;
+        for (int i = 0; i < n; i++) {
+            same &= big[i] == want;
+            mean += flat[i] / n;
+        }
+        CHECKF(same && fabs(mean - want) < 0.15 * want,
+               "%s: a footprint wider than every cell leaves the mean everywhere (%g; the "
+               "unfiltered mean %g)", name, want, mean);
+        tex_field_free(f);
+    }
+}
+
 int main(void)
 {
     tex_noise_table t;
@@ -457,6 +528,7 @@ int main(void)
                    pp[k].p->name, pp[k].kv[0], pp[k].kv[1]);
             tex_field_free(f);
         }
+        test_footprints(N, u, v, w);
     }
     return unit_done();
 }
