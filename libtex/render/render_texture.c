@@ -556,6 +556,43 @@ static void footprint_obj(struct footprint *fp, const struct tex_object *leaf, c
     fp->obj = 1;
 }
 
+/* The footprint's extents along t1 and t2 (squared, *l2 the second) in texture units, u
+ * and v placed, over dims of them (2: u, v; 3: and w, a solid's), by short steps along t1
+ * and t2 from the hit, whose mapping gave uvw0 (footprint_obj set; no wrap-around),
+ * scaled to the footprint; returns the first. */
+static double stepped_width2(const struct tex_apply *ap, const struct placement *pm,
+                             const struct tex_object *leaf, const struct footprint *fp,
+                             const double uvw0[3], int dims, double *l2out)
+{
+    double a[3], b[3];
+    map_point_at(ap, leaf, &fp->P1, &fp->pl1, a);
+    map_point_at(ap, leaf, &fp->P2, &fp->pl2, b);
+    double a0 = wrapdiff(a[0] - uvw0[0]) * pm->su, a1 = wrapdiff(a[1] - uvw0[1]) * pm->sv;
+    double b0 = wrapdiff(b[0] - uvw0[0]) * pm->su, b1 = wrapdiff(b[1] - uvw0[1]) * pm->sv;
+    double s1 = fp->width / fp->c / fp->d1, s2 = fp->width / fp->d2;
+    double l1 = a0 * a0 + a1 * a1, l2 = b0 * b0 + b1 * b1;
+    if (dims == 3) {
+        double a2 = wrapdiff(a[2] - uvw0[2]), b2 = wrapdiff(b[2] - uvw0[2]);
+        l1 += a2 * a2, l2 += b2 * b2;
+    }
+    *l2out = l2 * (s2 * s2);
+    return l1 * (s1 * s1);
+}
+
+/* A band-limited solid's footprint width, squared: RenderMan's filterwidth, the square
+ * root of the footprint's area (the mean of its extents over u, v and w), which does not
+ * blur a surface seen at a grazing angle across its whole width as the longer extent
+ * would. */
+static double solid_width2(const struct tex_apply *ap, const struct placement *pm,
+                           const struct tex_object *leaf, struct footprint *fp, const tex_v3 *P,
+                           const tex_v3 *pl, const double uvw0[3])
+{
+    double l1, l2;
+    footprint_obj(fp, leaf, P, pl);
+    l1 = stepped_width2(ap, pm, leaf, fp, uvw0, 3, &l2);
+    return sqrt(l1 * l2);
+}
+
 /* The footprint's size in texture units (after placement) for texture ap at the hit P (pl)
  * that its mapping took to (u0, v0) on face: the longer of its extents along t1 and t2,
  * squared (the mip level takes it so: neither a root nor a normalised tangent here). */
@@ -563,7 +600,7 @@ static double footprint_width2(const struct tex_apply *ap, const struct placemen
                                const struct tex_object *leaf, struct footprint *fp,
                                const tex_v3 *P, const tex_v3 *pl, int face, double u0, double v0)
 {
-    double su = pm->su, sv = pm->sv, a0, a1, b0, b1;
+    double su = pm->su, sv = pm->sv, a0, a1, b0, b1, m2;
     const tex_v3 *e1 = &fp->t1, *e2 = &fp->t2;
     tex_v3 du, dv;
     int exact = 1;
@@ -578,15 +615,8 @@ static double footprint_width2(const struct tex_apply *ap, const struct placemen
         double c2 = fp->c * fp->c, l1 = a0 * a0 + a1 * a1, l2 = (b0 * b0 + b1 * b1) * c2;
         return (l1 > l2 ? l1 : l2) * (fp->width * fp->width) / (fp->l2 * c2);
     }
-    /* over a short step (no wrap-around), scaled to the footprint */
-    double a[3], b[3];
-    map_point_at(ap, leaf, &fp->P1, &fp->pl1, a);
-    map_point_at(ap, leaf, &fp->P2, &fp->pl2, b);
-    a0 = wrapdiff(a[0] - u0) * su, a1 = wrapdiff(a[1] - v0) * sv;
-    b0 = wrapdiff(b[0] - u0) * su, b1 = wrapdiff(b[1] - v0) * sv;
-    double s1 = fp->width / fp->c / fp->d1, s2 = fp->width / fp->d2;
-    double l1 = (a0 * a0 + a1 * a1) * (s1 * s1), l2 = (b0 * b0 + b1 * b1) * (s2 * s2);
-    return l1 > l2 ? l1 : l2;
+    double m1 = stepped_width2(ap, pm, leaf, fp, (double[3]){u0, v0, 0}, 2, &m2);
+    return m1 > m2 ? m1 : m2;
 }
 
 /* ---- application functions ---------------------------------------------------------- */
@@ -1040,7 +1070,10 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
          * value did not come with the packet's, bumps on either) */
         int need = filter && ((uses_footprint(ap->tex) && (!pa->has_val || pm->bump)) ||
                               (ap->mapping == TEX_MAP_CROSS && uses_footprint(ap->cross)));
-        double fw2 = need ? footprint_width2(ap, pm, leaf, &fp, P, &pl, face, u0, v0) : 0;
+        int solid = band_limited(ap->tex); /* its footprint over w too */
+        double fw2 = !need ? 0
+                     : solid ? solid_width2(ap, pm, leaf, &fp, P, &pl, pa->uvw0)
+                             : footprint_width2(ap, pm, leaf, &fp, P, &pl, face, u0, v0);
         /* one lookup: region maps and other primitives ignore the footprint; a primitive's
          * value may have come with the packet's */
         int region;
@@ -1054,7 +1087,8 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
         if (ap->mapping == TEX_MAP_CROSS)
             cross_combine(ap, pm, uvw, fw2, f);
         if (q) {
-            double w2 = need ? fw2 : footprint_width2(ap, pm, leaf, &fq, P, &pl, face, u0, v0);
+            double w2 = need && !solid ? fw2
+                                       : footprint_width2(ap, pm, leaf, &fq, P, &pl, face, u0, v0);
             q[TEX_Q_FOOTPRINT] = sqrt(w2);
             q[TEX_Q_LOD] = w2 > 0x1p-120 ? log2(w2) / 2 : -60;
             q[TEX_Q_U] = u0, q[TEX_Q_V] = v0, q[TEX_Q_W] = w0;
@@ -1195,8 +1229,7 @@ void tex_prefetch_footprints(struct tex_prefetch *pf, const struct tex_object *l
     for (int j = 0; j < pf->n; j++, pm++, ap = ap->next) {
         struct tex_prefetch_ap *a = &pf->ap[j];
         if (a->pending && band_limited(a->tex))
-            a->fw = sqrt(footprint_width2(ap, pm, leaf, &fp, P, &pf->pl, a->face, a->uvw0[0],
-                                          a->uvw0[1]));
+            a->fw = sqrt(solid_width2(ap, pm, leaf, &fp, P, &pf->pl, a->uvw0));
     }
 }
 
