@@ -72,11 +72,12 @@ static int hole(const struct tex_field *f, int dims, const int64_t c[3], double 
 }
 
 /* The thesis's T = -Fact e^(-N^2 R / D) at p (dims coordinates in map units): the deepest
- * hole among the neighbouring cells', as 1 - depth e^(-8 R / D). */
+ * hole among the neighbouring cells', as 1 - depth e^(-8 R / D).  The deepest is the one
+ * of least R / D, so exp runs once, not once per hole. */
 static float holes_point(const struct tex_field *f, int dims, const double *pt)
 {
     const struct holes_params *p = f->params;
-    double x[3] = {0, 0, 0}, best = 0;
+    double x[3] = {0, 0, 0}, rmin = INFINITY;
     int64_t i[3] = {0, 0, 0};
     for (int a = 0; a < dims; a++) {
         x[a] = pt[a] * p->count;
@@ -94,9 +95,10 @@ static float holes_point(const struct tex_field *f, int dims, const double *pt)
                                                  (x[1] - ctr[1]) * (x[1] - ctr[1]) +
                                                  (x[2] - ctr[2]) * (x[2] - ctr[2]))
                                           : hypot(x[0] - ctr[0], x[1] - ctr[1])) / d;
-                    best = fmax(best, exp(-8.0 * r));
+                    rmin = fmin(rmin, r);
                 }
             }
+    double best = rmin < INFINITY ? exp(-8.0 * rmin) : 0;
     return clamp01((float)(1.0 - p->depth * best));
 }
 
