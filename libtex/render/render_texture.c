@@ -1286,9 +1286,9 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
     nfn = nap = 0;
     for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next) {
         placement_of(ap, &c->placement[nap++]);
+        c->footprints |= band_limited(ap->tex);
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++) {
             c->compiled[nfn] = (char)poly_of(fn->e, &c->poly[nfn]);
-            c->footprints |= band_limited(ap->tex);
             for (int i = 0; i < fn->e->n; i++)
                 c->quantities |= fn->e->code[i].op == TEX_EOP_LEAF &&
                                  fn->e->code[i].leaf >= TEX_LEAF_Q;
