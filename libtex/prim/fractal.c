@@ -180,10 +180,7 @@ static void turb_eval3_fw(const struct tex_field *f, int n, const double *u, con
         for (int i = 0; i < m; i++)
             o[i] = 0;
         for (int k = 0; k < s->o.n; k++) {
-            if (tex_octave_band_weights(&s->o, k, m, fw + i0, t))
-                tex_octave_points(&s->o, k, m, u + i0, v + i0, w ? w + i0 : NULL, r);
-            else
-                memset(r, 0, m * sizeof *r);
+            tex_octave_points_fw(&s->o, k, m, u + i0, v + i0, w ? w + i0 : NULL, fw + i0, r, t);
             for (int i = 0; i < m; i++)
                 o[i] += s->amp[k] * (t[i] * fabsf((float)r[i]) + (1 - t[i]) * s->mean);
         }
@@ -817,10 +814,7 @@ static void frac_eval3_fw(const struct tex_field *f, int n, const double *u, con
     for (int i0 = 0; i0 < n; i0 += B) {
         int m = n - i0 < B ? n - i0 : B;
         for (int k = 0; k < s->o.n; k++) {
-            if (tex_octave_band_weights(&s->o, k, m, fw + i0, t))
-                tex_octave_points(&s->o, k, m, u + i0, v + i0, w ? w + i0 : NULL, r);
-            else
-                memset(r, 0, m * sizeof *r);
+            tex_octave_points_fw(&s->o, k, m, u + i0, v + i0, w ? w + i0 : NULL, fw + i0, r, t);
             for (int i = 0; i < m; i++)
                 nk[i][k] = t[i] * (float)r[i];
         }

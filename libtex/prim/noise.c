@@ -1378,14 +1378,18 @@ double tex_octave_band_weight(const tex_octaves *o, int k)
     return o->grid ? band_weight(o->g[k].fy) : 1; /* g.fy: lattice cells per pixel */
 }
 
-int tex_octave_band_weights(const tex_octaves *o, int k, int n, const double *fw, float *wt)
+void tex_octave_points_fw(const tex_octaves *o, int k, int n, const double *u, const double *v,
+                          const double *w, const double *fw, double *out, float *wt)
 {
     int any = 0;
     for (int i = 0; i < n; i++) {
         wt[i] = (float)band_weight(fw[i] * o->freq[k]);
         any |= wt[i] > 0;
     }
-    return any;
+    if (any)
+        tex_octave_points(o, k, n, u, v, w, out);
+    else
+        memset(out, 0, n * sizeof *out);
 }
 
 double tex_noise_mean_abs(const tex_noise_table *t)
