@@ -5,8 +5,10 @@
 # holds EXECUTIONS (default 10^7) executions for it since its last crash.  Pieces
 # grow the scratch corpus tests/fuzz/corpus-NAME (not kept; the seeds are), JOBS
 # targets at a time (default 1).  A crash stops its target: the input is kept as
-# tests/fuzz/crash-NAME-*, the ledger says so, and the exit status is 1.
-# Ledger lines: "DATE COMMIT fuzz_NAME EXECUTIONS SECONDS ok|crash".  Entropic
+# tests/fuzz/crash-NAME-*, the ledger says so, and the exit status is 1.  To stop
+# early, send SIGINT to the running fuzzers (and to those started after them):
+# each stops its target with its count recorded as "interrupted".
+# Ledger lines: "DATE COMMIT fuzz_NAME EXECUTIONS SECONDS ok|interrupted|crash".  Entropic
 # scheduling is off: its bookkeeping (UpdateFeatureFrequency) took half of every
 # run of the larger targets, and without it they run 2.4 times as many inputs; so
 # is rereading the corpus directory (a tenth), which only other processes write.
@@ -41,6 +43,11 @@ one() {
         if [ "$st" = 0 ] && [ -n "$runs" ]; then
             echo "$(date -u +%FT%TZ) $commit $name $runs $secs ok" >>"$ledger"
             rm -f "$log"
+        elif [ "$st" = 72 ] && [ -n "$runs" ]; then # libFuzzer's exit on SIGINT
+            echo "$(date -u +%FT%TZ) $commit $name $runs $secs interrupted" >>"$ledger"
+            rm -f "$log"
+            echo "ok - $name: interrupted at $(done_runs "$name") executions"
+            return 0
         else
             echo "$(date -u +%FT%TZ) $commit $name ${runs:-0} $secs crash" >>"$ledger"
             echo "not ok - $name: exit $st (log $log)"
