@@ -48,9 +48,9 @@ static const struct tex_param turb_rows[] = {
              "frequency ratio between octaves (whole with --tile)"),
     TEX_REAL(struct turb_params, gain, 'g', 0.5, 0, 1, "G", "amplitude ratio between octaves"),
     TEX_FLAG(struct turb_params, band_limit, 0,
-             "fade octaves finer than a pixel (in t_apply, a solid texture: than the ray's "
-             "footprint at the hit) to their mean, as Perlin's filtered turbulence: no "
-             "aliasing, and faster"),
+             "fade octaves finer than a pixel to their mean, as Perlin's filtered "
+             "turbulence: no aliasing, and faster (a solid texture in t_apply: finer than "
+             "the ray's footprint at the hit)"),
     TEX_NOISE_ROWS(struct turb_params),
     TEX_NOISE_W_ROW(struct turb_params),
     TEX_NOISE_LOOP_ROWS(struct turb_params),
