@@ -8,10 +8,14 @@
 # tests/fuzz/crash-NAME-*, the ledger says so, and the exit status is 1.  To stop
 # early, send SIGINT to the running fuzzers (and to those started after them):
 # each stops its target with its count recorded as "interrupted".
-# Ledger lines: "DATE COMMIT fuzz_NAME EXECUTIONS SECONDS ok|interrupted|crash".  Entropic
-# scheduling is off: its bookkeeping (UpdateFeatureFrequency) took half of every
-# run of the larger targets, and without it they run 2.4 times as many inputs; so
-# is rereading the corpus directory (a tenth), which only other processes write.
+# A timeout (an input running past 60 s of wall time, which nice 19 on a busy
+# machine stretches) stops its target too, as "timeout", but its executions count:
+# it is a slow input to look at, not a crash.
+# Ledger lines: "DATE COMMIT fuzz_NAME EXECUTIONS SECONDS STATUS", the status ok,
+# interrupted, timeout or crash.  Entropic scheduling is off: its bookkeeping
+# (UpdateFeatureFrequency) took half of every run of the larger targets, and without
+# it they run 2.4 times as many inputs; so is rereading the corpus directory (a
+# tenth), which only other processes write.
 set -u
 jobs=1
 [ "${1:-}" = -j ] && { jobs=$2; shift 2; }
@@ -35,7 +39,7 @@ one() {
     while have=$(done_runs "$name"); [ "$have" -lt "$want" ]; do
         left=$((want - have))
         log=$(mktemp "${TMPDIR:-/tmp}/textura-campaign.XXXXXX")
-        "$t" -entropic=0 -reload=0 -runs="$left" -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 \
+        "$t" -entropic=0 -reload=0 -runs="$left" -max_total_time="$secs" -timeout=60 -rss_limit_mb=2048 \
             -print_final_stats=1 -artifact_prefix="$here/crash-${name#fuzz_}-" \
             "$corpus" "$seeds" >"$log" 2>&1
         st=$?
@@ -48,6 +52,11 @@ one() {
             rm -f "$log"
             echo "ok - $name: interrupted at $(done_runs "$name") executions"
             return 0
+        elif [ "$st" = 70 ] && [ -n "$runs" ]; then # a slow input: kept, to be looked at
+            echo "$(date -u +%FT%TZ) $commit $name $runs $secs timeout" >>"$ledger"
+            echo "not ok - $name: an input ran past the timeout (log $log)"
+            grep -E 'Test unit written' "$log" | head -1
+            return 1
         else
             echo "$(date -u +%FT%TZ) $commit $name ${runs:-0} $secs crash" >>"$ledger"
             echo "not ok - $name: exit $st (log $log)"
