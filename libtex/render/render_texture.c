@@ -1026,6 +1026,43 @@ static void map_hit(const struct tex_apply *ap, const struct placement *pm,
     a->fw = 0;
 }
 
+/* The footprint (squared) that texture ap's lookups take at the hit P (pl), whose mapping
+ * is pa: 0 where none uses one (filter off, primitives other than band-limited solids, a
+ * band-limited value that came with the packet and no bump to look up); a band-limited
+ * solid's over w too.  *mapped: it is footprint_width2's. */
+static double lookup_width2(const struct tex_apply *ap, const struct placement *pm,
+                            const struct tex_object *leaf, struct footprint *fp, const tex_v3 *P,
+                            const tex_v3 *pl, const struct tex_prefetch_ap *pa, int filter,
+                            int *mapped)
+{
+    int need = filter && ((uses_footprint(ap->tex) && (!pa->has_val || pm->bump)) ||
+                          (ap->mapping == TEX_MAP_CROSS && uses_footprint(ap->cross)));
+    *mapped = 0;
+    if (!need)
+        return 0;
+    if (band_limited(ap->tex))
+        return solid_width2(ap, pm, leaf, fp, P, pl, pa->uvw0);
+    *mapped = 1;
+    return footprint_width2(ap, pm, leaf, fp, P, pl, pa->face, pa->uvw0[0], pa->uvw0[1]);
+}
+
+/* The quantities of texture ap at the hit (its mapping pa) into q: the footprint fw2 when
+ * lookup_width2 gave footprint_width2's, else (fw2 < 0) the real one through fq. */
+static void texture_quantities(const struct tex_apply *ap, const struct placement *pm,
+                               const struct tex_object *leaf, struct footprint *fq,
+                               const tex_v3 *P, const tex_v3 *pl,
+                               const struct tex_prefetch_ap *pa, double fw2, int region,
+                               double *q)
+{
+    double w2 = fw2 >= 0 ? fw2
+                         : footprint_width2(ap, pm, leaf, fq, P, pl, pa->face, pa->uvw0[0],
+                                            pa->uvw0[1]);
+    q[TEX_Q_FOOTPRINT] = sqrt(w2);
+    q[TEX_Q_LOD] = w2 > 0x1p-120 ? log2(w2) / 2 : -60;
+    q[TEX_Q_U] = pa->uvw0[0], q[TEX_Q_V] = pa->uvw0[1], q[TEX_Q_W] = pa->uvw0[2];
+    q[TEX_Q_REGION] = region;
+}
+
 /* The textures of sf applied at the hit (normal N; filter: mip-mapped lookups) to pr, N bent
  * by bump maps; 1 if one of them set Ks. */
 static int apply_textures(const struct tex_surface *sf, const struct tex_shade_at *at,
@@ -1059,21 +1096,14 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
             pa = &own;
         }
         double uvw[3] = {pa->uvw[0], pa->uvw[1], pa->uvw[2]};
-        double u0 = pa->uvw0[0], v0 = pa->uvw0[1], w0 = pa->uvw0[2];
-        int face = pa->face;
+        double u0 = pa->uvw0[0], v0 = pa->uvw0[1];
         if (!pa->inside) {
             for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next)
                 nfn++;
             continue;
         }
-        /* the footprint, where a lookup uses it (mip-mapped maps, band-limited solids whose
-         * value did not come with the packet's, bumps on either) */
-        int need = filter && ((uses_footprint(ap->tex) && (!pa->has_val || pm->bump)) ||
-                              (ap->mapping == TEX_MAP_CROSS && uses_footprint(ap->cross)));
-        int solid = band_limited(ap->tex); /* its footprint over w too */
-        double fw2 = !need ? 0
-                     : solid ? solid_width2(ap, pm, leaf, &fp, P, &pl, pa->uvw0)
-                             : footprint_width2(ap, pm, leaf, &fp, P, &pl, face, u0, v0);
+        int mapped; /* fw2 is footprint_width2's, which the quantities report */
+        double fw2 = lookup_width2(ap, pm, leaf, &fp, P, &pl, pa, filter, &mapped);
         /* one lookup: region maps and other primitives ignore the footprint; a primitive's
          * value may have come with the packet's */
         int region;
@@ -1086,14 +1116,8 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
         }
         if (ap->mapping == TEX_MAP_CROSS)
             cross_combine(ap, pm, uvw, fw2, f);
-        if (q) {
-            double w2 = need && !solid ? fw2
-                                       : footprint_width2(ap, pm, leaf, &fq, P, &pl, face, u0, v0);
-            q[TEX_Q_FOOTPRINT] = sqrt(w2);
-            q[TEX_Q_LOD] = w2 > 0x1p-120 ? log2(w2) / 2 : -60;
-            q[TEX_Q_U] = u0, q[TEX_Q_V] = v0, q[TEX_Q_W] = w0;
-            q[TEX_Q_REGION] = region;
-        }
+        if (q)
+            texture_quantities(ap, pm, leaf, &fq, P, &pl, pa, mapped ? fw2 : -1, region, q);
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++) {
             if (fn->region && fn->region != region)
                 continue;

@@ -175,6 +175,179 @@ static void test_footprints(int n, const double *u, const double *v, const doubl
     }
 }
 
+/* The point path: tex_noise_points equals tex_noise3p bit for bit (vectorised where
+ * the CPU has AVX2), at odd counts, far from the origin, with a period and both
+ * fades; and every point primitive's eval3 over N points equals N calls of one
+ * point (the scalar path), for N = 1, odd N and a whole batch and more. */
+static void test_points(void)
+{
+    enum { N = 1031 };
+    static double x[N], y[N], z[N], a[N], u[N], v[N], w[N];
+    static float big[N], one[N];
+    tex_rng r;
+    int bad = 0;
+    tex_rng_seed(&r, 17);
+    for (int i = 0; i < N; i++) {
+        double s = i % 7 == 0 ? 3e8 : i % 5 == 0 ? 2e3 : 20; /* 3e8: past the 2^30 cells */
+        x[i] = s * (2 * tex_rng_uniform(&r) - 1);
+        y[i] = s * (2 * tex_rng_uniform(&r) - 1);
+        z[i] = i % 11 == 0 ? floor(z[i - 1 > 0 ? i - 1 : 0]) : 20 * tex_rng_uniform(&r);
+        u[i] = 4 * tex_rng_uniform(&r) - 2;
+        v[i] = 4 * tex_rng_uniform(&r) - 2;
+        w[i] = i % 13 == 0 ? 1e6 : tex_rng_uniform(&r);
+    }
+    for (int c = 0; c < 4; c++) {
+        tex_noise_table t;
+        int period = c & 1 ? 7 : 0, cnt = c < 2 ? N : 5;
+        tex_noise_init(&t, 11 + c, c == 3 ? 97 : 256, 0);
+        t.fade = c >= 2 ? TEX_FADE_QUINTIC : TEX_FADE_CUBIC;
+        tex_noise_points(&t, period, 3, cnt, x, y, z, NULL, a);
+        for (int i = 0; i < cnt; i++)
+            bad += memcmp(&a[i], &(double){tex_noise3p(&t, period, x[i], y[i], z[i])},
+                          sizeof a[i]) != 0;
+        tex_noise_free(&t);
+    }
+    CHECKF(bad == 0, "tex_noise_points equals tex_noise3p bit for bit (%s; %d differ)",
+           tex_simd_name(tex_simd_level()), bad);
+    static const struct {
+        const struct tex_primitive *p;
+        const char *kv[6];
+    } pp[] = {{&tex_prim_noise, {"frequency", "5"}},
+              {&tex_prim_noise, {"frequency", "3", "time", "0.3"}},
+              {&tex_prim_turbulence, {"octaves", "6", "frequency", "3"}},
+              {&tex_prim_fractal, {"octaves", "7"}},
+              {&tex_prim_fractal, {"mode", "ridged", "octaves", "5"}},
+              {&tex_prim_fractal, {"mode", "hybrid", "octaves", "5"}},
+              {&tex_prim_wood, {"grain", "0.4"}},
+              {&tex_prim_perturb, {"octaves", "5"}},
+              {&tex_prim_colorvar, {"noise", "0.7"}}};
+    for (size_t k = 0; k < sizeof pp / sizeof pp[0]; k++) {
+        struct tex_field *f = tex_field_new(pp[k].p);
+        int diff = 0;
+        for (int i = 0; i < 6 && pp[k].kv[i]; i += 2)
+            tex_field_set(f, pp[k].kv[i], pp[k].kv[i + 1]);
+        tex_field_init(f, 0, 0);
+        for (int pass = 0; pass < 2; pass++) {
+            int n = pass ? N : 3;
+            f->prim->eval3(f, n, u, v, w, big);
+            for (int i = 0; i < n; i++)
+                f->prim->eval3(f, 1, u + i, v + i, w + i, one + i);
+            diff += memcmp(big, one, n * sizeof *big) != 0;
+            f->prim->eval2(f, n, u, v, big);
+            for (int i = 0; i < n; i++)
+                f->prim->eval2(f, 1, u + i, v + i, one + i);
+            diff += memcmp(big, one, n * sizeof *big) != 0;
+        }
+        CHECKF(diff == 0, "%s %s %s: eval3/eval2 over N points equal N single points",
+               pp[k].p->name, pp[k].kv[0], pp[k].kv[1]);
+        tex_field_free(f);
+    }
+    test_footprints(N, u, v, w);
+}
+
+/* Grid rows agree with the point evaluation: 2D, 3D slice, 4D, period, far away. */
+static void test_rows_points(const tex_noise_table *t)
+{
+    struct {
+        double off[4];
+        int dims, period, w;
+        double freq;
+    } cs[] = {{{0, 0, 0, 0}, 3, 0, 300, 8},       {{0.3, 0.1, 2.37, 0}, 3, 0, 257, 33},
+              {{0, 0, 0.5, 1.25}, 4, 0, 128, 5},  {{0, 0, 0, 0}, 3, 16, 64, 16},
+              {{1e6, -3e6, 1e6, 0}, 3, 0, 100, 7}, {{0, 0, 0.1, 0}, 3, 0, 50, 400}};
+    for (int c = 0; c < 6; c++) {
+        tex_noise_grid g;
+        float row[512];
+        double err = 0;
+        tex_noise_grid_init(&g, t, cs[c].w, 40, cs[c].freq, cs[c].freq, cs[c].off, cs[c].dims,
+                            cs[c].period);
+        for (int y = 0; y < 40; y += 3) {
+            tex_noise_grid_row(&g, y, row);
+            for (int x = 0; x < cs[c].w; x++) {
+                double X = cs[c].off[0] + cs[c].freq * ((x + 0.5) / cs[c].w),
+                       Y = cs[c].off[1] + cs[c].freq * ((y + 0.5) / 40);
+                double s = cs[c].dims == 4 ? tex_noise4p(t, cs[c].period, X, Y, cs[c].off[2],
+                                                         cs[c].off[3])
+                                           : tex_noise3p(t, cs[c].period, X, Y, cs[c].off[2]);
+                err = fmax(err, fabs(s - row[x]));
+                if (isnan(row[x]))
+                    err = INFINITY;
+            }
+        }
+        tex_noise_grid_free(&g);
+        CHECKF(err < 2e-6, "grid case %d (dims %d, period %d, f %g) matches points (%g)", c,
+               cs[c].dims, cs[c].period, cs[c].freq, err);
+    }
+}
+
+/* Rows kept between calls (lattice rows shared by neighbouring pixel rows)
+ * give the same bytes whatever order the rows come in: in order, backwards,
+ * scattered, each row from a fresh grid; with one octave or many. */
+static void test_rows_kept(const tex_noise_table *t)
+{
+    enum { W = 300, H = 200 };
+    double off[4] = {0.25, 3.5, 0.7, 0};
+    float *ref = malloc(sizeof *ref * W * H), row[W];
+    tex_noise_grid g;
+    int bad[3] = {0, 0, 0};
+    tex_noise_grid_init(&g, t, W, H, 11, 11, off, 3, 0);
+    CHECK(g.cache != NULL, "a grid with cells taller than a pixel keeps lattice rows");
+    for (int y = 0; y < H; y++)
+        tex_noise_grid_row_op(&g, y, TEX_ROW_UNIT, 0, 0, ref + y * W);
+    for (int y = H - 1; y >= 0; y--) {
+        tex_noise_grid_row_op(&g, y, TEX_ROW_UNIT, 0, 0, row);
+        bad[0] |= memcmp(row, ref + y * W, sizeof row) != 0;
+    }
+    for (int i = 0; i < H; i++) {
+        int y = (i * 37 + 11) % H; /* 37 is prime to 200: every row once */
+        tex_noise_grid_row_op(&g, y, TEX_ROW_UNIT, 0, 0, row);
+        bad[1] |= memcmp(row, ref + y * W, sizeof row) != 0;
+    }
+    tex_noise_grid_free(&g);
+    for (int y = 0; y < H; y += 7) {
+        tex_noise_grid_init(&g, t, W, H, 11, 11, off, 3, 0);
+        tex_noise_grid_row_op(&g, y, TEX_ROW_UNIT, 0, 0, row);
+        bad[2] |= memcmp(row, ref + y * W, sizeof row) != 0;
+        tex_noise_grid_free(&g);
+    }
+    CHECKF(!bad[0] && !bad[1] && !bad[2],
+           "grid rows: same bytes backwards %d, scattered %d, from fresh grids %d", !bad[0],
+           !bad[1], !bad[2]);
+    free(ref);
+}
+
+/* The row operations are what they say, on the same noise. */
+static void test_row_ops(const tex_noise_table *t)
+{
+    float n[64], o[64], v[64];
+    double off[4] = {0.1, 0.2, 0.3, 0};
+    int bad = 0;
+    tex_noise_grid g;
+    tex_noise_grid_init(&g, t, 64, 8, 5, 5, off, 3, 0);
+    tex_noise_grid_row(&g, 3, n);
+    for (int op = TEX_ROW_SET; op <= TEX_ROW_ADD_ABS_CLAMP; op++) {
+        for (int x = 0; x < 64; x++)
+            o[x] = v[x] = 0.25f - 0.01f * x;
+        tex_noise_grid_row_op(&g, 3, op, 0.7f, 1.3f, o);
+        for (int x = 0; x < 64; x++) {
+            float a = 0.7f, b = 1.3f, r = n[x], e;
+            switch (op) {
+            case TEX_ROW_SET: e = r; break;
+            case TEX_ROW_MUL: e = a * r; break;
+            case TEX_ROW_MUL_ABS: e = a * fabsf(r); break;
+            case TEX_ROW_UNIT: e = fminf(fmaxf(0.5f + 0.5f * r, 0), 1); break;
+            case TEX_ROW_ADD: e = v[x] + a * r; break;
+            case TEX_ROW_ADD_ABS: e = v[x] + a * fabsf(r); break;
+            case TEX_ROW_ADD_UNIT: e = fminf(fmaxf(0.5f + 0.5f * ((v[x] + a * r) * b), 0), 1); break;
+            default: e = fminf(fmaxf((v[x] + a * fabsf(r)) * b, 0), 1); break;
+            }
+            bad += o[x] != e;
+        }
+    }
+    tex_noise_grid_free(&g);
+    CHECKF(bad == 0, "row operations set, mul, |n|, unit, add and the finishes (%d wrong)", bad);
+}
+
 int main(void)
 {
     tex_noise_table t;
@@ -216,103 +389,9 @@ int main(void)
     }
     t.fade = 0;
 
-    /* Grid rows agree with the point evaluation: 2D, 3D slice, 4D, period, far away. */
-    {
-        struct {
-            double off[4];
-            int dims, period, w;
-            double freq;
-        } cs[] = {{{0, 0, 0, 0}, 3, 0, 300, 8},       {{0.3, 0.1, 2.37, 0}, 3, 0, 257, 33},
-                  {{0, 0, 0.5, 1.25}, 4, 0, 128, 5},  {{0, 0, 0, 0}, 3, 16, 64, 16},
-                  {{1e6, -3e6, 1e6, 0}, 3, 0, 100, 7}, {{0, 0, 0.1, 0}, 3, 0, 50, 400}};
-        for (int c = 0; c < 6; c++) {
-            tex_noise_grid g;
-            float row[512];
-            double err = 0;
-            tex_noise_grid_init(&g, &t, cs[c].w, 40, cs[c].freq, cs[c].freq, cs[c].off, cs[c].dims,
-                                cs[c].period);
-            for (int y = 0; y < 40; y += 3) {
-                tex_noise_grid_row(&g, y, row);
-                for (int x = 0; x < cs[c].w; x++) {
-                    double X = cs[c].off[0] + cs[c].freq * ((x + 0.5) / cs[c].w),
-                           Y = cs[c].off[1] + cs[c].freq * ((y + 0.5) / 40);
-                    double s = cs[c].dims == 4 ? tex_noise4p(&t, cs[c].period, X, Y, cs[c].off[2],
-                                                             cs[c].off[3])
-                                               : tex_noise3p(&t, cs[c].period, X, Y, cs[c].off[2]);
-                    err = fmax(err, fabs(s - row[x]));
-                    if (isnan(row[x]))
-                        err = INFINITY;
-                }
-            }
-            tex_noise_grid_free(&g);
-            CHECKF(err < 2e-6, "grid case %d (dims %d, period %d, f %g) matches points (%g)", c,
-                   cs[c].dims, cs[c].period, cs[c].freq, err);
-        }
-    }
-    /* Rows kept between calls (lattice rows shared by neighbouring pixel rows)
-     * give the same bytes whatever order the rows come in: in order, backwards,
-     * scattered, each row from a fresh grid; with one octave or many. */
-    {
-        enum { W = 300, H = 200 };
-        double off[4] = {0.25, 3.5, 0.7, 0};
-        float *ref = malloc(sizeof *ref * W * H), row[W];
-        tex_noise_grid g;
-        int bad[3] = {0, 0, 0};
-        tex_noise_grid_init(&g, &t, W, H, 11, 11, off, 3, 0);
-        CHECK(g.cache != NULL, "a grid with cells taller than a pixel keeps lattice rows");
-        for (int y = 0; y < H; y++)
-            tex_noise_grid_row_op(&g, y, TEX_ROW_UNIT, 0, 0, ref + y * W);
-        for (int y = H - 1; y >= 0; y--) {
-            tex_noise_grid_row_op(&g, y, TEX_ROW_UNIT, 0, 0, row);
-            bad[0] |= memcmp(row, ref + y * W, sizeof row) != 0;
-        }
-        for (int i = 0; i < H; i++) {
-            int y = (i * 37 + 11) % H; /* 37 is prime to 200: every row once */
-            tex_noise_grid_row_op(&g, y, TEX_ROW_UNIT, 0, 0, row);
-            bad[1] |= memcmp(row, ref + y * W, sizeof row) != 0;
-        }
-        tex_noise_grid_free(&g);
-        for (int y = 0; y < H; y += 7) {
-            tex_noise_grid_init(&g, &t, W, H, 11, 11, off, 3, 0);
-            tex_noise_grid_row_op(&g, y, TEX_ROW_UNIT, 0, 0, row);
-            bad[2] |= memcmp(row, ref + y * W, sizeof row) != 0;
-            tex_noise_grid_free(&g);
-        }
-        CHECKF(!bad[0] && !bad[1] && !bad[2],
-               "grid rows: same bytes backwards %d, scattered %d, from fresh grids %d", !bad[0],
-               !bad[1], !bad[2]);
-        free(ref);
-    }
-    /* The row operations are what they say, on the same noise. */
-    {
-        float n[64], o[64], v[64];
-        double off[4] = {0.1, 0.2, 0.3, 0};
-        int bad = 0;
-        tex_noise_grid g;
-        tex_noise_grid_init(&g, &t, 64, 8, 5, 5, off, 3, 0);
-        tex_noise_grid_row(&g, 3, n);
-        for (int op = TEX_ROW_SET; op <= TEX_ROW_ADD_ABS_CLAMP; op++) {
-            for (int x = 0; x < 64; x++)
-                o[x] = v[x] = 0.25f - 0.01f * x;
-            tex_noise_grid_row_op(&g, 3, op, 0.7f, 1.3f, o);
-            for (int x = 0; x < 64; x++) {
-                float a = 0.7f, b = 1.3f, r = n[x], e;
-                switch (op) {
-                case TEX_ROW_SET: e = r; break;
-                case TEX_ROW_MUL: e = a * r; break;
-                case TEX_ROW_MUL_ABS: e = a * fabsf(r); break;
-                case TEX_ROW_UNIT: e = fminf(fmaxf(0.5f + 0.5f * r, 0), 1); break;
-                case TEX_ROW_ADD: e = v[x] + a * r; break;
-                case TEX_ROW_ADD_ABS: e = v[x] + a * fabsf(r); break;
-                case TEX_ROW_ADD_UNIT: e = fminf(fmaxf(0.5f + 0.5f * ((v[x] + a * r) * b), 0), 1); break;
-                default: e = fminf(fmaxf((v[x] + a * fabsf(r)) * b, 0), 1); break;
-                }
-                bad += o[x] != e;
-            }
-        }
-        tex_noise_grid_free(&g);
-        CHECKF(bad == 0, "row operations set, mul, |n|, unit, add and the finishes (%d wrong)", bad);
-    }
+    test_rows_points(&t);
+    test_rows_kept(&t);
+    test_row_ops(&t);
     /* Grid rows of the gradient agree with the point evaluation's. */
     for (int fd = 0; fd < 2; fd++) {
         struct {
@@ -462,73 +541,6 @@ int main(void)
                out[1]);
         tex_field_free(f);
     }
-    /* The point path: tex_noise_points equals tex_noise3p bit for bit (vectorised where
-     * the CPU has AVX2), at odd counts, far from the origin, with a period and both
-     * fades; and every point primitive's eval3 over N points equals N calls of one
-     * point (the scalar path), for N = 1, odd N and a whole batch and more. */
-    {
-        enum { N = 1031 };
-        static double x[N], y[N], z[N], a[N], u[N], v[N], w[N];
-        static float big[N], one[N];
-        tex_rng r;
-        int bad = 0;
-        tex_rng_seed(&r, 17);
-        for (int i = 0; i < N; i++) {
-            double s = i % 7 == 0 ? 3e8 : i % 5 == 0 ? 2e3 : 20; /* 3e8: past the 2^30 cells */
-            x[i] = s * (2 * tex_rng_uniform(&r) - 1);
-            y[i] = s * (2 * tex_rng_uniform(&r) - 1);
-            z[i] = i % 11 == 0 ? floor(z[i - 1 > 0 ? i - 1 : 0]) : 20 * tex_rng_uniform(&r);
-            u[i] = 4 * tex_rng_uniform(&r) - 2;
-            v[i] = 4 * tex_rng_uniform(&r) - 2;
-            w[i] = i % 13 == 0 ? 1e6 : tex_rng_uniform(&r);
-        }
-        for (int c = 0; c < 4; c++) {
-            tex_noise_table t;
-            int period = c & 1 ? 7 : 0, cnt = c < 2 ? N : 5;
-            tex_noise_init(&t, 11 + c, c == 3 ? 97 : 256, 0);
-            t.fade = c >= 2 ? TEX_FADE_QUINTIC : TEX_FADE_CUBIC;
-            tex_noise_points(&t, period, 3, cnt, x, y, z, NULL, a);
-            for (int i = 0; i < cnt; i++)
-                bad += memcmp(&a[i], &(double){tex_noise3p(&t, period, x[i], y[i], z[i])},
-                              sizeof a[i]) != 0;
-            tex_noise_free(&t);
-        }
-        CHECKF(bad == 0, "tex_noise_points equals tex_noise3p bit for bit (%s; %d differ)",
-               tex_simd_name(tex_simd_level()), bad);
-        static const struct {
-            const struct tex_primitive *p;
-            const char *kv[6];
-        } pp[] = {{&tex_prim_noise, {"frequency", "5"}},
-                  {&tex_prim_noise, {"frequency", "3", "time", "0.3"}},
-                  {&tex_prim_turbulence, {"octaves", "6", "frequency", "3"}},
-                  {&tex_prim_fractal, {"octaves", "7"}},
-                  {&tex_prim_fractal, {"mode", "ridged", "octaves", "5"}},
-                  {&tex_prim_fractal, {"mode", "hybrid", "octaves", "5"}},
-                  {&tex_prim_wood, {"grain", "0.4"}},
-                  {&tex_prim_perturb, {"octaves", "5"}},
-                  {&tex_prim_colorvar, {"noise", "0.7"}}};
-        for (size_t k = 0; k < sizeof pp / sizeof pp[0]; k++) {
-            struct tex_field *f = tex_field_new(pp[k].p);
-            int diff = 0;
-            for (int i = 0; i < 6 && pp[k].kv[i]; i += 2)
-                tex_field_set(f, pp[k].kv[i], pp[k].kv[i + 1]);
-            tex_field_init(f, 0, 0);
-            for (int pass = 0; pass < 2; pass++) {
-                int n = pass ? N : 3;
-                f->prim->eval3(f, n, u, v, w, big);
-                for (int i = 0; i < n; i++)
-                    f->prim->eval3(f, 1, u + i, v + i, w + i, one + i);
-                diff += memcmp(big, one, n * sizeof *big) != 0;
-                f->prim->eval2(f, n, u, v, big);
-                for (int i = 0; i < n; i++)
-                    f->prim->eval2(f, 1, u + i, v + i, one + i);
-                diff += memcmp(big, one, n * sizeof *big) != 0;
-            }
-            CHECKF(diff == 0, "%s %s %s: eval3/eval2 over N points equal N single points",
-                   pp[k].p->name, pp[k].kv[0], pp[k].kv[1]);
-            tex_field_free(f);
-        }
-        test_footprints(N, u, v, w);
-    }
+    test_points();
     return unit_done();
 }

@@ -386,6 +386,16 @@ static void test_bailout(void)
     struct tex_scene *s = tex_scene_parse("bailout 2\n", 10, "b.scene");
     CHECK(!s, "bailout outside 0..1 is refused");
     tex_scene_free(s);
+    /* a scene's sample size for textures without one: its limit, and its effect */
+    static const char so[] = "texture c checker { nu 2 nv 2 }\nsphere { }\n";
+    s = tex_scene_parse_opts(so, sizeof so - 1, "o.scene", &(struct tex_scene_opts){0});
+    CHECKF(!s && strstr(tex_errmsg(), "sample size 0: valid range 1..16384"),
+           "sample size 0 is refused (%s)", tex_errmsg());
+    tex_scene_free(s);
+    s = tex_scene_parse_opts(so, sizeof so - 1, "o.scene", &(struct tex_scene_opts){16});
+    CHECKF(s && s->ntextures == 1 && s->textures[0]->mip && s->textures[0]->mip[0]->w == 16,
+           "textures without a size are sampled at the given size (%s)", s ? "" : tex_errmsg());
+    tex_scene_free(s);
 }
 
 /* CSG on interval lists: every combination of two intervals (the fast path
