@@ -217,6 +217,9 @@ const char *tex_param_us_spelling(const char *name, char *buf, size_t n)
 int tex_param_same_name(const char *a, const char *b)
 {
     char ca[128], cb[128];
+    /* respell keeps the first letter ('_' becomes '-'): most rows differ there */
+    if (*a != *b && !((*a == '_' || *a == '-') && (*b == '_' || *b == '-')))
+        return 0;
     return !strcmp(respell(a, 1, ca, sizeof ca), respell(b, 1, cb, sizeof cb));
 }
 

@@ -267,7 +267,9 @@ static int init(struct tex_field *f)
             }
         }
         snprintf(where, sizeof where, "%s:%d:%d", p->file, c->line, c->col);
-        /* on a grid, the calls sampled by rows see it too */
+        /* on a grid, the calls sampled by rows see it too; the others are
+         * asked once per pixel */
+        sub->queries = f->w ? (long)f->w * f->h : f->queries;
         if (tex_field_init(sub, by_row(c) ? f->w : 0, by_row(c) ? f->h : 0) < 0) {
             tex_error_context(where);
             return -1;

@@ -1819,7 +1819,7 @@ static int bubble_init(struct tex_field *f)
 {
     const struct bubble_params *p = f->params;
     struct tex_cellular_opts o = {TEX_METRIC_EUCLID, 2, f->tile, (enum tex_search)p->search,
-                                  (long)f->w * f->h};
+                                  f->w ? (long)f->w * f->h : f->queries};
     struct bubble_state *s;
     tex_points ps;
     int dim = p->dimension + 2;

@@ -62,6 +62,8 @@ struct tex_field {
     int tile;         /* 1: periodic over the unit square / cube */
     int ids;          /* 1: REGIONS primitives write region ids, not colours */
     int w, h;         /* the grid being sampled (0 when evaluated at points) */
+    long queries;     /* at points: how many the caller will ask, when it knows (0: unknown);
+                       * sizes search tables as a grid's w * h does */
     int nc;           /* floats per value; init may change it (default 1) */
     int nregions;     /* REGIONS: set by init */
     /* REGIONS: the colour of region k is colors[k-1] (init or a palette sets

@@ -14,7 +14,7 @@ static int compare(const tex_points *ps, enum tex_metric m, double p, int tile, 
 {
     int dim = ps->dim, bad = 0;
     struct tex_cellular_opts o = {m, p, tile, TEX_SEARCH_BRUTE, 0};
-    tex_cellular *ref = tex_cellular_new(ps, &o), *c[3];
+    tex_cellular *ref = tex_cellular_new(ps, &o), *c[4];
     double *q = malloc(sizeof *q * nq * dim), *r1 = malloc(sizeof *r1 * nq),
            *r2 = malloc(sizeof *r2 * nq), *f1 = malloc(sizeof *f1 * nq),
            *f2 = malloc(sizeof *f2 * nq);
@@ -27,7 +27,11 @@ static int compare(const tex_points *ps, enum tex_metric m, double p, int tile, 
     c[1] = tex_cellular_new(ps, &o);
     o.search = TEX_SEARCH_AUTO;
     c[2] = tex_cellular_new(ps, &o);
-    if (!ref || !c[0] || !c[1] || !c[2] || !q || !r1 || !r2 || !f1 || !f2 || !rid || !id)
+    /* The grid without candidate lists: a caller that will ask few points. */
+    o.search = TEX_SEARCH_GRID;
+    o.queries = 1;
+    c[3] = tex_cellular_new(ps, &o);
+    if (!ref || !c[0] || !c[1] || !c[2] || !c[3] || !q || !r1 || !r2 || !f1 || !f2 || !rid || !id)
         return -1;
     *chosen_grid = tex_cellular_search(c[2]) == TEX_SEARCH_GRID;
     tex_rng_seed(&rng, seed);
@@ -51,7 +55,7 @@ static int compare(const tex_points *ps, enum tex_metric m, double p, int tile, 
             }
         }
         tex_cellular_query(ref, nr, q, r1, r2, rid);
-        for (int k = 0; k < 3; k++) {
+        for (int k = 0; k < 4; k++) {
             tex_cellular_query(c[k], nr, q, f1, f2, id);
             for (int i = 0; i < nr; i++)
                 bad += f1[i] != r1[i] || f2[i] != r2[i] || id[i] != rid[i];
@@ -74,7 +78,7 @@ static int compare(const tex_points *ps, enum tex_metric m, double p, int tile, 
             }
         }
     }
-    for (int k = 0; k < 3; k++)
+    for (int k = 0; k < 4; k++)
         tex_cellular_free(c[k]);
     tex_cellular_free(ref);
     free(q), free(r1), free(r2), free(f1), free(f2), free(rid), free(id);
