@@ -179,6 +179,44 @@ static void test_footprints(int n, const double *u, const double *v, const doubl
  * the CPU has AVX2), at odd counts, far from the origin, with a period and both
  * fades; and every point primitive's eval3 over N points equals N calls of one
  * point (the scalar path), for N = 1, odd N and a whole batch and more. */
+/* Every registered primitive with a point path, at its defaults: n points in one call
+ * equal n calls of one point, every channel, in 2D and 3D. */
+static void test_every_point_path(int n, const double *u, const double *v, const double *w)
+{
+    int tried = 0;
+    for (int k = 0; tex_primitives[k]; k++) {
+        const struct tex_primitive *p = tex_primitives[k];
+        struct tex_field *f = tex_field_new(p);
+        if (!f || (!p->eval2 && !p->eval3) || tex_field_init(f, 0, 0) < 0) {
+            tex_field_free(f);
+            continue;
+        }
+        int nc = f->nc, diff = 0;
+        float *big = malloc(sizeof *big * n * nc), *one = malloc(sizeof *one * n * nc);
+        for (int d = 2; big && one && d <= 3; d++) {
+            if (d == 2 ? !p->eval2 : !p->eval3)
+                continue;
+            if (d == 2)
+                p->eval2(f, n, u, v, big);
+            else
+                p->eval3(f, n, u, v, w, big);
+            for (int i = 0; i < n; i++)
+                if (d == 2)
+                    p->eval2(f, 1, u + i, v + i, one + i * nc);
+                else
+                    p->eval3(f, 1, u + i, v + i, w + i, one + i * nc);
+            diff += memcmp(big, one, sizeof *big * n * nc) != 0;
+        }
+        CHECKF(big && one && diff == 0, "%s at its defaults: %d points in one call equal %d calls",
+               p->name, n, n);
+        tried++;
+        free(big);
+        free(one);
+        tex_field_free(f);
+    }
+    CHECKF(tried >= 20, "the primitives with a point path start at points (%d)", tried);
+}
+
 static void test_points(void)
 {
     enum { N = 1031 };
@@ -220,7 +258,9 @@ static void test_points(void)
               {&tex_prim_fractal, {"mode", "hybrid", "octaves", "5"}},
               {&tex_prim_wood, {"grain", "0.4"}},
               {&tex_prim_perturb, {"octaves", "5"}},
-              {&tex_prim_colorvar, {"noise", "0.7"}}};
+              {&tex_prim_colorvar, {"noise", "0.7"}},
+              {&tex_prim_bubble, {"dimension", "3", "count", "300"}},
+              {&tex_prim_holes, {"seed", "4"}}};
     for (size_t k = 0; k < sizeof pp / sizeof pp[0]; k++) {
         struct tex_field *f = tex_field_new(pp[k].p);
         int diff = 0;
@@ -243,6 +283,7 @@ static void test_points(void)
         tex_field_free(f);
     }
     test_footprints(N, u, v, w);
+    test_every_point_path(N, u, v, w);
 }
 
 /* Grid rows agree with the point evaluation: 2D, 3D slice, 4D, period, far away. */
