@@ -398,9 +398,11 @@ static int map_gradient(const struct tex_apply *ap, const struct tex_object *lea
         *dv = tex_v3_make(m[2][0] * s, m[2][1] * s, m[2][2] * s);
         return 1;
     }
-    if (ap->mapping == TEX_MAP_WORLD) {
-        *du = tex_v3_make(s, 0, 0);
-        *dv = tex_v3_make(0, 0, s);
+    if (ap->mapping == TEX_MAP_WORLD) { /* u = x s, v = z s of the placed point */
+        static const double id[3][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};
+        const double(*m)[4] = ap->placed ? ap->to_tex.m : id;
+        *du = tex_v3_make(m[0][0] * s, m[0][1] * s, m[0][2] * s);
+        *dv = tex_v3_make(m[2][0] * s, m[2][1] * s, m[2][2] * s);
         return 1;
     }
     return 0;
