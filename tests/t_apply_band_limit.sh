@@ -3,8 +3,8 @@
 # octaves finer than each hit's footprint to their mean.  On a plane running to the
 # horizon the far rows lose their aliased roughness and keep their mean, and the fade
 # grows with distance (near rows lose less); with `filter off` (no footprints) the
-# render is the unfiltered one, byte for byte.  (Fractals are sampled into maps in
-# scenes, so their band limit is the map's; eval3_fw's own tests are in test_noise.)
+# render is the unfiltered one, byte for byte.  Turbulence and fBm (a solid fractal is
+# evaluated at the hits, not sampled into a map).
 . tests/lib.sh
 
 scene() { # PRIMITIVE BAND FILTER
@@ -34,7 +34,7 @@ mean = sum(px(x, y) for y in rows for x in range(w)) / (len(rows) * w)
 rough = sum(abs(px(x + 1, y) - px(x, y)) for y in rows for x in range(w - 1)) / (len(rows) * (w - 1))
 print("%.5f %.5f" % (mean, rough))' "$@"
 }
-for prim in turbulence; do
+for prim in turbulence fractal; do
     scene $prim 0 on >"$T/a.scene"
     scene $prim 1 on >"$T/b.scene"
     scene $prim 0 off >"$T/c.scene"

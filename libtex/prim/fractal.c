@@ -380,7 +380,8 @@ static const struct tex_param frac_rows[] = {
              .kinds = IN(RIDGED) | IN(HYBRID)),
     TEX_FLAG(struct frac_params, band_limit, 0,
              "fbm: fade octaves finer than a pixel of the map out (Perlin's filtered fBm): "
-             "no aliasing, and faster",
+             "no aliasing, and faster (a solid texture in t_apply: finer than the ray's "
+             "footprint at the hit)",
              .kinds = IN(FBM)),
     TEX_NOISE_ROWS(struct frac_params, .kinds = NOISY),
     TEX_NOISE_W_ROW(struct frac_params, .kinds = NOISY),

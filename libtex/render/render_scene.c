@@ -462,7 +462,9 @@ static void texture_field(struct parser *ps, struct tex_texture *tx,
 {
     struct tex_field *f = tx->field;
     int size = f->size;
-    if (prim->flags & TEX_PRIM_GRID && !size)
+    /* a grid primitive is sampled into a map, unless solid: then its point form at each hit
+     * (a solid fBm has its noise's detail at every distance, band-limited there) */
+    if (prim->flags & TEX_PRIM_GRID && !size && !(tx->solid && prim->eval3))
         size = ps->sample_size;
     if (!(prim->flags & (TEX_PRIM_2D | TEX_PRIM_3D | TEX_PRIM_GRID)))
         fail_at(ps, pt, 0, "primitive '%s' cannot be evaluated", pname);
