@@ -629,10 +629,9 @@ static void body(struct reader *rd)
 static void trial(struct reader *rd)
 {
     struct tex_field *f = tex_field_new(&rd->p->prim);
-    int rc;
     if (f)
         f->queries = 1; /* asked nothing: search tables that pay off over many points wait */
-    rc = f ? tex_field_init(f, 0, 0) : -1;
+    int rc = f ? tex_field_init(f, 0, 0) : -1;
     tex_field_free(f);
     if (rc < 0)
         longjmp(*rd->lx->fail, 1);
