@@ -84,12 +84,14 @@ static int compare(const tex_points *ps, enum tex_metric m, double p, int tile, 
     free(q), free(r1), free(r2), free(f1), free(f2), free(rid), free(id);
     return bad;
 }
+static const char *const dists[] = {"uniform", "poisson", "cluster"};
 
-int main(void)
+/* Every search against brute force: 2D and 3D, three distributions, plain and tiled,
+ * with and without radii, five metrics; then the baseline kernels. */
+static void test_searches(void)
 {
     static const char *metrics[] = {"euclid", "manhattan", "chebyshev", "minkowski:3",
                                     "minkowski:1.5"};
-    static const char *dists[] = {"uniform", "poisson", "cluster"};
 
     for (int dim = 2; dim <= 3; dim++)
         for (int d = 0; d < 3; d++)
@@ -136,7 +138,11 @@ int main(void)
             tex_points_free(&ps);
         }
     unsetenv("TEXTURA_NO_AVX2");
+}
 
+/* Sets that push the search choice and the ties. */
+static void test_degenerate_sets(void)
+{
     /* Five tight clusters: auto leaves the grid to FLANN's kd-tree. */
     {
         tex_points ps;
@@ -174,7 +180,11 @@ int main(void)
         CHECKF(f1 == 0 && isinf(f2), "one point: F1 0 at the point, F2 infinite (%g %g)", f1, f2);
         tex_cellular_free(c);
     }
+}
 
+/* The point generators: spacing, range, seeds. */
+static void test_point_sets(void)
+{
     /* Poisson-disk points keep their distance; cluster and uniform stay in [0,1). */
     for (int dim = 2; dim <= 3; dim++) {
         tex_points ps;
@@ -213,7 +223,10 @@ int main(void)
         CHECK(memcmp(a.x, c.x, 200 * sizeof *a.x) != 0, "another seed gives other points");
         tex_points_free(&a), tex_points_free(&b), tex_points_free(&c);
     }
+}
 
+static void test_metric_names(void)
+{
     /* Metric names. */
     {
         enum tex_metric m;
@@ -225,5 +238,13 @@ int main(void)
         CHECK(tex_metric_parse("minkowski:", &m, &p) < 0, "minkowski: without P is refused");
         CHECK(tex_metric_parse("cosine", &m, &p) < 0, "an unknown metric is refused");
     }
+}
+
+int main(void)
+{
+    test_searches();
+    test_degenerate_sets();
+    test_point_sets();
+    test_metric_names();
     return unit_done();
 }
