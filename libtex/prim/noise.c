@@ -166,10 +166,48 @@ static double noise_point(const tex_noise_table *t, int period, int dims, const 
     return sum;
 }
 
+static inline float fadef(int kind, float t)
+{
+    if (kind == TEX_FADE_QUINTIC)
+        return 1.0f - t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f);
+    return (2.0f * t - 3.0f) * t * t + 1.0f;
+}
+
+/* 3D noise's value: cells and fractions in double precision (far points keep their
+ * texture), the corners' sum in float; noise3_avx2 performs these float operations in
+ * this order, eight points at a time. */
+static float noise3_point(const tex_noise_table *t, int period, const double p[3])
+{
+    const int *F = t->perm;
+    int n = t->n, idx[3][2];
+    float f[3], wt[3][2], sum = 0;
+
+    for (int a = 0; a < 3; a++) {
+        double c = floor(p[a]);
+        int64_t i = tex_noise_cell(c);
+        int per = a < 2 ? period : 0;
+        f[a] = (float)(p[a] - c);
+        idx[a][0] = lat_index(i, per, n);
+        idx[a][1] = lat_index(i + 1, per, n);
+        wt[a][0] = fadef(t->fade, f[a]);
+        wt[a][1] = fadef(t->fade, 1.0f - f[a]);
+    }
+    for (int c = 0; c < 8; c++) {
+        int b0 = c & 1, b1 = c >> 1 & 1, b2 = c >> 2 & 1;
+        const float *gr = t->pgrad[idx[0][b0] + F[idx[1][b1] + F[idx[2][b2]]]];
+        float d0 = b0 ? f[0] - 1.0f : f[0], d1 = b1 ? f[1] - 1.0f : f[1],
+              d2 = b2 ? f[2] - 1.0f : f[2];
+        float dot = gr[0] * d0 + gr[1] * d1 + gr[2] * d2;
+        float w = wt[0][b0] * wt[1][b1] * wt[2][b2];
+        sum += w * dot;
+    }
+    return sum;
+}
+
 double tex_noise3p(const tex_noise_table *t, int period, double x, double y, double z)
 {
-    double p[4] = {x, y, z, 0};
-    return noise_point(t, period, 3, p, NULL);
+    double p[3] = {x, y, z};
+    return noise3_point(t, period, p);
 }
 
 double tex_noise4p(const tex_noise_table *t, int period, double x, double y, double z, double w)
@@ -223,85 +261,101 @@ AVX2 static inline __attribute__((always_inline)) __m128i lat_pd(__m256d c, int 
     return _mm256_cvttpd_epi32(mod_pd(c, n, 1.0 / n));
 }
 
-AVX2 static inline __attribute__((always_inline)) __m256d fade_pd(int kind, __m256d t)
+AVX2 static inline __attribute__((always_inline)) __m256 fade_ps(int kind, __m256 t)
 {
-    __m256d one = _mm256_set1_pd(1.0);
+    __m256 one = _mm256_set1_ps(1.0f);
     if (kind == TEX_FADE_QUINTIC) {
-        __m256d q = _mm256_add_pd(
-            _mm256_mul_pd(t, _mm256_sub_pd(_mm256_mul_pd(t, _mm256_set1_pd(6.0)),
-                                           _mm256_set1_pd(15.0))),
-            _mm256_set1_pd(10.0));
-        return _mm256_sub_pd(one, _mm256_mul_pd(_mm256_mul_pd(_mm256_mul_pd(t, t), t), q));
+        __m256 q = _mm256_add_ps(
+            _mm256_mul_ps(t, _mm256_sub_ps(_mm256_mul_ps(t, _mm256_set1_ps(6.0f)),
+                                           _mm256_set1_ps(15.0f))),
+            _mm256_set1_ps(10.0f));
+        return _mm256_sub_ps(one, _mm256_mul_ps(_mm256_mul_ps(_mm256_mul_ps(t, t), t), q));
     }
-    __m256d a = _mm256_sub_pd(_mm256_mul_pd(_mm256_set1_pd(2.0), t), _mm256_set1_pd(3.0));
-    return _mm256_add_pd(_mm256_mul_pd(_mm256_mul_pd(a, t), t), one);
+    __m256 a = _mm256_sub_ps(_mm256_mul_ps(_mm256_set1_ps(2.0f), t), _mm256_set1_ps(3.0f));
+    return _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(a, t), t), one);
 }
 
-/* noise_point for four 3D points: the same double operations in the same
- * order, lane by lane; 0 when a cell is beyond 2^30 (the caller's scalar
- * path takes those). */
+/* Eight 32-bit lanes from two groups of four */
+AVX2 static inline __attribute__((always_inline)) __m256i join_epi32(__m128i lo, __m128i hi)
+{
+    return _mm256_inserti128_si256(_mm256_castsi128_si256(lo), hi, 1);
+}
+
+/* noise3_point for eight points: the same float operations in the same order, lane by
+ * lane; 0 when a cell is beyond 2^30 (the caller's scalar path takes those). */
 AVX2 static int noise3_avx2(const tex_noise_table *t, int period, const double *x, const double *y,
                             const double *z, double *out)
 {
     const int *F = t->perm;
-    const double lim = 0x1p30;
-    __m256d p[3] = {_mm256_loadu_pd(x), _mm256_loadu_pd(y), _mm256_loadu_pd(z)};
-    __m256d f[3], wt[3][2], one = _mm256_set1_pd(1.0);
-    __m128i idx[3][2];
+    const double *pp[3] = {x, y, z};
+    const __m256d lim = _mm256_set1_pd(0x1p30), sign = _mm256_set1_pd(-0.0);
+    __m256 f[3], dm[3], wt[3][2], one = _mm256_set1_ps(1.0f);
+    __m256i idx[3][2];
 
     for (int a = 0; a < 3; a++) {
-        __m256d c = _mm256_floor_pd(p[a]);
-        __m256d big = _mm256_cmp_pd(_mm256_andnot_pd(_mm256_set1_pd(-0.0), c),
-                                    _mm256_set1_pd(lim), _CMP_NLT_UQ);
+        __m256d p0 = _mm256_loadu_pd(pp[a]), p1 = _mm256_loadu_pd(pp[a] + 4);
+        __m256d c0 = _mm256_floor_pd(p0), c1 = _mm256_floor_pd(p1);
+        __m256d big = _mm256_or_pd(_mm256_cmp_pd(_mm256_andnot_pd(sign, c0), lim, _CMP_NLT_UQ),
+                                   _mm256_cmp_pd(_mm256_andnot_pd(sign, c1), lim, _CMP_NLT_UQ));
         if (_mm256_movemask_pd(big))
             return 0;
         int per = a < 2 ? period : 0;
-        f[a] = _mm256_sub_pd(p[a], c);
+        f[a] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm256_cvtpd_ps(_mm256_sub_pd(p0, c0))),
+                                    _mm256_cvtpd_ps(_mm256_sub_pd(p1, c1)), 1);
         if (!per && !(t->n & (t->n - 1))) { /* mod a power of two: a mask, negatives too */
-            __m128i mask = _mm_set1_epi32(t->n - 1), i = _mm256_cvttpd_epi32(c);
-            idx[a][0] = _mm_and_si128(i, mask);
-            idx[a][1] = _mm_and_si128(_mm_add_epi32(i, _mm_set1_epi32(1)), mask);
+            __m256i mask = _mm256_set1_epi32(t->n - 1);
+            __m256i i = join_epi32(_mm256_cvttpd_epi32(c0), _mm256_cvttpd_epi32(c1));
+            idx[a][0] = _mm256_and_si256(i, mask);
+            idx[a][1] = _mm256_and_si256(_mm256_add_epi32(i, _mm256_set1_epi32(1)), mask);
         } else {
-            idx[a][0] = lat_pd(c, per, t->n);
-            idx[a][1] = lat_pd(_mm256_add_pd(c, one), per, t->n);
+            __m256d d1 = _mm256_set1_pd(1.0);
+            idx[a][0] = join_epi32(lat_pd(c0, per, t->n), lat_pd(c1, per, t->n));
+            idx[a][1] = join_epi32(lat_pd(_mm256_add_pd(c0, d1), per, t->n),
+                                   lat_pd(_mm256_add_pd(c1, d1), per, t->n));
         }
-        wt[a][0] = fade_pd(t->fade, f[a]);
-        wt[a][1] = fade_pd(t->fade, _mm256_sub_pd(one, f[a]));
+        dm[a] = _mm256_sub_ps(f[a], one);
+        wt[a][0] = fade_ps(t->fade, f[a]);
+        wt[a][1] = fade_ps(t->fade, _mm256_sub_ps(one, f[a]));
     }
-    __m128i hz[2], hy[2][2];
+    __m256i hz[2], hy[2][2];
     for (int b = 0; b < 2; b++)
-        hz[b] = _mm_i32gather_epi32(F, idx[2][b], 4);
+        hz[b] = _mm256_i32gather_epi32(F, idx[2][b], 4);
     for (int b2 = 0; b2 < 2; b2++)
         for (int b1 = 0; b1 < 2; b1++)
-            hy[b1][b2] = _mm_i32gather_epi32(F, _mm_add_epi32(idx[1][b1], hz[b2]), 4);
-    /* w = ((1 wx) wy) wz with the x-y products shared; d = f - 0 is f (never -0) */
-    __m256d wxy[2][2], dm[3];
-    for (int a = 0; a < 3; a++)
-        dm[a] = _mm256_sub_pd(f[a], one);
+            hy[b1][b2] = _mm256_i32gather_epi32(F, _mm256_add_epi32(idx[1][b1], hz[b2]), 4);
+    __m256 wxy[2][2];
     for (int b1 = 0; b1 < 2; b1++)
         for (int b0 = 0; b0 < 2; b0++)
-            wxy[b0][b1] = _mm256_mul_pd(wt[0][b0], wt[1][b1]);
-    __m256d sum = _mm256_setzero_pd();
+            wxy[b0][b1] = _mm256_mul_ps(wt[0][b0], wt[1][b1]);
+    __m256 sum = _mm256_setzero_ps();
 #pragma GCC unroll 8
     for (int c = 0; c < 8; c++) {
         const int b[3] = {c & 1, c >> 1 & 1, c >> 2 & 1};
-        /* the corners' gradients grad[F[...]]: four rows of pgrad, transposed */
-        int m[4];
-        _mm_storeu_si128((__m128i *)m, _mm_add_epi32(idx[0][b[0]], hy[b[1]][b[2]]));
-        __m256d r0 = _mm256_loadu_pd(t->pgrad[m[0]]), r1 = _mm256_loadu_pd(t->pgrad[m[1]]);
-        __m256d r2 = _mm256_loadu_pd(t->pgrad[m[2]]), r3 = _mm256_loadu_pd(t->pgrad[m[3]]);
-        __m256d t0 = _mm256_unpacklo_pd(r0, r1), t1 = _mm256_unpackhi_pd(r0, r1);
-        __m256d t2 = _mm256_unpacklo_pd(r2, r3), t3 = _mm256_unpackhi_pd(r2, r3);
-        __m256d gr[3] = {_mm256_permute2f128_pd(t0, t2, 0x20), _mm256_permute2f128_pd(t1, t3, 0x20),
-                         _mm256_permute2f128_pd(t0, t2, 0x31)};
-        __m256d dot = _mm256_setzero_pd();
-#pragma GCC unroll 3
-        for (int a = 0; a < 3; a++)
-            dot = _mm256_add_pd(dot, _mm256_mul_pd(gr[a], b[a] ? dm[a] : f[a]));
-        __m256d w = _mm256_mul_pd(wxy[b[0]][b[1]], wt[2][b[2]]);
-        sum = _mm256_add_pd(sum, _mm256_mul_pd(w, dot));
+        /* the corners' gradients pgrad[...]: eight rows, lanes i and i + 4 paired, transposed */
+        int m[8]; /* byte offsets, read back from memory: cheaper than eight extracts */
+        _mm256_storeu_si256((__m256i *)m, _mm256_slli_epi32(
+                                              _mm256_add_epi32(idx[0][b[0]], hy[b[1]][b[2]]), 4));
+        __asm__ volatile("" : : "m"(m) : "memory");
+        const char *G = (const char *)t->pgrad;
+#define ROW(i) _mm_loadu_ps((const float *)(G + m[i]))
+        __m256 r0 = _mm256_insertf128_ps(_mm256_castps128_ps256(ROW(0)), ROW(4), 1);
+        __m256 r1 = _mm256_insertf128_ps(_mm256_castps128_ps256(ROW(1)), ROW(5), 1);
+        __m256 r2 = _mm256_insertf128_ps(_mm256_castps128_ps256(ROW(2)), ROW(6), 1);
+        __m256 r3 = _mm256_insertf128_ps(_mm256_castps128_ps256(ROW(3)), ROW(7), 1);
+#undef ROW
+        __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpacklo_ps(r2, r3);
+        __m256 t2 = _mm256_unpackhi_ps(r0, r1), t3 = _mm256_unpackhi_ps(r2, r3);
+        __m256 gx = _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(1, 0, 1, 0));
+        __m256 gy = _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(3, 2, 3, 2));
+        __m256 gz = _mm256_shuffle_ps(t2, t3, _MM_SHUFFLE(1, 0, 1, 0));
+        __m256 dot = _mm256_mul_ps(gx, b[0] ? dm[0] : f[0]);
+        dot = _mm256_add_ps(dot, _mm256_mul_ps(gy, b[1] ? dm[1] : f[1]));
+        dot = _mm256_add_ps(dot, _mm256_mul_ps(gz, b[2] ? dm[2] : f[2]));
+        __m256 w = _mm256_mul_ps(wxy[b[0]][b[1]], wt[2][b[2]]);
+        sum = _mm256_add_ps(sum, _mm256_mul_ps(w, dot));
     }
-    _mm256_storeu_pd(out, sum);
+    _mm256_storeu_pd(out, _mm256_cvtps_pd(_mm256_castps256_ps128(sum)));
+    _mm256_storeu_pd(out + 4, _mm256_cvtps_pd(_mm256_extractf128_ps(sum, 1)));
     return 1;
 }
 #endif
@@ -313,9 +367,9 @@ void tex_noise_points(const tex_noise_table *t, int period, int dims, int n, con
 
 #ifdef TEX_X86
     if (dims == 3 && tex_simd_level() >= TEX_SIMD_AVX2)
-        for (; i + 4 <= n; i += 4)
+        for (; i + 8 <= n; i += 8)
             if (!noise3_avx2(t, period, x + i, y + i, z + i, out + i))
-                for (int k = i; k < i + 4; k++)
+                for (int k = i; k < i + 8; k++)
                     out[k] = tex_noise3p(t, period, x[k], y[k], z[k]);
 #endif
     for (; i < n; i++)

@@ -14,13 +14,15 @@
  *
  *   tex_noise_table t;
  *   tex_noise_init(&t, seed, 256, 0);       // n = 256, not periodic
- *   double s = tex_noise3(&t, x, y, z);      // signed, double precision
+ *   double s = tex_noise3(&t, x, y, z);      // signed
  *   tex_noise_points(&t, 0, 3, n, x, y, z, NULL, out); // n points at once
  *
- * Many points at once (the solid textures at a packet's hit points) go four
- * at a time through an AVX2 kernel that performs noise_point's double
- * operations in their order, so its values are tex_noise3p's bit for bit;
- * the primitives' eval2/eval3 batch their octaves through it.
+ * 3D noise at a point finds its cell and fractions in double precision and
+ * sums the corners in float, as the grid rows do.  Many points at once (the
+ * solid textures at a packet's hit points) go eight at a time through an
+ * AVX2 kernel that performs those float operations in their order, so its
+ * values are tex_noise3p's bit for bit; the primitives' eval2/eval3 batch
+ * their octaves through it.  4D noise and tex_noise3_grad stay in double.
  *
  * With period p > 0 (t.period, or the p argument of the *p variants) the
  * lattice wraps every p cells along x and y, so a field sampled over
@@ -87,7 +89,7 @@ typedef struct tex_noise_table {
     int *perm;   /* F, stored twice (2n entries) so that F[a + b] needs no mod */
     float (*grad)[4];  /* n unit vectors on the sphere (w = 0) */
     float (*grad4)[4]; /* n unit vectors on the 4D sphere */
-    double (*pgrad)[4]; /* grad[perm[m]] for m < 2n: the last hash step and its gradient in one */
+    float (*pgrad)[4]; /* grad[perm[m]] for m < 2n: the last hash step and its gradient in one */
 } tex_noise_table;
 
 int tex_noise_init(tex_noise_table *t, uint64_t seed, int n, int period);
@@ -98,7 +100,7 @@ double tex_noise4(const tex_noise_table *t, double x, double y, double z, double
 double tex_noise3p(const tex_noise_table *t, int period, double x, double y, double z);
 double tex_noise4p(const tex_noise_table *t, int period, double x, double y, double z, double w);
 /* Noise at n points (x[i], y[i], z[i][, w[i]]), dims 3 or 4 (w unused with 3):
- * the values of tex_noise3p / tex_noise4p, bit for bit, four points at a
+ * the values of tex_noise3p / tex_noise4p, bit for bit, eight points at a
  * time with AVX2 (3D). */
 void tex_noise_points(const tex_noise_table *t, int period, int dims, int n, const double *x,
                       const double *y, const double *z, const double *w, double *out);
