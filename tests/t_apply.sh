@@ -10,6 +10,31 @@ w=$(info_json "$T/b.exr" width)
 t_apply "$good" -s 40x30 -j 1 -o "$T/j1.exr" && t_apply "$good" -s 40x30 -j 2 -o "$T/j2.exr"
 t_convert -o "$T/j1.pfm" "$T/j1.exr" && t_convert -o "$T/j2.pfm" "$T/j2.exr"
 cmp -s "$T/j1.pfm" "$T/j2.pfm" && ok "same bytes with -j 1 and -j 2" || notok "determinism across -j"
+# The vector paths (AVX2: trilinear lookups of colour maps, 3D noise at points) give the
+# scalar path's bytes: a colour map to the horizon (every mip level, blended), its bump,
+# and solid turbulence.
+t_noise -s 96x64 -f 5 | t_palette marble -o "$T/col.exr"
+cat >"$T/simd.scene" <<SCENE
+image 48 36
+camera { eye 0 1 -3 look 0 0.7 8 fov 60 }
+light point { position -3 6 -4 }
+texture col file "$T/col.exr"
+texture veins turbulence { solid frequency 3 octaves 6 seed 2 }
+surface floor { Kd 1 1 1 apply col { mapping planar scale 0.5 Kd = f bump = 0.4 } }
+surface stone { Kd 0.8 0.8 0.8 apply veins { mapping solid Kd = 0.2 + 0.8 * f } }
+plane { surface floor }
+sphere { centre 0 1 3 radius 1 surface stone }
+SCENE
+simd=$(grep -qw avx2 /proc/cpuinfo && echo avx2 || echo "scalar only: no AVX2 here")
+if t_apply "$T/simd.scene" -j 1 --format pfm >"$T/v.pfm" &&
+    TEXTURA_SIMD=scalar t_apply "$T/simd.scene" -j 1 --format pfm >"$T/s.pfm"; then
+    sd=$(info_json "$T/v.pfm" stats 0 stddev)
+    cmp -s "$T/v.pfm" "$T/s.pfm" && awk -v s="$sd" 'BEGIN { exit !(s > 0.05) }' &&
+        ok "a textured render has the scalar path's bytes ($simd; stddev $sd)" ||
+        notok "vector against scalar render" "$(maxdiff "$T/v.pfm" "$T/s.pfm"), stddev $sd"
+else
+    notok "vector against scalar render: renders"
+fi
 t_noise -s 64 -o "$T/noise.exr"
 for f in patterns/*.scene tests/scenes/*.scene; do
     if t_apply "$f" -s 32x24 --spp 1 -o "$T/s.exr" <"$T/noise.exr" 2>"$T/s.err"; then

@@ -12,10 +12,16 @@
 #include <stdlib.h>
 #include <string.h>
 
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#define TEX_X86 1
+#endif
+
 #include "base/error.h"
 #include "render/scene.h"
 #include "render/render_ct.h"
 #include "ops/palette.h"
+#include "prim/noise.h" /* tex_simd_level */
 
 /* ---- mip-mapped maps ------------------------------------------------------------ */
 
@@ -87,25 +93,72 @@ static inline int floori(double x, double *f)
     return i;
 }
 
-/* Channels 0..k-1 of map m (k = 1: grey, 3: colour) at (u, v) in [0, 1], bilinear between
- * the texel centres (x + 0.5) / w, wrapping around. */
-static inline void bilinear(const tex_map *m, int k, double u, double v, float out[3])
+/* The four texels around (u, v) in [0, 1] on map m, between the texel centres
+ * (x + 0.5) / w, wrapping around: t[0], t[1] on one row, t[2], t[3] on the next, and the
+ * weights *ax, *ay of t[1] and t[2]. */
+static inline void texels(const tex_map *m, double u, double v, const float *t[4], double *ax,
+                          double *ay)
 {
     int w = m->w, h = m->h, nc = m->nc;
     double x = u * w - 0.5, y = v * h - 0.5;
     double fx, fy;
     int ix = floori(x, &fx), iy = floori(y, &fy); /* -1 ... w - 1 */
-    double ax = x - fx, ay = y - fy;
+    *ax = x - fx, *ay = y - fy;
     int x0 = ix < 0 ? w - 1 : ix, y0 = iy < 0 ? h - 1 : iy;
     int wn = w * nc; /* floats per row */
     const float *r0 = m->px + (size_t)y0 * wn, *r1 = y0 + 1 == h ? m->px : r0 + wn;
     x0 *= nc;
     int x1 = x0 + nc == wn ? 0 : x0 + nc; /* the next texel, wrapping */
+    t[0] = r0 + x0, t[1] = r0 + x1, t[2] = r1 + x0, t[3] = r1 + x1;
+}
+
+/* Channels 0..k-1 of map m (k = 1: grey, 3: colour) at (u, v) in [0, 1], bilinear. */
+static inline void bilinear(const tex_map *m, int k, double u, double v, float out[3])
+{
+    const float *t[4];
+    double ax, ay;
+    texels(m, u, v, t, &ax, &ay);
     for (int c = 0; c < k; c++) {
-        double a = r0[x0 + c], b = r0[x1 + c], cc = r1[x0 + c], d = r1[x1 + c];
+        double a = t[0][c], b = t[1][c], cc = t[2][c], d = t[3][c];
         out[c] = (float)((a * (1 - ax) + b * ax) * (1 - ay) + (cc * (1 - ax) + d * ax) * ay);
     }
 }
+
+#ifdef TEX_X86
+#define AVX2 __attribute__((target("avx2")))
+
+/* bilinear with k = 3, the channels in three of four double lanes: its operations in its
+ * order, so the same floats. */
+AVX2 static inline __m128 bilinear3_avx2(const tex_map *m, double u, double v)
+{
+    const float *t[4];
+    double ax, ay;
+    texels(m, u, v, t, &ax, &ay);
+    __m128i three = _mm_setr_epi32(-1, -1, -1, 0); /* the fourth float is not read */
+    __m256d a = _mm256_cvtps_pd(_mm_maskload_ps(t[0], three));
+    __m256d b = _mm256_cvtps_pd(_mm_maskload_ps(t[1], three));
+    __m256d c = _mm256_cvtps_pd(_mm_maskload_ps(t[2], three));
+    __m256d d = _mm256_cvtps_pd(_mm_maskload_ps(t[3], three));
+    __m256d wx = _mm256_set1_pd(ax), wx1 = _mm256_set1_pd(1 - ax);
+    __m256d top = _mm256_add_pd(_mm256_mul_pd(a, wx1), _mm256_mul_pd(b, wx));
+    __m256d bot = _mm256_add_pd(_mm256_mul_pd(c, wx1), _mm256_mul_pd(d, wx));
+    return _mm256_cvtpd_ps(_mm256_add_pd(_mm256_mul_pd(top, _mm256_set1_pd(1 - ay)),
+                                         _mm256_mul_pd(bot, _mm256_set1_pd(ay))));
+}
+
+/* map_eval's colour case from level l (weight a of level l + 1), in vectors */
+AVX2 static void map_eval3_avx2(const struct tex_texture *t, int l, double a, double u,
+                                double v, float out[3])
+{
+    __m128 o = bilinear3_avx2(t->mip[l], u, v);
+    if (a > 0) {
+        __m128 o1 = bilinear3_avx2(t->mip[l + 1], u, v);
+        o = _mm256_cvtpd_ps(_mm256_add_pd(_mm256_mul_pd(_mm256_cvtps_pd(o), _mm256_set1_pd(1 - a)),
+                                          _mm256_mul_pd(_mm256_cvtps_pd(o1), _mm256_set1_pd(a))));
+    }
+    _mm_maskstore_ps(out, _mm_setr_epi32(-1, -1, -1, 0), o);
+}
+#endif
 
 /* The pyramid level l of a footprint of x texels on the map (given as x2 = x^2, which spares
  * the footprint a square root), and the weight *a of level l + 1: lod = log2(x) clamped to
@@ -146,6 +199,12 @@ map_eval(const struct tex_texture *t, double u, double v, double fw2, float out[
     int k = m->nc < 3 ? 1 : 3, side = m->w > m->h ? m->w : m->h;
     double a;
     int l = mip_level(t, fw2 * ((double)side * side), &a);
+#ifdef TEX_X86
+    if (k == 3 && tex_simd_level() >= TEX_SIMD_AVX2) {
+        map_eval3_avx2(t, l, a, u, v, out);
+        return;
+    }
+#endif
     bilinear(t->mip[l], k, u, v, out);
     if (a > 0) {
         float o1[3];
