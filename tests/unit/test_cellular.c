@@ -84,6 +84,7 @@ static int compare(const tex_points *ps, enum tex_metric m, double p, int tile, 
     free(q), free(r1), free(r2), free(f1), free(f2), free(rid), free(id);
     return bad;
 }
+
 static const char *const dists[] = {"uniform", "poisson", "cluster"};
 
 /* Every search against brute force: 2D and 3D, three distributions, plain and tiled,

@@ -389,59 +389,58 @@ static void test_row_ops(const tex_noise_table *t)
     CHECKF(bad == 0, "row operations set, mul, |n|, unit, add and the finishes (%d wrong)", bad);
 }
 
-int main(void)
+/* 3D noise's range, mean, continuity and zeros, and its analytic gradient. */
+static void test_noise3_values(tex_noise_table *t)
 {
-    tex_noise_table t;
     tex_rng r;
     double lo = 1, hi = -1, sum = 0, maxstep = 0, maxerr = 0;
     int n = 200000;
 
-    CHECK(tex_noise_init(&t, 3, 256, 0) == 0, "noise table");
     tex_rng_seed(&r, 1);
     for (int i = 0; i < n; i++) {
         double x = 100 * tex_rng_uniform(&r), y = 100 * tex_rng_uniform(&r),
-               z = 100 * tex_rng_uniform(&r), s = tex_noise3(&t, x, y, z);
+               z = 100 * tex_rng_uniform(&r), s = tex_noise3(t, x, y, z);
         lo = fmin(lo, s), hi = fmax(hi, s), sum += s;
         /* Continuity: a step of 1e-4 moves the noise by at most a few 1e-4. */
-        maxstep = fmax(maxstep, fabs(tex_noise3(&t, x + 1e-4, y, z) - s));
+        maxstep = fmax(maxstep, fabs(tex_noise3(t, x + 1e-4, y, z) - s));
     }
     CHECKF(lo >= -1 && hi <= 1 && hi - lo > 0.8, "3D noise within [-1,1] and spread (%g..%g)", lo,
            hi);
     CHECKF(fabs(sum / n) < 0.01, "3D noise mean near 0 (%g)", sum / n);
     CHECKF(maxstep < 4e-4, "noise is continuous (largest change %g over 1e-4)", maxstep);
-    CHECK(tex_noise3(&t, 5, -7, 11) == 0, "noise vanishes at lattice points");
+    CHECK(tex_noise3(t, 5, -7, 11) == 0, "noise vanishes at lattice points");
 
     /* The analytic gradient matches central differences of its own value (double
      * precision throughout), and that value is 3D noise's (whose corners sum in float)
      * to float precision; both fades. */
     for (int fade = 0; fade < 2; fade++) {
         double verr = 0;
-        t.fade = fade;
+        t->fade = fade;
         maxerr = 0;
         for (int i = 0; i < 2000; i++) {
             double x = 50 * tex_rng_uniform(&r), y = 50 * tex_rng_uniform(&r),
                    z = 50 * tex_rng_uniform(&r), g[3], h[3], e = 1e-5;
-            double s = tex_noise3_grad(&t, 0, x, y, z, g);
-            double fd[3] = {(tex_noise3_grad(&t, 0, x + e, y, z, h) -
-                             tex_noise3_grad(&t, 0, x - e, y, z, h)) / (2 * e),
-                            (tex_noise3_grad(&t, 0, x, y + e, z, h) -
-                             tex_noise3_grad(&t, 0, x, y - e, z, h)) / (2 * e),
-                            (tex_noise3_grad(&t, 0, x, y, z + e, h) -
-                             tex_noise3_grad(&t, 0, x, y, z - e, h)) / (2 * e)};
+            double s = tex_noise3_grad(t, 0, x, y, z, g);
+            double fd[3] = {(tex_noise3_grad(t, 0, x + e, y, z, h) -
+                             tex_noise3_grad(t, 0, x - e, y, z, h)) / (2 * e),
+                            (tex_noise3_grad(t, 0, x, y + e, z, h) -
+                             tex_noise3_grad(t, 0, x, y - e, z, h)) / (2 * e),
+                            (tex_noise3_grad(t, 0, x, y, z + e, h) -
+                             tex_noise3_grad(t, 0, x, y, z - e, h)) / (2 * e)};
             for (int a = 0; a < 3; a++)
                 maxerr = fmax(maxerr, fabs(fd[a] - g[a]));
-            verr = fmax(verr, fabs(s - tex_noise3(&t, x, y, z)));
+            verr = fmax(verr, fabs(s - tex_noise3(t, x, y, z)));
         }
         CHECKF(maxerr < 1e-6, "%s: gradient matches finite differences (error %g)",
                fade ? "quintic" : "cubic", maxerr);
         CHECKF(verr > 0 && verr < 4e-6, "%s: the gradient's value is the noise's, to float "
                "precision (%g)", fade ? "quintic" : "cubic", verr);
     }
-    t.fade = 0;
+    t->fade = 0;
+}
 
-    test_rows_points(&t);
-    test_rows_kept(&t);
-    test_row_ops(&t);
+static void test_grid_gradient(tex_noise_table *t)
+{
     /* Grid rows of the gradient agree with the point evaluation's. */
     for (int fd = 0; fd < 2; fd++) {
         struct {
@@ -452,18 +451,18 @@ int main(void)
                   {{0, 0, 0.5, 0}, 16, 64, 16},   {{1e6, -3e6, 1e6, 0}, 0, 100, 7},
                   {{0, 0, 0.1, 0}, 0, 50, 400}};
         double err = 0;
-        t.fade = fd;
+        t->fade = fd;
         for (int c = 0; c < 5; c++) {
             tex_noise_grid g;
             float d[3][512];
-            tex_noise_grid_init(&g, &t, cs[c].w, 40, cs[c].freq, cs[c].freq, cs[c].off, 3,
+            tex_noise_grid_init(&g, t, cs[c].w, 40, cs[c].freq, cs[c].freq, cs[c].off, 3,
                                 cs[c].period);
             for (int y = 0; y < 40; y += 3) {
                 tex_noise_grid_row_grad(&g, y, d[0], d[1], d[2]);
                 for (int x = 0; x < cs[c].w; x++) {
                     double X = cs[c].off[0] + cs[c].freq * ((x + 0.5) / cs[c].w),
                            Y = cs[c].off[1] + cs[c].freq * ((y + 0.5) / 40), gr[3];
-                    tex_noise3_grad(&t, cs[c].period, X, Y, cs[c].off[2], gr);
+                    tex_noise3_grad(t, cs[c].period, X, Y, cs[c].off[2], gr);
                     for (int a = 0; a < 3; a++)
                         err = isnan(d[a][x]) ? INFINITY : fmax(err, fabs(gr[a] - d[a][x]));
                 }
@@ -473,7 +472,11 @@ int main(void)
         CHECKF(err < 2e-5, "%s: grid rows of the gradient match the points' (%g)",
                fd ? "quintic" : "cubic", err);
     }
-    t.fade = 0;
+    t->fade = 0;
+}
+
+static void test_d_noise_rows(void)
+{
     /* t_d_noise's grid rows agree with its points (raw gradient and normal map). */
     for (int normal = 0; normal < 2; normal++) {
         struct tex_field *f = tex_field_new(&tex_prim_d_noise);
@@ -502,19 +505,25 @@ int main(void)
         tex_map_free(m);
         tex_field_free(f);
     }
+}
+
+static void test_far(const tex_noise_table *t)
+{
     /* Far from the origin the texture survives. */
     {
         double s2 = 0;
         for (int i = 0; i < 1000; i++) {
-            double s = tex_noise3(&t, 1e12 + i * 0.173, 3e9 + i * 0.071, 0.5);
+            double s = tex_noise3(t, 1e12 + i * 0.173, 3e9 + i * 0.071, 0.5);
             s2 += s * s;
             if (isnan(s))
                 s2 = NAN;
         }
         CHECKF(sqrt(s2 / 1000) > 0.1, "noise at 1e12 keeps its texture (rms %g)", sqrt(s2 / 1000));
     }
-    tex_noise_free(&t);
+}
 
+static void test_primitive_maps(void)
+{
     /* Statistics and tiling of the primitives through their descriptors. */
     {
         const char *noise_kv[] = {"frequency", "8", NULL};
@@ -557,6 +566,11 @@ int main(void)
         CHECKF(q > 3, "without --tile the seam is a jump (%.3f): the tiling check can fail", q);
         tex_map_free(m);
     }
+}
+
+/* fBm's spectrum, midpoint displacement's variogram and the Mandelbrot set. */
+static void test_fractal_statistics(void)
+{
     /* fBm's spectrum falls as k^-(2H+2): compare H = 0.4 and H = 1. */
     {
         const char *a[] = {"mode", "fbm", "h", "0.4", "frequency", "2", "octaves", "8", NULL};
@@ -591,6 +605,23 @@ int main(void)
                out[1]);
         tex_field_free(f);
     }
+}
+
+int main(void)
+{
+    tex_noise_table t;
+
+    CHECK(tex_noise_init(&t, 3, 256, 0) == 0, "noise table");
+    test_noise3_values(&t);
+    test_rows_points(&t);
+    test_rows_kept(&t);
+    test_row_ops(&t);
+    test_grid_gradient(&t);
+    test_d_noise_rows();
+    test_far(&t);
+    tex_noise_free(&t);
+    test_primitive_maps();
+    test_fractal_statistics();
     test_points();
     return unit_done();
 }
