@@ -283,17 +283,16 @@ AVX2 static inline __attribute__((always_inline)) __m256i join_epi32(__m128i lo,
 
 /* noise3_point for eight points: the same float operations in the same order, lane by
  * lane; 0 when a cell is beyond 2^30 (the caller's scalar path takes those). */
-AVX2 static int noise3_avx2(const tex_noise_table *t, int period, const double *x, const double *y,
-                            const double *z, double *out)
+AVX2 static inline __attribute__((always_inline)) int
+noise3_avx2(const tex_noise_table *t, int period, const __m256d p[3][2], float *out)
 {
     const int *F = t->perm;
-    const double *pp[3] = {x, y, z};
     const __m256d lim = _mm256_set1_pd(0x1p30), sign = _mm256_set1_pd(-0.0);
     __m256 f[3], dm[3], wt[3][2], one = _mm256_set1_ps(1.0f);
     __m256i idx[3][2];
 
     for (int a = 0; a < 3; a++) {
-        __m256d p0 = _mm256_loadu_pd(pp[a]), p1 = _mm256_loadu_pd(pp[a] + 4);
+        __m256d p0 = p[a][0], p1 = p[a][1];
         __m256d c0 = _mm256_floor_pd(p0), c1 = _mm256_floor_pd(p1);
         __m256d big = _mm256_or_pd(_mm256_cmp_pd(_mm256_andnot_pd(sign, c0), lim, _CMP_NLT_UQ),
                                    _mm256_cmp_pd(_mm256_andnot_pd(sign, c1), lim, _CMP_NLT_UQ));
@@ -354,9 +353,33 @@ AVX2 static int noise3_avx2(const tex_noise_table *t, int period, const double *
         __m256 w = _mm256_mul_ps(wxy[b[0]][b[1]], wt[2][b[2]]);
         sum = _mm256_add_ps(sum, _mm256_mul_ps(w, dot));
     }
-    _mm256_storeu_pd(out, _mm256_cvtps_pd(_mm256_castps256_ps128(sum)));
-    _mm256_storeu_pd(out + 4, _mm256_cvtps_pd(_mm256_extractf128_ps(sum, 1)));
+    _mm256_storeu_ps(out, sum);
     return 1;
+}
+
+/* Eight points from arrays */
+AVX2 static int noise3_avx2_arrays(const tex_noise_table *t, int period, const double *x,
+                                   const double *y, const double *z, float *out)
+{
+    const __m256d p[3][2] = {{_mm256_loadu_pd(x), _mm256_loadu_pd(x + 4)},
+                             {_mm256_loadu_pd(y), _mm256_loadu_pd(y + 4)},
+                             {_mm256_loadu_pd(z), _mm256_loadu_pd(z + 4)}};
+    return noise3_avx2(t, period, p, out);
+}
+
+/* Eight points a + f (u, v, w) (w NULL: 0), in tex_noise_points_at's operations */
+AVX2 static int noise3_avx2_at(const tex_noise_table *t, int period, const double a[3], double f,
+                               const double *u, const double *v, const double *w, float *out)
+{
+    const double *c[3] = {u, v, w};
+    __m256d vf = _mm256_set1_pd(f), p[3][2];
+    for (int k = 0; k < 3; k++) {
+        __m256d va = _mm256_set1_pd(a[k]);
+        for (int h = 0; h < 2; h++)
+            p[k][h] = _mm256_add_pd(
+                va, _mm256_mul_pd(vf, c[k] ? _mm256_loadu_pd(c[k] + 4 * h) : _mm256_setzero_pd()));
+    }
+    return noise3_avx2(t, period, p, out);
 }
 #endif
 
@@ -367,14 +390,43 @@ void tex_noise_points(const tex_noise_table *t, int period, int dims, int n, con
 
 #ifdef TEX_X86
     if (dims == 3 && tex_simd_level() >= TEX_SIMD_AVX2)
-        for (; i + 8 <= n; i += 8)
-            if (!noise3_avx2(t, period, x + i, y + i, z + i, out + i))
+        for (; i + 8 <= n; i += 8) {
+            float r[8];
+            if (noise3_avx2_arrays(t, period, x + i, y + i, z + i, r))
+                for (int k = 0; k < 8; k++)
+                    out[i + k] = r[k];
+            else
                 for (int k = i; k < i + 8; k++)
                     out[k] = tex_noise3p(t, period, x[k], y[k], z[k]);
+        }
 #endif
     for (; i < n; i++)
         out[i] = dims == 4 ? tex_noise4p(t, period, x[i], y[i], z[i], w[i])
                            : tex_noise3p(t, period, x[i], y[i], z[i]);
+}
+
+/* tex_noise3p at a + f (u, v, w), the coordinates computed as the callers did */
+static float noise3_at(const tex_noise_table *t, int period, const double a[3], double f,
+                       double u, double v, double w)
+{
+    double p[3] = {a[0] + f * u, a[1] + f * v, a[2] + f * w};
+    return noise3_point(t, period, p);
+}
+
+void tex_noise_points_at(const tex_noise_table *t, int period, const double a[3], double f, int n,
+                         const double *u, const double *v, const double *w, float *out)
+{
+    int i = 0;
+
+#ifdef TEX_X86
+    if (tex_simd_level() >= TEX_SIMD_AVX2)
+        for (; i + 8 <= n; i += 8)
+            if (!noise3_avx2_at(t, period, a, f, u + i, v + i, w ? w + i : NULL, out + i))
+                for (int k = i; k < i + 8; k++)
+                    out[k] = noise3_at(t, period, a, f, u[k], v[k], w ? w[k] : 0);
+#endif
+    for (; i < n; i++)
+        out[i] = noise3_at(t, period, a, f, u[i], v[i], w ? w[i] : 0);
 }
 
 /* ---- SIMD level ---- */
@@ -1387,11 +1439,19 @@ void tex_octave_points(const tex_octaves *o, int k, int n, const double *u, cons
 {
     enum { B = TEX_POINTS_BATCH };
     double f = o->freq[k], X[B], Y[B], Z[B], W[B];
+    float r[B];
 
     for (int i0 = 0; i0 < n; i0 += B) {
         int m = n - i0 < B ? n - i0 : B;
+        if (o->dims == 3) { /* tex_octave_point's coordinates, made in the kernel */
+            tex_noise_points_at(&o->t, o->period[k], o->off[k], f, m, u + i0, v + i0,
+                                w ? w + i0 : NULL, r);
+            for (int i = 0; i < m; i++)
+                out[i0 + i] = r[i];
+            continue;
+        }
 #pragma omp simd
-        for (int i = 0; i < m; i++) { /* tex_octave_point's coordinates */
+        for (int i = 0; i < m; i++) {
             X[i] = o->off[k][0] + f * u[i0 + i];
             Y[i] = o->off[k][1] + f * v[i0 + i];
             Z[i] = o->off[k][2] + f * (w ? w[i0 + i] : 0);
@@ -1406,15 +1466,25 @@ void tex_octave_abs_sum(const tex_octaves *o, int octaves, const float *amp, flo
 {
     enum { B = TEX_POINTS_BATCH };
     double r[B];
+    float rf[B];
 
     for (int i0 = 0; i0 < n; i0 += B) {
         int m = n - i0 < B ? n - i0 : B;
         for (int i = 0; i < m; i++)
             out[i0 + i] = start;
         for (int k = 0; k < octaves; k++) {
-            tex_octave_points(o, k, m, u + i0, v + i0, w ? w + i0 : NULL, r);
+            if (o->dims == 3) {
+                tex_noise_points_at(&o->t, o->period[k], o->off[k], o->freq[k], m, u + i0, v + i0,
+                                    w ? w + i0 : NULL, rf);
+            } else {
+                tex_octave_points(o, k, m, u + i0, v + i0, w ? w + i0 : NULL, r);
+                for (int i = 0; i < m; i++)
+                    rf[i] = (float)r[i];
+            }
+            float ak = amp[k], *restrict o = out + i0; /* o aliases neither amp nor rf */
+#pragma omp simd
             for (int i = 0; i < m; i++)
-                out[i0 + i] += amp[k] * fabsf((float)r[i]);
+                o[i] += ak * fabsf(rf[i]);
         }
     }
 }
@@ -1589,9 +1659,17 @@ static void noise_eval3(const struct tex_field *f, int n, const double *u, const
     const struct noise_params *p = f->params;
     const struct noise_state *s = f->state;
     double fr = p->frequency, X[B], Y[B], Z[B], W[B], r[B];
+    float rf[B];
 
     for (int i0 = 0; i0 < n; i0 += B) {
         int m = n - i0 < B ? n - i0 : B;
+        if (s->dims == 3) { /* the coordinates below, made in the kernel */
+            tex_noise_points_at(&s->t, s->period, s->off, fr, m, u + i0, v + i0,
+                                w ? w + i0 : NULL, rf);
+            for (int i = 0; i < m; i++)
+                out[i0 + i] = to_unit(rf[i]);
+            continue;
+        }
 #pragma omp simd
         for (int i = 0; i < m; i++) { /* lattice coordinates: offset + frequency x point */
             X[i] = s->off[0] + fr * u[i0 + i];

@@ -104,6 +104,11 @@ double tex_noise4p(const tex_noise_table *t, int period, double x, double y, dou
  * time with AVX2 (3D). */
 void tex_noise_points(const tex_noise_table *t, int period, int dims, int n, const double *x,
                       const double *y, const double *z, const double *w, double *out);
+/* 3D noise at the n points (a[0] + f u[i], a[1] + f v[i], a[2] + f w[i]) (w NULL: 0),
+ * tex_noise3p's values there as float, the coordinates made in the kernel rather than
+ * in the caller's arrays (the octaves' and the primitives' points). */
+void tex_noise_points_at(const tex_noise_table *t, int period, const double a[3], double f, int n,
+                         const double *u, const double *v, const double *w, float *out);
 /* Noise and its analytic gradient d/dx, d/dy, d/dz in g. */
 double tex_noise3_grad(const tex_noise_table *t, int period, double x, double y, double z,
                        double g[3]);
