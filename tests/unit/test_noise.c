@@ -223,7 +223,7 @@ static void test_points(void)
     static double x[N], y[N], z[N], a[N], u[N], v[N], w[N];
     static float big[N], one[N];
     tex_rng r;
-    int bad = 0;
+    int bad = 0, bad_at = 0;
     tex_rng_seed(&r, 17);
     for (int i = 0; i < N; i++) {
         double s = i % 7 == 0 ? 3e8 : i % 5 == 0 ? 2e3 : 20; /* 3e8: past the 2^30 cells */
@@ -243,10 +243,22 @@ static void test_points(void)
         for (int i = 0; i < cnt; i++)
             bad += memcmp(&a[i], &(double){tex_noise3p(&t, period, x[i], y[i], z[i])},
                           sizeof a[i]) != 0;
+        /* at a + f (x, y, z) and a + f (x, y, 0): x and y past 2^30 cells at times */
+        const double off[3] = {0.37, -12.5, 3.25}, f = c & 2 ? -2.5 : 3;
+        for (int k = 0; k < 2; k++) {
+            tex_noise_points_at(&t, period, off, f, cnt, x, y, k ? NULL : z, big);
+            for (int i = 0; i < cnt; i++) {
+                float s = (float)tex_noise3p(&t, period, off[0] + f * x[i], off[1] + f * y[i],
+                                             off[2] + f * (k ? 0 : z[i]));
+                bad_at += memcmp(&big[i], &s, sizeof s) != 0;
+            }
+        }
         tex_noise_free(&t);
     }
     CHECKF(bad == 0, "tex_noise_points equals tex_noise3p bit for bit (%s; %d differ)",
            tex_simd_name(tex_simd_level()), bad);
+    CHECKF(bad_at == 0, "tex_noise_points_at equals tex_noise3p at its points bit for bit (%s; "
+           "%d differ)", tex_simd_name(tex_simd_level()), bad_at);
     static const struct {
         const struct tex_primitive *p;
         const char *kv[6];
