@@ -96,8 +96,8 @@ static inline int floori(double x, double *f)
 /* The four texels around (u, v) in [0, 1] on map m, between the texel centres
  * (x + 0.5) / w, wrapping around: t[0], t[1] on one row, t[2], t[3] on the next, and the
  * weights *ax, *ay of t[1] and t[2]. */
-static inline void texels(const tex_map *m, double u, double v, const float *t[4], double *ax,
-                          double *ay)
+static inline __attribute__((always_inline)) void
+texels(const tex_map *m, double u, double v, const float *t[4], double *ax, double *ay)
 {
     int w = m->w, h = m->h, nc = m->nc;
     double x = u * w - 0.5, y = v * h - 0.5;
@@ -113,7 +113,8 @@ static inline void texels(const tex_map *m, double u, double v, const float *t[4
 }
 
 /* Channels 0..k-1 of map m (k = 1: grey, 3: colour) at (u, v) in [0, 1], bilinear. */
-static inline void bilinear(const tex_map *m, int k, double u, double v, float out[3])
+static inline __attribute__((always_inline)) void
+bilinear(const tex_map *m, int k, double u, double v, float out[3])
 {
     const float *t[4];
     double ax, ay;
