@@ -31,6 +31,11 @@ same_bytes "d_noise normal map, tile" t_d_noise -s 67x45 -f 5 --normal --strengt
 # narrower (gathers); lattice rows kept for the next pixel rows (cells taller than a pixel) or
 # not; more than one column chunk (1024); a width not a multiple of 8; every row operation.
 same_bytes "fbm, every kernel path" t_fractal -s 1100x40 -f 3 -n 10 -l 2.3 -S 4
+# rows wider than the lattice table, octaves finer than pixels: the folded table rows
+same_bytes "turbulence, fine octaves on wide rows" t_turbulence -s 1030x40 -f 300 -n 6 -S 2
+same_bytes "ridged, fine octaves on wide rows" t_fractal -m ridged -s 1500x30 -f 700 -n 5
+same_bytes "hybrid, fine octaves on wide rows" t_fractal -m hybrid -s 1500x30 -f 520 -n 4 --fade quintic
+same_bytes "noise, cells finer than pixels on wide rows" t_noise -s 1200x32 -f 2000 --z 0.4
 same_bytes "fbm quintic 4D" t_fractal -s 97x61 -f 5 -n 5 --w 0.3 --fade quintic --z 0.2
 same_bytes "turbulence 4D quintic" t_turbulence -s 333x50 -f 5 -n 6 --w 0.3 --fade quintic
 same_bytes "turbulence tile far away" t_turbulence -s 130x70 -f 4 --tile --offset 1e6,-2e6,3

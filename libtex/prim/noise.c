@@ -1190,11 +1190,115 @@ row_lut_avx2_op(const tex_noise_grid *g, const float (*T0)[4], const float (*T1)
     }
 }
 
+/* Eight consecutive table entries (X, Y, C, 0) as X, Y and C vectors */
+AVX2 static inline __attribute__((always_inline)) void lut_xyc8(const float (*T)[4], __m256 v[3])
+{
+    __m256 r0 = _mm256_loadu2_m128(T[4], T[0]), r1 = _mm256_loadu2_m128(T[5], T[1]);
+    __m256 r2 = _mm256_loadu2_m128(T[6], T[2]), r3 = _mm256_loadu2_m128(T[7], T[3]);
+    __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpacklo_ps(r2, r3);
+    __m256 t2 = _mm256_unpackhi_ps(r0, r1), t3 = _mm256_unpackhi_ps(r2, r3);
+    v[0] = _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(1, 0, 1, 0));
+    v[1] = _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(3, 2, 3, 2));
+    v[2] = _mm256_shuffle_ps(t2, t3, _MM_SHUFFLE(1, 0, 1, 0));
+}
+
+/* The row's coefficients (P, Q) at every table entry 0..m-1, interleaved: the
+ * operations row_lut_avx2_op performs per column, done once per entry. */
+static void lut_fold(const float (*T0)[4], const float (*T1)[4], int m, const float *wy,
+                     const float *dy, float *PQ)
+{
+    for (int i = 0; i < m; i++) {
+        float P = wy[0] * T0[i][0], Q = wy[0] * (T0[i][1] * dy[0] + T0[i][2]);
+        if (T1) {
+            P = P + wy[1] * T1[i][0];
+            Q = Q + wy[1] * (T1[i][1] * dy[1] + T1[i][2]);
+        }
+        PQ[2 * i] = P, PQ[2 * i + 1] = Q;
+    }
+}
+
+/* lut_fold eight entries at a time (the rest as lut_fold): the same operations per entry */
+AVX2 static void lut_fold_avx2(const float (*T0)[4], const float (*T1)[4], int m, const float *wy,
+                               const float *dy, float *PQ)
+{
+    __m256 a0 = _mm256_set1_ps(wy[0]), a1 = _mm256_set1_ps(wy[1]);
+    __m256 d0 = _mm256_set1_ps(dy[0]), d1 = _mm256_set1_ps(dy[1]);
+    int i = 0;
+
+    for (; i + 8 <= m; i += 8) {
+        __m256 v[3], P, Q;
+        lut_xyc8(T0 + i, v);
+        P = _mm256_mul_ps(a0, v[0]);
+        Q = _mm256_mul_ps(a0, _mm256_add_ps(_mm256_mul_ps(v[1], d0), v[2]));
+        if (T1) {
+            lut_xyc8(T1 + i, v);
+            P = _mm256_add_ps(P, _mm256_mul_ps(a1, v[0]));
+            Q = _mm256_add_ps(Q, _mm256_mul_ps(a1, _mm256_add_ps(_mm256_mul_ps(v[1], d1), v[2])));
+        }
+        __m256 lo = _mm256_unpacklo_ps(P, Q), hi = _mm256_unpackhi_ps(P, Q);
+        _mm256_storeu_ps(PQ + 2 * i, _mm256_permute2f128_ps(lo, hi, 0x20));
+        _mm256_storeu_ps(PQ + 2 * i + 8, _mm256_permute2f128_ps(lo, hi, 0x31));
+    }
+    lut_fold(T0 + i, T1 ? T1 + i : NULL, m - i, wy, dy, PQ + 2 * i);
+}
+
+/* An adjacent grid's row from folded coefficients: a column's (P, Q) pairs for its
+ * two corners are the four floats at its left entry. */
+AVX2 static inline __attribute__((always_inline)) void
+row_folded_avx2_op(const tex_noise_grid *g, const float *PQ, float *out, const int op, float a,
+                   float b)
+{
+    const int32_t *restrict lat = g->lat;
+    const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
+                          *restrict w1 = g->w1;
+    __m256 va = _mm256_set1_ps(a), vb = _mm256_set1_ps(b);
+    int x = 0;
+
+    for (; x + 8 <= g->w; x += 8) {
+        const int32_t *l = lat + 2 * x;
+#define PAIR(i) _mm_loadu_ps(PQ + 2 * l[2 * (i)])
+        __m256 r0 = _mm256_insertf128_ps(_mm256_castps128_ps256(PAIR(0)), PAIR(4), 1);
+        __m256 r1 = _mm256_insertf128_ps(_mm256_castps128_ps256(PAIR(1)), PAIR(5), 1);
+        __m256 r2 = _mm256_insertf128_ps(_mm256_castps128_ps256(PAIR(2)), PAIR(6), 1);
+        __m256 r3 = _mm256_insertf128_ps(_mm256_castps128_ps256(PAIR(3)), PAIR(7), 1);
+#undef PAIR
+        __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpacklo_ps(r2, r3);
+        __m256 t2 = _mm256_unpackhi_ps(r0, r1), t3 = _mm256_unpackhi_ps(r2, r3);
+        pixels8(u + x, um1 + x, w0 + x, w1 + x, _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(1, 0, 1, 0)),
+                _mm256_shuffle_ps(t2, t3, _MM_SHUFFLE(1, 0, 1, 0)),
+                _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(3, 2, 3, 2)),
+                _mm256_shuffle_ps(t2, t3, _MM_SHUFFLE(3, 2, 3, 2)), out + x, op, va, vb);
+    }
+    for (; x < g->w; x++) {
+        const float *e = PQ + 2 * lat[2 * x];
+        float t0 = e[0] * u[x] + e[1], t1 = e[2] * um1[x] + e[3];
+        out[x] = apply_op(op, w0[x] * t0 + w1[x] * t1, out[x], a, b);
+    }
+}
+
 AVX2 static void row_lut_avx2(const tex_noise_grid *g, int64_t j, const float *wy, const float *dy,
                               int two, float *out, int op, float a, float b)
 {
     const float(*T0)[4] = lut_row(g, j), (*T1)[4] = two ? lut_row(g, j + 1) : NULL;
+    int m = g->t->n + 1;
 
+    if (g->adjacent && g->w >= 2 * m) { /* more columns than entries: fold the entries first */
+        float PQ[2 * (TEX_NOISE_MAX_GRADIENTS + 1)];
+        lut_fold_avx2(T0, T1, m, wy, dy, PQ);
+#define ROW_FOLDED(OP) row_folded_avx2_op(g, PQ, out, OP, a, b)
+        switch (op) {
+        case TEX_ROW_SET: ROW_FOLDED(TEX_ROW_SET); break;
+        case TEX_ROW_MUL: ROW_FOLDED(TEX_ROW_MUL); break;
+        case TEX_ROW_MUL_ABS: ROW_FOLDED(TEX_ROW_MUL_ABS); break;
+        case TEX_ROW_UNIT: ROW_FOLDED(TEX_ROW_UNIT); break;
+        case TEX_ROW_ADD: ROW_FOLDED(TEX_ROW_ADD); break;
+        case TEX_ROW_ADD_ABS: ROW_FOLDED(TEX_ROW_ADD_ABS); break;
+        case TEX_ROW_ADD_UNIT: ROW_FOLDED(TEX_ROW_ADD_UNIT); break;
+        default: ROW_FOLDED(TEX_ROW_ADD_ABS_CLAMP); break;
+        }
+#undef ROW_FOLDED
+        return;
+    }
 #define ROW_LUT(OP)                                                                                \
     (g->adjacent ? row_lut_avx2_op(g, T0, T1, wy, dy, out, OP, 1, a, b)                            \
                  : row_lut_avx2_op(g, T0, T1, wy, dy, out, OP, 0, a, b))
