@@ -51,7 +51,10 @@
  * the folded lattice rows are read from a table of all n x n lattice points
  * made once per grid (the lattice repeats every n cells), and every column
  * gets its own pair of slots, so that the vector rows read them without
- * gathers: a map's cost then no longer grows with its frequency.  Rows are
+ * gathers: a map's cost then no longer grows with its frequency.  A row with
+ * more columns than the table has entries first combines its two table rows
+ * with its y weights into one coefficient pair per entry (the operations each
+ * column would do), and each column reads its corners' pairs.  Rows are
  * vectorised (AVX2, chosen at run time; TEXTURA_SIMD=scalar forces the
  * portable path; there is no AVX-512 kernel) and every level performs the
  * same float operations in the same order, so the bytes are identical
