@@ -958,24 +958,27 @@ row_scalar_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, f
     }
 }
 
-/* One copy of the row loop FN per operation, the operation folded in as a
- * constant (the caller's parameters g, P, Q, sb, out, x, x1, op, a, b). */
-#define ROW_OP_SWITCH(FN)                                                                          \
+/* One copy of the row loop FN per operation, the operation op folded in as a
+ * constant: FN(PRE..., op, POST...), PRE and POST parenthesised argument lists. */
+#define ARGS(...) __VA_ARGS__
+#define ROW_OP_SWITCH(FN, PRE, POST)                                                               \
     switch (op) {                                                                                  \
-    case TEX_ROW_SET: FN(g, P, Q, sb, out, x, x1, TEX_ROW_SET, a, b); break;                       \
-    case TEX_ROW_MUL: FN(g, P, Q, sb, out, x, x1, TEX_ROW_MUL, a, b); break;                       \
-    case TEX_ROW_MUL_ABS: FN(g, P, Q, sb, out, x, x1, TEX_ROW_MUL_ABS, a, b); break;               \
-    case TEX_ROW_UNIT: FN(g, P, Q, sb, out, x, x1, TEX_ROW_UNIT, a, b); break;                     \
-    case TEX_ROW_ADD: FN(g, P, Q, sb, out, x, x1, TEX_ROW_ADD, a, b); break;                       \
-    case TEX_ROW_ADD_ABS: FN(g, P, Q, sb, out, x, x1, TEX_ROW_ADD_ABS, a, b); break;               \
-    case TEX_ROW_ADD_UNIT: FN(g, P, Q, sb, out, x, x1, TEX_ROW_ADD_UNIT, a, b); break;             \
-    default: FN(g, P, Q, sb, out, x, x1, TEX_ROW_ADD_ABS_CLAMP, a, b); break;                      \
+    case TEX_ROW_SET: FN(ARGS PRE, TEX_ROW_SET, ARGS POST); break;                                 \
+    case TEX_ROW_MUL: FN(ARGS PRE, TEX_ROW_MUL, ARGS POST); break;                                 \
+    case TEX_ROW_MUL_ABS: FN(ARGS PRE, TEX_ROW_MUL_ABS, ARGS POST); break;                         \
+    case TEX_ROW_UNIT: FN(ARGS PRE, TEX_ROW_UNIT, ARGS POST); break;                               \
+    case TEX_ROW_ADD: FN(ARGS PRE, TEX_ROW_ADD, ARGS POST); break;                                 \
+    case TEX_ROW_ADD_ABS: FN(ARGS PRE, TEX_ROW_ADD_ABS, ARGS POST); break;                         \
+    case TEX_ROW_ADD_UNIT: FN(ARGS PRE, TEX_ROW_ADD_UNIT, ARGS POST); break;                       \
+    default: FN(ARGS PRE, TEX_ROW_ADD_ABS_CLAMP, ARGS POST); break;                                \
     }
+/* the row loops' own parameters */
+#define ROW_PRE (g, P, Q, sb, out, x, x1)
 
 static void row_scalar(const tex_noise_grid *g, const float *P, const float *Q, int sb,
                        float *out, int x, int x1, int op, float a, float b)
 {
-    ROW_OP_SWITCH(row_scalar_op);
+    ROW_OP_SWITCH(row_scalar_op, ROW_PRE, (a, b));
 }
 
 #ifdef TEX_X86
@@ -1285,43 +1288,23 @@ AVX2 static void row_lut_avx2(const tex_noise_grid *g, int64_t j, const float *w
     if (g->adjacent && g->w >= 2 * m) { /* more columns than entries: fold the entries first */
         float PQ[2 * (TEX_NOISE_MAX_GRADIENTS + 1)];
         lut_fold_avx2(T0, T1, m, wy, dy, PQ);
-#define ROW_FOLDED(OP) row_folded_avx2_op(g, PQ, out, OP, a, b)
-        switch (op) {
-        case TEX_ROW_SET: ROW_FOLDED(TEX_ROW_SET); break;
-        case TEX_ROW_MUL: ROW_FOLDED(TEX_ROW_MUL); break;
-        case TEX_ROW_MUL_ABS: ROW_FOLDED(TEX_ROW_MUL_ABS); break;
-        case TEX_ROW_UNIT: ROW_FOLDED(TEX_ROW_UNIT); break;
-        case TEX_ROW_ADD: ROW_FOLDED(TEX_ROW_ADD); break;
-        case TEX_ROW_ADD_ABS: ROW_FOLDED(TEX_ROW_ADD_ABS); break;
-        case TEX_ROW_ADD_UNIT: ROW_FOLDED(TEX_ROW_ADD_UNIT); break;
-        default: ROW_FOLDED(TEX_ROW_ADD_ABS_CLAMP); break;
-        }
-#undef ROW_FOLDED
+        ROW_OP_SWITCH(row_folded_avx2_op, (g, PQ, out), (a, b));
         return;
     }
-#define ROW_LUT(OP)                                                                                \
-    (g->adjacent ? row_lut_avx2_op(g, T0, T1, wy, dy, out, OP, 1, a, b)                            \
-                 : row_lut_avx2_op(g, T0, T1, wy, dy, out, OP, 0, a, b))
-    switch (op) {
-    case TEX_ROW_SET: ROW_LUT(TEX_ROW_SET); break;
-    case TEX_ROW_MUL: ROW_LUT(TEX_ROW_MUL); break;
-    case TEX_ROW_MUL_ABS: ROW_LUT(TEX_ROW_MUL_ABS); break;
-    case TEX_ROW_UNIT: ROW_LUT(TEX_ROW_UNIT); break;
-    case TEX_ROW_ADD: ROW_LUT(TEX_ROW_ADD); break;
-    case TEX_ROW_ADD_ABS: ROW_LUT(TEX_ROW_ADD_ABS); break;
-    case TEX_ROW_ADD_UNIT: ROW_LUT(TEX_ROW_ADD_UNIT); break;
-    default: ROW_LUT(TEX_ROW_ADD_ABS_CLAMP); break;
+    if (g->adjacent) {
+        ROW_OP_SWITCH(row_lut_avx2_op, (g, T0, T1, wy, dy, out), (1, a, b));
+    } else {
+        ROW_OP_SWITCH(row_lut_avx2_op, (g, T0, T1, wy, dy, out), (0, a, b));
     }
-#undef ROW_LUT
 }
 
 AVX2 static inline void row_avx2(const tex_noise_grid *g, const float *P, const float *Q, int sb,
                                  float *out, int x, int x1, int op, float a, float b)
 {
     if (g->paired) {
-        ROW_OP_SWITCH(row_avx2_paired_op);
+        ROW_OP_SWITCH(row_avx2_paired_op, ROW_PRE, (a, b));
     } else {
-        ROW_OP_SWITCH(row_avx2_op);
+        ROW_OP_SWITCH(row_avx2_op, ROW_PRE, (a, b));
     }
 }
 #endif
