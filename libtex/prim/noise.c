@@ -281,6 +281,20 @@ AVX2 static inline __attribute__((always_inline)) __m256i join_epi32(__m128i lo,
     return _mm256_inserti128_si256(_mm256_castsi128_si256(lo), hi, 1);
 }
 
+/* Eight rows of four floats as the four vectors of their columns (row i in lane i) */
+AVX2 static inline __attribute__((always_inline)) void columns8(const float *const row[8],
+                                                                __m256 c[4])
+{
+    __m256 r0 = _mm256_loadu2_m128(row[4], row[0]), r1 = _mm256_loadu2_m128(row[5], row[1]);
+    __m256 r2 = _mm256_loadu2_m128(row[6], row[2]), r3 = _mm256_loadu2_m128(row[7], row[3]);
+    __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpacklo_ps(r2, r3);
+    __m256 t2 = _mm256_unpackhi_ps(r0, r1), t3 = _mm256_unpackhi_ps(r2, r3);
+    c[0] = _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(1, 0, 1, 0));
+    c[1] = _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(3, 2, 3, 2));
+    c[2] = _mm256_shuffle_ps(t2, t3, _MM_SHUFFLE(1, 0, 1, 0));
+    c[3] = _mm256_shuffle_ps(t2, t3, _MM_SHUFFLE(3, 2, 3, 2));
+}
+
 /* noise3_point for eight points: the same float operations in the same order, lane by
  * lane; 0 when a cell is beyond 2^30 (the caller's scalar path takes those). */
 AVX2 static inline __attribute__((always_inline)) int
@@ -330,23 +344,19 @@ noise3_avx2(const tex_noise_table *t, int period, const __m256d p[3][2], float *
 #pragma GCC unroll 8
     for (int c = 0; c < 8; c++) {
         const int b[3] = {c & 1, c >> 1 & 1, c >> 2 & 1};
-        /* the corners' gradients pgrad[...]: eight rows, lanes i and i + 4 paired, transposed */
+        /* the corners' gradients pgrad[...]: eight rows, transposed */
         int m[8]; /* byte offsets, read back from memory: cheaper than eight extracts */
         _mm256_storeu_si256((__m256i *)m, _mm256_slli_epi32(
                                               _mm256_add_epi32(idx[0][b[0]], hy[b[1]][b[2]]), 4));
         __asm__ volatile("" : : "m"(m) : "memory");
         const char *G = (const char *)t->pgrad;
-#define ROW(i) _mm_loadu_ps((const float *)(G + m[i]))
-        __m256 r0 = _mm256_insertf128_ps(_mm256_castps128_ps256(ROW(0)), ROW(4), 1);
-        __m256 r1 = _mm256_insertf128_ps(_mm256_castps128_ps256(ROW(1)), ROW(5), 1);
-        __m256 r2 = _mm256_insertf128_ps(_mm256_castps128_ps256(ROW(2)), ROW(6), 1);
-        __m256 r3 = _mm256_insertf128_ps(_mm256_castps128_ps256(ROW(3)), ROW(7), 1);
-#undef ROW
-        __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpacklo_ps(r2, r3);
-        __m256 t2 = _mm256_unpackhi_ps(r0, r1), t3 = _mm256_unpackhi_ps(r2, r3);
-        __m256 gx = _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(1, 0, 1, 0));
-        __m256 gy = _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(3, 2, 3, 2));
-        __m256 gz = _mm256_shuffle_ps(t2, t3, _MM_SHUFFLE(1, 0, 1, 0));
+        const float *row[8];
+#pragma GCC unroll 8
+        for (int i = 0; i < 8; i++)
+            row[i] = (const float *)(G + m[i]);
+        __m256 gr[4];
+        columns8(row, gr);
+        __m256 gx = gr[0], gy = gr[1], gz = gr[2];
         __m256 dot = _mm256_mul_ps(gx, b[0] ? dm[0] : f[0]);
         dot = _mm256_add_ps(dot, _mm256_mul_ps(gy, b[1] ? dm[1] : f[1]));
         dot = _mm256_add_ps(dot, _mm256_mul_ps(gz, b[2] ? dm[2] : f[2]));
@@ -1193,18 +1203,6 @@ row_lut_avx2_op(const tex_noise_grid *g, const float (*T0)[4], const float (*T1)
     }
 }
 
-/* Eight consecutive table entries (X, Y, C, 0) as X, Y and C vectors */
-AVX2 static inline __attribute__((always_inline)) void lut_xyc8(const float (*T)[4], __m256 v[3])
-{
-    __m256 r0 = _mm256_loadu2_m128(T[4], T[0]), r1 = _mm256_loadu2_m128(T[5], T[1]);
-    __m256 r2 = _mm256_loadu2_m128(T[6], T[2]), r3 = _mm256_loadu2_m128(T[7], T[3]);
-    __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpacklo_ps(r2, r3);
-    __m256 t2 = _mm256_unpackhi_ps(r0, r1), t3 = _mm256_unpackhi_ps(r2, r3);
-    v[0] = _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(1, 0, 1, 0));
-    v[1] = _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(3, 2, 3, 2));
-    v[2] = _mm256_shuffle_ps(t2, t3, _MM_SHUFFLE(1, 0, 1, 0));
-}
-
 /* The row's coefficients (P, Q) at every table entry 0..m-1, interleaved: the
  * operations row_lut_avx2_op performs per column, done once per entry. */
 static void lut_fold(const float (*T0)[4], const float (*T1)[4], int m, const float *wy,
@@ -1229,12 +1227,19 @@ AVX2 static void lut_fold_avx2(const float (*T0)[4], const float (*T1)[4], int m
     int i = 0;
 
     for (; i + 8 <= m; i += 8) {
-        __m256 v[3], P, Q;
-        lut_xyc8(T0 + i, v);
+        const float *row[8];
+        __m256 v[4], P, Q;
+#pragma GCC unroll 8
+        for (int k = 0; k < 8; k++)
+            row[k] = T0[i + k];
+        columns8(row, v);
         P = _mm256_mul_ps(a0, v[0]);
         Q = _mm256_mul_ps(a0, _mm256_add_ps(_mm256_mul_ps(v[1], d0), v[2]));
         if (T1) {
-            lut_xyc8(T1 + i, v);
+#pragma GCC unroll 8
+            for (int k = 0; k < 8; k++)
+                row[k] = T1[i + k];
+            columns8(row, v);
             P = _mm256_add_ps(P, _mm256_mul_ps(a1, v[0]));
             Q = _mm256_add_ps(Q, _mm256_mul_ps(a1, _mm256_add_ps(_mm256_mul_ps(v[1], d1), v[2])));
         }
@@ -1258,19 +1263,13 @@ row_folded_avx2_op(const tex_noise_grid *g, const float *PQ, float *out, const i
     int x = 0;
 
     for (; x + 8 <= g->w; x += 8) {
-        const int32_t *l = lat + 2 * x;
-#define PAIR(i) _mm_loadu_ps(PQ + 2 * l[2 * (i)])
-        __m256 r0 = _mm256_insertf128_ps(_mm256_castps128_ps256(PAIR(0)), PAIR(4), 1);
-        __m256 r1 = _mm256_insertf128_ps(_mm256_castps128_ps256(PAIR(1)), PAIR(5), 1);
-        __m256 r2 = _mm256_insertf128_ps(_mm256_castps128_ps256(PAIR(2)), PAIR(6), 1);
-        __m256 r3 = _mm256_insertf128_ps(_mm256_castps128_ps256(PAIR(3)), PAIR(7), 1);
-#undef PAIR
-        __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpacklo_ps(r2, r3);
-        __m256 t2 = _mm256_unpackhi_ps(r0, r1), t3 = _mm256_unpackhi_ps(r2, r3);
-        pixels8(u + x, um1 + x, w0 + x, w1 + x, _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(1, 0, 1, 0)),
-                _mm256_shuffle_ps(t2, t3, _MM_SHUFFLE(1, 0, 1, 0)),
-                _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(3, 2, 3, 2)),
-                _mm256_shuffle_ps(t2, t3, _MM_SHUFFLE(3, 2, 3, 2)), out + x, op, va, vb);
+        const float *row[8];
+        __m256 c[4]; /* the left corners' P, Q, the right corners' P, Q */
+#pragma GCC unroll 8
+        for (int i = 0; i < 8; i++)
+            row[i] = PQ + 2 * lat[2 * (x + i)];
+        columns8(row, c);
+        pixels8(u + x, um1 + x, w0 + x, w1 + x, c[0], c[2], c[1], c[3], out + x, op, va, vb);
     }
     for (; x < g->w; x++) {
         const float *e = PQ + 2 * lat[2 * x];
