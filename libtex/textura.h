@@ -47,6 +47,7 @@
 #include "base/param.h"
 #include "base/paths.h"
 #include "base/rng.h"
+#include "base/simd.h"
 #include "io/stream.h"
 #include "io/file.h"
 #include "io/netpbm.h"

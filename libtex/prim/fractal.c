@@ -12,12 +12,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#if defined(__x86_64__) || defined(__i386__)
-#include <immintrin.h>
-#define TEX_X86 1
-#endif
-
 #include "base/error.h"
+#include "base/simd.h"
 #include "prim/noise.h"
 #include "prim/prim.h"
 #include "base/rng.h"
@@ -871,9 +867,8 @@ static void hybrid_step(const struct mf_step *m, int x, int w, const float *n, f
 }
 
 #ifdef TEX_X86
-__attribute__((target("avx2"))) static void ridged_step_avx2(const struct mf_step *m, int w,
-                                                             const float *n, float *st,
-                                                             float *res)
+TEX_AVX2 static void ridged_step_avx2(const struct mf_step *m, int w, const float *n,
+                                      float *st, float *res)
 {
     __m256 off = _mm256_set1_ps(m->off), gain = _mm256_set1_ps(m->gain);
     __m256 amp = _mm256_set1_ps(m->amp), sign = _mm256_set1_ps(-0.0f);
@@ -897,9 +892,8 @@ __attribute__((target("avx2"))) static void ridged_step_avx2(const struct mf_ste
     ridged_step(m, x, w, n, st, res);
 }
 
-__attribute__((target("avx2"))) static void hybrid_step_avx2(const struct mf_step *m, int w,
-                                                             const float *n, float *st,
-                                                             float *res)
+TEX_AVX2 static void hybrid_step_avx2(const struct mf_step *m, int w, const float *n,
+                                      float *st, float *res)
 {
     __m256 off = _mm256_set1_ps(m->off), amp = _mm256_set1_ps(m->amp), one = _mm256_set1_ps(1);
     int x = 0;
@@ -920,7 +914,7 @@ __attribute__((target("avx2"))) static void hybrid_step_avx2(const struct mf_ste
 #endif
 
 #ifdef TEX_X86
-__attribute__((target("avx2"))) static int finish_row_avx2(float *out, int w, float lo, float inv)
+TEX_AVX2 static int finish_row_avx2(float *out, int w, float lo, float inv)
 {
     __m256 l = _mm256_set1_ps(lo), k = _mm256_set1_ps(inv);
     __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1);

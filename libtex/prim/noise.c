@@ -6,10 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#if defined(__x86_64__) || defined(__i386__)
-#include <immintrin.h>
-#define TEX_X86 1
-#endif
+#include "base/simd.h"
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -240,7 +237,7 @@ double tex_noise3_grad(const tex_noise_table *t, int period, double x, double y,
 /* ---- many points at once ---- */
 
 #ifdef TEX_X86
-#define AVX2 __attribute__((target("avx2")))
+#define AVX2 TEX_AVX2
 
 /* c mod m for whole numbers |c| < 2^31 in double, exactly: the quotient from
  * the reciprocal may be one off either way, and the remainder says which. */
@@ -437,42 +434,6 @@ void tex_noise_points_at(const tex_noise_table *t, int period, const double a[3]
 #endif
     for (; i < n; i++)
         out[i] = noise3_at(t, period, a, f, u[i], v[i], w ? w[i] : 0);
-}
-
-/* ---- SIMD level ---- */
-
-const char *tex_simd_name(int level)
-{
-    return level == TEX_SIMD_AVX512 ? "avx512" : level == TEX_SIMD_AVX2 ? "avx2" : "scalar";
-}
-
-static int simd_detect(void)
-{
-    int best = TEX_SIMD_SCALAR;
-    const char *e = getenv("TEXTURA_SIMD");
-#ifdef TEX_X86
-    __builtin_cpu_init();
-    if (__builtin_cpu_supports("avx2"))
-        best = TEX_SIMD_AVX2;
-#endif
-    /* The rows have no AVX-512 kernel: their AVX2 one is memory-bound already. */
-    if (e && strcmp(e, "scalar") == 0)
-        best = TEX_SIMD_SCALAR;
-    return best;
-}
-
-int tex_simd_level(void)
-{
-    static int level = -1;
-    int l;
-#pragma omp atomic read
-    l = level;
-    if (l < 0) {
-        l = simd_detect();
-#pragma omp atomic write
-        level = l;
-    }
-    return l;
 }
 
 /* ---- grid sampling ---- */
@@ -876,7 +837,7 @@ static void row_coeffs(int ns, const float *wy, const float *dy, const float *co
 
 #ifdef TEX_X86
 /* row_coeffs eight slots at a time: the same operations, element by element. */
-__attribute__((target("avx2"))) static inline void
+AVX2 static inline void
 row_coeffs_avx2(int ns, const float *wy, const float *dy, const float *const L0[3],
                 const float *const L1[3], float *P, float *Q)
 {

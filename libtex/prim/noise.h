@@ -67,6 +67,7 @@
 #include <stdint.h>
 
 #include "../base/param.h"
+#include "../base/simd.h" /* the level the row kernels use */
 
 #ifdef __cplusplus
 extern "C" {
@@ -213,11 +214,6 @@ void tex_octave_row(const tex_octaves *o, int k, int y, float *out);
 void tex_octave_row_add(const tex_octaves *o, int k, int y, float amp, float *out);
 void tex_octave_row_op(const tex_octaves *o, int k, int y, int op, float a, float b, float *out);
 
-/* SIMD levels for the row kernels. */
-enum { TEX_SIMD_SCALAR = 0, TEX_SIMD_AVX2 = 1, TEX_SIMD_AVX512 = 2 };
-/* The level in use: the best the CPU has, or TEXTURA_SIMD's if lower. */
-int tex_simd_level(void);
-const char *tex_simd_name(int level);
 
 /* The parameter rows every noise-based primitive shares (param.h), declared once:
  * struct S must have double z, struct tex_reals offset, int fade, int gradients

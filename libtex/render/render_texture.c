@@ -12,16 +12,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#if defined(__x86_64__) || defined(__i386__)
-#include <immintrin.h>
-#define TEX_X86 1
-#endif
-
 #include "base/error.h"
+#include "base/simd.h"
 #include "render/scene.h"
 #include "render/render_ct.h"
 #include "ops/palette.h"
-#include "prim/noise.h" /* tex_simd_level */
 
 /* ---- mip-mapped maps ------------------------------------------------------------ */
 
@@ -126,7 +121,7 @@ bilinear(const tex_map *m, int k, double u, double v, float out[3])
 }
 
 #ifdef TEX_X86
-#define AVX2 __attribute__((target("avx2")))
+#define AVX2 TEX_AVX2
 
 /* bilinear with k = 3, the channels in three of four double lanes: its operations in its
  * order, so the same floats. */

@@ -1,0 +1,40 @@
+/* simd.c - the SIMD level, found once */
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "base/simd.h"
+
+const char *tex_simd_name(int level)
+{
+    return level == TEX_SIMD_AVX512 ? "avx512" : level == TEX_SIMD_AVX2 ? "avx2" : "scalar";
+}
+
+static int simd_detect(void)
+{
+    int best = TEX_SIMD_SCALAR;
+    const char *e = getenv("TEXTURA_SIMD");
+#ifdef TEX_X86
+    __builtin_cpu_init();
+    if (__builtin_cpu_supports("avx2"))
+        best = TEX_SIMD_AVX2;
+#endif
+    /* The rows have no AVX-512 kernel: their AVX2 one is memory-bound already. */
+    if (e && strcmp(e, "scalar") == 0)
+        best = TEX_SIMD_SCALAR;
+    return best;
+}
+
+int tex_simd_level(void)
+{
+    static int level = -1;
+    int l;
+#pragma omp atomic read
+    l = level;
+    if (l < 0) {
+        l = simd_detect();
+#pragma omp atomic write
+        level = l;
+    }
+    return l;
+}

@@ -1,0 +1,37 @@
+/* simd.h - the instruction sets the vector kernels may use
+ *
+ * Kernels with a vector path are compiled for AVX2 function by function
+ * (TEX_AVX2) and chosen at run time, so one build runs on every x86-64 CPU:
+ *
+ *   #ifdef TEX_X86
+ *   TEX_AVX2 static void rows_avx2(...) { ... }
+ *   #endif
+ *   if (tex_simd_level() >= TEX_SIMD_AVX2) rows_avx2(...); else rows(...);
+ *
+ * Every level performs the same float operations in the same order, so the
+ * bytes never depend on it; TEXTURA_SIMD=scalar forces the portable path, as
+ * the tests do to check that.  No kernel has an AVX-512 form yet.
+ */
+#ifndef TEX_SIMD_H
+#define TEX_SIMD_H
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#define TEX_X86 1
+#define TEX_AVX2 __attribute__((target("avx2")))
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum { TEX_SIMD_SCALAR = 0, TEX_SIMD_AVX2 = 1, TEX_SIMD_AVX512 = 2 };
+/* The level in use: the best the CPU has, or TEXTURA_SIMD's if lower. */
+int tex_simd_level(void);
+const char *tex_simd_name(int level);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
