@@ -35,6 +35,9 @@ for s in grid kdtree brute; do
     t_bubble -s 96x80 -c 300 --value f2 --search "$s" -j 2 -o "$T/j2-$s.pfm"
     check "--search $s: -j 1 and -j 2 give the same map" cmp "$T/j1-$s.pfm" "$T/j2-$s.pfm"
 done
+# and at every SIMD level: the grid's AVX2 candidate lanes against SSE2's
+TEXTURA_SIMD=scalar t_bubble -s 96x80 -c 300 --value f2 --search grid -j 2 -o "$T/s-grid.pfm"
+check "--search grid: TEXTURA_SIMD=scalar gives the same map" cmp "$T/j1-grid.pfm" "$T/s-grid.pfm"
 check "grid and kd-tree give the same map" cmp "$T/j1-grid.pfm" "$T/j1-kdtree.pfm"
 check "grid and brute force give the same map" cmp "$T/j1-grid.pfm" "$T/j1-brute.pfm"
 # Far more points than pixels: the grid goes without its candidate lists, and agrees.

@@ -25,10 +25,12 @@ static int simd_detect(void)
     return best;
 }
 
+static int limit = TEX_SIMD_AVX512;
+
 int tex_simd_level(void)
 {
     static int level = -1;
-    int l;
+    int l, m;
 #pragma omp atomic read
     l = level;
     if (l < 0) {
@@ -36,5 +38,11 @@ int tex_simd_level(void)
 #pragma omp atomic write
         level = l;
     }
-    return l;
+    m = __atomic_load_n(&limit, __ATOMIC_RELAXED);
+    return l < m ? l : m;
+}
+
+void tex_simd_limit(int level)
+{
+    __atomic_store_n(&limit, level, __ATOMIC_RELAXED);
 }

@@ -10,7 +10,9 @@
  *
  * Every level performs the same float operations in the same order, so the
  * bytes never depend on it; TEXTURA_SIMD=scalar forces the portable path, as
- * the tests do to check that.  No kernel has an AVX-512 form yet.
+ * the tests do to check that, and a test that compares the two paths in one
+ * process lowers the level with tex_simd_limit.  No kernel has an AVX-512
+ * form yet.
  */
 #ifndef TEX_SIMD_H
 #define TEX_SIMD_H
@@ -28,6 +30,8 @@ extern "C" {
 enum { TEX_SIMD_SCALAR = 0, TEX_SIMD_AVX2 = 1, TEX_SIMD_AVX512 = 2 };
 /* The level in use: the best the CPU has, or TEXTURA_SIMD's if lower. */
 int tex_simd_level(void);
+/* Use at most level from now on (TEX_SIMD_AVX512: the CPU's best again). */
+void tex_simd_limit(int level);
 const char *tex_simd_name(int level);
 
 #ifdef __cplusplus

@@ -12,6 +12,7 @@
 #include "base/progress.h"
 #include "prim/prim.h"
 #include "base/rng.h"
+#include "base/simd.h"
 
 /* p grown to n elements of size bytes, or p itself with *ok cleared when that
  * fails (or an earlier call failed): parallel arrays grow together and the
@@ -26,9 +27,8 @@ static void *grown(void *p, size_t n, size_t size, int *ok)
     return q;
 }
 
-#if defined(__x86_64__) && defined(__GNUC__)
-#define HAVE_AVX2_KERNEL 1
-#include <immintrin.h>
+#if defined(TEX_X86) && defined(__x86_64__)
+#define HAVE_AVX2_KERNEL 1 /* and SSE2, x86-64's baseline, everywhere else */
 #endif
 
 /* ---- point sets ---- */
@@ -792,7 +792,7 @@ static void cand_lanes(const double *cx, const double *cy, const long *cid, long
  *   A1' = lt ? a : A1           = min(a, A1)
  *   A2' = min(lt ? A1 : a, A2)  = min(max(A1, a), A2)
  * with lt = a < A1: the same values as lanes(), in 3 operations, not 5. */
-__attribute__((target("avx2"), always_inline)) static inline void
+TEX_AVX2 __attribute__((always_inline)) static inline void
 lanes_minmax(const double *cx, const double *cy, long t0, long e, const double *qx,
              const double *qy, const int nv, const int want_f2, double *a1, double *a2)
 {
@@ -830,7 +830,7 @@ lanes_minmax(const double *cx, const double *cy, long t0, long e, const double *
 
 /* The same lanes in 32-byte AVX2 vectors, chosen at run time.  AVX2 alone
  * brings no fused multiply-add, so each lane rounds as the SSE2 code does. */
-__attribute__((target("avx2"))) static void
+TEX_AVX2 static void
 cand_lanes_avx2(const double *cx, const double *cy, const long *cid, long t0, long e,
                 const double *qx, const double *qy, int nv, int want_id, int want_f2, int roots,
                 double *a1, double *a2, long *i1)
@@ -1676,7 +1676,7 @@ tex_cellular *tex_cellular_new(const tex_points *ps, const struct tex_cellular_o
     }
     c->gfac = (1 - 1e-9) / c->rmax;
 #ifdef HAVE_AVX2_KERNEL
-    c->avx2 = !getenv("TEXTURA_NO_AVX2") && __builtin_cpu_supports("avx2");
+    c->avx2 = tex_simd_level() >= TEX_SIMD_AVX2;
 #endif
     c->search = o->search;
     if (c->search == TEX_SEARCH_AUTO) {

@@ -5,6 +5,7 @@
 
 #include "prim/cellular.h"
 #include "base/rng.h"
+#include "base/simd.h"
 #include "unit.h"
 
 /* Compare grid and kd-tree with brute force on nq random queries; returns
@@ -124,7 +125,7 @@ static void test_searches(void)
 
     /* The baseline (SSE2) kernels where the CPU would take the AVX2 ones:
      * the grid's candidate lists and the box tree, plain and tiled. */
-    setenv("TEXTURA_NO_AVX2", "1", 1);
+    tex_simd_limit(TEX_SIMD_SCALAR);
     for (int d = 0; d < 3; d++)
         for (int tile = 0; tile <= 1; tile++) {
             tex_points ps;
@@ -138,7 +139,7 @@ static void test_searches(void)
                    dists[d], tile ? " tiled" : "", bad);
             tex_points_free(&ps);
         }
-    unsetenv("TEXTURA_NO_AVX2");
+    tex_simd_limit(TEX_SIMD_AVX512);
 }
 
 /* Sets that push the search choice and the ties. */
