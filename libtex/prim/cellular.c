@@ -334,6 +334,16 @@ int tex_metric_parse(const char *text, enum tex_metric *m, double *p)
 
 /* ---- nearest-point queries ---- */
 
+/* A bucket NEAR_R or fewer away from a query's on every axis (offset o), and
+ * stop: F2 (accumulated) below it ends the search, the least distance
+ * between a point of the query's bucket and a point of this one or of any
+ * later in the table (grid_near_build). */
+#define NEAR_R 2
+struct near_bucket {
+    double stop;
+    signed char o[3];
+};
+
 struct tex_cellular {
     int dim, tile;
     long n;
@@ -345,6 +355,8 @@ struct tex_cellular {
     int g;
     long *start, *gid;
     double *gx, *gia, gfac;
+    struct near_bucket *near; /* the buckets around a query's, nearest first */
+    int nnear;
     /* 2D Euclidean without radii: per bucket, every point that can be one of
      * the two nearest to a query inside it */
     int cgx, cgy;
@@ -369,16 +381,18 @@ struct tex_cellular {
 /* The "accumulated" distance: squared for L2, the p-th power for Lp, so that
  * comparisons need no root.  Every search method calls this one function
  * for its final candidates, which keeps them bit-identical. */
-static inline double acc_point(const struct tex_cellular *c, const double *q, const double *p,
-                               const double *ia, const double *s)
+static inline __attribute__((always_inline)) double
+acc_point_m(const struct tex_cellular *c, enum tex_metric metric, int dim, const double *q,
+            const double *p, const double *ia, const double *s)
 {
     double a = 0;
-    for (int j = 0; j < c->dim; j++) {
+#pragma GCC unroll 3
+    for (int j = 0; j < dim; j++) {
         double d = q[j] - (p[j] + s[j]);
         if (ia)
             d *= ia[j];
         d = fabs(d);
-        switch (c->metric) {
+        switch (metric) {
         case TEX_METRIC_EUCLID:
             a += d * d;
             break;
@@ -394,6 +408,12 @@ static inline double acc_point(const struct tex_cellular *c, const double *q, co
         }
     }
     return a;
+}
+
+static inline double acc_point(const struct tex_cellular *c, const double *q, const double *p,
+                               const double *ia, const double *s)
+{
+    return acc_point_m(c, c->metric, c->dim, q, p, ia, s);
 }
 
 static inline double acc_finish(const struct tex_cellular *c, double a)
@@ -480,11 +500,58 @@ static inline int cell_of(double x, int g)
 #ifndef GRID_FILL
 #define GRID_FILL 0.25
 #endif
+#ifndef GRID_FILL3
+#define GRID_FILL3 2
+#endif
+
+/* The squared least distance, in buckets, between points of two buckets o apart */
+static int near_lb(const signed char *o)
+{
+    int l = 0;
+    for (int j = 0; j < 3; j++) {
+        int a = abs(o[j]) - 1;
+        l += a > 0 ? a * a : 0;
+    }
+    return l;
+}
+
+static int near_cmp(const void *x, const void *y)
+{
+    const struct near_bucket *a = x, *b = y;
+    int la = near_lb(a->o), lb = near_lb(b->o);
+    return la != lb ? (la > lb) - (la < lb) : memcmp(a->o, b->o, sizeof a->o);
+}
+
+/* c->near: the buckets up to NEAR_R away, by their least distance.  Their
+ * Euclidean distance bounds the metric's: from below by itself for L2 and
+ * L1, by itself over sqrt(dim) for the others (every Lp is at least
+ * L-infinity). */
+static int grid_near_build(struct tex_cellular *c)
+{
+    int dim = c->dim, side = 2 * NEAR_R + 1, n = dim == 3 ? side * side * side : side * side;
+    double f = c->metric == TEX_METRIC_EUCLID || c->metric == TEX_METRIC_MANHATTAN ? 1
+                                                                                   : 1 / sqrt(dim);
+    if (!(c->near = malloc(n * sizeof *c->near)))
+        return tex_error("out of memory for the bucket grid");
+    c->nnear = n;
+    for (int i = 0; i < n; i++) {
+        struct near_bucket *e = &c->near[i];
+        e->o[0] = (signed char)(i % side - NEAR_R);
+        e->o[1] = (signed char)(i / side % side - NEAR_R);
+        e->o[2] = (signed char)(dim == 3 ? i / (side * side) - NEAR_R : 0);
+    }
+    qsort(c->near, n, sizeof *c->near, near_cmp);
+    for (int i = 0; i < n; i++) {
+        double d = (sqrt(near_lb(c->near[i].o)) / c->g - 1e-14) * f * c->gfac;
+        c->near[i].stop = d > 0 ? acc_of(c, d) : -INFINITY;
+    }
+    return 0;
+}
 
 static int grid_build(struct tex_cellular *c)
 {
     int dim = c->dim;
-    double want = c->n / GRID_FILL;
+    double want = c->n / (dim == 3 ? GRID_FILL3 : GRID_FILL);
     long cells, *fill;
     int g = (int)floor(pow(want, 1.0 / dim));
 
@@ -525,7 +592,7 @@ static int grid_build(struct tex_cellular *c)
      * a lower bound of every Lp norm, is at least the distance to its faces,
      * and radii shrink distances at most by rmax.  The slack absorbs rounding. */
     c->gfac = (1 - 1e-9) / c->rmax;
-    return 0;
+    return grid_near_build(c);
 }
 
 /* The share of empty buckets on a grid of two points per bucket: about
@@ -552,53 +619,147 @@ static double empty_share(const struct tex_cellular *c)
     return (double)empty / cells;
 }
 
-static void grid_query1(const struct tex_cellular *c, const double *q, struct best *b)
+/* Bucket k of an axis: wrapped, with the shift *s of its periodic image, when
+ * the map tiles; else -1 outside the grid. */
+static inline int ring_axis(const struct tex_cellular *c, int k, double *s)
 {
-    int dim = c->dim, g = c->g, cc[3] = {0, 0, 0};
+    int g = c->g;
+    if (!c->tile)
+        return k < 0 || k >= g ? -1 : k;
+    int w = (k % g + g) % g;
+    *s = (k - w) / g;
+    return w;
+}
 
-    best_init(b);
-    for (int j = 0; j < dim; j++)
-        cc[j] = cell_of(q[j], g);
-    for (int r = 0;; r++) {
+/* Whether the buckets up to r away from q's (cc) on every axis, searched,
+ * hold the two nearest points: F2 so far is below the distance from q to the
+ * faces of their box (none where the box covers the grid). */
+static int rings_done(const struct tex_cellular *c, int dim, const double *q, const int *cc, int r,
+                      const struct best *b)
+{
+    int g = c->g;
+    double bound = INFINITY;
+    for (int j = 0; j < dim; j++) {
+        if (c->tile || cc[j] - r > 0) {
+            double d = q[j] - (double)(cc[j] - r) / g;
+            bound = d < bound ? d : bound;
+        }
+        if (c->tile || cc[j] + r < g - 1) {
+            double d = (double)(cc[j] + r + 1) / g - q[j];
+            bound = d < bound ? d : bound;
+        }
+    }
+    return bound == INFINITY || b->a2 < acc_of(c, bound * c->gfac);
+}
+
+/* Rings r0, r0 + 1, ... of buckets around q's (cc), until no bucket beyond can
+ * hold one of the two nearest points: the search past the near buckets. */
+static inline __attribute__((always_inline)) void
+grid_rings(const struct tex_cellular *c, enum tex_metric metric, int dim, const double *q,
+           const int *cc, int r0, struct best *b)
+{
+    int g = c->g;
+    for (int r = r0; r == 0 || !rings_done(c, dim, q, cc, r - 1, b); r++) {
         int rz = dim == 3 ? r : 0;
-        double bound = INFINITY;
-        for (int oz = -rz; oz <= rz; oz++)
-            for (int oy = -r; oy <= r; oy++)
-                for (int ox = -r; ox <= r; ox++) {
-                    int o[3] = {ox, oy, oz}, k[3] = {0, 0, 0};
-                    double s[3] = {0, 0, 0};
-                    long cell;
-                    if (abs(ox) != r && abs(oy) != r && abs(oz) != r)
-                        continue; /* inside: visited in an earlier ring */
-                    for (int j = 0; j < dim; j++) {
-                        k[j] = cc[j] + o[j];
-                        if (c->tile) {
-                            int w = (k[j] % g + g) % g;
-                            s[j] = (k[j] - w) / g;
-                            k[j] = w;
-                        } else if (k[j] < 0 || k[j] >= g) {
-                            goto skip;
-                        }
-                    }
-                    cell = k[0] + (long)g * (k[1] + (long)g * k[2]);
-                    for (long at = c->start[cell]; at < c->start[cell + 1]; at++)
-                        best_add(b, acc_point(c, q, c->gx + at * dim, c->gia ? c->gia + at * dim : NULL, s),
+        for (int oz = -rz; oz <= rz; oz++) {
+            double sv[3] = {0, 0, 0};
+            int kz = dim == 3 ? ring_axis(c, cc[2] + oz, &sv[2]) : 0;
+            if (kz < 0)
+                continue;
+            for (int oy = -r; oy <= r; oy++) {
+                int ky = ring_axis(c, cc[1] + oy, &sv[1]);
+                /* inside the ring's faces only its ends: visited in earlier rings */
+                int step = r == 0 || abs(oy) == r || (dim == 3 && abs(oz) == r) ? 1 : 2 * r;
+                if (ky < 0)
+                    continue;
+                long row = (long)g * (ky + (long)g * kz);
+                for (int ox = -r; ox <= r; ox += step) {
+                    int kx = ring_axis(c, cc[0] + ox, &sv[0]);
+                    if (kx < 0)
+                        continue;
+                    for (long at = c->start[row + kx]; at < c->start[row + kx + 1]; at++)
+                        best_add(b, acc_point_m(c, metric, dim, q, c->gx + at * dim,
+                                                c->gia ? c->gia + at * dim : NULL, sv),
                                  c->gid[at]);
-                skip:;
                 }
-        for (int j = 0; j < dim; j++) {
-            if (c->tile || cc[j] - r > 0) {
-                double d = q[j] - (double)(cc[j] - r) / g;
-                bound = d < bound ? d : bound;
-            }
-            if (c->tile || cc[j] + r < g - 1) {
-                double d = (double)(cc[j] + r + 1) / g - q[j];
-                bound = d < bound ? d : bound;
             }
         }
-        if (bound == INFINITY || b->a2 < acc_of(c, bound * c->gfac))
-            return;
     }
+}
+
+/* The two nearest points to q through the buckets, nearest buckets first:
+ * the table c->near (grid_near_build) up to NEAR_R buckets away on every
+ * axis, then whole rings.  The walk stops where F2 so far is below the next
+ * entry's least distance from any point of q's bucket; it passes over a
+ * bucket whose gaps to q along the axes already put it beyond F2.  Skipped
+ * points could not change the result, and best_add's result does not depend
+ * on the order of the points, so the bytes are those of a search through
+ * every bucket.  The gaps and distances are taken 1e-14 short (a point's
+ * bucket comes from a rounded product) and times gfac (radii), as the rings'
+ * bound is.  metric and dim are c's, constants in each call so that
+ * acc_point_m's switch and loop fold. */
+static inline __attribute__((always_inline)) void
+grid_walk(const struct tex_cellular *c, enum tex_metric metric, int dim, const double *q,
+          struct best *b)
+{
+    int g = c->g, cc[3] = {0, 0, 0};
+    /* per axis and offset + NEAR_R: the bucket's part of the cell index (-1:
+     * outside the grid), its periodic image's shift, its gap to q */
+    long part[3][2 * NEAR_R + 1];
+    double shift[3][2 * NEAR_R + 1], gaps[3][2 * NEAR_R + 1], ig = 1.0 / g;
+    const double zero[3] = {0, 0, 0};
+
+    best_init(b);
+    for (int j = 0, mul = 1; j < dim; j++, mul *= g) {
+        cc[j] = cell_of(q[j], g);
+        double lo = q[j] - cc[j] * ig, hi = (cc[j] + 1) * ig - q[j]; /* to the bucket's faces */
+        for (int o = -NEAR_R; o <= NEAR_R; o++) {
+            double d = o < 0 ? lo + (-o - 1) * ig : o > 0 ? hi + (o - 1) * ig : 0;
+            shift[j][o + NEAR_R] = 0;
+            int k = ring_axis(c, cc[j] + o, &shift[j][o + NEAR_R]);
+            gaps[j][o + NEAR_R] = d > 1e-14 ? (d - 1e-14) * c->gfac : 0;
+            part[j][o + NEAR_R] = k < 0 ? -1 : (long)k * mul;
+        }
+    }
+    for (int i = 0; i < c->nnear; i++) {
+        const struct near_bucket *e = &c->near[i];
+        double sv[3] = {0, 0, 0}, gv[3] = {0, 0, 0};
+        long cell = 0;
+        if (b->a2 < e->stop)
+            return;
+#pragma GCC unroll 3
+        for (int j = 0; j < dim; j++) {
+            int o = e->o[j] + NEAR_R;
+            if (part[j][o] < 0)
+                goto next;
+            cell += part[j][o];
+            sv[j] = shift[j][o];
+            gv[j] = gaps[j][o];
+        }
+        if (c->start[cell] == c->start[cell + 1] ||
+            b->a2 < acc_point_m(c, metric, dim, gv, zero, NULL, zero))
+            continue;
+        for (long at = c->start[cell]; at < c->start[cell + 1]; at++)
+            best_add(b, acc_point_m(c, metric, dim, q, c->gx + at * dim,
+                                    c->gia ? c->gia + at * dim : NULL, sv),
+                     c->gid[at]);
+    next:;
+    }
+    grid_rings(c, metric, dim, q, cc, NEAR_R + 1, b);
+}
+
+static void grid_query1(const struct tex_cellular *c, const double *q, struct best *b)
+{
+#define RINGS(m)                                                                                 \
+    c->dim == 3 ? grid_walk(c, m, 3, q, b) : grid_walk(c, m, 2, q, b);                          \
+    break
+    switch (c->metric) {
+    case TEX_METRIC_EUCLID: RINGS(TEX_METRIC_EUCLID);
+    case TEX_METRIC_MANHATTAN: RINGS(TEX_METRIC_MANHATTAN);
+    case TEX_METRIC_CHEBYSHEV: RINGS(TEX_METRIC_CHEBYSHEV);
+    default: RINGS(TEX_METRIC_MINKOWSKI);
+    }
+#undef RINGS
 }
 
 /* Candidate lists (2D Euclidean without radii).  F2 is 1-Lipschitz, so
@@ -1628,6 +1789,7 @@ void tex_cellular_free(tex_cellular *c)
     free(c->x);
     free(c->ia);
     free(c->start);
+    free(c->near);
     free(c->gid);
     free(c->gx);
     free(c->gia);

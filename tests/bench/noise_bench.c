@@ -1,9 +1,12 @@
 /* noise_bench.c - M samples/s of libtex noise grids (2048 x 2048), built by tests/bench/noise.
  *
  *   noise_bench KIND THREADS REPS [CELLS]
- *   KIND: 2d | 3d | fbm8 | ridged8 | hybrid8 | turb8 | dnoise | points3d | points_turb6
+ *   KIND: 2d | 3d | fbm8 | ridged8 | hybrid8 | turb8 | dnoise | points3d | points_turb6 |
+ *         points_bubble3d
  * prints the median of REPS fills in M samples/s; CELLS: lattice cells across the map at
- * the first octave (8).  points*: arbitrary 3D points through eval3, 2048 per call.
+ * the first octave (8).  points*: arbitrary 3D points through eval3, 2048 per call
+ * (points_bubble3d: solid bubbles around 1000 points, the primitive's nearest-point
+ * search).
  * One thread is timed by its CPU time, so that other jobs on a shared machine do not
  * count; more threads by the wall clock. */
 
@@ -35,18 +38,24 @@ int main(int argc, char **argv)
                                     : strncmp(kind, "turb", 4) == 0 ||
                                             strcmp(kind, "points_turb6") == 0
                                         ? &tex_prim_turbulence
-                                    : strcmp(kind, "dnoise") == 0 ? &tex_prim_d_noise
-                                                                  : &tex_prim_noise;
+                                    : strcmp(kind, "dnoise") == 0          ? &tex_prim_d_noise
+                                    : strcmp(kind, "points_bubble3d") == 0 ? &tex_prim_bubble
+                                                                           : &tex_prim_noise;
     struct tex_field *f = tex_field_new(p);
     double rate[64];
     int pts = strncmp(kind, "points", 6) == 0;
 
     omp_set_num_threads(threads);
     f->seed = 1;
-    tex_field_set(f, "frequency", cells);
+    if (p == &tex_prim_bubble) {
+        tex_field_set(f, "dimension", "3");
+        tex_field_set(f, "count", "1000");
+    } else {
+        tex_field_set(f, "frequency", cells);
+    }
     if (reps < 1 || reps > 64)
         reps = 5;
-    if (strcmp(kind, "3d") == 0 || pts)
+    if (strcmp(kind, "3d") == 0 || (pts && p != &tex_prim_bubble))
         tex_field_set(f, "z", "0.3721"); /* a slice between lattice planes: 8 corners */
     if (p == &tex_prim_fractal || p == &tex_prim_turbulence)
         tex_field_set(f, "octaves", pts ? "6" : "8");
