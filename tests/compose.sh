@@ -1,13 +1,6 @@
 #!/usr/bin/env bash
 # Composition tools: t_op, t_cascade, t_tile, t_xform, t_warp, t_compose.
 . "$(dirname "$0")/lib.sh"
-G=${TEXTURA_TOP:-.}/tests/golden
-
-# golden NAME MAP GOLDEN TOL: MAP matches the stored golden image (TEXTURA_REGOLD=1 rewrites it).
-golden() {
-    [ -n "${TEXTURA_REGOLD:-}" ] && t_convert -o "$G/$3" "$2"
-    same "$1" "$2" "$G/$3" "$4"
-}
 
 # Fixtures from the tools themselves: noise, a zero and a one map, a checker, stripes.
 t_noise -s 64 -S 3 -f 4 -o "$T/a.exr"

@@ -27,6 +27,23 @@ for t in holes colorvar perturb; do
         notok "$t determinism"
     fi
 done
+# Holes against goldens made by searching every neighbouring cell, before the search
+# skipped the cells beyond the nearest hole: large jittered holes, small tiled ones, and
+# solid holes on a sphere in t_apply (the cells above and below count there).
+t_holes -s 96 --grid-cells 5 --diameter 1 --jitter 1 -S 2 -o "$T/h_large.exr"
+golden "holes: large jittered holes golden" "$T/h_large.exr" holes_large.exr 1e-6
+t_holes -s 96 --grid-cells 12 --diameter 0.3 --probability 0.5 --tile -S 3 -o "$T/h_small.exr"
+golden "holes: small tiled holes golden" "$T/h_small.exr" holes_small.exr 1e-6
+cat >"$T/holes.scene" <<'SCENE'
+image 96 96
+ambient 1 1 1
+camera { eye 0 0 -4 look 0 0 0 fov 50 }
+texture h holes { solid grid_cells 4 diameter 1 jitter 0.8 seed 5 }
+surface s { Ka 1 Kd 1 apply h { mapping solid Kd = f } }
+sphere { centre 0 0 0 radius 1.5 surface s }
+SCENE
+t_apply "$T/holes.scene" -q -o "$T/h_solid.exr"
+golden "holes: solid holes on a sphere golden" "$T/h_solid.exr" holes_solid.exr 1e-6
 t_colorvar -s 16 --colour '#ff8000' -o "$T/c.exr"
 if [ "$(info_json "$T/c.exr" channels)" = 3 ] && [ "$(info_json "$T/c.exr" stats 2 max)" = 0 ]; then
     ok "colorvar --colour scales the colour"

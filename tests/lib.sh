@@ -8,6 +8,8 @@
 #   info_json MAP KEY...          a figure from t_info --json (e.g. stats 0 mean)
 #   maxdiff A B                   the largest |A - B| over the colour channels
 #   same NAME A B [TOL]           ok if maps A and B differ by at most TOL (default 0)
+#   golden NAME MAP GOLDEN TOL    ok if MAP matches tests/golden/GOLDEN within TOL
+#                                 (TEXTURA_REGOLD=1 rewrites the golden)
 #   start_proto DIR [ARGS...]     start t_proto on a free port serving DIR; sets $proto_pid
 #                                 and $proto_url (its address with the token); killed at exit
 #   $T                            a fresh temporary folder, removed at exit
@@ -73,6 +75,14 @@ print(max(c["max"] for c in s[:3]))'  # colour channels: sub keeps the alpha of 
 same() {
     local d
     d=$(maxdiff "$2" "$3" 2>&1) && approx "$d" 0 "${4:-0}" && ok "$1" || notok "$1" "max diff $d"
+}
+
+# golden NAME MAP GOLDEN TOL: MAP matches the stored image tests/golden/GOLDEN within TOL
+# (TEXTURA_REGOLD=1 rewrites it).
+golden() {
+    local g=${TEXTURA_TOP:-.}/tests/golden/$3
+    [ -n "${TEXTURA_REGOLD:-}" ] && t_convert -o "$g" "$2"
+    same "$1" "$2" "$g" "$4"
 }
 
 start_proto() {

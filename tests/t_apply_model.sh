@@ -3,13 +3,6 @@
 # (composition at application time), palettes in scenes, the wood primitive, bricks per
 # cell, solid holes and colour variation, and the bugs fixed with them.
 . "$(dirname "$0")/lib.sh"
-G=${TEXTURA_TOP:-.}/tests/golden
-
-# golden NAME MAP GOLDEN TOL: MAP matches the stored golden image (TEXTURA_REGOLD=1 rewrites it).
-golden() {
-    [ -n "${TEXTURA_REGOLD:-}" ] && t_convert -o "$G/$3" "$2"
-    same "$1" "$2" "$G/$3" "$4"
-}
 
 # pixels MAP: "x y r g b" per pixel, top row first (through PFM).
 pixels() { # (its own PFM: two may run at once in a paste)

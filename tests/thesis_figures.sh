@@ -1,18 +1,6 @@
 # thesis_figures.sh - the thesis's composition figures rebuilt from the real primitives,
 # as golden images (TEXTURA_REGOLD=1 rewrites them) and as properties.
 . "$(dirname "$0")/lib.sh"
-G=${TEXTURA_TOP:-.}/tests/golden
-
-maxdiff() { # the largest |A - B| over the colour channels
-    t_op sub "$1" "$2" | t_op abs - | t_info --json | python3 -c '
-import json, sys
-print(max(c["max"] for c in json.load(sys.stdin)["stats"][:3]))'
-}
-golden() { # golden NAME MAP FILE TOL
-    [ -n "${TEXTURA_REGOLD:-}" ] && t_convert -o "$G/$3" "$2"
-    local d
-    d=$(maxdiff "$2" "$G/$3" 2>&1) && approx "$d" 0 "$4" && ok "$1" || notok "$1" "max diff $d"
-}
 
 # Fig. 5.9, cascade_circle_flower: as the thesis's code has it, region 1 of a circle (the
 # outside, in Figure 5.2's numbering) filled with a flower.

@@ -28,7 +28,7 @@ static void *grown(void *p, size_t n, size_t size, int *ok)
 }
 
 #if defined(TEX_X86) && defined(__x86_64__)
-#define HAVE_AVX2_KERNEL 1 /* and SSE2, x86-64's baseline, everywhere else */
+#define HAVE_AVX2_KERNEL 1 /* the AVX2 kernel; SSE2, x86-64's baseline, elsewhere in this file */
 #endif
 
 /* ---- point sets ---- */

@@ -73,31 +73,45 @@ static int hole(const struct tex_field *f, int dims, const int64_t c[3], double 
 
 /* The thesis's T = -Fact e^(-N^2 R / D) at p (dims coordinates in map units): the deepest
  * hole among the neighbouring cells', as 1 - depth e^(-8 R / D).  The deepest is the one
- * of least R / D, so exp runs once, not once per hole. */
+ * of least R / D, so exp runs once, not once per hole.  A hole's centre lies in its cell
+ * and its diameter is at most dmax, so a neighbour whose gap to p exceeds the least R / D
+ * so far times dmax (with a margin for rounding) cannot lower it: its hash is skipped, and
+ * the minimum, which does not depend on the order, is the same to the bit. */
 static float holes_point(const struct tex_field *f, int dims, const double *pt)
 {
     const struct holes_params *p = f->params;
-    double x[3] = {0, 0, 0}, rmin = INFINITY;
+    double x[3] = {0, 0, 0}, rmin = INFINITY, lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    double dmax = p->diameter * (1 + p->jitter) * (1 + 1e-9);
     int64_t i[3] = {0, 0, 0};
     for (int a = 0; a < dims; a++) {
         x[a] = pt[a] * p->count;
         i[a] = (int64_t)floor(x[a]);
+        lo[a] = x[a] - i[a], hi[a] = i[a] + 1 - x[a]; /* gaps to the lower and upper cells */
     }
-    int kz = dims == 3 ? 1 : 0;
-    for (int dk = -kz; dk <= kz; dk++)
-        for (int dj = -1; dj <= 1; dj++)
-            for (int di = -1; di <= 1; di++) {
-                int64_t c[3] = {i[0] + di, i[1] + dj, i[2] + dk};
-                double ctr[3], d;
-                if (hole(f, dims, c, ctr, &d)) {
-                    /* N = 4/D scaled so that the well falls to e^-4 at the rim R = D/2 */
-                    double r = (dims == 3 ? sqrt((x[0] - ctr[0]) * (x[0] - ctr[0]) +
-                                                 (x[1] - ctr[1]) * (x[1] - ctr[1]) +
-                                                 (x[2] - ctr[2]) * (x[2] - ctr[2]))
-                                          : hypot(x[0] - ctr[0], x[1] - ctr[1])) / d;
-                    rmin = fmin(rmin, r);
-                }
-            }
+    /* the point's own cell first, whose hole bounds the others; the plane's 9, then space's */
+    static const signed char off[27][3] = {
+        {0, 0, 0},   {-1, 0, 0},  {1, 0, 0},   {0, -1, 0},  {0, 1, 0},  {-1, -1, 0}, {1, -1, 0},
+        {-1, 1, 0},  {1, 1, 0},   {0, 0, -1},  {0, 0, 1},   {-1, 0, -1}, {1, 0, -1}, {0, -1, -1},
+        {0, 1, -1},  {-1, 0, 1},  {1, 0, 1},   {0, -1, 1},  {0, 1, 1},  {-1, -1, -1}, {1, -1, -1},
+        {-1, 1, -1}, {1, 1, -1},  {-1, -1, 1}, {1, -1, 1},  {-1, 1, 1}, {1, 1, 1}};
+    for (int k = 0; k < (dims == 3 ? 27 : 9); k++) {
+        int di = off[k][0], dj = off[k][1], dk = off[k][2];
+        double g[3] = {di < 0 ? lo[0] : di > 0 ? hi[0] : 0, dj < 0 ? lo[1] : dj > 0 ? hi[1] : 0,
+                       dk < 0 ? lo[2] : dk > 0 ? hi[2] : 0};
+        double g2 = g[0] * g[0] + g[1] * g[1] + g[2] * g[2], bound = rmin * dmax;
+        if (g2 > bound * bound)
+            continue;
+        int64_t c[3] = {i[0] + di, i[1] + dj, i[2] + dk};
+        double ctr[3], d;
+        if (hole(f, dims, c, ctr, &d)) {
+            /* N = 4/D scaled so that the well falls to e^-4 at the rim R = D/2 */
+            double r = (dims == 3 ? sqrt((x[0] - ctr[0]) * (x[0] - ctr[0]) +
+                                         (x[1] - ctr[1]) * (x[1] - ctr[1]) +
+                                         (x[2] - ctr[2]) * (x[2] - ctr[2]))
+                                  : hypot(x[0] - ctr[0], x[1] - ctr[1])) / d;
+            rmin = r < rmin ? r : rmin; /* fmin's value: r is not a NaN where rmin is one */
+        }
+    }
     double best = rmin < INFINITY ? exp(-8.0 * rmin) : 0;
     return clamp01((float)(1.0 - p->depth * best));
 }
