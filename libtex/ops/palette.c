@@ -32,7 +32,7 @@ static double srgb_decode(double c)
  * [0.5, 1) and e in -8..0; 2^(5e/12) from a table, m^(5/12) from its Taylor polynomial of
  * degree 6 about the centre of m's 32nd of [0.5, 1), where |t| <= 1/128 leaves a remainder
  * below 1e-14, summed by Estrin's scheme (a short chain of dependent operations).  libm's
- * pow costs about twice as much, three times a lookup. */
+ * pow, three times per lookup, costs about twice as much. */
 enum { ENC_PIECES = 32, ENC_DEGREE = 6 };
 static double enc_poly[ENC_PIECES][ENC_DEGREE + 1], enc_scale[9];
 static pthread_once_t enc_once = PTHREAD_ONCE_INIT;
@@ -67,9 +67,9 @@ static double enc_pow(double c)
 }
 
 /* The sRGB encoding of linear c as a float: (float)(1.055 pow(c, 1/2.4) - 0.055) above the
- * linear toe.  enc_pow's value lies within 1e-12 of pow's, so where every double within
- * 2e-12 of its result rounds to the same float, that float is pow's, to the bit; else
- * (about one value in 10^4) pow decides. */
+ * linear toe.  enc_pow's value lies within a relative 1e-14 of pow's, so where every double
+ * within 2e-12 of its result rounds to the same float, that float is pow's, to the bit;
+ * else (about one value in 10^4) pow decides. */
 static float srgb_encode(double c)
 {
     if (c <= 0.0)

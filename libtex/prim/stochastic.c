@@ -109,7 +109,7 @@ static float holes_point(const struct tex_field *f, int dims, const double *pt)
                                          (x[1] - ctr[1]) * (x[1] - ctr[1]) +
                                          (x[2] - ctr[2]) * (x[2] - ctr[2]))
                                   : hypot(x[0] - ctr[0], x[1] - ctr[1])) / d;
-            rmin = r < rmin ? r : rmin; /* fmin's value: r is not a NaN where rmin is one */
+            rmin = r < rmin ? r : rmin; /* fmin's value: a NaN r leaves rmin, as in fmin */
         }
     }
     double best = rmin < INFINITY ? exp(-8.0 * rmin) : 0;
