@@ -70,25 +70,11 @@ static void test_oklab_encoding(void)
                      "differ)", bad, n);
 }
 
-int main(void)
+/* The lookup hits every stop exactly (a hard edge gives the later colour). */
+static void test_lookup(const tex_palette *p)
 {
-    static const char *const text = "# test\n"
-                                    "space oklab\n"
-                                    "0    #102030\n"
-                                    "0.25 0.5 0.25 0.125 # trailing comment\n"
-                                    "0.25 #ff000080\n"
-                                    "0.8  0.9 0.8 0.7 0.5\n"
-                                    "index 2 #00ff00\n"
-                                    "index 1 0 0 1\n";
-    tex_palette *p = parse(text), *q;
     float c[4], want[4];
 
-    CHECKF(p != NULL, "a palette parses (%s)", p ? "" : tex_errmsg());
-    if (!p)
-        return unit_done();
-    CHECK(p->nstops == 4 && p->nindex == 2 && p->space == TEX_SPACE_OKLAB, "stops, index, space");
-
-    /* The lookup hits every stop exactly (a hard edge gives the later colour). */
     tex_palette_lookup(p, 0.0f, c);
     CHECK(same4(c, p->stops[0].rgba), "t = 0 is the first stop");
     tex_palette_lookup(p, 0.25f, c);
@@ -111,9 +97,14 @@ int main(void)
     tex_palette_index_n(p, 3, 3, c);
     tex_palette_lookup(p, 1.0f, want);
     CHECK(same4(c, want), "id 3 of 3 without an entry takes the gradient's end");
+}
 
-    /* RGB interpolation is linear; OKLab round-trips colours. */
-    q = parse("0 0 0 0\n1 1 0.5 0.25 0.5\n");
+/* RGB interpolation is linear; OKLab round-trips colours. */
+static void test_interpolation(void)
+{
+    tex_palette *q = parse("0 0 0 0\n1 1 0.5 0.25 0.5\n");
+    float c[4];
+
     tex_palette_lookup(q, 0.5f, c);
     CHECKF(fabsf(c[0] - 0.5f) < 1e-6f && fabsf(c[1] - 0.25f) < 1e-6f && fabsf(c[3] - 0.75f) < 1e-6f,
            "rgb midpoint (%g %g %g %g)", c[0], c[1], c[2], c[3]);
@@ -140,28 +131,31 @@ int main(void)
     }
     tex_palette_free(q);
     test_oklab_encoding();
+}
 
-    /* Round trip through the text format. */
-    {
-        char *buf = NULL;
-        size_t len = 0;
-        FILE *fp = open_memstream(&buf, &len);
-        int ok = fp && tex_palette_write(p, fp) == 0;
-        if (fp)
-            fclose(fp);
-        q = ok ? tex_palette_parse(buf, len, "mem") : NULL;
-        ok = q && q->nstops == p->nstops && q->nindex == p->nindex && q->space == p->space;
-        for (int i = 0; ok && i < p->nstops; i++)
-            ok = q->stops[i].pos == p->stops[i].pos && same4(q->stops[i].rgba, p->stops[i].rgba);
-        for (int i = 0; ok && i < p->nindex; i++)
-            ok = q->index[i].id == p->index[i].id && same4(q->index[i].rgba, p->index[i].rgba);
-        CHECK(ok, "write then parse gives the same palette, bit for bit");
-        tex_palette_free(q);
-        free(buf);
-    }
-    tex_palette_free(p);
+/* Round trip through the text format. */
+static void test_round_trip(const tex_palette *p)
+{
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *fp = open_memstream(&buf, &len);
+    int ok = fp && tex_palette_write(p, fp) == 0;
+    if (fp)
+        fclose(fp);
+    tex_palette *q = ok ? tex_palette_parse(buf, len, "mem") : NULL;
+    ok = q && q->nstops == p->nstops && q->nindex == p->nindex && q->space == p->space;
+    for (int i = 0; ok && i < p->nstops; i++)
+        ok = q->stops[i].pos == p->stops[i].pos && same4(q->stops[i].rgba, p->stops[i].rgba);
+    for (int i = 0; ok && i < p->nindex; i++)
+        ok = q->index[i].id == p->index[i].id && same4(q->index[i].rgba, p->index[i].rgba);
+    CHECK(ok, "write then parse gives the same palette, bit for bit");
+    tex_palette_free(q);
+    free(buf);
+}
 
-    /* Bad input: one message with file and line. */
+/* Bad input: one message with file and line. */
+static void test_errors(void)
+{
     check_error("0 #000000\n0.5 #ffffff\n0.4 #808080\n", "t.pal:3: stops out of order",
                 "unsorted stops");
     check_error("1.5 #000000\n", "t.pal:1: stop position must be in 0..1", "a position above 1");
@@ -178,65 +172,100 @@ int main(void)
     check_error("index -1 #fff\n", "t.pal:1: index: region id", "a negative region id");
     check_error("0 nan 0 0\n", "t.pal:1: red: not a number", "NaN");
     check_error("0 #fff #000\n", "unexpected", "two colours");
+}
 
-    /* Colouring maps: a region-id map takes indexed colours, a scalar map the gradient. */
-    p = parse("0 #000000\n1 #ffffff80\nindex 2 #ff0000\n");
-    {
-        tex_map *m = tex_map_new(3, 1, 1), *o;
-        m->subregions = 3;
-        m->px[0] = 1, m->px[1] = 2, m->px[2] = 3;
-        o = tex_palette_map(p, m, NAN, NAN, TEX_OUTSIDE_CLAMP);
-        CHECK(o && o->nc == 4 && o->px[0] == 0 && o->px[3] == 1 && o->px[4] == 1 && o->px[5] == 0 &&
-                  o->px[8] == 1 && o->px[11] == 128 / 255.0f,
-              "region ids 1..3: gradient start, index 2, gradient end (RGBA: the palette has alpha)");
-        tex_map_free(o);
-        m->subregions = 0;
-        o = tex_palette_map(p, m, 1, 3, TEX_OUTSIDE_CLAMP);
-        CHECK(o && o->px[4] > 0.49f && o->px[4] < 0.51f, "scalar map: the middle of the range");
-        tex_map_free(o);
-        CHECK(tex_palette_t(1.25, 0, 1, TEX_OUTSIDE_REPEAT) == 0.25f &&
-                  tex_palette_t(1.25, 0, 1, TEX_OUTSIDE_MIRROR) == 0.75f &&
-                  tex_palette_t(-0.25, 0, 1, TEX_OUTSIDE_MIRROR) == 0.25f &&
-                  tex_palette_t(1.25, 0, 1, TEX_OUTSIDE_CLAMP) == 1.0f &&
-                  tex_palette_t(1.0, 0, 1, TEX_OUTSIDE_REPEAT) == 1.0f,
-              "outside modes: repeat, mirror, clamp (and 1 stays 1)");
-        tex_map_free(m);
-        m = tex_map_new(2, 2, 3);
-        o = tex_palette_map(p, m, 0, 1, TEX_OUTSIDE_CLAMP);
-        CHECK(!o && strstr(tex_errmsg(), "3 channels"), "an RGB map is refused");
-        tex_map_free(m);
-    }
+/* Colouring maps: a region-id map takes indexed colours, a scalar map the gradient. */
+static void test_maps(void)
+{
+    tex_palette *p = parse("0 #000000\n1 #ffffff80\nindex 2 #ff0000\n");
+    tex_map *m = tex_map_new(3, 1, 1), *o;
+    m->subregions = 3;
+    m->px[0] = 1, m->px[1] = 2, m->px[2] = 3;
+    o = tex_palette_map(p, m, NAN, NAN, TEX_OUTSIDE_CLAMP);
+    CHECK(o && o->nc == 4 && o->px[0] == 0 && o->px[3] == 1 && o->px[4] == 1 && o->px[5] == 0 &&
+              o->px[8] == 1 && o->px[11] == 128 / 255.0f,
+          "region ids 1..3: gradient start, index 2, gradient end (RGBA: the palette has alpha)");
+    tex_map_free(o);
+    m->subregions = 0;
+    o = tex_palette_map(p, m, 1, 3, TEX_OUTSIDE_CLAMP);
+    CHECK(o && o->px[4] > 0.49f && o->px[4] < 0.51f, "scalar map: the middle of the range");
+    tex_map_free(o);
+    CHECK(tex_palette_t(1.25, 0, 1, TEX_OUTSIDE_REPEAT) == 0.25f &&
+              tex_palette_t(1.25, 0, 1, TEX_OUTSIDE_MIRROR) == 0.75f &&
+              tex_palette_t(-0.25, 0, 1, TEX_OUTSIDE_MIRROR) == 0.25f &&
+              tex_palette_t(1.25, 0, 1, TEX_OUTSIDE_CLAMP) == 1.0f &&
+              tex_palette_t(1.0, 0, 1, TEX_OUTSIDE_REPEAT) == 1.0f,
+          "outside modes: repeat, mirror, clamp (and 1 stays 1)");
+    tex_map_free(m);
+    m = tex_map_new(2, 2, 3);
+    o = tex_palette_map(p, m, 0, 1, TEX_OUTSIDE_CLAMP);
+    CHECK(!o && strstr(tex_errmsg(), "3 channels"), "an RGB map is refused");
+    tex_map_free(m);
     tex_palette_free(p);
+}
 
-    /* Only index lines: they double as the gradient. */
-    p = parse("index 1 #000000\nindex 2 #ffffff\n");
+/* Only index lines: they double as the gradient. */
+static void test_indexed_only(void)
+{
+    tex_palette *p = parse("index 1 #000000\nindex 2 #ffffff\n");
+    float c[4];
+
     tex_palette_lookup(p, 1.0f, c);
     CHECK(p && c[0] == 1.0f, "an indexed-only palette has a gradient");
     tex_palette_free(p);
+}
 
-    /* Every shipped palette loads by name from the source tree. */
-    {
-        static const char *const names[] = {"wood", "marble", "granite", "fire", "clouds",
-                                            "sky", "earth", "water", "brick", "grass", "greys",
-                                            "rainbow", "viridis", "magma", "inferno", "plasma"};
-        char dir[4096];
-        const char *top = getenv("TEXTURA_TOP");
-        snprintf(dir, sizeof dir, "%s/palettes", top ? top : ".");
-        setenv("TEXTURA_PALETTES", dir, 1);
-        for (size_t i = 0; i < sizeof names / sizeof *names; i++) {
-            p = tex_palette_load(names[i]);
-            CHECKF(p && p->nstops >= 2, "palette %s loads (%s)", names[i], p ? "" : tex_errmsg());
-            tex_palette_free(p);
-        }
-        p = tex_palette_load("viridis");
-        tex_palette_lookup(p, 0.0f, c);
-        CHECK(p && c[0] == 0.267004f && c[2] == 0.329415f, "viridis starts at its published value");
+/* Every shipped palette loads by name from the source tree. */
+static void test_shipped(void)
+{
+    static const char *const names[] = {"wood", "marble", "granite", "fire", "clouds",
+                                        "sky", "earth", "water", "brick", "grass", "greys",
+                                        "rainbow", "viridis", "magma", "inferno", "plasma"};
+    char dir[4096];
+    const char *top = getenv("TEXTURA_TOP");
+    snprintf(dir, sizeof dir, "%s/palettes", top ? top : ".");
+    setenv("TEXTURA_PALETTES", dir, 1);
+    tex_palette *p;
+    float c[4];
+    for (size_t i = 0; i < sizeof names / sizeof *names; i++) {
+        p = tex_palette_load(names[i]);
+        CHECKF(p && p->nstops >= 2, "palette %s loads (%s)", names[i], p ? "" : tex_errmsg());
         tex_palette_free(p);
-        p = tex_palette_load("no-such-palette");
-        CHECK(!p && tex_errkind() == TEX_ERR_USAGE && strstr(tex_errmsg(), "no-such-palette"),
-              "an unknown name is a usage error naming it");
-        p = tex_palette_load("../x/missing.pal");
-        CHECK(!p && strstr(tex_errmsg(), "missing.pal"), "a missing file is an error naming it");
     }
+    p = tex_palette_load("viridis");
+    tex_palette_lookup(p, 0.0f, c);
+    CHECK(p && c[0] == 0.267004f && c[2] == 0.329415f, "viridis starts at its published value");
+    tex_palette_free(p);
+    p = tex_palette_load("no-such-palette");
+    CHECK(!p && tex_errkind() == TEX_ERR_USAGE && strstr(tex_errmsg(), "no-such-palette"),
+          "an unknown name is a usage error naming it");
+    p = tex_palette_load("../x/missing.pal");
+    CHECK(!p && strstr(tex_errmsg(), "missing.pal"), "a missing file is an error naming it");
+}
+
+int main(void)
+{
+    static const char *const text = "# test\n"
+                                    "space oklab\n"
+                                    "0    #102030\n"
+                                    "0.25 0.5 0.25 0.125 # trailing comment\n"
+                                    "0.25 #ff000080\n"
+                                    "0.8  0.9 0.8 0.7 0.5\n"
+                                    "index 2 #00ff00\n"
+                                    "index 1 0 0 1\n";
+    tex_palette *p = parse(text);
+
+    CHECKF(p != NULL, "a palette parses (%s)", p ? "" : tex_errmsg());
+    if (!p)
+        return unit_done();
+    CHECK(p->nstops == 4 && p->nindex == 2 && p->space == TEX_SPACE_OKLAB, "stops, index, space");
+    test_lookup(p);
+    test_round_trip(p);
+    tex_palette_free(p);
+    test_interpolation();
+    test_errors();
+    test_maps();
+    test_indexed_only();
+    test_shipped();
     return unit_done();
 }
