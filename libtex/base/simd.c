@@ -30,13 +30,10 @@ static int limit = TEX_SIMD_AVX512;
 int tex_simd_level(void)
 {
     static int level = -1;
-    int l, m;
-#pragma omp atomic read
-    l = level;
+    int l = __atomic_load_n(&level, __ATOMIC_RELAXED), m;
     if (l < 0) {
         l = simd_detect();
-#pragma omp atomic write
-        level = l;
+        __atomic_store_n(&level, l, __ATOMIC_RELAXED);
     }
     m = __atomic_load_n(&limit, __ATOMIC_RELAXED);
     return l < m ? l : m;

@@ -652,14 +652,14 @@ static int rings_done(const struct tex_cellular *c, int dim, const double *q, co
     return bound == INFINITY || b->a2 < acc_of(c, bound * c->gfac);
 }
 
-/* Rings r0, r0 + 1, ... of buckets around q's (cc), until no bucket beyond can
- * hold one of the two nearest points: the search past the near buckets. */
-static inline __attribute__((always_inline)) void
-grid_rings(const struct tex_cellular *c, enum tex_metric metric, int dim, const double *q,
-           const int *cc, int r0, struct best *b)
+/* Rings NEAR_R + 1, NEAR_R + 2, ... of buckets around q's (cc), until no bucket beyond
+ * can hold one of the two nearest points: the search past the near buckets, rare, so one
+ * copy with the metric read at run time. */
+static void grid_rings(const struct tex_cellular *c, const double *q, const int *cc,
+                       struct best *b)
 {
-    int g = c->g;
-    for (int r = r0; r == 0 || !rings_done(c, dim, q, cc, r - 1, b); r++) {
+    int g = c->g, dim = c->dim;
+    for (int r = NEAR_R + 1; !rings_done(c, dim, q, cc, r - 1, b); r++) {
         int rz = dim == 3 ? r : 0;
         for (int oz = -rz; oz <= rz; oz++) {
             double sv[3] = {0, 0, 0};
@@ -678,8 +678,8 @@ grid_rings(const struct tex_cellular *c, enum tex_metric metric, int dim, const 
                     if (kx < 0)
                         continue;
                     for (long at = c->start[row + kx]; at < c->start[row + kx + 1]; at++)
-                        best_add(b, acc_point_m(c, metric, dim, q, c->gx + at * dim,
-                                                c->gia ? c->gia + at * dim : NULL, sv),
+                        best_add(b, acc_point(c, q, c->gx + at * dim,
+                                              c->gia ? c->gia + at * dim : NULL, sv),
                                  c->gid[at]);
                 }
             }
@@ -745,21 +745,21 @@ grid_walk(const struct tex_cellular *c, enum tex_metric metric, int dim, const d
                      c->gid[at]);
     next:;
     }
-    grid_rings(c, metric, dim, q, cc, NEAR_R + 1, b);
+    grid_rings(c, q, cc, b);
 }
 
 static void grid_query1(const struct tex_cellular *c, const double *q, struct best *b)
 {
-#define RINGS(m)                                                                                 \
+#define WALK(m)                                                                                  \
     c->dim == 3 ? grid_walk(c, m, 3, q, b) : grid_walk(c, m, 2, q, b);                          \
     break
     switch (c->metric) {
-    case TEX_METRIC_EUCLID: RINGS(TEX_METRIC_EUCLID);
-    case TEX_METRIC_MANHATTAN: RINGS(TEX_METRIC_MANHATTAN);
-    case TEX_METRIC_CHEBYSHEV: RINGS(TEX_METRIC_CHEBYSHEV);
-    default: RINGS(TEX_METRIC_MINKOWSKI);
+    case TEX_METRIC_EUCLID: WALK(TEX_METRIC_EUCLID);
+    case TEX_METRIC_MANHATTAN: WALK(TEX_METRIC_MANHATTAN);
+    case TEX_METRIC_CHEBYSHEV: WALK(TEX_METRIC_CHEBYSHEV);
+    default: WALK(TEX_METRIC_MINKOWSKI);
     }
-#undef RINGS
+#undef WALK
 }
 
 /* Candidate lists (2D Euclidean without radii).  F2 is 1-Lipschitz, so

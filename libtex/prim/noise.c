@@ -237,11 +237,9 @@ double tex_noise3_grad(const tex_noise_table *t, int period, double x, double y,
 /* ---- many points at once ---- */
 
 #ifdef TEX_X86
-#define AVX2 TEX_AVX2
-
 /* c mod m for whole numbers |c| < 2^31 in double, exactly: the quotient from
  * the reciprocal may be one off either way, and the remainder says which. */
-AVX2 static inline __attribute__((always_inline)) __m256d mod_pd(__m256d c, double m, double inv)
+TEX_AVX2 static inline __attribute__((always_inline)) __m256d mod_pd(__m256d c, double m, double inv)
 {
     __m256d vm = _mm256_set1_pd(m), z = _mm256_setzero_pd();
     __m256d r = _mm256_sub_pd(
@@ -251,14 +249,14 @@ AVX2 static inline __attribute__((always_inline)) __m256d mod_pd(__m256d c, doub
 }
 
 /* lat_index of the cells c (whole, in double) as 32-bit lanes. */
-AVX2 static inline __attribute__((always_inline)) __m128i lat_pd(__m256d c, int period, int n)
+TEX_AVX2 static inline __attribute__((always_inline)) __m128i lat_pd(__m256d c, int period, int n)
 {
     if (period)
         c = mod_pd(c, period, 1.0 / period);
     return _mm256_cvttpd_epi32(mod_pd(c, n, 1.0 / n));
 }
 
-AVX2 static inline __attribute__((always_inline)) __m256 fade_ps(int kind, __m256 t)
+TEX_AVX2 static inline __attribute__((always_inline)) __m256 fade_ps(int kind, __m256 t)
 {
     __m256 one = _mm256_set1_ps(1.0f);
     if (kind == TEX_FADE_QUINTIC) {
@@ -273,13 +271,13 @@ AVX2 static inline __attribute__((always_inline)) __m256 fade_ps(int kind, __m25
 }
 
 /* Eight 32-bit lanes from two groups of four */
-AVX2 static inline __attribute__((always_inline)) __m256i join_epi32(__m128i lo, __m128i hi)
+TEX_AVX2 static inline __attribute__((always_inline)) __m256i join_epi32(__m128i lo, __m128i hi)
 {
     return _mm256_inserti128_si256(_mm256_castsi128_si256(lo), hi, 1);
 }
 
 /* Eight rows of four floats as the four vectors of their columns (row i in lane i) */
-AVX2 static inline __attribute__((always_inline)) void columns8(const float *const row[8],
+TEX_AVX2 static inline __attribute__((always_inline)) void columns8(const float *const row[8],
                                                                 __m256 c[4])
 {
     __m256 r0 = _mm256_loadu2_m128(row[4], row[0]), r1 = _mm256_loadu2_m128(row[5], row[1]);
@@ -294,7 +292,7 @@ AVX2 static inline __attribute__((always_inline)) void columns8(const float *con
 
 /* noise3_point for eight points: the same float operations in the same order, lane by
  * lane; 0 when a cell is beyond 2^30 (the caller's scalar path takes those). */
-AVX2 static inline __attribute__((always_inline)) int
+TEX_AVX2 static inline __attribute__((always_inline)) int
 noise3_avx2(const tex_noise_table *t, int period, const __m256d p[3][2], float *out)
 {
     const int *F = t->perm;
@@ -365,7 +363,7 @@ noise3_avx2(const tex_noise_table *t, int period, const __m256d p[3][2], float *
 }
 
 /* Eight points from arrays */
-AVX2 static int noise3_avx2_arrays(const tex_noise_table *t, int period, const double *x,
+TEX_AVX2 static int noise3_avx2_arrays(const tex_noise_table *t, int period, const double *x,
                                    const double *y, const double *z, float *out)
 {
     const __m256d p[3][2] = {{_mm256_loadu_pd(x), _mm256_loadu_pd(x + 4)},
@@ -375,7 +373,7 @@ AVX2 static int noise3_avx2_arrays(const tex_noise_table *t, int period, const d
 }
 
 /* Eight points a + f (u, v, w) (w NULL: 0), in tex_noise_points_at's operations */
-AVX2 static int noise3_avx2_at(const tex_noise_table *t, int period, const double a[3], double f,
+TEX_AVX2 static int noise3_avx2_at(const tex_noise_table *t, int period, const double a[3], double f,
                                const double *u, const double *v, const double *w, float *out)
 {
     const double *c[3] = {u, v, w};
@@ -837,7 +835,7 @@ static void row_coeffs(int ns, const float *wy, const float *dy, const float *co
 
 #ifdef TEX_X86
 /* row_coeffs eight slots at a time: the same operations, element by element. */
-AVX2 static inline void
+TEX_AVX2 static inline void
 row_coeffs_avx2(int ns, const float *wy, const float *dy, const float *const L0[3],
                 const float *const L1[3], float *P, float *Q)
 {
@@ -953,12 +951,12 @@ static void row_scalar(const tex_noise_grid *g, const float *P, const float *Q, 
 }
 
 #ifdef TEX_X86
-AVX2 static inline __attribute__((always_inline)) __m256 clamp01_avx2(__m256 x)
+TEX_AVX2 static inline __attribute__((always_inline)) __m256 clamp01_avx2(__m256 x)
 {
     return _mm256_min_ps(_mm256_max_ps(x, _mm256_setzero_ps()), _mm256_set1_ps(1));
 }
 
-AVX2 static inline __attribute__((always_inline)) __m256 apply_avx2(const int op, __m256 r,
+TEX_AVX2 static inline __attribute__((always_inline)) __m256 apply_avx2(const int op, __m256 r,
                                                                     const float *o, __m256 a,
                                                                     __m256 b)
 {
@@ -989,7 +987,7 @@ AVX2 static inline __attribute__((always_inline)) __m256 apply_avx2(const int op
 /* Eight pixels from their slots' coefficients, row_scalar_op's formula
  *   w0 (p0 u + q0) + w1 (p1 (u - 1) + q1)
  * and the row's operation. */
-AVX2 static inline __attribute__((always_inline)) void
+TEX_AVX2 static inline __attribute__((always_inline)) void
 pixels8(const float *restrict u, const float *restrict um1, const float *restrict w0,
         const float *restrict w1, __m256 p0, __m256 p1, __m256 q0, __m256 q1, float *out,
         const int op, __m256 va, __m256 vb)
@@ -1003,7 +1001,7 @@ pixels8(const float *restrict u, const float *restrict um1, const float *restric
 
 /* Eight pixels' slot values: a0 = V[s], a1 = V[s + 1] for their slots s
  * (k = s - s0, relative to the first pixel's slot s0; span = the last's k). */
-AVX2 static inline __attribute__((always_inline)) void
+TEX_AVX2 static inline __attribute__((always_inline)) void
 expand(const float *V, int s0, __m256i s, __m256i k, int span, __m256 *a0, __m256 *a1)
 {
     if (span <= 1) {
@@ -1021,7 +1019,7 @@ expand(const float *V, int s0, __m256i s, __m256i k, int span, __m256 *a0, __m25
     }
 }
 
-AVX2 static inline __attribute__((always_inline)) void
+TEX_AVX2 static inline __attribute__((always_inline)) void
 row_avx2_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, float *out, int x,
             int x1, const int op, float a, float b)
 {
@@ -1046,7 +1044,7 @@ row_avx2_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, flo
 
 /* Eight columns' slot values when each column has its own pair (g->paired):
  * V[s], V[s + 1] are V's even and odd entries from s, unzipped. */
-AVX2 static inline __attribute__((always_inline)) void unzip(const float *V, __m256 *a0,
+TEX_AVX2 static inline __attribute__((always_inline)) void unzip(const float *V, __m256 *a0,
                                                              __m256 *a1)
 {
     __m256 lo = _mm256_loadu_ps(V), hi = _mm256_loadu_ps(V + 8);
@@ -1057,7 +1055,7 @@ AVX2 static inline __attribute__((always_inline)) void unzip(const float *V, __m
 }
 
 /* row_avx2_op for paired slots: the same operations without gathers. */
-AVX2 static inline __attribute__((always_inline)) void
+TEX_AVX2 static inline __attribute__((always_inline)) void
 row_avx2_paired_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, float *out,
                    int x, int x1, const int op, float a, float b)
 {
@@ -1079,7 +1077,7 @@ row_avx2_paired_op(const tex_noise_grid *g, const float *P, const float *Q, int 
 /* A lattice row's folded (X, Y, C) at eight columns' left and right corners,
  * from the table row T: each column's two entries loaded as one vector and
  * the eight transposed. */
-AVX2 static inline __attribute__((always_inline)) __m256 lut_pair(const float (*T)[4],
+TEX_AVX2 static inline __attribute__((always_inline)) __m256 lut_pair(const float (*T)[4],
                                                                   const int32_t *lat, const int adj)
 {
     if (adj) /* one load: the right corner is the next entry */
@@ -1088,7 +1086,7 @@ AVX2 static inline __attribute__((always_inline)) __m256 lut_pair(const float (*
                                 _mm_loadu_ps(T[lat[1]]), 1);
 }
 
-AVX2 static inline __attribute__((always_inline)) void
+TEX_AVX2 static inline __attribute__((always_inline)) void
 lut_load8(const float (*T)[4], const int32_t *lat, __m256 v[6], const int adj)
 {
     __m256 a = lut_pair(T, lat, adj), b = lut_pair(T, lat + 2, adj);
@@ -1115,7 +1113,7 @@ lut_load8(const float (*T)[4], const int32_t *lat, __m256 v[6], const int adj)
 
 /* A row of a paired grid with a table, in one pass: per column the
  * operations of row_coeffs then row_scalar_op, in their order. */
-AVX2 static inline __attribute__((always_inline)) void
+TEX_AVX2 static inline __attribute__((always_inline)) void
 row_lut_avx2_op(const tex_noise_grid *g, const float (*T0)[4], const float (*T1)[4],
                 const float *wy, const float *dy, float *out, const int op, const int adj,
                 float a, float b)
@@ -1180,7 +1178,7 @@ static void lut_fold(const float (*T0)[4], const float (*T1)[4], int m, const fl
 }
 
 /* lut_fold eight entries at a time (the rest as lut_fold): the same operations per entry */
-AVX2 static void lut_fold_avx2(const float (*T0)[4], const float (*T1)[4], int m, const float *wy,
+TEX_AVX2 static void lut_fold_avx2(const float (*T0)[4], const float (*T1)[4], int m, const float *wy,
                                const float *dy, float *PQ)
 {
     __m256 a0 = _mm256_set1_ps(wy[0]), a1 = _mm256_set1_ps(wy[1]);
@@ -1213,7 +1211,7 @@ AVX2 static void lut_fold_avx2(const float (*T0)[4], const float (*T1)[4], int m
 
 /* An adjacent grid's row from folded coefficients: a column's (P, Q) pairs for its
  * two corners are the four floats at its left entry. */
-AVX2 static inline __attribute__((always_inline)) void
+TEX_AVX2 static inline __attribute__((always_inline)) void
 row_folded_avx2_op(const tex_noise_grid *g, const float *PQ, float *out, const int op, float a,
                    float b)
 {
@@ -1239,7 +1237,7 @@ row_folded_avx2_op(const tex_noise_grid *g, const float *PQ, float *out, const i
     }
 }
 
-AVX2 static void row_lut_avx2(const tex_noise_grid *g, int64_t j, const float *wy, const float *dy,
+TEX_AVX2 static void row_lut_avx2(const tex_noise_grid *g, int64_t j, const float *wy, const float *dy,
                               int two, float *out, int op, float a, float b)
 {
     const float(*T0)[4] = lut_row(g, j), (*T1)[4] = two ? lut_row(g, j + 1) : NULL;
@@ -1258,7 +1256,7 @@ AVX2 static void row_lut_avx2(const tex_noise_grid *g, int64_t j, const float *w
     }
 }
 
-AVX2 static inline void row_avx2(const tex_noise_grid *g, const float *P, const float *Q, int sb,
+TEX_AVX2 static inline void row_avx2(const tex_noise_grid *g, const float *P, const float *Q, int sb,
                                  float *out, int x, int x1, int op, float a, float b)
 {
     if (g->paired) {
@@ -1280,7 +1278,7 @@ AVX2 static inline void row_avx2(const tex_noise_grid *g, const float *P, const 
 #include "prim/noise_row_template.c"
 #ifdef TEX_X86
 #define GRID_ROW grid_row_avx2
-#define GRID_ATTR AVX2
+#define GRID_ATTR TEX_AVX2
 #define GRID_COEFFS row_coeffs_avx2
 #define GRID_PIXELS row_avx2
 #define GRID_LUT_ROW row_lut_avx2
@@ -1344,7 +1342,7 @@ static void grad_scalar(const tex_noise_grid *g, const float *const C[6], int sb
 }
 
 #ifdef TEX_X86
-AVX2 static void grad_avx2(const tex_noise_grid *g, const float *const C[6], int sb, float *dx,
+TEX_AVX2 static void grad_avx2(const tex_noise_grid *g, const float *const C[6], int sb, float *dx,
                            float *dy, float *dz, int x, int x1)
 {
     __m256i vsb = _mm256_set1_epi32(sb);

@@ -67,7 +67,6 @@
 #include <stdint.h>
 
 #include "../base/param.h"
-#include "../base/simd.h" /* the level the row kernels use */
 
 #ifdef __cplusplus
 extern "C" {
@@ -213,7 +212,6 @@ double tex_noise_mean_abs(const tex_noise_table *t);
 void tex_octave_row(const tex_octaves *o, int k, int y, float *out);
 void tex_octave_row_add(const tex_octaves *o, int k, int y, float amp, float *out);
 void tex_octave_row_op(const tex_octaves *o, int k, int y, int op, float a, float b, float *out);
-
 
 /* The parameter rows every noise-based primitive shares (param.h), declared once:
  * struct S must have double z, struct tex_reals offset, int fade, int gradients

@@ -121,11 +121,9 @@ bilinear(const tex_map *m, int k, double u, double v, float out[3])
 }
 
 #ifdef TEX_X86
-#define AVX2 TEX_AVX2
-
 /* bilinear with k = 3, the channels in three of four double lanes: its operations in its
  * order, so the same floats. */
-AVX2 static inline __m128 bilinear3_avx2(const tex_map *m, double u, double v)
+TEX_AVX2 static inline __m128 bilinear3_avx2(const tex_map *m, double u, double v)
 {
     const float *t[4];
     double ax, ay;
@@ -143,7 +141,7 @@ AVX2 static inline __m128 bilinear3_avx2(const tex_map *m, double u, double v)
 }
 
 /* map_eval's colour case from level l (weight a of level l + 1), in vectors */
-AVX2 static void map_eval3_avx2(const struct tex_texture *t, int l, double a, double u,
+TEX_AVX2 static void map_eval3_avx2(const struct tex_texture *t, int l, double a, double u,
                                 double v, float out[3])
 {
     __m128 o = bilinear3_avx2(t->mip[l], u, v);
