@@ -236,6 +236,15 @@ double tex_noise3_grad(const tex_noise_table *t, int period, double x, double y,
 
 /* ---- many points at once ---- */
 
+/* tex_noise3p at a + f (u, v, w), the coordinates computed as the callers did */
+static float noise3_at(const tex_noise_table *t, int period, const double a[3], double f,
+                       double u, double v, double w)
+{
+    double p[3] = {a[0] + f * u, a[1] + f * v, a[2] + f * w};
+    return noise3_point(t, period, p);
+}
+
+
 #ifdef TEX_X86
 /* c mod m for whole numbers |c| < 2^31 in double, exactly: the quotient from
  * the reciprocal may be one off either way, and the remainder says which. */
@@ -290,14 +299,41 @@ TEX_AVX2 static inline __attribute__((always_inline)) void columns8(const float 
     c[3] = _mm256_shuffle_ps(t2, t3, _MM_SHUFFLE(3, 2, 3, 2));
 }
 
-/* noise3_point for eight points: the same float operations in the same order, lane by
- * lane; 0 when a cell is beyond 2^30 (the caller's scalar path takes those). */
+/* Eight rows of two gradients (x y z 0 x y z 0) as the columns x, y, z of each: row i
+ * in lane i of c[0][*] (the first gradient) and c[1][*] (the second). */
+TEX_AVX2 static inline __attribute__((always_inline)) void columns8x2(const __m256 r[8],
+                                                                  __m256 c[2][4])
+{
+    for (int h = 0; h < 2; h++) {
+        const int sel = h ? 0x31 : 0x20; /* rows i and i + 4: their first or second halves */
+        __m256 a0 = _mm256_permute2f128_ps(r[0], r[4], sel),
+               a1 = _mm256_permute2f128_ps(r[1], r[5], sel);
+        __m256 a2 = _mm256_permute2f128_ps(r[2], r[6], sel),
+               a3 = _mm256_permute2f128_ps(r[3], r[7], sel);
+        __m256 t0 = _mm256_unpacklo_ps(a0, a1), t1 = _mm256_unpacklo_ps(a2, a3);
+        __m256 t2 = _mm256_unpackhi_ps(a0, a1), t3 = _mm256_unpackhi_ps(a2, a3);
+        c[h][0] = _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(1, 0, 1, 0));
+        c[h][1] = _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(3, 2, 3, 2));
+        c[h][2] = _mm256_shuffle_ps(t2, t3, _MM_SHUFFLE(1, 0, 1, 0));
+        c[h][3] = _mm256_shuffle_ps(t2, t3, _MM_SHUFFLE(3, 2, 3, 2));
+    }
+}
+
+/* noise3_point for eight points, in two steps so that the next eight's hashes (two
+ * levels of dependent gathers) are under way while this eight's corners are summed. */
+struct lanes8 {
+    __m256 f[3], dm[3], wt[3][2]; /* fractions, fractions - 1, weights */
+    __m256i x[2], hy[2][2];       /* the x corners' indices; the hashes of y and z */
+};
+
+/* The cells, fractions, weights and hashes of eight points; 0 when a cell is beyond
+ * 2^30 (the caller's scalar path takes those). */
 TEX_AVX2 static inline __attribute__((always_inline)) int
-noise3_avx2(const tex_noise_table *t, int period, const __m256d p[3][2], float *out)
+lanes8_hash(const tex_noise_table *t, int period, const __m256d p[3][2], struct lanes8 *L)
 {
     const int *F = t->perm;
     const __m256d lim = _mm256_set1_pd(0x1p30), sign = _mm256_set1_pd(-0.0);
-    __m256 f[3], dm[3], wt[3][2], one = _mm256_set1_ps(1.0f);
+    const __m256 one = _mm256_set1_ps(1.0f);
     __m256i idx[3][2];
 
     for (int a = 0; a < 3; a++) {
@@ -308,83 +344,126 @@ noise3_avx2(const tex_noise_table *t, int period, const __m256d p[3][2], float *
         if (_mm256_movemask_pd(big))
             return 0;
         int per = a < 2 ? period : 0;
-        f[a] = _mm256_insertf128_ps(_mm256_castps128_ps256(_mm256_cvtpd_ps(_mm256_sub_pd(p0, c0))),
-                                    _mm256_cvtpd_ps(_mm256_sub_pd(p1, c1)), 1);
-        if (!per && !(t->n & (t->n - 1))) { /* mod a power of two: a mask, negatives too */
-            __m256i mask = _mm256_set1_epi32(t->n - 1);
-            __m256i i = join_epi32(_mm256_cvttpd_epi32(c0), _mm256_cvttpd_epi32(c1));
-            idx[a][0] = _mm256_and_si256(i, mask);
-            idx[a][1] = _mm256_and_si256(_mm256_add_epi32(i, _mm256_set1_epi32(1)), mask);
-        } else {
-            __m256d d1 = _mm256_set1_pd(1.0);
+        __m256 f = _mm256_insertf128_ps(
+            _mm256_castps128_ps256(_mm256_cvtpd_ps(_mm256_sub_pd(p0, c0))),
+            _mm256_cvtpd_ps(_mm256_sub_pd(p1, c1)), 1);
+        if (!per && !(t->n & (t->n - 1))) /* mod a power of two: a mask, negatives too */
+            idx[a][0] = _mm256_and_si256(
+                join_epi32(_mm256_cvttpd_epi32(c0), _mm256_cvttpd_epi32(c1)),
+                _mm256_set1_epi32(t->n - 1));
+        else
             idx[a][0] = join_epi32(lat_pd(c0, per, t->n), lat_pd(c1, per, t->n));
+        if (per) {
+            __m256d d1 = _mm256_set1_pd(1.0);
             idx[a][1] = join_epi32(lat_pd(_mm256_add_pd(c0, d1), per, t->n),
                                    lat_pd(_mm256_add_pd(c1, d1), per, t->n));
+        } else { /* unwrapped: F and pgrad repeat after n entries */
+            idx[a][1] = _mm256_add_epi32(idx[a][0], _mm256_set1_epi32(1));
         }
-        dm[a] = _mm256_sub_ps(f[a], one);
-        wt[a][0] = fade_ps(t->fade, f[a]);
-        wt[a][1] = fade_ps(t->fade, _mm256_sub_ps(one, f[a]));
+        L->f[a] = f;
+        L->dm[a] = _mm256_sub_ps(f, one);
+        L->wt[a][0] = fade_ps(t->fade, f);
+        L->wt[a][1] = fade_ps(t->fade, _mm256_sub_ps(one, f));
     }
-    __m256i hz[2], hy[2][2];
-    for (int b = 0; b < 2; b++)
-        hz[b] = _mm256_i32gather_epi32(F, idx[2][b], 4);
-    for (int b2 = 0; b2 < 2; b2++)
+    for (int b2 = 0; b2 < 2; b2++) {
+        __m256i hz = _mm256_i32gather_epi32(F, idx[2][b2], 4);
         for (int b1 = 0; b1 < 2; b1++)
-            hy[b1][b2] = _mm256_i32gather_epi32(F, _mm256_add_epi32(idx[1][b1], hz[b2]), 4);
-    __m256 wxy[2][2];
-    for (int b1 = 0; b1 < 2; b1++)
-        for (int b0 = 0; b0 < 2; b0++)
-            wxy[b0][b1] = _mm256_mul_ps(wt[0][b0], wt[1][b1]);
-    __m256 sum = _mm256_setzero_ps();
-#pragma GCC unroll 8
-    for (int c = 0; c < 8; c++) {
-        const int b[3] = {c & 1, c >> 1 & 1, c >> 2 & 1};
-        /* the corners' gradients pgrad[...]: eight rows, transposed */
-        int m[8]; /* byte offsets, read back from memory: cheaper than eight extracts */
-        _mm256_storeu_si256((__m256i *)m, _mm256_slli_epi32(
-                                              _mm256_add_epi32(idx[0][b[0]], hy[b[1]][b[2]]), 4));
-        __asm__ volatile("" : : "m"(m) : "memory");
-        const char *G = (const char *)t->pgrad;
-        const float *row[8];
-#pragma GCC unroll 8
-        for (int i = 0; i < 8; i++)
-            row[i] = (const float *)(G + m[i]);
-        __m256 gr[4];
-        columns8(row, gr);
-        __m256 gx = gr[0], gy = gr[1], gz = gr[2];
-        __m256 dot = _mm256_mul_ps(gx, b[0] ? dm[0] : f[0]);
-        dot = _mm256_add_ps(dot, _mm256_mul_ps(gy, b[1] ? dm[1] : f[1]));
-        dot = _mm256_add_ps(dot, _mm256_mul_ps(gz, b[2] ? dm[2] : f[2]));
-        __m256 w = _mm256_mul_ps(wxy[b[0]][b[1]], wt[2][b[2]]);
-        sum = _mm256_add_ps(sum, _mm256_mul_ps(w, dot));
+            L->hy[b1][b2] = _mm256_i32gather_epi32(F, _mm256_add_epi32(idx[1][b1], hz), 4);
     }
-    _mm256_storeu_ps(out, sum);
+    L->x[0] = idx[0][0];
+    L->x[1] = idx[0][1];
     return 1;
 }
 
-/* Eight points from arrays */
-TEX_AVX2 static int noise3_avx2_arrays(const tex_noise_table *t, int period, const double *x,
-                                   const double *y, const double *z, float *out)
+/* The eight corners' sum, corner by corner in noise3_point's order. */
+TEX_AVX2 static inline __attribute__((always_inline)) void
+lanes8_sum(const tex_noise_table *t, int period, const struct lanes8 *L, float *out)
 {
-    const __m256d p[3][2] = {{_mm256_loadu_pd(x), _mm256_loadu_pd(x + 4)},
-                             {_mm256_loadu_pd(y), _mm256_loadu_pd(y + 4)},
-                             {_mm256_loadu_pd(z), _mm256_loadu_pd(z + 4)}};
-    return noise3_avx2(t, period, p, out);
+    const char *G = (const char *)t->pgrad;
+    __m256 wxy[2][2], sum = _mm256_setzero_ps();
+
+    for (int b1 = 0; b1 < 2; b1++)
+        for (int b0 = 0; b0 < 2; b0++)
+            wxy[b0][b1] = _mm256_mul_ps(L->wt[0][b0], L->wt[1][b1]);
+#pragma GCC unroll 4
+    for (int q = 0; q < 4; q++) { /* corners 2q and 2q + 1, which differ in x alone */
+        const int b1 = q & 1, b2 = q >> 1;
+        /* byte offsets of the two corners' rows pgrad[...], read back from memory:
+         * cheaper than extracts.  Without a period corner 1's row follows corner 0's
+         * (idx + 1 unwrapped reaches pgrad[n..2n), which repeats pgrad[0..n)). */
+        int m0[8], m1[8];
+        _mm256_storeu_si256((__m256i *)m0,
+                            _mm256_slli_epi32(_mm256_add_epi32(L->x[0], L->hy[b1][b2]), 4));
+        if (period)
+            _mm256_storeu_si256((__m256i *)m1,
+                                _mm256_slli_epi32(_mm256_add_epi32(L->x[1], L->hy[b1][b2]), 4));
+        __asm__ volatile("" : : "m"(m0), "m"(m1) : "memory");
+        __m256 r[8], gr[2][4];
+#pragma GCC unroll 8
+        for (int i = 0; i < 8; i++)
+            r[i] = period ? _mm256_loadu2_m128((const float *)(G + m1[i]),
+                                               (const float *)(G + m0[i]))
+                          : _mm256_loadu_ps((const float *)(G + m0[i]));
+        columns8x2(r, gr);
+#pragma GCC unroll 2
+        for (int b0 = 0; b0 < 2; b0++) {
+            __m256 dot = _mm256_mul_ps(gr[b0][0], b0 ? L->dm[0] : L->f[0]);
+            dot = _mm256_add_ps(dot, _mm256_mul_ps(gr[b0][1], b1 ? L->dm[1] : L->f[1]));
+            dot = _mm256_add_ps(dot, _mm256_mul_ps(gr[b0][2], b2 ? L->dm[2] : L->f[2]));
+            __m256 w = _mm256_mul_ps(wxy[b0][b1], L->wt[2][b2]);
+            sum = _mm256_add_ps(sum, _mm256_mul_ps(w, dot));
+        }
+    }
+    _mm256_storeu_ps(out, sum);
 }
 
-/* Eight points a + f (u, v, w) (w NULL: 0), in tex_noise_points_at's operations */
-TEX_AVX2 static int noise3_avx2_at(const tex_noise_table *t, int period, const double a[3], double f,
-                               const double *u, const double *v, const double *w, float *out)
+/* Points i..i+7: a + f (u, v, w) (w NULL: 0) as tex_noise_points_at makes them, or
+ * (u, v, w) themselves when a is NULL. */
+TEX_AVX2 static inline __attribute__((always_inline)) void
+points8(const double *a, double f, const double *const c[3], int i, __m256d p[3][2])
 {
-    const double *c[3] = {u, v, w};
-    __m256d vf = _mm256_set1_pd(f), p[3][2];
-    for (int k = 0; k < 3; k++) {
-        __m256d va = _mm256_set1_pd(a[k]);
-        for (int h = 0; h < 2; h++)
-            p[k][h] = _mm256_add_pd(
-                va, _mm256_mul_pd(vf, c[k] ? _mm256_loadu_pd(c[k] + 4 * h) : _mm256_setzero_pd()));
+    __m256d vf = _mm256_set1_pd(f);
+    for (int k = 0; k < 3; k++)
+        for (int h = 0; h < 2; h++) {
+            __m256d x = c[k] ? _mm256_loadu_pd(c[k] + i + 4 * h) : _mm256_setzero_pd();
+            p[k][h] = a ? _mm256_add_pd(_mm256_set1_pd(a[k]), _mm256_mul_pd(vf, x)) : x;
+        }
+}
+
+/* noise3_at at the points of points8, i < n, or tex_noise3p at (u, v, w) with a NULL */
+static float noise3_src(const tex_noise_table *t, int period, const double *a, double f,
+                        const double *const c[3], int i)
+{
+    const double w = c[2] ? c[2][i] : 0;
+    return a ? noise3_at(t, period, a, f, c[0][i], c[1][i], w)
+             : tex_noise3p(t, period, c[0][i], c[1][i], w);
+}
+
+/* The first n - n % 8 points, eight at a time, the hashes of the next eight made
+ * before this eight's corners are summed; returns how many. */
+TEX_AVX2 static int noise3_avx2_points(const tex_noise_table *t, int period, const double *a,
+                                       double f, const double *const c[3], int n, float *out)
+{
+    struct lanes8 L[2];
+    int ok[2], m = n / 8;
+    __m256d p[3][2];
+
+    if (m == 0)
+        return 0;
+    points8(a, f, c, 0, p);
+    ok[0] = lanes8_hash(t, period, p, &L[0]);
+    for (int k = 0; k < m; k++) {
+        if (k + 1 < m) {
+            points8(a, f, c, 8 * (k + 1), p);
+            ok[(k + 1) & 1] = lanes8_hash(t, period, p, &L[(k + 1) & 1]);
+        }
+        if (ok[k & 1])
+            lanes8_sum(t, period, &L[k & 1], out + 8 * k);
+        else
+            for (int i = 8 * k; i < 8 * k + 8; i++)
+                out[i] = noise3_src(t, period, a, f, c, i);
     }
-    return noise3_avx2(t, period, p, out);
+    return 8 * m;
 }
 #endif
 
@@ -394,28 +473,25 @@ void tex_noise_points(const tex_noise_table *t, int period, int dims, int n, con
     int i = 0;
 
 #ifdef TEX_X86
-    if (dims == 3 && tex_simd_level() >= TEX_SIMD_AVX2)
-        for (; i + 8 <= n; i += 8) {
-            float r[8];
-            if (noise3_avx2_arrays(t, period, x + i, y + i, z + i, r))
-                for (int k = 0; k < 8; k++)
-                    out[i + k] = r[k];
-            else
-                for (int k = i; k < i + 8; k++)
-                    out[k] = tex_noise3p(t, period, x[k], y[k], z[k]);
+    if (dims == 3 && tex_simd_level() >= TEX_SIMD_AVX2) {
+        const double *c[3] = {x, y, z};
+        float r[TEX_POINTS_BATCH];
+        for (; i + 8 <= n; i += TEX_POINTS_BATCH) {
+            int m = n - i < TEX_POINTS_BATCH ? n - i : TEX_POINTS_BATCH;
+            const double *ci[3] = {c[0] + i, c[1] + i, c[2] + i};
+            int done = noise3_avx2_points(t, period, NULL, 1, ci, m, r);
+            for (int k = 0; k < done; k++)
+                out[i + k] = r[k];
+            if (done < m) {
+                i += done;
+                break;
+            }
         }
+    }
 #endif
     for (; i < n; i++)
         out[i] = dims == 4 ? tex_noise4p(t, period, x[i], y[i], z[i], w[i])
                            : tex_noise3p(t, period, x[i], y[i], z[i]);
-}
-
-/* tex_noise3p at a + f (u, v, w), the coordinates computed as the callers did */
-static float noise3_at(const tex_noise_table *t, int period, const double a[3], double f,
-                       double u, double v, double w)
-{
-    double p[3] = {a[0] + f * u, a[1] + f * v, a[2] + f * w};
-    return noise3_point(t, period, p);
 }
 
 void tex_noise_points_at(const tex_noise_table *t, int period, const double a[3], double f, int n,
@@ -424,11 +500,10 @@ void tex_noise_points_at(const tex_noise_table *t, int period, const double a[3]
     int i = 0;
 
 #ifdef TEX_X86
-    if (tex_simd_level() >= TEX_SIMD_AVX2)
-        for (; i + 8 <= n; i += 8)
-            if (!noise3_avx2_at(t, period, a, f, u + i, v + i, w ? w + i : NULL, out + i))
-                for (int k = i; k < i + 8; k++)
-                    out[k] = noise3_at(t, period, a, f, u[k], v[k], w ? w[k] : 0);
+    if (tex_simd_level() >= TEX_SIMD_AVX2) {
+        const double *c[3] = {u, v, w};
+        i = noise3_avx2_points(t, period, a, f, c, n, out);
+    }
 #endif
     for (; i < n; i++)
         out[i] = noise3_at(t, period, a, f, u[i], v[i], w ? w[i] : 0);

@@ -176,8 +176,8 @@ static void test_footprints(int n, const double *u, const double *v, const doubl
 }
 
 /* The point path: tex_noise_points equals tex_noise3p bit for bit (vectorised where
- * the CPU has AVX2), at odd counts, far from the origin, with a period and both
- * fades; and every point primitive's eval3 over N points equals N calls of one
+ * the CPU has AVX2), at odd counts, far from the origin, with and without a period,
+ * with n a power of two or not, and both fades; and every point primitive's eval3 over N points equals N calls of one
  * point (the scalar path), for N = 1, odd N and a whole batch and more. */
 /* Every registered primitive with a point path, at its defaults: n points in one call
  * equal n calls of one point, every channel, in 2D and 3D. */
@@ -234,10 +234,10 @@ static void test_points(void)
         v[i] = 4 * tex_rng_uniform(&r) - 2;
         w[i] = i % 13 == 0 ? 1e6 : tex_rng_uniform(&r);
     }
-    for (int c = 0; c < 4; c++) {
+    for (int c = 0; c < 6; c++) { /* n = 97: the lattice index is no mask */
         tex_noise_table t;
-        int period = c & 1 ? 7 : 0, cnt = c < 2 ? N : 5;
-        tex_noise_init(&t, 11 + c, c == 3 ? 97 : 256, 0);
+        int period = c & 1 ? 7 : 0, cnt = c == 2 ? 5 : N;
+        tex_noise_init(&t, 11 + c, c >= 3 ? 97 : 256, 0);
         t.fade = c >= 2 ? TEX_FADE_QUINTIC : TEX_FADE_CUBIC;
         tex_noise_points(&t, period, 3, cnt, x, y, z, NULL, a);
         for (int i = 0; i < cnt; i++)
