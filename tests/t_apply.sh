@@ -114,31 +114,40 @@ done
 
 # a placed world mapping: the scene turned 90 degrees about x, with the mapping placed by
 # the same turn, renders as the scene does unturned, mip-mapped footprints too (the
-# footprint's u and v gradients are the placed mapping's)
-world_scene() { # EYE LOOK UP ROTATE
+# footprint's u and v gradients are the placed mapping's); so does the turned scene with a
+# solid mapping, whose u and v there are the world mapping's on the floor (x and z)
+world_scene() { # EYE LOOK UP TURN MAPPING PLACED
     cat <<SCENE
 image 160 120
 samples 1
 ambient 1 1 1
 camera { eye $1 look $2 up $3 fov 60 }
 texture c checker { nu 2 nv 2 size 64 }
-surface s { Ka 1 Kd 1 apply c { mapping world scale 2 $4 Kd = f } }
+surface s { Ka 1 Kd 1 apply c { mapping $5 scale 2 $6 Kd = f } }
 plane { surface s $4 }
 SCENE
 }
-world_scene "0 1 -3" "0 0.7 8" "0 1 0" "" >"$T/w0.scene"
-world_scene "0 3 1" "0 -8 0.7" "0 0 1" "rotate 90 0 0" >"$T/w1.scene"
-if t_apply "$T/w0.scene" -q -o "$T/w0.pfm" && t_apply "$T/w1.scene" -q -o "$T/w1.pfm"; then
-    d=$(python3 -c '
+max_diff() { # the largest difference between two PFMs
+    python3 -c '
 import struct, sys
 def rd(f):
     d = open(f, "rb").read().split(b"\n", 3); w, h = map(int, d[1].split())
     return struct.unpack("<%df" % (3 * w * h), d[3][:12 * w * h])
 a, b = rd(sys.argv[1]), rd(sys.argv[2])
-print("%.6f" % max(abs(x - y) for x, y in zip(a, b)))' "$T/w0.pfm" "$T/w1.pfm")
-    awk -v d="$d" 'BEGIN { exit !(d < 1e-4) }' &&
-        ok "a placed world mapping's footprint turns with it (largest difference $d)" ||
-        notok "a placed world mapping's footprint" "the turned scene differs by up to $d"
+print("%.6f" % max(abs(x - y) for x, y in zip(a, b)))' "$1" "$2"
+}
+world_scene "0 1 -3" "0 0.7 8" "0 1 0" "" world "" >"$T/w0.scene"
+world_scene "0 3 1" "0 -8 0.7" "0 0 1" "rotate 90 0 0" world "rotate 90 0 0" >"$T/w1.scene"
+world_scene "0 3 1" "0 -8 0.7" "0 0 1" "rotate 90 0 0" solid "" >"$T/w2.scene"
+if t_apply "$T/w0.scene" -q -o "$T/w0.pfm" && t_apply "$T/w1.scene" -q -o "$T/w1.pfm" &&
+    t_apply "$T/w2.scene" -q -o "$T/w2.pfm"; then
+    for k in 1 2; do
+        d=$(max_diff "$T/w0.pfm" "$T/w$k.pfm")
+        what=$([ $k = 1 ] && echo "a placed world mapping's" || echo "a solid mapping's")
+        awk -v d="$d" 'BEGIN { exit !(d < 1e-4) }' &&
+            ok "$what footprint turns with it (largest difference $d)" ||
+            notok "$what footprint" "the turned scene differs by up to $d"
+    done
 else
     notok "placed world mapping scenes render"
 fi

@@ -168,8 +168,7 @@ static void turb_eval3_fw(const struct tex_field *f, int n, const double *u, con
 {
     enum { B = TEX_POINTS_BATCH };
     const struct turb_state *s = f->state;
-    double r[B];
-    float t[B];
+    float r[B], t[B];
     for (int i0 = 0; i0 < n; i0 += B) {
         int m = n - i0 < B ? n - i0 : B;
         float *o = out + i0;
@@ -177,8 +176,10 @@ static void turb_eval3_fw(const struct tex_field *f, int n, const double *u, con
             o[i] = 0;
         for (int k = 0; k < s->o.n; k++) {
             tex_octave_points_fw(&s->o, k, m, u + i0, v + i0, w ? w + i0 : NULL, fw + i0, r, t);
+            float ak = s->amp[k], mean = s->mean;
+#pragma omp simd
             for (int i = 0; i < m; i++)
-                o[i] += s->amp[k] * (t[i] * fabsf((float)r[i]) + (1 - t[i]) * s->mean);
+                o[i] += ak * (t[i] * fabsf(r[i]) + (1 - t[i]) * mean);
         }
         for (int i = 0; i < m; i++)
             o[i] = clamp01(o[i] * s->inv);
@@ -801,8 +802,7 @@ static void frac_eval3_fw(const struct tex_field *f, int n, const double *u, con
     enum { B = TEX_POINTS_BATCH / 4 };
     const struct frac_params *p = f->params;
     const struct frac_state *s = f->state;
-    double r[B];
-    float t[B], nk[B][TEX_OCTAVES_MAX];
+    float r[B], t[B], nk[B][TEX_OCTAVES_MAX];
 
     if (s->mode != FBM) {
         frac_eval3(f, n, u, v, w, out);
@@ -813,7 +813,7 @@ static void frac_eval3_fw(const struct tex_field *f, int n, const double *u, con
         for (int k = 0; k < s->o.n; k++) {
             tex_octave_points_fw(&s->o, k, m, u + i0, v + i0, w ? w + i0 : NULL, fw + i0, r, t);
             for (int i = 0; i < m; i++)
-                nk[i][k] = t[i] * (float)r[i];
+                nk[i][k] = t[i] * r[i];
         }
         for (int i = 0; i < m; i++)
             out[i0 + i] = combine(s, p, nk[i]);

@@ -1609,6 +1609,28 @@ void tex_octave_abs_sum(const tex_octaves *o, int octaves, const float *amp, flo
     }
 }
 
+#ifdef TEX_X86
+/* band_weights' first n - n % 4 */
+TEX_AVX2 static int band_weights_avx2(int n, const double *fw, double fk, float *wt)
+{
+    const __m256d lo = _mm256_set1_pd(0.2), hi = _mm256_set1_pd(0.6), one = _mm256_set1_pd(1);
+    __m128 any = _mm_setzero_ps();
+    for (int i = 0; i + 4 <= n; i += 4) {
+        __m256d c = _mm256_mul_pd(_mm256_loadu_pd(fw + i), _mm256_set1_pd(fk));
+        __m256d t = _mm256_div_pd(_mm256_sub_pd(c, lo), _mm256_set1_pd(0.4));
+        t = _mm256_blendv_pd(t, one, _mm256_cmp_pd(c, hi, _CMP_GE_OQ));
+        t = _mm256_blendv_pd(t, _mm256_setzero_pd(), _mm256_cmp_pd(c, lo, _CMP_LE_OQ));
+        __m256d w = _mm256_sub_pd(
+            one, _mm256_mul_pd(_mm256_mul_pd(t, t),
+                               _mm256_sub_pd(_mm256_set1_pd(3), _mm256_add_pd(t, t))));
+        __m128 wf = _mm256_cvtpd_ps(w);
+        _mm_storeu_ps(wt + i, wf);
+        any = _mm_or_ps(any, _mm_cmpgt_ps(wf, _mm_setzero_ps()));
+    }
+    return _mm_movemask_ps(any) != 0;
+}
+#endif
+
 /* 1 - smoothstep(0.2, 0.6, cells): an octave's weight where a pixel or footprint
  * spans that many of its lattice cells */
 static double band_weight(double cells)
@@ -1617,23 +1639,44 @@ static double band_weight(double cells)
     return 1 - t * t * (3 - 2 * t);
 }
 
+/* wt[i] = band_weight(fw[i] fk) as float, i < n; whether one is > 0.  Four at a time with
+ * AVX2, band_weight's operations in its order. */
+static int band_weights(int n, const double *fw, double fk, float *wt)
+{
+    int any = 0, i = 0;
+#ifdef TEX_X86
+    if (tex_simd_level() >= TEX_SIMD_AVX2)
+        any = band_weights_avx2(n, fw, fk, wt), i = n & ~3;
+#endif
+    for (; i < n; i++) {
+        wt[i] = (float)band_weight(fw[i] * fk);
+        any |= wt[i] > 0;
+    }
+    return any;
+}
+
 double tex_octave_band_weight(const tex_octaves *o, int k)
 {
     return o->grid ? band_weight(o->g[k].fy) : 1; /* g.fy: lattice cells per pixel */
 }
 
 void tex_octave_points_fw(const tex_octaves *o, int k, int n, const double *u, const double *v,
-                          const double *w, const double *fw, double *out, float *wt)
+                          const double *w, const double *fw, float *out, float *wt)
 {
-    int any = 0;
-    for (int i = 0; i < n; i++) {
-        wt[i] = (float)band_weight(fw[i] * o->freq[k]);
-        any |= wt[i] > 0;
-    }
-    if (any)
-        tex_octave_points(o, k, n, u, v, w, out);
-    else
+    double fk = o->freq[k];
+    if (!band_weights(n, fw, fk, wt)) {
         memset(out, 0, n * sizeof *out);
+    } else if (o->dims == 3) { /* tex_octave_points' values, as float */
+        tex_noise_points_at(&o->t, o->period[k], o->off[k], fk, n, u, v, w, out);
+    } else {
+        double r[TEX_POINTS_BATCH];
+        for (int i0 = 0; i0 < n; i0 += TEX_POINTS_BATCH) {
+            int m = n - i0 < TEX_POINTS_BATCH ? n - i0 : TEX_POINTS_BATCH;
+            tex_octave_points(o, k, m, u + i0, v + i0, w ? w + i0 : NULL, r);
+            for (int i = 0; i < m; i++)
+                out[i0 + i] = (float)r[i];
+        }
+    }
 }
 
 double tex_noise_mean_abs(const tex_noise_table *t)

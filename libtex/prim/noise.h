@@ -200,12 +200,12 @@ void tex_octave_abs_sum(const tex_octaves *o, int octaves, const float *amp, flo
  * 1 - smoothstep(0.2, 0.6, fw) for pixels fw lattice cells wide; 1 off a grid.
  * Octaves fade out as their cells shrink towards a pixel, instead of aliasing. */
 double tex_octave_band_weight(const tex_octaves *o, int k);
-/* tex_octave_points at n points seen through footprints fw[i] texture units wide
- * (t_apply's solid textures), with the octave's weights there, wt[i] = 1 -
+/* tex_octave_points (as float) at n points seen through footprints fw[i] texture units
+ * wide (t_apply's solid textures), with the octave's weights there, wt[i] = 1 -
  * smoothstep(0.2, 0.6, fw[i] freq_k); where every weight is 0 the noise is not
  * evaluated, and out is 0. */
 void tex_octave_points_fw(const tex_octaves *o, int k, int n, const double *u, const double *v,
-                          const double *w, const double *fw, double *out, float *wt);
+                          const double *w, const double *fw, float *out, float *wt);
 /* The mean of |noise| (what a faded octave of |noise| is replaced with). */
 double tex_noise_mean_abs(const tex_noise_table *t);
 /* Signed noise of octave k over row y of the grid. */

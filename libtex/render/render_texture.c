@@ -439,26 +439,36 @@ static inline int map_point_at(const struct tex_apply *ap, const struct tex_obje
     return 1;
 }
 
-/* Where the mapping is affine in P (modulo wrapping), its world-space
- * gradients of u and v: 1, else 0 (the footprint then takes finite differences). */
-static int map_gradient(const struct tex_apply *ap, const struct tex_object *leaf, tex_v3 *du,
-                        tex_v3 *dv)
+/* Where the mapping is affine in P (modulo wrapping), its world-space gradients of u, v and
+ * w in g[0..2]: 1, else 0 (the footprint then takes finite differences). */
+static inline __attribute__((always_inline)) int
+map_gradient(const struct tex_apply *ap, const struct tex_object *leaf,
+                               tex_v3 g[3])
 {
-    double s = ap->scale;
-    if (plane_planar(ap, leaf)) {
-        const double(*m)[4] = leaf->to_obj.m;
-        *du = tex_v3_make(m[0][0] * s, m[0][1] * s, m[0][2] * s);
-        *dv = tex_v3_make(m[2][0] * s, m[2][1] * s, m[2][2] * s);
-        return 1;
+    static const double id[3][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};
+    const double(*m)[4] = ap->placed ? ap->to_tex.m : id;
+    double s[3] = {ap->scale, ap->scale, ap->scale};
+    int row[3] = {0, 2, 1}; /* u = x s, v = z s, w = -y s of the point (world mapping) */
+    if (plane_planar(ap, leaf)) { /* of the object-space point; w = 0 */
+        m = leaf->to_obj.m, s[2] = 0;
+    } else if (ap->mapping == TEX_MAP_SOLID) { /* u = x s, v = -y s, w = z s */
+        row[1] = 1, row[2] = 2;
+        s[1] = -s[1];
+        if (leaf->root && leaf->root->bounded) { /* across the box, v down */
+            tex_v3 e = tex_v3_sub(leaf->root->wb.hi, leaf->root->wb.lo);
+            s[0] = e.x > 0 ? 1 / e.x : 0, s[1] = e.y > 0 ? -1 / e.y : 0;
+            s[2] = e.z > 0 ? 1 / e.z : 0;
+        }
+    } else if (ap->mapping == TEX_MAP_WORLD) {
+        s[2] = -s[2];
+    } else {
+        return 0;
     }
-    if (ap->mapping == TEX_MAP_WORLD) { /* u = x s, v = z s of the placed point */
-        static const double id[3][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};
-        const double(*m)[4] = ap->placed ? ap->to_tex.m : id;
-        *du = tex_v3_make(m[0][0] * s, m[0][1] * s, m[0][2] * s);
-        *dv = tex_v3_make(m[2][0] * s, m[2][1] * s, m[2][2] * s);
-        return 1;
+    for (int k = 0; k < 3; k++) {
+        const double *r = m[row[k]];
+        g[k] = tex_v3_make(r[0] * s[k], r[1] * s[k], r[2] * s[k]);
     }
-    return 0;
+    return 1;
 }
 
 /* The natural mappings' (sphere_map, box faces, cylinder_map / cone_map)
@@ -559,15 +569,29 @@ static double wrapdiff(double d)
  * object space (footprint_obj: o1, o2, and short steps d1, d2 along them from the hit, P1,
  * P2 in world space, pl1, pl2 in object space). */
 struct footprint {
+    tex_v3 D, N;
     tex_v3 t1, t2;
     double l2, width, c;
-    int unit, obj; /* 1: t1, t2 have unit length (l2 = 1); the object-space members are set */
+    int tangents, unit, obj; /* 1: t1, t2, l2, c made; t1, t2 have unit length (l2 = 1); the
+                              * object-space members are set */
     tex_v3 o1, o2, P1, P2, pl1, pl2;
     double d1, d2;
 };
 
+/* A footprint of the ray D on the surface of normal N; its tangents are made when first
+ * asked for (footprint_tangents), which a hit whose lookups take none never does. */
 static void footprint_at(struct footprint *fp, const tex_v3 *D, const tex_v3 *N, double width)
 {
+    fp->D = *D, fp->N = *N;
+    fp->width = width;
+    fp->tangents = fp->unit = fp->obj = 0;
+}
+
+static void footprint_tangents(struct footprint *fp)
+{
+    if (fp->tangents)
+        return;
+    const tex_v3 *D = &fp->D, *N = &fp->N;
     double dn = tex_v3_dot(*D, *N), cosv = fabs(dn);
     tex_v3 t1 = tex_v3_madd(*D, *N, -dn);
     double l2 = tex_v3_dot(t1, t1);
@@ -580,15 +604,15 @@ static void footprint_at(struct footprint *fp, const tex_v3 *D, const tex_v3 *N,
     fp->t1 = t1;
     fp->t2 = tex_v3_cross(*N, t1);
     fp->l2 = l2;
-    fp->width = width;
     fp->c = cosv > 0.02 ? cosv : 0.02;
-    fp->unit = fp->obj = 0;
+    fp->tangents = 1;
 }
 
 static void footprint_unit(struct footprint *fp)
 {
     if (fp->unit)
         return;
+    footprint_tangents(fp);
     double s = 1 / sqrt(fp->l2);
     fp->t1 = tex_v3_scale(fp->t1, s), fp->t2 = tex_v3_scale(fp->t2, s);
     fp->l2 = 1;
@@ -642,7 +666,17 @@ static double solid_width2(const struct tex_apply *ap, const struct placement *p
                            const struct tex_object *leaf, struct footprint *fp, const tex_v3 *P,
                            const tex_v3 *pl, const double uvw0[3])
 {
-    double l1, l2;
+    double l1 = 0, l2 = 0;
+    tex_v3 g[3];
+    if (map_gradient(ap, leaf, g)) { /* the derivatives along t1, t2, as footprint_width2 */
+        const double sc[3] = {pm->su, pm->sv, 1};
+        footprint_tangents(fp);
+        for (int k = 0; k < 3; k++) {
+            double a = tex_v3_dot(g[k], fp->t1) * sc[k], b = tex_v3_dot(g[k], fp->t2) * sc[k];
+            l1 += a * a, l2 += b * b;
+        }
+        return sqrt(l1 * l2) * (fp->width * fp->width) / (fp->c * fp->l2);
+    }
     footprint_obj(fp, leaf, P, pl);
     l1 = stepped_width2(ap, pm, leaf, fp, uvw0, 3, &l2);
     return sqrt(l1 * l2);
@@ -657,9 +691,12 @@ static double footprint_width2(const struct tex_apply *ap, const struct placemen
 {
     double su = pm->su, sv = pm->sv, a0, a1, b0, b1, m2;
     const tex_v3 *e1 = &fp->t1, *e2 = &fp->t2;
-    tex_v3 du, dv;
+    footprint_tangents(fp);
+    tex_v3 g[3], du, dv;
     int exact = 1;
-    if (!map_gradient(ap, leaf, &du, &dv)) { /* not affine: in object space */
+    if (map_gradient(ap, leaf, g)) {
+        du = g[0], dv = g[1];
+    } else { /* not affine: in object space */
         footprint_obj(fp, leaf, P, pl);
         exact = natural_gradient(ap, leaf, pl, face, &du, &dv);
         e1 = &fp->o1, e2 = &fp->o2;
