@@ -3,7 +3,8 @@
 # octaves finer than each hit's footprint to their mean.  On a plane running to the
 # horizon the far rows lose their aliased roughness and keep their mean, and the fade
 # grows with distance (near rows lose less); with `filter off` (no footprints) the
-# render is the unfiltered one, byte for byte.  Turbulence and fBm (a solid fractal is
+# render is the unfiltered one, byte for byte, and the portable path (TEXTURA_SIMD=scalar)
+# renders the same bytes.  Turbulence and fBm (a solid fractal is
 # evaluated at the hits, not sampled into a map).
 . tests/lib.sh
 
@@ -58,4 +59,8 @@ for prim in turbulence fractal; do
     fi
     cmp -s "$T/c.pfm" "$T/d.pfm" && ok "$prim band_limit with filter off: the unfiltered render" ||
         notok "$prim band_limit with filter off changed the render"
+    # the octaves' weights and the noise at the hits: the portable path's bytes
+    TEXTURA_SIMD=scalar t_apply "$T/b.scene" -q -o "$T/e.pfm" && cmp -s "$T/b.pfm" "$T/e.pfm" &&
+        ok "$prim band_limit: TEXTURA_SIMD=scalar renders the same bytes" ||
+        notok "$prim band_limit under TEXTURA_SIMD=scalar differs"
 done
