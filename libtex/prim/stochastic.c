@@ -10,6 +10,7 @@
 #include "prim/noise.h"
 #include "prim/prim.h"
 #include "base/rng.h"
+#include "base/trig.h"
 
 static inline float clamp01(float x)
 {
@@ -203,29 +204,51 @@ static void colorvar_fini(struct tex_field *f)
 
 /* Fact = sum C_i (sin(w_i u + P_z + a_i) + 1) * sum C_i (sin(w_i v + P_x + b_i) + 1), over its
  * largest value (2 sum C_i)^2 so that it lies in [0,1]; (u, v) are the thesis's (x, z), and
- * h the height y that only the noise sees (the map: 0.5 / 4). */
-static void colorvar_point(const struct tex_field *f, double u, double v, double noise,
-                           float *out)
+ * h the height y that only the noise sees (the map: 0.5 / 4).  m points (m <= B), noise[]
+ * the noise at each; the sines term by term over the points (tex_sin_n). */
+static void colorvar_fact(const struct tex_field *f, int m, const double *u, const double *v,
+                          const double *noise, float *out)
 {
+    enum { B = TEX_POINTS_BATCH };
     const struct colorvar_params *p = f->params;
     const struct colorvar_state *s = f->state;
-    double pz = p->k1 * sin(2 * M_PI * v), px = p->k2 * sin(2 * M_PI * p->b * u);
-    double su = 0, sv = 0, c = 1, w = 2 * M_PI * p->frequency;
-    if (p->noise > 0) {
-        double nz = p->noise * noise;
-        pz += nz;
-        px += nz;
+    double pz[B], px[B], su[B], sv[B], a[B], c = 1, w = 2 * M_PI * p->frequency,
+                                            wb = 2 * M_PI * p->b;
+    for (int i = 0; i < m; i++)
+        a[i] = 2 * M_PI * v[i];
+    tex_sin_n(m, a, pz, 0);
+    for (int i = 0; i < m; i++)
+        a[i] = wb * u[i];
+    tex_sin_n(m, a, px, 0);
+    for (int i = 0; i < m; i++) {
+        pz[i] *= p->k1, px[i] *= p->k2;
+        if (p->noise > 0) {
+            double nz = p->noise * noise[i];
+            pz[i] += nz;
+            px[i] += nz;
+        }
+        su[i] = sv[i] = 0;
     }
-    for (int i = 0; i < p->terms; i++, c /= sqrt(2.0), w *= 2) {
-        su += c * (sin(w * u + pz + s->phase[0][i]) + 1);
-        sv += c * (sin(w * v + px + s->phase[1][i]) + 1);
+    for (int t = 0; t < p->terms; t++, c /= sqrt(2.0), w *= 2) {
+        for (int i = 0; i < m; i++)
+            a[i] = w * u[i] + pz[i] + s->phase[0][t];
+        tex_sin_n(m, a, a, 0);
+        for (int i = 0; i < m; i++)
+            su[i] += c * (a[i] + 1);
+        for (int i = 0; i < m; i++)
+            a[i] = w * v[i] + px[i] + s->phase[1][t];
+        tex_sin_n(m, a, a, 0);
+        for (int i = 0; i < m; i++)
+            sv[i] += c * (a[i] + 1);
     }
-    double fact = su * sv / (4 * s->sumc * s->sumc);
-    if (f->nc == 1)
-        out[0] = clamp01((float)fact);
-    else
-        for (int ch = 0; ch < 3; ch++)
-            out[ch] = clamp01((float)(fact * p->color[ch]));
+    for (int i = 0; i < m; i++) {
+        double fact = su[i] * sv[i] / (4 * s->sumc * s->sumc);
+        if (f->nc == 1)
+            out[i] = clamp01((float)fact);
+        else
+            for (int ch = 0; ch < 3; ch++)
+                out[(size_t)i * 3 + ch] = clamp01((float)(fact * p->color[ch]));
+    }
 }
 
 /* Points (u, v) at height h[k] (NULL: 0.125), the noise batched through the point path. */
@@ -246,8 +269,7 @@ static void colorvar_points(const struct tex_field *f, int n, const double *u, c
         }
         if (((const struct colorvar_params *)f->params)->noise > 0)
             tex_noise_points(&s->t, s->t.period, 3, m, x, y, z, NULL, nz);
-        for (int i = 0; i < m; i++)
-            colorvar_point(f, u[i0 + i], v[i0 + i], nz[i], out + (size_t)(i0 + i) * f->nc);
+        colorvar_fact(f, m, u + i0, v + i0, nz, out + (size_t)i0 * f->nc);
     }
 }
 
@@ -333,11 +355,21 @@ static void perturb_fini(struct tex_field *f)
     free(s);
 }
 
-/* T = 0.5 + 0.5 sin(2 pi [A u + B/10 (C turbulence + 1 + cos(2 pi D v))]). */
-static float perturb_value(const struct perturb_params *p, double u, double v, float turb)
+/* T = 0.5 + 0.5 sin(2 pi [A u + B/10 (C turbulence + 1 + cos(2 pi D v))]) at m <= B
+ * points, out[i] the turbulence there on entry and T on return. */
+static void perturb_values(const struct perturb_params *p, int m, const double *u,
+                           const double *v, float *out)
 {
-    double ph = p->a * u + p->b / 10 * (p->c * turb + 1 + cos(2 * M_PI * p->d * v));
-    return clamp01((float)(0.5 + 0.5 * sin(2 * M_PI * ph)));
+    enum { B = TEX_POINTS_BATCH };
+    double a[B], c[B], wd = 2 * M_PI * p->d;
+    for (int i = 0; i < m; i++)
+        a[i] = wd * v[i];
+    tex_sin_n(m, a, c, 1);
+    for (int i = 0; i < m; i++)
+        a[i] = 2 * M_PI * (p->a * u[i] + p->b / 10 * (p->c * out[i] + 1 + c[i]));
+    tex_sin_n(m, a, a, 0);
+    for (int i = 0; i < m; i++)
+        out[i] = clamp01((float)(0.5 + 0.5 * a[i]));
 }
 
 static void perturb_eval3(const struct tex_field *f, int n, const double *u, const double *v,
@@ -346,8 +378,12 @@ static void perturb_eval3(const struct tex_field *f, int n, const double *u, con
     const struct perturb_state *s = f->state;
 
     tex_octave_abs_sum(&s->o, s->o.n, s->amp, 0, n, u, v, w, out);
-    for (int i = 0; i < n; i++)
-        out[i] = perturb_value(f->params, u[i], v[i], out[i] * s->inv);
+    for (int i0 = 0; i0 < n; i0 += TEX_POINTS_BATCH) {
+        int m = n - i0 < TEX_POINTS_BATCH ? n - i0 : TEX_POINTS_BATCH;
+        for (int i = i0; i < i0 + m; i++)
+            out[i] *= s->inv;
+        perturb_values(f->params, m, u + i0, v + i0, out + i0);
+    }
 }
 
 static void perturb_eval2(const struct tex_field *f, int n, const double *u, const double *v,
@@ -363,8 +399,15 @@ static void perturb_row(const struct tex_field *f, int y, float *out)
 
     for (int k = 0; k < s->o.n; k++) /* a |n| is never -0: the same as 0 + a |n| */
         tex_octave_row_op(&s->o, k, y, k ? TEX_ROW_ADD_ABS : TEX_ROW_MUL_ABS, s->amp[k], 0, out);
-    for (int x = 0; x < f->w; x++)
-        out[x] = perturb_value(f->params, (x + 0.5) / f->w, v, out[x] * s->inv);
+    double U[TEX_POINTS_BATCH], V[TEX_POINTS_BATCH];
+    for (int x0 = 0; x0 < f->w; x0 += TEX_POINTS_BATCH) {
+        int m = f->w - x0 < TEX_POINTS_BATCH ? f->w - x0 : TEX_POINTS_BATCH;
+        for (int i = 0; i < m; i++) {
+            U[i] = (x0 + i + 0.5) / f->w, V[i] = v;
+            out[x0 + i] *= s->inv;
+        }
+        perturb_values(f->params, m, U, V, out + x0);
+    }
 }
 
 const struct tex_primitive tex_prim_perturb = {
