@@ -10,6 +10,7 @@
  *   map.h       the texture map: float32, 1-4 channels, metadata
  *   param.h     parameter rows: defaults, ranges, help, parsing
  *   rng.h       deterministic random numbers
+ *   trig.h      sines of many points, the same bytes on any CPU or libm
  * io/       maps in and out
  *   stream.h    the OpenEXR stream between tools
  *   file.h      reading and writing maps: files, pipes, other formats
@@ -48,6 +49,7 @@
 #include "base/paths.h"
 #include "base/rng.h"
 #include "base/simd.h"
+#include "base/trig.h"
 #include "io/stream.h"
 #include "io/file.h"
 #include "io/netpbm.h"
