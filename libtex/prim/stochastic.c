@@ -63,13 +63,44 @@ static int hole(const struct tex_field *f, int dims, const int64_t c[3], double 
         return 0;
     *d = p->diameter * (1 + p->jitter * (2 * r2 - 1));
     /* Keep the rim inside the cell so that the 3 x 3 neighbourhood sees every hole. */
-    ctr[0] = c[0] + 0.5 + (r0 - 0.5) * (1 - fmin(*d, 1));
-    ctr[1] = c[1] + 0.5 + (r1 - 0.5) * (1 - fmin(*d, 1));
+    double free = 1 - (*d < 1 ? *d : 1); /* fmin's value: d is never NaN */
+    ctr[0] = c[0] + 0.5 + (r0 - 0.5) * free;
+    ctr[1] = c[1] + 0.5 + (r1 - 0.5) * free;
     /* in space: the third coordinate from the hash's other bits */
-    ctr[2] = dims == 3 ? c[2] + 0.5 + ((double)(tex_hash64(h) & 0xffff) / 65536.0 - 0.5) *
-                                          (1 - fmin(*d, 1))
+    ctr[2] = dims == 3 ? c[2] + 0.5 + ((double)(tex_hash64(h) & 0xffff) / 65536.0 - 0.5) * free
                        : 0;
     return 1;
+}
+
+/* The holes of the cells the last points looked at: neighbouring points (a map's row, a
+ * packet's hits) share most of their cells, and a hole's hashes cost more than a look-up. */
+enum { HOLE_CACHE = 64 };
+struct hole_cache {
+    int64_t key[HOLE_CACHE][3];
+    signed char has[HOLE_CACHE]; /* -1: empty; 0: the cell has no hole; 1: it has */
+    double ctr[HOLE_CACHE][3], d[HOLE_CACHE];
+};
+
+static void hole_cache_init(struct hole_cache *hc)
+{
+    memset(hc->has, -1, sizeof hc->has);
+}
+
+/* hole() through the cache */
+static int cached_hole(struct hole_cache *hc, const struct tex_field *f, int dims,
+                       const int64_t c[3], double ctr[3], double *d)
+{
+    unsigned e = (unsigned)((uint64_t)c[0] * 0x9e3779b1u ^ (uint64_t)c[1] * 0x85ebca6bu ^
+                            (uint64_t)c[2] * 0xc2b2ae35u) %
+                 HOLE_CACHE;
+    if (hc->has[e] < 0 || hc->key[e][0] != c[0] || hc->key[e][1] != c[1] ||
+        hc->key[e][2] != c[2]) {
+        memcpy(hc->key[e], c, sizeof hc->key[e]);
+        hc->has[e] = (signed char)hole(f, dims, c, hc->ctr[e], &hc->d[e]);
+    }
+    memcpy(ctr, hc->ctr[e], sizeof hc->ctr[e]);
+    *d = hc->d[e];
+    return hc->has[e];
 }
 
 /* The thesis's T = -Fact e^(-N^2 R / D) at p (dims coordinates in map units): the deepest
@@ -78,7 +109,8 @@ static int hole(const struct tex_field *f, int dims, const int64_t c[3], double 
  * and its diameter is at most dmax, so a neighbour whose gap to p exceeds the least R / D
  * so far times dmax (with a margin for rounding) cannot lower it: its hash is skipped, and
  * the minimum, which does not depend on the order, is the same to the bit. */
-static float holes_point(const struct tex_field *f, int dims, const double *pt)
+static float holes_point(const struct tex_field *f, struct hole_cache *hc, int dims,
+                         const double *pt)
 {
     const struct holes_params *p = f->params;
     double x[3] = {0, 0, 0}, rmin = INFINITY, lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
@@ -104,12 +136,13 @@ static float holes_point(const struct tex_field *f, int dims, const double *pt)
             continue;
         int64_t c[3] = {i[0] + di, i[1] + dj, i[2] + dk};
         double ctr[3], d;
-        if (hole(f, dims, c, ctr, &d)) {
+        if (cached_hole(hc, f, dims, c, ctr, &d)) {
             /* N = 4/D scaled so that the well falls to e^-4 at the rim R = D/2 */
-            double r = (dims == 3 ? sqrt((x[0] - ctr[0]) * (x[0] - ctr[0]) +
-                                         (x[1] - ctr[1]) * (x[1] - ctr[1]) +
-                                         (x[2] - ctr[2]) * (x[2] - ctr[2]))
-                                  : hypot(x[0] - ctr[0], x[1] - ctr[1])) / d;
+            double e[3] = {x[0] - ctr[0], x[1] - ctr[1], x[2] - ctr[2]};
+            double s2 = e[0] * e[0] + e[1] * e[1] + (dims == 3 ? e[2] * e[2] : 0), lim = rmin * d;
+            if (s2 > lim * lim * (1 + 1e-9)) /* farther than rmin beyond any rounding */
+                continue;
+            double r = (dims == 3 ? sqrt(s2) : hypot(e[0], e[1])) / d;
             rmin = r < rmin ? r : rmin; /* fmin's value: a NaN r leaves rmin, as in fmin */
         }
     }
@@ -120,16 +153,20 @@ static float holes_point(const struct tex_field *f, int dims, const double *pt)
 static void holes_eval2(const struct tex_field *f, int n, const double *u, const double *v,
                         float *out)
 {
+    struct hole_cache hc;
+    hole_cache_init(&hc);
     for (int i = 0; i < n; i++)
-        out[i] = holes_point(f, 2, (const double[2]){u[i], v[i]});
+        out[i] = holes_point(f, &hc, 2, (const double[2]){u[i], v[i]});
 }
 
 /* Spherical holes in space (thesis 5.2.2.6): the cells are cubes. */
 static void holes_eval3(const struct tex_field *f, int n, const double *u, const double *v,
                         const double *w, float *out)
 {
+    struct hole_cache hc;
+    hole_cache_init(&hc);
     for (int i = 0; i < n; i++)
-        out[i] = holes_point(f, 3, (const double[3]){u[i], v[i], w[i]});
+        out[i] = holes_point(f, &hc, 3, (const double[3]){u[i], v[i], w[i]});
 }
 
 const struct tex_primitive tex_prim_holes = {
