@@ -3,15 +3,17 @@
 # threads and SIMD levels, tiling options, large coordinates, bad input.
 . "$(dirname "$0")/lib.sh"
 
-# same_bytes NAME CMD...: CMD run with -j 1, -j 2 and TEXTURA_SIMD=scalar writes identical
-# pixels (as PFM: the EXR's history holds the differing command lines).
+# same_bytes NAME CMD...: CMD run with -j 1, -j 2, TEXTURA_SIMD=scalar and (where the CPU has
+# AVX-512, whose rows the others use) TEXTURA_SIMD=avx2 writes identical pixels (as PFM: the
+# EXR's history holds the differing command lines).
 same_bytes() {
     local name=$1
     shift
     "$@" -j 1 --format pfm >"$T/a.pfm" && "$@" -j 2 --format pfm >"$T/b.pfm" &&
-        TEXTURA_SIMD=scalar "$@" -j 2 --format pfm >"$T/c.pfm" || { notok "$name" "command failed"; return; }
-    if cmp -s "$T/a.pfm" "$T/b.pfm" && cmp -s "$T/a.pfm" "$T/c.pfm"; then
-        ok "$name: same bytes for -j 1, -j 2 and scalar SIMD"
+        TEXTURA_SIMD=scalar "$@" -j 2 --format pfm >"$T/c.pfm" &&
+        TEXTURA_SIMD=avx2 "$@" -j 1 --format pfm >"$T/d.pfm" || { notok "$name" "command failed"; return; }
+    if cmp -s "$T/a.pfm" "$T/b.pfm" && cmp -s "$T/a.pfm" "$T/c.pfm" && cmp -s "$T/a.pfm" "$T/d.pfm"; then
+        ok "$name: same bytes for -j 1, -j 2, scalar and AVX2 SIMD"
     else
         notok "$name" "bytes differ between thread counts or SIMD levels"
     fi

@@ -9,10 +9,11 @@
  *   if (tex_simd_level() >= TEX_SIMD_AVX2) rows_avx2(...); else rows(...);
  *
  * Every level performs the same float operations in the same order, so the
- * bytes never depend on it; TEXTURA_SIMD=scalar forces the portable path, as
- * the tests do to check that, and a test that compares the two paths in one
- * process lowers the level with tex_simd_limit.  No kernel has an AVX-512
- * form yet.
+ * bytes never depend on it; TEXTURA_SIMD=scalar forces the portable path and
+ * TEXTURA_SIMD=avx2 caps the level at AVX2, as the tests do to check that, and
+ * a test that compares the paths in one process lowers the level with
+ * tex_simd_limit.  TEX_AVX512 (AVX-512F) has one user, the noise rows of
+ * wide cells (noise.h); elsewhere AVX2 stays the best level's kernel.
  */
 #ifndef TEX_SIMD_H
 #define TEX_SIMD_H
@@ -21,6 +22,7 @@
 #include <immintrin.h>
 #define TEX_X86 1
 #define TEX_AVX2 __attribute__((target("avx2")))
+#define TEX_AVX512 __attribute__((target("avx512f")))
 #endif
 
 #ifdef __cplusplus

@@ -299,24 +299,31 @@ TEX_AVX2 static inline __attribute__((always_inline)) void columns8(const float 
     c[3] = _mm256_shuffle_ps(t2, t3, _MM_SHUFFLE(3, 2, 3, 2));
 }
 
+/* Four rows of four floats in each 128-bit half of a0..a3 as the vectors of their first
+ * three columns (row i of each half in lane i of that half) */
+TEX_AVX2 static inline __attribute__((always_inline)) void
+columns4(__m256 a0, __m256 a1, __m256 a2, __m256 a3, __m256 c[4])
+{
+    __m256 t0 = _mm256_unpacklo_ps(a0, a1), t1 = _mm256_unpacklo_ps(a2, a3);
+    __m256 t2 = _mm256_unpackhi_ps(a0, a1), t3 = _mm256_unpackhi_ps(a2, a3);
+    c[0] = _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(1, 0, 1, 0));
+    c[1] = _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(3, 2, 3, 2));
+    c[2] = _mm256_shuffle_ps(t2, t3, _MM_SHUFFLE(1, 0, 1, 0));
+}
+
 /* Eight rows of two gradients (x y z 0 x y z 0) as the columns x, y, z of each: row i
- * in lane i of c[0][*] (the first gradient) and c[1][*] (the second). */
+ * in lane i of c[0][*] (the first gradient) and c[1][*] (the second).  The immediates
+ * are literal: an unoptimised build does not unroll a loop to make them constant. */
 TEX_AVX2 static inline __attribute__((always_inline)) void columns8x2(const __m256 r[8],
                                                                   __m256 c[2][4])
 {
-    for (int h = 0; h < 2; h++) {
-        const int sel = h ? 0x31 : 0x20; /* rows i and i + 4: their first or second halves */
-        __m256 a0 = _mm256_permute2f128_ps(r[0], r[4], sel),
-               a1 = _mm256_permute2f128_ps(r[1], r[5], sel);
-        __m256 a2 = _mm256_permute2f128_ps(r[2], r[6], sel),
-               a3 = _mm256_permute2f128_ps(r[3], r[7], sel);
-        __m256 t0 = _mm256_unpacklo_ps(a0, a1), t1 = _mm256_unpacklo_ps(a2, a3);
-        __m256 t2 = _mm256_unpackhi_ps(a0, a1), t3 = _mm256_unpackhi_ps(a2, a3);
-        c[h][0] = _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(1, 0, 1, 0));
-        c[h][1] = _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(3, 2, 3, 2));
-        c[h][2] = _mm256_shuffle_ps(t2, t3, _MM_SHUFFLE(1, 0, 1, 0));
-        c[h][3] = _mm256_shuffle_ps(t2, t3, _MM_SHUFFLE(3, 2, 3, 2));
-    }
+    /* rows i and i + 4: their first halves (0x20), their second (0x31) */
+    columns4(_mm256_permute2f128_ps(r[0], r[4], 0x20), _mm256_permute2f128_ps(r[1], r[5], 0x20),
+             _mm256_permute2f128_ps(r[2], r[6], 0x20), _mm256_permute2f128_ps(r[3], r[7], 0x20),
+             c[0]);
+    columns4(_mm256_permute2f128_ps(r[0], r[4], 0x31), _mm256_permute2f128_ps(r[1], r[5], 0x31),
+             _mm256_permute2f128_ps(r[2], r[6], 0x31), _mm256_permute2f128_ps(r[3], r[7], 0x31),
+             c[1]);
 }
 
 /* noise3_point for eight points, in two steps so that the next eight's hashes (two
@@ -647,6 +654,7 @@ int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int 
      * pixels span seven cells or more, sharing saves little and costs the rows
      * gathers: every column then has its own pair. */
     g->paired = fx >= 0.875 * w;
+    g->wide = fx * 8 <= w;
     for (int x = 0; x < w; x++) {
         double X = off[0] + fx * ((x + 0.5) / w), c = floor(X);
         int64_t i = tex_noise_cell(c);
@@ -1342,6 +1350,170 @@ TEX_AVX2 static inline void row_avx2(const tex_noise_grid *g, const float *P, co
 }
 #endif
 
+#ifdef TEX_X86
+/* ---- the rows sixteen pixels at a time (AVX-512): the AVX2 kernels' operations ---- */
+
+TEX_AVX512 static inline __attribute__((always_inline)) __m512 clamp01_avx512(__m512 x)
+{
+    return _mm512_min_ps(_mm512_max_ps(x, _mm512_setzero_ps()), _mm512_set1_ps(1));
+}
+
+TEX_AVX512 static inline __attribute__((always_inline)) __m512
+apply_avx512(const int op, __m512 r, const float *o, __m512 a, __m512 b)
+{
+    const __m512 half = _mm512_set1_ps(0.5f);
+    const __m512i mag = _mm512_set1_epi32(0x7fffffff);
+    __m512 ar = _mm512_castsi512_ps(_mm512_and_si512(_mm512_castps_si512(r), mag)); /* |r| */
+
+    switch (op) {
+    case TEX_ROW_SET:
+        return r;
+    case TEX_ROW_MUL:
+        return _mm512_mul_ps(a, r);
+    case TEX_ROW_MUL_ABS:
+        return _mm512_mul_ps(a, ar);
+    case TEX_ROW_UNIT:
+        return clamp01_avx512(_mm512_add_ps(half, _mm512_mul_ps(half, r)));
+    case TEX_ROW_ADD:
+        return _mm512_add_ps(_mm512_loadu_ps(o), _mm512_mul_ps(a, r));
+    case TEX_ROW_ADD_ABS:
+        return _mm512_add_ps(_mm512_loadu_ps(o), _mm512_mul_ps(a, ar));
+    case TEX_ROW_ADD_UNIT:
+        r = _mm512_mul_ps(_mm512_add_ps(_mm512_loadu_ps(o), _mm512_mul_ps(a, r)), b);
+        return clamp01_avx512(_mm512_add_ps(half, _mm512_mul_ps(half, r)));
+    default:
+        return clamp01_avx512(
+            _mm512_mul_ps(_mm512_add_ps(_mm512_loadu_ps(o), _mm512_mul_ps(a, ar)), b));
+    }
+}
+
+/* pixels8 for sixteen pixels */
+TEX_AVX512 static inline __attribute__((always_inline)) void
+pixels16(const float *restrict u, const float *restrict um1, const float *restrict w0,
+         const float *restrict w1, __m512 p0, __m512 p1, __m512 q0, __m512 q1, float *out,
+         const int op, __m512 va, __m512 vb)
+{
+    __m512 t0 = _mm512_add_ps(_mm512_mul_ps(p0, _mm512_loadu_ps(u)), q0);
+    __m512 t1 = _mm512_add_ps(_mm512_mul_ps(p1, _mm512_loadu_ps(um1)), q1);
+    __m512 r = _mm512_add_ps(_mm512_mul_ps(_mm512_loadu_ps(w0), t0),
+                             _mm512_mul_ps(_mm512_loadu_ps(w1), t1));
+    _mm512_storeu_ps(out, apply_avx512(op, r, out, va, vb));
+}
+
+/* expand for sixteen pixels (span at most 15: one permute; more: gathers) */
+TEX_AVX512 static inline __attribute__((always_inline)) void
+expand16(const float *V, int s0, __m512i s, __m512i k, int span, __m512 *a0, __m512 *a1)
+{
+    if (span <= 1) {
+        __mmask16 m = _mm512_test_epi32_mask(k, _mm512_set1_epi32(1));
+        *a0 = _mm512_mask_blend_ps(m, _mm512_set1_ps(V[s0]), _mm512_set1_ps(V[s0 + 1]));
+        *a1 = _mm512_mask_blend_ps(m, _mm512_set1_ps(V[s0 + 1]), _mm512_set1_ps(V[s0 + 2]));
+    } else if (span <= 15) {
+        *a0 = _mm512_permutexvar_ps(k, _mm512_loadu_ps(V + s0));
+        *a1 = _mm512_permutexvar_ps(k, _mm512_loadu_ps(V + s0 + 1));
+    } else {
+        *a0 = _mm512_i32gather_ps(s, V, 4);
+        *a1 = _mm512_i32gather_ps(s, V + 1, 4);
+    }
+}
+
+TEX_AVX512 static inline __attribute__((always_inline)) void
+row_avx512_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, float *out, int x,
+              int x1, const int op, float a, float b)
+{
+    const int32_t *restrict slot = g->slot;
+    const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
+                          *restrict w1 = g->w1;
+    __m512i vsb = _mm512_set1_epi32(sb);
+    __m512 va = _mm512_set1_ps(a), vb = _mm512_set1_ps(b);
+
+    for (; x + 16 <= x1; x += 16) {
+        __m512i s = _mm512_sub_epi32(_mm512_loadu_si512(slot + x), vsb);
+        int s0 = slot[x] - sb, span = slot[x + 15] - sb - s0;
+        __m512i k = _mm512_sub_epi32(s, _mm512_set1_epi32(s0));
+        __m512 p0, p1, q0, q1;
+        expand16(P, s0, s, k, span, &p0, &p1);
+        expand16(Q, s0, s, k, span, &q0, &q1);
+        pixels16(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, out + x, op, va, vb);
+    }
+    row_avx2_op(g, P, Q, sb, out, x, x1, op, a, b);
+}
+
+/* unzip for sixteen columns */
+TEX_AVX512 static inline __attribute__((always_inline)) void unzip16(const float *V, __m512 *a0,
+                                                                    __m512 *a1)
+{
+    const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26,
+                                           28, 30);
+    __m512 lo = _mm512_loadu_ps(V), hi = _mm512_loadu_ps(V + 16);
+    *a0 = _mm512_permutex2var_ps(lo, even, hi);
+    *a1 = _mm512_permutex2var_ps(lo, _mm512_add_epi32(even, _mm512_set1_epi32(1)), hi);
+}
+
+TEX_AVX512 static inline __attribute__((always_inline)) void
+row_avx512_paired_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, float *out,
+                     int x, int x1, const int op, float a, float b)
+{
+    const int32_t *restrict slot = g->slot;
+    const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
+                          *restrict w1 = g->w1;
+    __m512 va = _mm512_set1_ps(a), vb = _mm512_set1_ps(b);
+
+    for (; x + 16 <= x1; x += 16) {
+        int s = slot[x] - sb;
+        __m512 p0, p1, q0, q1;
+        unzip16(P + s, &p0, &p1);
+        unzip16(Q + s, &q0, &q1);
+        pixels16(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, out + x, op, va, vb);
+    }
+    row_avx2_paired_op(g, P, Q, sb, out, x, x1, op, a, b);
+}
+
+TEX_AVX512 static inline void row_avx512(const tex_noise_grid *g, const float *P, const float *Q,
+                                         int sb, float *out, int x, int x1, int op, float a,
+                                         float b)
+{
+    if (g->paired) {
+        ROW_OP_SWITCH(row_avx512_paired_op, ROW_PRE, (a, b));
+    } else {
+        ROW_OP_SWITCH(row_avx512_op, ROW_PRE, (a, b));
+    }
+}
+
+/* row_coeffs_avx2 sixteen slots at a time */
+TEX_AVX512 static void row_coeffs_avx512(int ns, const float *wy, const float *dy,
+                                         const float *const L0[3], const float *const L1[3],
+                                         float *P, float *Q)
+{
+    __m512 a0 = _mm512_set1_ps(wy[0]), a1 = _mm512_set1_ps(wy[1]);
+    __m512 d0 = _mm512_set1_ps(dy[0]), d1 = _mm512_set1_ps(dy[1]);
+    int s = 0;
+
+    if (L1)
+        for (; s + 16 <= ns; s += 16) {
+            __m512 p = _mm512_add_ps(_mm512_mul_ps(a0, _mm512_loadu_ps(L0[0] + s)),
+                                     _mm512_mul_ps(a1, _mm512_loadu_ps(L1[0] + s)));
+            __m512 q0 = _mm512_add_ps(_mm512_mul_ps(_mm512_loadu_ps(L0[1] + s), d0),
+                                      _mm512_loadu_ps(L0[2] + s));
+            __m512 q1 = _mm512_add_ps(_mm512_mul_ps(_mm512_loadu_ps(L1[1] + s), d1),
+                                      _mm512_loadu_ps(L1[2] + s));
+            _mm512_storeu_ps(P + s, p);
+            _mm512_storeu_ps(Q + s, _mm512_add_ps(_mm512_mul_ps(a0, q0), _mm512_mul_ps(a1, q1)));
+        }
+    else
+        for (; s + 16 <= ns; s += 16) {
+            __m512 q0 = _mm512_add_ps(_mm512_mul_ps(_mm512_loadu_ps(L0[1] + s), d0),
+                                      _mm512_loadu_ps(L0[2] + s));
+            _mm512_storeu_ps(P + s, _mm512_mul_ps(a0, _mm512_loadu_ps(L0[0] + s)));
+            _mm512_storeu_ps(Q + s, _mm512_mul_ps(a0, q0));
+        }
+    /* the rest, and the zeros after the last slot, as row_coeffs_avx2 makes them */
+    const float *l0[3] = {L0[0] + s, L0[1] + s, L0[2] + s};
+    const float *l1[3] = {L1 ? L1[0] + s : NULL, L1 ? L1[1] + s : NULL, L1 ? L1[2] + s : NULL};
+    row_coeffs_avx2(ns - s, wy, dy, l0, L1 ? l1 : NULL, P + s, Q + s);
+}
+#endif
+
 /* Row y: the lattice rows (kept or computed), the coefficients, the pixels.
  * Columns go in chunks, so that the coefficients stay on the stack and in L1
  * (a chunk of CHUNK columns touches at most 2 CHUNK slots).  One copy per
@@ -1358,12 +1530,23 @@ TEX_AVX2 static inline void row_avx2(const tex_noise_grid *g, const float *P, co
 #define GRID_PIXELS row_avx2
 #define GRID_LUT_ROW row_lut_avx2
 #include "prim/noise_row_template.c"
+#define GRID_ROW grid_row_avx512
+#define GRID_ATTR TEX_AVX512
+#define GRID_COEFFS row_coeffs_avx512
+#define GRID_PIXELS row_avx512
+#define GRID_LUT_ROW row_lut_avx2 /* the tables' rows stay AVX2 */
+#include "prim/noise_row_template.c"
 #endif
 
 void tex_noise_grid_row_op(const tex_noise_grid *g, int y, int op, float a, float b, float *out)
 {
 #ifdef TEX_X86
-    if (tex_simd_level() >= TEX_SIMD_AVX2) {
+    int level = tex_simd_level();
+    if (level >= TEX_SIMD_AVX512 && g->wide) {
+        grid_row_avx512(g, y, op, a, b, out);
+        return;
+    }
+    if (level >= TEX_SIMD_AVX2) {
         grid_row_avx2(g, y, op, a, b, out);
         return;
     }
@@ -1526,13 +1709,21 @@ int tex_octaves_init(tex_octaves *o, uint64_t seed, int gradients, int fade, int
         return -1;
     o->t.fade = fade;
     if (w > 0 && h > 0) {
+        int wide = 0;
         o->grid = 1;
-        for (int k = 0; k < n; k++)
+        for (int k = 0; k < n; k++) {
             if (tex_noise_grid_init(&o->g[k], &o->t, w, h, o->freq[k], o->freq[k], o->off[k],
                                     dims, o->period[k]) < 0) {
                 tex_octaves_free(o);
                 return -1;
             }
+            wide += o->g[k].wide;
+        }
+        /* AVX-512 rows for the wide octaves only where they are most of the sum: a map that
+         * switches between 512- and 256-bit rows runs slower than on 256 alone (fBm of 8
+         * octaves from 256 cells: 4 %; from 4 cells, all but one wide: 30 % faster). */
+        for (int k = 0; 2 * wide < n && k < n; k++)
+            o->g[k].wide = 0;
     }
     return 0;
 }
