@@ -26,7 +26,7 @@ for t in holes colorvar perturb; do
     else
         notok "$t determinism"
     fi
-    # colorvar's and perturb's sines four at a time (base/trig.h): the portable path's bytes
+    # the portable path's bytes (colorvar's and perturb's sines go four at a time: base/trig.h)
     TEXTURA_SIMD=scalar t_$t -s 48 -j 1 --format pfm >"$T/$t.3" && cmp -s "$T/$t.1" "$T/$t.3" &&
         ok "$t: TEXTURA_SIMD=scalar gives the same bytes" || notok "$t under TEXTURA_SIMD=scalar"
 done

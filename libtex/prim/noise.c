@@ -244,7 +244,6 @@ static float noise3_at(const tex_noise_table *t, int period, const double a[3], 
     return noise3_point(t, period, p);
 }
 
-
 #ifdef TEX_X86
 /* c mod m for whole numbers |c| < 2^31 in double, exactly: the quotient from
  * the reciprocal may be one off either way, and the remainder says which. */
@@ -285,22 +284,8 @@ TEX_AVX2 static inline __attribute__((always_inline)) __m256i join_epi32(__m128i
     return _mm256_inserti128_si256(_mm256_castsi128_si256(lo), hi, 1);
 }
 
-/* Eight rows of four floats as the four vectors of their columns (row i in lane i) */
-TEX_AVX2 static inline __attribute__((always_inline)) void columns8(const float *const row[8],
-                                                                __m256 c[4])
-{
-    __m256 r0 = _mm256_loadu2_m128(row[4], row[0]), r1 = _mm256_loadu2_m128(row[5], row[1]);
-    __m256 r2 = _mm256_loadu2_m128(row[6], row[2]), r3 = _mm256_loadu2_m128(row[7], row[3]);
-    __m256 t0 = _mm256_unpacklo_ps(r0, r1), t1 = _mm256_unpacklo_ps(r2, r3);
-    __m256 t2 = _mm256_unpackhi_ps(r0, r1), t3 = _mm256_unpackhi_ps(r2, r3);
-    c[0] = _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(1, 0, 1, 0));
-    c[1] = _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(3, 2, 3, 2));
-    c[2] = _mm256_shuffle_ps(t2, t3, _MM_SHUFFLE(1, 0, 1, 0));
-    c[3] = _mm256_shuffle_ps(t2, t3, _MM_SHUFFLE(3, 2, 3, 2));
-}
-
-/* Four rows of four floats in each 128-bit half of a0..a3 as the vectors of their first
- * three columns (row i of each half in lane i of that half) */
+/* Four rows of four floats in each 128-bit half of a0..a3 as the vectors of their four
+ * columns (row i of each half in lane i of that half) */
 TEX_AVX2 static inline __attribute__((always_inline)) void
 columns4(__m256 a0, __m256 a1, __m256 a2, __m256 a3, __m256 c[4])
 {
@@ -309,6 +294,15 @@ columns4(__m256 a0, __m256 a1, __m256 a2, __m256 a3, __m256 c[4])
     c[0] = _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(1, 0, 1, 0));
     c[1] = _mm256_shuffle_ps(t0, t1, _MM_SHUFFLE(3, 2, 3, 2));
     c[2] = _mm256_shuffle_ps(t2, t3, _MM_SHUFFLE(1, 0, 1, 0));
+    c[3] = _mm256_shuffle_ps(t2, t3, _MM_SHUFFLE(3, 2, 3, 2));
+}
+
+/* Eight rows of four floats as the four vectors of their columns (row i in lane i) */
+TEX_AVX2 static inline __attribute__((always_inline)) void columns8(const float *const row[8],
+                                                                __m256 c[4])
+{
+    columns4(_mm256_loadu2_m128(row[4], row[0]), _mm256_loadu2_m128(row[5], row[1]),
+             _mm256_loadu2_m128(row[6], row[2]), _mm256_loadu2_m128(row[7], row[3]), c);
 }
 
 /* Eight rows of two gradients (x y z 0 x y z 0) as the columns x, y, z of each: row i
@@ -1721,7 +1715,7 @@ int tex_octaves_init(tex_octaves *o, uint64_t seed, int gradients, int fade, int
         }
         /* AVX-512 rows for the wide octaves only where they are most of the sum: a map that
          * switches between 512- and 256-bit rows runs slower than on 256 alone (fBm of 8
-         * octaves from 256 cells: 4 %; from 4 cells, all but one wide: 30 % faster). */
+         * octaves from 256 cells: 4 %; from 4 cells, all but one wide: 10-30 % faster). */
         for (int k = 0; 2 * wide < n && k < n; k++)
             o->g[k].wide = 0;
     }

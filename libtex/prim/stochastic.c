@@ -63,11 +63,11 @@ static int hole(const struct tex_field *f, int dims, const int64_t c[3], double 
         return 0;
     *d = p->diameter * (1 + p->jitter * (2 * r2 - 1));
     /* Keep the rim inside the cell so that the 3 x 3 neighbourhood sees every hole. */
-    double free = 1 - (*d < 1 ? *d : 1); /* fmin's value: d is never NaN */
-    ctr[0] = c[0] + 0.5 + (r0 - 0.5) * free;
-    ctr[1] = c[1] + 0.5 + (r1 - 0.5) * free;
+    double room = 1 - (*d < 1 ? *d : 1); /* fmin's value: d is never NaN */
+    ctr[0] = c[0] + 0.5 + (r0 - 0.5) * room;
+    ctr[1] = c[1] + 0.5 + (r1 - 0.5) * room;
     /* in space: the third coordinate from the hash's other bits */
-    ctr[2] = dims == 3 ? c[2] + 0.5 + ((double)(tex_hash64(h) & 0xffff) / 65536.0 - 0.5) * free
+    ctr[2] = dims == 3 ? c[2] + 0.5 + ((double)(tex_hash64(h) & 0xffff) / 65536.0 - 0.5) * room
                        : 0;
     return 1;
 }

@@ -442,8 +442,7 @@ static inline int map_point_at(const struct tex_apply *ap, const struct tex_obje
 /* Where the mapping is affine in P (modulo wrapping), its world-space gradients of u, v and
  * w in g[0..2]: 1, else 0 (the footprint then takes finite differences). */
 static inline __attribute__((always_inline)) int
-map_gradient(const struct tex_apply *ap, const struct tex_object *leaf,
-                               tex_v3 g[3])
+map_gradient(const struct tex_apply *ap, const struct tex_object *leaf, tex_v3 g[3])
 {
     static const double id[3][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};
     const double(*m)[4] = ap->placed ? ap->to_tex.m : id;
@@ -572,8 +571,8 @@ struct footprint {
     tex_v3 D, N;
     tex_v3 t1, t2;
     double l2, width, c;
-    int tangents, unit, obj; /* 1: t1, t2, l2, c made; t1, t2 have unit length (l2 = 1); the
-                              * object-space members are set */
+    int tangents; /* 1: t1, t2, l2 and c are made (footprint_tangents) */
+    int unit, obj; /* 1: t1, t2 have unit length (l2 = 1); the object-space members are set */
     tex_v3 o1, o2, P1, P2, pl1, pl2;
     double d1, d2;
 };
