@@ -648,7 +648,7 @@ int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int 
      * pixels span seven cells or more, sharing saves little and costs the rows
      * gathers: every column then has its own pair. */
     g->paired = fx >= 0.875 * w;
-    g->wide = fx * 8 <= w;
+    g->wide = fx * 5 <= w;
     for (int x = 0; x < w; x++) {
         double X = off[0] + fx * ((x + 0.5) / w), c = floor(X);
         int64_t i = tex_noise_cell(c);
