@@ -1766,11 +1766,28 @@ void tex_octave_points(const tex_octaves *o, int k, int n, const double *u, cons
     }
 }
 
+/* tex_octave_points as float, the 3D octaves straight from the kernel's floats */
+static void octave_points_f(const tex_octaves *o, int k, int n, const double *u, const double *v,
+                            const double *w, float *out)
+{
+    double r[TEX_POINTS_BATCH];
+
+    if (o->dims == 3) {
+        tex_noise_points_at(&o->t, o->period[k], o->off[k], o->freq[k], n, u, v, w, out);
+        return;
+    }
+    for (int i0 = 0; i0 < n; i0 += TEX_POINTS_BATCH) {
+        int m = n - i0 < TEX_POINTS_BATCH ? n - i0 : TEX_POINTS_BATCH;
+        tex_octave_points(o, k, m, u + i0, v + i0, w ? w + i0 : NULL, r);
+        for (int i = 0; i < m; i++)
+            out[i0 + i] = (float)r[i];
+    }
+}
+
 void tex_octave_abs_sum(const tex_octaves *o, int octaves, const float *amp, float start, int n,
                         const double *u, const double *v, const double *w, float *out)
 {
     enum { B = TEX_POINTS_BATCH };
-    double r[B];
     float rf[B];
 
     for (int i0 = 0; i0 < n; i0 += B) {
@@ -1778,14 +1795,7 @@ void tex_octave_abs_sum(const tex_octaves *o, int octaves, const float *amp, flo
         for (int i = 0; i < m; i++)
             out[i0 + i] = start;
         for (int k = 0; k < octaves; k++) {
-            if (o->dims == 3) {
-                tex_noise_points_at(&o->t, o->period[k], o->off[k], o->freq[k], m, u + i0, v + i0,
-                                    w ? w + i0 : NULL, rf);
-            } else {
-                tex_octave_points(o, k, m, u + i0, v + i0, w ? w + i0 : NULL, r);
-                for (int i = 0; i < m; i++)
-                    rf[i] = (float)r[i];
-            }
+            octave_points_f(o, k, m, u + i0, v + i0, w ? w + i0 : NULL, rf);
             float ak = amp[k], *restrict o = out + i0; /* o aliases neither amp nor rf */
 #pragma omp simd
             for (int i = 0; i < m; i++)
@@ -1848,20 +1858,10 @@ double tex_octave_band_weight(const tex_octaves *o, int k)
 void tex_octave_points_fw(const tex_octaves *o, int k, int n, const double *u, const double *v,
                           const double *w, const double *fw, float *out, float *wt)
 {
-    double fk = o->freq[k];
-    if (!band_weights(n, fw, fk, wt)) {
+    if (band_weights(n, fw, o->freq[k], wt))
+        octave_points_f(o, k, n, u, v, w, out);
+    else
         memset(out, 0, n * sizeof *out);
-    } else if (o->dims == 3) { /* tex_octave_points' values, as float */
-        tex_noise_points_at(&o->t, o->period[k], o->off[k], fk, n, u, v, w, out);
-    } else {
-        double r[TEX_POINTS_BATCH];
-        for (int i0 = 0; i0 < n; i0 += TEX_POINTS_BATCH) {
-            int m = n - i0 < TEX_POINTS_BATCH ? n - i0 : TEX_POINTS_BATCH;
-            tex_octave_points(o, k, m, u + i0, v + i0, w ? w + i0 : NULL, r);
-            for (int i = 0; i < m; i++)
-                out[i0 + i] = (float)r[i];
-        }
-    }
 }
 
 double tex_noise_mean_abs(const tex_noise_table *t)
