@@ -35,6 +35,55 @@ if t_apply "$T/simd.scene" -j 1 --format pfm >"$T/v.pfm" &&
 else
     notok "vector against scalar render: renders"
 fi
+# Bump mapping, N' = N - s grad f: a sinusoid f = 0.5 + 0.5 sin(2 pi u) on a plane seen from
+# straight above, u = x / 8, lit from (1, 1, 0): each pixel's light is the flat render's times
+# N'.L / N.L, with grad f = (pi / 8) cos(pi x / 4) along x at the pixel's hit x, both for the
+# map (its lookup's own derivatives) and for the same sinusoid made at the hit (finite
+# differences); a wrong sign or scale of the gradient fails it.
+t_expr -s 256x4 '0.5 + 0.5 * sin(2 * pi * u)' -o "$T/wave.exr"
+for b in 0 1.2; do
+    cat >"$T/bump$b.scene" <<SCENE
+image 64 4
+ambient 0 0 0
+camera { eye 2 4 0 look 2 0 0 up 0 0 1 fov 28 }
+light distant { direction 1 1 0 }
+texture wave file "$T/wave.exr"
+primitive ripple() = 0.5 + 0.5 * sin(2 * pi * u)
+texture made ripple { }
+surface map { Ka 0 Kd 1 1 1 apply wave { mapping planar scale 0.125 bump = $b } }
+surface made { Ka 0 Kd 1 1 1 apply made { mapping planar scale 0.125 bump = $b } }
+plane { surface map }
+SCENE
+    sed 's/plane { surface map }/plane { surface made }/' "$T/bump$b.scene" >"$T/made$b.scene"
+done
+bump_ok() { # NAME FLAT BUMPED: every pixel of the middle rows within 0.01 of the formula
+    python3 - "$2" "$3" <<'PY' && ok "$1" || notok "$1" "$(cat "$T/.bump")"
+import math, os, struct, sys
+def pfm(p):
+    f = open(p, "rb"); f.readline(); w, h = map(int, f.readline().split()); s = float(f.readline())
+    d = struct.unpack(("<" if s < 0 else ">") + "f" * (w * h * 3), f.read())
+    return w, h, [d[i * 3] for i in range(w * h)]  # red; rows bottom up
+w, h, flat = pfm(sys.argv[1]); _, _, bump = pfm(sys.argv[2])
+sx = math.tan(math.radians(28) / 2); L = (1 / math.sqrt(2), 1 / math.sqrt(2), 0)
+worst = 0
+for row in (1, 2):
+    for i in range(w):
+        x = 2 + 4 * ((i + 0.5) * 2 * sx / w - sx)  # the hit's x: the plane 4 below the eye
+        g = 1.2 * (math.pi / 8) * math.cos(math.pi * x / 4)
+        n = (-g, 1, 0); ln = math.sqrt(g * g + 1)
+        want = flat[row * w + i] * ((n[0] * L[0] + n[1] * L[1]) / ln) / L[1]
+        worst = max(worst, abs(bump[row * w + i] - want))
+open(os.environ["T"] + "/.bump", "w").write("worst %.4f" % worst)
+sys.exit(worst > 0.01)
+PY
+}
+export T
+for s in bump made; do
+    t_apply "$T/${s}0.scene" -j 1 --format pfm >"$T/${s}0.pfm" &&
+        t_apply "$T/${s}1.2.scene" -j 1 --format pfm >"$T/${s}1.pfm"
+done
+bump_ok "a map's bump tilts the normal by its gradient (N' = N - s grad f)" "$T/bump0.pfm" "$T/bump1.pfm"
+bump_ok "a primitive's bump, by finite differences, does the same" "$T/made0.pfm" "$T/made1.pfm"
 t_noise -s 64 -o "$T/noise.exr"
 for f in patterns/*.scene tests/scenes/*.scene; do
     if t_apply "$f" -s 32x24 --spp 1 -o "$T/s.exr" <"$T/noise.exr" 2>"$T/s.err"; then

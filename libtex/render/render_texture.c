@@ -107,23 +107,36 @@ texels(const tex_map *m, double u, double v, const float *t[4], double *ax, doub
     t[0] = r0 + x0, t[1] = r0 + x1, t[2] = r1 + x0, t[3] = r1 + x1;
 }
 
-/* Channels 0..k-1 of map m (k = 1: grey, 3: colour) at (u, v) in [0, 1], bilinear. */
+/* The derivative of a bilinear interpolant along x (along y: swap t[1] and t[2], ax and ay)
+ * from its corners' values a, b (on one row) and c, d (on the next) */
+static inline double bilinear_dx(double a, double b, double c, double d, double ay)
+{
+    return (b - a) * (1 - ay) + (d - c) * ay;
+}
+
+/* Channels 0..k-1 of map m (k = 1: grey, 3: colour) at (u, v) in [0, 1], bilinear; g (or
+ * NULL): the derivatives of their mean along the map's x and y, in texels. */
 static inline __attribute__((always_inline)) void
-bilinear(const tex_map *m, int k, double u, double v, float out[3])
+bilinear(const tex_map *m, int k, double u, double v, float out[3], double g[2])
 {
     const float *t[4];
-    double ax, ay;
+    double ax, ay, gx[3], gy[3];
     texels(m, u, v, t, &ax, &ay);
     for (int c = 0; c < k; c++) {
         double a = t[0][c], b = t[1][c], cc = t[2][c], d = t[3][c];
         out[c] = (float)((a * (1 - ax) + b * ax) * (1 - ay) + (cc * (1 - ax) + d * ax) * ay);
+        gx[c] = bilinear_dx(a, b, cc, d, ay), gy[c] = bilinear_dx(a, cc, b, d, ax);
     }
+    if (g && k == 3)
+        g[0] = (gx[0] + gx[1] + gx[2]) / 3, g[1] = (gy[0] + gy[1] + gy[2]) / 3;
+    else if (g)
+        g[0] = gx[0], g[1] = gy[0];
 }
 
 #ifdef TEX_X86
 /* bilinear with k = 3, the channels in three of four double lanes: its operations in its
- * order, so the same floats. */
-TEX_AVX2 static inline __m128 bilinear3_avx2(const tex_map *m, double u, double v)
+ * order, so the same floats (and the same derivatives g, or none). */
+TEX_AVX2 static inline __m128 bilinear3_avx2(const tex_map *m, double u, double v, double g[2])
 {
     const float *t[4];
     double ax, ay;
@@ -134,19 +147,28 @@ TEX_AVX2 static inline __m128 bilinear3_avx2(const tex_map *m, double u, double 
     __m256d c = _mm256_cvtps_pd(_mm_maskload_ps(t[2], three));
     __m256d d = _mm256_cvtps_pd(_mm_maskload_ps(t[3], three));
     __m256d wx = _mm256_set1_pd(ax), wx1 = _mm256_set1_pd(1 - ax);
+    __m256d wy = _mm256_set1_pd(ay), wy1 = _mm256_set1_pd(1 - ay);
+    if (g) { /* bilinear_dx's operations, lane by lane */
+        double x[4], y[4];
+        _mm256_storeu_pd(x, _mm256_add_pd(_mm256_mul_pd(_mm256_sub_pd(b, a), wy1),
+                                          _mm256_mul_pd(_mm256_sub_pd(d, c), wy)));
+        _mm256_storeu_pd(y, _mm256_add_pd(_mm256_mul_pd(_mm256_sub_pd(c, a), wx1),
+                                          _mm256_mul_pd(_mm256_sub_pd(d, b), wx)));
+        g[0] = (x[0] + x[1] + x[2]) / 3, g[1] = (y[0] + y[1] + y[2]) / 3;
+    }
     __m256d top = _mm256_add_pd(_mm256_mul_pd(a, wx1), _mm256_mul_pd(b, wx));
     __m256d bot = _mm256_add_pd(_mm256_mul_pd(c, wx1), _mm256_mul_pd(d, wx));
-    return _mm256_cvtpd_ps(_mm256_add_pd(_mm256_mul_pd(top, _mm256_set1_pd(1 - ay)),
-                                         _mm256_mul_pd(bot, _mm256_set1_pd(ay))));
+    return _mm256_cvtpd_ps(_mm256_add_pd(_mm256_mul_pd(top, wy1), _mm256_mul_pd(bot, wy)));
 }
 
-/* map_eval's colour case from level l (weight a of level l + 1), in vectors */
+/* map_eval's colour case from level l (weight a of level l + 1), in vectors; g: as bilinear
+ * gives them, level l's in g[0], l + 1's in g[1] */
 TEX_AVX2 static void map_eval3_avx2(const struct tex_texture *t, int l, double a, double u,
-                                double v, float out[3])
+                                double v, float out[3], double (*g)[2])
 {
-    __m128 o = bilinear3_avx2(t->mip[l], u, v);
+    __m128 o = bilinear3_avx2(t->mip[l], u, v, g ? g[0] : NULL);
     if (a > 0) {
-        __m128 o1 = bilinear3_avx2(t->mip[l + 1], u, v);
+        __m128 o1 = bilinear3_avx2(t->mip[l + 1], u, v, g ? g[1] : NULL);
         o = _mm256_cvtpd_ps(_mm256_add_pd(_mm256_mul_pd(_mm256_cvtps_pd(o), _mm256_set1_pd(1 - a)),
                                           _mm256_mul_pd(_mm256_cvtps_pd(o1), _mm256_set1_pd(a))));
     }
@@ -185,29 +207,41 @@ static inline int mip_level(const struct tex_texture *t, double x2, double *a)
 }
 
 /* A map's value at (u, v) in [0, 1] for a footprint of width sqrt(fw2): bilinear in the
- * mip-map level of the footprint and, between levels, linear across the two (trilinear). */
+ * mip-map level of the footprint and, between levels, linear across the two (trilinear).
+ * grad (or NULL): the gradient of its luminance (the channels' mean) per unit of u and of v,
+ * the bilinear interpolants' derivatives weighted as their values are (Blinn's Fu, Fv of the
+ * map as it is looked up). */
 static inline __attribute__((always_inline)) void
-map_eval(const struct tex_texture *t, double u, double v, double fw2, float out[3])
+map_eval(const struct tex_texture *t, double u, double v, double fw2, float out[3],
+         double grad[2])
 {
     const tex_map *m = t->mip[0];
     int k = m->nc < 3 ? 1 : 3, side = m->w > m->h ? m->w : m->h;
-    double a;
+    double a, g[2][2];
     int l = mip_level(t, fw2 * ((double)side * side), &a);
 #ifdef TEX_X86
     if (k == 3 && tex_simd_level() >= TEX_SIMD_AVX2) {
-        map_eval3_avx2(t, l, a, u, v, out);
-        return;
-    }
+        map_eval3_avx2(t, l, a, u, v, out, grad ? g : NULL);
+    } else
 #endif
-    bilinear(t->mip[l], k, u, v, out);
-    if (a > 0) {
-        float o1[3];
-        bilinear(t->mip[l + 1], k, u, v, o1);
-        for (int c = 0; c < k; c++)
-            out[c] = (float)(out[c] * (1 - a) + o1[c] * a);
+    {
+        bilinear(t->mip[l], k, u, v, out, grad ? g[0] : NULL);
+        if (a > 0) {
+            float o1[3];
+            bilinear(t->mip[l + 1], k, u, v, o1, grad ? g[1] : NULL);
+            for (int c = 0; c < k; c++)
+                out[c] = (float)(out[c] * (1 - a) + o1[c] * a);
+        }
+        if (k == 1)
+            out[1] = out[2] = out[0];
     }
-    if (k == 1)
-        out[1] = out[2] = out[0];
+    if (!grad)
+        return;
+    const tex_map *ml = t->mip[l], *m1 = t->mip[a > 0 ? l + 1 : l]; /* x = u w - 0.5 */
+    for (int i = 0; i < 2; i++) {
+        double w = i ? ml->h : ml->w, w1 = i ? m1->h : m1->w;
+        grad[i] = a > 0 ? g[0][i] * w * (1 - a) + g[1][i] * w1 * a : g[0][i] * w;
+    }
 }
 
 /* Whether a solid primitive fades its octaves by the footprint (the packets' prefetch
@@ -281,14 +315,15 @@ static int region_eval(const tex_map *m, double u, double v, float out[3])
  * count), where truncation is floor, for a footprint of width sqrt(fw2); inline in the
  * lookup of every textured hit. */
 static inline __attribute__((always_inline)) int
-texture_eval(const struct tex_texture *t, double u, double v, double w, double fw2, float out[3])
+texture_eval(const struct tex_texture *t, double u, double v, double w, double fw2, float out[3],
+             double grad[2])
 {
     if (!t->mip)
         return field_eval(t, u, v, w, fw2, out);
     u -= (int)u, v -= (int)v; /* maps repeat */
     if (t->subregions)
         return region_eval(t->mip[0], u, v, out);
-    map_eval(t, u, v, fw2, out);
+    map_eval(t, u, v, fw2, out, grad);
     return 0;
 }
 
@@ -298,7 +333,7 @@ static int texture_lookup(const struct tex_texture *t, double u, double v, doubl
 {
     if (t->mip)
         u = wrap01(u), v = wrap01(v);
-    return texture_eval(t, u, v, w, fw2, out);
+    return texture_eval(t, u, v, w, fw2, out, NULL);
 }
 
 int tex_texture_eval(const struct tex_texture *t, double u, double v, double w, double fw,
@@ -1053,24 +1088,54 @@ static tex_v3 normal_mapped(const float enc[3], const tex_v3 *N, const tex_v3 *g
                                   tex_v3_scale(*N, z)));
 }
 
-/* Blinn's bump mapping: the tilt of the normal against the surface gradient of texture ap's
- * luminance (f at the hit), by finite differences along the footprint's tangents. */
-static tex_v3 bump_tilt(const struct tex_apply *ap, const struct placement *pm,
-                        const struct tex_object *leaf, const tex_v3 *P, struct footprint *fp,
-                        double width, double fw2, const float f[3], double strength)
+/* The derivatives of the placed u and v along the footprint's unit tangents t1, t2 (du[i],
+ * dv[i] along ti), where the mapping has them in closed form (affine, or a natural mapping
+ * at pl on face): 1, else 0. */
+static int uv_derivatives(const struct tex_apply *ap, const struct placement *pm,
+                          const struct tex_object *leaf, const tex_v3 *pl, int face,
+                          struct footprint *fp, double du[2], double dv[2])
 {
-    double h = width > 1e-4 ? width : 1e-4, g[2];
+    tex_v3 g[3], gu, gv, e[2];
     footprint_unit(fp);
-    for (int i = 0; i < 2; i++) {
-        tex_v3 Pi = tex_v3_madd(*P, i ? fp->t2 : fp->t1, h);
-        tex_v3 pli = tex_xform_point(&leaf->to_obj, Pi);
-        double uvw[3];
-        float fi[3];
-        map_point_at(ap, leaf, &Pi, &pli, uvw);
-        if (!place(ap, pm, uvw))
-            return tex_v3_make(0, 0, 0);
-        texture_lookup(ap->tex, uvw[0], uvw[1], uvw[2], fw2, fi);
-        g[i] = (lum(fi) - lum(f)) / h;
+    e[0] = fp->t1, e[1] = fp->t2;
+    if (map_gradient(ap, leaf, g)) {
+        gu = g[0], gv = g[1];
+    } else if (natural_gradient(ap, leaf, pl, face, &gu, &gv)) { /* in object space */
+        e[0] = tex_xform_dir(&leaf->to_obj, fp->t1), e[1] = tex_xform_dir(&leaf->to_obj, fp->t2);
+    } else {
+        return 0;
+    }
+    for (int i = 0; i < 2; i++)
+        du[i] = tex_v3_dot(gu, e[i]) * pm->su, dv[i] = tex_v3_dot(gv, e[i]) * pm->sv;
+    return 1;
+}
+
+/* Blinn's bump mapping: the tilt of the normal against the surface gradient of texture ap's
+ * luminance (f at the hit; pl: the hit in object space, on face).  grad (or NULL): the
+ * gradient per placed u and v that the map's lookup gave (map_eval), taken through the
+ * mapping's derivatives where they have a closed form; else (a primitive, a region map, a
+ * mapping without them) finite differences along the footprint's tangents. */
+static tex_v3 bump_tilt(const struct tex_apply *ap, const struct placement *pm,
+                        const struct tex_object *leaf, const tex_v3 *P, const tex_v3 *pl,
+                        int face, struct footprint *fp, double width, double fw2,
+                        const double *grad, const float f[3], double strength)
+{
+    double h = width > 1e-4 ? width : 1e-4, g[2], du[2], dv[2];
+    if (grad && uv_derivatives(ap, pm, leaf, pl, face, fp, du, dv)) {
+        g[0] = grad[0] * du[0] + grad[1] * dv[0], g[1] = grad[0] * du[1] + grad[1] * dv[1];
+    } else {
+        footprint_unit(fp);
+        for (int i = 0; i < 2; i++) {
+            tex_v3 Pi = tex_v3_madd(*P, i ? fp->t2 : fp->t1, h);
+            tex_v3 pli = tex_xform_point(&leaf->to_obj, Pi);
+            double uvw[3];
+            float fi[3];
+            map_point_at(ap, leaf, &Pi, &pli, uvw);
+            if (!place(ap, pm, uvw))
+                return tex_v3_make(0, 0, 0);
+            texture_lookup(ap->tex, uvw[0], uvw[1], uvw[2], fw2, fi);
+            g[i] = (lum(fi) - lum(f)) / h;
+        }
     }
     return tex_v3_scale(tex_v3_add(tex_v3_scale(fp->t1, g[0]), tex_v3_scale(fp->t2, g[1])),
                         strength);
@@ -1198,12 +1263,15 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
         /* one lookup: region maps and other primitives ignore the footprint; a primitive's
          * value may have come with the packet's */
         int region;
+        /* a map to bump: its gradient with its value */
+        double grad[2], *gp = pm->bump && ap->tex->mip && !ap->tex->subregions &&
+                                      ap->mapping != TEX_MAP_CROSS ? grad : NULL;
         if (pa->has_val) {
             float val[TEX_MAP_MAX_CHANNELS];
             memcpy(val, pa->val, sizeof val);
             region = field_finish(ap->tex, val, f);
         } else {
-            region = texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw2, f);
+            region = texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw2, f, gp);
         }
         if (ap->mapping == TEX_MAP_CROSS)
             cross_combine(ap, pm, uvw, fw2, f);
@@ -1215,7 +1283,8 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
             ks_textured |= fn->param == TEX_SP_KS;
             apply_fn(fn, cache->compiled[nfn] ? &cache->poly[nfn] : NULL, f, uvw, fw2, q, pr);
             if (fn->param == TEX_SP_BUMP && pr->bump != 0) {
-                tilt = tex_v3_add(tilt, bump_tilt(ap, pm, leaf, P, &fp, width, fw2, f, pr->bump));
+                tilt = tex_v3_add(tilt, bump_tilt(ap, pm, leaf, P, &pl, pa->face, &fp, width,
+                                                  fw2, gp, f, pr->bump));
                 bumped = 1;
                 pr->bump = 0;
             } else if (fn->param == TEX_SP_NORMAL || fn->param == TEX_SP_GRADIENT) {
