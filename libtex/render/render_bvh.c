@@ -34,6 +34,8 @@ struct prim {
     tex_v3 a;  /* sphere: world centre; plane: the y row of to_obj */
     double b;  /* sphere: radius squared; plane: the row's offset */
     int kind;
+    int boxed; /* a transformed leaf in the tree: box, its world box a little widened */
+    struct tex_bounds box;
     const struct tex_object *ob;
 };
 
@@ -76,6 +78,7 @@ static double area(struct tex_bounds b)
 static void classify(struct prim *p, const struct tex_object *ob)
 {
     p->ob = ob;
+    p->boxed = 0;
     p->kind = ob->op == TEX_CSG_LEAF ? PK_LEAF : PK_CSG;
     if (p->kind != PK_LEAF)
         return;
@@ -224,6 +227,16 @@ struct tex_bvh *tex_bvh_build(struct tex_object **obs, int n)
             classify(&t->unb[t->nunb++], obs[i]);
         }
     }
+    /* a transformed leaf's spans cost several box tests: rays that miss its box skip them.
+     * Widened by 1e-9 of its size: a ray that grazes the shape is not lost to rounding. */
+    for (int i = 0; i < nb; i++) {
+        struct prim *p = &src[i];
+        tex_v3 e = tex_v3_sub(p->ob->wb.hi, p->ob->wb.lo);
+        double pad = 1e-9 * (e.x + e.y + e.z) + 1e-300;
+        p->boxed = p->kind == PK_LEAF;
+        p->box.lo = tex_v3_sub(p->ob->wb.lo, tex_v3_make(pad, pad, pad));
+        p->box.hi = tex_v3_add(p->ob->wb.hi, tex_v3_make(pad, pad, pad));
+    }
     bd.src = src;
     if (nb)
         build(&bd, 0, nb, 0);
@@ -276,6 +289,9 @@ static __attribute__((noinline)) int first_hit_spans(const struct prim *p, const
     struct tex_spans s;
     const struct tex_object *ob = p->ob;
     if (p->kind == PK_LEAF) {
+        double t0;
+        if (p->boxed && !hit_box(&p->box, r, tmin, *tmax, &t0))
+            return 0;
         tex_leaf_spans(ob, &r->o, &r->d, &s);
     } else {
         double t0;
@@ -427,6 +443,8 @@ static __attribute__((noinline)) void transmit_spans(const struct tex_scene *s,
     const struct tex_object *ob = p->ob;
     double t0;
     if (p->kind == PK_LEAF) {
+        if (p->boxed && !hit_box(&p->box, r, tmin, tmax, &t0))
+            return;
         tex_leaf_spans(ob, &r->o, &r->d, &sp);
     } else {
         if (!ob->bounded) {
