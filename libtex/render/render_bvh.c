@@ -9,11 +9,12 @@
  * Each object gets a fast path chosen at build time: a sphere placed by a
  * similarity (translate, rotate, uniform scale) is intersected in world
  * space, a plane through its object-space y row alone; other leaves pay for
- * the transform, CSG trees for their interval lists.  Traversal is ordered
- * (nearer child first), skips nodes entered beyond the closest hit, and a
- * shadow query (any = 1) stops at the first hit.  tex_scene_transmit visits
- * every object along a shadow ray once, in any order: the light passing is
- * the product of Kt over the surfaces crossed.
+ * the transform once a ray meets their box, CSG trees for their interval
+ * lists.  Traversal is ordered (nearer child first), skips nodes entered
+ * beyond the closest hit, and a shadow query (any = 1) stops at the first
+ * hit.  tex_scene_transmit visits every object along a shadow ray once, in
+ * any order: the light passing is the product of Kt over the surfaces
+ * crossed.
  */
 #define _GNU_SOURCE /* qsort_r */
 #include <stdlib.h>
@@ -227,8 +228,9 @@ struct tex_bvh *tex_bvh_build(struct tex_object **obs, int n)
             classify(&t->unb[t->nunb++], obs[i]);
         }
     }
-    /* a transformed leaf's spans cost several box tests: rays that miss its box skip them.
-     * Widened by 1e-9 of its size: a ray that grazes the shape is not lost to rounding. */
+    /* a transformed leaf's spans cost several box tests: rays that miss its world box skip
+     * them.  Widened by 1e-9 of its size: a ray that grazes the shape is not lost to
+     * rounding. */
     for (int i = 0; i < nb; i++) {
         struct prim *p = &src[i];
         tex_v3 e = tex_v3_sub(p->ob->wb.hi, p->ob->wb.lo);
