@@ -94,12 +94,13 @@ $(BUILD)/obj/%.o: %.c
 # The renderer's work at a hit is many small steps: -O3's inlining and unrolling take 6-7 %
 # off t_apply's CPU on the tests/bench/render scenes, to the same bytes.  The rest of
 # libtex stays at OPT; a build at another OPT (-O1 under ASan) keeps it here too.
-$(BUILD)/obj/libtex/render/%.o: ALL_CFLAGS += $(if $(filter -O2,$(OPT)),-O3) $(RENDER_LTO)
+#
 # The renderer's files call each other at every hit and every ray (lights, the BVH,
 # shapes, textures): gcc's link-time optimisation inlines across them in t_apply.  Fat
 # objects: every other program links their machine code as it is.  Not under a sanitizer
-# or clang (whose LTO objects are not fat), nor at another OPT.
-RENDER_LTO = $(if $(and $(filter -O2,$(OPT)),$(if $(findstring clang,$(shell $(CC) --version 2>/dev/null | head -1)),,1),$(if $(SANITIZE),,1)),-flto=auto -ffat-lto-objects)
+# or clang (whose LTO objects are not fat), nor at another OPT.  (:= asks the compiler once.)
+RENDER_LTO := $(if $(and $(filter -O2,$(OPT)),$(if $(findstring clang,$(shell $(CC) --version 2>/dev/null | head -1)),,1),$(if $(SANITIZE),,1)),-flto=auto -ffat-lto-objects)
+$(BUILD)/obj/libtex/render/%.o: ALL_CFLAGS += $(if $(filter -O2,$(OPT)),-O3) $(RENDER_LTO)
 $(BUILD)/bin/t_apply: LDFLAGS += $(if $(RENDER_LTO),-flto=auto -O3)
 
 $(STATIC): $(LIB_OBJ)

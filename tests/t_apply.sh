@@ -41,6 +41,13 @@ fi
 # map (its lookup's own derivatives) and for the same sinusoid made at the hit (finite
 # differences); a wrong sign or scale of the gradient fails it.
 t_expr -s 256x4 '0.5 + 0.5 * sin(2 * pi * u)' -o "$T/wave.exr"
+export T
+cat >"$T/pfm.py" <<'PY'
+import struct
+def pfm(p):  # width, height, the RGB floats, rows bottom up
+    f = open(p, "rb"); f.readline(); w, h = map(int, f.readline().split()); s = float(f.readline())
+    return w, h, struct.unpack(("<" if s < 0 else ">") + "f" * (w * h * 3), f.read())
+PY
 for b in 0 1.2; do
     cat >"$T/bump$b.scene" <<SCENE
 image 64 4
@@ -58,12 +65,11 @@ SCENE
 done
 bump_ok() { # NAME FLAT BUMPED: every pixel of the middle rows within 0.01 of the formula
     python3 - "$2" "$3" <<'PY' && ok "$1" || notok "$1" "$(cat "$T/.bump")"
-import math, os, struct, sys
-def pfm(p):
-    f = open(p, "rb"); f.readline(); w, h = map(int, f.readline().split()); s = float(f.readline())
-    d = struct.unpack(("<" if s < 0 else ">") + "f" * (w * h * 3), f.read())
-    return w, h, [d[i * 3] for i in range(w * h)]  # red; rows bottom up
+import math, os, sys
+sys.path.insert(0, os.environ["T"])
+from pfm import pfm
 w, h, flat = pfm(sys.argv[1]); _, _, bump = pfm(sys.argv[2])
+flat, bump = flat[::3], bump[::3]  # red
 sx = math.tan(math.radians(28) / 2); L = (1 / math.sqrt(2), 1 / math.sqrt(2), 0)
 worst = 0
 for row in (1, 2):
@@ -77,7 +83,6 @@ open(os.environ["T"] + "/.bump", "w").write("worst %.4f" % worst)
 sys.exit(worst > 0.01)
 PY
 }
-export T
 for s in bump made; do
     t_apply "$T/${s}0.scene" -j 1 --format pfm >"$T/${s}0.pfm" &&
         t_apply "$T/${s}1.2.scene" -j 1 --format pfm >"$T/${s}1.pfm"
@@ -112,11 +117,10 @@ SCENE
     done
     python3 - "$T/$shape-wave-0.4.pfm" "$T/$shape-made-0.4.pfm" "$T/$shape-wave-0.pfm" \
         >"$T/.bump" <<'PY' && ok "$shape: a map's bump agrees with finite differences" ||
-import struct, sys
-def pfm(p):
-    f = open(p, "rb"); f.readline(); w, h = map(int, f.readline().split()); s = float(f.readline())
-    return struct.unpack(("<" if s < 0 else ">") + "f" * (w * h * 3), f.read())
-a, b, c = (pfm(p) for p in sys.argv[1:4])
+import os, sys
+sys.path.insert(0, os.environ["T"])
+from pfm import pfm
+a, b, c = (pfm(p)[2] for p in sys.argv[1:4])
 apart = sum(abs(x - y) for x, y in zip(a, b)) / len(a)
 effect = sum(abs(x - y) for x, y in zip(a, c)) / len(a)
 print("mean |map - differences| %.5f, mean bump %.5f" % (apart, effect))

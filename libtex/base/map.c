@@ -193,12 +193,13 @@ tex_map *tex_map_reduce(const tex_map *s)
     if (!d)
         return NULL;
     int fx = s->w / d->w, fy = s->h / d->h;
-    for (int y = 0; y < d->h; y++) {
-        if (fx == 2 && fy == 2) { /* the common case, without the general loops */
+    if (fx == 2 && fy == 2) { /* the common case, without the general loops */
+        for (int y = 0; y < d->h; y++)
             reduce_row2(tex_map_row(s, 2 * y), tex_map_row(s, 2 * y + 1), d->w * d->nc, d->nc,
                         tex_map_row(d, y));
-            continue;
-        }
+        return d;
+    }
+    for (int y = 0; y < d->h; y++) {
         for (int x = 0; x < d->w; x++) {
             float *o = tex_map_px(d, x, y);
             for (int j = 0; j < fy; j++)

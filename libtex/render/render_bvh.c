@@ -35,8 +35,7 @@ struct prim {
     tex_v3 a;  /* sphere: world centre; plane: the y row of to_obj */
     double b;  /* sphere: radius squared; plane: the row's offset */
     int kind;
-    int boxed; /* a transformed leaf in the tree: box, its world box a little widened */
-    struct tex_bounds box;
+    struct tex_bounds box; /* a bounded leaf's world box, a little widened */
     const struct tex_object *ob;
 };
 
@@ -79,7 +78,6 @@ static double area(struct tex_bounds b)
 static void classify(struct prim *p, const struct tex_object *ob)
 {
     p->ob = ob;
-    p->boxed = 0;
     p->kind = ob->op == TEX_CSG_LEAF ? PK_LEAF : PK_CSG;
     if (p->kind != PK_LEAF)
         return;
@@ -235,7 +233,6 @@ struct tex_bvh *tex_bvh_build(struct tex_object **obs, int n)
         struct prim *p = &src[i];
         tex_v3 e = tex_v3_sub(p->ob->wb.hi, p->ob->wb.lo);
         double pad = 1e-9 * (e.x + e.y + e.z) + 1e-300;
-        p->boxed = p->kind == PK_LEAF;
         p->box.lo = tex_v3_sub(p->ob->wb.lo, tex_v3_make(pad, pad, pad));
         p->box.hi = tex_v3_add(p->ob->wb.hi, tex_v3_make(pad, pad, pad));
     }
@@ -292,7 +289,7 @@ static __attribute__((noinline)) int first_hit_spans(const struct prim *p, const
     const struct tex_object *ob = p->ob;
     if (p->kind == PK_LEAF) {
         double t0;
-        if (p->boxed && !hit_box(&p->box, r, tmin, *tmax, &t0))
+        if (ob->bounded && !hit_box(&p->box, r, tmin, *tmax, &t0))
             return 0;
         tex_leaf_spans(ob, &r->o, &r->d, &s);
     } else {
@@ -445,7 +442,7 @@ static __attribute__((noinline)) void transmit_spans(const struct tex_scene *s,
     const struct tex_object *ob = p->ob;
     double t0;
     if (p->kind == PK_LEAF) {
-        if (p->boxed && !hit_box(&p->box, r, tmin, tmax, &t0))
+        if (ob->bounded && !hit_box(&p->box, r, tmin, tmax, &t0))
             return;
         tex_leaf_spans(ob, &r->o, &r->d, &sp);
     } else {

@@ -716,6 +716,32 @@ static double solid_width2(const struct tex_apply *ap, const struct placement *p
     return sqrt(l1 * l2);
 }
 
+/* The derivatives of the placed u and v along the footprint's tangents t1, t2 as they are
+ * (du[i], dv[i] along ti) at the hit P (pl in object space, on face), where the mapping has
+ * them in closed form: an affine mapping's in world space, a natural mapping's in object
+ * space along footprint_obj's tangents (then of unit length): 1, else 0 (footprint_obj made,
+ * for finite differences). */
+static inline __attribute__((always_inline)) int
+placed_derivatives(const struct tex_apply *ap, const struct placement *pm,
+                   const struct tex_object *leaf, struct footprint *fp, const tex_v3 *P,
+                   const tex_v3 *pl, int face, double du[2], double dv[2])
+{
+    const tex_v3 *e[2] = {&fp->t1, &fp->t2};
+    tex_v3 g[3], gu, gv;
+    footprint_tangents(fp);
+    if (map_gradient(ap, leaf, g)) {
+        gu = g[0], gv = g[1];
+    } else { /* not affine: in object space */
+        footprint_obj(fp, leaf, P, pl);
+        if (!natural_gradient(ap, leaf, pl, face, &gu, &gv))
+            return 0;
+        e[0] = &fp->o1, e[1] = &fp->o2;
+    }
+    for (int i = 0; i < 2; i++)
+        du[i] = tex_v3_dot(gu, *e[i]) * pm->su, dv[i] = tex_v3_dot(gv, *e[i]) * pm->sv;
+    return 1;
+}
+
 /* The footprint's size in texture units (after placement) for texture ap at the hit P (pl)
  * that its mapping took to (u0, v0) on face: the longer of its extents along t1 and t2,
  * squared (the mip level takes it so: neither a root nor a normalised tangent here). */
@@ -723,22 +749,10 @@ static double footprint_width2(const struct tex_apply *ap, const struct placemen
                                const struct tex_object *leaf, struct footprint *fp,
                                const tex_v3 *P, const tex_v3 *pl, int face, double u0, double v0)
 {
-    double su = pm->su, sv = pm->sv, a0, a1, b0, b1, m2;
-    const tex_v3 *e1 = &fp->t1, *e2 = &fp->t2;
-    footprint_tangents(fp);
-    tex_v3 g[3], du, dv;
-    int exact = 1;
-    if (map_gradient(ap, leaf, g)) {
-        du = g[0], dv = g[1];
-    } else { /* not affine: in object space */
-        footprint_obj(fp, leaf, P, pl);
-        exact = natural_gradient(ap, leaf, pl, face, &du, &dv);
-        e1 = &fp->o1, e2 = &fp->o2;
-    }
-    if (exact) { /* the derivatives along the two tangents, then over their length */
-        a0 = tex_v3_dot(du, *e1) * su, a1 = tex_v3_dot(dv, *e1) * sv;
-        b0 = tex_v3_dot(du, *e2) * su, b1 = tex_v3_dot(dv, *e2) * sv;
-        double c2 = fp->c * fp->c, l1 = a0 * a0 + a1 * a1, l2 = (b0 * b0 + b1 * b1) * c2;
+    double du[2], dv[2], m2;
+    if (placed_derivatives(ap, pm, leaf, fp, P, pl, face, du, dv)) { /* then over the length */
+        double c2 = fp->c * fp->c, l1 = du[0] * du[0] + dv[0] * dv[0];
+        double l2 = (du[1] * du[1] + dv[1] * dv[1]) * c2;
         return (l1 > l2 ? l1 : l2) * (fp->width * fp->width) / (fp->l2 * c2);
     }
     double m1 = stepped_width2(ap, pm, leaf, fp, (double[3]){u0, v0, 0}, 2, &m2);
@@ -1088,28 +1102,6 @@ static tex_v3 normal_mapped(const float enc[3], const tex_v3 *N, const tex_v3 *g
                                   tex_v3_scale(*N, z)));
 }
 
-/* The derivatives of the placed u and v along the footprint's unit tangents t1, t2 (du[i],
- * dv[i] along ti), where the mapping has them in closed form (affine, or a natural mapping
- * at pl on face): 1, else 0. */
-static int uv_derivatives(const struct tex_apply *ap, const struct placement *pm,
-                          const struct tex_object *leaf, const tex_v3 *pl, int face,
-                          struct footprint *fp, double du[2], double dv[2])
-{
-    tex_v3 g[3], gu, gv, e[2];
-    footprint_unit(fp);
-    e[0] = fp->t1, e[1] = fp->t2;
-    if (map_gradient(ap, leaf, g)) {
-        gu = g[0], gv = g[1];
-    } else if (natural_gradient(ap, leaf, pl, face, &gu, &gv)) { /* in object space */
-        e[0] = tex_xform_dir(&leaf->to_obj, fp->t1), e[1] = tex_xform_dir(&leaf->to_obj, fp->t2);
-    } else {
-        return 0;
-    }
-    for (int i = 0; i < 2; i++)
-        du[i] = tex_v3_dot(gu, e[i]) * pm->su, dv[i] = tex_v3_dot(gv, e[i]) * pm->sv;
-    return 1;
-}
-
 /* Blinn's bump mapping: the tilt of the normal against the surface gradient of texture ap's
  * luminance (f at the hit; pl: the hit in object space, on face).  grad (or NULL): the
  * gradient per placed u and v that the map's lookup gave (map_eval), taken through the
@@ -1121,10 +1113,10 @@ static tex_v3 bump_tilt(const struct tex_apply *ap, const struct placement *pm,
                         const double *grad, const float f[3], double strength)
 {
     double h = width > 1e-4 ? width : 1e-4, g[2], du[2], dv[2];
-    if (grad && uv_derivatives(ap, pm, leaf, pl, face, fp, du, dv)) {
+    footprint_unit(fp);
+    if (grad && placed_derivatives(ap, pm, leaf, fp, P, pl, face, du, dv)) {
         g[0] = grad[0] * du[0] + grad[1] * dv[0], g[1] = grad[0] * du[1] + grad[1] * dv[1];
     } else {
-        footprint_unit(fp);
         for (int i = 0; i < 2; i++) {
             tex_v3 Pi = tex_v3_madd(*P, i ? fp->t2 : fp->t1, h);
             tex_v3 pli = tex_xform_point(&leaf->to_obj, Pi);
@@ -1219,6 +1211,26 @@ static void texture_quantities(const struct tex_apply *ap, const struct placemen
     q[TEX_Q_REGION] = region;
 }
 
+/* Texture ap's value f at a hit its mapping took to pa, for a footprint fw2: the value that
+ * came with the packet, or one lookup (region maps and primitives ignore the footprint),
+ * combined with the cross mapping's second map; returns the region id.  grad (or NULL): a
+ * map's gradient with its value (map_eval). */
+static int texture_value(const struct tex_apply *ap, const struct placement *pm,
+                         const struct tex_prefetch_ap *pa, double fw2, float f[3], double *grad)
+{
+    int region;
+    if (pa->has_val) {
+        float val[TEX_MAP_MAX_CHANNELS];
+        memcpy(val, pa->val, sizeof val);
+        region = field_finish(ap->tex, val, f);
+    } else {
+        region = texture_eval(ap->tex, pa->uvw[0], pa->uvw[1], pa->uvw[2], fw2, f, grad);
+    }
+    if (ap->mapping == TEX_MAP_CROSS)
+        cross_combine(ap, pm, pa->uvw, fw2, f);
+    return region;
+}
+
 /* The textures of sf applied at the hit (normal N; filter: mip-mapped lookups) to pr, N bent
  * by bump maps; 1 if one of them set Ks. */
 static int apply_textures(const struct tex_surface *sf, const struct tex_shade_at *at,
@@ -1251,8 +1263,7 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
             map_hit(ap, pm, leaf, P, &pl, &own);
             pa = &own;
         }
-        double uvw[3] = {pa->uvw[0], pa->uvw[1], pa->uvw[2]};
-        double u0 = pa->uvw0[0], v0 = pa->uvw0[1];
+        const double *uvw = pa->uvw;
         if (!pa->inside) {
             for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next)
                 nfn++;
@@ -1260,21 +1271,9 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
         }
         int mapped; /* fw2 is footprint_width2's, which the quantities report */
         double fw2 = lookup_width2(ap, pm, leaf, &fp, P, &pl, pa, filter, &mapped);
-        /* one lookup: region maps and other primitives ignore the footprint; a primitive's
-         * value may have come with the packet's */
-        int region;
-        /* a map to bump: its gradient with its value */
         double grad[2], *gp = pm->bump && ap->tex->mip && !ap->tex->subregions &&
                                       ap->mapping != TEX_MAP_CROSS ? grad : NULL;
-        if (pa->has_val) {
-            float val[TEX_MAP_MAX_CHANNELS];
-            memcpy(val, pa->val, sizeof val);
-            region = field_finish(ap->tex, val, f);
-        } else {
-            region = texture_eval(ap->tex, uvw[0], uvw[1], uvw[2], fw2, f, gp);
-        }
-        if (ap->mapping == TEX_MAP_CROSS)
-            cross_combine(ap, pm, uvw, fw2, f);
+        int region = texture_value(ap, pm, pa, fw2, f, gp);
         if (q)
             texture_quantities(ap, pm, leaf, &fq, P, &pl, pa, mapped ? fw2 : -1, region, q);
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++) {
@@ -1289,7 +1288,7 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
                 pr->bump = 0;
             } else if (fn->param == TEX_SP_NORMAL || fn->param == TEX_SP_GRADIENT) {
                 tex_v3 gu, gv;
-                uv_gradients(ap, pm, leaf, P, &fp, width, u0, v0, &gu, &gv);
+                uv_gradients(ap, pm, leaf, P, &fp, width, pa->uvw0[0], pa->uvw0[1], &gu, &gv);
                 if (fn->param == TEX_SP_NORMAL) {
                     *N = normal_mapped(pr->normal, N, &gu, &gv);
                 } else {
