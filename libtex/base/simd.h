@@ -13,7 +13,9 @@
  * TEXTURA_SIMD=avx2 caps the level at AVX2, as the tests do to check that, and
  * a test that compares the paths in one process lowers the level with
  * tex_simd_limit.  TEX_AVX512 (AVX-512F) has one user, the noise rows of
- * wide cells (noise.h); elsewhere AVX2 stays the best level's kernel.
+ * wide cells (noise.h), and TEX_VBMI one, the point kernel's hashes from a
+ * byte table in registers where the CPU has VBMI (tex_simd_vbmi); elsewhere
+ * AVX2 stays the best level's kernel.
  */
 #ifndef TEX_SIMD_H
 #define TEX_SIMD_H
@@ -23,6 +25,8 @@
 #define TEX_X86 1
 #define TEX_AVX2 __attribute__((target("avx2")))
 #define TEX_AVX512 __attribute__((target("avx512f")))
+/* AVX2 with AVX-512's byte permutes (VBMI) on 256- and 512-bit registers */
+#define TEX_VBMI __attribute__((target("avx2,avx512f,avx512vl,avx512bw,avx512vbmi")))
 #endif
 
 #ifdef __cplusplus
@@ -34,6 +38,9 @@ enum { TEX_SIMD_SCALAR = 0, TEX_SIMD_AVX2 = 1, TEX_SIMD_AVX512 = 2 };
 int tex_simd_level(void);
 /* Use at most level from now on (TEX_SIMD_AVX512: the CPU's best again). */
 void tex_simd_limit(int level);
+/* 1 where the level in use is AVX-512 and the CPU has its byte permutes (VBMI, with VL and
+ * BW), for the kernels that look tables up in registers. */
+int tex_simd_vbmi(void);
 const char *tex_simd_name(int level);
 
 #ifdef __cplusplus

@@ -67,6 +67,8 @@ int tex_noise_init(tex_noise_table *t, uint64_t seed, int n, int period)
     for (int m = 0; m < 2 * n; m++)
         for (int k = 0; k < 4; k++)
             t->pgrad[m][k] = t->grad[t->perm[m]][k];
+    for (int i = 0; n == 256 && i < n; i++)
+        t->perm8[i] = (unsigned char)t->perm[i];
     return 0;
 }
 
@@ -327,12 +329,13 @@ struct lanes8 {
     __m256i x[2], hy[2][2];       /* the x corners' indices; the hashes of y and z */
 };
 
-/* The cells, fractions, weights and hashes of eight points; 0 when a cell is beyond
- * 2^30 (the caller's scalar path takes those). */
+/* The cells, fractions and weights of eight points, and the lattice indices of y and z
+ * still to hash (iy, iz); 0 when a cell is beyond 2^30 (the caller's scalar path takes
+ * those). */
 TEX_AVX2 static inline __attribute__((always_inline)) int
-lanes8_hash(const tex_noise_table *t, int period, const __m256d p[3][2], struct lanes8 *L)
+lanes8_cells(const tex_noise_table *t, int period, const __m256d p[3][2], struct lanes8 *L,
+             __m256i iy[2], __m256i iz[2])
 {
-    const int *F = t->perm;
     const __m256d lim = _mm256_set1_pd(0x1p30), sign = _mm256_set1_pd(-0.0);
     const __m256 one = _mm256_set1_ps(1.0f);
     __m256i idx[3][2];
@@ -366,13 +369,69 @@ lanes8_hash(const tex_noise_table *t, int period, const __m256d p[3][2], struct 
         L->wt[a][0] = fade_ps(t->fade, f);
         L->wt[a][1] = fade_ps(t->fade, _mm256_sub_ps(one, f));
     }
-    for (int b2 = 0; b2 < 2; b2++) {
-        __m256i hz = _mm256_i32gather_epi32(F, idx[2][b2], 4);
-        for (int b1 = 0; b1 < 2; b1++)
-            L->hy[b1][b2] = _mm256_i32gather_epi32(F, _mm256_add_epi32(idx[1][b1], hz), 4);
-    }
     L->x[0] = idx[0][0];
     L->x[1] = idx[0][1];
+    iy[0] = idx[1][0], iy[1] = idx[1][1];
+    iz[0] = idx[2][0], iz[1] = idx[2][1];
+    return 1;
+}
+
+/* The hashes of y and z, F[iy + F[iz]], by gathers. */
+TEX_AVX2 static inline __attribute__((always_inline)) int
+lanes8_hash(const tex_noise_table *t, int period, const __m256d p[3][2], struct lanes8 *L)
+{
+    __m256i iy[2], iz[2];
+    if (!lanes8_cells(t, period, p, L, iy, iz))
+        return 0;
+    for (int b2 = 0; b2 < 2; b2++) {
+        __m256i hz = _mm256_i32gather_epi32(t->perm, iz[b2], 4);
+        for (int b1 = 0; b1 < 2; b1++)
+            L->hy[b1][b2] = _mm256_i32gather_epi32(t->perm, _mm256_add_epi32(iy[b1], hz), 4);
+    }
+    return 1;
+}
+
+#ifdef __AVX512F__ /* compilers without AVX-512 intrinsics: never (GCC 12, clang 14 have them) */
+#endif
+/* Up to 64 entries of F at the byte indices b (their low 8 bits: n = 256, where F's second
+ * copy repeats the first), from perm8 held in T[0..3]: two 128-byte permutes, bit 7 picks. */
+TEX_VBMI static inline __attribute__((always_inline)) __m512i perm8_lookup(const __m512i T[4],
+                                                                           __m512i b)
+{
+    __m512i lo = _mm512_permutex2var_epi8(T[0], b, T[1]);
+    __m512i hi = _mm512_permutex2var_epi8(T[2], b, T[3]);
+    return _mm512_mask_blend_epi8(_mm512_movepi8_mask(b), lo, hi);
+}
+
+/* perm8 in four registers. */
+TEX_VBMI static inline __attribute__((always_inline)) void perm8_load(const tex_noise_table *t,
+                                                                     __m512i T[4])
+{
+    for (int q = 0; q < 4; q++)
+        T[q] = _mm512_loadu_si512(t->perm8 + 64 * q);
+}
+
+/* lanes8_hash's hashes from perm8 in registers (Zen 4's gathers are slow): the same values. */
+TEX_VBMI static inline __attribute__((always_inline)) int
+lanes8_hash_vbmi(const tex_noise_table *t, const __m512i T[4], const __m256d p[3][2],
+                 struct lanes8 *L)
+{
+    __m256i iy[2], iz[2];
+    if (!lanes8_cells(t, 0, p, L, iy, iz))
+        return 0;
+    __m128i bz = _mm_unpacklo_epi64(_mm256_cvtepi32_epi8(iz[0]), _mm256_cvtepi32_epi8(iz[1]));
+    __m128i hz = _mm512_castsi512_si128(perm8_lookup(T, _mm512_castsi128_si512(bz)));
+    __m256i h[2] = {_mm256_cvtepu8_epi32(hz), _mm256_cvtepu8_epi32(_mm_srli_si128(hz, 8))};
+    __m128i by[2];
+    for (int b2 = 0; b2 < 2; b2++) /* bytes 8 b2 + 0..7: (b1 = 0, b2), 8 b2 + 8..15: (1, b2) */
+        by[b2] = _mm_unpacklo_epi64(_mm256_cvtepi32_epi8(_mm256_add_epi32(iy[0], h[b2])),
+                                    _mm256_cvtepi32_epi8(_mm256_add_epi32(iy[1], h[b2])));
+    __m512i hy = perm8_lookup(T, _mm512_castsi256_si512(_mm256_set_m128i(by[1], by[0])));
+    __m128i r0 = _mm512_castsi512_si128(hy), r1 = _mm512_extracti32x4_epi32(hy, 1);
+    L->hy[0][0] = _mm256_cvtepu8_epi32(r0);
+    L->hy[1][0] = _mm256_cvtepu8_epi32(_mm_srli_si128(r0, 8));
+    L->hy[0][1] = _mm256_cvtepu8_epi32(r1);
+    L->hy[1][1] = _mm256_cvtepu8_epi32(_mm_srli_si128(r1, 8));
     return 1;
 }
 
@@ -440,31 +499,46 @@ static float noise3_src(const tex_noise_table *t, int period, const double *a, d
              : tex_noise3p(t, period, c[0][i], c[1][i], w);
 }
 
-/* The first n - n % 8 points, eight at a time, the hashes of the next eight made
- * before this eight's corners are summed; returns how many. */
-TEX_AVX2 static int noise3_avx2_points(const tex_noise_table *t, int period, const double *a,
-                                       double f, const double *const c[3], int n, float *out)
-{
-    struct lanes8 L[2];
-    int ok[2], m = n / 8;
-    __m256d p[3][2];
-
-    if (m == 0)
-        return 0;
-    points8(a, f, c, 0, p);
-    ok[0] = lanes8_hash(t, period, p, &L[0]);
-    for (int k = 0; k < m; k++) {
-        if (k + 1 < m) {
-            points8(a, f, c, 8 * (k + 1), p);
-            ok[(k + 1) & 1] = lanes8_hash(t, period, p, &L[(k + 1) & 1]);
-        }
-        if (ok[k & 1])
-            lanes8_sum(t, period, &L[k & 1], out + 8 * k);
-        else
-            for (int i = 8 * k; i < 8 * k + 8; i++)
-                out[i] = noise3_src(t, period, a, f, c, i);
+/* The first n - n % 8 points, eight at a time, the hashes of the next eight made before this
+ * eight's corners are summed; returns how many.  One loop for two kernels, which differ in
+ * their hashes, HASH(L, p) (0: a cell beyond 2^30), and what these need first (SETUP). */
+#define NOISE3_POINTS(TARGET, NAME, SETUP, HASH)                                             \
+    TARGET static int NAME(const tex_noise_table *t, int period, const double *a, double f, \
+                           const double *const c[3], int n, float *out)                      \
+    {                                                                                        \
+        struct lanes8 L[2];                                                                  \
+        int ok[2], m = n / 8;                                                                \
+        __m256d p[3][2];                                                                     \
+        SETUP;                                                                               \
+        if (m == 0)                                                                          \
+            return 0;                                                                        \
+        points8(a, f, c, 0, p);                                                              \
+        ok[0] = HASH(&L[0], p);                                                              \
+        for (int k = 0; k < m; k++) {                                                        \
+            if (k + 1 < m) {                                                                 \
+                points8(a, f, c, 8 * (k + 1), p);                                            \
+                ok[(k + 1) & 1] = HASH(&L[(k + 1) & 1], p);                                  \
+            }                                                                                \
+            if (ok[k & 1])                                                                   \
+                lanes8_sum(t, period, &L[k & 1], out + 8 * k);                               \
+            else                                                                             \
+                for (int i = 8 * k; i < 8 * k + 8; i++)                                      \
+                    out[i] = noise3_src(t, period, a, f, c, i);                              \
+        }                                                                                    \
+        return 8 * m;                                                                        \
     }
-    return 8 * m;
+#define HASH_GATHER(Lp, pp) lanes8_hash(t, period, pp, Lp)
+#define HASH_VBMI(Lp, pp) lanes8_hash_vbmi(t, T, pp, Lp)
+NOISE3_POINTS(TEX_AVX2, noise3_avx2_points, (void)0, HASH_GATHER)
+NOISE3_POINTS(TEX_VBMI, noise3_vbmi_points, __m512i T[4]; perm8_load(t, T), HASH_VBMI)
+
+typedef int (*points_kernel)(const tex_noise_table *, int, const double *, double,
+                             const double *const[3], int, float *);
+/* The point kernel for t: the byte-table one for 256 gradients and no period where the CPU
+ * has VBMI (the same bytes), else the gathers. */
+static points_kernel points_kernel_for(const tex_noise_table *t, int period)
+{
+    return !period && t->n == 256 && tex_simd_vbmi() ? noise3_vbmi_points : noise3_avx2_points;
 }
 #endif
 
@@ -477,10 +551,11 @@ void tex_noise_points(const tex_noise_table *t, int period, int dims, int n, con
     if (dims == 3 && tex_simd_level() >= TEX_SIMD_AVX2) {
         const double *c[3] = {x, y, z};
         float r[TEX_POINTS_BATCH];
+        points_kernel kernel = points_kernel_for(t, period);
         for (; i + 8 <= n; i += TEX_POINTS_BATCH) {
             int m = n - i < TEX_POINTS_BATCH ? n - i : TEX_POINTS_BATCH;
             const double *ci[3] = {c[0] + i, c[1] + i, c[2] + i};
-            int done = noise3_avx2_points(t, period, NULL, 1, ci, m, r);
+            int done = kernel(t, period, NULL, 1, ci, m, r);
             for (int k = 0; k < done; k++)
                 out[i + k] = r[k];
             if (done < m) {
@@ -503,7 +578,7 @@ void tex_noise_points_at(const tex_noise_table *t, int period, const double a[3]
 #ifdef TEX_X86
     if (tex_simd_level() >= TEX_SIMD_AVX2) {
         const double *c[3] = {u, v, w};
-        i = noise3_avx2_points(t, period, a, f, c, n, out);
+        i = points_kernel_for(t, period)(t, period, a, f, c, n, out);
     }
 #endif
     for (; i < n; i++)

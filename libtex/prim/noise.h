@@ -95,6 +95,8 @@ typedef struct tex_noise_table {
     float (*grad)[4];  /* n unit vectors on the sphere (w = 0) */
     float (*grad4)[4]; /* n unit vectors on the 4D sphere */
     float (*pgrad)[4]; /* grad[perm[m]] for m < 2n: the last hash step and its gradient in one */
+    unsigned char perm8[256]; /* perm as bytes where n = 256: the point kernel's lookups in
+                               * registers (AVX-512 VBMI) */
 } tex_noise_table;
 
 int tex_noise_init(tex_noise_table *t, uint64_t seed, int n, int period);
@@ -106,7 +108,8 @@ double tex_noise3p(const tex_noise_table *t, int period, double x, double y, dou
 double tex_noise4p(const tex_noise_table *t, int period, double x, double y, double z, double w);
 /* Noise at n points (x[i], y[i], z[i][, w[i]]), dims 3 or 4 (w unused with 3):
  * the values of tex_noise3p / tex_noise4p, bit for bit, eight points at a
- * time with AVX2 (3D). */
+ * time with AVX2 (3D); with 256 gradients and no period, their hashes from
+ * perm8 in registers where the CPU has AVX-512 VBMI, not by gathers. */
 void tex_noise_points(const tex_noise_table *t, int period, int dims, int n, const double *x,
                       const double *y, const double *z, const double *w, double *out);
 /* 3D noise at the n points (a[0] + f u[i], a[1] + f v[i], a[2] + f w[i]) (w NULL: 0),
