@@ -145,3 +145,23 @@ t_noise -s 8 -o "$T/o.exr"
 check "options may follow the operand" t_convert "$T/o.exr" -o "$T/o2.pfm"
 check "a negative number is an operand, not an option" bash -c "t_op add '$T/o.exr' -0.5 | t_info >/dev/null"
 check "a negative option value is kept" bash -c "t_noise -s 8 --z -0.5 | t_info | grep -q 'z -0.5'"
+
+# --- OpenMP's idle threads: a tool runs itself again with OMP_WAIT_POLICY=passive, unless
+# the environment names a policy or it is asked for one thread (ld.so starts it twice or once)
+starts() {
+    env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT -u KMP_BLOCKTIME LD_DEBUG=libs "$@" 2>&1 >/dev/null |
+        grep -c "initialize program"
+}
+for a in "" "-j 2" "-j 1 -j 2"; do
+    n=$(starts t_noise -s 8 $a -q -o "$T/w.pfm")
+    [ "$n" = 2 ] && ok "t_noise ${a:-without -j} runs itself again, passive" ||
+        notok "t_noise ${a:-without -j} runs itself again, passive" "started $n times"
+done
+for a in "-j 1" "-j1" "--threads=1" "-j 2 --threads 1"; do
+    n=$(starts t_noise -s 8 $a -q -o "$T/w.pfm")
+    [ "$n" = 1 ] && ok "t_noise $a (one thread) starts once" ||
+        notok "t_noise $a (one thread) starts once" "started $n times"
+done
+n=$(OMP_WAIT_POLICY=active LD_DEBUG=libs t_noise -s 8 -q -o "$T/w.pfm" 2>&1 | grep -c "initialize program")
+[ "$n" = 1 ] && ok "a policy in the environment is kept (one start)" ||
+    notok "a policy in the environment is kept (one start)" "started $n times"
