@@ -1002,7 +1002,7 @@ struct tex_surface_cache {
     struct placement *placement; /* per texture applied, in order */
     struct poly *poly;           /* per application function, in order */
     char *compiled;              /* 1: poly[i] holds function i */
-    int quantities;              /* 1: a function reads the hit's quantities */
+    int quantities;              /* bit k: a function reads quantity k (tex_quantities) */
     int footprints;              /* 1: a band-limited solid texture is applied */
 };
 
@@ -1195,18 +1195,21 @@ static double lookup_width2(const struct tex_apply *ap, const struct placement *
 }
 
 /* The quantities of texture ap at the hit (its mapping pa) into q: the footprint fw2 when
- * lookup_width2 gave footprint_width2's, else (fw2 < 0) the real one through fq. */
+ * lookup_width2 gave footprint_width2's, else (fw2 < 0) the real one through fq, where
+ * read (bits, as tex_surface_cache's quantities). */
 static void texture_quantities(const struct tex_apply *ap, const struct placement *pm,
                                const struct tex_object *leaf, struct footprint *fq,
                                const tex_v3 *P, const tex_v3 *pl,
                                const struct tex_prefetch_ap *pa, double fw2, int region,
-                               double *q)
+                               int read, double *q)
 {
-    double w2 = fw2 >= 0 ? fw2
-                         : footprint_width2(ap, pm, leaf, fq, P, pl, pa->face, pa->uvw0[0],
-                                            pa->uvw0[1]);
-    q[TEX_Q_FOOTPRINT] = sqrt(w2);
-    q[TEX_Q_LOD] = w2 > 0x1p-120 ? log2(w2) / 2 : -60;
+    if (read & (1 << TEX_Q_FOOTPRINT | 1 << TEX_Q_LOD)) { /* else unread: not made */
+        double w2 = fw2 >= 0 ? fw2
+                             : footprint_width2(ap, pm, leaf, fq, P, pl, pa->face, pa->uvw0[0],
+                                                pa->uvw0[1]);
+        q[TEX_Q_FOOTPRINT] = sqrt(w2);
+        q[TEX_Q_LOD] = w2 > 0x1p-120 ? log2(w2) / 2 : -60;
+    }
     q[TEX_Q_U] = pa->uvw0[0], q[TEX_Q_V] = pa->uvw0[1], q[TEX_Q_W] = pa->uvw0[2];
     q[TEX_Q_REGION] = region;
 }
@@ -1275,7 +1278,8 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
                                       ap->mapping != TEX_MAP_CROSS ? grad : NULL;
         int region = texture_value(ap, pm, pa, fw2, f, gp);
         if (q)
-            texture_quantities(ap, pm, leaf, &fq, P, &pl, pa, mapped ? fw2 : -1, region, q);
+            texture_quantities(ap, pm, leaf, &fq, P, &pl, pa, mapped ? fw2 : -1, region,
+                               cache->quantities, q);
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++) {
             if (fn->region && fn->region != region)
                 continue;
@@ -1473,8 +1477,8 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++) {
             c->compiled[nfn] = (char)poly_of(fn->e, &c->poly[nfn]);
             for (int i = 0; i < fn->e->n; i++)
-                c->quantities |= fn->e->code[i].op == TEX_EOP_LEAF &&
-                                 fn->e->code[i].leaf >= TEX_LEAF_Q;
+                if (fn->e->code[i].op == TEX_EOP_LEAF && fn->e->code[i].leaf >= TEX_LEAF_Q)
+                    c->quantities |= 1 << (fn->e->code[i].leaf - TEX_LEAF_Q);
         }
     }
     struct tex_material ctm; /* Cook-Torrance's m and s: the surface's, or the defaults */
