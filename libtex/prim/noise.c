@@ -2089,6 +2089,7 @@ static void noise_eval3(const struct tex_field *f, int n, const double *u, const
         if (s->dims == 3) { /* the coordinates below, made in the kernel */
             tex_noise_points_at(&s->t, s->period, s->off, fr, m, u + i0, v + i0,
                                 w ? w + i0 : NULL, rf);
+#pragma omp simd
             for (int i = 0; i < m; i++)
                 out[i0 + i] = to_unit(rf[i]);
             continue;
