@@ -391,8 +391,6 @@ lanes8_hash(const tex_noise_table *t, int period, const __m256d p[3][2], struct 
     return 1;
 }
 
-#ifdef __AVX512F__ /* compilers without AVX-512 intrinsics: never (GCC 12, clang 14 have them) */
-#endif
 /* Up to 64 entries of F at the byte indices b (their low 8 bits: n = 256, where F's second
  * copy repeats the first), from perm8 held in T[0..3]: two 128-byte permutes, bit 7 picks. */
 TEX_VBMI static inline __attribute__((always_inline)) __m512i perm8_lookup(const __m512i T[4],
