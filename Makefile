@@ -47,7 +47,9 @@ PROG_LDLIBS = $(if $(SANITIZE),$(LDLIBS),-lOpenEXRCore -lfftw3f_threads -lfftw3f
               -l:libflann_s.a -llz4 -Wl,-Bstatic -lstdc++ -Wl,-Bdynamic -lm -ldl)
 
 LAYERS   = base io prim ops lang render cli
-LIB_SRC  = $(filter-out %_template.c %_bridge.c,$(foreach l,$(LAYERS),$(wildcard libtex/$(l)/*.c)))
+LIB_SRC  = $(filter-out %_template.c %_bridge.c libtex/cli/omp_env.c,$(foreach l,$(LAYERS),$(wildcard libtex/$(l)/*.c)))
+# Linked into every tool, not into libtex: its getenv makes OpenMP's idle threads sleep
+OMP_ENV  = $(BUILD)/obj/libtex/cli/omp_env.o
 LIB_OBJ  = $(LIB_SRC:%.c=$(BUILD)/obj/%.o)
 TOOL_SRC = $(wildcard tools/t_*.c)
 TOOLS    = $(TOOL_SRC:tools/%.c=$(BUILD)/bin/%)
@@ -135,9 +137,9 @@ $(PCFILE): Makefile
 # t_proto serves the editor over HTTP with libmicrohttpd.
 $(BUILD)/bin/t_proto: PROG_LDLIBS += -lmicrohttpd
 
-$(BUILD)/bin/%: $(BUILD)/obj/tools/%.o $(STATIC)
+$(BUILD)/bin/%: $(BUILD)/obj/tools/%.o $(OMP_ENV) $(STATIC)
 	@mkdir -p $(@D)
-	$(CC) $(LDFLAGS) -o $@ $< $(STATIC) $(PROG_LDLIBS)
+	$(CC) $(LDFLAGS) -o $@ $< $(OMP_ENV) $(STATIC) $(PROG_LDLIBS)
 
 .PRECIOUS: $(BUILD)/obj/%.o
 $(BUILD)/tests/%: $(BUILD)/obj/tests/unit/%.o $(STATIC)

@@ -146,16 +146,24 @@ check "options may follow the operand" t_convert "$T/o.exr" -o "$T/o2.pfm"
 check "a negative number is an operand, not an option" bash -c "t_op add '$T/o.exr' -0.5 | t_info >/dev/null"
 check "a negative option value is kept" bash -c "t_noise -s 8 --z -0.5 | t_info | grep -q 'z -0.5'"
 
-# --- OpenMP's idle threads: a tool runs itself again with OMP_WAIT_POLICY=passive, unless
-# the environment names a policy or it is asked for one thread (ld.so starts it twice or once)
+# --- OpenMP's idle threads sleep: with libgomp every tool's getenv answers the policy
+# (omp_env.c), with LLVM's libomp a tool runs itself again with it set (ld.so starts it
+# twice), except when asked for one thread; a policy in the environment is kept
 starts() {
     env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT -u KMP_BLOCKTIME LD_DEBUG=libs "$@" 2>&1 >/dev/null |
         grep -c "initialize program"
 }
+spin() { # the idle threads' spin count or block time the runtime took, as it displays it
+    env -u GOMP_SPINCOUNT -u KMP_BLOCKTIME OMP_DISPLAY_ENV=verbose "$@" 2>&1 >/dev/null |
+        grep -E "GOMP_SPINCOUNT = |KMP_BLOCKTIME=" | tail -1 | sed "s/.*= *'//; s/'.*//"
+}
+want=2
+ldd "$(command -v t_noise)" | grep -q libgomp && want=1
 for a in "" "-j 2" "-j 1 -j 2"; do
     n=$(starts t_noise -s 8 $a -q -o "$T/w.pfm")
-    [ "$n" = 2 ] && ok "t_noise ${a:-without -j} runs itself again, passive" ||
-        notok "t_noise ${a:-without -j} runs itself again, passive" "started $n times"
+    w=$(spin env -u OMP_WAIT_POLICY t_noise -s 8 $a -q -o "$T/w.pfm")
+    [ "$n" = $want ] && [ "$w" = 0 ] && ok "t_noise ${a:-without -j}: idle threads do not spin (started $n times)" ||
+        notok "t_noise ${a:-without -j}: idle threads do not spin" "started $n times (want $want), spin $w"
 done
 for a in "-j 1" "-j1" "--threads=1" "-j 2 --threads 1"; do
     n=$(starts t_noise -s 8 $a -q -o "$T/w.pfm")
@@ -163,5 +171,6 @@ for a in "-j 1" "-j1" "--threads=1" "-j 2 --threads 1"; do
         notok "t_noise $a (one thread) starts once" "started $n times"
 done
 n=$(OMP_WAIT_POLICY=active LD_DEBUG=libs t_noise -s 8 -q -o "$T/w.pfm" 2>&1 | grep -c "initialize program")
-[ "$n" = 1 ] && ok "a policy in the environment is kept (one start)" ||
-    notok "a policy in the environment is kept (one start)" "started $n times"
+w=$(spin env OMP_WAIT_POLICY=active t_noise -s 8 -q -o "$T/w.pfm")
+[ "$n" = 1 ] && [ -n "$w" ] && [ "$w" != 0 ] && ok "a policy in the environment is kept (one start, spin $w)" ||
+    notok "a policy in the environment is kept" "started $n times, spin '$w'"

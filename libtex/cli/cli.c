@@ -599,13 +599,15 @@ static void check_combinations(const struct tex_tool *t, const struct tex_common
 /* OpenMP's idle threads spin after every parallel region (libgomp polls 300000 times,
  * libomp for 200 ms) unless OMP_WAIT_POLICY is passive, and in a pipeline of tools on
  * busy cores that spinning takes the CPU the other stages need: a five-stage pipeline
- * spends about twice the CPU (tests/bench/omp_wait).  The runtimes read the policy once,
- * as they load, before any code of a tool runs (a constructor, even one in .preinit_array,
- * comes too late or sees its setenv undone), so a tool whose environment names no policy
+ * spends about twice the CPU (tests/bench/omp_wait).  With libgomp, every tool's own getenv
+ * answers the policy (omp_env.c).  LLVM's libomp reads the environment itself, as it loads,
+ * before any code of a tool runs (a constructor, even one in .preinit_array, comes too late
+ * or sees its setenv undone): built with clang, a tool whose environment names no policy
  * runs itself again, once, with OMP_WAIT_POLICY=passive; one set (to anything, e.g.
  * active) is kept.  Only at the start of a tool's main: nothing is open or printed yet.
  * A tool asked for one thread (its last -j or --threads is 1) starts none that could spin
  * and is not run again: the second start costs 1.5 ms. */
+#if defined(_OPENMP) && defined(__clang__)
 static int one_thread(char **argv)
 {
     const char *last = NULL;
@@ -620,10 +622,11 @@ static int one_thread(char **argv)
     }
     return last && strcmp(last, "1") == 0;
 }
+#endif
 
 static void passive_threads(char **argv)
 {
-#ifdef _OPENMP
+#if defined(_OPENMP) && defined(__clang__)
     if (getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT") || getenv("KMP_BLOCKTIME") ||
         one_thread(argv) || setenv("OMP_WAIT_POLICY", "passive", 1) < 0)
         return;
