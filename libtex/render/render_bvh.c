@@ -279,6 +279,27 @@ static inline int hit_box(const struct tex_bounds *b, const struct ray *r, doubl
     return lo <= hi;
 }
 
+/* The spans of a transformed leaf or a CSG tree p along r into *s; 0 (none made) where r
+ * misses its box between tmin and tmax (the closest hit so far, or the light). */
+static inline int prim_spans(const struct prim *p, const struct ray *r, double tmin, double tmax,
+                             struct tex_spans *s)
+{
+    const struct tex_object *ob = p->ob;
+    double t0;
+    if (p->kind == PK_LEAF) {
+        if (ob->bounded && !hit_box(&p->box, r, tmin, tmax, &t0))
+            return 0;
+        tex_leaf_spans(ob, &r->o, &r->d, s);
+    } else if (!ob->bounded) {
+        tex_object_spans(ob, r->o, r->d, s);
+    } else {
+        if (!hit_box(&ob->wb, r, tmin, tmax, &t0))
+            return 0;
+        tex_csg_spans(ob, &r->o, &r->d, &r->inv, s);
+    }
+    return 1;
+}
+
 /* Spans of a CSG tree or a transformed leaf: the first boundary beyond tmin
  * and before *tmax.  Out of line: the interval lists are large. */
 static __attribute__((noinline)) int first_hit_spans(const struct prim *p, const struct ray *r,
@@ -286,23 +307,8 @@ static __attribute__((noinline)) int first_hit_spans(const struct prim *p, const
                                                      struct tex_hit *hit)
 {
     struct tex_spans s;
-    const struct tex_object *ob = p->ob;
-    if (p->kind == PK_LEAF) {
-        double t0;
-        if (ob->bounded && !hit_box(&p->box, r, tmin, *tmax, &t0))
-            return 0;
-        tex_leaf_spans(ob, &r->o, &r->d, &s);
-    } else {
-        double t0;
-        /* the tree's box, against the closest hit so far, before its interval lists */
-        if (!ob->bounded) {
-            tex_object_spans(ob, r->o, r->d, &s);
-        } else {
-            if (!hit_box(&ob->wb, r, tmin, *tmax, &t0))
-                return 0;
-            tex_csg_spans(ob, &r->o, &r->d, &r->inv, &s);
-        }
-    }
+    if (!prim_spans(p, r, tmin, *tmax, &s))
+        return 0;
     for (int i = 0; i < s.n; i++) {
         const struct tex_hit *h = s.in[i].t > tmin ? &s.in[i] : s.out[i].t > tmin ? &s.out[i] : NULL;
         if (!h)
@@ -439,21 +445,8 @@ static __attribute__((noinline)) void transmit_spans(const struct tex_scene *s,
                                                      double tmin, double tmax, double *tr)
 {
     struct tex_spans sp;
-    const struct tex_object *ob = p->ob;
-    double t0;
-    if (p->kind == PK_LEAF) {
-        if (ob->bounded && !hit_box(&p->box, r, tmin, tmax, &t0))
-            return;
-        tex_leaf_spans(ob, &r->o, &r->d, &sp);
-    } else {
-        if (!ob->bounded) {
-            tex_object_spans(ob, r->o, r->d, &sp);
-        } else {
-            if (!hit_box(&ob->wb, r, tmin, tmax, &t0))
-                return;
-            tex_csg_spans(ob, &r->o, &r->d, &r->inv, &sp);
-        }
-    }
+    if (!prim_spans(p, r, tmin, tmax, &sp))
+        return;
     for (int i = 0; i < sp.n && *tr > 0; i++) {
         const struct tex_hit *h[2] = {&sp.in[i], &sp.out[i]};
         for (int k = 0; k < 2; k++)

@@ -125,7 +125,8 @@ bilinear(const tex_map *m, int k, double u, double v, float out[3], double g[2])
     for (int c = 0; c < k; c++) {
         double a = t[0][c], b = t[1][c], cc = t[2][c], d = t[3][c];
         out[c] = (float)((a * (1 - ax) + b * ax) * (1 - ay) + (cc * (1 - ax) + d * ax) * ay);
-        gx[c] = bilinear_dx(a, b, cc, d, ay), gy[c] = bilinear_dx(a, cc, b, d, ax);
+        if (g) /* only for a bump: most lookups want none */
+            gx[c] = bilinear_dx(a, b, cc, d, ay), gy[c] = bilinear_dx(a, cc, b, d, ax);
     }
     if (g && k == 3)
         g[0] = (gx[0] + gx[1] + gx[2]) / 3, g[1] = (gy[0] + gy[1] + gy[2]) / 3;

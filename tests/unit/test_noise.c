@@ -217,6 +217,48 @@ static void test_every_point_path(int n, const double *u, const double *v, const
     CHECKF(tried >= 20, "the primitives with a point path start at points (%d)", tried);
 }
 
+/* Noise primitives with their parameters set: eval3 and eval2 over n points equal n
+ * single points, and over 3 (fewer than a vector). */
+static void test_point_primitives(int n, const double *u, const double *v, const double *w,
+                                  float *big, float *one)
+{
+    static const struct {
+        const struct tex_primitive *p;
+        const char *kv[6];
+    } pp[] = {{&tex_prim_noise, {"frequency", "5"}},
+              {&tex_prim_noise, {"frequency", "3", "time", "0.3"}},
+              {&tex_prim_turbulence, {"octaves", "6", "frequency", "3"}},
+              {&tex_prim_fractal, {"octaves", "7"}},
+              {&tex_prim_fractal, {"mode", "ridged", "octaves", "5"}},
+              {&tex_prim_fractal, {"mode", "hybrid", "octaves", "5"}},
+              {&tex_prim_wood, {"grain", "0.4"}},
+              {&tex_prim_perturb, {"octaves", "5"}},
+              {&tex_prim_colorvar, {"noise", "0.7"}},
+              {&tex_prim_bubble, {"dimension", "3", "count", "300"}},
+              {&tex_prim_holes, {"seed", "4"}}};
+    for (size_t k = 0; k < sizeof pp / sizeof pp[0]; k++) {
+        struct tex_field *f = tex_field_new(pp[k].p);
+        int diff = 0;
+        for (int i = 0; i < 6 && pp[k].kv[i]; i += 2)
+            tex_field_set(f, pp[k].kv[i], pp[k].kv[i + 1]);
+        tex_field_init(f, 0, 0);
+        for (int pass = 0; pass < 2; pass++) {
+            int m = pass ? n : 3;
+            f->prim->eval3(f, m, u, v, w, big);
+            for (int i = 0; i < m; i++)
+                f->prim->eval3(f, 1, u + i, v + i, w + i, one + i);
+            diff += memcmp(big, one, m * sizeof *big) != 0;
+            f->prim->eval2(f, m, u, v, big);
+            for (int i = 0; i < m; i++)
+                f->prim->eval2(f, 1, u + i, v + i, one + i);
+            diff += memcmp(big, one, m * sizeof *big) != 0;
+        }
+        CHECKF(diff == 0, "%s %s %s: eval3/eval2 over N points equal N single points",
+               pp[k].p->name, pp[k].kv[0], pp[k].kv[1]);
+        tex_field_free(f);
+    }
+}
+
 static void test_points(void)
 {
     enum { N = 1031 };
@@ -260,41 +302,7 @@ static void test_points(void)
            bad);
     CHECKF(bad_at == 0, "tex_noise_points_at equals tex_noise3p at its points bit for bit (%s; "
            "%d differ)", kernel, bad_at);
-    static const struct {
-        const struct tex_primitive *p;
-        const char *kv[6];
-    } pp[] = {{&tex_prim_noise, {"frequency", "5"}},
-              {&tex_prim_noise, {"frequency", "3", "time", "0.3"}},
-              {&tex_prim_turbulence, {"octaves", "6", "frequency", "3"}},
-              {&tex_prim_fractal, {"octaves", "7"}},
-              {&tex_prim_fractal, {"mode", "ridged", "octaves", "5"}},
-              {&tex_prim_fractal, {"mode", "hybrid", "octaves", "5"}},
-              {&tex_prim_wood, {"grain", "0.4"}},
-              {&tex_prim_perturb, {"octaves", "5"}},
-              {&tex_prim_colorvar, {"noise", "0.7"}},
-              {&tex_prim_bubble, {"dimension", "3", "count", "300"}},
-              {&tex_prim_holes, {"seed", "4"}}};
-    for (size_t k = 0; k < sizeof pp / sizeof pp[0]; k++) {
-        struct tex_field *f = tex_field_new(pp[k].p);
-        int diff = 0;
-        for (int i = 0; i < 6 && pp[k].kv[i]; i += 2)
-            tex_field_set(f, pp[k].kv[i], pp[k].kv[i + 1]);
-        tex_field_init(f, 0, 0);
-        for (int pass = 0; pass < 2; pass++) {
-            int n = pass ? N : 3;
-            f->prim->eval3(f, n, u, v, w, big);
-            for (int i = 0; i < n; i++)
-                f->prim->eval3(f, 1, u + i, v + i, w + i, one + i);
-            diff += memcmp(big, one, n * sizeof *big) != 0;
-            f->prim->eval2(f, n, u, v, big);
-            for (int i = 0; i < n; i++)
-                f->prim->eval2(f, 1, u + i, v + i, one + i);
-            diff += memcmp(big, one, n * sizeof *big) != 0;
-        }
-        CHECKF(diff == 0, "%s %s %s: eval3/eval2 over N points equal N single points",
-               pp[k].p->name, pp[k].kv[0], pp[k].kv[1]);
-        tex_field_free(f);
-    }
+    test_point_primitives(N, u, v, w, big, one);
     test_footprints(N, u, v, w);
     test_every_point_path(N, u, v, w);
 }
