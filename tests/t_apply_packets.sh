@@ -71,6 +71,60 @@ for cfg in "spp1|--spp 1" "spp4|--spp 4" "spectral|--spectral 6 --spp 2" \
         notok "$name: renders"
     fi
 done
+# image maps, looked up ahead over a packet (a surface's first texture: footprints and
+# trilinear lookups in vector lanes where the CPU has AVX-512): grey and colour maps of
+# sides that are not powers of two, windows and repeats, affine mappings (a plane's, world,
+# solid) and others (a sphere's and a CSG box's natural mapping, a cylinder projection),
+# a bump map, a map after a map; a camera looking straight down, whose centre ray meets
+# the floor head-on; each render against pixel by pixel, packets at every SIMD level
+awk 'BEGIN { print "P2 37 23 255"; for (y = 0; y < 23; y++) { l = "";
+    for (x = 0; x < 37; x++) l = l " " int(128 + 120 * sin(x * 0.7) * cos(y * 0.45)); print l } }' \
+    >"$T/grey.pgm"
+awk 'BEGIN { print "P3 30 17 255"; for (y = 0; y < 17; y++) for (x = 0; x < 30; x++)
+    print (x * 8) % 256, (y * 15) % 256, ((x + y) * 37) % 256 }' >"$T/colour.ppm"
+cat >"$T/m.scene" <<SCENE
+image 41 33
+samples 1
+depth 2
+ambient 0.3 0.3 0.3
+camera { eye 0 6 0 look 0 0 0 up 0 0 1 fov 70 }
+light point { position -3 8 -4 }
+texture grey file "$T/grey.pgm"
+texture colour file "$T/colour.ppm"
+surface floor { Kd 0.8 0.8 0.8 Ks 0.2 n 10 apply grey { mapping natural repeat 3 2 Kd = 0.8*f + 0.1 }
+    apply colour { mapping planar scale 0.3 Ks = f } }
+surface ball { Kd 0.9 0.5 0.3 apply colour { mapping natural window 0.1 0.1 0.9 0.8 Kd = f*p } }
+surface cube { Kd 0.6 0.6 0.6 Kr 0.3 apply colour { mapping natural repeat 2 2 Kd = f bump = 0.5 } }
+surface can { Kd 0.5 0.7 0.5 apply grey { mapping cylinder repeat 4 1 Kd = f*p + 0.1 } }
+surface rock { Kd 0.7 0.7 0.7 apply colour { mapping solid scale 0.7 Kd = f } }
+surface haze { Kd 0.7 0.7 0.7 apply grey { mapping world scale 0.5 Ka = f Kd = p*f } }
+plane { surface floor }
+sphere { centre -2 1 1 radius 1 surface ball }
+difference { box { min -1 0 -1 max 1 2 1 } sphere { centre 1 2 -1 radius 0.8 } surface cube
+             rotate 0 30 0 translate 2 0 1.5 }
+cylinder { base 0 0 0 top 0 1.5 0 radius 0.6 surface can translate 0.5 0 -2 }
+sphere { centre -2 0.7 -2 radius 0.7 surface rock }
+box { min -0.5 0 -0.5 max 0.5 0.8 0.5 surface haze translate 2.5 0 -2.5 }
+SCENE
+TEXTURA_PACKETS=0 t_apply "$T/m.scene" -q -j 1 -o "$T/m-px.pfm" &&
+    TEXTURA_PACKETS=1 t_apply "$T/m.scene" -q -j 2 -o "$T/m-pk.pfm" &&
+    TEXTURA_SIMD=avx2 t_apply "$T/m.scene" -q -j 1 -o "$T/m-pk2.pfm" &&
+    TEXTURA_SIMD=scalar t_apply "$T/m.scene" -q -j 1 -o "$T/m-pk0.pfm" &&
+    TEXTURA_PACKETS=1 t_apply "$T/m.scene" -q -j 1 --spp 4 -s 23x19 -o "$T/m4-pk.pfm" &&
+    TEXTURA_PACKETS=0 t_apply "$T/m.scene" -q -j 1 --spp 4 -s 23x19 -o "$T/m4-px.pfm" ||
+    notok "image maps: renders"
+for v in pk pk2 pk0; do
+    cmp -s "$T/m-px.pfm" "$T/m-$v.pfm" &&
+        ok "image maps looked up ahead ($v): the pixel-by-pixel render's bytes" ||
+        notok "image maps looked up ahead ($v) against pixel by pixel" \
+            "$(maxdiff "$T/m-px.pfm" "$T/m-$v.pfm")"
+done
+cmp -s "$T/m4-px.pfm" "$T/m4-pk.pfm" && ok "image maps at 4 spp: packets give the same bytes" ||
+    notok "image maps at 4 spp: packets against pixel by pixel" \
+        "$(maxdiff "$T/m4-px.pfm" "$T/m4-pk.pfm")"
+sd=$(info_json "$T/m-pk.pfm" stats 0 stddev)
+awk -v s="$sd" 'BEGIN { exit !(s > 0.05) }' && ok "the maps' scene is textured (stddev $sd)" ||
+    notok "the maps' scene is textured" "stddev $sd"
 # the scene is not flat: the textures show (else the comparison would prove little)
 sd=$(info_json "$T/spp1-pk1.pfm" stats 0 stddev)
 awk -v s="$sd" 'BEGIN { exit !(s > 0.02) }' && ok "the test scene's textures vary (stddev $sd)" ||

@@ -12,8 +12,9 @@
  * bytes never depend on it; TEXTURA_SIMD=scalar forces the portable path and
  * TEXTURA_SIMD=avx2 caps the level at AVX2, as the tests do to check that, and
  * a test that compares the paths in one process lowers the level with
- * tex_simd_limit.  TEX_AVX512 (AVX-512F) has one user, the noise rows of
- * wide cells (noise.h), and TEX_VBMI one, the point kernel's hashes from a
+ * tex_simd_limit.  TEX_AVX512 (AVX-512F) has two users, the noise rows of
+ * wide cells (noise.h) and the renderer's map lookups over a packet of hits
+ * (tex_texture_points), and TEX_VBMI one, the point kernel's hashes from a
  * byte table in registers where the CPU has VBMI (tex_simd_vbmi); elsewhere
  * AVX2 stays the best level's kernel.
  */

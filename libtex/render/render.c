@@ -7,12 +7,14 @@
  * pixels are shared among OpenMP threads dynamically.
  *
  * Eye rays go in packets of 8x8 pixels (render_packet): all find their hits,
- * then the primitives evaluated at hit points are evaluated over the packet's
- * hits in one call each (tex_prefetch_eval), then every hit is shaded.  The
- * primitives give a point the same value in a call of any length, and each
- * pixel draws from its own rng in the same order, so the image is the one
- * pixel-by-pixel tracing makes; TEXTURA_PACKETS=0 in the environment traces
- * pixel by pixel (tests/t_apply_packets.sh compares the two).
+ * then the primitives evaluated at hit points, and the image maps that
+ * surfaces apply first, are evaluated over the packet's hits in one call each
+ * (tex_prefetch_eval: a map's footprints and trilinear lookups in vector
+ * lanes), then every hit is shaded.  A point gets the same value in a call of
+ * any length, and each pixel draws from its own rng in the same order, so the
+ * image is the one pixel-by-pixel tracing makes; TEXTURA_PACKETS=0 in the
+ * environment traces pixel by pixel (tests/t_apply_packets.sh compares the
+ * two).
  */
 #include <math.h>
 #include <omp.h>
@@ -250,16 +252,16 @@ static void miss(const struct ctx *c, const tex_ray *r, tex_colour *out)
         s->cs.from_rgb(&s->cs, rgb, TEX_SPECTRUM_ILLUMINANT, out);
 }
 
-/* Whitted's recursion from ray r's hit h at P: ambient, direct light, then reflection
- * and refraction (pre: the hit's lookups done ahead with its packet, or NULL).  weight:
- * the largest share of the pixel this ray can carry (1 for eye rays); rays below the
- * scene's bailout are not traced. */
+/* Whitted's recursion from ray r's hit h at P, of normal Ng (hit_normal's): ambient,
+ * direct light, then reflection and refraction (pre: the hit's lookups done ahead with its
+ * packet, or NULL).  weight: the largest share of the pixel this ray can carry (1 for eye
+ * rays); rays below the scene's bailout are not traced. */
 static void shade(const struct ctx *c, const tex_ray *r, const struct tex_hit *hp, tex_v3 P,
-                  const struct tex_prefetch *pre, int depth, double weight, tex_colour *out)
+                  tex_v3 Ng, const struct tex_prefetch *pre, int depth, double weight,
+                  tex_colour *out)
 {
     const struct tex_scene *s = c->s;
     struct tex_hit h = *hp;
-    tex_v3 Ng = hit_normal(&h, P);
     int entering = tex_v3_dot(r->d, Ng) < 0;
     tex_v3 N = entering ? Ng : tex_v3_scale(Ng, -1);
     double width = fabs(r->width + h.t * r->spread); /* a focused beam crosses 0 */
@@ -285,8 +287,10 @@ static void trace(const struct ctx *c, const tex_ray *r, int depth, double weigh
     struct tex_hit h;
     if (!tex_scene_trace(c->s, &r->o, &r->d, 0, INFINITY, &h))
         miss(c, r, out);
-    else
-        shade(c, r, &h, tex_v3_madd(r->o, r->d, h.t), NULL, depth, weight, out);
+    else {
+        tex_v3 P = tex_v3_madd(r->o, r->d, h.t);
+        shade(c, r, &h, P, hit_normal(&h, P), NULL, depth, weight, out);
+    }
 }
 
 struct camera {
@@ -395,7 +399,7 @@ struct packet {
     tex_ray r[PACKET * PACKET];
     struct tex_hit h[PACKET * PACKET];
     int hit[PACKET * PACKET];
-    tex_v3 P[PACKET * PACKET];
+    tex_v3 P[PACKET * PACKET], Ng[PACKET * PACKET];
     struct tex_prefetch pre[PACKET * PACKET], *pp[PACKET * PACKET];
 };
 
@@ -420,10 +424,11 @@ static void render_packet(const struct ctx *c0, const struct camera *cam, struct
             if (!pk->hit[k])
                 continue;
             pk->P[k] = tex_v3_madd(r->o, r->d, pk->h[k].t);
+            pk->Ng[k] = hit_normal(&pk->h[k], pk->P[k]);
             const struct tex_surface *sf = surface_of(s, pk->h[k].leaf);
             tex_prefetch_map(&pk->pre[k], sf, pk->h[k].leaf, &pk->P[k]);
             if (tex_surface_footprints(sf) && s->settings.filter) { /* as shade() has them */
-                tex_v3 N = hit_normal(&pk->h[k], pk->P[k]);
+                tex_v3 N = pk->Ng[k];
                 N = tex_v3_dot(r->d, N) < 0 ? N : tex_v3_scale(N, -1);
                 tex_prefetch_footprints(&pk->pre[k], pk->h[k].leaf, &pk->P[k], &r->d, &N,
                                         fabs(r->width + pk->h[k].t * r->spread));
@@ -435,7 +440,7 @@ static void render_packet(const struct ctx *c0, const struct camera *cam, struct
             tex_colour col;
             c.rng = &pk->rng[k];
             if (pk->hit[k])
-                shade(&c, &pk->r[k], &pk->h[k], pk->P[k], &pk->pre[k], 0, 1, &col);
+                shade(&c, &pk->r[k], &pk->h[k], pk->P[k], pk->Ng[k], &pk->pre[k], 0, 1, &col);
             else
                 miss(&c, &pk->r[k], &col);
             accumulate(s, &col, pk->acc[k]);

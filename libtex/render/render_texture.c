@@ -177,6 +177,12 @@ TEX_AVX2 static void map_eval3_avx2(const struct tex_texture *t, int l, double a
 }
 #endif
 
+/* log2(1 + m) / m on [0, 1): mip_level's polynomial (c0 + c1 m + ... + c6 m^6) */
+static const double log2_poly[7] = {1.4426913825514791,   -0.72114329207588301,
+                                    0.47749583390193867,  -0.33837682222577842,
+                                    0.2139429748040822,   -0.094626704743473664,
+                                    0.020016627787635053};
+
 /* The pyramid level l of a footprint of x texels on the map (given as x2 = x^2, which spares
  * the footprint a square root), and the weight *a of level l + 1: lod = log2(x) clamped to
  * [0, nlevels - 1], l = floor(lod), *a = lod - l.  log2(x2) from the exponent bits and a
@@ -197,9 +203,7 @@ static inline int mip_level(const struct tex_texture *t, double x2, double *a)
     double m;
     memcpy(&m, &bits, sizeof m);
     m -= 1; /* the mantissa minus 1, in [0, 1) */
-    static const double c[7] = {1.4426913825514791,   -0.72114329207588301, 0.47749583390193867,
-                                -0.33837682222577842, 0.2139429748040822,   -0.094626704743473664,
-                                0.020016627787635053};
+    const double *c = log2_poly;
     double lm = c[6]; /* log2(1 + m) = m (c0 + c1 m + ... + c6 m^6) */
     for (int i = 5; i >= 0; i--)
         lm = lm * m + c[i];
@@ -1004,7 +1008,7 @@ struct tex_surface_cache {
     struct poly *poly;           /* per application function, in order */
     char *compiled;              /* 1: poly[i] holds function i */
     int quantities;              /* bit k: a function reads quantity k (tex_quantities) */
-    int footprints;              /* 1: a band-limited solid texture is applied */
+    int footprints;              /* 1: lookups ahead take footprints (tex_surface_footprints) */
 };
 
 static double clampd(double x, double lo, double hi)
@@ -1178,7 +1182,8 @@ static void map_hit(const struct tex_apply *ap, const struct placement *pm,
 /* The footprint (squared) that texture ap's lookups take at the hit P (pl), whose mapping
  * is pa: 0 where none uses one (filter off, primitives other than band-limited solids, a
  * band-limited value that came with the packet and no bump to look up); a band-limited
- * solid's over w too.  *mapped: it is footprint_width2's. */
+ * solid's over w too; a map's that came with the packet, the one it was looked up with.
+ * *mapped: it is footprint_width2's. */
 static double lookup_width2(const struct tex_apply *ap, const struct placement *pm,
                             const struct tex_object *leaf, struct footprint *fp, const tex_v3 *P,
                             const tex_v3 *pl, const struct tex_prefetch_ap *pa, int filter,
@@ -1187,6 +1192,10 @@ static double lookup_width2(const struct tex_apply *ap, const struct placement *
     int need = filter && ((uses_footprint(ap->tex) && (!pa->has_val || pm->bump)) ||
                           (ap->mapping == TEX_MAP_CROSS && uses_footprint(ap->cross)));
     *mapped = 0;
+    if (pa->has_val && ap->tex->mip) { /* a map's value came with its footprint */
+        *mapped = filter;
+        return pa->fw;
+    }
     if (!need)
         return 0;
     if (band_limited(ap->tex))
@@ -1223,6 +1232,12 @@ static int texture_value(const struct tex_apply *ap, const struct placement *pm,
                          const struct tex_prefetch_ap *pa, double fw2, float f[3], double *grad)
 {
     int region;
+    if (pa->has_val && ap->tex->mip) { /* a map's, RGB already, and its gradient */
+        memcpy(f, pa->val, 3 * sizeof *f);
+        if (grad)
+            grad[0] = pa->grad[0], grad[1] = pa->grad[1];
+        return 0;
+    }
     if (pa->has_val) {
         float val[TEX_MAP_MAX_CHANNELS];
         memcpy(val, pa->val, sizeof val);
@@ -1387,16 +1402,342 @@ void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *s
     }
 }
 
+/* ---- mip-mapped lookups over a packet ----------------------------------------------- */
+
+/* Whether the packet looks texture ap up ahead when it is a surface's first: a filtered
+ * map, with its gradient where bumped (a cross mapping wants a second map). */
+static int map_ahead(const struct tex_apply *ap)
+{
+    return ap->tex->mip && !ap->tex->subregions && ap->mapping != TEX_MAP_CROSS;
+}
+
+enum { CHUNK = 256 }; /* points per batch, a multiple of 8 */
+
+/* The points of a batch in lanes: the shading frames (D, N, width) and the affine mappings'
+ * gradients gu, gv and placement scales su, sv of those whose footprints go in lanes. */
+struct frames {
+    double d[3][CHUNK], nn[3][CHUNK], w[CHUNK], gu[3][CHUNK], gv[3][CHUNK], su[CHUNK], sv[CHUNK];
+};
+
+#ifdef TEX_X86
+
+/* a . b over three lanes of rows, in tex_v3_dot's order */
+TEX_AVX512 static inline __m512d dot8(__m512d ax, __m512d ay, __m512d az, __m512d bx,
+                                       __m512d by, __m512d bz)
+{
+    return _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(ax, bx), _mm512_mul_pd(ay, by)),
+                         _mm512_mul_pd(az, bz));
+}
+
+/* footprint_width2 of the n <= 8 affine points from i on (footprint_tangents,
+ * placed_derivatives and its end, operation for operation) into fw2[i...]; returns the lanes
+ * seen head-on, which the scalar path takes. */
+TEX_AVX512 static __mmask8 footprints8_avx512(const struct frames *fr, int i, int n,
+                                              double *fw2)
+{
+    __mmask8 in = (__mmask8)((1u << n) - 1);
+#define LD(a) _mm512_maskz_loadu_pd(in, (a) + i)
+    __m512d dx = LD(fr->d[0]), dy = LD(fr->d[1]), dz = LD(fr->d[2]);
+    __m512d nx = LD(fr->nn[0]), ny = LD(fr->nn[1]), nz = LD(fr->nn[2]);
+    __m512d dn = dot8(dx, dy, dz, nx, ny, nz), cosv = _mm512_abs_pd(dn);
+    __m512d ndn = _mm512_castsi512_pd( /* -dn: the sign flipped, as for a zero */
+        _mm512_xor_si512(_mm512_castpd_si512(dn), _mm512_set1_epi64(INT64_MIN)));
+    __m512d t1x = _mm512_add_pd(dx, _mm512_mul_pd(nx, ndn));
+    __m512d t1y = _mm512_add_pd(dy, _mm512_mul_pd(ny, ndn));
+    __m512d t1z = _mm512_add_pd(dz, _mm512_mul_pd(nz, ndn));
+    __m512d l2 = dot8(t1x, t1y, t1z, t1x, t1y, t1z);
+    __mmask8 headon = _mm512_cmp_pd_mask(l2, _mm512_set1_pd(1e-18), _CMP_LT_OQ);
+    __m512d t2x = _mm512_sub_pd(_mm512_mul_pd(ny, t1z), _mm512_mul_pd(nz, t1y));
+    __m512d t2y = _mm512_sub_pd(_mm512_mul_pd(nz, t1x), _mm512_mul_pd(nx, t1z));
+    __m512d t2z = _mm512_sub_pd(_mm512_mul_pd(nx, t1y), _mm512_mul_pd(ny, t1x));
+    __m512d lo = _mm512_set1_pd(0.02);
+    __m512d c = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(cosv, lo, _CMP_GT_OQ), lo, cosv);
+    __m512d gux = LD(fr->gu[0]), guy = LD(fr->gu[1]), guz = LD(fr->gu[2]);
+    __m512d gvx = LD(fr->gv[0]), gvy = LD(fr->gv[1]), gvz = LD(fr->gv[2]);
+    __m512d su = LD(fr->su), sv = LD(fr->sv), w = LD(fr->w);
+    __m512d du0 = _mm512_mul_pd(dot8(gux, guy, guz, t1x, t1y, t1z), su);
+    __m512d dv0 = _mm512_mul_pd(dot8(gvx, gvy, gvz, t1x, t1y, t1z), sv);
+    __m512d du1 = _mm512_mul_pd(dot8(gux, guy, guz, t2x, t2y, t2z), su);
+    __m512d dv1 = _mm512_mul_pd(dot8(gvx, gvy, gvz, t2x, t2y, t2z), sv);
+    __m512d c2 = _mm512_mul_pd(c, c);
+    __m512d l1 = _mm512_add_pd(_mm512_mul_pd(du0, du0), _mm512_mul_pd(dv0, dv0));
+    __m512d m2 =
+        _mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(du1, du1), _mm512_mul_pd(dv1, dv1)), c2);
+    __m512d r = _mm512_mul_pd(_mm512_max_pd(l1, m2), _mm512_mul_pd(w, w)); /* l1 > m2 ? l1 : m2 */
+    _mm512_mask_storeu_pd(fw2 + i, in, _mm512_div_pd(r, _mm512_mul_pd(l2, c2)));
+    return headon & in;
+#undef LD
+}
+
+/* mip_level of eight footprints fw2 on texture t: the levels (as 32-bit lanes) and the
+ * weights *a of the next, operation for operation */
+TEX_AVX512 static __m256i mip_levels8_avx512(const struct tex_texture *t, __m512d fw2,
+                                               __m512d *a)
+{
+    const double *c = log2_poly;
+    const tex_map *m0 = t->mip[0];
+    int side = m0->w > m0->h ? m0->w : m0->h;
+    __m512d x2 = _mm512_mul_pd(fw2, _mm512_set1_pd((double)side * side));
+    __mmask8 minified = _mm512_cmp_pd_mask(x2, _mm512_set1_pd(1), _CMP_GT_OQ);
+    __m512i bits = _mm512_castpd_si512(x2);
+    __m512i e = _mm512_sub_epi64(_mm512_srli_epi64(bits, 52), _mm512_set1_epi64(1023));
+    __m512i l = _mm512_srai_epi64(e, 1), top = _mm512_set1_epi64(t->nlevels - 1);
+    __mmask8 below = _mm512_mask_cmplt_epi64_mask(minified, l, top); /* interpolated */
+    __m512i mant = _mm512_and_si512(bits, _mm512_set1_epi64((INT64_C(1) << 52) - 1));
+    __m512i mb = _mm512_or_si512(mant, _mm512_set1_epi64(INT64_C(1023) << 52));
+    __m512d mm = _mm512_sub_pd(_mm512_castsi512_pd(mb), _mm512_set1_pd(1));
+    __m512d lm = _mm512_set1_pd(c[6]);
+    for (int i = 5; i >= 0; i--)
+        lm = _mm512_add_pd(_mm512_mul_pd(lm, mm), _mm512_set1_pd(c[i]));
+    __m512i e1 = _mm512_and_si512(e, _mm512_set1_epi64(1));
+    __m512d odd = _mm512_cvtepi32_pd(_mm512_cvtepi64_epi32(e1));
+    __m512d w = _mm512_div_pd(_mm512_add_pd(odd, _mm512_mul_pd(lm, mm)), _mm512_set1_pd(2));
+    *a = _mm512_maskz_mov_pd(below, w);
+    l = _mm512_mask_mov_epi64(_mm512_maskz_mov_epi64(minified, top), below, l);
+    return _mm512_cvtepi64_epi32(l);
+}
+
+/* A texture's pyramid as bilinear8 gathers it: each level's width, height and texels'
+ * offset (in floats) from level 0's, one level more repeating the last */
+struct pyramid {
+    int w[32], h[32];
+    long long off[32];
+};
+
+/* bilinear (k channels) of eight points (u, v) in [0, 1], each at its level lv of the
+ * pyramid, into out[c]; g (or NULL): the derivatives of their mean along x and y in texels,
+ * and the levels' widths and heights w[0], w[1] */
+TEX_AVX512 static void bilinear8_avx512(const struct tex_texture *t, const struct pyramid *py,
+                                          int k, __m256i lv, __m512d u, __m512d v,
+                                          __m256 out[3], __m512d g[2], __m512d wh[2])
+{
+    int nc = t->mip[0]->nc;
+    __m256i w = _mm256_i32gather_epi32(py->w, lv, 4), h = _mm256_i32gather_epi32(py->h, lv, 4);
+    __m512i base = _mm512_i32gather_epi64(lv, py->off, 8);
+    __m512d x = _mm512_sub_pd(_mm512_mul_pd(u, _mm512_cvtepi32_pd(w)), _mm512_set1_pd(0.5));
+    __m512d y = _mm512_sub_pd(_mm512_mul_pd(v, _mm512_cvtepi32_pd(h)), _mm512_set1_pd(0.5));
+    __m512d one = _mm512_set1_pd(1);
+    __m512d fx = _mm512_cvtepi32_pd(_mm512_cvttpd_epi32(x)); /* floori */
+    __m512d fy = _mm512_cvtepi32_pd(_mm512_cvttpd_epi32(y));
+    fx = _mm512_mask_sub_pd(fx, _mm512_cmp_pd_mask(fx, x, _CMP_GT_OQ), fx, one);
+    fy = _mm512_mask_sub_pd(fy, _mm512_cmp_pd_mask(fy, y, _CMP_GT_OQ), fy, one);
+    __m512d ax = _mm512_sub_pd(x, fx), ay = _mm512_sub_pd(y, fy);
+    __m256i ix = _mm512_cvttpd_epi32(fx), iy = _mm512_cvttpd_epi32(fy);
+    __m256i zero = _mm256_setzero_si256(), vnc = _mm256_set1_epi32(nc), c1 = _mm256_set1_epi32(1);
+    /* texels' wrapping: x0 = ix < 0 ? w - 1 : ix, the next row and texel wrapping to 0 */
+    __m256i x0 = _mm256_blendv_epi8(ix, _mm256_sub_epi32(w, c1), _mm256_cmpgt_epi32(zero, ix));
+    __m256i y0 = _mm256_blendv_epi8(iy, _mm256_sub_epi32(h, c1), _mm256_cmpgt_epi32(zero, iy));
+    __m256i wn = _mm256_mullo_epi32(w, vnc);
+    __m256i r0 = _mm256_mullo_epi32(y0, wn), r1 = _mm256_add_epi32(r0, wn);
+    r1 = _mm256_andnot_si256(_mm256_cmpeq_epi32(_mm256_add_epi32(y0, c1), h), r1);
+    __m256i col0 = _mm256_mullo_epi32(x0, vnc), col1 = _mm256_add_epi32(col0, vnc);
+    col1 = _mm256_andnot_si256(_mm256_cmpeq_epi32(col1, wn), col1);
+    __m256i off[4] = {_mm256_add_epi32(r0, col0), _mm256_add_epi32(r0, col1),
+                      _mm256_add_epi32(r1, col0), _mm256_add_epi32(r1, col1)};
+    __m512i at[4];
+    for (int j = 0; j < 4; j++)
+        at[j] = _mm512_slli_epi64(_mm512_add_epi64(base, _mm512_cvtepi32_epi64(off[j])), 2);
+    __m512d wx1 = _mm512_sub_pd(one, ax), wy1 = _mm512_sub_pd(one, ay), gx[3], gy[3];
+    const float *px = t->mip[0]->px;
+    for (int ch = 0; ch < k; ch++) {
+        __m512d q[4];
+        for (int j = 0; j < 4; j++)
+            q[j] = _mm512_cvtps_pd(_mm512_i64gather_ps(at[j], px + ch, 1));
+        __m512d top = _mm512_add_pd(_mm512_mul_pd(q[0], wx1), _mm512_mul_pd(q[1], ax));
+        __m512d bot = _mm512_add_pd(_mm512_mul_pd(q[2], wx1), _mm512_mul_pd(q[3], ax));
+        out[ch] = _mm512_cvtpd_ps(_mm512_add_pd(_mm512_mul_pd(top, wy1), _mm512_mul_pd(bot, ay)));
+        if (g) { /* bilinear_dx along x, then along y */
+            gx[ch] = _mm512_add_pd(_mm512_mul_pd(_mm512_sub_pd(q[1], q[0]), wy1),
+                                   _mm512_mul_pd(_mm512_sub_pd(q[3], q[2]), ay));
+            gy[ch] = _mm512_add_pd(_mm512_mul_pd(_mm512_sub_pd(q[2], q[0]), wx1),
+                                   _mm512_mul_pd(_mm512_sub_pd(q[3], q[1]), ax));
+        }
+    }
+    if (!g)
+        return;
+    if (k == 3) {
+        __m512d three = _mm512_set1_pd(3);
+        g[0] = _mm512_div_pd(_mm512_add_pd(_mm512_add_pd(gx[0], gx[1]), gx[2]), three);
+        g[1] = _mm512_div_pd(_mm512_add_pd(_mm512_add_pd(gy[0], gy[1]), gy[2]), three);
+    } else {
+        g[0] = gx[0], g[1] = gy[0];
+    }
+    wh[0] = _mm512_cvtepi32_pd(w), wh[1] = _mm512_cvtepi32_pd(h);
+}
+
+/* tex_texture_points in vector lanes, eight points at a time */
+TEX_AVX512 static void map_points_avx512(const struct tex_texture *t, int n, const double *u,
+                                         const double *v, const double *fw2, float *out,
+                                         double *grad)
+{
+    struct pyramid py;
+    int k = t->mip[0]->nc < 3 ? 1 : 3;
+    for (int l = 0; l <= t->nlevels; l++) {
+        const tex_map *m = t->mip[l < t->nlevels ? l : t->nlevels - 1];
+        py.w[l] = m->w, py.h[l] = m->h;
+        py.off[l] = ((intptr_t)m->px - (intptr_t)t->mip[0]->px) / (intptr_t)sizeof(float);
+    }
+    for (int i = 0; i < n; i += 8) {
+        double pu[8], pv[8], pf[8]; /* the last eight padded with their first point */
+        const double *ui = u + i, *vi = v + i, *fi = fw2 + i;
+        if (n - i < 8) {
+            for (int j = 0; j < 8; j++) {
+                int q = i + (j < n - i ? j : 0);
+                pu[j] = u[q], pv[j] = v[q], pf[j] = fw2[q];
+            }
+            ui = pu, vi = pv, fi = pf;
+        }
+        __m512d uu = _mm512_loadu_pd(ui), vv = _mm512_loadu_pd(vi), a;
+        uu = _mm512_sub_pd(uu, _mm512_cvtepi32_pd(_mm512_cvttpd_epi32(uu))); /* u -= (int)u */
+        vv = _mm512_sub_pd(vv, _mm512_cvtepi32_pd(_mm512_cvttpd_epi32(vv)));
+        __m256i lv = mip_levels8_avx512(t, _mm512_loadu_pd(fi), &a);
+        __m256 o[3], o1[3];
+        __m512d g[2], g1[2], wh[2], wh1[2], *gp = grad ? g : NULL, *gp1 = grad ? g1 : NULL;
+        bilinear8_avx512(t, &py, k, lv, uu, vv, o, gp, wh);
+        __mmask8 two = _mm512_cmp_pd_mask(a, _mm512_setzero_pd(), _CMP_GT_OQ);
+        __m512d a1 = _mm512_sub_pd(_mm512_set1_pd(1), a);
+        if (two) { /* trilinear: the next level's, weighted */
+            bilinear8_avx512(t, &py, k, _mm256_add_epi32(lv, _mm256_set1_epi32(1)), uu, vv, o1,
+                             gp1, wh1);
+            for (int ch = 0; ch < k; ch++) { /* lanes of a = 0 keep their value */
+                __m512d od = _mm512_cvtps_pd(o[ch]);
+                __m512d mix = _mm512_add_pd(_mm512_mul_pd(od, a1),
+                                            _mm512_mul_pd(_mm512_cvtps_pd(o1[ch]), a));
+                o[ch] = _mm512_cvtpd_ps(_mm512_mask_blend_pd(two, od, mix));
+            }
+        }
+        float f[3][8];
+        for (int ch = 0; ch < 3; ch++)
+            _mm256_storeu_ps(f[ch], o[k == 3 ? ch : 0]);
+        for (int j = 0; j < 8 && i + j < n; j++)
+            for (int ch = 0; ch < 3; ch++)
+                out[3 * (i + j) + ch] = f[ch][j];
+        if (!grad)
+            continue;
+        double gg[2][8];
+        for (int d = 0; d < 2; d++) { /* map_eval's, per unit of u and of v */
+            __m512d r = _mm512_mul_pd(g[d], wh[d]);
+            if (two)
+                r = _mm512_mask_blend_pd(
+                    two, r,
+                    _mm512_add_pd(_mm512_mul_pd(_mm512_mul_pd(g[d], wh[d]), a1),
+                                  _mm512_mul_pd(_mm512_mul_pd(g1[d], wh1[d]), a)));
+            _mm512_storeu_pd(gg[d], r);
+        }
+        for (int j = 0; j < 8 && i + j < n; j++)
+            grad[2 * (i + j)] = gg[0][j], grad[2 * (i + j) + 1] = gg[1][j];
+    }
+}
+#endif
+
+void tex_texture_points(const struct tex_texture *t, int n, const double *u, const double *v,
+                        const double *fw2, float *out, double *grad)
+{
+#ifdef TEX_X86
+    if (tex_simd_level() >= TEX_SIMD_AVX512 && t->nlevels < 32) { /* struct pyramid's room */
+        map_points_avx512(t, n, u, v, fw2, out, grad);
+        return;
+    }
+#endif
+    for (int i = 0; i < n; i++)
+        texture_eval(t, u[i], v[i], 0, fw2[i], out + 3 * i, grad ? grad + 2 * i : NULL);
+}
+
+/* footprint_width2 of a hit's first texture (its mapping a) on the hit's own frame, as
+ * apply_textures makes it */
+static double first_width2(const struct tex_prefetch *pf, const struct tex_prefetch_ap *a)
+{
+    struct footprint fp;
+    footprint_at(&fp, &pf->D, &pf->N, pf->width);
+    return footprint_width2(pf->sf->apply, pf->sf->cache->placement, pf->leaf, &fp, &pf->P,
+                            &pf->pl, a->face, a->uvw0[0], a->uvw0[1]);
+}
+
+/* The footprints fw2 of n pending points of a mip-mapped texture, each its hit's first
+ * texture (hit[i], its mapping a[i]): 0 unfiltered; affine mappings' in vector lanes where
+ * the CPU has AVX-512 (but those seen head-on), the rest by first_width2. */
+static void batch_footprints(int n, struct tex_prefetch *const *hit,
+                             struct tex_prefetch_ap *const *a, struct frames *fr, double *fw2)
+{
+    int lanes = 0, at[CHUNK], affine = 0;
+    const struct tex_object *leaf = NULL; /* the gradient's, kept while hits share it */
+    const struct tex_apply *gap = NULL;
+    tex_v3 g[3];
+    for (int i = 0; i < n; i++) {
+        const struct tex_prefetch *pf = hit[i];
+        const struct tex_apply *ap = pf->sf->apply;
+        fw2[i] = 0;
+        if (!(pf->width > 0))
+            continue;
+        if (tex_simd_level() >= TEX_SIMD_AVX512 && (pf->leaf != leaf || ap != gap))
+            affine = map_gradient(gap = ap, leaf = pf->leaf, g);
+        if (tex_simd_level() < TEX_SIMD_AVX512 || !affine) {
+            fw2[i] = first_width2(pf, a[i]);
+            continue;
+        }
+        const double *d = &pf->D.x, *nn = &pf->N.x, *gu = &g[0].x, *gv = &g[1].x;
+        for (int c = 0; c < 3; c++) {
+            fr->d[c][lanes] = d[c], fr->nn[c][lanes] = nn[c];
+            fr->gu[c][lanes] = gu[c], fr->gv[c][lanes] = gv[c];
+        }
+        fr->w[lanes] = pf->width;
+        fr->su[lanes] = pf->sf->cache->placement->su, fr->sv[lanes] = pf->sf->cache->placement->sv;
+        at[lanes++] = i;
+    }
+#ifdef TEX_X86
+    double lw[CHUNK];
+    for (int j = 0; j < lanes; j += 8) {
+        __mmask8 headon = footprints8_avx512(fr, j, lanes - j < 8 ? lanes - j : 8, lw);
+        for (int k = j; k < j + 8 && k < lanes; k++)
+            fw2[at[k]] = headon >> (k - j) & 1 ? first_width2(hit[at[k]], a[at[k]]) : lw[k];
+    }
+#endif
+}
+
+/* The values of n pending points a[i] of mip-mapped texture t (hits hit[i]) and their
+ * footprints, as apply_textures would look them up: into a[i]->val as RGB, the footprint
+ * (squared) into a[i]->fw. */
+static void map_batch(const struct tex_texture *t, int n, struct tex_prefetch *const *hit,
+                      struct tex_prefetch_ap *const *a)
+{
+    struct frames fr;
+    double u[CHUNK], v[CHUNK], fw2[CHUNK], grad[2 * CHUNK], *gp = NULL;
+    float out[3 * CHUNK];
+    batch_footprints(n, hit, a, &fr, fw2);
+    for (int i = 0; i < n; i++) {
+        u[i] = a[i]->uvw[0], v[i] = a[i]->uvw[1];
+        if (hit[i]->sf->cache->placement[0].bump) /* then every point's gradient */
+            gp = grad;
+    }
+    tex_texture_points(t, n, u, v, fw2, out, gp);
+    for (int i = 0; i < n; i++) {
+        memset(a[i]->val, 0, sizeof a[i]->val);
+        memcpy(a[i]->val, out + 3 * i, 3 * sizeof *out);
+        if (gp)
+            a[i]->grad[0] = gp[2 * i], a[i]->grad[1] = gp[2 * i + 1];
+        a[i]->fw = fw2[i];
+        a[i]->has_val = 1;
+    }
+}
+
 void tex_prefetch_map(struct tex_prefetch *pf, const struct tex_surface *sf,
                       const struct tex_object *leaf, const tex_v3 *P)
 {
     const struct placement *pm = sf->cache->placement;
     pf->sf = sf;
+    pf->leaf = leaf;
+    pf->P = *P;
     pf->pl = tex_xform_point(&leaf->to_obj, *P);
+    pf->width = 0;
     pf->n = 0;
     for (const struct tex_apply *ap = sf->apply; ap && pf->n < TEX_PREFETCH_MAX;
          ap = ap->next, pm++) {
-        map_hit(ap, pm, leaf, P, &pf->pl, &pf->ap[pf->n++]);
+        struct tex_prefetch_ap *a = &pf->ap[pf->n++];
+        map_hit(ap, pm, leaf, P, &pf->pl, a);
+        /* the first texture only: a later one may find the footprint's tangents normalised
+         * by an earlier one (footprint_unit), which the batch does not follow */
+        if (pf->n == 1 && map_ahead(ap))
+            a->pending = a->inside;
     }
 }
 
@@ -1413,6 +1754,7 @@ void tex_prefetch_footprints(struct tex_prefetch *pf, const struct tex_object *l
     struct footprint fp;
     if (width <= 0)
         return;
+    pf->D = *D, pf->N = *N, pf->width = width; /* for a map's lookup ahead */
     footprint_at(&fp, D, N, width); /* as apply_textures, on the same N */
     for (int j = 0; j < pf->n; j++, pm++, ap = ap->next) {
         struct tex_prefetch_ap *a = &pf->ap[j];
@@ -1423,10 +1765,10 @@ void tex_prefetch_footprints(struct tex_prefetch *pf, const struct tex_object *l
 
 void tex_prefetch_eval(struct tex_prefetch *const *pf, int n)
 {
-    enum { CHUNK = 256 }; /* points per call */
     double u[CHUNK], v[CHUNK], w[CHUNK], fw[CHUNK];
     float out[CHUNK * TEX_MAP_MAX_CHANNELS];
     struct tex_prefetch_ap *who[CHUNK];
+    struct tex_prefetch *hit[CHUNK];
     for (int i = 0; i < n; i++) {
         for (int j = 0; j < pf[i]->n; j++) {
             if (!pf[i]->ap[j].pending)
@@ -1440,10 +1782,14 @@ void tex_prefetch_eval(struct tex_prefetch *const *pf, int n)
                     if (!b->pending || b->tex != t)
                         continue;
                     b->pending = 0;
-                    who[m] = b;
+                    who[m] = b, hit[m] = pf[k];
                     u[m] = b->uvw[0], v[m] = b->uvw[1], w[m] = b->uvw[2], fw[m] = b->fw;
                     m++;
                 }
+            }
+            if (t->mip) {
+                map_batch(t, m, hit, who);
+                continue;
             }
             field_points(t, m, u, v, w, fw, out);
             int nc = t->field->nc;
@@ -1473,8 +1819,9 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
     }
     nfn = nap = 0;
     for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next) {
-        placement_of(ap, &c->placement[nap++]);
-        c->footprints |= band_limited(ap->tex);
+        placement_of(ap, &c->placement[nap]);
+        c->footprints |= band_limited(ap->tex) || (!nap && map_ahead(ap));
+        nap++;
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++) {
             c->compiled[nfn] = (char)poly_of(fn->e, &c->poly[nfn]);
             for (int i = 0; i < fn->e->n; i++)

@@ -337,6 +337,12 @@ struct tex_texture {
  * out receives RGB (grey maps repeated).  Returns the region id or 0. */
 int tex_texture_eval(const struct tex_texture *t, double u, double v, double w, double fw,
                      float out[3]);
+/* A mip-mapped map's (no region ids) trilinear values at n placed points (u, v in
+ * [0, 1000000], repeating every unit) for footprints of squared widths fw2, as RGB into
+ * out[3 n]; grad (or NULL): the gradients of their luminance per unit of u and of v into
+ * grad[2 n].  In vector lanes where the CPU has AVX-512: the same bytes. */
+void tex_texture_points(const struct tex_texture *t, int n, const double *u, const double *v,
+                        const double *fw2, float *out, double *grad);
 struct tex_scene;
 /* A hit's textures looked up ahead, with the other hits of its packet (render.c traces
  * a tile's eye rays first): for the first TEX_PREFETCH_MAX textures its surface sf
@@ -345,14 +351,18 @@ struct tex_scene;
 #define TEX_PREFETCH_MAX 8
 struct tex_prefetch {
     const struct tex_surface *sf; /* the surface these are for; NULL: none */
-    tex_v3 pl;                    /* the hit in its leaf's object space */
+    const struct tex_object *leaf;
+    tex_v3 P, pl;                 /* the hit, in world and in its leaf's object space */
+    tex_v3 D, N;                  /* the shading frame's ray and normal (width > 0) */
+    double width;                 /* the footprint's width there, 0 if not filtered */
     int n;                        /* applied textures prefetched */
     struct tex_prefetch_ap {
         const struct tex_texture *tex;
         double uvw0[3], uvw[3]; /* the mapping's coordinates, then placed (if inside) */
         int face, inside, pending, has_val; /* pending: a value still to evaluate */
-        double fw;                          /* band-limited solids: the footprint's width */
-        float val[TEX_MAP_MAX_CHANNELS];    /* the primitive's value (has_val) */
+        double fw; /* band-limited solids: the footprint's width; maps: its square */
+        double grad[2]; /* a bumped map's gradient (map_eval's) */
+        float val[TEX_MAP_MAX_CHANNELS]; /* the primitive's value; a map's as RGB (has_val) */
     } ap[TEX_PREFETCH_MAX];
 };
 /* Where a ray met a surface, as the application functions see it. */
@@ -366,11 +376,12 @@ struct tex_shade_at {
 };
 /* A packet's lookups ahead (render.c): pf's mapping of the hit P on leaf, surface sf;
  * then the values of every primitive at the pending points of the n hits pf[i], each
- * primitive in batched calls (eval3 / eval2 over many points). */
+ * primitive in batched calls (eval3 / eval2 over many points), and of a surface's first
+ * texture where it is a mip-mapped map (not bumped), footprints and all. */
 void tex_prefetch_map(struct tex_prefetch *pf, const struct tex_surface *sf,
                       const struct tex_object *leaf, const tex_v3 *P);
-/* Whether sf applies a band-limited solid texture; then, after tex_prefetch_map, the
- * footprints of its lookups from the hit's shading frame as tex_resolve_material gets
+/* Whether sf's lookups ahead take footprints (a band-limited solid texture, a mip-mapped
+ * map); then, after tex_prefetch_map, the hit's shading frame as tex_resolve_material gets
  * it (D, N as shade() orients it; width 0 when the scene does not filter). */
 int tex_surface_footprints(const struct tex_surface *sf);
 void tex_prefetch_footprints(struct tex_prefetch *pf, const struct tex_object *leaf,

@@ -5,14 +5,18 @@
  * a polynomial (render_texture.c).  A footprint that is a power of two of
  * texels looks up one level alone; between two of them the value must be the
  * blend of those two with libm's log2 as the weight, within 1e-5, for grey and
- * colour maps, square or not.  Coordinates wrap: the map repeats.
+ * colour maps, square or not.  Coordinates wrap: the map repeats.  Many lookups at once
+ * (tex_texture_points, in vector lanes where the CPU has AVX-512) give the portable path's
+ * floats, whatever their number.
  */
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "fixtures.h"
 #include "render/scene.h"
 #include "base/rng.h"
+#include "base/simd.h"
 #include "unit.h"
 
 static struct tex_texture *texture(int w, int h, int nc, uint64_t seed)
@@ -91,9 +95,61 @@ static void test_wrap(void)
     texture_free(t);
 }
 
+/* n points of t through tex_texture_points at the SIMD level in use, at the portable level,
+ * and one at a time: the same floats (values and gradients) all three ways */
+static int points_agree(const struct tex_texture *t, int n, const double *u, const double *v,
+                        const double *fw2)
+{
+    float *o = calloc(3 * n, sizeof *o), *o0 = calloc(3 * n, sizeof *o0), o1[3];
+    double *g = calloc(2 * n, sizeof *g), *g0 = calloc(2 * n, sizeof *g0), g1[2];
+    tex_texture_points(t, n, u, v, fw2, o, g);
+    int best = tex_simd_level(), same = 1;
+    tex_simd_limit(TEX_SIMD_SCALAR);
+    tex_texture_points(t, n, u, v, fw2, o0, g0);
+    tex_simd_limit(best);
+    for (int i = 0; i < n; i++) {
+        tex_texture_points(t, 1, u + i, v + i, fw2 + i, o1, g1);
+        same &= !memcmp(o1, o + 3 * i, sizeof o1) && !memcmp(g1, g + 2 * i, sizeof g1);
+    }
+    same &= !memcmp(o, o0, 3 * n * sizeof *o) && !memcmp(g, g0, 2 * n * sizeof *g);
+    free(o), free(o0), free(g), free(g0);
+    return same;
+}
+
+static void test_points(void)
+{
+    static const int shapes[][3] = {{64, 64, 1}, {37, 23, 3}, {1, 1, 1},  {5, 300, 4},
+                                    {300, 2, 2}, {512, 96, 3}, {16, 16, 4}};
+    enum { N = 203 }; /* not a multiple of the lanes */
+    double u[N], v[N], fw2[N];
+    for (int s = 0; s < 7; s++) {
+        struct tex_texture *t = texture(shapes[s][0], shapes[s][1], shapes[s][2], 40 + s);
+        int side = shapes[s][0] > shapes[s][1] ? shapes[s][0] : shapes[s][1];
+        tex_rng r;
+        tex_rng_seed(&r, 90 + s);
+        for (int i = 0; i < N; i++) {
+            /* corners, texel centres, far repeats; footprints from none to wider than the
+             * map, powers of two of texels, and not numbers */
+            u[i] = i % 7 == 0 ? 0 : i % 7 == 1 ? 1e6 : tex_rng_uniform(&r) * (i % 3 ? 1 : 1e5);
+            v[i] = i % 5 == 0 ? 0.5 / shapes[s][1] : tex_rng_uniform(&r) * (i % 2 ? 1 : 900);
+            double x = exp2(tex_rng_uniform(&r) * 24 - 4) / side;
+            fw2[i] = i % 11 == 0   ? 0
+                     : i % 13 == 0 ? exp2(i % 9) / ((double)side * side)
+                     : i % 17 == 0 ? (i % 2 ? NAN : INFINITY)
+                                   : x * x;
+        }
+        CHECKF(points_agree(t, N, u, v, fw2),
+               "%dx%d map, %d channels: %d lookups at once at %s give the portable path's "
+               "floats and each point's alone",
+               shapes[s][0], shapes[s][1], shapes[s][2], N, tex_simd_name(tex_simd_level()));
+        texture_free(t);
+    }
+}
+
 int main(void)
 {
     test_blend();
     test_wrap();
+    test_points();
     return unit_done();
 }
