@@ -419,9 +419,10 @@ static void render_packet(const struct ctx *c0, const struct camera *cam, struct
         int m = 0;
         for (int k = 0; k < np; k++) /* apart from the traces: their square roots overlap */
             camera_ray(&c, cam, x0 + k % w, y0 + k / w, i, &pk->rng[k], &pk->r[k]);
+        for (int k = 0; k < np; k++)
+            pk->hit[k] = tex_scene_trace(s, &pk->r[k].o, &pk->r[k].d, 0, INFINITY, &pk->h[k]);
         for (int k = 0; k < np; k++) {
             tex_ray *r = &pk->r[k];
-            pk->hit[k] = tex_scene_trace(s, &r->o, &r->d, 0, INFINITY, &pk->h[k]);
             if (!pk->hit[k])
                 continue;
             pk->P[k] = tex_v3_madd(r->o, r->d, pk->h[k].t);
