@@ -116,6 +116,17 @@ static inline void tex_colour_mmadd(tex_colour *d, int n, const tex_colour *a, c
     TEX_COLOUR_EACH(n, d, d->v[i] + a->v[i] * b->v[i] * s);
 }
 
+/* 1 if every sample is zero (of either sign) */
+static inline int tex_colour_zero(const tex_colour *a, int n)
+{
+    if (n == 3)
+        return a->v[0] == 0 && a->v[1] == 0 && a->v[2] == 0;
+    for (int i = 0; i < n; i++)
+        if (a->v[i] != 0)
+            return 0;
+    return 1;
+}
+
 static inline float tex_colour_max(const tex_colour *a, int n)
 {
     float m = a->v[0];
