@@ -1659,7 +1659,7 @@ static double first_width2(const struct tex_prefetch *pf, const struct tex_prefe
 static void batch_footprints(int n, struct tex_prefetch *const *hit,
                              struct tex_prefetch_ap *const *a, struct frames *fr, double *fw2)
 {
-    int lanes = 0, at[CHUNK], affine = 0;
+    int lanes = 0, at[CHUNK], affine = 0, simd = tex_simd_level() >= TEX_SIMD_AVX512;
     const struct tex_object *leaf = NULL; /* the gradient's, kept while hits share it */
     const struct tex_apply *gap = NULL;
     tex_v3 g[3];
@@ -1669,9 +1669,9 @@ static void batch_footprints(int n, struct tex_prefetch *const *hit,
         fw2[i] = 0;
         if (!(pf->width > 0))
             continue;
-        if (tex_simd_level() >= TEX_SIMD_AVX512 && (pf->leaf != leaf || ap != gap))
+        if (simd && (pf->leaf != leaf || ap != gap))
             affine = map_gradient(gap = ap, leaf = pf->leaf, g);
-        if (tex_simd_level() < TEX_SIMD_AVX512 || !affine) {
+        if (!simd || !affine) {
             fw2[i] = first_width2(pf, a[i]);
             continue;
         }
