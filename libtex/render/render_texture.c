@@ -1497,11 +1497,13 @@ TEX_AVX512 static __m256i mip_levels8_avx512(const struct tex_texture *t, __m512
     return _mm512_cvtepi64_epi32(l);
 }
 
-/* A texture's pyramid as bilinear8 gathers it: each level's width, height and texels'
- * offset (in floats) from level 0's, one level more repeating the last */
+/* A texture's pyramid as bilinear8 looks it up: each level's width, height and texels'
+ * offset (in floats) from level 0's, one level more repeating the last; below 16 levels
+ * (maps up to 16384 wide) also in registers */
 struct pyramid {
     int w[32], h[32];
     long long off[32];
+    __m512i w16[2], h16[2], off8[2];
 };
 
 /* bilinear (k channels) of eight points (u, v) in [0, 1], each at its level lv of the
@@ -1512,8 +1514,17 @@ TEX_AVX512 static void bilinear8_avx512(const struct tex_texture *t, const struc
                                           __m256 out[3], __m512d g[2], __m512d wh[2])
 {
     int nc = t->mip[0]->nc;
-    __m256i w = _mm256_i32gather_epi32(py->w, lv, 4), h = _mm256_i32gather_epi32(py->h, lv, 4);
-    __m512i base = _mm512_i32gather_epi64(lv, py->off, 8);
+    __m256i w, h;
+    __m512i base;
+    if (t->nlevels < 16) { /* the tables in registers: permutes, not gathers */
+        __m512i li = _mm512_castsi256_si512(lv);
+        w = _mm512_castsi512_si256(_mm512_permutex2var_epi32(py->w16[0], li, py->w16[1]));
+        h = _mm512_castsi512_si256(_mm512_permutex2var_epi32(py->h16[0], li, py->h16[1]));
+        base = _mm512_permutex2var_epi64(py->off8[0], _mm512_cvtepi32_epi64(lv), py->off8[1]);
+    } else {
+        w = _mm256_i32gather_epi32(py->w, lv, 4), h = _mm256_i32gather_epi32(py->h, lv, 4);
+        base = _mm512_i32gather_epi64(lv, py->off, 8);
+    }
     __m512d x = _mm512_sub_pd(_mm512_mul_pd(u, _mm512_cvtepi32_pd(w)), _mm512_set1_pd(0.5));
     __m512d y = _mm512_sub_pd(_mm512_mul_pd(v, _mm512_cvtepi32_pd(h)), _mm512_set1_pd(0.5));
     __m512d one = _mm512_set1_pd(1);
@@ -1539,10 +1550,17 @@ TEX_AVX512 static void bilinear8_avx512(const struct tex_texture *t, const struc
         at[j] = _mm512_slli_epi64(_mm512_add_epi64(base, _mm512_cvtepi32_epi64(off[j])), 2);
     __m512d wx1 = _mm512_sub_pd(one, ax), wy1 = _mm512_sub_pd(one, ay), gx[3], gy[3];
     const float *px = t->mip[0]->px;
+    __m512i pair[4]; /* colour: channels 0 and 1 of each texel in one 64-bit gather */
+    for (int j = 0; k == 3 && j < 4; j++)
+        pair[j] = _mm512_i64gather_epi64(at[j], px, 1);
     for (int ch = 0; ch < k; ch++) {
         __m512d q[4];
-        for (int j = 0; j < 4; j++)
-            q[j] = _mm512_cvtps_pd(_mm512_i64gather_ps(at[j], px + ch, 1));
+        for (int j = 0; j < 4; j++) {
+            __m256 c = k == 3 && ch < 2 ? _mm256_castsi256_ps(_mm512_cvtepi64_epi32(
+                                              ch ? _mm512_srli_epi64(pair[j], 32) : pair[j]))
+                                        : _mm512_i64gather_ps(at[j], px + ch, 1);
+            q[j] = _mm512_cvtps_pd(c);
+        }
         __m512d top = _mm512_add_pd(_mm512_mul_pd(q[0], wx1), _mm512_mul_pd(q[1], ax));
         __m512d bot = _mm512_add_pd(_mm512_mul_pd(q[2], wx1), _mm512_mul_pd(q[3], ax));
         out[ch] = _mm512_cvtpd_ps(_mm512_add_pd(_mm512_mul_pd(top, wy1), _mm512_mul_pd(bot, ay)));
@@ -1572,10 +1590,14 @@ TEX_AVX512 static void map_points_avx512(const struct tex_texture *t, int n, con
 {
     struct pyramid py;
     int k = t->mip[0]->nc < 3 ? 1 : 3;
-    for (int l = 0; l <= t->nlevels; l++) {
+    for (int l = 0; l < 32; l++) {
         const tex_map *m = t->mip[l < t->nlevels ? l : t->nlevels - 1];
         py.w[l] = m->w, py.h[l] = m->h;
         py.off[l] = ((intptr_t)m->px - (intptr_t)t->mip[0]->px) / (intptr_t)sizeof(float);
+    }
+    for (int r = 0; r < 2; r++) {
+        py.w16[r] = _mm512_loadu_si512(py.w + 16 * r), py.h16[r] = _mm512_loadu_si512(py.h + 16 * r);
+        py.off8[r] = _mm512_loadu_si512(py.off + 8 * r);
     }
     for (int i = 0; i < n; i += 8) {
         double pu[8], pv[8], pf[8]; /* the last eight padded with their first point */

@@ -118,11 +118,13 @@ static int points_agree(const struct tex_texture *t, int n, const double *u, con
 
 static void test_points(void)
 {
-    static const int shapes[][3] = {{64, 64, 1}, {37, 23, 3}, {1, 1, 1},  {5, 300, 4},
-                                    {300, 2, 2}, {512, 96, 3}, {16, 16, 4}};
+    /* the last two: 16 and 17 levels, more than the kernel keeps in registers */
+    static const int shapes[][3] = {{64, 64, 1},  {37, 23, 3}, {1, 1, 1},     {5, 300, 4},
+                                    {300, 2, 2},  {512, 96, 3}, {16, 16, 4},  {32768, 1, 1},
+                                    {1, 40000, 3}};
     enum { N = 203 }; /* not a multiple of the lanes */
     double u[N], v[N], fw2[N];
-    for (int s = 0; s < 7; s++) {
+    for (int s = 0; s < 9; s++) {
         struct tex_texture *t = texture(shapes[s][0], shapes[s][1], shapes[s][2], 40 + s);
         int side = shapes[s][0] > shapes[s][1] ? shapes[s][0] : shapes[s][1];
         tex_rng r;
