@@ -1747,11 +1747,13 @@ void tex_prefetch_map(struct tex_prefetch *pf, const struct tex_surface *sf,
 {
     const struct placement *pm = sf->cache->placement;
     pf->sf = sf;
+    pf->n = 0;
+    pf->width = 0;
+    if (!sf->apply) /* untextured: nothing to look up */
+        return;
     pf->leaf = leaf;
     pf->P = *P;
     pf->pl = tex_xform_point(&leaf->to_obj, *P);
-    pf->width = 0;
-    pf->n = 0;
     for (const struct tex_apply *ap = sf->apply; ap && pf->n < TEX_PREFETCH_MAX;
          ap = ap->next, pm++) {
         struct tex_prefetch_ap *a = &pf->ap[pf->n++];
