@@ -1508,7 +1508,7 @@ struct pyramid {
 
 /* bilinear (k channels) of eight points (u, v) in [0, 1], each at its level lv of the
  * pyramid, into out[c]; g (or NULL): the derivatives of their mean along x and y in texels,
- * and the levels' widths and heights w[0], w[1] */
+ * and the levels' widths and heights into wh[0], wh[1] */
 TEX_AVX512 static void bilinear8_avx512(const struct tex_texture *t, const struct pyramid *py,
                                           int k, __m256i lv, __m512d u, __m512d v,
                                           __m256 out[3], __m512d g[2], __m512d wh[2])
@@ -1596,7 +1596,8 @@ TEX_AVX512 static void map_points_avx512(const struct tex_texture *t, int n, con
         py.off[l] = ((intptr_t)m->px - (intptr_t)t->mip[0]->px) / (intptr_t)sizeof(float);
     }
     for (int r = 0; r < 2; r++) {
-        py.w16[r] = _mm512_loadu_si512(py.w + 16 * r), py.h16[r] = _mm512_loadu_si512(py.h + 16 * r);
+        py.w16[r] = _mm512_loadu_si512(py.w + 16 * r);
+        py.h16[r] = _mm512_loadu_si512(py.h + 16 * r);
         py.off8[r] = _mm512_loadu_si512(py.off + 8 * r);
     }
     for (int i = 0; i < n; i += 8) {
@@ -1702,8 +1703,8 @@ static void batch_footprints(int n, struct tex_prefetch *const *hit,
             fr->d[c][lanes] = d[c], fr->nn[c][lanes] = nn[c];
             fr->gu[c][lanes] = gu[c], fr->gv[c][lanes] = gv[c];
         }
-        fr->w[lanes] = pf->width;
-        fr->su[lanes] = pf->sf->cache->placement->su, fr->sv[lanes] = pf->sf->cache->placement->sv;
+        const struct placement *pm = pf->sf->cache->placement;
+        fr->w[lanes] = pf->width, fr->su[lanes] = pm->su, fr->sv[lanes] = pm->sv;
         at[lanes++] = i;
     }
 #ifdef TEX_X86
