@@ -134,8 +134,8 @@ static void direct_light(const struct ctx *c, const struct tex_material *m,
             }
             tex_v3 L;
             double dist, fatt;
-            if (l->kind == TEX_LIGHT_POINT
-                    ? !tex_light_towards(l, &l->pos, f->P, &L, &dist, &fatt) || !(fatt > 0)
+            if (l->kind == TEX_LIGHT_POINT || l->kind == TEX_LIGHT_SPOT
+                    ? !tex_light_point_at(l, &l->pos, f->P, &L, &dist, &fatt) || !(fatt > 0)
                     : !tex_light_sample(l, k, jx, jy, *f->P, &L, &dist, &fatt))
                 continue;
             if (tex_v3_dot(L, *N) <= 0 || tex_v3_dot(L, *f->Ngv) <= 0)

@@ -32,14 +32,8 @@ int tex_light_sample(const struct tex_light *l, int k, double jx, double jy, tex
         pos = tex_v3_add(pos, tex_v3_add(tex_v3_scale(l->edge1, a), tex_v3_scale(l->edge2, b)));
     }
     double f;
-    if (!tex_light_towards(l, &pos, &P, L, dist, &f))
+    if (!tex_light_point_at(l, &pos, &P, L, dist, &f))
         return 0;
-    if (l->kind == TEX_LIGHT_SPOT) {
-        double c = -tex_v3_dot(*L, l->dir);
-        if (c < l->cos_angle)
-            return 0;
-        f *= tex_powi(c, l->exponent); /* whole exponents: by squaring */
-    }
     if (l->kind == TEX_LIGHT_AREA)
         f /= tex_light_samples(l);
     *fatt = f;

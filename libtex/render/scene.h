@@ -504,9 +504,7 @@ static inline double tex_light_falloff(const struct tex_light *l, double dl)
     }
 }
 /* Direction L, distance and attenuation from P to a light's point pos; 0
- * when P is at the light.  The one point-light evaluation: the shading loop
- * calls it inline for point lights, tex_light_sample for spots and area
- * samples. */
+ * when P is at the light.  The one point-light evaluation (tex_light_point_at). */
 static inline int tex_light_towards(const struct tex_light *l, const tex_v3 *pos, const tex_v3 *P,
                                     tex_v3 *L, double *dist, double *fatt)
 {
@@ -517,6 +515,22 @@ static inline int tex_light_towards(const struct tex_light *l, const tex_v3 *pos
     *L = tex_v3_scale(d, 1 / dl);
     *dist = dl;
     *fatt = tex_light_falloff(l, dl);
+    return 1;
+}
+/* tex_light_towards, then a spot light's cone and cos^exponent falloff: 0 outside the
+ * cone.  Inline: the shading loop calls it for point and spot lights, tex_light_sample
+ * for area samples. */
+static inline int tex_light_point_at(const struct tex_light *l, const tex_v3 *pos,
+                                     const tex_v3 *P, tex_v3 *L, double *dist, double *fatt)
+{
+    if (!tex_light_towards(l, pos, P, L, dist, fatt))
+        return 0;
+    if (l->kind == TEX_LIGHT_SPOT) {
+        double c = -tex_v3_dot(*L, l->dir);
+        if (c < l->cos_angle)
+            return 0;
+        *fatt *= tex_powi(c, l->exponent); /* whole exponents: by squaring */
+    }
     return 1;
 }
 int tex_light_sample(const struct tex_light *l, int k, double jx, double jy, tex_v3 P, tex_v3 *L,
