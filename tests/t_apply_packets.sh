@@ -75,8 +75,9 @@ done
 # trilinear lookups in vector lanes where the CPU has AVX-512): grey and colour maps of
 # sides that are not powers of two, windows and repeats, affine mappings (a plane's, world,
 # solid) and others (a sphere's and a CSG box's natural mapping, a cylinder projection),
-# a bump map, a map after a map; a camera looking straight down, whose centre ray meets
-# the floor head-on; each render against pixel by pixel, packets at every SIMD level
+# bump maps (the tilt made ahead where the mapping is affine), a map after a map; a camera
+# looking straight down, whose centre ray meets the floor head-on; each render against
+# pixel by pixel, packets at every SIMD level
 awk 'BEGIN { print "P2 37 23 255"; for (y = 0; y < 23; y++) { l = "";
     for (x = 0; x < 37; x++) l = l " " int(128 + 120 * sin(x * 0.7) * cos(y * 0.45)); print l } }' \
     >"$T/grey.pgm"
@@ -91,13 +92,15 @@ camera { eye 0 6 0 look 0 0 0 up 0 0 1 fov 70 }
 light point { position -3 8 -4 }
 texture grey file "$T/grey.pgm"
 texture colour file "$T/colour.ppm"
-surface floor { Kd 0.8 0.8 0.8 Ks 0.2 n 10 apply grey { mapping natural repeat 3 2 Kd = 0.8*f + 0.1 }
+surface floor { Kd 0.8 0.8 0.8 Ks 0.2 n 10
+    apply grey { mapping natural repeat 3 2 Kd = 0.8*f + 0.1 bump = 0.2 }
     apply colour { mapping planar scale 0.3 Ks = f } }
 surface ball { Kd 0.9 0.5 0.3 apply colour { mapping natural window 0.1 0.1 0.9 0.8 Kd = f*p } }
 surface cube { Kd 0.6 0.6 0.6 Kr 0.3 apply colour { mapping natural repeat 2 2 Kd = f bump = 0.5 } }
 surface can { Kd 0.5 0.7 0.5 apply grey { mapping cylinder repeat 4 1 Kd = f*p + 0.1 } }
 surface rock { Kd 0.7 0.7 0.7 apply colour { mapping solid scale 0.7 Kd = f } }
-surface haze { Kd 0.7 0.7 0.7 apply grey { mapping world scale 0.5 Ka = f Kd = p*f } }
+surface haze { Kd 0.7 0.7 0.7 apply grey { mapping world scale 0.5 Ka = f Kd = p*f bump = -0.4 }
+    apply colour { mapping solid scale 0.3 Kd = f*p } }
 plane { surface floor }
 sphere { centre -2 1 1 radius 1 surface ball }
 difference { box { min -1 0 -1 max 1 2 1 } sphere { centre 1 2 -1 radius 0.8 } surface cube

@@ -1175,7 +1175,7 @@ static void map_hit(const struct tex_apply *ap, const struct placement *pm,
     memcpy(a->uvw0, a->uvw, sizeof a->uvw0);
     a->inside = place(ap, pm, a->uvw);
     a->pending = a->inside && !ap->tex->mip;
-    a->has_val = 0;
+    a->has_val = a->has_tilt = 0;
     a->fw = 0;
 }
 
@@ -1301,7 +1301,14 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
                 continue;
             ks_textured |= fn->param == TEX_SP_KS;
             apply_fn(fn, cache->compiled[nfn] ? &cache->poly[nfn] : NULL, f, uvw, fw2, q, pr);
-            if (fn->param == TEX_SP_BUMP && pr->bump != 0) {
+            if (fn->param == TEX_SP_BUMP && pr->bump != 0 && pa->has_tilt) { /* ahead */
+                tex_v3 d = tex_v3_make(pa->tilt[0], pa->tilt[1], pa->tilt[2]);
+                tilt = tex_v3_add(tilt, tex_v3_scale(d, pr->bump));
+                if (ap->next) /* as bump_tilt leaves it for the textures after */
+                    footprint_unit(&fp);
+                bumped = 1;
+                pr->bump = 0;
+            } else if (fn->param == TEX_SP_BUMP && pr->bump != 0) {
                 tilt = tex_v3_add(tilt, bump_tilt(ap, pm, leaf, P, &pl, pa->face, &fp, width,
                                                   fw2, gp, f, pr->bump));
                 bumped = 1;
@@ -1417,6 +1424,9 @@ enum { CHUNK = 256 }; /* points per batch, a multiple of 8 */
  * gradients gu, gv and placement scales su, sv of those whose footprints go in lanes. */
 struct frames {
     double d[3][CHUNK], nn[3][CHUNK], w[CHUNK], gu[3][CHUNK], gv[3][CHUNK], su[CHUNK], sv[CHUNK];
+    /* for bumps: the unit tangents e1, e2 and the placed u's and v's derivatives along them
+     * (du1, dv1, du2, dv2), as footprint_unit and placed_derivatives make them */
+    double e1[3][CHUNK], e2[3][CHUNK], dd[4][CHUNK];
 };
 
 #ifdef TEX_X86
@@ -1430,9 +1440,9 @@ TEX_AVX512 static inline __m512d dot8(__m512d ax, __m512d ay, __m512d az, __m512
 }
 
 /* footprint_width2 of the n <= 8 affine points from i on (footprint_tangents,
- * placed_derivatives and its end, operation for operation) into fw2[i...]; returns the lanes
- * seen head-on, which the scalar path takes. */
-TEX_AVX512 static __mmask8 footprints8_avx512(const struct frames *fr, int i, int n,
+ * placed_derivatives and its end, operation for operation) into fw2[i...], and where bump,
+ * the frames' bump members; returns the lanes seen head-on, which the scalar path takes. */
+TEX_AVX512 static __mmask8 footprints8_avx512(struct frames *fr, int i, int n, int bump,
                                               double *fw2)
 {
     __mmask8 in = (__mmask8)((1u << n) - 1);
@@ -1465,6 +1475,22 @@ TEX_AVX512 static __mmask8 footprints8_avx512(const struct frames *fr, int i, in
         _mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(du1, du1), _mm512_mul_pd(dv1, dv1)), c2);
     __m512d r = _mm512_mul_pd(_mm512_max_pd(l1, m2), _mm512_mul_pd(w, w)); /* l1 > m2 ? l1 : m2 */
     _mm512_mask_storeu_pd(fw2 + i, in, _mm512_div_pd(r, _mm512_mul_pd(l2, c2)));
+    if (bump) { /* footprint_unit's tangents, placed_derivatives along them */
+        __m512d s = _mm512_div_pd(_mm512_set1_pd(1), _mm512_sqrt_pd(l2));
+        __m512d e1[3] = {_mm512_mul_pd(t1x, s), _mm512_mul_pd(t1y, s), _mm512_mul_pd(t1z, s)};
+        __m512d e2[3] = {_mm512_mul_pd(t2x, s), _mm512_mul_pd(t2y, s), _mm512_mul_pd(t2z, s)};
+        __m512d dd[4] = {
+            _mm512_mul_pd(dot8(gux, guy, guz, e1[0], e1[1], e1[2]), su),
+            _mm512_mul_pd(dot8(gvx, gvy, gvz, e1[0], e1[1], e1[2]), sv),
+            _mm512_mul_pd(dot8(gux, guy, guz, e2[0], e2[1], e2[2]), su),
+            _mm512_mul_pd(dot8(gvx, gvy, gvz, e2[0], e2[1], e2[2]), sv)};
+        for (int c = 0; c < 3; c++) {
+            _mm512_mask_storeu_pd(fr->e1[c] + i, in, e1[c]);
+            _mm512_mask_storeu_pd(fr->e2[c] + i, in, e2[c]);
+        }
+        for (int c = 0; c < 4; c++)
+            _mm512_mask_storeu_pd(fr->dd[c] + i, in, dd[c]);
+    }
     return headon & in;
 #undef LD
 }
@@ -1678,9 +1704,11 @@ static double first_width2(const struct tex_prefetch *pf, const struct tex_prefe
 
 /* The footprints fw2 of n pending points of a mip-mapped texture, each its hit's first
  * texture (hit[i], its mapping a[i]): 0 unfiltered; affine mappings' in vector lanes where
- * the CPU has AVX-512 (but those seen head-on), the rest by first_width2. */
+ * the CPU has AVX-512 (but those seen head-on: lane[i] is the lane of fr, else -1; bump:
+ * with the frames' bump members), the rest by first_width2. */
 static void batch_footprints(int n, struct tex_prefetch *const *hit,
-                             struct tex_prefetch_ap *const *a, struct frames *fr, double *fw2)
+                             struct tex_prefetch_ap *const *a, int bump, struct frames *fr,
+                             double *fw2, int *lane)
 {
     int lanes = 0, at[CHUNK], affine = 0, simd = tex_simd_level() >= TEX_SIMD_AVX512;
     const struct tex_object *leaf = NULL; /* the gradient's, kept while hits share it */
@@ -1689,7 +1717,7 @@ static void batch_footprints(int n, struct tex_prefetch *const *hit,
     for (int i = 0; i < n; i++) {
         const struct tex_prefetch *pf = hit[i];
         const struct tex_apply *ap = pf->sf->apply;
-        fw2[i] = 0;
+        fw2[i] = 0, lane[i] = -1;
         if (!(pf->width > 0))
             continue;
         if (simd && (pf->leaf != leaf || ap != gap))
@@ -1710,34 +1738,54 @@ static void batch_footprints(int n, struct tex_prefetch *const *hit,
 #ifdef TEX_X86
     double lw[CHUNK];
     for (int j = 0; j < lanes; j += 8) {
-        __mmask8 headon = footprints8_avx512(fr, j, lanes - j < 8 ? lanes - j : 8, lw);
-        for (int k = j; k < j + 8 && k < lanes; k++)
-            fw2[at[k]] = headon >> (k - j) & 1 ? first_width2(hit[at[k]], a[at[k]]) : lw[k];
+        __mmask8 headon = footprints8_avx512(fr, j, lanes - j < 8 ? lanes - j : 8, bump, lw);
+        for (int k = j; k < j + 8 && k < lanes; k++) {
+            int on = !(headon >> (k - j) & 1);
+            fw2[at[k]] = on ? lw[k] : first_width2(hit[at[k]], a[at[k]]);
+            lane[at[k]] = on ? k : -1;
+        }
     }
 #endif
 }
 
+/* bump_tilt's direction (before its strength) from a map's gradient g and the footprint
+ * in lane l of fr */
+static void lane_tilt(const struct frames *fr, int l, const double g[2], double tilt[3])
+{
+    double g1 = g[0] * fr->dd[0][l] + g[1] * fr->dd[1][l];
+    double g2 = g[0] * fr->dd[2][l] + g[1] * fr->dd[3][l];
+    tex_v3 e1 = tex_v3_make(fr->e1[0][l], fr->e1[1][l], fr->e1[2][l]);
+    tex_v3 e2 = tex_v3_make(fr->e2[0][l], fr->e2[1][l], fr->e2[2][l]);
+    tex_v3 d = tex_v3_add(tex_v3_scale(e1, g1), tex_v3_scale(e2, g2));
+    tilt[0] = d.x, tilt[1] = d.y, tilt[2] = d.z;
+}
+
 /* The values of n pending points a[i] of mip-mapped texture t (hits hit[i]) and their
  * footprints, as apply_textures would look them up: into a[i]->val as RGB, the footprint
- * (squared) into a[i]->fw. */
+ * (squared) into a[i]->fw; bumped, the gradient and (from the lanes) the tilt's
+ * direction. */
 static void map_batch(const struct tex_texture *t, int n, struct tex_prefetch *const *hit,
                       struct tex_prefetch_ap *const *a)
 {
     struct frames fr;
     double u[CHUNK], v[CHUNK], fw2[CHUNK], grad[2 * CHUNK], *gp = NULL;
     float out[3 * CHUNK];
-    batch_footprints(n, hit, a, &fr, fw2);
+    int lane[CHUNK];
     for (int i = 0; i < n; i++) {
         u[i] = a[i]->uvw[0], v[i] = a[i]->uvw[1];
         if (hit[i]->sf->cache->placement[0].bump) /* then every point's gradient */
             gp = grad;
     }
+    batch_footprints(n, hit, a, gp != NULL, &fr, fw2, lane);
     tex_texture_points(t, n, u, v, fw2, out, gp);
     for (int i = 0; i < n; i++) {
         memset(a[i]->val, 0, sizeof a[i]->val);
         memcpy(a[i]->val, out + 3 * i, 3 * sizeof *out);
         if (gp)
             a[i]->grad[0] = gp[2 * i], a[i]->grad[1] = gp[2 * i + 1];
+        if (gp && lane[i] >= 0)
+            lane_tilt(&fr, lane[i], gp + 2 * i, a[i]->tilt);
+        a[i]->has_tilt = gp && lane[i] >= 0;
         a[i]->fw = fw2[i];
         a[i]->has_val = 1;
     }

@@ -362,6 +362,8 @@ struct tex_prefetch {
         int face, inside, pending, has_val; /* pending: a value still to evaluate */
         double fw; /* band-limited solids: the footprint's width; maps: its square */
         double grad[2]; /* a bumped map's gradient (map_eval's) */
+        int has_tilt;   /* and the tilt's direction, made ahead (the bump scales it) */
+        double tilt[3];
         float val[TEX_MAP_MAX_CHANNELS]; /* the primitive's value; a map's as RGB (has_val) */
     } ap[TEX_PREFETCH_MAX];
 };
