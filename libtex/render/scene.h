@@ -379,7 +379,8 @@ struct tex_shade_at {
 /* A packet's lookups ahead (render.c): pf's mapping of the hit P on leaf, surface sf;
  * then the values of every primitive at the pending points of the n hits pf[i], each
  * primitive in batched calls (eval3 / eval2 over many points), and of a surface's first
- * texture where it is a mip-mapped map (not bumped), footprints and all. */
+ * texture where it is a mip-mapped map, footprints and all (and where bumped, its
+ * gradient and the tilt's direction). */
 void tex_prefetch_map(struct tex_prefetch *pf, const struct tex_surface *sf,
                       const struct tex_object *leaf, const tex_v3 *P);
 /* Whether sf's lookups ahead take footprints (a band-limited solid texture, a mip-mapped
