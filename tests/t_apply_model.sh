@@ -235,6 +235,26 @@ check_coords "the wavy path follows its sine: u + A sin(2 pi y / L)" \
 check_coords "cross: the x-y map at (u, v), the y-z map at (w, v)" \
     'mapping cross cross t' '((ox + 1) / 2, (1 - oy) / 2)'
 
+# On a cylinder's side the cylinder projection is its natural mapping (u around the axis,
+# v down it), and its derivatives are too: the same footprints (mip levels) and bump tilts,
+# so the same bytes where only the side shows (a tall cylinder seen from mid-height)
+t_noise -s 64 -f 6 -o "$T/grain.exr"
+for m in natural cylinder; do
+    cat >"$T/side-$m.scene" <<S
+image 64 48
+camera { eye 0 0 -6 look 0 0 0 fov 35 }
+light point { position -3 2 -5 }
+texture g file "$T/grain.exr"
+surface s { Kd 0.9 0.9 0.9 apply g { mapping $m repeat 3 2 Kd = f bump = 0.5 } }
+cylinder { base 0 -20 0 top 0 20 0 radius 1 surface s rotate 0 25 0 }
+S
+    t_apply "$T/side-$m.scene" -q -o "$T/side-$m.pfm" || notok "cylinder side ($m) renders"
+done
+cmp -s "$T/side-natural.pfm" "$T/side-cylinder.pfm" &&
+    ok "cylinder projection on a cylinder's side: the natural mapping's bytes (footprints, bump)" ||
+    notok "cylinder projection against the natural mapping on a side" \
+        "$(maxdiff "$T/side-natural.pfm" "$T/side-cylinder.pfm")"
+
 # the two-plane product equals the product of the two maps at the points they map to
 t_checker -s 64 --nu 2 --nv 2 --ids -o "$T/ca.exr"
 t_stripe -s 64 --ids -o "$T/cb.exr"

@@ -408,10 +408,24 @@ static int map_point_world(const struct tex_apply *ap, const struct tex_object *
 }
 
 /* map_point_at for every mapping but plane_planar */
+/* A projection's frame on leaf: the point pl turned by the placement about the shape's
+ * box centre c into *pt, and *q, *pt across the box (half extents *e): in [-1, 1] inside
+ * it; a shape without a box (returns 0) takes c = 0, e = 1. */
+static int projection_frame(const struct tex_apply *ap, const struct tex_object *leaf,
+                            const tex_v3 *pl, tex_v3 *pt, tex_v3 *q, tex_v3 *e)
+{
+    struct tex_bounds b;
+    int bounded = tex_shape_methods[leaf->kind].bounds(leaf, &b);
+    tex_v3 c = bounded ? tex_v3_scale(tex_v3_add(b.lo, b.hi), 0.5) : tex_v3_make(0, 0, 0);
+    *e = bounded ? tex_v3_scale(tex_v3_sub(b.hi, b.lo), 0.5) : tex_v3_make(1, 1, 1);
+    *pt = ap->placed ? tex_v3_add(c, tex_xform_point(&ap->to_tex, tex_v3_sub(*pl, c))) : *pl;
+    *q = tex_v3_make((pt->x - c.x) / e->x, (pt->y - c.y) / e->y, (pt->z - c.z) / e->z);
+    return bounded;
+}
+
 static int map_point_other(const struct tex_apply *ap, const struct tex_object *leaf,
                            const tex_v3 *P, const tex_v3 *pl, double uvw[3])
 {
-    struct tex_bounds b;
     enum tex_mapping mp = ap->mapping;
     tex_v3 plt;
     uvw[2] = 0;
@@ -419,14 +433,9 @@ static int map_point_other(const struct tex_apply *ap, const struct tex_object *
         return tex_shape_methods[leaf->kind].uv(leaf, *pl, &uvw[0], &uvw[1]);
     if (mp == TEX_MAP_WORLD || mp == TEX_MAP_SOLID)
         return map_point_world(ap, leaf, P, uvw);
-    int bounded = tex_shape_methods[leaf->kind].bounds(leaf, &b);
-    tex_v3 c = bounded ? tex_v3_scale(tex_v3_add(b.lo, b.hi), 0.5) : tex_v3_make(0, 0, 0);
-    tex_v3 e = bounded ? tex_v3_scale(tex_v3_sub(b.hi, b.lo), 0.5) : tex_v3_make(1, 1, 1);
-    if (ap->placed) { /* the texture's frame about the shape's centre */
-        plt = tex_v3_add(c, tex_xform_point(&ap->to_tex, tex_v3_sub(*pl, c)));
-        pl = &plt;
-    }
-    tex_v3 q = tex_v3_make((pl->x - c.x) / e.x, (pl->y - c.y) / e.y, (pl->z - c.z) / e.z);
+    tex_v3 q, e;
+    int bounded = projection_frame(ap, leaf, pl, &plt, &q, &e);
+    pl = &plt;
     switch (mp) {
     case TEX_MAP_SPHERE:
         return tex_shape_methods[TEX_SHAPE_SPHERE].uv(leaf, q, &uvw[0], &uvw[1]);
@@ -564,6 +573,37 @@ static int natural_gradient(const struct tex_apply *ap, const struct tex_object 
     }
 }
 
+
+/* A cylinder or cone projection's gradients of u and v in object space at *pl (the
+ * derivatives of map_point_other's formulas: u = atan2(-qz, qx) / 2pi, v = (1 - qy) / 2
+ * across the box or -y scale without one, through the placement's linear part); 0 for
+ * other mappings, on the axis and where v is clamped (the footprint then takes finite
+ * differences). */
+static int projection_gradient(const struct tex_apply *ap, const struct tex_object *leaf,
+                               const tex_v3 *pl, tex_v3 *du, tex_v3 *dv)
+{
+    if (ap->mapping != TEX_MAP_CYLINDER && ap->mapping != TEX_MAP_CONE)
+        return 0;
+    tex_v3 pt, q, e;
+    int bounded = projection_frame(ap, leaf, pl, &pt, &q, &e);
+    double rho2 = q.x * q.x + q.z * q.z, vq = (1 - q.y) / 2;
+    if (!(rho2 > 1e-24) || (bounded && !(vq > 0 && vq < 1)))
+        return 0;
+    double k = 1 / (2 * M_PI * rho2);
+    double gu[3] = {q.z * k / e.x, 0, -q.x * k / e.z};
+    double gv[3] = {0, bounded ? -0.5 / e.y : -ap->scale, 0};
+    if (ap->placed) { /* pt = c + M (p - c): a gradient goes by M's transpose */
+        const double(*m)[4] = ap->to_tex.m;
+        double a[3], b[3];
+        for (int j = 0; j < 3; j++) {
+            a[j] = m[0][j] * gu[0] + m[1][j] * gu[1] + m[2][j] * gu[2];
+            b[j] = m[0][j] * gv[0] + m[1][j] * gv[1] + m[2][j] * gv[2];
+        }
+        memcpy(gu, a, sizeof a), memcpy(gv, b, sizeof b);
+    }
+    *du = tex_v3_make(gu[0], gu[1], gu[2]), *dv = tex_v3_make(gv[0], gv[1], gv[2]);
+    return 1;
+}
 
 /* A texture's window and placement, the divisions done once (tex_surface_cache): (u, v) is
  * in the window where s = (u - u1) iu and t = (v - v1) iv lie in [0, 1], and goes to
@@ -738,7 +778,8 @@ placed_derivatives(const struct tex_apply *ap, const struct placement *pm,
         gu = g[0], gv = g[1];
     } else { /* not affine: in object space */
         footprint_obj(fp, leaf, P, pl);
-        if (!natural_gradient(ap, leaf, pl, face, &gu, &gv))
+        if (!natural_gradient(ap, leaf, pl, face, &gu, &gv) &&
+            !projection_gradient(ap, leaf, pl, &gu, &gv))
             return 0;
         e[0] = &fp->o1, e[1] = &fp->o2;
     }
