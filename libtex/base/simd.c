@@ -15,9 +15,11 @@ const char *tex_simd_name(int level)
  * at 0.6-0.9 times the AVX2 one's speed on a Xeon with AVX-512 (2026-11).  At this level it
  * keeps eight lanes and takes its hashes from VBMI's byte permutes (tex_simd_vbmi): 1.3 times
  * the gathers' speed on an EPYC (Zen 4). */
+enum { VBMI = 4 }; /* beside the level in simd_detect's answer */
+
 static int simd_detect(void)
 {
-    int best = TEX_SIMD_SCALAR;
+    int best = TEX_SIMD_SCALAR, vbmi = 0;
     const char *e = getenv("TEXTURA_SIMD");
 #ifdef TEX_X86
     __builtin_cpu_init();
@@ -25,25 +27,33 @@ static int simd_detect(void)
         best = TEX_SIMD_AVX2;
     if (best == TEX_SIMD_AVX2 && __builtin_cpu_supports("avx512f"))
         best = TEX_SIMD_AVX512;
+    vbmi = __builtin_cpu_supports("avx512vbmi") && __builtin_cpu_supports("avx512vl") &&
+           __builtin_cpu_supports("avx512bw");
 #endif
     if (e && strcmp(e, "scalar") == 0)
         best = TEX_SIMD_SCALAR;
     else if (e && strcmp(e, "avx2") == 0 && best > TEX_SIMD_AVX2)
         best = TEX_SIMD_AVX2;
-    return best;
+    return best | (vbmi ? VBMI : 0);
+}
+
+/* simd_detect's answer, found once */
+static int detected(void)
+{
+    static int d = -1;
+    int v = __atomic_load_n(&d, __ATOMIC_RELAXED);
+    if (v < 0) {
+        v = simd_detect();
+        __atomic_store_n(&d, v, __ATOMIC_RELAXED);
+    }
+    return v;
 }
 
 static int limit = TEX_SIMD_AVX512;
 
 int tex_simd_level(void)
 {
-    static int level = -1;
-    int l = __atomic_load_n(&level, __ATOMIC_RELAXED), m;
-    if (l < 0) {
-        l = simd_detect();
-        __atomic_store_n(&level, l, __ATOMIC_RELAXED);
-    }
-    m = __atomic_load_n(&limit, __ATOMIC_RELAXED);
+    int l = detected() & ~VBMI, m = __atomic_load_n(&limit, __ATOMIC_RELAXED);
     return l < m ? l : m;
 }
 
@@ -54,16 +64,5 @@ void tex_simd_limit(int level)
 
 int tex_simd_vbmi(void)
 {
-    static int has = -1;
-    int h = __atomic_load_n(&has, __ATOMIC_RELAXED);
-    if (h < 0) {
-        h = 0;
-#ifdef TEX_X86
-        __builtin_cpu_init();
-        h = __builtin_cpu_supports("avx512vbmi") && __builtin_cpu_supports("avx512vl") &&
-            __builtin_cpu_supports("avx512bw");
-#endif
-        __atomic_store_n(&has, h, __ATOMIC_RELAXED);
-    }
-    return h && tex_simd_level() >= TEX_SIMD_AVX512;
+    return (detected() & VBMI) && tex_simd_level() >= TEX_SIMD_AVX512;
 }

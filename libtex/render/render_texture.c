@@ -407,7 +407,6 @@ static int map_point_world(const struct tex_apply *ap, const struct tex_object *
     return 1;
 }
 
-/* map_point_at for every mapping but plane_planar */
 /* A projection's frame on leaf: the point pl turned by the placement about the shape's
  * box centre c into *pt, and *q, *pt across the box (half extents *e): in [-1, 1] inside
  * it; a shape without a box (returns 0) takes c = 0, e = 1. */
@@ -423,6 +422,7 @@ static int projection_frame(const struct tex_apply *ap, const struct tex_object 
     return bounded;
 }
 
+/* map_point_at for every mapping but plane_planar */
 static int map_point_other(const struct tex_apply *ap, const struct tex_object *leaf,
                            const tex_v3 *P, const tex_v3 *pl, double uvw[3])
 {
@@ -1148,6 +1148,17 @@ static tex_v3 normal_mapped(const float enc[3], const tex_v3 *N, const tex_v3 *g
                                   tex_v3_scale(*N, z)));
 }
 
+/* A tilt's direction along the footprint's tangents t1, t2 from the luminance's
+ * derivatives g along them; where grad (the map's gradient per u and v) is given, g is made
+ * from it first, through the derivatives du, dv of u and v along t1, t2. */
+static tex_v3 tilt_along(const double *grad, const double du[2], const double dv[2],
+                         double g[2], tex_v3 t1, tex_v3 t2)
+{
+    if (grad)
+        g[0] = grad[0] * du[0] + grad[1] * dv[0], g[1] = grad[0] * du[1] + grad[1] * dv[1];
+    return tex_v3_add(tex_v3_scale(t1, g[0]), tex_v3_scale(t2, g[1]));
+}
+
 /* Blinn's bump mapping: the tilt of the normal against the surface gradient of texture ap's
  * luminance (f at the hit; pl: the hit in object space, on face).  grad (or NULL): the
  * gradient per placed u and v that the map's lookup gave (map_eval), taken through the
@@ -1160,23 +1171,20 @@ static tex_v3 bump_tilt(const struct tex_apply *ap, const struct placement *pm,
 {
     double h = width > 1e-4 ? width : 1e-4, g[2], du[2], dv[2];
     footprint_unit(fp);
-    if (grad && placed_derivatives(ap, pm, leaf, fp, P, pl, face, du, dv)) {
-        g[0] = grad[0] * du[0] + grad[1] * dv[0], g[1] = grad[0] * du[1] + grad[1] * dv[1];
-    } else {
-        for (int i = 0; i < 2; i++) {
-            tex_v3 Pi = tex_v3_madd(*P, i ? fp->t2 : fp->t1, h);
-            tex_v3 pli = tex_xform_point(&leaf->to_obj, Pi);
-            double uvw[3];
-            float fi[3];
-            map_point_at(ap, leaf, &Pi, &pli, uvw);
-            if (!place(ap, pm, uvw))
-                return tex_v3_make(0, 0, 0);
-            texture_lookup(ap->tex, uvw[0], uvw[1], uvw[2], fw2, fi);
-            g[i] = (lum(fi) - lum(f)) / h;
-        }
+    if (grad && placed_derivatives(ap, pm, leaf, fp, P, pl, face, du, dv))
+        return tex_v3_scale(tilt_along(grad, du, dv, g, fp->t1, fp->t2), strength);
+    for (int i = 0; i < 2; i++) {
+        tex_v3 Pi = tex_v3_madd(*P, i ? fp->t2 : fp->t1, h);
+        tex_v3 pli = tex_xform_point(&leaf->to_obj, Pi);
+        double uvw[3];
+        float fi[3];
+        map_point_at(ap, leaf, &Pi, &pli, uvw);
+        if (!place(ap, pm, uvw))
+            return tex_v3_make(0, 0, 0);
+        texture_lookup(ap->tex, uvw[0], uvw[1], uvw[2], fw2, fi);
+        g[i] = (lum(fi) - lum(f)) / h;
     }
-    return tex_v3_scale(tex_v3_add(tex_v3_scale(fp->t1, g[0]), tex_v3_scale(fp->t2, g[1])),
-                        strength);
+    return tex_v3_scale(tilt_along(NULL, NULL, NULL, g, fp->t1, fp->t2), strength);
 }
 
 /* A cross mapping's value (thesis 5.2.1.3): the map on the x-y plane (f, at u, v) combined
@@ -1230,13 +1238,13 @@ static double lookup_width2(const struct tex_apply *ap, const struct placement *
                             const tex_v3 *pl, const struct tex_prefetch_ap *pa, int filter,
                             int *mapped)
 {
-    int need = filter && ((uses_footprint(ap->tex) && (!pa->has_val || pm->bump)) ||
-                          (ap->mapping == TEX_MAP_CROSS && uses_footprint(ap->cross)));
-    *mapped = 0;
     if (pa->has_val && ap->tex->mip) { /* a map's value came with its footprint */
         *mapped = filter;
         return pa->fw;
     }
+    int need = filter && ((uses_footprint(ap->tex) && (!pa->has_val || pm->bump)) ||
+                          (ap->mapping == TEX_MAP_CROSS && uses_footprint(ap->cross)));
+    *mapped = 0;
     if (!need)
         return 0;
     if (band_limited(ap->tex))
@@ -1342,16 +1350,14 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
                 continue;
             ks_textured |= fn->param == TEX_SP_KS;
             apply_fn(fn, cache->compiled[nfn] ? &cache->poly[nfn] : NULL, f, uvw, fw2, q, pr);
-            if (fn->param == TEX_SP_BUMP && pr->bump != 0 && pa->has_tilt) { /* ahead */
-                tex_v3 d = tex_v3_make(pa->tilt[0], pa->tilt[1], pa->tilt[2]);
-                tilt = tex_v3_add(tilt, tex_v3_scale(d, pr->bump));
-                if (ap->next) /* as bump_tilt leaves it for the textures after */
+            if (fn->param == TEX_SP_BUMP && pr->bump != 0) {
+                tex_v3 d = tex_v3_make(pa->tilt[0], pa->tilt[1], pa->tilt[2]); /* ahead */
+                if (pa->has_tilt && ap->next) /* as bump_tilt leaves it for those after */
                     footprint_unit(&fp);
-                bumped = 1;
-                pr->bump = 0;
-            } else if (fn->param == TEX_SP_BUMP && pr->bump != 0) {
-                tilt = tex_v3_add(tilt, bump_tilt(ap, pm, leaf, P, &pl, pa->face, &fp, width,
-                                                  fw2, gp, f, pr->bump));
+                tilt = tex_v3_add(tilt, pa->has_tilt ? tex_v3_scale(d, pr->bump)
+                                                     : bump_tilt(ap, pm, leaf, P, &pl, pa->face,
+                                                                 &fp, width, fw2, gp, f,
+                                                                 pr->bump));
                 bumped = 1;
                 pr->bump = 0;
             } else if (fn->param == TEX_SP_NORMAL || fn->param == TEX_SP_GRADIENT) {
@@ -1467,7 +1473,7 @@ struct frames {
     double d[3][CHUNK], nn[3][CHUNK], w[CHUNK], gu[3][CHUNK], gv[3][CHUNK], su[CHUNK], sv[CHUNK];
     /* for bumps: the unit tangents e1, e2 and the placed u's and v's derivatives along them
      * (du1, dv1, du2, dv2), as footprint_unit and placed_derivatives make them */
-    double e1[3][CHUNK], e2[3][CHUNK], dd[4][CHUNK];
+    double e1[3][CHUNK], e2[3][CHUNK], du[2][CHUNK], dv[2][CHUNK];
 };
 
 #ifdef TEX_X86
@@ -1530,7 +1536,7 @@ TEX_AVX512 static __mmask8 footprints8_avx512(struct frames *fr, int i, int n, i
             _mm512_mask_storeu_pd(fr->e2[c] + i, in, e2[c]);
         }
         for (int c = 0; c < 4; c++)
-            _mm512_mask_storeu_pd(fr->dd[c] + i, in, dd[c]);
+            _mm512_mask_storeu_pd(c & 1 ? fr->dv[c / 2] + i : fr->du[c / 2] + i, in, dd[c]);
     }
     return headon & in;
 #undef LD
@@ -1789,38 +1795,34 @@ static void batch_footprints(int n, struct tex_prefetch *const *hit,
 #endif
 }
 
-/* bump_tilt's direction (before its strength) from a map's gradient g and the footprint
+/* bump_tilt's direction (before its strength) from a map's gradient grad and the footprint
  * in lane l of fr */
-static void lane_tilt(const struct frames *fr, int l, const double g[2], double tilt[3])
+static void lane_tilt(const struct frames *fr, int l, const double grad[2], double tilt[3])
 {
-    double g1 = g[0] * fr->dd[0][l] + g[1] * fr->dd[1][l];
-    double g2 = g[0] * fr->dd[2][l] + g[1] * fr->dd[3][l];
+    double du[2] = {fr->du[0][l], fr->du[1][l]}, dv[2] = {fr->dv[0][l], fr->dv[1][l]}, g[2];
     tex_v3 e1 = tex_v3_make(fr->e1[0][l], fr->e1[1][l], fr->e1[2][l]);
     tex_v3 e2 = tex_v3_make(fr->e2[0][l], fr->e2[1][l], fr->e2[2][l]);
-    tex_v3 d = tex_v3_add(tex_v3_scale(e1, g1), tex_v3_scale(e2, g2));
+    tex_v3 d = tilt_along(grad, du, dv, g, e1, e2);
     tilt[0] = d.x, tilt[1] = d.y, tilt[2] = d.z;
 }
 
-/* The values of n pending points a[i] of mip-mapped texture t (hits hit[i]) and their
- * footprints, as apply_textures would look them up: into a[i]->val as RGB, the footprint
- * (squared) into a[i]->fw; bumped, the gradient and (from the lanes) the tilt's
+/* The values of n pending points a[i] of mip-mapped texture t (hits hit[i], placed at u, v)
+ * and their footprints, as apply_textures would look them up: into a[i]->val as RGB, the
+ * footprint (squared) into a[i]->fw; bumped, the gradient and (from the lanes) the tilt's
  * direction. */
 static void map_batch(const struct tex_texture *t, int n, struct tex_prefetch *const *hit,
-                      struct tex_prefetch_ap *const *a)
+                      struct tex_prefetch_ap *const *a, const double *u, const double *v)
 {
     struct frames fr;
-    double u[CHUNK], v[CHUNK], fw2[CHUNK], grad[2 * CHUNK], *gp = NULL;
+    double fw2[CHUNK], grad[2 * CHUNK], *gp = NULL;
     float out[3 * CHUNK];
     int lane[CHUNK];
-    for (int i = 0; i < n; i++) {
-        u[i] = a[i]->uvw[0], v[i] = a[i]->uvw[1];
+    for (int i = 0; i < n; i++)
         if (hit[i]->sf->cache->placement[0].bump) /* then every point's gradient */
             gp = grad;
-    }
     batch_footprints(n, hit, a, gp != NULL, &fr, fw2, lane);
     tex_texture_points(t, n, u, v, fw2, out, gp);
     for (int i = 0; i < n; i++) {
-        memset(a[i]->val, 0, sizeof a[i]->val);
         memcpy(a[i]->val, out + 3 * i, 3 * sizeof *out);
         if (gp)
             a[i]->grad[0] = gp[2 * i], a[i]->grad[1] = gp[2 * i + 1];
@@ -1902,7 +1904,7 @@ void tex_prefetch_eval(struct tex_prefetch *const *pf, int n)
                 }
             }
             if (t->mip) {
-                map_batch(t, m, hit, who);
+                map_batch(t, m, hit, who, u, v);
                 continue;
             }
             field_points(t, m, u, v, w, fw, out);
