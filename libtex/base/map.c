@@ -2,6 +2,7 @@
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/mman.h>
@@ -23,6 +24,25 @@ int tex_map_check_size(long long w, long long h, long long nc)
     return 0;
 }
 
+/* Zeroed pages for a large map, *bytes of them rounded up to whole 2 MiB pages on a 2 MiB
+ * boundary, in huge pages where the kernel gives them: in 4 KiB pages, an empty 800x600
+ * render spent a third of its time in page faults. NULL if the kernel has no memory. */
+static void *mapped_pixels(size_t *bytes)
+{
+    const size_t huge = (size_t)2 << 20;
+    size_t n = (*bytes + huge - 1) / huge * huge;
+    char *p = mmap(NULL, n + huge, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (p == MAP_FAILED)
+        return NULL;
+    size_t head = (huge - (uintptr_t)p % huge) % huge;
+    if (head)
+        munmap(p, head);
+    munmap(p + head + n, huge - head); /* page-aligned, as mmap's p is */
+    madvise(p + head, n, MADV_HUGEPAGE);
+    *bytes = n;
+    return p + head;
+}
+
 tex_map *tex_map_new(int w, int h, int nc)
 {
     tex_map *m;
@@ -37,11 +57,9 @@ tex_map *tex_map_new(int w, int h, int nc)
     bytes = (size_t)w * h * nc * sizeof *m->px;
     if (bytes >= (1 << 20)) {
         /* Fresh pages come zeroed: no pass over a map the caller will fill anyway. */
-        void *p = mmap(NULL, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-        if (p != MAP_FAILED) {
-            m->px = p;
-            m->mapped = bytes;
-        }
+        size_t n = bytes;
+        if ((m->px = mapped_pixels(&n)))
+            m->mapped = n;
     } else if ((m->px = aligned_alloc(64, (bytes + 63) & ~(size_t)63))) {
         memset(m->px, 0, bytes); /* aligned_alloc wants a multiple of the alignment, above */
     }

@@ -395,6 +395,7 @@ static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, 
 #define PACKET 8
 struct packet {
     tex_rng rng[PACKET * PACKET];
+    int x[PACKET * PACKET], y[PACKET * PACKET]; /* the pixels: no division by the width */
     double acc[PACKET * PACKET][3];
     tex_ray r[PACKET * PACKET];
     struct tex_hit h[PACKET * PACKET];
@@ -409,16 +410,19 @@ static void render_packet(const struct ctx *c0, const struct camera *cam, struct
                           int x0, int y0, int x1, int y1, tex_map *img, int rx, int ry)
 {
     const struct tex_scene *s = c0->s;
-    int spp = s->settings.spp, w = x1 - x0, np = w * (y1 - y0);
+    int spp = s->settings.spp, np = 0;
     struct ctx c = *c0;
+    for (int y = y0; y < y1; y++)
+        for (int x = x0; x < x1; x++, np++)
+            pk->x[np] = x, pk->y[np] = y;
     for (int k = 0; k < np; k++) {
-        seed_pixel(c0, x0 + k % w, y0 + k / w, &pk->rng[k]);
+        seed_pixel(c0, pk->x[k], pk->y[k], &pk->rng[k]);
         pk->acc[k][0] = pk->acc[k][1] = pk->acc[k][2] = 0;
     }
     for (int i = 0; i < spp; i++) {
         int m = 0;
         for (int k = 0; k < np; k++) /* apart from the traces: their square roots overlap */
-            camera_ray(&c, cam, x0 + k % w, y0 + k / w, i, &pk->rng[k], &pk->r[k]);
+            camera_ray(&c, cam, pk->x[k], pk->y[k], i, &pk->rng[k], &pk->r[k]);
         for (int k = 0; k < np; k++)
             pk->hit[k] = tex_scene_trace(s, &pk->r[k].o, &pk->r[k].d, 0, INFINITY, &pk->h[k]);
         for (int k = 0; k < np; k++) {
@@ -449,7 +453,7 @@ static void render_packet(const struct ctx *c0, const struct camera *cam, struct
         }
     }
     for (int k = 0; k < np; k++)
-        put_pixel(spp, pk->acc[k], tex_map_px(img, x0 + k % w - rx, y0 + k / w - ry));
+        put_pixel(spp, pk->acc[k], tex_map_px(img, pk->x[k] - rx, pk->y[k] - ry));
 }
 
 tex_map *tex_render(struct tex_scene *s, void (*progress)(long, long, void *), void *arg)
