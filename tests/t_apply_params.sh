@@ -84,6 +84,17 @@ cmp -s "$T/ks05.pfm" "$T/ks1.pfm" && notok "Ks 0.5 and 1 differ (the clamp test 
 cmp -s "$T/n1e9.pfm" "$T/n1e4.pfm" && ok "n = 1e9 is clamped to the row's 10000" ||
     notok "n clamped to 10000"
 
+# a constant function is folded (its channels' mean made once, render_texture.c poly_of): the
+# bytes of the same function evaluated at every hit (+ 0*f keeps it from folding)
+render fold 'Kd 0.3 apply t { Ks = rgb(0.2, 0.5, 0.9) n = 30 Kr = 0.2 bump = rgb(0.1, 0.3, 0.8) }'
+render nofold 'Kd 0.3 apply t { Ks = rgb(0.2, 0.5, 0.9) + 0*f n = 30 + 0*f Kr = 0.2 + 0*f
+    bump = rgb(0.1, 0.3, 0.8) + 0*f }'
+render fold2 'Kd 0.3 apply t { Ks = rgb(0.2, 0.5, 0.9) n = 30 Kr = 0.2 bump = rgb(0.1, 0.3, 0.9) }'
+cmp -s "$T/fold.pfm" "$T/nofold.pfm" && ok "constant functions folded: the bytes evaluated per hit" ||
+    notok "constant functions folded"
+cmp -s "$T/fold.pfm" "$T/fold2.pfm" && notok "a folded bump's third channel counts" ||
+    ok "a folded bump's third channel counts"
+
 # a shape's defaults come from its rows: leaving a word out renders as writing its default
 shape() { # shape NAME 'object block': lit from the eye's side, as PFM
     printf '%s\n' "image 32 24" "camera { eye 0 2 -5 look 0 0 0 fov 50 }" \

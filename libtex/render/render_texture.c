@@ -932,12 +932,17 @@ static void expr_eval(const struct tex_expr *e, const struct evalctx *c, double 
 struct poly {
     double c[4][3];
     int df, dp; /* degrees in f and p */
+    /* folded: of degree 0 with no zero constant, so that poly_at gives c[0] itself wherever
+     * f and p are finite (c[0] + 0 f is not c[0] at a zero's sign, nor at f infinite);
+     * mean: the channels' mean, as a scalar parameter takes it */
+    int folded;
+    double mean;
 };
 
 /* a op b, in a; 0 if the result is not such a polynomial. */
 static int poly_op(enum tex_eop op, struct poly *a, const struct poly *b)
 {
-    struct poly r = {{{0}}, a->df | b->df, a->dp | b->dp};
+    struct poly r = {{{0}}, a->df | b->df, a->dp | b->dp, 0, 0};
     double sg = op == TEX_EOP_SUB ? -1 : 1;
     switch (op) {
     case TEX_EOP_ADD:
@@ -1021,8 +1026,11 @@ static int poly_of(const struct tex_expr *e, struct poly *r)
             break;
         }
     }
-    if (ok)
+    if (ok) {
         *r = st[0];
+        r->folded = !r->df && !r->dp && r->c[0][0] != 0 && r->c[0][1] != 0 && r->c[0][2] != 0;
+        r->mean = (r->c[0][0] + r->c[0][1] + r->c[0][2]) / 3;
+    }
     free(st);
     return ok;
 }
@@ -1092,7 +1100,9 @@ static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const flo
     default: scalar = &pr->bump; break;
     }
     const float *fv = f, *pv = colour;
-    if (scalar) {
+    /* a constant function where lum(f) and p are finite: poly_at's values are its c[0] */
+    int folded = scalar && q && q->folded && isfinite(f[0] + f[1] + f[2]) && isfinite(*scalar);
+    if (scalar && !folded) {
         fg[0] = fg[1] = fg[2] = lum(f);
         p[0] = p[1] = p[2] = *scalar;
         fv = fg, pv = p;
@@ -1102,9 +1112,9 @@ static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const flo
         expr_eval(fn->e, &c, r);
     }
     if (scalar) {
-        for (int k = 0; q && k < 3; k++)
+        for (int k = 0; q && !folded && k < 3; k++)
             r[k] = poly_at(q, k, fv[k], pv[k]);
-        *scalar = (float)clampd((r[0] + r[1] + r[2]) / 3, lo, hi);
+        *scalar = (float)clampd(folded ? q->mean : (r[0] + r[1] + r[2]) / 3, lo, hi);
         if (fn->param == TEX_SP_M)
             pr->m = sc;
         else if (fn->param == TEX_SP_S)
