@@ -1231,9 +1231,11 @@ static inline __attribute__((always_inline)) void
 map_hit(const struct tex_apply *ap, const struct placement *pm, const struct tex_object *leaf,
         const tex_v3 *P, const tex_v3 *pl, struct tex_prefetch_ap *a)
 {
+    double uvw[3]; /* in registers where map_point_at is inlined: no copy through memory */
     a->tex = ap->tex;
-    a->face = map_point_at(ap, leaf, P, pl, a->uvw);
-    memcpy(a->uvw0, a->uvw, sizeof a->uvw0);
+    a->face = map_point_at(ap, leaf, P, pl, uvw);
+    for (int i = 0; i < 3; i++)
+        a->uvw0[i] = a->uvw[i] = uvw[i];
     a->inside = place(ap, pm, a->uvw);
     a->pending = a->inside && !ap->tex->mip;
     a->has_val = a->has_tilt = 0;
