@@ -29,6 +29,8 @@
 #ifndef TEX_COLOUR_H
 #define TEX_COLOUR_H
 
+#include <math.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -114,6 +116,16 @@ static inline void tex_colour_mmadd(tex_colour *d, int n, const tex_colour *a, c
                                     float s)
 {
     TEX_COLOUR_EACH(n, d, d->v[i] + a->v[i] * b->v[i] * s);
+}
+
+/* 1 if d + a * e * s, a zero colour a and s finite, is d itself: every sample of e finite
+ * (0 inf is NaN) and none of d -0 (-0 + +0 is +0) */
+static inline int tex_colour_zero_adds_nothing(const tex_colour *d, const tex_colour *e, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (!isfinite(e->v[i]) || (d->v[i] == 0 && signbit(d->v[i])))
+            return 0;
+    return 1;
 }
 
 /* 1 if every sample is zero (of either sign) */

@@ -88,6 +88,10 @@ static inline void tex_phong_direct(const struct tex_material *m, const double *
     if (nl <= 0)
         return;
     tex_colour_mmadd(out, n, &m->kd, E, (float)nl);
+    /* without a specular colour (Ks 0, the default) the highlight adds zeros: where they
+     * leave out as it is, no half vector, cut-off or power */
+    if (tex_colour_zero(&m->ks, n) && tex_colour_zero_adds_nothing(out, E, n))
+        return;
     double h[3] = {L[0] + V[0], L[1] + V[1], L[2] + V[2]};
     double hh = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
     double q = N[0] * h[0] + N[1] * h[1] + N[2] * h[2];
