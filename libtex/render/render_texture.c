@@ -1479,7 +1479,9 @@ static int map_ahead(const struct tex_apply *ap)
     return ap->tex->mip && !ap->tex->subregions && ap->mapping != TEX_MAP_CROSS;
 }
 
-enum { CHUNK = 256 }; /* points per batch, a multiple of 8 */
+/* Points per batch, a multiple of 8: a packet's hits.  At 256 the batch's rows (struct frames),
+ * 2 KiB apart, shared few L1 sets, and every scene took 1-4 % longer. */
+enum { CHUNK = 64 };
 
 /* The points of a batch in lanes: the shading frames (D, N, width) and the affine mappings'
  * gradients gu, gv and placement scales su, sv of those whose footprints go in lanes. */
