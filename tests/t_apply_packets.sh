@@ -56,7 +56,7 @@ render() { # NAME PACKETS ARGS...: the render as PFM (raw floats)
     TEXTURA_PACKETS=$p t_apply "$T/a.scene" -q -o "$T/$name.pfm" "$@"
 }
 for cfg in "spp1|--spp 1" "spp4|--spp 4" "spectral|--spectral 6 --spp 2" \
-    "region|--region 5,3,27,22 --spp 2" "odd|-s 33x17 --spp 3"; do
+    "region|--region 5,3,27,22 --spp 2" "region1|--region 5,3,27,22" "odd|-s 33x17 --spp 3"; do
     name=${cfg%%|*} args=${cfg#*|}
     # shellcheck disable=SC2086
     if render "$name-px" 0 -j 1 $args && render "$name-pk1" 1 -j 1 $args &&

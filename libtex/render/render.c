@@ -22,8 +22,9 @@
 #include <string.h>
 
 #include "base/error.h"
-#include "render/scene.h"
 #include "base/rng.h"
+#include "base/simd.h"
+#include "render/scene.h"
 
 #define TILE 16
 
@@ -341,6 +342,58 @@ static void camera_ray(const struct ctx *c, const struct camera *cam, int x, int
                    0, cam->spread, s->eye_media.n ? &s->eye_media : NULL, 0};
 }
 
+#ifdef TEX_X86
+/* camera_ray's rays through the centres of the n <= 8 pixels (x[k], y[k]) (1 spp): its
+ * operations in lanes, so its bits, the square roots and divisions of eight rays at once.
+ * x and y hold 8 readable entries. */
+TEX_AVX512 static void eye_rays8_avx512(const struct ctx *c, const struct camera *cam,
+                                        const int *x, const int *y, int n, tex_ray *r)
+{
+    __m512d half = _mm512_set1_pd(0.5), v[3];
+    __m512d px = _mm512_cvtepi32_pd(_mm256_loadu_si256((const __m256i *)x));
+    __m512d py = _mm512_cvtepi32_pd(_mm256_loadu_si256((const __m256i *)y));
+    __m512d a = _mm512_sub_pd(_mm512_mul_pd(_mm512_add_pd(px, half), _mm512_set1_pd(cam->kx)),
+                              _mm512_set1_pd(cam->sx));
+    __m512d b = _mm512_sub_pd(_mm512_set1_pd(cam->sy),
+                              _mm512_mul_pd(_mm512_add_pd(py, half), _mm512_set1_pd(cam->ky)));
+    const double f[3] = {cam->fwd.x, cam->fwd.y, cam->fwd.z};
+    const double rt[3] = {cam->right.x, cam->right.y, cam->right.z};
+    const double u[3] = {cam->up.x, cam->up.y, cam->up.z};
+    for (int i = 0; i < 3; i++) /* fwd + (right a + up b) */
+        v[i] = _mm512_add_pd(_mm512_set1_pd(f[i]),
+                             _mm512_add_pd(_mm512_mul_pd(_mm512_set1_pd(rt[i]), a),
+                                           _mm512_mul_pd(_mm512_set1_pd(u[i]), b)));
+    __m512d l = _mm512_sqrt_pd(_mm512_add_pd(
+        _mm512_add_pd(_mm512_mul_pd(v[0], v[0]), _mm512_mul_pd(v[1], v[1])),
+        _mm512_mul_pd(v[2], v[2])));
+    __mmask8 pos = _mm512_cmp_pd_mask(l, _mm512_setzero_pd(), _CMP_GT_OQ); /* tex_v3_norm */
+    __m512d il = _mm512_div_pd(_mm512_set1_pd(1), l);
+    double d[3][8];
+    for (int i = 0; i < 3; i++)
+        _mm512_storeu_pd(d[i], _mm512_mask_mul_pd(v[i], pos, v[i], il));
+    const struct tex_media *media = c->s->eye_media.n ? &c->s->eye_media : NULL;
+    for (int k = 0; k < n; k++)
+        r[k] = (tex_ray){cam->eye, tex_v3_make(d[0][k], d[1][k], d[2][k]), 0, cam->spread,
+                         media, 0};
+}
+#endif
+
+/* The eye rays of sample i of the packet's np pixels (x[k], y[k]) into r, made apart from
+ * the traces so that their square roots overlap; at 1 spp eight at a time in lanes. */
+static void camera_rays(const struct ctx *c, const struct camera *cam, const int *x, const int *y,
+                        int np, int i, tex_rng *rng, tex_ray *r)
+{
+#ifdef TEX_X86
+    if (c->s->settings.spp == 1 && tex_simd_level() >= TEX_SIMD_AVX512) {
+        for (int k = 0; k < np; k += 8)
+            eye_rays8_avx512(c, cam, x + k, y + k, np - k < 8 ? np - k : 8, r + k);
+        return;
+    }
+#endif
+    for (int k = 0; k < np; k++)
+        camera_ray(c, cam, x[k], y[k], i, &rng[k], &r[k]);
+}
+
 /* A sample's colour col added to the pixel's sum acc, in RGB */
 static inline void accumulate(const struct tex_scene *s, const tex_colour *col, double acc[3])
 {
@@ -421,8 +474,7 @@ static void render_packet(const struct ctx *c0, const struct camera *cam, struct
     }
     for (int i = 0; i < spp; i++) {
         int m = 0;
-        for (int k = 0; k < np; k++) /* apart from the traces: their square roots overlap */
-            camera_ray(&c, cam, pk->x[k], pk->y[k], i, &pk->rng[k], &pk->r[k]);
+        camera_rays(&c, cam, pk->x, pk->y, np, i, pk->rng, pk->r);
         for (int k = 0; k < np; k++)
             pk->hit[k] = tex_scene_trace(s, &pk->r[k].o, &pk->r[k].d, 0, INFINITY, &pk->h[k]);
         for (int k = 0; k < np; k++) {
