@@ -488,7 +488,7 @@ static void render_packet(const struct ctx *c0, const struct camera *cam, struct
             if (tex_surface_footprints(sf) && s->settings.filter) { /* as shade() has them */
                 tex_v3 N = pk->Ng[k];
                 N = tex_v3_dot(r->d, N) < 0 ? N : tex_v3_scale(N, -1);
-                tex_prefetch_footprints(&pk->pre[k], pk->h[k].leaf, &pk->P[k], &r->d, &N,
+                tex_prefetch_footprints(&pk->pre[k], &r->d, &N,
                                         fabs(r->width + pk->h[k].t * r->spread));
             }
             pk->pp[m++] = &pk->pre[k];

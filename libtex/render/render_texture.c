@@ -1487,6 +1487,7 @@ enum { CHUNK = 64 };
  * gradients gu, gv and placement scales su, sv of those whose footprints go in lanes. */
 struct frames {
     double d[3][CHUNK], nn[3][CHUNK], w[CHUNK], gu[3][CHUNK], gv[3][CHUNK], su[CHUNK], sv[CHUNK];
+    double gw[3][CHUNK]; /* band-limited solids: the gradient of w */
     /* for bumps: the unit tangents e1, e2 and the placed u's and v's derivatives along them
      * (du1, dv1, du2, dv2), as footprint_unit and placed_derivatives make them */
     double e1[3][CHUNK], e2[3][CHUNK], du[2][CHUNK], dv[2][CHUNK];
@@ -1502,6 +1503,31 @@ TEX_AVX512 static inline __m512d dot8(__m512d ax, __m512d ay, __m512d az, __m512
                          _mm512_mul_pd(az, bz));
 }
 
+/* footprint_tangents of the lanes in of fr from i on, operation for operation: t1, t2 (x, y,
+ * z), l2 and c; the lanes seen head-on (no tangent from the ray) in the mask returned */
+TEX_AVX512 static inline __attribute__((always_inline)) __mmask8
+tangents8(const struct frames *fr, int i, __mmask8 in, __m512d t1[3], __m512d t2[3],
+          __m512d *l2, __m512d *c)
+{
+    __m512d d[3], nn[3];
+    for (int k = 0; k < 3; k++) {
+        d[k] = _mm512_maskz_loadu_pd(in, fr->d[k] + i);
+        nn[k] = _mm512_maskz_loadu_pd(in, fr->nn[k] + i);
+    }
+    __m512d dn = dot8(d[0], d[1], d[2], nn[0], nn[1], nn[2]), cosv = _mm512_abs_pd(dn);
+    __m512d ndn = _mm512_castsi512_pd( /* -dn: the sign flipped, as for a zero */
+        _mm512_xor_si512(_mm512_castpd_si512(dn), _mm512_set1_epi64(INT64_MIN)));
+    for (int k = 0; k < 3; k++)
+        t1[k] = _mm512_add_pd(d[k], _mm512_mul_pd(nn[k], ndn));
+    *l2 = dot8(t1[0], t1[1], t1[2], t1[0], t1[1], t1[2]);
+    for (int k = 0; k < 3; k++) /* N x t1 */
+        t2[k] = _mm512_sub_pd(_mm512_mul_pd(nn[(k + 1) % 3], t1[(k + 2) % 3]),
+                              _mm512_mul_pd(nn[(k + 2) % 3], t1[(k + 1) % 3]));
+    __m512d lo = _mm512_set1_pd(0.02);
+    *c = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(cosv, lo, _CMP_GT_OQ), lo, cosv);
+    return _mm512_cmp_pd_mask(*l2, _mm512_set1_pd(1e-18), _CMP_LT_OQ);
+}
+
 /* footprint_width2 of the n <= 8 affine points from i on (footprint_tangents,
  * placed_derivatives and its end, operation for operation) into fw2[i...], and where bump,
  * the frames' bump members; returns the lanes seen head-on, which the scalar path takes. */
@@ -1510,21 +1536,9 @@ TEX_AVX512 static __mmask8 footprints8_avx512(struct frames *fr, int i, int n, i
 {
     __mmask8 in = (__mmask8)((1u << n) - 1);
 #define LD(a) _mm512_maskz_loadu_pd(in, (a) + i)
-    __m512d dx = LD(fr->d[0]), dy = LD(fr->d[1]), dz = LD(fr->d[2]);
-    __m512d nx = LD(fr->nn[0]), ny = LD(fr->nn[1]), nz = LD(fr->nn[2]);
-    __m512d dn = dot8(dx, dy, dz, nx, ny, nz), cosv = _mm512_abs_pd(dn);
-    __m512d ndn = _mm512_castsi512_pd( /* -dn: the sign flipped, as for a zero */
-        _mm512_xor_si512(_mm512_castpd_si512(dn), _mm512_set1_epi64(INT64_MIN)));
-    __m512d t1x = _mm512_add_pd(dx, _mm512_mul_pd(nx, ndn));
-    __m512d t1y = _mm512_add_pd(dy, _mm512_mul_pd(ny, ndn));
-    __m512d t1z = _mm512_add_pd(dz, _mm512_mul_pd(nz, ndn));
-    __m512d l2 = dot8(t1x, t1y, t1z, t1x, t1y, t1z);
-    __mmask8 headon = _mm512_cmp_pd_mask(l2, _mm512_set1_pd(1e-18), _CMP_LT_OQ);
-    __m512d t2x = _mm512_sub_pd(_mm512_mul_pd(ny, t1z), _mm512_mul_pd(nz, t1y));
-    __m512d t2y = _mm512_sub_pd(_mm512_mul_pd(nz, t1x), _mm512_mul_pd(nx, t1z));
-    __m512d t2z = _mm512_sub_pd(_mm512_mul_pd(nx, t1y), _mm512_mul_pd(ny, t1x));
-    __m512d lo = _mm512_set1_pd(0.02);
-    __m512d c = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(cosv, lo, _CMP_GT_OQ), lo, cosv);
+    __m512d t1[3], t2[3], l2, c;
+    __mmask8 headon = tangents8(fr, i, in, t1, t2, &l2, &c);
+    __m512d t1x = t1[0], t1y = t1[1], t1z = t1[2], t2x = t2[0], t2y = t2[1], t2z = t2[2];
     __m512d gux = LD(fr->gu[0]), guy = LD(fr->gu[1]), guz = LD(fr->gu[2]);
     __m512d gvx = LD(fr->gv[0]), gvy = LD(fr->gv[1]), gvz = LD(fr->gv[2]);
     __m512d su = LD(fr->su), sv = LD(fr->sv), w = LD(fr->w);
@@ -1554,6 +1568,35 @@ TEX_AVX512 static __mmask8 footprints8_avx512(struct frames *fr, int i, int n, i
         for (int c = 0; c < 4; c++)
             _mm512_mask_storeu_pd(c & 1 ? fr->dv[c / 2] + i : fr->du[c / 2] + i, in, dd[c]);
     }
+    return headon & in;
+#undef LD
+}
+
+/* The footprint widths of the n <= 8 band-limited solid points from i on, as
+ * sqrt(solid_width2) makes them under an affine mapping (footprint_tangents, the three
+ * gradients' derivatives along t1 and t2, operation for operation), into fw[i...]; returns
+ * the lanes seen head-on, which the scalar path takes. */
+TEX_AVX512 static __mmask8 solid_footprints8_avx512(const struct frames *fr, int i, int n,
+                                                    double *fw)
+{
+    __mmask8 in = (__mmask8)((1u << n) - 1);
+#define LD(a) _mm512_maskz_loadu_pd(in, (a) + i)
+    __m512d t1[3], t2[3], l2, c;
+    __mmask8 headon = tangents8(fr, i, in, t1, t2, &l2, &c);
+    const double(*g[3])[CHUNK] = {fr->gu, fr->gv, fr->gw};
+    __m512d sc[3] = {LD(fr->su), LD(fr->sv), _mm512_set1_pd(1)}, l1 = _mm512_setzero_pd();
+    __m512d m2 = _mm512_setzero_pd(), w = LD(fr->w);
+    for (int k = 0; k < 3; k++) { /* l1 += a a, m2 += b b, as solid_width2 sums them */
+        __m512d gx = LD(g[k][0]), gy = LD(g[k][1]), gz = LD(g[k][2]);
+        __m512d a = _mm512_mul_pd(dot8(gx, gy, gz, t1[0], t1[1], t1[2]), sc[k]);
+        __m512d b = _mm512_mul_pd(dot8(gx, gy, gz, t2[0], t2[1], t2[2]), sc[k]);
+        l1 = _mm512_add_pd(l1, _mm512_mul_pd(a, a));
+        m2 = _mm512_add_pd(m2, _mm512_mul_pd(b, b));
+    }
+    __m512d r = _mm512_div_pd(
+        _mm512_mul_pd(_mm512_sqrt_pd(_mm512_mul_pd(l1, m2)), _mm512_mul_pd(w, w)),
+        _mm512_mul_pd(c, l2));
+    _mm512_mask_storeu_pd(fw + i, in, _mm512_sqrt_pd(r));
     return headon & in;
 #undef LD
 }
@@ -1765,6 +1808,72 @@ static double first_width2(const struct tex_prefetch *pf, const struct tex_prefe
                             &pf->pl, a->face, a->uvw0[0], a->uvw0[1]);
 }
 
+/* The j-th texture sf applies */
+static const struct tex_apply *apply_at(const struct tex_surface *sf, int j)
+{
+    const struct tex_apply *ap = sf->apply;
+    while (j-- > 0)
+        ap = ap->next;
+    return ap;
+}
+
+/* A band-limited solid texture ap's footprint width at hit pf (placement pm, mapping a),
+ * as apply_textures takes it */
+static double solid_width(const struct tex_prefetch *pf, const struct tex_apply *ap,
+                          const struct placement *pm, const struct tex_prefetch_ap *a)
+{
+    struct footprint fp;
+    footprint_at(&fp, &pf->D, &pf->N, pf->width);
+    return sqrt(solid_width2(ap, pm, pf->leaf, &fp, &pf->P, &pf->pl, a->uvw0));
+}
+
+/* The footprint widths fw of n pending points of a band-limited solid texture (hit[i], its
+ * texture number j[i] there, mapping a[i]): 0 unfiltered; affine mappings' in vector lanes
+ * where the CPU has AVX-512 (but those seen head-on), the rest by solid_width. */
+static void solid_batch(int n, struct tex_prefetch *const *hit, struct tex_prefetch_ap *const *a,
+                        const int *j, double *fw)
+{
+    struct frames fr;
+    int lanes = 0, at[CHUNK], affine = 0, simd = tex_simd_level() >= TEX_SIMD_AVX512;
+    const struct tex_object *leaf = NULL; /* the gradients', kept while hits share them */
+    const struct tex_apply *gap = NULL;
+    tex_v3 g[3];
+    for (int i = 0; i < n; i++) {
+        const struct tex_prefetch *pf = hit[i];
+        const struct tex_apply *ap = apply_at(pf->sf, j[i]);
+        const struct placement *pm = pf->sf->cache->placement + j[i];
+        fw[i] = 0;
+        if (!(pf->width > 0))
+            continue;
+        if (simd && (pf->leaf != leaf || ap != gap))
+            affine = map_gradient(gap = ap, leaf = pf->leaf, g);
+        if (!simd || !affine) {
+            fw[i] = solid_width(pf, ap, pm, a[i]);
+            continue;
+        }
+        for (int c = 0; c < 3; c++) {
+            fr.d[c][lanes] = (&pf->D.x)[c], fr.nn[c][lanes] = (&pf->N.x)[c];
+            fr.gu[c][lanes] = (&g[0].x)[c], fr.gv[c][lanes] = (&g[1].x)[c];
+            fr.gw[c][lanes] = (&g[2].x)[c];
+        }
+        fr.w[lanes] = pf->width, fr.su[lanes] = pm->su, fr.sv[lanes] = pm->sv;
+        at[lanes++] = i;
+    }
+#ifdef TEX_X86
+    double lw[CHUNK];
+    for (int l = 0; l < lanes; l += 8) {
+        __mmask8 headon = solid_footprints8_avx512(&fr, l, lanes - l < 8 ? lanes - l : 8, lw);
+        for (int k = l; k < l + 8 && k < lanes; k++) {
+            const struct tex_prefetch *pf = hit[at[k]];
+            int q = j[at[k]];
+            fw[at[k]] = !(headon >> (k - l) & 1) ? lw[k]
+                        : solid_width(pf, apply_at(pf->sf, q), pf->sf->cache->placement + q,
+                                      a[at[k]]);
+        }
+    }
+#endif
+}
+
 /* The footprints fw2 of n pending points of a mip-mapped texture, each its hit's first
  * texture (hit[i], its mapping a[i]): 0 unfiltered; affine mappings' in vector lanes where
  * the CPU has AVX-512 (but those seen head-on: lane[i] is the lane of fr, else -1; bump:
@@ -1878,21 +1987,11 @@ int tex_surface_footprints(const struct tex_surface *sf)
     return sf->cache->footprints;
 }
 
-void tex_prefetch_footprints(struct tex_prefetch *pf, const struct tex_object *leaf,
-                             const tex_v3 *P, const tex_v3 *D, const tex_v3 *N, double width)
+void tex_prefetch_footprints(struct tex_prefetch *pf, const tex_v3 *D, const tex_v3 *N,
+                             double width)
 {
-    const struct placement *pm = pf->sf->cache->placement;
-    const struct tex_apply *ap = pf->sf->apply;
-    struct footprint fp;
-    if (width <= 0)
-        return;
-    pf->D = *D, pf->N = *N, pf->width = width; /* for a map's lookup ahead */
-    footprint_at(&fp, D, N, width); /* as apply_textures, on the same N */
-    for (int j = 0; j < pf->n; j++, pm++, ap = ap->next) {
-        struct tex_prefetch_ap *a = &pf->ap[j];
-        if (a->pending && band_limited(a->tex))
-            a->fw = sqrt(solid_width2(ap, pm, leaf, &fp, P, &pf->pl, a->uvw0));
-    }
+    if (width > 0) /* the frame of the footprints tex_prefetch_eval makes, on apply_textures' N */
+        pf->D = *D, pf->N = *N, pf->width = width;
 }
 
 void tex_prefetch_eval(struct tex_prefetch *const *pf, int n)
@@ -1901,6 +2000,7 @@ void tex_prefetch_eval(struct tex_prefetch *const *pf, int n)
     float out[CHUNK * TEX_MAP_MAX_CHANNELS];
     struct tex_prefetch_ap *who[CHUNK];
     struct tex_prefetch *hit[CHUNK];
+    int at[CHUNK]; /* the point's texture number at its hit */
     for (int i = 0; i < n; i++) {
         for (int j = 0; j < pf[i]->n; j++) {
             if (!pf[i]->ap[j].pending)
@@ -1914,7 +2014,7 @@ void tex_prefetch_eval(struct tex_prefetch *const *pf, int n)
                     if (!b->pending || b->tex != t)
                         continue;
                     b->pending = 0;
-                    who[m] = b, hit[m] = pf[k];
+                    who[m] = b, hit[m] = pf[k], at[m] = l;
                     u[m] = b->uvw[0], v[m] = b->uvw[1], w[m] = b->uvw[2], fw[m] = b->fw;
                     m++;
                 }
@@ -1922,6 +2022,11 @@ void tex_prefetch_eval(struct tex_prefetch *const *pf, int n)
             if (t->mip) {
                 map_batch(t, m, hit, who, u, v);
                 continue;
+            }
+            if (band_limited(t)) {
+                solid_batch(m, hit, who, at, fw);
+                for (int q = 0; q < m; q++)
+                    who[q]->fw = fw[q];
             }
             field_points(t, m, u, v, w, fw, out);
             int nc = t->field->nc;

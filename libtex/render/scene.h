@@ -387,8 +387,8 @@ void tex_prefetch_map(struct tex_prefetch *pf, const struct tex_surface *sf,
  * map); then, after tex_prefetch_map, the hit's shading frame as tex_resolve_material gets
  * it (D, N as shade() orients it; width 0 when the scene does not filter). */
 int tex_surface_footprints(const struct tex_surface *sf);
-void tex_prefetch_footprints(struct tex_prefetch *pf, const struct tex_object *leaf,
-                             const tex_v3 *P, const tex_v3 *D, const tex_v3 *N, double width);
+void tex_prefetch_footprints(struct tex_prefetch *pf, const tex_v3 *D, const tex_v3 *N,
+                             double width);
 void tex_prefetch_eval(struct tex_prefetch *const *pf, int n);
 /* The material at a hit (surface sf): the application functions evaluated,
  * N bent by bump and normal maps, colours in the scene's colour space;
