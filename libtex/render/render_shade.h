@@ -100,12 +100,8 @@ static inline void tex_phong_direct(const struct tex_material *m, const double *
     /* skip where the highlight (N.H)^n = x^(n/2), x = (N.H)^2, is below 1e-13:
      * ln x <= -(y + y^2/2 + y^3/3) with y = 1 - x; no square root for those */
     double x = q * q / hh, y = 1 - x;
-    if (!(0.5 * m->n * y * (1 + y * (0.5 + y * (1.0 / 3))) < 30))
-        return;
-    /* without a specular colour the term adds zeros (or NaN where E is not finite) whatever
-     * the highlight's finite weight: the same sum with 0 for it, and no root or power */
-    float w = tex_colour_zero(&m->ks, n) ? 0 : (float)tex_powi(q / sqrt(hh), m->n);
-    tex_colour_mmadd(out, n, &m->ks, E, w);
+    if (0.5 * m->n * y * (1 + y * (0.5 + y * (1.0 / 3))) < 30)
+        tex_colour_mmadd(out, n, &m->ks, E, (float)tex_powi(q / sqrt(hh), m->n));
 }
 
 /* tex_shading_find (render.h) finds a model by name. */

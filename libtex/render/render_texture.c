@@ -1798,16 +1798,6 @@ void tex_texture_points(const struct tex_texture *t, int n, const double *u, con
         texture_eval(t, u[i], v[i], 0, fw2[i], out + 3 * i, grad ? grad + 2 * i : NULL);
 }
 
-/* footprint_width2 of a hit's first texture (its mapping a) on the hit's own frame, as
- * apply_textures makes it */
-static double first_width2(const struct tex_prefetch *pf, const struct tex_prefetch_ap *a)
-{
-    struct footprint fp;
-    footprint_at(&fp, &pf->D, &pf->N, pf->width);
-    return footprint_width2(pf->sf->apply, pf->sf->cache->placement, pf->leaf, &fp, &pf->P,
-                            &pf->pl, a->face, a->uvw0[0], a->uvw0[1]);
-}
-
 /* The j-th texture sf applies */
 static const struct tex_apply *apply_at(const struct tex_surface *sf, int j)
 {
@@ -1817,104 +1807,69 @@ static const struct tex_apply *apply_at(const struct tex_surface *sf, int j)
     return ap;
 }
 
-/* A band-limited solid texture ap's footprint width at hit pf (placement pm, mapping a),
- * as apply_textures takes it */
-static double solid_width(const struct tex_prefetch *pf, const struct tex_apply *ap,
-                          const struct placement *pm, const struct tex_prefetch_ap *a)
+/* The footprint of hit pf's texture j (mapping a) on the hit's own frame, as
+ * apply_textures takes it: a band-limited solid's width (solid), else a map's
+ * footprint_width2 */
+static double scalar_width(const struct tex_prefetch *pf, int j, const struct tex_prefetch_ap *a,
+                           int solid)
 {
+    const struct tex_apply *ap = apply_at(pf->sf, j);
+    const struct placement *pm = pf->sf->cache->placement + j;
     struct footprint fp;
     footprint_at(&fp, &pf->D, &pf->N, pf->width);
-    return sqrt(solid_width2(ap, pm, pf->leaf, &fp, &pf->P, &pf->pl, a->uvw0));
+    return solid ? sqrt(solid_width2(ap, pm, pf->leaf, &fp, &pf->P, &pf->pl, a->uvw0))
+                 : footprint_width2(ap, pm, pf->leaf, &fp, &pf->P, &pf->pl, a->face, a->uvw0[0],
+                                    a->uvw0[1]);
 }
 
-/* The footprint widths fw of n pending points of a band-limited solid texture (hit[i], its
- * texture number j[i] there, mapping a[i]): 0 unfiltered; affine mappings' in vector lanes
- * where the CPU has AVX-512 (but those seen head-on), the rest by solid_width. */
-static void solid_batch(int n, struct tex_prefetch *const *hit, struct tex_prefetch_ap *const *a,
-                        const int *j, double *fw)
+/* The footprints fw of n pending points of one texture (hit[i], its texture number j[i]
+ * there, or the first where j is NULL; mapping a[i]), as scalar_width makes them: 0
+ * unfiltered; affine mappings' in vector lanes where the CPU has AVX-512, but those seen
+ * head-on.  A map's (solid 0) also gives, where lane is given, the lane of fr of each
+ * point (else -1) and, where bump, the frames' bump members. */
+static void batch_widths(int n, struct tex_prefetch *const *hit, struct tex_prefetch_ap *const *a,
+                         const int *j, int solid, int bump, struct frames *fr, double *fw,
+                         int *lane)
 {
-    struct frames fr;
     int lanes = 0, at[CHUNK], affine = 0, simd = tex_simd_level() >= TEX_SIMD_AVX512;
     const struct tex_object *leaf = NULL; /* the gradients', kept while hits share them */
     const struct tex_apply *gap = NULL;
     tex_v3 g[3];
     for (int i = 0; i < n; i++) {
         const struct tex_prefetch *pf = hit[i];
-        const struct tex_apply *ap = apply_at(pf->sf, j[i]);
-        const struct placement *pm = pf->sf->cache->placement + j[i];
+        const struct tex_apply *ap = apply_at(pf->sf, j ? j[i] : 0);
+        const struct placement *pm = pf->sf->cache->placement + (j ? j[i] : 0);
         fw[i] = 0;
+        if (lane)
+            lane[i] = -1;
         if (!(pf->width > 0))
             continue;
         if (simd && (pf->leaf != leaf || ap != gap))
             affine = map_gradient(gap = ap, leaf = pf->leaf, g);
         if (!simd || !affine) {
-            fw[i] = solid_width(pf, ap, pm, a[i]);
+            fw[i] = scalar_width(pf, j ? j[i] : 0, a[i], solid);
             continue;
         }
-        for (int c = 0; c < 3; c++) {
-            fr.d[c][lanes] = (&pf->D.x)[c], fr.nn[c][lanes] = (&pf->N.x)[c];
-            fr.gu[c][lanes] = (&g[0].x)[c], fr.gv[c][lanes] = (&g[1].x)[c];
-            fr.gw[c][lanes] = (&g[2].x)[c];
-        }
-        fr.w[lanes] = pf->width, fr.su[lanes] = pm->su, fr.sv[lanes] = pm->sv;
-        at[lanes++] = i;
-    }
-#ifdef TEX_X86
-    double lw[CHUNK];
-    for (int l = 0; l < lanes; l += 8) {
-        __mmask8 headon = solid_footprints8_avx512(&fr, l, lanes - l < 8 ? lanes - l : 8, lw);
-        for (int k = l; k < l + 8 && k < lanes; k++) {
-            const struct tex_prefetch *pf = hit[at[k]];
-            int q = j[at[k]];
-            fw[at[k]] = !(headon >> (k - l) & 1) ? lw[k]
-                        : solid_width(pf, apply_at(pf->sf, q), pf->sf->cache->placement + q,
-                                      a[at[k]]);
-        }
-    }
-#endif
-}
-
-/* The footprints fw2 of n pending points of a mip-mapped texture, each its hit's first
- * texture (hit[i], its mapping a[i]): 0 unfiltered; affine mappings' in vector lanes where
- * the CPU has AVX-512 (but those seen head-on: lane[i] is the lane of fr, else -1; bump:
- * with the frames' bump members), the rest by first_width2. */
-static void batch_footprints(int n, struct tex_prefetch *const *hit,
-                             struct tex_prefetch_ap *const *a, int bump, struct frames *fr,
-                             double *fw2, int *lane)
-{
-    int lanes = 0, at[CHUNK], affine = 0, simd = tex_simd_level() >= TEX_SIMD_AVX512;
-    const struct tex_object *leaf = NULL; /* the gradient's, kept while hits share it */
-    const struct tex_apply *gap = NULL;
-    tex_v3 g[3];
-    for (int i = 0; i < n; i++) {
-        const struct tex_prefetch *pf = hit[i];
-        const struct tex_apply *ap = pf->sf->apply;
-        fw2[i] = 0, lane[i] = -1;
-        if (!(pf->width > 0))
-            continue;
-        if (simd && (pf->leaf != leaf || ap != gap))
-            affine = map_gradient(gap = ap, leaf = pf->leaf, g);
-        if (!simd || !affine) {
-            fw2[i] = first_width2(pf, a[i]);
-            continue;
-        }
-        const double *d = &pf->D.x, *nn = &pf->N.x, *gu = &g[0].x, *gv = &g[1].x;
+        const double *d = &pf->D.x, *nn = &pf->N.x;
         for (int c = 0; c < 3; c++) {
             fr->d[c][lanes] = d[c], fr->nn[c][lanes] = nn[c];
-            fr->gu[c][lanes] = gu[c], fr->gv[c][lanes] = gv[c];
+            fr->gu[c][lanes] = (&g[0].x)[c], fr->gv[c][lanes] = (&g[1].x)[c];
+            fr->gw[c][lanes] = (&g[2].x)[c];
         }
-        const struct placement *pm = pf->sf->cache->placement;
         fr->w[lanes] = pf->width, fr->su[lanes] = pm->su, fr->sv[lanes] = pm->sv;
         at[lanes++] = i;
     }
 #ifdef TEX_X86
     double lw[CHUNK];
-    for (int j = 0; j < lanes; j += 8) {
-        __mmask8 headon = footprints8_avx512(fr, j, lanes - j < 8 ? lanes - j : 8, bump, lw);
-        for (int k = j; k < j + 8 && k < lanes; k++) {
-            int on = !(headon >> (k - j) & 1);
-            fw2[at[k]] = on ? lw[k] : first_width2(hit[at[k]], a[at[k]]);
-            lane[at[k]] = on ? k : -1;
+    for (int l = 0; l < lanes; l += 8) {
+        int m = lanes - l < 8 ? lanes - l : 8;
+        __mmask8 headon = solid ? solid_footprints8_avx512(fr, l, m, lw)
+                                : footprints8_avx512(fr, l, m, bump, lw);
+        for (int k = l; k < l + m; k++) {
+            int on = !(headon >> (k - l) & 1), i = at[k];
+            fw[i] = on ? lw[k] : scalar_width(hit[i], j ? j[i] : 0, a[i], solid);
+            if (lane)
+                lane[i] = on ? k : -1;
         }
     }
 #endif
@@ -1945,7 +1900,7 @@ static void map_batch(const struct tex_texture *t, int n, struct tex_prefetch *c
     for (int i = 0; i < n; i++)
         if (hit[i]->sf->cache->placement[0].bump) /* then every point's gradient */
             gp = grad;
-    batch_footprints(n, hit, a, gp != NULL, &fr, fw2, lane);
+    batch_widths(n, hit, a, NULL, 0, gp != NULL, &fr, fw2, lane);
     tex_texture_points(t, n, u, v, fw2, out, gp);
     for (int i = 0; i < n; i++) {
         memcpy(a[i]->val, out + 3 * i, 3 * sizeof *out);
@@ -1996,8 +1951,9 @@ void tex_prefetch_footprints(struct tex_prefetch *pf, const tex_v3 *D, const tex
 
 void tex_prefetch_eval(struct tex_prefetch *const *pf, int n)
 {
-    double u[CHUNK], v[CHUNK], w[CHUNK], fw[CHUNK];
+    double u[CHUNK], v[CHUNK], w[CHUNK], fw[CHUNK]; /* fw: band-limited solids' footprints */
     float out[CHUNK * TEX_MAP_MAX_CHANNELS];
+    struct frames fr;
     struct tex_prefetch_ap *who[CHUNK];
     struct tex_prefetch *hit[CHUNK];
     int at[CHUNK]; /* the point's texture number at its hit */
@@ -2015,7 +1971,7 @@ void tex_prefetch_eval(struct tex_prefetch *const *pf, int n)
                         continue;
                     b->pending = 0;
                     who[m] = b, hit[m] = pf[k], at[m] = l;
-                    u[m] = b->uvw[0], v[m] = b->uvw[1], w[m] = b->uvw[2], fw[m] = b->fw;
+                    u[m] = b->uvw[0], v[m] = b->uvw[1], w[m] = b->uvw[2], fw[m] = 0;
                     m++;
                 }
             }
@@ -2023,11 +1979,8 @@ void tex_prefetch_eval(struct tex_prefetch *const *pf, int n)
                 map_batch(t, m, hit, who, u, v);
                 continue;
             }
-            if (band_limited(t)) {
-                solid_batch(m, hit, who, at, fw);
-                for (int q = 0; q < m; q++)
-                    who[q]->fw = fw[q];
-            }
+            if (band_limited(t))
+                batch_widths(m, hit, who, at, 1, 0, &fr, fw, NULL);
             field_points(t, m, u, v, w, fw, out);
             int nc = t->field->nc;
             for (int q = 0; q < m; q++) {
