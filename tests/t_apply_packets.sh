@@ -71,6 +71,22 @@ for cfg in "spp1|--spp 1" "spp4|--spp 4" "spectral|--spectral 6 --spp 2" \
         notok "$name: renders"
     fi
 done
+# packets beside the bounded objects' box trace the unbounded ones alone (render.c): a wide
+# view, most of whose packets lie beside the box, and an eye inside the box, where none can
+# be culled
+for v in "wide|eye 0 9 -14 look 0 1 0 fov 100" "inside|eye 1 2 0 look -2 0.8 0 fov 90"; do
+    name=${v%%|*}
+    sed "s/^camera.*/camera { ${v#*|} }/" "$T/a.scene" >"$T/$name.scene"
+    if TEXTURA_PACKETS=0 t_apply "$T/$name.scene" -q -j 1 -o "$T/$name-px.pfm" &&
+        TEXTURA_PACKETS=1 t_apply "$T/$name.scene" -q -j 2 -o "$T/$name-pk.pfm"; then
+        cmp -s "$T/$name-px.pfm" "$T/$name-pk.pfm" &&
+            ok "$name view: packets give the pixel-by-pixel render's bytes" ||
+            notok "$name view: packets against pixel by pixel" \
+                "$(maxdiff "$T/$name-px.pfm" "$T/$name-pk.pfm")"
+    else
+        notok "$name view: renders"
+    fi
+done
 # image maps, looked up ahead over a packet (a surface's first texture: footprints and
 # trilinear lookups in vector lanes where the CPU has AVX-512): grey and colour maps of
 # sides that are not powers of two, windows and repeats, affine mappings (a plane's, world,

@@ -102,9 +102,11 @@ struct hit_frame {
     const tex_v3 *P, *N, *Ngv, *V, *Pout, *Pin;
     double width, dist; /* dist: the path's length from the eye to P */
     int entering;
+    const struct tex_object *outside; /* the object hit where rays leaving cannot meet it */
 };
 
-static void trace(const struct ctx *c, const tex_ray *r, int depth, double weight, tex_colour *out);
+static void trace(const struct ctx *c, const tex_ray *r, const struct tex_object *from,
+                  int depth, double weight, tex_colour *out);
 
 /* One light sample of irradiance E from L through m's shading model. */
 static inline void shade_direct(const struct tex_material *m, const tex_v3 *N, const tex_v3 *V,
@@ -141,7 +143,7 @@ static void direct_light(const struct ctx *c, const struct tex_material *m,
                 continue;
             if (tex_v3_dot(L, *N) <= 0 || tex_v3_dot(L, *f->Ngv) <= 0)
                 continue;
-            double sh = tex_scene_transmit(s, f->Pout, &L, 0, dist);
+            double sh = tex_scene_transmit(s, f->Pout, &L, 0, dist, f->outside);
             if (sh <= 0)
                 continue;
             tex_colour E;
@@ -176,7 +178,7 @@ static int refraction(const struct ctx *c, const tex_ray *r, const struct hit_fr
         double eta = n1 / n2, ci = fabs(tex_v3_dot(r->d, *f->Ngv)), ct = fabs(tex_v3_dot(rt.d, *f->Ngv));
         if (ct > 1e-3)
             rt.spread = tex_mind(eta * ci / ct * r->spread + (eta * ci - ct) * kc * f->width, 1);
-        trace(c, &rt, depth + 1, w, &I);
+        trace(c, &rt, NULL, depth + 1, w, &I);
         tex_colour_mmadd(out, c->n, kt, &I, 1);
     }
     return 1;
@@ -226,7 +228,7 @@ static void secondary(const struct ctx *c, const tex_ray *r, const struct hit_fr
     }
     double wr = weight * kr_max;
     if (wr > 0 && wr >= s->settings.bailout) {
-        trace(c, &rr, depth + 1, wr, &I);
+        trace(c, &rr, tex_v3_dot(rr.d, *f->Ngv) > 0 ? f->outside : NULL, depth + 1, wr, &I);
         tex_colour_mmadd(out, n, &kr, &I, 1);
     }
 }
@@ -274,7 +276,11 @@ static void shade(const struct ctx *c, const tex_ray *r, const struct tex_hit *h
     /* offset along the geometric normal so bumped normals cannot start rays inside */
     tex_v3 Ngv = entering ? Ng : tex_v3_scale(Ng, -1);
     tex_v3 Pout = tex_v3_madd(P, Ngv, e), Pin = tex_v3_madd(P, Ngv, -e);
-    struct hit_frame f = {&h, &P, &N, &Ngv, &V, &Pout, &Pin, width, at.dist, entering};
+    /* rays leaving a hull leaf from outside, away from its surface, skip its object */
+    const struct tex_object *outside = !entering || !h.leaf->hull ? NULL
+                                       : h.leaf->root                ? h.leaf->root
+                                                                     : h.leaf;
+    struct hit_frame f = {&h, &P, &N, &Ngv, &V, &Pout, &Pin, width, at.dist, entering, outside};
 
     tex_colour_mul(out, c->n, c->ambient, &m->ka);
     direct_light(c, m, &f, out);
@@ -282,11 +288,12 @@ static void shade(const struct ctx *c, const tex_ray *r, const struct tex_hit *h
         secondary(c, r, &f, m, depth, weight, out);
 }
 
-/* The colour ray r brings back */
-static void trace(const struct ctx *c, const tex_ray *r, int depth, double weight, tex_colour *out)
+/* The colour ray r brings back; from: tex_scene_trace's */
+static void trace(const struct ctx *c, const tex_ray *r, const struct tex_object *from,
+                  int depth, double weight, tex_colour *out)
 {
     struct tex_hit h;
-    if (!tex_scene_trace(c->s, &r->o, &r->d, 0, INFINITY, &h))
+    if (!tex_scene_trace(c->s, &r->o, &r->d, 0, INFINITY, from, &h))
         miss(c, r, out);
     else {
         tex_v3 P = tex_v3_madd(r->o, r->d, h.t);
@@ -300,6 +307,8 @@ struct camera {
     double kx, ky; /* 2 sx / w and 2 sy / h: image plane units per pixel */
     double spread; /* footprint growth per unit distance of a sample's ray */
     int k;         /* spp = k * k: stratified, else 0 */
+    struct tex_view view; /* the bounded objects' box on the image plane (right, up) */
+    int sees_view;        /* 0: the box is not wholly ahead, and every packet traces it */
 };
 
 static void camera_setup(const struct tex_scene *s, struct camera *cam)
@@ -316,6 +325,18 @@ static void camera_setup(const struct tex_scene *s, struct camera *cam)
     cam->spread = 2 * cam->sx / s->settings.w / sqrt(s->settings.spp);
     int k = (int)sqrt((double)s->settings.spp);
     cam->k = k * k == s->settings.spp ? k : 0;
+    cam->sees_view = tex_scene_view(s, cam->eye, cam->right, cam->up, cam->fwd, &cam->view);
+}
+
+/* Whether an eye ray of the pixels [x0, x1) x [y0, y1) can meet the bounded objects' box:
+ * its direction projects to the image plane at (a, b) inside the pixel it samples, and the
+ * pixels' rectangle there is compared with the box's. */
+static int packet_meets_box(const struct camera *cam, int x0, int y0, int x1, int y1)
+{
+    const double *r = cam->view.rect;
+    double a0 = x0 * cam->kx - cam->sx, a1 = x1 * cam->kx - cam->sx;
+    double b0 = cam->sy - y1 * cam->ky, b1 = cam->sy - y0 * cam->ky;
+    return !cam->sees_view || (a1 >= r[0] && a0 <= r[1] && b1 >= r[2] && b0 <= r[3]);
 }
 
 /* The eye ray of sample i of pixel (x, y), its position drawn from the pixel's rng
@@ -434,7 +455,7 @@ static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, 
         tex_ray r;
         tex_colour col;
         camera_ray(&c, cam, x, y, i, &rng, &r);
-        trace(&c, &r, 0, 1, &col);
+        trace(&c, &r, NULL, 0, 1, &col);
         accumulate(c0->s, &col, acc);
     }
     put_pixel(spp, acc, px);
@@ -472,11 +493,16 @@ static void render_packet(const struct ctx *c0, const struct camera *cam, struct
         seed_pixel(c0, pk->x[k], pk->y[k], &pk->rng[k]);
         pk->acc[k][0] = pk->acc[k][1] = pk->acc[k][2] = 0;
     }
+    /* a packet beside the box (most of a floor or a sky) tests only the unbounded objects */
+    int box = packet_meets_box(cam, x0, y0, x1, y1);
     for (int i = 0; i < spp; i++) {
         int m = 0;
         camera_rays(&c, cam, pk->x, pk->y, np, i, pk->rng, pk->r);
         for (int k = 0; k < np; k++)
-            pk->hit[k] = tex_scene_trace(s, &pk->r[k].o, &pk->r[k].d, 0, INFINITY, &pk->h[k]);
+            pk->hit[k] = box ? tex_scene_trace(s, &pk->r[k].o, &pk->r[k].d, 0, INFINITY, NULL,
+                                               &pk->h[k])
+                             : tex_scene_trace_unbounded(s, &pk->r[k].o, &pk->r[k].d, 0,
+                                                         INFINITY, NULL, &pk->h[k]);
         for (int k = 0; k < np; k++) {
             tex_ray *r = &pk->r[k];
             if (!pk->hit[k])

@@ -14,7 +14,9 @@
  * beyond the closest hit, and a shadow query (any = 1) stops at the first
  * hit.  tex_scene_transmit visits every object along a shadow ray once, in
  * any order: the light passing is the product of Kt over the surfaces
- * crossed.
+ * crossed.  A ray leaving an object from a hull leaf (struct tex_object) does
+ * not test it (it cannot meet it again), and eye rays that a view of the tree's box shows beside it
+ * (tex_scene_view) test the unbounded objects alone.
  */
 #define _GNU_SOURCE /* qsort_r */
 #include <stdlib.h>
@@ -219,6 +221,7 @@ struct tex_bvh *tex_bvh_build(struct tex_object **obs, int n)
         goto oom;
     int nb = 0;
     for (int i = 0; i < n; i++) {
+        tex_object_hulls(obs[i]);
         if (tex_object_bounds(obs[i])) {
             bd.idx[nb] = nb;
             classify(&src[nb++], obs[i]);
@@ -356,23 +359,33 @@ static inline int first_hit(const struct prim *p, const struct ray *r, double tm
     return 0;
 }
 
-/* Inlined into both entry points: the closest-hit one loses every test of any. */
+/* Inlined into the entry points: the closest-hit one loses every test of any; tree = 0 (a
+ * ray known to miss the tree's box) tests the unbounded objects alone, which need neither
+ * 1/d nor 1/d.d. */
 static inline __attribute__((always_inline)) int bvh_trace(const struct tex_bvh *t,
                                                            const tex_v3 *o, const tex_v3 *d,
                                                            double tmin, double tmax, int any,
+                                                           int tree,
+                                                           const struct tex_object *from,
                                                            struct tex_hit *hit)
 {
     struct ray r;
-    ray_setup(&r, o, d);
+    if (tree) {
+        ray_setup(&r, o, d);
+    } else {
+        r = (struct ray){*o, *d, {0, 0, 0}, tex_v3_dot(*d, *d), 0}; /* the unbounded read neither */
+    }
     int found = 0;
     if (!(r.dd > 0))
         return 0;
     for (int i = 0; i < t->nunb; i++) {
+        if (t->unb[i].ob == from)
+            continue;
         found |= first_hit(&t->unb[i], &r, tmin, &tmax, hit);
         if (found && any)
             return 1;
     }
-    if (!t->nnodes)
+    if (!t->nnodes || !tree)
         return found;
     struct {
         int node;
@@ -387,6 +400,8 @@ static inline __attribute__((always_inline)) int bvh_trace(const struct tex_bvh 
         if (n->count) {
             const struct prim *p = &t->prims[n->first];
             for (int i = 0; i < n->count; i++) {
+                if (p[i].ob == from)
+                    continue;
                 found |= first_hit(&p[i], &r, tmin, &tmax, hit);
                 if (found && any)
                     return 1;
@@ -423,13 +438,14 @@ static inline __attribute__((always_inline)) int bvh_trace(const struct tex_bvh 
 int tex_bvh_trace(const struct tex_bvh *t, const tex_v3 *o, const tex_v3 *d, double tmin,
                   double tmax, struct tex_hit *hit)
 {
-    return bvh_trace(t, o, d, tmin, tmax, 0, hit);
+    return bvh_trace(t, o, d, tmin, tmax, 0, 1, NULL, hit);
 }
 
 int tex_bvh_trace_any(const struct tex_bvh *t, const tex_v3 *o, const tex_v3 *d, double tmin,
                       double tmax, int any, struct tex_hit *hit)
 {
-    return any ? bvh_trace(t, o, d, tmin, tmax, 1, hit) : bvh_trace(t, o, d, tmin, tmax, 0, hit);
+    return any ? bvh_trace(t, o, d, tmin, tmax, 1, 1, NULL, hit)
+               : bvh_trace(t, o, d, tmin, tmax, 0, 1, NULL, hit);
 }
 
 /* Product of Kt over the boundaries of p in (tmin, tmax) into *tr; 0 at an opaque one. */
@@ -490,7 +506,7 @@ static inline void transmit_prim(const struct tex_scene *s, const struct prim *p
 }
 
 double tex_scene_transmit(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
-                          double tmin, double tmax)
+                          double tmin, double tmax, const struct tex_object *from)
 {
     const struct tex_bvh *t = s->bvh;
     struct ray r;
@@ -499,6 +515,8 @@ double tex_scene_transmit(const struct tex_scene *s, const tex_v3 *o, const tex_
     if (!(r.dd > 0))
         return 1;
     for (int i = 0; i < t->nunb; i++) {
+        if (t->unb[i].ob == from)
+            continue;
         transmit_prim(s, &t->unb[i], &r, tmin, tmax, &tr);
         if (tr <= 1e-4)
             return 0;
@@ -510,6 +528,8 @@ double tex_scene_transmit(const struct tex_scene *s, const tex_v3 *o, const tex_
         const struct node *n = &t->nodes[ni];
         if (n->count) {
             for (int i = 0; i < n->count; i++) {
+                if (t->prims[n->first + i].ob == from)
+                    continue;
                 transmit_prim(s, &t->prims[n->first + i], &r, tmin, tmax, &tr);
                 if (tr <= 1e-4)
                     return 0;
@@ -532,7 +552,40 @@ double tex_scene_transmit(const struct tex_scene *s, const tex_v3 *o, const tex_
 }
 
 int tex_scene_trace(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d, double tmin,
-                    double tmax, struct tex_hit *hit)
+                    double tmax, const struct tex_object *from, struct tex_hit *hit)
 {
-    return bvh_trace(s->bvh, o, d, tmin, tmax, 0, hit);
+    return bvh_trace(s->bvh, o, d, tmin, tmax, 0, 1, from, hit);
+}
+
+int tex_scene_trace_unbounded(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
+                              double tmin, double tmax, const struct tex_object *from,
+                              struct tex_hit *hit)
+{
+    return bvh_trace(s->bvh, o, d, tmin, tmax, 0, 0, from, hit);
+}
+
+int tex_scene_view(const struct tex_scene *s, tex_v3 c, tex_v3 u, tex_v3 v, tex_v3 w,
+                   struct tex_view *vw)
+{
+    const struct tex_bvh *t = s->bvh;
+    if (!t || !t->nnodes)
+        return 0;
+    const struct tex_bounds *b = &t->nodes[0].b;
+    double *r = vw->rect, big = 0;
+    r[0] = r[2] = INFINITY, r[1] = r[3] = -INFINITY;
+    for (int i = 0; i < 8; i++) { /* a convex box wholly ahead projects inside its corners' */
+        tex_v3 p = tex_v3_make(i & 1 ? b->hi.x : b->lo.x, i & 2 ? b->hi.y : b->lo.y,
+                               i & 4 ? b->hi.z : b->lo.z);
+        tex_v3 q = tex_v3_sub(p, c);
+        double z = tex_v3_dot(q, w), a = tex_v3_dot(q, u) / z, e = tex_v3_dot(q, v) / z;
+        if (!(z > 0) || !isfinite(a) || !isfinite(e))
+            return 0;
+        r[0] = tex_mind(r[0], a), r[1] = tex_maxd(r[1], a);
+        r[2] = tex_mind(r[2], e), r[3] = tex_maxd(r[3], e);
+        big = tex_maxd(big, tex_maxd(fabs(a), fabs(e)));
+    }
+    /* rounding in the rays and the projections is near 1e-15 (1 + |a|): far inside this */
+    double m = 1e-9 * (1 + big);
+    r[0] -= m, r[1] += m, r[2] -= m, r[3] += m;
+    return 1;
 }

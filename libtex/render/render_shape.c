@@ -574,6 +574,22 @@ void tex_csg_spans(const struct tex_object *ob, const tex_v3 *o, const tex_v3 *d
         node_spans(ob, o, d, inv, s);
 }
 
+/* holds: every node above ob keeps only what lies inside ob */
+static void mark_hulls(struct tex_object *ob, int holds)
+{
+    if (ob->op == TEX_CSG_LEAF) { /* cones have radii >= 0 (the parser's): no double cone */
+        ob->hull = holds && ob->kind != TEX_SHAPE_TORUS;
+        return;
+    }
+    mark_hulls(ob->a, holds && ob->op != TEX_CSG_UNION);
+    mark_hulls(ob->b, holds && ob->op == TEX_CSG_INTERSECTION);
+}
+
+void tex_object_hulls(struct tex_object *ob)
+{
+    mark_hulls(ob, 1);
+}
+
 /* The leaf's normal fast path (struct tex_object's fast). */
 static void leaf_fast(struct tex_object *ob)
 {

@@ -281,6 +281,10 @@ struct tex_object {
     int fast;
     tex_v3 fn;
     double fr;
+    /* leaves: 1 if convex (not a torus) and holding all of the top-level object, every node
+     * above keeping only what lies inside it (an intersection, a difference's first
+     * operand): a ray leaving its surface outwards cannot meet the object again */
+    int hull;
 };
 
 /* A shape's own words as its block gives them (tex_object_rows), at the rows'
@@ -312,6 +316,8 @@ void tex_csg_combine(enum tex_csg_op op, const struct tex_spans *a, const struct
                      struct tex_spans *r);
 /* World bounds of an object; 0 if unbounded. */
 int tex_object_bounds(struct tex_object *ob);
+/* Marks the leaves of top-level object ob that hold all of it (struct tex_object's hull). */
+void tex_object_hulls(struct tex_object *ob);
 
 /* ---- textures, mappings, application functions --------------------------- */
 
@@ -618,14 +624,34 @@ void tex_environment_eval(const struct tex_environment *e, const tex_v3 *d, doub
 const struct tex_param *tex_sparam_row(enum tex_sparam sp);
 
 /* The closest hit along a ray o + t d beyond tmin: 1 and *hit, or 0.  The
- * queries take the ray's vectors by address: every ray makes them. */
+ * queries take the ray's vectors by address: every ray makes them.  from: a top-level
+ * object the ray cannot meet, or NULL: it is not tested (a ray leaving a hull leaf's
+ * surface outwards: o just outside it, d away from it). */
 int tex_scene_trace(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d, double tmin,
-                    double tmax, struct tex_hit *hit);
+                    double tmax, const struct tex_object *from, struct tex_hit *hit);
+
+/* The closest hit of a ray known to miss the box of every bounded object (tex_scene_view):
+ * the unbounded objects' alone, which is tex_scene_trace's answer for such a ray. */
+int tex_scene_trace_unbounded(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
+                              double tmin, double tmax, const struct tex_object *from,
+                              struct tex_hit *hit);
+
+/* The box of the bounded objects as seen from a point c in an orthonormal frame u, v, w (w
+ * ahead): every point of the box lies ahead of c along w, and its projection (u, v) / w
+ * lies inside rect = {u0, u1, v0, v1}, widened far beyond the rounding.  A ray from c
+ * whose direction projects outside rect misses the box.  1, or 0 where there is no box or
+ * it is not wholly ahead. */
+struct tex_view {
+    double rect[4];
+};
+int tex_scene_view(const struct tex_scene *s, tex_v3 c, tex_v3 u, tex_v3 v, tex_v3 w,
+                   struct tex_view *vw);
 
 /* Fraction of light passing along o + t d for t in (tmin, tmax): the product
- * of the surfaces' Kt over every boundary crossed, 0 if it falls to 1e-4. */
+ * of the surfaces' Kt over every boundary crossed, 0 if it falls to 1e-4.  from: as for
+ * tex_scene_trace. */
 double tex_scene_transmit(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
-                          double tmin, double tmax);
+                          double tmin, double tmax, const struct tex_object *from);
 
 struct tex_bvh *tex_bvh_build(struct tex_object **obs, int n);
 void tex_bvh_free(struct tex_bvh *b);

@@ -330,7 +330,7 @@ static void test_bvh_brute(void)
         for (int i = 0; i < s->nobjects; i++)
             if (brute_first(s->objects[i], o, d, 0, &h) && h.t < best.t)
                 best = h;
-        int found = tex_scene_trace(s, &o, &d, 0, INFINITY, &h);
+        int found = tex_scene_trace(s, &o, &d, 0, INFINITY, NULL, &h);
         hits += found;
         if (found != (best.leaf != NULL) ||
             (found && (fabs(h.t - best.t) > 1e-9 * (1 + best.t) ||
@@ -346,6 +346,132 @@ static void test_bvh_brute(void)
            "BVH closest hits match a search of every object (%d of 3000 differ, %d hits)",
            bad_closest, hits);
     CHECKF(bad_any == 0, "BVH shadow queries match (%d of 3000 differ)", bad_any);
+    /* rays from the eye whose directions project outside the box's view meet no bounded
+     * object (a search of every object), and tracing the unbounded alone answers the same */
+    struct tex_view vw;
+    tex_v3 eye = tex_v3_make(0, 0, -30);
+    int seen = tex_scene_view(s, eye, tex_v3_make(1, 0, 0), tex_v3_make(0, 1, 0),
+                              tex_v3_make(0, 0, 1), &vw), culled = 0, wrong = 0;
+    for (int k = 0; seen && k < 3000; k++) {
+        tex_v3 d = tex_v3_norm(tex_v3_make(2 * tex_rng_uniform(&g) - 1, 2 * tex_rng_uniform(&g) - 1,
+                                           1));
+        double a = d.x / d.z, b = d.y / d.z;
+        if (a >= vw.rect[0] && a <= vw.rect[1] && b >= vw.rect[2] && b <= vw.rect[3])
+            continue;
+        culled++;
+        struct tex_hit h, u, best = {INFINITY, NULL, 0};
+        for (int i = 0; i < s->nobjects; i++)
+            if (brute_first(s->objects[i], eye, d, 0, &h) && h.t < best.t)
+                best = h;
+        int fu = tex_scene_trace_unbounded(s, &eye, &d, 0, INFINITY, NULL, &u);
+        int ft = tex_scene_trace(s, &eye, &d, 0, INFINITY, NULL, &h);
+        const struct tex_object *top = best.leaf && best.leaf->root ? best.leaf->root : best.leaf;
+        wrong += (top && top->bounded) || fu != ft || (fu && (u.t != h.t || u.leaf != h.leaf));
+    }
+    CHECKF(seen && culled > 300 && wrong == 0,
+           "rays beside the objects' box seen from the eye meet no bounded object (%d of %d wrong)",
+           wrong, culled);
+    tex_scene_free(s);
+}
+
+/* The outward world normal at a hit on leaf h->leaf (render.c's hit_normal, unhurried). */
+static tex_v3 outward_normal(const struct tex_hit *h, tex_v3 P)
+{
+    const struct tex_object *l = h->leaf;
+    tex_v3 n = tex_shape_methods[l->kind].normal(l, tex_xform_point(&l->to_obj, P));
+    n = tex_v3_norm(tex_xform_normal(&l->to_obj, n));
+    return h->flip ? tex_v3_scale(n, -1) : n;
+}
+
+/* The hull leaves of ob (struct tex_object's hull): *in counts them, *out the others. */
+static void count_hulls(const struct tex_object *ob, int *in, int *out)
+{
+    if (ob->op != TEX_CSG_LEAF) {
+        count_hulls(ob->a, in, out);
+        count_hulls(ob->b, in, out);
+    } else {
+        *(ob->hull ? in : out) += 1;
+    }
+}
+
+/* Rays leaving a hull leaf outwards skip its object: the answers with and without that
+ * object named must agree, and the other leaves' rays must still meet their objects. */
+static void test_hull_skip(void)
+{
+    static const struct {
+        const char *ob;
+        int in, out; /* hull leaves and others */
+    } obs[] = {
+        {"sphere { radius 1 scale 1 0.5 2 rotate 0 40 0 translate %g %g %g }", 1, 0},
+        {"box { min -1 -1 -1 max 1 2 1 rotate 5 15 25 translate %g %g %g }", 1, 0},
+        {"cone { base 0 0 0 top 0 2 0 radius1 1 radius2 0 translate %g %g %g }", 1, 0},
+        {"intersection { sphere { radius 1.2 } box { min -1 -1 -1 max 1 1 1 } "
+         "translate %g %g %g }", 2, 0},
+        {"difference { box { min -1 -1 -1 max 1 1 1 } sphere { radius 1.3 } "
+         "translate %g %g %g }", 1, 1},
+        {"union { sphere { radius 1 } sphere { centre 1.5 0 0 radius 1 } translate %g %g %g }",
+         0, 2},
+        {"torus { major 1 minor 0.3 rotate 60 0 0 translate %g %g %g }", 0, 1},
+        {"intersection { torus { major 1 minor 0.4 } box { min -2 -0.2 -2 max 2 2 2 } "
+         "translate %g %g %g }", 1, 1},
+    };
+    enum { N = sizeof obs / sizeof *obs };
+    char sc[4096];
+    int len = snprintf(sc, sizeof sc, "image 8 8\nplane { }\n");
+    for (int i = 0; i < N; i++) {
+        len += snprintf(sc + len, sizeof sc - len, obs[i].ob, 4.0 * (i % 4) - 6, 1.5,
+                        5.0 * (i / 4));
+        len += snprintf(sc + len, sizeof sc - len, "\n");
+    }
+    struct tex_scene *s = tex_scene_parse(sc, len, "hull.scene");
+    CHECK(s && tex_scene_prepare(s) == 0 && s->nobjects == N + 1, "hull scene prepares");
+    if (!s || s->nobjects != N + 1)
+        return;
+    int right = s->objects[0]->hull;
+    for (int i = 0; i < N; i++) {
+        int in = 0, out = 0;
+        count_hulls(s->objects[i + 1], &in, &out);
+        right += in == obs[i].in && out == obs[i].out;
+    }
+    CHECKF(right == N + 1, "hull leaves: convex, inside every node above (%d of %d right)",
+           right, N + 1);
+    tex_rng g;
+    tex_rng_seed(&g, 24);
+    int differ = 0, leaving = 0, self[2] = {0, 0}; /* self-hits from hull leaves, others */
+    for (int k = 0; k < 20000; k++) {
+        const struct tex_object *ob = s->objects[1 + k % N];
+        tex_v3 c = tex_v3_scale(tex_v3_add(ob->wb.lo, ob->wb.hi), 0.5);
+        tex_v3 d = tex_v3_norm(tex_v3_make(tex_rng_uniform(&g) - 0.5, tex_rng_uniform(&g) - 0.5,
+                                           tex_rng_uniform(&g) - 0.5));
+        tex_v3 o = tex_v3_madd(c, d, -8), aim = tex_v3_make(tex_rng_uniform(&g) - 0.5,
+                                                           tex_rng_uniform(&g) - 0.5, 0);
+        d = tex_v3_norm(tex_v3_sub(tex_v3_add(c, aim), o));
+        struct tex_hit h, a, b;
+        if (!tex_scene_trace(s, &o, &d, 0, INFINITY, NULL, &h))
+            continue;
+        const struct tex_object *top = h.leaf->root ? h.leaf->root : h.leaf;
+        tex_v3 P = tex_v3_madd(o, d, h.t), Ng = outward_normal(&h, P);
+        tex_v3 r = tex_v3_norm(tex_v3_make(tex_rng_uniform(&g) - 0.5, tex_rng_uniform(&g) - 0.5,
+                                           tex_rng_uniform(&g) - 0.5));
+        if (!(tex_v3_dot(d, Ng) < 0) || fabs(tex_v3_dot(r, Ng)) < 0.05)
+            continue;
+        if (tex_v3_dot(r, Ng) < 0)
+            r = tex_v3_sub(r, tex_v3_scale(Ng, 2 * tex_v3_dot(r, Ng))); /* away from it */
+        double e = 1e-6 * (1 + fmax(fabs(P.x), fmax(fabs(P.y), fabs(P.z))));
+        tex_v3 Pout = tex_v3_madd(P, Ng, e);
+        const struct tex_object *from = h.leaf->hull ? top : NULL;
+        leaving += from != NULL;
+        int fa = tex_scene_trace(s, &Pout, &r, 0, INFINITY, NULL, &a);
+        int fb = tex_scene_trace(s, &Pout, &r, 0, INFINITY, from, &b);
+        double ta = tex_scene_transmit(s, &Pout, &r, 0, 30, NULL);
+        double tb = tex_scene_transmit(s, &Pout, &r, 0, 30, from);
+        differ += fa != fb || (fa && (a.t != b.t || a.leaf != b.leaf)) || ta != tb;
+        if (fa && (a.leaf->root ? a.leaf->root : a.leaf) == top)
+            self[from ? 0 : 1]++;
+    }
+    CHECKF(differ == 0 && leaving > 5000 && self[0] == 0 && self[1] > 100,
+           "rays leaving a hull leaf skip its object unchanged (%d of %d differ; self-hits: %d "
+           "from hull leaves, %d from others)", differ, leaving, self[0], self[1]);
     tex_scene_free(s);
 }
 
@@ -501,6 +627,7 @@ int main(void)
     test_determinism();
     test_receding();
     test_bvh_brute();
+    test_hull_skip();
     test_bailout();
     test_csg_combine();
     test_phong_zero_ks();
