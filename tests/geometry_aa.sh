@@ -1,12 +1,16 @@
 #!/bin/bash
-# geometry_aa.sh - colour maps of the geometric primitives: subsampling only the
-# pixels an edge may cross (box2, prim.c) gives the bytes of subsampling every
-# pixel (TEXTURA_AA=full), thin features and tiny, odd sizes included; -j 1 = -j 2.
+# geometry_aa.sh - maps of the geometric primitives by spans (box2, prim.c): the
+# colour map, subsampling only the pixels an edge may cross, gives the bytes of
+# subsampling every pixel (TEXTURA_AA=full), and --ids, evaluating only the
+# centres box2 leaves unsure, the bytes of evaluating every centre; thin
+# features, cells smaller than a pixel and tiny, odd sizes included; -j 1 = -j 2;
+# a window (whose spans start elsewhere) = the same pixels cut from the whole map.
 # PFM holds the floats as they are and no command line, so cmp compares pixels.
 . "${TEXTURA_TOP:-.}/tests/lib.sh"
 
-# cmp_aa NAME TOOL ARGS...: at several sizes, sparse == full, and -j 1 == -j 2.
-cmp_aa() {
+# cmp_one NAME TOOL ARGS...: at several sizes, sparse == full, and -j 1 == -j 2;
+# at 211, the window 37,20,113,70 == those pixels of the whole map.
+cmp_one() {
     local name=$1 bad=""
     shift
     for s in 7 64 129x70 211; do
@@ -15,8 +19,23 @@ cmp_aa() {
         "$@" -s $s -j 1 -o "$T/one.pfm" || { bad="$bad -s $s -j 1 failed"; continue; }
         cmp -s "$T/sparse.pfm" "$T/full.pfm" || bad="$bad -s $s: differs from TEXTURA_AA=full;"
         cmp -s "$T/sparse.pfm" "$T/one.pfm" || bad="$bad -s $s: -j 2 differs from -j 1;"
+        [ $s = 211 ] || continue
+        "$@" -s $s -j 2 --window 37,20,113,70 -o "$T/win.pfm" &&
+            t_xform --clip 37,20,150,90 "$T/sparse.pfm" -o "$T/cut.pfm" ||
+            { bad="$bad -s $s --window failed"; continue; }
+        cmp -s "$T/win.pfm" "$T/cut.pfm" || bad="$bad -s $s: the window differs from the whole map;"
     done
-    if [ -z "$bad" ]; then ok "$name: same bytes as every pixel subsampled, -j 1 = -j 2"; else notok "$name" "$bad"; fi
+    if [ -z "$bad" ]; then
+        ok "$name: same bytes as every point evaluated, -j 1 = -j 2, a window = the whole's"
+    else notok "$name" "$bad"; fi
+}
+
+# cmp_aa NAME TOOL ARGS...: cmp_one for the colour map and for --ids.
+cmp_aa() {
+    local name=$1
+    shift
+    cmp_one "$name" "$@"
+    cmp_one "$name --ids" "$@" --ids
 }
 
 cmp_aa "circle" t_circle
@@ -67,4 +86,4 @@ cmp_aa "brick --cells, no mortar" t_brick --cells --mortar-width 0 --nu 6 --nv 6
 cmp_aa "dots" t_dots
 cmp_aa "dots tiny" t_dots -r 0.002 --nu 9 --nv 5
 cmp_aa "dots touching" t_dots -r 0.354 --nu 3 --nv 2
-cmp_aa "circle with a palette" t_circle --palette "$TEXTURA_TOP/palettes/$(ls "$TEXTURA_TOP/palettes" | head -1)"
+cmp_one "circle with a palette" t_circle --palette "$TEXTURA_TOP/palettes/$(ls "$TEXTURA_TOP/palettes" | head -1)"

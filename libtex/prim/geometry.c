@@ -87,8 +87,10 @@ int tex_geometry_region(const struct tex_field *f, double u, double v)
  * point of the box is skipped, whatever the feature's size.  The box is
  * widened by GEO_EPS, in cell units: far above the rounding of the id tests
  * (about 1e-12 of a cell, 1e-9 near the cycloid's cusps) and below a
- * subsample's spacing (at least 1/262144 of a cell), so that every subsample
- * of a box called one region evaluates to it, bit for bit as eval2 does. */
+ * subsample's spacing (at least 1/262144 of a cell), so that every point of a
+ * box called one region (a subsample, or a pixel's centre for --ids, whose
+ * boxes are one row: hv = 0) evaluates to it, bit for bit as eval2 does.  The
+ * margin needs no lattice: it holds for any point of the box. */
 #define GEO_EPS 1e-7
 
 /* The box u +- hu, v +- hv in a cell: its centre (x, y), y up as in eval2, and

@@ -7,7 +7,8 @@
  * edges by coverage; with --ids the map holds the exact id of each pixel
  * centre and textura:subregions = nregions.  Each primitive's box2 proves
  * boxes of points one region from its geometry (geometry.c: the rule), so
- * that the sampler subsamples only the pixels an edge may cross.
+ * that the sampler subsamples only the pixels an edge may cross, and with
+ * --ids evaluates only the centres near one.
  *
  * General parameters (Appendix A.1-A.2), on every primitive:
  *   nu, nv   repetitions: the pattern fills one cell of a nu x nv grid over

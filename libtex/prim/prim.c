@@ -123,34 +123,71 @@ void tex_field_free(struct tex_field *f)
     free(f);
 }
 
-/* A REGIONS field in colour: each pixel averages the colours of the regions
- * hit by S x S stratified subsamples, in a fixed order (same bytes for any
- * thread count).  A sum of S x S copies of one float is exact in double, so a
- * pixel wholly inside a region gets exactly that region's colour.  With the
- * primitive's box2, a row goes by spans of SPAN pixels: where box2 proves that
- * the box around a span's subsamples lies in one region, the span takes that
- * colour; else each of its pixels is asked the same; only the pixels left
- * unsure (an edge may cross them) are subsampled, in the order of the full
- * computation (subsample_pixels is the one that averages).  So the bytes are
- * those of S x S everywhere; TEXTURA_AA=full subsamples every pixel, for the
- * tests that compare both. */
+/* A REGIONS field with box2 goes along a row by spans of SPAN pixels, for
+ * both of its outputs; each pixel has P x P points (P = S, the stratified
+ * subsamples, in colour; P = 1, the pixel's centre, with --ids).  Where box2
+ * proves that the box around a span's points lies in one region, the span
+ * takes that region (prove_row); a span left unsure in colour asks each of
+ * its pixels' boxes the same (cheaper than S x S subsamples); with --ids a
+ * pixel is one point, so eval2 gives it straight away.  The rest is what
+ * every pixel would get:
+ *   colour: the mean of the colours of the regions hit by the S x S
+ *     subsamples, in a fixed order (subsample_pixels is the one that
+ *     averages), so the same bytes for any thread count.  A sum of S x S
+ *     copies of one float is exact in double, so a pixel wholly inside a
+ *     region gets exactly that region's colour, as a proven one does;
+ *   --ids: eval2's id at the pixel's centre, the points batched; box2's
+ *     proven id is that id (its box holds the centre with a margin).
+ * So the bytes are those of evaluating every point, which TEXTURA_AA=full
+ * does (every pixel subsampled; every centre by tex_field_sample's plain
+ * loop), for the tests that compare both. */
 enum {
     SPAN = 16,     /* pixels a first box2 covers */
     SS_CHUNK = 256 /* unsure pixels subsampled per eval2 call */
 };
 
-/* Scratch of one thread for colour rows. */
-struct color_scratch {
-    double *u;  /* the subsamples' u across the window, m->w * S */
+/* Scratch of one thread for rows of regions, and the rows' constant boxes. */
+struct region_scratch {
+    int pts;    /* P: points a pixel side */
+    double hu, hv, hspan; /* box2's half sides: a pixel's points, a span's */
+    double *u;  /* the points' u across the window, m->w * P */
     double *cu; /* the pixels' centres, m->w, then the spans', ns */
     double *cv; /* one v, repeated: max(ns, SPAN) */
     float *bid; /* box2's answers: max(ns, SPAN) */
+    float *sid; /* colour: a row's proven regions, m->w */
     int px[SS_CHUNK];
-    double *eu; /* u and v of the subsamples of SS_CHUNK pixels */
+    double *eu; /* u and v of the points of one eval2 call: S * S * SS_CHUNK each */
     float *id;
 };
 
-static void subsample_pixels(const struct tex_field *f, struct color_scratch *t, int ne,
+static int aa_full(void)
+{
+    const char *aa = getenv("TEXTURA_AA");
+    return aa && strcmp(aa, "full") == 0;
+}
+
+/* sid[x]: the one region of pixel x's points that box2 proves, else 0; with
+ * P > 1 an unsure span's pixels are asked one by one.  The short last span
+ * keeps a full span's box: wider, so still a proof. */
+static void prove_row(const struct tex_field *f, struct region_scratch *t, int w, double v,
+                      float *sid)
+{
+    const int ns = (w + SPAN - 1) / SPAN;
+
+    for (int i = 0; i < (ns > SPAN ? ns : SPAN); i++)
+        t->cv[i] = v;
+    f->prim->box2(f, ns, t->cu + w, t->cv, t->hspan, t->hv, t->bid);
+    for (int s = 0; s < ns; s++) {
+        int x0 = s * SPAN, x1 = x0 + SPAN < w ? x0 + SPAN : w;
+        if (t->bid[s] == 0 && t->pts > 1)
+            f->prim->box2(f, x1 - x0, t->cu + x0, t->cv, t->hu, t->hv, sid + x0);
+        else
+            for (int x = x0; x < x1; x++)
+                sid[x] = t->bid[s];
+    }
+}
+
+static void subsample_pixels(const struct tex_field *f, struct region_scratch *t, int ne,
                              const double *vv, float *out)
 {
     enum { S = TEX_FIELD_SS };
@@ -189,7 +226,7 @@ static void fill_region(const struct tex_field *f, float *out, int x0, int x1, i
 }
 
 /* Subsample pixel x, or queue it: SS_CHUNK pixels go to eval2 at once. */
-static void queue_pixel(const struct tex_field *f, struct color_scratch *t, int *ne, int x,
+static void queue_pixel(const struct tex_field *f, struct region_scratch *t, int *ne, int x,
                         const double *vv, float *out)
 {
     t->px[(*ne)++] = x;
@@ -199,15 +236,11 @@ static void queue_pixel(const struct tex_field *f, struct color_scratch *t, int 
     }
 }
 
-/* Row out: subsamples at vv[0..S-1]; every pixel subsampled when full. */
-static void color_row(const struct tex_field *f, struct color_scratch *t, int w, const double *vv,
+/* Row out in colour: subsamples at vv[0..S-1]; every pixel subsampled when full. */
+static void color_row(const struct tex_field *f, struct region_scratch *t, int w, const double *vv,
                       int full, float *out)
 {
     enum { S = TEX_FIELD_SS };
-    const int ns = (w + SPAN - 1) / SPAN;
-    const double hu = (double)(S - 1) / (2.0 * S * f->w), hv = (double)(S - 1) / (2.0 * S * f->h);
-    const double hspan = (double)(SPAN * S - 1) / (2.0 * S * f->w); /* the last span may be
-                                                                       short: a wider box */
     int ne = 0;
 
     if (full) {
@@ -216,41 +249,62 @@ static void color_row(const struct tex_field *f, struct color_scratch *t, int w,
         subsample_pixels(f, t, ne, vv, out);
         return;
     }
-    for (int i = 0; i < (ns > SPAN ? ns : SPAN); i++)
-        t->cv[i] = 0.5 * (vv[0] + vv[S - 1]);
-    f->prim->box2(f, ns, t->cu + w, t->cv, hspan, hv, t->bid);
-    for (int s = 0; s < ns; s++) {
-        int x0 = s * SPAN, x1 = x0 + SPAN < w ? x0 + SPAN : w;
-        float pid[SPAN];
-        if (t->bid[s] != 0) {
-            fill_region(f, out, x0, x1, (int)t->bid[s]);
-            continue;
-        }
-        f->prim->box2(f, x1 - x0, t->cu + x0, t->cv, hu, hv, pid);
-        for (int x = x0; x < x1; x++)
-            if (pid[x - x0] != 0)
-                fill_region(f, out, x, x + 1, (int)pid[x - x0]);
-            else
-                queue_pixel(f, t, &ne, x, vv, out);
+    prove_row(f, t, w, 0.5 * (vv[0] + vv[S - 1]), t->sid);
+    for (int x = 0, x1; x < w; x = x1) {
+        for (x1 = x + 1; x1 < w && t->sid[x1] == t->sid[x]; x1++)
+            ;
+        if (t->sid[x] != 0)
+            fill_region(f, out, x, x1, (int)t->sid[x]);
+        else
+            for (int e = x; e < x1; e++)
+                queue_pixel(f, t, &ne, e, vv, out);
     }
     subsample_pixels(f, t, ne, vv, out);
 }
 
-static int sample_colors(const struct tex_field *f, tex_map *m, int x0, int y0)
+/* Row out of ids at v: the proven ones, then eval2 at the centres of the
+ * others, gathered so that one call takes up to S * S * SS_CHUNK of them. */
+static void ids_row(const struct tex_field *f, struct region_scratch *t, int w, double v,
+                    float *out)
+{
+    enum { N = TEX_FIELD_SS * TEX_FIELD_SS * SS_CHUNK };
+    double *ev = t->eu + N;
+
+    prove_row(f, t, w, v, out);
+    for (int x0 = 0, x1 = 0, n; x0 < w; x0 = x1) {
+        for (n = 0; x1 < w && n < N; x1++)
+            if (out[x1] == 0) {
+                t->eu[n] = t->u[x1];
+                ev[n++] = v;
+            }
+        if (n == 0)
+            break;
+        f->prim->eval2(f, n, t->eu, ev, t->id);
+        for (int x = x0, j = 0; x < x1; x++)
+            if (out[x] == 0)
+                out[x] = t->id[j++];
+    }
+}
+
+/* Rows of a REGIONS field with box2, in colour or (f->ids) as ids. */
+static int sample_regions(const struct tex_field *f, tex_map *m, int x0, int y0)
 {
     enum { S = TEX_FIELD_SS };
-    const int n = m->w * S, nfull = f->w * S, ns = (m->w + SPAN - 1) / SPAN;
+    const int P = f->ids ? 1 : S, n = m->w * P, nfull = f->w * P, ns = (m->w + SPAN - 1) / SPAN;
     const int nv = ns > SPAN ? ns : SPAN;
-    const char *aa = getenv("TEXTURA_AA");
-    const int full = !f->prim->box2 || (aa && strcmp(aa, "full") == 0);
+    const int full = !f->prim->box2 || aa_full();
     int failed = 0;
 
 #pragma omp parallel
     {
-        struct color_scratch t = {
+        struct region_scratch t = {
+            .pts = P,
+            .hu = (double)(P - 1) / (2.0 * P * f->w),
+            .hv = (double)(P - 1) / (2.0 * P * f->h),
+            .hspan = (double)(SPAN * P - 1) / (2.0 * P * f->w), /* the last span may be short */
             .u = malloc(sizeof *t.u * n),
             .cu = malloc(sizeof *t.cu * (m->w + ns + nv)),
-            .bid = malloc(sizeof *t.bid * nv),
+            .bid = malloc(sizeof *t.bid * (nv + m->w)),
             .eu = malloc(sizeof *t.eu * 2 * S * S * SS_CHUNK),
             .id = malloc(sizeof *t.id * S * S * SS_CHUNK),
         };
@@ -258,13 +312,15 @@ static int sample_colors(const struct tex_field *f, tex_map *m, int x0, int y0)
 
         if (!bad) {
             t.cv = t.cu + m->w + ns;
+            t.sid = t.bid + nv;
+            /* P = 1 gives (x + 0.5) / w, bit for bit as the plain loop's centres */
             for (int i = 0; i < n; i++)
-                t.u[i] = ((double)x0 * S + i + 0.5) / nfull;
-            /* the centres of the pixels' subsamples, then of the spans' */
+                t.u[i] = ((double)x0 * P + i + 0.5) / nfull;
+            /* the centres of the pixels' points, then of the spans' */
             for (int x = 0; x < m->w; x++)
-                t.cu[x] = 0.5 * (t.u[x * S] + t.u[x * S + S - 1]);
+                t.cu[x] = 0.5 * (t.u[x * P] + t.u[x * P + P - 1]);
             for (int s = 0; s < ns; s++)
-                t.cu[m->w + s] = t.u[s * SPAN * S] + (double)(SPAN * S - 1) / (2.0 * nfull);
+                t.cu[m->w + s] = t.u[s * SPAN * P] + (double)(SPAN * P - 1) / (2.0 * nfull);
         }
 #pragma omp for schedule(dynamic, 4)
         for (int y = 0; y < m->h; y++) {
@@ -274,9 +330,12 @@ static int sample_colors(const struct tex_field *f, tex_map *m, int x0, int y0)
                 failed = 1;
                 continue;
             }
-            for (int sy = 0; sy < S; sy++)
-                vv[sy] = ((double)(y0 + y) * S + sy + 0.5) / ((double)S * f->h);
-            color_row(f, &t, m->w, vv, full, tex_map_row(m, y));
+            for (int sy = 0; sy < P; sy++)
+                vv[sy] = ((double)(y0 + y) * P + sy + 0.5) / ((double)P * f->h);
+            if (f->ids)
+                ids_row(f, &t, m->w, vv[0], tex_map_row(m, y));
+            else
+                color_row(f, &t, m->w, vv, full, tex_map_row(m, y));
             tex_progress_add(1);
         }
         free(t.u);
@@ -328,8 +387,11 @@ static int sample_rows(const struct tex_field *f, tex_map *m, int x0, int y0)
 tex_map *tex_field_sample(const struct tex_field *f)
 {
     const struct tex_primitive *p = f->prim;
-    int colored = (p->flags & TEX_PRIM_REGIONS) && !(p->flags & TEX_PRIM_GRID) && !f->ids &&
-                  f->colors && p->eval2;
+    int regions = (p->flags & TEX_PRIM_REGIONS) && !(p->flags & TEX_PRIM_GRID) && p->eval2;
+    int colored = regions && !f->ids && f->colors;
+    /* ids by spans, one float each, unless a row callback fills the row or
+     * TEXTURA_AA=full asks for every centre */
+    int spans = regions && f->ids && f->nc == 1 && p->box2 && !p->row && !aa_full();
     int window = f->ww > 0, x0 = window ? f->wx : 0, y0 = window ? f->wy : 0;
     tex_map *m = tex_map_new(window ? f->ww : f->w, window ? f->wh : f->h, colored ? 3 : f->nc);
     int failed = 0;
@@ -343,15 +405,15 @@ tex_map *tex_field_sample(const struct tex_field *f)
         m->full_h = f->h;
     }
     tex_progress_stage(1, m->h); /* what remains of the bar after the primitive's init */
-    if (colored) {
-        if (sample_colors(f, m, x0, y0) < 0) {
+    if (p->flags & TEX_PRIM_REGIONS && f->ids)
+        m->subregions = f->nregions;
+    if (colored || spans) {
+        if (sample_regions(f, m, x0, y0) < 0) {
             tex_map_free(m);
             return NULL;
         }
         return m;
     }
-    if (p->flags & TEX_PRIM_REGIONS && f->ids)
-        m->subregions = f->nregions;
     if ((p->flags & TEX_PRIM_GRID) && !window) {
         if (p->grid(f, m) < 0) {
             tex_map_free(m);

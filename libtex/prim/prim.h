@@ -70,7 +70,8 @@ struct tex_field {
      * it).  When set and ids is 0, the sampler writes an RGB map in which each
      * pixel is the mean colour of TEX_FIELD_SS x TEX_FIELD_SS stratified
      * subsamples (antialiasing by coverage; with box2, only pixels an edge may
-     * cross are subsampled); eval2 still writes one id per point. */
+     * cross are subsampled, and with ids only the centres box2 leaves unsure
+     * are evaluated); eval2 still writes one id per point. */
     const float (*colors)[3];
     void *state;      /* the primitive's own, made by init */
     int wx, wy, ww, wh; /* the window being sampled (tex_field_window); ww 0: the whole grid */
@@ -123,9 +124,11 @@ struct tex_primitive {
     void (*eval3_fw)(const struct tex_field *f, int n, const double *u, const double *v,
                      const double *w, const double *fw, float *out);
     /* Optional, REGIONS: out[i] = the region id that every point of the box
-     * u[i] +- hu, v[i] +- hv has, proven with a margin above rounding, else 0
-     * (unsure).  The colour sampler gives such a pixel its region's colour and
-     * subsamples only the others: the same bytes as S x S everywhere. */
+     * u[i] +- hu, v[i] +- hv has (eval2's id there, bit for bit), proven with a
+     * margin above rounding, else 0 (unsure); hu or hv may be 0 (a row of
+     * points, or one).  The sampler gives a proven span or pixel its region's
+     * colour, or with ids its id, and evaluates only the others: the same bytes
+     * as S x S subsamples, or every centre, everywhere. */
     void (*box2)(const struct tex_field *f, int n, const double *u, const double *v, double hu,
                  double hv, float *out);
     /* Optional fast path for grid sampling: row y of the f->w x f->h grid. */

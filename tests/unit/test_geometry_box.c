@@ -1,6 +1,7 @@
 /* test_geometry_box - box2 of the geometric primitives: a box it calls one
  * region holds no point of another (random boxes, many near the edges, thin
- * features included), and it does call most small boxes one region */
+ * features included, rows and single points too, as --ids asks), and it does
+ * call most small boxes one region */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -123,8 +124,12 @@ static void one_case(const struct box_case *c)
             hu = hv = 5e-4;
         } else {
             near_edge(f, &u, &v);
+            double r = rnd();
             hu = pow(10, -6 + 4.5 * rnd());
-            hv = rnd() < 0.5 ? hu : pow(10, -6 + 4.5 * rnd());
+            /* a quarter one row of points (hv 0), as --ids's spans; a tenth of those one point */
+            hv = r < 0.25 ? 0 : r < 0.5 ? hu : pow(10, -6 + 4.5 * rnd());
+            if (r < 0.025)
+                hu = 0;
             u += (2 * rnd() - 1) * 3 * hu;
             v += (2 * rnd() - 1) * 3 * hv;
             if (u < 0 || u >= 1 || v < 0 || v >= 1)
