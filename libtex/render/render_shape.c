@@ -518,7 +518,15 @@ static int ray_box(const struct tex_bounds *b, tex_v3 o, tex_v3 inv)
 void tex_leaf_spans(const struct tex_object *ob, const tex_v3 *o, const tex_v3 *d,
                     struct tex_spans *s)
 {
-    tex_v3 lo = tex_xform_point(&ob->to_obj, *o), ld = tex_xform_dir(&ob->to_obj, *d);
+    tex_v3 lo, ld;
+    if (ob->scaled) { /* the full products' zero terms change no more than a zero's sign */
+        const double(*m)[4] = ob->to_obj.m;
+        lo = tex_v3_make(m[0][0] * o->x + m[0][3], m[1][1] * o->y + m[1][3],
+                         m[2][2] * o->z + m[2][3]);
+        ld = tex_v3_make(m[0][0] * d->x, m[1][1] * d->y, m[2][2] * d->z);
+    } else {
+        lo = tex_xform_point(&ob->to_obj, *o), ld = tex_xform_dir(&ob->to_obj, *d);
+    }
     switch (ob->kind) {
     case TEX_SHAPE_SPHERE: sphere_spans(ob, lo, ld, s); break;
     case TEX_SHAPE_BOX: box_spans(ob, lo, ld, s); break;
@@ -593,8 +601,10 @@ void tex_object_hulls(struct tex_object *ob)
 /* The leaf's normal fast path (struct tex_object's fast). */
 static void leaf_fast(struct tex_object *ob)
 {
-    const double(*m)[4] = ob->to_world.m;
+    const double(*m)[4] = ob->to_world.m, (*q)[4] = ob->to_obj.m;
     ob->fast = 0;
+    ob->scaled = q[0][1] == 0 && q[0][2] == 0 && q[1][0] == 0 && q[1][2] == 0 && q[2][0] == 0 &&
+                 q[2][1] == 0;
     if (ob->kind == TEX_SHAPE_PLANE) {
         const double(*q)[4] = ob->to_obj.m; /* the normal: the y row of the inverse */
         tex_v3 n = tex_v3_make(q[1][0], q[1][1], q[1][2]);

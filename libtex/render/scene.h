@@ -281,6 +281,7 @@ struct tex_object {
     int fast;
     tex_v3 fn;
     double fr;
+    int scaled; /* leaves: to_obj only scales and shifts (spans skip its zero terms) */
     /* leaves: 1 if convex (not a torus) and holding all of the top-level object, every node
      * above keeping only what lies inside it (an intersection, a difference's first
      * operand): a ray leaving its surface outwards cannot meet the object again */

@@ -475,6 +475,55 @@ static void test_hull_skip(void)
     tex_scene_free(s);
 }
 
+/* Leaves placed by scales and shifts alone take their spans without the transform's zero
+ * terms (tex_object's scaled): the same spans as the full products, to the last bit but a
+ * zero's sign. */
+static void test_scaled_leaves(void)
+{
+    const char *sc = "image 8 8\n"
+                     "box { min -1 0.5 -2 max 1.5 2 3 }\n"
+                     "sphere { centre 0.5 -1 2 radius 0.7 }\n"
+                     "sphere { radius 1 scale 2 0.5 1 translate 1 1 1 }\n"
+                     "cylinder { base 1 0 1 top 1 3 1 radius 0.4 }\n"
+                     "cone { base -1 -1 0 top -1 1 0 radius1 0.8 radius2 0.2 }\n"
+                     "torus { major 1 minor 0.25 translate 0 0.3 0 }\n"
+                     "box { min 0 0 0 max 1 1 1 rotate 0 30 0 }\n";
+    struct tex_scene *s = tex_scene_parse(sc, strlen(sc), "scaled.scene");
+    CHECK(s && tex_scene_prepare(s) == 0, "scaled-leaf scene prepares");
+    if (!s)
+        return;
+    int scaled = 0, differ = 0, spans = 0;
+    tex_rng g;
+    tex_rng_seed(&g, 7);
+    for (int i = 0; i < s->nobjects; i++) {
+        struct tex_object *ob = s->objects[i];
+        scaled += ob->scaled;
+        for (int k = 0; k < 2000; k++) {
+            tex_v3 o = tex_v3_make(8 * tex_rng_uniform(&g) - 4, 8 * tex_rng_uniform(&g) - 4,
+                                   8 * tex_rng_uniform(&g) - 4);
+            tex_v3 d = tex_v3_norm(tex_v3_make(tex_rng_uniform(&g) - 0.5,
+                                               tex_rng_uniform(&g) - 0.5, tex_rng_uniform(&g) - 0.5));
+            if (k % 10 == 0) /* along an axis, and from the origin: zero terms */
+                d = tex_v3_make(0, k % 20 ? 1 : -1, 0), o.x = 0;
+            struct tex_spans a, b;
+            int was = ob->scaled;
+            tex_leaf_spans(ob, &o, &d, &a);
+            ob->scaled = 0;
+            tex_leaf_spans(ob, &o, &d, &b);
+            ob->scaled = was;
+            spans += a.n;
+            differ += a.n != b.n;
+            for (int j = 0; j < a.n && j < b.n; j++)
+                differ += a.in[j].t != b.in[j].t || a.out[j].t != b.out[j].t ||
+                          a.in[j].leaf != b.in[j].leaf || a.out[j].leaf != b.out[j].leaf;
+        }
+    }
+    CHECKF(scaled == 6 && differ == 0 && spans > 1000,
+           "scaled leaves' spans are the full transform's (%d of 7 scaled, %d differ of %d)",
+           scaled, differ, spans);
+    tex_scene_free(s);
+}
+
 /* Adaptive depth control: a bailout below every path weight changes nothing,
  * one above the deeper weights drops only their (non-negative) light. */
 static void test_bailout(void)
@@ -628,6 +677,7 @@ int main(void)
     test_receding();
     test_bvh_brute();
     test_hull_skip();
+    test_scaled_leaves();
     test_bailout();
     test_csg_combine();
     test_phong_zero_ks();
