@@ -86,4 +86,5 @@ cmp_aa "brick --cells, no mortar" t_brick --cells --mortar-width 0 --nu 6 --nv 6
 cmp_aa "dots" t_dots
 cmp_aa "dots tiny" t_dots -r 0.002 --nu 9 --nv 5
 cmp_aa "dots touching" t_dots -r 0.354 --nu 3 --nv 2
-cmp_one "circle with a palette" t_circle --palette "$TEXTURA_TOP/palettes/$(ls "$TEXTURA_TOP/palettes" | head -1)"
+pal=$(ls "$TEXTURA_TOP/palettes" | head -1)
+cmp_one "circle with a palette" t_circle --palette "$TEXTURA_TOP/palettes/$pal"

@@ -14,9 +14,10 @@
  * beyond the closest hit, and a shadow query (any = 1) stops at the first
  * hit.  tex_scene_transmit visits every object along a shadow ray once, in
  * any order: the light passing is the product of Kt over the surfaces
- * crossed.  A ray leaving an object from a hull leaf (struct tex_object) does
- * not test it (it cannot meet it again), and eye rays that a view of the tree's box shows beside it
- * (tex_scene_view) test the unbounded objects alone.
+ * crossed.  A ray leaving an object from a hull leaf (struct tex_object)
+ * does not test it (it cannot meet it again), and eye rays that a view of
+ * the tree's box shows beside it (tex_scene_view) test the unbounded objects
+ * alone.
  */
 #define _GNU_SOURCE /* qsort_r */
 #include <stdlib.h>

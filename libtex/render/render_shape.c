@@ -605,8 +605,7 @@ static void leaf_fast(struct tex_object *ob)
     ob->fast = 0;
     ob->scaled = q[0][1] == 0 && q[0][2] == 0 && q[1][0] == 0 && q[1][2] == 0 && q[2][0] == 0 &&
                  q[2][1] == 0;
-    if (ob->kind == TEX_SHAPE_PLANE) {
-        const double(*q)[4] = ob->to_obj.m; /* the normal: the y row of the inverse */
+    if (ob->kind == TEX_SHAPE_PLANE) { /* the normal: the y row of the inverse */
         tex_v3 n = tex_v3_make(q[1][0], q[1][1], q[1][2]);
         if (tex_v3_len(n) > 0) {
             ob->fast = 1;

@@ -501,8 +501,8 @@ static void test_scaled_leaves(void)
         for (int k = 0; k < 2000; k++) {
             tex_v3 o = tex_v3_make(8 * tex_rng_uniform(&g) - 4, 8 * tex_rng_uniform(&g) - 4,
                                    8 * tex_rng_uniform(&g) - 4);
-            tex_v3 d = tex_v3_norm(tex_v3_make(tex_rng_uniform(&g) - 0.5,
-                                               tex_rng_uniform(&g) - 0.5, tex_rng_uniform(&g) - 0.5));
+            double dx = tex_rng_uniform(&g) - 0.5, dy = tex_rng_uniform(&g) - 0.5;
+            tex_v3 d = tex_v3_norm(tex_v3_make(dx, dy, tex_rng_uniform(&g) - 0.5));
             if (k % 10 == 0) /* along an axis, and from the origin: zero terms */
                 d = tex_v3_make(0, k % 20 ? 1 : -1, 0), o.x = 0;
             struct tex_spans a, b;
