@@ -197,7 +197,7 @@ static void secondary(const struct ctx *c, const tex_ray *r, const struct hit_fr
     struct tex_media beyond;
     double n1 = 1, n2 = 1;
     if (m->kt > 0 || m->model != &tex_shading_phong) {
-        tex_media_cross(r->media, f->h->leaf->root ? f->h->leaf->root : f->h->leaf, f->entering,
+        tex_media_cross(r->media, tex_object_top(f->h->leaf), f->entering,
                         m->ior, &beyond, &n1, &n2);
         m->ior = f->entering ? n2 / n1 : n1 / n2;
     }
@@ -277,9 +277,7 @@ static void shade(const struct ctx *c, const tex_ray *r, const struct tex_hit *h
     tex_v3 Ngv = entering ? Ng : tex_v3_scale(Ng, -1);
     tex_v3 Pout = tex_v3_madd(P, Ngv, e), Pin = tex_v3_madd(P, Ngv, -e);
     /* rays leaving a hull leaf from outside, away from its surface, skip its object */
-    const struct tex_object *outside = !entering || !h.leaf->hull ? NULL
-                                       : h.leaf->root                ? h.leaf->root
-                                                                     : h.leaf;
+    const struct tex_object *outside = entering && h.leaf->hull ? tex_object_top(h.leaf) : NULL;
     struct hit_frame f = {&h, &P, &N, &Ngv, &V, &Pout, &Pin, width, at.dist, entering, outside};
 
     tex_colour_mul(out, c->n, c->ambient, &m->ka);
@@ -502,7 +500,7 @@ static void render_packet(const struct ctx *c0, const struct camera *cam, struct
             pk->hit[k] = box ? tex_scene_trace(s, &pk->r[k].o, &pk->r[k].d, 0, INFINITY, NULL,
                                                &pk->h[k])
                              : tex_scene_trace_unbounded(s, &pk->r[k].o, &pk->r[k].d, 0,
-                                                         INFINITY, NULL, &pk->h[k]);
+                                                         INFINITY, &pk->h[k]);
         for (int k = 0; k < np; k++) {
             tex_ray *r = &pk->r[k];
             if (!pk->hit[k])

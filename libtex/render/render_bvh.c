@@ -559,10 +559,9 @@ int tex_scene_trace(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
 }
 
 int tex_scene_trace_unbounded(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
-                              double tmin, double tmax, const struct tex_object *from,
-                              struct tex_hit *hit)
+                              double tmin, double tmax, struct tex_hit *hit)
 {
-    return bvh_trace(s->bvh, o, d, tmin, tmax, 0, 0, from, hit);
+    return bvh_trace(s->bvh, o, d, tmin, tmax, 0, 0, NULL, hit);
 }
 
 int tex_scene_view(const struct tex_scene *s, tex_v3 c, tex_v3 u, tex_v3 v, tex_v3 w,

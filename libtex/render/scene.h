@@ -288,6 +288,12 @@ struct tex_object {
     int hull;
 };
 
+/* The top-level object leaf belongs to: its root, or itself where none is set. */
+static inline const struct tex_object *tex_object_top(const struct tex_object *leaf)
+{
+    return leaf->root ? leaf->root : leaf;
+}
+
 /* A shape's own words as its block gives them (tex_object_rows), at the rows'
  * defaults until then; the parser checks them against each other and turns
  * them into the placement of the canonical shape. */
@@ -634,8 +640,7 @@ int tex_scene_trace(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
 /* The closest hit of a ray known to miss the box of every bounded object (tex_scene_view):
  * the unbounded objects' alone, which is tex_scene_trace's answer for such a ray. */
 int tex_scene_trace_unbounded(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
-                              double tmin, double tmax, const struct tex_object *from,
-                              struct tex_hit *hit);
+                              double tmin, double tmax, struct tex_hit *hit);
 
 /* The box of the bounded objects as seen from a point c in an orthonormal frame u, v, w (w
  * ahead): every point of the box lies ahead of c along w, and its projection (u, v) / w

@@ -266,21 +266,36 @@ static int brute_first(const struct tex_object *ob, tex_v3 o, tex_v3 d, double t
     return 0;
 }
 
-/* The BVH (with its fast paths for spheres and planes) finds the same closest
- * hit as testing every object, and shadow queries agree on occlusion. */
-static void test_bvh_brute(void)
+/* A unit direction drawn from g, its components in order */
+static tex_v3 random_dir(tex_rng *g)
+{
+    double x = tex_rng_uniform(g) - 0.5, y = tex_rng_uniform(g) - 0.5;
+    return tex_v3_norm(tex_v3_make(x, y, tex_rng_uniform(g) - 0.5));
+}
+
+/* The closest hit along o + t d beyond 0 among every object of s, each searched: *best
+ * (leaf NULL where none) */
+static void brute_closest(const struct tex_scene *s, tex_v3 o, tex_v3 d, struct tex_hit *best)
+{
+    struct tex_hit h;
+    *best = (struct tex_hit){INFINITY, NULL, 0};
+    for (int i = 0; i < s->nobjects; i++)
+        if (brute_first(s->objects[i], o, d, 0, &h) && h.t < best->t)
+            *best = h;
+}
+
+/* 600 objects of every fast path and a tilted plane, placed by g, prepared */
+static struct tex_scene *bvh_scene(tex_rng *g)
 {
     size_t cap = 200000, len = 0;
     char *sc = malloc(cap);
     if (!sc)
-        return;
-    tex_rng g;
-    tex_rng_seed(&g, 42);
+        return NULL;
     len += snprintf(sc + len, cap - len, "image 8 8 camera { eye 0 0 -30 look 0 0 0 }\n"
                                          "plane { normal 0.1 1 0.2 distance -12 }\n");
     for (int i = 0; i < 600; i++) {
-        double x = 20 * tex_rng_uniform(&g) - 10, y = 20 * tex_rng_uniform(&g) - 10,
-               z = 20 * tex_rng_uniform(&g) - 10, r = 0.2 + 0.8 * tex_rng_uniform(&g);
+        double x = 20 * tex_rng_uniform(g) - 10, y = 20 * tex_rng_uniform(g) - 10,
+               z = 20 * tex_rng_uniform(g) - 10, r = 0.2 + 0.8 * tex_rng_uniform(g);
         switch (i % 6) {
         case 0: /* world-space fast path */
             len += snprintf(sc + len, cap - len, "sphere { centre %g %g %g radius %g }\n", x, y,
@@ -315,21 +330,59 @@ static void test_bvh_brute(void)
     }
     struct tex_scene *s = tex_scene_parse(sc, len, "bvh.scene");
     free(sc);
-    CHECK(s && tex_scene_prepare(s) == 0, "600-object scene prepares");
+    if (s && tex_scene_prepare(s) != 0) {
+        tex_scene_free(s);
+        s = NULL;
+    }
+    return s;
+}
+
+/* Rays from the eye whose directions project outside the box's view meet no bounded object
+ * (a search of every object), and tracing the unbounded alone answers the same. */
+static void check_view(const struct tex_scene *s, tex_rng *g)
+{
+    struct tex_view vw;
+    tex_v3 eye = tex_v3_make(0, 0, -30);
+    int seen = tex_scene_view(s, eye, tex_v3_make(1, 0, 0), tex_v3_make(0, 1, 0),
+                              tex_v3_make(0, 0, 1), &vw), culled = 0, wrong = 0;
+    for (int k = 0; seen && k < 3000; k++) {
+        double x = 2 * tex_rng_uniform(g) - 1, y = 2 * tex_rng_uniform(g) - 1;
+        tex_v3 d = tex_v3_norm(tex_v3_make(x, y, 1));
+        double a = d.x / d.z, b = d.y / d.z;
+        if (a >= vw.rect[0] && a <= vw.rect[1] && b >= vw.rect[2] && b <= vw.rect[3])
+            continue;
+        culled++;
+        struct tex_hit h, u, best;
+        brute_closest(s, eye, d, &best);
+        int fu = tex_scene_trace_unbounded(s, &eye, &d, 0, INFINITY, &u);
+        int ft = tex_scene_trace(s, &eye, &d, 0, INFINITY, NULL, &h);
+        wrong += (best.leaf && tex_object_top(best.leaf)->bounded) || fu != ft ||
+                 (fu && (u.t != h.t || u.leaf != h.leaf));
+    }
+    CHECKF(seen && culled > 300 && wrong == 0,
+           "rays beside the objects' box seen from the eye meet no bounded object (%d of %d wrong)",
+           wrong, culled);
+}
+
+/* The BVH (with its fast paths for spheres and planes) finds the same closest
+ * hit as testing every object, and shadow queries agree on occlusion. */
+static void test_bvh_brute(void)
+{
+    tex_rng g;
+    tex_rng_seed(&g, 42);
+    struct tex_scene *s = bvh_scene(&g);
+    CHECK(s != NULL, "600-object scene prepares");
     if (!s)
         return;
     int bad_closest = 0, bad_any = 0, hits = 0;
     for (int k = 0; k < 3000; k++) {
         tex_v3 o = tex_v3_make(30 * tex_rng_uniform(&g) - 15, 30 * tex_rng_uniform(&g) - 15,
                                30 * tex_rng_uniform(&g) - 15);
-        tex_v3 d = tex_v3_norm(tex_v3_make(tex_rng_uniform(&g) - 0.5, tex_rng_uniform(&g) - 0.5,
-                                           tex_rng_uniform(&g) - 0.5));
+        tex_v3 d = random_dir(&g);
         if (k % 10 == 0)
             d = tex_v3_make(0, 0, k % 20 ? 1 : -1); /* axis-aligned: zero components */
-        struct tex_hit best = {INFINITY, NULL, 0}, h;
-        for (int i = 0; i < s->nobjects; i++)
-            if (brute_first(s->objects[i], o, d, 0, &h) && h.t < best.t)
-                best = h;
+        struct tex_hit best, h;
+        brute_closest(s, o, d, &best);
         int found = tex_scene_trace(s, &o, &d, 0, INFINITY, NULL, &h);
         hits += found;
         if (found != (best.leaf != NULL) ||
@@ -346,31 +399,7 @@ static void test_bvh_brute(void)
            "BVH closest hits match a search of every object (%d of 3000 differ, %d hits)",
            bad_closest, hits);
     CHECKF(bad_any == 0, "BVH shadow queries match (%d of 3000 differ)", bad_any);
-    /* rays from the eye whose directions project outside the box's view meet no bounded
-     * object (a search of every object), and tracing the unbounded alone answers the same */
-    struct tex_view vw;
-    tex_v3 eye = tex_v3_make(0, 0, -30);
-    int seen = tex_scene_view(s, eye, tex_v3_make(1, 0, 0), tex_v3_make(0, 1, 0),
-                              tex_v3_make(0, 0, 1), &vw), culled = 0, wrong = 0;
-    for (int k = 0; seen && k < 3000; k++) {
-        tex_v3 d = tex_v3_norm(tex_v3_make(2 * tex_rng_uniform(&g) - 1, 2 * tex_rng_uniform(&g) - 1,
-                                           1));
-        double a = d.x / d.z, b = d.y / d.z;
-        if (a >= vw.rect[0] && a <= vw.rect[1] && b >= vw.rect[2] && b <= vw.rect[3])
-            continue;
-        culled++;
-        struct tex_hit h, u, best = {INFINITY, NULL, 0};
-        for (int i = 0; i < s->nobjects; i++)
-            if (brute_first(s->objects[i], eye, d, 0, &h) && h.t < best.t)
-                best = h;
-        int fu = tex_scene_trace_unbounded(s, &eye, &d, 0, INFINITY, NULL, &u);
-        int ft = tex_scene_trace(s, &eye, &d, 0, INFINITY, NULL, &h);
-        const struct tex_object *top = best.leaf && best.leaf->root ? best.leaf->root : best.leaf;
-        wrong += (top && top->bounded) || fu != ft || (fu && (u.t != h.t || u.leaf != h.leaf));
-    }
-    CHECKF(seen && culled > 300 && wrong == 0,
-           "rays beside the objects' box seen from the eye meet no bounded object (%d of %d wrong)",
-           wrong, culled);
+    check_view(s, &g);
     tex_scene_free(s);
 }
 
@@ -441,18 +470,16 @@ static void test_hull_skip(void)
     for (int k = 0; k < 20000; k++) {
         const struct tex_object *ob = s->objects[1 + k % N];
         tex_v3 c = tex_v3_scale(tex_v3_add(ob->wb.lo, ob->wb.hi), 0.5);
-        tex_v3 d = tex_v3_norm(tex_v3_make(tex_rng_uniform(&g) - 0.5, tex_rng_uniform(&g) - 0.5,
-                                           tex_rng_uniform(&g) - 0.5));
+        tex_v3 d = random_dir(&g);
         tex_v3 o = tex_v3_madd(c, d, -8), aim = tex_v3_make(tex_rng_uniform(&g) - 0.5,
                                                            tex_rng_uniform(&g) - 0.5, 0);
         d = tex_v3_norm(tex_v3_sub(tex_v3_add(c, aim), o));
         struct tex_hit h, a, b;
         if (!tex_scene_trace(s, &o, &d, 0, INFINITY, NULL, &h))
             continue;
-        const struct tex_object *top = h.leaf->root ? h.leaf->root : h.leaf;
+        const struct tex_object *top = tex_object_top(h.leaf);
         tex_v3 P = tex_v3_madd(o, d, h.t), Ng = outward_normal(&h, P);
-        tex_v3 r = tex_v3_norm(tex_v3_make(tex_rng_uniform(&g) - 0.5, tex_rng_uniform(&g) - 0.5,
-                                           tex_rng_uniform(&g) - 0.5));
+        tex_v3 r = random_dir(&g);
         if (!(tex_v3_dot(d, Ng) < 0) || fabs(tex_v3_dot(r, Ng)) < 0.05)
             continue;
         if (tex_v3_dot(r, Ng) < 0)
@@ -466,7 +493,7 @@ static void test_hull_skip(void)
         double ta = tex_scene_transmit(s, &Pout, &r, 0, 30, NULL);
         double tb = tex_scene_transmit(s, &Pout, &r, 0, 30, from);
         differ += fa != fb || (fa && (a.t != b.t || a.leaf != b.leaf)) || ta != tb;
-        if (fa && (a.leaf->root ? a.leaf->root : a.leaf) == top)
+        if (fa && tex_object_top(a.leaf) == top)
             self[from ? 0 : 1]++;
     }
     CHECKF(differ == 0 && leaving > 5000 && self[0] == 0 && self[1] > 100,
@@ -501,8 +528,7 @@ static void test_scaled_leaves(void)
         for (int k = 0; k < 2000; k++) {
             tex_v3 o = tex_v3_make(8 * tex_rng_uniform(&g) - 4, 8 * tex_rng_uniform(&g) - 4,
                                    8 * tex_rng_uniform(&g) - 4);
-            double dx = tex_rng_uniform(&g) - 0.5, dy = tex_rng_uniform(&g) - 0.5;
-            tex_v3 d = tex_v3_norm(tex_v3_make(dx, dy, tex_rng_uniform(&g) - 0.5));
+            tex_v3 d = random_dir(&g);
             if (k % 10 == 0) /* along an axis, and from the origin: zero terms */
                 d = tex_v3_make(0, k % 20 ? 1 : -1, 0), o.x = 0;
             struct tex_spans a, b;
