@@ -89,6 +89,39 @@ for s in bump made; do
 done
 bump_ok "a map's bump tilts the normal by its gradient (N' = N - s grad f)" "$T/bump0.pfm" "$T/bump1.pfm"
 bump_ok "a primitive's bump, by finite differences, does the same" "$T/made0.pfm" "$T/made1.pfm"
+# A spot light lights its cone alone: seen from above, the floor under it is lit and the
+# image's corners, 52 degrees off its 10-degree axis, get nothing at all (no ambient).  The
+# spot first (its direction made ahead of the material, render.c) and after a distant light
+# from below the floor, which adds nothing: the same bytes.
+for first in 1 0; do
+    lights='light spot { position 0 4 0 at 0 0 0 angle 10 }'
+    [ $first = 1 ] || lights="light distant { direction 0 -1 0 }
+$lights"
+    cat >"$T/spot$first.scene" <<SCENE
+image 33 33
+ambient 0 0 0
+camera { eye 0 10 0 look 0 0 0 up 0 0 1 fov 40 }
+$lights
+surface floor { Ka 0 Kd 1 1 1 }
+plane { surface floor }
+SCENE
+    t_apply "$T/spot$first.scene" -j 1 --format pfm >"$T/spot$first.pfm" || notok "spot: renders"
+done
+if python3 - "$T/spot1.pfm" <<'PY'; then
+import os, sys
+sys.path.insert(0, os.environ["T"])
+from pfm import pfm
+w, h, px = pfm(sys.argv[1])
+red = lambda x, y: px[3 * (y * w + x)]
+corners = [red(x, y) for x in (0, w - 1) for y in (0, h - 1)]
+sys.exit(not (red(w // 2, h // 2) > 0.5 and corners == [0, 0, 0, 0]))
+PY
+    cmp -s "$T/spot1.pfm" "$T/spot0.pfm" &&
+        ok "a spot light lights its cone and nothing beyond, first or second" ||
+        notok "a spot light second against first" "$(maxdiff "$T/spot1.pfm" "$T/spot0.pfm")"
+else
+    notok "a spot light: lit under it, dark beyond its cone"
+fi
 # The map's gradient through each kind of mapping derivative (a turned plane's planar
 # mapping, a box's and a turned sphere's natural ones) against the same sinusoids in u and
 # v made at the hit, whose bump takes finite differences: on average within a tenth of what

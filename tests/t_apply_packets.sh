@@ -91,7 +91,8 @@ done
 # trilinear lookups in vector lanes where the CPU has AVX-512): grey and colour maps of
 # sides that are not powers of two, windows and repeats, affine mappings (a plane's, world,
 # solid) and others (a sphere's and a CSG box's natural mapping, a cylinder projection),
-# bump maps (the tilt made ahead where the mapping is affine), a map after a map; a camera
+# bump maps (the tilt made ahead where the mapping is affine), a map after a map, a surface's
+# one map whose functions set a colour, scalars and (not a polynomial) Kr; a camera
 # looking straight down, whose centre ray meets the floor head-on; each render against
 # pixel by pixel, packets at every SIMD level
 awk 'BEGIN { print "P2 37 23 255"; for (y = 0; y < 23; y++) { l = "";
@@ -114,7 +115,8 @@ surface floor { Kd 0.8 0.8 0.8 Ks 0.2 n 10
 surface ball { Kd 0.9 0.5 0.3 apply colour { mapping natural window 0.1 0.1 0.9 0.8 Kd = f*p } }
 surface cube { Kd 0.6 0.6 0.6 Kr 0.3 apply colour { mapping natural repeat 2 2 Kd = f bump = 0.5 } }
 surface can { Kd 0.5 0.7 0.5 apply grey { mapping cylinder repeat 4 1 Kd = f*p + 0.1 } }
-surface rock { Kd 0.7 0.7 0.7 apply colour { mapping solid scale 0.7 Kd = f } }
+surface rock { Kd 0.7 0.7 0.7 Ks 0.1 n 10
+    apply colour { mapping solid scale 0.7 Kd = f Ks = 0.5*f n = 10 + 30*f Kr = 0.1*sin(9*f) } }
 surface haze { Kd 0.7 0.7 0.7 apply grey { mapping world scale 0.5 Ka = f Kd = p*f bump = -0.4 }
     apply colour { mapping solid scale 0.3 Kd = f*p } }
 plane { surface floor }

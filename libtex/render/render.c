@@ -118,10 +118,30 @@ static inline void shade_direct(const struct tex_material *m, const tex_v3 *N, c
         m->model->direct(m, &N->x, &V->x, &L->x, E, n, out);
 }
 
+/* The first light's direction, distance and attenuation at a hit, when it is a point or a
+ * spot: made before the material, so that their square root and division run beside the
+ * material's work rather than hold up the shadow ray.  ok: the light reaches the hit. */
+struct light_ahead {
+    tex_v3 L;
+    double dist, fatt;
+    int ok;
+};
+
+static inline const struct light_ahead *first_light(const struct tex_scene *s, const tex_v3 *P,
+                                                    struct light_ahead *a)
+{
+    const struct tex_light *l = s->lights;
+    if (!s->nlights || (l->kind != TEX_LIGHT_POINT && l->kind != TEX_LIGHT_SPOT))
+        return NULL;
+    a->ok = tex_light_point_at(l, &l->pos, P, &a->L, &a->dist, &a->fatt) && a->fatt > 0;
+    return a;
+}
+
 /* Direct lighting: every light sample that reaches P unshadowed, through the
- * surface's shading model (pbrt's SampleLd). */
+ * surface's shading model (pbrt's SampleLd); a0: the first light's, made ahead. */
 static void direct_light(const struct ctx *c, const struct tex_material *m,
-                         const struct hit_frame *f, tex_colour *out)
+                         const struct hit_frame *f, const struct light_ahead *a0,
+                         tex_colour *out)
 {
     const struct tex_scene *s = c->s;
     int n = c->n;
@@ -137,10 +157,16 @@ static void direct_light(const struct ctx *c, const struct tex_material *m,
             }
             tex_v3 L;
             double dist, fatt;
-            if (l->kind == TEX_LIGHT_POINT || l->kind == TEX_LIGHT_SPOT
-                    ? !tex_light_point_at(l, &l->pos, f->P, &L, &dist, &fatt) || !(fatt > 0)
-                    : !tex_light_sample(l, k, jx, jy, *f->P, &L, &dist, &fatt))
+            if (!li && a0) {
+                if (!a0->ok)
+                    continue;
+                L = a0->L, dist = a0->dist, fatt = a0->fatt;
+            } else if (l->kind == TEX_LIGHT_POINT || l->kind == TEX_LIGHT_SPOT
+                           ? !tex_light_point_at(l, &l->pos, f->P, &L, &dist, &fatt) ||
+                                 !(fatt > 0)
+                           : !tex_light_sample(l, k, jx, jy, *f->P, &L, &dist, &fatt)) {
                 continue;
+            }
             if (tex_v3_dot(L, *N) <= 0 || tex_v3_dot(L, *f->Ngv) <= 0)
                 continue;
             double sh = tex_scene_transmit(s, f->Pout, &L, 0, dist, f->outside);
@@ -270,6 +296,8 @@ static void shade(const struct ctx *c, const tex_ray *r, const struct tex_hit *h
     double width = fabs(r->width + h.t * r->spread); /* a focused beam crosses 0 */
     struct tex_material m[2]; /* m[1]: a blended surface's */
     struct tex_shade_at at = {h.leaf, &P, &r->d, width, r->dist + h.t, depth, pre};
+    struct light_ahead la;
+    const struct light_ahead *a0 = first_light(s, &P, &la);
     tex_resolve_material(s, surface_of(s, h.leaf), &at, &N, m);
     tex_v3 V = tex_v3_scale(r->d, -1);
     double e = eps_at(P);
@@ -281,7 +309,7 @@ static void shade(const struct ctx *c, const tex_ray *r, const struct tex_hit *h
     struct hit_frame f = {&h, &P, &N, &Ngv, &V, &Pout, &Pin, width, at.dist, entering, outside};
 
     tex_colour_mul(out, c->n, c->ambient, &m->ka);
-    direct_light(c, m, &f, out);
+    direct_light(c, m, &f, a0, out);
     if (depth < s->settings.depth && (reflects(&m[0]) || (m->blend_m && reflects(&m[1]))))
         secondary(c, r, &f, m, depth, weight, out);
 }

@@ -1041,13 +1041,27 @@ static inline double poly_at(const struct poly *q, int k, double f, double p)
     return q->c[0][k] + q->c[1][k] * f + q->c[2][k] * p + q->c[3][k] * f * p;
 }
 
-/* The parameters being textured, in RGB, before conversion to the colour space. */
+/* The parameters being textured, in RGB, before conversion to the colour space.  A float
+ * follows each colour (ka kd's, gradient[0] normal's, end gradient's): colour_set writes
+ * the colour with it. */
 struct params {
-    float ka, kd[3], ks, n, kr, kt, ior, bump;
+    float kd[3], ka, ks, n, kr, kt, ior, bump;
     double m, s; /* Cook-Torrance's slope and specular fraction (double: as the model's) */
     float blend; /* the blended surface's weight */
     float normal[3], gradient[3]; /* one apply block's normal map and height gradient */
+    float end;
 };
+
+typedef float float4 __attribute__((vector_size(16)));
+
+/* Colour c of struct params set to v[0..2] by one store of four floats, the fourth as it
+ * was: a later load of part of them is forwarded from the store, where one spanning three
+ * single stores would wait for them to reach the cache (material's loads did, on Intel). */
+static inline void colour_set(float *c, float4 v)
+{
+    v[3] = c[3];
+    memcpy(c, &v, sizeof v);
+}
 
 struct tex_surface_cache {
     struct params base;          /* the surface's own parameters */
@@ -1058,6 +1072,9 @@ struct tex_surface_cache {
     char *compiled;              /* 1: poly[i] holds function i */
     int quantities;              /* bit k: a function reads quantity k (tex_quantities) */
     int footprints;              /* 1: lookups ahead take footprints (tex_surface_footprints) */
+    /* 1: one texture, a map looked up ahead, whose functions read no quantity, see every
+     * region and bend no normal (apply_direct) */
+    int direct;
 };
 
 static double clampd(double x, double lo, double hi)
@@ -1068,6 +1085,17 @@ static double clampd(double x, double lo, double hi)
 static float lum(const float v[3])
 {
     return (v[0] + v[1] + v[2]) / 3;
+}
+
+/* A colour c of struct params through its compiled function q of the map value f, clamped
+ * to lo..hi: channel k reads only its channel k. */
+static inline __attribute__((always_inline)) void
+colour_poly(const struct poly *q, const float f[3], double lo, double hi, float *c)
+{
+    float4 v;
+    for (int k = 0; k < 3; k++)
+        v[k] = (float)clampd(poly_at(q, k, f[k], c[k]), lo, hi);
+    colour_set(c, v);
 }
 
 /* Function fn (compiled to q, or NULL) of the map value f looked up at uvw (footprint fw2),
@@ -1119,9 +1147,11 @@ static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const flo
             pr->m = sc;
         else if (fn->param == TEX_SP_S)
             pr->s = sc;
-    } else { /* channel k of a colour reads only its channel k */
-        for (int k = 0; k < 3; k++)
-            colour[k] = (float)clampd(q ? poly_at(q, k, f[k], colour[k]) : r[k], lo, hi);
+    } else if (q) {
+        colour_poly(q, f, lo, hi, colour);
+    } else {
+        colour_set(colour, (float4){(float)clampd(r[0], lo, hi), (float)clampd(r[1], lo, hi),
+                                    (float)clampd(r[2], lo, hi), 0});
     }
 }
 
@@ -1437,6 +1467,24 @@ material(const struct tex_colour_space *cs, const struct tex_surface *sf,
     m->blend_m = NULL;
 }
 
+/* apply_textures for a direct surface (tex_surface_cache) whose map's value and footprint
+ * came with the packet in pa: its functions in order, without the general path's set-up */
+static int apply_direct(const struct tex_surface *sf, const struct tex_prefetch_ap *pa,
+                        struct params *pr)
+{
+    const struct tex_surface_cache *c = sf->cache;
+    int ks_textured = 0, i = 0;
+    for (const struct tex_appfn *fn = sf->apply->fns; pa->inside && fn; fn = fn->next, i++) {
+        const struct poly *q = c->compiled[i] ? &c->poly[i] : NULL;
+        ks_textured |= fn->param == TEX_SP_KS;
+        if (q && fn->param == TEX_SP_KD) /* apply_fn's path for it, without the call */
+            colour_poly(q, pa->val, fn->lo, fn->hi, pr->kd);
+        else
+            apply_fn(fn, q, pa->val, pa->uvw, pa->fw, NULL, pr);
+    }
+    return ks_textured;
+}
+
 /* One surface's material at the hit; *blend: its blend's weight there. */
 static void resolve(const struct tex_scene *s, const struct tex_surface *sf,
                     const struct tex_shade_at *at, tex_v3 *N, struct tex_material *m,
@@ -1449,7 +1497,10 @@ static void resolve(const struct tex_scene *s, const struct tex_surface *sf,
     }
     struct params pr = sf->cache->base;
     const struct tex_prefetch *pre = at->pre && at->pre->sf == sf ? at->pre : NULL;
-    int ks_textured = apply_textures(sf, at, pre, N, s->settings.filter && at->width > 0, &pr);
+    int filter = s->settings.filter && at->width > 0;
+    int ks_textured = pre && sf->cache->direct && pre->n && pre->ap[0].has_val
+                          ? apply_direct(sf, &pre->ap[0], &pr)
+                          : apply_textures(sf, at, pre, N, filter, &pr);
     material(&s->cs, sf, &pr, ks_textured, m);
     *blend = pr.blend;
 }
@@ -2011,19 +2062,23 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
     for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next) {
         placement_of(ap, &c->placement[nap]);
         c->footprints |= band_limited(ap->tex) || (!nap && map_ahead(ap));
+        c->direct = !nap && !ap->next && map_ahead(ap);
         nap++;
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++) {
+            c->direct &= !fn->region && fn->param != TEX_SP_BUMP &&
+                         fn->param != TEX_SP_NORMAL && fn->param != TEX_SP_GRADIENT;
             c->compiled[nfn] = (char)poly_of(fn->e, &c->poly[nfn]);
             for (int i = 0; i < fn->e->n; i++)
                 if (fn->e->code[i].op == TEX_EOP_LEAF && fn->e->code[i].leaf >= TEX_LEAF_Q)
                     c->quantities |= 1 << (fn->e->code[i].leaf - TEX_LEAF_Q);
         }
     }
+    c->direct &= !c->quantities;
     struct tex_material ctm; /* Cook-Torrance's m and s: the surface's, or the defaults */
     tex_ct_material(&ctm, sf->ct);
-    c->base = (struct params){sf->ka, {sf->kd[0], sf->kd[1], sf->kd[2]}, sf->ks[0], (float)sf->n,
+    c->base = (struct params){{sf->kd[0], sf->kd[1], sf->kd[2]}, sf->ka, sf->ks[0], (float)sf->n,
                               (float)sf->kr, (float)sf->kt, (float)sf->ior, 0, ctm.m, ctm.s, 0,
-                              {0.5f, 0.5f, 1}, {0, 0, 0}};
+                              {0.5f, 0.5f, 1}, {0, 0, 0}, 0};
     float ka[3] = {sf->ka * sf->kd[0], sf->ka * sf->kd[1], sf->ka * sf->kd[2]};
     cs->from_rgb(cs, ka, TEX_SPECTRUM_REFLECTANCE, &c->col[0]);
     cs->from_rgb(cs, sf->kd, TEX_SPECTRUM_REFLECTANCE, &c->col[1]);
