@@ -10,6 +10,24 @@ w=$(info_json "$T/b.exr" width)
 t_apply "$good" -s 40x30 -j 1 -o "$T/j1.exr" && t_apply "$good" -s 40x30 -j 2 -o "$T/j2.exr"
 t_convert -o "$T/j1.pfm" "$T/j1.exr" && t_convert -o "$T/j2.pfm" "$T/j2.exr"
 cmp -s "$T/j1.pfm" "$T/j2.pfm" && ok "same bytes with -j 1 and -j 2" || notok "determinism across -j"
+# A scanline EXR is rendered and written in bands of rows (t_apply.c): the pixels of the
+# whole render (PFM, made whole), on a pipe and in a file, at a height that bands of 64 rows
+# do not divide, in a region too, with -j 1 and -j 2 (farm.sh assembles regions so made).
+for v in "whole|" "region|--region 3,50,37,90"; do
+    name=${v%%|*} args=${v#*|}
+    # shellcheck disable=SC2086
+    if t_apply "$good" -s 41x150 -j 1 $args --format pfm >"$T/bw-$name.pfm" &&
+        t_apply "$good" -s 41x150 -j 2 $args -o - | t_convert -o "$T/bp-$name.pfm" - &&
+        t_apply "$good" -s 41x150 -j 1 $args -o "$T/bf-$name.exr" &&
+        t_convert -o "$T/bf-$name.pfm" "$T/bf-$name.exr"; then
+        cmp -s "$T/bw-$name.pfm" "$T/bp-$name.pfm" && cmp -s "$T/bw-$name.pfm" "$T/bf-$name.pfm" &&
+            ok "$name: the EXR made in bands has the whole render's pixels" ||
+            notok "$name: bands against the whole render" \
+                "$(maxdiff "$T/bw-$name.pfm" "$T/bp-$name.pfm")"
+    else
+        notok "$name: renders in bands"
+    fi
+done
 # The vector paths (AVX2: trilinear lookups of colour maps, 3D noise at points) give the
 # scalar path's bytes: a colour map to the horizon (every mip level, blended), its bump,
 # and solid turbulence.

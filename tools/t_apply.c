@@ -193,6 +193,50 @@ __attribute__((noreturn)) static void die_freeing(struct tex_scene *s)
     tex_die();
 }
 
+/* The image's region r (x, y, w, h) of scene s, a band of rows at a time. */
+struct bands {
+    struct tex_scene *s;
+    const int *r;
+};
+
+static int render_band(void *arg, int y, int n, float *rows)
+{
+    const struct bands *b = arg;
+    if (tex_render_rows(b->s, b->r[0], b->r[1] + y, b->r[2], n, rows) < 0)
+        return -1;
+    tex_progress_add(n);
+    return 0;
+}
+
+/* Region r of the render written out: to a scanline EXR in bands, the image never held
+ * whole (less memory to take and clear: the same pixels, each band a region); else whole,
+ * sRGB-encoded for 8- and 16-bit formats. */
+static void render_out(struct tex_scene *s, const int r[4], const struct tex_common *c,
+                       const struct opts *o)
+{
+    int w, h;
+    tex_scene_size(s, &w, &h);
+    if (tex_cli_streams(c)) {
+        struct bands b = {s, r};
+        tex_map head = {.w = r[2], .h = r[3], .nc = 3};
+        if (r[2] != w || r[3] != h)
+            head.x0 = r[0], head.y0 = r[1], head.full_w = w, head.full_h = h;
+        tex_progress_stage(1, r[3]);
+        tex_cli_write_rows(&head, c, render_band, &b);
+        free(head.history);
+        return;
+    }
+    tex_map *img = tex_render_region(s, r[0], r[1], r[2], r[3],
+                                     tex_cli_progress_wanted(c) ? tex_cli_progress : NULL, NULL);
+    if (!img)
+        tex_die();
+    if (wants_srgb(c, o))
+        for (size_t k = 0; k < tex_map_samples(img); k++)
+            img->px[k] = tex_srgb_encode(img->px[k]);
+    tex_cli_write(img, c);
+    tex_map_free(img);
+}
+
 int main(int argc, char **argv)
 {
     struct tex_common c;
@@ -245,15 +289,7 @@ int main(int argc, char **argv)
     }
     if (!c.quiet)
         fputs(tex_scene_warnings(s), stderr);
-    tex_map *img = tex_render_region(s, r[0], r[1], r[2], r[3],
-                                     tex_cli_progress_wanted(&c) ? tex_cli_progress : NULL, NULL);
-    if (!img)
-        tex_die();
-    if (wants_srgb(&c, &o))
-        for (size_t k = 0; k < tex_map_samples(img); k++)
-            img->px[k] = tex_srgb_encode(img->px[k]);
-    tex_cli_write(img, &c);
-    tex_map_free(img);
+    render_out(s, r, &c, &o);
     tex_scene_free(s);
     free(c.cmdline);
     return 0;

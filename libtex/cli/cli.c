@@ -766,8 +766,6 @@ int tex_cli_progress_wanted(const struct tex_common *c)
     return !c->quiet && isatty(2);
 }
 
-static int stream_out_ok(const struct tex_common *c);
-
 struct gen_job {
     struct tex_field *f;
     int x, y, w; /* the window the bands cut (the whole grid without --window) */
@@ -904,7 +902,7 @@ int tex_generate_main_rows(const struct tex_primitive *p, const char *name,
         tex_die();
     if (colors)
         f->colors = (const float(*)[3])colors;
-    if (stream_out_ok(&c) && !tex_field_whole(f)) {
+    if (tex_cli_streams(&c) && !tex_field_whole(f)) {
         generate_bands(f, &c); /* the same pixels, a band of rows at a time */
     } else {
         if (!(m = tex_field_sample(f)))
@@ -946,7 +944,13 @@ static int band_fill(void *arg, int y, int n, float *rows)
     return 0;
 }
 
-static int stream_out_ok(const struct tex_common *c)
+void tex_cli_write_rows(tex_map *head, const struct tex_common *c, tex_rows_fn fill, void *arg)
+{
+    write_rows_out(head, c, fill, arg);
+    tex_progress_done();
+}
+
+int tex_cli_streams(const struct tex_common *c)
 {
     if (c->exr_tiles || c->mipmap || (c->format && strcmp(c->format, "exr") != 0))
         return 0;
@@ -963,7 +967,7 @@ void tex_cli_stream(const char *path, const struct tex_common *c,
 
     if (tex_map_write_check(c->output) < 0)
         tex_die();
-    if (stream_out_ok(c)) {
+    if (tex_cli_streams(c)) {
         r = tex_map_open_rows(path, &head, &whole);
         if (!r && !whole)
             tex_die();

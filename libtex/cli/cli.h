@@ -113,6 +113,15 @@ int tex_cli_depth(const struct tex_common *c);
  * standard output, or die. */
 void tex_cli_write(tex_map *m, const struct tex_common *c);
 
+/* A map made a band of rows at a time, never held whole: where -o (or the
+ * format) asks for a scanline EXR (tex_cli_streams), head (size, channels,
+ * place; its history gains the command line) is written to -o or standard
+ * output as fill makes its rows, as tex_exr_write_rows (io/stream.h) calls
+ * it; dies on errors. */
+int tex_cli_streams(const struct tex_common *c);
+void tex_cli_write_rows(tex_map *head, const struct tex_common *c,
+                        int (*fill)(void *arg, int y, int n, float *rows), void *arg);
+
 /* A progress bar on standard error, "t_NAME: [####    ]  50%", ending the
  * line at done == total, drawn once the work has run 0.3 s: for libtex's
  * progress callbacks (pass it only when standard error is a terminal and -q

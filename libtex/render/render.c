@@ -565,32 +565,29 @@ tex_map *tex_render(struct tex_scene *s, void (*progress)(long, long, void *), v
     return tex_render_region(s, 0, 0, s->settings.w, s->settings.h, progress, arg);
 }
 
-tex_map *tex_render_region(struct tex_scene *s, int rx, int ry, int rw, int rh,
-                           void (*progress)(long, long, void *), void *arg)
+/* The scene prepared and the region inside its image, or -1 with the error set. */
+static int region_check(struct tex_scene *s, int rx, int ry, int rw, int rh)
 {
     if (!s->bvh && tex_scene_prepare(s) < 0)
-        return NULL;
+        return -1;
     const struct tex_settings *st = &s->settings;
-    if (rx < 0 || ry < 0 || rw < 1 || rh < 1 || rx > st->w - rw || ry > st->h - rh) {
-        tex_usage_error("region %d,%d,%d,%d lies outside the %dx%d image", rx, ry, rw, rh, st->w,
-                        st->h);
-        return NULL;
-    }
-    tex_map *img = tex_map_new(rw, rh, 3);
-    if (!img)
-        return NULL;
-    if (rw != st->w || rh != st->h) {
-        img->x0 = rx;
-        img->y0 = ry;
-        img->full_w = st->w;
-        img->full_h = st->h;
-    }
+    if (rx < 0 || ry < 0 || rw < 1 || rh < 1 || rx > st->w - rw || ry > st->h - rh)
+        return tex_usage_error("region %d,%d,%d,%d lies outside the %dx%d image", rx, ry, rw,
+                               rh, st->w, st->h);
+    return 0;
+}
+
+/* The pixels of img (the region of its size at rx, ry), or -1 with the error set. */
+static int render_into(struct tex_scene *s, int rx, int ry, tex_map *img,
+                       void (*progress)(long, long, void *), void *arg)
+{
+    const struct tex_settings *st = &s->settings;
+    int rw = img->w, rh = img->h;
     for (int i = 0; i < s->nsurfaces; i++) {
         if (tex_surface_cache(s->surfaces[i], &s->cs) < 0) {
             for (int j = 0; j <= i; j++)
                 tex_surface_uncache(s->surfaces[j]);
-            tex_map_free(img);
-            return NULL;
+            return -1;
         }
     }
     tex_colour ambient, background;
@@ -636,5 +633,30 @@ tex_map *tex_render_region(struct tex_scene *s, int rx, int ry, int rw, int rh,
         progress(ntiles, ntiles, arg);
     for (int i = 0; i < s->nsurfaces; i++)
         tex_surface_uncache(s->surfaces[i]);
+    return 0;
+}
+
+tex_map *tex_render_region(struct tex_scene *s, int rx, int ry, int rw, int rh,
+                           void (*progress)(long, long, void *), void *arg)
+{
+    tex_map *img;
+    if (region_check(s, rx, ry, rw, rh) < 0 || !(img = tex_map_new(rw, rh, 3)))
+        return NULL;
+    if (rw != s->settings.w || rh != s->settings.h) {
+        img->x0 = rx;
+        img->y0 = ry;
+        img->full_w = s->settings.w;
+        img->full_h = s->settings.h;
+    }
+    if (render_into(s, rx, ry, img, progress, arg) < 0) {
+        tex_map_free(img);
+        return NULL;
+    }
     return img;
+}
+
+int tex_render_rows(struct tex_scene *s, int rx, int ry, int rw, int rh, float *px)
+{
+    tex_map img = {.w = rw, .h = rh, .nc = 3, .px = px};
+    return region_check(s, rx, ry, rw, rh) < 0 ? -1 : render_into(s, rx, ry, &img, NULL, NULL);
 }

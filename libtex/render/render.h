@@ -78,6 +78,9 @@ tex_map *tex_render(struct tex_scene *s, void (*progress)(long done, long total,
  * the map records its place (map.h).  A region outside the image is a usage error. */
 tex_map *tex_render_region(struct tex_scene *s, int rx, int ry, int rw, int rh,
                            void (*progress)(long done, long total, void *arg), void *arg);
+/* The same region's pixels into px (rw x rh RGB floats, row by row), the caller's: a
+ * band of a render written as it is made (t_apply).  0, or -1 with the error set. */
+int tex_render_rows(struct tex_scene *s, int rx, int ry, int rw, int rh, float *px);
 
 /* The scene's blocks by name ("settings", "camera", "light", "environment", "texture",
  * "surface", "apply", "object") with their parameter rows, for help and the man page;
