@@ -645,14 +645,15 @@ static double wrapdiff(double d)
  * surface) and t2 = N x t1, both of length sqrt(l2), and the footprint's widths along them,
  * width / c (c: the cosine of incidence, at least 0.02) and width.  Affine mappings take
  * the tangents as they are; the others want them of unit length (footprint_unit) and in
- * object space (footprint_obj: o1, o2, and short steps d1, d2 along them from the hit, P1,
- * P2 in world space, pl1, pl2 in object space). */
+ * object space (footprint_obj: o1, o2, and for finite differences short steps d1, d2 along
+ * them from the hit, P1, P2 in world space, pl1, pl2 in object space). */
 struct footprint {
     tex_v3 D, N;
     tex_v3 t1, t2;
     double l2, width, c;
     int tangents; /* 1: t1, t2, l2 and c are made (footprint_tangents) */
-    int unit, obj; /* 1: t1, t2 have unit length (l2 = 1); the object-space members are set */
+    int unit; /* 1: t1, t2 have unit length (l2 = 1) */
+    int obj;  /* 1: o1, o2 are set; 3: and the steps (footprint_obj) */
     tex_v3 o1, o2, P1, P2, pl1, pl2;
     double d1, d2;
 };
@@ -698,31 +699,38 @@ static void footprint_unit(struct footprint *fp)
     fp->unit = 1;
 }
 
-/* The object-space members, for the hit P (pl in object space) on leaf. */
+/* The object-space tangents o1, o2 on leaf (1 in fp->obj); the steps along them from the
+ * hit P (pl in object space), which only finite differences take, as well with steps
+ * (3 in fp->obj). */
 static void footprint_obj(struct footprint *fp, const struct tex_object *leaf, const tex_v3 *P,
-                          const tex_v3 *pl)
+                          const tex_v3 *pl, int steps)
 {
-    if (fp->obj)
+    if (!fp->obj) {
+        footprint_unit(fp);
+        fp->o1 = tex_xform_dir(&leaf->to_obj, fp->t1);
+        fp->o2 = tex_xform_dir(&leaf->to_obj, fp->t2);
+        fp->obj = 1;
+    }
+    if (!steps || fp->obj == 3)
         return;
-    footprint_unit(fp);
     double w1 = fp->width / fp->c, w2 = fp->width;
     fp->d1 = w1 < 1e-3 ? w1 : 1e-3, fp->d2 = w2 < 1e-3 ? w2 : 1e-3;
-    fp->o1 = tex_xform_dir(&leaf->to_obj, fp->t1);
-    fp->o2 = tex_xform_dir(&leaf->to_obj, fp->t2);
     fp->P1 = tex_v3_madd(*P, fp->t1, fp->d1), fp->P2 = tex_v3_madd(*P, fp->t2, fp->d2);
     fp->pl1 = tex_v3_madd(*pl, fp->o1, fp->d1), fp->pl2 = tex_v3_madd(*pl, fp->o2, fp->d2);
-    fp->obj = 1;
+    fp->obj = 3;
 }
 
 /* The footprint's extents along t1 and t2 (squared, *l2 the second) in texture units, u
  * and v placed, over dims of them (2: u, v; 3: and w, a solid's), by short steps along t1
- * and t2 from the hit, whose mapping gave uvw0 (footprint_obj set; no wrap-around),
+ * and t2 from the hit P (pl in object space), whose mapping gave uvw0 (no wrap-around),
  * scaled to the footprint; returns the first. */
 static double stepped_width2(const struct tex_apply *ap, const struct placement *pm,
-                             const struct tex_object *leaf, const struct footprint *fp,
-                             const double uvw0[3], int dims, double *l2out)
+                             const struct tex_object *leaf, struct footprint *fp,
+                             const tex_v3 *P, const tex_v3 *pl, const double uvw0[3], int dims,
+                             double *l2out)
 {
     double a[3], b[3];
+    footprint_obj(fp, leaf, P, pl, 1);
     map_point_at(ap, leaf, &fp->P1, &fp->pl1, a);
     map_point_at(ap, leaf, &fp->P2, &fp->pl2, b);
     double a0 = wrapdiff(a[0] - uvw0[0]) * pm->su, a1 = wrapdiff(a[1] - uvw0[1]) * pm->sv;
@@ -756,8 +764,7 @@ static double solid_width2(const struct tex_apply *ap, const struct placement *p
         }
         return sqrt(l1 * l2) * (fp->width * fp->width) / (fp->c * fp->l2);
     }
-    footprint_obj(fp, leaf, P, pl);
-    l1 = stepped_width2(ap, pm, leaf, fp, uvw0, 3, &l2);
+    l1 = stepped_width2(ap, pm, leaf, fp, P, pl, uvw0, 3, &l2);
     return sqrt(l1 * l2);
 }
 
@@ -777,7 +784,7 @@ placed_derivatives(const struct tex_apply *ap, const struct placement *pm,
     if (map_gradient(ap, leaf, g)) {
         gu = g[0], gv = g[1];
     } else { /* not affine: in object space */
-        footprint_obj(fp, leaf, P, pl);
+        footprint_obj(fp, leaf, P, pl, 0);
         if (!natural_gradient(ap, leaf, pl, face, &gu, &gv) &&
             !projection_gradient(ap, leaf, pl, &gu, &gv))
             return 0;
@@ -801,7 +808,7 @@ static double footprint_width2(const struct tex_apply *ap, const struct placemen
         double l2 = (du[1] * du[1] + dv[1] * dv[1]) * c2;
         return (l1 > l2 ? l1 : l2) * (fp->width * fp->width) / (fp->l2 * c2);
     }
-    double m1 = stepped_width2(ap, pm, leaf, fp, (double[3]){u0, v0, 0}, 2, &m2);
+    double m1 = stepped_width2(ap, pm, leaf, fp, P, pl, (double[3]){u0, v0, 0}, 2, &m2);
     return m1 > m2 ? m1 : m2;
 }
 
