@@ -64,6 +64,15 @@ for sig in INT TERM HUP PIPE; do
         ok "SIG$sig during the write leaves no temporary file, ends by the signal"
     fi
 done
+# t_apply writes an EXR as it renders it, a band of rows at a time: killed mid-render, it
+# leaves neither the file nor its temporary one.
+rm -f big.exr .big.exr.*
+read -r seen st left <<<"$(kill_during_write TERM big.exr t_apply "$TEXTURA_TOP/tests/scenes/spheres.scene" \
+    -s 4000x4000 -j 1 -o big.exr)"
+[ "$seen" = seen ] && [ -z "$left" ] && [ ! -e big.exr ] && [ "$st" = 143 ] &&
+    ok "SIGTERM during t_apply's render in bands leaves nothing" ||
+    notok "SIGTERM during t_apply's render in bands leaves nothing" "$seen exit $st left $left"
+rm -f big.exr .big.exr.*
 # timeout(1) signals the child, then its process group: two signals at once.
 rm -f big.png .big.png.*
 read -r seen st left <<<"$(TWICE=1 kill_during_write TERM big.png t_noise -s 6000 -o big.png)"
@@ -96,6 +105,11 @@ for a in -h -V; do
         notok "t_noise $a >/dev/full exits 1" "exit $st: $(cat err)"
     fi
 done
+t_apply "$TEXTURA_TOP/tests/scenes/spheres.scene" -s 64x200 -o - >/dev/full 2>err
+st=$?
+[ "$st" = 1 ] && grep -q '^t_apply: error: standard output: write error: No space' err &&
+    ok "t_apply's EXR in bands >/dev/full exits 1" ||
+    notok "t_apply's EXR in bands >/dev/full exits 1" "exit $st: $(cat err)"
 t_noise -s 8 -o n.exr
 t_info n.exr >/dev/full 2>err
 [ $? = 1 ] && ok "t_info >/dev/full exits 1" || notok "t_info >/dev/full exits 1" "$(cat err)"

@@ -791,10 +791,7 @@ static int gen_fill(void *arg, int y, int n, float *rows)
     return 0;
 }
 
-/* head (history gaining the command line) written to -o or standard output as
- * fill makes its rows, or die. */
-static void write_rows_out(tex_map *head, const struct tex_common *c, tex_rows_fn fill,
-                           void *arg)
+void tex_cli_write_rows(tex_map *head, const struct tex_common *c, tex_rows_fn fill, void *arg)
 {
     struct tex_out o = {.fd = 1};
     const char *oname = "standard output";
@@ -851,7 +848,7 @@ static void generate_bands(struct tex_field *f, const struct tex_common *c)
         head.full_h = f->h;
     }
     tex_progress_stage(1, head.h);
-    write_rows_out(&head, c, gen_fill, &j);
+    tex_cli_write_rows(&head, c, gen_fill, &j);
     free(head.history);
 }
 
@@ -944,12 +941,6 @@ static int band_fill(void *arg, int y, int n, float *rows)
     return 0;
 }
 
-void tex_cli_write_rows(tex_map *head, const struct tex_common *c, tex_rows_fn fill, void *arg)
-{
-    write_rows_out(head, c, fill, arg);
-    tex_progress_done();
-}
-
 int tex_cli_streams(const struct tex_common *c)
 {
     if (c->exr_tiles || c->mipmap || (c->format && strcmp(c->format, "exr") != 0))
@@ -994,7 +985,7 @@ void tex_cli_stream(const char *path, const struct tex_common *c,
         out.nc = probe->nc;
         out.subregions = probe->subregions;
         tex_map_free(probe);
-        write_rows_out(&out, c, band_fill, &j);
+        tex_cli_write_rows(&out, c, band_fill, &j);
         tex_rows_close(r);
         free(out.history);
     }

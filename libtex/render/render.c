@@ -118,14 +118,25 @@ static inline void shade_direct(const struct tex_material *m, const tex_v3 *N, c
         m->model->direct(m, &N->x, &V->x, &L->x, E, n, out);
 }
 
-/* The first light's direction, distance and attenuation at a hit, when it is a point or a
- * spot: made before the material, so that their square root and division run beside the
- * material's work rather than hold up the shadow ray.  ok: the light reaches the hit. */
+/* A light sample at a hit: its direction, distance and attenuation; ok: it reaches the hit.
+ * The first light's, a point or a spot, is made before the material (first_light), so that
+ * its square root and division run beside the material's work rather than hold up the
+ * shadow ray. */
 struct light_ahead {
     tex_v3 L;
     double dist, fatt;
     int ok;
 };
+
+/* Light sample k of l at P (jx, jy: an area light's jitter) into a. */
+static inline void light_at(const struct tex_light *l, int k, double jx, double jy,
+                            const tex_v3 *P, struct light_ahead *a)
+{
+    if (l->kind == TEX_LIGHT_POINT || l->kind == TEX_LIGHT_SPOT)
+        a->ok = tex_light_point_at(l, &l->pos, P, &a->L, &a->dist, &a->fatt) && a->fatt > 0;
+    else
+        a->ok = tex_light_sample(l, k, jx, jy, *P, &a->L, &a->dist, &a->fatt);
+}
 
 static inline const struct light_ahead *first_light(const struct tex_scene *s, const tex_v3 *P,
                                                     struct light_ahead *a)
@@ -133,7 +144,7 @@ static inline const struct light_ahead *first_light(const struct tex_scene *s, c
     const struct tex_light *l = s->lights;
     if (!s->nlights || (l->kind != TEX_LIGHT_POINT && l->kind != TEX_LIGHT_SPOT))
         return NULL;
-    a->ok = tex_light_point_at(l, &l->pos, P, &a->L, &a->dist, &a->fatt) && a->fatt > 0;
+    light_at(l, 0, 0.5, 0.5, P, a);
     return a;
 }
 
@@ -155,18 +166,14 @@ static void direct_light(const struct ctx *c, const struct tex_material *m,
                 jx = tex_rng_uniform(c->rng);
                 jy = tex_rng_uniform(c->rng);
             }
-            tex_v3 L;
-            double dist, fatt;
-            if (!li && a0) {
-                if (!a0->ok)
-                    continue;
-                L = a0->L, dist = a0->dist, fatt = a0->fatt;
-            } else if (l->kind == TEX_LIGHT_POINT || l->kind == TEX_LIGHT_SPOT
-                           ? !tex_light_point_at(l, &l->pos, f->P, &L, &dist, &fatt) ||
-                                 !(fatt > 0)
-                           : !tex_light_sample(l, k, jx, jy, *f->P, &L, &dist, &fatt)) {
+            struct light_ahead own;
+            const struct light_ahead *a = !li && a0 ? a0 : &own;
+            if (a == &own)
+                light_at(l, k, jx, jy, f->P, &own);
+            if (!a->ok)
                 continue;
-            }
+            tex_v3 L = a->L;
+            double dist = a->dist, fatt = a->fatt;
             if (tex_v3_dot(L, *N) <= 0 || tex_v3_dot(L, *f->Ngv) <= 0)
                 continue;
             double sh = tex_scene_transmit(s, f->Pout, &L, 0, dist, f->outside);
