@@ -14,9 +14,9 @@
  * a test that compares the paths in one process lowers the level with
  * tex_simd_limit.  TEX_AVX512 (AVX-512F) has two users, the noise rows of
  * wide cells (noise.h) and the renderer's map lookups over a packet of hits
- * (tex_texture_points), and TEX_VBMI one, the point kernel's hashes from a
- * byte table in registers where the CPU has VBMI (tex_simd_vbmi); elsewhere
- * AVX2 stays the best level's kernel.
+ * (tex_texture_points), and TEX_VBMI one, the point kernel's sixteen lanes
+ * with their hashes from a byte table in registers where the CPU has VBMI
+ * (tex_simd_vbmi); elsewhere AVX2 stays the best level's kernel.
  */
 #ifndef TEX_SIMD_H
 #define TEX_SIMD_H

@@ -98,13 +98,22 @@ static inline int lat_index(int64_t i, int period, int n)
     return imod64(i, n);
 }
 
-/* The fade of eq. 5.2 for t in [0,1] (w(0) = 1, w(1) = 0), and its derivative. */
-static inline double fade(int kind, double t)
-{
-    if (kind == TEX_FADE_QUINTIC)
-        return 1.0 - t * t * t * (t * (t * 6.0 - 15.0) + 10.0);
-    return (2.0 * t - 3.0) * t * t + 1.0;
-}
+/* The fade of eq. 5.2 for t in [0,1] (w(0) = 1, w(1) = 0), written once for double, float
+ * and the vector types, whose operators are their lanes' (C: a constant of type T): the same
+ * operations in the same order at every width. */
+#define FADE_FN(ATTR, NAME, T, C)                                                            \
+    ATTR static inline __attribute__((always_inline)) T NAME(int kind, T t)                  \
+    {                                                                                        \
+        if (kind == TEX_FADE_QUINTIC)                                                        \
+            return C(1) - t * t * t * (t * (t * C(6) - C(15)) + C(10));                      \
+        return (C(2) * t - C(3)) * t * t + C(1);                                             \
+    }
+#define FADE_D(x) x##.0
+#define FADE_F(x) x##.0f
+FADE_FN(, fade, double, FADE_D)
+FADE_FN(, fadef, float, FADE_F)
+
+/* The fade's derivative */
 
 static inline double dfade(int kind, double t)
 {
@@ -163,13 +172,6 @@ static double noise_point(const tex_noise_table *t, int period, int dims, const 
             }
     }
     return sum;
-}
-
-static inline float fadef(int kind, float t)
-{
-    if (kind == TEX_FADE_QUINTIC)
-        return 1.0f - t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f);
-    return (2.0f * t - 3.0f) * t * t + 1.0f;
 }
 
 /* 3D noise's value: cells and fractions in double precision (far points keep their
@@ -266,19 +268,8 @@ TEX_AVX2 static inline __attribute__((always_inline)) __m128i lat_pd(__m256d c, 
     return _mm256_cvttpd_epi32(mod_pd(c, n, 1.0 / n));
 }
 
-TEX_AVX2 static inline __attribute__((always_inline)) __m256 fade_ps(int kind, __m256 t)
-{
-    __m256 one = _mm256_set1_ps(1.0f);
-    if (kind == TEX_FADE_QUINTIC) {
-        __m256 q = _mm256_add_ps(
-            _mm256_mul_ps(t, _mm256_sub_ps(_mm256_mul_ps(t, _mm256_set1_ps(6.0f)),
-                                           _mm256_set1_ps(15.0f))),
-            _mm256_set1_ps(10.0f));
-        return _mm256_sub_ps(one, _mm256_mul_ps(_mm256_mul_ps(_mm256_mul_ps(t, t), t), q));
-    }
-    __m256 a = _mm256_sub_ps(_mm256_mul_ps(_mm256_set1_ps(2.0f), t), _mm256_set1_ps(3.0f));
-    return _mm256_add_ps(_mm256_mul_ps(_mm256_mul_ps(a, t), t), one);
-}
+#define FADE_PS(x) _mm256_set1_ps(x##.0f)
+FADE_FN(TEX_AVX2, fade_ps, __m256, FADE_PS)
 
 /* Eight 32-bit lanes from two groups of four */
 TEX_AVX2 static inline __attribute__((always_inline)) __m256i join_epi32(__m128i lo, __m128i hi)
@@ -326,15 +317,28 @@ TEX_AVX2 static inline __attribute__((always_inline)) void columns8x2(const __m2
  * levels of dependent gathers) are under way while this eight's corners are summed. */
 struct lanes8 {
     __m256 f[3], dm[3], wt[3][2]; /* fractions, fractions - 1, weights */
-    __m256i x[2], hy[2][2];       /* the x corners' indices; the hashes of y and z */
+    int off[2][4][8]; /* [b0][b1 + 2 b2]: byte offsets of the corners' pgrad rows (b0 = 1
+                       * only with a period: otherwise b0 = 0's row holds both) */
 };
 
-/* The cells, fractions and weights of eight points, and the lattice indices of y and z
- * still to hash (iy, iz); 0 when a cell is beyond 2^30 (the caller's scalar path takes
+/* off from the x corners' indices x and the hashes of y and z, F[iy + F[iz]]: made with the
+ * hashes, so that the sum's row loads do not wait for their offsets to pass through memory
+ * (a vector store read back as integers right away stalls on Intel). */
+TEX_AVX2 static inline __attribute__((always_inline)) void
+lanes8_offsets(int period, const __m256i x[2], const __m256i hy[2][2], struct lanes8 *L)
+{
+    for (int q = 0; q < 4; q++)
+        for (int b0 = 0; b0 < 1 + !!period; b0++)
+            _mm256_storeu_si256((__m256i *)L->off[b0][q],
+                                _mm256_slli_epi32(_mm256_add_epi32(x[b0], hy[q & 1][q >> 1]), 4));
+}
+
+/* The cells, fractions and weights of eight points, and the lattice indices of x, and of y
+ * and z still to hash (iy, iz); 0 when a cell is beyond 2^30 (the caller's scalar path takes
  * those). */
 TEX_AVX2 static inline __attribute__((always_inline)) int
 lanes8_cells(const tex_noise_table *t, int period, const __m256d p[3][2], struct lanes8 *L,
-             __m256i iy[2], __m256i iz[2])
+             __m256i ix[2], __m256i iy[2], __m256i iz[2])
 {
     const __m256d lim = _mm256_set1_pd(0x1p30), sign = _mm256_set1_pd(-0.0);
     const __m256 one = _mm256_set1_ps(1.0f);
@@ -369,8 +373,7 @@ lanes8_cells(const tex_noise_table *t, int period, const __m256d p[3][2], struct
         L->wt[a][0] = fade_ps(t->fade, f);
         L->wt[a][1] = fade_ps(t->fade, _mm256_sub_ps(one, f));
     }
-    L->x[0] = idx[0][0];
-    L->x[1] = idx[0][1];
+    ix[0] = idx[0][0], ix[1] = idx[0][1];
     iy[0] = idx[1][0], iy[1] = idx[1][1];
     iz[0] = idx[2][0], iz[1] = idx[2][1];
     return 1;
@@ -380,14 +383,15 @@ lanes8_cells(const tex_noise_table *t, int period, const __m256d p[3][2], struct
 TEX_AVX2 static inline __attribute__((always_inline)) int
 lanes8_hash(const tex_noise_table *t, int period, const __m256d p[3][2], struct lanes8 *L)
 {
-    __m256i iy[2], iz[2];
-    if (!lanes8_cells(t, period, p, L, iy, iz))
+    __m256i ix[2], iy[2], iz[2], hy[2][2];
+    if (!lanes8_cells(t, period, p, L, ix, iy, iz))
         return 0;
     for (int b2 = 0; b2 < 2; b2++) {
         __m256i hz = _mm256_i32gather_epi32(t->perm, iz[b2], 4);
         for (int b1 = 0; b1 < 2; b1++)
-            L->hy[b1][b2] = _mm256_i32gather_epi32(t->perm, _mm256_add_epi32(iy[b1], hz), 4);
+            hy[b1][b2] = _mm256_i32gather_epi32(t->perm, _mm256_add_epi32(iy[b1], hz), 4);
     }
+    lanes8_offsets(period, ix, hy, L);
     return 1;
 }
 
@@ -409,30 +413,6 @@ TEX_VBMI static inline __attribute__((always_inline)) void perm8_load(const tex_
         T[q] = _mm512_loadu_si512(t->perm8 + 64 * q);
 }
 
-/* lanes8_hash's hashes from perm8 in registers (Zen 4's gathers are slow): the same values. */
-TEX_VBMI static inline __attribute__((always_inline)) int
-lanes8_hash_vbmi(const tex_noise_table *t, const __m512i T[4], const __m256d p[3][2],
-                 struct lanes8 *L)
-{
-    __m256i iy[2], iz[2];
-    if (!lanes8_cells(t, 0, p, L, iy, iz))
-        return 0;
-    __m128i bz = _mm_unpacklo_epi64(_mm256_cvtepi32_epi8(iz[0]), _mm256_cvtepi32_epi8(iz[1]));
-    __m128i hz = _mm512_castsi512_si128(perm8_lookup(T, _mm512_castsi128_si512(bz)));
-    __m256i h[2] = {_mm256_cvtepu8_epi32(hz), _mm256_cvtepu8_epi32(_mm_srli_si128(hz, 8))};
-    __m128i by[2];
-    for (int b2 = 0; b2 < 2; b2++) /* bytes 8 b2 + 0..7: (b1 = 0, b2), 8 b2 + 8..15: (1, b2) */
-        by[b2] = _mm_unpacklo_epi64(_mm256_cvtepi32_epi8(_mm256_add_epi32(iy[0], h[b2])),
-                                    _mm256_cvtepi32_epi8(_mm256_add_epi32(iy[1], h[b2])));
-    __m512i hy = perm8_lookup(T, _mm512_castsi256_si512(_mm256_set_m128i(by[1], by[0])));
-    __m128i r0 = _mm512_castsi512_si128(hy), r1 = _mm512_extracti32x4_epi32(hy, 1);
-    L->hy[0][0] = _mm256_cvtepu8_epi32(r0);
-    L->hy[1][0] = _mm256_cvtepu8_epi32(_mm_srli_si128(r0, 8));
-    L->hy[0][1] = _mm256_cvtepu8_epi32(r1);
-    L->hy[1][1] = _mm256_cvtepu8_epi32(_mm_srli_si128(r1, 8));
-    return 1;
-}
-
 /* The eight corners' sum, corner by corner in noise3_point's order. */
 TEX_AVX2 static inline __attribute__((always_inline)) void
 lanes8_sum(const tex_noise_table *t, int period, const struct lanes8 *L, float *out)
@@ -446,16 +426,9 @@ lanes8_sum(const tex_noise_table *t, int period, const struct lanes8 *L, float *
 #pragma GCC unroll 4
     for (int q = 0; q < 4; q++) { /* corners 2q and 2q + 1, which differ in x alone */
         const int b1 = q & 1, b2 = q >> 1;
-        /* byte offsets of the two corners' rows pgrad[...], read back from memory:
-         * cheaper than extracts.  Without a period corner 1's row follows corner 0's
-         * (idx + 1 unwrapped reaches pgrad[n..2n), which repeats pgrad[0..n)). */
-        int m0[8], m1[8];
-        _mm256_storeu_si256((__m256i *)m0,
-                            _mm256_slli_epi32(_mm256_add_epi32(L->x[0], L->hy[b1][b2]), 4));
-        if (period)
-            _mm256_storeu_si256((__m256i *)m1,
-                                _mm256_slli_epi32(_mm256_add_epi32(L->x[1], L->hy[b1][b2]), 4));
-        __asm__ volatile("" : : "m"(m0), "m"(m1) : "memory");
+        /* Without a period corner 1's row follows corner 0's (idx + 1 unwrapped reaches
+         * pgrad[n..2n), which repeats pgrad[0..n)). */
+        const int *m0 = L->off[0][q], *m1 = L->off[1][q];
         __m256 r[8], gr[2][4];
 #pragma GCC unroll 8
         for (int i = 0; i < 8; i++)
@@ -475,18 +448,25 @@ lanes8_sum(const tex_noise_table *t, int period, const struct lanes8 *L, float *
     _mm256_storeu_ps(out, sum);
 }
 
-/* Points i..i+7: a + f (u, v, w) (w NULL: 0) as tex_noise_points_at makes them, or
- * (u, v, w) themselves when a is NULL. */
-TEX_AVX2 static inline __attribute__((always_inline)) void
-points8(const double *a, double f, const double *const c[3], int i, __m256d p[3][2])
-{
-    __m256d vf = _mm256_set1_pd(f);
-    for (int k = 0; k < 3; k++)
-        for (int h = 0; h < 2; h++) {
-            __m256d x = c[k] ? _mm256_loadu_pd(c[k] + i + 4 * h) : _mm256_setzero_pd();
-            p[k][h] = a ? _mm256_add_pd(_mm256_set1_pd(a[k]), _mm256_mul_pd(vf, x)) : x;
-        }
-}
+/* Points i..i+7 (points16: i..i+15): a + f (u, v, w) (w NULL: 0) as tex_noise_points_at
+ * makes them, or (u, v, w) themselves when a is NULL; the vector types' operators, a scalar
+ * taken as a vector of it. */
+#define POINTS_FN(ATTR, NAME, V, LOADU)                                                      \
+    ATTR static inline __attribute__((always_inline)) void NAME(                             \
+        const double *a, double f, const double *const c[3], int i, V p[3][2])               \
+    {                                                                                        \
+        enum { W = sizeof(V) / sizeof(double) };                                             \
+        for (int k = 0; k < 3; k++)                                                          \
+            for (int h = 0; h < 2; h++) {                                                    \
+                V x = {0};                                                                   \
+                if (c[k])                                                                    \
+                    x = LOADU(c[k] + i + W * h);                                             \
+                p[k][h] = x;                                                                 \
+                if (a)                                                                       \
+                    p[k][h] = a[k] + f * x;                                                  \
+            }                                                                                \
+    }
+POINTS_FN(TEX_AVX2, points8, __m256d, _mm256_loadu_pd)
 
 /* noise3_at at the points of points8, i < n, or tex_noise3p at (u, v, w) with a NULL */
 static float noise3_src(const tex_noise_table *t, int period, const double *a, double f,
@@ -498,45 +478,204 @@ static float noise3_src(const tex_noise_table *t, int period, const double *a, d
 }
 
 /* The first n - n % 8 points, eight at a time, the hashes of the next eight made before this
- * eight's corners are summed; returns how many.  One loop for two kernels, which differ in
- * their hashes, HASH(L, p) (0: a cell beyond 2^30), and what these need first (SETUP). */
-#define NOISE3_POINTS(TARGET, NAME, SETUP, HASH)                                             \
-    TARGET static int NAME(const tex_noise_table *t, int period, const double *a, double f, \
-                           const double *const c[3], int n, float *out)                      \
-    {                                                                                        \
-        struct lanes8 L[2];                                                                  \
-        int ok[2], m = n / 8;                                                                \
-        __m256d p[3][2];                                                                     \
-        SETUP;                                                                               \
-        if (m == 0)                                                                          \
-            return 0;                                                                        \
-        points8(a, f, c, 0, p);                                                              \
-        ok[0] = HASH(&L[0], p);                                                              \
-        for (int k = 0; k < m; k++) {                                                        \
-            if (k + 1 < m) {                                                                 \
-                points8(a, f, c, 8 * (k + 1), p);                                            \
-                ok[(k + 1) & 1] = HASH(&L[(k + 1) & 1], p);                                  \
-            }                                                                                \
-            if (ok[k & 1])                                                                   \
-                lanes8_sum(t, period, &L[k & 1], out + 8 * k);                               \
-            else                                                                             \
-                for (int i = 8 * k; i < 8 * k + 8; i++)                                      \
-                    out[i] = noise3_src(t, period, a, f, c, i);                              \
-        }                                                                                    \
-        return 8 * m;                                                                        \
+ * eight's corners are summed; returns how many. */
+TEX_AVX2 static int noise3_avx2_points(const tex_noise_table *t, int period, const double *a,
+                                       double f, const double *const c[3], int n, float *out)
+{
+    struct lanes8 L[2];
+    int ok[2], m = n / 8;
+    __m256d p[3][2];
+    if (m == 0)
+        return 0;
+    points8(a, f, c, 0, p);
+    ok[0] = lanes8_hash(t, period, p, &L[0]);
+    for (int k = 0; k < m; k++) {
+        if (k + 1 < m) {
+            points8(a, f, c, 8 * (k + 1), p);
+            ok[(k + 1) & 1] = lanes8_hash(t, period, p, &L[(k + 1) & 1]);
+        }
+        if (ok[k & 1])
+            lanes8_sum(t, period, &L[k & 1], out + 8 * k);
+        else
+            for (int i = 8 * k; i < 8 * k + 8; i++)
+                out[i] = noise3_src(t, period, a, f, c, i);
     }
-#define HASH_GATHER(Lp, pp) lanes8_hash(t, period, pp, Lp)
-#define HASH_VBMI(Lp, pp) lanes8_hash_vbmi(t, T, pp, Lp)
-NOISE3_POINTS(TEX_AVX2, noise3_avx2_points, (void)0, HASH_GATHER)
-NOISE3_POINTS(TEX_VBMI, noise3_vbmi_points, __m512i T[4]; perm8_load(t, T), HASH_VBMI)
+    return 8 * m;
+}
+
+/* ---- sixteen points in 512-bit registers (VBMI: 256 gradients, no period) ----
+ * Eight points' two x corners share a register: [p0..3 | p0..3 | p4..7 | p4..7], corner
+ * b0 = 0 in the first and third quarters, b0 = 1 in the others; sixteen points are two such
+ * sets.  A point's 32-byte row of pgrad (both x corners) fills half a register, so that
+ * columns4 leaves the gradients in this order without crossing quarters, and the corners'
+ * products return to point order once per corner pair.  Same operations as noise3_point. */
+struct lanes16 {
+    __m512 dx[2], wx[2];       /* [set]: f | f - 1 and their fades, by corner b0 */
+    __m512 dy[2][2], dz[2][2]; /* [set][b]: f or f - 1, each point twice */
+    __m512 wy[2][2], wz[2][2]; /* [set][b]: the fades */
+    int off[4][16];            /* [b1 + 2 b2]: the byte offsets of the points' pgrad rows */
+};
+
+#define FADE_PS16(x) _mm512_set1_ps(x##.0f)
+FADE_FN(TEX_VBMI, fade_ps16, __m512, FADE_PS16)
+
+/* One axis of sixteen points in point order: v = f, f - 1, fade (f), fade (1 - f), and the
+ * cells' lattice indices as bytes mod 256 (byte i: point i); 0 when a cell is beyond 2^30. */
+TEX_VBMI static inline __attribute__((always_inline)) int
+lanes16_axis(int fade, const __m512d p[2], __m512 v[4], __m128i *idx)
+{
+    const __m512 one = _mm512_set1_ps(1.0f);
+    const __m512d lim = _mm512_set1_pd(0x1p30);
+    __m512d c0 = _mm512_roundscale_pd(p[0], _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+    __m512d c1 = _mm512_roundscale_pd(p[1], _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+    if (_mm512_cmp_pd_mask(_mm512_abs_pd(c0), lim, _CMP_NLT_UQ) |
+        _mm512_cmp_pd_mask(_mm512_abs_pd(c1), lim, _CMP_NLT_UQ))
+        return 0;
+    __m512 f = _mm512_castpd_ps(_mm512_insertf64x4(
+        _mm512_castpd256_pd512(_mm256_castps_pd(_mm512_cvtpd_ps(_mm512_sub_pd(p[0], c0)))),
+        _mm256_castps_pd(_mm512_cvtpd_ps(_mm512_sub_pd(p[1], c1))), 1));
+    __m512i ic = _mm512_inserti64x4(_mm512_castsi256_si512(_mm512_cvttpd_epi32(c0)),
+                                    _mm512_cvttpd_epi32(c1), 1);
+    /* the low bytes of the sixteen dwords: mod 256, negatives too */
+    const __m512i low = _mm512_set_epi32(0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0x3c383430,
+                                         0x2c282420, 0x1c181410, 0x0c080400);
+    *idx = _mm512_castsi512_si128(_mm512_permutexvar_epi8(low, ic));
+    v[0] = f;
+    v[1] = _mm512_sub_ps(f, one);
+    v[2] = fade_ps16(fade, f);
+    v[3] = fade_ps16(fade, _mm512_sub_ps(one, f));
+    return 1;
+}
+
+/* The fractions, fades and hashes of sixteen points; 0 when a cell is beyond 2^30. */
+TEX_VBMI static inline __attribute__((always_inline)) int
+lanes16_hash(int fade, const __m512i T[4], const __m512d p[3][2], struct lanes16 *L)
+{
+    /* set s: points 8s..8s+3 twice, then 8s+4..8s+7 twice; for x the second of each pair
+     * from the second source (corner b0 = 1) */
+    const __m512i twice[2] = {
+        _mm512_set_epi32(7, 6, 5, 4, 7, 6, 5, 4, 3, 2, 1, 0, 3, 2, 1, 0),
+        _mm512_set_epi32(15, 14, 13, 12, 15, 14, 13, 12, 11, 10, 9, 8, 11, 10, 9, 8)};
+    const __m512i pair[2] = {
+        _mm512_set_epi32(23, 22, 21, 20, 7, 6, 5, 4, 19, 18, 17, 16, 3, 2, 1, 0),
+        _mm512_set_epi32(31, 30, 29, 28, 15, 14, 13, 12, 27, 26, 25, 24, 11, 10, 9, 8)};
+    __m512 vx[4], vy[4], vz[4];
+    __m128i ix, iy, iz;
+    if (!lanes16_axis(fade, p[0], vx, &ix) || !lanes16_axis(fade, p[1], vy, &iy) ||
+        !lanes16_axis(fade, p[2], vz, &iz))
+        return 0;
+    for (int s = 0; s < 2; s++) {
+        L->dx[s] = _mm512_permutex2var_ps(vx[0], pair[s], vx[1]);
+        L->wx[s] = _mm512_permutex2var_ps(vx[2], pair[s], vx[3]);
+        for (int b = 0; b < 2; b++) {
+            L->dy[s][b] = _mm512_permutexvar_ps(twice[s], vy[b]);
+            L->wy[s][b] = _mm512_permutexvar_ps(twice[s], vy[2 + b]);
+            L->dz[s][b] = _mm512_permutexvar_ps(twice[s], vz[b]);
+            L->wz[s][b] = _mm512_permutexvar_ps(twice[s], vz[2 + b]);
+        }
+    }
+    __m512i x = _mm512_cvtepu8_epi32(ix);
+    /* bytes 0..15: F[iz], 16..31: F[iz + 1]; then quarter b1 + 2 b2: F[iy + b1 + F[iz + b2]]
+     * (bytes add mod 256, as F repeats after 256) */
+    const __m512i plus1 = _mm512_set_epi64(0, 0, 0, 0, 0x0101010101010101,
+                                           0x0101010101010101, 0, 0);
+    __m512i hz = perm8_lookup(T, _mm512_add_epi8(_mm512_broadcast_i32x4(iz), plus1));
+    __m512i by = _mm512_add_epi8(_mm512_broadcast_i32x4(iy),
+                                 _mm512_shuffle_i32x4(plus1, plus1, 0x44));
+    __m512i hy = perm8_lookup(T, _mm512_add_epi8(by, _mm512_shuffle_i32x4(hz, hz, 0x50)));
+    __m128i hq[4] = {_mm512_castsi512_si128(hy), _mm512_extracti32x4_epi32(hy, 1),
+                     _mm512_extracti32x4_epi32(hy, 2), _mm512_extracti32x4_epi32(hy, 3)};
+    for (int q = 0; q < 4; q++) /* pgrad[x + F[...]], 16 bytes a row */
+        _mm512_storeu_si512(L->off[q],
+                            _mm512_slli_epi32(_mm512_add_epi32(x, _mm512_cvtepu8_epi32(hq[q])), 4));
+    return 1;
+}
+
+/* The x, y and z columns of the rows in each quarter of r[0..3] (columns4's first three) */
+TEX_VBMI static inline __attribute__((always_inline)) void columns3_16(const __m512 r[4],
+                                                                       __m512 c[3])
+{
+    __m512 t0 = _mm512_unpacklo_ps(r[0], r[1]), t1 = _mm512_unpacklo_ps(r[2], r[3]);
+    __m512 t2 = _mm512_unpackhi_ps(r[0], r[1]), t3 = _mm512_unpackhi_ps(r[2], r[3]);
+    c[0] = _mm512_shuffle_ps(t0, t1, _MM_SHUFFLE(1, 0, 1, 0));
+    c[1] = _mm512_shuffle_ps(t0, t1, _MM_SHUFFLE(3, 2, 3, 2));
+    c[2] = _mm512_shuffle_ps(t2, t3, _MM_SHUFFLE(1, 0, 1, 0));
+}
+
+/* The eight corners' sum of sixteen points, corner by corner in noise3_point's order. */
+TEX_VBMI static inline __attribute__((always_inline)) void
+lanes16_sum(const tex_noise_table *t, const struct lanes16 *L, float *out)
+{
+    const char *G = (const char *)t->pgrad;
+    __m512 wxy[2][2], sum = _mm512_setzero_ps();
+
+    for (int s = 0; s < 2; s++)
+        for (int b1 = 0; b1 < 2; b1++)
+            wxy[s][b1] = _mm512_mul_ps(L->wx[s], L->wy[s][b1]);
+#pragma GCC unroll 4
+    for (int q = 0; q < 4; q++) { /* corners 2q and 2q + 1 */
+        const int b1 = q & 1, b2 = q >> 1;
+        const int *m = L->off[q];
+        __m512 prod[2];
+#pragma GCC unroll 2
+        for (int s = 0; s < 2; s++) {
+            __m512 r[4], g[3];
+#pragma GCC unroll 4
+            for (int k = 0; k < 4; k++)
+                r[k] = _mm512_castpd_ps(_mm512_insertf64x4(
+                    _mm512_castpd256_pd512(_mm256_loadu_pd((const double *)(G + m[8 * s + k]))),
+                    _mm256_loadu_pd((const double *)(G + m[8 * s + 4 + k])), 1));
+            columns3_16(r, g);
+            __m512 dot = _mm512_mul_ps(g[0], L->dx[s]);
+            dot = _mm512_add_ps(dot, _mm512_mul_ps(g[1], L->dy[s][b1]));
+            dot = _mm512_add_ps(dot, _mm512_mul_ps(g[2], L->dz[s][b2]));
+            prod[s] = _mm512_mul_ps(_mm512_mul_ps(wxy[s][b1], L->wz[s][b2]), dot);
+        }
+        sum = _mm512_add_ps(sum, _mm512_shuffle_f32x4(prod[0], prod[1], _MM_SHUFFLE(2, 0, 2, 0)));
+        sum = _mm512_add_ps(sum, _mm512_shuffle_f32x4(prod[0], prod[1], _MM_SHUFFLE(3, 1, 3, 1)));
+    }
+    _mm512_storeu_ps(out, sum);
+}
+
+POINTS_FN(TEX_VBMI, points16, __m512d, _mm512_loadu_pd)
+
+/* The first n - n % 8 points: sixteen at a time as noise3_avx2_points does eight, the last
+ * eight by it; returns how many. */
+TEX_VBMI static int noise3_zmm_points(const tex_noise_table *t, int period, const double *a,
+                                      double f, const double *const c[3], int n, float *out)
+{
+    struct lanes16 L[2];
+    int ok[2], m = n / 16;
+    __m512d p[3][2];
+    __m512i T[4];
+    perm8_load(t, T);
+    if (m > 0) {
+        points16(a, f, c, 0, p);
+        ok[0] = lanes16_hash(t->fade, T, p, &L[0]);
+    }
+    for (int k = 0; k < m; k++) {
+        if (k + 1 < m) {
+            points16(a, f, c, 16 * (k + 1), p);
+            ok[(k + 1) & 1] = lanes16_hash(t->fade, T, p, &L[(k + 1) & 1]);
+        }
+        if (ok[k & 1])
+            lanes16_sum(t, &L[k & 1], out + 16 * k);
+        else
+            for (int i = 16 * k; i < 16 * k + 16; i++)
+                out[i] = noise3_src(t, period, a, f, c, i);
+    }
+    int i = 16 * m;
+    const double *ci[3] = {c[0] + i, c[1] + i, c[2] ? c[2] + i : NULL};
+    return i + noise3_avx2_points(t, period, a, f, ci, n - i, out + i);
+}
 
 typedef int (*points_kernel)(const tex_noise_table *, int, const double *, double,
                              const double *const[3], int, float *);
-/* The point kernel for t: the byte-table one for 256 gradients and no period where the CPU
- * has VBMI (the same bytes), else the gathers. */
+/* The point kernel for t: sixteen lanes and the byte table for 256 gradients and no period
+ * where the CPU has VBMI (the same bytes), else eight lanes and the gathers. */
 static points_kernel points_kernel_for(const tex_noise_table *t, int period)
 {
-    return !period && t->n == 256 && tex_simd_vbmi() ? noise3_vbmi_points : noise3_avx2_points;
+    return !period && t->n == 256 && tex_simd_vbmi() ? noise3_zmm_points : noise3_avx2_points;
 }
 #endif
 

@@ -108,8 +108,9 @@ double tex_noise3p(const tex_noise_table *t, int period, double x, double y, dou
 double tex_noise4p(const tex_noise_table *t, int period, double x, double y, double z, double w);
 /* Noise at n points (x[i], y[i], z[i][, w[i]]), dims 3 or 4 (w unused with 3):
  * the values of tex_noise3p / tex_noise4p, bit for bit, eight points at a
- * time with AVX2 (3D); with 256 gradients and no period, their hashes from
- * perm8 in registers where the CPU has AVX-512 VBMI, not by gathers. */
+ * time with AVX2 (3D); with 256 gradients and no period, sixteen at a time in
+ * 512-bit registers, their hashes from perm8 in registers, where the CPU has
+ * AVX-512 VBMI. */
 void tex_noise_points(const tex_noise_table *t, int period, int dims, int n, const double *x,
                       const double *y, const double *z, const double *w, double *out);
 /* 3D noise at the n points (a[0] + f u[i], a[1] + f v[i], a[2] + f w[i]) (w NULL: 0),
