@@ -591,15 +591,17 @@ lanes16_hash(int fade, const __m512i T[4], const __m512d p[3][2], struct lanes16
     return 1;
 }
 
-/* The x, y and z columns of the rows in each quarter of r[0..3] (columns4's first three) */
-TEX_VBMI static inline __attribute__((always_inline)) void columns3_16(const __m512 r[4],
-                                                                       __m512 c[3])
+/* Four rows of four floats in each 128-bit quarter of r[0..3] as the vectors of their
+ * columns (row i of each quarter in lane i of that quarter): columns4 on 512 bits */
+TEX_AVX512 static inline __attribute__((always_inline)) void columns4_16(const __m512 r[4],
+                                                                         __m512 c[4])
 {
     __m512 t0 = _mm512_unpacklo_ps(r[0], r[1]), t1 = _mm512_unpacklo_ps(r[2], r[3]);
     __m512 t2 = _mm512_unpackhi_ps(r[0], r[1]), t3 = _mm512_unpackhi_ps(r[2], r[3]);
     c[0] = _mm512_shuffle_ps(t0, t1, _MM_SHUFFLE(1, 0, 1, 0));
     c[1] = _mm512_shuffle_ps(t0, t1, _MM_SHUFFLE(3, 2, 3, 2));
     c[2] = _mm512_shuffle_ps(t2, t3, _MM_SHUFFLE(1, 0, 1, 0));
+    c[3] = _mm512_shuffle_ps(t2, t3, _MM_SHUFFLE(3, 2, 3, 2));
 }
 
 /* The eight corners' sum of sixteen points, corner by corner in noise3_point's order. */
@@ -619,13 +621,13 @@ lanes16_sum(const tex_noise_table *t, const struct lanes16 *L, float *out)
         __m512 prod[2];
 #pragma GCC unroll 2
         for (int s = 0; s < 2; s++) {
-            __m512 r[4], g[3];
+            __m512 r[4], g[4];
 #pragma GCC unroll 4
             for (int k = 0; k < 4; k++)
                 r[k] = _mm512_castpd_ps(_mm512_insertf64x4(
                     _mm512_castpd256_pd512(_mm256_loadu_pd((const double *)(G + m[8 * s + k]))),
                     _mm256_loadu_pd((const double *)(G + m[8 * s + 4 + k])), 1));
-            columns3_16(r, g);
+            columns4_16(r, g);
             __m512 dot = _mm512_mul_ps(g[0], L->dx[s]);
             dot = _mm512_add_ps(dot, _mm512_mul_ps(g[1], L->dy[s][b1]));
             dot = _mm512_add_ps(dot, _mm512_mul_ps(g[2], L->dz[s][b2]));
@@ -891,6 +893,8 @@ int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int 
     double rows = g->fy < 1 ? g->fy * h + 2 : 2.0 * h;
     if (t->n <= 1024 && rows * ns > 2.0 * t->n * t->n)
         lut_init(g); /* without memory for it, rows fold their own */
+    if (g->lut && g->adjacent && g->w >= 2 * (t->n + 1))
+        g->wide = 1; /* rows from folded coefficients (row_lut_avx512): sixteen columns too */
     if (g->fy < 1)
         cache_init(g);
     return 0;
@@ -1498,24 +1502,27 @@ TEX_AVX2 static void lut_fold_avx2(const float (*T0)[4], const float (*T1)[4], i
     lut_fold(T0 + i, T1 ? T1 + i : NULL, m - i, wy, dy, PQ + 2 * i);
 }
 
+/* Entry i of folded coefficients PQ, its (P, Q) pair: addressed as the i-th 8-byte unit, so
+ * that a load takes the index as it is (scaled by the address, not by arithmetic first) */
+#define PQ_AT(PQ, i) ((const float *)((const double *)(PQ) + (i)))
+
 /* An adjacent grid's row from folded coefficients: a column's (P, Q) pairs for its
  * two corners are the four floats at its left entry. */
 TEX_AVX2 static inline __attribute__((always_inline)) void
-row_folded_avx2_op(const tex_noise_grid *g, const float *PQ, float *out, const int op, float a,
-                   float b)
+row_folded_avx2_op(const tex_noise_grid *g, const float *PQ, float *out, int x, const int op,
+                   float a, float b)
 {
     const int32_t *restrict lat = g->lat;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
                           *restrict w1 = g->w1;
     __m256 va = _mm256_set1_ps(a), vb = _mm256_set1_ps(b);
-    int x = 0;
 
     for (; x + 8 <= g->w; x += 8) {
         const float *row[8];
         __m256 c[4]; /* the left corners' P, Q, the right corners' P, Q */
 #pragma GCC unroll 8
         for (int i = 0; i < 8; i++)
-            row[i] = PQ + 2 * lat[2 * (x + i)];
+            row[i] = PQ_AT(PQ, lat[2 * (x + i)]);
         columns8(row, c);
         pixels8(u + x, um1 + x, w0 + x, w1 + x, c[0], c[2], c[1], c[3], out + x, op, va, vb);
     }
@@ -1535,7 +1542,7 @@ TEX_AVX2 static void row_lut_avx2(const tex_noise_grid *g, int64_t j, const floa
     if (g->adjacent && g->w >= 2 * m) { /* more columns than entries: fold the entries first */
         float PQ[2 * (TEX_NOISE_MAX_GRADIENTS + 1)];
         lut_fold_avx2(T0, T1, m, wy, dy, PQ);
-        ROW_OP_SWITCH(row_folded_avx2_op, (g, PQ, out), (a, b));
+        ROW_OP_SWITCH(row_folded_avx2_op, (g, PQ, out, 0), (a, b));
         return;
     }
     if (g->adjacent) {
@@ -1675,6 +1682,51 @@ row_avx512_paired_op(const tex_noise_grid *g, const float *P, const float *Q, in
     row_avx2_paired_op(g, P, Q, sb, out, x, x1, op, a, b);
 }
 
+/* row_folded_avx2_op sixteen columns at a time: the rows of columns x + k, x + 4 + k,
+ * x + 8 + k and x + 12 + k in the quarters of r[k], so that columns4_16 gives point order */
+TEX_AVX512 static inline __attribute__((always_inline)) void
+row_folded_avx512_op(const tex_noise_grid *g, const float *PQ, float *out, const int op, float a,
+                     float b)
+{
+    const int32_t *restrict lat = g->lat;
+    const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
+                          *restrict w1 = g->w1;
+    __m512 va = _mm512_set1_ps(a), vb = _mm512_set1_ps(b);
+    int x = 0;
+
+    for (; x + 16 <= g->w; x += 16) {
+        __m512 r[4], c[4]; /* c: the left corners' P, Q, the right corners' P, Q */
+#pragma GCC unroll 4
+        for (int k = 0; k < 4; k++) {
+            const int *l = lat + 2 * (x + k);
+            r[k] = _mm512_castps128_ps512(_mm_loadu_ps(PQ_AT(PQ, l[0])));
+            r[k] = _mm512_insertf32x4(r[k], _mm_loadu_ps(PQ_AT(PQ, l[8])), 1);
+            r[k] = _mm512_insertf32x4(r[k], _mm_loadu_ps(PQ_AT(PQ, l[16])), 2);
+            r[k] = _mm512_insertf32x4(r[k], _mm_loadu_ps(PQ_AT(PQ, l[24])), 3);
+        }
+        columns4_16(r, c);
+        pixels16(u + x, um1 + x, w0 + x, w1 + x, c[0], c[2], c[1], c[3], out + x, op, va, vb);
+    }
+    row_folded_avx2_op(g, PQ, out, x, op, a, b);
+}
+
+/* row_lut_avx2 with the folded rows sixteen columns at a time */
+TEX_AVX512 static void row_lut_avx512(const tex_noise_grid *g, int64_t j, const float *wy,
+                                      const float *dy, int two, float *out, int op, float a,
+                                      float b)
+{
+    const float(*T0)[4] = lut_row(g, j), (*T1)[4] = two ? lut_row(g, j + 1) : NULL;
+    int m = g->t->n + 1;
+
+    if (g->adjacent && g->w >= 2 * m) {
+        float PQ[2 * (TEX_NOISE_MAX_GRADIENTS + 1)];
+        lut_fold_avx2(T0, T1, m, wy, dy, PQ);
+        ROW_OP_SWITCH(row_folded_avx512_op, (g, PQ, out), (a, b));
+        return;
+    }
+    row_lut_avx2(g, j, wy, dy, two, out, op, a, b);
+}
+
 TEX_AVX512 static inline void row_avx512(const tex_noise_grid *g, const float *P, const float *Q,
                                          int sb, float *out, int x, int x1, int op, float a,
                                          float b)
@@ -1740,7 +1792,7 @@ TEX_AVX512 static void row_coeffs_avx512(int ns, const float *wy, const float *d
 #define GRID_ATTR TEX_AVX512
 #define GRID_COEFFS row_coeffs_avx512
 #define GRID_PIXELS row_avx512
-#define GRID_LUT_ROW row_lut_avx2 /* the tables' rows stay AVX2 */
+#define GRID_LUT_ROW row_lut_avx512
 #include "prim/noise_row_template.c"
 #endif
 

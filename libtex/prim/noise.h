@@ -56,7 +56,8 @@
  * with its y weights into one coefficient pair per entry (the operations each
  * column would do), and each column reads its corners' pairs.  Rows are
  * vectorised (AVX2, chosen at run time, and AVX-512 for cells 5 pixels wide
- * or more, unless most of an octave sum's cells are narrower: a map that
+ * or more and for rows from folded table coefficients, unless most of an
+ * octave sum's cells are neither: a map that
  * switches between the two ran slower; TEXTURA_SIMD=scalar or avx2 caps
  * the level) and every level performs the
  * same float operations in the same order, so the bytes are identical
@@ -141,7 +142,8 @@ typedef struct tex_noise_grid {
                         * the grid needs more lattice rows than the table has */
     int paired;        /* every column has its own two slots, 2x and 2x + 1 */
     int adjacent;      /* paired, and every right corner is the table's next entry */
-    int wide;          /* cells 5 pixels wide or more: AVX-512 rows where the CPU has it */
+    int wide;          /* AVX-512 rows where the CPU has it: cells 5 pixels wide or more, or
+                        * rows made from folded table coefficients */
     struct tex_noise_cache *cache;
 } tex_noise_grid;
 
