@@ -867,65 +867,92 @@ static void hybrid_step(const struct mf_step *m, int x, int w, const float *n, f
 }
 
 #ifdef TEX_X86
-TEX_AVX2 static void ridged_step_avx2(const struct mf_step *m, int w, const float *n,
-                                      float *st, float *res)
-{
-    __m256 off = _mm256_set1_ps(m->off), gain = _mm256_set1_ps(m->gain);
-    __m256 amp = _mm256_set1_ps(m->amp), sign = _mm256_set1_ps(-0.0f);
-    __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1);
-    int x = 0;
-
-    for (; x + 8 <= w; x += 8) {
-        __m256 sig = _mm256_sub_ps(off, _mm256_andnot_ps(sign, _mm256_loadu_ps(n + x)));
-        sig = _mm256_mul_ps(sig, sig);
-        if (m->first) {
-            _mm256_storeu_ps(st + x, sig);
-            _mm256_storeu_ps(res + x, sig);
-            continue;
-        }
-        __m256 wgt = _mm256_mul_ps(_mm256_loadu_ps(st + x), gain);
-        wgt = _mm256_min_ps(_mm256_max_ps(wgt, zero), one);
-        sig = _mm256_mul_ps(sig, wgt);
-        _mm256_storeu_ps(st + x, sig);
-        _mm256_storeu_ps(res + x, _mm256_add_ps(_mm256_loadu_ps(res + x), _mm256_mul_ps(sig, amp)));
+/* ridged_step or hybrid_step, and finish_row's loop, W lanes at a time, written once for the
+ * vector type V (AVX2's and AVX-512's): its operators are the lanes' operations; MIN, MAX
+ * and ABS its intrinsics (the clamps: max, then min, as clamp01).  The same operations per
+ * pixel, so the same bits; each returns the first pixel it left.  Both steps weigh this
+ * octave's signal by the last one's state: ridged sig = (off - |n|)^2 by clamp01(st gain),
+ * added times amp; hybrid sig = (n + off) amp by min(st, 1), added as it is. */
+#define MF_STEPS_FN(ATTR, SUF, V, MIN, MAX, ABS)                                             \
+    ATTR static inline __attribute__((always_inline)) int                                    \
+    mf_loop_##SUF(const int ridged, const struct mf_step *m, int w, const float *n,          \
+                  float *st, float *res)                                                     \
+    {                                                                                        \
+        enum { W = sizeof(V) / sizeof(float) };                                              \
+        const V zero = {0}, one = zero + 1.0f;                                               \
+        const float off = m->off, gain = m->gain, amp = m->amp; /* not reloaded after the */ \
+        const int first = m->first;                             /* stores to st and res */   \
+        int x = 0;                                                                           \
+        for (; x + W <= w; x += W) {                                                         \
+            V nv, sv, rv, sig;                                                               \
+            memcpy(&nv, n + x, sizeof nv);                                                   \
+            if (ridged) {                                                                    \
+                sig = off - ABS(nv);                                                         \
+                sig = sig * sig;                                                             \
+            } else {                                                                         \
+                sig = (nv + off) * amp;                                                      \
+            }                                                                                \
+            if (first) {                                                                     \
+                rv = sig;                                                                    \
+            } else {                                                                         \
+                memcpy(&sv, st + x, sizeof sv);                                              \
+                memcpy(&rv, res + x, sizeof rv);                                             \
+                if (ridged) {                                                                \
+                    sig = MIN(MAX(sv * gain, zero), one) * sig;                              \
+                    rv = rv + sig * amp;                                                     \
+                } else {                                                                     \
+                    sig = MIN(sv, one) * sig;                                                \
+                    rv = rv + sig;                                                           \
+                }                                                                            \
+            }                                                                                \
+            memcpy(st + x, &sig, sizeof sig);                                                \
+            memcpy(res + x, &rv, sizeof rv);                                                 \
+        }                                                                                    \
+        return x;                                                                            \
+    }                                                                                        \
+    ATTR static int mf_step_##SUF(int ridged, const struct mf_step *m, int w, const float *n, \
+                                  float *st, float *res)                                     \
+    {                                                                                        \
+        return ridged ? mf_loop_##SUF(1, m, w, n, st, res) : mf_loop_##SUF(0, m, w, n, st, res); \
+    }                                                                                        \
+    ATTR static int finish_row_##SUF(float *out, int w, float lo, float inv)                 \
+    {                                                                                        \
+        enum { W = sizeof(V) / sizeof(float) };                                              \
+        const V zero = {0}, one = zero + 1.0f;                                               \
+        int x = 0;                                                                           \
+        for (; x + W <= w; x += W) {                                                         \
+            V v;                                                                             \
+            memcpy(&v, out + x, sizeof v);                                                   \
+            v = MIN(MAX((v - lo) * inv, zero), one);                                         \
+            memcpy(out + x, &v, sizeof v);                                                   \
+        }                                                                                    \
+        return x;                                                                            \
     }
-    ridged_step(m, x, w, n, st, res);
-}
-
-TEX_AVX2 static void hybrid_step_avx2(const struct mf_step *m, int w, const float *n,
-                                      float *st, float *res)
+TEX_AVX2 static inline __attribute__((always_inline)) __m256 abs_avx2(__m256 v)
 {
-    __m256 off = _mm256_set1_ps(m->off), amp = _mm256_set1_ps(m->amp), one = _mm256_set1_ps(1);
-    int x = 0;
-
-    for (; x + 8 <= w; x += 8) {
-        __m256 sig = _mm256_mul_ps(_mm256_add_ps(_mm256_loadu_ps(n + x), off), amp);
-        if (m->first) {
-            _mm256_storeu_ps(st + x, sig);
-            _mm256_storeu_ps(res + x, sig);
-            continue;
-        }
-        __m256 wgt = _mm256_min_ps(_mm256_loadu_ps(st + x), one);
-        _mm256_storeu_ps(res + x, _mm256_add_ps(_mm256_loadu_ps(res + x), _mm256_mul_ps(wgt, sig)));
-        _mm256_storeu_ps(st + x, _mm256_mul_ps(wgt, sig));
-    }
-    hybrid_step(m, x, w, n, st, res);
+    return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), v);
 }
+MF_STEPS_FN(TEX_AVX2, avx2, __m256, _mm256_min_ps, _mm256_max_ps, abs_avx2)
+MF_STEPS_FN(TEX_AVX512, avx512, __m512, _mm512_min_ps, _mm512_max_ps, _mm512_abs_ps)
 #endif
 
+/* ridged_step or hybrid_step at the level's width, the rest as the scalar ones */
+static void multifractal_step(int mode, int level, const struct mf_step *m, int w, const float *n,
+                    float *st, float *res)
+{
+    int x = 0;
 #ifdef TEX_X86
-TEX_AVX2 static int finish_row_avx2(float *out, int w, float lo, float inv)
-{
-    __m256 l = _mm256_set1_ps(lo), k = _mm256_set1_ps(inv);
-    __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1);
-    int x = 0;
-    for (; x + 8 <= w; x += 8) {
-        __m256 v = _mm256_mul_ps(_mm256_sub_ps(_mm256_loadu_ps(out + x), l), k);
-        _mm256_storeu_ps(out + x, _mm256_min_ps(_mm256_max_ps(v, zero), one));
-    }
-    return x;
-}
+    if (level >= TEX_SIMD_AVX512)
+        x = mf_step_avx512(mode == RIDGED, m, w, n, st, res);
+    else if (level >= TEX_SIMD_AVX2)
+        x = mf_step_avx2(mode == RIDGED, m, w, n, st, res);
 #endif
+    if (mode == RIDGED)
+        ridged_step(m, x, w, n, st, res);
+    else
+        hybrid_step(m, x, w, n, st, res);
+    (void)level;
+}
 
 /* Ridged and hybrid's rescaling: clamp01((x - lo) inv), with lo 0 for ridged
  * (x - 0 is x: a sum of squares is never -0). */
@@ -933,7 +960,9 @@ static void finish_row(float *out, int w, float lo, float inv, int level)
 {
     int x = 0;
 #ifdef TEX_X86
-    if (level >= TEX_SIMD_AVX2)
+    if (level >= TEX_SIMD_AVX512)
+        x = finish_row_avx512(out, w, lo, inv);
+    else if (level >= TEX_SIMD_AVX2)
         x = finish_row_avx2(out, w, lo, inv);
 #endif
     for (; x < w; x++)
@@ -965,19 +994,7 @@ static void frac_row(const struct tex_field *f, int y, float *out)
     for (int k = 0; k < s->o.n; k++) {
         struct mf_step m = {k == 0, (float)p->mf_offset, (float)p->gain, s->amp[k]};
         tex_octave_row(&s->o, k, y, n);
-#ifdef TEX_X86
-        if (level >= TEX_SIMD_AVX2) {
-            if (s->mode == RIDGED)
-                ridged_step_avx2(&m, f->w, n, st, out);
-            else
-                hybrid_step_avx2(&m, f->w, n, st, out);
-            continue;
-        }
-#endif
-        if (s->mode == RIDGED)
-            ridged_step(&m, 0, f->w, n, st, out);
-        else
-            hybrid_step(&m, 0, f->w, n, st, out);
+        multifractal_step(s->mode, level, &m, f->w, n, st, out);
     }
     finish_row(out, f->w, s->mode == RIDGED ? 0 : s->lo, s->inv, level);
     free(n);
