@@ -937,8 +937,8 @@ MF_STEPS_FN(TEX_AVX512, avx512, __m512, _mm512_min_ps, _mm512_max_ps, _mm512_abs
 #endif
 
 /* ridged_step or hybrid_step at the level's width, the rest as the scalar ones */
-static void multifractal_step(int mode, int level, const struct mf_step *m, int w, const float *n,
-                    float *st, float *res)
+static void multifractal_step(int mode, int level, const struct mf_step *m, int w,
+                              const float *n, float *st, float *res)
 {
     int x = 0;
 #ifdef TEX_X86

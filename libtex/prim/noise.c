@@ -114,7 +114,6 @@ FADE_FN(, fade, double, FADE_D)
 FADE_FN(, fadef, float, FADE_F)
 
 /* The fade's derivative */
-
 static inline double dfade(int kind, double t)
 {
     if (kind == TEX_FADE_QUINTIC)
@@ -322,8 +321,8 @@ struct lanes8 {
 };
 
 /* off from the x corners' indices x and the hashes of y and z, F[iy + F[iz]]: made with the
- * hashes, so that the sum's row loads do not wait for their offsets to pass through memory
- * (a vector store read back as integers right away stalls on Intel). */
+ * hashes, a stage before the sum reads them, as the sixteen-lane kernel does (there a 512-bit
+ * store read back as integers at once stalled the row loads). */
 TEX_AVX2 static inline __attribute__((always_inline)) void
 lanes8_offsets(int period, const __m256i x[2], const __m256i hy[2][2], struct lanes8 *L)
 {
