@@ -998,7 +998,6 @@ static void frac_row(const struct tex_field *f, int y, float *out)
     }
     finish_row(out, f->w, s->mode == RIDGED ? 0 : s->lo, s->inv, level);
     free(n);
-    (void)level;
 }
 
 static int frac_grid(const struct tex_field *f, tex_map *m)

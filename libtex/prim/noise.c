@@ -108,8 +108,8 @@ static inline int lat_index(int64_t i, int period, int n)
             return C(1) - t * t * t * (t * (t * C(6) - C(15)) + C(10));                      \
         return (C(2) * t - C(3)) * t * t + C(1);                                             \
     }
-#define FADE_D(x) x##.0
-#define FADE_F(x) x##.0f
+#define FADE_D(x) ((double)(x))
+#define FADE_F(x) ((float)(x))
 FADE_FN(, fade, double, FADE_D)
 FADE_FN(, fadef, float, FADE_F)
 
@@ -267,7 +267,7 @@ TEX_AVX2 static inline __attribute__((always_inline)) __m128i lat_pd(__m256d c, 
     return _mm256_cvttpd_epi32(mod_pd(c, n, 1.0 / n));
 }
 
-#define FADE_PS(x) _mm256_set1_ps(x##.0f)
+#define FADE_PS(x) _mm256_set1_ps(x)
 FADE_FN(TEX_AVX2, fade_ps, __m256, FADE_PS)
 
 /* Eight 32-bit lanes from two groups of four */
@@ -476,31 +476,38 @@ static float noise3_src(const tex_noise_table *t, int period, const double *a, d
              : tex_noise3p(t, period, c[0][i], c[1][i], w);
 }
 
-/* The first n - n % 8 points, eight at a time, the hashes of the next eight made before this
- * eight's corners are summed; returns how many. */
-TEX_AVX2 static int noise3_avx2_points(const tex_noise_table *t, int period, const double *a,
-                                       double f, const double *const c[3], int n, float *out)
-{
-    struct lanes8 L[2];
-    int ok[2], m = n / 8;
-    __m256d p[3][2];
-    if (m == 0)
-        return 0;
-    points8(a, f, c, 0, p);
-    ok[0] = lanes8_hash(t, period, p, &L[0]);
-    for (int k = 0; k < m; k++) {
-        if (k + 1 < m) {
-            points8(a, f, c, 8 * (k + 1), p);
-            ok[(k + 1) & 1] = lanes8_hash(t, period, p, &L[(k + 1) & 1]);
-        }
-        if (ok[k & 1])
-            lanes8_sum(t, period, &L[k & 1], out + 8 * k);
-        else
-            for (int i = 8 * k; i < 8 * k + 8; i++)
-                out[i] = noise3_src(t, period, a, f, c, i);
+/* The first n - n % W points, W at a time, the hashes of the next W made before these W's
+ * corners are summed; returns how many.  One loop for both widths, which differ in their
+ * lanes (struct LANES, points made by POINTS into vectors VD), their hashes, HASH(L, p) (0: a
+ * cell beyond 2^30), what these need first (SETUP), and their sums, SUM(L, out). */
+#define NOISE3_POINTS(TARGET, NAME, W, LANES, VD, SETUP, POINTS, HASH, SUM)                   \
+    TARGET static int NAME(const tex_noise_table *t, int period, const double *a, double f, \
+                           const double *const c[3], int n, float *out)                      \
+    {                                                                                        \
+        struct LANES L[2];                                                                   \
+        int ok[2], m = n / W;                                                                \
+        VD p[3][2];                                                                          \
+        SETUP;                                                                               \
+        if (m == 0)                                                                          \
+            return 0;                                                                        \
+        POINTS(a, f, c, 0, p);                                                               \
+        ok[0] = HASH(&L[0], p);                                                              \
+        for (int k = 0; k < m; k++) {                                                        \
+            if (k + 1 < m) {                                                                 \
+                POINTS(a, f, c, W * (k + 1), p);                                             \
+                ok[(k + 1) & 1] = HASH(&L[(k + 1) & 1], p);                                  \
+            }                                                                                \
+            if (ok[k & 1])                                                                   \
+                SUM(&L[k & 1], out + W * k);                                                 \
+            else                                                                             \
+                for (int i = W * k; i < W * k + W; i++)                                      \
+                    out[i] = noise3_src(t, period, a, f, c, i);                              \
+        }                                                                                    \
+        return W * m;                                                                        \
     }
-    return 8 * m;
-}
+#define HASH8(Lp, pp) lanes8_hash(t, period, pp, Lp)
+#define SUM8(Lp, o) lanes8_sum(t, period, Lp, o)
+NOISE3_POINTS(TEX_AVX2, noise3_avx2_points, 8, lanes8, __m256d, (void)0, points8, HASH8, SUM8)
 
 /* ---- sixteen points in 512-bit registers (VBMI: 256 gradients, no period) ----
  * Eight points' two x corners share a register: [p0..3 | p0..3 | p4..7 | p4..7], corner
@@ -515,7 +522,7 @@ struct lanes16 {
     int off[4][16];            /* [b1 + 2 b2]: the byte offsets of the points' pgrad rows */
 };
 
-#define FADE_PS16(x) _mm512_set1_ps(x##.0f)
+#define FADE_PS16(x) _mm512_set1_ps(x)
 FADE_FN(TEX_VBMI, fade_ps16, __m512, FADE_PS16)
 
 /* One axis of sixteen points in point order: v = f, f - 1, fade (f), fade (1 - f), and the
@@ -640,32 +647,16 @@ lanes16_sum(const tex_noise_table *t, const struct lanes16 *L, float *out)
 
 POINTS_FN(TEX_VBMI, points16, __m512d, _mm512_loadu_pd)
 
-/* The first n - n % 8 points: sixteen at a time as noise3_avx2_points does eight, the last
- * eight by it; returns how many. */
+/* The first n - n % 8 points: sixteen at a time, the last eight by noise3_avx2_points;
+ * returns how many. */
+#define HASH16(Lp, pp) lanes16_hash(t->fade, T, pp, Lp)
+#define SUM16(Lp, o) lanes16_sum(t, Lp, o)
+NOISE3_POINTS(TEX_VBMI, noise3_zmm_groups, 16, lanes16, __m512d, __m512i T[4]; perm8_load(t, T),
+              points16, HASH16, SUM16)
 TEX_VBMI static int noise3_zmm_points(const tex_noise_table *t, int period, const double *a,
                                       double f, const double *const c[3], int n, float *out)
 {
-    struct lanes16 L[2];
-    int ok[2], m = n / 16;
-    __m512d p[3][2];
-    __m512i T[4];
-    perm8_load(t, T);
-    if (m > 0) {
-        points16(a, f, c, 0, p);
-        ok[0] = lanes16_hash(t->fade, T, p, &L[0]);
-    }
-    for (int k = 0; k < m; k++) {
-        if (k + 1 < m) {
-            points16(a, f, c, 16 * (k + 1), p);
-            ok[(k + 1) & 1] = lanes16_hash(t->fade, T, p, &L[(k + 1) & 1]);
-        }
-        if (ok[k & 1])
-            lanes16_sum(t, &L[k & 1], out + 16 * k);
-        else
-            for (int i = 16 * k; i < 16 * k + 16; i++)
-                out[i] = noise3_src(t, period, a, f, c, i);
-    }
-    int i = 16 * m;
+    int i = noise3_zmm_groups(t, period, a, f, c, n, out);
     const double *ci[3] = {c[0] + i, c[1] + i, c[2] ? c[2] + i : NULL};
     return i + noise3_avx2_points(t, period, a, f, ci, n - i, out + i);
 }
@@ -892,8 +883,9 @@ int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int 
     double rows = g->fy < 1 ? g->fy * h + 2 : 2.0 * h;
     if (t->n <= 1024 && rows * ns > 2.0 * t->n * t->n)
         lut_init(g); /* without memory for it, rows fold their own */
-    if (g->lut && g->adjacent && g->w >= 2 * (t->n + 1))
-        g->wide = 1; /* rows from folded coefficients (row_lut_avx512): sixteen columns too */
+    g->folded = g->lut && g->adjacent && g->w >= 2 * (t->n + 1);
+    if (g->folded)
+        g->wide = 1; /* row_lut_avx512: sixteen columns too */
     if (g->fy < 1)
         cache_init(g);
     return 0;
@@ -1538,7 +1530,7 @@ TEX_AVX2 static void row_lut_avx2(const tex_noise_grid *g, int64_t j, const floa
     const float(*T0)[4] = lut_row(g, j), (*T1)[4] = two ? lut_row(g, j + 1) : NULL;
     int m = g->t->n + 1;
 
-    if (g->adjacent && g->w >= 2 * m) { /* more columns than entries: fold the entries first */
+    if (g->folded) { /* more columns than entries: fold the entries first */
         float PQ[2 * (TEX_NOISE_MAX_GRADIENTS + 1)];
         lut_fold_avx2(T0, T1, m, wy, dy, PQ);
         ROW_OP_SWITCH(row_folded_avx2_op, (g, PQ, out, 0), (a, b));
@@ -1714,16 +1706,13 @@ TEX_AVX512 static void row_lut_avx512(const tex_noise_grid *g, int64_t j, const 
                                       const float *dy, int two, float *out, int op, float a,
                                       float b)
 {
-    const float(*T0)[4] = lut_row(g, j), (*T1)[4] = two ? lut_row(g, j + 1) : NULL;
-    int m = g->t->n + 1;
-
-    if (g->adjacent && g->w >= 2 * m) {
-        float PQ[2 * (TEX_NOISE_MAX_GRADIENTS + 1)];
-        lut_fold_avx2(T0, T1, m, wy, dy, PQ);
-        ROW_OP_SWITCH(row_folded_avx512_op, (g, PQ, out), (a, b));
+    if (!g->folded) {
+        row_lut_avx2(g, j, wy, dy, two, out, op, a, b);
         return;
     }
-    row_lut_avx2(g, j, wy, dy, two, out, op, a, b);
+    float PQ[2 * (TEX_NOISE_MAX_GRADIENTS + 1)];
+    lut_fold_avx2(lut_row(g, j), two ? lut_row(g, j + 1) : NULL, g->t->n + 1, wy, dy, PQ);
+    ROW_OP_SWITCH(row_folded_avx512_op, (g, PQ, out), (a, b));
 }
 
 TEX_AVX512 static inline void row_avx512(const tex_noise_grid *g, const float *P, const float *Q,

@@ -142,6 +142,8 @@ typedef struct tex_noise_grid {
                         * the grid needs more lattice rows than the table has */
     int paired;        /* every column has its own two slots, 2x and 2x + 1 */
     int adjacent;      /* paired, and every right corner is the table's next entry */
+    int folded;        /* adjacent, with more columns than the table has entries: rows from
+                        * the table row folded with their y weights once (lut_fold) */
     int wide;          /* AVX-512 rows where the CPU has it: cells 5 pixels wide or more, or
                         * rows made from folded table coefficients */
     struct tex_noise_cache *cache;
