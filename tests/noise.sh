@@ -37,6 +37,11 @@ same_bytes "fbm, every kernel path" t_fractal -s 1100x40 -f 3 -n 10 -l 2.3 -S 4
 same_bytes "turbulence, fine octaves on wide rows" t_turbulence -s 1030x40 -f 300 -n 6 -S 2
 same_bytes "ridged, fine octaves on wide rows" t_fractal -m ridged -s 1500x30 -f 700 -n 5
 same_bytes "hybrid, fine octaves on wide rows" t_fractal -m hybrid -s 1500x30 -f 520 -n 4 --fade quintic
+# cells of 1.2 to 5 pixels on rows with a table (tall enough) and wider than it: planar folded rows
+same_bytes "fbm, folded rows of cells 1.2-5 pixels wide" t_fractal -s 1100x200 -f 300 -n 3 -S 3
+same_bytes "turbulence, folded rows, 7 columns past sixteen" t_turbulence -s 1031x160 -f 700 -n 2 --z 0.3
+# cells of one pixel, then half a pixel: permutes of one register's coefficients, then two's
+same_bytes "turbulence, folded rows of cells 1 and 1/2 pixel wide" t_turbulence -s 1040x260 -f 1040 -n 2 --offset 0.37,0.21
 same_bytes "noise, cells finer than pixels on wide rows" t_noise -s 1200x32 -f 2000 --z 0.4
 same_bytes "fbm quintic 4D" t_fractal -s 97x61 -f 5 -n 5 --w 0.3 --fade quintic --z 0.2
 same_bytes "turbulence 4D quintic" t_turbulence -s 333x50 -f 5 -n 6 --w 0.3 --fade quintic

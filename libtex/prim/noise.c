@@ -2,6 +2,7 @@
 
 #include "base/fp_strict.h" /* first: no fused multiply-adds in this file */
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -736,6 +737,8 @@ static void grid_clear(tex_noise_grid *g)
     free(g->lat);
     free(g->u);
     free(g->lut);
+    free(g->plane);
+    free(g->corner);
     if (g->cache) {
         for (int i = 0; i < g->cache->n; i++)
             free(g->cache->e[i].buf[0]);
@@ -743,6 +746,8 @@ static void grid_clear(tex_noise_grid *g)
     }
     g->slot = g->lat = NULL;
     g->lut = NULL;
+    g->plane = NULL;
+    g->corner = NULL;
     g->u = g->um1 = g->w0 = g->w1 = g->dw0 = g->dw1 = NULL;
     g->cache = NULL;
 }
@@ -752,7 +757,8 @@ void tex_noise_grid_free(tex_noise_grid *g)
     grid_clear(g);
 }
 
-static int lut_init(tex_noise_grid *g);
+static int lut_init(tex_noise_grid *g, int fold);
+static int corners_adjacent(const tex_noise_grid *g);
 
 /* The slice's corners in z (and w): their weights, offsets and hash prefixes. */
 static void slice_setup(tex_noise_grid *g, double z, double w4)
@@ -871,6 +877,14 @@ int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int 
         g->dw0[x] = (float)dfade(t->fade, u);
         g->dw1[x] = (float)-dfade(t->fade, 1.0 - u);
     }
+    for (int x = 0; x + 7 < w; x += 8) {
+        int64_t d = list[g->slot[x + 7]] - list[g->slot[x]];
+        g->span8 = d > g->span8 ? (d > INT_MAX ? INT_MAX : (int)d) : g->span8;
+        if (x % 16 == 0 && x + 15 < w) {
+            d = list[g->slot[x + 15]] - list[g->slot[x]];
+            g->span16 = d > g->span16 ? (d > INT_MAX ? INT_MAX : (int)d) : g->span16;
+        }
+    }
     for (int s = 0; s < ns; s++)
         g->lat[s] = lat_index(list[s], period, t->n);
     for (int s = ns; s < ns + 16; s++)
@@ -881,9 +895,21 @@ int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int 
     /* Lattice rows from the table when the rows would fold more lattice points
      * than it has (cells spanning less than a pixel row are not kept). */
     double rows = g->fy < 1 ? g->fy * h + 2 : 2.0 * h;
-    if (t->n <= 1024 && rows * ns > 2.0 * t->n * t->n)
-        lut_init(g); /* without memory for it, rows fold their own */
-    g->folded = g->lut && g->adjacent && g->w >= 2 * (t->n + 1);
+    if (t->n <= 1024 && rows * ns > 2.0 * t->n * t->n) {
+        /* Folded rows where cells are narrower than the wide rows' (5 pixels) and the row
+         * has more columns than the table entries (fBm from 1024 cells on 2048 columns:
+         * 1.5 times the slots' rows at 2 pixels a cell, 1.1 at 4). */
+        g->adjacent = corners_adjacent(g);
+        if (g->adjacent && (g->paired || (!g->wide && t->n >= 16)) && w >= 2 * (t->n + 1) &&
+            (g->corner = malloc(w * sizeof *g->corner)))
+            for (int x = 0; x < w; x++)
+                g->corner[x] = g->lat[g->slot[x]];
+        if (lut_init(g, g->corner != NULL) < 0) { /* then rows fold their own */
+            free(g->corner);
+            g->corner = NULL;
+        }
+    }
+    g->folded = g->corner != NULL;
     if (g->folded)
         g->wide = 1; /* row_lut_avx512: sixteen columns too */
     if (g->fy < 1)
@@ -968,41 +994,60 @@ static void lattice_row_m(const tex_noise_grid *g, const float (*zm)[4], int64_t
     lattice_row_at(g, zm, lat_index(j, g->period, g->t->n), g->lat, s0, s1, X, Y, C);
 }
 
-/* The table of every lattice point's folded (X, Y, C), computed as lattice_row
- * does: the same operations, so the same bits. */
-static int lut_init(tex_noise_grid *g)
+/* Every column's right corner the table's next entry (entry n being entry 0). */
+static int corners_adjacent(const tex_noise_grid *g)
 {
-    int n = g->t->n;
-    int32_t *id = malloc((n + 16) * sizeof *id);
-    float *r = malloc(3 * (size_t)n * sizeof *r);
+    for (int x = 0; x < g->w; x++) {
+        const int32_t *l = g->lat + g->slot[x];
+        if (l[1] != l[0] + 1 && !(l[0] == g->t->n - 1 && l[1] == 0))
+            return 0;
+    }
+    return 1;
+}
 
-    g->lut = malloc((size_t)n * (n + 1) * sizeof *g->lut);
-    if (!id || !r || !g->lut) {
+/* The table of every lattice point's folded (X, Y, C), computed as lattice_row
+ * does: the same operations, so the same bits.  For a folded grid (fold) as
+ * planes of ps entries, a multiple of sixteen from n + 32 on, entry i being
+ * lattice column i mod n: the vector folds need no tail, and planar rows read
+ * up to 32 entries from a column's. */
+static int lut_init(tex_noise_grid *g, int fold)
+{
+    int n = g->t->n, ps = (n + 32 + 15) & ~15;
+    int32_t *id = malloc((ps + 16) * sizeof *id);
+    float *r = malloc(3 * (size_t)ps * sizeof *r);
+
+    if (fold)
+        g->plane = malloc((size_t)n * 3 * ps * sizeof *g->plane);
+    else
+        g->lut = malloc((size_t)n * (n + 1) * sizeof *g->lut);
+    if (!id || !r || (!g->plane && !g->lut)) {
         free(id);
         free(r);
+        free(g->plane);
         free(g->lut);
+        g->plane = NULL;
         g->lut = NULL;
         return -1;
     }
-    for (int i = 0; i < n + 16; i++)
-        id[i] = i < n ? i : 0;
+    g->ps = ps;
+    for (int i = 0; i < ps + 16; i++)
+        id[i] = i % n;
     for (int lj = 0; lj < n; lj++) {
+        float *X = fold ? g->plane + (size_t)lj * 3 * ps : r;
+        lattice_row_at(g, (const float(*)[4])g->zm, lj, id, 0, fold ? ps : n + 1, X, X + ps,
+                       X + 2 * ps);
+        if (fold)
+            continue;
         float(*T)[4] = g->lut + (size_t)lj * (n + 1);
-        lattice_row_at(g, (const float(*)[4])g->zm, lj, id, 0, n, r, r + n, r + 2 * n);
-        for (int i = 0; i < n; i++) {
+        for (int i = 0; i <= n; i++) {
             T[i][0] = r[i];
-            T[i][1] = r[n + i];
-            T[i][2] = r[2 * n + i];
+            T[i][1] = r[ps + i];
+            T[i][2] = r[2 * ps + i];
             T[i][3] = 0;
         }
-        memcpy(T[n], T[0], sizeof T[0]);
     }
     free(id);
     free(r);
-    g->adjacent = g->paired;
-    for (int x = 0; x < g->w && g->adjacent; x++)
-        g->adjacent = g->lat[2 * x + 1] == g->lat[2 * x] + 1 ||
-                      (g->lat[2 * x] == n - 1 && g->lat[2 * x + 1] == 0);
     return 0;
 }
 
@@ -1013,6 +1058,12 @@ static inline const float (*lut_row(const tex_noise_grid *g, int64_t j))[4]
     return (const float(*)[4])g->lut + (size_t)lat_index(j, g->period, n) * (n + 1);
 }
 
+/* A folded grid's table planes for lattice row j: X, then Y and C ps floats on */
+static inline const float *plane_row(const tex_noise_grid *g, int64_t j)
+{
+    return g->plane + (size_t)lat_index(j, g->period, g->t->n) * 3 * g->ps;
+}
+
 static void lattice_row(const tex_noise_grid *g, int64_t j, int s0, int s1, float *X, float *Y,
                         float *C)
 {
@@ -1020,6 +1071,15 @@ static void lattice_row(const tex_noise_grid *g, int64_t j, int s0, int s1, floa
     const float(*T)[4];
     int s = s0;
 
+    if (g->plane) {
+        const float *TX = plane_row(g, j), *TY = TX + g->ps, *TC = TY + g->ps;
+        for (; s < s1; s++) {
+            X[s - s0] = TX[lat[s]];
+            Y[s - s0] = TY[lat[s]];
+            C[s - s0] = TC[lat[s]];
+        }
+        return;
+    }
     if (!g->lut) {
         lattice_row_m(g, (const float(*)[4])g->zm, j, s0, s1, X, Y, C);
         return;
@@ -1446,51 +1506,53 @@ row_lut_avx2_op(const tex_noise_grid *g, const float (*T0)[4], const float (*T1)
     }
 }
 
-/* The row's coefficients (P, Q) at every table entry 0..m-1, interleaved: the
- * operations row_lut_avx2_op performs per column, done once per entry. */
-static void lut_fold(const float (*T0)[4], const float (*T1)[4], int m, const float *wy,
-                     const float *dy, float *PQ)
-{
-    for (int i = 0; i < m; i++) {
-        float P = wy[0] * T0[i][0], Q = wy[0] * (T0[i][1] * dy[0] + T0[i][2]);
-        if (T1) {
-            P = P + wy[1] * T1[i][0];
-            Q = Q + wy[1] * (T1[i][1] * dy[1] + T1[i][2]);
-        }
-        PQ[2 * i] = P, PQ[2 * i + 1] = Q;
+/* Lattice row j's coefficients (P, Q) at every entry of a folded grid's table, into P and
+ * Q = P + ps: the operations row_coeffs performs per slot, done once per entry, W = |V| / 4
+ * entries at a time (V: __m256 or __m512, whose operators are their lanes').  The table's
+ * planes repeat entries 1..16 past entry n, so planar rows read sixteen columns from their
+ * first one's entry on. */
+#define FOLD_ROW_FN(ATTR, NAME, V)                                                           \
+    ATTR static void NAME(const tex_noise_grid *g, int64_t j, const float *wy, const float *dy, \
+                          int two, float *P)                                                 \
+    {                                                                                        \
+        enum { W = sizeof(V) / sizeof(float) };                                              \
+        const int ps = g->ps;                                                                \
+        const float *T0 = plane_row(g, j), *T1 = two ? plane_row(g, j + 1) : NULL;            \
+        const float a0 = wy[0], a1 = wy[1], d0 = dy[0], d1 = dy[1];                          \
+        for (int i = 0; i < ps; i += W) {                                                    \
+            V x, y, c, p, q;                                                                 \
+            memcpy(&x, T0 + i, sizeof x);                                                    \
+            memcpy(&y, T0 + ps + i, sizeof y);                                               \
+            memcpy(&c, T0 + 2 * ps + i, sizeof c);                                           \
+            p = a0 * x;                                                                      \
+            q = a0 * (y * d0 + c);                                                           \
+            if (T1) {                                                                        \
+                memcpy(&x, T1 + i, sizeof x);                                                \
+                memcpy(&y, T1 + ps + i, sizeof y);                                           \
+                memcpy(&c, T1 + 2 * ps + i, sizeof c);                                       \
+                p = p + a1 * x;                                                              \
+                q = q + a1 * (y * d1 + c);                                                   \
+            }                                                                                \
+            memcpy(P + i, &p, sizeof p);                                                     \
+            memcpy(P + ps + i, &q, sizeof q);                                                \
+        }                                                                                    \
     }
-}
+FOLD_ROW_FN(TEX_AVX2, fold_row_avx2, __m256)
 
-/* lut_fold eight entries at a time (the rest as lut_fold): the same operations per entry */
-TEX_AVX2 static void lut_fold_avx2(const float (*T0)[4], const float (*T1)[4], int m, const float *wy,
-                               const float *dy, float *PQ)
+/* Folded coefficients: planar P and Q, and interleaved (P, Q) pairs */
+#define FOLD_FLOATS (4 * (1024 + 32))
+
+/* Planar coefficients (fold_row_*) interleaved into PQ, entries 0..n, for paired grids'
+ * rows (row_folded_*) */
+TEX_AVX2 static void interleave(const tex_noise_grid *g, const float *P, float *PQ)
 {
-    __m256 a0 = _mm256_set1_ps(wy[0]), a1 = _mm256_set1_ps(wy[1]);
-    __m256 d0 = _mm256_set1_ps(dy[0]), d1 = _mm256_set1_ps(dy[1]);
-    int i = 0;
-
-    for (; i + 8 <= m; i += 8) {
-        const float *row[8];
-        __m256 v[4], P, Q;
-#pragma GCC unroll 8
-        for (int k = 0; k < 8; k++)
-            row[k] = T0[i + k];
-        columns8(row, v);
-        P = _mm256_mul_ps(a0, v[0]);
-        Q = _mm256_mul_ps(a0, _mm256_add_ps(_mm256_mul_ps(v[1], d0), v[2]));
-        if (T1) {
-#pragma GCC unroll 8
-            for (int k = 0; k < 8; k++)
-                row[k] = T1[i + k];
-            columns8(row, v);
-            P = _mm256_add_ps(P, _mm256_mul_ps(a1, v[0]));
-            Q = _mm256_add_ps(Q, _mm256_mul_ps(a1, _mm256_add_ps(_mm256_mul_ps(v[1], d1), v[2])));
-        }
-        __m256 lo = _mm256_unpacklo_ps(P, Q), hi = _mm256_unpackhi_ps(P, Q);
+    const float *Q = P + g->ps;
+    for (int i = 0; i <= g->t->n; i += 8) {
+        __m256 p = _mm256_loadu_ps(P + i), q = _mm256_loadu_ps(Q + i);
+        __m256 lo = _mm256_unpacklo_ps(p, q), hi = _mm256_unpackhi_ps(p, q);
         _mm256_storeu_ps(PQ + 2 * i, _mm256_permute2f128_ps(lo, hi, 0x20));
         _mm256_storeu_ps(PQ + 2 * i + 8, _mm256_permute2f128_ps(lo, hi, 0x31));
     }
-    lut_fold(T0 + i, T1 ? T1 + i : NULL, m - i, wy, dy, PQ + 2 * i);
 }
 
 /* Entry i of folded coefficients PQ, its (P, Q) pair: addressed as the i-th 8-byte unit, so
@@ -1503,7 +1565,7 @@ TEX_AVX2 static inline __attribute__((always_inline)) void
 row_folded_avx2_op(const tex_noise_grid *g, const float *PQ, float *out, int x, const int op,
                    float a, float b)
 {
-    const int32_t *restrict lat = g->lat;
+    const int32_t *restrict corner = g->corner;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
                           *restrict w1 = g->w1;
     __m256 va = _mm256_set1_ps(a), vb = _mm256_set1_ps(b);
@@ -1513,29 +1575,72 @@ row_folded_avx2_op(const tex_noise_grid *g, const float *PQ, float *out, int x, 
         __m256 c[4]; /* the left corners' P, Q, the right corners' P, Q */
 #pragma GCC unroll 8
         for (int i = 0; i < 8; i++)
-            row[i] = PQ_AT(PQ, lat[2 * (x + i)]);
+            row[i] = PQ_AT(PQ, corner[x + i]);
         columns8(row, c);
         pixels8(u + x, um1 + x, w0 + x, w1 + x, c[0], c[2], c[1], c[3], out + x, op, va, vb);
     }
     for (; x < g->w; x++) {
-        const float *e = PQ + 2 * lat[2 * x];
+        const float *e = PQ + 2 * corner[x];
         float t0 = e[0] * u[x] + e[1], t1 = e[2] * um1[x] + e[3];
         out[x] = apply_op(op, w0[x] * t0 + w1[x] * t1, out[x], a, b);
     }
 }
 
-TEX_AVX2 static void row_lut_avx2(const tex_noise_grid *g, int64_t j, const float *wy, const float *dy,
-                              int two, float *out, int op, float a, float b)
+/* Columns x.. of a folded row from planar coefficients: row_planar_*'s order of operations */
+static inline __attribute__((always_inline)) void
+row_planar_tail(const tex_noise_grid *g, const float *P, const float *Q, float *out, int x,
+                const int op, float a, float b)
 {
-    const float(*T0)[4] = lut_row(g, j), (*T1)[4] = two ? lut_row(g, j + 1) : NULL;
-    int m = g->t->n + 1;
+    for (; x < g->w; x++) {
+        int c = g->corner[x];
+        float t0 = P[c] * g->u[x] + Q[c], t1 = P[c + 1] * g->um1[x] + Q[c + 1];
+        out[x] = apply_op(op, g->w0[x] * t0 + g->w1[x] * t1, out[x], a, b);
+    }
+}
 
+/* A folded row from planar coefficients (fold_row_*) where eight columns' corners lie
+ * within eight entries of the first's (g->span8 <= 7: every grid that is not paired,
+ * whose cells span over 8/7 pixels), so that the slot rows' expand serves, with offsets
+ * taken mod n. */
+TEX_AVX2 static inline __attribute__((always_inline)) void
+row_planar_avx2_op(const tex_noise_grid *g, const float *P, const float *Q, float *out,
+                   const int op, float a, float b)
+{
+    const int32_t *restrict corner = g->corner;
+    const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
+                          *restrict w1 = g->w1;
+    __m256i vn = _mm256_set1_epi32(g->t->n);
+    __m256 va = _mm256_set1_ps(a), vb = _mm256_set1_ps(b);
+    int x = 0;
+
+    for (; x + 8 <= g->w; x += 8) {
+        int c0 = corner[x];
+        __m256i d = _mm256_sub_epi32(_mm256_loadu_si256((const __m256i *)(corner + x)),
+                                     _mm256_set1_epi32(c0));
+        __m256i k = _mm256_min_epu32(d, _mm256_add_epi32(d, vn)); /* d mod n, for d > -n */
+        __m256 p0, p1, q0, q1;
+        expand(P, c0, k, k, 7, &p0, &p1);
+        expand(Q, c0, k, k, 7, &q0, &q1);
+        pixels8(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, out + x, op, va, vb);
+    }
+    row_planar_tail(g, P, Q, out, x, op, a, b);
+}
+
+TEX_AVX2 static void row_lut_avx2(const tex_noise_grid *g, int64_t j, const float *wy,
+                                  const float *dy, int two, float *out, int op, float a, float b)
+{
     if (g->folded) { /* more columns than entries: fold the entries first */
-        float PQ[2 * (TEX_NOISE_MAX_GRADIENTS + 1)];
-        lut_fold_avx2(T0, T1, m, wy, dy, PQ);
-        ROW_OP_SWITCH(row_folded_avx2_op, (g, PQ, out, 0), (a, b));
+        float P[FOLD_FLOATS], *PQ = P + 2 * g->ps;
+        fold_row_avx2(g, j, wy, dy, two, P);
+        if (g->span8 <= 7 && g->span8 < g->t->n) { /* offsets mod n unambiguous */
+            ROW_OP_SWITCH(row_planar_avx2_op, (g, P, P + g->ps, out), (a, b));
+        } else {
+            interleave(g, P, PQ);
+            ROW_OP_SWITCH(row_folded_avx2_op, (g, PQ, out, 0), (a, b));
+        }
         return;
     }
+    const float(*T0)[4] = lut_row(g, j), (*T1)[4] = two ? lut_row(g, j + 1) : NULL;
     if (g->adjacent) {
         ROW_OP_SWITCH(row_lut_avx2_op, (g, T0, T1, wy, dy, out), (1, a, b));
     } else {
@@ -1679,7 +1784,7 @@ TEX_AVX512 static inline __attribute__((always_inline)) void
 row_folded_avx512_op(const tex_noise_grid *g, const float *PQ, float *out, const int op, float a,
                      float b)
 {
-    const int32_t *restrict lat = g->lat;
+    const int32_t *restrict corner = g->corner;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
                           *restrict w1 = g->w1;
     __m512 va = _mm512_set1_ps(a), vb = _mm512_set1_ps(b);
@@ -1689,16 +1794,53 @@ row_folded_avx512_op(const tex_noise_grid *g, const float *PQ, float *out, const
         __m512 r[4], c[4]; /* c: the left corners' P, Q, the right corners' P, Q */
 #pragma GCC unroll 4
         for (int k = 0; k < 4; k++) {
-            const int *l = lat + 2 * (x + k);
+            const int32_t *l = corner + x + k;
             r[k] = _mm512_castps128_ps512(_mm_loadu_ps(PQ_AT(PQ, l[0])));
-            r[k] = _mm512_insertf32x4(r[k], _mm_loadu_ps(PQ_AT(PQ, l[8])), 1);
-            r[k] = _mm512_insertf32x4(r[k], _mm_loadu_ps(PQ_AT(PQ, l[16])), 2);
-            r[k] = _mm512_insertf32x4(r[k], _mm_loadu_ps(PQ_AT(PQ, l[24])), 3);
+            r[k] = _mm512_insertf32x4(r[k], _mm_loadu_ps(PQ_AT(PQ, l[4])), 1);
+            r[k] = _mm512_insertf32x4(r[k], _mm_loadu_ps(PQ_AT(PQ, l[8])), 2);
+            r[k] = _mm512_insertf32x4(r[k], _mm_loadu_ps(PQ_AT(PQ, l[12])), 3);
         }
         columns4_16(r, c);
         pixels16(u + x, um1 + x, w0 + x, w1 + x, c[0], c[2], c[1], c[3], out + x, op, va, vb);
     }
     row_folded_avx2_op(g, PQ, out, x, op, a, b);
+}
+
+FOLD_ROW_FN(TEX_AVX512, fold_row_avx512, __m512)
+
+/* row_planar_avx2_op sixteen columns at a time, their corners within 16 entries of the
+ * first's (g->span16 <= 15: cells over 15/16 pixels) or, with two, within 32 (span16 <= 31:
+ * cells of half a pixel or more): each corner's P and Q from a permute of one register's
+ * entries, or of two (slower where one does) */
+TEX_AVX512 static inline __attribute__((always_inline)) void
+row_planar_avx512_op(const tex_noise_grid *g, const float *P, const float *Q, float *out,
+                     const int two, const int op, float a, float b)
+{
+    const int32_t *restrict corner = g->corner;
+    const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
+                          *restrict w1 = g->w1;
+    __m512i vn = _mm512_set1_epi32(g->t->n);
+    __m512 va = _mm512_set1_ps(a), vb = _mm512_set1_ps(b);
+    int x = 0;
+
+    for (; x + 16 <= g->w; x += 16) {
+        int c0 = corner[x];
+        __m512i d = _mm512_sub_epi32(_mm512_loadu_si512(corner + x), _mm512_set1_epi32(c0));
+        __m512i k = _mm512_min_epu32(d, _mm512_add_epi32(d, vn));
+        __m512 v[4]; /* the left corners' P, Q, the right corners' P, Q */
+        if (two) {
+#pragma GCC unroll 4
+            for (int i = 0; i < 4; i++) {
+                const float *V = (i & 1 ? Q : P) + c0 + (i >> 1);
+                v[i] = _mm512_permutex2var_ps(_mm512_loadu_ps(V), k, _mm512_loadu_ps(V + 16));
+            }
+        } else {
+            expand16(P, c0, k, k, 15, &v[0], &v[2]);
+            expand16(Q, c0, k, k, 15, &v[1], &v[3]);
+        }
+        pixels16(u + x, um1 + x, w0 + x, w1 + x, v[0], v[2], v[1], v[3], out + x, op, va, vb);
+    }
+    row_planar_tail(g, P, Q, out, x, op, a, b);
 }
 
 /* row_lut_avx2 with the folded rows sixteen columns at a time */
@@ -1710,9 +1852,16 @@ TEX_AVX512 static void row_lut_avx512(const tex_noise_grid *g, int64_t j, const 
         row_lut_avx2(g, j, wy, dy, two, out, op, a, b);
         return;
     }
-    float PQ[2 * (TEX_NOISE_MAX_GRADIENTS + 1)];
-    lut_fold_avx2(lut_row(g, j), two ? lut_row(g, j + 1) : NULL, g->t->n + 1, wy, dy, PQ);
-    ROW_OP_SWITCH(row_folded_avx512_op, (g, PQ, out), (a, b));
+    float P[FOLD_FLOATS], *PQ = P + 2 * g->ps;
+    fold_row_avx512(g, j, wy, dy, two, P);
+    if (g->span16 <= 15 && g->span16 < g->t->n) {
+        ROW_OP_SWITCH(row_planar_avx512_op, (g, P, P + g->ps, out, 0), (a, b));
+    } else if (g->span16 <= 31 && g->span16 < g->t->n) {
+        ROW_OP_SWITCH(row_planar_avx512_op, (g, P, P + g->ps, out, 1), (a, b));
+    } else {
+        interleave(g, P, PQ);
+        ROW_OP_SWITCH(row_folded_avx512_op, (g, PQ, out), (a, b));
+    }
 }
 
 TEX_AVX512 static inline void row_avx512(const tex_noise_grid *g, const float *P, const float *Q,

@@ -52,9 +52,13 @@
  * made once per grid (the lattice repeats every n cells), and every column
  * gets its own pair of slots, so that the vector rows read them without
  * gathers: a map's cost then no longer grows with its frequency.  A row with
- * more columns than the table has entries first combines its two table rows
- * with its y weights into one coefficient pair per entry (the operations each
- * column would do), and each column reads its corners' pairs.  Rows are
+ * more columns than the table has entries, where cells are under 5 pixels
+ * wide, first combines its two table rows with its y weights into one
+ * coefficient pair per entry (the operations each column would do; the table
+ * kept as planes of X, Y and C for it), and each column reads its corners'
+ * pairs: where eight or sixteen columns' corners lie within a register's
+ * entries (cells of about a pixel or more; half a pixel with AVX-512), by
+ * permutes of the coefficients, else one load per column.  Rows are
  * vectorised (AVX2, chosen at run time, and AVX-512 for cells 5 pixels wide
  * or more and for rows from folded table coefficients, unless most of an
  * octave sum's cells are neither: a map that
@@ -140,10 +144,17 @@ typedef struct tex_noise_grid {
     float (*lut)[4];   /* NULL, or per lattice row mod n the folded (X, Y, C, 0) of every
                         * lattice column mod n and column 0 again (n + 1 entries), when
                         * the grid needs more lattice rows than the table has */
+    float *plane;      /* a folded grid's table instead: per lattice row mod n its X, Y and
+                        * C, each over ps entries (entry i is lattice column i mod n) */
+    int ps;
     int paired;        /* every column has its own two slots, 2x and 2x + 1 */
-    int adjacent;      /* paired, and every right corner is the table's next entry */
-    int folded;        /* adjacent, with more columns than the table has entries: rows from
-                        * the table row folded with their y weights once (lut_fold) */
+    int adjacent;      /* every column's right corner is the table's next entry */
+    int folded;        /* adjacent, with more columns than the table has entries and cells
+                        * under 5 pixels wide: rows from the table row folded with their y
+                        * weights once (lut_fold), each column reading its corners' pairs */
+    int32_t *corner;   /* folded: per column, the table entry of its left corner */
+    int span8, span16; /* the most cells between the first and last columns of 8 (16)
+                        * columns from a multiple of 8 (16) */
     int wide;          /* AVX-512 rows where the CPU has it: cells 5 pixels wide or more, or
                         * rows made from folded table coefficients */
     struct tex_noise_cache *cache;

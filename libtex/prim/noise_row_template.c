@@ -22,7 +22,7 @@ GRID_ATTR static void GRID_ROW(const tex_noise_grid *g, int y, int op, float a, 
     const float *r0 = NULL, *r1 = NULL;
 
 #ifdef GRID_LUT_ROW
-    if (g->paired && g->lut) {
+    if (g->folded || (g->paired && g->lut)) {
         GRID_LUT_ROW(g, j, wy, dy, two, out, op, a, b);
         return;
     }
