@@ -72,7 +72,8 @@ static void octave_sum_row(const tex_octaves *o, int n, int y, int w, int first,
     if (fill != 0)
         first = mid;
     for (int k = 0; k < n; k++)
-        tex_octave_row_op(o, k, y, k == n - 1 ? last : k == 0 ? first : mid, amp[k], inv, out);
+        tex_octave_row_op(o, k, y, k == n - 1 ? last : k == 0 ? first : mid, amp[k], inv, 0,
+                          out);
 }
 
 /* The band limit on the amplitudes: each octave weighted, the faded share of
@@ -826,156 +827,50 @@ static void frac_eval2(const struct tex_field *f, int n, const double *u, const 
     frac_eval3(f, n, u, v, NULL, out);
 }
 
-/* Ridged and hybrid over a row, octave by octave: on each pixel the
- * operations of ridged() and hybrid() in their order, so that every SIMD
- * level gives the same bits.  n: octave k's noise; st: sig (ridged) or the
- * weight (hybrid); res: the sum. */
-struct mf_step {
-    int first;
-    float off, gain, amp;
-};
-
-static void ridged_step(const struct mf_step *m, int x, int w, const float *n, float *st,
-                        float *res)
-{
-    for (; x < w; x++) {
-        float sig = m->off - fabsf(n[x]);
-        sig *= sig;
-        if (m->first) {
-            res[x] = st[x] = sig;
-            continue;
-        }
-        sig *= clamp01(st[x] * m->gain);
-        st[x] = sig;
-        res[x] += sig * m->amp;
-    }
-}
-
-static void hybrid_step(const struct mf_step *m, int x, int w, const float *n, float *st,
-                        float *res)
-{
-    for (; x < w; x++) {
-        float sig = (n[x] + m->off) * m->amp, wgt;
-        if (m->first) {
-            res[x] = st[x] = sig;
-            continue;
-        }
-        wgt = st[x] < 1 ? st[x] : 1;
-        res[x] += wgt * sig;
-        st[x] = wgt * sig;
-    }
-}
-
 #ifdef TEX_X86
-/* ridged_step or hybrid_step, and finish_row's loop, W lanes at a time, written once for the
- * vector type V (AVX2's and AVX-512's): its operators are the lanes' operations; MIN, MAX
- * and ABS its intrinsics (the clamps: max, then min, as clamp01).  The same operations per
- * pixel, so the same bits; each returns the first pixel it left.  Both steps weigh this
- * octave's signal by the last one's state: ridged sig = (off - |n|)^2 by clamp01(st gain),
- * added times amp; hybrid sig = (n + off) amp by min(st, 1), added as it is. */
-#define MF_STEPS_FN(ATTR, SUF, V, MIN, MAX, ABS)                                             \
-    ATTR static inline __attribute__((always_inline)) int                                    \
-    mf_loop_##SUF(const int ridged, const struct mf_step *m, int w, const float *n,          \
-                  float *st, float *res)                                                     \
-    {                                                                                        \
-        enum { W = sizeof(V) / sizeof(float) };                                              \
-        const V zero = {0}, one = zero + 1.0f;                                               \
-        const float off = m->off, gain = m->gain, amp = m->amp; /* not reloaded after the */ \
-        const int first = m->first;                             /* stores to st and res */   \
-        int x = 0;                                                                           \
-        for (; x + W <= w; x += W) {                                                         \
-            V nv, sv, rv, sig;                                                               \
-            memcpy(&nv, n + x, sizeof nv);                                                   \
-            if (ridged) {                                                                    \
-                sig = off - ABS(nv);                                                         \
-                sig = sig * sig;                                                             \
-            } else {                                                                         \
-                sig = (nv + off) * amp;                                                      \
-            }                                                                                \
-            if (first) {                                                                     \
-                rv = sig;                                                                    \
-            } else {                                                                         \
-                memcpy(&sv, st + x, sizeof sv);                                              \
-                memcpy(&rv, res + x, sizeof rv);                                             \
-                if (ridged) {                                                                \
-                    sig = MIN(MAX(sv * gain, zero), one) * sig;                              \
-                    rv = rv + sig * amp;                                                     \
-                } else {                                                                     \
-                    sig = MIN(sv, one) * sig;                                                \
-                    rv = rv + sig;                                                           \
-                }                                                                            \
-            }                                                                                \
-            memcpy(st + x, &sig, sizeof sig);                                                \
-            memcpy(res + x, &rv, sizeof rv);                                                 \
-        }                                                                                    \
-        return x;                                                                            \
-    }                                                                                        \
-    ATTR static int mf_step_##SUF(int ridged, const struct mf_step *m, int w, const float *n, \
-                                  float *st, float *res)                                     \
-    {                                                                                        \
-        return ridged ? mf_loop_##SUF(1, m, w, n, st, res) : mf_loop_##SUF(0, m, w, n, st, res); \
-    }                                                                                        \
-    ATTR static int finish_row_##SUF(float *out, int w, float lo, float inv)                 \
+/* finish_row's loop W lanes at a time, for the vector type V (AVX2's and AVX-512's), whose
+ * operators are the lanes' operations (MIN, MAX: its intrinsics; the clamp max, then min,
+ * as clamp01); returns the first pixel it left. */
+#define FINISH_ROW_FN(ATTR, SUF, V, MIN, MAX)                                                \
+    ATTR static int finish_row_##SUF(const float *res, float *out, int w, float lo, float inv) \
     {                                                                                        \
         enum { W = sizeof(V) / sizeof(float) };                                              \
         const V zero = {0}, one = zero + 1.0f;                                               \
         int x = 0;                                                                           \
         for (; x + W <= w; x += W) {                                                         \
             V v;                                                                             \
-            memcpy(&v, out + x, sizeof v);                                                   \
+            memcpy(&v, res + x, sizeof v);                                                   \
             v = MIN(MAX((v - lo) * inv, zero), one);                                         \
             memcpy(out + x, &v, sizeof v);                                                   \
         }                                                                                    \
         return x;                                                                            \
     }
-TEX_AVX2 static inline __attribute__((always_inline)) __m256 abs_avx2(__m256 v)
-{
-    return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), v);
-}
-MF_STEPS_FN(TEX_AVX2, avx2, __m256, _mm256_min_ps, _mm256_max_ps, abs_avx2)
-MF_STEPS_FN(TEX_AVX512, avx512, __m512, _mm512_min_ps, _mm512_max_ps, _mm512_abs_ps)
+FINISH_ROW_FN(TEX_AVX2, avx2, __m256, _mm256_min_ps, _mm256_max_ps)
+FINISH_ROW_FN(TEX_AVX512, avx512, __m512, _mm512_min_ps, _mm512_max_ps)
 #endif
 
-/* ridged_step or hybrid_step at the level's width, the rest as the scalar ones */
-static void multifractal_step(int mode, int level, const struct mf_step *m, int w,
-                              const float *n, float *st, float *res)
+/* Ridged and hybrid's rescaling of the sum res into out: clamp01((x - lo) inv), with lo 0
+ * for ridged (x - 0 is x: a sum of squares is never -0). */
+static void finish_row(const float *res, float *out, int w, float lo, float inv)
 {
     int x = 0;
 #ifdef TEX_X86
+    int level = tex_simd_level();
     if (level >= TEX_SIMD_AVX512)
-        x = mf_step_avx512(mode == RIDGED, m, w, n, st, res);
+        x = finish_row_avx512(res, out, w, lo, inv);
     else if (level >= TEX_SIMD_AVX2)
-        x = mf_step_avx2(mode == RIDGED, m, w, n, st, res);
-#endif
-    if (mode == RIDGED)
-        ridged_step(m, x, w, n, st, res);
-    else
-        hybrid_step(m, x, w, n, st, res);
-    (void)level;
-}
-
-/* Ridged and hybrid's rescaling: clamp01((x - lo) inv), with lo 0 for ridged
- * (x - 0 is x: a sum of squares is never -0). */
-static void finish_row(float *out, int w, float lo, float inv, int level)
-{
-    int x = 0;
-#ifdef TEX_X86
-    if (level >= TEX_SIMD_AVX512)
-        x = finish_row_avx512(out, w, lo, inv);
-    else if (level >= TEX_SIMD_AVX2)
-        x = finish_row_avx2(out, w, lo, inv);
+        x = finish_row_avx2(res, out, w, lo, inv);
 #endif
     for (; x < w; x++)
-        out[x] = clamp01((out[x] - lo) * inv);
+        out[x] = clamp01((res[x] - lo) * inv);
 }
 
 static void frac_row(const struct tex_field *f, int y, float *out)
 {
     const struct frac_params *p = f->params;
     const struct frac_state *s = f->state;
-    float *n, *st;
+    float *res;
     double v = (y + 0.5) / f->h;
-    int level = tex_simd_level();
 
     if (s->mode == FBM) {
         /* a n instead of 0 + a n: only the sign of a zero differs, and
@@ -984,20 +879,20 @@ static void frac_row(const struct tex_field *f, int y, float *out)
                        s->amp, s->inv, 0, out);
         return;
     }
-    n = s->mode <= HYBRID ? malloc(2 * (size_t)f->w * sizeof *n) : NULL;
-    if (!n) { /* not an octave sum, or no memory for the buffers */
+    res = s->mode <= HYBRID ? malloc(2 * (size_t)f->w * sizeof *res) : NULL;
+    if (!res) { /* not an octave sum, or no memory for the sum and its state */
         for (int x = 0; x < f->w; x++)
             out[x] = frac_point(f, (x + 0.5) / f->w, v, 0);
         return;
     }
-    st = n + f->w;
+    /* the octaves' steps of ridged() and hybrid() in their order, on every pixel */
     for (int k = 0; k < s->o.n; k++) {
-        struct mf_step m = {k == 0, (float)p->mf_offset, (float)p->gain, s->amp[k]};
-        tex_octave_row(&s->o, k, y, n);
-        multifractal_step(s->mode, level, &m, f->w, n, st, out);
+        int op = s->mode == RIDGED ? (k ? TEX_ROW_RIDGED : TEX_ROW_RIDGED_FIRST)
+                                   : (k ? TEX_ROW_HYBRID : TEX_ROW_HYBRID_FIRST);
+        tex_octave_row_op(&s->o, k, y, op, s->amp[k], (float)p->mf_offset, (float)p->gain, res);
     }
-    finish_row(out, f->w, s->mode == RIDGED ? 0 : s->lo, s->inv, level);
-    free(n);
+    finish_row(res, out, f->w, s->mode == RIDGED ? 0 : s->lo, s->inv);
+    free(res);
 }
 
 static int frac_grid(const struct tex_field *f, tex_map *m)

@@ -1229,26 +1229,61 @@ static inline float clamp01(float x)
     return m < 1 ? m : 1;
 }
 
-/* What a row does with each noise value r (tex_noise_grid_row_op). */
-static inline float apply_op(int op, float r, float o, float a, float b)
+/* A row operation's constants (tex_noise_grid_row_op's a, b and c), and where the
+ * multifractal operations keep their state: w floats after the sum */
+struct row_k {
+    float a, b, c;
+    int w;
+};
+
+/* What a row does with each noise value r (tex_noise_grid_row_op), at o. */
+static inline void apply_op(int op, float r, float *o, struct row_k rk)
 {
+    float s, *st = o + rk.w;
+
     switch (op) {
     case TEX_ROW_SET:
-        return r;
+        *o = r;
+        break;
     case TEX_ROW_MUL:
-        return a * r;
+        *o = rk.a * r;
+        break;
     case TEX_ROW_MUL_ABS:
-        return a * fabsf(r);
+        *o = rk.a * fabsf(r);
+        break;
     case TEX_ROW_UNIT:
-        return clamp01(0.5f + 0.5f * r);
+        *o = clamp01(0.5f + 0.5f * r);
+        break;
     case TEX_ROW_ADD:
-        return o + a * r;
+        *o = *o + rk.a * r;
+        break;
     case TEX_ROW_ADD_ABS:
-        return o + a * fabsf(r);
+        *o = *o + rk.a * fabsf(r);
+        break;
     case TEX_ROW_ADD_UNIT:
-        return clamp01(0.5f + 0.5f * ((o + a * r) * b));
-    default: /* TEX_ROW_ADD_ABS_CLAMP */
-        return clamp01((o + a * fabsf(r)) * b);
+        *o = clamp01(0.5f + 0.5f * ((*o + rk.a * r) * rk.b));
+        break;
+    case TEX_ROW_ADD_ABS_CLAMP:
+        *o = clamp01((*o + rk.a * fabsf(r)) * rk.b);
+        break;
+    case TEX_ROW_RIDGED_FIRST:
+        s = rk.b - fabsf(r);
+        *o = *st = s * s;
+        break;
+    case TEX_ROW_RIDGED:
+        s = rk.b - fabsf(r);
+        s = clamp01(*st * rk.c) * (s * s);
+        *o = *o + s * rk.a;
+        *st = s;
+        break;
+    case TEX_ROW_HYBRID_FIRST:
+        *o = *st = (r + rk.b) * rk.a;
+        break;
+    default: /* TEX_ROW_HYBRID */
+        s = (*st < 1 ? *st : 1) * ((r + rk.b) * rk.a);
+        *o = *o + s;
+        *st = s;
+        break;
     }
 }
 
@@ -1256,7 +1291,7 @@ static inline float apply_op(int op, float r, float o, float a, float b)
  * P and Q hold the slots from sb on. */
 static inline __attribute__((always_inline)) void
 row_scalar_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, float *out, int x,
-              int x1, const int op, float a, float b)
+              int x1, const int op, struct row_k rk)
 {
     const int32_t *restrict slot = g->slot;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
@@ -1267,7 +1302,7 @@ row_scalar_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, f
         float t0 = P[s] * u[x] + Q[s];
         float t1 = P[s + 1] * um1[x] + Q[s + 1];
         float r = w0[x] * t0 + w1[x] * t1;
-        out[x] = apply_op(op, r, out[x], a, b);
+        apply_op(op, r, out + x, rk);
     }
 }
 
@@ -1283,50 +1318,69 @@ row_scalar_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, f
     case TEX_ROW_ADD: FN(ARGS PRE, TEX_ROW_ADD, ARGS POST); break;                                 \
     case TEX_ROW_ADD_ABS: FN(ARGS PRE, TEX_ROW_ADD_ABS, ARGS POST); break;                         \
     case TEX_ROW_ADD_UNIT: FN(ARGS PRE, TEX_ROW_ADD_UNIT, ARGS POST); break;                       \
-    default: FN(ARGS PRE, TEX_ROW_ADD_ABS_CLAMP, ARGS POST); break;                                \
+    case TEX_ROW_ADD_ABS_CLAMP: FN(ARGS PRE, TEX_ROW_ADD_ABS_CLAMP, ARGS POST); break;             \
+    case TEX_ROW_RIDGED_FIRST: FN(ARGS PRE, TEX_ROW_RIDGED_FIRST, ARGS POST); break;               \
+    case TEX_ROW_RIDGED: FN(ARGS PRE, TEX_ROW_RIDGED, ARGS POST); break;                           \
+    case TEX_ROW_HYBRID_FIRST: FN(ARGS PRE, TEX_ROW_HYBRID_FIRST, ARGS POST); break;               \
+    default: FN(ARGS PRE, TEX_ROW_HYBRID, ARGS POST); break;                                       \
     }
 /* the row loops' own parameters */
 #define ROW_PRE (g, P, Q, sb, out, x, x1)
 
 static void row_scalar(const tex_noise_grid *g, const float *P, const float *Q, int sb,
-                       float *out, int x, int x1, int op, float a, float b)
+                       float *out, int x, int x1, int op, struct row_k rk)
 {
-    ROW_OP_SWITCH(row_scalar_op, ROW_PRE, (a, b));
+    ROW_OP_SWITCH(row_scalar_op, ROW_PRE, (rk));
 }
 
 #ifdef TEX_X86
-TEX_AVX2 static inline __attribute__((always_inline)) __m256 clamp01_avx2(__m256 x)
-{
-    return _mm256_min_ps(_mm256_max_ps(x, _mm256_setzero_ps()), _mm256_set1_ps(1));
-}
-
-TEX_AVX2 static inline __attribute__((always_inline)) __m256 apply_avx2(const int op, __m256 r,
-                                                                    const float *o, __m256 a,
-                                                                    __m256 b)
-{
-    const __m256 half = _mm256_set1_ps(0.5f), sign = _mm256_set1_ps(-0.0f);
-
-    switch (op) {
-    case TEX_ROW_SET:
-        return r;
-    case TEX_ROW_MUL:
-        return _mm256_mul_ps(a, r);
-    case TEX_ROW_MUL_ABS:
-        return _mm256_mul_ps(a, _mm256_andnot_ps(sign, r));
-    case TEX_ROW_UNIT:
-        return clamp01_avx2(_mm256_add_ps(half, _mm256_mul_ps(half, r)));
-    case TEX_ROW_ADD:
-        return _mm256_add_ps(_mm256_loadu_ps(o), _mm256_mul_ps(a, r));
-    case TEX_ROW_ADD_ABS:
-        return _mm256_add_ps(_mm256_loadu_ps(o), _mm256_mul_ps(a, _mm256_andnot_ps(sign, r)));
-    case TEX_ROW_ADD_UNIT:
-        r = _mm256_mul_ps(_mm256_add_ps(_mm256_loadu_ps(o), _mm256_mul_ps(a, r)), b);
-        return clamp01_avx2(_mm256_add_ps(half, _mm256_mul_ps(half, r)));
-    default:
-        r = _mm256_mul_ps(a, _mm256_andnot_ps(sign, r));
-        return clamp01_avx2(_mm256_mul_ps(_mm256_add_ps(_mm256_loadu_ps(o), r), b));
+/* apply_op W = |V| / 4 pixels at a time, for the vector type V (AVX2's and AVX-512's), whose
+ * operators are their lanes' (MIN, MAX, ABS: its intrinsics; clamps max, then min) */
+#define APPLY_FN(ATTR, NAME, V, MIN, MAX, ABS)                                               \
+    ATTR static inline __attribute__((always_inline)) void NAME(const int op, V r, float *o, \
+                                                                struct row_k rk)             \
+    {                                                                                        \
+        const V zero = {0}, one = zero + 1.0f;                                               \
+        V v, s, st;                                                                          \
+        if (op >= TEX_ROW_ADD && op != TEX_ROW_RIDGED_FIRST && op != TEX_ROW_HYBRID_FIRST) \
+            memcpy(&v, o, sizeof v);                                                         \
+        if (op == TEX_ROW_RIDGED || op == TEX_ROW_HYBRID)                                    \
+            memcpy(&st, o + rk.w, sizeof st);                                                \
+        switch (op) {                                                                        \
+        case TEX_ROW_SET: v = r; break;                                                      \
+        case TEX_ROW_MUL: v = rk.a * r; break;                                               \
+        case TEX_ROW_MUL_ABS: v = rk.a * ABS(r); break;                                      \
+        case TEX_ROW_UNIT: v = MIN(MAX(0.5f + 0.5f * r, zero), one); break;                  \
+        case TEX_ROW_ADD: v = v + rk.a * r; break;                                           \
+        case TEX_ROW_ADD_ABS: v = v + rk.a * ABS(r); break;                                  \
+        case TEX_ROW_ADD_UNIT:                                                               \
+            v = MIN(MAX(0.5f + 0.5f * ((v + rk.a * r) * rk.b), zero), one);                  \
+            break;                                                                           \
+        case TEX_ROW_ADD_ABS_CLAMP: v = MIN(MAX((v + rk.a * ABS(r)) * rk.b, zero), one); break; \
+        case TEX_ROW_RIDGED_FIRST:                                                           \
+            s = rk.b - ABS(r);                                                               \
+            v = s = s * s;                                                                   \
+            break;                                                                           \
+        case TEX_ROW_RIDGED:                                                                 \
+            s = rk.b - ABS(r);                                                               \
+            s = MIN(MAX(st * rk.c, zero), one) * (s * s);                                    \
+            v = v + s * rk.a;                                                                \
+            break;                                                                           \
+        case TEX_ROW_HYBRID_FIRST: v = s = (r + rk.b) * rk.a; break;                         \
+        default: /* TEX_ROW_HYBRID */                                                        \
+            s = MIN(st, one) * ((r + rk.b) * rk.a);                                          \
+            v = v + s;                                                                       \
+            break;                                                                           \
+        }                                                                                    \
+        memcpy(o, &v, sizeof v);                                                             \
+        if (op >= TEX_ROW_RIDGED_FIRST)                                                      \
+            memcpy(o + rk.w, &s, sizeof s);                                                  \
     }
+TEX_AVX2 static inline __attribute__((always_inline)) __m256 abs_avx2(__m256 v)
+{
+    return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), v);
 }
+APPLY_FN(TEX_AVX2, apply_avx2, __m256, _mm256_min_ps, _mm256_max_ps, abs_avx2)
 
 /* Eight pixels from their slots' coefficients, row_scalar_op's formula
  *   w0 (p0 u + q0) + w1 (p1 (u - 1) + q1)
@@ -1334,13 +1388,13 @@ TEX_AVX2 static inline __attribute__((always_inline)) __m256 apply_avx2(const in
 TEX_AVX2 static inline __attribute__((always_inline)) void
 pixels8(const float *restrict u, const float *restrict um1, const float *restrict w0,
         const float *restrict w1, __m256 p0, __m256 p1, __m256 q0, __m256 q1, float *out,
-        const int op, __m256 va, __m256 vb)
+        const int op, struct row_k rk)
 {
     __m256 t0 = _mm256_add_ps(_mm256_mul_ps(p0, _mm256_loadu_ps(u)), q0);
     __m256 t1 = _mm256_add_ps(_mm256_mul_ps(p1, _mm256_loadu_ps(um1)), q1);
     __m256 r = _mm256_add_ps(_mm256_mul_ps(_mm256_loadu_ps(w0), t0),
                              _mm256_mul_ps(_mm256_loadu_ps(w1), t1));
-    _mm256_storeu_ps(out, apply_avx2(op, r, out, va, vb));
+    apply_avx2(op, r, out, rk);
 }
 
 /* Eight pixels' slot values: a0 = V[s], a1 = V[s + 1] for their slots s
@@ -1365,14 +1419,13 @@ expand(const float *V, int s0, __m256i s, __m256i k, int span, __m256 *a0, __m25
 
 TEX_AVX2 static inline __attribute__((always_inline)) void
 row_avx2_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, float *out, int x,
-            int x1, const int op, float a, float b)
+            int x1, const int op, struct row_k rk)
 {
     /* Locals, so that the stores to out do not reload the tables. */
     const int32_t *restrict slot = g->slot;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
                           *restrict w1 = g->w1;
     __m256i vsb = _mm256_set1_epi32(sb);
-    __m256 va = _mm256_set1_ps(a), vb = _mm256_set1_ps(b);
 
     for (; x + 8 <= x1; x += 8) {
         __m256i s = _mm256_sub_epi32(_mm256_loadu_si256((const __m256i *)(slot + x)), vsb);
@@ -1381,9 +1434,9 @@ row_avx2_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, flo
         __m256 p0, p1, q0, q1;
         expand(P, s0, s, k, span, &p0, &p1);
         expand(Q, s0, s, k, span, &q0, &q1);
-        pixels8(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, out + x, op, va, vb);
+        pixels8(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, out + x, op, rk);
     }
-    row_scalar_op(g, P, Q, sb, out, x, x1, op, a, b);
+    row_scalar_op(g, P, Q, sb, out, x, x1, op, rk);
 }
 
 /* Eight columns' slot values when each column has its own pair (g->paired):
@@ -1401,21 +1454,20 @@ TEX_AVX2 static inline __attribute__((always_inline)) void unzip(const float *V,
 /* row_avx2_op for paired slots: the same operations without gathers. */
 TEX_AVX2 static inline __attribute__((always_inline)) void
 row_avx2_paired_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, float *out,
-                   int x, int x1, const int op, float a, float b)
+                   int x, int x1, const int op, struct row_k rk)
 {
     const int32_t *restrict slot = g->slot;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
                           *restrict w1 = g->w1;
-    __m256 va = _mm256_set1_ps(a), vb = _mm256_set1_ps(b);
 
     for (; x + 8 <= x1; x += 8) {
         int s = slot[x] - sb;
         __m256 p0, p1, q0, q1;
         unzip(P + s, &p0, &p1);
         unzip(Q + s, &q0, &q1);
-        pixels8(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, out + x, op, va, vb);
+        pixels8(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, out + x, op, rk);
     }
-    row_scalar_op(g, P, Q, sb, out, x, x1, op, a, b);
+    row_scalar_op(g, P, Q, sb, out, x, x1, op, rk);
 }
 
 /* A lattice row's folded (X, Y, C) at eight columns' left and right corners,
@@ -1460,12 +1512,11 @@ lut_load8(const float (*T)[4], const int32_t *lat, __m256 v[6], const int adj)
 TEX_AVX2 static inline __attribute__((always_inline)) void
 row_lut_avx2_op(const tex_noise_grid *g, const float (*T0)[4], const float (*T1)[4],
                 const float *wy, const float *dy, float *out, const int op, const int adj,
-                float a, float b)
+                struct row_k rk)
 {
     const int32_t *restrict lat = g->lat;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
                           *restrict w1 = g->w1;
-    __m256 va = _mm256_set1_ps(a), vb = _mm256_set1_ps(b);
     __m256 a0 = _mm256_set1_ps(wy[0]), a1 = _mm256_set1_ps(wy[1]);
     __m256 d0 = _mm256_set1_ps(dy[0]), d1 = _mm256_set1_ps(dy[1]);
     int x = 0;
@@ -1487,7 +1538,7 @@ row_lut_avx2_op(const tex_noise_grid *g, const float (*T0)[4], const float (*T1)
                                                           l[3 * c + 2])));
             }
         }
-        pixels8(u + x, um1 + x, w0 + x, w1 + x, P[0], P[1], Q[0], Q[1], out + x, op, va, vb);
+        pixels8(u + x, um1 + x, w0 + x, w1 + x, P[0], P[1], Q[0], Q[1], out + x, op, rk);
     }
     for (; x < g->w; x++) {
         float P[2], Q[2];
@@ -1502,7 +1553,7 @@ row_lut_avx2_op(const tex_noise_grid *g, const float (*T0)[4], const float (*T1)
             }
         }
         float t0 = P[0] * u[x] + Q[0], t1 = P[1] * um1[x] + Q[1];
-        out[x] = apply_op(op, w0[x] * t0 + w1[x] * t1, out[x], a, b);
+        apply_op(op, w0[x] * t0 + w1[x] * t1, out + x, rk);
     }
 }
 
@@ -1563,12 +1614,11 @@ TEX_AVX2 static void interleave(const tex_noise_grid *g, const float *P, float *
  * two corners are the four floats at its left entry. */
 TEX_AVX2 static inline __attribute__((always_inline)) void
 row_folded_avx2_op(const tex_noise_grid *g, const float *PQ, float *out, int x, const int op,
-                   float a, float b)
+                   struct row_k rk)
 {
     const int32_t *restrict corner = g->corner;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
                           *restrict w1 = g->w1;
-    __m256 va = _mm256_set1_ps(a), vb = _mm256_set1_ps(b);
 
     for (; x + 8 <= g->w; x += 8) {
         const float *row[8];
@@ -1577,24 +1627,24 @@ row_folded_avx2_op(const tex_noise_grid *g, const float *PQ, float *out, int x, 
         for (int i = 0; i < 8; i++)
             row[i] = PQ_AT(PQ, corner[x + i]);
         columns8(row, c);
-        pixels8(u + x, um1 + x, w0 + x, w1 + x, c[0], c[2], c[1], c[3], out + x, op, va, vb);
+        pixels8(u + x, um1 + x, w0 + x, w1 + x, c[0], c[2], c[1], c[3], out + x, op, rk);
     }
     for (; x < g->w; x++) {
         const float *e = PQ + 2 * corner[x];
         float t0 = e[0] * u[x] + e[1], t1 = e[2] * um1[x] + e[3];
-        out[x] = apply_op(op, w0[x] * t0 + w1[x] * t1, out[x], a, b);
+        apply_op(op, w0[x] * t0 + w1[x] * t1, out + x, rk);
     }
 }
 
 /* Columns x.. of a folded row from planar coefficients: row_planar_*'s order of operations */
 static inline __attribute__((always_inline)) void
 row_planar_tail(const tex_noise_grid *g, const float *P, const float *Q, float *out, int x,
-                const int op, float a, float b)
+                const int op, struct row_k rk)
 {
     for (; x < g->w; x++) {
         int c = g->corner[x];
         float t0 = P[c] * g->u[x] + Q[c], t1 = P[c + 1] * g->um1[x] + Q[c + 1];
-        out[x] = apply_op(op, g->w0[x] * t0 + g->w1[x] * t1, out[x], a, b);
+        apply_op(op, g->w0[x] * t0 + g->w1[x] * t1, out + x, rk);
     }
 }
 
@@ -1604,13 +1654,12 @@ row_planar_tail(const tex_noise_grid *g, const float *P, const float *Q, float *
  * taken mod n. */
 TEX_AVX2 static inline __attribute__((always_inline)) void
 row_planar_avx2_op(const tex_noise_grid *g, const float *P, const float *Q, float *out,
-                   const int op, float a, float b)
+                   const int op, struct row_k rk)
 {
     const int32_t *restrict corner = g->corner;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
                           *restrict w1 = g->w1;
     __m256i vn = _mm256_set1_epi32(g->t->n);
-    __m256 va = _mm256_set1_ps(a), vb = _mm256_set1_ps(b);
     int x = 0;
 
     for (; x + 8 <= g->w; x += 8) {
@@ -1621,40 +1670,40 @@ row_planar_avx2_op(const tex_noise_grid *g, const float *P, const float *Q, floa
         __m256 p0, p1, q0, q1;
         expand(P, c0, k, k, 7, &p0, &p1);
         expand(Q, c0, k, k, 7, &q0, &q1);
-        pixels8(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, out + x, op, va, vb);
+        pixels8(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, out + x, op, rk);
     }
-    row_planar_tail(g, P, Q, out, x, op, a, b);
+    row_planar_tail(g, P, Q, out, x, op, rk);
 }
 
 TEX_AVX2 static void row_lut_avx2(const tex_noise_grid *g, int64_t j, const float *wy,
-                                  const float *dy, int two, float *out, int op, float a, float b)
+                                  const float *dy, int two, float *out, int op, struct row_k rk)
 {
     if (g->folded) { /* more columns than entries: fold the entries first */
         float P[FOLD_FLOATS], *PQ = P + 2 * g->ps;
         fold_row_avx2(g, j, wy, dy, two, P);
         if (g->span8 <= 7 && g->span8 < g->t->n) { /* offsets mod n unambiguous */
-            ROW_OP_SWITCH(row_planar_avx2_op, (g, P, P + g->ps, out), (a, b));
+            ROW_OP_SWITCH(row_planar_avx2_op, (g, P, P + g->ps, out), (rk));
         } else {
             interleave(g, P, PQ);
-            ROW_OP_SWITCH(row_folded_avx2_op, (g, PQ, out, 0), (a, b));
+            ROW_OP_SWITCH(row_folded_avx2_op, (g, PQ, out, 0), (rk));
         }
         return;
     }
     const float(*T0)[4] = lut_row(g, j), (*T1)[4] = two ? lut_row(g, j + 1) : NULL;
     if (g->adjacent) {
-        ROW_OP_SWITCH(row_lut_avx2_op, (g, T0, T1, wy, dy, out), (1, a, b));
+        ROW_OP_SWITCH(row_lut_avx2_op, (g, T0, T1, wy, dy, out), (1, rk));
     } else {
-        ROW_OP_SWITCH(row_lut_avx2_op, (g, T0, T1, wy, dy, out), (0, a, b));
+        ROW_OP_SWITCH(row_lut_avx2_op, (g, T0, T1, wy, dy, out), (0, rk));
     }
 }
 
 TEX_AVX2 static inline void row_avx2(const tex_noise_grid *g, const float *P, const float *Q, int sb,
-                                 float *out, int x, int x1, int op, float a, float b)
+                                 float *out, int x, int x1, int op, struct row_k rk)
 {
     if (g->paired) {
-        ROW_OP_SWITCH(row_avx2_paired_op, ROW_PRE, (a, b));
+        ROW_OP_SWITCH(row_avx2_paired_op, ROW_PRE, (rk));
     } else {
-        ROW_OP_SWITCH(row_avx2_op, ROW_PRE, (a, b));
+        ROW_OP_SWITCH(row_avx2_op, ROW_PRE, (rk));
     }
 }
 #endif
@@ -1662,51 +1711,19 @@ TEX_AVX2 static inline void row_avx2(const tex_noise_grid *g, const float *P, co
 #ifdef TEX_X86
 /* ---- the rows sixteen pixels at a time (AVX-512): the AVX2 kernels' operations ---- */
 
-TEX_AVX512 static inline __attribute__((always_inline)) __m512 clamp01_avx512(__m512 x)
-{
-    return _mm512_min_ps(_mm512_max_ps(x, _mm512_setzero_ps()), _mm512_set1_ps(1));
-}
-
-TEX_AVX512 static inline __attribute__((always_inline)) __m512
-apply_avx512(const int op, __m512 r, const float *o, __m512 a, __m512 b)
-{
-    const __m512 half = _mm512_set1_ps(0.5f);
-    const __m512i mag = _mm512_set1_epi32(0x7fffffff);
-    __m512 ar = _mm512_castsi512_ps(_mm512_and_si512(_mm512_castps_si512(r), mag)); /* |r| */
-
-    switch (op) {
-    case TEX_ROW_SET:
-        return r;
-    case TEX_ROW_MUL:
-        return _mm512_mul_ps(a, r);
-    case TEX_ROW_MUL_ABS:
-        return _mm512_mul_ps(a, ar);
-    case TEX_ROW_UNIT:
-        return clamp01_avx512(_mm512_add_ps(half, _mm512_mul_ps(half, r)));
-    case TEX_ROW_ADD:
-        return _mm512_add_ps(_mm512_loadu_ps(o), _mm512_mul_ps(a, r));
-    case TEX_ROW_ADD_ABS:
-        return _mm512_add_ps(_mm512_loadu_ps(o), _mm512_mul_ps(a, ar));
-    case TEX_ROW_ADD_UNIT:
-        r = _mm512_mul_ps(_mm512_add_ps(_mm512_loadu_ps(o), _mm512_mul_ps(a, r)), b);
-        return clamp01_avx512(_mm512_add_ps(half, _mm512_mul_ps(half, r)));
-    default:
-        return clamp01_avx512(
-            _mm512_mul_ps(_mm512_add_ps(_mm512_loadu_ps(o), _mm512_mul_ps(a, ar)), b));
-    }
-}
+APPLY_FN(TEX_AVX512, apply_avx512, __m512, _mm512_min_ps, _mm512_max_ps, _mm512_abs_ps)
 
 /* pixels8 for sixteen pixels */
 TEX_AVX512 static inline __attribute__((always_inline)) void
 pixels16(const float *restrict u, const float *restrict um1, const float *restrict w0,
          const float *restrict w1, __m512 p0, __m512 p1, __m512 q0, __m512 q1, float *out,
-         const int op, __m512 va, __m512 vb)
+         const int op, struct row_k rk)
 {
     __m512 t0 = _mm512_add_ps(_mm512_mul_ps(p0, _mm512_loadu_ps(u)), q0);
     __m512 t1 = _mm512_add_ps(_mm512_mul_ps(p1, _mm512_loadu_ps(um1)), q1);
     __m512 r = _mm512_add_ps(_mm512_mul_ps(_mm512_loadu_ps(w0), t0),
                              _mm512_mul_ps(_mm512_loadu_ps(w1), t1));
-    _mm512_storeu_ps(out, apply_avx512(op, r, out, va, vb));
+    apply_avx512(op, r, out, rk);
 }
 
 /* expand for sixteen pixels (span at most 15: one permute; more: gathers) */
@@ -1728,13 +1745,12 @@ expand16(const float *V, int s0, __m512i s, __m512i k, int span, __m512 *a0, __m
 
 TEX_AVX512 static inline __attribute__((always_inline)) void
 row_avx512_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, float *out, int x,
-              int x1, const int op, float a, float b)
+              int x1, const int op, struct row_k rk)
 {
     const int32_t *restrict slot = g->slot;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
                           *restrict w1 = g->w1;
     __m512i vsb = _mm512_set1_epi32(sb);
-    __m512 va = _mm512_set1_ps(a), vb = _mm512_set1_ps(b);
 
     for (; x + 16 <= x1; x += 16) {
         __m512i s = _mm512_sub_epi32(_mm512_loadu_si512(slot + x), vsb);
@@ -1743,9 +1759,9 @@ row_avx512_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, f
         __m512 p0, p1, q0, q1;
         expand16(P, s0, s, k, span, &p0, &p1);
         expand16(Q, s0, s, k, span, &q0, &q1);
-        pixels16(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, out + x, op, va, vb);
+        pixels16(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, out + x, op, rk);
     }
-    row_avx2_op(g, P, Q, sb, out, x, x1, op, a, b);
+    row_avx2_op(g, P, Q, sb, out, x, x1, op, rk);
 }
 
 /* unzip for sixteen columns */
@@ -1761,33 +1777,30 @@ TEX_AVX512 static inline __attribute__((always_inline)) void unzip16(const float
 
 TEX_AVX512 static inline __attribute__((always_inline)) void
 row_avx512_paired_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, float *out,
-                     int x, int x1, const int op, float a, float b)
+                     int x, int x1, const int op, struct row_k rk)
 {
     const int32_t *restrict slot = g->slot;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
                           *restrict w1 = g->w1;
-    __m512 va = _mm512_set1_ps(a), vb = _mm512_set1_ps(b);
 
     for (; x + 16 <= x1; x += 16) {
         int s = slot[x] - sb;
         __m512 p0, p1, q0, q1;
         unzip16(P + s, &p0, &p1);
         unzip16(Q + s, &q0, &q1);
-        pixels16(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, out + x, op, va, vb);
+        pixels16(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, out + x, op, rk);
     }
-    row_avx2_paired_op(g, P, Q, sb, out, x, x1, op, a, b);
+    row_avx2_paired_op(g, P, Q, sb, out, x, x1, op, rk);
 }
 
 /* row_folded_avx2_op sixteen columns at a time: the rows of columns x + k, x + 4 + k,
  * x + 8 + k and x + 12 + k in the quarters of r[k], so that columns4_16 gives point order */
 TEX_AVX512 static inline __attribute__((always_inline)) void
-row_folded_avx512_op(const tex_noise_grid *g, const float *PQ, float *out, const int op, float a,
-                     float b)
+row_folded_avx512_op(const tex_noise_grid *g, const float *PQ, float *out, const int op, struct row_k rk)
 {
     const int32_t *restrict corner = g->corner;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
                           *restrict w1 = g->w1;
-    __m512 va = _mm512_set1_ps(a), vb = _mm512_set1_ps(b);
     int x = 0;
 
     for (; x + 16 <= g->w; x += 16) {
@@ -1801,9 +1814,9 @@ row_folded_avx512_op(const tex_noise_grid *g, const float *PQ, float *out, const
             r[k] = _mm512_insertf32x4(r[k], _mm_loadu_ps(PQ_AT(PQ, l[12])), 3);
         }
         columns4_16(r, c);
-        pixels16(u + x, um1 + x, w0 + x, w1 + x, c[0], c[2], c[1], c[3], out + x, op, va, vb);
+        pixels16(u + x, um1 + x, w0 + x, w1 + x, c[0], c[2], c[1], c[3], out + x, op, rk);
     }
-    row_folded_avx2_op(g, PQ, out, x, op, a, b);
+    row_folded_avx2_op(g, PQ, out, x, op, rk);
 }
 
 FOLD_ROW_FN(TEX_AVX512, fold_row_avx512, __m512)
@@ -1814,13 +1827,12 @@ FOLD_ROW_FN(TEX_AVX512, fold_row_avx512, __m512)
  * entries, or of two (slower where one does) */
 TEX_AVX512 static inline __attribute__((always_inline)) void
 row_planar_avx512_op(const tex_noise_grid *g, const float *P, const float *Q, float *out,
-                     const int two, const int op, float a, float b)
+                     const int two, const int op, struct row_k rk)
 {
     const int32_t *restrict corner = g->corner;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
                           *restrict w1 = g->w1;
     __m512i vn = _mm512_set1_epi32(g->t->n);
-    __m512 va = _mm512_set1_ps(a), vb = _mm512_set1_ps(b);
     int x = 0;
 
     for (; x + 16 <= g->w; x += 16) {
@@ -1838,40 +1850,38 @@ row_planar_avx512_op(const tex_noise_grid *g, const float *P, const float *Q, fl
             expand16(P, c0, k, k, 15, &v[0], &v[2]);
             expand16(Q, c0, k, k, 15, &v[1], &v[3]);
         }
-        pixels16(u + x, um1 + x, w0 + x, w1 + x, v[0], v[2], v[1], v[3], out + x, op, va, vb);
+        pixels16(u + x, um1 + x, w0 + x, w1 + x, v[0], v[2], v[1], v[3], out + x, op, rk);
     }
-    row_planar_tail(g, P, Q, out, x, op, a, b);
+    row_planar_tail(g, P, Q, out, x, op, rk);
 }
 
 /* row_lut_avx2 with the folded rows sixteen columns at a time */
 TEX_AVX512 static void row_lut_avx512(const tex_noise_grid *g, int64_t j, const float *wy,
-                                      const float *dy, int two, float *out, int op, float a,
-                                      float b)
+                                      const float *dy, int two, float *out, int op, struct row_k rk)
 {
     if (!g->folded) {
-        row_lut_avx2(g, j, wy, dy, two, out, op, a, b);
+        row_lut_avx2(g, j, wy, dy, two, out, op, rk);
         return;
     }
     float P[FOLD_FLOATS], *PQ = P + 2 * g->ps;
     fold_row_avx512(g, j, wy, dy, two, P);
     if (g->span16 <= 15 && g->span16 < g->t->n) {
-        ROW_OP_SWITCH(row_planar_avx512_op, (g, P, P + g->ps, out, 0), (a, b));
+        ROW_OP_SWITCH(row_planar_avx512_op, (g, P, P + g->ps, out, 0), (rk));
     } else if (g->span16 <= 31 && g->span16 < g->t->n) {
-        ROW_OP_SWITCH(row_planar_avx512_op, (g, P, P + g->ps, out, 1), (a, b));
+        ROW_OP_SWITCH(row_planar_avx512_op, (g, P, P + g->ps, out, 1), (rk));
     } else {
         interleave(g, P, PQ);
-        ROW_OP_SWITCH(row_folded_avx512_op, (g, PQ, out), (a, b));
+        ROW_OP_SWITCH(row_folded_avx512_op, (g, PQ, out), (rk));
     }
 }
 
 TEX_AVX512 static inline void row_avx512(const tex_noise_grid *g, const float *P, const float *Q,
-                                         int sb, float *out, int x, int x1, int op, float a,
-                                         float b)
+                                         int sb, float *out, int x, int x1, int op, struct row_k rk)
 {
     if (g->paired) {
-        ROW_OP_SWITCH(row_avx512_paired_op, ROW_PRE, (a, b));
+        ROW_OP_SWITCH(row_avx512_paired_op, ROW_PRE, (rk));
     } else {
-        ROW_OP_SWITCH(row_avx512_op, ROW_PRE, (a, b));
+        ROW_OP_SWITCH(row_avx512_op, ROW_PRE, (rk));
     }
 }
 
@@ -1933,30 +1943,32 @@ TEX_AVX512 static void row_coeffs_avx512(int ns, const float *wy, const float *d
 #include "prim/noise_row_template.c"
 #endif
 
-void tex_noise_grid_row_op(const tex_noise_grid *g, int y, int op, float a, float b, float *out)
+void tex_noise_grid_row_op(const tex_noise_grid *g, int y, int op, float a, float b, float c,
+                           float *out)
 {
+    struct row_k rk = {a, b, c, g->w};
 #ifdef TEX_X86
     int level = tex_simd_level();
     if (level >= TEX_SIMD_AVX512 && g->wide) {
-        grid_row_avx512(g, y, op, a, b, out);
+        grid_row_avx512(g, y, op, rk, out);
         return;
     }
     if (level >= TEX_SIMD_AVX2) {
-        grid_row_avx2(g, y, op, a, b, out);
+        grid_row_avx2(g, y, op, rk, out);
         return;
     }
 #endif
-    grid_row_scalar(g, y, op, a, b, out);
+    grid_row_scalar(g, y, op, rk, out);
 }
 
 void tex_noise_grid_row(const tex_noise_grid *g, int y, float *out)
 {
-    tex_noise_grid_row_op(g, y, TEX_ROW_SET, 0, 0, out);
+    tex_noise_grid_row_op(g, y, TEX_ROW_SET, 0, 0, 0, out);
 }
 
 void tex_noise_grid_row_add(const tex_noise_grid *g, int y, float amp, float *out)
 {
-    tex_noise_grid_row_op(g, y, TEX_ROW_ADD, amp, 0, out);
+    tex_noise_grid_row_op(g, y, TEX_ROW_ADD, amp, 0, 0, out);
 }
 
 /* ---- the analytic gradient over a row ---- */
@@ -2294,9 +2306,10 @@ void tex_octave_row_add(const tex_octaves *o, int k, int y, float amp, float *ou
     tex_noise_grid_row_add(&o->g[k], y, amp, out);
 }
 
-void tex_octave_row_op(const tex_octaves *o, int k, int y, int op, float a, float b, float *out)
+void tex_octave_row_op(const tex_octaves *o, int k, int y, int op, float a, float b, float c,
+                       float *out)
 {
-    tex_noise_grid_row_op(&o->g[k], y, op, a, b, out);
+    tex_noise_grid_row_op(&o->g[k], y, op, a, b, c, out);
 }
 
 /* ---- the primitive ---- */
@@ -2443,7 +2456,7 @@ static void noise_row(const struct tex_field *f, int y, float *out)
 {
     const struct noise_state *s = f->state;
 
-    tex_noise_grid_row_op(&s->g, y, TEX_ROW_UNIT, 0, 0, out);
+    tex_noise_grid_row_op(&s->g, y, TEX_ROW_UNIT, 0, 0, 0, out);
 }
 
 const struct tex_primitive tex_prim_noise = {

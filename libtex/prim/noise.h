@@ -164,18 +164,25 @@ typedef struct tex_noise_grid {
 int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int h, double fx,
                         double fy, const double off[4], int dims, int period);
 /* What a row does with each noise value n, in the same vectorised pass
- * (clamp01(x) is min(max(x, 0), 1)): */
+ * (clamp01(x) is min(max(x, 0), 1)).  The multifractal steps (Musgrave's
+ * ridged and hybrid octaves, as fractal.c's points sum them) keep a state st
+ * per column: out then holds 2w floats, the sum and st. */
 enum {
-    TEX_ROW_SET,          /* out = n */
-    TEX_ROW_MUL,          /* out = a n */
-    TEX_ROW_MUL_ABS,      /* out = a |n| */
-    TEX_ROW_UNIT,         /* out = clamp01(0.5 + 0.5 n) */
-    TEX_ROW_ADD,          /* out = out + a n */
-    TEX_ROW_ADD_ABS,      /* out = out + a |n| */
-    TEX_ROW_ADD_UNIT,     /* out = clamp01(0.5 + 0.5 ((out + a n) b)): fBm's last octave */
-    TEX_ROW_ADD_ABS_CLAMP /* out = clamp01((out + a |n|) b): turbulence's last octave */
+    TEX_ROW_SET,           /* out = n */
+    TEX_ROW_MUL,           /* out = a n */
+    TEX_ROW_MUL_ABS,       /* out = a |n| */
+    TEX_ROW_UNIT,          /* out = clamp01(0.5 + 0.5 n) */
+    TEX_ROW_ADD,           /* out = out + a n */
+    TEX_ROW_ADD_ABS,       /* out = out + a |n| */
+    TEX_ROW_ADD_UNIT,      /* out = clamp01(0.5 + 0.5 ((out + a n) b)): fBm's last octave */
+    TEX_ROW_ADD_ABS_CLAMP, /* out = clamp01((out + a |n|) b): turbulence's last octave */
+    TEX_ROW_RIDGED_FIRST,  /* s = (b - |n|)^2: out = st = s */
+    TEX_ROW_RIDGED,        /* s = clamp01(st c) (b - |n|)^2: out = out + s a, st = s */
+    TEX_ROW_HYBRID_FIRST,  /* s = (n + b) a: out = st = s */
+    TEX_ROW_HYBRID         /* s = min(st, 1) ((n + b) a): out = out + s, st = s */
 };
-void tex_noise_grid_row_op(const tex_noise_grid *g, int y, int op, float a, float b, float *out);
+void tex_noise_grid_row_op(const tex_noise_grid *g, int y, int op, float a, float b, float c,
+                           float *out);
 /* tex_noise_grid_row_op with TEX_ROW_SET and TEX_ROW_ADD. */
 void tex_noise_grid_row(const tex_noise_grid *g, int y, float *out);
 void tex_noise_grid_row_add(const tex_noise_grid *g, int y, float amp, float *out);
@@ -233,7 +240,8 @@ double tex_noise_mean_abs(const tex_noise_table *t);
 /* Signed noise of octave k over row y of the grid. */
 void tex_octave_row(const tex_octaves *o, int k, int y, float *out);
 void tex_octave_row_add(const tex_octaves *o, int k, int y, float amp, float *out);
-void tex_octave_row_op(const tex_octaves *o, int k, int y, int op, float a, float b, float *out);
+void tex_octave_row_op(const tex_octaves *o, int k, int y, int op, float a, float b, float c,
+                       float *out);
 
 /* The parameter rows every noise-based primitive shares (param.h), declared once:
  * struct S must have double z, struct tex_reals offset, int fade, int gradients

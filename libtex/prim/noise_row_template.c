@@ -5,11 +5,11 @@
  *   GRID_ROW     the function's name
  *   GRID_ATTR    its target attribute (empty for the portable path)
  *   GRID_COEFFS  the kernel that blends two lattice rows into P and Q
- *   GRID_PIXELS  the kernel that turns P and Q into pixels (with op, a, b)
+ *   GRID_PIXELS  the kernel that turns P and Q into pixels (with op, rk)
  *   GRID_LUT_ROW (optional) the whole row of a paired grid with a table
  * The result is a real function, visible to debuggers and profilers.
  */
-GRID_ATTR static void GRID_ROW(const tex_noise_grid *g, int y, int op, float a, float b, float *out)
+GRID_ATTR static void GRID_ROW(const tex_noise_grid *g, int y, int op, struct row_k rk, float *out)
 {
     enum { CHUNK = 1024, NS = 2 * CHUNK + 24 };
     float P[NS], Q[NS], L[6][NS];
@@ -23,7 +23,7 @@ GRID_ATTR static void GRID_ROW(const tex_noise_grid *g, int y, int op, float a, 
 
 #ifdef GRID_LUT_ROW
     if (g->folded || (g->paired && g->lut)) {
-        GRID_LUT_ROW(g, j, wy, dy, two, out, op, a, b);
+        GRID_LUT_ROW(g, j, wy, dy, two, out, op, rk);
         return;
     }
 #endif
@@ -50,7 +50,7 @@ GRID_ATTR static void GRID_ROW(const tex_noise_grid *g, int y, int op, float a, 
             }
         }
         GRID_COEFFS(s1 - s0, wy, dy, L0, two ? L1 : NULL, P, Q);
-        GRID_PIXELS(g, P, Q, s0, out, x0, x1, op, a, b);
+        GRID_PIXELS(g, P, Q, s0, out, x0, x1, op, rk);
     }
     if (e)
         __atomic_store_n(&e->busy, 0, __ATOMIC_RELEASE);

@@ -435,7 +435,7 @@ static void perturb_row(const struct tex_field *f, int y, float *out)
     double v = (y + 0.5) / f->h;
 
     for (int k = 0; k < s->o.n; k++) /* a |n| is never -0: the same as 0 + a |n| */
-        tex_octave_row_op(&s->o, k, y, k ? TEX_ROW_ADD_ABS : TEX_ROW_MUL_ABS, s->amp[k], 0, out);
+        tex_octave_row_op(&s->o, k, y, k ? TEX_ROW_ADD_ABS : TEX_ROW_MUL_ABS, s->amp[k], 0, 0, out);
     double U[TEX_POINTS_BATCH], V[TEX_POINTS_BATCH];
     for (int x0 = 0; x0 < f->w; x0 += TEX_POINTS_BATCH) {
         int m = f->w - x0 < TEX_POINTS_BATCH ? f->w - x0 : TEX_POINTS_BATCH;

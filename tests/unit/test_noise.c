@@ -357,20 +357,20 @@ static void test_rows_kept(const tex_noise_table *t)
     tex_noise_grid_init(&g, t, W, H, 11, 11, off, 3, 0);
     CHECK(g.cache != NULL, "a grid with cells taller than a pixel keeps lattice rows");
     for (int y = 0; y < H; y++)
-        tex_noise_grid_row_op(&g, y, TEX_ROW_UNIT, 0, 0, ref + y * W);
+        tex_noise_grid_row_op(&g, y, TEX_ROW_UNIT, 0, 0, 0, ref + y * W);
     for (int y = H - 1; y >= 0; y--) {
-        tex_noise_grid_row_op(&g, y, TEX_ROW_UNIT, 0, 0, row);
+        tex_noise_grid_row_op(&g, y, TEX_ROW_UNIT, 0, 0, 0, row);
         bad[0] |= memcmp(row, ref + y * W, sizeof row) != 0;
     }
     for (int i = 0; i < H; i++) {
         int y = (i * 37 + 11) % H; /* 37 is prime to 200: every row once */
-        tex_noise_grid_row_op(&g, y, TEX_ROW_UNIT, 0, 0, row);
+        tex_noise_grid_row_op(&g, y, TEX_ROW_UNIT, 0, 0, 0, row);
         bad[1] |= memcmp(row, ref + y * W, sizeof row) != 0;
     }
     tex_noise_grid_free(&g);
     for (int y = 0; y < H; y += 7) {
         tex_noise_grid_init(&g, t, W, H, 11, 11, off, 3, 0);
-        tex_noise_grid_row_op(&g, y, TEX_ROW_UNIT, 0, 0, row);
+        tex_noise_grid_row_op(&g, y, TEX_ROW_UNIT, 0, 0, 0, row);
         bad[2] |= memcmp(row, ref + y * W, sizeof row) != 0;
         tex_noise_grid_free(&g);
     }
@@ -383,18 +383,18 @@ static void test_rows_kept(const tex_noise_table *t)
 /* The row operations are what they say, on the same noise. */
 static void test_row_ops(const tex_noise_table *t)
 {
-    float n[64], o[64], v[64];
+    float n[64], o[128], v[128]; /* the sum, then the multifractal steps' state */
     double off[4] = {0.1, 0.2, 0.3, 0};
     int bad = 0;
     tex_noise_grid g;
     tex_noise_grid_init(&g, t, 64, 8, 5, 5, off, 3, 0);
     tex_noise_grid_row(&g, 3, n);
-    for (int op = TEX_ROW_SET; op <= TEX_ROW_ADD_ABS_CLAMP; op++) {
-        for (int x = 0; x < 64; x++)
-            o[x] = v[x] = 0.25f - 0.01f * x;
-        tex_noise_grid_row_op(&g, 3, op, 0.7f, 1.3f, o);
+    for (int op = TEX_ROW_SET; op <= TEX_ROW_HYBRID; op++) {
+        for (int x = 0; x < 128; x++)
+            o[x] = v[x] = 0.25f - 0.01f * (x % 64) + (x >= 64 ? 0.9f : 0);
+        tex_noise_grid_row_op(&g, 3, op, 0.7f, 1.3f, 0.8f, o);
         for (int x = 0; x < 64; x++) {
-            float a = 0.7f, b = 1.3f, r = n[x], e;
+            float a = 0.7f, b = 1.3f, c = 0.8f, r = n[x], e, st = v[64 + x], s = st;
             switch (op) {
             case TEX_ROW_SET: e = r; break;
             case TEX_ROW_MUL: e = a * r; break;
@@ -403,13 +403,21 @@ static void test_row_ops(const tex_noise_table *t)
             case TEX_ROW_ADD: e = v[x] + a * r; break;
             case TEX_ROW_ADD_ABS: e = v[x] + a * fabsf(r); break;
             case TEX_ROW_ADD_UNIT: e = fminf(fmaxf(0.5f + 0.5f * ((v[x] + a * r) * b), 0), 1); break;
-            default: e = fminf(fmaxf((v[x] + a * fabsf(r)) * b, 0), 1); break;
+            case TEX_ROW_ADD_ABS_CLAMP: e = fminf(fmaxf((v[x] + a * fabsf(r)) * b, 0), 1); break;
+            case TEX_ROW_RIDGED_FIRST: e = s = (b - fabsf(r)) * (b - fabsf(r)); break;
+            case TEX_ROW_RIDGED:
+                s = fminf(fmaxf(st * c, 0), 1) * ((b - fabsf(r)) * (b - fabsf(r)));
+                e = v[x] + s * a;
+                break;
+            case TEX_ROW_HYBRID_FIRST: e = s = (r + b) * a; break;
+            default: s = fminf(st, 1) * ((r + b) * a), e = v[x] + s; break;
             }
-            bad += o[x] != e;
+            bad += o[x] != e || o[64 + x] != s;
         }
     }
     tex_noise_grid_free(&g);
-    CHECKF(bad == 0, "row operations set, mul, |n|, unit, add and the finishes (%d wrong)", bad);
+    CHECKF(bad == 0, "row operations set, mul, |n|, unit, add, the finishes and the multifractal "
+                     "steps (%d wrong)", bad);
 }
 
 /* 3D noise's range, mean, continuity and zeros, and its analytic gradient. */
