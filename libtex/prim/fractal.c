@@ -60,20 +60,20 @@ struct turb_state {
     float mean;  /* band limit: E|noise|, what a faded octave is replaced with */
 };
 
-/* A row of octaves 0..n-1 summed into out (w samples): the first octave sets the
- * sum (no clearing pass), the last finishes it (rescale and clamp); a lone octave
- * adds its finish to a cleared row.  With fill, the row starts at fill instead. */
-static void octave_sum_row(const tex_octaves *o, int n, int y, int w, int first, int mid,
-                           int last, const float *amp, float inv, float fill, float *out)
+/* Rows y.. y + rows - 1 of octaves 0..n-1 summed into out (rows of w samples): the first
+ * octave sets the sum (no clearing pass), the last finishes it (rescale and clamp); a lone
+ * octave adds its finish to cleared rows.  With fill, the rows start at fill instead. */
+static void octave_sum_rows(const tex_octaves *o, int n, int y, int rows, int w, int first,
+                            int mid, int last, const float *amp, float inv, float fill, float *out)
 {
     if (n == 1 || fill != 0)
-        for (int x = 0; x < w; x++)
+        for (size_t x = 0; x < (size_t)rows * w; x++)
             out[x] = fill;
     if (fill != 0)
         first = mid;
     for (int k = 0; k < n; k++)
-        tex_octave_row_op(o, k, y, k == n - 1 ? last : k == 0 ? first : mid, amp[k], inv, 0,
-                          out);
+        tex_octave_rows_op(o, k, y, rows, k == n - 1 ? last : k == 0 ? first : mid, amp[k], inv,
+                           0, out, (size_t)w);
 }
 
 /* The band limit on the amplitudes: each octave weighted, the faded share of
@@ -193,13 +193,18 @@ static void turb_eval2(const struct tex_field *f, int n, const double *u, const 
     turb_eval3(f, n, u, v, NULL, out);
 }
 
-static void turb_row(const struct tex_field *f, int y, float *out)
+static void turb_row_n(const struct tex_field *f, int y, int n, float *out)
 {
     const struct turb_state *s = f->state;
 
     /* a |n| is never -0: the same as 0 + a |n| */
-    octave_sum_row(&s->o, s->active, y, f->w, TEX_ROW_MUL_ABS, TEX_ROW_ADD_ABS,
-                   TEX_ROW_ADD_ABS_CLAMP, s->amp, s->inv, s->fill, out);
+    octave_sum_rows(&s->o, s->active, y, n, f->w, TEX_ROW_MUL_ABS, TEX_ROW_ADD_ABS,
+                    TEX_ROW_ADD_ABS_CLAMP, s->amp, s->inv, s->fill, out);
+}
+
+static void turb_row(const struct tex_field *f, int y, float *out)
+{
+    turb_row_n(f, y, 1, out);
 }
 
 const struct tex_primitive tex_prim_turbulence = {
@@ -214,6 +219,7 @@ const struct tex_primitive tex_prim_turbulence = {
     .eval3 = turb_eval3,
     .eval3_fw = turb_eval3_fw,
     .row = turb_row,
+    .rows = turb_row_n,
 };
 
 /* ---- wood: rings about an axis, perturbed by turbulence (POV-Ray's wood) ---- */
@@ -865,34 +871,43 @@ static void finish_row(const float *res, float *out, int w, float lo, float inv)
         out[x] = clamp01((res[x] - lo) * inv);
 }
 
-static void frac_row(const struct tex_field *f, int y, float *out)
+static void frac_row_n(const struct tex_field *f, int y, int n, float *out)
 {
     const struct frac_params *p = f->params;
     const struct frac_state *s = f->state;
+    size_t w = (size_t)f->w;
     float *res;
-    double v = (y + 0.5) / f->h;
 
     if (s->mode == FBM) {
         /* a n instead of 0 + a n: only the sign of a zero differs, and
          * 0.5 + 0.5 x erases it */
-        octave_sum_row(&s->o, s->active, y, f->w, TEX_ROW_MUL, TEX_ROW_ADD, TEX_ROW_ADD_UNIT,
-                       s->amp, s->inv, 0, out);
+        octave_sum_rows(&s->o, s->active, y, n, f->w, TEX_ROW_MUL, TEX_ROW_ADD, TEX_ROW_ADD_UNIT,
+                        s->amp, s->inv, 0, out);
         return;
     }
-    res = s->mode <= HYBRID ? malloc(2 * (size_t)f->w * sizeof *res) : NULL;
-    if (!res) { /* not an octave sum, or no memory for the sum and its state */
-        for (int x = 0; x < f->w; x++)
-            out[x] = frac_point(f, (x + 0.5) / f->w, v, 0);
+    res = s->mode <= HYBRID ? malloc(2 * n * w * sizeof *res) : NULL;
+    if (!res) { /* not an octave sum, or no memory for the sums and their states */
+        for (int i = 0; i < n; i++)
+            for (int x = 0; x < f->w; x++)
+                out[i * w + x] = frac_point(f, (x + 0.5) / f->w, (y + i + 0.5) / f->h, 0);
         return;
     }
-    /* the octaves' steps of ridged() and hybrid() in their order, on every pixel */
+    /* the octaves' steps of ridged() and hybrid() in their order, on every pixel; each row's
+     * sum then its state */
     for (int k = 0; k < s->o.n; k++) {
         int op = s->mode == RIDGED ? (k ? TEX_ROW_RIDGED : TEX_ROW_RIDGED_FIRST)
                                    : (k ? TEX_ROW_HYBRID : TEX_ROW_HYBRID_FIRST);
-        tex_octave_row_op(&s->o, k, y, op, s->amp[k], (float)p->mf_offset, (float)p->gain, res);
+        tex_octave_rows_op(&s->o, k, y, n, op, s->amp[k], (float)p->mf_offset, (float)p->gain,
+                           res, 2 * w);
     }
-    finish_row(res, out, f->w, s->mode == RIDGED ? 0 : s->lo, s->inv);
+    for (int i = 0; i < n; i++)
+        finish_row(res + 2 * i * w, out + i * w, f->w, s->mode == RIDGED ? 0 : s->lo, s->inv);
     free(res);
+}
+
+static void frac_row(const struct tex_field *f, int y, float *out)
+{
+    frac_row_n(f, y, 1, out);
 }
 
 static int frac_grid(const struct tex_field *f, tex_map *m)
@@ -903,10 +918,7 @@ static int frac_grid(const struct tex_field *f, tex_map *m)
         memcpy(m->px, s->mp, (size_t)f->w * f->h * sizeof *s->mp);
         return 0;
     }
-#pragma omp parallel for schedule(dynamic, 4)
-    for (int y = 0; y < f->h; y++)
-        frac_row(f, y, tex_map_row(m, y));
-    return 0;
+    return tex_field_sample_rows(f, m);
 }
 
 /* Midpoint displacement draws its random numbers in sequence over the whole
@@ -931,6 +943,7 @@ const struct tex_primitive tex_prim_fractal = {
     .eval3 = frac_eval3,
     .eval3_fw = frac_eval3_fw,
     .row = frac_row,
+    .rows = frac_row_n,
     .grid = frac_grid,
     .whole = frac_whole,
 };

@@ -1229,6 +1229,34 @@ static inline float clamp01(float x)
     return m < 1 ? m : 1;
 }
 
+/* Pixel row y's place between lattice rows j and j + 1: their weights wy and offsets dy
+ * (two: j + 1's weight is not 0) */
+struct yrow {
+    int64_t j;
+    float wy[2], dy[2];
+    int two;
+};
+
+static void yrow_at(const tex_noise_grid *g, int y, struct yrow *r)
+{
+    double Y = g->oy + g->fy * (y + 0.5), cy = floor(Y), fr = Y - cy;
+    r->j = tex_noise_cell(cy);
+    r->wy[0] = (float)fade(g->t->fade, fr);
+    r->wy[1] = (float)fade(g->t->fade, 1.0 - fr);
+    r->dy[0] = (float)fr;
+    r->dy[1] = (float)(fr - 1.0);
+    r->two = r->wy[1] != 0;
+}
+
+/* The pixel rows a folded grid's kernels make at once (at most FOLD_ROWS: each column's
+ * data, read from beyond the first-level cache in an octave sum, serves them all), row r's
+ * coefficients from C[r], planar or interleaved, into out[r] */
+#define FOLD_ROWS 2
+struct folded {
+    const float *C[FOLD_ROWS];
+    float *out[FOLD_ROWS];
+};
+
 /* A row operation's constants (tex_noise_grid_row_op's a, b and c), and where the
  * multifractal operations keep their state: w floats after the sum */
 struct row_k {
@@ -1610,51 +1638,56 @@ TEX_AVX2 static void interleave(const tex_noise_grid *g, const float *P, float *
  * that a load takes the index as it is (scaled by the address, not by arithmetic first) */
 #define PQ_AT(PQ, i) ((const float *)((const double *)(PQ) + (i)))
 
-/* An adjacent grid's row from folded coefficients: a column's (P, Q) pairs for its
- * two corners are the four floats at its left entry. */
+/* A folded grid's rows from interleaved coefficients: a column's (P, Q) pairs for its two
+ * corners are the four floats at its left entry. */
 TEX_AVX2 static inline __attribute__((always_inline)) void
-row_folded_avx2_op(const tex_noise_grid *g, const float *PQ, float *out, int x, const int op,
+row_folded_avx2_op(const tex_noise_grid *g, struct folded fr, int x, const int rows, const int op,
                    struct row_k rk)
 {
     const int32_t *restrict corner = g->corner;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
                           *restrict w1 = g->w1;
 
-    for (; x + 8 <= g->w; x += 8) {
-        const float *row[8];
-        __m256 c[4]; /* the left corners' P, Q, the right corners' P, Q */
+    for (; x + 8 <= g->w; x += 8)
+        for (int r = 0; r < rows; r++) {
+            const float *row[8];
+            __m256 c[4]; /* the left corners' P, Q, the right corners' P, Q */
 #pragma GCC unroll 8
-        for (int i = 0; i < 8; i++)
-            row[i] = PQ_AT(PQ, corner[x + i]);
-        columns8(row, c);
-        pixels8(u + x, um1 + x, w0 + x, w1 + x, c[0], c[2], c[1], c[3], out + x, op, rk);
-    }
-    for (; x < g->w; x++) {
-        const float *e = PQ + 2 * corner[x];
-        float t0 = e[0] * u[x] + e[1], t1 = e[2] * um1[x] + e[3];
-        apply_op(op, w0[x] * t0 + w1[x] * t1, out + x, rk);
-    }
+            for (int i = 0; i < 8; i++)
+                row[i] = PQ_AT(fr.C[r], corner[x + i]);
+            columns8(row, c);
+            pixels8(u + x, um1 + x, w0 + x, w1 + x, c[0], c[2], c[1], c[3], fr.out[r] + x, op,
+                    rk);
+        }
+    for (; x < g->w; x++)
+        for (int r = 0; r < rows; r++) {
+            const float *e = fr.C[r] + 2 * corner[x];
+            float t0 = e[0] * u[x] + e[1], t1 = e[2] * um1[x] + e[3];
+            apply_op(op, w0[x] * t0 + w1[x] * t1, fr.out[r] + x, rk);
+        }
 }
 
-/* Columns x.. of a folded row from planar coefficients: row_planar_*'s order of operations */
+/* Columns x.. of folded rows from planar coefficients: row_planar_*'s order of operations */
 static inline __attribute__((always_inline)) void
-row_planar_tail(const tex_noise_grid *g, const float *P, const float *Q, float *out, int x,
-                const int op, struct row_k rk)
+row_planar_tail(const tex_noise_grid *g, struct folded fr, int x, const int rows, const int op,
+                struct row_k rk)
 {
-    for (; x < g->w; x++) {
-        int c = g->corner[x];
-        float t0 = P[c] * g->u[x] + Q[c], t1 = P[c + 1] * g->um1[x] + Q[c + 1];
-        apply_op(op, g->w0[x] * t0 + g->w1[x] * t1, out + x, rk);
-    }
+    for (; x < g->w; x++)
+        for (int r = 0; r < rows; r++) {
+            const float *P = fr.C[r], *Q = P + g->ps;
+            int c = g->corner[x];
+            float t0 = P[c] * g->u[x] + Q[c], t1 = P[c + 1] * g->um1[x] + Q[c + 1];
+            apply_op(op, g->w0[x] * t0 + g->w1[x] * t1, fr.out[r] + x, rk);
+        }
 }
 
-/* A folded row from planar coefficients (fold_row_*) where eight columns' corners lie
- * within eight entries of the first's (g->span8 <= 7: every grid that is not paired,
- * whose cells span over 8/7 pixels), so that the slot rows' expand serves, with offsets
- * taken mod n. */
+/* A folded grid's rows from planar coefficients (fold_row_*, Q ps floats after P) where
+ * eight columns' corners lie within eight entries of the first's (g->span8 <= 7: every grid
+ * that is not paired, whose cells span over 8/7 pixels), so that the slot rows' expand
+ * serves, with offsets taken mod n. */
 TEX_AVX2 static inline __attribute__((always_inline)) void
-row_planar_avx2_op(const tex_noise_grid *g, const float *P, const float *Q, float *out,
-                   const int op, struct row_k rk)
+row_planar_avx2_op(const tex_noise_grid *g, struct folded fr, const int rows, const int op,
+                   struct row_k rk)
 {
     const int32_t *restrict corner = g->corner;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
@@ -1667,33 +1700,54 @@ row_planar_avx2_op(const tex_noise_grid *g, const float *P, const float *Q, floa
         __m256i d = _mm256_sub_epi32(_mm256_loadu_si256((const __m256i *)(corner + x)),
                                      _mm256_set1_epi32(c0));
         __m256i k = _mm256_min_epu32(d, _mm256_add_epi32(d, vn)); /* d mod n, for d > -n */
-        __m256 p0, p1, q0, q1;
-        expand(P, c0, k, k, 7, &p0, &p1);
-        expand(Q, c0, k, k, 7, &q0, &q1);
-        pixels8(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, out + x, op, rk);
+        for (int r = 0; r < rows; r++) {
+            __m256 p0, p1, q0, q1;
+            expand(fr.C[r], c0, k, k, 7, &p0, &p1);
+            expand(fr.C[r] + g->ps, c0, k, k, 7, &q0, &q1);
+            pixels8(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, fr.out[r] + x, op, rk);
+        }
     }
-    row_planar_tail(g, P, Q, out, x, op, rk);
+    row_planar_tail(g, fr, x, rows, op, rk);
 }
 
-TEX_AVX2 static void row_lut_avx2(const tex_noise_grid *g, int64_t j, const float *wy,
-                                  const float *dy, int two, float *out, int op, struct row_k rk)
+/* A folded kernel FN(PRE..., rows, op, rk) for the rows at hand, one or two */
+#define FOLDED_SWITCH(FN, PRE)                                                               \
+    if (rows == 2) {                                                                         \
+        ROW_OP_SWITCH(FN, (ARGS PRE, 2), (rk));                                              \
+    } else {                                                                                 \
+        ROW_OP_SWITCH(FN, (ARGS PRE, 1), (rk));                                              \
+    }
+
+TEX_AVX2 static void row_lut_avx2(const tex_noise_grid *g, const struct yrow *yr, int rows,
+                                  float *const *out, int op, struct row_k rk)
 {
     if (g->folded) { /* more columns than entries: fold the entries first */
-        float P[FOLD_FLOATS], *PQ = P + 2 * g->ps;
-        fold_row_avx2(g, j, wy, dy, two, P);
-        if (g->span8 <= 7 && g->span8 < g->t->n) { /* offsets mod n unambiguous */
-            ROW_OP_SWITCH(row_planar_avx2_op, (g, P, P + g->ps, out), (rk));
+        float buf[FOLD_ROWS][FOLD_FLOATS];
+        struct folded fr;
+        int planar = g->span8 <= 7 && g->span8 < g->t->n; /* offsets mod n unambiguous */
+        for (int r = 0; r < rows; r++) {
+            fold_row_avx2(g, yr[r].j, yr[r].wy, yr[r].dy, yr[r].two, buf[r]);
+            if (!planar)
+                interleave(g, buf[r], buf[r] + 2 * g->ps);
+            fr.C[r] = planar ? buf[r] : buf[r] + 2 * g->ps;
+            fr.out[r] = out[r];
+        }
+        if (planar) {
+            FOLDED_SWITCH(row_planar_avx2_op, (g, fr));
         } else {
-            interleave(g, P, PQ);
-            ROW_OP_SWITCH(row_folded_avx2_op, (g, PQ, out, 0), (rk));
+            FOLDED_SWITCH(row_folded_avx2_op, (g, fr, 0));
         }
         return;
     }
-    const float(*T0)[4] = lut_row(g, j), (*T1)[4] = two ? lut_row(g, j + 1) : NULL;
-    if (g->adjacent) {
-        ROW_OP_SWITCH(row_lut_avx2_op, (g, T0, T1, wy, dy, out), (1, rk));
-    } else {
-        ROW_OP_SWITCH(row_lut_avx2_op, (g, T0, T1, wy, dy, out), (0, rk));
+    for (int r = 0; r < rows; r++) {
+        const float(*T0)[4] = lut_row(g, yr[r].j);
+        const float(*T1)[4] = yr[r].two ? lut_row(g, yr[r].j + 1) : NULL;
+        const float *wy = yr[r].wy, *dy = yr[r].dy;
+        if (g->adjacent) {
+            ROW_OP_SWITCH(row_lut_avx2_op, (g, T0, T1, wy, dy, out[r]), (1, rk));
+        } else {
+            ROW_OP_SWITCH(row_lut_avx2_op, (g, T0, T1, wy, dy, out[r]), (0, rk));
+        }
     }
 }
 
@@ -1796,27 +1850,30 @@ row_avx512_paired_op(const tex_noise_grid *g, const float *P, const float *Q, in
 /* row_folded_avx2_op sixteen columns at a time: the rows of columns x + k, x + 4 + k,
  * x + 8 + k and x + 12 + k in the quarters of r[k], so that columns4_16 gives point order */
 TEX_AVX512 static inline __attribute__((always_inline)) void
-row_folded_avx512_op(const tex_noise_grid *g, const float *PQ, float *out, const int op, struct row_k rk)
+row_folded_avx512_op(const tex_noise_grid *g, struct folded fr, const int rows, const int op,
+                     struct row_k rk)
 {
     const int32_t *restrict corner = g->corner;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
                           *restrict w1 = g->w1;
     int x = 0;
 
-    for (; x + 16 <= g->w; x += 16) {
-        __m512 r[4], c[4]; /* c: the left corners' P, Q, the right corners' P, Q */
+    for (; x + 16 <= g->w; x += 16)
+        for (int r = 0; r < rows; r++) {
+            __m512 q[4], c[4]; /* c: the left corners' P, Q, the right corners' P, Q */
 #pragma GCC unroll 4
-        for (int k = 0; k < 4; k++) {
-            const int32_t *l = corner + x + k;
-            r[k] = _mm512_castps128_ps512(_mm_loadu_ps(PQ_AT(PQ, l[0])));
-            r[k] = _mm512_insertf32x4(r[k], _mm_loadu_ps(PQ_AT(PQ, l[4])), 1);
-            r[k] = _mm512_insertf32x4(r[k], _mm_loadu_ps(PQ_AT(PQ, l[8])), 2);
-            r[k] = _mm512_insertf32x4(r[k], _mm_loadu_ps(PQ_AT(PQ, l[12])), 3);
+            for (int k = 0; k < 4; k++) {
+                const int32_t *l = corner + x + k;
+                q[k] = _mm512_castps128_ps512(_mm_loadu_ps(PQ_AT(fr.C[r], l[0])));
+                q[k] = _mm512_insertf32x4(q[k], _mm_loadu_ps(PQ_AT(fr.C[r], l[4])), 1);
+                q[k] = _mm512_insertf32x4(q[k], _mm_loadu_ps(PQ_AT(fr.C[r], l[8])), 2);
+                q[k] = _mm512_insertf32x4(q[k], _mm_loadu_ps(PQ_AT(fr.C[r], l[12])), 3);
+            }
+            columns4_16(q, c);
+            pixels16(u + x, um1 + x, w0 + x, w1 + x, c[0], c[2], c[1], c[3], fr.out[r] + x, op,
+                     rk);
         }
-        columns4_16(r, c);
-        pixels16(u + x, um1 + x, w0 + x, w1 + x, c[0], c[2], c[1], c[3], out + x, op, rk);
-    }
-    row_folded_avx2_op(g, PQ, out, x, op, rk);
+    row_folded_avx2_op(g, fr, x, rows, op, rk);
 }
 
 FOLD_ROW_FN(TEX_AVX512, fold_row_avx512, __m512)
@@ -1826,8 +1883,8 @@ FOLD_ROW_FN(TEX_AVX512, fold_row_avx512, __m512)
  * cells of half a pixel or more): each corner's P and Q from a permute of one register's
  * entries, or of two (slower where one does) */
 TEX_AVX512 static inline __attribute__((always_inline)) void
-row_planar_avx512_op(const tex_noise_grid *g, const float *P, const float *Q, float *out,
-                     const int two, const int op, struct row_k rk)
+row_planar_avx512_op(const tex_noise_grid *g, struct folded fr, const int two, const int rows,
+                     const int op, struct row_k rk)
 {
     const int32_t *restrict corner = g->corner;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
@@ -1839,39 +1896,51 @@ row_planar_avx512_op(const tex_noise_grid *g, const float *P, const float *Q, fl
         int c0 = corner[x];
         __m512i d = _mm512_sub_epi32(_mm512_loadu_si512(corner + x), _mm512_set1_epi32(c0));
         __m512i k = _mm512_min_epu32(d, _mm512_add_epi32(d, vn));
-        __m512 v[4]; /* the left corners' P, Q, the right corners' P, Q */
-        if (two) {
+        for (int r = 0; r < rows; r++) {
+            const float *P = fr.C[r], *Q = P + g->ps;
+            __m512 v[4]; /* the left corners' P, Q, the right corners' P, Q */
+            if (two) {
 #pragma GCC unroll 4
-            for (int i = 0; i < 4; i++) {
-                const float *V = (i & 1 ? Q : P) + c0 + (i >> 1);
-                v[i] = _mm512_permutex2var_ps(_mm512_loadu_ps(V), k, _mm512_loadu_ps(V + 16));
+                for (int i = 0; i < 4; i++) {
+                    const float *V = (i & 1 ? Q : P) + c0 + (i >> 1);
+                    v[i] = _mm512_permutex2var_ps(_mm512_loadu_ps(V), k,
+                                                  _mm512_loadu_ps(V + 16));
+                }
+            } else {
+                expand16(P, c0, k, k, 15, &v[0], &v[2]);
+                expand16(Q, c0, k, k, 15, &v[1], &v[3]);
             }
-        } else {
-            expand16(P, c0, k, k, 15, &v[0], &v[2]);
-            expand16(Q, c0, k, k, 15, &v[1], &v[3]);
+            pixels16(u + x, um1 + x, w0 + x, w1 + x, v[0], v[2], v[1], v[3], fr.out[r] + x, op,
+                     rk);
         }
-        pixels16(u + x, um1 + x, w0 + x, w1 + x, v[0], v[2], v[1], v[3], out + x, op, rk);
     }
-    row_planar_tail(g, P, Q, out, x, op, rk);
+    row_planar_tail(g, fr, x, rows, op, rk);
 }
 
 /* row_lut_avx2 with the folded rows sixteen columns at a time */
-TEX_AVX512 static void row_lut_avx512(const tex_noise_grid *g, int64_t j, const float *wy,
-                                      const float *dy, int two, float *out, int op, struct row_k rk)
+TEX_AVX512 static void row_lut_avx512(const tex_noise_grid *g, const struct yrow *yr, int rows,
+                                      float *const *out, int op, struct row_k rk)
 {
     if (!g->folded) {
-        row_lut_avx2(g, j, wy, dy, two, out, op, rk);
+        row_lut_avx2(g, yr, rows, out, op, rk);
         return;
     }
-    float P[FOLD_FLOATS], *PQ = P + 2 * g->ps;
-    fold_row_avx512(g, j, wy, dy, two, P);
-    if (g->span16 <= 15 && g->span16 < g->t->n) {
-        ROW_OP_SWITCH(row_planar_avx512_op, (g, P, P + g->ps, out, 0), (rk));
-    } else if (g->span16 <= 31 && g->span16 < g->t->n) {
-        ROW_OP_SWITCH(row_planar_avx512_op, (g, P, P + g->ps, out, 1), (rk));
+    float buf[FOLD_ROWS][FOLD_FLOATS];
+    struct folded fr;
+    int span = g->span16 < g->t->n ? g->span16 : INT_MAX; /* offsets mod n unambiguous */
+    for (int r = 0; r < rows; r++) {
+        fold_row_avx512(g, yr[r].j, yr[r].wy, yr[r].dy, yr[r].two, buf[r]);
+        if (span > 31)
+            interleave(g, buf[r], buf[r] + 2 * g->ps);
+        fr.C[r] = span > 31 ? buf[r] + 2 * g->ps : buf[r];
+        fr.out[r] = out[r];
+    }
+    if (span <= 15) {
+        FOLDED_SWITCH(row_planar_avx512_op, (g, fr, 0));
+    } else if (span <= 31) {
+        FOLDED_SWITCH(row_planar_avx512_op, (g, fr, 1));
     } else {
-        interleave(g, P, PQ);
-        ROW_OP_SWITCH(row_folded_avx512_op, (g, PQ, out), (rk));
+        FOLDED_SWITCH(row_folded_avx512_op, (g, fr));
     }
 }
 
@@ -1943,22 +2012,39 @@ TEX_AVX512 static void row_coeffs_avx512(int ns, const float *wy, const float *d
 #include "prim/noise_row_template.c"
 #endif
 
+/* Rows y.. y + rows - 1 (rows at most FOLD_ROWS) at the level the CPU and the grid take */
+static void grid_rows(const tex_noise_grid *g, int y, int rows, int op, struct row_k rk,
+                      float *const *out)
+{
+#ifdef TEX_X86
+    int level = tex_simd_level();
+    if (level >= TEX_SIMD_AVX512 && g->wide) {
+        grid_row_avx512(g, y, rows, op, rk, out);
+        return;
+    }
+    if (level >= TEX_SIMD_AVX2) {
+        grid_row_avx2(g, y, rows, op, rk, out);
+        return;
+    }
+#endif
+    grid_row_scalar(g, y, rows, op, rk, out);
+}
+
 void tex_noise_grid_row_op(const tex_noise_grid *g, int y, int op, float a, float b, float c,
                            float *out)
 {
     struct row_k rk = {a, b, c, g->w};
-#ifdef TEX_X86
-    int level = tex_simd_level();
-    if (level >= TEX_SIMD_AVX512 && g->wide) {
-        grid_row_avx512(g, y, op, rk, out);
-        return;
+    grid_rows(g, y, 1, op, rk, &out);
+}
+
+void tex_noise_grid_rows_op(const tex_noise_grid *g, int y, int n, int op, float a, float b,
+                            float c, float *out, size_t stride)
+{
+    struct row_k rk = {a, b, c, g->w};
+    for (int i = 0; i < n; i += FOLD_ROWS) {
+        float *o[FOLD_ROWS] = {out + i * stride, i + 1 < n ? out + (i + 1) * stride : NULL};
+        grid_rows(g, y + i, n - i < FOLD_ROWS ? n - i : FOLD_ROWS, op, rk, o);
     }
-    if (level >= TEX_SIMD_AVX2) {
-        grid_row_avx2(g, y, op, rk, out);
-        return;
-    }
-#endif
-    grid_row_scalar(g, y, op, rk, out);
 }
 
 void tex_noise_grid_row(const tex_noise_grid *g, int y, float *out)
@@ -2310,6 +2396,12 @@ void tex_octave_row_op(const tex_octaves *o, int k, int y, int op, float a, floa
                        float *out)
 {
     tex_noise_grid_row_op(&o->g[k], y, op, a, b, c, out);
+}
+
+void tex_octave_rows_op(const tex_octaves *o, int k, int y, int n, int op, float a, float b,
+                        float c, float *out, size_t stride)
+{
+    tex_noise_grid_rows_op(&o->g[k], y, n, op, a, b, c, out, stride);
 }
 
 /* ---- the primitive ---- */

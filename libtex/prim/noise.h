@@ -58,7 +58,10 @@
  * kept as planes of X, Y and C for it), and each column reads its corners'
  * pairs: where eight or sixteen columns' corners lie within a register's
  * entries (cells of about a pixel or more; half a pixel with AVX-512), by
- * permutes of the coefficients, else one load per column.  Rows are
+ * permutes of the coefficients, else one load per column.  Such rows are made
+ * two at a time (tex_noise_grid_rows_op), so that an octave sum, whose
+ * octaves' per-column data outgrow the first-level cache, reads them once for
+ * both.  Rows are
  * vectorised (AVX2, chosen at run time, and AVX-512 for cells 5 pixels wide
  * or more and for rows from folded table coefficients, unless most of an
  * octave sum's cells are neither: a map that
@@ -183,6 +186,10 @@ enum {
 };
 void tex_noise_grid_row_op(const tex_noise_grid *g, int y, int op, float a, float b, float c,
                            float *out);
+/* tex_noise_grid_row_op on rows y.. y + n - 1, row i at out + i stride: the same bytes,
+ * rows of a grid folded from its table made two at a time (each column's data read once). */
+void tex_noise_grid_rows_op(const tex_noise_grid *g, int y, int n, int op, float a, float b,
+                            float c, float *out, size_t stride);
 /* tex_noise_grid_row_op with TEX_ROW_SET and TEX_ROW_ADD. */
 void tex_noise_grid_row(const tex_noise_grid *g, int y, float *out);
 void tex_noise_grid_row_add(const tex_noise_grid *g, int y, float amp, float *out);
@@ -242,6 +249,8 @@ void tex_octave_row(const tex_octaves *o, int k, int y, float *out);
 void tex_octave_row_add(const tex_octaves *o, int k, int y, float amp, float *out);
 void tex_octave_row_op(const tex_octaves *o, int k, int y, int op, float a, float b, float c,
                        float *out);
+void tex_octave_rows_op(const tex_octaves *o, int k, int y, int n, int op, float a, float b,
+                        float c, float *out, size_t stride);
 
 /* The parameter rows every noise-based primitive shares (param.h), declared once:
  * struct S must have double z, struct tex_reals offset, int fade, int gradients

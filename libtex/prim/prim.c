@@ -358,10 +358,14 @@ static int sample_rows(const struct tex_field *f, tex_map *m, int x0, int y0)
     int failed = 0;
 
     if (x0 == 0 && m->w == f->w) {
-#pragma omp parallel for schedule(dynamic, 4)
-        for (int y = 0; y < m->h; y++) {
-            p->row(f, y0 + y, tex_map_row(m, y));
-            tex_progress_add(1);
+        int step = p->rows ? 2 : 1; /* rows in pairs where the primitive makes them so */
+#pragma omp parallel for schedule(dynamic, 4 / step)
+        for (int y = 0; y < m->h; y += step) {
+            if (step == 2 && y + 1 < m->h)
+                p->rows(f, y0 + y, 2, tex_map_row(m, y));
+            else
+                p->row(f, y0 + y, tex_map_row(m, y));
+            tex_progress_add(m->h - y < step ? m->h - y : step);
         }
         return 0;
     }
@@ -382,6 +386,13 @@ static int sample_rows(const struct tex_field *f, tex_map *m, int x0, int y0)
         free(row);
     }
     return failed ? tex_error("out of memory") : 0;
+}
+
+int tex_field_sample_rows(const struct tex_field *f, tex_map *m)
+{
+    if (!f->prim->row || m->w != f->w || m->h != f->h)
+        return tex_error("%s: no rows to sample into a %dx%d map", f->prim->name, m->w, m->h);
+    return sample_rows(f, m, 0, 0);
 }
 
 tex_map *tex_field_sample(const struct tex_field *f)

@@ -133,6 +133,10 @@ struct tex_primitive {
                  double hv, float *out);
     /* Optional fast path for grid sampling: row y of the f->w x f->h grid. */
     void (*row)(const struct tex_field *f, int y, float *out);
+    /* Optional, beside row: rows y and y + 1 (n = 2) into out, the second f->w f->nc floats
+     * on, row's bytes: rows that share work made together (an octave sum reads each
+     * column's data once for both). */
+    void (*rows)(const struct tex_field *f, int y, int n, float *out);
     /* TEX_PRIM_GRID: fill m (f->w x f->h, f->nc channels). */
     int (*grid)(const struct tex_field *f, tex_map *m);
     /* Optional, for GRID primitives with a row callback: NULL when this field
@@ -170,6 +174,9 @@ void tex_field_free(struct tex_field *f);
 
 /* Sample an initialised field on its w x h grid, threads from OpenMP. */
 tex_map *tex_field_sample(const struct tex_field *f);
+/* tex_field_sample's rows for a primitive with a row callback, into m (its w x h grid,
+ * no window): the same rows, made the same way, into a map made once (a benchmark's fills). */
+int tex_field_sample_rows(const struct tex_field *f, tex_map *m);
 
 #ifdef __cplusplus
 }

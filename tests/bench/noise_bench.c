@@ -84,11 +84,10 @@ int main(int argc, char **argv)
             rate[r] = n * (double)rows / (t1 - t0) / 1e6;
             continue;
         }
-        /* The sampler's loop over the descriptor's rows, into a map made once:
-         * a fresh 16 MiB map per fill would time the kernel's page faults. */
-#pragma omp parallel for schedule(dynamic, 4)
-        for (int y = 0; y < n; y++)
-            p->row(f, y, tex_map_row(m, y));
+        /* The sampler's rows, into a map made once: a fresh 16 MiB map per fill
+         * would time the kernel's page faults. */
+        if (tex_field_sample_rows(f, m) < 0)
+            return 1;
         t1 = now(threads);
         rate[r] = (double)n * n / (t1 - t0) / 1e6;
     }

@@ -420,6 +420,36 @@ static void test_row_ops(const tex_noise_table *t)
                      "steps (%d wrong)", bad);
 }
 
+/* Rows made together (tex_noise_grid_rows_op: the folded grids' kernels two rows at a time)
+ * equal rows made one by one, for the folded kinds of grid (planar, one- and two-register
+ * permutes, interleaved) and a wide one, an odd count, every kind of operation. */
+static void test_rows_together(const tex_noise_table *t)
+{
+    enum { W = 1100, N = 5 };
+    static const double cells[] = {20, 300, 1000, 1900, 4000};
+    static const int ops[] = {TEX_ROW_SET, TEX_ROW_ADD_UNIT, TEX_ROW_RIDGED, TEX_ROW_HYBRID};
+    static float a[N * 2 * W], b[N * 2 * W];
+    double off[4] = {0.37, 0.21, 0.3, 0};
+    int bad = 0, folded = 0;
+
+    for (size_t c = 0; c < sizeof cells / sizeof *cells; c++) {
+        tex_noise_grid g;
+        tex_noise_grid_init(&g, t, W, 400, cells[c], 2 * cells[c], off, 3, 0);
+        folded += g.folded;
+        for (size_t o = 0; o < sizeof ops / sizeof *ops; o++) {
+            for (int i = 0; i < N * 2 * W; i++)
+                a[i] = b[i] = 0.5f + 0.001f * (i % 97);
+            tex_noise_grid_rows_op(&g, 7, N, ops[o], 0.6f, 0.9f, 1.2f, a, 2 * W);
+            for (int r = 0; r < N; r++)
+                tex_noise_grid_row_op(&g, 7 + r, ops[o], 0.6f, 0.9f, 1.2f, b + r * 2 * W);
+            bad += memcmp(a, b, sizeof a) != 0;
+        }
+        tex_noise_grid_free(&g);
+    }
+    CHECKF(bad == 0 && folded == 4, "rows made two at a time equal rows one by one (%d differ, "
+                                    "%d grids folded)", bad, folded);
+}
+
 /* 3D noise's range, mean, continuity and zeros, and its analytic gradient. */
 static void test_noise3_values(tex_noise_table *t)
 {
@@ -647,6 +677,12 @@ int main(void)
     test_rows_points(&t);
     test_rows_kept(&t);
     test_row_ops(&t);
+    test_rows_together(&t);
+    if (tex_simd_level() >= TEX_SIMD_AVX512) { /* and the AVX2 kernels */
+        tex_simd_limit(TEX_SIMD_AVX2);
+        test_rows_together(&t);
+        tex_simd_limit(TEX_SIMD_AVX512);
+    }
     test_grid_gradient(&t);
     test_d_noise_rows();
     test_far(&t);
