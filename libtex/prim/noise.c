@@ -1248,11 +1248,15 @@ static void yrow_at(const tex_noise_grid *g, int y, struct yrow *r)
     r->two = r->wy[1] != 0;
 }
 
-/* The pixel rows a folded grid's kernels make at once (at most FOLD_ROWS: each column's
- * data, read from beyond the first-level cache in an octave sum, serves them all), row r's
- * coefficients from C[r], planar or interleaved, into out[r] */
+/* The pixel rows a kernel makes at once (1 or FOLD_ROWS: each column's data, read from
+ * beyond the first-level cache in an octave sum, serves them all), row r's coefficients
+ * from C[r] into out[r]: a folded grid's planar (Q ps floats after P) or interleaved, a
+ * slot row's P and Q ROW_NS floats after it (ROW_CHUNK columns touch at most ROW_NS - 24
+ * slots) */
 #define FOLD_ROWS 2
-struct folded {
+#define ROW_CHUNK 1024
+#define ROW_NS (2 * ROW_CHUNK + 24)
+struct rowset {
     const float *C[FOLD_ROWS];
     float *out[FOLD_ROWS];
 };
@@ -1315,23 +1319,24 @@ static inline void apply_op(int op, float r, float *o, struct row_k rk)
     }
 }
 
-/* Pixels x..x1-1, the reference order of operations for every level;
- * P and Q hold the slots from sb on. */
+/* Pixels x..x1-1 of the rows, the reference order of operations for every level; the
+ * coefficients hold the slots from sb on. */
 static inline __attribute__((always_inline)) void
-row_scalar_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, float *out, int x,
-              int x1, const int op, struct row_k rk)
+row_scalar_op(const tex_noise_grid *g, struct rowset rs, int sb, int x, int x1, const int rows,
+              const int op, struct row_k rk)
 {
     const int32_t *restrict slot = g->slot;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
                           *restrict w1 = g->w1;
 
-    for (; x < x1; x++) {
-        int s = slot[x] - sb;
-        float t0 = P[s] * u[x] + Q[s];
-        float t1 = P[s + 1] * um1[x] + Q[s + 1];
-        float r = w0[x] * t0 + w1[x] * t1;
-        apply_op(op, r, out + x, rk);
-    }
+    for (; x < x1; x++)
+        for (int r = 0; r < rows; r++) {
+            const float *P = rs.C[r], *Q = P + ROW_NS;
+            int s = slot[x] - sb;
+            float t0 = P[s] * u[x] + Q[s];
+            float t1 = P[s + 1] * um1[x] + Q[s + 1];
+            apply_op(op, w0[x] * t0 + w1[x] * t1, rs.out[r] + x, rk);
+        }
 }
 
 /* One copy of the row loop FN per operation, the operation op folded in as a
@@ -1352,13 +1357,20 @@ row_scalar_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, f
     case TEX_ROW_HYBRID_FIRST: FN(ARGS PRE, TEX_ROW_HYBRID_FIRST, ARGS POST); break;               \
     default: FN(ARGS PRE, TEX_ROW_HYBRID, ARGS POST); break;                                       \
     }
-/* the row loops' own parameters */
-#define ROW_PRE (g, P, Q, sb, out, x, x1)
+/* A kernel FN(PRE..., rows, op, rk) for the rows at hand, one or two */
+#define ROWS_SWITCH(FN, PRE)                                                                 \
+    if (rows == 2) {                                                                         \
+        ROW_OP_SWITCH(FN, (ARGS PRE, 2), (rk));                                              \
+    } else {                                                                                 \
+        ROW_OP_SWITCH(FN, (ARGS PRE, 1), (rk));                                              \
+    }
+/* the slot rows' own parameters */
+#define ROW_PRE (g, rs, sb, x, x1)
 
-static void row_scalar(const tex_noise_grid *g, const float *P, const float *Q, int sb,
-                       float *out, int x, int x1, int op, struct row_k rk)
+static void row_scalar(const tex_noise_grid *g, struct rowset rs, int sb, int x, int x1,
+                       int rows, int op, struct row_k rk)
 {
-    ROW_OP_SWITCH(row_scalar_op, ROW_PRE, (rk));
+    ROWS_SWITCH(row_scalar_op, ROW_PRE);
 }
 
 #ifdef TEX_X86
@@ -1446,8 +1458,8 @@ expand(const float *V, int s0, __m256i s, __m256i k, int span, __m256 *a0, __m25
 }
 
 TEX_AVX2 static inline __attribute__((always_inline)) void
-row_avx2_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, float *out, int x,
-            int x1, const int op, struct row_k rk)
+row_avx2_op(const tex_noise_grid *g, struct rowset rs, int sb, int x, int x1, const int rows,
+            const int op, struct row_k rk)
 {
     /* Locals, so that the stores to out do not reload the tables. */
     const int32_t *restrict slot = g->slot;
@@ -1459,12 +1471,14 @@ row_avx2_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, flo
         __m256i s = _mm256_sub_epi32(_mm256_loadu_si256((const __m256i *)(slot + x)), vsb);
         int s0 = slot[x] - sb, span = slot[x + 7] - sb - s0;
         __m256i k = _mm256_sub_epi32(s, _mm256_set1_epi32(s0));
-        __m256 p0, p1, q0, q1;
-        expand(P, s0, s, k, span, &p0, &p1);
-        expand(Q, s0, s, k, span, &q0, &q1);
-        pixels8(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, out + x, op, rk);
+        for (int r = 0; r < rows; r++) {
+            __m256 p0, p1, q0, q1;
+            expand(rs.C[r], s0, s, k, span, &p0, &p1);
+            expand(rs.C[r] + ROW_NS, s0, s, k, span, &q0, &q1);
+            pixels8(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, rs.out[r] + x, op, rk);
+        }
     }
-    row_scalar_op(g, P, Q, sb, out, x, x1, op, rk);
+    row_scalar_op(g, rs, sb, x, x1, rows, op, rk);
 }
 
 /* Eight columns' slot values when each column has its own pair (g->paired):
@@ -1481,8 +1495,8 @@ TEX_AVX2 static inline __attribute__((always_inline)) void unzip(const float *V,
 
 /* row_avx2_op for paired slots: the same operations without gathers. */
 TEX_AVX2 static inline __attribute__((always_inline)) void
-row_avx2_paired_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, float *out,
-                   int x, int x1, const int op, struct row_k rk)
+row_avx2_paired_op(const tex_noise_grid *g, struct rowset rs, int sb, int x, int x1,
+                   const int rows, const int op, struct row_k rk)
 {
     const int32_t *restrict slot = g->slot;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
@@ -1490,12 +1504,14 @@ row_avx2_paired_op(const tex_noise_grid *g, const float *P, const float *Q, int 
 
     for (; x + 8 <= x1; x += 8) {
         int s = slot[x] - sb;
-        __m256 p0, p1, q0, q1;
-        unzip(P + s, &p0, &p1);
-        unzip(Q + s, &q0, &q1);
-        pixels8(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, out + x, op, rk);
+        for (int r = 0; r < rows; r++) {
+            __m256 p0, p1, q0, q1;
+            unzip(rs.C[r] + s, &p0, &p1);
+            unzip(rs.C[r] + ROW_NS + s, &q0, &q1);
+            pixels8(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, rs.out[r] + x, op, rk);
+        }
     }
-    row_scalar_op(g, P, Q, sb, out, x, x1, op, rk);
+    row_scalar_op(g, rs, sb, x, x1, rows, op, rk);
 }
 
 /* A lattice row's folded (X, Y, C) at eight columns' left and right corners,
@@ -1641,7 +1657,7 @@ TEX_AVX2 static void interleave(const tex_noise_grid *g, const float *P, float *
 /* A folded grid's rows from interleaved coefficients: a column's (P, Q) pairs for its two
  * corners are the four floats at its left entry. */
 TEX_AVX2 static inline __attribute__((always_inline)) void
-row_folded_avx2_op(const tex_noise_grid *g, struct folded fr, int x, const int rows, const int op,
+row_folded_avx2_op(const tex_noise_grid *g, struct rowset fr, int x, const int rows, const int op,
                    struct row_k rk)
 {
     const int32_t *restrict corner = g->corner;
@@ -1669,7 +1685,7 @@ row_folded_avx2_op(const tex_noise_grid *g, struct folded fr, int x, const int r
 
 /* Columns x.. of folded rows from planar coefficients: row_planar_*'s order of operations */
 static inline __attribute__((always_inline)) void
-row_planar_tail(const tex_noise_grid *g, struct folded fr, int x, const int rows, const int op,
+row_planar_tail(const tex_noise_grid *g, struct rowset fr, int x, const int rows, const int op,
                 struct row_k rk)
 {
     for (; x < g->w; x++)
@@ -1686,7 +1702,7 @@ row_planar_tail(const tex_noise_grid *g, struct folded fr, int x, const int rows
  * that is not paired, whose cells span over 8/7 pixels), so that the slot rows' expand
  * serves, with offsets taken mod n. */
 TEX_AVX2 static inline __attribute__((always_inline)) void
-row_planar_avx2_op(const tex_noise_grid *g, struct folded fr, const int rows, const int op,
+row_planar_avx2_op(const tex_noise_grid *g, struct rowset fr, const int rows, const int op,
                    struct row_k rk)
 {
     const int32_t *restrict corner = g->corner;
@@ -1710,20 +1726,12 @@ row_planar_avx2_op(const tex_noise_grid *g, struct folded fr, const int rows, co
     row_planar_tail(g, fr, x, rows, op, rk);
 }
 
-/* A folded kernel FN(PRE..., rows, op, rk) for the rows at hand, one or two */
-#define FOLDED_SWITCH(FN, PRE)                                                               \
-    if (rows == 2) {                                                                         \
-        ROW_OP_SWITCH(FN, (ARGS PRE, 2), (rk));                                              \
-    } else {                                                                                 \
-        ROW_OP_SWITCH(FN, (ARGS PRE, 1), (rk));                                              \
-    }
-
 TEX_AVX2 static void row_lut_avx2(const tex_noise_grid *g, const struct yrow *yr, int rows,
                                   float *const *out, int op, struct row_k rk)
 {
     if (g->folded) { /* more columns than entries: fold the entries first */
         float buf[FOLD_ROWS][FOLD_FLOATS];
-        struct folded fr;
+        struct rowset fr;
         int planar = g->span8 <= 7 && g->span8 < g->t->n; /* offsets mod n unambiguous */
         for (int r = 0; r < rows; r++) {
             fold_row_avx2(g, yr[r].j, yr[r].wy, yr[r].dy, yr[r].two, buf[r]);
@@ -1733,9 +1741,9 @@ TEX_AVX2 static void row_lut_avx2(const tex_noise_grid *g, const struct yrow *yr
             fr.out[r] = out[r];
         }
         if (planar) {
-            FOLDED_SWITCH(row_planar_avx2_op, (g, fr));
+            ROWS_SWITCH(row_planar_avx2_op, (g, fr));
         } else {
-            FOLDED_SWITCH(row_folded_avx2_op, (g, fr, 0));
+            ROWS_SWITCH(row_folded_avx2_op, (g, fr, 0));
         }
         return;
     }
@@ -1751,13 +1759,13 @@ TEX_AVX2 static void row_lut_avx2(const tex_noise_grid *g, const struct yrow *yr
     }
 }
 
-TEX_AVX2 static inline void row_avx2(const tex_noise_grid *g, const float *P, const float *Q, int sb,
-                                 float *out, int x, int x1, int op, struct row_k rk)
+TEX_AVX2 static inline void row_avx2(const tex_noise_grid *g, struct rowset rs, int sb, int x,
+                                     int x1, int rows, int op, struct row_k rk)
 {
     if (g->paired) {
-        ROW_OP_SWITCH(row_avx2_paired_op, ROW_PRE, (rk));
+        ROWS_SWITCH(row_avx2_paired_op, ROW_PRE);
     } else {
-        ROW_OP_SWITCH(row_avx2_op, ROW_PRE, (rk));
+        ROWS_SWITCH(row_avx2_op, ROW_PRE);
     }
 }
 #endif
@@ -1798,8 +1806,8 @@ expand16(const float *V, int s0, __m512i s, __m512i k, int span, __m512 *a0, __m
 }
 
 TEX_AVX512 static inline __attribute__((always_inline)) void
-row_avx512_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, float *out, int x,
-              int x1, const int op, struct row_k rk)
+row_avx512_op(const tex_noise_grid *g, struct rowset rs, int sb, int x, int x1, const int rows,
+              const int op, struct row_k rk)
 {
     const int32_t *restrict slot = g->slot;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
@@ -1810,12 +1818,14 @@ row_avx512_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, f
         __m512i s = _mm512_sub_epi32(_mm512_loadu_si512(slot + x), vsb);
         int s0 = slot[x] - sb, span = slot[x + 15] - sb - s0;
         __m512i k = _mm512_sub_epi32(s, _mm512_set1_epi32(s0));
-        __m512 p0, p1, q0, q1;
-        expand16(P, s0, s, k, span, &p0, &p1);
-        expand16(Q, s0, s, k, span, &q0, &q1);
-        pixels16(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, out + x, op, rk);
+        for (int r = 0; r < rows; r++) {
+            __m512 p0, p1, q0, q1;
+            expand16(rs.C[r], s0, s, k, span, &p0, &p1);
+            expand16(rs.C[r] + ROW_NS, s0, s, k, span, &q0, &q1);
+            pixels16(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, rs.out[r] + x, op, rk);
+        }
     }
-    row_avx2_op(g, P, Q, sb, out, x, x1, op, rk);
+    row_avx2_op(g, rs, sb, x, x1, rows, op, rk);
 }
 
 /* unzip for sixteen columns */
@@ -1830,8 +1840,8 @@ TEX_AVX512 static inline __attribute__((always_inline)) void unzip16(const float
 }
 
 TEX_AVX512 static inline __attribute__((always_inline)) void
-row_avx512_paired_op(const tex_noise_grid *g, const float *P, const float *Q, int sb, float *out,
-                     int x, int x1, const int op, struct row_k rk)
+row_avx512_paired_op(const tex_noise_grid *g, struct rowset rs, int sb, int x, int x1,
+                     const int rows, const int op, struct row_k rk)
 {
     const int32_t *restrict slot = g->slot;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
@@ -1839,18 +1849,20 @@ row_avx512_paired_op(const tex_noise_grid *g, const float *P, const float *Q, in
 
     for (; x + 16 <= x1; x += 16) {
         int s = slot[x] - sb;
-        __m512 p0, p1, q0, q1;
-        unzip16(P + s, &p0, &p1);
-        unzip16(Q + s, &q0, &q1);
-        pixels16(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, out + x, op, rk);
+        for (int r = 0; r < rows; r++) {
+            __m512 p0, p1, q0, q1;
+            unzip16(rs.C[r] + s, &p0, &p1);
+            unzip16(rs.C[r] + ROW_NS + s, &q0, &q1);
+            pixels16(u + x, um1 + x, w0 + x, w1 + x, p0, p1, q0, q1, rs.out[r] + x, op, rk);
+        }
     }
-    row_avx2_paired_op(g, P, Q, sb, out, x, x1, op, rk);
+    row_avx2_paired_op(g, rs, sb, x, x1, rows, op, rk);
 }
 
 /* row_folded_avx2_op sixteen columns at a time: the rows of columns x + k, x + 4 + k,
  * x + 8 + k and x + 12 + k in the quarters of r[k], so that columns4_16 gives point order */
 TEX_AVX512 static inline __attribute__((always_inline)) void
-row_folded_avx512_op(const tex_noise_grid *g, struct folded fr, const int rows, const int op,
+row_folded_avx512_op(const tex_noise_grid *g, struct rowset fr, const int rows, const int op,
                      struct row_k rk)
 {
     const int32_t *restrict corner = g->corner;
@@ -1883,7 +1895,7 @@ FOLD_ROW_FN(TEX_AVX512, fold_row_avx512, __m512)
  * cells of half a pixel or more): each corner's P and Q from a permute of one register's
  * entries, or of two (slower where one does) */
 TEX_AVX512 static inline __attribute__((always_inline)) void
-row_planar_avx512_op(const tex_noise_grid *g, struct folded fr, const int two, const int rows,
+row_planar_avx512_op(const tex_noise_grid *g, struct rowset fr, const int two, const int rows,
                      const int op, struct row_k rk)
 {
     const int32_t *restrict corner = g->corner;
@@ -1926,7 +1938,7 @@ TEX_AVX512 static void row_lut_avx512(const tex_noise_grid *g, const struct yrow
         return;
     }
     float buf[FOLD_ROWS][FOLD_FLOATS];
-    struct folded fr;
+    struct rowset fr;
     int span = g->span16 < g->t->n ? g->span16 : INT_MAX; /* offsets mod n unambiguous */
     for (int r = 0; r < rows; r++) {
         fold_row_avx512(g, yr[r].j, yr[r].wy, yr[r].dy, yr[r].two, buf[r]);
@@ -1936,21 +1948,21 @@ TEX_AVX512 static void row_lut_avx512(const tex_noise_grid *g, const struct yrow
         fr.out[r] = out[r];
     }
     if (span <= 15) {
-        FOLDED_SWITCH(row_planar_avx512_op, (g, fr, 0));
+        ROWS_SWITCH(row_planar_avx512_op, (g, fr, 0));
     } else if (span <= 31) {
-        FOLDED_SWITCH(row_planar_avx512_op, (g, fr, 1));
+        ROWS_SWITCH(row_planar_avx512_op, (g, fr, 1));
     } else {
-        FOLDED_SWITCH(row_folded_avx512_op, (g, fr));
+        ROWS_SWITCH(row_folded_avx512_op, (g, fr));
     }
 }
 
-TEX_AVX512 static inline void row_avx512(const tex_noise_grid *g, const float *P, const float *Q,
-                                         int sb, float *out, int x, int x1, int op, struct row_k rk)
+TEX_AVX512 static inline void row_avx512(const tex_noise_grid *g, struct rowset rs, int sb, int x,
+                                         int x1, int rows, int op, struct row_k rk)
 {
     if (g->paired) {
-        ROW_OP_SWITCH(row_avx512_paired_op, ROW_PRE, (rk));
+        ROWS_SWITCH(row_avx512_paired_op, ROW_PRE);
     } else {
-        ROW_OP_SWITCH(row_avx512_op, ROW_PRE, (rk));
+        ROWS_SWITCH(row_avx512_op, ROW_PRE);
     }
 }
 

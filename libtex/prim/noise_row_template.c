@@ -13,8 +13,7 @@
 GRID_ATTR static void GRID_ROW(const tex_noise_grid *g, int y, int rows, int op, struct row_k rk,
                                float *const *out)
 {
-    enum { CHUNK = 1024, NS = 2 * CHUNK + 24 };
-    float P[NS], Q[NS], L[6][NS];
+    float C[FOLD_ROWS][2 * ROW_NS], L[6][ROW_NS];
     struct yrow yr[FOLD_ROWS];
     struct cache_entry *e;
 
@@ -26,35 +25,35 @@ GRID_ATTR static void GRID_ROW(const tex_noise_grid *g, int y, int rows, int op,
         return;
     }
 #endif
+    /* Rows together where the whole row's coefficients fit, else one by one in chunks of
+     * columns, so that the coefficients stay on the stack and in L1. */
+    int n = rows > 1 && g->nslots + 16 <= ROW_NS ? rows : 1, chunk = n > 1 ? g->w : ROW_CHUNK;
     e = cache_take(g);
-    for (int r = 0; r < rows; r++) {
-        const float *r0 = NULL, *r1 = NULL, *wy = yr[r].wy, *dy = yr[r].dy;
-        int64_t j = yr[r].j;
-        int two = yr[r].two;
-        if (e)
-            cache_rows(g, e, j, two, &r0, &r1);
-        for (int x0 = 0; x0 < g->w; x0 += CHUNK) {
-            int x1 = x0 + CHUNK < g->w ? x0 + CHUNK : g->w;
+    for (int r0 = 0; r0 < rows; r0 += n)
+        for (int x0 = 0; x0 < g->w; x0 += chunk) {
+            int x1 = x0 + chunk < g->w ? x0 + chunk : g->w;
             int s0 = g->slot[x0], s1 = g->slot[x1 - 1] + 2;
-            const float *L0[3], *L1[3];
-            if (e) {
+            struct rowset rs;
+            for (int r = 0; r < n; r++) {
+                const struct yrow *q = &yr[r0 + r];
+                const float *L0[3], *L1[3], *l0 = NULL, *l1 = NULL;
+                if (e)
+                    cache_rows(g, e, q->j, q->two, &l0, &l1);
                 for (int k = 0; k < 3; k++) {
-                    L0[k] = r0 + k * (size_t)g->stride + s0;
-                    L1[k] = two ? r1 + k * (size_t)g->stride + s0 : NULL;
+                    L0[k] = e ? l0 + k * (size_t)g->stride + s0 : L[k];
+                    L1[k] = !q->two ? NULL : e ? l1 + k * (size_t)g->stride + s0 : L[3 + k];
                 }
-            } else {
-                lattice_row(g, j, s0, s1, L[0], L[1], L[2]);
-                if (two)
-                    lattice_row(g, j + 1, s0, s1, L[3], L[4], L[5]);
-                for (int k = 0; k < 3; k++) {
-                    L0[k] = L[k];
-                    L1[k] = L[3 + k];
+                if (!e) {
+                    lattice_row(g, q->j, s0, s1, L[0], L[1], L[2]);
+                    if (q->two)
+                        lattice_row(g, q->j + 1, s0, s1, L[3], L[4], L[5]);
                 }
+                GRID_COEFFS(s1 - s0, q->wy, q->dy, L0, q->two ? L1 : NULL, C[r], C[r] + ROW_NS);
+                rs.C[r] = C[r];
+                rs.out[r] = out[r0 + r];
             }
-            GRID_COEFFS(s1 - s0, wy, dy, L0, two ? L1 : NULL, P, Q);
-            GRID_PIXELS(g, P, Q, s0, out[r], x0, x1, op, rk);
+            GRID_PIXELS(g, rs, s0, x0, x1, n, op, rk);
         }
-    }
     if (e)
         __atomic_store_n(&e->busy, 0, __ATOMIC_RELEASE);
 }

@@ -420,13 +420,15 @@ static void test_row_ops(const tex_noise_table *t)
                      "steps (%d wrong)", bad);
 }
 
-/* Rows made together (tex_noise_grid_rows_op: the folded grids' kernels two rows at a time)
- * equal rows made one by one, for the folded kinds of grid (planar, one- and two-register
- * permutes, interleaved) and a wide one, an odd count, every kind of operation. */
+/* Rows made together (tex_noise_grid_rows_op: the kernels two rows at a time) equal rows
+ * made one by one, for every kind of grid, an odd count, every kind of operation. */
 static void test_rows_together(const tex_noise_table *t)
 {
     enum { W = 1100, N = 5 };
-    static const double cells[] = {20, 300, 1000, 1900, 4000};
+    /* cells across and down 400 rows: wide, then folded (planar, one- and two-register
+     * permutes, interleaved), then without a table (slots, paired slots) */
+    static const double cells[][2] = {{20, 40},     {300, 600},  {1000, 2000}, {1900, 3800},
+                                      {4000, 8000}, {300, 150}, {1000, 40}};
     static const int ops[] = {TEX_ROW_SET, TEX_ROW_ADD_UNIT, TEX_ROW_RIDGED, TEX_ROW_HYBRID};
     static float a[N * 2 * W], b[N * 2 * W];
     double off[4] = {0.37, 0.21, 0.3, 0};
@@ -434,7 +436,7 @@ static void test_rows_together(const tex_noise_table *t)
 
     for (size_t c = 0; c < sizeof cells / sizeof *cells; c++) {
         tex_noise_grid g;
-        tex_noise_grid_init(&g, t, W, 400, cells[c], 2 * cells[c], off, 3, 0);
+        tex_noise_grid_init(&g, t, W, 400, cells[c][0], cells[c][1], off, 3, 0);
         folded += g.folded;
         for (size_t o = 0; o < sizeof ops / sizeof *ops; o++) {
             for (int i = 0; i < N * 2 * W; i++)
