@@ -1271,7 +1271,7 @@ struct row_k {
 /* What a row does with each noise value r (tex_noise_grid_row_op), at o. */
 static inline void apply_op(int op, float r, float *o, struct row_k rk)
 {
-    float s, *st = o + rk.w;
+    float s, *st = op >= TEX_ROW_RIDGED_FIRST ? o + rk.w : NULL; /* the multifractal state */
 
     switch (op) {
     case TEX_ROW_SET:

@@ -58,10 +58,10 @@
  * kept as planes of X, Y and C for it), and each column reads its corners'
  * pairs: where eight or sixteen columns' corners lie within a register's
  * entries (cells of about a pixel or more; half a pixel with AVX-512), by
- * permutes of the coefficients, else one load per column.  Such rows are made
- * two at a time (tex_noise_grid_rows_op), so that an octave sum, whose
- * octaves' per-column data outgrow the first-level cache, reads them once for
- * both.  Rows are
+ * permutes of the coefficients, else one load per column.  Rows are made two
+ * at a time where their coefficients fit on the stack together
+ * (tex_noise_grid_rows_op), so that an octave sum, whose octaves' per-column
+ * data outgrow the first-level cache, reads them once for both.  Rows are
  * vectorised (AVX2, chosen at run time, and AVX-512 for cells 5 pixels wide
  * or more and for rows from folded table coefficients, unless most of an
  * octave sum's cells are neither: a map that
@@ -154,7 +154,7 @@ typedef struct tex_noise_grid {
     int adjacent;      /* every column's right corner is the table's next entry */
     int folded;        /* adjacent, with more columns than the table has entries and cells
                         * under 5 pixels wide: rows from the table row folded with their y
-                        * weights once (lut_fold), each column reading its corners' pairs */
+                        * weights once (fold_row_*), each column reading its corners' pairs */
     int32_t *corner;   /* folded: per column, the table entry of its left corner */
     int span8, span16; /* the most cells between the first and last columns of 8 (16)
                         * columns from a multiple of 8 (16) */
@@ -187,7 +187,7 @@ enum {
 void tex_noise_grid_row_op(const tex_noise_grid *g, int y, int op, float a, float b, float c,
                            float *out);
 /* tex_noise_grid_row_op on rows y.. y + n - 1, row i at out + i stride: the same bytes,
- * rows of a grid folded from its table made two at a time (each column's data read once). */
+ * made two at a time where they can be (each column's data read once for both). */
 void tex_noise_grid_rows_op(const tex_noise_grid *g, int y, int n, int op, float a, float b,
                             float c, float *out, size_t stride);
 /* tex_noise_grid_row_op with TEX_ROW_SET and TEX_ROW_ADD. */
