@@ -1604,8 +1604,8 @@ row_lut_avx2_op(const tex_noise_grid *g, const float (*T0)[4], const float (*T1)
 /* Lattice row j's coefficients (P, Q) at every entry of a folded grid's table, into P and
  * Q = P + ps: the operations row_coeffs performs per slot, done once per entry, W = |V| / 4
  * entries at a time (V: __m256 or __m512, whose operators are their lanes').  The table's
- * planes repeat entries 1..16 past entry n, so planar rows read sixteen columns from their
- * first one's entry on. */
+ * planes go on past entry n (entry i is lattice column i mod n), so that planar rows read
+ * up to 32 entries from a column's. */
 #define FOLD_ROW_FN(ATTR, NAME, V)                                                           \
     ATTR static void NAME(const tex_noise_grid *g, int64_t j, const float *wy, const float *dy, \
                           int two, float *P)                                                 \
@@ -1637,8 +1637,8 @@ FOLD_ROW_FN(TEX_AVX2, fold_row_avx2, __m256)
 /* Folded coefficients: planar P and Q, and interleaved (P, Q) pairs */
 #define FOLD_FLOATS (4 * (1024 + 32))
 
-/* Planar coefficients (fold_row_*) interleaved into PQ, entries 0..n, for paired grids'
- * rows (row_folded_*) */
+/* Planar coefficients (fold_row_*) interleaved into PQ, entries 0..n, for the rows whose
+ * columns' corners lie too far apart for permutes (row_folded_*) */
 TEX_AVX2 static void interleave(const tex_noise_grid *g, const float *P, float *PQ)
 {
     const float *Q = P + g->ps;
@@ -1698,9 +1698,8 @@ row_planar_tail(const tex_noise_grid *g, struct rowset fr, int x, const int rows
 }
 
 /* A folded grid's rows from planar coefficients (fold_row_*, Q ps floats after P) where
- * eight columns' corners lie within eight entries of the first's (g->span8 <= 7: every grid
- * that is not paired, whose cells span over 8/7 pixels), so that the slot rows' expand
- * serves, with offsets taken mod n. */
+ * eight columns' corners lie within eight entries of the first's (g->span8 <= 7: cells of
+ * about a pixel or more), so that the slot rows' expand serves, with offsets taken mod n. */
 TEX_AVX2 static inline __attribute__((always_inline)) void
 row_planar_avx2_op(const tex_noise_grid *g, struct rowset fr, const int rows, const int op,
                    struct row_k rk)
