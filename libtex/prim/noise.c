@@ -821,6 +821,41 @@ static void cache_init(tex_noise_grid *g)
     }
 }
 
+/* The most cells between the first and last of n columns from a multiple of n (the slots'
+ * cells in list) */
+static int grid_span(const tex_noise_grid *g, const int64_t *list, int n)
+{
+    int64_t most = 0;
+    for (int x = 0; x + n - 1 < g->w; x += n) {
+        int64_t d = list[g->slot[x + n - 1]] - list[g->slot[x]];
+        most = d > most ? d : most;
+    }
+    return most > INT_MAX ? INT_MAX : (int)most;
+}
+
+/* Lattice rows from the table when the rows would fold more lattice points than it has
+ * (cells spanning less than a pixel row are not kept); folded rows, with each column's
+ * corner entry, where cells are narrower than the wide rows' (5 pixels) and the row has
+ * more columns than the table entries (fBm from 1024 cells on 2048 columns: 1.5 times the
+ * slots' rows at 2 pixels a cell, 1.1 at 4).  Without memory, rows fold their own. */
+static void table_init(tex_noise_grid *g)
+{
+    int n = g->t->n;
+    double rows = g->fy < 1 ? g->fy * g->h + 2 : 2.0 * g->h;
+
+    if (n > 1024 || rows * g->nslots <= 2.0 * n * n)
+        return;
+    g->adjacent = corners_adjacent(g);
+    if (g->adjacent && (g->paired || (!g->wide && n >= 16)) && g->w >= 2 * (n + 1) &&
+        (g->corner = malloc(g->w * sizeof *g->corner)))
+        for (int x = 0; x < g->w; x++)
+            g->corner[x] = g->lat[g->slot[x]];
+    if (lut_init(g, g->corner != NULL) < 0) {
+        free(g->corner);
+        g->corner = NULL;
+    }
+}
+
 int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int h, double fx,
                         double fy, const double off[4], int dims, int period)
 {
@@ -877,14 +912,8 @@ int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int 
         g->dw0[x] = (float)dfade(t->fade, u);
         g->dw1[x] = (float)-dfade(t->fade, 1.0 - u);
     }
-    for (int x = 0; x + 7 < w; x += 8) {
-        int64_t d = list[g->slot[x + 7]] - list[g->slot[x]];
-        g->span8 = d > g->span8 ? (d > INT_MAX ? INT_MAX : (int)d) : g->span8;
-        if (x % 16 == 0 && x + 15 < w) {
-            d = list[g->slot[x + 15]] - list[g->slot[x]];
-            g->span16 = d > g->span16 ? (d > INT_MAX ? INT_MAX : (int)d) : g->span16;
-        }
-    }
+    g->span8 = grid_span(g, list, 8);
+    g->span16 = grid_span(g, list, 16);
     for (int s = 0; s < ns; s++)
         g->lat[s] = lat_index(list[s], period, t->n);
     for (int s = ns; s < ns + 16; s++)
@@ -892,23 +921,7 @@ int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int 
     g->nslots = ns;
     g->stride = ns + 16;
     free(list);
-    /* Lattice rows from the table when the rows would fold more lattice points
-     * than it has (cells spanning less than a pixel row are not kept). */
-    double rows = g->fy < 1 ? g->fy * h + 2 : 2.0 * h;
-    if (t->n <= 1024 && rows * ns > 2.0 * t->n * t->n) {
-        /* Folded rows where cells are narrower than the wide rows' (5 pixels) and the row
-         * has more columns than the table entries (fBm from 1024 cells on 2048 columns:
-         * 1.5 times the slots' rows at 2 pixels a cell, 1.1 at 4). */
-        g->adjacent = corners_adjacent(g);
-        if (g->adjacent && (g->paired || (!g->wide && t->n >= 16)) && w >= 2 * (t->n + 1) &&
-            (g->corner = malloc(w * sizeof *g->corner)))
-            for (int x = 0; x < w; x++)
-                g->corner[x] = g->lat[g->slot[x]];
-        if (lut_init(g, g->corner != NULL) < 0) { /* then rows fold their own */
-            free(g->corner);
-            g->corner = NULL;
-        }
-    }
+    table_init(g);
     g->folded = g->corner != NULL;
     if (g->folded)
         g->wide = 1; /* row_lut_avx512: sixteen columns too */
