@@ -833,50 +833,12 @@ static void frac_eval2(const struct tex_field *f, int n, const double *u, const 
     frac_eval3(f, n, u, v, NULL, out);
 }
 
-#ifdef TEX_X86
-/* finish_row's loop W lanes at a time, for the vector type V (AVX2's and AVX-512's), whose
- * operators are the lanes' operations (MIN, MAX: its intrinsics; the clamp max, then min,
- * as clamp01); returns the first pixel it left. */
-#define FINISH_ROW_FN(ATTR, SUF, V, MIN, MAX)                                                \
-    ATTR static int finish_row_##SUF(const float *res, float *out, int w, float lo, float inv) \
-    {                                                                                        \
-        enum { W = sizeof(V) / sizeof(float) };                                              \
-        const V zero = {0}, one = zero + 1.0f;                                               \
-        int x = 0;                                                                           \
-        for (; x + W <= w; x += W) {                                                         \
-            V v;                                                                             \
-            memcpy(&v, res + x, sizeof v);                                                   \
-            v = MIN(MAX((v - lo) * inv, zero), one);                                         \
-            memcpy(out + x, &v, sizeof v);                                                   \
-        }                                                                                    \
-        return x;                                                                            \
-    }
-FINISH_ROW_FN(TEX_AVX2, avx2, __m256, _mm256_min_ps, _mm256_max_ps)
-FINISH_ROW_FN(TEX_AVX512, avx512, __m512, _mm512_min_ps, _mm512_max_ps)
-#endif
-
-/* Ridged and hybrid's rescaling of the sum res into out: clamp01((x - lo) inv), with lo 0
- * for ridged (x - 0 is x: a sum of squares is never -0). */
-static void finish_row(const float *res, float *out, int w, float lo, float inv)
-{
-    int x = 0;
-#ifdef TEX_X86
-    int level = tex_simd_level();
-    if (level >= TEX_SIMD_AVX512)
-        x = finish_row_avx512(res, out, w, lo, inv);
-    else if (level >= TEX_SIMD_AVX2)
-        x = finish_row_avx2(res, out, w, lo, inv);
-#endif
-    for (; x < w; x++)
-        out[x] = clamp01((res[x] - lo) * inv);
-}
-
 static void frac_row_n(const struct tex_field *f, int y, int n, float *out)
 {
     const struct frac_params *p = f->params;
     const struct frac_state *s = f->state;
     size_t w = (size_t)f->w;
-    float *res;
+    float *st;
 
     if (s->mode == FBM) {
         /* a n instead of 0 + a n: only the sign of a zero differs, and
@@ -885,24 +847,29 @@ static void frac_row_n(const struct tex_field *f, int y, int n, float *out)
                         s->amp, s->inv, 0, out);
         return;
     }
-    res = s->mode <= HYBRID ? malloc(2 * n * w * sizeof *res) : NULL;
-    if (!res) { /* not an octave sum, or no memory for the sums and their states */
+    st = s->mode <= HYBRID ? malloc(n * w * sizeof *st) : NULL;
+    if (!st) { /* not an octave sum, or no memory for the states */
         for (int i = 0; i < n; i++)
             for (int x = 0; x < f->w; x++)
                 out[i * w + x] = frac_point(f, (x + 0.5) / f->w, (y + i + 0.5) / f->h, 0);
         return;
     }
-    /* the octaves' steps of ridged() and hybrid() in their order, on every pixel; each row's
-     * sum then its state */
+    /* the octaves' steps of ridged() and hybrid() in their order, on every pixel, the last
+     * rescaling the sum: clamp01((x - lo) inv), lo 0 for ridged (x - 0 is x: a sum of
+     * squares is never -0) */
+    struct tex_mf_k mk = {0, (float)p->mf_offset, (float)p->gain, s->mode == RIDGED ? 0 : s->lo,
+                          s->inv};
+    static const int ops[2][3] = {{TEX_ROW_HYBRID_FIRST, TEX_ROW_HYBRID, TEX_ROW_HYBRID_LAST},
+                                  {TEX_ROW_RIDGED_FIRST, TEX_ROW_RIDGED, TEX_ROW_RIDGED_LAST}};
     for (int k = 0; k < s->o.n; k++) {
-        int op = s->mode == RIDGED ? (k ? TEX_ROW_RIDGED : TEX_ROW_RIDGED_FIRST)
-                                   : (k ? TEX_ROW_HYBRID : TEX_ROW_HYBRID_FIRST);
-        tex_octave_rows_op(&s->o, k, y, n, op, s->amp[k], (float)p->mf_offset, (float)p->gain,
-                           res, 2 * w);
+        mk.amp = s->amp[k];
+        tex_octave_rows_mf(&s->o, k, y, n, ops[s->mode == RIDGED][!k ? 0 : k < s->o.n - 1 ? 1 : 2],
+                           &mk, out, st, w);
     }
-    for (int i = 0; i < n; i++)
-        finish_row(res + 2 * i * w, out + i * w, f->w, s->mode == RIDGED ? 0 : s->lo, s->inv);
-    free(res);
+    if (s->o.n == 1) /* the first step is the last */
+        for (size_t x = 0; x < n * w; x++)
+            out[x] = clamp01((out[x] - mk.lo) * mk.inv);
+    free(st);
 }
 
 static void frac_row(const struct tex_field *f, int y, float *out)

@@ -58,8 +58,9 @@
  * kept as planes of X, Y and C for it), and each column reads its corners'
  * pairs: where eight or sixteen columns' corners lie within a register's
  * entries (cells of about a pixel or more; half a pixel with AVX-512), by
- * permutes of the coefficients, else one load per column.  Rows are made two
- * at a time where their coefficients fit on the stack together
+ * permutes of the coefficients, else one load per column (with AVX-512, one
+ * for two rows, their coefficients interleaved entry by entry).  Rows are made
+ * two at a time where their coefficients fit on the stack together
  * (tex_noise_grid_rows_op), so that an octave sum, whose octaves' per-column
  * data outgrow the first-level cache, reads them once for both.  Rows are
  * vectorised (AVX2, chosen at run time, and AVX-512 for cells 5 pixels wide
@@ -169,7 +170,8 @@ int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int 
 /* What a row does with each noise value n, in the same vectorised pass
  * (clamp01(x) is min(max(x, 0), 1)).  The multifractal steps (Musgrave's
  * ridged and hybrid octaves, as fractal.c's points sum them) keep a state st
- * per column: out then holds 2w floats, the sum and st. */
+ * per column, and the last octave's step finishes the sum: they go through
+ * tex_noise_grid_rows_mf, whose constants a, b, c are amp, offset, gain. */
 enum {
     TEX_ROW_SET,           /* out = n */
     TEX_ROW_MUL,           /* out = a n */
@@ -180,16 +182,30 @@ enum {
     TEX_ROW_ADD_UNIT,      /* out = clamp01(0.5 + 0.5 ((out + a n) b)): fBm's last octave */
     TEX_ROW_ADD_ABS_CLAMP, /* out = clamp01((out + a |n|) b): turbulence's last octave */
     TEX_ROW_RIDGED_FIRST,  /* s = (b - |n|)^2: out = st = s */
-    TEX_ROW_RIDGED,        /* s = clamp01(st c) (b - |n|)^2: out = out + s a, st = s */
+    TEX_ROW_RIDGED,        /* s = min(st c, 1) (b - |n|)^2: out = out + s a, st = s (with
+                            * c >= 0 and the states from these steps, st c >= 0: Musgrave's
+                            * weight clamp01(st c)) */
+    TEX_ROW_RIDGED_LAST,   /* as TEX_ROW_RIDGED, then out = clamp01((out - lo) inv) */
     TEX_ROW_HYBRID_FIRST,  /* s = (n + b) a: out = st = s */
-    TEX_ROW_HYBRID         /* s = min(st, 1) ((n + b) a): out = out + s, st = s */
+    TEX_ROW_HYBRID,        /* s = min(st, 1) ((n + b) a): out = out + s, st = s */
+    TEX_ROW_HYBRID_LAST    /* as TEX_ROW_HYBRID, then out = clamp01((out - lo) inv) */
 };
+/* The operations up to TEX_ROW_ADD_ABS_CLAMP, with their constants a, b, c. */
 void tex_noise_grid_row_op(const tex_noise_grid *g, int y, int op, float a, float b, float c,
                            float *out);
 /* tex_noise_grid_row_op on rows y.. y + n - 1, row i at out + i stride: the same bytes,
  * made two at a time where they can be (each column's data read once for both). */
 void tex_noise_grid_rows_op(const tex_noise_grid *g, int y, int n, int op, float a, float b,
                             float c, float *out, size_t stride);
+/* The multifractal operations' constants */
+struct tex_mf_k {
+    float amp, offset, gain; /* a, b and c */
+    float lo, inv;           /* the last step's finish */
+};
+/* A multifractal operation on rows y.. y + n - 1: row i's sum at out + i stride, its state
+ * at st + i stride. */
+void tex_noise_grid_rows_mf(const tex_noise_grid *g, int y, int n, int op,
+                            const struct tex_mf_k *k, float *out, float *st, size_t stride);
 /* tex_noise_grid_row_op with TEX_ROW_SET and TEX_ROW_ADD. */
 void tex_noise_grid_row(const tex_noise_grid *g, int y, float *out);
 void tex_noise_grid_row_add(const tex_noise_grid *g, int y, float amp, float *out);
@@ -251,6 +267,8 @@ void tex_octave_row_op(const tex_octaves *o, int k, int y, int op, float a, floa
                        float *out);
 void tex_octave_rows_op(const tex_octaves *o, int k, int y, int n, int op, float a, float b,
                         float c, float *out, size_t stride);
+void tex_octave_rows_mf(const tex_octaves *o, int k, int y, int n, int op,
+                        const struct tex_mf_k *mk, float *out, float *st, size_t stride);
 
 /* The parameter rows every noise-based primitive shares (param.h), declared once:
  * struct S must have double z, struct tex_reals offset, int fade, int gradients

@@ -389,10 +389,14 @@ static void test_row_ops(const tex_noise_table *t)
     tex_noise_grid g;
     tex_noise_grid_init(&g, t, 64, 8, 5, 5, off, 3, 0);
     tex_noise_grid_row(&g, 3, n);
-    for (int op = TEX_ROW_SET; op <= TEX_ROW_HYBRID; op++) {
+    for (int op = TEX_ROW_SET; op <= TEX_ROW_HYBRID_LAST; op++) {
+        struct tex_mf_k k = {0.7f, 1.3f, 0.8f, 0.3f, 0.6f};
         for (int x = 0; x < 128; x++)
             o[x] = v[x] = 0.25f - 0.01f * (x % 64) + (x >= 64 ? 0.9f : 0);
-        tex_noise_grid_row_op(&g, 3, op, 0.7f, 1.3f, 0.8f, o);
+        if (op < TEX_ROW_RIDGED_FIRST)
+            tex_noise_grid_row_op(&g, 3, op, 0.7f, 1.3f, 0.8f, o);
+        else
+            tex_noise_grid_rows_mf(&g, 3, 1, op, &k, o, o + 64, 0);
         for (int x = 0; x < 64; x++) {
             float a = 0.7f, b = 1.3f, c = 0.8f, r = n[x], e, st = v[64 + x], s = st;
             switch (op) {
@@ -409,8 +413,15 @@ static void test_row_ops(const tex_noise_table *t)
                 s = fminf(fmaxf(st * c, 0), 1) * ((b - fabsf(r)) * (b - fabsf(r)));
                 e = v[x] + s * a;
                 break;
+            case TEX_ROW_RIDGED_LAST: /* the step, the finish, the state kept */
+                e = v[x] + fminf(fmaxf(st * c, 0), 1) * ((b - fabsf(r)) * (b - fabsf(r))) * a;
+                e = fminf(fmaxf((e - k.lo) * k.inv, 0), 1);
+                break;
             case TEX_ROW_HYBRID_FIRST: e = s = (r + b) * a; break;
-            default: s = fminf(st, 1) * ((r + b) * a), e = v[x] + s; break;
+            case TEX_ROW_HYBRID: s = fminf(st, 1) * ((r + b) * a), e = v[x] + s; break;
+            default:
+                e = fminf(fmaxf((v[x] + fminf(st, 1) * ((r + b) * a) - k.lo) * k.inv, 0), 1);
+                break;
             }
             bad += o[x] != e || o[64 + x] != s;
         }
@@ -429,7 +440,9 @@ static void test_rows_together(const tex_noise_table *t)
      * permutes, interleaved), then without a table (slots, paired slots) */
     static const double cells[][2] = {{20, 40},     {300, 600},  {1000, 2000}, {1900, 3800},
                                       {4000, 8000}, {300, 150}, {1000, 40}};
-    static const int ops[] = {TEX_ROW_SET, TEX_ROW_ADD_UNIT, TEX_ROW_RIDGED, TEX_ROW_HYBRID};
+    static const int ops[] = {TEX_ROW_SET,    TEX_ROW_ADD_UNIT, TEX_ROW_RIDGED,
+                              TEX_ROW_HYBRID, TEX_ROW_RIDGED_LAST, TEX_ROW_HYBRID_LAST};
+    const struct tex_mf_k k = {0.6f, 0.9f, 1.2f, 0.2f, 0.7f};
     static float a[N * 2 * W], b[N * 2 * W];
     double off[4] = {0.37, 0.21, 0.3, 0};
     int bad = 0, folded = 0;
@@ -441,9 +454,16 @@ static void test_rows_together(const tex_noise_table *t)
         for (size_t o = 0; o < sizeof ops / sizeof *ops; o++) {
             for (int i = 0; i < N * 2 * W; i++)
                 a[i] = b[i] = 0.5f + 0.001f * (i % 97);
-            tex_noise_grid_rows_op(&g, 7, N, ops[o], 0.6f, 0.9f, 1.2f, a, 2 * W);
+            if (ops[o] < TEX_ROW_RIDGED_FIRST)
+                tex_noise_grid_rows_op(&g, 7, N, ops[o], 0.6f, 0.9f, 1.2f, a, 2 * W);
+            else
+                tex_noise_grid_rows_mf(&g, 7, N, ops[o], &k, a, a + W, 2 * W);
             for (int r = 0; r < N; r++)
-                tex_noise_grid_row_op(&g, 7 + r, ops[o], 0.6f, 0.9f, 1.2f, b + r * 2 * W);
+                if (ops[o] < TEX_ROW_RIDGED_FIRST)
+                    tex_noise_grid_row_op(&g, 7 + r, ops[o], 0.6f, 0.9f, 1.2f, b + r * 2 * W);
+                else
+                    tex_noise_grid_rows_mf(&g, 7 + r, 1, ops[o], &k, b + r * 2 * W,
+                                           b + r * 2 * W + W, 0);
             bad += memcmp(a, b, sizeof a) != 0;
         }
         tex_noise_grid_free(&g);
