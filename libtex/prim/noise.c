@@ -1286,7 +1286,7 @@ struct row_k {
 /* What a row does with each noise value r (tex_noise_grid_row_op), at o. */
 static inline void apply_op(int op, float r, float *o, struct row_k rk)
 {
-    float s, *st = op >= TEX_ROW_RIDGED_FIRST ? rk.st0 + (o - rk.out0) : NULL;
+    float s, w, *st = op >= TEX_ROW_RIDGED_FIRST ? rk.st0 + (o - rk.out0) : NULL;
 
     switch (op) {
     case TEX_ROW_SET:
@@ -1320,7 +1320,8 @@ static inline void apply_op(int op, float r, float *o, struct row_k rk)
     case TEX_ROW_RIDGED:
     case TEX_ROW_RIDGED_LAST:
         s = rk.b - fabsf(r);
-        s = (*st * rk.c < 1 ? *st * rk.c : 1) * (s * s); /* clamp01(st c): st c >= 0 */
+        w = *st * rk.c; /* the weight clamp01(st c): st c >= 0 */
+        s = (w < 1 ? w : 1) * (s * s);
         *o = *o + s * rk.a;
         break;
     case TEX_ROW_HYBRID_FIRST:

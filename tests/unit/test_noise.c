@@ -651,6 +651,40 @@ static void test_primitive_maps(void)
     }
 }
 
+/* The octave sums' rows (the multifractal steps in the row operations, the last one
+ * finishing the sum; a lone octave finished on its own) agree with their points. */
+static void test_sum_rows_points(void)
+{
+    enum { N = 160 };
+    static const char *const modes[] = {"fbm", "ridged", "hybrid"}, *const octaves[] = {"1", "6"};
+    static double u[N], v[N];
+    static float pt[N];
+    for (int m = 0; m < 3; m++)
+        for (int o = 0; o < 2; o++) {
+            struct tex_field *f = tex_field_new(&tex_prim_fractal);
+            double err = 0;
+            f->seed = 5;
+            tex_field_set(f, "mode", modes[m]);
+            tex_field_set(f, "octaves", octaves[o]);
+            tex_field_set(f, "frequency", "13"); /* 12 pixels a cell down to 1/3 */
+            tex_field_set(f, "mf_offset", m == 2 ? "0.7" : "1");
+            tex_field_init(f, N, N);
+            tex_map *map = tex_field_sample(f);
+            for (int y = 0; map && y < N; y += 7) {
+                for (int x = 0; x < N; x++)
+                    u[x] = (x + 0.5) / N, v[x] = (y + 0.5) / N;
+                f->prim->eval2(f, N, u, v, pt);
+                for (int x = 0; x < N; x++)
+                    err = fmax(err, isnan(map->px[y * N + x]) ? INFINITY
+                                                               : fabs(map->px[y * N + x] - pt[x]));
+            }
+            CHECKF(map && err < 1e-5, "%s, %s octave(s): rows agree with points (%g)", modes[m],
+                   octaves[o], err);
+            tex_map_free(map);
+            tex_field_free(f);
+        }
+}
+
 /* fBm's spectrum, midpoint displacement's variogram and the Mandelbrot set. */
 static void test_fractal_statistics(void)
 {
@@ -697,6 +731,7 @@ int main(void)
     CHECK(tex_noise_init(&t, 3, 256, 0) == 0, "noise table");
     test_noise3_values(&t);
     test_rows_points(&t);
+    test_sum_rows_points();
     test_rows_kept(&t);
     test_row_ops(&t);
     test_rows_together(&t);
