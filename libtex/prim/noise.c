@@ -1399,62 +1399,65 @@ static void row_scalar(const tex_noise_grid *g, struct rowset rs, int sb, int x,
 #ifdef TEX_X86
 /* apply_op on W = |V| / 4 pixels at x of each of the rows at out, their noise r[i], for the
  * vector type V (AVX2's and AVX-512's), whose operators are their lanes' (MIN, MAX, ABS: its
- * intrinsics; clamps max, then min).  Every row's loads come before any row's stores: the
- * multifractal sums from 256 cells run 4-15 % faster than with each row's store ahead of
- * the next row's loads, fBm and turbulence 2-5 % slower. */
+ * intrinsics; clamps max, then min).  The multifractal operations load every row's sum and
+ * state before any row's stores: from 256 cells 4-15 % faster than row by row.  The others
+ * go row by row (step 1), which makes fBm and turbulence 3-9 % faster than loads first. */
 #define APPLY_FN(ATTR, NAME, V, MIN, MAX, ABS)                                                \
     ATTR static inline __attribute__((always_inline)) void NAME(                              \
-        const int op, const V *r, float *const *out, int x, const int rows, struct row_k rk) \
+        const int op, const V *r, float *const *out, int x, const int rows, struct row_k rk)  \
     {                                                                                         \
         const V zero = {0}, one = zero + 1.0f;                                                \
         const int first = op == TEX_ROW_RIDGED_FIRST || op == TEX_ROW_HYBRID_FIRST;           \
         const int last = op == TEX_ROW_RIDGED_LAST || op == TEX_ROW_HYBRID_LAST;              \
-        float *sp[FOLD_ROWS]; /* the multifractal state */                                   \
+        float *sp[FOLD_ROWS]; /* the multifractal state */                                    \
         V v[FOLD_ROWS], s[FOLD_ROWS], st[FOLD_ROWS];                                          \
-        _Pragma("GCC unroll 2") for (int i = 0; i < rows; i++) {                              \
-            sp[i] = rk.st0 + (out[i] + x - rk.out0);                                          \
-            if (op >= TEX_ROW_ADD && !first)                                                  \
-                memcpy(&v[i], out[i] + x, sizeof v[i]);                                       \
-            if (op >= TEX_ROW_RIDGED_FIRST && !first)                                         \
-                memcpy(&st[i], sp[i], sizeof st[i]);                                          \
-        }                                                                                     \
-        _Pragma("GCC unroll 2") for (int i = 0; i < rows; i++) {                              \
-            switch (op) {                                                                     \
-            case TEX_ROW_SET: v[i] = r[i]; break;                                             \
-            case TEX_ROW_MUL: v[i] = rk.a * r[i]; break;                                      \
-            case TEX_ROW_MUL_ABS: v[i] = rk.a * ABS(r[i]); break;                             \
-            case TEX_ROW_UNIT: v[i] = MIN(MAX(0.5f + 0.5f * r[i], zero), one); break;         \
-            case TEX_ROW_ADD: v[i] = v[i] + rk.a * r[i]; break;                               \
-            case TEX_ROW_ADD_ABS: v[i] = v[i] + rk.a * ABS(r[i]); break;                      \
-            case TEX_ROW_ADD_UNIT:                                                            \
-                v[i] = MIN(MAX(0.5f + 0.5f * ((v[i] + rk.a * r[i]) * rk.b), zero), one);      \
-                break;                                                                        \
-            case TEX_ROW_ADD_ABS_CLAMP:                                                       \
-                v[i] = MIN(MAX((v[i] + rk.a * ABS(r[i])) * rk.b, zero), one);                 \
-                break;                                                                        \
-            case TEX_ROW_RIDGED_FIRST:                                                        \
-                s[i] = rk.b - ABS(r[i]);                                                      \
-                v[i] = s[i] = s[i] * s[i];                                                    \
-                break;                                                                        \
-            case TEX_ROW_RIDGED:                                                              \
-            case TEX_ROW_RIDGED_LAST:                                                         \
-                s[i] = rk.b - ABS(r[i]);                                                      \
-                s[i] = MIN(st[i] * rk.c, one) * (s[i] * s[i]);                                \
-                v[i] = v[i] + s[i] * rk.a;                                                    \
-                break;                                                                        \
-            case TEX_ROW_HYBRID_FIRST: v[i] = s[i] = (r[i] + rk.b) * rk.a; break;             \
-            default: /* TEX_ROW_HYBRID, TEX_ROW_HYBRID_LAST */                                \
-                s[i] = MIN(st[i], one) * ((r[i] + rk.b) * rk.a);                              \
-                v[i] = v[i] + s[i];                                                           \
-                break;                                                                        \
+        const int step = op >= TEX_ROW_RIDGED_FIRST ? rows : 1;                               \
+        for (int i0 = 0; i0 < rows; i0 += step) {                                             \
+            _Pragma("GCC unroll 2") for (int i = i0; i < i0 + step; i++) {                    \
+                sp[i] = rk.st0 + (out[i] + x - rk.out0);                                      \
+                if (op >= TEX_ROW_ADD && !first)                                              \
+                    memcpy(&v[i], out[i] + x, sizeof v[i]);                                   \
+                if (op >= TEX_ROW_RIDGED_FIRST && !first)                                     \
+                    memcpy(&st[i], sp[i], sizeof st[i]);                                      \
             }                                                                                 \
-            if (last)                                                                         \
-                v[i] = MIN(MAX((v[i] - rk.lo) * rk.inv, zero), one);                          \
-        }                                                                                     \
-        _Pragma("GCC unroll 2") for (int i = 0; i < rows; i++) {                              \
-            memcpy(out[i] + x, &v[i], sizeof v[i]);                                           \
-            if (op >= TEX_ROW_RIDGED_FIRST && !last)                                          \
-                memcpy(sp[i], &s[i], sizeof s[i]);                                            \
+            _Pragma("GCC unroll 2") for (int i = i0; i < i0 + step; i++) {                    \
+                switch (op) {                                                                 \
+                case TEX_ROW_SET: v[i] = r[i]; break;                                         \
+                case TEX_ROW_MUL: v[i] = rk.a * r[i]; break;                                  \
+                case TEX_ROW_MUL_ABS: v[i] = rk.a * ABS(r[i]); break;                         \
+                case TEX_ROW_UNIT: v[i] = MIN(MAX(0.5f + 0.5f * r[i], zero), one); break;     \
+                case TEX_ROW_ADD: v[i] = v[i] + rk.a * r[i]; break;                           \
+                case TEX_ROW_ADD_ABS: v[i] = v[i] + rk.a * ABS(r[i]); break;                  \
+                case TEX_ROW_ADD_UNIT:                                                        \
+                    v[i] = MIN(MAX(0.5f + 0.5f * ((v[i] + rk.a * r[i]) * rk.b), zero), one);  \
+                    break;                                                                    \
+                case TEX_ROW_ADD_ABS_CLAMP:                                                   \
+                    v[i] = MIN(MAX((v[i] + rk.a * ABS(r[i])) * rk.b, zero), one);             \
+                    break;                                                                    \
+                case TEX_ROW_RIDGED_FIRST:                                                    \
+                    s[i] = rk.b - ABS(r[i]);                                                  \
+                    v[i] = s[i] = s[i] * s[i];                                                \
+                    break;                                                                    \
+                case TEX_ROW_RIDGED:                                                          \
+                case TEX_ROW_RIDGED_LAST:                                                     \
+                    s[i] = rk.b - ABS(r[i]);                                                  \
+                    s[i] = MIN(st[i] * rk.c, one) * (s[i] * s[i]);                            \
+                    v[i] = v[i] + s[i] * rk.a;                                                \
+                    break;                                                                    \
+                case TEX_ROW_HYBRID_FIRST: v[i] = s[i] = (r[i] + rk.b) * rk.a; break;         \
+                default: /* TEX_ROW_HYBRID, TEX_ROW_HYBRID_LAST */                            \
+                    s[i] = MIN(st[i], one) * ((r[i] + rk.b) * rk.a);                          \
+                    v[i] = v[i] + s[i];                                                       \
+                    break;                                                                    \
+                }                                                                             \
+                if (last)                                                                     \
+                    v[i] = MIN(MAX((v[i] - rk.lo) * rk.inv, zero), one);                      \
+            }                                                                                 \
+            _Pragma("GCC unroll 2") for (int i = i0; i < i0 + step; i++) {                    \
+                memcpy(out[i] + x, &v[i], sizeof v[i]);                                       \
+                if (op >= TEX_ROW_RIDGED_FIRST && !last)                                      \
+                    memcpy(sp[i], &s[i], sizeof s[i]);                                        \
+            }                                                                                 \
         }                                                                                     \
     }
 TEX_AVX2 static inline __attribute__((always_inline)) __m256 abs_avx2(__m256 v)
