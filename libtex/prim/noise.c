@@ -1401,8 +1401,9 @@ static void row_scalar(const tex_noise_grid *g, struct rowset rs, int sb, int x,
  * vector type V (AVX2's and AVX-512's), whose operators are their lanes' (MIN, MAX, ABS: its
  * intrinsics; clamps max, then min).  The multifractal operations load every row's sum and
  * state before any row's stores: from 256 cells 4-15 % faster than row by row.  The others
- * go row by row (step 1), which makes fBm and turbulence 3-9 % faster than loads first. */
-#define APPLY_FN(ATTR, NAME, V, MIN, MAX, ABS)                                                \
+ * go row by row (step 1) where ROWWISE: at AVX-512 fBm and turbulence run 3-9 % faster so,
+ * at AVX2 three times slower. */
+#define APPLY_FN(ATTR, NAME, V, MIN, MAX, ABS, ROWWISE)                                       \
     ATTR static inline __attribute__((always_inline)) void NAME(                              \
         const int op, const V *r, float *const *out, int x, const int rows, struct row_k rk)  \
     {                                                                                         \
@@ -1411,7 +1412,7 @@ static void row_scalar(const tex_noise_grid *g, struct rowset rs, int sb, int x,
         const int last = op == TEX_ROW_RIDGED_LAST || op == TEX_ROW_HYBRID_LAST;              \
         float *sp[FOLD_ROWS]; /* the multifractal state */                                    \
         V v[FOLD_ROWS], s[FOLD_ROWS], st[FOLD_ROWS];                                          \
-        const int step = op >= TEX_ROW_RIDGED_FIRST ? rows : 1;                               \
+        const int step = ROWWISE && op < TEX_ROW_RIDGED_FIRST ? 1 : rows;                     \
         for (int i0 = 0; i0 < rows; i0 += step) {                                             \
             _Pragma("GCC unroll 2") for (int i = i0; i < i0 + step; i++) {                    \
                 sp[i] = rk.st0 + (out[i] + x - rk.out0);                                      \
@@ -1464,7 +1465,7 @@ TEX_AVX2 static inline __attribute__((always_inline)) __m256 abs_avx2(__m256 v)
 {
     return _mm256_andnot_ps(_mm256_set1_ps(-0.0f), v);
 }
-APPLY_FN(TEX_AVX2, apply_avx2, __m256, _mm256_min_ps, _mm256_max_ps, abs_avx2)
+APPLY_FN(TEX_AVX2, apply_avx2, __m256, _mm256_min_ps, _mm256_max_ps, abs_avx2, 0)
 
 /* Eight pixels' noise from their slots' coefficients, row_scalar_op's formula
  *   w0 (p0 u + q0) + w1 (p1 (u - 1) + q1) */
@@ -1845,7 +1846,7 @@ TEX_AVX2 static inline void row_avx2(const tex_noise_grid *g, struct rowset rs, 
 #ifdef TEX_X86
 /* ---- the rows sixteen pixels at a time (AVX-512): the AVX2 kernels' operations ---- */
 
-APPLY_FN(TEX_AVX512, apply_avx512, __m512, _mm512_min_ps, _mm512_max_ps, _mm512_abs_ps)
+APPLY_FN(TEX_AVX512, apply_avx512, __m512, _mm512_min_ps, _mm512_max_ps, _mm512_abs_ps, 1)
 
 /* pixels8 for sixteen pixels */
 TEX_AVX512 static inline __attribute__((always_inline)) __m512
