@@ -1650,11 +1650,7 @@ row_lut_avx2_op(const tex_noise_grid *g, const float (*T0)[4], const float (*T1)
     }
 }
 
-/* Lattice row j's coefficients (P, Q) at every entry of a folded grid's table, into P and
- * Q = P + ps: the operations row_coeffs performs per slot, done once per entry, W = |V| / 4
- * entries at a time (V: __m256 or __m512, whose operators are their lanes').  The table's
- * planes go on past entry n (entry i is lattice column i mod n), so that planar rows read
- * up to 32 entries from a column's. */
+/* What a pixel row folds: its two lattice rows' table planes and their weights (yrow's) */
 struct fold_src {
     const float *T0, *T1; /* the table planes of lattice rows j and j + 1 (NULL: weight 0) */
     float a0, a1, d0, d1;
@@ -1667,7 +1663,11 @@ static inline void fold_src_at(const tex_noise_grid *g, const struct yrow *yr, s
     f->a0 = yr->wy[0], f->a1 = yr->wy[1], f->d0 = yr->dy[0], f->d1 = yr->dy[1];
 }
 
-/* NAME_at: entries i..i + W - 1's P and Q; NAME: the whole row's */
+/* A pixel row's coefficients (P, Q) at every entry of a folded grid's table, into P and
+ * Q = P + ps (NAME; NAME_at: entries i..i + W - 1's): the operations row_coeffs performs
+ * per slot, done once per entry, W = |V| / 4 entries at a time (V: __m256 or __m512, whose
+ * operators are their lanes').  The table's planes go on past entry n (entry i is lattice
+ * column i mod n), so that planar rows read up to 32 entries from a column's. */
 #define FOLD_ROW_FN(ATTR, NAME, V)                                                           \
     ATTR static inline __attribute__((always_inline)) void NAME##_at(                        \
         const struct fold_src *f, int ps, int i, V *p, V *q)                                 \
