@@ -1653,6 +1653,7 @@ row_lut_avx2_op(const tex_noise_grid *g, const float (*T0)[4], const float (*T1)
 /* What a pixel row folds: its two lattice rows' table planes and their weights (yrow's) */
 struct fold_src {
     const float *T0, *T1; /* the table planes of lattice rows j and j + 1 (NULL: weight 0) */
+    int ps;               /* the planes' length */
     float a0, a1, d0, d1;
 };
 
@@ -1660,6 +1661,7 @@ static inline void fold_src_at(const tex_noise_grid *g, const struct yrow *yr, s
 {
     f->T0 = plane_row(g, yr->j);
     f->T1 = yr->two ? plane_row(g, yr->j + 1) : NULL;
+    f->ps = g->ps;
     f->a0 = yr->wy[0], f->a1 = yr->wy[1], f->d0 = yr->dy[0], f->d1 = yr->dy[1];
 }
 
@@ -1670,8 +1672,9 @@ static inline void fold_src_at(const tex_noise_grid *g, const struct yrow *yr, s
  * column i mod n), so that planar rows read up to 32 entries from a column's. */
 #define FOLD_ROW_FN(ATTR, NAME, V)                                                           \
     ATTR static inline __attribute__((always_inline)) void NAME##_at(                        \
-        const struct fold_src *f, int ps, int i, V *p, V *q)                                 \
+        const struct fold_src *f, int i, V *p, V *q)                                         \
     {                                                                                        \
+        const int ps = f->ps;                                                                \
         V x, y, c;                                                                           \
         memcpy(&x, f->T0 + i, sizeof x);                                                     \
         memcpy(&y, f->T0 + ps + i, sizeof y);                                                \
@@ -1693,7 +1696,7 @@ static inline void fold_src_at(const tex_noise_grid *g, const struct yrow *yr, s
         fold_src_at(g, yr, &f);                                                              \
         for (int i = 0; i < g->ps; i += W) {                                                 \
             V p, q;                                                                          \
-            NAME##_at(&f, g->ps, i, &p, &q);                                                 \
+            NAME##_at(&f, i, &p, &q);                                                        \
             memcpy(P + i, &p, sizeof p);                                                     \
             memcpy(P + g->ps + i, &q, sizeof q);                                             \
         }                                                                                    \
@@ -1980,8 +1983,8 @@ TEX_AVX512 static void fold2_avx512(const tex_noise_grid *g, const struct yrow y
     fold_src_at(g, &yr[1], &f[1]);
     for (int i = 0; i <= g->t->n; i += 16) {
         __m512 p0, q0, p1, q1;
-        fold_row_avx512_at(&f[0], g->ps, i, &p0, &q0);
-        fold_row_avx512_at(&f[1], g->ps, i, &p1, &q1);
+        fold_row_avx512_at(&f[0], i, &p0, &q0);
+        fold_row_avx512_at(&f[1], i, &p1, &q1);
         __m512 a = _mm512_unpacklo_ps(p0, q0), b = _mm512_unpackhi_ps(p0, q0);
         __m512 c = _mm512_unpacklo_ps(p1, q1), d = _mm512_unpackhi_ps(p1, q1);
         /* e[k]: in each quarter j, entry 4 j + k */
@@ -2100,8 +2103,6 @@ TEX_AVX512 static void row_lut_avx512(const tex_noise_grid *g, const struct yrow
         row_lut_avx2(g, yr, rows, out, op, rk);
         return;
     }
-    float buf[FOLD_ROWS][FOLD_FLOATS];
-    struct rowset fr;
     int span = g->span16 < g->t->n ? g->span16 : INT_MAX; /* offsets mod n unambiguous */
     if (span > 31 && rows == 2) {
         float U[FOLD2_FLOATS];
@@ -2109,6 +2110,8 @@ TEX_AVX512 static void row_lut_avx512(const tex_noise_grid *g, const struct yrow
         ROW_OP_SWITCH(row_folded2_avx512_op, (g, U, out), (rk));
         return;
     }
+    float buf[FOLD_ROWS][FOLD_FLOATS];
+    struct rowset fr;
     for (int r = 0; r < rows; r++) {
         fold_row_avx512(g, &yr[r], buf[r]);
         if (span > 31)

@@ -652,10 +652,11 @@ static void test_primitive_maps(void)
 }
 
 /* The octave sums' rows (the multifractal steps in the row operations, the last one
- * finishing the sum; a lone octave finished on its own) agree with their points. */
+ * finishing the sum; a lone octave finished on its own) agree with their points.  600
+ * pixels: the finer octaves' grids are folded, the finest into two rows' table (fold2). */
 static void test_sum_rows_points(void)
 {
-    enum { N = 160 };
+    enum { N = 600 };
     static const char *const modes[] = {"fbm", "ridged", "hybrid"}, *const octaves[] = {"1", "6"};
     static double u[N], v[N];
     static float pt[N];
@@ -666,7 +667,7 @@ static void test_sum_rows_points(void)
             f->seed = 5;
             tex_field_set(f, "mode", modes[m]);
             tex_field_set(f, "octaves", octaves[o]);
-            tex_field_set(f, "frequency", "13"); /* 12 pixels a cell down to 1/3 */
+            tex_field_set(f, "frequency", "40"); /* 15 pixels a cell down to 0.47 */
             tex_field_set(f, "mf_offset", m == 2 ? "0.7" : "1");
             tex_field_init(f, N, N);
             tex_map *map = tex_field_sample(f);
