@@ -48,6 +48,43 @@ for c in zip piz; do
 done
 command -v oiiotool >/dev/null && oiiotool --stats "$T/fine_zip.exr" 2>&1 | grep -q "Stats Min: 0.2" &&
     ok "oiiotool reads the incompressible zip file right" || notok "oiiotool reads the zip file"
+# a compression is tried chunk by chunk while it pays: after four chunks in a row that
+# shrink by less than an eighth the next fifteen are stored raw, and every sixteenth is
+# tried again.  Noise of cells under a pixel hardly shrinks (stored raw: within 1 % of
+# the stream); a map of noise above and a constant below (128 chunks) shrinks by its lower
+# half but for at most 15 chunks; both read back bit for bit.
+t_noise -s 512 -f 300 -S 5 -o "$T/fnz.exr"
+t_expr 'if(v < 0.5, noise(frequency = 300), 0.25)' -s 256x2048 -S 5 -o "$T/half.exr"
+for m in fnz half; do
+    t_convert "$T/$m.exr" | cat >"$T/$m.stream" && t_convert "$T/$m.stream" -o "$T/$m.a.pfm" &&
+        t_convert "$T/$m.exr" -o "$T/$m.b.pfm"
+    check "a zip file of $m keeps every bit" cmp "$T/$m.a.pfm" "$T/$m.b.pfm"
+done
+# the chunks stored raw, from the file's offset table: of 32, all but the first four and
+# the probe at chunk 19
+raw_chunks() {
+    python3 -c '
+import struct, sys
+d = open(sys.argv[1], "rb").read()
+i = 8
+while d[i]:  # attributes: name, type, size, value
+    i = d.index(b"\0", d.index(b"\0", i) + 1) + 1
+    i += 4 + struct.unpack_from("<i", d, i)[0]
+offs = struct.unpack_from("<%dQ" % int(sys.argv[2]), d, i + 1)
+print(sum(struct.unpack_from("<ii", d, o)[1] == int(sys.argv[3]) for o in offs))' "$@"
+}
+n=$(raw_chunks "$T/fnz.exr" 32 $((512 * 16 * 4)))
+[ "$n" = 27 ] && ok "sub-pixel noise: 27 of its 32 chunks stored raw" ||
+    notok "sub-pixel noise stored raw" "$n chunks raw"
+f=$(stat -c %s "$T/half.exr") s=$(stat -c %s "$T/half.stream")
+[ $((f * 128)) -le $((s * 79)) ] && [ $((f * 100)) -ge $((s * 49)) ] &&
+    ok "noise above a constant: the constant compressed ($f of $s bytes)" ||
+    notok "noise above a constant compressed" "$f of $s bytes"
+for c in zip piz; do
+    t_noise -s 300 -f 700 -S 6 --exr-tiles --compression $c -o "$T/ft_$c.exr" &&
+        t_noise -s 300 -f 700 -S 6 -o "$T/ft.pfm" && t_convert "$T/ft_$c.exr" -o "$T/ft_$c.pfm"
+    check "a tiled $c file of fine noise keeps every bit" cmp "$T/ft.pfm" "$T/ft_$c.pfm"
+done
 t_convert "$T/a.exr" -o "$T/e.png" --depth 16
 check "16-bit PNG is within one step of 1/65535" python3 -c "
 import subprocess, json
