@@ -50,9 +50,9 @@ command -v oiiotool >/dev/null && oiiotool --stats "$T/fine_zip.exr" 2>&1 | grep
     ok "oiiotool reads the incompressible zip file right" || notok "oiiotool reads the zip file"
 # a compression is tried chunk by chunk while it pays: after four chunks in a row that
 # shrink by less than an eighth the next fifteen are stored raw, and every sixteenth is
-# tried again.  Noise of cells under a pixel hardly shrinks (stored raw: within 1 % of
-# the stream); a map of noise above and a constant below (128 chunks) shrinks by its lower
-# half but for at most 15 chunks; both read back bit for bit.
+# tried again.  Noise of cells under a pixel hardly shrinks, and goes raw but for the
+# probes; a map of noise above and a constant below (128 chunks) shrinks by its lower half
+# but for at most 15 chunks; both read back bit for bit.
 t_noise -s 512 -f 300 -S 5 -o "$T/fnz.exr"
 t_expr 'if(v < 0.5, noise(frequency = 300), 0.25)' -s 256x2048 -S 5 -o "$T/half.exr"
 for m in fnz half; do
