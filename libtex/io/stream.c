@@ -179,34 +179,34 @@ static exr_result_t raw_if_incompressible(exr_encode_pipeline_t *enc)
     return rv;
 }
 
-/* Whether the next chunk is worth compressing.  Noise maps' float bits shrink by 1-10 %
- * under ZIP for fifteen times the CPU of writing them raw (t_noise -s 2048: 440 ms
- * against 30).  After four chunks in a row that shrink by less than an eighth, the next
- * fifteen are stored raw (a reader takes a chunk of its raw size as uncompressed, as the
- * file format has it), and every sixteenth is tried again. */
+/* Whether chunks are worth compressing.  Noise maps' float bits shrink by 1-10 % under
+ * ZIP for fifteen times the CPU of writing them raw (t_noise -s 2048: 440 ms against 30).
+ * After four chunks in a row that shrink by less than an eighth, the next fifteen are
+ * stored raw (a reader takes a chunk of its raw size as uncompressed, as the file format
+ * has it), and every sixteenth is tried again. */
 struct worth {
+    int compressing; /* the part is compressed at all */
     int poor, skip;
 };
 
-/* The compressor for the next chunk: own (raw_if_incompressible), or none (raw) */
-static exr_result_t (*worth_next(struct worth *w, int compressing))(exr_encode_pipeline_t *)
+/* Encode and write the chunk enc is set up for: compressed (raw_if_incompressible, in
+ * place of the core library's compressor, kept in default_compress) or raw, as w says;
+ * then w learns how well it shrank. */
+static exr_result_t encode_chunk(exr_context_t ctx, int part, exr_encode_pipeline_t *enc,
+                                 struct worth *w)
 {
-    if (!compressing || w->skip > 0) {
-        w->skip -= w->skip > 0;
-        return NULL;
-    }
-    return raw_if_incompressible;
-}
-
-/* A chunk encoded: how well it shrank, if it was compressed */
-static void worth_seen(struct worth *w, const exr_encode_pipeline_t *enc)
-{
-    if (!enc->compress_fn)
-        return;
+    if (enc->compress_fn && enc->compress_fn != raw_if_incompressible) /* the core's own */
+        __atomic_store_n(&default_compress, enc->compress_fn, __ATOMIC_RELAXED);
+    enc->compress_fn = w->compressing && !w->skip ? raw_if_incompressible : NULL;
+    w->skip -= w->skip > 0;
+    exr_result_t rv = exr_encoding_run(ctx, part, enc);
+    if (rv || !enc->compress_fn)
+        return rv;
     if (enc->compressed_bytes * 8 > enc->packed_bytes * 7)
         w->skip = ++w->poor >= 4 ? 15 : 0;
     else
         w->poor = 0;
+    return rv;
 }
 
 /* One part for m: its storage, size and place, channels and attributes. */
@@ -282,7 +282,7 @@ static int encode(const tex_map *m, tex_rows_fn fill, void *arg, enum tex_compre
     exr_result_t rv;
     tex_buf *out = sink->buf;
     int part, lines, y, nchunks;
-    struct worth worth = {0, 0};
+    struct worth worth = {c != TEX_COMPRESS_NONE, 0, 0};
     size_t est = (size_t)m->w * m->h * m->nc * 4 + 4096 + (size_t)m->h * 16;
 
     if (sink->fd < 0 && !fill && c == TEX_COMPRESS_NONE &&
@@ -327,15 +327,11 @@ static int encode(const tex_map *m, tex_rows_fn fill, void *arg, enum tex_compre
         aim_encoder(&enc, row0, m->w, m->nc);
         if (y == 0 && (rv = exr_encoding_choose_default_routines(ctx, part, &enc)))
             return exr_fail(&ctx, rv, "EXR encoder");
-        if (y == 0 && enc.compress_fn) /* see raw_if_incompressible */
-            __atomic_store_n(&default_compress, enc.compress_fn, __ATOMIC_RELAXED);
-        enc.compress_fn = worth_next(&worth, c != TEX_COMPRESS_NONE);
-        if ((rv = exr_encoding_run(ctx, part, &enc))) {
+        if ((rv = encode_chunk(ctx, part, &enc, &worth))) {
             exr_encoding_destroy(ctx, &enc);
             free(band);
             return exr_fail(&ctx, rv, "EXR encode");
         }
-        worth_seen(&worth, &enc);
     }
     free(band);
     exr_encoding_destroy(ctx, &enc);
@@ -357,7 +353,7 @@ static int encode_tiled(const tex_map *m, tex_rows_fn fill, void *arg, int tile,
     exr_result_t rv = EXR_ERR_SUCCESS;
     tex_map *lv[32] = {(tex_map *)m};
     int part, n = 1, r = -1;
-    struct worth worth = {0, 0};
+    struct worth worth = {c != TEX_COMPRESS_NONE, 0, 0};
     int32_t nx, ny;
 
     if (mipmap && m->subregions > 0)
@@ -405,12 +401,8 @@ static int encode_tiled(const tex_map *m, tex_rows_fn fill, void *arg, int tile,
                             lv[l]->w, m->nc);
                 if ((rv = exr_encoding_choose_default_routines(ctx, part, &enc)))
                     goto done;
-                if (enc.compress_fn) /* see raw_if_incompressible */
-                    __atomic_store_n(&default_compress, enc.compress_fn, __ATOMIC_RELAXED);
-                enc.compress_fn = worth_next(&worth, c != TEX_COMPRESS_NONE);
-                if ((rv = exr_encoding_run(ctx, part, &enc)))
+                if ((rv = encode_chunk(ctx, part, &enc, &worth)))
                     goto done;
-                worth_seen(&worth, &enc);
                 exr_encoding_destroy(ctx, &enc);
             }
         }
@@ -819,19 +811,55 @@ static int decode_levels(exr_context_t ctx, exr_decode_pipeline_t *dec, exr_attr
     return 0;
 }
 
+/* What the header says of map m beyond its pixels (m's nc channels, order[] of cl's, data
+ * window dw): a warning naming the channels kept where there were more, its subregions,
+ * its history, and its place where it is a window of a larger map (the display window). */
+static int header_attrs(exr_context_t ctx, const exr_attr_chlist_t *cl, const int *order,
+                        exr_attr_box2i_t dw, const char *name, tex_map *m)
+{
+    exr_attr_box2i_t disp;
+    int32_t sub, hlen;
+    const char *hist;
+
+    if (cl->num_channels > m->nc) {
+        char kept[64] = "";
+        for (int k = 0; k < m->nc; k++)
+            snprintf(kept + strlen(kept), sizeof kept - strlen(kept), " %.8s",
+                     cl->entries[order[k]].name.str);
+        tex_warning("%s: %d channels, kept%s", name, cl->num_channels, kept);
+    }
+    if (exr_attr_get_int(ctx, 0, ATTR_SUBREGIONS, &sub) == EXR_ERR_SUCCESS && sub > 0)
+        m->subregions = sub;
+    if (exr_attr_get_string(ctx, 0, ATTR_HISTORY, &hlen, &hist) == EXR_ERR_SUCCESS && hist) {
+        if (!(m->history = malloc((size_t)hlen + 1)))
+            return tex_error("out of memory");
+        memcpy(m->history, hist, (size_t)hlen);
+        m->history[hlen] = '\0';
+    }
+    if (exr_get_display_window(ctx, 0, &disp) == EXR_ERR_SUCCESS &&
+        (dw.min.x != disp.min.x || dw.min.y != disp.min.y || dw.max.x != disp.max.x ||
+         dw.max.y != disp.max.y) &&
+        disp.min.x == 0 && disp.min.y == 0 && dw.min.x >= 0 && dw.min.y >= 0 &&
+        dw.max.x <= disp.max.x && dw.max.y <= disp.max.y) {
+        m->x0 = dw.min.x;
+        m->y0 = dw.min.y;
+        m->full_w = disp.max.x + 1;
+        m->full_h = disp.max.y + 1;
+    }
+    return 0;
+}
+
 static tex_map *decode(exr_context_initializer_t *initp, const char *name, tex_map ***levels,
                        int *nlevels)
 {
     exr_context_initializer_t init = *initp;
     exr_context_t ctx = NULL;
     exr_decode_pipeline_t dec;
-    exr_attr_box2i_t dw, disp;
+    exr_attr_box2i_t dw;
     const exr_attr_chlist_t *cl;
     exr_result_t rv;
     tex_map *m = NULL;
     int lines, order[4], nc;
-    int32_t sub, hlen;
-    const char *hist;
 
     memset(&dec, 0, sizeof dec);
     init.error_handler_fn = on_exr_error;
@@ -847,36 +875,9 @@ static tex_map *decode(exr_context_initializer_t *initp, const char *name, tex_m
     if (decode_header(ctx, &dw, &cl, &lines) < 0)
         goto fail;
     nc = order_channels(cl, order);
-    if (cl->num_channels > nc) {
-        char kept[64] = "";
-        for (int k = 0; k < nc; k++)
-            snprintf(kept + strlen(kept), sizeof kept - strlen(kept), " %.8s",
-                     cl->entries[order[k]].name.str);
-        tex_warning("%s: %d channels, kept%s", name, cl->num_channels, kept);
-    }
-    if (!(m = tex_map_new(dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1, nc)))
+    if (!(m = tex_map_new(dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1, nc)) ||
+        header_attrs(ctx, cl, order, dw, name, m) < 0)
         goto fail;
-    if (exr_attr_get_int(ctx, 0, ATTR_SUBREGIONS, &sub) == EXR_ERR_SUCCESS && sub > 0)
-        m->subregions = sub;
-    if (exr_attr_get_string(ctx, 0, ATTR_HISTORY, &hlen, &hist) == EXR_ERR_SUCCESS && hist) {
-        if (!(m->history = malloc((size_t)hlen + 1))) {
-            tex_error("out of memory");
-            goto fail;
-        }
-        memcpy(m->history, hist, (size_t)hlen);
-        m->history[hlen] = '\0';
-    }
-    if (exr_get_display_window(ctx, 0, &disp) == EXR_ERR_SUCCESS &&
-        (dw.min.x != disp.min.x || dw.min.y != disp.min.y || dw.max.x != disp.max.x ||
-         dw.max.y != disp.max.y) &&
-        disp.min.x == 0 && disp.min.y == 0 && dw.min.x >= 0 && dw.min.y >= 0 &&
-        dw.max.x <= disp.max.x && dw.max.y <= disp.max.y) {
-        /* a window of a larger map (the display window): keep its place */
-        m->x0 = dw.min.x;
-        m->y0 = dw.min.y;
-        m->full_w = disp.max.x + 1;
-        m->full_h = disp.max.y + 1;
-    }
     if (decode_chunks(ctx, &dec, dw, lines, order, m, 0) < 0)
         goto fail;
     if (levels && lines == 0 && decode_levels(ctx, &dec, dw, order, m, levels, nlevels) < 0)
@@ -957,9 +958,6 @@ tex_rows_reader *tex_rows_open(int fd, const void *prefix, size_t prefix_len, co
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     tex_rows_reader *r = calloc(1, sizeof *r);
     const exr_attr_chlist_t *cl;
-    exr_attr_box2i_t disp;
-    int32_t sub, hlen;
-    const char *hist;
     exr_result_t rv;
 
     memset(head, 0, sizeof *head);
@@ -1001,33 +999,8 @@ tex_rows_reader *tex_rows_open(int fd, const void *prefix, size_t prefix_len, co
     head->nc = order_channels(cl, r->order);
     head->w = r->dw.max.x - r->dw.min.x + 1;
     head->h = r->dw.max.y - r->dw.min.y + 1;
-    if (cl->num_channels > head->nc) {
-        char kept[64] = "";
-        for (int k = 0; k < head->nc; k++)
-            snprintf(kept + strlen(kept), sizeof kept - strlen(kept), " %.8s",
-                     cl->entries[r->order[k]].name.str);
-        tex_warning("%s: %d channels, kept%s", name, cl->num_channels, kept);
-    }
-    if (exr_get_display_window(r->ctx, 0, &disp) == EXR_ERR_SUCCESS &&
-        (r->dw.min.x != disp.min.x || r->dw.min.y != disp.min.y || r->dw.max.x != disp.max.x ||
-         r->dw.max.y != disp.max.y) &&
-        disp.min.x == 0 && disp.min.y == 0 && r->dw.min.x >= 0 && r->dw.min.y >= 0 &&
-        r->dw.max.x <= disp.max.x && r->dw.max.y <= disp.max.y) {
-        head->x0 = r->dw.min.x;
-        head->y0 = r->dw.min.y;
-        head->full_w = disp.max.x + 1;
-        head->full_h = disp.max.y + 1;
-    }
-    if (exr_attr_get_int(r->ctx, 0, ATTR_SUBREGIONS, &sub) == EXR_ERR_SUCCESS && sub > 0)
-        head->subregions = sub;
-    if (exr_attr_get_string(r->ctx, 0, ATTR_HISTORY, &hlen, &hist) == EXR_ERR_SUCCESS && hist) {
-        if (!(head->history = malloc((size_t)hlen + 1))) {
-            tex_error("out of memory");
-            goto fail;
-        }
-        memcpy(head->history, hist, (size_t)hlen);
-        head->history[hlen] = '\0';
-    }
+    if (header_attrs(r->ctx, cl, r->order, r->dw, name, head) < 0)
+        goto fail;
     if (!(r->chunk = tex_map_new(head->w, r->lines, head->nc)))
         goto fail;
     return r;

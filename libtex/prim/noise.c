@@ -1694,11 +1694,11 @@ static inline void fold_src_at(const tex_noise_grid *g, const struct yrow *yr, s
         enum { W = sizeof(V) / sizeof(float) };                                              \
         struct fold_src f;                                                                   \
         fold_src_at(g, yr, &f);                                                              \
-        for (int i = 0; i < g->ps; i += W) {                                                 \
+        for (int i = 0; i < f.ps; i += W) {                                                  \
             V p, q;                                                                          \
             NAME##_at(&f, i, &p, &q);                                                        \
             memcpy(P + i, &p, sizeof p);                                                     \
-            memcpy(P + g->ps + i, &q, sizeof q);                                             \
+            memcpy(P + f.ps + i, &q, sizeof q);                                              \
         }                                                                                    \
     }
 FOLD_ROW_FN(TEX_AVX2, fold_row_avx2, __m256)
