@@ -92,7 +92,8 @@ done
 # sides that are not powers of two, windows and repeats, affine mappings (a plane's, world,
 # solid) and others (a sphere's and a CSG box's natural mapping, a cylinder projection),
 # bump maps (the tilt made ahead where the mapping is affine), a map after a map, a surface's
-# one map whose functions set a colour, scalars and (not a polynomial) Kr; a camera
+# one map whose functions set a colour, scalars and (not a polynomial) Kr, or a colour and
+# a bump (the slab: apply_direct bends the normal); a camera
 # looking straight down, whose centre ray meets the floor head-on; each render against
 # pixel by pixel, packets at every SIMD level
 awk 'BEGIN { print "P2 37 23 255"; for (y = 0; y < 23; y++) { l = "";
@@ -119,6 +120,7 @@ surface rock { Kd 0.7 0.7 0.7 Ks 0.1 n 10
     apply colour { mapping solid scale 0.7 Kd = f Ks = 0.5*f n = 10 + 30*f Kr = 0.1*sin(9*f) } }
 surface haze { Kd 0.7 0.7 0.7 apply grey { mapping world scale 0.5 Ka = f Kd = p*f bump = -0.4 }
     apply colour { mapping solid scale 0.3 Kd = f*p } }
+surface slab { Kd 0.8 0.6 0.5 apply grey { mapping world scale 0.6 Kd = 0.7*f + 0.2 bump = 0.3 } }
 plane { surface floor }
 sphere { centre -2 1 1 radius 1 surface ball }
 difference { box { min -1 0 -1 max 1 2 1 } sphere { centre 1 2 -1 radius 0.8 } surface cube
@@ -126,6 +128,7 @@ difference { box { min -1 0 -1 max 1 2 1 } sphere { centre 1 2 -1 radius 0.8 } s
 cylinder { base 0 0 0 top 0 1.5 0 radius 0.6 surface can translate 0.5 0 -2 }
 sphere { centre -2 0.7 -2 radius 0.7 surface rock }
 box { min -0.5 0 -0.5 max 0.5 0.8 0.5 surface haze translate 2.5 0 -2.5 }
+box { min -0.7 0 -0.5 max 0.7 0.3 0.5 surface slab translate -0.3 0 2.6 }
 SCENE
 TEXTURA_PACKETS=0 t_apply "$T/m.scene" -q -j 1 -o "$T/m-px.pfm" &&
     TEXTURA_PACKETS=1 t_apply "$T/m.scene" -q -j 2 -o "$T/m-pk.pfm" &&

@@ -1080,7 +1080,7 @@ struct tex_surface_cache {
     int quantities;              /* bit k: a function reads quantity k (tex_quantities) */
     int footprints;              /* 1: lookups ahead take footprints (tex_surface_footprints) */
     /* 1: one texture, a map looked up ahead, whose functions read no quantity, see every
-     * region and bend no normal (apply_direct) */
+     * region and bend no normal but by a bump (apply_direct) */
     int direct;
 };
 
@@ -1475,20 +1475,31 @@ material(const struct tex_colour_space *cs, const struct tex_surface *sf,
 }
 
 /* apply_textures for a direct surface (tex_surface_cache) whose map's value and footprint
- * came with the packet in pa: its functions in order, without the general path's set-up */
+ * came with the packet in pa, and a bump's tilt where it bumps: its functions in order,
+ * without the general path's set-up; N bent as apply_textures bends it */
 static int apply_direct(const struct tex_surface *sf, const struct tex_prefetch_ap *pa,
-                        struct params *pr)
+                        tex_v3 *N, struct params *pr)
 {
     const struct tex_surface_cache *c = sf->cache;
-    int ks_textured = 0, i = 0;
+    int ks_textured = 0, i = 0, bumped = 0;
+    tex_v3 tilt = tex_v3_make(0, 0, 0);
     for (const struct tex_appfn *fn = sf->apply->fns; pa->inside && fn; fn = fn->next, i++) {
         const struct poly *q = c->compiled[i] ? &c->poly[i] : NULL;
         ks_textured |= fn->param == TEX_SP_KS;
-        if (q && fn->param == TEX_SP_KD) /* apply_fn's path for it, without the call */
+        if (q && fn->param == TEX_SP_KD) { /* apply_fn's path for it, without the call */
             colour_poly(q, pa->val, fn->lo, fn->hi, pr->kd);
-        else
-            apply_fn(fn, q, pa->val, pa->uvw, pa->fw, NULL, pr);
+            continue;
+        }
+        apply_fn(fn, q, pa->val, pa->uvw, pa->fw, NULL, pr);
+        if (fn->param == TEX_SP_BUMP && pr->bump != 0) {
+            tex_v3 d = tex_v3_make(pa->tilt[0], pa->tilt[1], pa->tilt[2]);
+            tilt = tex_v3_add(tilt, tex_v3_scale(d, pr->bump));
+            bumped = 1;
+            pr->bump = 0;
+        }
     }
+    if (bumped && tex_v3_dot(tilt, tilt) > 0)
+        *N = tex_v3_norm(tex_v3_sub(*N, tilt));
     return ks_textured;
 }
 
@@ -1505,9 +1516,11 @@ static void resolve(const struct tex_scene *s, const struct tex_surface *sf,
     struct params pr = sf->cache->base;
     const struct tex_prefetch *pre = at->pre && at->pre->sf == sf ? at->pre : NULL;
     int filter = s->settings.filter && at->width > 0;
-    int ks_textured = pre && sf->cache->direct && pre->n && pre->ap[0].has_val
-                          ? apply_direct(sf, &pre->ap[0], &pr)
-                          : apply_textures(sf, at, pre, N, filter, &pr);
+    /* a bumped direct surface's tilt made ahead in lanes, or the general path's own */
+    int direct = pre && sf->cache->direct && pre->n && pre->ap[0].has_val &&
+                 (!sf->cache->placement[0].bump || pre->ap[0].has_tilt);
+    int ks_textured = direct ? apply_direct(sf, &pre->ap[0], N, &pr)
+                             : apply_textures(sf, at, pre, N, filter, &pr);
     material(&s->cs, sf, &pr, ks_textured, m);
     *blend = pr.blend;
 }
@@ -2072,8 +2085,8 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
         c->direct = !nap && !ap->next && map_ahead(ap);
         nap++;
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++) {
-            c->direct &= !fn->region && fn->param != TEX_SP_BUMP &&
-                         fn->param != TEX_SP_NORMAL && fn->param != TEX_SP_GRADIENT;
+            c->direct &= !fn->region && fn->param != TEX_SP_NORMAL &&
+                         fn->param != TEX_SP_GRADIENT;
             c->compiled[nfn] = (char)poly_of(fn->e, &c->poly[nfn]);
             for (int i = 0; i < fn->e->n; i++)
                 if (fn->e->code[i].op == TEX_EOP_LEAF && fn->e->code[i].leaf >= TEX_LEAF_Q)
