@@ -1904,12 +1904,16 @@ static void batch_widths(int n, struct tex_prefetch *const *hit, struct tex_pref
 {
     int lanes = 0, at[CHUNK], affine = 0, simd = tex_simd_level() >= TEX_SIMD_AVX512;
     const struct tex_object *leaf = NULL; /* the gradients', kept while hits share them */
-    const struct tex_apply *gap = NULL;
+    const struct tex_apply *gap = NULL, *ap = NULL;
+    const struct tex_surface *sf = NULL; /* ap and pm's, kept while hits share them */
+    const struct placement *pm = NULL;
     tex_v3 g[3];
-    for (int i = 0; i < n; i++) {
+    for (int i = 0, jk = -1; i < n; i++) {
         const struct tex_prefetch *pf = hit[i];
-        const struct tex_apply *ap = apply_at(pf->sf, j ? j[i] : 0);
-        const struct placement *pm = pf->sf->cache->placement + (j ? j[i] : 0);
+        if (pf->sf != sf || (j ? j[i] : 0) != jk) {
+            sf = pf->sf, jk = j ? j[i] : 0;
+            ap = apply_at(sf, jk), pm = sf->cache->placement + jk;
+        }
         fw[i] = 0;
         if (lane)
             lane[i] = -1;
@@ -1968,7 +1972,7 @@ static void map_batch(const struct tex_texture *t, int n, struct tex_prefetch *c
     double fw2[CHUNK], grad[2 * CHUNK], *gp = NULL;
     float out[3 * CHUNK];
     int lane[CHUNK];
-    for (int i = 0; i < n; i++)
+    for (int i = 0; i < n && !gp; i++)
         if (hit[i]->sf->cache->placement[0].bump) /* then every point's gradient */
             gp = grad;
     batch_widths(n, hit, a, NULL, 0, gp != NULL, &fr, fw2, lane);
