@@ -1350,6 +1350,19 @@ static int texture_value(const struct tex_apply *ap, const struct placement *pm,
     return region;
 }
 
+/* The tilt's direction made ahead with the packet (lane_tilt), at the bump's strength */
+static tex_v3 tilt_ahead(const struct tex_prefetch_ap *pa, double strength)
+{
+    return tex_v3_scale(tex_v3_make(pa->tilt[0], pa->tilt[1], pa->tilt[2]), strength);
+}
+
+/* N bent by the bumps' summed tilt, where one bumped */
+static void bend(int bumped, tex_v3 tilt, tex_v3 *N)
+{
+    if (bumped && tex_v3_dot(tilt, tilt) > 0)
+        *N = tex_v3_norm(tex_v3_sub(*N, tilt));
+}
+
 /* The textures of sf applied at the hit (normal N; filter: mip-mapped lookups) to pr, N bent
  * by bump maps; 1 if one of them set Ks. */
 static int apply_textures(const struct tex_surface *sf, const struct tex_shade_at *at,
@@ -1402,10 +1415,9 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
             ks_textured |= fn->param == TEX_SP_KS;
             apply_fn(fn, cache->compiled[nfn] ? &cache->poly[nfn] : NULL, f, uvw, fw2, q, pr);
             if (fn->param == TEX_SP_BUMP && pr->bump != 0) {
-                tex_v3 d = tex_v3_make(pa->tilt[0], pa->tilt[1], pa->tilt[2]); /* ahead */
                 if (pa->has_tilt && ap->next) /* as bump_tilt leaves it for those after */
                     footprint_unit(&fp);
-                tilt = tex_v3_add(tilt, pa->has_tilt ? tex_v3_scale(d, pr->bump)
+                tilt = tex_v3_add(tilt, pa->has_tilt ? tilt_ahead(pa, pr->bump)
                                                      : bump_tilt(ap, pm, leaf, P, &pl, pa->face,
                                                                  &fp, width, fw2, gp, f,
                                                                  pr->bump));
@@ -1424,8 +1436,7 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
             }
         }
     }
-    if (bumped && tex_v3_dot(tilt, tilt) > 0)
-        *N = tex_v3_norm(tex_v3_sub(*N, tilt));
+    bend(bumped, tilt, N);
     return ks_textured;
 }
 
@@ -1492,14 +1503,12 @@ static int apply_direct(const struct tex_surface *sf, const struct tex_prefetch_
         }
         apply_fn(fn, q, pa->val, pa->uvw, pa->fw, NULL, pr);
         if (fn->param == TEX_SP_BUMP && pr->bump != 0) {
-            tex_v3 d = tex_v3_make(pa->tilt[0], pa->tilt[1], pa->tilt[2]);
-            tilt = tex_v3_add(tilt, tex_v3_scale(d, pr->bump));
+            tilt = tex_v3_add(tilt, tilt_ahead(pa, pr->bump));
             bumped = 1;
             pr->bump = 0;
         }
     }
-    if (bumped && tex_v3_dot(tilt, tilt) > 0)
-        *N = tex_v3_norm(tex_v3_sub(*N, tilt));
+    bend(bumped, tilt, N);
     return ks_textured;
 }
 
