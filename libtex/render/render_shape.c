@@ -635,6 +635,8 @@ int tex_object_bounds(struct tex_object *ob)
         ob->bounded = tex_shape_methods[ob->kind].bounds(ob, &lb);
         if (!ob->bounded)
             return 0;
+        ob->bc = tex_v3_scale(tex_v3_add(lb.lo, lb.hi), 0.5);
+        ob->be = tex_v3_scale(tex_v3_sub(lb.hi, lb.lo), 0.5);
         ob->wb.lo = tex_v3_make(INFINITY, INFINITY, INFINITY);
         ob->wb.hi = tex_v3_make(-INFINITY, -INFINITY, -INFINITY);
         for (int c = 0; c < 8; c++) {

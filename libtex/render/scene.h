@@ -282,6 +282,9 @@ struct tex_object {
     tex_v3 fn;
     double fr;
     int scaled; /* leaves: to_obj only scales and shifts (spans skip its zero terms) */
+    /* bounded leaves, set by tex_object_bounds: the centre and half extents of the shape's
+     * own box in object space (projection mappings' frame) */
+    tex_v3 bc, be;
     /* leaves: 1 if convex (not a torus) and holding all of the top-level object, every node
      * above keeping only what lies inside it (an intersection, a difference's first
      * operand): a ray leaving its surface outwards cannot meet the object again */
