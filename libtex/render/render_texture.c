@@ -409,9 +409,8 @@ static int map_point_world(const struct tex_apply *ap, const struct tex_object *
 
 /* A projection's frame on leaf: the point pl turned by the placement about the shape's
  * box centre c into *pt, and *q, *pt across the box (half extents *e): in [-1, 1] inside
- * it; a shape without a box (returns 0) takes c = 0, e = 1.  The box's centre and extents
- * are the leaf's (tex_object_bounds): its shape's bounds at every hit, through the method
- * table, held up the divisions after them (10 % of a scene of a cone's label). */
+ * it; a shape without a box (returns 0) takes c = 0, e = 1.  The box is the leaf's, kept
+ * by tex_object_bounds: the shape's bounds method, called at every hit, stalled it. */
 static int projection_frame(const struct tex_apply *ap, const struct tex_object *leaf,
                             const tex_v3 *pl, tex_v3 *pt, tex_v3 *q, tex_v3 *e)
 {
@@ -1357,10 +1356,10 @@ static tex_v3 tilt_ahead(const struct tex_prefetch_ap *pa, double strength)
     return tex_v3_scale(tex_v3_make(pa->tilt[0], pa->tilt[1], pa->tilt[2]), strength);
 }
 
-/* N bent by the bumps' summed tilt, where one bumped */
-static void bend(int bumped, tex_v3 tilt, tex_v3 *N)
+/* N bent by the bumps' summed tilt (zero where none bumped) */
+static void bend(tex_v3 tilt, tex_v3 *N)
 {
-    if (bumped && tex_v3_dot(tilt, tilt) > 0)
+    if (tex_v3_dot(tilt, tilt) > 0)
         *N = tex_v3_norm(tex_v3_sub(*N, tilt));
 }
 
@@ -1378,7 +1377,7 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
     tex_v3 pl = pre ? pre->pl : tex_xform_point(&leaf->to_obj, *P), tilt = tex_v3_make(0, 0, 0);
     const struct tex_surface_cache *cache = sf->cache;
     const struct placement *pm = cache->placement;
-    int nfn = 0, ks_textured = 0, bumped = 0; /* nfn: the function's index in the cache */
+    int nfn = 0, ks_textured = 0; /* nfn: the function's index in the cache */
     double qv[TEX_Q_COUNT], *q = NULL;
     struct footprint fq; /* the real footprint for the quantities, filtered or not */
     if (cache->quantities) {
@@ -1422,7 +1421,6 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
                                                      : bump_tilt(ap, pm, leaf, P, &pl, pa->face,
                                                                  &fp, width, fw2, gp, f,
                                                                  pr->bump));
-                bumped = 1;
                 pr->bump = 0;
             } else if (fn->param == TEX_SP_NORMAL || fn->param == TEX_SP_GRADIENT) {
                 tex_v3 gu, gv;
@@ -1432,12 +1430,11 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
                 } else {
                     tilt = tex_v3_add(tilt, tex_v3_add(tex_v3_scale(gu, pr->gradient[0]),
                                                        tex_v3_scale(gv, pr->gradient[1])));
-                    bumped = 1;
                 }
             }
         }
     }
-    bend(bumped, tilt, N);
+    bend(tilt, N);
     return ks_textured;
 }
 
@@ -1493,7 +1490,7 @@ static int apply_direct(const struct tex_surface *sf, const struct tex_prefetch_
                         tex_v3 *N, struct params *pr)
 {
     const struct tex_surface_cache *c = sf->cache;
-    int ks_textured = 0, i = 0, bumped = 0;
+    int ks_textured = 0, i = 0;
     tex_v3 tilt = tex_v3_make(0, 0, 0);
     for (const struct tex_appfn *fn = sf->apply->fns; pa->inside && fn; fn = fn->next, i++) {
         const struct poly *q = c->compiled[i] ? &c->poly[i] : NULL;
@@ -1505,11 +1502,10 @@ static int apply_direct(const struct tex_surface *sf, const struct tex_prefetch_
         apply_fn(fn, q, pa->val, pa->uvw, pa->fw, NULL, pr);
         if (fn->param == TEX_SP_BUMP && pr->bump != 0) {
             tilt = tex_v3_add(tilt, tilt_ahead(pa, pr->bump));
-            bumped = 1;
             pr->bump = 0;
         }
     }
-    bend(bumped, tilt, N);
+    bend(tilt, N);
     return ks_textured;
 }
 
@@ -1920,8 +1916,9 @@ static void batch_widths(int n, struct tex_prefetch *const *hit, struct tex_pref
     tex_v3 g[3];
     for (int i = 0, jk = -1; i < n; i++) {
         const struct tex_prefetch *pf = hit[i];
-        if (pf->sf != sf || (j ? j[i] : 0) != jk) {
-            sf = pf->sf, jk = j ? j[i] : 0;
+        int ji = j ? j[i] : 0; /* the point's texture number at its hit */
+        if (pf->sf != sf || ji != jk) {
+            sf = pf->sf, jk = ji;
             ap = apply_at(sf, jk), pm = sf->cache->placement + jk;
         }
         fw[i] = 0;
@@ -1932,7 +1929,7 @@ static void batch_widths(int n, struct tex_prefetch *const *hit, struct tex_pref
         if (simd && (pf->leaf != leaf || ap != gap))
             affine = map_gradient(gap = ap, leaf = pf->leaf, g);
         if (!simd || !affine) {
-            fw[i] = scalar_width(pf, j ? j[i] : 0, a[i], solid);
+            fw[i] = scalar_width(pf, ji, a[i], solid);
             continue;
         }
         const double *d = &pf->D.x, *nn = &pf->N.x;
