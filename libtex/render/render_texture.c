@@ -67,7 +67,7 @@ static inline double floord(double x)
     if (!(fabs(x) < 4503599627370496.0))
         return x;
     double t = (double)(long long)x;
-    return t > x ? t - 1 : t;
+    return t - (t > x); /* no branch: x's sign varies across a packet's hits */
 }
 
 /* u modulo 1, in [0, 1]; NaN and infinities, which have no place on a map, give 0 */
@@ -1268,13 +1268,16 @@ static inline __attribute__((always_inline)) void
 map_hit(const struct tex_apply *ap, const struct placement *pm, const struct tex_object *leaf,
         const tex_v3 *P, const tex_v3 *pl, struct tex_prefetch_ap *a)
 {
-    double uvw[3]; /* in registers where map_point_at is inlined: no copy through memory */
+    double uvw[3], pl3[3]; /* in registers where map_point_at is inlined */
     a->tex = ap->tex;
     a->face = map_point_at(ap, leaf, P, pl, uvw);
     for (int i = 0; i < 3; i++)
-        a->uvw0[i] = a->uvw[i] = uvw[i];
-    a->inside = place(ap, pm, a->uvw);
+        a->uvw0[i] = pl3[i] = uvw[i];
+    a->inside = place(ap, pm, pl3); /* placed in registers, then stored: not reloaded */
+    for (int i = 0; i < 3; i++)
+        a->uvw[i] = pl3[i];
     a->pending = a->inside && !ap->tex->mip;
+    a->bump = pm->bump;
     a->has_val = a->has_tilt = 0;
     a->fw = 0;
 }
@@ -1568,7 +1571,34 @@ struct frames {
     /* for bumps: the unit tangents e1, e2 and the placed u's and v's derivatives along them
      * (du1, dv1, du2, dv2), as footprint_unit and placed_derivatives make them */
     double e1[3][CHUNK], e2[3][CHUNK], du[2][CHUNK], dv[2][CHUNK];
+    int shared; /* gu, gv, gw, su, sv hold lane 0's only, which every lane shares */
 };
+
+/* The gradients g and scales of pm into lane l of fr (gw where solid) */
+static void lane_mapping(struct frames *fr, int l, const tex_v3 g[3], const struct placement *pm,
+                         int solid)
+{
+    for (int c = 0; c < 3; c++) {
+        fr->gu[c][l] = (&g[0].x)[c], fr->gv[c][l] = (&g[1].x)[c];
+        if (solid)
+            fr->gw[c][l] = (&g[2].x)[c];
+    }
+    fr->su[l] = pm->su, fr->sv[l] = pm->sv;
+}
+
+/* The shared mapping of fr (lane 0's) written out to its lanes 1 to n - 1: no longer shared */
+static void unshare(struct frames *fr, int n, int solid)
+{
+    for (int l = 1; l < n; l++) {
+        for (int c = 0; c < 3; c++) {
+            fr->gu[c][l] = fr->gu[c][0], fr->gv[c][l] = fr->gv[c][0];
+            if (solid)
+                fr->gw[c][l] = fr->gw[c][0];
+        }
+        fr->su[l] = fr->su[0], fr->sv[l] = fr->sv[0];
+    }
+    fr->shared = 0;
+}
 
 #ifdef TEX_X86
 
@@ -1605,6 +1635,10 @@ tangents8(const struct frames *fr, int i, __mmask8 in, __m512d t1[3], __m512d t2
     return _mm512_cmp_pd_mask(*l2, _mm512_set1_pd(1e-18), _CMP_LT_OQ);
 }
 
+/* the lanes in of row a from lane i on; LDG: of a row the lanes may share (struct frames) */
+#define LD(a) _mm512_maskz_loadu_pd(in, (a) + i)
+#define LDG(a) (fr->shared ? _mm512_set1_pd((a)[0]) : LD(a))
+
 /* footprint_width2 of the n <= 8 affine points from i on (footprint_tangents,
  * placed_derivatives and its end, operation for operation) into fw2[i...], and where bump,
  * the frames' bump members; returns the lanes seen head-on, which the scalar path takes. */
@@ -1612,13 +1646,12 @@ TEX_AVX512 static __mmask8 footprints8_avx512(struct frames *fr, int i, int n, i
                                               double *fw2)
 {
     __mmask8 in = (__mmask8)((1u << n) - 1);
-#define LD(a) _mm512_maskz_loadu_pd(in, (a) + i)
     __m512d t1[3], t2[3], l2, c;
     __mmask8 headon = tangents8(fr, i, in, t1, t2, &l2, &c);
     __m512d t1x = t1[0], t1y = t1[1], t1z = t1[2], t2x = t2[0], t2y = t2[1], t2z = t2[2];
-    __m512d gux = LD(fr->gu[0]), guy = LD(fr->gu[1]), guz = LD(fr->gu[2]);
-    __m512d gvx = LD(fr->gv[0]), gvy = LD(fr->gv[1]), gvz = LD(fr->gv[2]);
-    __m512d su = LD(fr->su), sv = LD(fr->sv), w = LD(fr->w);
+    __m512d gux = LDG(fr->gu[0]), guy = LDG(fr->gu[1]), guz = LDG(fr->gu[2]);
+    __m512d gvx = LDG(fr->gv[0]), gvy = LDG(fr->gv[1]), gvz = LDG(fr->gv[2]);
+    __m512d su = LDG(fr->su), sv = LDG(fr->sv), w = LD(fr->w);
     __m512d du0 = _mm512_mul_pd(dot8(gux, guy, guz, t1x, t1y, t1z), su);
     __m512d dv0 = _mm512_mul_pd(dot8(gvx, gvy, gvz, t1x, t1y, t1z), sv);
     __m512d du1 = _mm512_mul_pd(dot8(gux, guy, guz, t2x, t2y, t2z), su);
@@ -1646,7 +1679,6 @@ TEX_AVX512 static __mmask8 footprints8_avx512(struct frames *fr, int i, int n, i
             _mm512_mask_storeu_pd(c & 1 ? fr->dv[c / 2] + i : fr->du[c / 2] + i, in, dd[c]);
     }
     return headon & in;
-#undef LD
 }
 
 /* The footprint widths of the n <= 8 band-limited solid points from i on, as
@@ -1657,14 +1689,13 @@ TEX_AVX512 static __mmask8 solid_footprints8_avx512(const struct frames *fr, int
                                                     double *fw)
 {
     __mmask8 in = (__mmask8)((1u << n) - 1);
-#define LD(a) _mm512_maskz_loadu_pd(in, (a) + i)
     __m512d t1[3], t2[3], l2, c;
     __mmask8 headon = tangents8(fr, i, in, t1, t2, &l2, &c);
     const double(*g[3])[CHUNK] = {fr->gu, fr->gv, fr->gw};
-    __m512d sc[3] = {LD(fr->su), LD(fr->sv), _mm512_set1_pd(1)}, l1 = _mm512_setzero_pd();
+    __m512d sc[3] = {LDG(fr->su), LDG(fr->sv), _mm512_set1_pd(1)}, l1 = _mm512_setzero_pd();
     __m512d m2 = _mm512_setzero_pd(), w = LD(fr->w);
     for (int k = 0; k < 3; k++) { /* l1 += a a, m2 += b b, as solid_width2 sums them */
-        __m512d gx = LD(g[k][0]), gy = LD(g[k][1]), gz = LD(g[k][2]);
+        __m512d gx = LDG(g[k][0]), gy = LDG(g[k][1]), gz = LDG(g[k][2]);
         __m512d a = _mm512_mul_pd(dot8(gx, gy, gz, t1[0], t1[1], t1[2]), sc[k]);
         __m512d b = _mm512_mul_pd(dot8(gx, gy, gz, t2[0], t2[1], t2[2]), sc[k]);
         l1 = _mm512_add_pd(l1, _mm512_mul_pd(a, a));
@@ -1676,6 +1707,7 @@ TEX_AVX512 static __mmask8 solid_footprints8_avx512(const struct frames *fr, int
     _mm512_mask_storeu_pd(fw + i, in, _mm512_sqrt_pd(r));
     return headon & in;
 #undef LD
+#undef LDG
 }
 
 /* mip_level of eight footprints fw2 on texture t: the levels (as 32-bit lanes) and the
@@ -1909,8 +1941,8 @@ static void batch_widths(int n, struct tex_prefetch *const *hit, struct tex_pref
                          int *lane)
 {
     int lanes = 0, at[CHUNK], affine = 0, simd = tex_simd_level() >= TEX_SIMD_AVX512;
-    const struct tex_object *leaf = NULL; /* the gradients', kept while hits share them */
-    const struct tex_apply *gap = NULL, *ap = NULL;
+    const struct tex_object *leaf = NULL, *leaf0 = NULL; /* the gradients', kept while hits */
+    const struct tex_apply *gap = NULL, *ap = NULL, *ap0 = NULL; /* share them; lane 0's */
     const struct tex_surface *sf = NULL; /* ap and pm's, kept while hits share them */
     const struct placement *pm = NULL;
     tex_v3 g[3];
@@ -1933,12 +1965,15 @@ static void batch_widths(int n, struct tex_prefetch *const *hit, struct tex_pref
             continue;
         }
         const double *d = &pf->D.x, *nn = &pf->N.x;
-        for (int c = 0; c < 3; c++) {
+        for (int c = 0; c < 3; c++)
             fr->d[c][lanes] = d[c], fr->nn[c][lanes] = nn[c];
-            fr->gu[c][lanes] = (&g[0].x)[c], fr->gv[c][lanes] = (&g[1].x)[c];
-            fr->gw[c][lanes] = (&g[2].x)[c];
-        }
-        fr->w[lanes] = pf->width, fr->su[lanes] = pm->su, fr->sv[lanes] = pm->sv;
+        fr->w[lanes] = pf->width;
+        if (!lanes) /* lane 0's mapping, which the lanes share until one differs */
+            fr->shared = 1, leaf0 = leaf, ap0 = gap;
+        else if (fr->shared && (leaf != leaf0 || gap != ap0))
+            unshare(fr, lanes, solid);
+        if (!lanes || !fr->shared)
+            lane_mapping(fr, lanes, g, pm, solid);
         at[lanes++] = i;
     }
 #ifdef TEX_X86
@@ -1980,7 +2015,7 @@ static void map_batch(const struct tex_texture *t, int n, struct tex_prefetch *c
     float out[3 * CHUNK];
     int lane[CHUNK];
     for (int i = 0; i < n && !gp; i++)
-        if (hit[i]->sf->cache->placement[0].bump) /* then every point's gradient */
+        if (a[i]->bump) /* then every point's gradient */
             gp = grad;
     batch_widths(n, hit, a, NULL, 0, gp != NULL, &fr, fw2, lane);
     tex_texture_points(t, n, u, v, fw2, out, gp);

@@ -376,6 +376,7 @@ struct tex_prefetch {
         const struct tex_texture *tex;
         double uvw0[3], uvw[3]; /* the mapping's coordinates, then placed (if inside) */
         int face, inside, pending, has_val; /* pending: a value still to evaluate */
+        int bump; /* a function of its texture bumps (struct placement's) */
         double fw; /* a map's footprint (squared), looked up with it */
         double grad[2]; /* a bumped map's gradient (map_eval's) */
         int has_tilt;   /* and the tilt's direction, made ahead (the bump scales it) */
