@@ -1732,14 +1732,15 @@ TEX_AVX512 static __m256i mip_levels8_avx512(const struct tex_texture *t, __m512
         lm = _mm512_add_pd(_mm512_mul_pd(lm, mm), _mm512_set1_pd(c[i]));
     __m512i e1 = _mm512_and_si512(e, _mm512_set1_epi64(1));
     __m512d odd = _mm512_cvtepi32_pd(_mm512_cvtepi64_epi32(e1));
-    __m512d w = _mm512_div_pd(_mm512_add_pd(odd, _mm512_mul_pd(lm, mm)), _mm512_set1_pd(2));
+    /* halved by a product: the same bits as mip_level's division by 2, without a division */
+    __m512d w = _mm512_mul_pd(_mm512_add_pd(odd, _mm512_mul_pd(lm, mm)), _mm512_set1_pd(0.5));
     *a = _mm512_maskz_mov_pd(below, w);
     l = _mm512_mask_mov_epi64(_mm512_maskz_mov_epi64(minified, top), below, l);
     return _mm512_cvtepi64_epi32(l);
 }
 
 /* A texture's pyramid as bilinear8 looks it up: each level's width, height and texels'
- * offset (in floats) from level 0's, one level more repeating the last; below 16 levels
+ * offset (in floats) from level 0's, one level more repeating the last (0 beyond); below 16 levels
  * (maps up to 16384 wide) also in registers */
 struct pyramid {
     int w[32], h[32];
@@ -1831,7 +1832,8 @@ TEX_AVX512 static void map_points_avx512(const struct tex_texture *t, int n, con
 {
     struct pyramid py;
     int k = t->mip[0]->nc < 3 ? 1 : 3;
-    for (int l = 0; l < 32; l++) {
+    memset(py.w, 0, sizeof py.w), memset(py.h, 0, sizeof py.h), memset(py.off, 0, sizeof py.off);
+    for (int l = 0; l <= t->nlevels; l++) { /* the levels a lookup can take; the rest 0 */
         const tex_map *m = t->mip[l < t->nlevels ? l : t->nlevels - 1];
         py.w[l] = m->w, py.h[l] = m->h;
         py.off[l] = ((intptr_t)m->px - (intptr_t)t->mip[0]->px) / (intptr_t)sizeof(float);
