@@ -1943,8 +1943,9 @@ static void batch_widths(int n, struct tex_prefetch *const *hit, struct tex_pref
                          int *lane)
 {
     int lanes = 0, at[CHUNK], affine = 0, simd = tex_simd_level() >= TEX_SIMD_AVX512;
-    const struct tex_object *leaf = NULL, *leaf0 = NULL; /* the gradients', kept while hits */
-    const struct tex_apply *gap = NULL, *ap = NULL, *ap0 = NULL; /* share them; lane 0's */
+    /* the gradients' leaf and texture, kept while hits share them; lane 0's (leaf0, ap0) */
+    const struct tex_object *leaf = NULL, *leaf0 = NULL;
+    const struct tex_apply *gap = NULL, *ap = NULL, *ap0 = NULL;
     const struct tex_surface *sf = NULL; /* ap and pm's, kept while hits share them */
     const struct placement *pm = NULL;
     tex_v3 g[3];
