@@ -91,9 +91,10 @@ done
 # trilinear lookups in vector lanes where the CPU has AVX-512): grey and colour maps of
 # sides that are not powers of two, windows and repeats, affine mappings (a plane's, world,
 # solid) and others (a sphere's and a CSG box's natural mapping, a cylinder projection),
-# bump maps (the tilt made ahead where the mapping is affine), a map after a map, a surface's
-# one map whose functions set a colour, scalars and (not a polynomial) Kr, or a colour and
-# a bump (the slab: apply_direct bends the normal); a camera
+# bump maps (the tilt made ahead where the mapping is affine), maps on two tilted planes
+# (one windowed: hits outside the window), a map after
+# a map, a surface's one map whose functions set a colour, scalars and (not a polynomial)
+# Kr, or a colour and a bump (the slab: apply_direct bends the normal); a camera
 # looking straight down, whose centre ray meets the floor head-on; each render against
 # pixel by pixel, packets at every SIMD level
 awk 'BEGIN { print "P2 37 23 255"; for (y = 0; y < 23; y++) { l = "";
@@ -121,7 +122,12 @@ surface rock { Kd 0.7 0.7 0.7 Ks 0.1 n 10
 surface haze { Kd 0.7 0.7 0.7 apply grey { mapping world scale 0.5 Ka = f Kd = p*f bump = -0.4 }
     apply colour { mapping solid scale 0.3 Kd = f*p } }
 surface slab { Kd 0.8 0.6 0.5 apply grey { mapping world scale 0.6 Kd = 0.7*f + 0.2 bump = 0.3 } }
+surface tile { Kd 0.6 0.6 0.6 apply colour { mapping planar scale 0.7 window 0.2 0.1 0.8 0.7
+    Kd = f*p + 0.2 } }
+surface tile2 { Kd 0.5 0.7 0.5 apply grey { mapping natural repeat 2 3 Kd = 0.9*f } }
 plane { surface floor }
+plane { surface tile rotate 25 0 -15 translate 0 0.4 0 }
+plane { surface tile2 rotate -20 0 30 translate 0 0.6 0 }
 sphere { centre -2 1 1 radius 1 surface ball }
 difference { box { min -1 0 -1 max 1 2 1 } sphere { centre 1 2 -1 radius 0.8 } surface cube
              rotate 0 30 0 translate 2 0 1.5 }
