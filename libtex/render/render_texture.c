@@ -1268,14 +1268,14 @@ static inline __attribute__((always_inline)) void
 map_hit(const struct tex_apply *ap, const struct placement *pm, const struct tex_object *leaf,
         const tex_v3 *P, const tex_v3 *pl, struct tex_prefetch_ap *a)
 {
-    double uvw[3], pl3[3]; /* in registers where map_point_at is inlined */
+    double uvw[3], placed[3]; /* in registers where map_point_at is inlined */
     a->tex = ap->tex;
     a->face = map_point_at(ap, leaf, P, pl, uvw);
     for (int i = 0; i < 3; i++)
-        a->uvw0[i] = pl3[i] = uvw[i];
-    a->inside = place(ap, pm, pl3); /* placed in registers, then stored: not reloaded */
+        a->uvw0[i] = placed[i] = uvw[i];
+    a->inside = place(ap, pm, placed); /* placed in registers, then stored: not reloaded */
     for (int i = 0; i < 3; i++)
-        a->uvw[i] = pl3[i];
+        a->uvw[i] = placed[i];
     a->pending = a->inside && !ap->tex->mip;
     a->bump = pm->bump;
     a->has_val = a->has_tilt = 0;
@@ -1584,20 +1584,6 @@ static void lane_mapping(struct frames *fr, int l, const tex_v3 g[3], const stru
             fr->gw[c][l] = (&g[2].x)[c];
     }
     fr->su[l] = pm->su, fr->sv[l] = pm->sv;
-}
-
-/* The shared mapping of fr (lane 0's) written out to its lanes 1 to n - 1: no longer shared */
-static void unshare(struct frames *fr, int n, int solid)
-{
-    for (int l = 1; l < n; l++) {
-        for (int c = 0; c < 3; c++) {
-            fr->gu[c][l] = fr->gu[c][0], fr->gv[c][l] = fr->gv[c][0];
-            if (solid)
-                fr->gw[c][l] = fr->gw[c][0];
-        }
-        fr->su[l] = fr->su[0], fr->sv[l] = fr->sv[0];
-    }
-    fr->shared = 0;
 }
 
 #ifdef TEX_X86
@@ -1947,8 +1933,8 @@ static void batch_widths(int n, struct tex_prefetch *const *hit, struct tex_pref
     const struct tex_object *leaf = NULL, *leaf0 = NULL;
     const struct tex_apply *gap = NULL, *ap = NULL, *ap0 = NULL;
     const struct tex_surface *sf = NULL; /* ap and pm's, kept while hits share them */
-    const struct placement *pm = NULL;
-    tex_v3 g[3];
+    const struct placement *pm = NULL, *pm0 = NULL;
+    tex_v3 g[3], g0[3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}; /* g0, pm0: lane 0's */
     for (int i = 0, jk = -1; i < n; i++) {
         const struct tex_prefetch *pf = hit[i];
         int ji = j ? j[i] : 0; /* the point's texture number at its hit */
@@ -1971,10 +1957,13 @@ static void batch_widths(int n, struct tex_prefetch *const *hit, struct tex_pref
         for (int c = 0; c < 3; c++)
             fr->d[c][lanes] = d[c], fr->nn[c][lanes] = nn[c];
         fr->w[lanes] = pf->width;
-        if (!lanes) /* lane 0's mapping, which the lanes share until one differs */
-            fr->shared = 1, leaf0 = leaf, ap0 = gap;
-        else if (fr->shared && (leaf != leaf0 || gap != ap0))
-            unshare(fr, lanes, solid);
+        if (!lanes) { /* lane 0's mapping, which the lanes share until one differs */
+            fr->shared = 1, leaf0 = leaf, ap0 = gap, pm0 = pm;
+            memcpy(g0, g, sizeof g0);
+        } else if (fr->shared && (leaf != leaf0 || gap != ap0)) {
+            for (int k = fr->shared = 0; k < lanes; k++) /* no longer shared: written out */
+                lane_mapping(fr, k, g0, pm0, solid);
+        }
         if (!lanes || !fr->shared)
             lane_mapping(fr, lanes, g, pm, solid);
         at[lanes++] = i;
