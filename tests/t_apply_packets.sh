@@ -92,11 +92,10 @@ done
 # sides that are not powers of two, windows and repeats, affine mappings (a plane's, world,
 # solid) and others (a sphere's and a CSG box's natural mapping, a cylinder projection),
 # bump maps (the tilt made ahead where the mapping is affine), maps on two tilted planes
-# (one windowed: hits outside the window), a map after
+# (one windowed: hits outside the window; one bumped), a map after
 # a map, a surface's one map whose functions set a colour, scalars and (not a polynomial)
-# Kr, or a colour and a bump (the slab: apply_direct bends the normal); a camera
-# looking straight down, whose centre ray meets the floor head-on; each render against
-# pixel by pixel, packets at every SIMD level
+# Kr, or a colour and a bump (the slab: apply_direct bends the normal); a camera looking
+# straight down; each render against pixel by pixel, packets at every SIMD level
 awk 'BEGIN { print "P2 37 23 255"; for (y = 0; y < 23; y++) { l = "";
     for (x = 0; x < 37; x++) l = l " " int(128 + 120 * sin(x * 0.7) * cos(y * 0.45)); print l } }' \
     >"$T/grey.pgm"
@@ -124,7 +123,7 @@ surface haze { Kd 0.7 0.7 0.7 apply grey { mapping world scale 0.5 Ka = f Kd = p
 surface slab { Kd 0.8 0.6 0.5 apply grey { mapping world scale 0.6 Kd = 0.7*f + 0.2 bump = 0.3 } }
 surface tile { Kd 0.6 0.6 0.6 apply colour { mapping planar scale 0.7 window 0.2 0.1 0.8 0.7
     Kd = f*p + 0.2 } }
-surface tile2 { Kd 0.5 0.7 0.5 apply grey { mapping natural repeat 2 3 Kd = 0.9*f } }
+surface tile2 { Kd 0.5 0.7 0.5 apply grey { mapping natural repeat 2 3 Kd = 0.9*f bump = 0.3 } }
 plane { surface floor }
 plane { surface tile rotate 25 0 -15 translate 0 0.4 0 }
 plane { surface tile2 rotate -20 0 30 translate 0 0.6 0 }
@@ -152,6 +151,19 @@ done
 cmp -s "$T/m4-px.pfm" "$T/m4-pk.pfm" && ok "image maps at 4 spp: packets give the same bytes" ||
     notok "image maps at 4 spp: packets against pixel by pixel" \
         "$(maxdiff "$T/m4-px.pfm" "$T/m4-pk.pfm")"
+# the floor with its first map alone, and no tilted plane above it: its hits go in lanes
+# from end to end (tex_prefetch_lanes), the one below the eye, seen head-on, the usual way
+# (at 9x7 its footprint spans many texels)
+sed '/apply colour { mapping planar scale 0.3 Ks = f } }/d; s/bump = 0.2 }$/bump = 0.2 } }/
+    /^plane { surface tile/d' "$T/m.scene" >"$T/m1.scene"
+for s in 41x33 9x7; do
+    TEXTURA_PACKETS=0 t_apply "$T/m1.scene" -q -j 1 -s $s -o "$T/m1-px.pfm" &&
+        TEXTURA_PACKETS=1 t_apply "$T/m1.scene" -q -j 2 -s $s -o "$T/m1-pk.pfm" &&
+        cmp -s "$T/m1-px.pfm" "$T/m1-pk.pfm" &&
+        ok "a floor of one map in lanes, $s: the same bytes" ||
+        notok "a floor of one map in lanes, $s, against pixel by pixel" \
+            "$(maxdiff "$T/m1-px.pfm" "$T/m1-pk.pfm")"
+done
 sd=$(info_json "$T/m-pk.pfm" stats 0 stddev)
 awk -v s="$sd" 'BEGIN { exit !(s > 0.05) }' && ok "the maps' scene is textured (stddev $sd)" ||
     notok "the maps' scene is textured" "stddev $sd"

@@ -10,11 +10,12 @@
  * then the primitives evaluated at hit points, and the image maps that
  * surfaces apply first, are evaluated over the packet's hits in one call each
  * (tex_prefetch_eval: a map's footprints and trilinear lookups in vector
- * lanes), then every hit is shaded.  A point gets the same value in a call of
- * any length, and each pixel draws from its own rng in the same order, so the
- * image is the one pixel-by-pixel tracing makes; TEXTURA_PACKETS=0 in the
- * environment traces pixel by pixel (tests/t_apply_packets.sh compares the
- * two).
+ * lanes; a plane's hits of one planar map in lanes from their points on,
+ * tex_prefetch_lanes), then every hit is shaded.  A point gets the same value
+ * in a call of any length, and each pixel draws from its own rng in the same
+ * order, so the image is the one pixel-by-pixel tracing makes; TEXTURA_PACKETS=0
+ * in the environment traces pixel by pixel (tests/t_apply_packets.sh compares
+ * the two).
  */
 #include <math.h>
 #include <omp.h>
@@ -509,7 +510,39 @@ struct packet {
     int hit[PACKET * PACKET];
     tex_v3 P[PACKET * PACKET], Ng[PACKET * PACKET];
     struct tex_prefetch pre[PACKET * PACKET], *pp[PACKET * PACKET];
+    struct tex_lanes lanes;
 };
+
+/* The packet's hits made ready to shade: their points and normals, their mappings and
+ * footprints, then the lookups of all of them together. */
+static void look_ahead(const struct tex_scene *s, struct packet *pk, int n)
+{
+    int m = 0;
+    pk->lanes.n = 0;
+    for (int k = 0; k < n; k++) {
+        tex_ray *r = &pk->r[k];
+        if (!pk->hit[k])
+            continue;
+        pk->P[k] = tex_v3_madd(r->o, r->d, pk->h[k].t);
+        pk->Ng[k] = hit_normal(&pk->h[k], pk->P[k]);
+        const struct tex_object *leaf = pk->h[k].leaf;
+        const struct tex_surface *sf = surface_of(s, leaf);
+        if (!tex_surface_footprints(sf) || !s->settings.filter) {
+            tex_prefetch_map(&pk->pre[k], sf, leaf, &pk->P[k]);
+        } else { /* the frame as shade() has it */
+            tex_v3 N = pk->Ng[k];
+            N = tex_v3_dot(r->d, N) < 0 ? N : tex_v3_scale(N, -1);
+            double w = fabs(r->width + pk->h[k].t * r->spread);
+            if (tex_lanes_take(&pk->lanes, &pk->pre[k], sf, leaf, &pk->P[k], &r->d, &N, w))
+                continue;
+            tex_prefetch_map(&pk->pre[k], sf, leaf, &pk->P[k]);
+            tex_prefetch_footprints(&pk->pre[k], &r->d, &N, w);
+        }
+        pk->pp[m++] = &pk->pre[k];
+    }
+    m += tex_prefetch_lanes(&pk->lanes, pk->pp + m);
+    tex_prefetch_eval(pk->pp, m);
+}
 
 /* The pixels [x0, x1) x [y0, y1) of the image (at most PACKET square) into img, whose
  * origin is the image's (rx, ry). */
@@ -529,30 +562,13 @@ static void render_packet(const struct ctx *c0, const struct camera *cam, struct
     /* a packet beside the box (most of a floor or a sky) tests only the unbounded objects */
     int box = packet_meets_box(cam, x0, y0, x1, y1);
     for (int i = 0; i < spp; i++) {
-        int m = 0;
         camera_rays(&c, cam, pk->x, pk->y, np, i, pk->rng, pk->r);
         for (int k = 0; k < np; k++)
             pk->hit[k] = box ? tex_scene_trace(s, &pk->r[k].o, &pk->r[k].d, 0, INFINITY, NULL,
                                                &pk->h[k])
                              : tex_scene_trace_unbounded(s, &pk->r[k].o, &pk->r[k].d, 0,
                                                          INFINITY, &pk->h[k]);
-        for (int k = 0; k < np; k++) {
-            tex_ray *r = &pk->r[k];
-            if (!pk->hit[k])
-                continue;
-            pk->P[k] = tex_v3_madd(r->o, r->d, pk->h[k].t);
-            pk->Ng[k] = hit_normal(&pk->h[k], pk->P[k]);
-            const struct tex_surface *sf = surface_of(s, pk->h[k].leaf);
-            tex_prefetch_map(&pk->pre[k], sf, pk->h[k].leaf, &pk->P[k]);
-            if (tex_surface_footprints(sf) && s->settings.filter) { /* as shade() has them */
-                tex_v3 N = pk->Ng[k];
-                N = tex_v3_dot(r->d, N) < 0 ? N : tex_v3_scale(N, -1);
-                tex_prefetch_footprints(&pk->pre[k], &r->d, &N,
-                                        fabs(r->width + pk->h[k].t * r->spread));
-            }
-            pk->pp[m++] = &pk->pre[k];
-        }
-        tex_prefetch_eval(pk->pp, m);
+        look_ahead(s, pk, np);
         for (int k = 0; k < np; k++) {
             tex_colour col;
             c.rng = &pk->rng[k];

@@ -1082,6 +1082,7 @@ struct tex_surface_cache {
     /* 1: one texture, a map looked up ahead, whose functions read no quantity, see every
      * region and bend no normal but by a bump (apply_direct) */
     int direct;
+    int lanes; /* 1: direct, and AVX-512: its planes' hits go in lanes (tex_lanes_take) */
 };
 
 static double clampd(double x, double lo, double hi)
@@ -1880,6 +1881,50 @@ TEX_AVX512 static void map_points_avx512(const struct tex_texture *t, int n, con
             grad[2 * (i + j)] = gg[0][j], grad[2 * (i + j) + 1] = gg[1][j];
     }
 }
+
+/* fract in lanes: x - floord(x), floord's floor (+0 for -0: floor's -0 plus 0), and
+ * x - x beyond 2^52 */
+TEX_AVX512 static inline __m512d fract8_avx512(__m512d x)
+{
+    __mmask8 small = _mm512_cmp_pd_mask(_mm512_abs_pd(x), _mm512_set1_pd(4503599627370496.0),
+                                        _CMP_LT_OQ);
+    __m512d f = _mm512_add_pd(_mm512_roundscale_pd(x, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC),
+                              _mm512_setzero_pd());
+    return _mm512_sub_pd(x, _mm512_mask_blend_pd(small, x, f));
+}
+
+/* map_hit of a plane's planar mapping over the lanes in of L's points from i on, operation
+ * for operation (tex_xform_point's x and z, map_point_at, place): the mapping's coordinates
+ * into u0, v0, the placed ones into u, v; returns the lanes inside the window */
+TEX_AVX512 static __mmask8 plane_map8_avx512(const struct tex_lanes *L, int i, __mmask8 in,
+                                             double *u0, double *v0, double *u, double *v)
+{
+    const struct tex_apply *ap = L->sf->apply;
+    const struct placement *pm = L->sf->cache->placement;
+    const double(*m)[4] = L->leaf->to_obj.m;
+    __m512d x = _mm512_maskz_loadu_pd(in, L->p[0] + i), y = _mm512_maskz_loadu_pd(in, L->p[1] + i);
+    __m512d z = _mm512_maskz_loadu_pd(in, L->p[2] + i), c[2], sc = _mm512_set1_pd(ap->scale);
+    for (int k = 0; k < 2; k++) { /* rows 0 and 2: the object-space x and z */
+        const double *r = m[2 * k];
+        __m512d a = _mm512_add_pd(_mm512_mul_pd(_mm512_set1_pd(r[0]), x),
+                                  _mm512_mul_pd(_mm512_set1_pd(r[1]), y));
+        a = _mm512_add_pd(_mm512_add_pd(a, _mm512_mul_pd(_mm512_set1_pd(r[2]), z)),
+                          _mm512_set1_pd(r[3]));
+        c[k] = fract8_avx512(_mm512_mul_pd(a, sc));
+    }
+    _mm512_mask_storeu_pd(u0 + i, in, c[0]);
+    _mm512_mask_storeu_pd(v0 + i, in, c[1]);
+    __m512d s = _mm512_mul_pd(_mm512_sub_pd(c[0], _mm512_set1_pd(ap->u1)), _mm512_set1_pd(pm->iu));
+    __m512d t = _mm512_mul_pd(_mm512_sub_pd(c[1], _mm512_set1_pd(ap->v1)), _mm512_set1_pd(pm->iv));
+    __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1);
+    __mmask8 inside = _mm512_mask_cmp_pd_mask(in, s, zero, _CMP_GE_OQ) &
+                      _mm512_cmp_pd_mask(s, one, _CMP_LE_OQ) &
+                      _mm512_cmp_pd_mask(t, zero, _CMP_GE_OQ) &
+                      _mm512_cmp_pd_mask(t, one, _CMP_LE_OQ);
+    _mm512_mask_storeu_pd(u + i, in, _mm512_mul_pd(s, _mm512_set1_pd(ap->nu)));
+    _mm512_mask_storeu_pd(v + i, in, _mm512_mul_pd(t, _mm512_set1_pd(ap->nv)));
+    return inside;
+}
 #endif
 
 void tex_texture_points(const struct tex_texture *t, int n, const double *u, const double *v,
@@ -1988,7 +2033,8 @@ static void batch_widths(int n, struct tex_prefetch *const *hit, struct tex_pref
  * in lane l of fr */
 static void lane_tilt(const struct frames *fr, int l, const double grad[2], double tilt[3])
 {
-    double du[2] = {fr->du[0][l], fr->du[1][l]}, dv[2] = {fr->dv[0][l], fr->dv[1][l]}, g[2];
+    double du[2] = {fr->du[0][l], fr->du[1][l]}, dv[2] = {fr->dv[0][l], fr->dv[1][l]};
+    double g[2] = {0, 0}; /* made from grad (tilt_along) */
     tex_v3 e1 = tex_v3_make(fr->e1[0][l], fr->e1[1][l], fr->e1[2][l]);
     tex_v3 e2 = tex_v3_make(fr->e2[0][l], fr->e2[1][l], fr->e2[2][l]);
     tex_v3 d = tilt_along(grad, du, dv, g, e1, e2);
@@ -2044,6 +2090,102 @@ void tex_prefetch_map(struct tex_prefetch *pf, const struct tex_surface *sf,
         if (pf->n == 1 && map_ahead(ap))
             a->pending = a->inside;
     }
+}
+
+int tex_lanes_take(struct tex_lanes *L, struct tex_prefetch *pf, const struct tex_surface *sf,
+                   const struct tex_object *leaf, const tex_v3 *P, const tex_v3 *D,
+                   const tex_v3 *N, double width)
+{
+    if (!sf->cache->lanes || !(width > 0) || L->n == TEX_LANES ||
+        (L->n && (L->leaf != leaf || L->sf != sf)) ||
+        !plane_planar(sf->apply, leaf))
+        return 0;
+    int i = L->n++;
+    L->sf = sf, L->leaf = leaf, L->pf[i] = pf;
+    L->p[0][i] = P->x, L->p[1][i] = P->y, L->p[2][i] = P->z;
+    L->d[0][i] = D->x, L->d[1][i] = D->y, L->d[2][i] = D->z;
+    L->nn[0][i] = N->x, L->nn[1][i] = N->y, L->nn[2][i] = N->z;
+    L->w[i] = width;
+    return 1;
+}
+
+/* Queued hit i of L, which the lanes could not finish, mapped the usual way */
+static void lanes_leftover(const struct tex_lanes *L, int i)
+{
+    tex_v3 P = tex_v3_make(L->p[0][i], L->p[1][i], L->p[2][i]);
+    tex_v3 D = tex_v3_make(L->d[0][i], L->d[1][i], L->d[2][i]);
+    tex_v3 N = tex_v3_make(L->nn[0][i], L->nn[1][i], L->nn[2][i]);
+    tex_prefetch_map(L->pf[i], L->sf, L->leaf, &P);
+    tex_prefetch_footprints(L->pf[i], &D, &N, L->w[i]);
+}
+
+/* Record pf of a hit the lanes finished, in lane l of fr: map_hit's, then map_batch's (grad:
+ * a bump's gradient, else NULL) */
+static void lanes_record(const struct tex_lanes *L, struct tex_prefetch *pf, double u0,
+                         double v0, double u, double v, double fw2, const float val[3],
+                         const struct frames *fr, int l, const double *grad)
+{
+    struct tex_prefetch_ap *a = &pf->ap[0];
+    pf->sf = L->sf, pf->leaf = L->leaf, pf->n = 1;
+    a->tex = L->sf->apply->tex;
+    a->face = 1, a->inside = 1, a->pending = 0, a->has_val = 1;
+    a->uvw0[0] = u0, a->uvw0[1] = v0, a->uvw0[2] = 0;
+    a->uvw[0] = u, a->uvw[1] = v, a->uvw[2] = 0;
+    a->fw = fw2;
+    memcpy(a->val, val, 3 * sizeof *val);
+    a->bump = a->has_tilt = grad != NULL;
+    if (grad) {
+        a->grad[0] = grad[0], a->grad[1] = grad[1];
+        lane_tilt(fr, l, grad, a->tilt);
+    }
+}
+
+int tex_prefetch_lanes(struct tex_lanes *L, struct tex_prefetch **rest)
+{
+    int n = L->n, nrest = 0;
+    L->n = 0;
+    if (!n)
+        return 0;
+#ifdef TEX_X86
+    struct frames fr;
+    /* u, v and fw2: the finished hits' moved to the front, at[] giving their lanes (set to 0
+     * first: gcc cannot follow the masked stores that fill them) */
+    double u0[TEX_LANES], v0[TEX_LANES], u[TEX_LANES] = {0}, v[TEX_LANES] = {0};
+    double fw2[TEX_LANES] = {0};
+    float out[3 * TEX_LANES];
+    int at[TEX_LANES], m = 0, bump = L->sf->cache->placement[0].bump;
+    double grad[2 * TEX_LANES];
+    tex_v3 g[3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    _Static_assert(TEX_LANES <= CHUNK, "a struct frames holds the lanes");
+    for (int c = 0; c < 3; c++) {
+        memcpy(fr.d[c], L->d[c], n * sizeof *fr.d[c]);
+        memcpy(fr.nn[c], L->nn[c], n * sizeof *fr.nn[c]);
+    }
+    memcpy(fr.w, L->w, n * sizeof *fr.w);
+    map_gradient(L->sf->apply, L->leaf, g); /* affine: every lane shares lane 0's */
+    fr.shared = 1;
+    lane_mapping(&fr, 0, g, L->sf->cache->placement, 0);
+    for (int i = 0; i < n; i += 8) {
+        int k = n - i < 8 ? n - i : 8;
+        __mmask8 in = (__mmask8)((1u << k) - 1);
+        __mmask8 inside = plane_map8_avx512(L, i, in, u0, v0, u, v);
+        __mmask8 done = inside & ~footprints8_avx512(&fr, i, k, bump, fw2);
+        for (int j = i; j < i + k; j++) {
+            if (done >> (j - i) & 1)
+                u[m] = u[j], v[m] = v[j], fw2[m] = fw2[j], at[m++] = j;
+            else
+                lanes_leftover(L, j), rest[nrest++] = L->pf[j];
+        }
+    }
+    tex_texture_points(L->sf->apply->tex, m, u, v, fw2, out, bump ? grad : NULL);
+    for (int q = 0; q < m; q++)
+        lanes_record(L, L->pf[at[q]], u0[at[q]], v0[at[q]], u[q], v[q], fw2[q], out + 3 * q,
+                     &fr, at[q], bump ? grad + 2 * q : NULL);
+#else
+    for (int i = 0; i < n; i++)
+        lanes_leftover(L, i), rest[nrest++] = L->pf[i];
+#endif
+    return nrest;
 }
 
 int tex_surface_footprints(const struct tex_surface *sf)
@@ -2132,6 +2274,7 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
         }
     }
     c->direct &= !c->quantities;
+    c->lanes = c->direct && tex_simd_level() >= TEX_SIMD_AVX512;
     struct tex_material ctm; /* Cook-Torrance's m and s: the surface's, or the defaults */
     tex_ct_material(&ctm, sf->ct);
     c->base = (struct params){{sf->kd[0], sf->kd[1], sf->kd[2]}, sf->ka, sf->ks[0], (float)sf->n,

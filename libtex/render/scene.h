@@ -407,6 +407,31 @@ int tex_surface_footprints(const struct tex_surface *sf);
 void tex_prefetch_footprints(struct tex_prefetch *pf, const tex_v3 *D, const tex_v3 *N,
                              double width);
 void tex_prefetch_eval(struct tex_prefetch *const *pf, int n);
+/* A packet's hits on one plane whose surface's one map, planar, is looked up in vector
+ * lanes from end to end: mapping, footprint and trilinear lookup, with no pass through
+ * the records between the steps (tex_prefetch_lanes).  Their records, and their points,
+ * shading frames (D, N as shade() orients them) and footprint widths in rows. */
+#define TEX_LANES 64
+struct tex_lanes {
+    int n;
+    const struct tex_surface *sf;
+    const struct tex_object *leaf;
+    struct tex_prefetch *pf[TEX_LANES];
+    double p[3][TEX_LANES], d[3][TEX_LANES], nn[3][TEX_LANES], w[TEX_LANES];
+};
+/* Whether the hit of record pf on leaf (surface sf, whose lookups take footprints; P, D, N
+ * and width > 0 as for tex_prefetch_footprints) goes in L's lanes: 1, queued there (a
+ * direct surface, tex_resolve_material's short way, whose map is planar on a plane, where
+ * the CPU has AVX-512, and the same leaf as the hits queued before); else 0, for
+ * tex_prefetch_map and the rest. */
+int tex_lanes_take(struct tex_lanes *L, struct tex_prefetch *pf, const struct tex_surface *sf,
+                   const struct tex_object *leaf, const tex_v3 *P, const tex_v3 *D,
+                   const tex_v3 *N, double width);
+/* The queued hits' records made as tex_prefetch_map, tex_prefetch_footprints and
+ * tex_prefetch_eval make them, the same bytes; those the lanes cannot finish (outside the
+ * map's window, seen head-on) are mapped the usual way and listed in rest for
+ * tex_prefetch_eval: returns how many.  L is emptied. */
+int tex_prefetch_lanes(struct tex_lanes *L, struct tex_prefetch **rest);
 /* The material at a hit (surface sf): the application functions evaluated,
  * N bent by bump and normal maps, colours in the scene's colour space;
  * m[1] is the blended surface's where m[0].blend > 0 (its weight).
