@@ -2119,6 +2119,7 @@ static void lanes_leftover(const struct tex_lanes *L, int i)
     tex_prefetch_footprints(L->pf[i], &D, &N, L->w[i]);
 }
 
+#ifdef TEX_X86
 /* Record pf of a hit the lanes finished, in lane l of fr: map_hit's, then map_batch's (grad:
  * a bump's gradient, else NULL) */
 static void lanes_record(const struct tex_lanes *L, struct tex_prefetch *pf, double u0,
@@ -2139,6 +2140,7 @@ static void lanes_record(const struct tex_lanes *L, struct tex_prefetch *pf, dou
         lane_tilt(fr, l, grad, a->tilt);
     }
 }
+#endif
 
 int tex_prefetch_lanes(struct tex_lanes *L, struct tex_prefetch **rest)
 {

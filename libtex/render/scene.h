@@ -407,10 +407,11 @@ int tex_surface_footprints(const struct tex_surface *sf);
 void tex_prefetch_footprints(struct tex_prefetch *pf, const tex_v3 *D, const tex_v3 *N,
                              double width);
 void tex_prefetch_eval(struct tex_prefetch *const *pf, int n);
-/* A packet's hits on one plane whose surface's one map, planar, is looked up in vector
- * lanes from end to end: mapping, footprint and trilinear lookup, with no pass through
- * the records between the steps (tex_prefetch_lanes).  Their records, and their points,
- * shading frames (D, N as shade() orients them) and footprint widths in rows. */
+/* A packet's hits on one plane whose surface's one map is mapped planar (a plane's natural
+ * mapping is) are looked up in vector lanes from end to end: mapping, footprint and
+ * trilinear lookup, with no pass through the records between the steps
+ * (tex_prefetch_lanes).  Their records, and their points, shading frames (D, N as shade()
+ * orients them) and footprint widths in rows. */
 #define TEX_LANES 64
 struct tex_lanes {
     int n;
