@@ -156,6 +156,9 @@ cmp -s "$T/m4-px.pfm" "$T/m4-pk.pfm" && ok "image maps at 4 spp: packets give th
 # (at 9x7 its footprint spans many texels)
 sed '/apply colour { mapping planar scale 0.3 Ks = f } }/d; s/bump = 0.2 }$/bump = 0.2 } }/
     /^plane { surface tile/d' "$T/m.scene" >"$T/m1.scene"
+[ "$(grep -c '^plane' "$T/m1.scene")" = 1 ] && ! grep -q 'Ks = f } }' "$T/m1.scene" &&
+    ok "the floor's variant has one plane, of one map" ||
+    notok "the floor's variant has one plane, of one map" "$(grep -n 'plane\|Ks = f' "$T/m1.scene")"
 for s in 41x33 9x7; do
     TEXTURA_PACKETS=0 t_apply "$T/m1.scene" -q -j 1 -s $s -o "$T/m1-px.pfm" &&
         TEXTURA_PACKETS=1 t_apply "$T/m1.scene" -q -j 2 -s $s -o "$T/m1-pk.pfm" &&

@@ -2041,6 +2041,22 @@ static void lane_tilt(const struct frames *fr, int l, const double grad[2], doub
     tilt[0] = d.x, tilt[1] = d.y, tilt[2] = d.z;
 }
 
+/* A map's lookup into the record a of its point: the value val (RGB), the footprint fw2 and,
+ * where bumped, the gradient grad and, where the footprint was made in lane l of fr (else
+ * l < 0), the tilt's direction */
+static void lookup_record(struct tex_prefetch_ap *a, const float val[3], double fw2,
+                          const double *grad, const struct frames *fr, int l)
+{
+    memcpy(a->val, val, 3 * sizeof *val);
+    if (grad)
+        a->grad[0] = grad[0], a->grad[1] = grad[1];
+    if (grad && l >= 0)
+        lane_tilt(fr, l, grad, a->tilt);
+    a->has_tilt = grad && l >= 0;
+    a->fw = fw2;
+    a->has_val = 1;
+}
+
 /* The values of n pending points a[i] of mip-mapped texture t (hits hit[i], placed at u, v)
  * and their footprints, as apply_textures would look them up: into a[i]->val as RGB, the
  * footprint (squared) into a[i]->fw; bumped, the gradient and (from the lanes) the tilt's
@@ -2057,16 +2073,8 @@ static void map_batch(const struct tex_texture *t, int n, struct tex_prefetch *c
             gp = grad;
     batch_widths(n, hit, a, NULL, 0, gp != NULL, &fr, fw2, lane);
     tex_texture_points(t, n, u, v, fw2, out, gp);
-    for (int i = 0; i < n; i++) {
-        memcpy(a[i]->val, out + 3 * i, 3 * sizeof *out);
-        if (gp)
-            a[i]->grad[0] = gp[2 * i], a[i]->grad[1] = gp[2 * i + 1];
-        if (gp && lane[i] >= 0)
-            lane_tilt(&fr, lane[i], gp + 2 * i, a[i]->tilt);
-        a[i]->has_tilt = gp && lane[i] >= 0;
-        a[i]->fw = fw2[i];
-        a[i]->has_val = 1;
-    }
+    for (int i = 0; i < n; i++)
+        lookup_record(a[i], out + 3 * i, fw2[i], gp ? gp + 2 * i : NULL, &fr, lane[i]);
 }
 
 void tex_prefetch_map(struct tex_prefetch *pf, const struct tex_surface *sf,
@@ -2120,8 +2128,8 @@ static void lanes_leftover(const struct tex_lanes *L, int i)
 }
 
 #ifdef TEX_X86
-/* Record pf of a hit the lanes finished, in lane l of fr: map_hit's, then map_batch's (grad:
- * a bump's gradient, else NULL) */
+/* Record pf of a hit the lanes finished, in lane l of fr: map_hit's fields, then the
+ * lookup's (grad: a bump's gradient, else NULL) */
 static void lanes_record(const struct tex_lanes *L, struct tex_prefetch *pf, double u0,
                          double v0, double u, double v, double fw2, const float val[3],
                          const struct frames *fr, int l, const double *grad)
@@ -2129,16 +2137,11 @@ static void lanes_record(const struct tex_lanes *L, struct tex_prefetch *pf, dou
     struct tex_prefetch_ap *a = &pf->ap[0];
     pf->sf = L->sf, pf->leaf = L->leaf, pf->n = 1;
     a->tex = L->sf->apply->tex;
-    a->face = 1, a->inside = 1, a->pending = 0, a->has_val = 1;
+    a->face = 1, a->inside = 1, a->pending = 0;
+    a->bump = L->sf->cache->placement[0].bump;
     a->uvw0[0] = u0, a->uvw0[1] = v0, a->uvw0[2] = 0;
     a->uvw[0] = u, a->uvw[1] = v, a->uvw[2] = 0;
-    a->fw = fw2;
-    memcpy(a->val, val, 3 * sizeof *val);
-    a->bump = a->has_tilt = grad != NULL;
-    if (grad) {
-        a->grad[0] = grad[0], a->grad[1] = grad[1];
-        lane_tilt(fr, l, grad, a->tilt);
-    }
+    lookup_record(a, val, fw2, grad, fr, l);
 }
 #endif
 
