@@ -90,7 +90,8 @@ done
 # image maps, looked up ahead over a packet (a surface's first texture: footprints and
 # trilinear lookups in vector lanes where the CPU has AVX-512): grey and colour maps of
 # sides that are not powers of two, windows and repeats, affine mappings (a plane's, world,
-# solid) and others (a sphere's and a CSG box's natural mapping, a cylinder projection),
+# solid) and others (the natural mappings of a sphere, a CSG box, a tilted cylinder and a
+# cone, sides and caps, a cylinder projection),
 # bump maps (the tilt made ahead where the mapping is affine), maps on two tilted planes
 # (one windowed: hits outside the window; one bumped), a map after
 # a map, a surface's one map whose functions set a colour, scalars and (not a polynomial)
@@ -124,6 +125,8 @@ surface slab { Kd 0.8 0.6 0.5 apply grey { mapping world scale 0.6 Kd = 0.7*f + 
 surface tile { Kd 0.6 0.6 0.6 apply colour { mapping planar scale 0.7 window 0.2 0.1 0.8 0.7
     Kd = f*p + 0.2 } }
 surface tile2 { Kd 0.5 0.7 0.5 apply grey { mapping natural repeat 2 3 Kd = 0.9*f bump = 0.3 } }
+surface band { Kd 0.6 0.6 0.6 apply colour { mapping natural repeat 3 1 Kd = f*p + 0.1 } }
+surface rim { Kd 0.6 0.6 0.6 apply grey { mapping natural window 0 0.2 1 0.9 Kd = f bump = 0.4 } }
 plane { surface floor }
 plane { surface tile rotate 25 0 -15 translate 0 0.4 0 }
 plane { surface tile2 rotate -20 0 30 translate 0 0.6 0 }
@@ -134,6 +137,8 @@ cylinder { base 0 0 0 top 0 1.5 0 radius 0.6 surface can translate 0.5 0 -2 }
 sphere { centre -2 0.7 -2 radius 0.7 surface rock }
 box { min -0.5 0 -0.5 max 0.5 0.8 0.5 surface haze translate 2.5 0 -2.5 }
 box { min -0.7 0 -0.5 max 0.7 0.3 0.5 surface slab translate -0.3 0 2.6 }
+cylinder { base 0 0 0 top 0 1.6 0 radius 0.4 surface band rotate 0 0 12 translate -0.9 0 -0.3 }
+cone { base 0 0 0 top 0 1.4 0 radius1 0.5 radius2 0.15 surface rim translate 0.9 0 0.2 }
 SCENE
 TEXTURA_PACKETS=0 t_apply "$T/m.scene" -q -j 1 -o "$T/m-px.pfm" &&
     TEXTURA_PACKETS=1 t_apply "$T/m.scene" -q -j 2 -o "$T/m-pk.pfm" &&

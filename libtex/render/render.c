@@ -10,7 +10,8 @@
  * then the primitives evaluated at hit points, and the image maps that
  * surfaces apply first, are evaluated over the packet's hits in one call each
  * (tex_prefetch_eval: a map's footprints and trilinear lookups in vector
- * lanes; a plane's hits of one planar map in lanes from their points on,
+ * lanes; a leaf's hits of one planar map on a plane, or of one natural map on a
+ * box, cylinder, cone or sphere, in lanes from their points on,
  * tex_prefetch_lanes), then every hit is shaded.  A point gets the same value
  * in a call of any length, and each pixel draws from its own rng in the same
  * order, so the image is the one pixel-by-pixel tracing makes; TEXTURA_PACKETS=0
@@ -501,6 +502,7 @@ static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, 
  * pixel keeps its own rng and draws from it in the order render_pixel does, and the
  * lookups ahead are the same computations, so the bytes are the per-pixel render's. */
 #define PACKET 8
+#define QUEUES 3 /* lanes' queues: a packet's leaves (a floor, an object's faces) */
 struct packet {
     tex_rng rng[PACKET * PACKET];
     int x[PACKET * PACKET], y[PACKET * PACKET]; /* the pixels: no division by the width */
@@ -510,15 +512,30 @@ struct packet {
     int hit[PACKET * PACKET];
     tex_v3 P[PACKET * PACKET], Ng[PACKET * PACKET];
     struct tex_prefetch pre[PACKET * PACKET], *pp[PACKET * PACKET];
-    struct tex_lanes lanes;
+    struct tex_lanes lanes[QUEUES];
 };
+
+/* Hit k of the packet queued for the lanes (tex_lanes_take) in the first queue of its leaf
+ * and surface, or an empty one: 1, else 0 */
+static int take_lanes(struct packet *pk, int k, const struct tex_surface *sf,
+                      const struct tex_object *leaf, const tex_v3 *N, double w)
+{
+    for (int q = 0; q < QUEUES; q++) {
+        if (tex_lanes_take(&pk->lanes[q], &pk->pre[k], sf, leaf, &pk->P[k], &pk->r[k].d, N, w))
+            return 1;
+        if (!pk->lanes[q].n) /* an empty queue refused it: every queue would */
+            return 0;
+    }
+    return 0;
+}
 
 /* The packet's hits made ready to shade: their points and normals, their mappings and
  * footprints, then the lookups of all of them together. */
 static void look_ahead(const struct tex_scene *s, struct packet *pk, int n)
 {
     int m = 0;
-    pk->lanes.n = 0;
+    for (int q = 0; q < QUEUES; q++)
+        pk->lanes[q].n = 0;
     for (int k = 0; k < n; k++) {
         tex_ray *r = &pk->r[k];
         if (!pk->hit[k])
@@ -533,14 +550,15 @@ static void look_ahead(const struct tex_scene *s, struct packet *pk, int n)
             tex_v3 N = pk->Ng[k];
             N = tex_v3_dot(r->d, N) < 0 ? N : tex_v3_scale(N, -1);
             double w = fabs(r->width + pk->h[k].t * r->spread);
-            if (tex_lanes_take(&pk->lanes, &pk->pre[k], sf, leaf, &pk->P[k], &r->d, &N, w))
+            if (take_lanes(pk, k, sf, leaf, &N, w))
                 continue;
             tex_prefetch_map(&pk->pre[k], sf, leaf, &pk->P[k]);
             tex_prefetch_footprints(&pk->pre[k], &r->d, &N, w);
         }
         pk->pp[m++] = &pk->pre[k];
     }
-    m += tex_prefetch_lanes(&pk->lanes, pk->pp + m);
+    for (int q = 0; q < QUEUES; q++)
+        m += tex_prefetch_lanes(&pk->lanes[q], pk->pp + m);
     tex_prefetch_eval(pk->pp, m);
 }
 

@@ -101,9 +101,8 @@ static int sphere_uv(const struct tex_object *ob, tex_v3 p, double *u, double *v
 {
     (void)ob;
     double r = tex_v3_len(p);
-    double a = atan2(-p.z, p.x) / (2 * M_PI);
-    *u = a < 0 ? a + 1 : a;
-    *v = r > 0 ? acos(fmax(-1, fmin(1, p.y / r))) / M_PI : 0.5;
+    *u = tex_turns(-p.z, p.x);
+    *v = r > 0 ? tex_polar(p.y / r) : 0.5;
     return 1;
 }
 
@@ -256,8 +255,7 @@ static int cone_uv(const struct tex_object *ob, tex_v3 p, double *u, double *v)
 {
     int part = cone_part(ob, p);
     if (part == 0) {
-        double a = atan2(-p.z, p.x) / (2 * M_PI);
-        *u = a < 0 ? a + 1 : a;
+        *u = tex_turns(-p.z, p.x);
         *v = fmin(1, fmax(0, 1 - p.y));
         return 1;
     }
@@ -470,10 +468,8 @@ static tex_v3 torus_normal(const struct tex_object *ob, tex_v3 p)
  * equator), under (0.5) and up the inside (0.75). */
 static int torus_uv(const struct tex_object *ob, tex_v3 p, double *u, double *v)
 {
-    double a = atan2(-p.z, p.x) / (2 * M_PI);
-    *u = a < 0 ? a + 1 : a;
-    double b = atan2(sqrt(p.x * p.x + p.z * p.z) - ob->r0, p.y) / (2 * M_PI);
-    *v = b < 0 ? b + 1 : b;
+    *u = tex_turns(-p.z, p.x);
+    *v = tex_turns(sqrt(p.x * p.x + p.z * p.z) - ob->r0, p.y);
     return 1;
 }
 

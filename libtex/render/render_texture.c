@@ -443,8 +443,7 @@ static int map_point_other(const struct tex_apply *ap, const struct tex_object *
         return tex_shape_methods[TEX_SHAPE_BOX].uv(leaf, q, &uvw[0], &uvw[1]);
     case TEX_MAP_CYLINDER:
     case TEX_MAP_CONE: {
-        double a = atan2(-q.z, q.x) / (2 * M_PI);
-        uvw[0] = a < 0 ? a + 1 : a;
+        uvw[0] = tex_turns(-q.z, q.x);
         uvw[1] = bounded ? fmin(1, fmax(0, (1 - q.y) / 2)) : fract(-pl->y * ap->scale);
         return 1;
     }
@@ -519,6 +518,10 @@ map_gradient(const struct tex_apply *ap, const struct tex_object *leaf, tex_v3 g
     return 1;
 }
 
+/* box_uv's u = (a + 1) / 2 and v = (b + 1) / 2 on faces 1..6: the axes (1..3: x y z) of a
+ * and b, negative where negated */
+static const signed char box_axes[6][2] = {{-3, -2}, {3, -2}, {1, 3}, {1, -3}, {1, -2}, {-1, -2}};
+
 /* The natural mappings' (sphere_map, box faces, cylinder_map / cone_map)
  * gradients of u and v in object space at *pp on face (map_point's answer);
  * 0 where there are none (other mappings, the poles, the axis). */
@@ -541,13 +544,11 @@ static int natural_gradient(const struct tex_apply *ap, const struct tex_object 
         return 1;
     }
     case TEX_SHAPE_BOX: {
-        /* box_uv: u = (a + 1) / 2, v = (b + 1) / 2 with a, b signed coordinates */
-        static const signed char ab[6][2] = {{-3, -2}, {3, -2}, {1, 3}, {1, -3}, {1, -2}, {-1, -2}};
         if (face < 1 || face > 6)
             return 0;
         double g[2][3] = {{0, 0, 0}, {0, 0, 0}};
         for (int i = 0; i < 2; i++) {
-            int c = ab[face - 1][i];
+            int c = box_axes[face - 1][i];
             g[i][(c < 0 ? -c : c) - 1] = c < 0 ? -0.5 : 0.5;
         }
         *du = tex_v3_make(g[0][0], g[0][1], g[0][2]);
@@ -643,17 +644,17 @@ static double wrapdiff(double d)
 
 /* The pixel's footprint on the surface at a hit: tangents t1 (the ray projected on the
  * surface) and t2 = N x t1, both of length sqrt(l2), and the footprint's widths along them,
- * width / c (c: the cosine of incidence, at least 0.02) and width.  Affine mappings take
- * the tangents as they are; the others want them of unit length (footprint_unit) and in
- * object space (footprint_obj: o1, o2, and for finite differences short steps d1, d2 along
- * them from the hit, P1, P2 in world space, pl1, pl2 in object space). */
+ * width / c (c: the cosine of incidence, at least 0.02) and width.  Mappings with gradients
+ * take the tangents as they are; finite differences want them of unit length
+ * (footprint_unit) and short steps d1, d2 along them from the hit (footprint_steps: P1, P2
+ * in world space, pl1, pl2 in object space, o1, o2 the tangents there). */
 struct footprint {
     tex_v3 D, N;
     tex_v3 t1, t2;
     double l2, width, c;
     int tangents; /* 1: t1, t2, l2 and c are made (footprint_tangents) */
     int unit; /* 1: t1, t2 have unit length (l2 = 1) */
-    int obj;  /* 1: o1, o2 are set; 3: and the steps (footprint_obj) */
+    int steps; /* 1: o1, o2 and the steps are made (footprint_steps) */
     tex_v3 o1, o2, P1, P2, pl1, pl2;
     double d1, d2;
 };
@@ -664,7 +665,7 @@ static void footprint_at(struct footprint *fp, const tex_v3 *D, const tex_v3 *N,
 {
     fp->D = *D, fp->N = *N;
     fp->width = width;
-    fp->tangents = fp->unit = fp->obj = 0;
+    fp->tangents = fp->unit = fp->steps = 0;
 }
 
 static void footprint_tangents(struct footprint *fp)
@@ -699,25 +700,21 @@ static void footprint_unit(struct footprint *fp)
     fp->unit = 1;
 }
 
-/* The object-space tangents o1, o2 on leaf (1 in fp->obj); the steps along them from the
- * hit P (pl in object space), which only finite differences take, as well with steps
- * (3 in fp->obj). */
-static void footprint_obj(struct footprint *fp, const struct tex_object *leaf, const tex_v3 *P,
-                          const tex_v3 *pl, int steps)
+/* The unit tangents in leaf's object space (o1, o2) and the short steps along them from the
+ * hit P (pl in object space) that finite differences take. */
+static void footprint_steps(struct footprint *fp, const struct tex_object *leaf, const tex_v3 *P,
+                            const tex_v3 *pl)
 {
-    if (!fp->obj) {
-        footprint_unit(fp);
-        fp->o1 = tex_xform_dir(&leaf->to_obj, fp->t1);
-        fp->o2 = tex_xform_dir(&leaf->to_obj, fp->t2);
-        fp->obj = 1;
-    }
-    if (!steps || fp->obj == 3)
+    if (fp->steps)
         return;
+    footprint_unit(fp);
+    fp->o1 = tex_xform_dir(&leaf->to_obj, fp->t1);
+    fp->o2 = tex_xform_dir(&leaf->to_obj, fp->t2);
     double w1 = fp->width / fp->c, w2 = fp->width;
     fp->d1 = w1 < 1e-3 ? w1 : 1e-3, fp->d2 = w2 < 1e-3 ? w2 : 1e-3;
     fp->P1 = tex_v3_madd(*P, fp->t1, fp->d1), fp->P2 = tex_v3_madd(*P, fp->t2, fp->d2);
     fp->pl1 = tex_v3_madd(*pl, fp->o1, fp->d1), fp->pl2 = tex_v3_madd(*pl, fp->o2, fp->d2);
-    fp->obj = 3;
+    fp->steps = 1;
 }
 
 /* The footprint's extents along t1 and t2 (squared, *l2 the second) in texture units, u
@@ -730,7 +727,7 @@ static double stepped_width2(const struct tex_apply *ap, const struct placement 
                              double *l2out)
 {
     double a[3], b[3];
-    footprint_obj(fp, leaf, P, pl, 1);
+    footprint_steps(fp, leaf, P, pl);
     map_point_at(ap, leaf, &fp->P1, &fp->pl1, a);
     map_point_at(ap, leaf, &fp->P2, &fp->pl2, b);
     double a0 = wrapdiff(a[0] - uvw0[0]) * pm->su, a1 = wrapdiff(a[1] - uvw0[1]) * pm->sv;
@@ -768,30 +765,38 @@ static double solid_width2(const struct tex_apply *ap, const struct placement *p
     return sqrt(l1 * l2);
 }
 
+/* The world-space gradients g[0], g[1] of u and v at the hit pl (object space, on face) of a
+ * mapping that is not affine but has them in closed form (natural_gradient,
+ * projection_gradient): the object-space ones through to_obj's transpose, as a normal goes,
+ * so that they meet the footprint's world tangents as an affine mapping's do (and in the
+ * same lanes, batch_widths).  0 where there are none. */
+static int point_gradient(const struct tex_apply *ap, const struct tex_object *leaf,
+                          const tex_v3 *pl, int face, tex_v3 g[2])
+{
+    if (!natural_gradient(ap, leaf, pl, face, &g[0], &g[1]) &&
+        !projection_gradient(ap, leaf, pl, &g[0], &g[1]))
+        return 0;
+    g[0] = tex_xform_normal(&leaf->to_obj, g[0]);
+    g[1] = tex_xform_normal(&leaf->to_obj, g[1]);
+    return 1;
+}
+
 /* The derivatives of the placed u and v along the footprint's tangents t1, t2 as they are
  * (du[i], dv[i] along ti) at the hit P (pl in object space, on face), where the mapping has
- * them in closed form: an affine mapping's in world space, a natural mapping's in object
- * space along footprint_obj's tangents (then of unit length): 1, else 0 (footprint_obj made,
- * for finite differences). */
+ * them in closed form (map_gradient, point_gradient): 1, else 0. */
 static inline __attribute__((always_inline)) int
 placed_derivatives(const struct tex_apply *ap, const struct placement *pm,
-                   const struct tex_object *leaf, struct footprint *fp, const tex_v3 *P,
-                   const tex_v3 *pl, int face, double du[2], double dv[2])
+                   const struct tex_object *leaf, struct footprint *fp, const tex_v3 *pl,
+                   int face, double du[2], double dv[2])
 {
-    const tex_v3 *e[2] = {&fp->t1, &fp->t2};
-    tex_v3 g[3], gu, gv;
+    tex_v3 g[3];
     footprint_tangents(fp);
-    if (map_gradient(ap, leaf, g)) {
-        gu = g[0], gv = g[1];
-    } else { /* not affine: in object space */
-        footprint_obj(fp, leaf, P, pl, 0);
-        if (!natural_gradient(ap, leaf, pl, face, &gu, &gv) &&
-            !projection_gradient(ap, leaf, pl, &gu, &gv))
-            return 0;
-        e[0] = &fp->o1, e[1] = &fp->o2;
+    if (!map_gradient(ap, leaf, g) && !point_gradient(ap, leaf, pl, face, g))
+        return 0;
+    for (int i = 0; i < 2; i++) {
+        const tex_v3 *e = i ? &fp->t2 : &fp->t1;
+        du[i] = tex_v3_dot(g[0], *e) * pm->su, dv[i] = tex_v3_dot(g[1], *e) * pm->sv;
     }
-    for (int i = 0; i < 2; i++)
-        du[i] = tex_v3_dot(gu, *e[i]) * pm->su, dv[i] = tex_v3_dot(gv, *e[i]) * pm->sv;
     return 1;
 }
 
@@ -803,7 +808,7 @@ static double footprint_width2(const struct tex_apply *ap, const struct placemen
                                const tex_v3 *P, const tex_v3 *pl, int face, double u0, double v0)
 {
     double du[2], dv[2], m2;
-    if (placed_derivatives(ap, pm, leaf, fp, P, pl, face, du, dv)) { /* then over the length */
+    if (placed_derivatives(ap, pm, leaf, fp, pl, face, du, dv)) { /* then over the length */
         double c2 = fp->c * fp->c, l1 = du[0] * du[0] + dv[0] * dv[0];
         double l2 = (du[1] * du[1] + dv[1] * dv[1]) * c2;
         return (l1 > l2 ? l1 : l2) * (fp->width * fp->width) / (fp->l2 * c2);
@@ -1219,7 +1224,7 @@ static tex_v3 bump_tilt(const struct tex_apply *ap, const struct placement *pm,
 {
     double h = width > 1e-4 ? width : 1e-4, g[2], du[2], dv[2];
     footprint_unit(fp);
-    if (grad && placed_derivatives(ap, pm, leaf, fp, P, pl, face, du, dv))
+    if (grad && placed_derivatives(ap, pm, leaf, fp, pl, face, du, dv))
         return tex_v3_scale(tilt_along(grad, du, dv, g, fp->t1, fp->t2), strength);
     for (int i = 0; i < 2; i++) {
         tex_v3 Pi = tex_v3_madd(*P, i ? fp->t2 : fp->t1, h);
@@ -1893,29 +1898,16 @@ TEX_AVX512 static inline __m512d fract8_avx512(__m512d x)
     return _mm512_sub_pd(x, _mm512_mask_blend_pd(small, x, f));
 }
 
-/* map_hit of a plane's planar mapping over the lanes in of L's points from i on, operation
- * for operation (tex_xform_point's x and z, map_point_at, place): the mapping's coordinates
- * into u0, v0, the placed ones into u, v; returns the lanes inside the window */
-TEX_AVX512 static __mmask8 plane_map8_avx512(const struct tex_lanes *L, int i, __mmask8 in,
-                                             double *u0, double *v0, double *u, double *v)
+/* place over the lanes in from i on (the mapping's coordinates c0, c1, stored into u0, v0):
+ * the placed ones into u, v; returns the lanes inside the window */
+TEX_AVX512 static __mmask8 place8_avx512(const struct tex_apply *ap, const struct placement *pm,
+                                         int i, __mmask8 in, __m512d c0, __m512d c1,
+                                         double *u0, double *v0, double *u, double *v)
 {
-    const struct tex_apply *ap = L->sf->apply;
-    const struct placement *pm = L->sf->cache->placement;
-    const double(*m)[4] = L->leaf->to_obj.m;
-    __m512d x = _mm512_maskz_loadu_pd(in, L->p[0] + i), y = _mm512_maskz_loadu_pd(in, L->p[1] + i);
-    __m512d z = _mm512_maskz_loadu_pd(in, L->p[2] + i), c[2], sc = _mm512_set1_pd(ap->scale);
-    for (int k = 0; k < 2; k++) { /* rows 0 and 2: the object-space x and z */
-        const double *r = m[2 * k];
-        __m512d a = _mm512_add_pd(_mm512_mul_pd(_mm512_set1_pd(r[0]), x),
-                                  _mm512_mul_pd(_mm512_set1_pd(r[1]), y));
-        a = _mm512_add_pd(_mm512_add_pd(a, _mm512_mul_pd(_mm512_set1_pd(r[2]), z)),
-                          _mm512_set1_pd(r[3]));
-        c[k] = fract8_avx512(_mm512_mul_pd(a, sc));
-    }
-    _mm512_mask_storeu_pd(u0 + i, in, c[0]);
-    _mm512_mask_storeu_pd(v0 + i, in, c[1]);
-    __m512d s = _mm512_mul_pd(_mm512_sub_pd(c[0], _mm512_set1_pd(ap->u1)), _mm512_set1_pd(pm->iu));
-    __m512d t = _mm512_mul_pd(_mm512_sub_pd(c[1], _mm512_set1_pd(ap->v1)), _mm512_set1_pd(pm->iv));
+    _mm512_mask_storeu_pd(u0 + i, in, c0);
+    _mm512_mask_storeu_pd(v0 + i, in, c1);
+    __m512d s = _mm512_mul_pd(_mm512_sub_pd(c0, _mm512_set1_pd(ap->u1)), _mm512_set1_pd(pm->iu));
+    __m512d t = _mm512_mul_pd(_mm512_sub_pd(c1, _mm512_set1_pd(ap->v1)), _mm512_set1_pd(pm->iv));
     __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1);
     __mmask8 inside = _mm512_mask_cmp_pd_mask(in, s, zero, _CMP_GE_OQ) &
                       _mm512_cmp_pd_mask(s, one, _CMP_LE_OQ) &
@@ -1924,6 +1916,207 @@ TEX_AVX512 static __mmask8 plane_map8_avx512(const struct tex_lanes *L, int i, _
     _mm512_mask_storeu_pd(u + i, in, _mm512_mul_pd(s, _mm512_set1_pd(ap->nu)));
     _mm512_mask_storeu_pd(v + i, in, _mm512_mul_pd(t, _mm512_set1_pd(ap->nv)));
     return inside;
+}
+
+/* Row k of the affine map m applied to the lanes x, y, z, in tex_xform_point's order */
+TEX_AVX512 static inline __m512d xform_row8(const double *r, __m512d x, __m512d y, __m512d z)
+{
+    __m512d a = _mm512_add_pd(_mm512_mul_pd(_mm512_set1_pd(r[0]), x),
+                              _mm512_mul_pd(_mm512_set1_pd(r[1]), y));
+    return _mm512_add_pd(_mm512_add_pd(a, _mm512_mul_pd(_mm512_set1_pd(r[2]), z)),
+                         _mm512_set1_pd(r[3]));
+}
+
+/* map_hit of a plane's planar mapping over the lanes in of L's points from i on, operation
+ * for operation (tex_xform_point's x and z, map_point_at, place): the mapping's coordinates
+ * into u0, v0, the placed ones into u, v; returns the lanes inside the window */
+TEX_AVX512 static __mmask8 plane_map8_avx512(const struct tex_lanes *L, int i, __mmask8 in,
+                                             double *u0, double *v0, double *u, double *v)
+{
+    const struct tex_apply *ap = L->sf->apply;
+    const double(*m)[4] = L->leaf->to_obj.m;
+    __m512d x = _mm512_maskz_loadu_pd(in, L->p[0] + i), y = _mm512_maskz_loadu_pd(in, L->p[1] + i);
+    __m512d z = _mm512_maskz_loadu_pd(in, L->p[2] + i), sc = _mm512_set1_pd(ap->scale);
+    __m512d c0 = fract8_avx512(_mm512_mul_pd(xform_row8(m[0], x, y, z), sc));
+    __m512d c1 = fract8_avx512(_mm512_mul_pd(xform_row8(m[2], x, y, z), sc));
+    return place8_avx512(ap, L->sf->cache->placement, i, in, c0, c1, u0, v0, u, v);
+}
+
+/* fmin(1, fmax(0, x)) over lanes, NaN to 0 as there */
+TEX_AVX512 static inline __m512d clamp8(__m512d x)
+{
+    __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1);
+    __m512d a = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(x, zero, _CMP_GT_OQ), zero, x);
+    return _mm512_mask_blend_pd(_mm512_cmp_pd_mask(a, one, _CMP_LT_OQ), one, a);
+}
+
+TEX_AVX512 static inline __m512d neg8(__m512d x)
+{
+    return _mm512_castsi512_pd(
+        _mm512_xor_si512(_mm512_castpd_si512(x), _mm512_set1_epi64(INT64_MIN)));
+}
+
+/* (a + 1) / 2 over lanes, clamped: a coordinate across a box face or a cap */
+TEX_AVX512 static inline __m512d across8(__m512d a)
+{
+    return clamp8(_mm512_div_pd(_mm512_add_pd(a, _mm512_set1_pd(1)), _mm512_set1_pd(2)));
+}
+
+/* box_uv over lanes (p: the object-space point): u, v and the face */
+TEX_AVX512 static void box_uv8(const __m512d p[3], __m512d *u, __m512d *v, __m512i *face)
+{
+    __m512d zero = _mm512_setzero_pd(), ax = _mm512_abs_pd(p[0]), ay = _mm512_abs_pd(p[1]);
+    __m512d az = _mm512_abs_pd(p[2]);
+    __mmask8 fx = _mm512_cmp_pd_mask(ax, ay, _CMP_GE_OQ) & _mm512_cmp_pd_mask(ax, az, _CMP_GE_OQ);
+    __mmask8 fy = ~fx & _mm512_cmp_pd_mask(ay, az, _CMP_GE_OQ), fz = ~(fx | fy);
+    __mmask8 pos = (fx & _mm512_cmp_pd_mask(p[0], zero, _CMP_GT_OQ)) |
+                   (fy & _mm512_cmp_pd_mask(p[1], zero, _CMP_GT_OQ)) |
+                   (fz & _mm512_cmp_pd_mask(p[2], zero, _CMP_GT_OQ));
+    __m512i f = _mm512_mask_blend_epi64(fy, _mm512_set1_epi64(5), _mm512_set1_epi64(3));
+    f = _mm512_mask_blend_epi64(fx, f, _mm512_set1_epi64(1));
+    *face = _mm512_mask_add_epi64(f, ~pos, f, _mm512_set1_epi64(1));
+    /* faces 1..6: a = -z z x x x -x, b = -y -y z -z -y -y */
+    __m512d nx = neg8(p[0]), ny = neg8(p[1]), nz = neg8(p[2]);
+    __m512d a = _mm512_mask_blend_pd(fz & ~pos, p[0], nx);
+    a = _mm512_mask_blend_pd(fx, a, _mm512_mask_blend_pd(pos, p[2], nz));
+    __m512d b = _mm512_mask_blend_pd(fy, ny, _mm512_mask_blend_pd(pos, nz, p[2]));
+    *u = across8(a), *v = across8(b);
+}
+
+/* cone_uv (cone_part and all) over the lanes in (p: the object-space point) */
+TEX_AVX512 static void cone_uv8(const struct tex_object *ob, __mmask8 in, const __m512d p[3],
+                                __m512d *u, __m512d *v, __m512i *face)
+{
+    double k = ob->r1 - ob->r0, den = sqrt(1 + (ob->r1 - ob->r0) * (ob->r1 - ob->r0));
+    __m512d one = _mm512_set1_pd(1);
+    __m512d ry = _mm512_add_pd(_mm512_set1_pd(ob->r0), _mm512_mul_pd(_mm512_set1_pd(k), p[1]));
+    __m512d rho = _mm512_sqrt_pd(
+        _mm512_add_pd(_mm512_mul_pd(p[0], p[0]), _mm512_mul_pd(p[2], p[2])));
+    __m512d side = _mm512_div_pd(_mm512_abs_pd(_mm512_sub_pd(rho, ry)), _mm512_set1_pd(den));
+    __m512d bot = _mm512_abs_pd(p[1]), top = _mm512_abs_pd(_mm512_sub_pd(p[1], one));
+    __mmask8 s0 = _mm512_cmp_pd_mask(side, bot, _CMP_LE_OQ) &
+                  _mm512_cmp_pd_mask(side, top, _CMP_LE_OQ);
+    __mmask8 part1 = ~s0 & _mm512_cmp_pd_mask(bot, top, _CMP_LE_OQ);
+    /* the caps: discs of radius r across [0, 1]^2 */
+    __m512d r = _mm512_mask_blend_pd(part1, _mm512_set1_pd(ob->r1 > 0 ? ob->r1 : 1),
+                                     _mm512_set1_pd(ob->r0 > 0 ? ob->r0 : 1));
+    __m512d cu = across8(_mm512_div_pd(p[0], r)), cv = across8(_mm512_div_pd(p[2], r));
+    __mmask8 sides = s0 & in;
+    double z[8], x[8], t[8] = {0};
+    _mm512_storeu_pd(z, p[2]), _mm512_storeu_pd(x, p[0]);
+    for (int l = 0; l < 8; l++)
+        if (sides >> l & 1)
+            t[l] = tex_turns(-z[l], x[l]);
+    *u = _mm512_mask_blend_pd(s0, cu, _mm512_loadu_pd(t));
+    *v = _mm512_mask_blend_pd(s0, cv, clamp8(_mm512_sub_pd(one, p[1])));
+    *face = _mm512_mask_blend_epi64(s0, _mm512_mask_blend_epi64(part1, _mm512_set1_epi64(3),
+                                                                _mm512_set1_epi64(2)),
+                                    _mm512_set1_epi64(1));
+}
+
+/* sphere_uv over the lanes in (p: the object-space point) */
+TEX_AVX512 static void sphere_uv8(__mmask8 in, const __m512d p[3], __m512d *u, __m512d *v)
+{
+    __m512d r = _mm512_sqrt_pd(dot8(p[0], p[1], p[2], p[0], p[1], p[2]));
+    double c[8], z[8], x[8], rr[8], t[8] = {0}, w[8] = {0};
+    _mm512_storeu_pd(c, _mm512_div_pd(p[1], r));
+    _mm512_storeu_pd(z, p[2]), _mm512_storeu_pd(x, p[0]), _mm512_storeu_pd(rr, r);
+    for (int l = 0; l < 8; l++) {
+        if (in >> l & 1) {
+            t[l] = tex_turns(-z[l], x[l]);
+            w[l] = rr[l] > 0 ? tex_polar(c[l]) : 0.5;
+        }
+    }
+    *u = _mm512_loadu_pd(t), *v = _mm512_loadu_pd(w);
+}
+
+/* point_gradient of a natural mapping over the lanes in (natural_gradient at the
+ * object-space points p on faces f, then to world space), operation for operation, into
+ * fr's rows from i on, with the placement's scales; returns the lanes that have them */
+TEX_AVX512 static __mmask8 natural_gradient8_avx512(const struct tex_object *leaf,
+                                                    const struct placement *pm, __mmask8 in,
+                                                    const __m512d p[3], __m512i f,
+                                                    struct frames *fr, int i)
+{
+    __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1), g[2][3];
+    __m512d rho2 = _mm512_add_pd(_mm512_mul_pd(p[0], p[0]), _mm512_mul_pd(p[2], p[2]));
+    /* around the axis: u's gradient (z, 0, -x) / (2 pi rho2) */
+    __m512d s = _mm512_div_pd(one, _mm512_mul_pd(_mm512_set1_pd(2 * M_PI), rho2));
+    __m512d around[3] = {_mm512_mul_pd(p[2], s), _mm512_mul_pd(zero, s),
+                         _mm512_mul_pd(neg8(p[0]), s)};
+    __mmask8 ok = in;
+    if (leaf->kind == TEX_SHAPE_BOX) { /* box_axes: +-1/2 along one axis, by face */
+        double tab[2][3][8] = {{{0}}};
+        for (int fc = 0; fc < 6; fc++)
+            for (int k = 0; k < 2; k++) {
+                int c = box_axes[fc][k];
+                tab[k][(c < 0 ? -c : c) - 1][fc] = c < 0 ? -0.5 : 0.5;
+            }
+        __m512i idx = _mm512_sub_epi64(f, _mm512_set1_epi64(1));
+        for (int k = 0; k < 2; k++)
+            for (int c = 0; c < 3; c++)
+                g[k][c] = _mm512_permutexvar_pd(idx, _mm512_loadu_pd(tab[k][c]));
+    } else if (leaf->kind == TEX_SHAPE_SPHERE) { /* v = acos(y / r) / pi */
+        __m512d r2 = _mm512_add_pd(rho2, _mm512_mul_pd(p[1], p[1]));
+        ok &= _mm512_cmp_pd_mask(rho2, _mm512_mul_pd(_mm512_set1_pd(1e-12), r2), _CMP_GT_OQ);
+        __m512d k = _mm512_div_pd(one, _mm512_mul_pd(_mm512_mul_pd(_mm512_set1_pd(M_PI),
+                                                                   _mm512_sqrt_pd(rho2)), r2));
+        memcpy(g[0], around, sizeof around);
+        g[1][0] = _mm512_mul_pd(_mm512_mul_pd(p[0], p[1]), k);
+        g[1][1] = _mm512_mul_pd(neg8(rho2), k);
+        g[1][2] = _mm512_mul_pd(_mm512_mul_pd(p[2], p[1]), k);
+    } else { /* the side (face 1): around, v = 1 - y; the caps: discs of radius r */
+        __mmask8 side = _mm512_cmp_epi64_mask(f, _mm512_set1_epi64(1), _MM_CMPINT_EQ);
+        ok &= ~side | _mm512_cmp_pd_mask(rho2, _mm512_set1_pd(1e-24), _CMP_GT_OQ);
+        __mmask8 bottom = _mm512_cmp_epi64_mask(f, _mm512_set1_epi64(2), _MM_CMPINT_EQ);
+        double r0 = leaf->r0 > 0 ? leaf->r0 : 1, r1 = leaf->r1 > 0 ? leaf->r1 : 1;
+        __m512d r = _mm512_mask_blend_pd(bottom, _mm512_set1_pd(r1), _mm512_set1_pd(r0));
+        __m512d h = _mm512_div_pd(_mm512_set1_pd(0.5), r);
+        g[0][0] = _mm512_mask_blend_pd(side, h, around[0]);
+        g[0][1] = _mm512_mask_blend_pd(side, zero, around[1]);
+        g[0][2] = _mm512_mask_blend_pd(side, zero, around[2]);
+        g[1][0] = zero;
+        g[1][1] = _mm512_mask_blend_pd(side, zero, _mm512_set1_pd(-1));
+        g[1][2] = _mm512_mask_blend_pd(side, h, zero);
+    }
+    const double(*m)[4] = leaf->to_obj.m;
+    double(*rows[2])[CHUNK] = {fr->gu, fr->gv};
+    for (int k = 0; k < 2; k++)
+        for (int c = 0; c < 3; c++) /* tex_xform_normal: the transpose */
+            _mm512_mask_storeu_pd(rows[k][c] + i, in,
+                                  dot8(_mm512_set1_pd(m[0][c]), _mm512_set1_pd(m[1][c]),
+                                       _mm512_set1_pd(m[2][c]), g[k][0], g[k][1], g[k][2]));
+    _mm512_mask_storeu_pd(fr->su + i, in, _mm512_set1_pd(pm->su));
+    _mm512_mask_storeu_pd(fr->sv + i, in, _mm512_set1_pd(pm->sv));
+    return ok;
+}
+
+/* map_hit of a natural mapping on a box, cylinder, cone or sphere over the lanes in of L's
+ * points from i on, operation for operation (tex_xform_point, the shape's uv, place), as
+ * plane_map8_avx512 does a plane's, each lane's face into face[]; and their gradients into
+ * fr's rows (natural_gradient8_avx512).  Returns the lanes inside the window that have
+ * gradients. */
+TEX_AVX512 static __mmask8 natural_map8_avx512(const struct tex_lanes *L, int i, __mmask8 in,
+                                               double *u0, double *v0, double *u, double *v,
+                                               int *face, struct frames *fr)
+{
+    const struct tex_object *leaf = L->leaf;
+    const struct placement *pm = L->sf->cache->placement;
+    const double(*m)[4] = leaf->to_obj.m;
+    __m512d x = _mm512_maskz_loadu_pd(in, L->p[0] + i), y = _mm512_maskz_loadu_pd(in, L->p[1] + i);
+    __m512d z = _mm512_maskz_loadu_pd(in, L->p[2] + i), p[3], c0, c1;
+    __m512i f = _mm512_set1_epi64(1);
+    for (int k = 0; k < 3; k++)
+        p[k] = xform_row8(m[k], x, y, z);
+    if (leaf->kind == TEX_SHAPE_BOX)
+        box_uv8(p, &c0, &c1, &f);
+    else if (leaf->kind == TEX_SHAPE_SPHERE)
+        sphere_uv8(in, p, &c0, &c1);
+    else
+        cone_uv8(leaf, in, p, &c0, &c1, &f);
+    _mm512_mask_cvtepi64_storeu_epi32(face + i, in, f);
+    return place8_avx512(L->sf->apply, pm, i, in, c0, c1, u0, v0, u, v) &
+           natural_gradient8_avx512(leaf, pm, in, p, f, fr, i);
 }
 #endif
 
@@ -1966,9 +2159,10 @@ static double scalar_width(const struct tex_prefetch *pf, int j, const struct te
 
 /* The footprints fw of n pending points of one texture (hit[i], its texture number j[i]
  * there, or the first where j is NULL; mapping a[i]), as scalar_width makes them: 0
- * unfiltered; affine mappings' in vector lanes where the CPU has AVX-512, but those seen
- * head-on.  A map's (solid 0) also gives, where lane is given, the lane of fr of each
- * point (else -1) and, where bump, the frames' bump members. */
+ * unfiltered; in vector lanes where the CPU has AVX-512 those whose mapping has gradients
+ * (affine, or a map's point_gradient), but those seen head-on.  A map's (solid 0) also
+ * gives, where lane is given, the lane of fr of each point (else -1) and, where bump, the
+ * frames' bump members. */
 static void batch_widths(int n, struct tex_prefetch *const *hit, struct tex_prefetch_ap *const *a,
                          const int *j, int solid, int bump, struct frames *fr, double *fw,
                          int *lane)
@@ -1980,6 +2174,7 @@ static void batch_widths(int n, struct tex_prefetch *const *hit, struct tex_pref
     const struct tex_surface *sf = NULL; /* ap and pm's, kept while hits share them */
     const struct placement *pm = NULL, *pm0 = NULL;
     tex_v3 g[3], g0[3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}; /* g0, pm0: lane 0's */
+    tex_v3 pg[3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}; /* a point's own (point_gradient) */
     for (int i = 0, jk = -1; i < n; i++) {
         const struct tex_prefetch *pf = hit[i];
         int ji = j ? j[i] : 0; /* the point's texture number at its hit */
@@ -1994,7 +2189,9 @@ static void batch_widths(int n, struct tex_prefetch *const *hit, struct tex_pref
             continue;
         if (simd && (pf->leaf != leaf || ap != gap))
             affine = map_gradient(gap = ap, leaf = pf->leaf, g);
-        if (!simd || !affine) {
+        /* own: a mapping that is not affine, its gradients the point's own */
+        int own = simd && !affine && !solid && point_gradient(ap, leaf, &pf->pl, a[i]->face, pg);
+        if (!simd || (!affine && !own)) {
             fw[i] = scalar_width(pf, ji, a[i], solid);
             continue;
         }
@@ -2003,14 +2200,14 @@ static void batch_widths(int n, struct tex_prefetch *const *hit, struct tex_pref
             fr->d[c][lanes] = d[c], fr->nn[c][lanes] = nn[c];
         fr->w[lanes] = pf->width;
         if (!lanes) { /* lane 0's mapping, which the lanes share until one differs */
-            fr->shared = 1, leaf0 = leaf, ap0 = gap, pm0 = pm;
+            fr->shared = !own, leaf0 = leaf, ap0 = gap, pm0 = pm;
             memcpy(g0, g, sizeof g0);
-        } else if (fr->shared && (leaf != leaf0 || gap != ap0)) {
+        } else if (fr->shared && (own || leaf != leaf0 || gap != ap0)) {
             for (int k = fr->shared = 0; k < lanes; k++) /* no longer shared: written out */
                 lane_mapping(fr, k, g0, pm0, solid);
         }
         if (!lanes || !fr->shared)
-            lane_mapping(fr, lanes, g, pm, solid);
+            lane_mapping(fr, lanes, own ? pg : g, pm, solid);
         at[lanes++] = i;
     }
 #ifdef TEX_X86
@@ -2100,13 +2297,22 @@ void tex_prefetch_map(struct tex_prefetch *pf, const struct tex_surface *sf,
     }
 }
 
+/* Whether the lanes map hits of ap on leaf: a plane's planar mapping, or a natural one on a
+ * box, cylinder, cone or sphere */
+static int lanes_mapping(const struct tex_apply *ap, const struct tex_object *leaf)
+{
+    int k = leaf->kind;
+    return plane_planar(ap, leaf) ||
+           (ap->mapping == TEX_MAP_NATURAL && (k == TEX_SHAPE_BOX || k == TEX_SHAPE_CYLINDER ||
+                                               k == TEX_SHAPE_CONE || k == TEX_SHAPE_SPHERE));
+}
+
 int tex_lanes_take(struct tex_lanes *L, struct tex_prefetch *pf, const struct tex_surface *sf,
                    const struct tex_object *leaf, const tex_v3 *P, const tex_v3 *D,
                    const tex_v3 *N, double width)
 {
     if (!sf->cache->lanes || !(width > 0) || L->n == TEX_LANES ||
-        (L->n && (L->leaf != leaf || L->sf != sf)) ||
-        !plane_planar(sf->apply, leaf))
+        (L->n && (L->leaf != leaf || L->sf != sf)) || !lanes_mapping(sf->apply, leaf))
         return 0;
     int i = L->n++;
     L->sf = sf, L->leaf = leaf, L->pf[i] = pf;
@@ -2128,16 +2334,16 @@ static void lanes_leftover(const struct tex_lanes *L, int i)
 }
 
 #ifdef TEX_X86
-/* Record pf of a hit the lanes finished, in lane l of fr: map_hit's fields, then the
- * lookup's (grad: a bump's gradient, else NULL) */
-static void lanes_record(const struct tex_lanes *L, struct tex_prefetch *pf, double u0,
-                         double v0, double u, double v, double fw2, const float val[3],
-                         const struct frames *fr, int l, const double *grad)
+/* Record pf of a hit the lanes finished, in lane l of fr: map_hit's fields (face: the
+ * mapping's), then the lookup's (grad: a bump's gradient, else NULL) */
+static void lanes_record(const struct tex_lanes *L, struct tex_prefetch *pf, int face,
+                         double u0, double v0, double u, double v, double fw2,
+                         const float val[3], const struct frames *fr, int l, const double *grad)
 {
     struct tex_prefetch_ap *a = &pf->ap[0];
     pf->sf = L->sf, pf->leaf = L->leaf, pf->n = 1;
     a->tex = L->sf->apply->tex;
-    a->face = 1, a->inside = 1, a->pending = 0;
+    a->face = face, a->inside = 1, a->pending = 0;
     a->bump = L->sf->cache->placement[0].bump;
     a->uvw0[0] = u0, a->uvw0[1] = v0, a->uvw0[2] = 0;
     a->uvw[0] = u, a->uvw[1] = v, a->uvw[2] = 0;
@@ -2159,6 +2365,7 @@ int tex_prefetch_lanes(struct tex_lanes *L, struct tex_prefetch **rest)
     double fw2[TEX_LANES] = {0};
     float out[3 * TEX_LANES];
     int at[TEX_LANES], m = 0, bump = L->sf->cache->placement[0].bump;
+    int face[TEX_LANES], natural = L->leaf->kind != TEX_SHAPE_PLANE;
     double grad[2 * TEX_LANES];
     tex_v3 g[3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     _Static_assert(TEX_LANES <= CHUNK, "a struct frames holds the lanes");
@@ -2167,13 +2374,16 @@ int tex_prefetch_lanes(struct tex_lanes *L, struct tex_prefetch **rest)
         memcpy(fr.nn[c], L->nn[c], n * sizeof *fr.nn[c]);
     }
     memcpy(fr.w, L->w, n * sizeof *fr.w);
-    map_gradient(L->sf->apply, L->leaf, g); /* affine: every lane shares lane 0's */
-    fr.shared = 1;
-    lane_mapping(&fr, 0, g, L->sf->cache->placement, 0);
+    fr.shared = !natural; /* a plane's mapping is affine: every lane shares lane 0's */
+    if (!natural) {
+        map_gradient(L->sf->apply, L->leaf, g);
+        lane_mapping(&fr, 0, g, L->sf->cache->placement, 0);
+    }
     for (int i = 0; i < n; i += 8) {
         int k = n - i < 8 ? n - i : 8;
         __mmask8 in = (__mmask8)((1u << k) - 1);
-        __mmask8 inside = plane_map8_avx512(L, i, in, u0, v0, u, v);
+        __mmask8 inside = natural ? natural_map8_avx512(L, i, in, u0, v0, u, v, face, &fr)
+                                  : plane_map8_avx512(L, i, in, u0, v0, u, v);
         __mmask8 done = inside & ~footprints8_avx512(&fr, i, k, bump, fw2);
         for (int j = i; j < i + k; j++) {
             if (done >> (j - i) & 1)
@@ -2184,8 +2394,8 @@ int tex_prefetch_lanes(struct tex_lanes *L, struct tex_prefetch **rest)
     }
     tex_texture_points(L->sf->apply->tex, m, u, v, fw2, out, bump ? grad : NULL);
     for (int q = 0; q < m; q++)
-        lanes_record(L, L->pf[at[q]], u0[at[q]], v0[at[q]], u[q], v[q], fw2[q], out + 3 * q,
-                     &fr, at[q], bump ? grad + 2 * q : NULL);
+        lanes_record(L, L->pf[at[q]], natural ? face[at[q]] : 1, u0[at[q]], v0[at[q]], u[q],
+                     v[q], fw2[q], out + 3 * q, &fr, at[q], bump ? grad + 2 * q : NULL);
 #else
     for (int i = 0; i < n; i++)
         lanes_leftover(L, i), rest[nrest++] = L->pf[i];

@@ -118,6 +118,21 @@ static inline tex_v3 tex_v3_slab_inv(tex_v3 d)
     return tex_v3_make(1 / (d.x + 1e-300), 1 / (d.y + 1e-300), 1 / (d.z + 1e-300));
 }
 
+/* The angle of (x, y) in turns, in [0, 1): u around an axis, as the natural mappings
+ * and the projections take it */
+static inline double tex_turns(double y, double x)
+{
+    double a = atan2(y, x) / (2 * M_PI);
+    return a < 0 ? a + 1 : a;
+}
+
+/* The angle from the y axis in half turns, in [0, 1], of a direction whose y over its
+ * length is c: v down a sphere */
+static inline double tex_polar(double c)
+{
+    return acos(fmax(-1, fmin(1, c))) / M_PI;
+}
+
 /* Affine transform: p' = m[0..2][0..2] p + m[..][3]. */
 typedef struct tex_xform {
     double m[3][4];
@@ -407,11 +422,12 @@ int tex_surface_footprints(const struct tex_surface *sf);
 void tex_prefetch_footprints(struct tex_prefetch *pf, const tex_v3 *D, const tex_v3 *N,
                              double width);
 void tex_prefetch_eval(struct tex_prefetch *const *pf, int n);
-/* A packet's hits on one plane whose surface's one map is mapped planar (a plane's natural
- * mapping is) are looked up in vector lanes from end to end: mapping, footprint and
- * trilinear lookup, with no pass through the records between the steps
- * (tex_prefetch_lanes).  Their records, and their points, shading frames (D, N as shade()
- * orients them) and footprint widths in rows. */
+/* A packet's hits on one leaf whose surface's one map is mapped planar on a plane (a
+ * plane's natural mapping is) or natural on a box, cylinder, cone or sphere are looked up
+ * in vector lanes from end to end: mapping (gradients and all), footprint and trilinear
+ * lookup, with no pass through the records between the steps (tex_prefetch_lanes).  Their
+ * records, and their points, shading frames (D, N as shade() orients them) and footprint
+ * widths in rows. */
 #define TEX_LANES 64
 struct tex_lanes {
     int n;
@@ -422,8 +438,8 @@ struct tex_lanes {
 };
 /* Whether the hit of record pf on leaf (surface sf, whose lookups take footprints; P, D, N
  * and width > 0 as for tex_prefetch_footprints) goes in L's lanes: 1, queued there (a
- * direct surface, tex_resolve_material's short way, whose map is planar on a plane, where
- * the CPU has AVX-512, and the same leaf as the hits queued before); else 0, for
+ * direct surface, tex_resolve_material's short way, whose map's mapping the lanes make,
+ * where the CPU has AVX-512, and the same leaf as the hits queued before); else 0, for
  * tex_prefetch_map and the rest. */
 int tex_lanes_take(struct tex_lanes *L, struct tex_prefetch *pf, const struct tex_surface *sf,
                    const struct tex_object *leaf, const tex_v3 *P, const tex_v3 *D,
