@@ -1569,10 +1569,13 @@ static int map_ahead(const struct tex_apply *ap)
  * 2 KiB apart, shared few L1 sets, and every scene took 1-4 % longer. */
 enum { CHUNK = 64 };
 
-/* The points of a batch in lanes: the shading frames (D, N, width) and the affine mappings'
- * gradients gu, gv and placement scales su, sv of those whose footprints go in lanes. */
+/* The points of a batch in lanes: the shading frames (D, N, width: rows of its own, or a
+ * lanes' queue's, which are not copied) and the mappings' gradients gu, gv and placement
+ * scales su, sv of those whose footprints go in lanes. */
 struct frames {
-    double d[3][CHUNK], nn[3][CHUNK], w[CHUNK], gu[3][CHUNK], gv[3][CHUNK], su[CHUNK], sv[CHUNK];
+    const double *d[3], *nn[3], *w;
+    double own[7][CHUNK]; /* D, N and width where the batch makes them (batch_widths) */
+    double gu[3][CHUNK], gv[3][CHUNK], su[CHUNK], sv[CHUNK];
     double gw[3][CHUNK]; /* band-limited solids: the gradient of w */
     /* for bumps: the unit tangents e1, e2 and the placed u's and v's derivatives along them
      * (du1, dv1, du2, dv2), as footprint_unit and placed_derivatives make them */
@@ -2167,6 +2170,9 @@ static void batch_widths(int n, struct tex_prefetch *const *hit, struct tex_pref
                          const int *j, int solid, int bump, struct frames *fr, double *fw,
                          int *lane)
 {
+    for (int c = 0; c < 3; c++) /* the frames' rows: fr's own */
+        fr->d[c] = fr->own[c], fr->nn[c] = fr->own[3 + c];
+    fr->w = fr->own[6];
     int lanes = 0, at[CHUNK], affine = 0, simd = tex_simd_level() >= TEX_SIMD_AVX512;
     /* the gradients' leaf and texture, kept while hits share them; lane 0's (leaf0, ap0) */
     const struct tex_object *leaf = NULL, *leaf0 = NULL;
@@ -2197,8 +2203,8 @@ static void batch_widths(int n, struct tex_prefetch *const *hit, struct tex_pref
         }
         const double *d = &pf->D.x, *nn = &pf->N.x;
         for (int c = 0; c < 3; c++)
-            fr->d[c][lanes] = d[c], fr->nn[c][lanes] = nn[c];
-        fr->w[lanes] = pf->width;
+            fr->own[c][lanes] = d[c], fr->own[3 + c][lanes] = nn[c];
+        fr->own[6][lanes] = pf->width;
         if (!lanes) { /* lane 0's mapping, which the lanes share until one differs */
             fr->shared = !own, leaf0 = leaf, ap0 = gap, pm0 = pm;
             memcpy(g0, g, sizeof g0);
@@ -2369,11 +2375,9 @@ int tex_prefetch_lanes(struct tex_lanes *L, struct tex_prefetch **rest)
     double grad[2 * TEX_LANES];
     tex_v3 g[3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
     _Static_assert(TEX_LANES <= CHUNK, "a struct frames holds the lanes");
-    for (int c = 0; c < 3; c++) {
-        memcpy(fr.d[c], L->d[c], n * sizeof *fr.d[c]);
-        memcpy(fr.nn[c], L->nn[c], n * sizeof *fr.nn[c]);
-    }
-    memcpy(fr.w, L->w, n * sizeof *fr.w);
+    for (int c = 0; c < 3; c++)
+        fr.d[c] = L->d[c], fr.nn[c] = L->nn[c];
+    fr.w = L->w;
     fr.shared = !natural; /* a plane's mapping is affine: every lane shares lane 0's */
     if (!natural) {
         map_gradient(L->sf->apply, L->leaf, g);
