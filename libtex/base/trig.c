@@ -1,7 +1,8 @@
-/* trig.c - sines of many points (trig.h) */
+/* trig.c - sines and angles of many points (trig.h) */
 #include "base/fp_strict.h" /* first: no fused multiply-adds in this file */
 
 #include <math.h>
+#include <stdint.h>
 
 #include "base/simd.h"
 #include "base/trig.h"
@@ -102,4 +103,90 @@ void tex_sin_n(int n, const double *x, double *out, int quarter)
 #endif
     for (; i < n; i++)
         out[i] = sin1(x[i], quarter);
+}
+
+/* ---- angles ----------------------------------------------------------------------- */
+
+#define TAN_PI8 4.14213562373095034e-01 /* tan(pi/8), below it */
+#define PIO4 7.85398163397448278999e-01
+#define PIO2 1.57079632679489655800e+00
+#define PI 3.14159265358979311600e+00
+
+/* fdlibm's atan on |t| < 7/16: t - t (z (T0 + w (T2 + ...)) + w (T1 + w (T3 + ...))),
+ * z = t^2, w = z^2 */
+static const double AT[11] = {3.33333333333329318027e-01,  -1.99999999998764832476e-01,
+                              1.42857142725034663711e-01,  -1.11111104054623557880e-01,
+                              9.09088713343650656196e-02,  -7.69187620504482999495e-02,
+                              6.66107313738753120669e-02,  -5.83357013379057348645e-02,
+                              4.97687799461593236017e-02,  -3.65315727442169155270e-02,
+                              1.62858201153657823623e-02};
+
+double tex_atan2(double y, double x)
+{
+    double ax = fabs(x), ay = fabs(y);
+    int swap = ay > ax, red;
+    double num = swap ? ax : ay, den = swap ? ay : ax; /* t = num / den in [0, 1] */
+    red = num > TAN_PI8 * den;                          /* then (t - 1) / (t + 1) */
+    double a = red ? num - den : num, b = red ? num + den : den;
+    double t = b == 0 ? 0 : a / b, z = t * t, w = z * z;
+    double s1 = z * (AT[0] + w * (AT[2] + w * (AT[4] + w * (AT[6] + w * (AT[8] + w * AT[10])))));
+    double s2 = w * (AT[1] + w * (AT[3] + w * (AT[5] + w * (AT[7] + w * AT[9]))));
+    double r = t - t * (s1 + s2);
+    r = red ? PIO4 + r : r;
+    r = swap ? PIO2 - r : r;
+    r = signbit(x) ? PI - r : r;
+    return signbit(y) ? -r : r;
+}
+
+#ifdef TEX_X86
+/* tex_atan2 of eight lanes, operation for operation */
+TEX_AVX512 static __m512d atan2_avx512(__m512d y, __m512d x)
+{
+    const __m512i sign = _mm512_set1_epi64(INT64_MIN);
+    __m512d ax = _mm512_abs_pd(x), ay = _mm512_abs_pd(y);
+    __mmask8 swap = _mm512_cmp_pd_mask(ay, ax, _CMP_GT_OQ);
+    __m512d num = _mm512_mask_blend_pd(swap, ay, ax), den = _mm512_mask_blend_pd(swap, ax, ay);
+    __mmask8 red =
+        _mm512_cmp_pd_mask(num, _mm512_mul_pd(_mm512_set1_pd(TAN_PI8), den), _CMP_GT_OQ);
+    __m512d a = _mm512_mask_sub_pd(num, red, num, den), b = _mm512_mask_add_pd(den, red, num, den);
+    __mmask8 zero = _mm512_cmp_pd_mask(b, _mm512_setzero_pd(), _CMP_EQ_OQ);
+    __m512d t = _mm512_maskz_div_pd(~zero, a, b), z = _mm512_mul_pd(t, t), w = _mm512_mul_pd(z, z);
+    __m512d p = _mm512_mul_pd(w, _mm512_set1_pd(AT[10])), q = _mm512_mul_pd(w, _mm512_set1_pd(AT[9]));
+    for (int k = 8; k >= 2; k -= 2)
+        p = _mm512_mul_pd(w, _mm512_add_pd(_mm512_set1_pd(AT[k]), p));
+    for (int k = 7; k >= 3; k -= 2)
+        q = _mm512_mul_pd(w, _mm512_add_pd(_mm512_set1_pd(AT[k]), q));
+    __m512d s1 = _mm512_mul_pd(z, _mm512_add_pd(_mm512_set1_pd(AT[0]), p));
+    __m512d s2 = _mm512_mul_pd(w, _mm512_add_pd(_mm512_set1_pd(AT[1]), q));
+    __m512d r = _mm512_sub_pd(t, _mm512_mul_pd(t, _mm512_add_pd(s1, s2)));
+    r = _mm512_mask_add_pd(r, red, _mm512_set1_pd(PIO4), r);
+    r = _mm512_mask_sub_pd(r, swap, _mm512_set1_pd(PIO2), r);
+    __mmask8 nx = _mm512_test_epi64_mask(_mm512_castpd_si512(x), sign);
+    __mmask8 ny = _mm512_test_epi64_mask(_mm512_castpd_si512(y), sign);
+    r = _mm512_mask_sub_pd(r, nx, _mm512_set1_pd(PI), r);
+    return _mm512_castsi512_pd(_mm512_mask_xor_epi64(_mm512_castpd_si512(r), ny,
+                                                     _mm512_castpd_si512(r), sign));
+}
+
+TEX_AVX512 static void atan2_n_avx512(int n, const double *y, const double *x, double *out)
+{
+    for (int i = 0; i < n; i += 8) {
+        __mmask8 in = (__mmask8)((1u << (n - i < 8 ? n - i : 8)) - 1);
+        _mm512_mask_storeu_pd(out + i, in,
+                              atan2_avx512(_mm512_maskz_loadu_pd(in, y + i),
+                                           _mm512_maskz_loadu_pd(in, x + i)));
+    }
+}
+#endif
+
+void tex_atan2_n(int n, const double *y, const double *x, double *out)
+{
+#ifdef TEX_X86
+    if (tex_simd_level() >= TEX_SIMD_AVX512) {
+        atan2_n_avx512(n, y, x, out);
+        return;
+    }
+#endif
+    for (int i = 0; i < n; i++)
+        out[i] = tex_atan2(y[i], x[i]);
 }

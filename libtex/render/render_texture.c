@@ -1986,9 +1986,34 @@ TEX_AVX512 static void box_uv8(const __m512d p[3], __m512d *u, __m512d *v, __m51
     *u = across8(a), *v = across8(b);
 }
 
-/* cone_uv (cone_part and all) over the lanes in (p: the object-space point) */
-TEX_AVX512 static void cone_uv8(const struct tex_object *ob, __mmask8 in, const __m512d p[3],
-                                __m512d *u, __m512d *v, __m512i *face)
+/* tex_turns over lanes */
+TEX_AVX512 static __m512d turns8(__m512d y, __m512d x)
+{
+    double ya[8], xa[8], r[8];
+    _mm512_storeu_pd(ya, y), _mm512_storeu_pd(xa, x);
+    tex_atan2_n(8, ya, xa, r);
+    __m512d a = _mm512_div_pd(_mm512_loadu_pd(r), _mm512_set1_pd(2 * M_PI));
+    __mmask8 neg = _mm512_cmp_pd_mask(a, _mm512_setzero_pd(), _CMP_LT_OQ);
+    return _mm512_mask_add_pd(a, neg, a, _mm512_set1_pd(1));
+}
+
+/* tex_polar over lanes */
+TEX_AVX512 static __m512d polar8(__m512d c)
+{
+    __m512d one = _mm512_set1_pd(1), m = _mm512_set1_pd(-1);
+    double ya[8], xa[8], r[8]; /* fmin(1, c) (NaN to 1), then fmax(-1, that) */
+    c = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(c, one, _CMP_LT_OQ), one, c);
+    c = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(c, m, _CMP_GT_OQ), m, c);
+    _mm512_storeu_pd(xa, c);
+    _mm512_storeu_pd(ya, _mm512_sqrt_pd(_mm512_mul_pd(_mm512_sub_pd(one, c),
+                                                      _mm512_add_pd(one, c))));
+    tex_atan2_n(8, ya, xa, r);
+    return _mm512_div_pd(_mm512_loadu_pd(r), _mm512_set1_pd(M_PI));
+}
+
+/* cone_uv (cone_part and all) over lanes (p: the object-space point) */
+TEX_AVX512 static void cone_uv8(const struct tex_object *ob, const __m512d p[3], __m512d *u,
+                                __m512d *v, __m512i *face)
 {
     double k = ob->r1 - ob->r0, den = sqrt(1 + (ob->r1 - ob->r0) * (ob->r1 - ob->r0));
     __m512d one = _mm512_set1_pd(1);
@@ -2004,33 +2029,20 @@ TEX_AVX512 static void cone_uv8(const struct tex_object *ob, __mmask8 in, const 
     __m512d r = _mm512_mask_blend_pd(part1, _mm512_set1_pd(ob->r1 > 0 ? ob->r1 : 1),
                                      _mm512_set1_pd(ob->r0 > 0 ? ob->r0 : 1));
     __m512d cu = across8(_mm512_div_pd(p[0], r)), cv = across8(_mm512_div_pd(p[2], r));
-    __mmask8 sides = s0 & in;
-    double z[8], x[8], t[8] = {0};
-    _mm512_storeu_pd(z, p[2]), _mm512_storeu_pd(x, p[0]);
-    for (int l = 0; l < 8; l++)
-        if (sides >> l & 1)
-            t[l] = tex_turns(-z[l], x[l]);
-    *u = _mm512_mask_blend_pd(s0, cu, _mm512_loadu_pd(t));
+    *u = _mm512_mask_blend_pd(s0, cu, turns8(neg8(p[2]), p[0]));
     *v = _mm512_mask_blend_pd(s0, cv, clamp8(_mm512_sub_pd(one, p[1])));
     *face = _mm512_mask_blend_epi64(s0, _mm512_mask_blend_epi64(part1, _mm512_set1_epi64(3),
                                                                 _mm512_set1_epi64(2)),
                                     _mm512_set1_epi64(1));
 }
 
-/* sphere_uv over the lanes in (p: the object-space point) */
-TEX_AVX512 static void sphere_uv8(__mmask8 in, const __m512d p[3], __m512d *u, __m512d *v)
+/* sphere_uv over lanes (p: the object-space point) */
+TEX_AVX512 static void sphere_uv8(const __m512d p[3], __m512d *u, __m512d *v)
 {
     __m512d r = _mm512_sqrt_pd(dot8(p[0], p[1], p[2], p[0], p[1], p[2]));
-    double c[8], z[8], x[8], rr[8], t[8] = {0}, w[8] = {0};
-    _mm512_storeu_pd(c, _mm512_div_pd(p[1], r));
-    _mm512_storeu_pd(z, p[2]), _mm512_storeu_pd(x, p[0]), _mm512_storeu_pd(rr, r);
-    for (int l = 0; l < 8; l++) {
-        if (in >> l & 1) {
-            t[l] = tex_turns(-z[l], x[l]);
-            w[l] = rr[l] > 0 ? tex_polar(c[l]) : 0.5;
-        }
-    }
-    *u = _mm512_loadu_pd(t), *v = _mm512_loadu_pd(w);
+    __mmask8 pos = _mm512_cmp_pd_mask(r, _mm512_setzero_pd(), _CMP_GT_OQ);
+    *u = turns8(neg8(p[2]), p[0]);
+    *v = _mm512_mask_blend_pd(pos, _mm512_set1_pd(0.5), polar8(_mm512_div_pd(p[1], r)));
 }
 
 /* point_gradient of a natural mapping over the lanes in (natural_gradient at the
@@ -2114,9 +2126,9 @@ TEX_AVX512 static __mmask8 natural_map8_avx512(const struct tex_lanes *L, int i,
     if (leaf->kind == TEX_SHAPE_BOX)
         box_uv8(p, &c0, &c1, &f);
     else if (leaf->kind == TEX_SHAPE_SPHERE)
-        sphere_uv8(in, p, &c0, &c1);
+        sphere_uv8(p, &c0, &c1);
     else
-        cone_uv8(leaf, in, p, &c0, &c1, &f);
+        cone_uv8(leaf, p, &c0, &c1, &f);
     _mm512_mask_cvtepi64_storeu_epi32(face + i, in, f);
     return place8_avx512(L->sf->apply, pm, i, in, c0, c1, u0, v0, u, v) &
            natural_gradient8_avx512(leaf, pm, in, p, f, fr, i);

@@ -40,6 +40,7 @@
 
 #include "colour.h"
 #include "../base/map.h"
+#include "../base/trig.h"
 #include "../prim/prim.h"
 #include "../lang/expr.h"
 #include "render_shade.h"
@@ -119,18 +120,19 @@ static inline tex_v3 tex_v3_slab_inv(tex_v3 d)
 }
 
 /* The angle of (x, y) in turns, in [0, 1): u around an axis, as the natural mappings
- * and the projections take it */
+ * and the projections take it (tex_atan2: the same bytes in lanes) */
 static inline double tex_turns(double y, double x)
 {
-    double a = atan2(y, x) / (2 * M_PI);
+    double a = tex_atan2(y, x) / (2 * M_PI);
     return a < 0 ? a + 1 : a;
 }
 
 /* The angle from the y axis in half turns, in [0, 1], of a direction whose y over its
- * length is c: v down a sphere */
+ * length is c: v down a sphere, acos(c) / pi, as tex_atan2 takes it */
 static inline double tex_polar(double c)
 {
-    return acos(fmax(-1, fmin(1, c))) / M_PI;
+    c = fmax(-1, fmin(1, c));
+    return tex_atan2(sqrt((1 - c) * (1 + c)), c) / M_PI;
 }
 
 /* Affine transform: p' = m[0..2][0..2] p + m[..][3]. */

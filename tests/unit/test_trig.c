@@ -1,5 +1,7 @@
 /* test_trig.c - tex_sin_n: near libm's sine and cosine, the same bytes at every SIMD
- * level and in any batch, libm's own beyond the reduction's range */
+ * level and in any batch, libm's own beyond the reduction's range; tex_atan2 and
+ * tex_atan2_n: near libm's atan2, its signed zeros and axes, the same bytes at every SIMD
+ * level and in any batch */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -37,6 +39,62 @@ static double worst(const double *x, const double *y, int quarter)
             m = isnan(ref) ? INFINITY : fabs(y[i] - ref) * 0x1p53;
     }
     return m;
+}
+
+/* tex_atan2 over points of every octant and scale, the octants' edges, zeros of both
+ * signs, NaN and an infinity: its largest difference from libm's, relative, in units of
+ * 2^-53; the special points' libm values exactly; tex_atan2_n the same bytes at every SIMD
+ * level, one point at a time or in a batch from any offset */
+static void angles(void)
+{
+    double *y = malloc(sizeof *y * N), *x = malloc(sizeof *x * N), *a = malloc(sizeof *a * N);
+    double *b = malloc(sizeof *b * N);
+    if (!y || !x || !a || !b)
+        exit(1);
+    tex_rng r;
+    tex_rng_seed(&r, 9);
+    for (int i = 0; i < N; i++) {
+        double s = ldexp(1, (int)(tex_rng_uniform(&r) * 80) - 40); /* magnitudes 2^-40..2^40 */
+        x[i] = (2 * tex_rng_uniform(&r) - 1) * s;
+        y[i] = i % 3 ? (2 * tex_rng_uniform(&r) - 1) * s
+                     : x[i] * (i % 2 ? 0.41421356237309503 : -1); /* tan(pi/8), the diagonals */
+    }
+    const double sp[][2] = {{0, 0},   {-0.0, 0}, {0, -0.0}, {-0.0, -0.0}, {1, 0},
+                            {-1, 0},  {1, -0.0}, {0, 1},    {0, -1},      {-0.0, -1},
+                            {3, 3},   {-3, 3},   {3, -3},   {-3, -3},     {1e-300, 1},
+                            {1, 1e-300}};
+    int nsp = sizeof sp / sizeof *sp, exact = 0;
+    for (int k = 0; k < nsp; k++)
+        y[N - 1 - k] = sp[k][0], x[N - 1 - k] = sp[k][1];
+    double m = 0;
+    for (int i = 0; i < N; i++) {
+        a[i] = tex_atan2(y[i], x[i]);
+        double ref = atan2(y[i], x[i]);
+        if (ref != 0)
+            m = fmax(m, fabs(a[i] - ref) / fabs(ref) * 0x1p53);
+    }
+    for (int k = 0; k < nsp; k++) {
+        double ref = atan2(y[N - 1 - k], x[N - 1 - k]), v = a[N - 1 - k];
+        exact += k < 10 ? memcmp(&v, &ref, sizeof v) == 0 : fabs(v - ref) <= 4e-16 * fabs(ref);
+    }
+    CHECKF(m <= 4, "atan2 within 2^-51 of libm's, relative (worst %.2f x 2^-53)", m);
+    CHECKF(exact == nsp, "atan2 at the axes and zeros of both signs: libm's (%d of %d)", exact,
+           nsp);
+    CHECK(isnan(tex_atan2(NAN, 1)) && isnan(tex_atan2(1, NAN)), "atan2 of NaN: NaN");
+    CHECK(tex_atan2(1, INFINITY) == 0 && tex_atan2(-1, -INFINITY) == -M_PI,
+          "atan2 along an infinite x: 0 and -pi");
+    tex_simd_limit(TEX_SIMD_AVX512);
+    int level = tex_simd_level();
+    tex_atan2_n(N - 5, y + 5, x + 5, b + 5);
+    for (int i = 0; i < 5; i++)
+        tex_atan2_n(1, y + i, x + i, b + i);
+    CHECKF(memcmp(a, b, sizeof *a * N) == 0, "atan2 at %s, in a batch from any offset or one "
+           "at a time: tex_atan2's bytes", tex_simd_name(level));
+    tex_simd_limit(TEX_SIMD_SCALAR);
+    tex_atan2_n(N, y, x, b);
+    CHECK(memcmp(a, b, sizeof *a * N) == 0, "atan2 on the portable path: the same bytes");
+    tex_simd_limit(TEX_SIMD_AVX512);
+    free(y), free(x), free(a), free(b);
 }
 
 int main(void)
@@ -77,5 +135,6 @@ int main(void)
     free(x);
     free(a);
     free(b);
+    angles();
     return unit_done();
 }
