@@ -151,7 +151,8 @@ TEX_AVX512 static __m512d atan2_avx512(__m512d y, __m512d x)
     __m512d a = _mm512_mask_sub_pd(num, red, num, den), b = _mm512_mask_add_pd(den, red, num, den);
     __mmask8 zero = _mm512_cmp_pd_mask(b, _mm512_setzero_pd(), _CMP_EQ_OQ);
     __m512d t = _mm512_maskz_div_pd(~zero, a, b), z = _mm512_mul_pd(t, t), w = _mm512_mul_pd(z, z);
-    __m512d p = _mm512_mul_pd(w, _mm512_set1_pd(AT[10])), q = _mm512_mul_pd(w, _mm512_set1_pd(AT[9]));
+    __m512d p = _mm512_mul_pd(w, _mm512_set1_pd(AT[10]));
+    __m512d q = _mm512_mul_pd(w, _mm512_set1_pd(AT[9]));
     for (int k = 8; k >= 2; k -= 2)
         p = _mm512_mul_pd(w, _mm512_add_pd(_mm512_set1_pd(AT[k]), p));
     for (int k = 7; k >= 3; k -= 2)
