@@ -1574,7 +1574,7 @@ enum { CHUNK = 64 };
  * scales su, sv of those whose footprints go in lanes. */
 struct frames {
     const double *d[3], *nn[3], *w;
-    double own[7][CHUNK]; /* D, N and width where the batch makes them (batch_widths) */
+    double rows[7][CHUNK]; /* D, N and width where the batch makes them (batch_widths) */
     double gu[3][CHUNK], gv[3][CHUNK], su[CHUNK], sv[CHUNK];
     double gw[3][CHUNK]; /* band-limited solids: the gradient of w */
     /* for bumps: the unit tangents e1, e2 and the placed u's and v's derivatives along them
@@ -1605,6 +1605,13 @@ TEX_AVX512 static inline __m512d dot8(__m512d ax, __m512d ay, __m512d az, __m512
                          _mm512_mul_pd(az, bz));
 }
 
+/* -x over lanes: the sign flipped, as C's unary minus does (for a zero too) */
+TEX_AVX512 static inline __m512d neg8(__m512d x)
+{
+    return _mm512_castsi512_pd(
+        _mm512_xor_si512(_mm512_castpd_si512(x), _mm512_set1_epi64(INT64_MIN)));
+}
+
 /* footprint_tangents of the lanes in of fr from i on, operation for operation: t1, t2 (x, y,
  * z), l2 and c; the lanes seen head-on (no tangent from the ray) in the mask returned */
 TEX_AVX512 static inline __attribute__((always_inline)) __mmask8
@@ -1617,8 +1624,7 @@ tangents8(const struct frames *fr, int i, __mmask8 in, __m512d t1[3], __m512d t2
         nn[k] = _mm512_maskz_loadu_pd(in, fr->nn[k] + i);
     }
     __m512d dn = dot8(d[0], d[1], d[2], nn[0], nn[1], nn[2]), cosv = _mm512_abs_pd(dn);
-    __m512d ndn = _mm512_castsi512_pd( /* -dn: the sign flipped, as for a zero */
-        _mm512_xor_si512(_mm512_castpd_si512(dn), _mm512_set1_epi64(INT64_MIN)));
+    __m512d ndn = neg8(dn);
     for (int k = 0; k < 3; k++)
         t1[k] = _mm512_add_pd(d[k], _mm512_mul_pd(nn[k], ndn));
     *l2 = dot8(t1[0], t1[1], t1[2], t1[0], t1[1], t1[2]);
@@ -1953,12 +1959,6 @@ TEX_AVX512 static inline __m512d clamp8(__m512d x)
     return _mm512_mask_blend_pd(_mm512_cmp_pd_mask(a, one, _CMP_LT_OQ), one, a);
 }
 
-TEX_AVX512 static inline __m512d neg8(__m512d x)
-{
-    return _mm512_castsi512_pd(
-        _mm512_xor_si512(_mm512_castpd_si512(x), _mm512_set1_epi64(INT64_MIN)));
-}
-
 /* (a + 1) / 2 over lanes, clamped: a coordinate across a box face or a cap */
 TEX_AVX512 static inline __m512d across8(__m512d a)
 {
@@ -2029,7 +2029,7 @@ TEX_AVX512 static void cone_uv8(const struct tex_object *ob, const __m512d p[3],
     __m512d r = _mm512_mask_blend_pd(part1, _mm512_set1_pd(ob->r1 > 0 ? ob->r1 : 1),
                                      _mm512_set1_pd(ob->r0 > 0 ? ob->r0 : 1));
     __m512d cu = across8(_mm512_div_pd(p[0], r)), cv = across8(_mm512_div_pd(p[2], r));
-    *u = _mm512_mask_blend_pd(s0, cu, turns8(neg8(p[2]), p[0]));
+    *u = s0 ? _mm512_mask_blend_pd(s0, cu, turns8(neg8(p[2]), p[0])) : cu; /* caps alone */
     *v = _mm512_mask_blend_pd(s0, cv, clamp8(_mm512_sub_pd(one, p[1])));
     *face = _mm512_mask_blend_epi64(s0, _mm512_mask_blend_epi64(part1, _mm512_set1_epi64(3),
                                                                 _mm512_set1_epi64(2)),
@@ -2053,13 +2053,14 @@ TEX_AVX512 static __mmask8 natural_gradient8_avx512(const struct tex_object *lea
                                                     const __m512d p[3], __m512i f,
                                                     struct frames *fr, int i)
 {
-    __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1), g[2][3];
+    __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1), g[2][3], around[3];
     __m512d rho2 = _mm512_add_pd(_mm512_mul_pd(p[0], p[0]), _mm512_mul_pd(p[2], p[2]));
-    /* around the axis: u's gradient (z, 0, -x) / (2 pi rho2) */
-    __m512d s = _mm512_div_pd(one, _mm512_mul_pd(_mm512_set1_pd(2 * M_PI), rho2));
-    __m512d around[3] = {_mm512_mul_pd(p[2], s), _mm512_mul_pd(zero, s),
-                         _mm512_mul_pd(neg8(p[0]), s)};
     __mmask8 ok = in;
+    if (leaf->kind != TEX_SHAPE_BOX) { /* around the axis: u's gradient (z, 0, -x) / (2 pi rho2) */
+        __m512d s = _mm512_div_pd(one, _mm512_mul_pd(_mm512_set1_pd(2 * M_PI), rho2));
+        around[0] = _mm512_mul_pd(p[2], s), around[1] = _mm512_mul_pd(zero, s);
+        around[2] = _mm512_mul_pd(neg8(p[0]), s);
+    }
     if (leaf->kind == TEX_SHAPE_BOX) { /* box_axes: +-1/2 along one axis, by face */
         double tab[2][3][8] = {{{0}}};
         for (int fc = 0; fc < 6; fc++)
@@ -2183,8 +2184,8 @@ static void batch_widths(int n, struct tex_prefetch *const *hit, struct tex_pref
                          int *lane)
 {
     for (int c = 0; c < 3; c++) /* the frames' rows: fr's own */
-        fr->d[c] = fr->own[c], fr->nn[c] = fr->own[3 + c];
-    fr->w = fr->own[6];
+        fr->d[c] = fr->rows[c], fr->nn[c] = fr->rows[3 + c];
+    fr->w = fr->rows[6];
     int lanes = 0, at[CHUNK], affine = 0, simd = tex_simd_level() >= TEX_SIMD_AVX512;
     /* the gradients' leaf and texture, kept while hits share them; lane 0's (leaf0, ap0) */
     const struct tex_object *leaf = NULL, *leaf0 = NULL;
@@ -2215,8 +2216,8 @@ static void batch_widths(int n, struct tex_prefetch *const *hit, struct tex_pref
         }
         const double *d = &pf->D.x, *nn = &pf->N.x;
         for (int c = 0; c < 3; c++)
-            fr->own[c][lanes] = d[c], fr->own[3 + c][lanes] = nn[c];
-        fr->own[6][lanes] = pf->width;
+            fr->rows[c][lanes] = d[c], fr->rows[3 + c][lanes] = nn[c];
+        fr->rows[6][lanes] = pf->width;
         if (!lanes) { /* lane 0's mapping, which the lanes share until one differs */
             fr->shared = !own, leaf0 = leaf, ap0 = gap, pm0 = pm;
             memcpy(g0, g, sizeof g0);
