@@ -128,6 +128,15 @@ check_fails "a PAM of depth 7 on standard input" 1 bash -c "t_info <'$T/d7.pam'"
 grep -q '^t_info: error: standard input: PAM depth 7 is not 1..4$' "$T/.err" &&
     ok "the message names standard input and the range" || notok "depth 7 message" "$(cat "$T/.err")"
 t_convert "$T/c2.exr" --format png | t_convert --format ppm >"$T/s.ppm" && same "PNG and PPM through pipes" "$T/c2.exr" "$T/s.ppm" "$half8"
+# An EXR on a pipe leaves in writes gathered up to 1 MiB (stream.c): a map of 3 MiB, and
+# t_apply's bands of 64 rows of over 1 MiB each, keep every pixel
+t_noise -s 1100x700 -o "$T/big.exr" && t_convert "$T/big.exr" -o "$T/bigf.pfm" &&
+    t_noise -s 1100x700 | t_convert - -o "$T/bigp.pfm" && cmp -s "$T/bigf.pfm" "$T/bigp.pfm" &&
+    ok "a 3 MiB map through a pipe" || notok "a 3 MiB map through a pipe"
+t_apply "$TEXTURA_TOP/tests/scenes/spheres.scene" -s 1500x130 -j 2 --format pfm >"$T/wf.pfm" &&
+    t_apply "$TEXTURA_TOP/tests/scenes/spheres.scene" -s 1500x130 -j 2 -o - |
+    t_convert - -o "$T/wp.pfm" && cmp -s "$T/wf.pfm" "$T/wp.pfm" &&
+    ok "t_apply's bands of over 1 MiB through a pipe" || notok "t_apply's wide bands through a pipe"
 
 # ---- files made by netpbm and ImageMagick, with and without gAMA ----
 ppmmake rgb:ff/80/00 4 2 | pnmtopng >"$T/nb.png"

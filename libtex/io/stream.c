@@ -73,7 +73,10 @@ int tex_write_all(int fd, const void *p, size_t n, const char *name)
 /* Where encoded bytes go.  In memory (buf) they may land at any offset.  On
  * a file descriptor they must come in order: the header is buffered, then
  * written with a chunk offset table computed in advance, and the chunks pass
- * straight through; the table the core writes last must match ours. */
+ * through buf (emptied), gathered into writes of up to STAGE bytes (the core hands
+ * over a scanline's header and its pixels apart: two system calls a row); the table the
+ * core writes last must match ours. */
+#define STAGE (1 << 20)
 struct wsink {
     tex_buf *buf;
     size_t base;
@@ -86,6 +89,16 @@ struct wsink {
     size_t table_len;
     int seekable;        /* fd is a regular file: bytes land at their offsets (pwrite) */
 };
+
+/* The streamed bytes gathered in w's buf written out */
+static int sink_flush(struct wsink *w)
+{
+    size_t n = w->streaming ? w->buf->len : 0;
+    if (!n)
+        return 0;
+    w->buf->len = 0;
+    return tex_write_all(w->fd, w->buf->data, n, w->name);
+}
 
 static int64_t write_mem(exr_const_context_t ctxt, void *ud, const void *src, uint64_t sz,
                          uint64_t off, exr_stream_error_func_ptr_t ecb)
@@ -109,8 +122,12 @@ static int64_t write_mem(exr_const_context_t ctxt, void *ud, const void *src, ui
     }
     if (w->streaming) {
         if (off == w->pos) {
-            if (tex_write_all(w->fd, src, sz, w->name) < 0)
+            if ((w->buf->len + sz > STAGE && sink_flush(w) < 0) ||
+                (sz >= STAGE ? tex_write_all(w->fd, src, sz, w->name)
+                             : tex_buf_reserve(w->buf, STAGE)) < 0)
                 return ecb(ctxt, EXR_ERR_WRITE_IO, "%s", tex_errmsg()), -1;
+            if (sz < STAGE)
+                memcpy(w->buf->data + w->buf->len, src, sz), w->buf->len += sz;
             w->pos += sz;
             return (int64_t)sz;
         }
@@ -149,6 +166,7 @@ static int start_streaming(struct wsink *w, const tex_map *m, int nchunks, int l
         return -1;
     w->pos = w->table_off + w->table_len;
     w->streaming = 1;
+    w->buf->len = 0; /* sent: buf gathers the chunks now */
     return 0;
 }
 
@@ -311,7 +329,9 @@ static int encode(const tex_map *m, tex_rows_fn fill, void *arg, enum tex_compre
     }
     for (y = 0; y < m->h; y += lines) {
         const float *row0 = band ? band + (size_t)(y % brows) * m->w * m->nc : tex_map_row(m, y);
-        if (band && y % brows == 0 && fill(arg, y, m->h - y < brows ? m->h - y : brows, band) < 0) {
+        /* a band's rows reach a reader before the next band is made */
+        if (band && y % brows == 0 &&
+            (sink_flush(sink) < 0 || fill(arg, y, m->h - y < brows ? m->h - y : brows, band) < 0)) {
             free(band);
             if (y > 0)
                 exr_encoding_destroy(ctx, &enc);
@@ -337,7 +357,7 @@ static int encode(const tex_map *m, tex_rows_fn fill, void *arg, enum tex_compre
     exr_encoding_destroy(ctx, &enc);
     if ((rv = exr_finish(&ctx)))
         return exr_fail(NULL, rv, "EXR finish");
-    return 0;
+    return sink_flush(sink);
 }
 
 /* m tiled (with its mip levels), or, with fill, the map head describes made
