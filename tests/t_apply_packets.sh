@@ -87,6 +87,27 @@ for v in "wide|eye 0 9 -14 look 0 1 0 fov 100" "inside|eye 1 2 0 look -2 0.8 0 f
         notok "$name view: renders"
     fi
 done
+# a packet tests only the objects whose boxes its pixels' rays can meet (tex_view_objects):
+# 81 spheres and a box of the scene's surfaces over the view, tall and small ones at the
+# edges of packets, more than the 64 a packet keeps apart (the rest always tested)
+{
+    sed '/^plane\|^difference\|^ *surface marble translate\|^cylinder\|^box\|^sphere/d' \
+        "$T/a.scene"
+    echo "plane { surface boxy }"
+    for i in $(seq 0 80); do
+        echo "sphere { centre $(((i % 9) - 4)).$((i % 7)) $((i / 9 % 3)).$((i % 5)) $((i / 9))" \
+            "radius 0.$((i % 4 + 1))$((i % 3)) surface $(echo boxy marble oak many |
+                cut -d' ' -f$((i % 4 + 1))) }"
+    done
+    echo "box { min -5 0 9 max 5 0.2 9.3 surface oak }"
+} >"$T/crowd.scene"
+[ "$(grep -c '^sphere' "$T/crowd.scene")" = 81 ] &&
+    TEXTURA_PACKETS=0 t_apply "$T/crowd.scene" -q -j 1 -s 61x47 -o "$T/crowd-px.pfm" &&
+    TEXTURA_PACKETS=1 t_apply "$T/crowd.scene" -q -j 2 -s 61x47 -o "$T/crowd-pk.pfm" &&
+    cmp -s "$T/crowd-px.pfm" "$T/crowd-pk.pfm" &&
+    ok "81 objects over the view: packets give the pixel-by-pixel render's bytes" ||
+    notok "81 objects: packets against pixel by pixel" \
+        "$(maxdiff "$T/crowd-px.pfm" "$T/crowd-pk.pfm" 2>&1)"
 # image maps, looked up ahead over a packet (a surface's first texture: footprints and
 # trilinear lookups in vector lanes where the CPU has AVX-512): grey and colour maps of
 # sides that are not powers of two, windows and repeats, affine mappings (a plane's, world,

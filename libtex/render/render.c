@@ -363,15 +363,15 @@ static void camera_setup(const struct tex_scene *s, struct camera *cam)
     cam->sees_view = tex_scene_view(s, cam->eye, cam->right, cam->up, cam->fwd, &cam->view);
 }
 
-/* Whether an eye ray of the pixels [x0, x1) x [y0, y1) can meet the bounded objects' box:
- * its direction projects to the image plane at (a, b) inside the pixel it samples, and the
- * pixels' rectangle there is compared with the box's. */
-static int packet_meets_box(const struct camera *cam, int x0, int y0, int x1, int y1)
+/* The bounded objects an eye ray of the pixels [x0, x1) x [y0, y1) can meet
+ * (tex_view_objects; 0: none): its direction projects to the image plane at (a, b) inside
+ * the pixel it samples, and the pixels' rectangle there is compared with the objects'
+ * boxes'.  All of them where the tree's box is not wholly ahead. */
+static uint64_t packet_objects(const struct camera *cam, int x0, int y0, int x1, int y1)
 {
-    const double *r = cam->view.rect;
-    double a0 = x0 * cam->kx - cam->sx, a1 = x1 * cam->kx - cam->sx;
-    double b0 = cam->sy - y1 * cam->ky, b1 = cam->sy - y0 * cam->ky;
-    return !cam->sees_view || (a1 >= r[0] && a0 <= r[1] && b1 >= r[2] && b0 <= r[3]);
+    double r[4] = {x0 * cam->kx - cam->sx, x1 * cam->kx - cam->sx, cam->sy - y1 * cam->ky,
+                   cam->sy - y0 * cam->ky};
+    return cam->sees_view ? tex_view_objects(&cam->view, r) : ~0ull;
 }
 
 /* The eye ray of sample i of pixel (x, y), its position drawn from the pixel's rng
@@ -577,15 +577,16 @@ static void render_packet(const struct ctx *c0, const struct camera *cam, struct
         seed_pixel(c0, pk->x[k], pk->y[k], &pk->rng[k]);
         pk->acc[k][0] = pk->acc[k][1] = pk->acc[k][2] = 0;
     }
-    /* a packet beside the box (most of a floor or a sky) tests only the unbounded objects */
-    int box = packet_meets_box(cam, x0, y0, x1, y1);
+    /* a packet beside the box (most of a floor or a sky) tests only the unbounded objects,
+     * and one beside an object's box does not test it */
+    uint64_t visit = packet_objects(cam, x0, y0, x1, y1);
     for (int i = 0; i < spp; i++) {
         camera_rays(&c, cam, pk->x, pk->y, np, i, pk->rng, pk->r);
         for (int k = 0; k < np; k++)
-            pk->hit[k] = box ? tex_scene_trace(s, &pk->r[k].o, &pk->r[k].d, 0, INFINITY, NULL,
-                                               &pk->h[k])
-                             : tex_scene_trace_unbounded(s, &pk->r[k].o, &pk->r[k].d, 0,
-                                                         INFINITY, &pk->h[k]);
+            pk->hit[k] = visit ? tex_scene_trace_view(s, &pk->r[k].o, &pk->r[k].d, visit,
+                                                          &pk->h[k])
+                                   : tex_scene_trace_unbounded(s, &pk->r[k].o, &pk->r[k].d, 0,
+                                                               INFINITY, &pk->h[k]);
         look_ahead(s, pk, np);
         for (int k = 0; k < np; k++) {
             tex_colour col;

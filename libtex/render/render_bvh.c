@@ -17,7 +17,8 @@
  * crossed.  A ray leaving an object from a hull leaf (struct tex_object)
  * does not test it (it cannot meet it again), and eye rays that a view of
  * the tree's box shows beside it (tex_scene_view) test the unbounded objects
- * alone.
+ * alone; beside it, they skip the bounded objects whose boxes the view shows
+ * them beside (tex_view_objects: a packet's rays at once).
  */
 #define _GNU_SOURCE /* qsort_r */
 #include <stdlib.h>
@@ -52,6 +53,7 @@ struct tex_bvh {
     struct node *nodes;
     int nnodes;
     struct prim *prims; /* bounded, in tree order */
+    int nprims;
     struct prim *unb;   /* unbounded */
     int nunb;
 };
@@ -243,6 +245,7 @@ struct tex_bvh *tex_bvh_build(struct tex_object **obs, int n)
     bd.src = src;
     if (nb)
         build(&bd, 0, nb, 0);
+    t->nprims = nb;
     free(src);
     free(bd.idx);
     free(bd.tmp);
@@ -360,13 +363,20 @@ static inline int first_hit(const struct prim *p, const struct ray *r, double tm
     return 0;
 }
 
+/* Whether object i (in tree order) is in visit (tex_view_objects): those past its bits
+ * always are */
+static inline int seen(uint64_t visit, int i)
+{
+    return i >= TEX_VIEW_OBJECTS || (visit >> i & 1);
+}
+
 /* Inlined into the entry points: the closest-hit one loses every test of any; tree = 0 (a
  * ray known to miss the tree's box) tests the unbounded objects alone, which need neither
  * 1/d nor 1/d.d. */
 static inline __attribute__((always_inline)) int bvh_trace(const struct tex_bvh *t,
                                                            const tex_v3 *o, const tex_v3 *d,
                                                            double tmin, double tmax, int any,
-                                                           int tree,
+                                                           int tree, uint64_t visit,
                                                            const struct tex_object *from,
                                                            struct tex_hit *hit)
 {
@@ -401,7 +411,7 @@ static inline __attribute__((always_inline)) int bvh_trace(const struct tex_bvh 
         if (n->count) {
             const struct prim *p = &t->prims[n->first];
             for (int i = 0; i < n->count; i++) {
-                if (p[i].ob == from)
+                if (p[i].ob == from || !seen(visit, n->first + i))
                     continue;
                 found |= first_hit(&p[i], &r, tmin, &tmax, hit);
                 if (found && any)
@@ -439,14 +449,14 @@ static inline __attribute__((always_inline)) int bvh_trace(const struct tex_bvh 
 int tex_bvh_trace(const struct tex_bvh *t, const tex_v3 *o, const tex_v3 *d, double tmin,
                   double tmax, struct tex_hit *hit)
 {
-    return bvh_trace(t, o, d, tmin, tmax, 0, 1, NULL, hit);
+    return bvh_trace(t, o, d, tmin, tmax, 0, 1, ~0ull, NULL, hit);
 }
 
 int tex_bvh_trace_any(const struct tex_bvh *t, const tex_v3 *o, const tex_v3 *d, double tmin,
                       double tmax, int any, struct tex_hit *hit)
 {
-    return any ? bvh_trace(t, o, d, tmin, tmax, 1, 1, NULL, hit)
-               : bvh_trace(t, o, d, tmin, tmax, 0, 1, NULL, hit);
+    return any ? bvh_trace(t, o, d, tmin, tmax, 1, 1, ~0ull, NULL, hit)
+               : bvh_trace(t, o, d, tmin, tmax, 0, 1, ~0ull, NULL, hit);
 }
 
 /* Product of Kt over the boundaries of p in (tmin, tmax) into *tr; 0 at an opaque one. */
@@ -555,23 +565,27 @@ double tex_scene_transmit(const struct tex_scene *s, const tex_v3 *o, const tex_
 int tex_scene_trace(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d, double tmin,
                     double tmax, const struct tex_object *from, struct tex_hit *hit)
 {
-    return bvh_trace(s->bvh, o, d, tmin, tmax, 0, 1, from, hit);
+    return bvh_trace(s->bvh, o, d, tmin, tmax, 0, 1, ~0ull, from, hit);
 }
 
 int tex_scene_trace_unbounded(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
                               double tmin, double tmax, struct tex_hit *hit)
 {
-    return bvh_trace(s->bvh, o, d, tmin, tmax, 0, 0, NULL, hit);
+    return bvh_trace(s->bvh, o, d, tmin, tmax, 0, 0, ~0ull, NULL, hit);
 }
 
-int tex_scene_view(const struct tex_scene *s, tex_v3 c, tex_v3 u, tex_v3 v, tex_v3 w,
-                   struct tex_view *vw)
+int tex_scene_trace_view(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
+                         uint64_t visit, struct tex_hit *hit)
 {
-    const struct tex_bvh *t = s->bvh;
-    if (!t || !t->nnodes)
-        return 0;
-    const struct tex_bounds *b = &t->nodes[0].b;
-    double *r = vw->rect, big = 0;
+    return bvh_trace(s->bvh, o, d, 0, INFINITY, 0, 1, visit, NULL, hit);
+}
+
+/* Box b's rect r as seen from c in the frame u, v, w (tex_scene_view's): 1, or 0 where
+ * it is not wholly ahead */
+static int box_view(const struct tex_bounds *b, tex_v3 c, tex_v3 u, tex_v3 v, tex_v3 w,
+                    double r[4])
+{
+    double big = 0;
     r[0] = r[2] = INFINITY, r[1] = r[3] = -INFINITY;
     for (int i = 0; i < 8; i++) { /* a convex box wholly ahead projects inside its corners' */
         tex_v3 p = tex_v3_make(i & 1 ? b->hi.x : b->lo.x, i & 2 ? b->hi.y : b->lo.y,
@@ -588,4 +602,36 @@ int tex_scene_view(const struct tex_scene *s, tex_v3 c, tex_v3 u, tex_v3 v, tex_
     double m = 1e-9 * (1 + big);
     r[0] -= m, r[1] += m, r[2] -= m, r[3] += m;
     return 1;
+}
+
+int tex_scene_view(const struct tex_scene *s, tex_v3 c, tex_v3 u, tex_v3 v, tex_v3 w,
+                   struct tex_view *vw)
+{
+    const struct tex_bvh *t = s->bvh;
+    vw->n = 0;
+    if (!t || !t->nnodes || !box_view(&t->nodes[0].b, c, u, v, w, vw->rect))
+        return 0;
+    vw->n = t->nprims < TEX_VIEW_OBJECTS ? t->nprims : TEX_VIEW_OBJECTS;
+    for (int i = 0; i < vw->n; i++) {
+        double *r = vw->object[i];
+        if (!box_view(&t->prims[i].box, c, u, v, w, r)) /* not wholly ahead: everywhere */
+            r[0] = r[2] = -INFINITY, r[1] = r[3] = INFINITY;
+    }
+    return 1;
+}
+
+/* Do rects a and b overlap? */
+static inline int rects_meet(const double a[4], const double b[4])
+{
+    return a[1] >= b[0] && a[0] <= b[1] && a[3] >= b[2] && a[2] <= b[3];
+}
+
+uint64_t tex_view_objects(const struct tex_view *vw, const double r[4])
+{
+    if (!rects_meet(r, vw->rect))
+        return 0;
+    uint64_t visit = vw->n < TEX_VIEW_OBJECTS ? ~0ull << vw->n : 0;
+    for (int i = 0; i < vw->n; i++)
+        visit |= (uint64_t)rects_meet(r, vw->object[i]) << i;
+    return visit;
 }
