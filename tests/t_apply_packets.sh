@@ -88,25 +88,31 @@ for v in "wide|eye 0 9 -14 look 0 1 0 fov 100" "inside|eye 1 2 0 look -2 0.8 0 f
     fi
 done
 # a packet tests only the objects whose boxes its pixels' rays can meet (tex_view_objects):
-# 81 spheres and a box of the scene's surfaces over the view, tall and small ones at the
-# edges of packets, more than the 64 a packet keeps apart (the rest always tested)
+# 150 spheres and 50 boxes of the scene's surfaces over the view, large and small ones at
+# the edges of packets (a box's top edge is its rect's), more than the 63 a packet keeps
+# apart (the rest always tested: packets that meet none of those 63 still meet them)
 {
     sed '/^plane\|^difference\|^ *surface marble translate\|^cylinder\|^box\|^sphere/d' \
         "$T/a.scene"
     echo "plane { surface boxy }"
-    for i in $(seq 0 80); do
-        echo "sphere { centre $(((i % 9) - 4)).$((i % 7)) $((i / 9 % 3)).$((i % 5)) $((i / 9))" \
-            "radius 0.$((i % 4 + 1))$((i % 3)) surface $(echo boxy marble oak many |
-                cut -d' ' -f$((i % 4 + 1))) }"
+    for i in $(seq 0 199); do
+        x=$(((i % 9) - 4)).$((i % 7)) y=$((i / 9 % 3)).$((i % 5)) z=$((i / 20))
+        sf=$(echo boxy marble oak many | cut -d' ' -f$((i % 4 + 1)))
+        if [ $((i % 4)) = 3 ]; then
+            echo "box { min $x $y $z max $(echo "$x $y $z" | awk '{ print $1 + 0.4, $2 + 0.3, $3 + 0.5 }')" \
+                "surface $sf }"
+        else
+            echo "sphere { centre $x $y $z radius 0.$((i % 4 + 1))$((i % 3)) surface $sf }"
+        fi
     done
     echo "box { min -5 0 9 max 5 0.2 9.3 surface oak }"
 } >"$T/crowd.scene"
-[ "$(grep -c '^sphere' "$T/crowd.scene")" = 81 ] &&
+[ "$(grep -c '^sphere\|^box' "$T/crowd.scene")" = 201 ] &&
     TEXTURA_PACKETS=0 t_apply "$T/crowd.scene" -q -j 1 -s 61x47 -o "$T/crowd-px.pfm" &&
     TEXTURA_PACKETS=1 t_apply "$T/crowd.scene" -q -j 2 -s 61x47 -o "$T/crowd-pk.pfm" &&
     cmp -s "$T/crowd-px.pfm" "$T/crowd-pk.pfm" &&
-    ok "81 objects over the view: packets give the pixel-by-pixel render's bytes" ||
-    notok "81 objects: packets against pixel by pixel" \
+    ok "201 objects over the view: packets give the pixel-by-pixel render's bytes" ||
+    notok "201 objects: packets against pixel by pixel" \
         "$(maxdiff "$T/crowd-px.pfm" "$T/crowd-pk.pfm" 2>&1)"
 # image maps, looked up ahead over a packet (a surface's first texture: footprints and
 # trilinear lookups in vector lanes where the CPU has AVX-512): grey and colour maps of

@@ -363,11 +363,10 @@ static inline int first_hit(const struct prim *p, const struct ray *r, double tm
     return 0;
 }
 
-/* Whether object i (in tree order) is in visit (tex_view_objects): those past its bits
- * always are */
+/* Whether object i (in tree order) is in visit (tex_view_objects) */
 static inline int seen(uint64_t visit, int i)
 {
-    return i >= TEX_VIEW_OBJECTS || (visit >> i & 1);
+    return visit >> (i < TEX_VIEW_OBJECTS ? i : TEX_VIEW_OBJECTS) & 1;
 }
 
 /* Inlined into the entry points: the closest-hit one loses every test of any; tree = 0 (a
@@ -612,6 +611,7 @@ int tex_scene_view(const struct tex_scene *s, tex_v3 c, tex_v3 u, tex_v3 v, tex_
     if (!t || !t->nnodes || !box_view(&t->nodes[0].b, c, u, v, w, vw->rect))
         return 0;
     vw->n = t->nprims < TEX_VIEW_OBJECTS ? t->nprims : TEX_VIEW_OBJECTS;
+    vw->more = t->nprims > vw->n;
     for (int i = 0; i < vw->n; i++) {
         double *r = vw->object[i];
         if (!box_view(&t->prims[i].box, c, u, v, w, r)) /* not wholly ahead: everywhere */
@@ -630,7 +630,7 @@ uint64_t tex_view_objects(const struct tex_view *vw, const double r[4])
 {
     if (!rects_meet(r, vw->rect))
         return 0;
-    uint64_t visit = vw->n < TEX_VIEW_OBJECTS ? ~0ull << vw->n : 0;
+    uint64_t visit = vw->more ? 1ull << TEX_VIEW_OBJECTS : 0; /* those past the first n */
     for (int i = 0; i < vw->n; i++)
         visit |= (uint64_t)rects_meet(r, vw->object[i]) << i;
     return visit;

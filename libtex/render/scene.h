@@ -696,16 +696,17 @@ int tex_scene_trace_unbounded(const struct tex_scene *s, const tex_v3 *o, const 
  * whose direction projects outside rect misses the box.  1, or 0 where there is no box or
  * it is not wholly ahead.  The same for the boxes of the first TEX_VIEW_OBJECTS bounded
  * objects in the tree's order (object; one not wholly ahead: the whole plane). */
-#define TEX_VIEW_OBJECTS 64
+#define TEX_VIEW_OBJECTS 63
 struct tex_view {
     double rect[4];
-    int n; /* objects with a rect in object */
+    int n, more; /* objects with a rect in object; more: others follow them */
     double object[TEX_VIEW_OBJECTS][4];
 };
 int tex_scene_view(const struct tex_scene *s, tex_v3 c, tex_v3 u, tex_v3 v, tex_v3 w,
                    struct tex_view *vw);
 /* The bounded objects a ray from vw's c can meet when its direction projects inside r =
- * {u0, u1, v0, v1}: bit i for object i (those past vw's n set); 0 where r misses rect */
+ * {u0, u1, v0, v1}: bit i for object i, bit TEX_VIEW_OBJECTS for all past vw's n where
+ * there are more; 0: none (r misses rect, or every object's) */
 uint64_t tex_view_objects(const struct tex_view *vw, const double r[4]);
 /* tex_scene_trace from 0 on, for a ray from the c of a tex_view whose direction projects
  * where tex_view_objects gave visit: the bounded objects out of visit (it cannot meet
