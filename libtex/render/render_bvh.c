@@ -607,7 +607,7 @@ int tex_scene_view(const struct tex_scene *s, tex_v3 c, tex_v3 u, tex_v3 v, tex_
                    struct tex_view *vw)
 {
     const struct tex_bvh *t = s->bvh;
-    vw->n = 0;
+    vw->n = vw->more = 0;
     if (!t || !t->nnodes || !box_view(&t->nodes[0].b, c, u, v, w, vw->rect))
         return 0;
     vw->n = t->nprims < TEX_VIEW_OBJECTS ? t->nprims : TEX_VIEW_OBJECTS;

@@ -2048,19 +2048,22 @@ TEX_AVX512 static void sphere_uv8(const __m512d p[3], __m512d *u, __m512d *v)
 /* point_gradient of a natural mapping over the lanes in (natural_gradient at the
  * object-space points p on faces f, then to world space), operation for operation, into
  * fr's rows from i on, with the placement's scales; returns the lanes that have them */
+/* u's gradient around the axis over lanes, (z, 0, -x) / (2 pi rho2), into g */
+TEX_AVX512 static inline void around8(const __m512d p[3], __m512d rho2, __m512d g[3])
+{
+    __m512d s = _mm512_div_pd(_mm512_set1_pd(1), _mm512_mul_pd(_mm512_set1_pd(2 * M_PI), rho2));
+    g[0] = _mm512_mul_pd(p[2], s), g[1] = _mm512_mul_pd(_mm512_setzero_pd(), s);
+    g[2] = _mm512_mul_pd(neg8(p[0]), s);
+}
+
 TEX_AVX512 static __mmask8 natural_gradient8_avx512(const struct tex_object *leaf,
                                                     const struct placement *pm, __mmask8 in,
                                                     const __m512d p[3], __m512i f,
                                                     struct frames *fr, int i)
 {
-    __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1), g[2][3], around[3];
+    __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1), g[2][3];
     __m512d rho2 = _mm512_add_pd(_mm512_mul_pd(p[0], p[0]), _mm512_mul_pd(p[2], p[2]));
     __mmask8 ok = in;
-    if (leaf->kind != TEX_SHAPE_BOX) { /* around the axis: u's gradient (z, 0, -x) / (2 pi rho2) */
-        __m512d s = _mm512_div_pd(one, _mm512_mul_pd(_mm512_set1_pd(2 * M_PI), rho2));
-        around[0] = _mm512_mul_pd(p[2], s), around[1] = _mm512_mul_pd(zero, s);
-        around[2] = _mm512_mul_pd(neg8(p[0]), s);
-    }
     if (leaf->kind == TEX_SHAPE_BOX) { /* box_axes: +-1/2 along one axis, by face */
         double tab[2][3][8] = {{{0}}};
         for (int fc = 0; fc < 6; fc++)
@@ -2077,7 +2080,7 @@ TEX_AVX512 static __mmask8 natural_gradient8_avx512(const struct tex_object *lea
         ok &= _mm512_cmp_pd_mask(rho2, _mm512_mul_pd(_mm512_set1_pd(1e-12), r2), _CMP_GT_OQ);
         __m512d k = _mm512_div_pd(one, _mm512_mul_pd(_mm512_mul_pd(_mm512_set1_pd(M_PI),
                                                                    _mm512_sqrt_pd(rho2)), r2));
-        memcpy(g[0], around, sizeof around);
+        around8(p, rho2, g[0]);
         g[1][0] = _mm512_mul_pd(_mm512_mul_pd(p[0], p[1]), k);
         g[1][1] = _mm512_mul_pd(neg8(rho2), k);
         g[1][2] = _mm512_mul_pd(_mm512_mul_pd(p[2], p[1]), k);
@@ -2087,7 +2090,8 @@ TEX_AVX512 static __mmask8 natural_gradient8_avx512(const struct tex_object *lea
         __mmask8 bottom = _mm512_cmp_epi64_mask(f, _mm512_set1_epi64(2), _MM_CMPINT_EQ);
         double r0 = leaf->r0 > 0 ? leaf->r0 : 1, r1 = leaf->r1 > 0 ? leaf->r1 : 1;
         __m512d r = _mm512_mask_blend_pd(bottom, _mm512_set1_pd(r1), _mm512_set1_pd(r0));
-        __m512d h = _mm512_div_pd(_mm512_set1_pd(0.5), r);
+        __m512d h = _mm512_div_pd(_mm512_set1_pd(0.5), r), around[3];
+        around8(p, rho2, around);
         g[0][0] = _mm512_mask_blend_pd(side, h, around[0]);
         g[0][1] = _mm512_mask_blend_pd(side, zero, around[1]);
         g[0][2] = _mm512_mask_blend_pd(side, zero, around[2]);
