@@ -24,10 +24,10 @@ int tex_map_check_size(long long w, long long h, long long nc)
     return 0;
 }
 
-/* Zeroed pages for a large map, *bytes of them rounded up to whole 2 MiB pages on a 2 MiB
- * boundary, in huge pages where the kernel gives them: in 4 KiB pages, an empty 800x600
- * render spent a third of its time in page faults. NULL if the kernel has no memory. */
-static void *mapped_pixels(size_t *bytes)
+/* Fresh zeroed pages, *bytes of them rounded up to whole 2 MiB pages on a 2 MiB boundary, in
+ * huge pages where the kernel gives them: in 4 KiB pages, an empty 800x600 render spent a
+ * third of its time in page faults. NULL if the kernel has no memory. */
+static void *mapped_pages(size_t *bytes)
 {
     const size_t huge = (size_t)2 << 20;
     size_t n = (*bytes + huge - 1) / huge * huge;
@@ -43,6 +43,31 @@ static void *mapped_pixels(size_t *bytes)
     return p + head;
 }
 
+void *tex_pages_new(size_t bytes, size_t min, size_t *mapped)
+{
+    void *p;
+
+    *mapped = 0;
+    if (bytes >= min) {
+        size_t n = bytes;
+        if ((p = mapped_pages(&n)))
+            *mapped = n;
+        return p;
+    }
+    /* aligned_alloc wants a multiple of the alignment */
+    if ((p = aligned_alloc(64, (bytes + 63) & ~(size_t)63)))
+        memset(p, 0, bytes);
+    return p;
+}
+
+void tex_pages_free(void *p, size_t mapped)
+{
+    if (mapped)
+        munmap(p, mapped);
+    else
+        free(p);
+}
+
 tex_map *tex_map_new(int w, int h, int nc)
 {
     tex_map *m;
@@ -55,15 +80,8 @@ tex_map *tex_map_new(int w, int h, int nc)
         return NULL;
     }
     bytes = (size_t)w * h * nc * sizeof *m->px;
-    if (bytes >= (1 << 20)) {
-        /* Fresh pages come zeroed: no pass over a map the caller will fill anyway. */
-        size_t n = bytes;
-        if ((m->px = mapped_pixels(&n)))
-            m->mapped = n;
-    } else if ((m->px = aligned_alloc(64, (bytes + 63) & ~(size_t)63))) {
-        memset(m->px, 0, bytes); /* aligned_alloc wants a multiple of the alignment, above */
-    }
-    if (!m->px) {
+    /* from 1 MiB, fresh pages: they come zeroed, no pass over a map the caller will fill */
+    if (!(m->px = tex_pages_new(bytes, 1 << 20, &m->mapped))) {
         free(m);
         tex_error("out of memory for a %dx%dx%d map", w, h, nc);
         return NULL;
@@ -78,10 +96,7 @@ void tex_map_free(tex_map *m)
 {
     if (!m)
         return;
-    if (m->mapped)
-        munmap(m->px, m->mapped);
-    else
-        free(m->px);
+    tex_pages_free(m->px, m->mapped);
     free(m->history);
     free(m);
 }

@@ -31,6 +31,29 @@ static void test_map_limits(void)
     tex_map_free(m);
 }
 
+/* tex_pages_new: zeroed and aligned from the heap and from fresh pages alike, whole 2 MiB
+ * pages counted back, and written end to end */
+static void test_pages(void)
+{
+    const size_t sizes[] = {1, 100, 4096 * 3 + 5, (size_t)2 << 20, ((size_t)5 << 20) + 12};
+    for (int k = 0; k < 5; k++)
+        for (int big = 0; big < 2; big++) {
+            size_t n = sizes[k], mapped = 7;
+            unsigned char *p = tex_pages_new(n, big ? 1 : (size_t)1 << 40, &mapped);
+            int zero = p != NULL;
+            for (size_t i = 0; zero && i < n; i++)
+                zero = p[i] == 0;
+            uintptr_t align = big ? (uintptr_t)2 << 20 : 64; /* pages: on a huge page's bound */
+            CHECKF(zero && (uintptr_t)p % align == 0, "%zu bytes (%s) come zeroed, aligned", n,
+                   big ? "pages" : "heap");
+            CHECKF(big ? mapped >= n && mapped % ((size_t)2 << 20) == 0 : mapped == 0,
+                   "%zu bytes (%s): %zu bytes to give back", n, big ? "pages" : "heap", mapped);
+            if (p)
+                memset(p, 0xff, n);
+            tex_pages_free(p, mapped);
+        }
+}
+
 struct p {
     int n;
     double x;
@@ -227,6 +250,7 @@ int main(void)
 {
     test_progress();
     test_map_limits();
+    test_pages();
     test_params();
     test_sniff();
     test_stream();
