@@ -194,8 +194,8 @@ spin() { # the idle threads' spin count or block time the runtime took, as it di
     env -u GOMP_SPINCOUNT -u KMP_BLOCKTIME OMP_DISPLAY_ENV=verbose "$@" 2>&1 >/dev/null |
         grep -E "GOMP_SPINCOUNT = |KMP_BLOCKTIME=" | tail -1 | sed "s/.*= *'//; s/'.*//"
 }
-want=2
-ldd "$(command -v t_noise)" | grep -q libgomp && want=1
+want=1 # libgomp, linked statically under gcc (Makefile's PROG_LDLIBS)
+ldd "$(command -v t_noise)" | grep -q libomp && want=2
 for a in "" "-j 2" "-j 1 -j 2"; do
     n=$(starts t_noise -s 8 $a -q -o "$T/w.pfm")
     w=$(spin env -u OMP_WAIT_POLICY t_noise -s 8 $a -q -o "$T/w.pfm")

@@ -1737,6 +1737,7 @@ void tex_scene_free(struct tex_scene *s)
     for (size_t i = 0; i < s->npool; i++)
         free(s->pool[i]);
     free(s->pool);
+    tex_pages_free(s->packets, s->packets_mapped);
     free(s->warnings);
     free(s->file);
     tex_colour_space_spectral_free(&s->cs);

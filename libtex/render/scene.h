@@ -647,6 +647,9 @@ struct tex_scene {
     void **pool;
     size_t npool, cpool;
     char *warnings;
+    void *packets; /* render.c's packets, one a thread, kept from band to band */
+    size_t packets_mapped;
+    int npackets;
 };
 
 /* ---- the scene's parameters as rows (render_params.c) ------------------------ */
