@@ -75,8 +75,8 @@ int tex_write_all(int fd, const void *p, size_t n, const char *name)
  * written with a chunk offset table computed in advance, and the chunks pass
  * through buf (emptied), gathered into writes of up to STAGE bytes (the core hands
  * over a scanline's header and its pixels apart: two system calls a row); the table the
- * core writes last must match ours.  STAGE is a pipe's capacity: 1 MiB took 137 more
- * page faults than 64 KiB, 2.5 % of a render's CPU on a virtual machine. */
+ * core writes last must match ours.  STAGE is a pipe's default capacity: 1 MiB took 137
+ * more page faults than 64 KiB, 2.5 % of a render's CPU on a virtual machine. */
 #define STAGE (1 << 16)
 struct wsink {
     tex_buf *buf;
