@@ -48,7 +48,7 @@ void *tex_pages_new(size_t bytes, size_t min, size_t *mapped)
     void *p;
 
     *mapped = 0;
-    if (bytes >= min) {
+    if (bytes && bytes >= min) {
         size_t n = bytes;
         if ((p = mapped_pages(&n)))
             *mapped = n;

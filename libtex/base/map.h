@@ -41,8 +41,8 @@ typedef struct tex_map {
     size_t mapped;  /* private: bytes mmap'ed for px, 0 if malloc'ed */
 } tex_map;
 
-/* bytes of zeroed memory, 64-byte aligned, for a buffer a caller fills: from min bytes up,
- * fresh pages (in 2 MiB huge pages where the kernel gives them: a first touch of each
+/* bytes of zeroed memory, 64-byte aligned, for a buffer a caller fills: from min bytes up
+ * (and 1), fresh pages (in 2 MiB huge pages where the kernel gives them: a first touch of each
  * 4 KiB page is a page fault, 11 us on a virtual machine measured here), else the heap.
  * *mapped is what tex_pages_free takes back (0 from the heap); NULL when out of memory. */
 void *tex_pages_new(size_t bytes, size_t min, size_t *mapped);

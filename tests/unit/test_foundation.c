@@ -36,6 +36,10 @@ static void test_map_limits(void)
 static void test_pages(void)
 {
     const size_t sizes[] = {1, 100, 4096 * 3 + 5, (size_t)2 << 20, ((size_t)5 << 20) + 12};
+    size_t none = 7;
+    void *z = tex_pages_new(0, 0, &none); /* no bytes: the heap's, whatever min */
+    CHECK(none == 0, "0 bytes come from the heap, given back by free");
+    tex_pages_free(z, none);
     for (int k = 0; k < 5; k++)
         for (int big = 0; big < 2; big++) {
             size_t n = sizes[k], mapped = 7;
