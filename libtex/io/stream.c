@@ -367,6 +367,32 @@ static int encode(const tex_map *m, tex_rows_fn fill, void *arg, enum tex_compre
     return sink_flush(sink);
 }
 
+/* Tile tx, ty of level l (the map lv) encoded and written, its pixels from px (a band of
+ * rows, lv's width) or, with px NULL, from lv; enc is destroyed after a written tile. */
+static exr_result_t write_tile(exr_context_t ctx, int part, exr_encode_pipeline_t *enc,
+                               const tex_map *lv, int l, int tx, int ty, int tile,
+                               const float *px, struct worth *worth)
+{
+    exr_chunk_info_t ci;
+    exr_result_t rv;
+
+    if ((rv = exr_write_tile_chunk_info(ctx, part, tx, ty, l, l, &ci)))
+        return rv;
+    /* OpenEXR 3.1 sizes edge tiles of every level by the full-resolution
+     * level's edges: give the tile its own level's size. */
+    ci.width = lv->w - tx * tile < tile ? lv->w - tx * tile : tile;
+    ci.height = lv->h - ty * tile < tile ? lv->h - ty * tile : tile;
+    ci.unpacked_size = (uint64_t)ci.width * ci.height * lv->nc * 4;
+    if ((rv = exr_encoding_initialize(ctx, part, &ci, enc)))
+        return rv;
+    aim_encoder(enc, px ? px : tex_map_px(lv, tx * tile, ty * tile), lv->w, lv->nc);
+    if ((rv = exr_encoding_choose_default_routines(ctx, part, enc)) ||
+        (rv = encode_chunk(ctx, part, enc, worth)))
+        return rv;
+    exr_encoding_destroy(ctx, enc);
+    return EXR_ERR_SUCCESS;
+}
+
 /* m tiled (with its mip levels), or, with fill, the map head describes made
  * a band of tile rows at a time (one level). */
 static int encode_tiled(const tex_map *m, tex_rows_fn fill, void *arg, int tile, int mipmap,
@@ -377,7 +403,6 @@ static int encode_tiled(const tex_map *m, tex_rows_fn fill, void *arg, int tile,
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     exr_context_t ctx = NULL;
     exr_encode_pipeline_t enc;
-    exr_chunk_info_t ci;
     exr_result_t rv = EXR_ERR_SUCCESS;
     tex_map *lv[32] = {(tex_map *)m};
     int part, n = 1, r = -1;
@@ -414,26 +439,10 @@ static int encode_tiled(const tex_map *m, tex_rows_fn fill, void *arg, int tile,
             if (band && fill(arg, ty * tile, m->h - ty * tile < tile ? m->h - ty * tile : tile,
                              band) < 0)
                 goto done;
-            for (int tx = 0; tx * tile < lv[l]->w; tx++) {
-                if ((rv = exr_write_tile_chunk_info(ctx, part, tx, ty, l, l, &ci)))
+            for (int tx = 0; tx * tile < lv[l]->w; tx++)
+                if ((rv = write_tile(ctx, part, &enc, lv[l], l, tx, ty, tile,
+                                     band ? band + (size_t)tx * tile * m->nc : NULL, &worth)))
                     goto done;
-                /* OpenEXR 3.1 sizes edge tiles of every level by the full-resolution
-                 * level's edges: give the tile its own level's size. */
-                ci.width = lv[l]->w - tx * tile < tile ? lv[l]->w - tx * tile : tile;
-                ci.height = lv[l]->h - ty * tile < tile ? lv[l]->h - ty * tile : tile;
-                ci.unpacked_size = (uint64_t)ci.width * ci.height * m->nc * 4;
-                if ((rv = exr_encoding_initialize(ctx, part, &ci, &enc)))
-                    goto done;
-                aim_encoder(&enc,
-                            band ? band + (size_t)tx * tile * m->nc
-                                 : tex_map_px(lv[l], tx * tile, ty * tile),
-                            lv[l]->w, m->nc);
-                if ((rv = exr_encoding_choose_default_routines(ctx, part, &enc)))
-                    goto done;
-                if ((rv = encode_chunk(ctx, part, &enc, &worth)))
-                    goto done;
-                exr_encoding_destroy(ctx, &enc);
-            }
         }
     exr_encoding_destroy(ctx, &enc);
     rv = exr_finish(&ctx);
