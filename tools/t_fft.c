@@ -29,7 +29,6 @@ int main(int argc, char **argv)
     struct opts o;
     int i;
 
-    tex_spectral_keep_memory();
     i = tex_cli_parse(&tool, argc, argv, &c, &o);
     const char *name = i < argc ? argv[i] : "-";
     tex_map *m = tex_cli_read(name), *s;

@@ -43,8 +43,6 @@ int main(int argc, char **argv)
     const char *name = i < argc ? argv[i] : "-";
     tex_map *s, *phase = NULL, *t;
 
-    tex_spectral_keep_memory();
-
     if (o.phase && !strcmp(o.phase, "zero"))
         io.phase = TEX_PHASE_ZERO;
     else if (o.phase && strcmp(o.phase, "random")) {

@@ -28,7 +28,6 @@ int main(int argc, char **argv)
     struct opts o;
     int i;
 
-    tex_spectral_keep_memory();
     i = tex_cli_parse(&tool, argc, argv, &c, &o);
     if (c.win[2] > 0) /* accepted for the generators' sake, refused with the reason */
         tex_usage_die("sparse convolution cannot make a window of its map (--window): it "

@@ -4,6 +4,5 @@
 
 int main(int argc, char **argv)
 {
-    tex_spectral_keep_memory();
     return tex_generate_main(&tex_prim_spectral, argc, argv);
 }

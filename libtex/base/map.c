@@ -1,6 +1,9 @@
 /* map.c - allocation and metadata of texture maps */
 #include <ctype.h>
 #include <errno.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -66,6 +69,14 @@ void tex_pages_free(void *p, size_t mapped)
         munmap(p, mapped);
     else
         free(p);
+}
+
+void tex_keep_heap(void)
+{
+#ifdef __GLIBC__
+    mallopt(M_MMAP_THRESHOLD, 1 << 30);
+    mallopt(M_TRIM_THRESHOLD, 1 << 30);
+#endif
 }
 
 tex_map *tex_map_new(int w, int h, int nc)

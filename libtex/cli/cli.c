@@ -649,6 +649,7 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
         static int registered; /* a tool may parse twice (t_warp) */
         if (!registered++) {
             passive_threads(argv);
+            tex_keep_heap();
             atexit(close_stdout);
         }
     }
@@ -771,23 +772,25 @@ struct gen_job {
     int x, y, w; /* the window the bands cut (the whole grid without --window) */
 };
 
+/* A band sampled straight into the encoder's rows: a map of its own for each band
+ * would be fresh memory each time, and a first touch of a page is dear. */
 static int gen_fill(void *arg, int y, int n, float *rows)
 {
     struct gen_job *j = arg;
-    tex_map *b;
+    tex_map b = {.w = j->w, .h = n, .nc = tex_field_channels(j->f), .px = rows};
+    int rc;
 
     j->f->wx = j->x;
     j->f->wy = j->y + y;
     j->f->ww = j->w;
     j->f->wh = n;
+    memset(rows, 0, tex_map_samples(&b) * sizeof *rows); /* as tex_map_new's maps come */
     tex_progress_hold(1); /* the band counts as its rows of the whole map */
-    b = tex_field_sample(j->f);
+    rc = tex_field_sample_into(j->f, &b);
     tex_progress_hold(0);
-    if (!b)
+    if (rc < 0)
         return -1;
     tex_progress_add(n);
-    memcpy(rows, b->px, tex_map_samples(b) * sizeof *rows);
-    tex_map_free(b);
     return 0;
 }
 
@@ -921,15 +924,24 @@ struct band_job {
     int w, nc, subregions;
     tex_map *(*op)(tex_map *, void *);
     void *arg;
+    tex_map *keep; /* a band the op gave back as it took it, for the next band's rows */
 };
 
+/* The op's band is the last one's map where the op gave that back (the bands are one
+ * size but the last): a map of its own for each band would be fresh pages each time. */
 static int band_fill(void *arg, int y, int n, float *rows)
 {
     struct band_job *j = arg;
-    tex_map *b = tex_map_new(j->w, n, j->nc), *o;
+    tex_map *b = j->keep, *o;
 
-    if (!b)
+    j->keep = NULL;
+    if (b && b->h < n) {
+        tex_map_free(b);
+        b = NULL;
+    }
+    if (!b && !(b = tex_map_new(j->w, n, j->nc)))
         return -1;
+    b->h = n;
     b->subregions = j->subregions;
     if (tex_rows_read(j->r, y, n, b->px, j->name) < 0 ||
         tex_rows_nonfinite(b->px, j->w, n, j->nc, y, j->name) < 0 || !(o = j->op(b, j->arg))) {
@@ -937,7 +949,10 @@ static int band_fill(void *arg, int y, int n, float *rows)
         return -1;
     }
     memcpy(rows, o->px, tex_map_samples(o) * sizeof *rows);
-    tex_map_free(o);
+    if (o->w == j->w && o->nc == j->nc && !o->history)
+        j->keep = o;
+    else
+        tex_map_free(o);
     return 0;
 }
 
@@ -980,12 +995,13 @@ void tex_cli_stream(const char *path, const struct tex_common *c,
     if (!(probe = op(probe, arg)))
         tex_die();
     {
-        struct band_job j = {r, name, head.w, head.nc, head.subregions, op, arg};
+        struct band_job j = {r, name, head.w, head.nc, head.subregions, op, arg, NULL};
         tex_map out = head;
         out.nc = probe->nc;
         out.subregions = probe->subregions;
         tex_map_free(probe);
         tex_cli_write_rows(&out, c, band_fill, &j);
+        tex_map_free(j.keep);
         tex_rows_close(r);
         free(out.history);
     }

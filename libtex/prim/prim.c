@@ -395,20 +395,46 @@ int tex_field_sample_rows(const struct tex_field *f, tex_map *m)
     return sample_rows(f, m, 0, 0);
 }
 
-tex_map *tex_field_sample(const struct tex_field *f)
+/* Whether the field is sampled as coloured regions (3 channels: f->colors) */
+static int sampled_colored(const struct tex_field *f)
 {
     const struct tex_primitive *p = f->prim;
     int regions = (p->flags & TEX_PRIM_REGIONS) && !(p->flags & TEX_PRIM_GRID) && p->eval2;
-    int colored = regions && !f->ids && f->colors;
+    return regions && !f->ids && f->colors;
+}
+
+int tex_field_channels(const struct tex_field *f)
+{
+    return sampled_colored(f) ? 3 : f->nc;
+}
+
+tex_map *tex_field_sample(const struct tex_field *f)
+{
+    int window = f->ww > 0;
+    tex_map *m = tex_map_new(window ? f->ww : f->w, window ? f->wh : f->h, tex_field_channels(f));
+
+    if (m && tex_field_sample_into(f, m) < 0) {
+        tex_map_free(m);
+        return NULL;
+    }
+    return m;
+}
+
+int tex_field_sample_into(const struct tex_field *f, tex_map *m)
+{
+    const struct tex_primitive *p = f->prim;
+    int regions = (p->flags & TEX_PRIM_REGIONS) && !(p->flags & TEX_PRIM_GRID) && p->eval2;
+    int colored = sampled_colored(f);
     /* ids by spans, one float each, unless a row callback fills the row or
      * TEXTURA_AA=full asks for every centre */
     int spans = regions && f->ids && f->nc == 1 && p->box2 && !p->row && !aa_full();
     int window = f->ww > 0, x0 = window ? f->wx : 0, y0 = window ? f->wy : 0;
-    tex_map *m = tex_map_new(window ? f->ww : f->w, window ? f->wh : f->h, colored ? 3 : f->nc);
     int failed = 0;
 
-    if (!m)
-        return NULL;
+    if (m->w != (window ? f->ww : f->w) || m->h != (window ? f->wh : f->h) ||
+        m->nc != tex_field_channels(f))
+        return tex_error("%s: a %dx%dx%d map for a %dx%dx%d field", p->name, m->w, m->h, m->nc,
+                         window ? f->ww : f->w, window ? f->wh : f->h, tex_field_channels(f));
     if (window) {
         m->x0 = x0;
         m->y0 = y0;
@@ -418,27 +444,12 @@ tex_map *tex_field_sample(const struct tex_field *f)
     tex_progress_stage(1, m->h); /* what remains of the bar after the primitive's init */
     if (p->flags & TEX_PRIM_REGIONS && f->ids)
         m->subregions = f->nregions;
-    if (colored || spans) {
-        if (sample_regions(f, m, x0, y0) < 0) {
-            tex_map_free(m);
-            return NULL;
-        }
-        return m;
-    }
-    if ((p->flags & TEX_PRIM_GRID) && !window) {
-        if (p->grid(f, m) < 0) {
-            tex_map_free(m);
-            return NULL;
-        }
-        return m;
-    }
-    if (p->row) {
-        if (sample_rows(f, m, x0, y0) < 0) {
-            tex_map_free(m);
-            return NULL;
-        }
-        return m;
-    }
+    if (colored || spans)
+        return sample_regions(f, m, x0, y0);
+    if ((p->flags & TEX_PRIM_GRID) && !window)
+        return p->grid(f, m);
+    if (p->row)
+        return sample_rows(f, m, x0, y0);
 #pragma omp parallel
     {
         double *u = malloc(2 * sizeof *u * m->w), *v = u ? u + m->w : NULL;
@@ -458,10 +469,5 @@ tex_map *tex_field_sample(const struct tex_field *f)
         }
         free(u);
     }
-    if (failed) {
-        tex_map_free(m);
-        tex_error("out of memory");
-        return NULL;
-    }
-    return m;
+    return failed ? tex_error("out of memory") : 0;
 }

@@ -172,8 +172,14 @@ void tex_field_free(struct tex_field *f);
 /* Subsamples per pixel side when a REGIONS field is sampled in colour. */
 #define TEX_FIELD_SS 4
 
-/* Sample an initialised field on its w x h grid, threads from OpenMP. */
+/* Sample an initialised field on its w x h grid (or its window), threads from OpenMP. */
 tex_map *tex_field_sample(const struct tex_field *f);
+/* The channels of the maps it makes: 3 for regions in colour, else f->nc. */
+int tex_field_channels(const struct tex_field *f);
+/* tex_field_sample into m, a zero-filled map of the grid's (or window's) size and the
+ * field's channels whose pixels may be the caller's (a band an encoder writes): 0, or -1
+ * with an error. */
+int tex_field_sample_into(const struct tex_field *f, tex_map *m);
 /* tex_field_sample's rows for a primitive with a row callback, into m (its w x h grid,
  * no window): the same rows, made the same way, into a map made once (a benchmark's fills). */
 int tex_field_sample_rows(const struct tex_field *f, tex_map *m);

@@ -1,9 +1,6 @@
 /* spectral.c - FFT and inverse FFT of maps, spectral synthesis of fBm,
  * Lewis's sparse convolution, and the spectral primitive */
 #include <fftw3.h>
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
 #include <math.h>
 #include <pthread.h>
 #include <stdlib.h>
@@ -66,14 +63,6 @@ static inline const float *random_phase(uint64_t key, uint64_t k)
 }
 
 /* ---- helpers ---- */
-
-void tex_spectral_keep_memory(void)
-{
-#ifdef __GLIBC__
-    mallopt(M_MMAP_THRESHOLD, 1 << 30);
-    mallopt(M_TRIM_THRESHOLD, 1 << 30);
-#endif
-}
 
 /* The finite check and, in the same pass, whether any sample is nonzero. */
 static int scan(const tex_map *m, const char *what, int *nonzero)

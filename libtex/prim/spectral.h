@@ -124,13 +124,6 @@ tex_map *tex_ifft(const tex_map *spectrum, const struct tex_ifft_opts *o);
 int tex_spectral_fbm(tex_map *m, const struct tex_fbm_spec *p);
 tex_map *tex_sparse_convolve(const tex_map *sample, int w, int h, const struct tex_sparse_spec *p);
 
-/* For tools, before the first allocation: large maps pass through several
- * buffers of one size (file image, map, spectrum, stream); with glibc this
- * keeps them on the heap, so that each reuses the pages of the last instead
- * of faulting in fresh zeroed pages (a third of t_ifft's time at 4096^2).
- * Does nothing elsewhere. */
-void tex_spectral_keep_memory(void);
-
 /* 0 if every sample of m is finite, else -1 naming the first bad pixel
  * (after "what: " unless what is NULL). */
 int tex_check_finite(const tex_map *m, const char *what);

@@ -3,6 +3,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#ifdef __GLIBC__ /* known once a libc header is in */
+#include <malloc.h>
+#endif
 
 #include "textura.h"
 #include "unit.h"
@@ -250,11 +253,37 @@ static void test_progress(void)
     CHECK(reports == 0, "no handler, no reports");
 }
 
+/* tex_keep_heap: a block glibc would map on its own whatever it has seen freed (40 MiB, over
+ * the 32 MiB that its dynamic threshold stops at) comes from the heap, so that freeing it keeps
+ * its pages for the next.  glibc's own allocator only: a sanitizer's replaces it. */
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
+#define SANITIZED 1
+#endif
+#endif
+static void test_keep_heap(void)
+{
+#if defined(__GLIBC__) && !defined(SANITIZED)
+    size_t before = mallinfo2().hblks, during;
+    tex_keep_heap();
+    char *p = malloc(40 << 20); /* untouched: no page faulted in */
+    during = mallinfo2().hblks;
+    free(p);
+    CHECKF(p && during == before, "tex_keep_heap: 40 MiB from the heap, not a mapping of its "
+                                  "own (%zu mapped blocks, %zu before)", during, before);
+#else
+    printf("# tex_keep_heap: glibc's allocator is not the one in use\n");
+#endif
+}
+
 int main(void)
 {
     test_progress();
     test_map_limits();
     test_pages();
+    test_keep_heap();
     test_params();
     test_sniff();
     test_stream();

@@ -388,6 +388,48 @@ static void bad_params(void)
     }
 }
 
+/* tex_field_sample_into a caller's band (an encoder's rows) makes a window's bytes of the
+ * whole map, and refuses a band of another size or channel count. */
+static void sample_into(void)
+{
+    static const struct {
+        const char *name;
+        int ids;
+    } fs[] = {{"circle", 0}, {"ring", 1}, {"star", 0}, {"noise", 0}, {"turbulence", 0}};
+    enum { W = 97, H = 61, Y0 = 10, ROWS = 17 };
+    for (size_t i = 0; i < sizeof fs / sizeof *fs; i++) {
+        struct tex_field *f = field(fs[i].name, fs[i].ids, W, H, NULL);
+        tex_map *whole = f ? tex_field_sample(f) : NULL;
+        int nc = f ? tex_field_channels(f) : 0;
+        float *buf = calloc((size_t)W * ROWS * nc + 1, sizeof *buf);
+        if (!whole || !buf) {
+            CHECKF(0, "%s: a map to compare bands with", fs[i].name);
+            tex_field_free(f), tex_map_free(whole), free(buf);
+            continue;
+        }
+        buf[W * ROWS * nc] = 42; /* past the band: must stay */
+        tex_map band = {.w = W, .h = ROWS, .nc = nc, .px = buf};
+        f->wx = 0, f->wy = Y0, f->ww = W, f->wh = ROWS;
+        int rc = tex_field_sample_into(f, &band);
+        CHECKF(rc == 0 && nc == whole->nc && buf[W * ROWS * nc] == 42 &&
+                   !memcmp(buf, tex_map_row(whole, Y0), sizeof *buf * W * ROWS * nc),
+               "%s%s: a band sampled into a caller's rows is the whole map's rows %d..%d",
+               fs[i].name, fs[i].ids ? " --ids" : "", Y0, Y0 + ROWS - 1);
+        band.nc = nc + 1;
+        rc = tex_field_sample_into(f, &band);
+        CHECKF(rc < 0 && strstr(tex_errmsg(), "field"),
+               "%s: a band of %d channels for %d is refused (%s)", fs[i].name, nc + 1, nc,
+               tex_errmsg());
+        band.nc = nc, band.h = ROWS + 1;
+        CHECKF(tex_field_sample_into(f, &band) < 0 && buf[W * ROWS * nc] == 42,
+               "%s: a band of %d rows for a window of %d is refused, nothing written",
+               fs[i].name, ROWS + 1, ROWS);
+        tex_map_free(whole);
+        tex_field_free(f);
+        free(buf);
+    }
+}
+
 int main(void)
 {
     known_points();
@@ -396,6 +438,7 @@ int main(void)
     repetition();
     ids_and_colours();
     threads();
+    sample_into();
     solids();
     bad_params();
     return unit_done();
