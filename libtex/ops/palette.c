@@ -13,6 +13,7 @@
 #include "base/error.h"
 #include "base/map.h"
 #include "base/paths.h"
+#include "base/simd.h"
 #include "io/file.h"
 #include "ops/palette.h"
 
@@ -34,7 +35,8 @@ static double srgb_decode(double c)
  * below 1e-14, summed by Estrin's scheme (a short chain of dependent operations).  libm's
  * pow, three times per lookup, costs about twice as much. */
 enum { ENC_PIECES = 32, ENC_DEGREE = 6 };
-static double enc_poly[ENC_PIECES][ENC_DEGREE + 1], enc_scale[9];
+static double enc_poly[ENC_PIECES][ENC_DEGREE + 1], enc_scale[16];
+static double enc_coef[ENC_DEGREE + 1][ENC_PIECES]; /* enc_poly by coefficient, for permutes */
 static pthread_once_t enc_once = PTHREAD_ONCE_INIT;
 
 static void enc_setup(void)
@@ -43,7 +45,7 @@ static void enc_setup(void)
     for (int i = 0; i < ENC_PIECES; i++) {
         double c0 = 0.5 + (i + 0.5) / (2 * ENC_PIECES), coef = pow(c0, a);
         for (int k = 0; k <= ENC_DEGREE; k++) { /* binomial(a, k) c0^(a - k) */
-            enc_poly[i][k] = coef;
+            enc_poly[i][k] = enc_coef[k][i] = coef;
             coef *= (a - k) / ((k + 1) * c0);
         }
     }
@@ -98,7 +100,8 @@ void tex_srgb_to_oklab(const float rgb[3], float lab[3])
     lab[2] = (float)(0.0259040371 * l + 0.7827717662 * m - 0.8086757660 * s);
 }
 
-void tex_oklab_to_srgb(const float lab[3], float rgb[3])
+/* OKLab to linear sRGB, before the encoding */
+static void oklab_linear(const float lab[3], double lin[3])
 {
     double l = lab[0] + 0.3963377774 * lab[1] + 0.2158037573 * lab[2];
     double m = lab[0] - 0.1055613458 * lab[1] - 0.0638541728 * lab[2];
@@ -106,10 +109,112 @@ void tex_oklab_to_srgb(const float lab[3], float rgb[3])
     l = l * l * l;
     m = m * m * m;
     s = s * s * s;
+    lin[0] = 4.0767416621 * l - 3.3077115913 * m + 0.2309699292 * s;
+    lin[1] = -1.2684380046 * l + 2.6097574011 * m - 0.3413193965 * s;
+    lin[2] = -0.0041960863 * l - 0.7034186147 * m + 1.7076147010 * s;
+}
+
+#ifdef TEX_X86
+/* srgb_encode of eight values: enc_pow's operations in its order, lane by lane, so the same
+ * floats; NaNs, and the lanes where the polynomial cannot decide, go to srgb_encode. */
+TEX_AVX512 static __m256 srgb_encode8(__m512d x)
+{
+    const __m512d half = _mm512_set1_pd(0.5), pieces = _mm512_set1_pd(2 * ENC_PIECES);
+    __mmask8 toe = _mm512_cmp_pd_mask(x, _mm512_set1_pd(0.0031308), _CMP_LE_OQ);
+    __mmask8 mid = _mm512_cmp_pd_mask(x, _mm512_set1_pd(1.0), _CMP_LT_OQ) & ~toe; /* not NaN */
+    __m512i bits = _mm512_castpd_si512(_mm512_mask_blend_pd(mid, half, x)); /* c = m 2^e */
+    __m512i ie = _mm512_sub_epi64(_mm512_set1_epi64(1022), _mm512_srli_epi64(bits, 52)); /* -e */
+    bits = _mm512_or_si512(_mm512_and_si512(bits, _mm512_set1_epi64((INT64_C(1) << 52) - 1)),
+                           _mm512_set1_epi64(INT64_C(1022) << 52));
+    __m512d m = _mm512_castsi512_pd(bits);
+    __m256i i = _mm512_cvttpd_epi32(_mm512_mul_pd(_mm512_sub_pd(m, half), pieces));
+    __m512d centre = _mm512_div_pd(_mm512_add_pd(_mm512_cvtepi32_pd(i), half), pieces);
+    __m512d t = _mm512_sub_pd(m, _mm512_add_pd(half, centre));
+    __m512d t2 = _mm512_mul_pd(t, t), p[ENC_DEGREE + 1];
+    __m512i i64 = _mm512_cvtepi32_epi64(i); /* 0..31: a permute of 16 entries, by bit 4 */
+    __mmask8 upper = _mm512_test_epi64_mask(i64, _mm512_set1_epi64(16));
+    for (int k = 0; k <= ENC_DEGREE; k++) {
+        const double *e = enc_coef[k];
+        __m512d lo16 = _mm512_permutex2var_pd(_mm512_loadu_pd(e), i64, _mm512_loadu_pd(e + 8));
+        __m512d hi16 =
+            _mm512_permutex2var_pd(_mm512_loadu_pd(e + 16), i64, _mm512_loadu_pd(e + 24));
+        p[k] = _mm512_mask_blend_pd(upper, lo16, hi16);
+    }
+    __m512d a = _mm512_add_pd(p[0], _mm512_mul_pd(p[1], t));
+    __m512d b = _mm512_mul_pd(t2, _mm512_add_pd(p[2], _mm512_mul_pd(p[3], t)));
+    __m512d d = _mm512_add_pd(_mm512_add_pd(p[4], _mm512_mul_pd(p[5], t)), _mm512_mul_pd(t2, p[6]));
+    __m512d y = _mm512_add_pd(_mm512_add_pd(a, b), _mm512_mul_pd(_mm512_mul_pd(t2, t2), d));
+    y = _mm512_mul_pd(y, _mm512_permutex2var_pd(_mm512_loadu_pd(enc_scale), ie,
+                                                _mm512_loadu_pd(enc_scale + 8)));
+    __m512d v = _mm512_sub_pd(_mm512_mul_pd(_mm512_set1_pd(1.055), y), _mm512_set1_pd(0.055));
+    __m256 lo = _mm512_cvtpd_ps(_mm512_sub_pd(v, _mm512_set1_pd(2e-12)));
+    __m256 hi = _mm512_cvtpd_ps(_mm512_add_pd(v, _mm512_set1_pd(2e-12)));
+    int done = _mm256_movemask_ps(_mm256_cmp_ps(lo, hi, _CMP_EQ_OQ)) & mid;
+    if (done != 0xff) {
+        __m256 lin = _mm512_cvtpd_ps(_mm512_mul_pd(_mm512_set1_pd(12.92), x)); /* the toe's */
+        double c[8];
+        _mm512_storeu_pd(c, x);
+        for (int k = 0; k < 8; k++)
+            if (!(done >> k & 1))
+                lo[k] = toe >> k & 1 && c[k] > 0.0 ? lin[k] : srgb_encode(c[k]);
+    }
+    return lo;
+}
+
+/* oklab_srgb_n eight colours at a time: oklab_linear's operations lane by lane */
+TEX_AVX512 static void oklab_srgb8(const float *lab[3], float *rgb[3])
+{
+    __m512d L = _mm512_cvtps_pd(_mm256_loadu_ps(lab[0]));
+    __m512d A = _mm512_cvtps_pd(_mm256_loadu_ps(lab[1]));
+    __m512d B = _mm512_cvtps_pd(_mm256_loadu_ps(lab[2]));
+#define OK_AXIS(a, b) \
+    _mm512_add_pd(_mm512_add_pd(L, _mm512_mul_pd(_mm512_set1_pd(a), A)), \
+                  _mm512_mul_pd(_mm512_set1_pd(b), B))
+    __m512d l = OK_AXIS(0.3963377774, 0.2158037573), m = OK_AXIS(-0.1055613458, -0.0638541728),
+            s = OK_AXIS(-0.0894841775, -1.2914855480);
+#undef OK_AXIS
+    l = _mm512_mul_pd(_mm512_mul_pd(l, l), l);
+    m = _mm512_mul_pd(_mm512_mul_pd(m, m), m);
+    s = _mm512_mul_pd(_mm512_mul_pd(s, s), s);
+    static const double M[3][3] = {{4.0767416621, -3.3077115913, 0.2309699292},
+                                   {-1.2684380046, 2.6097574011, -0.3413193965},
+                                   {-0.0041960863, -0.7034186147, 1.7076147010}};
+    for (int c = 0; c < 3; c++) {
+        __m512d lin = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(_mm512_set1_pd(M[c][0]), l),
+                                                  _mm512_mul_pd(_mm512_set1_pd(M[c][1]), m)),
+                                    _mm512_mul_pd(_mm512_set1_pd(M[c][2]), s));
+        _mm256_storeu_ps(rgb[c], srgb_encode8(lin));
+    }
+}
+#endif
+
+/* tex_oklab_to_srgb of n colours, their channels in separate arrays: eight at a time where
+ * the CPU has AVX-512, the same floats */
+static void oklab_srgb_n(const float *const lab[3], float *const rgb[3], int n)
+{
+    int i = 0;
     pthread_once(&enc_once, enc_setup);
-    rgb[0] = srgb_encode(4.0767416621 * l - 3.3077115913 * m + 0.2309699292 * s);
-    rgb[1] = srgb_encode(-1.2684380046 * l + 2.6097574011 * m - 0.3413193965 * s);
-    rgb[2] = srgb_encode(-0.0041960863 * l - 0.7034186147 * m + 1.7076147010 * s);
+#ifdef TEX_X86
+    if (tex_simd_level() >= TEX_SIMD_AVX512)
+        for (; i + 8 <= n; i += 8)
+            oklab_srgb8((const float *[3]){lab[0] + i, lab[1] + i, lab[2] + i},
+                        (float *[3]){rgb[0] + i, rgb[1] + i, rgb[2] + i});
+#endif
+    for (; i < n; i++) {
+        double lin[3];
+        oklab_linear((const float[3]){lab[0][i], lab[1][i], lab[2][i]}, lin);
+        for (int c = 0; c < 3; c++)
+            rgb[c][i] = srgb_encode(lin[c]);
+    }
+}
+
+void tex_oklab_to_srgb(const float lab[3], float rgb[3])
+{
+    double lin[3];
+    oklab_linear(lab, lin);
+    pthread_once(&enc_once, enc_setup);
+    for (int k = 0; k < 3; k++)
+        rgb[k] = srgb_encode(lin[k]);
 }
 
 /* ---- construction ---- */
@@ -542,7 +647,9 @@ int tex_palette_write(const tex_palette *p, FILE *fp)
 
 /* ---- lookup ---- */
 
-void tex_palette_lookup(const tex_palette *p, float t, float rgba[4])
+/* tex_palette_lookup up to the colour space: 0 with rgba made, or 1 with a colour mixed in
+ * OKLab, in lab, and its alpha in rgba[3] */
+static int lookup_lab(const tex_palette *p, float t, float rgba[4], float lab[3])
 {
     const struct tex_palette_stop *a, *b;
     int lo = 0, hi = p->nstops;
@@ -562,25 +669,31 @@ void tex_palette_lookup(const tex_palette *p, float t, float rgba[4])
     }
     if (lo == 0 || lo == p->nstops) {
         memcpy(rgba, p->stops[lo ? lo - 1 : 0].rgba, 4 * sizeof *rgba);
-        return;
+        return 0;
     }
     a = &p->stops[lo - 1];
     b = &p->stops[lo];
     f = (t - a->pos) / (b->pos - a->pos);
     if (f <= 0.0f) { /* exactly at a stop */
         memcpy(rgba, a->rgba, 4 * sizeof *rgba);
-        return;
+        return 0;
     }
     if (p->space == TEX_SPACE_RGB) {
         for (int c = 0; c < 4; c++)
             rgba[c] = a->rgba[c] + f * (b->rgba[c] - a->rgba[c]);
-    } else {
-        float lab[3];
-        for (int c = 0; c < 3; c++)
-            lab[c] = a->lab[c] + f * (b->lab[c] - a->lab[c]);
-        tex_oklab_to_srgb(lab, rgba);
-        rgba[3] = a->rgba[3] + f * (b->rgba[3] - a->rgba[3]);
+        return 0;
     }
+    for (int c = 0; c < 3; c++)
+        lab[c] = a->lab[c] + f * (b->lab[c] - a->lab[c]);
+    rgba[3] = a->rgba[3] + f * (b->rgba[3] - a->rgba[3]);
+    return 1;
+}
+
+void tex_palette_lookup(const tex_palette *p, float t, float rgba[4])
+{
+    float lab[3];
+    if (lookup_lab(p, t, rgba, lab))
+        tex_oklab_to_srgb(lab, rgba);
 }
 
 void tex_palette_index_n(const tex_palette *p, int id, int n, float rgba[4])
@@ -638,6 +751,30 @@ float tex_palette_t(double v, double lo, double hi, enum tex_outside outside)
     return (float)t;
 }
 
+/* n values of v coloured into out (nc channels each): tex_palette_lookup's colours, those
+ * mixed in OKLab taken to sRGB together (oklab_srgb_n) */
+enum { COLOUR_RUN = 256 };
+static void colour_run(const tex_palette *p, const float *v, int n, double lo, double hi,
+                       enum tex_outside outside, float *out, int nc)
+{
+    float c[COLOUR_RUN][4], lab[3][COLOUR_RUN], rgb[3][COLOUR_RUN];
+    int at[COLOUR_RUN], k = 0; /* the pixels mixed in OKLab */
+
+    for (int j = 0; j < n; j++) {
+        float e[3];
+        if (lookup_lab(p, tex_palette_t(v[j], lo, hi, outside), c[j], e)) {
+            lab[0][k] = e[0], lab[1][k] = e[1], lab[2][k] = e[2];
+            at[k++] = j;
+        }
+    }
+    oklab_srgb_n((const float *const[3]){lab[0], lab[1], lab[2]},
+                 (float *const[3]){rgb[0], rgb[1], rgb[2]}, k);
+    for (int q = 0; q < k; q++)
+        c[at[q]][0] = rgb[0][q], c[at[q]][1] = rgb[1][q], c[at[q]][2] = rgb[2][q];
+    for (int j = 0; j < n; j++)
+        memcpy(out + (size_t)j * nc, c[j], nc * sizeof **c);
+}
+
 tex_map *tex_palette_map(const tex_palette *p, const tex_map *m, double lo, double hi,
                          enum tex_outside outside)
 {
@@ -678,11 +815,9 @@ tex_map *tex_palette_map(const tex_palette *p, const tex_map *m, double lo, doub
         hi = s.max;
     }
 #pragma omp parallel for schedule(static)
-    for (size_t i = 0; i < n; i++) {
-        float c[4];
-        tex_palette_lookup(p, tex_palette_t(m->px[i], lo, hi, outside), c);
-        memcpy(out->px + i * nc, c, nc * sizeof *c);
-    }
+    for (size_t i = 0; i < n; i += COLOUR_RUN)
+        colour_run(p, m->px + i, n - i < COLOUR_RUN ? (int)(n - i) : COLOUR_RUN, lo, hi, outside,
+                   out->px + i * nc, nc);
     return out;
 }
 

@@ -6,6 +6,7 @@
 
 #include "base/error.h"
 #include "base/map.h"
+#include "base/simd.h"
 #include "ops/palette.h"
 #include "unit.h"
 
@@ -204,6 +205,46 @@ static void test_maps(void)
     tex_palette_free(p);
 }
 
+/* A map coloured in OKLab (its colours taken to sRGB in runs, eight at a time where the CPU
+ * has AVX-512) has tex_palette_lookup's bytes at every pixel: dark colours on the linear toe,
+ * colours out of gamut that clamp to 0 and 1, NaN, values outside the range, an odd count. */
+static void test_map_runs(void)
+{
+    tex_palette *p = parse("space oklab\n0 #000000\n0.3 #030303\n0.5 #0000ff\n0.7 #ffff00\n"
+                           "1 #ff00ff\n");
+    enum { N = 4099 };
+    tex_map *m = tex_map_new(N, 1, 1);
+    uint64_t x = 1;
+    for (int i = 0; p && m && i < N; i++) {
+        x = x * 6364136223846793005ULL + 1442695040888963407ULL;
+        m->px[i] = i % 3 ? -0.1f + 1.2f * i / (N - 1) : (float)(x >> 40) / (1 << 24);
+    }
+    if (m)
+        m->px[7] = NAN;
+    for (int level = tex_simd_level(); level >= TEX_SIMD_AVX2; level--) {
+        tex_simd_limit(level);
+        tex_map *o = p && m ? tex_palette_map(p, m, 0, 1, TEX_OUTSIDE_CLAMP) : NULL;
+        int same = o != NULL, zeros = 0, ones = 0, toe = 0;
+        for (int i = 0; o && i < N; i++) {
+            float c[4];
+            tex_palette_lookup(p, tex_palette_t(m->px[i], 0, 1, TEX_OUTSIDE_CLAMP), c);
+            same &= !memcmp(c, o->px + 3 * i, 3 * sizeof *c);
+            for (int k = 0; k < 3; k++) {
+                zeros += c[k] == 0 && i > N / 2, ones += c[k] == 1 && i > N / 2;
+                toe += c[k] > 0 && c[k] < 0.04f;
+            }
+        }
+        CHECKF(same && zeros && ones && toe,
+               "%s: %d values coloured in OKLab are lookup's bytes (%d clamped to 0 and %d to 1 "
+               "out of gamut, %d on the toe)", level == TEX_SIMD_AVX512 ? "AVX-512" : "AVX2",
+               N, zeros, ones, toe);
+        tex_map_free(o);
+    }
+    tex_simd_limit(TEX_SIMD_AVX512);
+    tex_map_free(m);
+    tex_palette_free(p);
+}
+
 /* Only index lines: they double as the gradient. */
 static void test_indexed_only(void)
 {
@@ -265,6 +306,7 @@ int main(void)
     test_interpolation();
     test_errors();
     test_maps();
+    test_map_runs();
     test_indexed_only();
     test_shipped();
     return unit_done();
