@@ -1,8 +1,58 @@
 /* test_remap - Perlin's bias and gain, levels, quantise, invert, clamp */
 #include <math.h>
+#include <stdint.h>
+#include <string.h>
 
+#include "base/simd.h"
 #include "ops/remap.h"
 #include "unit.h"
+
+/* A gamma remap of a map (its powers eight at a time where the CPU has AVX-512) gives
+ * tex_remap_value's floats: gammas whose exponent runs from 1/40 to 64 and past it, with
+ * levels, quantise, invert and clamp after; 0, 1, NaN, tiny and outside values; 1 and 3
+ * channels of an odd count. */
+static void gamma_maps(void)
+{
+    static const double gammas[] = {1.5, 0.4, 2.2, 40, 0.0157, 1.0 / 64, 0.01, 0.1, 7};
+    enum { N = 3001 };
+    tex_map *m = tex_map_new(N, 1, 3), *o = tex_map_new(N, 1, 3);
+    uint64_t x = 9;
+    for (int i = 0; m && i < 3 * N; i++) {
+        x = x * 6364136223846793005ULL + 1442695040888963407ULL;
+        m->px[i] = i % 4 ? (float)(x >> 40) / (1 << 24) : -0.2f + 1.4f * i / (3 * N);
+    }
+    if (!m || !o)
+        return;
+    m->px[5] = NAN, m->px[6] = 0, m->px[7] = 1, m->px[8] = 1e-40f, m->px[9] = 1e-30f;
+    for (int level = tex_simd_level(); level >= TEX_SIMD_SCALAR; level--) {
+        int same = 1;
+        tex_simd_limit(level);
+        for (size_t g = 0; g < sizeof gammas / sizeof *gammas; g++)
+            for (int post = 0; post < 4; post++) {
+                struct tex_remap r = TEX_REMAP_IDENTITY;
+                r.gamma = gammas[g];
+                r.quantize = post == 1 ? 7 : 0;
+                r.invert = post >= 2;
+                r.clamp = post == 3, r.lo = 0.1, r.hi = 0.8;
+                if (post == 3)
+                    r.in0 = 0.1, r.in1 = 0.9, r.out0 = 0.2, r.out1 = 0.95;
+                for (int nc = 1; nc <= 3; nc += 2) {
+                    o->nc = nc, o->w = 3 * N / nc;
+                    memcpy(o->px, m->px, sizeof *o->px * 3 * N);
+                    tex_remap_map(o, &r);
+                    for (int i = 0; i < 3 * N; i++) {
+                        float want = (float)tex_remap_value(&r, m->px[i]);
+                        same &= !memcmp(&want, o->px + i, sizeof want);
+                    }
+                }
+            }
+        CHECKF(same, "level %d: gamma remaps of maps are tex_remap_value's floats", level);
+    }
+    tex_simd_limit(TEX_SIMD_AVX512);
+    o->nc = 3, o->w = N;
+    tex_map_free(m);
+    tex_map_free(o);
+}
 
 int main(void)
 {
@@ -56,5 +106,6 @@ int main(void)
         CHECK(m->px[0] == 0.75f && m->px[3] == 0.25f, "RGBA: colours remapped, alpha kept");
         tex_map_free(m);
     }
+    gamma_maps();
     return unit_done();
 }
