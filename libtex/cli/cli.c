@@ -949,7 +949,7 @@ static int band_fill(void *arg, int y, int n, float *rows)
         return -1;
     }
     memcpy(rows, o->px, tex_map_samples(o) * sizeof *rows);
-    if (o->w == j->w && o->nc == j->nc && !o->history)
+    if (o->w == j->w && o->nc == j->nc)
         j->keep = o;
     else
         tex_map_free(o);

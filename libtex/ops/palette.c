@@ -100,18 +100,25 @@ void tex_srgb_to_oklab(const float rgb[3], float lab[3])
     lab[2] = (float)(0.0259040371 * l + 0.7827717662 * m - 0.8086757660 * s);
 }
 
+/* OKLab to linear sRGB: L, M and S's cube roots from (L, a, b), then RGB from their cubes
+ * (a subtraction is the addition of the negated product, to the bit) */
+static const double ok_lms[3][2] = {{0.3963377774, 0.2158037573},
+                                    {-0.1055613458, -0.0638541728},
+                                    {-0.0894841775, -1.2914855480}};
+static const double ok_rgb[3][3] = {{4.0767416621, -3.3077115913, 0.2309699292},
+                                    {-1.2684380046, 2.6097574011, -0.3413193965},
+                                    {-0.0041960863, -0.7034186147, 1.7076147010}};
+
 /* OKLab to linear sRGB, before the encoding */
 static void oklab_linear(const float lab[3], double lin[3])
 {
-    double l = lab[0] + 0.3963377774 * lab[1] + 0.2158037573 * lab[2];
-    double m = lab[0] - 0.1055613458 * lab[1] - 0.0638541728 * lab[2];
-    double s = lab[0] - 0.0894841775 * lab[1] - 1.2914855480 * lab[2];
-    l = l * l * l;
-    m = m * m * m;
-    s = s * s * s;
-    lin[0] = 4.0767416621 * l - 3.3077115913 * m + 0.2309699292 * s;
-    lin[1] = -1.2684380046 * l + 2.6097574011 * m - 0.3413193965 * s;
-    lin[2] = -0.0041960863 * l - 0.7034186147 * m + 1.7076147010 * s;
+    double c[3];
+    for (int k = 0; k < 3; k++) {
+        c[k] = lab[0] + ok_lms[k][0] * lab[1] + ok_lms[k][1] * lab[2];
+        c[k] = c[k] * c[k] * c[k];
+    }
+    for (int k = 0; k < 3; k++)
+        lin[k] = ok_rgb[k][0] * c[0] + ok_rgb[k][1] * c[1] + ok_rgb[k][2] * c[2];
 }
 
 #ifdef TEX_X86
@@ -166,24 +173,17 @@ TEX_AVX512 static void oklab_srgb8(const float *lab[3], float *rgb[3])
 {
     __m512d L = _mm512_cvtps_pd(_mm256_loadu_ps(lab[0]));
     __m512d A = _mm512_cvtps_pd(_mm256_loadu_ps(lab[1]));
-    __m512d B = _mm512_cvtps_pd(_mm256_loadu_ps(lab[2]));
-#define OK_AXIS(a, b) \
-    _mm512_add_pd(_mm512_add_pd(L, _mm512_mul_pd(_mm512_set1_pd(a), A)), \
-                  _mm512_mul_pd(_mm512_set1_pd(b), B))
-    __m512d l = OK_AXIS(0.3963377774, 0.2158037573), m = OK_AXIS(-0.1055613458, -0.0638541728),
-            s = OK_AXIS(-0.0894841775, -1.2914855480);
-#undef OK_AXIS
-    l = _mm512_mul_pd(_mm512_mul_pd(l, l), l);
-    m = _mm512_mul_pd(_mm512_mul_pd(m, m), m);
-    s = _mm512_mul_pd(_mm512_mul_pd(s, s), s);
-    static const double M[3][3] = {{4.0767416621, -3.3077115913, 0.2309699292},
-                                   {-1.2684380046, 2.6097574011, -0.3413193965},
-                                   {-0.0041960863, -0.7034186147, 1.7076147010}};
-    for (int c = 0; c < 3; c++) {
-        __m512d lin = _mm512_add_pd(_mm512_add_pd(_mm512_mul_pd(_mm512_set1_pd(M[c][0]), l),
-                                                  _mm512_mul_pd(_mm512_set1_pd(M[c][1]), m)),
-                                    _mm512_mul_pd(_mm512_set1_pd(M[c][2]), s));
-        _mm256_storeu_ps(rgb[c], srgb_encode8(lin));
+    __m512d B = _mm512_cvtps_pd(_mm256_loadu_ps(lab[2])), c[3];
+    for (int k = 0; k < 3; k++) {
+        c[k] = _mm512_add_pd(_mm512_add_pd(L, _mm512_mul_pd(_mm512_set1_pd(ok_lms[k][0]), A)),
+                             _mm512_mul_pd(_mm512_set1_pd(ok_lms[k][1]), B));
+        c[k] = _mm512_mul_pd(_mm512_mul_pd(c[k], c[k]), c[k]);
+    }
+    for (int k = 0; k < 3; k++) {
+        __m512d lin = _mm512_mul_pd(_mm512_set1_pd(ok_rgb[k][0]), c[0]);
+        lin = _mm512_add_pd(lin, _mm512_mul_pd(_mm512_set1_pd(ok_rgb[k][1]), c[1]));
+        lin = _mm512_add_pd(lin, _mm512_mul_pd(_mm512_set1_pd(ok_rgb[k][2]), c[2]));
+        _mm256_storeu_ps(rgb[k], srgb_encode8(lin));
     }
 }
 #endif

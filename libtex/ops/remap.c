@@ -1,4 +1,5 @@
 /* remap.c - bias, gain, gamma, levels, quantise, invert, clamp */
+#include <float.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdint.h>
@@ -97,7 +98,7 @@ TEX_AVX512 static inline __m512d table16(const double *t, __m512i i)
     return _mm512_permutex2var_pd(_mm512_loadu_pd(t), i, _mm512_loadu_pd(t + 8));
 }
 
-/* pow(x, y) as above for x in (0, 1]; *ok: the lanes it serves (z >= -1000) */
+/* pow(x, y) as above for x in (0, 1]; *ok: the lanes it serves (x normal, z >= -1000) */
 TEX_AVX512 static __m512d pow8(__m512d x, double y, __mmask8 *ok)
 {
     __m512i bits = _mm512_castpd_si512(x);
@@ -115,7 +116,8 @@ TEX_AVX512 static __m512d pow8(__m512d x, double y, __mmask8 *ok)
     __m512d lg = _mm512_add_pd(_mm512_add_pd(e, table16(pow_log2c, i)),
                                _mm512_mul_pd(_mm512_mul_pd(r, p), _mm512_set1_pd(1 / M_LN2)));
     __m512d z = _mm512_mul_pd(_mm512_set1_pd(y), lg);
-    *ok = _mm512_cmp_pd_mask(z, _mm512_set1_pd(-1000), _CMP_GE_OQ);
+    *ok = _mm512_cmp_pd_mask(z, _mm512_set1_pd(-1000), _CMP_GE_OQ) & /* x normal */
+          _mm512_cmp_pd_mask(x, _mm512_set1_pd(DBL_MIN), _CMP_GE_OQ);
     z = _mm512_max_pd(z, _mm512_set1_pd(-1000));
     __m512d n = _mm512_roundscale_pd(_mm512_mul_pd(z, _mm512_set1_pd(POW_TABLE)),
                                      _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC);

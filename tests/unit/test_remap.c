@@ -9,8 +9,8 @@
 
 /* A gamma remap of a map (its powers eight at a time where the CPU has AVX-512) gives
  * tex_remap_value's floats: gammas whose exponent runs from 1/40 to 64 and past it, with
- * levels, quantise, invert and clamp after; 0, 1, NaN, tiny and outside values; 1 and 3
- * channels of an odd count. */
+ * levels, quantise, invert and clamp after; 0, 1, NaN, tiny and outside values, subnormal
+ * ones after levels; 1 and 3 channels of an odd count. */
 static void gamma_maps(void)
 {
     static const double gammas[] = {1.5, 0.4, 2.2, 40, 0.0157, 1.0 / 64, 0.01, 0.1, 7};
@@ -28,14 +28,16 @@ static void gamma_maps(void)
         int same = 1;
         tex_simd_limit(level);
         for (size_t g = 0; g < sizeof gammas / sizeof *gammas; g++)
-            for (int post = 0; post < 4; post++) {
+            for (int post = 0; post < 5; post++) {
                 struct tex_remap r = TEX_REMAP_IDENTITY;
                 r.gamma = gammas[g];
                 r.quantize = post == 1 ? 7 : 0;
-                r.invert = post >= 2;
+                r.invert = post == 2 || post == 3;
                 r.clamp = post == 3, r.lo = 0.1, r.hi = 0.8;
                 if (post == 3)
                     r.in0 = 0.1, r.in1 = 0.9, r.out0 = 0.2, r.out1 = 0.95;
+                if (post == 4) /* values of 1e-300 and below: subnormal doubles */
+                    r.in1 = 1e300, r.out1 = 1e-8;
                 for (int nc = 1; nc <= 3; nc += 2) {
                     o->nc = nc, o->w = 3 * N / nc;
                     memcpy(o->px, m->px, sizeof *o->px * 3 * N);
