@@ -35,8 +35,8 @@ static double srgb_decode(double c)
  * below 1e-14, summed by Estrin's scheme (a short chain of dependent operations).  libm's
  * pow, three times per lookup, costs about twice as much. */
 enum { ENC_PIECES = 32, ENC_DEGREE = 6 };
-static double enc_poly[ENC_PIECES][ENC_DEGREE + 1], enc_scale[16];
-static double enc_coef[ENC_DEGREE + 1][ENC_PIECES]; /* enc_poly by coefficient, for permutes */
+/* coefficient k of piece i at enc_coef[k][i] (a coefficient's pieces together, for permutes) */
+static double enc_coef[ENC_DEGREE + 1][ENC_PIECES], enc_scale[16];
 static pthread_once_t enc_once = PTHREAD_ONCE_INIT;
 
 static void enc_setup(void)
@@ -45,7 +45,7 @@ static void enc_setup(void)
     for (int i = 0; i < ENC_PIECES; i++) {
         double c0 = 0.5 + (i + 0.5) / (2 * ENC_PIECES), coef = pow(c0, a);
         for (int k = 0; k <= ENC_DEGREE; k++) { /* binomial(a, k) c0^(a - k) */
-            enc_poly[i][k] = enc_coef[k][i] = coef;
+            enc_coef[k][i] = coef;
             coef *= (a - k) / ((k + 1) * c0);
         }
     }
@@ -62,7 +62,9 @@ static double enc_pow(double c)
     double m;
     memcpy(&m, &bits, sizeof m);
     int i = (int)((m - 0.5) * (2 * ENC_PIECES));
-    const double *p = enc_poly[i];
+    double p[ENC_DEGREE + 1];
+    for (int k = 0; k <= ENC_DEGREE; k++)
+        p[k] = enc_coef[k][i];
     double t = m - (0.5 + (i + 0.5) / (2 * ENC_PIECES)), t2 = t * t;
     double y = (p[0] + p[1] * t) + t2 * (p[2] + p[3] * t) + t2 * t2 * (p[4] + p[5] * t + t2 * p[6]);
     return y * enc_scale[-e];

@@ -395,12 +395,17 @@ int tex_field_sample_rows(const struct tex_field *f, tex_map *m)
     return sample_rows(f, m, 0, 0);
 }
 
-/* Whether the field is sampled as coloured regions (3 channels: f->colors) */
-static int sampled_colored(const struct tex_field *f)
+/* Whether the field is sampled by regions (ids, or colours from f->colors) */
+static int sampled_regions(const struct tex_field *f)
 {
     const struct tex_primitive *p = f->prim;
-    int regions = (p->flags & TEX_PRIM_REGIONS) && !(p->flags & TEX_PRIM_GRID) && p->eval2;
-    return regions && !f->ids && f->colors;
+    return (p->flags & TEX_PRIM_REGIONS) && !(p->flags & TEX_PRIM_GRID) && p->eval2;
+}
+
+/* ... in colour */
+static int sampled_colored(const struct tex_field *f)
+{
+    return sampled_regions(f) && !f->ids && f->colors;
 }
 
 int tex_field_channels(const struct tex_field *f)
@@ -408,10 +413,18 @@ int tex_field_channels(const struct tex_field *f)
     return sampled_colored(f) ? 3 : f->nc;
 }
 
+/* The size of the maps tex_field_sample makes: the window's, else the grid's */
+static void sampled_size(const struct tex_field *f, int *w, int *h)
+{
+    *w = f->ww > 0 ? f->ww : f->w;
+    *h = f->ww > 0 ? f->wh : f->h;
+}
+
 tex_map *tex_field_sample(const struct tex_field *f)
 {
-    int window = f->ww > 0;
-    tex_map *m = tex_map_new(window ? f->ww : f->w, window ? f->wh : f->h, tex_field_channels(f));
+    int w, h;
+    sampled_size(f, &w, &h);
+    tex_map *m = tex_map_new(w, h, tex_field_channels(f));
 
     if (m && tex_field_sample_into(f, m) < 0) {
         tex_map_free(m);
@@ -423,18 +436,18 @@ tex_map *tex_field_sample(const struct tex_field *f)
 int tex_field_sample_into(const struct tex_field *f, tex_map *m)
 {
     const struct tex_primitive *p = f->prim;
-    int regions = (p->flags & TEX_PRIM_REGIONS) && !(p->flags & TEX_PRIM_GRID) && p->eval2;
+    int regions = sampled_regions(f), nc = tex_field_channels(f);
     int colored = sampled_colored(f);
     /* ids by spans, one float each, unless a row callback fills the row or
      * TEXTURA_AA=full asks for every centre */
     int spans = regions && f->ids && f->nc == 1 && p->box2 && !p->row && !aa_full();
     int window = f->ww > 0, x0 = window ? f->wx : 0, y0 = window ? f->wy : 0;
-    int failed = 0;
+    int failed = 0, w, h;
 
-    if (m->w != (window ? f->ww : f->w) || m->h != (window ? f->wh : f->h) ||
-        m->nc != tex_field_channels(f))
+    sampled_size(f, &w, &h);
+    if (m->w != w || m->h != h || m->nc != nc)
         return tex_error("%s: a %dx%dx%d map for a %dx%dx%d field", p->name, m->w, m->h, m->nc,
-                         window ? f->ww : f->w, window ? f->wh : f->h, tex_field_channels(f));
+                         w, h, nc);
     if (window) {
         m->x0 = x0;
         m->y0 = y0;

@@ -156,49 +156,30 @@ static inline float turns(float im, float re)
 
 /* ---- the forward transform ---- */
 
-static tex_map *fft(const tex_map *m, enum tex_fft_output out, int hann)
+/* The transform's input: s windowed (Hann where hann, else flat; wx: w + h floats of
+ * scratch) and scaled by the window's mean and 1/(w h) */
+static void windowed_input(const float *s, int w, int h, int hann, float *wx, float *in)
 {
-    int w = m->w, h = m->h, hw = w / 2 + 1;
-    tex_progress_stage(1, 1);
-    float *own = NULL, *in = NULL, *wx = NULL, *wy = NULL;
-    fftwf_complex *F = NULL;
-    const float *s;
-    tex_map *o = NULL;
-    fftwf_plan plan;
-
-    if (tex_check_finite(m, NULL) < 0 || !(s = scalar_of(m, &own)))
-        return NULL;
-    in = fftwf_alloc_real((size_t)w * h);
-    F = fftwf_alloc_complex((size_t)h * hw);
-    wx = malloc(((size_t)w + h) * sizeof *wx);
-    if (!in || !F || !wx) {
-        tex_error("out of memory");
-        goto done;
-    }
-    wy = wx + w;
-    {
-        double gx = 0, gy = 0, g;
-        for (int x = 0; x < w; x++)
-            gx += wx[x] = hann ? (float)(0.5 - 0.5 * cos(2 * M_PI * (x + 0.5) / w)) : 1.0f;
-        for (int y = 0; y < h; y++)
-            gy += wy[y] = hann ? (float)(0.5 - 0.5 * cos(2 * M_PI * (y + 0.5) / h)) : 1.0f;
-        /* Dividing by the window's mean keeps amplitudes; 1/(w h) normalises. */
-        g = 1.0 / (gx * gy);
+    float *wy = wx + w;
+    double gx = 0, gy = 0, g;
+    for (int x = 0; x < w; x++)
+        gx += wx[x] = hann ? (float)(0.5 - 0.5 * cos(2 * M_PI * (x + 0.5) / w)) : 1.0f;
+    for (int y = 0; y < h; y++)
+        gy += wy[y] = hann ? (float)(0.5 - 0.5 * cos(2 * M_PI * (y + 0.5) / h)) : 1.0f;
+    /* Dividing by the window's mean keeps amplitudes; 1/(w h) normalises. */
+    g = 1.0 / (gx * gy);
 #pragma omp parallel for
-        for (int y = 0; y < h; y++)
-            for (int x = 0; x < w; x++)
-                in[(size_t)y * w + x] = (float)(s[(size_t)y * w + x] * wx[x] * wy[y] * g);
-    }
-    plan_setup();
-    plan = fftwf_plan_dft_r2c_2d(h, w, in, F, FFTW_ESTIMATE);
-    if (!plan) {
-        tex_error("FFTW could not plan a %dx%d transform", w, h);
-        goto done;
-    }
-    execute(plan);
-    fftwf_destroy_plan(plan);
-    if (!(o = tex_map_new(w, h, out == TEX_FFT_COMPLEX ? 2 : 1)))
-        goto done;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++)
+            in[(size_t)y * w + x] = (float)(s[(size_t)y * w + x] * wx[x] * wy[y] * g);
+}
+
+/* The half spectrum F of a w x h real map as o's rows, zero frequency at the centre:
+ * complex, phase in turns or magnitude */
+static void spectrum_rows(const fftwf_complex *F, int w, int h, enum tex_fft_output out,
+                          tex_map *o)
+{
+    int hw = w / 2 + 1;
 #pragma omp parallel for
     for (int y = 0; y < h; y++) {
         int ky = (y - h / 2 + h) % h, kyc = (h - ky) % h;
@@ -226,6 +207,39 @@ static tex_map *fft(const tex_map *m, enum tex_fft_output out, int hann)
             }
         }
     }
+}
+
+static tex_map *fft(const tex_map *m, enum tex_fft_output out, int hann)
+{
+    int w = m->w, h = m->h, hw = w / 2 + 1;
+    tex_progress_stage(1, 1);
+    float *own = NULL, *in = NULL, *wx = NULL;
+    fftwf_complex *F = NULL;
+    const float *s;
+    tex_map *o = NULL;
+    fftwf_plan plan;
+
+    if (tex_check_finite(m, NULL) < 0 || !(s = scalar_of(m, &own)))
+        return NULL;
+    in = fftwf_alloc_real((size_t)w * h);
+    F = fftwf_alloc_complex((size_t)h * hw);
+    wx = malloc(((size_t)w + h) * sizeof *wx);
+    if (!in || !F || !wx) {
+        tex_error("out of memory");
+        goto done;
+    }
+    windowed_input(s, w, h, hann, wx, in);
+    plan_setup();
+    plan = fftwf_plan_dft_r2c_2d(h, w, in, F, FFTW_ESTIMATE);
+    if (!plan) {
+        tex_error("FFTW could not plan a %dx%d transform", w, h);
+        goto done;
+    }
+    execute(plan);
+    fftwf_destroy_plan(plan);
+    if (!(o = tex_map_new(w, h, out == TEX_FFT_COMPLEX ? 2 : 1)))
+        goto done;
+    spectrum_rows(F, w, h, out, o);
     if (out == TEX_FFT_LOGMAG) {
         size_t n = (size_t)w * h;
         float lo, hi, wh = (float)n, l;

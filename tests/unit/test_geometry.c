@@ -49,7 +49,8 @@ static int at(const struct tex_field *f, double x, double y)
     return tex_geometry_region(f, x, 1 - y);
 }
 
-static void known_points(void)
+/* Regions at known points of the round primitives: circle, ring, ellipse, flower */
+static void known_points_round(void)
 {
     struct tex_field *f;
 
@@ -91,6 +92,12 @@ static void known_points(void)
               at(f, 0.5 + 0.3, 0.5) == 1,
           "flower 2: four petals on the diagonals");
     tex_field_free(f);
+}
+
+/* ... and of the others: checker, stripe, the cycloids, four rings, polygon, star */
+static void known_points_other(void)
+{
+    struct tex_field *f;
 
     f = field("checker", 1, 0, 0, NULL);
     CHECK(tex_geometry_region(f, 0.05, 0.05) == 1 && tex_geometry_region(f, 0.18, 0.05) == 2 &&
@@ -432,7 +439,8 @@ static void sample_into(void)
 
 int main(void)
 {
-    known_points();
+    known_points_round();
+    known_points_other();
     areas();
     symmetry();
     repetition();
