@@ -747,7 +747,7 @@ static void grid_clear(tex_noise_grid *g)
     g->slot = g->lat = NULL;
     g->lut = NULL;
     g->plane = NULL;
-    g->corner = NULL;
+    g->corner = g->corner2 = NULL;
     g->u = g->um1 = g->w0 = g->w1 = g->dw0 = g->dw1 = NULL;
     g->cache = NULL;
 }
@@ -847,12 +847,16 @@ static void table_init(tex_noise_grid *g)
         return;
     g->adjacent = corners_adjacent(g);
     if (g->adjacent && (g->paired || (!g->wide && n >= 16)) && g->w >= 2 * (n + 1) &&
-        (g->corner = malloc(g->w * sizeof *g->corner)))
-        for (int x = 0; x < g->w; x++)
+        (g->corner = malloc(2 * (size_t)g->w * sizeof *g->corner))) {
+        g->corner2 = g->corner + g->w;
+        for (int x = 0; x < g->w; x++) {
             g->corner[x] = g->lat[g->slot[x]];
+            g->corner2[x] = 2 * g->corner[x];
+        }
+    }
     if (lut_init(g, g->corner != NULL) < 0) {
         free(g->corner);
-        g->corner = NULL;
+        g->corner = g->corner2 = NULL;
     }
 }
 
@@ -1278,17 +1282,22 @@ struct rowset {
 
 /* A row operation's constants (tex_noise_grid_row_op's a, b and c; the multifractal
  * finish's lo and inv), and where the multifractal operations keep their state: a sum at
- * o in the rows from out0 has its state at st0 + (o - out0) */
+ * o has its state sdelta bytes on (state_at), an address the kernels' loops form from
+ * the sum's with one addition they can hoist, where st0 + (o - out0) took three in each */
 struct row_k {
     float a, b, c, lo, inv;
-    const float *out0;
-    float *st0;
+    uintptr_t sdelta;
 };
+
+static inline float *state_at(const float *o, struct row_k rk)
+{
+    return (float *)((uintptr_t)o + rk.sdelta);
+}
 
 /* What a row does with each noise value r (tex_noise_grid_row_op), at o. */
 static inline void apply_op(int op, float r, float *o, struct row_k rk)
 {
-    float s, w, *st = op >= TEX_ROW_RIDGED_FIRST ? rk.st0 + (o - rk.out0) : NULL;
+    float s, w, *st = op >= TEX_ROW_RIDGED_FIRST ? state_at(o, rk) : NULL;
 
     switch (op) {
     case TEX_ROW_SET:
@@ -1415,7 +1424,7 @@ static void row_scalar(const tex_noise_grid *g, struct rowset rs, int sb, int x,
         const int step = ROWWISE && op < TEX_ROW_RIDGED_FIRST ? 1 : rows;                     \
         for (int i0 = 0; i0 < rows; i0 += step) {                                             \
             _Pragma("GCC unroll 2") for (int i = i0; i < i0 + step; i++) {                    \
-                sp[i] = rk.st0 + (out[i] + x - rk.out0);                                      \
+                sp[i] = state_at(out[i] + x, rk);                                             \
                 if (op >= TEX_ROW_ADD && !first)                                              \
                     memcpy(&v[i], out[i] + x, sizeof v[i]);                                   \
                 if (op >= TEX_ROW_RIDGED_FIRST && !first)                                     \
@@ -1979,9 +1988,10 @@ FOLD_ROW_FN(TEX_AVX512, fold_row_avx512, __m512)
 TEX_AVX512 static void fold2_avx512(const tex_noise_grid *g, const struct yrow yr[2], float *U)
 {
     struct fold_src f[2];
+    const int n = g->t->n; /* read once, not again after each store */
     fold_src_at(g, &yr[0], &f[0]);
     fold_src_at(g, &yr[1], &f[1]);
-    for (int i = 0; i <= g->t->n; i += 16) {
+    for (int i = 0; i <= n; i += 16) {
         __m512 p0, q0, p1, q1;
         fold_row_avx512_at(&f[0], i, &p0, &q0);
         fold_row_avx512_at(&f[1], i, &p1, &q1);
@@ -2004,12 +2014,13 @@ TEX_AVX512 static void fold2_avx512(const tex_noise_grid *g, const struct yrow y
     }
 }
 
-/* Columns x + j and x + 4 + j's eight floats at U (fold2_avx512) in the halves of one vector */
+/* Columns x + j and x + 4 + j's eight floats at U (fold2_avx512) in the halves of one vector
+ * (corner2: g->corner2 + x + j) */
 TEX_AVX512 static inline __attribute__((always_inline)) __m512
-column_pair(const float *U, const int32_t *corner)
+column_pair(const float *U, const int32_t *corner2)
 {
-    __m256 a = _mm256_loadu_ps(U + 4 * (size_t)corner[0]);
-    __m256 b = _mm256_loadu_ps(U + 4 * (size_t)corner[4]);
+    __m256 a = _mm256_loadu_ps((const float *)((const double *)U + corner2[0]));
+    __m256 b = _mm256_loadu_ps((const float *)((const double *)U + corner2[4]));
     return _mm512_castpd_ps(
         _mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_castps_pd(a)), _mm256_castps_pd(b), 1));
 }
@@ -2021,17 +2032,19 @@ TEX_AVX512 static inline __attribute__((always_inline)) void
 row_folded2_avx512_op(const tex_noise_grid *g, const float *U, float *const *out, const int op,
                       struct row_k rk)
 {
-    const int32_t *restrict corner = g->corner;
+    const int32_t *restrict corner = g->corner, *restrict corner2 = g->corner2;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
                           *restrict w1 = g->w1;
+    const int w = g->w; /* and the rows: read once, not again after each store */
+    float *const o[2] = {out[0], out[1]};
     int x = 0;
 
-    for (; x + 16 <= g->w; x += 16) {
+    for (; x + 16 <= w; x += 16) {
         __m512 z[2][4], t[2][4]; /* quarters: left and right entries of columns j, 4 + j */
 #pragma GCC unroll 4
         for (int j = 0; j < 4; j++) {
-            z[0][j] = column_pair(U, corner + x + j);
-            z[1][j] = column_pair(U, corner + x + 8 + j);
+            z[0][j] = column_pair(U, corner2 + x + j);
+            z[1][j] = column_pair(U, corner2 + x + 8 + j);
         }
         columns4_16(z[0], t[0]); /* t[h][v]: component v (P0, Q0, P1, Q1) */
         columns4_16(z[1], t[1]);
@@ -2044,9 +2057,9 @@ row_folded2_avx512_op(const tex_noise_grid *g, const float *U, float *const *out
                             _mm512_shuffle_f32x4(q, q8, _MM_SHUFFLE(2, 0, 2, 0)),
                             _mm512_shuffle_f32x4(q, q8, _MM_SHUFFLE(3, 1, 3, 1)));
         }
-        apply_avx512(op, v, out, x, 2, rk);
+        apply_avx512(op, v, o, x, 2, rk);
     }
-    for (; x < g->w; x++) /* row_planar_tail's order of operations */
+    for (; x < w; x++) /* row_planar_tail's order of operations */
         for (int r = 0; r < 2; r++) {
             const float *L = U + 4 * (size_t)corner[x] + 2 * r, *R = L + 4;
             float t0 = L[0] * u[x] + L[1], t1 = R[0] * um1[x] + R[1];
@@ -2066,27 +2079,31 @@ row_planar_avx512_op(const tex_noise_grid *g, struct rowset fr, const int two, c
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
                           *restrict w1 = g->w1;
     __m512i vn = _mm512_set1_epi32(g->t->n);
+    const int w = g->w; /* and the rows' planes: read once, not again after each store */
+    const float *Q[FOLD_ROWS];
     int x = 0;
 
-    for (; x + 16 <= g->w; x += 16) {
+    for (int r = 0; r < rows; r++)
+        Q[r] = fr.C[r] + g->ps;
+    for (; x + 16 <= w; x += 16) {
         int c0 = corner[x];
         __m512i d = _mm512_sub_epi32(_mm512_loadu_si512(corner + x), _mm512_set1_epi32(c0));
         __m512i k = _mm512_min_epu32(d, _mm512_add_epi32(d, vn));
         __m512 n[FOLD_ROWS];
 #pragma GCC unroll 2
         for (int r = 0; r < rows; r++) {
-            const float *P = fr.C[r], *Q = P + g->ps;
+            const float *P = fr.C[r];
             __m512 v[4]; /* the left corners' P, Q, the right corners' P, Q */
             if (two) {
 #pragma GCC unroll 4
                 for (int i = 0; i < 4; i++) {
-                    const float *V = (i & 1 ? Q : P) + c0 + (i >> 1);
+                    const float *V = (i & 1 ? Q[r] : P) + c0 + (i >> 1);
                     v[i] = _mm512_permutex2var_ps(_mm512_loadu_ps(V), k,
                                                   _mm512_loadu_ps(V + 16));
                 }
             } else {
                 expand16(P, c0, k, k, 15, &v[0], &v[2]);
-                expand16(Q, c0, k, k, 15, &v[1], &v[3]);
+                expand16(Q[r], c0, k, k, 15, &v[1], &v[3]);
             }
             n[r] = pixels16(u + x, um1 + x, w0 + x, w1 + x, v[0], v[2], v[1], v[3]);
         }
@@ -2230,18 +2247,19 @@ void tex_noise_grid_row_op(const tex_noise_grid *g, int y, int op, float a, floa
     tex_noise_grid_rows_op(g, y, 1, op, a, b, c, out, 0);
 }
 
-/* The operations without a state: st0 is out0, never read. */
+/* The operations without a state: the state is the sum, never read. */
 void tex_noise_grid_rows_op(const tex_noise_grid *g, int y, int n, int op, float a, float b,
                             float c, float *out, size_t stride)
 {
-    struct row_k rk = {a, b, c, 0, 0, out, out};
+    struct row_k rk = {a, b, c, 0, 0, 0};
     grid_rows_k(g, y, n, op, rk, out, stride);
 }
 
 void tex_noise_grid_rows_mf(const tex_noise_grid *g, int y, int n, int op,
                             const struct tex_mf_k *k, float *out, float *st, size_t stride)
 {
-    struct row_k rk = {k->amp, k->offset, k->gain, k->lo, k->inv, out, st};
+    struct row_k rk = {k->amp, k->offset, k->gain, k->lo, k->inv,
+                       (uintptr_t)st - (uintptr_t)out};
     grid_rows_k(g, y, n, op, rk, out, stride);
 }
 

@@ -157,6 +157,8 @@ typedef struct tex_noise_grid {
                         * under 5 pixels wide: rows from the table row folded with their y
                         * weights once (fold_row_*), each column reading its corners' pairs */
     int32_t *corner;   /* folded: per column, the table entry of its left corner */
+    int32_t *corner2;  /* ... twice over (in the same block): an 8-byte index into a
+                        * table of four floats an entry, which loads scale as they are */
     int span8, span16; /* the most cells between the first and last columns of 8 (16)
                         * columns from a multiple of 8 (16) */
     int wide;          /* AVX-512 rows where the CPU has it: cells 5 pixels wide or more, or
