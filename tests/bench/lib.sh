@@ -9,6 +9,10 @@
 #   median                 the median of the numbers on standard input
 #   ratio A B              A/B with 3 significant digits
 #   calc EXPR              awk arithmetic, e.g. calc "2 * 3.5"
+#   one_cpu CMD...         CMD on one CPU, the same for every call (the last this script may
+#                          use; taskset): single-threaded runs compared in pairs then compare
+#                          programs, not two CPUs, which on a shared virtual machine may run at
+#                          different speeds for minutes (25 % apart here, by turns)
 set -u
 BT=$(mktemp -d "${TMPDIR:-/tmp}/textura-bench.XXXXXX")
 trap 'rm -rf "$BT"' EXIT
@@ -36,4 +40,9 @@ ratio() {
 
 calc() {
     awk "BEGIN { printf \"%.4g\n\", $1 }"
+}
+
+BENCH_CPU=$(taskset -pc $$ 2>/dev/null | sed 's/.*: //; s/.*[,-]//')
+one_cpu() {
+    if [ -n "$BENCH_CPU" ]; then taskset -c "$BENCH_CPU" "$@"; else "$@"; fi
 }
