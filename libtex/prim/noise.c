@@ -2068,12 +2068,11 @@ row_folded2_avx512_op(const tex_noise_grid *g, const float *U, float *const *out
 }
 
 /* row_planar_avx2_op sixteen columns at a time, their corners within 16 entries of the
- * first's (g->span16 <= 15: cells over 15/16 pixels) or, with two, within 32 (span16 <= 31:
- * cells of half a pixel or more): each corner's P and Q from a permute of one register's
- * entries, or of two (slower where one does) */
+ * first's (g->span16 <= 15: cells over 15/16 pixels): each corner's P and Q from a permute
+ * of one register's entries */
 TEX_AVX512 static inline __attribute__((always_inline)) void
-row_planar_avx512_op(const tex_noise_grid *g, struct rowset fr, const int two, const int rows,
-                     const int op, struct row_k rk)
+row_planar_avx512_op(const tex_noise_grid *g, struct rowset fr, const int rows, const int op,
+                     struct row_k rk)
 {
     const int32_t *restrict corner = g->corner;
     const float *restrict u = g->u, *restrict um1 = g->um1, *restrict w0 = g->w0,
@@ -2094,17 +2093,8 @@ row_planar_avx512_op(const tex_noise_grid *g, struct rowset fr, const int two, c
         for (int r = 0; r < rows; r++) {
             const float *P = fr.C[r];
             __m512 v[4]; /* the left corners' P, Q, the right corners' P, Q */
-            if (two) {
-#pragma GCC unroll 4
-                for (int i = 0; i < 4; i++) {
-                    const float *V = (i & 1 ? Q[r] : P) + c0 + (i >> 1);
-                    v[i] = _mm512_permutex2var_ps(_mm512_loadu_ps(V), k,
-                                                  _mm512_loadu_ps(V + 16));
-                }
-            } else {
-                expand16(P, c0, k, k, 15, &v[0], &v[2]);
-                expand16(Q[r], c0, k, k, 15, &v[1], &v[3]);
-            }
+            expand16(P, c0, k, k, 15, &v[0], &v[2]);
+            expand16(Q[r], c0, k, k, 15, &v[1], &v[3]);
             n[r] = pixels16(u + x, um1 + x, w0 + x, w1 + x, v[0], v[2], v[1], v[3]);
         }
         apply_avx512(op, n, fr.out, x, rows, rk);
@@ -2112,7 +2102,10 @@ row_planar_avx512_op(const tex_noise_grid *g, struct rowset fr, const int two, c
     row_planar_tail(g, fr, x, rows, op, rk);
 }
 
-/* row_lut_avx2 with the folded rows sixteen columns at a time */
+/* row_lut_avx2 with the folded rows sixteen columns at a time: by permutes where sixteen
+ * columns' corners lie within sixteen entries, else by loads per column (two rows' from one
+ * table where there are two: from sixteen entries on, 3-4 % faster than permutes of two
+ * registers) */
 TEX_AVX512 static void row_lut_avx512(const tex_noise_grid *g, const struct yrow *yr, int rows,
                                       float *const *out, int op, struct row_k rk)
 {
@@ -2121,7 +2114,7 @@ TEX_AVX512 static void row_lut_avx512(const tex_noise_grid *g, const struct yrow
         return;
     }
     int span = g->span16 < g->t->n ? g->span16 : INT_MAX; /* offsets mod n unambiguous */
-    if (span > 31 && rows == 2) {
+    if (span > 15 && rows == 2) {
         float U[FOLD2_FLOATS];
         fold2_avx512(g, yr, U);
         ROW_OP_SWITCH(row_folded2_avx512_op, (g, U, out), (rk));
@@ -2131,15 +2124,13 @@ TEX_AVX512 static void row_lut_avx512(const tex_noise_grid *g, const struct yrow
     struct rowset fr;
     for (int r = 0; r < rows; r++) {
         fold_row_avx512(g, &yr[r], buf[r]);
-        if (span > 31)
+        if (span > 15)
             interleave(g, buf[r], buf[r] + 2 * g->ps);
-        fr.C[r] = span > 31 ? buf[r] + 2 * g->ps : buf[r];
+        fr.C[r] = span > 15 ? buf[r] + 2 * g->ps : buf[r];
         fr.out[r] = out[r];
     }
     if (span <= 15) {
-        ROWS_SWITCH(row_planar_avx512_op, (g, fr, 0));
-    } else if (span <= 31) {
-        ROWS_SWITCH(row_planar_avx512_op, (g, fr, 1));
+        ROWS_SWITCH(row_planar_avx512_op, (g, fr));
     } else {
         ROWS_SWITCH(row_folded_avx512_op, (g, fr));
     }

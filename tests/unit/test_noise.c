@@ -436,8 +436,9 @@ static void test_row_ops(const tex_noise_table *t)
 static void test_rows_together(const tex_noise_table *t)
 {
     enum { W = 1100, N = 5 };
-    /* cells across and down 400 rows: wide, then folded (planar, one- and two-register
-     * permutes, interleaved), then without a table (slots, paired slots) */
+    /* cells across and down 400 rows: wide, then folded (planar permutes; loads per
+     * column, from two rows' table or one row's interleaved, 1900 and 4000 across), then
+     * without a table (slots, paired slots) */
     static const double cells[][2] = {{20, 40},     {300, 600},  {1000, 2000}, {1900, 3800},
                                       {4000, 8000}, {300, 150}, {1000, 40}};
     static const int ops[] = {TEX_ROW_SET,    TEX_ROW_ADD_UNIT, TEX_ROW_RIDGED,
