@@ -2025,9 +2025,9 @@ column_pair(const float *U, const int32_t *corner2)
         _mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_castps_pd(a)), _mm256_castps_pd(b), 1));
 }
 
-/* A folded grid's two rows from U (fold2_avx512) where columns' corners lie too far apart for
- * permutes: one load per column serves both rows, then a transpose in quarters
- * (columns4_16) and a shuffle of quarters into point order. */
+/* A folded grid's two rows from U (fold2_avx512) where sixteen columns' corners lie too far
+ * apart for a permute of one register: one load per column serves both rows, then a
+ * transpose in quarters (columns4_16) and a shuffle of quarters into point order. */
 TEX_AVX512 static inline __attribute__((always_inline)) void
 row_folded2_avx512_op(const tex_noise_grid *g, const float *U, float *const *out, const int op,
                       struct row_k rk)
