@@ -39,9 +39,11 @@ ALL_CFLAGS   = -std=gnu11 -fPIC -fopenmp -ffp-contract=off $(WARN) $(SAN) $(CFLA
 ALL_CXXFLAGS = -std=c++17 -fPIC $(WARN) $(CXXFLAGS)
 CPPFLAGS += -Ilibtex -I/usr/include/OpenEXR
 LDFLAGS  += -fopenmp $(SAN) -Wl,--as-needed
-LDLIBS    = -lOpenEXRCore -lfftw3f_threads -lfftw3f -lflann -lm -ldl
-# Programs link FLANN and its libstdc++ statically: resolving libstdc++'s
-# symbols at every start doubled a tool's start-up (6.4 ms against 2.8 ms).  FFTW,
+LDLIBS    = -lOpenEXRCore -lfftw3f_threads -lfftw3f -llz4 -lstdc++ -lm -ldl
+# FLANN is its headers' kd-tree, compiled in base/kdtree.cpp (its C API's library holds
+# every index for every type: 1.3 ms of relocations and C++ start-up in every tool).
+# Programs link libstdc++ statically: resolving its symbols at every start doubled a
+# tool's start-up (6.4 ms against 2.8 ms).  FFTW,
 # LZ4, libgcc and, under gcc, libgomp are static too: loading each shared library
 # costs a process its mappings and page faults (7.3 ms against 6.2 ms for t_apply's
 # smallest render; a fault took 11 us on the virtual machines measured here).
@@ -49,14 +51,16 @@ LDLIBS    = -lOpenEXRCore -lfftw3f_threads -lfftw3f -lflann -lm -ldl
 # shared so that ASan sees every operator new.
 GNU_CC := $(if $(findstring clang,$(shell $(CC) --version 2>/dev/null | head -1)),,1)
 PROG_LDLIBS = $(if $(SANITIZE),$(LDLIBS),-static-libgcc -lOpenEXRCore -Wl,-Bstatic \
-              -lfftw3f_threads -lfftw3f -l:libflann_s.a -llz4 -lstdc++ $(if $(GNU_CC),-lgomp) \
+              -lfftw3f_threads -lfftw3f -llz4 -lstdc++ $(if $(GNU_CC),-lgomp) \
               -Wl,-Bdynamic -lm -ldl)
 
 LAYERS   = base io prim ops lang render cli
 LIB_SRC  = $(filter-out %_template.c %_bridge.c libtex/cli/omp_env.c,$(foreach l,$(LAYERS),$(wildcard libtex/$(l)/*.c)))
 # Linked into every tool, not into libtex: its getenv makes OpenMP's idle threads sleep
 OMP_ENV  = $(BUILD)/obj/libtex/cli/omp_env.o
-LIB_OBJ  = $(LIB_SRC:%.c=$(BUILD)/obj/%.o)
+# C++ in libtex: FLANN's templates (base/kdtree.cpp); the bridges are shared objects
+LIB_CXX  = $(filter-out %_bridge.cpp,$(foreach l,$(LAYERS),$(wildcard libtex/$(l)/*.cpp)))
+LIB_OBJ  = $(LIB_SRC:%.c=$(BUILD)/obj/%.o) $(LIB_CXX:%.cpp=$(BUILD)/obj/%.o)
 TOOL_SRC = $(wildcard tools/t_*.c)
 TOOLS    = $(TOOL_SRC:tools/%.c=$(BUILD)/bin/%)
 UNIT_SRC = $(wildcard tests/unit/test_*.c)
@@ -73,7 +77,8 @@ SHARED   = $(BUILD)/lib/libtex.so.0
 PCFILE   = $(BUILD)/lib/pkgconfig/textura.pc
 # Headers that stay inside libtex: the scene's internals, the shading models'
 # interface, the languages' lexer and evaluator, the OpenImageIO bridge.
-PRIVATE_HEADERS = libtex/io/oiio_bridge.h libtex/io/codec_bridge.h libtex/lang/lex.h libtex/lang/expr.h libtex/lang/rowcode.h \
+PRIVATE_HEADERS = libtex/base/kdtree.h libtex/io/oiio_bridge.h libtex/io/codec_bridge.h \
+                  libtex/lang/lex.h libtex/lang/expr.h libtex/lang/rowcode.h \
                   libtex/render/scene.h libtex/render/render_shade.h libtex/render/render_ct.h
 HEADERS  = $(filter-out $(PRIVATE_HEADERS),$(wildcard libtex/*/*.h)) libtex/prim/primitives.def
 
@@ -98,6 +103,10 @@ all: $(STATIC) $(SHARED) $(BRIDGE) $(CODEC_BRIDGES) $(PCFILE) $(TOOLS)
 $(BUILD)/obj/%.o: %.c
 	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) -MMD -MP -c -o $@ $<
+
+$(BUILD)/obj/%.o: %.cpp
+	@mkdir -p $(@D)
+	$(CXX) $(CPPFLAGS) $(ALL_CXXFLAGS) -ffp-contract=off $(SAN) -MMD -MP -c -o $@ $<
 
 # The renderer's work at a hit is many small steps: -O3's inlining and unrolling take 6-7 %
 # off t_apply's CPU on the tests/bench/render scenes, to the same bytes.  The rest of

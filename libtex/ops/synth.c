@@ -4,7 +4,6 @@
 #define _GNU_SOURCE /* qsort_r */
 #include "ops/synth.h"
 
-#include <flann/flann.h>
 #include <math.h>
 #include <omp.h>
 #include <stdlib.h>
@@ -12,6 +11,7 @@
 
 #include "base/error.h"
 #include "base/fp_strict.h"
+#include "base/kdtree.h"
 #include "base/rng.h"
 #include "ops/filter.h"
 #include "ops/transform.h"
@@ -20,7 +20,8 @@
 #define PCA_SAMPLES 2048 /* sample pixels the principal axes are estimated from */
 #define PCA_ITERS 24     /* subspace iterations */
 #define MAX_N 15
-#define FLANN_EPS 1 /* (1+eps)-approximate: 0.3 s less than exact at 512^2, same look */
+#define KD_EPS 1 /* (1+eps)-approximate: 0.3 s less than exact at 512^2, same look */
+#define KD_LEAF 10 /* points a leaf of the kd-tree */
 #define NONE 0xffffffffu
 #define CELL 8           /* side of the sample's occurrence cells */
 #define OCCURRENCE 1.0f /* weight of over-use, in units of the mean neighbourhood distance */
@@ -36,7 +37,7 @@ struct level {
     uint32_t *cset;     /* k-coherence sets, k per sample pixel: x | y << 16, NONE pads */
     float *mean, *axes; /* PCA: mean (dp) and PCA_DIMS axes (dp each) */
     int pd;             /* PCA dimensions used */
-    flann_index_t index;
+    tex_kdtree *index;
     float *pts;         /* the indexed (projected) candidates: FLANN points into them */
     tex_map *gemap;     /* guide: the blurred luma of the sample */
     const float *ge;    /* its pixels */
@@ -290,20 +291,6 @@ static void project(const struct synth *y, const struct level *L, const float *v
     }
 }
 
-static void flann_params(struct FLANNParameters *fp)
-{
-    *fp = DEFAULT_FLANN_PARAMETERS;
-    /* the single kd-tree: no random generator (the randomised trees seed from
-     * std::random_device), so the same sets on every run */
-    fp->algorithm = FLANN_INDEX_KDTREE_SINGLE;
-    fp->checks = FLANN_CHECKS_UNLIMITED;
-    fp->eps = FLANN_EPS;
-    fp->sorted = 1;
-    fp->cores = 1;
-    fp->leaf_max_size = 10;
-    fp->log_level = FLANN_LOG_NONE;
-}
-
 /* The k-coherence sets: each sample pixel itself (if a candidate), then
  * its nearest candidates in PCA space more than h/2 pixels away; -1 pads. */
 static int level_sets(const struct synth *y, struct level *L, float *proj)
@@ -311,8 +298,7 @@ static int level_sets(const struct synth *y, struct level *L, float *proj)
     int W = y->W, H = y->H, pd = L->pd, k = y->k, h = L->h;
     int K = 2 * k + 6 < L->nvalid ? 2 * k + 6 : L->nvalid, fail = 0;
     size_t np = (size_t)W * H;
-    float *pts = malloc((size_t)L->nvalid * pd * sizeof *pts), speedup;
-    struct FLANNParameters fp;
+    float *pts = malloc((size_t)L->nvalid * pd * sizeof *pts);
 
     if (!pts || !(L->cset = malloc(np * k * sizeof *L->cset))) {
         free(pts);
@@ -320,12 +306,11 @@ static int level_sets(const struct synth *y, struct level *L, float *proj)
     }
     for (int i = 0; i < L->nvalid; i++)
         memcpy(pts + (size_t)i * pd, proj + (size_t)L->vlist[i] * pd, pd * sizeof *pts);
-    flann_params(&fp);
-    flann_set_distance_type(FLANN_DIST_EUCLIDEAN, 0);
-    L->index = flann_build_index_float(pts, L->nvalid, pd, &speedup, &fp);
-    if (!L->index) {
+    /* the single kd-tree: no random generator (FLANN's randomised trees seed from
+     * std::random_device), so the same sets on every run */
+    if (!(L->index = tex_kdtree_new_f(pts, L->nvalid, pd, KD_LEAF))) {
         free(pts);
-        return tex_error("FLANN could not build the kd-tree");
+        return -1;
     }
     L->pts = pts; /* FLANN keeps a pointer to the points: they live as long as the index */
     /* Without a mask every output position is a candidate: only they need sets. */
@@ -338,8 +323,6 @@ static int level_sets(const struct synth *y, struct level *L, float *proj)
         int *ind = malloc((size_t)CHUNK * K * sizeof *ind);
         float *dst = malloc((size_t)CHUNK * K * sizeof *dst);
         float *qb = malloc((size_t)CHUNK * pd * sizeof *qb);
-        struct FLANNParameters tp;
-        flann_params(&tp);
 #pragma omp for schedule(dynamic, 1)
         for (long c0 = 0; c0 < nqall; c0 += CHUNK) {
             int nq = nqall - c0 < CHUNK ? (int)(nqall - c0) : CHUNK;
@@ -350,7 +333,7 @@ static int level_sets(const struct synth *y, struct level *L, float *proj)
             for (int q = 0; q < nq; q++)
                 memcpy(qb + (size_t)q * pd, proj + (qlist ? qlist[c0 + q] : c0 + q) * (size_t)pd,
                        pd * sizeof *qb);
-            if (flann_find_nearest_neighbors_index_float(L->index, qb, nq, ind, dst, K, &tp) < 0) {
+            if (tex_kdtree_knn_f(L->index, qb, nq, K, KD_EPS, 1, ind, dst) < 0) {
                 fail = 1;
                 continue;
             }
@@ -404,8 +387,7 @@ static int level_guide(const struct synth *y, struct level *L)
 
 static void level_free(struct level *L)
 {
-    if (L->index)
-        flann_free_index_float(L->index, NULL);
+    tex_kdtree_free(L->index);
     tex_map_free(L->E);
     free(L->ne);
     free(L->ok);
@@ -541,11 +523,9 @@ static int correct_pixel(const struct synth *y, const struct level *L, int l, in
                 }
             }
         if (top) { /* the coarsest level's first pass: FLANN proposes too */
-            struct FLANNParameters fp;
             int K = y->k < L->nvalid ? y->k : L->nvalid;
-            flann_params(&fp);
             project(y, L, v, q);
-            if (flann_find_nearest_neighbors_index_float(L->index, q, 1, ind, dst, K, &fp) == 0)
+            if (tex_kdtree_knn_f(L->index, q, 1, K, KD_EPS, 1, ind, dst) == 0)
                 for (int t = 0; t < K; t++)
                     cand_add(c, L, L->vlist[ind[t]], p);
         }

@@ -1,7 +1,6 @@
 /* cellular.c - point sets, nearest-point queries and the bubble primitive */
 #include <errno.h>
 #include <float.h>
-#include <flann/flann.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -9,6 +8,7 @@
 
 #include "prim/cellular.h"
 #include "base/error.h"
+#include "base/kdtree.h"
 #include "base/progress.h"
 #include "prim/prim.h"
 #include "base/rng.h"
@@ -365,7 +365,7 @@ struct tex_cellular {
     long *cid;
     int avx2; /* the CPU runs the AVX2 kernel */
     /* kd-tree over the points (and their periodic images within margin) */
-    flann_index_t index;
+    tex_kdtree *index;
     double *rep, margin, kfac, lip, amin;
     long *repid;
     unsigned char *repshift;
@@ -1166,8 +1166,6 @@ static int rep_sort(struct tex_cellular *c)
 static int kdtree_build(struct tex_cellular *c)
 {
     int dim = c->dim, nshift = c->tile ? (dim == 2 ? 9 : 27) : 1;
-    struct FLANNParameters fp = DEFAULT_FLANN_PARAMETERS;
-    float speedup;
     long cap = c->n * nshift;
 
     if (c->tile) {
@@ -1202,17 +1200,8 @@ static int kdtree_build(struct tex_cellular *c)
     }
     if (rep_sort(c) < 0)
         return -1;
-    fp.algorithm = FLANN_INDEX_KDTREE_SINGLE;
-    fp.checks = FLANN_CHECKS_UNLIMITED;
-    fp.eps = 0;
-    fp.sorted = 1;
-    fp.cores = 1;
-    fp.leaf_max_size = 8;
-    fp.log_level = FLANN_LOG_NONE;
-    flann_set_distance_type(FLANN_DIST_EUCLIDEAN, 0);
-    c->index = flann_build_index_double(c->rep, (int)c->nrep, dim, &speedup, &fp);
-    if (!c->index)
-        return tex_error("FLANN could not build the kd-tree");
+    if (!(c->index = tex_kdtree_new_d(c->rep, c->nrep, dim, 8)))
+        return -1;
     /* Lp >= L2 for p <= 2 and Lp >= L2 * dim^(1/p - 1/2) beyond. */
     c->kfac = (1 - 1e-9) / c->rmax;
     /* Upward, ||x / a||_p <= ||x||_2 / amin times dim^(1/p - 1/2) for p < 2:
@@ -1232,16 +1221,9 @@ static int kdtree_build(struct tex_cellular *c)
 static void kdtree_query(const struct tex_cellular *c, int n, const double *q, struct best *b)
 {
     int dim = c->dim, npend = n, k = 3;
-    struct FLANNParameters fp = DEFAULT_FLANN_PARAMETERS;
     int *pend = malloc(n * sizeof *pend), *ind = NULL;
     double *qb = malloc((size_t)n * dim * sizeof *qb), *dist = NULL;
 
-    fp.algorithm = FLANN_INDEX_KDTREE_SINGLE;
-    fp.checks = FLANN_CHECKS_UNLIMITED;
-    fp.eps = 0;
-    fp.sorted = 1;
-    fp.cores = 1;
-    fp.log_level = FLANN_LOG_NONE;
     if (!pend || !qb)
         goto brute;
     for (int i = 0; i < n; i++)
@@ -1260,7 +1242,7 @@ static void kdtree_query(const struct tex_cellular *c, int n, const double *q, s
             goto brute;
         for (int i = 0; i < npend; i++)
             memcpy(qb + (size_t)i * dim, q + (size_t)pend[i] * dim, dim * sizeof *qb);
-        if (flann_find_nearest_neighbors_index_double(c->index, qb, npend, ind, dist, k, &fp) < 0)
+        if (tex_kdtree_knn_d(c->index, qb, npend, k, 0, 1, ind, dist) < 0)
             goto brute;
         for (int i = 0; i < npend; i++) {
             struct best *bi = b + pend[i];
@@ -1338,7 +1320,6 @@ struct act_list {
 };
 
 struct act_build {
-    struct FLANNParameters fp;
     int rind[ACT_RMAX];
     double rdist[ACT_RMAX];
     long nnode, capnode, nent, capent, budget, nodebudget;
@@ -1432,13 +1413,13 @@ enum { ACT_LISTED, ACT_SPLIT, ACT_DONE };
 /* F2 at m from its two nearest representatives: the reach R within which
  * every point that may matter in a box of half-diagonal hd lies, F2 itself,
  * and the squared distance to the second nearest. */
-static int act_reach(const struct tex_cellular *c, struct act_build *B, const double *m, double hd,
+static int act_reach(const struct tex_cellular *c, const double *m, double hd,
                      double *R, double *f2, double *d2)
 {
     int k2 = c->nrep < 2 ? 1 : 2, ind[2];
     double dist[2], s1 = INFINITY, s2 = INFINITY, zero[3] = {0, 0, 0};
-    if (flann_find_nearest_neighbors_index_double(c->index, (double *)m, 1, ind, dist, k2, &B->fp) < 0)
-        return tex_error("FLANN could not search the kd-tree");
+    if (tex_kdtree_knn_d(c->index, m, 1, k2, 0, 0, ind, dist) < 0)
+        return -1;
     for (int t = 0; t < k2; t++) {
         long id = c->repid[ind[t]];
         double a = acc_point(c, m, c->rep + (size_t)ind[t] * c->dim,
@@ -1497,7 +1478,7 @@ static int act_gather(struct tex_cellular *c, struct act_build *B, long node, co
     double hd = 0.5 * side * sqrt((double)dim), m[3], R = 0, f2 = 0, d2 = 0, est;
     for (int d = 0; d < dim; d++)
         m[d] = lo[d] + 0.5 * side;
-    if (act_reach(c, B, m, hd, &R, &f2, &d2) < 0)
+    if (act_reach(c, m, hd, &R, &f2, &d2) < 0)
         return -1;
     if (c->tile && !(R < c->margin * (1 - 1e-9))) {
         /* Images beyond the margin are not in the tree: smaller boxes
@@ -1516,9 +1497,9 @@ static int act_gather(struct tex_cellular *c, struct act_build *B, long node, co
         float r2 = R == INFINITY ? INFINITY : nextafterf((float)(R * R), INFINITY);
         if (maxnn > c->nrep)
             maxnn = (int)c->nrep + 1;
-        got = flann_radius_search_double(c->index, m, B->rind, B->rdist, maxnn, r2, &B->fp);
+        got = tex_kdtree_radius_d(c->index, m, r2, maxnn, B->rind, B->rdist);
         if (got < 0)
-            return tex_error("FLANN could not search the kd-tree");
+            return -1;
         if (got < maxnn)
             break; /* all of them */
         if (maxnn < ACT_RMAX) {
@@ -1657,14 +1638,6 @@ static int act_build(struct tex_cellular *c)
 
     if (!B)
         return tex_error("out of memory for the candidate tree");
-    B->fp = DEFAULT_FLANN_PARAMETERS;
-    B->fp.algorithm = FLANN_INDEX_KDTREE_SINGLE;
-    B->fp.checks = FLANN_CHECKS_UNLIMITED;
-    B->fp.eps = 0;
-    B->fp.sorted = 0;
-    B->fp.max_neighbors = -1;
-    B->fp.cores = 1;
-    B->fp.log_level = FLANN_LOG_NONE;
     B->budget = 32 * c->n + (1L << 20);
     B->nodebudget = 16 * c->n + (1L << 16);
     while (pow(2.0 * T, dim) <= c->n / 32.0 && T < (dim == 2 ? 1024 : 64))
@@ -1784,8 +1757,7 @@ void tex_cellular_free(tex_cellular *c)
 {
     if (!c)
         return;
-    if (c->index)
-        flann_free_index_double(c->index, NULL);
+    tex_kdtree_free(c->index);
     free(c->x);
     free(c->ia);
     free(c->start);

@@ -50,10 +50,10 @@
  *                      search that list (set-up: a few us per point;
  *                      TEXTURA_BUBBLE_NO_TREE in the environment skips it)
  *   TEX_SEARCH_AUTO    the grid, unless the buckets are badly unbalanced
- * Why FLANN runs Euclidean only: its C API keeps the distance type in a
- * process-wide variable that is read again at query time, so two fields
- * with different metrics could not share a process; the bound keeps the
- * other metrics exact.  Queries are read-only and safe from many threads.
+ * FLANN's tree runs Euclidean only (base/kdtree.h; its C API kept the
+ * distance type in a process-wide variable, so two fields with different
+ * metrics could not have shared a process); the bound keeps the other
+ * metrics exact.  Queries are read-only and safe from many threads.
  *
  * Limits: 1..TEX_POINTS_MAX points.  Errors are reported through error.h.
  */
