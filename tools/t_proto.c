@@ -814,7 +814,7 @@ static enum MHD_Result handle(void *cls, struct MHD_Connection *c, const char *u
             }
             if (fd >= 0)
                 close(fd);
-            free(tb.data);
+            tex_buf_free(&tb);
         }
     } else {
         code = 404;

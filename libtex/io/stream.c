@@ -29,8 +29,13 @@ int tex_buf_reserve(tex_buf *b, size_t cap)
         return 0;
     if (cap < 2 * b->cap)
         cap = 2 * b->cap;
-    if (!(d = realloc(b->data, cap)))
+    if (!(d = b->mapped ? malloc(cap) : realloc(b->data, cap)))
         return tex_error("out of memory (%zu bytes)", cap);
+    if (b->mapped) { /* pages do not grow: the bytes move to the heap */
+        memcpy(d, b->data, b->len);
+        tex_pages_free(b->data, b->mapped);
+        b->mapped = 0;
+    }
     b->data = d;
     b->cap = cap;
     return 0;
@@ -38,9 +43,12 @@ int tex_buf_reserve(tex_buf *b, size_t cap)
 
 void tex_buf_free(tex_buf *b)
 {
-    free(b->data);
+    if (b->mapped)
+        tex_pages_free(b->data, b->mapped);
+    else
+        free(b->data);
     b->data = NULL;
-    b->len = b->cap = 0;
+    b->len = b->cap = b->mapped = 0;
 }
 
 /* The core library reports through a callback; keep its last word. */

@@ -31,10 +31,12 @@ extern "C" {
 
 enum tex_compression { TEX_COMPRESS_NONE, TEX_COMPRESS_ZIP, TEX_COMPRESS_PIZ };
 
-/* A growable byte buffer. */
+/* A growable byte buffer: malloc'ed, or (mapped > 0) pages of tex_pages_new's, which
+ * tex_read_fd takes for a large file.  Free it with tex_buf_free. */
 typedef struct tex_buf {
     unsigned char *data;
     size_t len, cap;
+    size_t mapped; /* tex_pages_free's size; 0: the heap's */
 } tex_buf;
 
 int tex_buf_reserve(tex_buf *b, size_t cap);

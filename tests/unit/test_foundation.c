@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 #ifdef __GLIBC__ /* known once a libc header is in */
 #include <malloc.h>
 #endif
@@ -59,6 +60,40 @@ static void test_pages(void)
                 memset(p, 0xff, n);
             tex_pages_free(p, mapped);
         }
+}
+
+/* tex_read_fd: a large file into pages, a small one and a pipe into the heap; a buffer of
+ * pages grows onto the heap with its bytes */
+static void test_read_fd(void)
+{
+    char path[] = "/tmp/test_foundation.XXXXXX";
+    int fd = mkstemp(path);
+    size_t n = ((size_t)3 << 20) + 5;
+    unsigned char *src = malloc(n);
+    for (size_t i = 0; src && i < n; i++)
+        src[i] = (unsigned char)(i * 2654435761u >> 24);
+    CHECK(fd >= 0 && src && write(fd, src, n) == (ssize_t)n, "a 3 MiB file written");
+    for (int big = 1; big >= 0 && fd >= 0 && src; big--) { /* the file cut short after */
+        size_t len = big ? n : 1000;
+        tex_buf b = {0};
+        if (ftruncate(fd, (off_t)len) < 0 || lseek(fd, 0, SEEK_SET) != 0)
+            break;
+        int r = tex_read_fd(fd, &b, "test");
+        CHECKF(r == 0 && b.len == len && memcmp(b.data, src, len) == 0 &&
+                   (big ? b.mapped >= len : b.mapped == 0),
+               "tex_read_fd: %zu bytes read whole, into %s", len, big ? "pages" : "the heap");
+        if (big) {
+            r = tex_buf_reserve(&b, 2 * b.cap);
+            CHECK(r == 0 && b.mapped == 0 && b.cap >= 2 * len && memcmp(b.data, src, len) == 0,
+                  "a buffer of pages grows onto the heap, its bytes kept");
+        }
+        tex_buf_free(&b);
+        CHECK(!b.data && !b.len && !b.cap && !b.mapped, "tex_buf_free empties the buffer");
+    }
+    if (fd >= 0)
+        close(fd);
+    unlink(path);
+    free(src);
 }
 
 struct p {
@@ -284,6 +319,7 @@ int main(void)
     test_map_limits();
     test_pages();
     test_keep_heap();
+    test_read_fd();
     test_params();
     test_sniff();
     test_stream();
