@@ -10,6 +10,7 @@
 #endif
 
 #include "base/error.h"
+#include "base/map.h"
 #include "base/progress.h"
 #include "prim/prim.h"
 #include "base/rng.h"
@@ -48,6 +49,39 @@ static void plan_setup(void)
     if (fftw_threads_ok)
         fftwf_plan_with_nthreads(omp_get_max_threads());
 #endif
+}
+
+/* FFTW's arrays in pages of their own (tex_pages_new), 64-byte aligned as fftwf_malloc's
+ * are: on the heap a 2048^2 map's were 8,000 first touches of 4 KiB pages.  The mapping's
+ * size is kept in the 64 bytes before the array. */
+#define FFT_PAGES (1 << 20)
+static void *fft_alloc(size_t bytes)
+{
+    size_t mapped;
+    unsigned char *p = tex_pages_new(bytes + 64, FFT_PAGES, &mapped);
+    if (!p)
+        return NULL;
+    memcpy(p, &mapped, sizeof mapped);
+    return p + 64;
+}
+
+static void fft_free(void *a)
+{
+    size_t mapped;
+    if (!a)
+        return;
+    memcpy(&mapped, (unsigned char *)a - 64, sizeof mapped);
+    tex_pages_free((unsigned char *)a - 64, mapped);
+}
+
+static float *fft_real(size_t n)
+{
+    return fft_alloc(n * sizeof(float));
+}
+
+static fftwf_complex *fft_complex(size_t n)
+{
+    return fft_alloc(n * sizeof(fftwf_complex));
 }
 
 /* Transforms are the long part of this module's work: each is a unit of progress. */
@@ -221,8 +255,8 @@ static tex_map *fft(const tex_map *m, enum tex_fft_output out, int hann)
 
     if (tex_check_finite(m, NULL) < 0 || !(s = scalar_of(m, &own)))
         return NULL;
-    in = fftwf_alloc_real((size_t)w * h);
-    F = fftwf_alloc_complex((size_t)h * hw);
+    in = fft_real((size_t)w * h);
+    F = fft_complex((size_t)h * hw);
     wx = malloc(((size_t)w + h) * sizeof *wx);
     if (!in || !F || !wx) {
         tex_error("out of memory");
@@ -252,8 +286,8 @@ static tex_map *fft(const tex_map *m, enum tex_fft_output out, int hann)
 done:
     free(own);
     free(wx);
-    fftwf_free(in);
-    fftwf_free(F);
+    fft_free(in);
+    fft_free(F);
     return o;
 }
 
@@ -406,8 +440,8 @@ static int ifft_half(const struct ifft_ctx *c, const struct tex_ifft_opts *o, te
 {
     int w = c->w, h = c->h, rc = 0;
     size_t n = (size_t)w * h;
-    float *rbuf = NULL, *r = o->output == TEX_IFFT_REAL ? out->px : (rbuf = fftwf_alloc_real(n));
-    fftwf_complex *F = fftwf_alloc_complex((size_t)h * (w / 2 + 1));
+    float *rbuf = NULL, *r = o->output == TEX_IFFT_REAL ? out->px : (rbuf = fft_real(n));
+    fftwf_complex *F = fft_complex((size_t)h * (w / 2 + 1));
     fftwf_plan plan = NULL;
     if (!r || !F)
         rc = tex_error("out of memory");
@@ -431,8 +465,8 @@ static int ifft_half(const struct ifft_ctx *c, const struct tex_ifft_opts *o, te
     }
     if (plan)
         fftwf_destroy_plan(plan);
-    fftwf_free(rbuf);
-    fftwf_free(F);
+    fft_free(rbuf);
+    fft_free(F);
     return rc;
 }
 
@@ -441,12 +475,12 @@ static int ifft_full(const struct ifft_ctx *c, const struct tex_ifft_opts *o, te
 {
     int w = c->w, h = c->h;
     size_t n = (size_t)w * h;
-    fftwf_complex *F = fftwf_alloc_complex(n);
+    fftwf_complex *F = fft_complex(n);
     fftwf_plan plan;
     if (!F)
         return tex_error("out of memory");
     if (!(plan = fftwf_plan_dft_2d(h, w, F, F, FFTW_BACKWARD, FFTW_ESTIMATE))) {
-        fftwf_free(F);
+        fft_free(F);
         return no_plan(w, h);
     }
     fill_full(c, F);
@@ -463,7 +497,7 @@ static int ifft_full(const struct ifft_ctx *c, const struct tex_ifft_opts *o, te
         }
     }
     fftwf_destroy_plan(plan);
-    fftwf_free(F);
+    fft_free(F);
     return 0;
 }
 
@@ -544,12 +578,12 @@ int tex_spectral_fbm(tex_map *m, const struct tex_fbm_spec *p)
     tex_progress_stage(1, 1);
     if (m->nc != 1)
         return tex_error("internal: fBm fills a 1-channel map");
-    if (!(F = fftwf_alloc_complex((size_t)h * hw)))
+    if (!(F = fft_complex((size_t)h * hw)))
         return tex_error("out of memory");
     powtab_init(&pt, e);
     plan_setup();
     if (!(plan = fftwf_plan_dft_c2r_2d(h, w, F, m->px, FFTW_ESTIMATE))) {
-        fftwf_free(F);
+        fft_free(F);
         return tex_error("FFTW could not plan a %dx%d transform", w, h);
     }
 #pragma omp parallel for schedule(static) reduction(| : any)
@@ -586,14 +620,14 @@ int tex_spectral_fbm(tex_map *m, const struct tex_fbm_spec *p)
     }
     if (!any) {
         fftwf_destroy_plan(plan);
-        fftwf_free(F);
+        fft_free(F);
         return tex_usage_error("--band %g,%g holds no frequency of a %dx%d map (1 is the "
                                "lowest, %g the highest)",
                                p->lo, p->hi, w, h, sqrt(2.0) * side / 2);
     }
     execute(plan);
     fftwf_destroy_plan(plan);
-    fftwf_free(F);
+    fft_free(F);
     to_unit(m->px, n, 0);
     return 0;
 }
@@ -692,10 +726,10 @@ static tex_map *sparse_convolve(const tex_map *s, int w, int h, const struct tex
     }
     if (tex_check_finite(s, NULL) < 0)
         return NULL;
-    k.rb = fftwf_alloc_real(k.n);
+    k.rb = fft_real(k.n);
     k.win = malloc((size_t)sw * sh * sizeof *k.win);
-    k.I = fftwf_alloc_complex(k.nhalf);
-    k.K = fftwf_alloc_complex(k.nhalf);
+    k.I = fft_complex(k.nhalf);
+    k.K = fft_complex(k.nhalf);
     if (!k.rb || !k.win || !k.I || !k.K || !(out = tex_map_new(w, h, s->nc))) {
         tex_error("out of memory");
     } else {
@@ -723,9 +757,9 @@ static tex_map *sparse_convolve(const tex_map *s, int w, int h, const struct tex
         fftwf_destroy_plan(k.fwd);
     if (k.inv)
         fftwf_destroy_plan(k.inv);
-    fftwf_free(k.rb);
-    fftwf_free(k.I);
-    fftwf_free(k.K);
+    fft_free(k.rb);
+    fft_free(k.I);
+    fft_free(k.K);
     free(k.win);
     return out;
 }
