@@ -182,7 +182,8 @@ static int keep_channels(int nc, const char *name)
 
 /* ---- reading ---- */
 
-#define READ_PAGES (1 << 20) /* files from this size up are read into fresh pages */
+/* buffers from this size up (a file read whole, samples quantised) take fresh pages */
+#define PAGES_FROM (1 << 20)
 
 /* Read fd to its end, refusing more than max bytes (SIZE_MAX: no limit).  pages: an empty
  * b takes a large file's size in fresh pages (tex_pages_new), as maps do: read into the
@@ -198,8 +199,8 @@ static int read_fd_max(int fd, tex_buf *b, const char *name, size_t max, int pag
         if (S_ISREG(st.st_mode) && st.st_size > 0)
             want = (size_t)st.st_size + 1;
     }
-    if (pages && !b->cap && want >= READ_PAGES) {
-        if (!(b->data = tex_pages_new(want, READ_PAGES, &b->mapped)))
+    if (pages && !b->cap && want >= PAGES_FROM) {
+        if (!(b->data = tex_pages_new(want, PAGES_FROM, &b->mapped)))
             return tex_error("%s: out of memory (%zu bytes)", name, want);
         b->cap = want;
     }
@@ -519,11 +520,13 @@ tex_rows_reader *tex_map_open_rows(const char *path, tex_map *head, tex_map **wh
 /* ---- writing ---- */
 
 /* Quantise to 8 or 16 bits with clamping and rounding; NaN becomes 0. */
-static void *quantise(const tex_map *m, int bits)
+/* m's samples as 8- or 16-bit integers, in memory of tex_pages_new's (*mapped for
+ * tex_pages_free): on the heap a 2048^2 map's were a first touch of 1,000 pages. */
+static void *quantise(const tex_map *m, int bits, size_t *mapped)
 {
     size_t n = tex_map_samples(m);
     float scale = bits == 8 ? 255.0f : 65535.0f;
-    void *q = malloc(n * (bits / 8));
+    void *q = tex_pages_new(n * (bits / 8), PAGES_FROM, mapped);
 
     if (!q) {
         tex_error("out of memory");
@@ -630,27 +633,29 @@ static int write_to_path(const tex_map *m, enum tex_format f, int depth, const c
         const struct tex_codec_bridge *br = bridge_load(codec_slot(f));
         char err[400] = "";
         void *px;
+        size_t mapped = 0;
         int r;
 
         if (!br) {
             tex_error_context(name);
             return -1;
         }
-        if (!(px = depth == 32 ? m->px : quantise(m, depth)))
+        if (!(px = depth == 32 ? m->px : quantise(m, depth, &mapped)))
             return -1;
         r = br->write(fd, px, m->w, m->h, m->nc, depth, err, sizeof err);
         if (depth != 32)
-            free(px);
+            tex_pages_free(px, mapped);
         return r < 0 ? tex_error("%s: %s", name, err) : 0;
     } else {
         const struct tex_oiio_bridge *br = bridge();
         char err[400] = "";
-        void *px = depth == 32 ? m->px : quantise(m, depth);
+        size_t mapped = 0;
+        void *px = depth == 32 ? m->px : quantise(m, depth, &mapped);
         int r;
 
         if (!br) {
             if (depth != 32)
-                free(px);
+                tex_pages_free(px, mapped);
             tex_error_context(name);
             return -1;
         }
@@ -658,7 +663,7 @@ static int write_to_path(const tex_map *m, enum tex_format f, int depth, const c
             return -1;
         r = br->write(tmp, tex_format_name(f), px, m->w, m->h, m->nc, depth, err, sizeof err);
         if (depth != 32)
-            free(px);
+            tex_pages_free(px, mapped);
         if (r < 0)
             return tex_error("%s: %s", name, err);
         return 0;
