@@ -41,7 +41,7 @@ CPPFLAGS += -Ilibtex -I/usr/include/OpenEXR
 LDFLAGS  += -fopenmp $(SAN) -Wl,--as-needed
 LDLIBS    = -lOpenEXRCore -lfftw3f_threads -lfftw3f -llz4 -lstdc++ -lm -ldl
 # FLANN is its headers' kd-tree, compiled in base/kdtree.cpp (its C API's library holds
-# every index for every type: 1.3 ms of relocations and C++ start-up in every tool).
+# every index for every type: 30 page faults and 0.5 ms at every tool's start).
 # Programs link libstdc++ statically: resolving its symbols at every start doubled a
 # tool's start-up (6.4 ms against 2.8 ms).  FFTW,
 # LZ4, libgcc and, under gcc, libgomp are static too: loading each shared library
