@@ -423,18 +423,15 @@ static void cmdline(const struct pipeline *pl, struct str *b)
 
 /* Run the pipeline; the last stage's standard output into out.  Returns the
  * worst exit status (0 ok, 1 runtime, 2 usage) with stderr's first line in err. */
-static int run(struct pipeline *pl, struct str *out)
+/* The pipeline's stages started, each reading the one before (the first /dev/null), the
+ * last writing to out, all to errfd; pid[i] 0 where one could not start */
+static void spawn_stages(struct pipeline *pl, pid_t *pid, int out, int errfd)
 {
-    pid_t pid[MAX_STAGES] = {0};
-    int in = -1, errp[2], outp[2], status = 0;
+    int in = -1;
     char path[PATH_MAX + 64];
-    struct str err = {0};
-    time_t end = time(NULL) + RUN_SECONDS;
 
-    if (pipe2(errp, O_CLOEXEC) < 0 || pipe2(outp, O_CLOEXEC) < 0)
-        return fail(pl, "cannot make a pipe"), 1;
     for (int i = 0; i < pl->n; i++) {
-        int p[2] = {-1, outp[1]};
+        int p[2] = {-1, out};
         posix_spawn_file_actions_t fa;
         if (i < pl->n - 1 && pipe2(p, O_CLOEXEC) < 0)
             break;
@@ -443,8 +440,8 @@ static int run(struct pipeline *pl, struct str *out)
             posix_spawn_file_actions_adddup2(&fa, in, 0);
         else
             posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
-        posix_spawn_file_actions_adddup2(&fa, i < pl->n - 1 ? p[1] : outp[1], 1);
-        posix_spawn_file_actions_adddup2(&fa, errp[1], 2);
+        posix_spawn_file_actions_adddup2(&fa, i < pl->n - 1 ? p[1] : out, 1);
+        posix_spawn_file_actions_adddup2(&fa, errfd, 2);
         posix_spawn_file_actions_addchdir_np(&fa, tmpdir);
         snprintf(path, sizeof path, "%s/%s", bindir, pl->st[i].argv[0]);
         pl->st[i].argv[pl->st[i].n] = NULL;
@@ -458,6 +455,18 @@ static int run(struct pipeline *pl, struct str *out)
             in = p[0];
         }
     }
+}
+
+static int run(struct pipeline *pl, struct str *out)
+{
+    pid_t pid[MAX_STAGES] = {0};
+    int errp[2], outp[2], status = 0;
+    struct str err = {0};
+    time_t end = time(NULL) + RUN_SECONDS;
+
+    if (pipe2(errp, O_CLOEXEC) < 0 || pipe2(outp, O_CLOEXEC) < 0)
+        return fail(pl, "cannot make a pipe"), 1;
+    spawn_stages(pl, pid, outp[1], errp[1]);
     close(outp[1]);
     close(errp[1]);
     struct pollfd fds[2] = {{outp[0], POLLIN, 0}, {errp[0], POLLIN, 0}};
@@ -662,6 +671,129 @@ static int scene_stage(struct pipeline *pl, const char *fn, const char *map)
            arg(pl, "--format=png");
 }
 
+/* The map files the editor may write */
+static const char *const map_exts[] = {"png", "exr", "tif", "pfm", NULL};
+
+/* /api/preview, /api/cmdline and /api/scene (what): the pipeline's PNG, command line, or
+ * scene render into out, of *type; the HTTP status */
+static unsigned api_render(struct MHD_Connection *c, struct pipeline *pl, const char *what,
+                           struct str *out, const char **type)
+{
+    unsigned code = 200;
+    int size = get_size(c, pl, 256);
+    if (size < 0 || build(c, pl, size) < 0) {
+        code = 400;
+    } else if (!strcmp(what, "cmdline")) {
+        const char *map = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "map");
+        if (map && (save_name(pl, map, map_exts) < 0 || to_file(pl, map) < 0)) {
+            code = 400;
+        } else {
+            cmdline(pl, out);
+            if (map)
+                sadd(out, " > %s", map);
+        }
+    } else {
+        char map[PATH_MAX];
+        snprintf(map, sizeof map, "%s/map.%lx.exr", tmpdir, (unsigned long)pthread_self());
+        int r = !strcmp(what, "scene") ? arg(pl, word(pl, "-o%s", map))
+                                        : arg(pl, "--format=png");
+        r = r < 0 ? 2 : run(pl, out);
+        if (!r && !strcmp(what, "scene")) {
+            free(out->s);
+            *out = (struct str){0};
+            const char *fn = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "apply");
+            r = scene_stage(pl, fn, map) < 0 ? 2 : run(pl, out);
+        }
+        code = r == 0 ? 200 : r == 2 ? 400 : 500;
+        *type = r == 0 ? "image/png" : *type;
+    }
+    return code;
+}
+
+/* /api/save: a map, palette, command line, scene or project into the work directory */
+static unsigned api_save(struct MHD_Connection *c, struct pipeline *pl, struct str *out)
+{
+    unsigned code;
+    struct str b = {0};
+    static const char *const pal_exts[] = {"pal", NULL};
+    static const char *const sh_exts[] = {"sh", "txt", NULL};
+    static const char *const scene_exts[] = {"scene", "txt", NULL};
+    static const char *const proj_exts[] = {"tproj", "txt", NULL};
+    const char *kind = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "kind");
+    const char *name = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "name");
+    const char *body = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "text");
+    int size = get_size(c, pl, 512), rc = -1, break_out = 0;
+    kind = kind ? kind : "";
+    if (!strcmp(kind, "palette") || !strcmp(kind, "project")) {
+        /* text the page made: a palette file, or a project (the query) */
+        if (save_name(pl, name, kind[1] == 'a' ? pal_exts : proj_exts) == 0) {
+            if (!body || strlen(body) > 16384)
+                fail(pl, "the %s's text is missing or longer than 16384 bytes", kind);
+            else if (kind[1] == 'a') {
+                tex_palette *p = tex_palette_parse(body, strlen(body), name);
+                rc = p ? save_text(pl, name, body, strlen(body)) : fail(pl, "%s", tex_errmsg());
+                tex_palette_free(p);
+            } else {
+                rc = save_text(pl, name, body, strlen(body));
+            }
+        }
+    } else if (size < 0 || build(c, pl, size) < 0) {
+        ;
+    } else if (!strcmp(kind, "map")) {
+        /* the map as the command line makes it: standard output, into the file */
+        if (save_name(pl, name, map_exts) == 0 && to_file(pl, name) == 0 && !run(pl, out))
+            rc = save_text(pl, name, out->s, out->n);
+        free(out->s);
+        *out = (struct str){0};
+    } else if (!strcmp(kind, "cmdline") || !strcmp(kind, "scene")) {
+        if (save_name(pl, name, kind[0] == 'c' ? sh_exts : scene_exts) == 0) {
+            if (kind[0] == 'c') {
+                const char *map = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "map");
+                sadd(&b, "#!/bin/sh\n");
+                if (save_name(pl, map, map_exts) < 0 || to_file(pl, map) < 0)
+                    break_out = 1;
+                cmdline(pl, &b);
+                sadd(&b, " > %s\n", map);
+            } else { /* the scene's texture statement, its map from standard input */
+                sadd(&b, "# ");
+                cmdline(pl, &b);
+                sadd(&b, " | t_apply THIS.scene\ntexture map file -\n");
+            }
+            rc = break_out ? -1 : save_text(pl, name, b.s, b.n);
+        }
+    } else {
+        fail(pl, "kind must be map, palette, cmdline, scene or project (got '%.20s')", kind);
+    }
+    if (rc == 0)
+        sadd(out, "saved %s", name);
+    code = rc == 0 ? 200 : 400;
+    free(b.s);
+    return code;
+}
+
+/* /api/load: a project's text into out */
+static unsigned api_load(struct MHD_Connection *c, struct pipeline *pl, struct str *out)
+{
+    unsigned code;
+    const char *name = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "name");
+    static const char *const proj_exts[] = {"tproj", "txt", NULL};
+    code = 400;
+    if (save_name(pl, name, proj_exts) == 0) {
+        int fd = openat(workfd, name, O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+        tex_buf tb = {0};
+        if (fd < 0 || tex_read_fd(fd, &tb, name) < 0 || tb.len > 16384)
+            fail(pl, "cannot read project '%s'", name);
+        else {
+            sbytes(out, (const char *)tb.data, tb.len);
+            code = 200;
+        }
+        if (fd >= 0)
+            close(fd);
+        tex_buf_free(&tb);
+    }
+    return code;
+}
+
 static enum MHD_Result handle(void *cls, struct MHD_Connection *c, const char *url,
                               const char *method, const char *version, const char *data,
                               size_t *data_size, void **state)
@@ -717,105 +849,12 @@ static enum MHD_Result handle(void *cls, struct MHD_Connection *c, const char *u
     const char *what = url + (strncmp(url, "/api/", 5) ? 0 : 5);
     unsigned code = 200;
     const char *type = "text/plain; charset=utf-8";
-    static const char *const map_exts[] = {"png", "exr", "tif", "pfm", NULL};
     if (!strcmp(what, "preview") || !strcmp(what, "cmdline") || !strcmp(what, "scene")) {
-        int size = get_size(c, pl, 256);
-        if (size < 0 || build(c, pl, size) < 0) {
-            code = 400;
-        } else if (!strcmp(what, "cmdline")) {
-            const char *map = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "map");
-            if (map && (save_name(pl, map, map_exts) < 0 || to_file(pl, map) < 0)) {
-                code = 400;
-            } else {
-                cmdline(pl, &out);
-                if (map)
-                    sadd(&out, " > %s", map);
-            }
-        } else {
-            char map[PATH_MAX];
-            snprintf(map, sizeof map, "%s/map.%lx.exr", tmpdir, (unsigned long)pthread_self());
-            int r = !strcmp(what, "scene") ? arg(pl, word(pl, "-o%s", map))
-                                            : arg(pl, "--format=png");
-            r = r < 0 ? 2 : run(pl, &out);
-            if (!r && !strcmp(what, "scene")) {
-                free(out.s);
-                out = (struct str){0};
-                const char *fn = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "apply");
-                r = scene_stage(pl, fn, map) < 0 ? 2 : run(pl, &out);
-            }
-            code = r == 0 ? 200 : r == 2 ? 400 : 500;
-            type = r == 0 ? "image/png" : type;
-        }
+        code = api_render(c, pl, what, &out, &type);
     } else if (!strcmp(what, "save")) {
-        static const char *const pal_exts[] = {"pal", NULL};
-        static const char *const sh_exts[] = {"sh", "txt", NULL};
-        static const char *const scene_exts[] = {"scene", "txt", NULL};
-        static const char *const proj_exts[] = {"tproj", "txt", NULL};
-        const char *kind = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "kind");
-        const char *name = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "name");
-        const char *body = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "text");
-        int size = get_size(c, pl, 512), rc = -1, break_out = 0;
-        kind = kind ? kind : "";
-        if (!strcmp(kind, "palette") || !strcmp(kind, "project")) {
-            /* text the page made: a palette file, or a project (the query) */
-            if (save_name(pl, name, kind[1] == 'a' ? pal_exts : proj_exts) == 0) {
-                if (!body || strlen(body) > 16384)
-                    fail(pl, "the %s's text is missing or longer than 16384 bytes", kind);
-                else if (kind[1] == 'a') {
-                    tex_palette *p = tex_palette_parse(body, strlen(body), name);
-                    rc = p ? save_text(pl, name, body, strlen(body)) : fail(pl, "%s", tex_errmsg());
-                    tex_palette_free(p);
-                } else {
-                    rc = save_text(pl, name, body, strlen(body));
-                }
-            }
-        } else if (size < 0 || build(c, pl, size) < 0) {
-            ;
-        } else if (!strcmp(kind, "map")) {
-            /* the map as the command line makes it: standard output, into the file */
-            if (save_name(pl, name, map_exts) == 0 && to_file(pl, name) == 0 && !run(pl, &out))
-                rc = save_text(pl, name, out.s, out.n);
-            free(out.s);
-            out = (struct str){0};
-        } else if (!strcmp(kind, "cmdline") || !strcmp(kind, "scene")) {
-            if (save_name(pl, name, kind[0] == 'c' ? sh_exts : scene_exts) == 0) {
-                if (kind[0] == 'c') {
-                    const char *map = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "map");
-                    sadd(&b, "#!/bin/sh\n");
-                    if (save_name(pl, map, map_exts) < 0 || to_file(pl, map) < 0)
-                        break_out = 1;
-                    cmdline(pl, &b);
-                    sadd(&b, " > %s\n", map);
-                } else { /* the scene's texture statement, its map from standard input */
-                    sadd(&b, "# ");
-                    cmdline(pl, &b);
-                    sadd(&b, " | t_apply THIS.scene\ntexture map file -\n");
-                }
-                rc = break_out ? -1 : save_text(pl, name, b.s, b.n);
-            }
-        } else {
-            fail(pl, "kind must be map, palette, cmdline, scene or project (got '%.20s')", kind);
-        }
-        if (rc == 0)
-            sadd(&out, "saved %s", name);
-        code = rc == 0 ? 200 : 400;
+        code = api_save(c, pl, &out);
     } else if (!strcmp(what, "load")) {
-        const char *name = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "name");
-        static const char *const proj_exts[] = {"tproj", "txt", NULL};
-        code = 400;
-        if (save_name(pl, name, proj_exts) == 0) {
-            int fd = openat(workfd, name, O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
-            tex_buf tb = {0};
-            if (fd < 0 || tex_read_fd(fd, &tb, name) < 0 || tb.len > 16384)
-                fail(pl, "cannot read project '%s'", name);
-            else {
-                sbytes(&out, (const char *)tb.data, tb.len);
-                code = 200;
-            }
-            if (fd >= 0)
-                close(fd);
-            tex_buf_free(&tb);
-        }
+        code = api_load(c, pl, &out);
     } else {
         code = 404;
         snprintf(pl->err, sizeof pl->err, "no such page");
