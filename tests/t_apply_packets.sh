@@ -4,7 +4,8 @@
 # primitives are evaluated at hit points in batches: solid (eval3) and 2D (eval2)
 # primitives, band-limited solids (through each hit's footprint), region ids at points, a texture applied twice, more applied textures than
 # a packet looks up ahead, bumps, blended surfaces, area lights and jittered samples,
-# spectral colour, image sizes that packets do not divide, and regions of the image.
+# spectral colour, image sizes that packets do not divide, and regions of the image; plain
+# surfaces shaded together.
 . tests/lib.sh
 
 cat >"$T/a.scene" <<'SCENE'
@@ -199,6 +200,51 @@ for s in 41x33 9x7; do
         notok "a floor of one map in lanes, $s, against pixel by pixel" \
             "$(maxdiff "$T/m1-px.pfm" "$T/m1-pk.pfm")"
 done
+# plain surfaces (Phong, no Kr or Kt, untextured or one map's Kd functions alone) in an RGB
+# scene of point and spot lights: a packet shades their hits together, light by light
+# (render.c's plain_shade); falloffs, spot cones of whole and fractional exponents, whole and
+# fractional highlights, a map's window (hits outside it), two Kd functions, a CSG hollow
+# and the inside of a sphere around it all (normals turned to the eye), shadows, a mirror
+# beside them (shaded one by one) and its reflections of them
+cat >"$T/p.scene" <<SCENE
+image 41 33
+samples 1
+depth 3
+ambient 0.3 0.3 0.3
+camera { eye 0 3 -6 look 0 0.8 0 fov 70 }
+light point { position -3 8 -4 }
+light point { position 3 5 -6 falloff square intensity 40 }
+light spot { position 2 6 -3 at 0 0.5 0 angle 35 exponent 3 intensity 0.7 }
+light spot { position -2 4 -5 at 0 0 0 angle 20 exponent 2.5 falloff 1 0.02 0.002 }
+texture grey file "$T/grey.pgm"
+surface floor { Kd 0.8 0.8 0.8 apply grey { mapping natural repeat 3 2 Kd = 0.8*f + 0.1
+    Kd = 0.5*p + 0.4*f*p } }
+surface shiny { Kd 0.2 0.3 0.8 Ks 0.8 n 40.5 }
+surface dull { Kd 0.6 0.5 0.4 Ks 0.3 n 12 apply grey { mapping natural window 0.1 0.1 0.9 0.8
+    Kd = f*p } }
+surface mirror { Kd 0.3 0.3 0.3 Ks 0.5 n 30 Kr 0.5 }
+surface dome { Kd 0.5 0.6 0.7 Ks 0.2 n 8 }
+plane { surface floor }
+difference { box { min -1 0 -1 max 1 2 1 } sphere { centre 0 1 0 radius 1.3 } surface dull
+             rotate 0 20 0 translate -2 0 0 }
+sphere { centre 0.4 1 0.5 radius 0.8 surface shiny }
+cylinder { base 0 0 0 top 0 1.8 0 radius 0.5 surface mirror translate 2 0 0 }
+sphere { centre 0 0 0 radius 40 surface dome }
+SCENE
+for args in "-j 1" "-j 2" "-j 1 --spp 4 -s 23x19"; do
+    # shellcheck disable=SC2086
+    TEXTURA_PACKETS=0 t_apply "$T/p.scene" -q $args -o "$T/p-px.pfm" &&
+        TEXTURA_PACKETS=1 t_apply "$T/p.scene" -q $args -o "$T/p-pk.pfm" &&
+        TEXTURA_SIMD=scalar t_apply "$T/p.scene" -q $args -o "$T/p-pk0.pfm" &&
+        cmp -s "$T/p-px.pfm" "$T/p-pk.pfm" && cmp -s "$T/p-px.pfm" "$T/p-pk0.pfm" &&
+        ok "plain surfaces shaded together ($args): the pixel-by-pixel render's bytes" ||
+        notok "plain surfaces shaded together ($args) against pixel by pixel" \
+            "$(maxdiff "$T/p-px.pfm" "$T/p-pk.pfm")"
+done
+sd=$(info_json "$T/p-pk.pfm" stats 0 stddev)
+awk -v s="$sd" 'BEGIN { exit !(s > 0.05) }' &&
+    ok "the plain scene is lit and textured (stddev $sd)" ||
+    notok "the plain scene is lit and textured" "stddev $sd"
 sd=$(info_json "$T/m-pk.pfm" stats 0 stddev)
 awk -v s="$sd" 'BEGIN { exit !(s > 0.05) }' && ok "the maps' scene is textured (stddev $sd)" ||
     notok "the maps' scene is textured" "stddev $sd"

@@ -12,11 +12,13 @@
  * (tex_prefetch_eval: a map's footprints and trilinear lookups in vector
  * lanes; a leaf's hits of one planar map on a plane, or of one natural map on a
  * box, cylinder, cone or sphere, in lanes from their points on,
- * tex_prefetch_lanes), then every hit is shaded.  A point gets the same value
- * in a call of any length, and each pixel draws from its own rng in the same
- * order, so the image is the one pixel-by-pixel tracing makes; TEXTURA_PACKETS=0
- * in the environment traces pixel by pixel (tests/t_apply_packets.sh compares
- * the two).
+ * tex_prefetch_lanes), then every hit is shaded: those on plain surfaces (Phong
+ * without rays of their own, tex_surface_plain) together, light by light
+ * (plain_shade), the others one by one.  A point gets the same value in a call
+ * of any length, and each pixel draws from its own rng in the same order, so
+ * the image is the one pixel-by-pixel tracing makes; TEXTURA_PACKETS=0 in the
+ * environment traces pixel by pixel (tests/t_apply_packets.sh compares the
+ * two).
  */
 #include <math.h>
 #include <omp.h>
@@ -36,6 +38,7 @@ struct ctx {
     const tex_colour *ambient, *background;
     tex_rng *rng;
     int need_rng; /* jittered samples or area lights */
+    int plain;    /* RGB, point and spot lights alone: plain hits shaded together */
 };
 
 static double eps_at(tex_v3 p)
@@ -503,6 +506,21 @@ static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, 
  * lookups ahead are the same computations, so the bytes are the per-pixel render's. */
 #define PACKET 8
 #define QUEUES 3 /* lanes' queues: a packet's leaves (a floor, an object's faces) */
+#define NP (PACKET * PACKET)
+
+/* A packet's hits on plain surfaces (tex_surface_plain), in an RGB scene lit by point and
+ * spot lights alone: shade's work for them (ambient, then each light's direction, shadow
+ * ray and Phong) without its general set-up, done light by light over all of them, their
+ * shadow rays together.  Each sum in the same order as shade's: the same bits. */
+struct plain {
+    int n, k[NP];                        /* k: the hit in the packet */
+    const struct tex_object *outside[NP]; /* shade's */
+    tex_v3 P[NP], N[NP], V[NP], Pout[NP];
+    struct light_ahead a[NP];            /* the light's from each */
+    float kd[NP][3], ks[NP][3], out[NP][3];
+    double ex[NP];                       /* Phong's exponent */
+};
+
 struct packet {
     tex_rng rng[PACKET * PACKET];
     int x[PACKET * PACKET], y[PACKET * PACKET]; /* the pixels: no division by the width */
@@ -513,7 +531,73 @@ struct packet {
     tex_v3 P[PACKET * PACKET], Ng[PACKET * PACKET];
     struct tex_prefetch pre[PACKET * PACKET], *pp[PACKET * PACKET];
     struct tex_lanes lanes[QUEUES];
+    struct plain plain;
 };
+
+/* Hit k of the packet taken as a plain one: 1, or 0 for shade */
+static int plain_take(const struct ctx *c, struct packet *pk, int k)
+{
+    struct plain *pl = &pk->plain;
+    const struct tex_object *leaf = pk->h[k].leaf;
+    const struct tex_surface *sf = surface_of(c->s, leaf);
+    int i = pl->n;
+    float ka[3];
+    if (!tex_surface_plain(sf) ||
+        !tex_plain_colours(sf, &pk->pre[k], ka, pl->kd[i], pl->ks[i], &pl->ex[i]))
+        return 0;
+    tex_v3 P = pk->P[k], Ng = pk->Ng[k]; /* shade's frame */
+    int entering = tex_v3_dot(pk->r[k].d, Ng) < 0;
+    tex_v3 N = entering ? Ng : tex_v3_scale(Ng, -1);
+    pl->n++;
+    pl->k[i] = k;
+    pl->outside[i] = entering && leaf->hull ? tex_object_top(leaf) : NULL;
+    pl->P[i] = P, pl->N[i] = N, pl->V[i] = tex_v3_scale(pk->r[k].d, -1);
+    pl->Pout[i] = tex_v3_madd(P, N, eps_at(P));
+    for (int j = 0; j < 3; j++)
+        pl->out[i][j] = c->ambient->v[j] * ka[j];
+    return 1;
+}
+
+/* The plain hits taken shaded, into their pixels' sums */
+static void plain_shade(const struct ctx *c, struct packet *pk)
+{
+    struct plain *pl = &pk->plain;
+    const struct tex_scene *s = c->s;
+    for (int li = 0; li < s->nlights; li++) {
+        const struct tex_light *l = &s->lights[li];
+        for (int i = 0; i < pl->n; i++) { /* direct_light's tests */
+            struct light_ahead *a = &pl->a[i];
+            light_at(l, 0, 0.5, 0.5, &pl->P[i], a);
+            a->ok = a->ok && !(tex_v3_dot(a->L, pl->N[i]) <= 0);
+        }
+        for (int i = 0; i < pl->n; i++) {
+            struct light_ahead *a = &pl->a[i];
+            if (!a->ok)
+                continue;
+            double sh = tex_scene_transmit(s, &pl->Pout[i], &a->L, 0, a->dist, pl->outside[i]);
+            a->ok = !(sh <= 0);
+            a->fatt *= sh; /* E's scale */
+        }
+        for (int i = 0; i < pl->n; i++) {
+            if (!pl->a[i].ok)
+                continue;
+            struct tex_material m;
+            tex_colour E, out;
+            for (int j = 0; j < 3; j++) {
+                E.v[j] = l->e.v[j] * (float)pl->a[i].fatt;
+                m.kd.v[j] = pl->kd[i][j], m.ks.v[j] = pl->ks[i][j], out.v[j] = pl->out[i][j];
+            }
+            m.n = pl->ex[i];
+            tex_phong_direct(&m, &pl->N[i].x, &pl->V[i].x, &pl->a[i].L.x, &E, 3, &out);
+            for (int j = 0; j < 3; j++)
+                pl->out[i][j] = out.v[j];
+        }
+    }
+    for (int i = 0; i < pl->n; i++)
+        for (int j = 0; j < 3; j++)
+            pk->acc[pl->k[i]][j] += pl->out[i][j];
+    pl->n = 0;
+}
 
 /* Hit k of the packet queued for the lanes (tex_lanes_take) in the first queue of its leaf
  * and surface, or an empty one: 1, else 0 */
@@ -591,12 +675,15 @@ static void render_packet(const struct ctx *c0, const struct camera *cam, struct
         for (int k = 0; k < np; k++) {
             tex_colour col;
             c.rng = &pk->rng[k];
+            if (pk->hit[k] && c.plain && plain_take(&c, pk, k))
+                continue;
             if (pk->hit[k])
                 shade(&c, &pk->r[k], &pk->h[k], pk->P[k], pk->Ng[k], &pk->pre[k], 0, 1, &col);
             else
                 miss(&c, &pk->r[k], &col);
             accumulate(s, &col, pk->acc[k]);
         }
+        plain_shade(&c, pk);
     }
     for (int k = 0; k < np; k++)
         put_pixel(spp, pk->acc[k], tex_map_px(img, pk->x[k] - rx, pk->y[k] - ry));
@@ -649,9 +736,12 @@ static int render_into(struct tex_scene *s, int rx, int ry, tex_map *img,
     tex_colour ambient, background;
     s->cs.from_rgb(&s->cs, s->ambient, TEX_SPECTRUM_ILLUMINANT, &ambient);
     s->cs.from_rgb(&s->cs, s->background, TEX_SPECTRUM_ILLUMINANT, &background);
-    struct ctx c = {s, s->cs.n, &ambient, &background, NULL, st->spp > 1};
-    for (int i = 0; i < s->nlights; i++)
+    struct ctx c = {s, s->cs.n, &ambient, &background, NULL, st->spp > 1, 0};
+    c.plain = s->cs.mode == TEX_COLOUR_RGB;
+    for (int i = 0; i < s->nlights; i++) {
         c.need_rng |= s->lights[i].kind == TEX_LIGHT_AREA;
+        c.plain &= s->lights[i].kind == TEX_LIGHT_POINT || s->lights[i].kind == TEX_LIGHT_SPOT;
+    }
     struct camera cam;
     camera_setup(s, &cam);
     int tw = (rw + TILE - 1) / TILE, th = (rh + TILE - 1) / TILE;

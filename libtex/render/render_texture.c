@@ -1088,6 +1088,7 @@ struct tex_surface_cache {
      * region and bend no normal but by a bump (apply_direct) */
     int direct;
     int lanes; /* 1: direct, and AVX-512: its planes' hits go in lanes (tex_lanes_take) */
+    int plain; /* 1: a material tex_plain_colours makes (tex_surface_plain) */
 };
 
 static double clampd(double x, double lo, double hi)
@@ -2526,7 +2527,38 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
     }
     c->cached = (textured & (1 << TEX_SP_KA | 1 << TEX_SP_KD) ? 0 : 1) |
                 (textured & 1 << TEX_SP_KD ? 0 : 2) | (textured & 1 << TEX_SP_KS ? 0 : 4);
+    c->plain = sf->model == &tex_shading_phong && !sf->blend && c->base.kr <= 0 &&
+               c->base.kt <= 0 && (!sf->apply || (c->direct && !c->placement[0].bump));
+    nfn = 0;
+    for (const struct tex_appfn *fn = sf->apply ? sf->apply->fns : NULL; fn; fn = fn->next)
+        c->plain &= fn->param == TEX_SP_KD && c->compiled[nfn++];
     return 0;
+}
+
+int tex_surface_plain(const struct tex_surface *sf)
+{
+    return sf->cache->plain;
+}
+
+int tex_plain_colours(const struct tex_surface *sf, const struct tex_prefetch *pre, float ka[3],
+                      float kd[3], float ks[3], double *n)
+{
+    const struct tex_surface_cache *c = sf->cache;
+    const struct tex_prefetch_ap *pa = &pre->ap[0];
+    float v[4] = {c->base.kd[0], c->base.kd[1], c->base.kd[2], 0};
+    if (sf->apply && !(pre->sf == sf && pre->n && pa->has_val))
+        return 0;
+    int i = 0; /* apply_direct's compiled Kd functions, in order */
+    for (const struct tex_appfn *fn = sf->apply && pa->inside ? sf->apply->fns : NULL; fn;
+         fn = fn->next, i++)
+        colour_poly(&c->poly[i], pa->val, fn->lo, fn->hi, v);
+    for (int k = 0; k < 3; k++) { /* material's, in RGB */
+        ka[k] = c->cached & 1 ? c->col[0].v[k] : c->base.ka * v[k];
+        kd[k] = c->cached & 2 ? c->col[1].v[k] : v[k];
+        ks[k] = c->cached & 4 ? c->col[2].v[k] : sf->ks[k];
+    }
+    *n = c->base.n;
+    return 1;
 }
 
 void tex_surface_uncache(struct tex_surface *sf)
