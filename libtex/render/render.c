@@ -517,8 +517,8 @@ struct plain {
     const struct tex_object *outside[NP]; /* shade's */
     tex_v3 P[NP], N[NP], V[NP], Pout[NP];
     struct light_ahead a[NP];            /* the light's from each */
-    float kd[NP][3], ks[NP][3], out[NP][3];
-    double ex[NP];                       /* Phong's exponent */
+    struct tex_plain m[NP];
+    float out[NP][3];
 };
 
 struct packet {
@@ -541,9 +541,7 @@ static int plain_take(const struct ctx *c, struct packet *pk, int k)
     const struct tex_object *leaf = pk->h[k].leaf;
     const struct tex_surface *sf = surface_of(c->s, leaf);
     int i = pl->n;
-    float ka[3];
-    if (!tex_surface_plain(sf) ||
-        !tex_plain_colours(sf, &pk->pre[k], ka, pl->kd[i], pl->ks[i], &pl->ex[i]))
+    if (!tex_surface_plain(sf) || !tex_plain_material(sf, &pk->pre[k], &pl->m[i]))
         return 0;
     tex_v3 P = pk->P[k], Ng = pk->Ng[k]; /* shade's frame */
     int entering = tex_v3_dot(pk->r[k].d, Ng) < 0;
@@ -554,8 +552,40 @@ static int plain_take(const struct ctx *c, struct packet *pk, int k)
     pl->P[i] = P, pl->N[i] = N, pl->V[i] = tex_v3_scale(pk->r[k].d, -1);
     pl->Pout[i] = tex_v3_madd(P, N, eps_at(P));
     for (int j = 0; j < 3; j++)
-        pl->out[i][j] = c->ambient->v[j] * ka[j];
+        pl->out[i][j] = c->ambient->v[j] * pl->m[i].ka[j];
     return 1;
+}
+
+/* Light l's share at the plain hits (direct_light's) */
+static void plain_light(const struct tex_scene *s, const struct tex_light *l, struct plain *pl)
+{
+    for (int i = 0; i < pl->n; i++) { /* direct_light's tests */
+        struct light_ahead *a = &pl->a[i];
+        light_at(l, 0, 0.5, 0.5, &pl->P[i], a);
+        a->ok = a->ok && !(tex_v3_dot(a->L, pl->N[i]) <= 0);
+    }
+    for (int i = 0; i < pl->n; i++) {
+        struct light_ahead *a = &pl->a[i];
+        if (!a->ok)
+            continue;
+        double sh = tex_scene_transmit(s, &pl->Pout[i], &a->L, 0, a->dist, pl->outside[i]);
+        a->ok = !(sh <= 0);
+        a->fatt *= sh; /* E's scale */
+    }
+    for (int i = 0; i < pl->n; i++) {
+        if (!pl->a[i].ok)
+            continue;
+        struct tex_material m;
+        tex_colour E, out;
+        for (int j = 0; j < 3; j++) {
+            E.v[j] = l->e.v[j] * (float)pl->a[i].fatt;
+            m.kd.v[j] = pl->m[i].kd[j], m.ks.v[j] = pl->m[i].ks[j], out.v[j] = pl->out[i][j];
+        }
+        m.n = pl->m[i].n;
+        tex_phong_direct(&m, &pl->N[i].x, &pl->V[i].x, &pl->a[i].L.x, &E, 3, &out);
+        for (int j = 0; j < 3; j++)
+            pl->out[i][j] = out.v[j];
+    }
 }
 
 /* The plain hits taken shaded, into their pixels' sums */
@@ -563,36 +593,8 @@ static void plain_shade(const struct ctx *c, struct packet *pk)
 {
     struct plain *pl = &pk->plain;
     const struct tex_scene *s = c->s;
-    for (int li = 0; li < s->nlights; li++) {
-        const struct tex_light *l = &s->lights[li];
-        for (int i = 0; i < pl->n; i++) { /* direct_light's tests */
-            struct light_ahead *a = &pl->a[i];
-            light_at(l, 0, 0.5, 0.5, &pl->P[i], a);
-            a->ok = a->ok && !(tex_v3_dot(a->L, pl->N[i]) <= 0);
-        }
-        for (int i = 0; i < pl->n; i++) {
-            struct light_ahead *a = &pl->a[i];
-            if (!a->ok)
-                continue;
-            double sh = tex_scene_transmit(s, &pl->Pout[i], &a->L, 0, a->dist, pl->outside[i]);
-            a->ok = !(sh <= 0);
-            a->fatt *= sh; /* E's scale */
-        }
-        for (int i = 0; i < pl->n; i++) {
-            if (!pl->a[i].ok)
-                continue;
-            struct tex_material m;
-            tex_colour E, out;
-            for (int j = 0; j < 3; j++) {
-                E.v[j] = l->e.v[j] * (float)pl->a[i].fatt;
-                m.kd.v[j] = pl->kd[i][j], m.ks.v[j] = pl->ks[i][j], out.v[j] = pl->out[i][j];
-            }
-            m.n = pl->ex[i];
-            tex_phong_direct(&m, &pl->N[i].x, &pl->V[i].x, &pl->a[i].L.x, &E, 3, &out);
-            for (int j = 0; j < 3; j++)
-                pl->out[i][j] = out.v[j];
-        }
-    }
+    for (int li = 0; li < s->nlights; li++)
+        plain_light(s, &s->lights[li], pl);
     for (int i = 0; i < pl->n; i++)
         for (int j = 0; j < 3; j++)
             pk->acc[pl->k[i]][j] += pl->out[i][j];

@@ -1088,7 +1088,7 @@ struct tex_surface_cache {
      * region and bend no normal but by a bump (apply_direct) */
     int direct;
     int lanes; /* 1: direct, and AVX-512: its planes' hits go in lanes (tex_lanes_take) */
-    int plain; /* 1: a material tex_plain_colours makes (tex_surface_plain) */
+    int plain; /* 1: a material tex_plain_material makes (tex_surface_plain) */
 };
 
 static double clampd(double x, double lo, double hi)
@@ -2540,8 +2540,8 @@ int tex_surface_plain(const struct tex_surface *sf)
     return sf->cache->plain;
 }
 
-int tex_plain_colours(const struct tex_surface *sf, const struct tex_prefetch *pre, float ka[3],
-                      float kd[3], float ks[3], double *n)
+int tex_plain_material(const struct tex_surface *sf, const struct tex_prefetch *pre,
+                       struct tex_plain *m)
 {
     const struct tex_surface_cache *c = sf->cache;
     const struct tex_prefetch_ap *pa = &pre->ap[0];
@@ -2553,11 +2553,11 @@ int tex_plain_colours(const struct tex_surface *sf, const struct tex_prefetch *p
          fn = fn->next, i++)
         colour_poly(&c->poly[i], pa->val, fn->lo, fn->hi, v);
     for (int k = 0; k < 3; k++) { /* material's, in RGB */
-        ka[k] = c->cached & 1 ? c->col[0].v[k] : c->base.ka * v[k];
-        kd[k] = c->cached & 2 ? c->col[1].v[k] : v[k];
-        ks[k] = c->cached & 4 ? c->col[2].v[k] : sf->ks[k];
+        m->ka[k] = c->cached & 1 ? c->col[0].v[k] : c->base.ka * v[k];
+        m->kd[k] = c->cached & 2 ? c->col[1].v[k] : v[k];
+        m->ks[k] = c->cached & 4 ? c->col[2].v[k] : sf->ks[k];
     }
-    *n = c->base.n;
+    m->n = c->base.n;
     return 1;
 }
 

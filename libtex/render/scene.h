@@ -421,14 +421,18 @@ void tex_prefetch_map(struct tex_prefetch *pf, const struct tex_surface *sf,
  * map); then, after tex_prefetch_map, the hit's shading frame as tex_resolve_material gets
  * it (D, N as shade() orients it; width 0 when the scene does not filter). */
 int tex_surface_footprints(const struct tex_surface *sf);
-/* Whether sf's material at a hit is a plain one: Whitted-Phong without a blend, without rays
- * of its own (Kr and Kt 0) and without a bent normal, untextured or a direct surface (see
- * tex_lanes_take) whose functions are compiled ones of Kd alone.  Then, in an RGB scene,
- * tex_plain_colours gives the colours and Phong exponent n tex_resolve_material would, from
- * the hit's lookups ahead pre: 1, or 0 where they were not made. */
+/* Whether sf's material at a hit is a plain one: Whitted-Phong without a blend, rays of its
+ * own (Kr and Kt 0) or a bent normal, untextured or a direct surface (see tex_lanes_take)
+ * whose functions are compiled ones of Kd alone.  Then, in an RGB scene, tex_plain_material
+ * gives the colours and exponent tex_resolve_material would, from the hit's lookups ahead
+ * pre: 1, or 0 where they were not made. */
+struct tex_plain {
+    float ka[3], kd[3], ks[3];
+    double n;
+};
 int tex_surface_plain(const struct tex_surface *sf);
-int tex_plain_colours(const struct tex_surface *sf, const struct tex_prefetch *pre, float ka[3],
-                      float kd[3], float ks[3], double *n);
+int tex_plain_material(const struct tex_surface *sf, const struct tex_prefetch *pre,
+                       struct tex_plain *m);
 void tex_prefetch_footprints(struct tex_prefetch *pf, const tex_v3 *D, const tex_v3 *N,
                              double width);
 void tex_prefetch_eval(struct tex_prefetch *const *pf, int n);
