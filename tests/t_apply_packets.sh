@@ -200,12 +200,13 @@ for s in 41x33 9x7; do
         notok "a floor of one map in lanes, $s, against pixel by pixel" \
             "$(maxdiff "$T/m1-px.pfm" "$T/m1-pk.pfm")"
 done
-# plain surfaces (Phong, no Kr or Kt, untextured or one map's Kd functions alone) in an RGB
-# scene of point and spot lights: a packet shades their hits together, light by light
-# (render.c's plain_shade); falloffs, spot cones of whole and fractional exponents, whole and
-# fractional highlights, a map's window (hits outside it), two Kd functions, a CSG hollow
-# and the inside of a sphere around it all (normals turned to the eye), shadows, a mirror
-# beside them (shaded one by one) and its reflections of them
+# plain surfaces (Phong without a blend, Kr or Kt) in an RGB scene of point and spot lights:
+# a packet shades their hits together, light by light (render.c's plain_shade); falloffs,
+# spot cones of whole and fractional exponents, whole and fractional highlights, a map's
+# window (hits outside it), two Kd functions, a CSG hollow and the inside of a sphere around
+# it all (normals turned to the eye), solid textures of Kd, Ks and n with a bump (the general
+# path's materials and bent normals), shadows, a mirror and a textured Kr beside them (shaded
+# one by one) and the mirror's reflections of them
 cat >"$T/p.scene" <<SCENE
 image 41 33
 samples 1
@@ -224,12 +225,19 @@ surface dull { Kd 0.6 0.5 0.4 Ks 0.3 n 12 apply grey { mapping natural window 0.
     Kd = f*p } }
 surface mirror { Kd 0.3 0.3 0.3 Ks 0.5 n 30 Kr 0.5 }
 surface dome { Kd 0.5 0.6 0.7 Ks 0.2 n 8 }
+texture veins turbulence { solid frequency 2 octaves 4 seed 3 }
+texture cells noise { solid frequency 7 seed 9 }
+surface bumpy { Kd 0.7 0.6 0.5 Ks 0.4 n 25 apply veins { mapping solid Kd = f*p bump = 0.3 }
+    apply cells { mapping solid Ks = f n = 10 + 20*f } }
+surface glint { Kd 0.6 0.6 0.3 apply cells { mapping solid Kd = f*p Kr = 0.3*f } }
 plane { surface floor }
 difference { box { min -1 0 -1 max 1 2 1 } sphere { centre 0 1 0 radius 1.3 } surface dull
              rotate 0 20 0 translate -2 0 0 }
 sphere { centre 0.4 1 0.5 radius 0.8 surface shiny }
 cylinder { base 0 0 0 top 0 1.8 0 radius 0.5 surface mirror translate 2 0 0 }
 sphere { centre 0 0 0 radius 40 surface dome }
+box { min -0.6 0 -0.6 max 0.6 0.9 0.6 surface bumpy rotate 0 30 0 translate 1.2 0 -2 }
+sphere { centre -1 0.4 -2.2 radius 0.4 surface glint }
 SCENE
 for args in "-j 1" "-j 2" "-j 1 --spp 4 -s 23x19"; do
     # shellcheck disable=SC2086

@@ -510,8 +510,9 @@ static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, 
 
 /* A packet's hits on plain surfaces (tex_surface_plain), in an RGB scene lit by point and
  * spot lights alone: shade's work for them (ambient, then each light's direction, shadow
- * ray and Phong) without its general set-up, done light by light over all of them, their
- * shadow rays together.  Each sum in the same order as shade's: the same bits. */
+ * ray and Phong) without its general set-up (nor the material's, where tex_plain_material
+ * makes it), done light by light over all of them, their shadow rays together.  Each sum in
+ * the same order as shade's: the same bits. */
 struct plain {
     int n, k[NP];                        /* k: the hit in the packet */
     const struct tex_object *outside[NP]; /* shade's */
@@ -519,6 +520,8 @@ struct plain {
     struct light_ahead a[NP];            /* the light's from each */
     struct tex_plain m[NP];
     float out[NP][3];
+    int nbent, bent[NP]; /* the hits whose N the general path made */
+    tex_v3 Ngv[NP];      /* their geometric normals */
 };
 
 struct packet {
@@ -534,25 +537,58 @@ struct packet {
     struct plain plain;
 };
 
-/* Hit k of the packet taken as a plain one: 1, or 0 for shade */
-static int plain_take(const struct ctx *c, struct packet *pk, int k)
+/* Plain hit i's frame (shade's) from its normal N facing the ray, before any bend */
+static inline __attribute__((always_inline)) void plain_frame(const struct ctx *c,
+                                                               struct packet *pk, int k,
+                                                               int entering, tex_v3 N)
 {
     struct plain *pl = &pk->plain;
+    int i = pl->n++;
     const struct tex_object *leaf = pk->h[k].leaf;
-    const struct tex_surface *sf = surface_of(c->s, leaf);
-    int i = pl->n;
-    if (!tex_surface_plain(sf) || !tex_plain_material(sf, &pk->pre[k], &pl->m[i]))
-        return 0;
-    tex_v3 P = pk->P[k], Ng = pk->Ng[k]; /* shade's frame */
-    int entering = tex_v3_dot(pk->r[k].d, Ng) < 0;
-    tex_v3 N = entering ? Ng : tex_v3_scale(Ng, -1);
-    pl->n++;
+    tex_v3 P = pk->P[k];
     pl->k[i] = k;
     pl->outside[i] = entering && leaf->hull ? tex_object_top(leaf) : NULL;
     pl->P[i] = P, pl->N[i] = N, pl->V[i] = tex_v3_scale(pk->r[k].d, -1);
     pl->Pout[i] = tex_v3_madd(P, N, eps_at(P));
     for (int j = 0; j < 3; j++)
         pl->out[i][j] = c->ambient->v[j] * pl->m[i].ka[j];
+}
+
+/* Hit k taken as a plain one where its surface's material takes the general path
+ * (tex_surface_plain 2), its normal bent there: 1, or 0 for shade.  Not inlined: the plain
+ * surfaces' loop stays small. */
+static __attribute__((noinline)) int plain_resolve(const struct ctx *c, struct packet *pk,
+                                                   int k, const struct tex_surface *sf)
+{
+    struct plain *pl = &pk->plain;
+    const tex_ray *r = &pk->r[k];
+    const struct tex_hit *h = &pk->h[k];
+    int entering = tex_v3_dot(r->d, pk->Ng[k]) < 0;
+    tex_v3 Ngv = entering ? pk->Ng[k] : tex_v3_scale(pk->Ng[k], -1), N = Ngv;
+    struct tex_shade_at at = {h->leaf, &pk->P[k], &r->d, fabs(r->width + h->t * r->spread),
+                              r->dist + h->t, 0, &pk->pre[k]};
+    if (!tex_plain_resolve(c->s, sf, &at, &N, &pl->m[pl->n]))
+        return 0;
+    pl->bent[pl->nbent++] = pl->n;
+    pl->Ngv[pl->n] = Ngv;
+    plain_frame(c, pk, k, entering, Ngv);
+    pl->N[pl->n - 1] = N;
+    return 1;
+}
+
+/* Hit k of the packet taken as a plain one: 1, or 0 for shade */
+static int plain_take(const struct ctx *c, struct packet *pk, int k)
+{
+    struct plain *pl = &pk->plain;
+    const struct tex_surface *sf = surface_of(c->s, pk->h[k].leaf);
+    int kind = tex_surface_plain(sf);
+    if (kind == 2)
+        return plain_resolve(c, pk, k, sf);
+    if (!kind || !tex_plain_material(sf, &pk->pre[k], &pl->m[pl->n]))
+        return 0;
+    tex_v3 Ng = pk->Ng[k];
+    int entering = tex_v3_dot(pk->r[k].d, Ng) < 0;
+    plain_frame(c, pk, k, entering, entering ? Ng : tex_v3_scale(Ng, -1));
     return 1;
 }
 
@@ -563,6 +599,10 @@ static void plain_light(const struct tex_scene *s, const struct tex_light *l, st
         struct light_ahead *a = &pl->a[i];
         light_at(l, 0, 0.5, 0.5, &pl->P[i], a);
         a->ok = a->ok && !(tex_v3_dot(a->L, pl->N[i]) <= 0);
+    }
+    for (int j = 0; j < pl->nbent; j++) { /* and the geometric normal's, where bent */
+        struct light_ahead *a = &pl->a[pl->bent[j]];
+        a->ok = a->ok && !(tex_v3_dot(a->L, pl->Ngv[pl->bent[j]]) <= 0);
     }
     for (int i = 0; i < pl->n; i++) {
         struct light_ahead *a = &pl->a[i];
@@ -598,7 +638,7 @@ static void plain_shade(const struct ctx *c, struct packet *pk)
     for (int i = 0; i < pl->n; i++)
         for (int j = 0; j < 3; j++)
             pk->acc[pl->k[i]][j] += pl->out[i][j];
-    pl->n = 0;
+    pl->n = pl->nbent = 0;
 }
 
 /* Hit k of the packet queued for the lanes (tex_lanes_take) in the first queue of its leaf

@@ -1088,7 +1088,7 @@ struct tex_surface_cache {
      * region and bend no normal but by a bump (apply_direct) */
     int direct;
     int lanes; /* 1: direct, and AVX-512: its planes' hits go in lanes (tex_lanes_take) */
-    int plain; /* 1: a material tex_plain_material makes (tex_surface_plain) */
+    int plain; /* tex_surface_plain: 1, a material tex_plain_material makes; 2, any other */
 };
 
 static double clampd(double x, double lo, double hi)
@@ -2532,12 +2532,29 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
     nfn = 0;
     for (const struct tex_appfn *fn = sf->apply ? sf->apply->fns : NULL; fn; fn = fn->next)
         c->plain &= fn->param == TEX_SP_KD && c->compiled[nfn++];
+    if (!c->plain && sf->model == &tex_shading_phong && !sf->blend && c->base.kr <= 0 &&
+        c->base.kt <= 0 && !(textured & (1 << TEX_SP_KR | 1 << TEX_SP_KT | 1 << TEX_SP_BLEND)))
+        c->plain = 2; /* the general path's material, then lit as plain */
     return 0;
 }
 
 int tex_surface_plain(const struct tex_surface *sf)
 {
     return sf->cache->plain;
+}
+
+int tex_plain_resolve(const struct tex_scene *s, const struct tex_surface *sf,
+                      const struct tex_shade_at *at, tex_v3 *N, struct tex_plain *pm)
+{
+    struct tex_material m;
+    float blend; /* none: a plain surface has no blend */
+    resolve(s, sf, at, N, &m, &blend);
+    if (m.kr > 0 || m.kt > 0)
+        return 0;
+    for (int k = 0; k < 3; k++)
+        pm->ka[k] = m.ka.v[k], pm->kd[k] = m.kd.v[k], pm->ks[k] = m.ks.v[k];
+    pm->n = m.n;
+    return 1;
 }
 
 int tex_plain_material(const struct tex_surface *sf, const struct tex_prefetch *pre,
