@@ -2518,12 +2518,16 @@ TEX_AVX2 static int band_weights_avx2(int n, const double *fw, double fk, float 
     __m128 any = _mm_setzero_ps();
     for (int i = 0; i + 4 <= n; i += 4) {
         __m256d c = _mm256_mul_pd(_mm256_loadu_pd(fw + i), _mm256_set1_pd(fk));
-        __m256d t = _mm256_div_pd(_mm256_sub_pd(c, lo), _mm256_set1_pd(0.4));
-        t = _mm256_blendv_pd(t, one, _mm256_cmp_pd(c, hi, _CMP_GE_OQ));
-        t = _mm256_blendv_pd(t, _mm256_setzero_pd(), _mm256_cmp_pd(c, lo, _CMP_LE_OQ));
-        __m256d w = _mm256_sub_pd(
-            one, _mm256_mul_pd(_mm256_mul_pd(t, t),
-                               _mm256_sub_pd(_mm256_set1_pd(3), _mm256_add_pd(t, t))));
+        __m256d ge = _mm256_cmp_pd(c, hi, _CMP_GE_OQ), le = _mm256_cmp_pd(c, lo, _CMP_LE_OQ);
+        __m256d w = _mm256_and_pd(le, one); /* 1 - t t (3 - 2 t) at t = 0 and 1: 1 and 0 */
+        if (_mm256_movemask_pd(_mm256_or_pd(ge, le)) != 15) { /* one inside the band */
+            __m256d t = _mm256_div_pd(_mm256_sub_pd(c, lo), _mm256_set1_pd(0.4));
+            t = _mm256_blendv_pd(t, one, ge);
+            t = _mm256_blendv_pd(t, _mm256_setzero_pd(), le);
+            w = _mm256_sub_pd(
+                one, _mm256_mul_pd(_mm256_mul_pd(t, t),
+                                   _mm256_sub_pd(_mm256_set1_pd(3), _mm256_add_pd(t, t))));
+        }
         __m128 wf = _mm256_cvtpd_ps(w);
         _mm_storeu_ps(wt + i, wf);
         any = _mm_or_ps(any, _mm_cmpgt_ps(wf, _mm_setzero_ps()));
