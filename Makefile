@@ -51,7 +51,7 @@ LDLIBS    = -lOpenEXRCore -lfftw3f_threads -lfftw3f -llz4 -lstdc++ -lm -ldl
 # shared so that ASan sees every operator new.  Programs are not position-independent
 # (-no-pie): the loader would relocate every pointer in their tables (parameter rows,
 # FFTW's codelets, vtables) at start, a copy-on-write fault for each of 36 pages (t_apply
-# on an empty scene: 159 -> 123 faults, 4.8 -> 4.0 ms); the libraries stay where ASLR puts
+# on an empty scene: 157 -> 125 faults, 4.7 -> 3.4 ms); the libraries stay where ASLR puts
 # them.
 GNU_CC := $(if $(findstring clang,$(shell $(CC) --version 2>/dev/null | head -1)),,1)
 PROG_LDFLAGS = $(if $(SANITIZE),,-no-pie)

@@ -537,7 +537,8 @@ struct packet {
     struct plain plain;
 };
 
-/* Plain hit i's frame (shade's) from its normal N facing the ray, before any bend */
+/* The packet's hit k taken as the next plain one: its frame (shade's) from its normal N
+ * facing the ray, before any bend, and its ambient light */
 static inline __attribute__((always_inline)) void plain_frame(const struct ctx *c,
                                                                struct packet *pk, int k,
                                                                int entering, tex_v3 N)

@@ -2527,14 +2527,13 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
     }
     c->cached = (textured & (1 << TEX_SP_KA | 1 << TEX_SP_KD) ? 0 : 1) |
                 (textured & 1 << TEX_SP_KD ? 0 : 2) | (textured & 1 << TEX_SP_KS ? 0 : 4);
-    c->plain = sf->model == &tex_shading_phong && !sf->blend && c->base.kr <= 0 &&
-               c->base.kt <= 0 && (!sf->apply || (c->direct && !c->placement[0].bump));
+    int plain = sf->model == &tex_shading_phong && !sf->blend && c->base.kr <= 0 &&
+                c->base.kt <= 0 && !(textured & (1 << TEX_SP_KR | 1 << TEX_SP_KT));
+    int lean = !sf->apply || (c->direct && !c->placement[0].bump); /* tex_plain_material's */
     nfn = 0;
     for (const struct tex_appfn *fn = sf->apply ? sf->apply->fns : NULL; fn; fn = fn->next)
-        c->plain &= fn->param == TEX_SP_KD && c->compiled[nfn++];
-    if (!c->plain && sf->model == &tex_shading_phong && !sf->blend && c->base.kr <= 0 &&
-        c->base.kt <= 0 && !(textured & (1 << TEX_SP_KR | 1 << TEX_SP_KT | 1 << TEX_SP_BLEND)))
-        c->plain = 2; /* the general path's material, then lit as plain */
+        lean &= fn->param == TEX_SP_KD && c->compiled[nfn++];
+    c->plain = plain ? (lean ? 1 : 2) : 0;
     return 0;
 }
 

@@ -421,22 +421,6 @@ void tex_prefetch_map(struct tex_prefetch *pf, const struct tex_surface *sf,
  * map); then, after tex_prefetch_map, the hit's shading frame as tex_resolve_material gets
  * it (D, N as shade() orients it; width 0 when the scene does not filter). */
 int tex_surface_footprints(const struct tex_surface *sf);
-/* Whether sf's material at a hit is a plain one, Whitted-Phong without a blend or rays of
- * its own (Kr and Kt 0, neither textured): 0, not; 1, untextured or a direct surface (see
- * tex_lanes_take) whose functions are compiled ones of Kd alone, whose material
- * tex_plain_material gives from the hit's lookups ahead pre (0 where they were not made);
- * 2, any other, whose material (and normal N, bent) tex_plain_resolve gives through
- * tex_resolve_material's path, at (0 where the functions gave it rays of its own).  In an
- * RGB scene: the colours and exponent tex_resolve_material would give. */
-struct tex_plain {
-    float ka[3], kd[3], ks[3];
-    double n;
-};
-int tex_surface_plain(const struct tex_surface *sf);
-int tex_plain_material(const struct tex_surface *sf, const struct tex_prefetch *pre,
-                       struct tex_plain *m);
-int tex_plain_resolve(const struct tex_scene *s, const struct tex_surface *sf,
-                      const struct tex_shade_at *at, tex_v3 *N, struct tex_plain *m);
 void tex_prefetch_footprints(struct tex_prefetch *pf, const tex_v3 *D, const tex_v3 *N,
                              double width);
 void tex_prefetch_eval(struct tex_prefetch *const *pf, int n);
@@ -473,6 +457,22 @@ int tex_prefetch_lanes(struct tex_lanes *L, struct tex_prefetch **rest);
  * sf's cache must be filled (tex_surface_cache). */
 void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *sf,
                           const struct tex_shade_at *at, tex_v3 *N, struct tex_material m[2]);
+/* Whether sf's material at a hit is a plain one, Whitted-Phong without a blend or rays of
+ * its own (Kr and Kt 0, neither textured): 0, not; 1, untextured or a direct surface (see
+ * tex_lanes_take) whose functions are compiled ones of Kd alone, whose material
+ * tex_plain_material gives from the hit's lookups ahead pre (0 where they were not made);
+ * 2, any other, whose material (and normal N, bent) tex_plain_resolve gives through
+ * tex_resolve_material's path, at (0 where the functions gave it rays of its own).  In an
+ * RGB scene: the colours and exponent tex_resolve_material would give. */
+struct tex_plain {
+    float ka[3], kd[3], ks[3];
+    double n;
+};
+int tex_surface_plain(const struct tex_surface *sf);
+int tex_plain_material(const struct tex_surface *sf, const struct tex_prefetch *pre,
+                       struct tex_plain *m);
+int tex_plain_resolve(const struct tex_scene *s, const struct tex_surface *sf,
+                      const struct tex_shade_at *at, tex_v3 *N, struct tex_plain *m);
 /* Fill (tex_render, before tracing) and free a surface's cache: its untextured
  * colours in the scene's colour space, its application functions compiled. */
 int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs);
