@@ -86,6 +86,10 @@ proj = up.urlencode(q)
 s, b = get("/api/save", [("kind", "project"), ("name", "p.tproj"), ("text", proj)])
 s2, b2 = get("/api/load", [("name", "p.tproj")])
 say(s == 200 and s2 == 200 and b2.decode() == proj, "a project is saved and loaded back")
+s, b = get("/api/save", q + [("kind", "scene"), ("name", "t.scene")])
+text = open(os.path.join(work, "t.scene")).read() if s == 200 else ""
+say(s == 200 and text.startswith("# t_noise") and "texture map file -" in text,
+    "a scene's texture statement is saved", (s, b, text))
 s, b = get("/api/scene", base + [("apply", "bump")])
 say(s == 200 and b[:4] == b"\x89PNG", "the standard scene renders the map (bump)", s)
 
@@ -95,9 +99,14 @@ for name, params in [
         ("a path with ..", [("kind", "map"), ("name", "../up.png")]),
         ("an absolute path", [("kind", "map"), ("name", os.path.join(tmp, "abs.png"))]),
         ("a symlink out of the folder", [("kind", "map"), ("name", "evil.png")]),
-        ("a project through ..", [("kind", "project"), ("name", "../p.tproj"), ("text", "x")])]:
+        ("a project through ..", [("kind", "project"), ("name", "../p.tproj"), ("text", "x")]),
+        ("a command line whose map is out of the folder",
+         [("kind", "cmdline"), ("name", "out.sh"), ("map", "../out.png")]),
+        ("a command line without a map", [("kind", "cmdline"), ("name", "out.sh")]),
+        ("a kind it does not know", [("kind", "frob"), ("name", "x.txt")])]:
     s, b = get("/api/save", base + params)
     say(s == 400, "save refuses " + name, (s, b))
+say(not os.path.exists(os.path.join(work, "out.sh")), "a refused command line leaves no file")
 say(not os.path.exists(os.path.join(tmp, "outside.png")) and not os.path.exists(os.path.join(tmp, "up.png"))
     and not os.path.exists(os.path.join(tmp, "abs.png")), "nothing was written outside the working folder")
 s, b = get("/api/load", [("name", "../url")])

@@ -421,8 +421,6 @@ static void cmdline(const struct pipeline *pl, struct str *b)
     }
 }
 
-/* Run the pipeline; the last stage's standard output into out.  Returns the
- * worst exit status (0 ok, 1 runtime, 2 usage) with stderr's first line in err. */
 /* The pipeline's stages started, each reading the one before (the first /dev/null), the
  * last writing to out, all to errfd; pid[i] 0 where one could not start */
 static void spawn_stages(struct pipeline *pl, pid_t *pid, int out, int errfd)
@@ -457,6 +455,8 @@ static void spawn_stages(struct pipeline *pl, pid_t *pid, int out, int errfd)
     }
 }
 
+/* Run the pipeline; the last stage's standard output into out.  Returns the
+ * worst exit status (0 ok, 1 runtime, 2 usage) with stderr's first line in err. */
 static int run(struct pipeline *pl, struct str *out)
 {
     pid_t pid[MAX_STAGES] = {0};
@@ -671,8 +671,9 @@ static int scene_stage(struct pipeline *pl, const char *fn, const char *map)
            arg(pl, "--format=png");
 }
 
-/* The map files the editor may write */
+/* The map and project files the editor may write */
 static const char *const map_exts[] = {"png", "exr", "tif", "pfm", NULL};
+static const char *const proj_exts[] = {"tproj", "txt", NULL};
 
 /* /api/preview, /api/cmdline and /api/scene (what): the pipeline's PNG, command line, or
  * scene render into out, of *type; the HTTP status */
@@ -713,16 +714,14 @@ static unsigned api_render(struct MHD_Connection *c, struct pipeline *pl, const 
 /* /api/save: a map, palette, command line, scene or project into the work directory */
 static unsigned api_save(struct MHD_Connection *c, struct pipeline *pl, struct str *out)
 {
-    unsigned code;
     struct str b = {0};
     static const char *const pal_exts[] = {"pal", NULL};
     static const char *const sh_exts[] = {"sh", "txt", NULL};
     static const char *const scene_exts[] = {"scene", "txt", NULL};
-    static const char *const proj_exts[] = {"tproj", "txt", NULL};
     const char *kind = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "kind");
     const char *name = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "name");
     const char *body = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "text");
-    int size = get_size(c, pl, 512), rc = -1, break_out = 0;
+    int size = get_size(c, pl, 512), rc = -1;
     kind = kind ? kind : "";
     if (!strcmp(kind, "palette") || !strcmp(kind, "project")) {
         /* text the page made: a palette file, or a project (the query) */
@@ -747,37 +746,32 @@ static unsigned api_save(struct MHD_Connection *c, struct pipeline *pl, struct s
         *out = (struct str){0};
     } else if (!strcmp(kind, "cmdline") || !strcmp(kind, "scene")) {
         if (save_name(pl, name, kind[0] == 'c' ? sh_exts : scene_exts) == 0) {
-            if (kind[0] == 'c') {
-                const char *map = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "map");
-                sadd(&b, "#!/bin/sh\n");
-                if (save_name(pl, map, map_exts) < 0 || to_file(pl, map) < 0)
-                    break_out = 1;
-                cmdline(pl, &b);
-                sadd(&b, " > %s\n", map);
-            } else { /* the scene's texture statement, its map from standard input */
+            const char *map = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "map");
+            if (kind[0] == 's') { /* the scene's texture statement, its map from standard input */
                 sadd(&b, "# ");
                 cmdline(pl, &b);
                 sadd(&b, " | t_apply THIS.scene\ntexture map file -\n");
+            } else if (save_name(pl, map, map_exts) == 0 && to_file(pl, map) == 0) {
+                sadd(&b, "#!/bin/sh\n");
+                cmdline(pl, &b);
+                sadd(&b, " > %s\n", map);
             }
-            rc = break_out ? -1 : save_text(pl, name, b.s, b.n);
+            rc = b.n ? save_text(pl, name, b.s, b.n) : -1;
         }
     } else {
         fail(pl, "kind must be map, palette, cmdline, scene or project (got '%.20s')", kind);
     }
     if (rc == 0)
         sadd(out, "saved %s", name);
-    code = rc == 0 ? 200 : 400;
     free(b.s);
-    return code;
+    return rc == 0 ? 200 : 400;
 }
 
 /* /api/load: a project's text into out */
 static unsigned api_load(struct MHD_Connection *c, struct pipeline *pl, struct str *out)
 {
-    unsigned code;
+    unsigned code = 400;
     const char *name = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "name");
-    static const char *const proj_exts[] = {"tproj", "txt", NULL};
-    code = 400;
     if (save_name(pl, name, proj_exts) == 0) {
         int fd = openat(workfd, name, O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
         tex_buf tb = {0};
@@ -800,7 +794,7 @@ static enum MHD_Result handle(void *cls, struct MHD_Connection *c, const char *u
 {
     static int first_call;
     struct pipeline *pl;
-    struct str out = {0}, b = {0};
+    struct str out = {0};
     enum MHD_Result ret;
     (void)cls, (void)version, (void)data;
 
@@ -839,15 +833,15 @@ static enum MHD_Result handle(void *cls, struct MHD_Connection *c, const char *u
         return ret;
     }
     if (!strcmp(url, "/api/primitives")) {
-        api_prims(&b);
-        ret = reply(c, 200, "application/json", b.s, b.n);
-        free(b.s);
+        api_prims(&out);
+        ret = reply(c, 200, "application/json", out.s, out.n);
+        free(out.s);
         return ret;
     }
     if (!(pl = calloc(1, sizeof *pl)))
         return text(c, 500, "out of memory");
     const char *what = url + (strncmp(url, "/api/", 5) ? 0 : 5);
-    unsigned code = 200;
+    unsigned code;
     const char *type = "text/plain; charset=utf-8";
     if (!strcmp(what, "preview") || !strcmp(what, "cmdline") || !strcmp(what, "scene")) {
         code = api_render(c, pl, what, &out, &type);
@@ -864,7 +858,6 @@ static enum MHD_Result handle(void *cls, struct MHD_Connection *c, const char *u
     else
         ret = text(c, code, pl->err[0] ? pl->err : "failed");
     free(out.s);
-    free(b.s);
     free(pl);
     return ret;
 }

@@ -537,11 +537,12 @@ struct packet {
     struct plain plain;
 };
 
-/* The packet's hit k taken as the next plain one: its frame (shade's) from its normal N
- * facing the ray, before any bend, and its ambient light */
+/* The packet's hit k taken as the next plain one: its frame (shade's) from the normal Ngv
+ * facing the ray (Pout's) and the shading normal N, and its ambient light */
 static inline __attribute__((always_inline)) void plain_frame(const struct ctx *c,
                                                                struct packet *pk, int k,
-                                                               int entering, tex_v3 N)
+                                                               int entering, tex_v3 Ngv,
+                                                               tex_v3 N)
 {
     struct plain *pl = &pk->plain;
     int i = pl->n++;
@@ -550,31 +551,28 @@ static inline __attribute__((always_inline)) void plain_frame(const struct ctx *
     pl->k[i] = k;
     pl->outside[i] = entering && leaf->hull ? tex_object_top(leaf) : NULL;
     pl->P[i] = P, pl->N[i] = N, pl->V[i] = tex_v3_scale(pk->r[k].d, -1);
-    pl->Pout[i] = tex_v3_madd(P, N, eps_at(P));
+    pl->Pout[i] = tex_v3_madd(P, Ngv, eps_at(P));
     for (int j = 0; j < 3; j++)
         pl->out[i][j] = c->ambient->v[j] * pl->m[i].ka[j];
 }
 
-/* Hit k taken as a plain one where its surface's material takes the general path
- * (tex_surface_plain 2), its normal bent there: 1, or 0 for shade.  Not inlined: the plain
+/* Hit k (normal Ngv facing the ray) taken as a plain one where its surface's material takes
+ * the general path (tex_surface_plain 2), its normal bent there.  Not inlined: the plain
  * surfaces' loop stays small. */
-static __attribute__((noinline)) int plain_resolve(const struct ctx *c, struct packet *pk,
-                                                   int k, const struct tex_surface *sf)
+static __attribute__((noinline)) void plain_resolve(const struct ctx *c, struct packet *pk,
+                                                    int k, const struct tex_surface *sf,
+                                                    int entering, tex_v3 Ngv)
 {
     struct plain *pl = &pk->plain;
     const tex_ray *r = &pk->r[k];
     const struct tex_hit *h = &pk->h[k];
-    int entering = tex_v3_dot(r->d, pk->Ng[k]) < 0;
-    tex_v3 Ngv = entering ? pk->Ng[k] : tex_v3_scale(pk->Ng[k], -1), N = Ngv;
+    tex_v3 N = Ngv;
     struct tex_shade_at at = {h->leaf, &pk->P[k], &r->d, fabs(r->width + h->t * r->spread),
                               r->dist + h->t, 0, &pk->pre[k]};
-    if (!tex_plain_resolve(c->s, sf, &at, &N, &pl->m[pl->n]))
-        return 0;
+    tex_plain_resolve(c->s, sf, &at, &N, &pl->m[pl->n]);
     pl->bent[pl->nbent++] = pl->n;
     pl->Ngv[pl->n] = Ngv;
-    plain_frame(c, pk, k, entering, Ngv);
-    pl->N[pl->n - 1] = N;
-    return 1;
+    plain_frame(c, pk, k, entering, Ngv, N);
 }
 
 /* Hit k of the packet taken as a plain one: 1, or 0 for shade */
@@ -583,13 +581,15 @@ static int plain_take(const struct ctx *c, struct packet *pk, int k)
     struct plain *pl = &pk->plain;
     const struct tex_surface *sf = surface_of(c->s, pk->h[k].leaf);
     int kind = tex_surface_plain(sf);
-    if (kind == 2)
-        return plain_resolve(c, pk, k, sf);
-    if (!kind || !tex_plain_material(sf, &pk->pre[k], &pl->m[pl->n]))
+    if (!kind || (kind == 1 && !tex_plain_material(sf, &pk->pre[k], &pl->m[pl->n])))
         return 0;
     tex_v3 Ng = pk->Ng[k];
     int entering = tex_v3_dot(pk->r[k].d, Ng) < 0;
-    plain_frame(c, pk, k, entering, entering ? Ng : tex_v3_scale(Ng, -1));
+    tex_v3 N = entering ? Ng : tex_v3_scale(Ng, -1);
+    if (kind == 2)
+        plain_resolve(c, pk, k, sf, entering, N);
+    else
+        plain_frame(c, pk, k, entering, N, N);
     return 1;
 }
 
@@ -779,8 +779,8 @@ static int render_into(struct tex_scene *s, int rx, int ry, tex_map *img,
     tex_colour ambient, background;
     s->cs.from_rgb(&s->cs, s->ambient, TEX_SPECTRUM_ILLUMINANT, &ambient);
     s->cs.from_rgb(&s->cs, s->background, TEX_SPECTRUM_ILLUMINANT, &background);
-    struct ctx c = {s, s->cs.n, &ambient, &background, NULL, st->spp > 1, 0};
-    c.plain = s->cs.mode == TEX_COLOUR_RGB;
+    struct ctx c = {s, s->cs.n, &ambient, &background, NULL, st->spp > 1,
+                    s->cs.mode == TEX_COLOUR_RGB};
     for (int i = 0; i < s->nlights; i++) {
         c.need_rng |= s->lights[i].kind == TEX_LIGHT_AREA;
         c.plain &= s->lights[i].kind == TEX_LIGHT_POINT || s->lights[i].kind == TEX_LIGHT_SPOT;

@@ -2542,18 +2542,15 @@ int tex_surface_plain(const struct tex_surface *sf)
     return sf->cache->plain;
 }
 
-int tex_plain_resolve(const struct tex_scene *s, const struct tex_surface *sf,
-                      const struct tex_shade_at *at, tex_v3 *N, struct tex_plain *pm)
+void tex_plain_resolve(const struct tex_scene *s, const struct tex_surface *sf,
+                       const struct tex_shade_at *at, tex_v3 *N, struct tex_plain *pm)
 {
     struct tex_material m;
     float blend; /* none: a plain surface has no blend */
     resolve(s, sf, at, N, &m, &blend);
-    if (m.kr > 0 || m.kt > 0)
-        return 0;
     for (int k = 0; k < 3; k++)
         pm->ka[k] = m.ka.v[k], pm->kd[k] = m.kd.v[k], pm->ks[k] = m.ks.v[k];
     pm->n = m.n;
-    return 1;
 }
 
 int tex_plain_material(const struct tex_surface *sf, const struct tex_prefetch *pre,

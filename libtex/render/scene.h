@@ -462,8 +462,8 @@ void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *s
  * tex_lanes_take) whose functions are compiled ones of Kd alone, whose material
  * tex_plain_material gives from the hit's lookups ahead pre (0 where they were not made);
  * 2, any other, whose material (and normal N, bent) tex_plain_resolve gives through
- * tex_resolve_material's path, at (0 where the functions gave it rays of its own).  In an
- * RGB scene: the colours and exponent tex_resolve_material would give. */
+ * tex_resolve_material's path, at.  In an RGB scene: the colours and exponent
+ * tex_resolve_material would give (Kr and Kt stay 0). */
 struct tex_plain {
     float ka[3], kd[3], ks[3];
     double n;
@@ -471,8 +471,8 @@ struct tex_plain {
 int tex_surface_plain(const struct tex_surface *sf);
 int tex_plain_material(const struct tex_surface *sf, const struct tex_prefetch *pre,
                        struct tex_plain *m);
-int tex_plain_resolve(const struct tex_scene *s, const struct tex_surface *sf,
-                      const struct tex_shade_at *at, tex_v3 *N, struct tex_plain *m);
+void tex_plain_resolve(const struct tex_scene *s, const struct tex_surface *sf,
+                       const struct tex_shade_at *at, tex_v3 *N, struct tex_plain *m);
 /* Fill (tex_render, before tracing) and free a surface's cache: its untextured
  * colours in the scene's colour space, its application functions compiled. */
 int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs);
