@@ -4,7 +4,8 @@
 #                   bridge and every tool under build/
 #   make deps       install the Debian packages (as root)
 #   make demo       run the main job: writes demo.png
-#   make test       the whole test suite: plain, under ASan+UBSan, and built by clang
+#   make test       the test suite: plain and under ASan+UBSan, and gcc's maps against clang's
+#   make test-clang the whole suite on a clang build (CI runs it too)
 #   make bench      the benchmarks in tests/bench (not timed tests)
 #   make install    PREFIX=/usr/local DESTDIR= (after a build, nothing is rebuilt
 #                   for the prefix: the installed tree finds its parts at run time)
@@ -14,6 +15,14 @@
 #
 # Sources are found by wildcard: a new libtex/LAYER/*.c joins the library, a new
 # tools/t_*.c becomes a tool, tests/unit/*.c and tests/*.sh join the suite.
+
+# One job per core unless -j is given: every tree, and make test's three at once.
+JOBS    ?= $(shell nproc 2>/dev/null || echo 2)
+ifeq ($(MAKELEVEL)$(filter -j%,$(MAKEFLAGS)),0)
+MAKEFLAGS += -j$(JOBS)
+endif
+# `make deps demo`: nothing compiles before the packages are in
+DEPS_FIRST = $(filter deps,$(MAKECMDGOALS))
 
 VERSION  = 0.1
 PREFIX  ?= /usr/local
@@ -33,7 +42,9 @@ CXXFLAGS ?= $(OPT) -g
 WARN     = -Wall -Wextra $(if $(findstring clang,$(CC)),-Wno-pass-failed)
 SANFLAGS = -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer -fno-sanitize-recover=undefined,float-cast-overflow
 SAN      = $(if $(SANITIZE),$(SANFLAGS))
-ALL_CFLAGS   = -std=gnu11 -fPIC -fopenmp -ffp-contract=off $(WARN) $(SAN) $(CFLAGS) \
+# the sanitizer builds compile noise.c's row kernels once for every operation (noise.c)
+SAN_DEFS = $(if $(SANITIZE),-DTEX_SANITIZE)
+ALL_CFLAGS   = -std=gnu11 -fPIC -fopenmp -ffp-contract=off $(WARN) $(SAN) $(SAN_DEFS) $(CFLAGS) \
                -DTEX_VERSION='"$(VERSION)"' -DTEX_PREFIX='"$(PREFIX)"' -DTEX_LIBDIR='"$(LIBDIR)"' \
                -DTEX_DATADIR='"$(DATADIR)"'
 ALL_CXXFLAGS = -std=c++17 -fPIC $(WARN) $(CXXFLAGS)
@@ -90,14 +101,17 @@ HEADERS  = $(filter-out $(PRIVATE_HEADERS),$(wildcard libtex/*/*.h)) libtex/prim
 DEBS = build-essential pkg-config liblz4-dev libopenexr-dev libopenimageio-dev openimageio-tools \
        libpng-dev libjpeg62-turbo-dev libtiff-dev \
        libflann-dev libfftw3-dev colord-data mandoc netpbm imagemagick libnoise-dev povray \
-       hyperfine clang libclang-rt-14-dev libomp-dev python3 parallel libmicrohttpd-dev chromium
+       hyperfine clang libclang-rt-14-dev libomp-dev python3 parallel libmicrohttpd-dev chromium ffmpeg
 
-.PHONY: all deps demo test test-plain test-asan check bench install uninstall man fuzz fuzz-smoke figures \
+.PHONY: all deps demo test test-plain test-clang check bench install uninstall man fuzz fuzz-smoke figures \
         gallery clean tsan
 
-# build/share/textura holds links to the data, so that a build tree is laid
+# layout: build/share/textura holds links to the data, so that a build tree is laid
 # out as an install is and finds its data files the same way (paths.h).
-all: $(STATIC) $(SHARED) $(BRIDGE) $(CODEC_BRIDGES) $(PCFILE) $(TOOLS)
+all: $(STATIC) $(SHARED) $(BRIDGE) $(CODEC_BRIDGES) $(PCFILE) $(TOOLS) layout
+
+.PHONY: layout
+layout:
 	@mkdir -p $(BUILD)/share/textura
 	@ln -sfn ../../../palettes $(BUILD)/share/textura/palettes
 	@ln -sfn ../../../patterns $(BUILD)/share/textura/patterns
@@ -105,11 +119,11 @@ all: $(STATIC) $(SHARED) $(BRIDGE) $(CODEC_BRIDGES) $(PCFILE) $(TOOLS)
 	@printf 'CC = %s\nCXX = %s\nSANITIZE = %s\nOPT = %s\n' '$(CC)' '$(CXX)' '$(SANITIZE)' '$(OPT)' \
 	    >$(BUILD)/config.mk
 
-$(BUILD)/obj/%.o: %.c
+$(BUILD)/obj/%.o: %.c | $(DEPS_FIRST)
 	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS) $(ALL_CFLAGS) -MMD -MP -c -o $@ $<
 
-$(BUILD)/obj/%.o: %.cpp
+$(BUILD)/obj/%.o: %.cpp | $(DEPS_FIRST)
 	@mkdir -p $(@D)
 	$(CXX) $(CPPFLAGS) $(ALL_CXXFLAGS) -ffp-contract=off $(SAN) -MMD -MP -c -o $@ $<
 
@@ -121,9 +135,15 @@ $(BUILD)/obj/%.o: %.cpp
 # shapes, textures): gcc's link-time optimisation inlines across them in t_apply.  Fat
 # objects: every other program links their machine code as it is.  Not under a sanitizer
 # or clang (whose LTO objects are not fat), nor at another OPT.  (GNU_CC asked the compiler once.)
+# Every other link says -fno-lto: else gcc's linker plugin claims the fat objects and
+# optimises them again (a unit test's link took 4 s, against 0.25).
 RENDER_LTO := $(if $(and $(filter -O2,$(OPT)),$(GNU_CC),$(if $(SANITIZE),,1)),-flto=auto -ffat-lto-objects)
 $(BUILD)/obj/libtex/render/%.o: ALL_CFLAGS += $(if $(filter -O2,$(OPT)),-O3) $(RENDER_LTO)
-$(BUILD)/bin/t_apply: LDFLAGS += $(if $(RENDER_LTO),-flto=auto -O3)
+LINK_LTO = $(if $(RENDER_LTO),-fno-lto)
+$(BUILD)/bin/t_apply: LINK_LTO = $(if $(RENDER_LTO),-flto=auto -O3)
+
+# the tools alone, without the shared library and the bridges
+tools: $(TOOLS) layout
 
 $(STATIC): $(LIB_OBJ)
 	@mkdir -p $(@D)
@@ -132,15 +152,15 @@ $(STATIC): $(LIB_OBJ)
 
 $(SHARED): $(LIB_OBJ)
 	@mkdir -p $(@D)
-	$(CC) -shared -Wl,-soname,libtex.so.0 $(LDFLAGS) -o $@ $^ $(LDLIBS)
+	$(CC) -shared -Wl,-soname,libtex.so.0 $(LDFLAGS) $(LINK_LTO) -o $@ $^ $(LDLIBS)
 	ln -sf libtex.so.0 $(BUILD)/lib/libtex.so
 
-$(BRIDGE): libtex/io/oiio_bridge.cpp libtex/io/oiio_bridge.h
+$(BRIDGE): libtex/io/oiio_bridge.cpp libtex/io/oiio_bridge.h | $(DEPS_FIRST)
 	@mkdir -p $(@D)
 	$(CXX) $(CPPFLAGS) $(ALL_CXXFLAGS) -shared -fvisibility=hidden -o $@ $< \
 	    $$(pkg-config --cflags --libs OpenImageIO)
 
-$(BUILD)/lib/textura/textura-%.so: libtex/io/%_bridge.c libtex/io/codec_bridge.h
+$(BUILD)/lib/textura/textura-%.so: libtex/io/%_bridge.c libtex/io/codec_bridge.h | $(DEPS_FIRST)
 	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS) $(filter-out -fopenmp,$(ALL_CFLAGS)) -shared -fvisibility=hidden -o $@ $< \
 	    $(CODEC_LIBS_$*)
@@ -159,12 +179,12 @@ $(BUILD)/bin/t_proto: PROG_LDLIBS += -lmicrohttpd
 
 $(BUILD)/bin/%: $(BUILD)/obj/tools/%.o $(OMP_ENV) $(STATIC)
 	@mkdir -p $(@D)
-	$(CC) $(LDFLAGS) $(PROG_LDFLAGS) -o $@ $< $(OMP_ENV) $(STATIC) $(PROG_LDLIBS)
+	$(CC) $(LDFLAGS) $(LINK_LTO) $(PROG_LDFLAGS) -o $@ $< $(OMP_ENV) $(STATIC) $(PROG_LDLIBS)
 
 .PRECIOUS: $(BUILD)/obj/%.o
 $(BUILD)/tests/%: $(BUILD)/obj/tests/unit/%.o $(STATIC)
 	@mkdir -p $(@D)
-	$(CC) $(LDFLAGS) -o $@ $< $(STATIC) $(PROG_LDLIBS)
+	$(CC) $(LDFLAGS) $(LINK_LTO) -o $@ $< $(STATIC) $(PROG_LDLIBS)
 
 $(BUILD)/obj/tests/unit/%.o: CPPFLAGS += -Itests/unit
 
@@ -178,16 +198,33 @@ demo: all
 	$(BUILD)/bin/t_noise -s 512 --frequency 12 -S 7 | $(BUILD)/bin/t_apply -o demo.png patterns/still_life.scene
 	@echo "wrote demo.png"
 
-# The suite runs three times: as built, built again with AddressSanitizer and
-# UBSan, and built with clang (maps must not depend on the compiler).
-test:
-	$(MAKE) check
-	$(MAKE) check BUILD=build-asan SANITIZE=1 OPT=-O1
-	$(MAKE) check BUILD=build-clang CC=clang CXX=clang++
-	tests/run build build-asan build-clang
+# make test: the suite as built and again built with AddressSanitizer and UBSan, and
+# tests/compilers.sh on a clang build (maps must not depend on the compiler).  The three
+# trees build at once, one job per core in all; tests/run runs the files concurrently.
+# make test-clang runs the whole suite on the clang build (CI runs it after make test).
+# The sanitizer and clang trees keep line tables only (-g1): reports and backtraces
+# name every frame's line, and the compilers spend a fifth to a third less time on
+# them.  compilers.sh needs only clang's tools.
+ASAN_TREE  = BUILD=build-asan SANITIZE=1 OPT=-O1 CFLAGS='-O1 -g1' CXXFLAGS='-O1 -g1'
+CLANG_TREE = BUILD=build-clang CC=clang CXX=clang++ CFLAGS='-O2 -g1' CXXFLAGS='-O2 -g1'
+.PHONY: check-plain check-asan check-clang check-clang-units tools
+check-plain:
+	+$(MAKE) check
+check-asan:
+	+$(MAKE) check $(ASAN_TREE)
+check-clang:
+	+$(MAKE) tools $(CLANG_TREE)
+check-clang-units:
+	+$(MAKE) check $(CLANG_TREE)
+
+test: check-plain check-asan check-clang
+	tests/run build build-asan build-clang:compilers.sh
 
 test-plain: check
 	tests/run build
+
+test-clang: check-clang-units
+	tests/run build-clang
 
 # The unit tests under ThreadSanitizer, built with clang and LLVM's OpenMP
 # runtime; Archer (libarcher) makes TSan see OpenMP's synchronisation.
@@ -223,6 +260,10 @@ fuzz:
 fuzz-smoke: fuzz
 	tests/fuzz/smoke.sh $(abspath $(BUILD))/fuzz 30
 
+# The installed libtex.a holds machine code alone: the LTO bytecode of the renderer's
+# objects (t_apply's) would have gcc optimise them again in every program linked with
+# it (4 s a link).
+#
 # A tree built for one prefix installs at another without being rebuilt (a
 # distribution builds, then installs with PREFIX and DESTDIR): the objects
 # do not depend on PREFIX, and the installed tree finds its parts relative
@@ -234,7 +275,8 @@ install: all
 	    $(DESTDIR)$(PREFIX)/share/man/man3 $(DESTDIR)$(PREFIX)/share/man/man5 \
 	    $(DESTDIR)$(DATADIR)/palettes $(DESTDIR)$(DATADIR)/patterns $(DESTDIR)$(DATADIR)/proto
 	install -m 755 $(TOOLS) $(DESTDIR)$(PREFIX)/bin
-	install -m 644 $(STATIC) $(DESTDIR)$(LIBDIR)
+	objcopy -R '.gnu.lto_*' -R '.gnu.debuglto_*' $(STATIC) $(DESTDIR)$(LIBDIR)/libtex.a
+	chmod 644 $(DESTDIR)$(LIBDIR)/libtex.a
 	install -m 755 $(SHARED) $(DESTDIR)$(LIBDIR)
 	ln -sf libtex.so.0 $(DESTDIR)$(LIBDIR)/libtex.so
 	install -m 755 $(BRIDGE) $(CODEC_BRIDGES) $(DESTDIR)$(LIBDIR)/textura

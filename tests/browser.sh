@@ -6,7 +6,7 @@
 top=${TEXTURA_TOP:-.}
 chromium=$(command -v chromium || command -v chromium-browser || true)
 if [ -z "$chromium" ]; then
-    ok "browser test skipped: chromium is not installed (make deps installs it)"
+    skip "the editor in a browser" "chromium is not installed (make deps installs it)"
     exit 0
 fi
 mkdir -p "$T/work"
@@ -16,7 +16,7 @@ shot=${TEXTURA_BUILD:-build}/artefacts/t_proto.png
 timeout 400 python3 "$top/tests/cdp.py" "$chromium" "$url" "$T/work" "$shot" 2>"$T/cdp.err"
 status=$?
 if [ $status = 3 ]; then
-    ok "browser test skipped: $(head -c 200 "$T/cdp.err")"
+    skip "the editor in a browser" "$(head -c 200 "$T/cdp.err")"
 elif [ $status != 0 ]; then
     notok "the browser test ran to its end" "exit $status: $(tail -c 300 "$T/cdp.err" | tr "\n" " ")"
 fi

@@ -8,7 +8,8 @@ B=$(cd "${TEXTURA_BUILD:-build}/bin" && pwd)
 top=$(cd "${TEXTURA_TOP:-.}" && pwd)
 export PATH="$B:$PATH"
 
-# The inputs the examples name, made once.
+# The inputs the examples name, made once; the samples t_synth reads (photo.png, and
+# hole.png, its mask) at 128x128, as its pages' own sample is.
 F=$T/fixtures
 mkdir -p "$F/patterns"
 (
@@ -18,8 +19,8 @@ mkdir -p "$F/patterns"
         t_noise -S 3 | t_palette marble -o marble.exr &&
         t_wood | t_palette wood -o wood.exr && t_circle --ids | t_op sub - 1 -o mask.exr &&
         t_brick -s 512 -o wall.exr && t_checker -o checker.exr && cp marble.exr leo.exr &&
-        t_palette granite map.exr -o photo.png && t_convert map.exr -o painted.png &&
-        t_circle -r 0.1 --colour1 0 --colour2 1 -o hole.png &&
+        t_noise -s 128 | t_palette granite -o photo.png && t_convert map.exr -o painted.png &&
+        t_circle -s 128 -r 0.1 --colour1 0 --colour2 1 -o hole.png &&
         t_convert --compression zip map.exr -o tiled.exr &&
         printf '0.25 0.25\n0.75 0.5\n0.5 0.8\n' >stars.txt &&
         cp "$top/patterns/tessellation.tc" patterns/ &&

@@ -3,7 +3,7 @@
 . "${TEXTURA_TOP:-.}/tests/lib.sh"
 top=${TEXTURA_TOP:-.}
 if ! command -v parallel >/dev/null; then
-    ok "# SKIP GNU parallel not installed (make deps installs it)"
+    skip "patterns/farm.sh under GNU parallel" "GNU parallel is not installed (make deps installs it)"
     exit 0
 fi
 # Pixels byte for byte: PFM holds the floats as they are (the EXR histories differ).

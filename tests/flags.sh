@@ -134,6 +134,8 @@ if command -v script >/dev/null; then
     TERM=xterm script -qc "$B/t_palette --list" /dev/null >"$T/tty" </dev/null
     grep -q $'\e\[48;2;' "$T/tty" && ok "t_palette --list on a terminal draws swatches" ||
         notok "swatches on a terminal" "$(head -c 200 "$T/tty")"
+else
+    skip "t_palette --list on a terminal draws swatches" "script(1) is not installed"
 fi
 check_fails "an unknown palette lists the known ones" 2 "$B/t_palette" nosuchpalette "$T/n.pfm"
 grep -q "marble" "$T/.err" && ok "its message names them" || notok "unknown palette message" "$(cat "$T/.err")"
@@ -189,6 +191,8 @@ if command -v script >/dev/null; then
     grep -q "^t_bubble: \[" "$T/tty" && ok "a large point set draws a bar" || notok "bubble progress" "$(head -c 300 "$T/tty")"
     run_tty "$B/t_noise -s 32 -o $T/small.pfm" >"$T/tty"
     [ ! -s "$T/tty" ] && ok "quick work draws no bar" || notok "a bar for quick work" "$(head -c 200 "$T/tty")"
+else
+    skip "progress bars on a terminal" "script(1) is not installed"
 fi
 "$B/t_filter" median -r 8 -j 1 "$T/n512.pfm" -o "$T/m2.pfm" 2>"$T/err"
 [ ! -s "$T/err" ] && ok "no bar when standard error is not a terminal" || notok "bar into a file" "$(head -c 200 "$T/err")"

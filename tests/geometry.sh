@@ -75,5 +75,7 @@ for p in $geo; do
     if command -v mandoc >/dev/null; then
         lint=$(mandoc -Tlint -W warning "$page" 2>&1)
         [ -z "$lint" ] && ok "t_$p.1 is clean under mandoc" || notok "t_$p.1 mandoc" "$lint"
+    else
+        skip "t_$p.1 is clean under mandoc" "mandoc is not installed"
     fi
 done

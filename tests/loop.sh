@@ -41,7 +41,7 @@ if (cd "$T" && frames=4 "$top/patterns/loop.sh" -o "$T/loop" -s 32 >"$T/out" 2>"
     if command -v ffmpeg >/dev/null; then
         [ -s "$T/loop.gif" ] && ok "patterns/loop.sh encodes a GIF" || notok "loop.sh GIF"
     else
-        grep -q "ffmpeg not installed" "$T/out" && ok "# SKIP ffmpeg not installed (said so)" ||
+        grep -q "ffmpeg not installed" "$T/out" && skip "patterns/loop.sh encodes a GIF" "ffmpeg is not installed (said so)" ||
             notok "loop.sh without ffmpeg says so"
     fi
 else

@@ -56,7 +56,7 @@ if command -v maketx >/dev/null && maketx "$T/ck.exr" -o "$T/ck_tx.exr" >/dev/nu
     approx "$d" 0 0.001 && notok "t_apply reads maketx's levels" "same image as the flat map" ||
         ok "t_apply reads maketx's levels (the image differs by $d)"
 else
-    ok "# SKIP maketx not installed or failed"
+    skip "t_apply reads maketx's levels" "maketx is not installed or failed"
 fi
 
 check_fails "--mipmap to a non-EXR file" 2 t_noise -s 64 --mipmap -o "$T/bad.png"

@@ -145,7 +145,12 @@ def burst(n):
 ts = [threading.Thread(target=burst, args=(125,)) for _ in range(8)]
 [t.start() for t in ts]; [t.join() for t in ts]
 say(codes.get(429, 0) > 0 and set(codes) <= {200, 429}, "1000 requests in a burst: 200 or 429, nothing else", codes)
-time.sleep(1.5)
-s, b = get("/api/preview", base)
+# the limiter refills: poll for the first 200 rather than sleep its whole window
+end = time.time() + 10
+while True:
+    s, b = get("/api/preview", base)
+    if s == 200 or time.time() > end:
+        break
+    time.sleep(0.05)
 say(s == 200, "the server keeps serving after all that", s)
 PY

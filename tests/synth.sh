@@ -17,9 +17,9 @@ t_bubble -s 128 -c 40 -S 3 | t_palette marble -o "$T/s.pfm"
 for s in 1 2 3; do
     t_synth "$T/s.pfm" -s 256 -S "$s" -o "$T/o$s.pfm"
     stats crops "$T/s.pfm" 256 256 32 "$s" "$T/c$s.pfm"
-    stats dist "$T/s.pfm" "$T/o$s.pfm" >>"$T/do"
-    stats dist "$T/s.pfm" "$T/c$s.pfm" >>"$T/dc"
 done
+stats dist "$T/s.pfm" "$T"/o[123].pfm >"$T/do"
+stats dist "$T/s.pfm" "$T"/c[123].pfm >"$T/dc"
 mean() { awk -v k="$2" '{ s += $k } END { printf "%.4f\n", s / NR }' "$1"; }
 k=1
 for what in "per-channel histogram" "radial power spectrum" "gradient-orientation histogram"; do
@@ -67,11 +67,18 @@ read -r seam inner <<<"$(stats seam "$T/nt.pfm")"
 if lt "$inner" "$seam"; then ok "without --tile the seams show ($seam against $inner)"
 else notok "without --tile the seams show" "seam $seam inner $inner"; fi
 
-# Determinism: the same bytes for -j 1 and -j 2, in every mode; seeds matter.
-t_noise -s 96x80 -f 6 -o "$T/n.pfm"
+# Determinism: the same bytes for -j 1 and -j 2, in every mode; seeds matter.  Samples
+# of 64x64 (a run's fixed cost is the sample's pyramid and search index) and outputs of
+# 72x60, several rows for each thread at every level; the exhaustive search, whose cost
+# is the sample's size times the output's, from a sample of 48x40.
+t_bubble -s 64 -c 12 -S 3 | t_palette marble -o "$T/s64.pfm"
+t_noise -s 64x48 -f 4 -o "$T/n.pfm"
+t_noise -s 48x40 -f 3 -o "$T/n_small.pfm"
 t_noise -s 150x120 -f 2 -S 5 -o "$T/g.pfm"
+t_noise -s 72x60 -f 2 -S 5 -o "$T/g_small.pfm"
 t_circle -s 128 -r 0.2 --colour1 0,0,0 --colour2 1,1,1 -o "$T/mask.pfm"
-t_xform --expand 136x136 --background 0,0,0,0.5 "$T/s.pfm" -o "$T/rgba.exr"
+t_circle -s 64 -r 0.2 --colour1 0,0,0 --colour2 1,1,1 -o "$T/mask64.pfm"
+t_xform --expand 72x72 --background 0,0,0,0.5 "$T/s64.pfm" -o "$T/rgba.exr"
 jcheck() {
     local name=$1
     shift
@@ -79,19 +86,19 @@ jcheck() {
         check "$name: -j 1 and -j 2 give the same bytes" cmp "$T/j1.pfm" "$T/j2.pfm" ||
         notok "$name: runs"
 }
-jcheck "RGB" "$T/s.pfm" -s 150x120 -S 9
-jcheck "one channel, --tile" "$T/n.pfm" -s 150x120 --tile
-jcheck "--guide" "$T/s.pfm" -s 150x120 --guide "$T/g.pfm"
-jcheck "--mask" "$T/s.pfm" --mask "$T/mask.pfm"
-jcheck "--search exhaustive" "$T/n.pfm" -s 40x30 --pyramid-levels 2 --search exhaustive
-t_synth "$T/rgba.exr" -s 100 -j 1 -o "$T/a1.exr" && t_synth "$T/rgba.exr" -s 100 -j 2 -o "$T/a2.exr"
+jcheck "RGB" "$T/s64.pfm" -s 72x60 -S 9
+cp "$T/j1.pfm" "$T/seed9.pfm"
+jcheck "one channel, --tile" "$T/n.pfm" -s 72x60 --tile
+jcheck "--guide" "$T/s64.pfm" -s 72x60 --guide "$T/g_small.pfm"
+jcheck "--mask" "$T/s64.pfm" --mask "$T/mask64.pfm"
+jcheck "--search exhaustive" "$T/n_small.pfm" -s 40x30 --pyramid-levels 2 --search exhaustive
+t_synth "$T/rgba.exr" -s 72x60 -j 1 -o "$T/a1.exr" && t_synth "$T/rgba.exr" -s 72x60 -j 2 -o "$T/a2.exr"
 same "RGBA: -j 1 and -j 2 give the same map" "$T/a1.exr" "$T/a2.exr"
 [ "$(info_json "$T/a1.exr" channels)" = 4 ] && ok "RGBA in, RGBA out" || notok "RGBA in, RGBA out"
 [ "$(info_json "$T/j1.pfm" channels)" = 1 ] && ok "one channel in, one out" || notok "one channel"
-t_synth "$T/s.pfm" -s 150x120 -S 9 -o "$T/again.pfm"
-t_synth "$T/s.pfm" -s 150x120 -S 10 -o "$T/other.pfm"
-t_synth "$T/s.pfm" -s 150x120 -S 9 -j 1 -o "$T/j1.pfm"
-check "the same seed gives the same bytes" cmp "$T/again.pfm" "$T/j1.pfm"
+t_synth "$T/s64.pfm" -s 72x60 -S 9 -o "$T/again.pfm"
+t_synth "$T/s64.pfm" -s 72x60 -S 10 -o "$T/other.pfm"
+check "the same seed gives the same bytes" cmp "$T/again.pfm" "$T/seed9.pfm"
 if ! cmp -s "$T/again.pfm" "$T/other.pfm"; then ok "another seed, another map"; else notok "seeds matter"; fi
 
 # --mask: pixels outside the mask are the sample's; none comes from inside it (the

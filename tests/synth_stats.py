@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """synth_stats.py - texture statistics for tests/synth.sh (pure Python, no numpy).
 
-  synth_stats.py dist SAMPLE.pfm MAP.pfm   distances of MAP's statistics from SAMPLE's:
-                                           "hist spectrum orient" (see below)
+  synth_stats.py dist SAMPLE.pfm MAP.pfm...
+                                           distances of each MAP's statistics from
+                                           SAMPLE's: "hist spectrum orient" (see
+                                           below), a line for each MAP
   synth_stats.py crops SAMPLE.pfm W H C SEED OUT.pfm
                                            the baseline: random C x C crops of the sample
                                            tiled into a W x H map
@@ -25,6 +27,7 @@ L1 distance of 16-bin gradient-orientation histograms weighted by the gradient's
 """
 import cmath
 import math
+import operator
 import random
 import struct
 import sys
@@ -123,13 +126,16 @@ def l1(a, b):
     return sum(abs(x - y) for x, y in zip(a, b))
 
 
-def dist(sample, m):
-    nc = min(sample[2], 3)
-    dh = sum(l1(hist(sample, c), hist(m, c)) for c in range(nc)) / nc
-    ss, ms = spectrum(sample), spectrum(m)
+def figures(m, nc):
+    return [hist(m, c) for c in range(nc)], spectrum(m), orient(m)
+
+
+def dist(sf, m):
+    (sh, ss, so), nc = sf, len(sf[0])
+    mh, ms, mo = figures(m, nc)
+    dh = sum(l1(a, b) for a, b in zip(sh, mh)) / nc
     ds = sum(abs(a - b) for a, b in zip(ss, ms)) / len(ss)
-    do = l1(orient(sample), orient(m))
-    return dh, ds, do
+    return dh, ds, l1(so, mo)
 
 
 def crops(sample, w, h, c, seed):
@@ -146,30 +152,46 @@ def crops(sample, w, h, c, seed):
     return out
 
 
-def autocorr(L, dx, dy):
+def centred(L):
     h, w = len(L), len(L[0])
     mean = sum(map(sum, L)) / (w * h)
-    var = sum((v - mean) ** 2 for r in L for v in r) / (w * h)
-    s = sum((L[y][x] - mean) * (L[(y + dy) % h][(x + dx) % w] - mean) for y in range(h) for x in range(w))
+    C = [[v - mean for v in r] for r in L]
+    return C, sum(sum(map(operator.mul, r, r)) for r in C) / (w * h)
+
+
+def autocorr(L, dx, dy, cv=None):
+    """The circular autocorrelation of L at lag (dx, dy), one of them 0 (rows or columns
+    products summed by map, not by a Python loop per pixel)."""
+    C, var = cv or centred(L)
+    h, w = len(C), len(C[0])
+    if dy == 0:
+        s = sum(sum(map(operator.mul, r, r[dx % w:] + r[:dx % w])) for r in C)
+    else:
+        s = sum(sum(map(operator.mul, C[y], C[(y + dy) % h])) for y in range(h))
     return s / (w * h) / var
 
 
 def main():
     cmd, a = sys.argv[1], sys.argv[2:]
     if cmd == 'dist':
-        print('%.4f %.4f %.4f' % dist(read_pfm(a[0]), read_pfm(a[1])))
+        s = read_pfm(a[0])
+        sf = figures(s, min(s[2], 3))
+        for p in a[1:]:
+            print('%.4f %.4f %.4f' % dist(sf, read_pfm(p)))
     elif cmd == 'crops':
         s = read_pfm(a[0])
         w, h, c, seed = map(int, a[1:5])
         write_pfm(a[5], w, h, s[2], crops(s, w, h, c, seed))
     elif cmd == 'period':
         L, p = luma(read_pfm(a[0])), int(a[1])
-        print('%.3f %.3f %.3f %.3f' % (autocorr(L, p, 0), autocorr(L, p // 2, 0), autocorr(L, 0, p),
-                                       autocorr(L, 0, p // 2)))
+        cv = centred(L)
+        print('%.3f %.3f %.3f %.3f' % (autocorr(L, p, 0, cv), autocorr(L, p // 2, 0, cv),
+                                       autocorr(L, 0, p, cv), autocorr(L, 0, p // 2, cv)))
     elif cmd == 'peak':
         L, lo, hi = luma(read_pfm(a[0])), int(a[1]), int(a[2])
-        lx = max(range(lo, hi + 1), key=lambda t: autocorr(L, t, 0))
-        ly = max(range(lo, hi + 1), key=lambda t: autocorr(L, 0, t))
+        cv = centred(L)
+        lx = max(range(lo, hi + 1), key=lambda t: autocorr(L, t, 0, cv))
+        ly = max(range(lo, hi + 1), key=lambda t: autocorr(L, 0, t, cv))
         print(lx, ly)
     elif cmd == 'seam':
         L = luma(read_pfm(a[0]))

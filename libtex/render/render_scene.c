@@ -1538,11 +1538,15 @@ static void parse_camera(struct parser *ps)
 static void add_object(struct parser *ps, struct tex_object *ob)
 {
     struct tex_scene *s = ps->s;
-    struct tex_object **a = realloc(s->objects, (s->nobjects + 1) * sizeof *a);
-    if (!a)
-        fail_at(ps, &ps->t, 1, "out of memory");
-    s->objects = a;
-    a[s->nobjects++] = ob;
+    if (s->nobjects == s->cobjects) { /* doubling: a scene may list 10^5 objects */
+        int c = s->cobjects ? 2 * s->cobjects : 16;
+        struct tex_object **a = realloc(s->objects, c * sizeof *a);
+        if (!a)
+            fail_at(ps, &ps->t, 1, "out of memory");
+        s->objects = a;
+        s->cobjects = c;
+    }
+    s->objects[s->nobjects++] = ob;
 }
 
 /* The setting named by kt (its word already read): 1 if it is one. */

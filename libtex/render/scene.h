@@ -650,7 +650,7 @@ struct tex_scene {
     struct tex_light *lights;
     int nlights;
     struct tex_object **objects; /* top-level objects */
-    int nobjects;
+    int nobjects, cobjects;      /* in use, allocated */
     struct tex_bvh *bvh;
     struct tex_media eye_media; /* the transparent solids the camera is inside (prepare's) */
     /* everything allocated, freed together */
