@@ -15,7 +15,7 @@ trap 'rm -rf "$tmp"' EXIT
 jobs=${FUZZ_JOBS:-$(nproc 2>/dev/null || echo 2)}
 # one NAME: the target's run, its line into $tmp/NAME.line, a failure's input kept
 one() {
-    local t=$1 name seeds st runs
+    local t=$1 name seeds st runs nseeds
     name=$(basename "$t")
     seeds="$here/seeds-${name#fuzz_}"
     mkdir -p "$tmp/$name"
@@ -23,8 +23,11 @@ one() {
         -artifact_prefix="$tmp/$name-" "$tmp/$name" ${seeds:+"$seeds"} >"$tmp/$name.log" 2>&1
     st=$?
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$tmp/$name.log" | tail -1)
-    if [ "$st" = 0 ]; then
-        echo "ok - $name: ${runs:-?} runs in ${secs} s" >"$tmp/$name.line"
+    nseeds=$(find "$seeds" -type f 2>/dev/null | wc -l)
+    if [ "$st" = 0 ] && [ "${runs:-0}" -lt "$nseeds" ]; then
+        echo "not ok - $name: ${runs:-0} runs in ${secs} s, fewer than its $nseeds seeds" >"$tmp/$name.line"
+    elif [ "$st" = 0 ]; then
+        echo "ok - $name: ${runs:-?} runs in ${secs} s (its $nseeds seeds and more)" >"$tmp/$name.line"
     else
         { echo "not ok - $name: exit $st after ${runs:-?} runs"
           grep -E 'ERROR|runtime error|Test unit written' "$tmp/$name.log" | head -5; } >"$tmp/$name.line"
