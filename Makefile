@@ -71,7 +71,8 @@ PROG_LDLIBS = $(if $(SANITIZE),$(LDLIBS),-static-libgcc -lOpenEXRCore -Wl,-Bstat
               -Wl,-Bdynamic -lm -ldl)
 
 LAYERS   = base io prim ops lang render cli
-LIB_SRC  = $(filter-out %_template.c %_bridge.c libtex/cli/omp_env.c,$(foreach l,$(LAYERS),$(wildcard libtex/$(l)/*.c)))
+# A layer's CPU-specific kernels live in its x86/ folder (FFmpeg's layout).
+LIB_SRC  = $(filter-out %_template.c %_bridge.c libtex/cli/omp_env.c,$(foreach l,$(LAYERS),$(wildcard libtex/$(l)/*.c libtex/$(l)/x86/*.c)))
 # Linked into every tool, not into libtex: its getenv makes OpenMP's idle threads sleep
 OMP_ENV  = $(BUILD)/obj/libtex/cli/omp_env.o
 # C++ in libtex: FLANN's templates (base/kdtree.cpp); the bridges are shared objects

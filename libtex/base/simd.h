@@ -1,33 +1,30 @@
 /* simd.h - the instruction sets the vector kernels may use
  *
- * Kernels with a vector path are compiled for AVX2 function by function
- * (TEX_AVX2) and chosen at run time, so one build runs on every x86-64 CPU:
+ * Kernels with a vector path live in their layer's x86/ folder, compiled for
+ * AVX2 or AVX-512 function by function (x86/simd_x86.h), and are chosen at run
+ * time, so one build runs on every x86-64 CPU:
  *
  *   #ifdef TEX_X86
- *   TEX_AVX2 static void rows_avx2(...) { ... }
+ *   if (tex_simd_level() >= TEX_SIMD_AVX2) { rows_avx2(...); return; }
  *   #endif
- *   if (tex_simd_level() >= TEX_SIMD_AVX2) rows_avx2(...); else rows(...);
+ *   rows(...);
  *
  * Every level performs the same float operations in the same order, so the
  * bytes never depend on it; TEXTURA_SIMD=scalar forces the portable path and
  * TEXTURA_SIMD=avx2 caps the level at AVX2, as the tests do to check that, and
  * a test that compares the paths in one process lowers the level with
- * tex_simd_limit.  TEX_AVX512 (AVX-512F) has two users, the noise rows of
- * wide cells (noise.h) and the renderer's map lookups over a packet of hits
- * (tex_texture_points), and TEX_VBMI one, the point kernel's sixteen lanes
- * with their hashes from a byte table in registers where the CPU has VBMI
+ * tex_simd_limit.  AVX-512F has two users, the noise rows of wide cells
+ * (noise.h) and the renderer's map lookups over a packet of hits
+ * (tex_texture_points), and VBMI one, the point kernel's sixteen lanes with
+ * their hashes from a byte table in registers where the CPU has VBMI
  * (tex_simd_vbmi); elsewhere AVX2 stays the best level's kernel.
  */
 #ifndef TEX_SIMD_H
 #define TEX_SIMD_H
 
+/* TEX_X86: this build has the x86 kernels to choose from */
 #if defined(__x86_64__) || defined(__i386__)
-#include <immintrin.h>
 #define TEX_X86 1
-#define TEX_AVX2 __attribute__((target("avx2")))
-#define TEX_AVX512 __attribute__((target("avx512f")))
-/* AVX2 with AVX-512's byte permutes (VBMI) on 256- and 512-bit registers */
-#define TEX_VBMI __attribute__((target("avx2,avx512f,avx512vl,avx512bw,avx512vbmi")))
 #endif
 
 #ifdef __cplusplus

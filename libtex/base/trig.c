@@ -4,7 +4,7 @@
 #include <math.h>
 #include <stdint.h>
 
-#include "base/simd.h"
+#include "base/x86/simd_x86.h"
 #include "base/trig.h"
 
 #define BIG 0x1p19           /* past it, libm's sine */

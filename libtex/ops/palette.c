@@ -13,7 +13,7 @@
 #include "base/error.h"
 #include "base/map.h"
 #include "base/paths.h"
-#include "base/simd.h"
+#include "base/x86/simd_x86.h"
 #include "io/file.h"
 #include "ops/palette.h"
 

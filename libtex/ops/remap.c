@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "base/error.h"
-#include "base/simd.h"
+#include "base/x86/simd_x86.h"
 #include "ops/remap.h"
 
 static double unit(double t)

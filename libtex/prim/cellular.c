@@ -12,7 +12,7 @@
 #include "base/progress.h"
 #include "prim/prim.h"
 #include "base/rng.h"
-#include "base/simd.h"
+#include "base/x86/simd_x86.h"
 
 /* p grown to n elements of size bytes, or p itself with *ok cleared when that
  * fails (or an earlier call failed): parallel arrays grow together and the

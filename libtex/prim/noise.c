@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "base/simd.h"
+#include "base/x86/simd_x86.h"
 
 #ifdef _OPENMP
 #include <omp.h>

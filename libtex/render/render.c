@@ -27,7 +27,7 @@
 
 #include "base/error.h"
 #include "base/rng.h"
-#include "base/simd.h"
+#include "base/x86/simd_x86.h"
 #include "render/scene.h"
 
 #define TILE 16

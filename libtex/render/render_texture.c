@@ -13,7 +13,7 @@
 #include <string.h>
 
 #include "base/error.h"
-#include "base/simd.h"
+#include "base/x86/simd_x86.h"
 #include "render/scene.h"
 #include "render/render_ct.h"
 #include "ops/palette.h"
