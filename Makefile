@@ -93,10 +93,13 @@ STATIC   = $(BUILD)/lib/libtex.a
 SHARED   = $(BUILD)/lib/libtex.so.0
 PCFILE   = $(BUILD)/lib/pkgconfig/textura.pc
 # Headers that stay inside libtex: the scene's internals, the shading models'
-# interface, the languages' lexer and evaluator, the OpenImageIO bridge.
+# interface, the languages' lexer and evaluator, the OpenImageIO bridge.  (The x86/
+# folders' headers are never installed.)
+RENDER_PRIVATE = scene vecmath shape bvh light texture surface mipmap mapping footprint appfn \
+                 packet render_shade render_ct
 PRIVATE_HEADERS = libtex/base/kdtree.h libtex/io/oiio_bridge.h libtex/io/codec_bridge.h \
                   libtex/lang/lex.h libtex/lang/expr.h libtex/lang/rowcode.h \
-                  libtex/render/scene.h libtex/render/render_shade.h libtex/render/render_ct.h
+                  $(RENDER_PRIVATE:%=libtex/render/%.h)
 HEADERS  = $(filter-out $(PRIVATE_HEADERS),$(wildcard libtex/*/*.h)) libtex/prim/primitives.def
 
 DEBS = build-essential pkg-config liblz4-dev libopenexr-dev libopenimageio-dev openimageio-tools \

@@ -5,7 +5,8 @@
 # ("base/map.h", found through -Ilibtex); a header includes relative to itself
 # ("map.h", "../base/map.h"), so that the installed tree needs no -I.  A layer's
 # x86/ folder (its CPU-specific kernels) belongs to the layer: its headers say
-# "../noise.h" for the layer's own, "../../base/simd.h" for a layer below.
+# "../noise.h" for the layer's own, "../../base/simd.h" for a layer below, and a
+# layer's header names its kernels' as "x86/noise_x86.h".
 . "$(dirname "$0")/lib.sh"
 top=${TEXTURA_TOP:-$(cd "$(dirname "$0")/.." && pwd)}
 layers=(base io prim ops lang render cli)
@@ -29,6 +30,7 @@ check_tree() {
             x86:*.h:../*/*) il=- ;;
             x86:*.h:../*) il=$l ;;
             :*.h:../*/*) il=${inc#../}; il=${il%%/*} ;;
+            :*.h:x86/*) il=$l ;; # the layer's own kernels
             *.h:*/*) il=- ;; # a header's "layer/x.h" would not resolve once installed
             *.h:* | *.def:*) il=$l ;;
             *:*/*) il=${inc%%/*} ;;

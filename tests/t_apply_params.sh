@@ -84,7 +84,7 @@ cmp -s "$T/ks05.pfm" "$T/ks1.pfm" && notok "Ks 0.5 and 1 differ (the clamp test 
 cmp -s "$T/n1e9.pfm" "$T/n1e4.pfm" && ok "n = 1e9 is clamped to the row's 10000" ||
     notok "n clamped to 10000"
 
-# a constant function is folded (its channels' mean made once, render_texture.c poly_of): the
+# a constant function is folded (its channels' mean made once, render/appfn.c poly_of): the
 # bytes of the same function evaluated at every hit (+ 0*f keeps it from folding)
 render fold 'Kd 0.3 apply t { Ks = rgb(0.2, 0.5, 0.9) n = 30 Kr = 0.2 bump = rgb(0.1, 0.3, 0.8) }'
 render nofold 'Kd 0.3 apply t { Ks = rgb(0.2, 0.5, 0.9) + 0*f n = 30 + 0*f Kr = 0.2 + 0*f

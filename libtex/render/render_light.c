@@ -39,3 +39,17 @@ int tex_light_sample(const struct tex_light *l, int k, double jx, double jy, tex
     *fatt = f;
     return f > 0;
 }
+
+/* ---- the environment ----------------------------------------------------------- */
+
+void tex_environment_eval(const struct tex_environment *e, const tex_v3 *d, double spread,
+                          float rgb[3])
+{
+    tex_v3 m = tex_xform_dir(&e->to_map, *d);
+    double y = m.y > 1 ? 1 : m.y < -1 ? -1 : m.y;
+    double u = 0.5 + atan2(m.x, m.z) / (2 * M_PI), v = acos(y) / M_PI;
+    /* the footprint: spread radians are spread / pi of the map's height */
+    tex_texture_eval(e->map, u, v, 0, spread > 0 ? spread / M_PI : 0, rgb);
+    for (int k = 0; k < 3; k++)
+        rgb[k] = (float)(rgb[k] * e->intensity);
+}

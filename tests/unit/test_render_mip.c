@@ -2,7 +2,7 @@
  *
  * tex_texture_eval blends the two pyramid levels around lod = log2(fw side)
  * with weight lod - floor(lod), the logarithm taken from the exponent bits and
- * a polynomial (render_texture.c).  A footprint that is a power of two of
+ * a polynomial (render/mipmap.h).  A footprint that is a power of two of
  * texels looks up one level alone; between two of them the value must be the
  * blend of those two with libm's log2 as the weight, within 1e-5, for grey and
  * colour maps, square or not.  Coordinates wrap: the map repeats.  Many lookups at once

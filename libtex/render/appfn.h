@@ -1,0 +1,74 @@
+/* appfn.h - application functions compiled for a surface (libtex internal)
+ *
+ * tex_surface_cache (appfn.c) compiles a surface's functions once before rendering; the
+ * packets (packet.c) read what it found: which lookups go ahead, which go in lanes.
+ */
+#ifndef TEX_APPFN_H
+#define TEX_APPFN_H
+
+#include "footprint.h"
+#include "mipmap.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* An application function compiled to c0 + c1 f + c2 p + c3 f p per channel,
+ * where its expression is at most linear in each of f and p (no cascade). */
+struct poly {
+    double c[4][3];
+    int df, dp; /* degrees in f and p */
+    /* folded: of degree 0 with no zero constant, so that poly_at gives c[0] itself wherever
+     * f and p are finite (c[0] + 0 f is not c[0] at a zero's sign, nor at f infinite);
+     * mean: the channels' mean, as a scalar parameter takes it */
+    int folded;
+    double mean;
+};
+
+/* The parameters being textured, in RGB, before conversion to the colour space.  A float
+ * follows each colour (ka kd's, gradient[0] normal's, end gradient's): colour_set writes
+ * the colour with it. */
+struct params {
+    float kd[3], ka, ks, n, kr, kt, ior, bump;
+    double m, s; /* Cook-Torrance's slope and specular fraction (double: as the model's) */
+    float blend; /* the blended surface's weight */
+    float normal[3], gradient[3]; /* one apply block's normal map and height gradient */
+    float end;
+};
+
+struct tex_surface_cache {
+    struct params base;          /* the surface's own parameters */
+    tex_colour col[3];           /* Ka Kd, Kd, Ks in the scene's colour space */
+    int cached;                  /* bit i: col[i] is constant (untextured) */
+    struct placement *placement; /* per texture applied, in order */
+    struct poly *poly;           /* per application function, in order */
+    char *compiled;              /* 1: poly[i] holds function i */
+    int quantities;              /* bit k: a function reads quantity k (tex_quantities) */
+    int footprints;              /* 1: lookups ahead take footprints (tex_surface_footprints) */
+    /* 1: one texture, a map looked up ahead, whose functions read no quantity, see every
+     * region and bend no normal but by a bump (apply_direct) */
+    int direct;
+    int lanes; /* 1: direct, and AVX-512: its planes' hits go in lanes (tex_lanes_take) */
+    int plain; /* tex_surface_plain: 1, a material tex_plain_material makes; 2, any other */
+};
+
+/* A tilt's direction along the footprint's tangents t1, t2 from the luminance's
+ * derivatives g along them; where grad (the map's gradient per u and v) is given, g is made
+ * from it first, through the derivatives du, dv of u and v along t1, t2. */
+/* A tilt's direction along the footprint's tangents t1, t2 from the luminance's
+ * derivatives g along them; where grad (the map's gradient per u and v) is given, g is made
+ * from it first, through the derivatives du, dv of u and v along t1, t2. */
+tex_v3 tex_tilt_along(const double *grad, const double du[2], const double dv[2],
+                         double g[2], tex_v3 t1, tex_v3 t2);
+
+/* Whether the packet looks texture ap up ahead when it is a surface's first: a filtered
+ * map, with its gradient where bumped (a cross mapping wants a second map). */
+static inline int map_ahead(const struct tex_apply *ap)
+{
+    return ap->tex->mip && !ap->tex->subregions && ap->mapping != TEX_MAP_CROSS;
+}
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,73 @@
+/* bvh.h - the bounding-volume hierarchy and the scene's ray queries (libtex internal)
+ *
+ * The top-level objects sit in a BVH (render_bvh.c); a CSG block of many operands is
+ * balanced into one too (tex_csg_balance).  Every ray of the renderer asks here: the
+ * closest hit, any hit (shadows), the light passing through transparent solids.
+ */
+#ifndef TEX_BVH_H
+#define TEX_BVH_H
+
+#include <stdint.h>
+
+#include "shape.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+struct tex_scene;
+
+/* The closest hit along a ray o + t d beyond tmin: 1 and *hit, or 0.  The
+ * queries take the ray's vectors by address: every ray makes them.  from: a top-level
+ * object the ray cannot meet, or NULL: it is not tested (a ray leaving a hull leaf's
+ * surface outwards: o just outside it, d away from it). */
+int tex_scene_trace(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d, double tmin,
+                    double tmax, const struct tex_object *from, struct tex_hit *hit);
+
+/* The closest hit of a ray known to miss the box of every bounded object (tex_scene_view):
+ * the unbounded objects' alone, which is tex_scene_trace's answer for such a ray. */
+int tex_scene_trace_unbounded(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
+                              double tmin, double tmax, struct tex_hit *hit);
+
+/* The box of the bounded objects as seen from a point c in an orthonormal frame u, v, w (w
+ * ahead): every point of the box lies ahead of c along w, and its projection (u, v) / w
+ * lies inside rect = {u0, u1, v0, v1}, widened far beyond the rounding.  A ray from c
+ * whose direction projects outside rect misses the box.  1, or 0 where there is no box or
+ * it is not wholly ahead.  The same for the boxes of the first TEX_VIEW_OBJECTS bounded
+ * objects in the tree's order (object; one not wholly ahead: the whole plane). */
+#define TEX_VIEW_OBJECTS 63
+struct tex_view {
+    double rect[4];
+    int n, more; /* objects with a rect in object; more: others follow them */
+    double object[TEX_VIEW_OBJECTS][4];
+};
+int tex_scene_view(const struct tex_scene *s, tex_v3 c, tex_v3 u, tex_v3 v, tex_v3 w,
+                   struct tex_view *vw);
+/* The bounded objects a ray from vw's c can meet when its direction projects inside r =
+ * {u0, u1, v0, v1}: bit i for object i, bit TEX_VIEW_OBJECTS for all past vw's n where
+ * there are more; 0: none (r misses rect, or every object's) */
+uint64_t tex_view_objects(const struct tex_view *vw, const double r[4]);
+/* tex_scene_trace from 0 on, for a ray from the c of a tex_view whose direction projects
+ * where tex_view_objects gave visit: the bounded objects out of visit (it cannot meet
+ * them) untested */
+int tex_scene_trace_view(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
+                         uint64_t visit, struct tex_hit *hit);
+
+/* Fraction of light passing along o + t d for t in (tmin, tmax): the product
+ * of the surfaces' Kt over every boundary crossed, 0 if it falls to 1e-4.  from: as for
+ * tex_scene_trace. */
+double tex_scene_transmit(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
+                          double tmin, double tmax, const struct tex_object *from);
+
+struct tex_bvh *tex_bvh_build(struct tex_object **obs, int n);
+void tex_bvh_free(struct tex_bvh *b);
+int tex_bvh_trace(const struct tex_bvh *b, const tex_v3 *o, const tex_v3 *d, double tmin,
+                  double tmax, struct tex_hit *hit);
+/* any = 1: stop at the first hit found, not necessarily the nearest (shadows). */
+int tex_bvh_trace_any(const struct tex_bvh *b, const tex_v3 *o, const tex_v3 *d, double tmin,
+                      double tmax, int any, struct tex_hit *hit);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,262 @@
+/* packet_x86.c - a packet's footprints and mappings in AVX-512 lanes */
+#include <math.h>
+#include <stdint.h>
+
+#include "base/x86/simd_x86.h"
+#include "render/x86/packet_x86.h"
+#include "render/x86/shape_x86.h"
+
+#ifdef TEX_X86
+/* footprint_tangents of the lanes in of fr from i on, operation for operation: t1, t2 (x, y,
+ * z), l2 and c; the lanes seen head-on (no tangent from the ray) in the mask returned */
+TEX_AVX512 static inline __attribute__((always_inline)) __mmask8
+tangents8(const struct frames *fr, int i, __mmask8 in, __m512d t1[3], __m512d t2[3],
+          __m512d *l2, __m512d *c)
+{
+    __m512d d[3], nn[3];
+    for (int k = 0; k < 3; k++) {
+        d[k] = _mm512_maskz_loadu_pd(in, fr->d[k] + i);
+        nn[k] = _mm512_maskz_loadu_pd(in, fr->nn[k] + i);
+    }
+    __m512d dn = dot8(d[0], d[1], d[2], nn[0], nn[1], nn[2]), cosv = _mm512_abs_pd(dn);
+    __m512d ndn = neg8(dn);
+    for (int k = 0; k < 3; k++)
+        t1[k] = _mm512_add_pd(d[k], _mm512_mul_pd(nn[k], ndn));
+    *l2 = dot8(t1[0], t1[1], t1[2], t1[0], t1[1], t1[2]);
+    for (int k = 0; k < 3; k++) /* N x t1 */
+        t2[k] = _mm512_sub_pd(_mm512_mul_pd(nn[(k + 1) % 3], t1[(k + 2) % 3]),
+                              _mm512_mul_pd(nn[(k + 2) % 3], t1[(k + 1) % 3]));
+    __m512d lo = _mm512_set1_pd(0.02);
+    *c = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(cosv, lo, _CMP_GT_OQ), lo, cosv);
+    return _mm512_cmp_pd_mask(*l2, _mm512_set1_pd(1e-18), _CMP_LT_OQ);
+}
+
+/* the lanes in of row a from lane i on; LDG: of a row the lanes may share (struct frames) */
+#define LD(a) _mm512_maskz_loadu_pd(in, (a) + i)
+#define LDG(a) (fr->shared ? _mm512_set1_pd((a)[0]) : LD(a))
+
+/* tex_footprint_width2 of the n <= 8 affine points from i on (footprint_tangents,
+ * placed_derivatives and its end, operation for operation) into fw2[i...], and where bump,
+ * the frames' bump members; returns the lanes seen head-on, which the scalar path takes. */
+TEX_AVX512 unsigned tex_footprints8_avx512(struct frames *fr, int i, int n, int bump,
+                                           double *fw2)
+{
+    __mmask8 in = (__mmask8)((1u << n) - 1);
+    __m512d t1[3], t2[3], l2, c;
+    __mmask8 headon = tangents8(fr, i, in, t1, t2, &l2, &c);
+    __m512d t1x = t1[0], t1y = t1[1], t1z = t1[2], t2x = t2[0], t2y = t2[1], t2z = t2[2];
+    __m512d gux = LDG(fr->gu[0]), guy = LDG(fr->gu[1]), guz = LDG(fr->gu[2]);
+    __m512d gvx = LDG(fr->gv[0]), gvy = LDG(fr->gv[1]), gvz = LDG(fr->gv[2]);
+    __m512d su = LDG(fr->su), sv = LDG(fr->sv), w = LD(fr->w);
+    __m512d du0 = _mm512_mul_pd(dot8(gux, guy, guz, t1x, t1y, t1z), su);
+    __m512d dv0 = _mm512_mul_pd(dot8(gvx, gvy, gvz, t1x, t1y, t1z), sv);
+    __m512d du1 = _mm512_mul_pd(dot8(gux, guy, guz, t2x, t2y, t2z), su);
+    __m512d dv1 = _mm512_mul_pd(dot8(gvx, gvy, gvz, t2x, t2y, t2z), sv);
+    __m512d c2 = _mm512_mul_pd(c, c);
+    __m512d l1 = _mm512_add_pd(_mm512_mul_pd(du0, du0), _mm512_mul_pd(dv0, dv0));
+    __m512d m2 =
+        _mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(du1, du1), _mm512_mul_pd(dv1, dv1)), c2);
+    __m512d r = _mm512_mul_pd(_mm512_max_pd(l1, m2), _mm512_mul_pd(w, w)); /* l1 > m2 ? l1 : m2 */
+    _mm512_mask_storeu_pd(fw2 + i, in, _mm512_div_pd(r, _mm512_mul_pd(l2, c2)));
+    if (bump) { /* footprint_unit's tangents, placed_derivatives along them */
+        __m512d s = _mm512_div_pd(_mm512_set1_pd(1), _mm512_sqrt_pd(l2));
+        __m512d e1[3] = {_mm512_mul_pd(t1x, s), _mm512_mul_pd(t1y, s), _mm512_mul_pd(t1z, s)};
+        __m512d e2[3] = {_mm512_mul_pd(t2x, s), _mm512_mul_pd(t2y, s), _mm512_mul_pd(t2z, s)};
+        __m512d dd[4] = {
+            _mm512_mul_pd(dot8(gux, guy, guz, e1[0], e1[1], e1[2]), su),
+            _mm512_mul_pd(dot8(gvx, gvy, gvz, e1[0], e1[1], e1[2]), sv),
+            _mm512_mul_pd(dot8(gux, guy, guz, e2[0], e2[1], e2[2]), su),
+            _mm512_mul_pd(dot8(gvx, gvy, gvz, e2[0], e2[1], e2[2]), sv)};
+        for (int c = 0; c < 3; c++) {
+            _mm512_mask_storeu_pd(fr->e1[c] + i, in, e1[c]);
+            _mm512_mask_storeu_pd(fr->e2[c] + i, in, e2[c]);
+        }
+        for (int c = 0; c < 4; c++)
+            _mm512_mask_storeu_pd(c & 1 ? fr->dv[c / 2] + i : fr->du[c / 2] + i, in, dd[c]);
+    }
+    return headon & in;
+}
+
+/* The footprint widths of the n <= 8 band-limited solid points from i on, as
+ * sqrt(tex_solid_width2) makes them under an affine mapping (footprint_tangents, the three
+ * gradients' derivatives along t1 and t2, operation for operation), into fw[i...]; returns
+ * the lanes seen head-on, which the scalar path takes. */
+TEX_AVX512 unsigned tex_solid_footprints8_avx512(const struct frames *fr, int i, int n,
+                                                 double *fw)
+{
+    __mmask8 in = (__mmask8)((1u << n) - 1);
+    __m512d t1[3], t2[3], l2, c;
+    __mmask8 headon = tangents8(fr, i, in, t1, t2, &l2, &c);
+    const double(*g[3])[CHUNK] = {fr->gu, fr->gv, fr->gw};
+    __m512d sc[3] = {LDG(fr->su), LDG(fr->sv), _mm512_set1_pd(1)}, l1 = _mm512_setzero_pd();
+    __m512d m2 = _mm512_setzero_pd(), w = LD(fr->w);
+    for (int k = 0; k < 3; k++) { /* l1 += a a, m2 += b b, as tex_solid_width2 sums them */
+        __m512d gx = LDG(g[k][0]), gy = LDG(g[k][1]), gz = LDG(g[k][2]);
+        __m512d a = _mm512_mul_pd(dot8(gx, gy, gz, t1[0], t1[1], t1[2]), sc[k]);
+        __m512d b = _mm512_mul_pd(dot8(gx, gy, gz, t2[0], t2[1], t2[2]), sc[k]);
+        l1 = _mm512_add_pd(l1, _mm512_mul_pd(a, a));
+        m2 = _mm512_add_pd(m2, _mm512_mul_pd(b, b));
+    }
+    __m512d r = _mm512_div_pd(
+        _mm512_mul_pd(_mm512_sqrt_pd(_mm512_mul_pd(l1, m2)), _mm512_mul_pd(w, w)),
+        _mm512_mul_pd(c, l2));
+    _mm512_mask_storeu_pd(fw + i, in, _mm512_sqrt_pd(r));
+    return headon & in;
+#undef LD
+#undef LDG
+}
+
+#undef LD
+#undef LDG
+
+/* fract in lanes: x - tex_floord(x), tex_floord's floor (+0 for -0: floor's -0 plus 0), and
+ * x - x beyond 2^52 */
+TEX_AVX512 static inline __m512d fract8_avx512(__m512d x)
+{
+    __mmask8 small = _mm512_cmp_pd_mask(_mm512_abs_pd(x), _mm512_set1_pd(4503599627370496.0),
+                                        _CMP_LT_OQ);
+    __m512d f = _mm512_add_pd(_mm512_roundscale_pd(x, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC),
+                              _mm512_setzero_pd());
+    return _mm512_sub_pd(x, _mm512_mask_blend_pd(small, x, f));
+}
+
+/* place over the lanes in from i on (the mapping's coordinates c0, c1, stored into u0, v0):
+ * the placed ones into u, v; returns the lanes inside the window */
+TEX_AVX512 static __mmask8 place8_avx512(const struct tex_apply *ap, const struct placement *pm,
+                                         int i, __mmask8 in, __m512d c0, __m512d c1,
+                                         double *u0, double *v0, double *u, double *v)
+{
+    _mm512_mask_storeu_pd(u0 + i, in, c0);
+    _mm512_mask_storeu_pd(v0 + i, in, c1);
+    __m512d s = _mm512_mul_pd(_mm512_sub_pd(c0, _mm512_set1_pd(ap->u1)), _mm512_set1_pd(pm->iu));
+    __m512d t = _mm512_mul_pd(_mm512_sub_pd(c1, _mm512_set1_pd(ap->v1)), _mm512_set1_pd(pm->iv));
+    __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1);
+    __mmask8 inside = _mm512_mask_cmp_pd_mask(in, s, zero, _CMP_GE_OQ) &
+                      _mm512_cmp_pd_mask(s, one, _CMP_LE_OQ) &
+                      _mm512_cmp_pd_mask(t, zero, _CMP_GE_OQ) &
+                      _mm512_cmp_pd_mask(t, one, _CMP_LE_OQ);
+    _mm512_mask_storeu_pd(u + i, in, _mm512_mul_pd(s, _mm512_set1_pd(ap->nu)));
+    _mm512_mask_storeu_pd(v + i, in, _mm512_mul_pd(t, _mm512_set1_pd(ap->nv)));
+    return inside;
+}
+
+/* Row k of the affine map m applied to the lanes x, y, z, in tex_xform_point's order */
+TEX_AVX512 static inline __m512d xform_row8(const double *r, __m512d x, __m512d y, __m512d z)
+{
+    __m512d a = _mm512_add_pd(_mm512_mul_pd(_mm512_set1_pd(r[0]), x),
+                              _mm512_mul_pd(_mm512_set1_pd(r[1]), y));
+    return _mm512_add_pd(_mm512_add_pd(a, _mm512_mul_pd(_mm512_set1_pd(r[2]), z)),
+                         _mm512_set1_pd(r[3]));
+}
+
+/* map_hit of a plane's planar mapping over the n <= 8 lanes of L's points from i on, operation
+ * for operation (tex_xform_point's x and z, map_point_at, place): the mapping's coordinates
+ * into u0, v0, the placed ones into u, v; returns the lanes inside the window */
+TEX_AVX512 unsigned tex_plane_map8_avx512(const struct tex_lanes *L, int i, int n, double *u0,
+                                          double *v0, double *u, double *v)
+{
+    __mmask8 in = (__mmask8)((1u << n) - 1);
+    const struct tex_apply *ap = L->sf->apply;
+    const double(*m)[4] = L->leaf->to_obj.m;
+    __m512d x = _mm512_maskz_loadu_pd(in, L->p[0] + i), y = _mm512_maskz_loadu_pd(in, L->p[1] + i);
+    __m512d z = _mm512_maskz_loadu_pd(in, L->p[2] + i), sc = _mm512_set1_pd(ap->scale);
+    __m512d c0 = fract8_avx512(_mm512_mul_pd(xform_row8(m[0], x, y, z), sc));
+    __m512d c1 = fract8_avx512(_mm512_mul_pd(xform_row8(m[2], x, y, z), sc));
+    return place8_avx512(ap, L->sf->cache->placement, i, in, c0, c1, u0, v0, u, v);
+}
+
+/* tex_point_gradient of a natural mapping over the lanes in (natural_gradient at the
+ * object-space points p on faces f, then to world space), operation for operation, into
+ * fr's rows from i on, with the placement's scales; returns the lanes that have them */
+/* u's gradient around the axis over lanes, (z, 0, -x) / (2 pi rho2), into g */
+TEX_AVX512 static inline void around8(const __m512d p[3], __m512d rho2, __m512d g[3])
+{
+    __m512d s = _mm512_div_pd(_mm512_set1_pd(1), _mm512_mul_pd(_mm512_set1_pd(2 * M_PI), rho2));
+    g[0] = _mm512_mul_pd(p[2], s), g[1] = _mm512_mul_pd(_mm512_setzero_pd(), s);
+    g[2] = _mm512_mul_pd(neg8(p[0]), s);
+}
+
+TEX_AVX512 static __mmask8 natural_gradient8_avx512(const struct tex_object *leaf,
+                                                    const struct placement *pm, __mmask8 in,
+                                                    const __m512d p[3], __m512i f,
+                                                    struct frames *fr, int i)
+{
+    __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1), g[2][3];
+    __m512d rho2 = _mm512_add_pd(_mm512_mul_pd(p[0], p[0]), _mm512_mul_pd(p[2], p[2]));
+    __mmask8 ok = in;
+    if (leaf->kind == TEX_SHAPE_BOX) { /* tex_box_axes: +-1/2 along one axis, by face */
+        double tab[2][3][8] = {{{0}}};
+        for (int fc = 0; fc < 6; fc++)
+            for (int k = 0; k < 2; k++) {
+                int c = tex_box_axes[fc][k];
+                tab[k][(c < 0 ? -c : c) - 1][fc] = c < 0 ? -0.5 : 0.5;
+            }
+        __m512i idx = _mm512_sub_epi64(f, _mm512_set1_epi64(1));
+        for (int k = 0; k < 2; k++)
+            for (int c = 0; c < 3; c++)
+                g[k][c] = _mm512_permutexvar_pd(idx, _mm512_loadu_pd(tab[k][c]));
+    } else if (leaf->kind == TEX_SHAPE_SPHERE) { /* v = acos(y / r) / pi */
+        __m512d r2 = _mm512_add_pd(rho2, _mm512_mul_pd(p[1], p[1]));
+        ok &= _mm512_cmp_pd_mask(rho2, _mm512_mul_pd(_mm512_set1_pd(1e-12), r2), _CMP_GT_OQ);
+        __m512d k = _mm512_div_pd(one, _mm512_mul_pd(_mm512_mul_pd(_mm512_set1_pd(M_PI),
+                                                                   _mm512_sqrt_pd(rho2)), r2));
+        around8(p, rho2, g[0]);
+        g[1][0] = _mm512_mul_pd(_mm512_mul_pd(p[0], p[1]), k);
+        g[1][1] = _mm512_mul_pd(neg8(rho2), k);
+        g[1][2] = _mm512_mul_pd(_mm512_mul_pd(p[2], p[1]), k);
+    } else { /* the side (face 1): around, v = 1 - y; the caps: discs of radius r */
+        __mmask8 side = _mm512_cmp_epi64_mask(f, _mm512_set1_epi64(1), _MM_CMPINT_EQ);
+        ok &= ~side | _mm512_cmp_pd_mask(rho2, _mm512_set1_pd(1e-24), _CMP_GT_OQ);
+        __mmask8 bottom = _mm512_cmp_epi64_mask(f, _mm512_set1_epi64(2), _MM_CMPINT_EQ);
+        double r0 = leaf->r0 > 0 ? leaf->r0 : 1, r1 = leaf->r1 > 0 ? leaf->r1 : 1;
+        __m512d r = _mm512_mask_blend_pd(bottom, _mm512_set1_pd(r1), _mm512_set1_pd(r0));
+        __m512d h = _mm512_div_pd(_mm512_set1_pd(0.5), r), around[3];
+        around8(p, rho2, around);
+        g[0][0] = _mm512_mask_blend_pd(side, h, around[0]);
+        g[0][1] = _mm512_mask_blend_pd(side, zero, around[1]);
+        g[0][2] = _mm512_mask_blend_pd(side, zero, around[2]);
+        g[1][0] = zero;
+        g[1][1] = _mm512_mask_blend_pd(side, zero, _mm512_set1_pd(-1));
+        g[1][2] = _mm512_mask_blend_pd(side, h, zero);
+    }
+    const double(*m)[4] = leaf->to_obj.m;
+    double(*rows[2])[CHUNK] = {fr->gu, fr->gv};
+    for (int k = 0; k < 2; k++)
+        for (int c = 0; c < 3; c++) /* tex_xform_normal: the transpose */
+            _mm512_mask_storeu_pd(rows[k][c] + i, in,
+                                  dot8(_mm512_set1_pd(m[0][c]), _mm512_set1_pd(m[1][c]),
+                                       _mm512_set1_pd(m[2][c]), g[k][0], g[k][1], g[k][2]));
+    _mm512_mask_storeu_pd(fr->su + i, in, _mm512_set1_pd(pm->su));
+    _mm512_mask_storeu_pd(fr->sv + i, in, _mm512_set1_pd(pm->sv));
+    return ok;
+}
+
+/* map_hit of a natural mapping on a box, cylinder, cone or sphere over the n <= 8 lanes of L's
+ * points from i on, operation for operation (tex_xform_point, the shape's uv, place), as
+ * tex_plane_map8_avx512 does a plane's, each lane's face into face[]; and their gradients into
+ * fr's rows (natural_gradient8_avx512).  Returns the lanes inside the window that have
+ * gradients. */
+TEX_AVX512 unsigned tex_natural_map8_avx512(const struct tex_lanes *L, int i, int n, double *u0,
+                                            double *v0, double *u, double *v, int *face,
+                                            struct frames *fr)
+{
+    __mmask8 in = (__mmask8)((1u << n) - 1);
+    const struct tex_object *leaf = L->leaf;
+    const struct placement *pm = L->sf->cache->placement;
+    const double(*m)[4] = leaf->to_obj.m;
+    __m512d x = _mm512_maskz_loadu_pd(in, L->p[0] + i), y = _mm512_maskz_loadu_pd(in, L->p[1] + i);
+    __m512d z = _mm512_maskz_loadu_pd(in, L->p[2] + i), p[3], c0, c1;
+    __m512i f = _mm512_set1_epi64(1);
+    for (int k = 0; k < 3; k++)
+        p[k] = xform_row8(m[k], x, y, z);
+    if (leaf->kind == TEX_SHAPE_BOX)
+        box_uv8(p, &c0, &c1, &f);
+    else if (leaf->kind == TEX_SHAPE_SPHERE)
+        sphere_uv8(p, &c0, &c1);
+    else
+        cone_uv8(leaf, p, &c0, &c1, &f);
+    _mm512_mask_cvtepi64_storeu_epi32(face + i, in, f);
+    return place8_avx512(L->sf->apply, pm, i, in, c0, c1, u0, v0, u, v) &
+           natural_gradient8_avx512(leaf, pm, in, p, f, fr, i);
+}
+#endif
