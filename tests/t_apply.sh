@@ -218,6 +218,20 @@ bad "scale by zero" 2 'sphere { scale 0 }'
 bad "single CSG child" 2 'union { sphere { } }'
 bad "unterminated string" 2 'texture t file "abc'
 bad "nested too deeply" 2 "$(for i in $(seq 70); do printf 'union { sphere { } '; done)"
+# the lexer's words for where a scene went wrong, as a composition script's (lang/lex.h)
+said() { # said NAME TEXT WANT: the message of scene TEXT holds WANT
+    printf '%s' "$2" >"$T/said.scene"
+    t_apply "$T/said.scene" -o "$T/said.png" 2>"$T/said.err"
+    grep -qF -- "$3" "$T/said.err" && ok "$1" || notok "$1" "$(cat "$T/said.err")"
+}
+said "a block cut short says so" 'camera { eye 0 0 -5' \
+    "said.scene:1:20: expected '}' to end the camera, found the end of the file"
+said "a CSG block cut short says so" 'union { sphere { }' \
+    "expected '}' to end a union, found the end of the file"
+said "a scene that ends too soon: the end of the file" 'texture t' \
+    "expected 'file' or a primitive name, found the end of the file"
+said "a long token quoted to 32 characters" "surface s { Ka $(printf 'a%.0s' $(seq 60)) }" \
+    "expected a number, found '$(printf 'a%.0s' $(seq 32))'"
 check_fails "missing scene file" 1 t_apply "$T/none.scene" -o "$T/x.png"
 check_fails "absurd -s" 2 t_apply "$good" -s 0x5 -o "$T/x.png"
 # an output name without a format is refused before the scene is read (and rendered)

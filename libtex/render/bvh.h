@@ -7,6 +7,7 @@
 #ifndef TEX_BVH_H
 #define TEX_BVH_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "shape.h"
@@ -66,6 +67,19 @@ int tex_bvh_trace(const struct tex_bvh *b, const tex_v3 *o, const tex_v3 *d, dou
 /* any = 1: stop at the first hit found, not necessarily the nearest (shadows). */
 int tex_bvh_trace_any(const struct tex_bvh *b, const tex_v3 *o, const tex_v3 *d, double tmin,
                       double tmax, int any, struct tex_hit *hit);
+
+
+/* CSG blocks as hierarchies.  alloc gives zeroed memory that lives as long as the scene
+ * (it never returns NULL: it may longjmp, as the scene's pool does). */
+typedef void *(*tex_csg_alloc)(void *ctx, size_t n);
+/* kids[0..n) joined by op as a balanced tree (recursion log2(n) deep), its nodes marked
+ * as clusters at line:col */
+struct tex_object *tex_csg_balanced(enum tex_csg_op op, struct tex_object **kids, int n, int line,
+                                    int col, tex_csg_alloc alloc, void *ctx);
+/* The CSG blocks of ob's tree, each rebuilt spatially (after the world transforms are set:
+ * the boxes are the world's).  A union's or an intersection's operands are all those under
+ * ob; a difference's, those of the union it subtracts.  -1 out of memory. */
+int tex_csg_spatial(struct tex_object *ob, tex_csg_alloc alloc, void *ctx);
 
 #ifdef __cplusplus
 }

@@ -112,8 +112,6 @@ int tex_map_point_other(const struct tex_apply *ap, const struct tex_object *lea
     }
 }
 
-const signed char tex_box_axes[6][2] = {{-3, -2}, {3, -2}, {1, 3}, {1, -3}, {1, -2}, {-1, -2}};
-
 /* The natural mappings' (sphere_map, box faces, cylinder_map / cone_map)
  * gradients of u and v in object space at *pp on face (map_point's answer);
  * 0 where there are none (other mappings, the poles, the axis). */

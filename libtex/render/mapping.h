@@ -81,10 +81,6 @@ map_gradient(const struct tex_apply *ap, const struct tex_object *leaf, tex_v3 g
     return 1;
 }
 
-/* The face axes of box_uv (render_shape.c): u = (a + 1) / 2 and v = (b + 1) / 2 on faces
- * 1..6, the axes (1..3: x y z) of a and b, negative where negated */
-extern const signed char tex_box_axes[6][2];
-
 /* The world-space gradients g[0], g[1] of u and v at the hit pl (object space, on face) of a
  * mapping that is not affine but has them in closed form (the natural mappings, the
  * cylinder and cone projections): the object-space ones through to_obj's transpose, as a

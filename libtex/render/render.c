@@ -27,7 +27,8 @@
 
 #include "base/error.h"
 #include "base/rng.h"
-#include "base/x86/simd_x86.h"
+#include "base/simd.h"
+#include "render/camera.h"
 #include "render/scene.h"
 
 #define TILE 16
@@ -339,119 +340,6 @@ static void trace(const struct ctx *c, const tex_ray *r, const struct tex_object
     }
 }
 
-struct camera {
-    tex_v3 eye, fwd, right, up;
-    double sx, sy; /* half extents of the image plane at distance 1 */
-    double kx, ky; /* 2 sx / w and 2 sy / h: image plane units per pixel */
-    double spread; /* footprint growth per unit distance of a sample's ray */
-    int k;         /* spp = k * k: stratified, else 0 */
-    struct tex_view view; /* the bounded objects' box on the image plane (right, up) */
-    int sees_view;        /* 0: the box is not wholly ahead, and every packet traces it */
-};
-
-static void camera_setup(const struct tex_scene *s, struct camera *cam)
-{
-    cam->eye = s->eye;
-    cam->fwd = tex_v3_norm(tex_v3_sub(s->look, s->eye));
-    /* left-handed like POV-Ray: x right, y up, z into the screen */
-    cam->right = tex_v3_norm(tex_v3_cross(s->up, cam->fwd));
-    cam->up = tex_v3_cross(cam->fwd, cam->right);
-    cam->sx = tan(s->fov * M_PI / 360);
-    cam->sy = cam->sx * s->settings.h / s->settings.w;
-    cam->kx = 2 * cam->sx / s->settings.w;
-    cam->ky = 2 * cam->sy / s->settings.h;
-    cam->spread = 2 * cam->sx / s->settings.w / sqrt(s->settings.spp);
-    int k = (int)sqrt((double)s->settings.spp);
-    cam->k = k * k == s->settings.spp ? k : 0;
-    cam->sees_view = tex_scene_view(s, cam->eye, cam->right, cam->up, cam->fwd, &cam->view);
-}
-
-/* The bounded objects an eye ray of the pixels [x0, x1) x [y0, y1) can meet
- * (tex_view_objects; 0: none): its direction projects to the image plane at (a, b) inside
- * the pixel it samples, and the pixels' rectangle there is compared with the objects'
- * boxes'.  All of them where the tree's box is not wholly ahead. */
-static uint64_t packet_objects(const struct camera *cam, int x0, int y0, int x1, int y1)
-{
-    double r[4] = {x0 * cam->kx - cam->sx, x1 * cam->kx - cam->sx, cam->sy - y1 * cam->ky,
-                   cam->sy - y0 * cam->ky};
-    return cam->sees_view ? tex_view_objects(&cam->view, r) : ~0ull;
-}
-
-/* The eye ray of sample i of pixel (x, y), its position drawn from the pixel's rng
- * (the centre at 1 spp). */
-static void camera_ray(const struct ctx *c, const struct camera *cam, int x, int y, int i,
-                       tex_rng *rng, tex_ray *r)
-{
-    const struct tex_scene *s = c->s;
-    int spp = s->settings.spp, k = cam->k;
-    double ox = 0.5, oy = 0.5;
-    if (spp > 1) {
-        ox = tex_rng_uniform(rng);
-        oy = tex_rng_uniform(rng);
-        if (k > 0) { /* stratified: jitter within cell i of a k x k grid */
-            ox = ((i % k) + ox) / k;
-            oy = ((i / k) + oy) / k;
-        }
-    }
-    double a = (x + ox) * cam->kx - cam->sx;
-    double b = cam->sy - (y + oy) * cam->ky;
-    *r = (tex_ray){cam->eye,
-                   tex_v3_norm(tex_v3_add(cam->fwd, tex_v3_add(tex_v3_scale(cam->right, a),
-                                                               tex_v3_scale(cam->up, b)))),
-                   0, cam->spread, s->eye_media.n ? &s->eye_media : NULL, 0};
-}
-
-#ifdef TEX_X86
-/* camera_ray's rays through the centres of the n <= 8 pixels (x[k], y[k]) (1 spp): its
- * operations in lanes, so its bits, the square roots and divisions of eight rays at once.
- * x and y hold 8 readable entries. */
-TEX_AVX512 static void eye_rays8_avx512(const struct ctx *c, const struct camera *cam,
-                                        const int *x, const int *y, int n, tex_ray *r)
-{
-    __m512d half = _mm512_set1_pd(0.5), v[3];
-    __m512d px = _mm512_cvtepi32_pd(_mm256_loadu_si256((const __m256i *)x));
-    __m512d py = _mm512_cvtepi32_pd(_mm256_loadu_si256((const __m256i *)y));
-    __m512d a = _mm512_sub_pd(_mm512_mul_pd(_mm512_add_pd(px, half), _mm512_set1_pd(cam->kx)),
-                              _mm512_set1_pd(cam->sx));
-    __m512d b = _mm512_sub_pd(_mm512_set1_pd(cam->sy),
-                              _mm512_mul_pd(_mm512_add_pd(py, half), _mm512_set1_pd(cam->ky)));
-    const double f[3] = {cam->fwd.x, cam->fwd.y, cam->fwd.z};
-    const double rt[3] = {cam->right.x, cam->right.y, cam->right.z};
-    const double u[3] = {cam->up.x, cam->up.y, cam->up.z};
-    for (int i = 0; i < 3; i++) /* fwd + (right a + up b) */
-        v[i] = _mm512_add_pd(_mm512_set1_pd(f[i]),
-                             _mm512_add_pd(_mm512_mul_pd(_mm512_set1_pd(rt[i]), a),
-                                           _mm512_mul_pd(_mm512_set1_pd(u[i]), b)));
-    __m512d l = _mm512_sqrt_pd(_mm512_add_pd(
-        _mm512_add_pd(_mm512_mul_pd(v[0], v[0]), _mm512_mul_pd(v[1], v[1])),
-        _mm512_mul_pd(v[2], v[2])));
-    __mmask8 pos = _mm512_cmp_pd_mask(l, _mm512_setzero_pd(), _CMP_GT_OQ); /* tex_v3_norm */
-    __m512d il = _mm512_div_pd(_mm512_set1_pd(1), l);
-    double d[3][8];
-    for (int i = 0; i < 3; i++)
-        _mm512_storeu_pd(d[i], _mm512_mask_mul_pd(v[i], pos, v[i], il));
-    const struct tex_media *media = c->s->eye_media.n ? &c->s->eye_media : NULL;
-    for (int k = 0; k < n; k++)
-        r[k] = (tex_ray){cam->eye, tex_v3_make(d[0][k], d[1][k], d[2][k]), 0, cam->spread,
-                         media, 0};
-}
-#endif
-
-/* The eye rays of sample i of the packet's np pixels (x[k], y[k]) into r, made apart from
- * the traces so that their square roots overlap; at 1 spp eight at a time in lanes. */
-static void camera_rays(const struct ctx *c, const struct camera *cam, const int *x, const int *y,
-                        int np, int i, tex_rng *rng, tex_ray *r)
-{
-#ifdef TEX_X86
-    if (c->s->settings.spp == 1 && tex_simd_level() >= TEX_SIMD_AVX512) {
-        for (int k = 0; k < np; k += 8)
-            eye_rays8_avx512(c, cam, x + k, y + k, np - k < 8 ? np - k : 8, r + k);
-        return;
-    }
-#endif
-    for (int k = 0; k < np; k++)
-        camera_ray(c, cam, x[k], y[k], i, &rng[k], &r[k]);
-}
 
 /* A sample's colour col added to the pixel's sum acc, in RGB */
 static inline void accumulate(const struct tex_scene *s, const tex_colour *col, double acc[3])
@@ -481,7 +369,7 @@ static void put_pixel(int spp, const double acc[3], float *px)
 }
 
 /* One pixel, its samples traced one by one (TEXTURA_PACKETS=0) */
-static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, int y, float *px)
+static void render_pixel(const struct ctx *c0, const struct tex_camera *cam, int x, int y, float *px)
 {
     tex_rng rng;
     seed_pixel(c0, x, y, &rng);
@@ -492,7 +380,7 @@ static void render_pixel(const struct ctx *c0, const struct camera *cam, int x, 
     for (int i = 0; i < spp; i++) {
         tex_ray r;
         tex_colour col;
-        camera_ray(&c, cam, x, y, i, &rng, &r);
+        tex_camera_ray(c.s, cam, x, y, i, &rng, &r);
         trace(&c, &r, NULL, 0, 1, &col);
         accumulate(c0->s, &col, acc);
     }
@@ -691,7 +579,7 @@ static void look_ahead(const struct tex_scene *s, struct packet *pk, int n)
 
 /* The pixels [x0, x1) x [y0, y1) of the image (at most PACKET square) into img, whose
  * origin is the image's (rx, ry). */
-static void render_packet(const struct ctx *c0, const struct camera *cam, struct packet *pk,
+static void render_packet(const struct ctx *c0, const struct tex_camera *cam, struct packet *pk,
                           int x0, int y0, int x1, int y1, tex_map *img, int rx, int ry)
 {
     const struct tex_scene *s = c0->s;
@@ -706,9 +594,9 @@ static void render_packet(const struct ctx *c0, const struct camera *cam, struct
     }
     /* a packet beside the box (most of a floor or a sky) tests only the unbounded objects,
      * and one beside an object's box does not test it */
-    uint64_t visit = packet_objects(cam, x0, y0, x1, y1);
+    uint64_t visit = tex_camera_objects(cam, x0, y0, x1, y1);
     for (int i = 0; i < spp; i++) {
-        camera_rays(&c, cam, pk->x, pk->y, np, i, pk->rng, pk->r);
+        tex_camera_rays(c.s, cam, pk->x, pk->y, np, i, pk->rng, pk->r);
         for (int k = 0; k < np; k++)
             pk->hit[k] = visit ? tex_scene_trace_view(s, &pk->r[k].o, &pk->r[k].d, visit,
                                                           &pk->h[k])
@@ -785,8 +673,8 @@ static int render_into(struct tex_scene *s, int rx, int ry, tex_map *img,
         c.need_rng |= s->lights[i].kind == TEX_LIGHT_AREA;
         c.plain &= s->lights[i].kind == TEX_LIGHT_POINT || s->lights[i].kind == TEX_LIGHT_SPOT;
     }
-    struct camera cam;
-    camera_setup(s, &cam);
+    struct tex_camera cam;
+    tex_camera_setup(s, &cam);
     int tw = (rw + TILE - 1) / TILE, th = (rh + TILE - 1) / TILE;
     long ntiles = (long)tw * th, done = 0;
     int threads = st->threads > 0 ? st->threads : omp_get_max_threads();

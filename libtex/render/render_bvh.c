@@ -19,6 +19,11 @@
  * the tree's box shows beside it (tex_scene_view) test the unbounded objects
  * alone; beside it, they skip the bounded objects whose boxes the view shows
  * them beside (tex_view_objects: a packet's rays at once).
+ *
+ * A CSG block of many operands is a tree too: the parser joins them as a balanced tree
+ * (tex_csg_balanced), and once their world boxes are known they are joined again by
+ * median splits along the longest axis (tex_csg_spatial), so that a union of many
+ * disjoint objects culls whole halves by their boxes, as the scene's BVH does.
  */
 #define _GNU_SOURCE /* qsort_r */
 #include <stdlib.h>
@@ -634,4 +639,125 @@ uint64_t tex_view_objects(const struct tex_view *vw, const double r[4])
     for (int i = 0; i < vw->n; i++)
         visit |= (uint64_t)rects_meet(r, vw->object[i]) << i;
     return visit;
+}
+
+/* ---- CSG blocks balanced ---------------------------------------------------------- */
+
+/* A node joining a block's children by op (no transform or surface of its own) */
+static struct tex_object *cluster_node(enum tex_csg_op op, int line, int col, tex_csg_alloc alloc,
+                                       void *ctx)
+{
+    struct tex_object *ob = alloc(ctx, sizeof *ob);
+    ob->op = op;
+    ob->cluster = 1;
+    ob->line = line;
+    ob->col = col;
+    tex_xform_identity(&ob->to_world);
+    return ob;
+}
+
+struct tex_object *tex_csg_balanced(enum tex_csg_op op, struct tex_object **kids, int n, int line,
+                                    int col, tex_csg_alloc alloc, void *ctx)
+{
+    if (n == 1)
+        return kids[0];
+    struct tex_object *ob = cluster_node(op, line, col, alloc, ctx);
+    ob->a = tex_csg_balanced(op, kids, n / 2, line, col, alloc, ctx);
+    ob->b = tex_csg_balanced(op, kids + n / 2, n - n / 2, line, col, alloc, ctx);
+    return ob;
+}
+
+/* Once the world transforms are known (the scene's set_world), the children of a union or an
+ * intersection are joined again by median splits of their boxes' centres along the
+ * longest axis: a union of many disjoint objects then culls whole halves by their boxes,
+ * as the scene's BVH does for separate objects. */
+
+struct operand {
+    struct tex_object *ob;
+    double key;
+};
+
+static int by_key(const void *a, const void *b)
+{
+    double x = ((const struct operand *)a)->key, y = ((const struct operand *)b)->key;
+    return x < y ? -1 : x > y;
+}
+
+/* The operands under a cluster (nodes tex_csg_balanced made), into v. */
+static void gather(struct tex_object *ob, struct operand *v, int *n)
+{
+    if (!ob->cluster) {
+        v[(*n)++].ob = ob;
+        return;
+    }
+    gather(ob->a, v, n);
+    gather(ob->b, v, n);
+}
+
+static int count(const struct tex_object *ob)
+{
+    return ob->cluster ? count(ob->a) + count(ob->b) : 1;
+}
+
+static tex_v3 centre_of(const struct tex_object *ob)
+{
+    if (!ob->bounded)
+        return tex_v3_make(0, 0, 0);
+    return tex_v3_scale(tex_v3_add(ob->wb.lo, ob->wb.hi), 0.5);
+}
+
+/* v[0..n) joined by op, split at the median of the centres along their longest axis. */
+static struct tex_object *spatial(enum tex_csg_op op, struct operand *v, int n,
+                                  const struct tex_object *like, tex_csg_alloc alloc, void *ctx)
+{
+    if (n == 1)
+        return v[0].ob;
+    tex_v3 lo = centre_of(v[0].ob), hi = lo;
+    for (int i = 1; i < n; i++) {
+        tex_v3 c = centre_of(v[i].ob);
+        lo = tex_v3_min(lo, c), hi = tex_v3_max(hi, c);
+    }
+    tex_v3 e = tex_v3_sub(hi, lo);
+    int axis = e.x >= e.y && e.x >= e.z ? 0 : e.y >= e.z ? 1 : 2;
+    for (int i = 0; i < n; i++)
+        v[i].key = tex_v3_get(centre_of(v[i].ob), axis);
+    qsort(v, (size_t)n, sizeof *v, by_key);
+    struct tex_object *node = cluster_node(op, like->line, like->col, alloc, ctx);
+    node->root = like->root;
+    node->a = spatial(op, v, n / 2, like, alloc, ctx);
+    node->b = spatial(op, v + n / 2, n - n / 2, like, alloc, ctx);
+    return node;
+}
+
+/* tex_csg_spatial of the operands under a cluster */
+static int operands_spatial(struct tex_object *ob, tex_csg_alloc alloc, void *ctx)
+{
+    if (!ob->cluster)
+        return tex_csg_spatial(ob, alloc, ctx);
+    return operands_spatial(ob->a, alloc, ctx) < 0 ? -1 : operands_spatial(ob->b, alloc, ctx);
+}
+
+int tex_csg_spatial(struct tex_object *ob, tex_csg_alloc alloc, void *ctx)
+{
+    if (ob->op == TEX_CSG_LEAF)
+        return 0;
+    int whole = ob->op != TEX_CSG_DIFFERENCE;
+    if ((whole && (ob->a->cluster || ob->b->cluster)) || (!whole && ob->b->cluster)) {
+        int n = (whole ? count(ob->a) : 0) + count(ob->b), k = 0;
+        struct operand *v = malloc((size_t)n * sizeof *v);
+        if (!v)
+            return tex_error("out of memory");
+        if (whole)
+            gather(ob->a, v, &k);
+        gather(ob->b, v, &k);
+        for (int i = 0; i < n; i++)
+            tex_object_bounds(v[i].ob);
+        struct tex_object *t = spatial(whole ? ob->op : TEX_CSG_UNION, v, n, ob, alloc, ctx);
+        free(v);
+        if (whole)
+            ob->a = t->a, ob->b = t->b;
+        else
+            ob->b = t;
+    }
+    return operands_spatial(ob->a, alloc, ctx) < 0 ? -1 : operands_spatial(ob->b, alloc, ctx);
 }

@@ -1,8 +1,9 @@
 /* render_scene.c - the scene language of t_apply(5)
  *
- * A hand-written lexer and recursive-descent parser.  Every error names
- * file:line:column of the token at fault.  All memory of a scene hangs
- * from it (a pool), so an error anywhere frees everything at once.
+ * A recursive-descent parser over the one lexer of Textura's languages (lang/lex.h), its
+ * expressions through lang/expr.h and its blocks through their parameter rows
+ * (render_params.c).  Every error names file:line:column of the token at fault.  All
+ * memory of a scene hangs from it (a pool), so an error anywhere frees everything at once.
  */
 #include <errno.h>
 #include <math.h>
@@ -24,52 +25,33 @@
 #include "lang/lex.h"
 #include "lang/proc.h"
 
-
 #define MAX_NEST 64
 
-/* The tokens of lang/lex.h, under the names this parser has always used. */
-enum tok_kind { T_EOF = TEX_TOK_EOF, T_NUM = TEX_TOK_NUM, T_ID = TEX_TOK_NAME,
-                T_STR = TEX_TOK_STR, T_PUNCT = TEX_TOK_PUNCT };
-
-struct tok {
-    enum tok_kind kind;
-    const char *text;
-    size_t len;
-    double num;
-    int line, col;
-};
-
 struct parser {
-    const char *src, *end, *name;
-    const char *p;
-    int line, col;
-    struct tok t;
+    const char *name;
     struct tex_scene *s;
     jmp_buf jb;
     int nest;
     int stdin_used;
     struct tex_matdb db; /* the materials database, read on first use */
     int have_db;
-    struct tex_lexer lx; /* the shared lexer, started by the first next() */
-    int lx_ready;
+    struct tex_lexer lx; /* lx.t: the current token */
     /* read_row takes every number of a vector row or fails at the first one
      * missing ("expected a number"), as the shapes' words always have */
     int whole_vectors;
     int sample_size; /* tex_scene_opts */
 };
 
-static void fail_at(struct parser *ps, const struct tok *t, int runtime, const char *fmt, ...)
+static void fail_at(struct parser *ps, const struct tex_tok *t, int runtime, const char *fmt, ...)
     __attribute__((noreturn, format(printf, 4, 5)));
 
-static void fail_at(struct parser *ps, const struct tok *t, int runtime, const char *fmt, ...)
+static void fail_at(struct parser *ps, const struct tex_tok *t, int runtime, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    ps->lx.name = ps->name; /* the lexer's one error function, started or not */
-    ps->lx.fail = &ps->jb;
     tex_lex_vfail(&ps->lx, runtime ? TEX_ERR_RUNTIME : TEX_ERR_USAGE, t->line, t->col, fmt, ap);
 }
-#define FAIL(ps, ...) fail_at(ps, &(ps)->t, 0, __VA_ARGS__)
+#define FAIL(ps, ...) fail_at(ps, &(ps)->lx.t, 0, __VA_ARGS__)
 
 static void *palloc(struct parser *ps, size_t n)
 {
@@ -78,13 +60,13 @@ static void *palloc(struct parser *ps, size_t n)
         size_t c = s->cpool ? 2 * s->cpool : 64;
         void **np = realloc(s->pool, c * sizeof *np);
         if (!np)
-            fail_at(ps, &ps->t, 1, "out of memory");
+            fail_at(ps, &ps->lx.t, 1, "out of memory");
         s->pool = np;
         s->cpool = c;
     }
     void *m = calloc(1, n ? n : 1);
     if (!m)
-        fail_at(ps, &ps->t, 1, "out of memory");
+        fail_at(ps, &ps->lx.t, 1, "out of memory");
     s->pool[s->npool++] = m;
     return m;
 }
@@ -103,63 +85,13 @@ static void *lex_alloc(void *ctx, size_t n)
     return palloc(ctx, n);
 }
 
-/* ps->t from the shared lexer's current token. */
-static void sync(struct parser *ps)
-{
-    const struct tex_tok *l = &ps->lx.t;
-    ps->t = (struct tok){(enum tok_kind)l->kind, l->text, l->len, l->num, l->line, l->col};
-    ps->p = ps->lx.p;
-    ps->line = ps->lx.line;
-    ps->col = ps->lx.col;
-}
-
-static void next(struct parser *ps)
-{
-    if (!ps->lx_ready) {
-        tex_lex_init(&ps->lx, ps->p, (size_t)(ps->end - ps->p), ps->name, &ps->jb, lex_alloc,
-                     ps);
-        ps->lx.line = ps->line;
-        ps->lx.col = ps->col;
-        ps->lx.semicolon_blank = 1;
-        ps->lx_ready = 1;
-    }
-    tex_lex_next(&ps->lx);
-    sync(ps);
-}
-
-static int is_word(const struct tok *t, const char *w)
-{
-    return t->kind == T_ID && strlen(w) == t->len && !memcmp(t->text, w, t->len);
-}
-
-static int is_punct(const struct tok *t, int c)
-{
-    return t->kind == T_PUNCT && t->len == 1 && t->text[0] == c;
-}
-
-static const char *tokdesc(const struct tok *t, char *buf, size_t n)
-{
-    if (t->kind == T_EOF)
-        return "end of file";
-    snprintf(buf, n, "'%.*s'", (int)(t->len > 40 ? 40 : t->len), t->text);
-    return buf;
-}
-
-static void expect(struct parser *ps, int c)
-{
-    char b[64];
-    if (!is_punct(&ps->t, c))
-        FAIL(ps, "expected '%c', found %s", c, tokdesc(&ps->t, b, sizeof b));
-    next(ps);
-}
-
 static double number(struct parser *ps)
 {
     char b[64];
-    if (ps->t.kind != T_NUM)
-        FAIL(ps, "expected a number, found %s", tokdesc(&ps->t, b, sizeof b));
-    double v = ps->t.num;
-    next(ps);
+    if (ps->lx.t.kind != TEX_TOK_NUM)
+        FAIL(ps, "expected a number, found %s", tex_tok_desc(&ps->lx.t, b, sizeof b));
+    double v = ps->lx.t.num;
+    tex_lex_next(&ps->lx);
     return v;
 }
 
@@ -172,10 +104,10 @@ static tex_v3 vec(struct parser *ps)
 static char *word(struct parser *ps, const char *what)
 {
     char b[64];
-    if (ps->t.kind != T_ID)
-        FAIL(ps, "expected %s, found %s", what, tokdesc(&ps->t, b, sizeof b));
-    char *w = pstrdup(ps, ps->t.text, ps->t.len);
-    next(ps);
+    if (ps->lx.t.kind != TEX_TOK_NAME)
+        FAIL(ps, "expected %s, found %s", what, tex_tok_desc(&ps->lx.t, b, sizeof b));
+    char *w = pstrdup(ps, ps->lx.t.text, ps->lx.t.len);
+    tex_lex_next(&ps->lx);
     return w;
 }
 
@@ -184,7 +116,7 @@ static char *word(struct parser *ps, const char *what)
 /* "NAME must be LO..HI (got V)" at t unless lo <= v <= hi (whole: an integer). */
 static double ranged(struct parser *ps, const char *name, double lo, double hi, int whole)
 {
-    struct tok t = ps->t;
+    struct tex_tok t = ps->lx.t;
     double v = number(ps);
     if (!(v >= lo && v <= hi) || (whole && v != floor(v)))
         fail_at(ps, &t, 0, "%s must be %.10g..%.10g (got %g)", name, lo, hi, v);
@@ -192,22 +124,22 @@ static double ranged(struct parser *ps, const char *name, double lo, double hi, 
 }
 
 /* Row name written as t, or in its other spelling (colour as color). */
-static int is_row_word(const struct tok *t, const char *name)
+static int is_row_word(const struct tex_tok *t, const char *name)
 {
     static const char *const also[][2] = {{"colour", "color"}, {"centre", "center"}};
-    if (is_word(t, name))
+    if (tex_tok_is_word(t, name))
         return 1;
     for (size_t i = 0; i < sizeof also / sizeof also[0]; i++)
-        if (!strcmp(name, also[i][0]) && is_word(t, also[i][1]))
+        if (!strcmp(name, also[i][0]) && tex_tok_is_word(t, also[i][1]))
             return 1;
     return 0;
 }
 
 /* The row of table rows for word t, for a block of the given kind (-1: any). */
-static const struct tex_param *row_of(const struct tex_param *rows, const struct tok *t,
+static const struct tex_param *row_of(const struct tex_param *rows, const struct tex_tok *t,
                                       int kind)
 {
-    if (t->kind != T_ID)
+    if (t->kind != TEX_TOK_NAME)
         return NULL;
     for (const struct tex_param *p = rows; p->name; p++)
         if (is_row_word(t, p->name) && (kind < 0 || !p->kinds || (p->kinds >> kind & 1)))
@@ -218,14 +150,14 @@ static const struct tex_param *row_of(const struct tex_param *rows, const struct
 /* Row p's value into obj: as many numbers as it stores, a word, or nothing (a flag). */
 static void read_row(struct parser *ps, const struct tex_param *p, void *obj)
 {
-    struct tok vt = ps->t;
+    struct tex_tok vt = ps->lx.t;
     double v[8];
     int k = 0, n = tex_param_count(p);
     if (p->type == TEX_P_ENUM || p->type == TEX_P_STRING) {
         char *w;
-        if (vt.kind == T_STR) {
+        if (vt.kind == TEX_TOK_STR) {
             w = pstrdup(ps, vt.text, vt.len);
-            next(ps);
+            tex_lex_next(&ps->lx);
         } else {
             w = word(ps, "a name");
         }
@@ -238,14 +170,14 @@ static void read_row(struct parser *ps, const struct tex_param *p, void *obj)
     else
         do
             v[k++] = number(ps);
-        while (k < n && k < 8 && (ps->t.kind == T_NUM || ps->whole_vectors));
+        while (k < n && k < 8 && (ps->lx.t.kind == TEX_TOK_NUM || ps->whole_vectors));
     if (tex_param_store(p, obj, v, k, TEX_PARAM_WORD) < 0)
         fail_at(ps, &vt, 0, "%s", tex_errmsg());
 }
 
 /* A block's own reading of a SPECIAL row p, or of a word kt of no row (p NULL):
  * 1 if it took it. */
-typedef int (*special_fn)(struct parser *ps, const struct tex_param *p, const struct tok *kt,
+typedef int (*special_fn)(struct parser *ps, const struct tex_param *p, const struct tex_tok *kt,
                           void *ctx);
 
 /* `{ word value ... }` through rows (for kind, -1: any) into obj; special
@@ -254,23 +186,25 @@ static unsigned long long read_block(struct parser *ps, const struct tex_param *
                                      void *obj, special_fn special, void *ctx, const char *what)
 {
     unsigned long long seen = 0;
-    expect(ps, '{');
-    while (!is_punct(&ps->t, '}')) {
-        struct tok kt = ps->t;
+    tex_lex_expect(&ps->lx, '{');
+    while (!tex_tok_is_punct(&ps->lx.t, '}')) {
+        struct tex_tok kt = ps->lx.t;
         const struct tex_param *p = row_of(rows, &kt, kind);
         if (p) {
-            next(ps);
+            tex_lex_next(&ps->lx);
             seen |= 1ull << (p - rows);
             if (p->type != TEX_P_SPECIAL)
                 read_row(ps, p, obj);
             else if (!special(ps, p, &kt, ctx))
                 fail_at(ps, &kt, 0, "internal: no reader for '%s'", p->name);
+        } else if (kt.kind == TEX_TOK_EOF) {
+            fail_at(ps, &kt, 0, "expected '}' to end %s, found the end of the file", what);
         } else if (!special || !special(ps, NULL, &kt, ctx)) {
             char b[64];
-            fail_at(ps, &kt, 0, "unknown word %s in %s", tokdesc(&kt, b, sizeof b), what);
+            fail_at(ps, &kt, 0, "unknown word %s in %s", tex_tok_desc(&kt, b, sizeof b), what);
         }
     }
-    next(ps);
+    tex_lex_next(&ps->lx);
     return seen;
 }
 
@@ -283,7 +217,7 @@ static unsigned long long row_bit(const struct tex_param *rows, const char *name
 
 /* ---- textures ------------------------------------------------------------------- */
 
-static struct tex_texture *find_texture(struct parser *ps, const struct tok *t)
+static struct tex_texture *find_texture(struct parser *ps, const struct tex_tok *t)
 {
     for (int i = 0; i < ps->s->ntextures; i++)
         if (strlen(ps->s->textures[i]->name) == t->len &&
@@ -297,7 +231,7 @@ static void add_texture(struct parser *ps, struct tex_texture *tx)
     struct tex_scene *s = ps->s;
     struct tex_texture **a = realloc(s->textures, (s->ntextures + 1) * sizeof *a);
     if (!a)
-        fail_at(ps, &ps->t, 1, "out of memory");
+        fail_at(ps, &ps->lx.t, 1, "out of memory");
     s->textures = a;
     a[s->ntextures++] = tx;
 }
@@ -305,12 +239,12 @@ static void add_texture(struct parser *ps, struct tex_texture *tx)
 /* The palette named by the current token (a name or a string), loaded once per scene. */
 static const tex_palette *scene_palette(struct parser *ps)
 {
-    struct tok at = ps->t;
+    struct tex_tok at = ps->lx.t;
     struct tex_scene *s = ps->s;
-    if (at.kind != T_ID && at.kind != T_STR)
+    if (at.kind != TEX_TOK_NAME && at.kind != TEX_TOK_STR)
         FAIL(ps, "expected a palette name or file");
     char *name = pstrdup(ps, at.text, at.len);
-    next(ps);
+    tex_lex_next(&ps->lx);
     for (int i = 0; i < s->npalettes; i++)
         if (!strcmp(s->palettes[i]->name, name))
             return s->palettes[i];
@@ -335,7 +269,7 @@ static const tex_palette *scene_palette(struct parser *ps)
  * map over its own range, a region map by indexed colours.  A geometric primitive's map is
  * already in the palette's colours (texture_field).  Takes m, returns the map to use. */
 static tex_map *texture_colour(struct parser *ps, struct tex_texture *tx, tex_map *m,
-                               const struct tok *at)
+                               const struct tex_tok *at)
 {
     const struct tex_field *f = tx->field;
     if (!tx->palette || (f && f->colors && (f->prim->flags & TEX_PRIM_REGIONS) && !f->ids))
@@ -353,7 +287,7 @@ static tex_map *texture_colour(struct parser *ps, struct tex_texture *tx, tex_ma
     return c;
 }
 
-static void texture_map(struct parser *ps, struct tex_texture *tx, tex_map *m, const struct tok *at)
+static void texture_map(struct parser *ps, struct tex_texture *tx, tex_map *m, const struct tex_tok *at)
 {
     m = texture_colour(ps, tx, m, at);
     tx->mip = malloc(sizeof *tx->mip);
@@ -372,14 +306,14 @@ static void texture_map(struct parser *ps, struct tex_texture *tx, tex_map *m, c
  * (at most once per scene). */
 static void texture_file(struct parser *ps, struct tex_texture *tx)
 {
-    struct tok ft = ps->t;
+    struct tex_tok ft = ps->lx.t;
     char *path;
-    if (is_punct(&ft, '-')) {
+    if (tex_tok_is_punct(&ft, '-')) {
         path = pstrdup(ps, "-", 1);
-        next(ps);
-    } else if (ft.kind == T_STR || ft.kind == T_ID) {
+        tex_lex_next(&ps->lx);
+    } else if (ft.kind == TEX_TOK_STR || ft.kind == TEX_TOK_NAME) {
         path = pstrdup(ps, ft.text, ft.len);
-        next(ps);
+        tex_lex_next(&ps->lx);
     } else {
         FAIL(ps, "expected a file name or '-' after 'file'");
     }
@@ -388,8 +322,8 @@ static void texture_file(struct parser *ps, struct tex_texture *tx)
             fail_at(ps, &ft, 0, "only one texture can come from standard input");
         ps->stdin_used = 1;
     }
-    if (is_word(&ps->t, "palette")) {
-        next(ps);
+    if (tex_tok_is_word(&ps->lx.t, "palette")) {
+        tex_lex_next(&ps->lx);
         tx->palette = scene_palette(ps);
     }
     /* A mip-mapped EXR brings its levels: used as the pyramid when they are
@@ -424,9 +358,9 @@ static void texture_params(struct parser *ps, struct tex_texture *tx,
                            const struct tex_primitive *prim, const char *pname)
 {
     struct tex_field *f = tx->field;
-    expect(ps, '{');
-    while (!is_punct(&ps->t, '}')) {
-        struct tok kt = ps->t;
+    tex_lex_expect(&ps->lx, '{');
+    while (!tex_tok_is_punct(&ps->lx.t, '}')) {
+        struct tex_tok kt = ps->lx.t;
         char *key = word(ps, "a parameter name");
         const struct tex_param *fr = tex_param_find(tex_field_rows, key);
         if (!strcmp(key, "solid")) {
@@ -439,26 +373,26 @@ static void texture_params(struct parser *ps, struct tex_texture *tx,
             if (tex_field_set(f, key, "") < 0)
                 fail_at(ps, &kt, 0, "%s", tex_errmsg());
         } else {
-            struct tok vt = ps->t;
+            struct tex_tok vt = ps->lx.t;
             char *val;
-            if (vt.kind == T_NUM || vt.kind == T_STR || vt.kind == T_ID)
+            if (vt.kind == TEX_TOK_NUM || vt.kind == TEX_TOK_STR || vt.kind == TEX_TOK_NAME)
                 val = pstrdup(ps, vt.text, vt.len);
             else
                 FAIL(ps, "expected a value for '%s'", key);
-            next(ps);
+            tex_lex_next(&ps->lx);
             /* seed, size (tex_field_rows) or a parameter of the primitive */
             if (tex_field_set(f, key, val) < 0)
                 fail_at(ps, fr ? &vt : &kt, 0, "%s", tex_errmsg());
         }
     }
-    next(ps);
+    tex_lex_next(&ps->lx);
 }
 
 /* Start the primitive's field, and sample it into a texture map unless it is evaluated
  * at each hit (a solid texture, or a 2D primitive without a size). */
 static void texture_field(struct parser *ps, struct tex_texture *tx,
                           const struct tex_primitive *prim, const char *pname,
-                          const struct tok *pt)
+                          const struct tex_tok *pt)
 {
     struct tex_field *f = tx->field;
     int size = f->size;
@@ -506,27 +440,26 @@ static void texture_field(struct parser *ps, struct tex_texture *tx,
 
 /* 'primitive NAME(...) = EXPR', a composed primitive (lang/proc.h), or
  * 'primitives "FILE"', a file of them: named by later textures. */
-static void parse_primitive(struct parser *ps, const struct tok *kt)
+static void parse_primitive(struct parser *ps, const struct tex_tok *kt)
 {
     if (!ps->s->procs && !(ps->s->procs = tex_procs_new()))
         fail_at(ps, kt, 1, "out of memory");
-    if (is_word(kt, "primitive")) {
+    if (tex_tok_is_word(kt, "primitive")) {
         tex_procs_define(ps->s->procs, &ps->lx);
-        sync(ps);
         return;
     }
-    struct tok ft = ps->t;
-    if (ft.kind != T_STR)
+    struct tex_tok ft = ps->lx.t;
+    if (ft.kind != TEX_TOK_STR)
         FAIL(ps, "expected a file name in quotes after 'primitives'");
     char *path = pstrdup(ps, ft.text, ft.len);
     if (tex_procs_read(ps->s->procs, path) < 0)
         fail_at(ps, &ft, tex_errkind() == TEX_ERR_RUNTIME, "%s", tex_errmsg());
-    next(ps);
+    tex_lex_next(&ps->lx);
 }
 
 static void parse_texture(struct parser *ps)
 {
-    struct tok at = ps->t;
+    struct tex_tok at = ps->lx.t;
     char *name = word(ps, "a texture name");
     if (find_texture(ps, &at))
         fail_at(ps, &at, 0, "texture '%s' is defined twice", name);
@@ -537,12 +470,12 @@ static void parse_texture(struct parser *ps)
     tx->name = name;
     tx->line = at.line;
     tx->col = at.col;
-    if (is_word(&ps->t, "file")) {
-        next(ps);
+    if (tex_tok_is_word(&ps->lx.t, "file")) {
+        tex_lex_next(&ps->lx);
         texture_file(ps, tx);
         return;
     }
-    struct tok pt = ps->t;
+    struct tex_tok pt = ps->lx.t;
     char *pname = word(ps, "'file' or a primitive name");
     const struct tex_primitive *prim = tex_procs_find(ps->s->procs, pname);
     if (!prim)
@@ -562,19 +495,18 @@ static struct tex_enode *palette_call(struct tex_expr_parser *xp)
     struct parser *ps = xp->ctx;
     struct tex_enode *e = tex_expr_node(&ps->lx, TEX_EK_CALL, &ps->lx.t);
     e->op = TEX_EOP_PALETTE;
-    next(ps);
-    expect(ps, '(');
+    tex_lex_next(&ps->lx);
+    tex_lex_expect(&ps->lx, '(');
     e->ptr = scene_palette(ps);
-    if (is_punct(&ps->t, ')'))
+    if (tex_tok_is_punct(&ps->lx.t, ')'))
         FAIL(ps, "palette takes 2 arguments: a palette and a value");
-    expect(ps, ',');
+    tex_lex_expect(&ps->lx, ',');
     tex_expr_enter(xp);
     e->a = tex_expr_parse(xp);
     tex_expr_leave(xp);
-    sync(ps);
-    if (is_punct(&ps->t, ','))
+    if (tex_tok_is_punct(&ps->lx.t, ','))
         FAIL(ps, "palette takes 2 arguments: a palette and a value");
-    expect(ps, ')');
+    tex_lex_expect(&ps->lx, ')');
     return e;
 }
 
@@ -586,11 +518,10 @@ static struct tex_enode *operand(struct tex_expr_parser *xp)
     struct parser *ps = xp->ctx;
     char b[64];
     struct tex_enode *e;
-    sync(ps);
-    struct tok t = ps->t;
-    if (t.kind != T_ID)
-        FAIL(ps, "expected an expression, found %s", tokdesc(&t, b, sizeof b));
-    if (is_word(&t, "palette")) {
+    struct tex_tok t = ps->lx.t;
+    if (t.kind != TEX_TOK_NAME)
+        FAIL(ps, "expected an expression, found %s", tex_tok_desc(&t, b, sizeof b));
+    if (tex_tok_is_word(&t, "palette")) {
         struct tex_lexer peek = ps->lx;
         tex_lex_next(&peek);
         if (tex_tok_is_punct(&peek.t, '('))
@@ -599,11 +530,11 @@ static struct tex_enode *operand(struct tex_expr_parser *xp)
     e = tex_expr_node(&ps->lx, TEX_EK_LEAF, &ps->lx.t);
     e->op = -1;
     for (int q = 0; q < TEX_Q_COUNT; q++)
-        if (is_word(&t, tex_quantities[q].name))
+        if (tex_tok_is_word(&t, tex_quantities[q].name))
             e->op = TEX_LEAF_Q + q;
-    if (is_word(&t, "f")) {
+    if (tex_tok_is_word(&t, "f")) {
         e->op = TEX_LEAF_F;
-    } else if (is_word(&t, "p")) {
+    } else if (tex_tok_is_word(&t, "p")) {
         e->op = TEX_LEAF_P;
     } else if (e->op < 0) {
         e->op = TEX_LEAF_TEX;
@@ -621,7 +552,7 @@ static struct tex_enode *operand(struct tex_expr_parser *xp)
                      "ndotv, a number, a function or a texture)", (int)t.len, t.text);
         }
     }
-    next(ps);
+    tex_lex_next(&ps->lx);
     return e;
 }
 
@@ -631,17 +562,16 @@ static struct tex_expr *expr(struct parser *ps)
     static const struct tex_expr_lang lang = {tex_expr_arith_binops, operand};
     struct tex_expr_parser xp = {&ps->lx, &lang, ps, 0, 0};
     struct tex_expr *x = tex_expr_compile(&ps->lx, tex_expr_parse(&xp));
-    sync(ps);
     return x;
 }
 
 /* ---- surfaces ------------------------------------------------------------------- */
 
 /* The application-function parameter named by t (rows Ka..ior, bump or normal), or -1. */
-static int sparam(const struct tok *t)
+static int sparam(const struct tex_tok *t)
 {
     for (int i = 0; i < TEX_SP_COUNT; i++)
-        if (is_word(t, tex_sparam_row(i)->name))
+        if (tex_tok_is_word(t, tex_sparam_row(i)->name))
             return i;
     return -1;
 }
@@ -650,20 +580,20 @@ static void parse_fns(struct parser *ps, struct tex_apply *ap, int region)
 {
     char b[64];
     for (;;) {
-        int sp = sparam(&ps->t);
+        int sp = sparam(&ps->lx.t);
         if (sp < 0)
             return;
-        next(ps);
-        if (!is_punct(&ps->t, '='))
+        tex_lex_next(&ps->lx);
+        if (!tex_tok_is_punct(&ps->lx.t, '='))
             FAIL(ps, "expected '=' after %s, found %s", tex_sparam_row(sp)->name,
-                 tokdesc(&ps->t, b, sizeof b));
-        next(ps);
+                 tex_tok_desc(&ps->lx.t, b, sizeof b));
+        tex_lex_next(&ps->lx);
         struct tex_appfn *fn = palloc(ps, sizeof *fn), **tail = &ap->fns;
         fn->region = region;
         fn->param = sp;
         fn->lo = tex_sparam_row(sp)->min; /* looked up once, not per hit */
         fn->hi = tex_sparam_row(sp)->max;
-        struct tok et = ps->t;
+        struct tex_tok et = ps->lx.t;
         fn->e = expr(ps);
         int nc = ap->tex->mip ? ap->tex->mip[0]->nc : ap->tex->palette ? 3 : ap->tex->field->nc;
         for (int i = 0; sp == TEX_SP_NORMAL && i < fn->e->n; i++)
@@ -676,14 +606,12 @@ static void parse_fns(struct parser *ps, struct tex_apply *ap, int region)
     }
 }
 
-static void xf_frame(tex_xform *t, tex_v3 origin, tex_v3 a, double ylen, double r);
-static const struct tex_surface *find_surface(struct parser *ps, const struct tok *t);
-static void xf_rotate(tex_xform *t, tex_v3 r);
-static int transform_word(struct parser *ps, const struct tok *kt, tex_xform *acc);
+static const struct tex_surface *find_surface(struct parser *ps, const struct tex_tok *t);
+static int transform_word(struct parser *ps, const struct tex_tok *kt, tex_xform *acc);
 
 /* stretch, region N { ... }, translate, rotate, cross and the application functions of an
  * apply block */
-static int apply_special(struct parser *ps, const struct tex_param *p, const struct tok *kt,
+static int apply_special(struct parser *ps, const struct tex_param *p, const struct tex_tok *kt,
                          void *ctx)
 {
     struct tex_apply *ap = ctx;
@@ -691,17 +619,17 @@ static int apply_special(struct parser *ps, const struct tex_param *p, const str
         transform_word(ps, kt, &ap->place);
         ap->placed = 1;
     } else if (p && !strcmp(p->name, "cross")) {
-        struct tok ct = ps->t;
-        if (ct.kind != T_ID || !(ap->cross = find_texture(ps, &ct)))
+        struct tex_tok ct = ps->lx.t;
+        if (ct.kind != TEX_TOK_NAME || !(ap->cross = find_texture(ps, &ct)))
             FAIL(ps, "cross needs a texture's name");
-        next(ps);
+        tex_lex_next(&ps->lx);
     } else if (p && !strcmp(p->name, "stretch")) {
         ap->nu = ap->nv = 1;
     } else if (p && !strcmp(p->name, "region")) {
         int r = (int)ranged(ps, p->name, p->min, p->max, 1);
-        expect(ps, '{');
+        tex_lex_expect(&ps->lx, '{');
         parse_fns(ps, ap, r);
-        expect(ps, '}');
+        tex_lex_expect(&ps->lx, '}');
     } else if (!p && sparam(kt) >= 0) {
         parse_fns(ps, ap, 0);
     } else {
@@ -713,7 +641,7 @@ static int apply_special(struct parser *ps, const struct tex_param *p, const str
 /* The projection's frame (thesis 5.2.1.3): y along the axis, then the block's rotations and
  * translations, as POV-Ray's texture transforms; checked against the mapping. */
 static void apply_projection(struct parser *ps, struct tex_apply *ap, unsigned long long seen,
-                             const struct tok *at)
+                             const struct tex_tok *at)
 {
     tex_v3 a = ap->axis;
     if (!(tex_v3_dot(a, a) > 1e-24))
@@ -724,7 +652,7 @@ static void apply_projection(struct parser *ps, struct tex_apply *ap, unsigned l
         fail_at(ps, at, 0, "mapping cross needs 'cross TEXTURE', the map on the y-z plane");
     if (seen & row_bit(tex_apply_rows, "axis")) {
         tex_xform f;
-        xf_frame(&f, tex_v3_make(0, 0, 0), a, 1, 1);
+        tex_xform_frame(&f, tex_v3_make(0, 0, 0), a, 1, 1);
         tex_xform_mul(&ap->place, &ap->place, &f);
         ap->placed = 1;
     }
@@ -737,13 +665,13 @@ static void apply_projection(struct parser *ps, struct tex_apply *ap, unsigned l
 
 static struct tex_apply *parse_apply(struct parser *ps)
 {
-    struct tok at = ps->t;
-    const struct tex_texture *tx = at.kind == T_ID ? find_texture(ps, &at) : NULL;
+    struct tex_tok at = ps->lx.t;
+    const struct tex_texture *tx = at.kind == TEX_TOK_NAME ? find_texture(ps, &at) : NULL;
     if (!tx) {
         char b[64];
-        FAIL(ps, "unknown texture %s", tokdesc(&at, b, sizeof b));
+        FAIL(ps, "unknown texture %s", tex_tok_desc(&at, b, sizeof b));
     }
-    next(ps);
+    tex_lex_next(&ps->lx);
     struct tex_apply *ap = palloc(ps, sizeof *ap);
     if (tex_params_defaults(tex_apply_rows, ap) < 0)
         fail_at(ps, &at, 0, "%s", tex_errmsg());
@@ -774,7 +702,7 @@ static struct tex_ct *surface_ct(struct parser *ps, struct tex_surface *sf)
     return sf->ct;
 }
 
-static void load_materials(struct parser *ps, const char *path, const struct tok *at)
+static void load_materials(struct parser *ps, const char *path, const struct tex_tok *at)
 {
     if (ps->have_db)
         tex_matdb_free(&ps->db);
@@ -803,14 +731,14 @@ const char *tex_scene_materials_path(const char *scene, char *path, size_t n)
     return path;
 }
 
-static void default_materials(struct parser *ps, const struct tok *at)
+static void default_materials(struct parser *ps, const struct tex_tok *at)
 {
     char path[4096];
     load_materials(ps, tex_scene_materials_path(ps->name, path, sizeof path), at);
 }
 
 /* A copy of the named material in the scene's pool (the database is freed after parsing). */
-static const struct tex_matdb_entry *find_material(struct parser *ps, const struct tok *at,
+static const struct tex_matdb_entry *find_material(struct parser *ps, const struct tex_tok *at,
                                                    const char *name)
 {
     if (!ps->have_db)
@@ -827,17 +755,17 @@ static const struct tex_matdb_entry *find_material(struct parser *ps, const stru
 /* facets beckmann M | facets blinn NS, either with `beta DEG` instead of the number */
 static void parse_facets(struct parser *ps, struct tex_ct *ct)
 {
-    struct tok dt = ps->t;
-    if (is_word(&dt, "beckmann"))
+    struct tex_tok dt = ps->lx.t;
+    if (tex_tok_is_word(&dt, "beckmann"))
         ct->facets.dist = TEX_FACET_BECKMANN;
-    else if (is_word(&dt, "blinn"))
+    else if (tex_tok_is_word(&dt, "blinn"))
         ct->facets.dist = TEX_FACET_BLINN;
     else
         FAIL(ps, "facets takes beckmann M or blinn NS");
-    next(ps);
+    tex_lex_next(&ps->lx);
     int beckmann = ct->facets.dist == TEX_FACET_BECKMANN;
-    if (is_word(&ps->t, "beta")) {
-        next(ps);
+    if (tex_tok_is_word(&ps->lx.t, "beta")) {
+        tex_lex_next(&ps->lx);
         double b = ranged(ps, "beta", 0.01, 89, 0) * M_PI / 180;
         if (beckmann)
             ct->facets.m = tex_beckmann_m_from_beta(b);
@@ -857,19 +785,19 @@ struct surface_ctx {
 };
 
 /* model, material, facets, specular and apply of a surface */
-static int surface_special(struct parser *ps, const struct tex_param *p, const struct tok *kt,
+static int surface_special(struct parser *ps, const struct tex_param *p, const struct tex_tok *kt,
                            void *ctx)
 {
     struct surface_ctx *c = ctx;
     struct tex_surface *sf = c->sf;
-    struct tok mt = ps->t;
+    struct tex_tok mt = ps->lx.t;
     (void)kt;
     if (!p)
         return 0;
     if (!strcmp(p->name, "material")) {
-        char *m = mt.kind == T_STR ? pstrdup(ps, mt.text, mt.len) : word(ps, "a material");
-        if (mt.kind == T_STR)
-            next(ps);
+        char *m = mt.kind == TEX_TOK_STR ? pstrdup(ps, mt.text, mt.len) : word(ps, "a material");
+        if (mt.kind == TEX_TOK_STR)
+            tex_lex_next(&ps->lx);
         surface_ct(ps, sf)->entry = find_material(ps, &mt, m);
     } else if (!strcmp(p->name, "facets")) {
         parse_facets(ps, surface_ct(ps, sf));
@@ -881,13 +809,13 @@ static int surface_special(struct parser *ps, const struct tex_param *p, const s
         if (!sf->model)
             fail_at(ps, &mt, 0, "model must be %s (got %s)", p->meta, m);
     } else if (!strcmp(p->name, "blend")) {
-        const struct tex_surface *o = mt.kind == T_ID ? find_surface(ps, &mt) : NULL;
+        const struct tex_surface *o = mt.kind == TEX_TOK_NAME ? find_surface(ps, &mt) : NULL;
         if (!o)
             FAIL(ps, "blend names a surface defined above (got %.*s)", (int)mt.len, mt.text);
         if (o == sf || o->blend)
             FAIL(ps, "blend mixes in a surface without a blend of its own");
         sf->blend = o;
-        next(ps);
+        tex_lex_next(&ps->lx);
     } else if (!strcmp(p->name, "apply")) {
         *c->tail = parse_apply(ps);
         c->tail = &(*c->tail)->next;
@@ -901,13 +829,13 @@ static int surface_special(struct parser *ps, const struct tex_param *p, const s
 static void surface_defaults(struct parser *ps, struct tex_surface *sf)
 {
     if (tex_params_defaults(tex_surface_rows, sf) < 0)
-        fail_at(ps, &ps->t, 0, "%s", tex_errmsg());
+        fail_at(ps, &ps->lx.t, 0, "%s", tex_errmsg());
     sf->model = &tex_shading_phong;
 }
 
 static void parse_surface(struct parser *ps)
 {
-    struct tok at = ps->t;
+    struct tex_tok at = ps->lx.t;
     char *name = word(ps, "a surface name");
     for (int i = 0; i < ps->s->nsurfaces; i++)
         if (!strcmp(ps->s->surfaces[i]->name, name))
@@ -937,7 +865,7 @@ static void parse_surface(struct parser *ps)
     /* the targets that need a word of the surface */
     for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next)
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next) {
-            struct tok ft = {T_ID, "", 0, 0, ap->line, ap->col};
+            struct tex_tok ft = {TEX_TOK_NAME, "", 0, 0, ap->line, ap->col};
             if (fn->param == TEX_SP_BLEND && !sf->blend)
                 fail_at(ps, &ft, 0, "blend = h needs 'blend SURFACE' in surface '%s'", name);
             if ((fn->param == TEX_SP_M || fn->param == TEX_SP_S) &&
@@ -952,7 +880,7 @@ static void parse_surface(struct parser *ps)
 
 /* ---- objects -------------------------------------------------------------------- */
 
-static const struct tex_surface *find_surface(struct parser *ps, const struct tok *t)
+static const struct tex_surface *find_surface(struct parser *ps, const struct tex_tok *t)
 {
     for (int i = 0; i < ps->s->nsurfaces; i++)
         if (strlen(ps->s->surfaces[i]->name) == t->len &&
@@ -961,74 +889,24 @@ static const struct tex_surface *find_surface(struct parser *ps, const struct to
     return NULL;
 }
 
-static void xf_translate(tex_xform *t, tex_v3 v)
-{
-    tex_xform_identity(t);
-    t->m[0][3] = v.x, t->m[1][3] = v.y, t->m[2][3] = v.z;
-}
-
-static void xf_scale(tex_xform *t, tex_v3 v)
-{
-    tex_xform_identity(t);
-    t->m[0][0] = v.x, t->m[1][1] = v.y, t->m[2][2] = v.z;
-}
-
-static void xf_rot(tex_xform *t, int axis, double deg)
-{
-    double a = deg * M_PI / 180, c = cos(a), s = sin(a);
-    int i = (axis + 1) % 3, j = (axis + 2) % 3;
-    tex_xform_identity(t);
-    t->m[i][i] = c, t->m[i][j] = -s;
-    t->m[j][i] = s, t->m[j][j] = c;
-}
-
-/* t after turns of r.x degrees about x, then r.y about y, then r.z about z */
-static void xf_rotate(tex_xform *t, tex_v3 r)
-{
-    tex_xform a, b, c;
-    xf_rot(&a, 0, r.x);
-    xf_rot(&b, 1, r.y);
-    xf_rot(&c, 2, r.z);
-    tex_xform_mul(&a, &b, &a);
-    tex_xform_mul(&a, &c, &a);
-    tex_xform_mul(t, &a, t);
-}
-
-/* A frame taking the y axis to unit a. */
-static void xf_frame(tex_xform *t, tex_v3 origin, tex_v3 a, double ylen, double r)
-{
-    tex_v3 y = tex_v3_norm(a);
-    /* x: world x (or z) made perpendicular to y, so that an upright plane keeps
-     * the world's x and z as its planar coordinates */
-    tex_v3 h = fabs(y.x) < 0.9 ? tex_v3_make(1, 0, 0) : tex_v3_make(0, 0, 1);
-    tex_v3 x = tex_v3_norm(tex_v3_madd(h, y, -tex_v3_dot(h, y))), z = tex_v3_cross(x, y);
-    tex_xform_identity(t);
-    for (int i = 0; i < 3; i++) {
-        t->m[i][0] = tex_v3_get(x, i) * r;
-        t->m[i][1] = tex_v3_get(y, i) * ylen;
-        t->m[i][2] = tex_v3_get(z, i) * r;
-        t->m[i][3] = tex_v3_get(origin, i);
-    }
-}
-
 /* The transform named by kt (its word already read) into acc: 1 if it is one. */
-static int transform_word(struct parser *ps, const struct tok *kt, tex_xform *acc)
+static int transform_word(struct parser *ps, const struct tex_tok *kt, tex_xform *acc)
 {
     tex_xform t;
-    if (is_word(kt, "translate")) {
-        xf_translate(&t, vec(ps));
-    } else if (is_word(kt, "rotate")) {
+    if (tex_tok_is_word(kt, "translate")) {
+        tex_xform_translate(&t, vec(ps));
+    } else if (tex_tok_is_word(kt, "rotate")) {
         tex_xform_identity(&t);
-        xf_rotate(&t, vec(ps));
-    } else if (is_word(kt, "scale")) {
+        tex_xform_rotate(&t, vec(ps));
+    } else if (tex_tok_is_word(kt, "scale")) {
         double sx = number(ps), sy = sx, sz = sx;
-        if (ps->t.kind == T_NUM) {
+        if (ps->lx.t.kind == TEX_TOK_NUM) {
             sy = number(ps);
             sz = number(ps);
         }
         if (sx == 0 || sy == 0 || sz == 0)
             fail_at(ps, kt, 0, "scale by zero makes a degenerate object");
-        xf_scale(&t, tex_v3_make(sx, sy, sz));
+        tex_xform_scale(&t, tex_v3_make(sx, sy, sz));
     } else {
         return 0;
     }
@@ -1039,41 +917,41 @@ static int transform_word(struct parser *ps, const struct tok *kt, tex_xform *ac
 /* `surface NAME` of an object block, its word already read. */
 static const struct tex_surface *surface_word(struct parser *ps)
 {
-    struct tok st = ps->t;
+    struct tex_tok st = ps->lx.t;
     const struct tex_surface *sf;
-    if (st.kind != T_ID || !(sf = find_surface(ps, &st)))
+    if (st.kind != TEX_TOK_NAME || !(sf = find_surface(ps, &st)))
         FAIL(ps, "unknown surface '%.*s'", (int)st.len, st.text);
-    next(ps);
+    tex_lex_next(&ps->lx);
     return sf;
 }
 
-static int shape_kind(const struct tok *t)
+static int shape_kind(const struct tex_tok *t)
 {
     for (int k = 0; k < TEX_SHAPE_NKINDS; k++)
-        if (is_word(t, tex_shape_methods[k].name))
+        if (tex_tok_is_word(t, tex_shape_methods[k].name))
             return k;
     return -1;
 }
 
-static int csg_kind(const struct tok *t)
+static int csg_kind(const struct tex_tok *t)
 {
-    if (is_word(t, "union"))
+    if (tex_tok_is_word(t, "union"))
         return TEX_CSG_UNION;
-    if (is_word(t, "intersection"))
+    if (tex_tok_is_word(t, "intersection"))
         return TEX_CSG_INTERSECTION;
-    if (is_word(t, "difference"))
+    if (tex_tok_is_word(t, "difference"))
         return TEX_CSG_DIFFERENCE;
     return -1;
 }
 
-static int is_object(const struct tok *t)
+static int is_object(const struct tex_tok *t)
 {
     return shape_kind(t) >= 0 || csg_kind(t) >= 0;
 }
 
-static int is_transform(const struct tok *t)
+static int is_transform(const struct tex_tok *t)
 {
-    return is_word(t, "translate") || is_word(t, "rotate") || is_word(t, "scale");
+    return tex_tok_is_word(t, "translate") || tex_tok_is_word(t, "rotate") || tex_tok_is_word(t, "scale");
 }
 
 static struct tex_object *parse_object(struct parser *ps);
@@ -1085,7 +963,7 @@ struct leaf_ctx {
 };
 
 /* The SPECIAL rows of tex_object_rows: surface and the transforms. */
-static int leaf_special(struct parser *ps, const struct tex_param *p, const struct tok *kt,
+static int leaf_special(struct parser *ps, const struct tex_param *p, const struct tex_tok *kt,
                         void *ctx)
 {
     struct leaf_ctx *c = ctx;
@@ -1100,7 +978,7 @@ static int leaf_special(struct parser *ps, const struct tex_param *p, const stru
 
 /* Check a shape's numbers and give the placement of its canonical shape; cones, cylinders
  * and tori keep their radii in ob, in world units. */
-static void place_leaf(struct parser *ps, struct tex_object *ob, const struct tok *at,
+static void place_leaf(struct parser *ps, struct tex_object *ob, const struct tex_tok *at,
                        const struct tex_shape_params *l, tex_xform *place)
 {
     int kind = ob->kind;
@@ -1109,13 +987,13 @@ static void place_leaf(struct parser *ps, struct tex_object *ob, const struct to
     case TEX_SHAPE_SPHERE:
         if (!(l->radius > 0))
             fail_at(ps, at, 0, "sphere radius must be > 0");
-        xf_scale(place, tex_v3_make(l->radius, l->radius, l->radius));
+        tex_xform_scale(place, tex_v3_make(l->radius, l->radius, l->radius));
         place->m[0][3] = l->centre.x, place->m[1][3] = l->centre.y, place->m[2][3] = l->centre.z;
         break;
     case TEX_SHAPE_BOX: {
         if (!(l->max.x > l->min.x && l->max.y > l->min.y && l->max.z > l->min.z))
             fail_at(ps, at, 0, "box needs min < max on every axis");
-        xf_scale(place, tex_v3_scale(tex_v3_sub(l->max, l->min), 0.5));
+        tex_xform_scale(place, tex_v3_scale(tex_v3_sub(l->max, l->min), 0.5));
         tex_v3 c = tex_v3_scale(tex_v3_add(l->max, l->min), 0.5);
         place->m[0][3] = c.x, place->m[1][3] = c.y, place->m[2][3] = c.z;
         break;
@@ -1132,7 +1010,7 @@ static void place_leaf(struct parser *ps, struct tex_object *ob, const struct to
             fail_at(ps, at, 0, "%s radii must be >= 0 and not both 0",
                     tex_shape_methods[kind].name);
         /* the canonical shape keeps unit radius scale; r0, r1 are in world units */
-        xf_frame(place, l->base, tex_v3_sub(l->top, l->base), len, 1);
+        tex_xform_frame(place, l->base, tex_v3_sub(l->top, l->base), len, 1);
         ob->r0 = r0;
         ob->r1 = r1;
         break;
@@ -1145,20 +1023,20 @@ static void place_leaf(struct parser *ps, struct tex_object *ob, const struct to
             fail_at(ps, at, 0, "torus minor radius must be > 0");
         if (!(tex_v3_len(l->axis) > 0))
             fail_at(ps, at, 0, "torus axis must not be zero");
-        xf_frame(place, l->centre, l->axis, 1, 1);
+        tex_xform_frame(place, l->centre, l->axis, 1, 1);
         ob->r0 = l->major;
         ob->r1 = l->minor;
         break;
     default:
         if (!(tex_v3_len(l->normal) > 0))
             fail_at(ps, at, 0, "plane normal must not be zero");
-        xf_frame(place, tex_v3_scale(tex_v3_norm(l->normal), l->distance), l->normal, 1, 1);
+        tex_xform_frame(place, tex_v3_scale(tex_v3_norm(l->normal), l->distance), l->normal, 1, 1);
         break;
     }
 }
 
 /* A shape's block through tex_object_rows: its own words, surface and the transforms. */
-static struct tex_object *parse_leaf(struct parser *ps, int kind, const struct tok *at)
+static struct tex_object *parse_leaf(struct parser *ps, int kind, const struct tex_tok *at)
 {
     struct tex_object *ob = palloc(ps, sizeof *ob);
     ob->op = TEX_CSG_LEAF;
@@ -1187,7 +1065,7 @@ static void set_world(struct parser *ps, struct tex_object *ob, const tex_xform 
     if (ob->op == TEX_CSG_LEAF) {
         tex_xform_mul(&ob->to_world, parent, &ob->to_world);
         if (tex_xform_invert(&ob->to_obj, &ob->to_world) < 0) {
-            struct tok t = {0};
+            struct tex_tok t = {0};
             t.line = ob->line, t.col = ob->col;
             fail_at(ps, &t, 0, "degenerate %s (its transform is singular)",
                     tex_shape_methods[ob->kind].name);
@@ -1203,143 +1081,13 @@ static void set_world(struct parser *ps, struct tex_object *ob, const tex_xform 
     ob->root = root;
 }
 
-/* A node joining a block's children by op (no transform or surface of its own) */
-static struct tex_object *cluster_node(struct parser *ps, enum tex_csg_op op, int line, int col)
-{
-    struct tex_object *ob = palloc(ps, sizeof *ob);
-    ob->op = op;
-    ob->cluster = 1;
-    ob->line = line;
-    ob->col = col;
-    tex_xform_identity(&ob->to_world);
-    return ob;
-}
-
-/* kids[0..n) joined by op as a balanced tree (recursion log2(n) deep) */
-static struct tex_object *csg_balanced(struct parser *ps, enum tex_csg_op op,
-                                       struct tex_object **kids, int n, const struct tok *at)
-{
-    if (n == 1)
-        return kids[0];
-    struct tex_object *ob = cluster_node(ps, op, at->line, at->col);
-    ob->a = csg_balanced(ps, op, kids, n / 2, at);
-    ob->b = csg_balanced(ps, op, kids + n / 2, n - n / 2, at);
-    return ob;
-}
-
-/* ---- CSG blocks as bounding-volume hierarchies ----
- *
- * Once the world transforms are known (set_world), the children of a union or an
- * intersection are joined again by median splits of their boxes' centres along the
- * longest axis: a union of many disjoint objects then culls whole halves by their boxes,
- * as the scene's BVH does for separate objects. */
-
-struct operand {
-    struct tex_object *ob;
-    double key;
-};
-
-static int by_key(const void *a, const void *b)
-{
-    double x = ((const struct operand *)a)->key, y = ((const struct operand *)b)->key;
-    return x < y ? -1 : x > y;
-}
-
-/* The operands under a cluster (nodes csg_balanced made), into v. */
-static void gather(struct tex_object *ob, struct operand *v, int *n)
-{
-    if (!ob->cluster) {
-        v[(*n)++].ob = ob;
-        return;
-    }
-    gather(ob->a, v, n);
-    gather(ob->b, v, n);
-}
-
-static int count(const struct tex_object *ob)
-{
-    return ob->cluster ? count(ob->a) + count(ob->b) : 1;
-}
-
-static tex_v3 centre_of(const struct tex_object *ob)
-{
-    if (!ob->bounded)
-        return tex_v3_make(0, 0, 0);
-    return tex_v3_scale(tex_v3_add(ob->wb.lo, ob->wb.hi), 0.5);
-}
-
-/* v[0..n) joined by op, split at the median of the centres along their longest axis. */
-static struct tex_object *spatial(struct parser *ps, enum tex_csg_op op, struct operand *v, int n,
-                                  const struct tex_object *like)
-{
-    if (n == 1)
-        return v[0].ob;
-    tex_v3 lo = centre_of(v[0].ob), hi = lo;
-    for (int i = 1; i < n; i++) {
-        tex_v3 c = centre_of(v[i].ob);
-        lo = tex_v3_min(lo, c), hi = tex_v3_max(hi, c);
-    }
-    tex_v3 e = tex_v3_sub(hi, lo);
-    int axis = e.x >= e.y && e.x >= e.z ? 0 : e.y >= e.z ? 1 : 2;
-    for (int i = 0; i < n; i++)
-        v[i].key = tex_v3_get(centre_of(v[i].ob), axis);
-    qsort(v, (size_t)n, sizeof *v, by_key);
-    struct tex_object *node = cluster_node(ps, op, like->line, like->col);
-    node->root = like->root;
-    node->a = spatial(ps, op, v, n / 2, like);
-    node->b = spatial(ps, op, v + n / 2, n - n / 2, like);
-    return node;
-}
-
-static void csg_spatial(struct parser *ps, struct tex_object *ob);
-
-/* csg_spatial of the operands under a cluster */
-static void operands_spatial(struct parser *ps, struct tex_object *ob)
-{
-    if (!ob->cluster) {
-        csg_spatial(ps, ob);
-        return;
-    }
-    operands_spatial(ps, ob->a);
-    operands_spatial(ps, ob->b);
-}
-
-/* The CSG blocks of ob's tree, each rebuilt spatially (after set_world: the boxes are
- * the world's).  A union's or an intersection's operands are all those under ob; a
- * difference's, those of the union it subtracts. */
-static void csg_spatial(struct parser *ps, struct tex_object *ob)
-{
-    if (ob->op == TEX_CSG_LEAF)
-        return;
-    int whole = ob->op != TEX_CSG_DIFFERENCE;
-    if ((whole && (ob->a->cluster || ob->b->cluster)) || (!whole && ob->b->cluster)) {
-        int n = (whole ? count(ob->a) : 0) + count(ob->b), k = 0;
-        struct operand *v = malloc((size_t)n * sizeof *v);
-        if (!v)
-            fail_at(ps, &ps->t, 1, "out of memory");
-        if (whole)
-            gather(ob->a, v, &k);
-        gather(ob->b, v, &k);
-        for (int i = 0; i < n; i++)
-            tex_object_bounds(v[i].ob);
-        struct tex_object *t = spatial(ps, whole ? ob->op : TEX_CSG_UNION, v, n, ob);
-        free(v);
-        if (whole)
-            ob->a = t->a, ob->b = t->b;
-        else
-            ob->b = t;
-    }
-    operands_spatial(ps, ob->a);
-    operands_spatial(ps, ob->b);
-}
-
 static struct tex_object *parse_object(struct parser *ps)
 {
-    struct tok at = ps->t;
+    struct tex_tok at = ps->lx.t;
     if (++ps->nest > MAX_NEST)
         FAIL(ps, "objects nested too deeply");
     int k = shape_kind(&at);
-    next(ps);
+    tex_lex_next(&ps->lx);
     struct tex_object *ob;
     if (k >= 0) {
         ob = parse_leaf(ps, k, &at);
@@ -1352,14 +1100,14 @@ static struct tex_object *parse_object(struct parser *ps)
         tex_xform_identity(&ob->to_world);
         struct tex_object **kids = NULL;
         int nk = 0, ck = 0;
-        expect(ps, '{');
-        while (!is_punct(&ps->t, '}')) {
-            struct tok kt = ps->t;
-            if (is_word(&kt, "surface")) {
-                next(ps);
+        tex_lex_expect(&ps->lx, '{');
+        while (!tex_tok_is_punct(&ps->lx.t, '}')) {
+            struct tex_tok kt = ps->lx.t;
+            if (tex_tok_is_word(&kt, "surface")) {
+                tex_lex_next(&ps->lx);
                 ob->surface = surface_word(ps);
             } else if (is_transform(&kt)) {
-                next(ps);
+                tex_lex_next(&ps->lx);
                 transform_word(ps, &kt, &ob->to_world);
             } else if (is_object(&kt)) {
                 if (nk == ck) {
@@ -1372,23 +1120,26 @@ static struct tex_object *parse_object(struct parser *ps)
                 kids[nk++] = parse_object(ps);
             } else {
                 char b[64];
-                FAIL(ps, "unknown word %s in a %s", tokdesc(&kt, b, sizeof b),
-                     op == TEX_CSG_UNION ? "union" : op == TEX_CSG_INTERSECTION ? "intersection"
-                                                                               : "difference");
+                const char *block = op == TEX_CSG_UNION          ? "union"
+                                    : op == TEX_CSG_INTERSECTION ? "intersection"
+                                                                 : "difference";
+                if (kt.kind == TEX_TOK_EOF)
+                    FAIL(ps, "expected '}' to end a %s, found the end of the file", block);
+                FAIL(ps, "unknown word %s in a %s", tex_tok_desc(&kt, b, sizeof b), block);
             }
         }
-        next(ps);
+        tex_lex_next(&ps->lx);
         if (nk < 2)
             fail_at(ps, &at, 0, "a CSG operation needs at least two objects");
         /* more than two children make a balanced tree, so that every walk over it is
-         * log2(N) deep (csg_spatial orders it in space later): unions and intersections
+         * log2(N) deep (tex_csg_spatial orders it in space later): unions and intersections
          * pair their children, and a - b - c - ... is a - (b u c u ...) */
         if (op == TEX_CSG_DIFFERENCE) {
             ob->a = kids[0];
-            ob->b = csg_balanced(ps, TEX_CSG_UNION, kids + 1, nk - 1, &at);
+            ob->b = tex_csg_balanced(TEX_CSG_UNION, kids + 1, nk - 1, at.line, at.col, lex_alloc, ps);
         } else {
-            ob->a = csg_balanced(ps, op, kids, nk / 2, &at);
-            ob->b = csg_balanced(ps, op, kids + nk / 2, nk - nk / 2, &at);
+            ob->a = tex_csg_balanced(op, kids, nk / 2, at.line, at.col, lex_alloc, ps);
+            ob->b = tex_csg_balanced(op, kids + nk / 2, nk - nk / 2, at.line, at.col, lex_alloc, ps);
         }
     }
     ps->nest--;
@@ -1400,15 +1151,15 @@ static struct tex_object *parse_object(struct parser *ps)
 /* spectrum D65 | A | E | F2 ... (colord-data) | blackbody K | "blackbody:K" */
 static void parse_spectrum(struct parser *ps, tex_curve *c)
 {
-    struct tok t = ps->t;
+    struct tex_tok t = ps->lx.t;
     char name[64];
-    if (is_word(&t, "blackbody")) {
-        next(ps);
+    if (tex_tok_is_word(&t, "blackbody")) {
+        tex_lex_next(&ps->lx);
         const struct tex_param *p = tex_param_find(tex_light_rows, "spectrum");
         snprintf(name, sizeof name, "blackbody:%.17g", ranged(ps, "blackbody K", p->min, p->max, 0));
-    } else if ((t.kind == T_ID || t.kind == T_STR) && t.len < sizeof name) {
+    } else if ((t.kind == TEX_TOK_NAME || t.kind == TEX_TOK_STR) && t.len < sizeof name) {
         snprintf(name, sizeof name, "%.*s", (int)t.len, t.text);
-        next(ps);
+        tex_lex_next(&ps->lx);
     } else {
         FAIL(ps, "spectrum takes D65, A, blackbody K or another CIE illuminant name");
     }
@@ -1417,21 +1168,21 @@ static void parse_spectrum(struct parser *ps, tex_curve *c)
 }
 
 /* spectrum and falloff of a light */
-static int light_special(struct parser *ps, const struct tex_param *p, const struct tok *kt,
+static int light_special(struct parser *ps, const struct tex_param *p, const struct tex_tok *kt,
                          void *ctx)
 {
     struct tex_light *l = ctx;
-    struct tok ft = ps->t;
+    struct tex_tok ft = ps->lx.t;
     if (p && !strcmp(p->name, "spectrum")) {
         l->spectrum = palloc(ps, sizeof *l->spectrum);
         parse_spectrum(ps, l->spectrum);
         (void)kt;
     } else if (p && !strcmp(p->name, "falloff")) {
-        if (is_word(&ft, "none")) {
-            next(ps);
+        if (tex_tok_is_word(&ft, "none")) {
+            tex_lex_next(&ps->lx);
             l->falloff = TEX_FALL_NONE;
-        } else if (is_word(&ft, "square")) {
-            next(ps);
+        } else if (tex_tok_is_word(&ft, "square")) {
+            tex_lex_next(&ps->lx);
             l->falloff = TEX_FALL_SQUARE;
         } else {
             l->falloff = TEX_FALL_POLY;
@@ -1449,7 +1200,7 @@ static int light_special(struct parser *ps, const struct tex_param *p, const str
 
 static void parse_light(struct parser *ps)
 {
-    struct tok at = ps->t;
+    struct tex_tok at = ps->lx.t;
     static const char *const kinds[] = {"distant", "point", "spot", "area", NULL};
     char *k = word(ps, "a light kind (distant|point|spot|area)");
     int kind = 0;
@@ -1492,16 +1243,16 @@ static void parse_light(struct parser *ps)
 }
 
 /* environment FILE [{ intensity I rotate X Y Z }] */
-static void parse_environment(struct parser *ps, const struct tok *kt)
+static void parse_environment(struct parser *ps, const struct tex_tok *kt)
 {
     struct tex_environment *e = &ps->s->env;
-    struct tok ft = ps->t;
+    struct tex_tok ft = ps->lx.t;
     if (e->map)
         fail_at(ps, kt, 0, "only one environment");
-    if (ft.kind != T_STR && ft.kind != T_ID && !is_punct(&ft, '-'))
+    if (ft.kind != TEX_TOK_STR && ft.kind != TEX_TOK_NAME && !tex_tok_is_punct(&ft, '-'))
         FAIL(ps, "expected a map file or '-' after 'environment'");
     char *path = pstrdup(ps, ft.text, ft.len);
-    next(ps);
+    tex_lex_next(&ps->lx);
     if (!strcmp(path, "-")) {
         if (ps->stdin_used)
             fail_at(ps, &ft, 0, "only one map can come from standard input");
@@ -1509,7 +1260,7 @@ static void parse_environment(struct parser *ps, const struct tok *kt)
     }
     if (tex_params_defaults(tex_environment_rows, e) < 0)
         fail_at(ps, &ft, 0, "%s", tex_errmsg());
-    if (is_punct(&ps->t, '{'))
+    if (tex_tok_is_punct(&ps->lx.t, '{'))
         read_block(ps, tex_environment_rows, -1, e, NULL, NULL, "the environment");
     tex_map *m = tex_map_read(path);
     if (!m)
@@ -1525,7 +1276,7 @@ static void parse_environment(struct parser *ps, const struct tok *kt)
     texture_map(ps, tx, m, &ft);
     tex_xform r;
     tex_xform_identity(&r);
-    xf_rotate(&r, e->rotate);
+    tex_xform_rotate(&r, e->rotate);
     if (tex_xform_invert(&e->to_map, &r) < 0)
         fail_at(ps, &ft, 0, "the environment's rotation is singular");
 }
@@ -1542,7 +1293,7 @@ static void add_object(struct parser *ps, struct tex_object *ob)
         int c = s->cobjects ? 2 * s->cobjects : 16;
         struct tex_object **a = realloc(s->objects, c * sizeof *a);
         if (!a)
-            fail_at(ps, &ps->t, 1, "out of memory");
+            fail_at(ps, &ps->lx.t, 1, "out of memory");
         s->objects = a;
         s->cobjects = c;
     }
@@ -1550,7 +1301,7 @@ static void add_object(struct parser *ps, struct tex_object *ob)
 }
 
 /* The setting named by kt (its word already read): 1 if it is one. */
-static int settings_word(struct parser *ps, const struct tok *kt)
+static int settings_word(struct parser *ps, const struct tex_tok *kt)
 {
     struct tex_scene *s = ps->s;
     const struct tex_param *p = row_of(tex_settings_rows, kt, -1);
@@ -1561,22 +1312,22 @@ static int settings_word(struct parser *ps, const struct tok *kt)
     } else if (!strcmp(p->name, "seed")) {
         s->settings.seed = (uint64_t)ranged(ps, p->name, p->min, p->max, 1);
     } else if (!strcmp(p->name, "materials")) {
-        struct tok ft = ps->t;
-        if (ft.kind != T_STR && ft.kind != T_ID)
+        struct tex_tok ft = ps->lx.t;
+        if (ft.kind != TEX_TOK_STR && ft.kind != TEX_TOK_NAME)
             FAIL(ps, "expected a file name after 'materials'");
         char *path = pstrdup(ps, ft.text, ft.len);
-        next(ps);
+        tex_lex_next(&ps->lx);
         load_materials(ps, path, &ft);
     } else { /* colour rgb | spectral [N] */
-        struct tok mt = ps->t;
+        struct tex_tok mt = ps->lx.t;
         int bands = 0;
-        if (is_word(&mt, "spectral")) {
-            next(ps);
+        if (tex_tok_is_word(&mt, "spectral")) {
+            tex_lex_next(&ps->lx);
             bands = TEX_BANDS_DEFAULT;
-            if (ps->t.kind == T_NUM)
+            if (ps->lx.t.kind == TEX_TOK_NUM)
                 bands = (int)ranged(ps, "spectral N", p->min, p->max, 1);
-        } else if (is_word(&mt, "rgb")) {
-            next(ps);
+        } else if (tex_tok_is_word(&mt, "rgb")) {
+            tex_lex_next(&ps->lx);
         } else {
             FAIL(ps, "colour model must be rgb or spectral [N]");
         }
@@ -1589,38 +1340,39 @@ static int settings_word(struct parser *ps, const struct tok *kt)
 static void parse_scene(struct parser *ps)
 {
     struct tex_scene *s = ps->s;
-    struct tok camt = {0};
+    struct tex_tok camt = {0};
     camt.line = camt.col = 1;
-    next(ps);
-    while (ps->t.kind != T_EOF) {
-        struct tok kt = ps->t;
+    tex_lex_next(&ps->lx);
+    while (ps->lx.t.kind != TEX_TOK_EOF) {
+        struct tex_tok kt = ps->lx.t;
         if (is_object(&kt)) {
             struct tex_object *ob = parse_object(ps);
             tex_xform id;
             tex_xform_identity(&id);
             set_world(ps, ob, &id, NULL, ob);
-            csg_spatial(ps, ob);
+            if (tex_csg_spatial(ob, lex_alloc, ps) < 0)
+                fail_at(ps, &ps->lx.t, 1, "%s", tex_errmsg());
             add_object(ps, ob);
             continue;
         }
-        next(ps);
-        if (is_word(&kt, "camera")) {
+        tex_lex_next(&ps->lx);
+        if (tex_tok_is_word(&kt, "camera")) {
             camt = kt;
             parse_camera(ps);
-        } else if (is_word(&kt, "light")) {
+        } else if (tex_tok_is_word(&kt, "light")) {
             parse_light(ps);
-        } else if (is_word(&kt, "texture")) {
+        } else if (tex_tok_is_word(&kt, "texture")) {
             parse_texture(ps);
-        } else if (is_word(&kt, "primitive") || is_word(&kt, "primitives")) {
+        } else if (tex_tok_is_word(&kt, "primitive") || tex_tok_is_word(&kt, "primitives")) {
             parse_primitive(ps, &kt);
-        } else if (is_word(&kt, "surface")) {
+        } else if (tex_tok_is_word(&kt, "surface")) {
             parse_surface(ps);
-        } else if (is_word(&kt, "environment")) {
+        } else if (tex_tok_is_word(&kt, "environment")) {
             parse_environment(ps, &kt);
         } else if (!settings_word(ps, &kt)) {
             char b[64];
             fail_at(ps, &kt, 0, "unknown word %s at the top of the scene",
-                    tokdesc(&kt, b, sizeof b));
+                    tex_tok_desc(&kt, b, sizeof b));
         }
     }
     tex_v3 f = tex_v3_sub(s->look, s->eye);
@@ -1628,23 +1380,6 @@ static void parse_scene(struct parser *ps)
         fail_at(ps, &camt, 0, "camera eye and look are the same point");
     if (!(tex_v3_len(tex_v3_cross(f, s->up)) > 1e-12 * tex_v3_len(f) * tex_v3_len(s->up)))
         fail_at(ps, &camt, 0, "camera up is parallel to the viewing direction");
-}
-
-static void warn(struct tex_scene *s, const char *fmt, ...)
-{
-    char line[300];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(line, sizeof line, fmt, ap);
-    va_end(ap);
-    size_t old = s->warnings ? strlen(s->warnings) : 0, n = strlen(line);
-    char *w = realloc(s->warnings, old + n + 2);
-    if (!w)
-        return;
-    memcpy(w + old, line, n);
-    w[old + n] = '\n';
-    w[old + n + 1] = 0;
-    s->warnings = w;
 }
 
 /* Everything that can fail lives here, under setjmp: the caller frees the scene. */
@@ -1683,11 +1418,10 @@ struct tex_scene *tex_scene_parse_opts(const char *text, size_t len, const char 
         return NULL;
     }
     struct parser ps = {0};
-    ps.src = ps.p = text;
-    ps.end = text + len;
     ps.name = name;
-    ps.line = ps.col = 1;
     ps.s = s;
+    tex_lex_init(&ps.lx, text, len, name, &ps.jb, lex_alloc, &ps);
+    ps.lx.semicolon_blank = 1;
     ps.sample_size = o->sample_size;
     if (tex_params_defaults(tex_camera_rows, s) < 0 ||
         tex_params_defaults(tex_settings_rows, s) < 0) {
@@ -1703,7 +1437,7 @@ struct tex_scene *tex_scene_parse_opts(const char *text, size_t len, const char 
         return NULL;
     }
     if (!s->nobjects)
-        warn(s, "%s: warning: the scene has no objects", name);
+        tex_scene_warn(s, "%s: warning: the scene has no objects", name);
     return s;
 }
 
@@ -1716,159 +1450,4 @@ struct tex_scene *tex_scene_load(const char *path)
     struct tex_scene *s = tex_scene_parse(buf, n, path);
     free(buf);
     return s;
-}
-
-void tex_scene_free(struct tex_scene *s)
-{
-    if (!s)
-        return;
-    for (int i = 0; i < s->ntextures; i++) {
-        struct tex_texture *t = s->textures[i];
-        if (t->mip)
-            for (int l = 0; l < t->nlevels; l++)
-                tex_map_free(t->mip[l]);
-        free(t->mip);
-        tex_field_free(t->field);
-        free(t);
-    }
-    free(s->textures);
-    for (int i = 0; i < s->npalettes; i++)
-        tex_palette_free(s->palettes[i]);
-    free(s->palettes);
-    free(s->objects);
-    tex_bvh_free(s->bvh);
-    tex_procs_free(s->procs); /* after the textures' fields */
-    for (size_t i = 0; i < s->npool; i++)
-        free(s->pool[i]);
-    free(s->pool);
-    tex_pages_free(s->packets, s->packets_mapped);
-    free(s->warnings);
-    free(s->file);
-    tex_colour_space_spectral_free(&s->cs);
-    free(s);
-}
-
-/* An override through the settings' rows: the same ranges as the scene's. */
-static int set_setting(struct tex_scene *s, const char *word, const double *v, int k)
-{
-    return tex_param_store(tex_param_find(tex_settings_rows, word), s, v, k, TEX_PARAM_WORD);
-}
-
-int tex_scene_set_size(struct tex_scene *s, int w, int h)
-{
-    return set_setting(s, "image", (const double[]){w, h}, 2);
-}
-
-void tex_scene_size(const struct tex_scene *s, int *w, int *h)
-{
-    *w = s->settings.w;
-    *h = s->settings.h;
-}
-
-int tex_scene_set_samples(struct tex_scene *s, int spp)
-{
-    return set_setting(s, "samples", (const double[]){spp}, 1);
-}
-
-void tex_scene_set_threads(struct tex_scene *s, int n)
-{
-    s->settings.threads = n > 0 ? n : 0;
-}
-
-void tex_scene_set_model(struct tex_scene *s, const struct tex_shading_model *m)
-{
-    for (int k = 0; m && k < s->nsurfaces; k++)
-        s->surfaces[k]->model = m;
-}
-
-const char *tex_scene_warnings(const struct tex_scene *s)
-{
-    return s->warnings ? s->warnings : "";
-}
-
-int tex_scene_set_colour(struct tex_scene *s, int bands)
-{
-    struct tex_colour_space cs;
-    if (!bands)
-        tex_colour_space_rgb(&cs);
-    else if (tex_colour_space_spectral(&cs, bands, NULL) < 0)
-        return -1;
-    tex_colour_space_spectral_free(&s->cs);
-    s->cs = cs;
-    return 0;
-}
-
-/* Is point p inside object ob?  A ray from p: inside if p lies in one of
- * its intervals; *out is where that ray leaves it. */
-static int inside(const struct tex_object *ob, tex_v3 p, struct tex_hit *out)
-{
-    struct tex_spans sp;
-    tex_object_spans(ob, p, tex_v3_make(0.5773, 0.5774, 0.5775), &sp);
-    for (int i = 0; i < sp.n; i++) {
-        if (sp.in[i].t < 0 && sp.out[i].t > 0) {
-            *out = sp.out[i];
-            return 1;
-        }
-    }
-    return 0;
-}
-
-/* The camera's media: the transparent solids around the eye (their exit
- * surfaces have Kt > 0), outermost (farthest exit) first; the others warn. */
-static void eye_media(struct tex_scene *s)
-{
-    struct tex_media *m = &s->eye_media;
-    double exit[TEX_MEDIA_MAX];
-    m->n = 0;
-    for (int i = 0; i < s->nobjects; i++) {
-        const struct tex_object *o = s->objects[i];
-        struct tex_hit h;
-        if (!inside(o, s->eye, &h))
-            continue;
-        const struct tex_surface *sf = h.leaf && h.leaf->surface ? h.leaf->surface : s->surfaces[0];
-        if (!(sf->kt > 0) || m->n == TEX_MEDIA_MAX) {
-            warn(s, "%s:%d:%d: warning: the camera is inside this object", s->file, o->line,
-                 o->col);
-            continue;
-        }
-        int k = m->n++; /* insertion by exit distance, ties in scene order */
-        for (; k > 0 && exit[k - 1] < h.t; k--) {
-            m->ob[k] = m->ob[k - 1], m->ior[k] = m->ior[k - 1];
-            exit[k] = exit[k - 1];
-        }
-        m->ob[k] = o, m->ior[k] = sf->ior, exit[k] = h.t;
-    }
-}
-
-int tex_scene_prepare(struct tex_scene *s)
-{
-    struct tex_settings *st = &s->settings;
-    if (st->w < 1 || st->h < 1 || st->w > TEX_SCENE_MAX_SIDE || st->h > TEX_SCENE_MAX_SIDE)
-        return tex_usage_error("image size %dx%d is outside 1..%d on each side", st->w, st->h,
-                               TEX_SCENE_MAX_SIDE);
-    if (tex_map_check_size(st->w, st->h, 3) < 0)
-        return -1;
-    if (st->spp < 1 || st->spp > 4096)
-        return tex_usage_error("samples per pixel %d is outside 1..4096", st->spp);
-    for (int i = 0; i < s->nlights; i++) {
-        struct tex_light *l = &s->lights[i];
-        if (!l->spectrum) {
-            s->cs.from_rgb(&s->cs, l->rgb, TEX_SPECTRUM_ILLUMINANT, &l->e);
-            continue;
-        }
-        /* the spectrum at luminance 1 times the intensity */
-        if (tex_colour_space_spectral_light(&s->cs, l->spectrum, &l->e) < 0)
-            return -1;
-        tex_colour_scale(&l->e, s->cs.n, &l->e, l->rgb[0]);
-    }
-    /* the colour model may have changed since the surfaces were read */
-    for (int i = 0; i < s->nsurfaces; i++)
-        if (s->surfaces[i]->ct)
-            tex_ct_set_space(s->surfaces[i]->ct, &s->cs);
-    tex_bvh_free(s->bvh);
-    s->bvh = tex_bvh_build(s->objects, s->nobjects);
-    if (!s->bvh)
-        return -1;
-    eye_media(s);
-    return 0;
 }

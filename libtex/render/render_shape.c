@@ -1,4 +1,4 @@
-/* render_shape.c - transforms, optics and the canonical shapes
+/* render_shape.c - the canonical shapes and CSG
  *
  * Canonical solids (object space):
  *   sphere    unit sphere at the origin
@@ -14,55 +14,6 @@
 #include <stdlib.h>
 
 #include "render/scene.h"
-
-/* ---- transforms ----------------------------------------------------------- */
-
-void tex_xform_identity(tex_xform *t)
-{
-    for (int i = 0; i < 3; i++)
-        for (int j = 0; j < 4; j++)
-            t->m[i][j] = i == j;
-}
-
-void tex_xform_mul(tex_xform *r, const tex_xform *a, const tex_xform *b)
-{
-    tex_xform t;
-    for (int i = 0; i < 3; i++) {
-        for (int j = 0; j < 4; j++) {
-            double s = j == 3 ? a->m[i][3] : 0;
-            for (int k = 0; k < 3; k++)
-                s += a->m[i][k] * b->m[k][j];
-            t.m[i][j] = s;
-        }
-    }
-    *r = t;
-}
-
-int tex_xform_invert(tex_xform *r, const tex_xform *a)
-{
-    const double(*m)[4] = a->m;
-    double c00 = m[1][1] * m[2][2] - m[1][2] * m[2][1];
-    double c01 = m[1][2] * m[2][0] - m[1][0] * m[2][2];
-    double c02 = m[1][0] * m[2][1] - m[1][1] * m[2][0];
-    double det = m[0][0] * c00 + m[0][1] * c01 + m[0][2] * c02;
-    if (!(fabs(det) > 1e-300) || !isfinite(det))
-        return -1;
-    double id = 1 / det;
-    tex_xform t;
-    t.m[0][0] = c00 * id;
-    t.m[1][0] = c01 * id;
-    t.m[2][0] = c02 * id;
-    t.m[0][1] = (m[0][2] * m[2][1] - m[0][1] * m[2][2]) * id;
-    t.m[1][1] = (m[0][0] * m[2][2] - m[0][2] * m[2][0]) * id;
-    t.m[2][1] = (m[0][1] * m[2][0] - m[0][0] * m[2][1]) * id;
-    t.m[0][2] = (m[0][1] * m[1][2] - m[0][2] * m[1][1]) * id;
-    t.m[1][2] = (m[0][2] * m[1][0] - m[0][0] * m[1][2]) * id;
-    t.m[2][2] = (m[0][0] * m[1][1] - m[0][1] * m[1][0]) * id;
-    for (int i = 0; i < 3; i++)
-        t.m[i][3] = -(t.m[i][0] * m[0][3] + t.m[i][1] * m[1][3] + t.m[i][2] * m[2][3]);
-    *r = t;
-    return 0;
-}
 
 /* ---- spans helpers ---------------------------------------------------------- */
 
@@ -159,22 +110,22 @@ static tex_v3 box_normal(const struct tex_object *ob, tex_v3 p)
     return n[box_face(p) - 1];
 }
 
-/* Faces 1..6 = +x -x +y -y +z -z, each seen from outside with v downwards. */
+/* Faces 1..6 = +x -x +y -y +z -z, each seen from outside with v downwards: the axes of
+ * u = (a + 1) / 2 and v = (b + 1) / 2 (shape.h) */
+const signed char tex_box_axes[6][2] = {{-3, -2}, {3, -2}, {1, 3}, {1, -3}, {1, -2}, {-1, -2}};
+
 static int box_uv(const struct tex_object *ob, tex_v3 p, double *u, double *v)
 {
     (void)ob;
     int f = box_face(p);
-    double a, b;
-    switch (f) {
-    case 1: a = -p.z, b = -p.y; break;
-    case 2: a = p.z, b = -p.y; break;
-    case 3: a = p.x, b = p.z; break;
-    case 4: a = p.x, b = -p.z; break;
-    case 5: a = p.x, b = -p.y; break;
-    default: a = -p.x, b = -p.y; break;
+    const double c[3] = {p.x, p.y, p.z};
+    double ab[2];
+    for (int i = 0; i < 2; i++) {
+        int k = tex_box_axes[f - 1][i];
+        ab[i] = k < 0 ? -c[-k - 1] : c[k - 1];
     }
-    *u = fmin(1, fmax(0, (a + 1) / 2));
-    *v = fmin(1, fmax(0, (b + 1) / 2));
+    *u = fmin(1, fmax(0, (ab[0] + 1) / 2));
+    *v = fmin(1, fmax(0, (ab[1] + 1) / 2));
     return f;
 }
 
@@ -313,7 +264,6 @@ static int plane_bounds(const struct tex_object *ob, struct tex_bounds *b)
     (void)b;
     return 0;
 }
-
 
 /* ---- torus -------------------------------------------------------------------- */
 

@@ -94,6 +94,9 @@ struct tex_scene {
     int npackets;
 };
 
+/* A warning for the tool to print, "file:line:col: warning: ...", added to s->warnings */
+void tex_scene_warn(struct tex_scene *s, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+
 /* ---- the scene's parameters as rows (render_params.c) ------------------------ */
 
 /* One table per block of t_apply(5), rows as in param.h: each row gives a

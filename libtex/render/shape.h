@@ -61,6 +61,11 @@ struct tex_shape_methods {
     int (*bounds)(const struct tex_object *ob, struct tex_bounds *b);
 };
 extern const struct tex_shape_methods tex_shape_methods[TEX_SHAPE_NKINDS];
+/* The box's own mapping: on faces 1..6 (+x -x +y -y +z -z, each seen from outside, v
+ * downwards) u = (a + 1) / 2 and v = (b + 1) / 2, a and b the axes (1..3: x y z) given
+ * here, negative where negated.  Its gradients (mapping.c) and lanes (x86/shape_x86.h)
+ * read the same table. */
+extern const signed char tex_box_axes[6][2];
 
 enum tex_csg_op { TEX_CSG_LEAF, TEX_CSG_UNION, TEX_CSG_INTERSECTION, TEX_CSG_DIFFERENCE };
 

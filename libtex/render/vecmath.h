@@ -122,6 +122,15 @@ void tex_xform_identity(tex_xform *t);
 void tex_xform_mul(tex_xform *r, const tex_xform *a, const tex_xform *b);
 /* -1 if singular. */
 int tex_xform_invert(tex_xform *r, const tex_xform *a);
+/* The placements scenes write: a translation by v, a scale by v (per axis), and t after
+ * turns of r.x degrees about x, then r.y about y, then r.z about z (in place). */
+void tex_xform_translate(tex_xform *t, tex_v3 v);
+void tex_xform_scale(tex_xform *t, tex_v3 v);
+void tex_xform_rotate(tex_xform *t, tex_v3 r);
+/* A frame taking the y axis to a (scaled to ylen), x and z at radius r about it, at
+ * origin: world x (or z) made perpendicular to a, so that an upright plane keeps the
+ * world's x and z as its planar coordinates. */
+void tex_xform_frame(tex_xform *t, tex_v3 origin, tex_v3 a, double ylen, double r);
 /* Inline: every ray meets them per leaf. */
 static inline tex_v3 tex_xform_point(const tex_xform *t, tex_v3 p)
 {

@@ -1,0 +1,38 @@
+/* camera_x86.c - the eye's rays in AVX-512 lanes */
+#include "base/x86/simd_x86.h"
+#include "render/x86/camera_x86.h"
+
+#ifdef TEX_X86
+/* camera_ray's rays through the centres of the n <= 8 pixels (x[k], y[k]) (1 spp): its
+ * operations in lanes, so its bits, the square roots and divisions of eight rays at once.
+ * x and y hold 8 readable entries. */
+TEX_AVX512 void tex_eye_rays8_avx512(const struct tex_camera *cam, const struct tex_media *media,
+                                     const int *x, const int *y, int n, tex_ray *r)
+{
+    __m512d half = _mm512_set1_pd(0.5), v[3];
+    __m512d px = _mm512_cvtepi32_pd(_mm256_loadu_si256((const __m256i *)x));
+    __m512d py = _mm512_cvtepi32_pd(_mm256_loadu_si256((const __m256i *)y));
+    __m512d a = _mm512_sub_pd(_mm512_mul_pd(_mm512_add_pd(px, half), _mm512_set1_pd(cam->kx)),
+                              _mm512_set1_pd(cam->sx));
+    __m512d b = _mm512_sub_pd(_mm512_set1_pd(cam->sy),
+                              _mm512_mul_pd(_mm512_add_pd(py, half), _mm512_set1_pd(cam->ky)));
+    const double f[3] = {cam->fwd.x, cam->fwd.y, cam->fwd.z};
+    const double rt[3] = {cam->right.x, cam->right.y, cam->right.z};
+    const double u[3] = {cam->up.x, cam->up.y, cam->up.z};
+    for (int i = 0; i < 3; i++) /* fwd + (right a + up b) */
+        v[i] = _mm512_add_pd(_mm512_set1_pd(f[i]),
+                             _mm512_add_pd(_mm512_mul_pd(_mm512_set1_pd(rt[i]), a),
+                                           _mm512_mul_pd(_mm512_set1_pd(u[i]), b)));
+    __m512d l = _mm512_sqrt_pd(_mm512_add_pd(
+        _mm512_add_pd(_mm512_mul_pd(v[0], v[0]), _mm512_mul_pd(v[1], v[1])),
+        _mm512_mul_pd(v[2], v[2])));
+    __mmask8 pos = _mm512_cmp_pd_mask(l, _mm512_setzero_pd(), _CMP_GT_OQ); /* tex_v3_norm */
+    __m512d il = _mm512_div_pd(_mm512_set1_pd(1), l);
+    double d[3][8];
+    for (int i = 0; i < 3; i++)
+        _mm512_storeu_pd(d[i], _mm512_mask_mul_pd(v[i], pos, v[i], il));
+    for (int k = 0; k < n; k++)
+        r[k] = (tex_ray){cam->eye, tex_v3_make(d[0][k], d[1][k], d[2][k]), 0, cam->spread,
+                         media, 0};
+}
+#endif

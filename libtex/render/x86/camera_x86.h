@@ -1,0 +1,23 @@
+/* camera_x86.h - the eye's rays in AVX-512 lanes (camera.c's twin) */
+#ifndef TEX_CAMERA_X86_H
+#define TEX_CAMERA_X86_H
+
+#include "../../base/x86/simd_x86.h"
+#include "../camera.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#ifdef TEX_X86
+/* camera_ray's rays through the centres of the n <= 8 pixels (x[k], y[k]) (1 spp): its
+ * operations in lanes, so its bits, the square roots and divisions of eight rays at once.
+ * x and y hold 8 readable entries. */
+TEX_AVX512 void tex_eye_rays8_avx512(const struct tex_camera *cam, const struct tex_media *media,
+                                     const int *x, const int *y, int n, tex_ray *r);
+#endif
+
+#ifdef __cplusplus
+}
+#endif
+#endif
