@@ -268,45 +268,10 @@ int tex_expr_arity(enum tex_eop op)
     }
 }
 
-/* Every scalar operator, defined once: tex_expr_apply (per channel) and
- * tex_expr_apply_row (per row, where op is a constant in each loop so that the
- * switch folds away and the loop vectorises) both call it. */
-static inline double scalar_op(enum tex_eop op, double a, double b, double c)
+void tex_expr_palette(const void *palette, const double a[3], float rgba[4])
 {
-    double x;
-    switch (op) {
-    case TEX_EOP_NEG: return -a;
-    case TEX_EOP_ADD: return a + b;
-    case TEX_EOP_SUB: return a - b;
-    case TEX_EOP_MUL: return a * b;
-    case TEX_EOP_DIV: return b != 0 ? a / b : 0;
-    case TEX_EOP_MIN: return fmin(a, b);
-    case TEX_EOP_MAX: return fmax(a, b);
-    case TEX_EOP_ABS: return fabs(a);
-    case TEX_EOP_LT: return a < b;
-    case TEX_EOP_GT: return a > b;
-    case TEX_EOP_LE: return a <= b;
-    case TEX_EOP_GE: return a >= b;
-    case TEX_EOP_EQ: return a == b;
-    case TEX_EOP_NE: return a != b;
-    case TEX_EOP_MIX: return a + (b - a) * c;
-    case TEX_EOP_SMOOTHSTEP:
-        /* e0 = e1: a step at e0 */
-        x = b != a ? (c - a) / (b - a) : c >= a;
-        x = !(x > 0) ? 0 : x < 1 ? x : 1;
-        return x * x * (3 - 2 * x);
-    case TEX_EOP_STEP: return b >= a;
-    case TEX_EOP_CLAMP: return fmin(fmax(a, b), c);
-    case TEX_EOP_POW:
-        x = pow(a, b);
-        return isfinite(x) ? x : 0;
-    case TEX_EOP_SIN: return sin(a);
-    case TEX_EOP_COS: return cos(a);
-    case TEX_EOP_FLOOR: return floor(a);
-    case TEX_EOP_FRACT: return a - floor(a);
-    case TEX_EOP_IF: return a != 0 ? b : c;
-    default: return 0; /* CONST, LEAF, RGB, PALETTE: not scalar operators */
-    }
+    tex_palette_lookup(palette, tex_palette_t((a[0] + a[1] + a[2]) / 3, 0, 1, TEX_OUTSIDE_CLAMP),
+                       rgba);
 }
 
 double tex_expr_apply(const struct tex_einsn *in, int k, const double *a, const double *b,
@@ -316,12 +281,11 @@ double tex_expr_apply(const struct tex_einsn *in, int k, const double *a, const 
     switch (in->op) {
     case TEX_EOP_PALETTE: {
         float rgba[4];
-        tex_palette_lookup(in->ptr, tex_palette_t((a[0] + a[1] + a[2]) / 3, 0, 1,
-                                                  TEX_OUTSIDE_CLAMP), rgba);
+        tex_expr_palette(in->ptr, a, rgba);
         return rgba[k];
     }
     case TEX_EOP_RGB: return (k == 0 ? a : k == 1 ? b : c)[k];
-    default: return scalar_op(in->op, a[k], n > 1 ? b[k] : 0, n > 2 ? c[k] : 0);
+    default: return tex_expr_op(in->op, a[k], n > 1 ? b[k] : 0, n > 2 ? c[k] : 0);
     }
 }
 
@@ -331,7 +295,7 @@ int tex_expr_apply_row(enum tex_eop op, int n, const double *a, const double *b,
 #define ROW(OP)                                                                                  \
     case OP:                                                                                     \
         for (int i = 0; i < n; i++)                                                              \
-            out[i] = scalar_op(OP, a[i], b[i], c[i]);                                            \
+            out[i] = tex_expr_op(OP, a[i], b[i], c[i]);                                            \
         return 0
     switch (op) {
     ROW(TEX_EOP_NEG); ROW(TEX_EOP_ADD); ROW(TEX_EOP_SUB); ROW(TEX_EOP_MUL); ROW(TEX_EOP_DIV);
@@ -422,4 +386,102 @@ struct tex_expr *tex_expr_compile(struct tex_lexer *lx, const struct tex_enode *
     free(c.code);
     free(c.todo);
     return x;
+}
+
+/* a op b (a binary operator), in a; 0 if the result is not such a polynomial.  The
+ * coefficients of a sum, a difference, a product or a quotient by a constant are the
+ * operator's own on them (tex_expr_op). */
+static int poly_op(enum tex_eop op, struct tex_expr_poly *a, const struct tex_expr_poly *b)
+{
+    struct tex_expr_poly r = {{{0}}, a->dx | b->dx, a->dy | b->dy};
+    const double(*x)[3] = a->c, (*y)[3] = b->c;
+    switch (op) {
+    case TEX_EOP_ADD:
+    case TEX_EOP_SUB:
+        for (int i = 0; i < 4; i++)
+            for (int k = 0; k < 3; k++)
+                r.c[i][k] = tex_expr_op(op, x[i][k], y[i][k], 0);
+        break;
+    case TEX_EOP_MUL: /* (x0 + x1 X + x2 Y + x3 XY)(y0 + ...), of degree 1 in each */
+        if (a->dx + b->dx > 1 || a->dy + b->dy > 1)
+            return 0;
+        for (int k = 0; k < 3; k++) {
+            double m[4][4]; /* m[i][j] = x_i y_j */
+            for (int i = 0; i < 4; i++)
+                for (int j = 0; j < 4; j++)
+                    m[i][j] = tex_expr_op(TEX_EOP_MUL, x[i][k], y[j][k], 0);
+            r.c[0][k] = m[0][0];
+            r.c[1][k] = tex_expr_op(TEX_EOP_ADD, m[0][1], m[1][0], 0);
+            r.c[2][k] = tex_expr_op(TEX_EOP_ADD, m[0][2], m[2][0], 0);
+            r.c[3][k] = tex_expr_op(TEX_EOP_ADD, m[0][3], m[3][0], 0);
+            r.c[3][k] = tex_expr_op(TEX_EOP_ADD, r.c[3][k], m[1][2], 0);
+            r.c[3][k] = tex_expr_op(TEX_EOP_ADD, r.c[3][k], m[2][1], 0);
+        }
+        break;
+    case TEX_EOP_DIV: /* by a constant; by 0 gives 0, as the operator does */
+        if (b->dx || b->dy)
+            return 0;
+        for (int i = 0; i < 4; i++)
+            for (int k = 0; k < 3; k++)
+                r.c[i][k] = tex_expr_op(op, x[i][k], y[0][k], 0);
+        r.dx = a->dx;
+        r.dy = a->dy;
+        break;
+    default: /* min, max, comparisons: not polynomials */
+        return 0;
+    }
+    *a = r;
+    return 1;
+}
+
+int tex_expr_poly(const struct tex_expr *e, int x, int y, struct tex_expr_poly *r)
+{
+    struct tex_expr_poly *st = malloc((e->depth ? e->depth : 1) * sizeof *st);
+    int sp = 0, ok = st != NULL;
+    for (int i = 0; ok && i < e->n; i++) {
+        const struct tex_einsn *in = &e->code[i];
+        struct tex_expr_poly *a = &st[sp - 1];
+        switch (in->op) {
+        case TEX_EOP_CONST:
+            a = &st[sp++];
+            memset(a, 0, sizeof *a);
+            for (int k = 0; k < 3; k++)
+                a->c[0][k] = in->v[k];
+            break;
+        case TEX_EOP_LEAF:
+            a = &st[sp++];
+            memset(a, 0, sizeof *a);
+            ok = in->leaf == x || in->leaf == y;
+            for (int k = 0; k < 3; k++)
+                a->c[in->leaf == x ? 1 : 2][k] = 1;
+            a->dx = in->leaf == x;
+            a->dy = in->leaf == y;
+            break;
+        case TEX_EOP_NEG:
+            for (int j = 0; j < 4; j++)
+                for (int k = 0; k < 3; k++)
+                    a->c[j][k] = tex_expr_op(TEX_EOP_NEG, a->c[j][k], 0, 0);
+            break;
+        case TEX_EOP_RGB: /* channel k of argument k */
+            sp -= 2;
+            a = &st[sp - 1];
+            for (int j = 0; j < 4; j++)
+                a->c[j][1] = a[1].c[j][1], a->c[j][2] = a[2].c[j][2];
+            a->dx |= a[1].dx | a[2].dx;
+            a->dy |= a[1].dy | a[2].dy;
+            break;
+        default:
+            if (tex_expr_arity(in->op) != 2) { /* abs, the functions: not polynomials */
+                ok = 0;
+                break;
+            }
+            sp--;
+            ok = poly_op(in->op, &st[sp - 1], &st[sp]);
+            break;
+        }
+    }
+    if (ok)
+        *r = st[0];
+    free(st);
+    return ok;
 }

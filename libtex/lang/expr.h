@@ -27,7 +27,7 @@
  * pixel of images (rgb takes numbers only there, and makes a colour).  A
  * language may add comparisons (< > <= >= == !=, 1 or 0) to its binary
  * operators, and its own operands that are calls (a scene's palette(NAME, x)
- * compiles to TEX_EOP_PALETTE).  tex_expr_apply is the one definition of
+ * compiles to TEX_EOP_PALETTE).  tex_expr_op is the one definition of
  * every operator, for constant folding and for the languages' evaluators.
  *
  * Limits, the same in both languages, checked while parsing so that every
@@ -45,10 +45,12 @@
  * The compiled form (struct tex_expr) is a flat postfix program for a stack
  * machine: constants, operands, operators.  Its user runs it with a loop and
  * a switch, without recursion or allocation (the renderer does so per ray
- * hit, in render_texture.c); stack never exceeds TEX_EXPR_MAX_STACK.
+ * hit, in render/appfn.c); stack never exceeds TEX_EXPR_MAX_STACK.
  */
 #ifndef TEX_EXPR_H
 #define TEX_EXPR_H
+
+#include <math.h>
 
 #include "lex.h"
 
@@ -146,6 +148,52 @@ struct tex_expr {
 
 /* The number of values operator op takes from the stack. */
 int tex_expr_arity(enum tex_eop op);
+
+/* Every scalar operator (not CONST, LEAF, RGB or PALETTE: 0 for those), defined once:
+ * constant folding, tex_expr_apply, tex_expr_apply_row, the composition scripts' pixels,
+ * the renderer's hits and the polynomials below all compute through it.  Inline: where op
+ * is a constant in a loop, the switch folds away and the loop vectorises. */
+static inline double tex_expr_op(enum tex_eop op, double a, double b, double c)
+{
+    double x;
+    switch (op) {
+    case TEX_EOP_NEG: return -a;
+    case TEX_EOP_ADD: return a + b;
+    case TEX_EOP_SUB: return a - b;
+    case TEX_EOP_MUL: return a * b;
+    case TEX_EOP_DIV: return b != 0 ? a / b : 0;
+    case TEX_EOP_MIN: return fmin(a, b);
+    case TEX_EOP_MAX: return fmax(a, b);
+    case TEX_EOP_ABS: return fabs(a);
+    case TEX_EOP_LT: return a < b;
+    case TEX_EOP_GT: return a > b;
+    case TEX_EOP_LE: return a <= b;
+    case TEX_EOP_GE: return a >= b;
+    case TEX_EOP_EQ: return a == b;
+    case TEX_EOP_NE: return a != b;
+    case TEX_EOP_MIX: return a + (b - a) * c;
+    case TEX_EOP_SMOOTHSTEP:
+        /* e0 = e1: a step at e0 */
+        x = b != a ? (c - a) / (b - a) : c >= a;
+        x = !(x > 0) ? 0 : x < 1 ? x : 1;
+        return x * x * (3 - 2 * x);
+    case TEX_EOP_STEP: return b >= a;
+    case TEX_EOP_CLAMP: return fmin(fmax(a, b), c);
+    case TEX_EOP_POW:
+        x = pow(a, b);
+        return isfinite(x) ? x : 0;
+    case TEX_EOP_SIN: return sin(a);
+    case TEX_EOP_COS: return cos(a);
+    case TEX_EOP_FLOOR: return floor(a);
+    case TEX_EOP_FRACT: return a - floor(a);
+    case TEX_EOP_IF: return a != 0 ? b : c;
+    default: return 0; /* CONST, LEAF, RGB, PALETTE: not scalar operators */
+    }
+}
+
+/* TEX_EOP_PALETTE: palette (a tex_palette) at the mean of the colour a, clamped to [0, 1],
+ * into rgba: one lookup for the three channels. */
+void tex_expr_palette(const void *palette, const double a[3], float rgba[4]);
 /* Channel k of operator in->op (not CONST or LEAF) on the colours a, b, c
  * (as many as its arity; the others may be NULL). */
 double tex_expr_apply(const struct tex_einsn *in, int k, const double *a, const double *b,
@@ -161,6 +209,19 @@ int tex_expr_apply_row(enum tex_eop op, int n, const double *a, const double *b,
 /* Compile e (whose BIN codes are enum tex_eop) into the lexer's memory;
  * iterative, constants folded. */
 struct tex_expr *tex_expr_compile(struct tex_lexer *lx, const struct tex_enode *e);
+
+/* A compiled expression folded to a polynomial in two of its operands x and y, per channel
+ * k: c[0][k] + c[1][k] x + c[2][k] y + c[3][k] x y, where it is at most linear in each
+ * (the renderer's application functions of f and p, which it then evaluates without the
+ * stack machine).  Its coefficients are computed through tex_expr_op. */
+struct tex_expr_poly {
+    double c[4][3];
+    int dx, dy; /* degrees in x and y */
+};
+/* e's polynomial in its operands of leaf kinds x and y: 1, or 0 where it is not one (another
+ * operand, a function, a product of degree 2 in x or y, a division by a non-constant) or
+ * out of memory. */
+int tex_expr_poly(const struct tex_expr *e, int x, int y, struct tex_expr_poly *r);
 
 #ifdef __cplusplus
 }

@@ -46,9 +46,9 @@ struct evalctx {
     const double *q;    /* the quantities at the hit (TEX_Q_COUNT), or NULL if none is read */
 };
 
-/* Function in (not a binary operator, rgb or palette) of the values at arg, its result in
- * arg[0], by lang/expr.h's definitions; once for arguments that are grey (the same in every
- * channel), as scalar parameters' are: sin and pow are not cheap. */
+/* Function in (not rgb or palette) of the values at arg, its result in arg[0], by
+ * lang/expr.h's definitions; once for arguments that are grey (the same in every channel),
+ * as scalar parameters' are: sin and pow are not cheap. */
 static void call(const struct tex_einsn *in, double (*arg)[3])
 {
     int k = tex_expr_arity(in->op), grey = 1;
@@ -66,7 +66,7 @@ static void call(const struct tex_einsn *in, double (*arg)[3])
  * with the values on a stack in this frame; no recursion, no allocation. */
 static void expr_eval(const struct tex_expr *e, const struct evalctx *c, double out[3])
 {
-    double st[TEX_EXPR_MAX_STACK][3], *a, *b;
+    double st[TEX_EXPR_MAX_STACK][3], *a;
     int sp = 0;
     for (const struct tex_einsn *in = e->code, *end = in + e->n; in < end; in++) {
         switch (in->op) {
@@ -89,152 +89,55 @@ static void expr_eval(const struct tex_expr *e, const struct evalctx *c, double 
             a[0] = v[0], a[1] = v[1], a[2] = v[2];
             continue;
         }
-        case TEX_EOP_NEG:
-            a = st[sp - 1];
-            a[0] = -a[0], a[1] = -a[1], a[2] = -a[2];
-            continue;
-        case TEX_EOP_ABS:
-            a = st[sp - 1];
-            a[0] = fabs(a[0]), a[1] = fabs(a[1]), a[2] = fabs(a[2]);
-            continue;
         case TEX_EOP_RGB: /* channel k of argument k */
             sp -= 2;
             st[sp - 1][1] = st[sp][1];
             st[sp - 1][2] = st[sp + 1][2];
             continue;
-        case TEX_EOP_ADD: case TEX_EOP_SUB: case TEX_EOP_MUL: case TEX_EOP_DIV:
-        case TEX_EOP_MIN: case TEX_EOP_MAX:
-            break;
         case TEX_EOP_PALETTE: { /* one lookup for the three channels */
             float rgba[4];
             a = st[sp - 1];
-            tex_palette_lookup(in->ptr, tex_palette_t((a[0] + a[1] + a[2]) / 3, 0, 1,
-                                                      TEX_OUTSIDE_CLAMP), rgba);
+            tex_expr_palette(in->ptr, a, rgba);
             a[0] = rgba[0], a[1] = rgba[1], a[2] = rgba[2];
             continue;
         }
+        case TEX_EOP_NEG: case TEX_EOP_ABS: /* cheap: in place, channel by channel */
+            a = st[sp - 1];
+            for (int k = 0; k < 3; k++)
+                a[k] = tex_expr_op(in->op, a[k], 0, 0);
+            continue;
+        case TEX_EOP_ADD: case TEX_EOP_SUB: case TEX_EOP_MUL: case TEX_EOP_DIV:
+        case TEX_EOP_MIN: case TEX_EOP_MAX:
+            a = st[--sp - 1];
+            for (int k = 0; k < 3; k++)
+                a[k] = tex_expr_op(in->op, a[k], st[sp][k], 0);
+            continue;
         default: /* the other functions of lang/expr.h */
             sp -= tex_expr_arity(in->op);
             call(in, st + sp);
             sp++;
             continue;
         }
-        b = st[--sp];
-        a = st[sp - 1];
-        for (int k = 0; k < 3; k++) {
-            switch (in->op) {
-            case TEX_EOP_ADD: a[k] = a[k] + b[k]; break;
-            case TEX_EOP_SUB: a[k] = a[k] - b[k]; break;
-            case TEX_EOP_MUL: a[k] = a[k] * b[k]; break;
-            case TEX_EOP_MIN: a[k] = fmin(a[k], b[k]); break;
-            case TEX_EOP_MAX: a[k] = fmax(a[k], b[k]); break;
-            default: a[k] = b[k] != 0 ? a[k] / b[k] : 0; break;
-            }
-        }
     }
     out[0] = st[0][0], out[1] = st[0][1], out[2] = st[0][2];
 }
 
-/* a op b, in a; 0 if the result is not such a polynomial. */
-static int poly_op(enum tex_eop op, struct poly *a, const struct poly *b)
-{
-    struct poly r = {{{0}}, a->df | b->df, a->dp | b->dp, 0, 0};
-    double sg = op == TEX_EOP_SUB ? -1 : 1;
-    switch (op) {
-    case TEX_EOP_ADD:
-    case TEX_EOP_SUB:
-        for (int i = 0; i < 4; i++)
-            for (int k = 0; k < 3; k++)
-                r.c[i][k] = a->c[i][k] + sg * b->c[i][k];
-        break;
-    case TEX_EOP_MUL:
-        if (a->df + b->df > 1 || a->dp + b->dp > 1)
-            return 0;
-        for (int k = 0; k < 3; k++) {
-            r.c[0][k] = a->c[0][k] * b->c[0][k];
-            r.c[1][k] = a->c[0][k] * b->c[1][k] + a->c[1][k] * b->c[0][k];
-            r.c[2][k] = a->c[0][k] * b->c[2][k] + a->c[2][k] * b->c[0][k];
-            r.c[3][k] = a->c[0][k] * b->c[3][k] + a->c[3][k] * b->c[0][k] +
-                        a->c[1][k] * b->c[2][k] + a->c[2][k] * b->c[1][k];
-        }
-        break;
-    case TEX_EOP_DIV: /* by a constant; by 0 gives 0 as in expr_eval */
-        if (b->df || b->dp)
-            return 0;
-        for (int i = 0; i < 4; i++)
-            for (int k = 0; k < 3; k++)
-                r.c[i][k] = b->c[0][k] != 0 ? a->c[i][k] / b->c[0][k] : 0;
-        r.df = a->df;
-        r.dp = a->dp;
-        break;
-    default: /* min, max, abs: not polynomials */
-        return 0;
-    }
-    *a = r;
-    return 1;
-}
-
-/* The polynomial of e, by running its code on a stack of polynomials. */
+/* The polynomial of e in f and p (lang/expr.h), and whether it is folded */
 static int poly_of(const struct tex_expr *e, struct poly *r)
 {
-    struct poly *st = malloc((e->depth ? e->depth : 1) * sizeof *st);
-    int sp = 0, ok = st != NULL;
-    for (int i = 0; ok && i < e->n; i++) {
-        const struct tex_einsn *in = &e->code[i];
-        struct poly *a = &st[sp - 1];
-        switch (in->op) {
-        case TEX_EOP_CONST:
-            a = &st[sp++];
-            memset(a, 0, sizeof *a);
-            for (int k = 0; k < 3; k++)
-                a->c[0][k] = in->v[k];
-            break;
-        case TEX_EOP_LEAF:
-            a = &st[sp++];
-            memset(a, 0, sizeof *a);
-            ok = in->leaf == TEX_LEAF_F || in->leaf == TEX_LEAF_P;
-            a->c[in->leaf == TEX_LEAF_F ? 1 : 2][0] = 1;
-            a->c[in->leaf == TEX_LEAF_F ? 1 : 2][1] = 1;
-            a->c[in->leaf == TEX_LEAF_F ? 1 : 2][2] = 1;
-            a->df = in->leaf == TEX_LEAF_F;
-            a->dp = in->leaf == TEX_LEAF_P;
-            break;
-        case TEX_EOP_NEG:
-            for (int j = 0; j < 4; j++)
-                for (int k = 0; k < 3; k++)
-                    a->c[j][k] = -a->c[j][k];
-            break;
-        case TEX_EOP_RGB: /* channel k of argument k */
-            sp -= 2;
-            a = &st[sp - 1];
-            for (int j = 0; j < 4; j++)
-                a->c[j][1] = a[1].c[j][1], a->c[j][2] = a[2].c[j][2];
-            a->df |= a[1].df | a[2].df;
-            a->dp |= a[1].dp | a[2].dp;
-            break;
-        default:
-            if (tex_expr_arity(in->op) != 2) { /* abs, the functions: not polynomials */
-                ok = 0;
-                break;
-            }
-            sp--;
-            ok = poly_op(in->op, &st[sp - 1], &st[sp]);
-            break;
-        }
-    }
-    if (ok) {
-        *r = st[0];
-        r->folded = !r->df && !r->dp && r->c[0][0] != 0 && r->c[0][1] != 0 && r->c[0][2] != 0;
-        r->mean = (r->c[0][0] + r->c[0][1] + r->c[0][2]) / 3;
-    }
-    free(st);
-    return ok;
+    if (!tex_expr_poly(e, TEX_LEAF_F, TEX_LEAF_P, &r->p))
+        return 0;
+    const double *c0 = r->p.c[0];
+    r->folded = !r->p.dx && !r->p.dy && c0[0] != 0 && c0[1] != 0 && c0[2] != 0;
+    r->mean = (c0[0] + c0[1] + c0[2]) / 3;
+    return 1;
 }
 
 /* Channel k of a compiled function at f, p */
 static inline double poly_at(const struct poly *q, int k, double f, double p)
 {
-    return q->c[0][k] + q->c[1][k] * f + q->c[2][k] * p + q->c[3][k] * f * p;
+    const double(*c)[3] = q->p.c;
+    return c[0][k] + c[1][k] * f + c[2][k] * p + c[3][k] * f * p;
 }
 
 typedef float float4 __attribute__((vector_size(16)));

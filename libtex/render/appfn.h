@@ -13,14 +13,13 @@
 extern "C" {
 #endif
 
-/* An application function compiled to c0 + c1 f + c2 p + c3 f p per channel,
- * where its expression is at most linear in each of f and p (no cascade). */
+/* An application function compiled to c0 + c1 f + c2 p + c3 f p per channel, where its
+ * expression is at most linear in each of f and p (no cascade): lang/expr.h's polynomial.
+ * folded: of degree 0 with no zero constant, so that poly_at gives c[0] itself wherever f
+ * and p are finite (c[0] + 0 f is not c[0] at a zero's sign, nor at f infinite); mean: the
+ * channels' mean, as a scalar parameter takes it */
 struct poly {
-    double c[4][3];
-    int df, dp; /* degrees in f and p */
-    /* folded: of degree 0 with no zero constant, so that poly_at gives c[0] itself wherever
-     * f and p are finite (c[0] + 0 f is not c[0] at a zero's sign, nor at f infinite);
-     * mean: the channels' mean, as a scalar parameter takes it */
+    struct tex_expr_poly p;
     int folded;
     double mean;
 };
