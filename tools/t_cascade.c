@@ -11,8 +11,8 @@ struct opts {
 };
 
 static const struct tex_param rows[] = {
-    {"default", 0, TEX_P_COLOR, offsetof(struct opts, fallback), 0, 0, 1, "#000000", NULL, 0,
-     "COLOUR", "colour of the regions given no map", 0, 0, 0, NULL, NULL},
+    TEX_COLOR_N("default", struct opts, fallback, 0, "#000000",
+                "colour of the regions given no map"),
     TEX_INT(struct opts, regions, 0, 0, 0, 65535, "N",
             "treat IDS as region ids 1..N even without the textura:subregions attribute "
             "(0: use the attribute)"),

@@ -22,8 +22,9 @@
  *   TEX_P_COLOR   float[4] RGBA from #rgb, #rrggbb, #rrggbbaa, r,g,b[,a] or one grey level in [0,1]
  *   TEX_P_STRING  const char * (pointing into argv or the scene)
  *   TEX_P_FLOAT   float, range [min,max], NaN and infinity refused
- *   TEX_P_SPECIAL no storage: the reader of the block parses it (a scene's
- *                 `facets beckmann 0.2`); the row gives its help and range
+ *   TEX_P_SPECIAL no storage: the row's read callback parses it (a scene's
+ *                 `facets beckmann 0.2`), as AVOption's custom types do; the
+ *                 row gives its help, default and range
  *
  * INT, REAL and FLOAT rows may hold a vector: n values stored one after the
  * other (a tex_v3, an RGB float[3], int w, h).  counts is the mask of value
@@ -48,6 +49,11 @@
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+struct tex_param;
+/* A SPECIAL row's reader: reader is the caller's (a scene's parser, which has just taken the
+ * row's word), ctx the block being read.  Errors go the reader's own way. */
+typedef void tex_param_read(void *reader, const struct tex_param *p, void *ctx);
 
 enum tex_ptype { TEX_P_INT, TEX_P_REAL, TEX_P_FLAG, TEX_P_ENUM, TEX_P_REALS, TEX_P_COLOR,
                  TEX_P_STRING, TEX_P_FLOAT, TEX_P_SPECIAL };
@@ -74,6 +80,7 @@ struct tex_param {
     unsigned kinds;     /* block kinds or modes the row applies to, bit k for kind k (0: all) */
     const char *alias;  /* another long name, documented: the thesis's letter ("h" for hurst) */
     const char *old;    /* deprecated names, still taken with a warning: "-d width" */
+    tex_param_read *read; /* SPECIAL: parses the row's value */
 };
 
 /* How messages name a parameter: as an option ("--major-radius") or as the
@@ -123,9 +130,10 @@ enum tex_param_style { TEX_PARAM_OPTION, TEX_PARAM_WORD };
      __VA_ARGS__}
 #define TEX_ROW_ENUM(name, S, f, d, choices, help, ...)                                          \
     {name, 0, TEX_P_ENUM, offsetof(S, f), 0, 0, 0, d, choices, 0, NULL, help, .n = 0, __VA_ARGS__}
-/* A row read by its block's own code (no storage). */
-#define TEX_SPECIAL(name, lo, hi, def, meta, help, ...)                                          \
-    {name, 0, TEX_P_SPECIAL, 0, 0, lo, hi, def, NULL, 0, meta, help, .n = 0, __VA_ARGS__}
+/* A row read by its own callback (no storage). */
+#define TEX_SPECIAL(name, lo, hi, def, meta, help, fn, ...)                                      \
+    {name, 0, TEX_P_SPECIAL, 0, 0, lo, hi, def, NULL, 0, meta, help, .n = 0, .read = fn,        \
+     __VA_ARGS__}
 
 /* Store every row's default in obj (SPECIAL rows have none).  Returns -1
  * only for a broken table. */

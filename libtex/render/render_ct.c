@@ -45,9 +45,9 @@ void tex_ct_set_space(struct tex_ct *ct, const struct tex_colour_space *cs)
 }
 
 /* A surface that names the model but sets none of its parameters: a dielectric of the
- * surface's ior, Beckmann m = 0.2, half specular. */
+ * surface's ior, Beckmann's m and s at the model's defaults. */
 static const struct tex_ct ct_default = {
-    {TEX_FACET_BECKMANN, 0.2, 0}, 0.5, 0, 0, {{0}}, {{0}}, NULL, 0, NULL, 0, 0};
+    {TEX_FACET_BECKMANN, TEX_CT_M, 0}, TEX_CT_S, 0, 0, {{0}}, {{0}}, NULL, 0, NULL, 0, 0};
 
 static const struct tex_ct *params(const struct tex_material *mat)
 {

@@ -13,7 +13,7 @@
  *       s:       specular fraction, d = 1 - s the diffuse one
  *   mat.model = &tex_shading_cook_torrance; mat.model_data = &ct;
  * With model_data NULL the model shades a dielectric of the surface's ior
- * with Beckmann m = 0.2 and s = 0.5.
+ * with Beckmann's m = TEX_CT_M and s = TEX_CT_S.
  *
  * direct(): for a light of irradiance colour E from L,
  *     out += d kd E (N.L) + s pi F(V.H) [D G / (4 (N.V)(N.L))] E (N.L)
@@ -37,6 +37,16 @@
  */
 #ifndef TEX_RENDER_CT_H
 #define TEX_RENDER_CT_H
+
+/* The model's parameters where a surface gives none, and their ranges, written once: the
+ * scene's rows (facets, specular; the targets m and s) and help quote them. */
+#define TEX_CT_M 0.2         /* Beckmann's slope of the microfacets */
+#define TEX_CT_M_MIN 0.001
+#define TEX_CT_M_MAX 2
+#define TEX_CT_S 0.5         /* the specular fraction */
+#define TEX_CT_NS_MAX 100000 /* Blinn's exponent, 0 up */
+#define TEX_CT_BETA_MIN 0.01 /* a lobe's half-maximum angle in degrees, instead of m or ns */
+#define TEX_CT_BETA_MAX 89
 
 #include "matdb.h"
 #include "microfacet.h"

@@ -4,17 +4,22 @@
  * the block through it, application-function results are clamped to its
  * ranges, and t_apply --help-scene and the lists of t_apply(5) print it.
  * Rows read by the parser's own code (a shading model, a material, a
- * falloff) are TEX_P_SPECIAL: they keep their help and range here.
+ * falloff) are TEX_P_SPECIAL: they keep their help and range here, and name
+ * their reader (render_scene.c).  Every default and range is written here or
+ * in the constant the code shares (render_ct.h's, spectrum.h's), once.
  */
 #include <math.h>
 #include <stddef.h>
 
 #include "lang/expr.h"
+#include "render/render_ct.h"
 #include "render/scene.h"
 
 #define INF HUGE_VAL /* -INF, INF: a point or a direction, any numbers */
 #define N3 (1u << 3)
 #define KIND(k) (1u << (k))
+#define STR_(x) #x
+#define STR(x) STR_(x) /* a constant's value in help text */
 
 const struct tex_param tex_settings_rows[] = {
     TEX_ROW("image", struct tex_scene, settings.w, TEX_P_INT, "640,480", 1, TEX_SCENE_MAX_SIDE, 2,
@@ -25,11 +30,11 @@ const struct tex_param tex_settings_rows[] = {
             "maximum recursion depth of reflected and refracted rays"),
     {"bailout", 0, TEX_P_REAL, offsetof(struct tex_scene, settings.bailout), 1.0 / 255, 0, 1, NULL,
      NULL, 0, "W", "rays weighing less than W are not traced (0: trace to the depth)", 1, 0, 0,
-     NULL, NULL},
+     NULL, NULL, NULL},
     TEX_ROW("threads", struct tex_scene, settings.threads, TEX_P_INT, "0", 0, 1024, 1, 0, "N",
             "OpenMP threads (0: one per core)"),
     TEX_SPECIAL("seed", 0, TEX_SEED_MAX, "0", "N",
-                "seed of the sample positions and area-light jitter"),
+                "seed of the sample positions and area-light jitter", tex_scene_read_seed),
     TEX_ROW_ENUM("filter", struct tex_scene, settings.filter, "on", "off|on",
                  "mip-mapped texture lookups"),
     TEX_ROW("ambient", struct tex_scene, ambient, TEX_P_FLOAT, "1,1,1", 0, 1e6, 3, 0, "R G B",
@@ -37,9 +42,11 @@ const struct tex_param tex_settings_rows[] = {
     TEX_ROW("background", struct tex_scene, background, TEX_P_FLOAT, "0,0,0", 0, 1e6, 3, 0,
             "R G B", "colour of rays that hit nothing"),
     TEX_SPECIAL("colour", 1, TEX_COLOUR_MAX, "rgb", "rgb|spectral [N]",
-                "the colour model: RGB, or N spectral bands (default 16)"),
+                "the colour model: RGB, or N spectral bands (default " STR(TEX_BANDS_DEFAULT) ")",
+                tex_scene_read_colour),
     TEX_SPECIAL("materials", 0, 0, NULL, "FILE",
-                "read the materials database for the material statements that follow"),
+                "read the materials database for the material statements that follow",
+                tex_scene_read_materials),
     {0}};
 
 const struct tex_param tex_camera_rows[] = {
@@ -57,7 +64,7 @@ const struct tex_param tex_camera_rows[] = {
 #define PLACED (LIT(POINT) | LIT(SPOT) | LIT(AREA))
 #define LROW(name, f, T, d, lo, hi, n, meta, kinds, help)                                         \
     {name, 0, T, offsetof(struct tex_light, f), 0, lo, hi, d, NULL, 0, meta, help, n, 0, kinds,  \
-     NULL, NULL}
+     NULL, NULL, NULL}
 const struct tex_param tex_light_rows[] = {
     LROW("colour", colour, TEX_P_FLOAT, "1,1,1", 0, 1e6, 3, "R G B", 0,
          "colour of the light (also color)"),
@@ -65,14 +72,14 @@ const struct tex_param tex_light_rows[] = {
          "the colour, or the spectrum at luminance 1, times I"),
     TEX_SPECIAL("spectrum", 100, 1e6, NULL, "NAME|blackbody K",
                 "a CIE illuminant (D65, A, E, F2...) or Planck's law at K kelvin, instead of "
-                "the colour"),
+                "the colour", tex_scene_read_spectrum),
     LROW("direction", direction, TEX_P_REAL, "0,1,0", -INF, INF, 3, "X Y Z", LIT(DISTANT),
          "distant: the direction from the scene towards the light"),
     LROW("position", pos, TEX_P_REAL, "0,0,0", -INF, INF, 3, "X Y Z", PLACED,
          "point, spot, area: where the light is (area: a corner)"),
-    {"falloff", 0, TEX_P_SPECIAL, 0, 0, 0, 1e9, "none", NULL, 0, "none|square|C1 C2 C3",
-     "point, spot, area: fatt = 1, 1/d^2 or min(1/(C1 + C2 d + C3 d^2), 1)", 0, 0, PLACED, NULL,
-     NULL},
+    TEX_SPECIAL("falloff", 0, 1e9, "none", "none|square|C1 C2 C3",
+                "point, spot, area: fatt = 1, 1/d^2 or min(1/(C1 + C2 d + C3 d^2), 1)",
+                tex_scene_read_falloff, .kinds = PLACED),
     LROW("at", at, TEX_P_REAL, "0,0,0", -INF, INF, 3, "X Y Z", LIT(SPOT),
          "spot: the point the spot light is aimed at (required)"),
     LROW("angle", angle, TEX_P_REAL, "30", 0.01, 90, 1, "DEG", LIT(SPOT),
@@ -103,29 +110,35 @@ const struct tex_param tex_surface_rows[] = {
             "transmission coefficient"),
     TEX_ROW("ior", struct tex_surface, ior, TEX_P_REAL, "1", 0.1, 10, 1, 0, "N",
             "index of refraction (a dielectric material gives its own)"),
-    TEX_SPECIAL("model", 0, 0, "phong", "phong|cook-torrance", "the shading model"),
+    TEX_SPECIAL("model", 0, 0, "phong", "phong|cook-torrance", "the shading model",
+                tex_scene_read_model),
     TEX_SPECIAL("material", 0, 0, NULL, "NAME",
-                "optical constants n + ik from the materials database"),
-    TEX_SPECIAL("facets", 0.001, 2, "beckmann 0.2", "beckmann M|blinn NS",
-                "Cook-Torrance microfacets: Beckmann's slope M (0.001..2) or Blinn's exponent "
-                "NS (0..100000); beta DEG (0.01..89) instead of the number gives the lobe's "
-                "half-maximum angle"),
-    TEX_SPECIAL("specular", 0, 1, "0.5", "S",
-                "Cook-Torrance specular fraction (the diffuse one is 1 - S)"),
+                "optical constants n + ik from the materials database", tex_scene_read_material),
+    TEX_SPECIAL("facets", TEX_CT_M_MIN, TEX_CT_M_MAX, "beckmann " STR(TEX_CT_M),
+                "beckmann M|blinn NS",
+                "Cook-Torrance microfacets: Beckmann's slope M (" STR(TEX_CT_M_MIN) ".." STR(
+                    TEX_CT_M_MAX) ") or Blinn's exponent NS (0.." STR(TEX_CT_NS_MAX) "); beta DEG "
+                "(" STR(TEX_CT_BETA_MIN) ".." STR(TEX_CT_BETA_MAX) ") instead of the number gives "
+                "the lobe's half-maximum angle",
+                tex_scene_read_facets),
+    TEX_SPECIAL("specular", 0, 1, STR(TEX_CT_S), "S",
+                "Cook-Torrance specular fraction (the diffuse one is 1 - S)",
+                tex_scene_read_specular),
     TEX_SPECIAL("apply", 0, 0, NULL, "TEXTURE { ... }",
-                "apply a texture through application functions (any number, in order)"),
+                "apply a texture through application functions (any number, in order)",
+                tex_scene_read_apply),
     TEX_SPECIAL("blend", 0, 0, NULL, "SURFACE",
                 "the surface an application function's blend = h mixes in (shaded with its "
-                "own textures, as a mixture of the two)"),
+                "own textures, as a mixture of the two)", tex_scene_read_blend),
     {0}};
 
 /* The targets beyond the surface's own rows (no storage: the renderer's per hit) */
 #define TARGET(name, lo, hi, meta, help) {name, 0, TEX_P_REAL, 0, 0, lo, hi, NULL, NULL, 0, meta, \
-                                          help, 0, 0, 0, NULL, NULL}
+                                          help, 0, 0, 0, NULL, NULL, NULL}
 const struct tex_param tex_target_rows[] = {
     TARGET("bump", -1000, 1000, "S",
            "bump mapping: the normal tilts by S times the map's gradient across the surface"),
-    TARGET("m", 0.001, 2, "M", "Cook-Torrance: Beckmann's slope of the microfacets"),
+    TARGET("m", TEX_CT_M_MIN, TEX_CT_M_MAX, "M", "Cook-Torrance: Beckmann's slope of the microfacets"),
     TARGET("s", 0, 1, "S", "Cook-Torrance: the specular fraction (the diffuse one is 1 - S)"),
     TARGET("blend", 0, 1, "W",
            "the weight of the surface named by the surface's blend (its light times W, this "
@@ -151,26 +164,29 @@ const struct tex_param tex_apply_rows[] = {
             "projections: the direction a planar, wavy, cylinder, cone or sphere mapping "
             "projects along (not zero)"),
     TEX_SPECIAL("translate", 0, 0, NULL, "X Y Z",
-                "projections: move the texture by (X, Y, Z) relative to the object"),
+                "projections: move the texture by (X, Y, Z) relative to the object",
+                tex_scene_read_translate),
     TEX_SPECIAL("rotate", 0, 0, NULL, "X Y Z",
                 "projections: turn the texture X degrees about x, then Y about y, then Z about "
-                "z, relative to the object"),
+                "z, relative to the object", tex_scene_read_rotate),
     TEX_ROW("wave", struct tex_apply, wave, TEX_P_REAL, "0.1,1", -1e6, 1e6, 2, 0, "A L",
             "wavy: the planar projection swept along a sine path, u shifted by "
             "A sin(2 pi y / L) (L > 0)"),
     TEX_SPECIAL("cross", 0, 0, NULL, "TEXTURE",
-                "cross: the second map, on the y-z plane; the first lies on x-y"),
+                "cross: the second map, on the y-z plane; the first lies on x-y",
+                tex_scene_read_cross),
     TEX_ROW_ENUM("combine", struct tex_apply, combine, "product", "product|min|max",
                  "cross: how the two maps' values combine"),
     TEX_ROW("window", struct tex_apply, u1, TEX_P_REAL, "0,0,1,1", 0, 1, 4, 0, "U1 V1 U2 V2",
             "where the map lies in (u,v), with U1 < U2 and V1 < V2"),
     TEX_ROW("repeat", struct tex_apply, nu, TEX_P_REAL, "1,1", 1e-3, 1e6, 2, 0, "NU NV",
             "times the map repeats inside the window (fixed-size placement)"),
-    TEX_SPECIAL("stretch", 0, 0, NULL, NULL, "the map once across the window: repeat 1 1"),
+    TEX_SPECIAL("stretch", 0, 0, NULL, NULL, "the map once across the window: repeat 1 1",
+                tex_scene_read_stretch),
     TEX_ROW("scale", struct tex_apply, scale, TEX_P_REAL, "1", 1e-9, 1e9, 1, 0, "S",
             "planar and world mappings: texture units per world unit"),
     TEX_SPECIAL("region", 1, 1 << 24, NULL, "N { ... }",
-                "application functions for subregion N of the map only"),
+                "application functions for subregion N of the map only", tex_scene_read_region),
     {0}};
 
 /* The shapes' words, each for its shapes only.  Their ranges take any number:
@@ -179,7 +195,7 @@ const struct tex_param tex_apply_rows[] = {
 #define SHP(k) KIND(TEX_SHAPE_##k)
 #define OROW(name, f, d, n, meta, kinds, help)                                                    \
     {name, 0, TEX_P_REAL, offsetof(struct tex_shape_params, f), 0, -INF, INF, d, NULL, 0, meta,  \
-     help, n, 0, kinds, NULL, NULL}
+     help, n, 0, kinds, NULL, NULL, NULL}
 const struct tex_param tex_object_rows[] = {
     OROW("centre", centre, "0,0,0", 3, "X Y Z", SHP(SPHERE) | SHP(TORUS),
          "sphere, torus: the centre (also center)"),
@@ -205,12 +221,16 @@ const struct tex_param tex_object_rows[] = {
          "torus: the radius of the circle the tube's centre runs round (>= 0)"),
     OROW("minor", minor, "0.25", 1, "R", SHP(TORUS), "torus: the radius of the tube (> 0)"),
     TEX_SPECIAL("surface", 0, 0, NULL, "NAME",
-                "the surface, inherited by the parts of a CSG object that name none"),
-    TEX_SPECIAL("translate", 0, 0, NULL, "X Y Z", "move the object by (X, Y, Z)"),
+                "the surface, inherited by the parts of a CSG object that name none",
+                tex_scene_read_surface),
+    TEX_SPECIAL("translate", 0, 0, NULL, "X Y Z", "move the object by (X, Y, Z)",
+                tex_scene_read_translate),
     TEX_SPECIAL("rotate", 0, 0, NULL, "X Y Z",
-                "turn the object X degrees about x, then Y about y, then Z about z"),
+                "turn the object X degrees about x, then Y about y, then Z about z",
+                tex_scene_read_rotate),
     TEX_SPECIAL("scale", 0, 0, NULL, "S | X Y Z",
-                "scale the object by S, or by X, Y and Z along the axes (not 0)"),
+                "scale the object by S, or by X, Y and Z along the axes (not 0)",
+                tex_scene_read_scale),
     {0}};
 
 const struct tex_param tex_environment_rows[] = {

@@ -40,6 +40,17 @@ struct parser {
      * missing ("expected a number"), as the shapes' words always have */
     int whole_vectors;
     int sample_size; /* tex_scene_opts */
+    struct tex_tok kt; /* the word of the row a reader reads (struct tex_param's read) */
+};
+
+/* The block a row's reader reads into (struct tex_param's read, ctx): the block's struct
+ * (the scene, a light, a surface, an apply block, an object), and what its rows share */
+struct block {
+    void *obj;
+    tex_xform *acc;          /* apply blocks and objects: the transforms read so far */
+    int *placed;             /* apply blocks: 1 once one is read */
+    struct tex_apply **tail; /* surfaces: where the next apply block goes */
+    struct tex_object *ob;   /* objects */
 };
 
 static void fail_at(struct parser *ps, const struct tex_tok *t, int runtime, const char *fmt, ...)
@@ -175,15 +186,26 @@ static void read_row(struct parser *ps, const struct tex_param *p, void *obj)
         fail_at(ps, &vt, 0, "%s", tex_errmsg());
 }
 
-/* A block's own reading of a SPECIAL row p, or of a word kt of no row (p NULL):
- * 1 if it took it. */
-typedef int (*special_fn)(struct parser *ps, const struct tex_param *p, const struct tex_tok *kt,
-                          void *ctx);
+/* A block's own reading of a word kt of no row: 1 if it took it. */
+typedef int (*words_fn)(struct parser *ps, const struct tex_tok *kt, struct block *b);
 
-/* `{ word value ... }` through rows (for kind, -1: any) into obj; special
- * reads the rest.  Returns the rows seen, bit i for row i. */
+/* The value of row p (its word kt just taken) into block b: a SPECIAL row's through its
+ * reader. */
+static void read_value(struct parser *ps, const struct tex_param *p, const struct tex_tok *kt,
+                       struct block *b)
+{
+    if (p->type != TEX_P_SPECIAL) {
+        read_row(ps, p, b->obj);
+        return;
+    }
+    ps->kt = *kt;
+    p->read(ps, p, b);
+}
+
+/* `{ word value ... }` through rows (for kind, -1: any) into block b; words reads the
+ * block's words of no row (or NULL).  Returns the rows seen, bit i for row i. */
 static unsigned long long read_block(struct parser *ps, const struct tex_param *rows, int kind,
-                                     void *obj, special_fn special, void *ctx, const char *what)
+                                     struct block *b, words_fn words, const char *what)
 {
     unsigned long long seen = 0;
     tex_lex_expect(&ps->lx, '{');
@@ -193,13 +215,10 @@ static unsigned long long read_block(struct parser *ps, const struct tex_param *
         if (p) {
             tex_lex_next(&ps->lx);
             seen |= 1ull << (p - rows);
-            if (p->type != TEX_P_SPECIAL)
-                read_row(ps, p, obj);
-            else if (!special(ps, p, &kt, ctx))
-                fail_at(ps, &kt, 0, "internal: no reader for '%s'", p->name);
+            read_value(ps, p, &kt, b);
         } else if (kt.kind == TEX_TOK_EOF) {
             fail_at(ps, &kt, 0, "expected '}' to end %s, found the end of the file", what);
-        } else if (!special || !special(ps, NULL, &kt, ctx)) {
+        } else if (!words || !words(ps, &kt, b)) {
             char b[64];
             fail_at(ps, &kt, 0, "unknown word %s in %s", tex_tok_desc(&kt, b, sizeof b), what);
         }
@@ -607,35 +626,40 @@ static void parse_fns(struct parser *ps, struct tex_apply *ap, int region)
 }
 
 static const struct tex_surface *find_surface(struct parser *ps, const struct tex_tok *t);
-static int transform_word(struct parser *ps, const struct tex_tok *kt, tex_xform *acc);
 
-/* stretch, region N { ... }, translate, rotate, cross and the application functions of an
- * apply block */
-static int apply_special(struct parser *ps, const struct tex_param *p, const struct tex_tok *kt,
-                         void *ctx)
+/* The application functions of an apply block: its words of no row */
+static int apply_words(struct parser *ps, const struct tex_tok *kt, struct block *b)
 {
-    struct tex_apply *ap = ctx;
-    if (p && (!strcmp(p->name, "translate") || !strcmp(p->name, "rotate"))) {
-        transform_word(ps, kt, &ap->place);
-        ap->placed = 1;
-    } else if (p && !strcmp(p->name, "cross")) {
-        struct tex_tok ct = ps->lx.t;
-        if (ct.kind != TEX_TOK_NAME || !(ap->cross = find_texture(ps, &ct)))
-            FAIL(ps, "cross needs a texture's name");
-        tex_lex_next(&ps->lx);
-    } else if (p && !strcmp(p->name, "stretch")) {
-        ap->nu = ap->nv = 1;
-    } else if (p && !strcmp(p->name, "region")) {
-        int r = (int)ranged(ps, p->name, p->min, p->max, 1);
-        tex_lex_expect(&ps->lx, '{');
-        parse_fns(ps, ap, r);
-        tex_lex_expect(&ps->lx, '}');
-    } else if (!p && sparam(kt) >= 0) {
-        parse_fns(ps, ap, 0);
-    } else {
+    if (sparam(kt) < 0)
         return 0;
-    }
+    parse_fns(ps, b->obj, 0);
     return 1;
+}
+
+void tex_scene_read_cross(void *reader, const struct tex_param *p, void *ctx)
+{
+    struct parser *ps = reader;
+    struct tex_apply *ap = ((struct block *)ctx)->obj;
+    struct tex_tok ct = ps->lx.t;
+    if (ct.kind != TEX_TOK_NAME || !(ap->cross = find_texture(ps, &ct)))
+        FAIL(ps, "%s needs a texture's name", p->name);
+    tex_lex_next(&ps->lx);
+}
+
+void tex_scene_read_stretch(void *reader, const struct tex_param *p, void *ctx)
+{
+    struct tex_apply *ap = ((struct block *)ctx)->obj;
+    (void)reader, (void)p;
+    ap->nu = ap->nv = 1;
+}
+
+void tex_scene_read_region(void *reader, const struct tex_param *p, void *ctx)
+{
+    struct parser *ps = reader;
+    int r = (int)ranged(ps, p->name, p->min, p->max, 1);
+    tex_lex_expect(&ps->lx, '{');
+    parse_fns(ps, ((struct block *)ctx)->obj, r);
+    tex_lex_expect(&ps->lx, '}');
 }
 
 /* The projection's frame (thesis 5.2.1.3): y along the axis, then the block's rotations and
@@ -679,8 +703,8 @@ static struct tex_apply *parse_apply(struct parser *ps)
     ap->line = at.line;
     ap->col = at.col;
     tex_xform_identity(&ap->place);
-    unsigned long long seen =
-        read_block(ps, tex_apply_rows, -1, ap, apply_special, ap, "an apply block");
+    struct block b = {.obj = ap, .acc = &ap->place, .placed = &ap->placed};
+    unsigned long long seen = read_block(ps, tex_apply_rows, -1, &b, apply_words, "an apply block");
     if ((seen & row_bit(tex_apply_rows, "window")) && !(ap->u2 > ap->u1 && ap->v2 > ap->v1))
         fail_at(ps, &at, 0, "window needs u1 < u2 and v1 < v2");
     apply_projection(ps, ap, seen, &at);
@@ -696,8 +720,8 @@ static struct tex_ct *surface_ct(struct parser *ps, struct tex_surface *sf)
     if (!sf->ct) {
         sf->ct = palloc(ps, sizeof *sf->ct);
         sf->ct->facets.dist = TEX_FACET_BECKMANN; /* render_ct.h's defaults */
-        sf->ct->facets.m = 0.2;
-        sf->ct->s = 0.5;
+        sf->ct->facets.m = TEX_CT_M;
+        sf->ct->s = TEX_CT_S;
     }
     return sf->ct;
 }
@@ -752,8 +776,9 @@ static const struct tex_matdb_entry *find_material(struct parser *ps, const stru
     return c;
 }
 
-/* facets beckmann M | facets blinn NS, either with `beta DEG` instead of the number */
-static void parse_facets(struct parser *ps, struct tex_ct *ct)
+/* facets beckmann M | facets blinn NS, either with `beta DEG` instead of the number: row
+ * p's value (its range Beckmann's) */
+static void parse_facets(struct parser *ps, const struct tex_param *p, struct tex_ct *ct)
 {
     struct tex_tok dt = ps->lx.t;
     if (tex_tok_is_word(&dt, "beckmann"))
@@ -761,68 +786,77 @@ static void parse_facets(struct parser *ps, struct tex_ct *ct)
     else if (tex_tok_is_word(&dt, "blinn"))
         ct->facets.dist = TEX_FACET_BLINN;
     else
-        FAIL(ps, "facets takes beckmann M or blinn NS");
+        FAIL(ps, "%s takes beckmann M or blinn NS", p->name);
     tex_lex_next(&ps->lx);
     int beckmann = ct->facets.dist == TEX_FACET_BECKMANN;
     if (tex_tok_is_word(&ps->lx.t, "beta")) {
         tex_lex_next(&ps->lx);
-        double b = ranged(ps, "beta", 0.01, 89, 0) * M_PI / 180;
+        double b = ranged(ps, "beta", TEX_CT_BETA_MIN, TEX_CT_BETA_MAX, 0) * M_PI / 180;
         if (beckmann)
             ct->facets.m = tex_beckmann_m_from_beta(b);
         else
             ct->facets.ns = tex_blinn_ns_from_beta(b);
     } else if (beckmann) {
-        const struct tex_param *p = tex_param_find(tex_surface_rows, "facets");
         ct->facets.m = ranged(ps, "beckmann M", p->min, p->max, 0);
     } else {
-        ct->facets.ns = ranged(ps, "blinn NS", 0, 1e5, 0);
+        ct->facets.ns = ranged(ps, "blinn NS", 0, TEX_CT_NS_MAX, 0);
     }
 }
 
-struct surface_ctx {
-    struct tex_surface *sf;
-    struct tex_apply **tail;
-};
-
-/* model, material, facets, specular and apply of a surface */
-static int surface_special(struct parser *ps, const struct tex_param *p, const struct tex_tok *kt,
-                           void *ctx)
+void tex_scene_read_material(void *reader, const struct tex_param *p, void *ctx)
 {
-    struct surface_ctx *c = ctx;
-    struct tex_surface *sf = c->sf;
+    struct parser *ps = reader;
+    struct tex_surface *sf = ((struct block *)ctx)->obj;
     struct tex_tok mt = ps->lx.t;
-    (void)kt;
-    if (!p)
-        return 0;
-    if (!strcmp(p->name, "material")) {
-        char *m = mt.kind == TEX_TOK_STR ? pstrdup(ps, mt.text, mt.len) : word(ps, "a material");
-        if (mt.kind == TEX_TOK_STR)
-            tex_lex_next(&ps->lx);
-        surface_ct(ps, sf)->entry = find_material(ps, &mt, m);
-    } else if (!strcmp(p->name, "facets")) {
-        parse_facets(ps, surface_ct(ps, sf));
-    } else if (!strcmp(p->name, "specular")) {
-        surface_ct(ps, sf)->s = ranged(ps, p->name, p->min, p->max, 0);
-    } else if (!strcmp(p->name, "model")) {
-        char *m = word(ps, "a shading model");
-        sf->model = tex_shading_find(m);
-        if (!sf->model)
-            fail_at(ps, &mt, 0, "model must be %s (got %s)", p->meta, m);
-    } else if (!strcmp(p->name, "blend")) {
-        const struct tex_surface *o = mt.kind == TEX_TOK_NAME ? find_surface(ps, &mt) : NULL;
-        if (!o)
-            FAIL(ps, "blend names a surface defined above (got %.*s)", (int)mt.len, mt.text);
-        if (o == sf || o->blend)
-            FAIL(ps, "blend mixes in a surface without a blend of its own");
-        sf->blend = o;
+    (void)p;
+    char *m = mt.kind == TEX_TOK_STR ? pstrdup(ps, mt.text, mt.len) : word(ps, "a material");
+    if (mt.kind == TEX_TOK_STR)
         tex_lex_next(&ps->lx);
-    } else if (!strcmp(p->name, "apply")) {
-        *c->tail = parse_apply(ps);
-        c->tail = &(*c->tail)->next;
-    } else {
-        return 0;
-    }
-    return 1;
+    surface_ct(ps, sf)->entry = find_material(ps, &mt, m);
+}
+
+void tex_scene_read_facets(void *reader, const struct tex_param *p, void *ctx)
+{
+    struct parser *ps = reader;
+    parse_facets(ps, p, surface_ct(ps, ((struct block *)ctx)->obj));
+}
+
+void tex_scene_read_specular(void *reader, const struct tex_param *p, void *ctx)
+{
+    struct parser *ps = reader;
+    surface_ct(ps, ((struct block *)ctx)->obj)->s = ranged(ps, p->name, p->min, p->max, 0);
+}
+
+void tex_scene_read_model(void *reader, const struct tex_param *p, void *ctx)
+{
+    struct parser *ps = reader;
+    struct tex_surface *sf = ((struct block *)ctx)->obj;
+    struct tex_tok mt = ps->lx.t;
+    char *m = word(ps, "a shading model");
+    if (!(sf->model = tex_shading_find(m)))
+        fail_at(ps, &mt, 0, "%s must be %s (got %s)", p->name, p->meta, m);
+}
+
+void tex_scene_read_blend(void *reader, const struct tex_param *p, void *ctx)
+{
+    struct parser *ps = reader;
+    struct tex_surface *sf = ((struct block *)ctx)->obj;
+    struct tex_tok mt = ps->lx.t;
+    const struct tex_surface *o = mt.kind == TEX_TOK_NAME ? find_surface(ps, &mt) : NULL;
+    if (!o)
+        FAIL(ps, "%s names a surface defined above (got %.*s)", p->name, (int)mt.len, mt.text);
+    if (o == sf || o->blend)
+        FAIL(ps, "%s mixes in a surface without a %s of its own", p->name, p->name);
+    sf->blend = o;
+    tex_lex_next(&ps->lx);
+}
+
+void tex_scene_read_apply(void *reader, const struct tex_param *p, void *ctx)
+{
+    struct block *b = ctx;
+    (void)p;
+    *b->tail = parse_apply(reader);
+    b->tail = &(*b->tail)->next;
 }
 
 /* A surface with the rows' defaults and the Phong model. */
@@ -849,9 +883,8 @@ static void parse_surface(struct parser *ps)
     surface_defaults(ps, sf);
     sf->line = at.line;
     sf->col = at.col;
-    struct surface_ctx c = {sf, &sf->apply};
-    unsigned long long seen =
-        read_block(ps, tex_surface_rows, -1, sf, surface_special, &c, "a surface");
+    struct block b = {.obj = sf, .tail = &sf->apply};
+    unsigned long long seen = read_block(ps, tex_surface_rows, -1, &b, NULL, "a surface");
     int ior_set = (seen & row_bit(tex_surface_rows, "ior")) != 0;
     struct tex_ct *ct = sf->ct;
     if (ct) {
@@ -889,40 +922,57 @@ static const struct tex_surface *find_surface(struct parser *ps, const struct te
     return NULL;
 }
 
-/* The transform named by kt (its word already read) into acc: 1 if it is one. */
-static int transform_word(struct parser *ps, const struct tex_tok *kt, tex_xform *acc)
+/* Transform t after those block b read before it */
+static void place_xform(struct block *b, const tex_xform *t)
 {
-    tex_xform t;
-    if (tex_tok_is_word(kt, "translate")) {
-        tex_xform_translate(&t, vec(ps));
-    } else if (tex_tok_is_word(kt, "rotate")) {
-        tex_xform_identity(&t);
-        tex_xform_rotate(&t, vec(ps));
-    } else if (tex_tok_is_word(kt, "scale")) {
-        double sx = number(ps), sy = sx, sz = sx;
-        if (ps->lx.t.kind == TEX_TOK_NUM) {
-            sy = number(ps);
-            sz = number(ps);
-        }
-        if (sx == 0 || sy == 0 || sz == 0)
-            fail_at(ps, kt, 0, "scale by zero makes a degenerate object");
-        tex_xform_scale(&t, tex_v3_make(sx, sy, sz));
-    } else {
-        return 0;
-    }
-    tex_xform_mul(acc, &t, acc);
-    return 1;
+    tex_xform_mul(b->acc, t, b->acc);
+    if (b->placed)
+        *b->placed = 1;
 }
 
-/* `surface NAME` of an object block, its word already read. */
-static const struct tex_surface *surface_word(struct parser *ps)
+void tex_scene_read_translate(void *reader, const struct tex_param *p, void *ctx)
 {
+    tex_xform t;
+    (void)p;
+    tex_xform_translate(&t, vec(reader));
+    place_xform(ctx, &t);
+}
+
+void tex_scene_read_rotate(void *reader, const struct tex_param *p, void *ctx)
+{
+    tex_xform t;
+    (void)p;
+    tex_xform_identity(&t);
+    tex_xform_rotate(&t, vec(reader));
+    place_xform(ctx, &t);
+}
+
+void tex_scene_read_scale(void *reader, const struct tex_param *p, void *ctx)
+{
+    struct parser *ps = reader;
+    tex_xform t;
+    double sx = number(ps), sy = sx, sz = sx;
+    if (ps->lx.t.kind == TEX_TOK_NUM) {
+        sy = number(ps);
+        sz = number(ps);
+    }
+    if (sx == 0 || sy == 0 || sz == 0)
+        fail_at(ps, &ps->kt, 0, "%s by zero makes a degenerate object", p->name);
+    tex_xform_scale(&t, tex_v3_make(sx, sy, sz));
+    place_xform(ctx, &t);
+}
+
+/* `surface NAME` of an object block */
+void tex_scene_read_surface(void *reader, const struct tex_param *p, void *ctx)
+{
+    struct parser *ps = reader;
     struct tex_tok st = ps->lx.t;
     const struct tex_surface *sf;
+    (void)p;
     if (st.kind != TEX_TOK_NAME || !(sf = find_surface(ps, &st)))
         FAIL(ps, "unknown surface '%.*s'", (int)st.len, st.text);
+    ((struct block *)ctx)->ob->surface = sf;
     tex_lex_next(&ps->lx);
-    return sf;
 }
 
 static int shape_kind(const struct tex_tok *t)
@@ -949,32 +999,7 @@ static int is_object(const struct tex_tok *t)
     return shape_kind(t) >= 0 || csg_kind(t) >= 0;
 }
 
-static int is_transform(const struct tex_tok *t)
-{
-    return tex_tok_is_word(t, "translate") || tex_tok_is_word(t, "rotate") || tex_tok_is_word(t, "scale");
-}
-
 static struct tex_object *parse_object(struct parser *ps);
-
-/* A leaf's block: the object and its transforms, for the SPECIAL rows. */
-struct leaf_ctx {
-    struct tex_object *ob;
-    tex_xform acc;
-};
-
-/* The SPECIAL rows of tex_object_rows: surface and the transforms. */
-static int leaf_special(struct parser *ps, const struct tex_param *p, const struct tex_tok *kt,
-                        void *ctx)
-{
-    struct leaf_ctx *c = ctx;
-    if (!p)
-        return 0;
-    if (!strcmp(p->name, "surface")) {
-        c->ob->surface = surface_word(ps);
-        return 1;
-    }
-    return transform_word(ps, kt, &c->acc);
-}
 
 /* Check a shape's numbers and give the placement of its canonical shape; cones, cylinders
  * and tori keep their radii in ob, in world units. */
@@ -1046,16 +1071,17 @@ static struct tex_object *parse_leaf(struct parser *ps, int kind, const struct t
     struct tex_shape_params l;
     if (tex_params_defaults(tex_object_rows, &l) < 0)
         fail_at(ps, at, 0, "%s", tex_errmsg());
-    struct leaf_ctx c = {.ob = ob};
-    tex_xform_identity(&c.acc);
+    tex_xform acc;
+    tex_xform_identity(&acc);
+    struct block b = {.obj = &l, .acc = &acc, .ob = ob};
     char what[32];
     snprintf(what, sizeof what, "a %s", tex_shape_methods[kind].name);
     ps->whole_vectors = 1;
-    read_block(ps, tex_object_rows, kind, &l, leaf_special, &c, what);
+    read_block(ps, tex_object_rows, kind, &b, NULL, what);
     ps->whole_vectors = 0;
     tex_xform place;
     place_leaf(ps, ob, at, &l, &place);
-    tex_xform_mul(&ob->to_world, &c.acc, &place);
+    tex_xform_mul(&ob->to_world, &acc, &place);
     return ob;
 }
 
@@ -1103,12 +1129,11 @@ static struct tex_object *parse_object(struct parser *ps)
         tex_lex_expect(&ps->lx, '{');
         while (!tex_tok_is_punct(&ps->lx.t, '}')) {
             struct tex_tok kt = ps->lx.t;
-            if (tex_tok_is_word(&kt, "surface")) {
+            const struct tex_param *p = row_of(tex_object_rows, &kt, -1);
+            if (p && p->type == TEX_P_SPECIAL) { /* the words of every object: surface, placements */
+                struct block b = {.acc = &ob->to_world, .ob = ob};
                 tex_lex_next(&ps->lx);
-                ob->surface = surface_word(ps);
-            } else if (is_transform(&kt)) {
-                tex_lex_next(&ps->lx);
-                transform_word(ps, &kt, &ob->to_world);
+                read_value(ps, p, &kt, &b);
             } else if (is_object(&kt)) {
                 if (nk == ck) {
                     ck = ck ? 2 * ck : 4;
@@ -1167,35 +1192,35 @@ static void parse_spectrum(struct parser *ps, tex_curve *c)
         fail_at(ps, &t, tex_errkind() == TEX_ERR_RUNTIME, "%s", tex_errmsg());
 }
 
-/* spectrum and falloff of a light */
-static int light_special(struct parser *ps, const struct tex_param *p, const struct tex_tok *kt,
-                         void *ctx)
+void tex_scene_read_spectrum(void *reader, const struct tex_param *p, void *ctx)
 {
-    struct tex_light *l = ctx;
+    struct parser *ps = reader;
+    struct tex_light *l = ((struct block *)ctx)->obj;
+    (void)p;
+    l->spectrum = palloc(ps, sizeof *l->spectrum);
+    parse_spectrum(ps, l->spectrum);
+}
+
+/* falloff none | square | C1 C2 C3 */
+void tex_scene_read_falloff(void *reader, const struct tex_param *p, void *ctx)
+{
+    struct parser *ps = reader;
+    struct tex_light *l = ((struct block *)ctx)->obj;
     struct tex_tok ft = ps->lx.t;
-    if (p && !strcmp(p->name, "spectrum")) {
-        l->spectrum = palloc(ps, sizeof *l->spectrum);
-        parse_spectrum(ps, l->spectrum);
-        (void)kt;
-    } else if (p && !strcmp(p->name, "falloff")) {
-        if (tex_tok_is_word(&ft, "none")) {
-            tex_lex_next(&ps->lx);
-            l->falloff = TEX_FALL_NONE;
-        } else if (tex_tok_is_word(&ft, "square")) {
-            tex_lex_next(&ps->lx);
-            l->falloff = TEX_FALL_SQUARE;
-        } else {
-            l->falloff = TEX_FALL_POLY;
-            l->c1 = ranged(ps, "falloff C1", p->min, p->max, 0);
-            l->c2 = ranged(ps, "falloff C2", p->min, p->max, 0);
-            l->c3 = ranged(ps, "falloff C3", p->min, p->max, 0);
-            if (l->c1 + l->c2 + l->c3 <= 0)
-                fail_at(ps, &ft, 0, "falloff c1 c2 c3 must not all be 0");
-        }
-    } else {
-        return 0;
+    if (tex_tok_is_word(&ft, "none") || tex_tok_is_word(&ft, "square")) {
+        tex_lex_next(&ps->lx);
+        l->falloff = tex_tok_is_word(&ft, "none") ? TEX_FALL_NONE : TEX_FALL_SQUARE;
+        return;
     }
-    return 1;
+    char name[64];
+    double *c[3] = {&l->c1, &l->c2, &l->c3};
+    l->falloff = TEX_FALL_POLY;
+    for (int i = 0; i < 3; i++) {
+        snprintf(name, sizeof name, "%s C%d", p->name, i + 1);
+        *c[i] = ranged(ps, name, p->min, p->max, 0);
+    }
+    if (l->c1 + l->c2 + l->c3 <= 0)
+        fail_at(ps, &ft, 0, "%s c1 c2 c3 must not all be 0", p->name);
 }
 
 static void parse_light(struct parser *ps)
@@ -1219,7 +1244,8 @@ static void parse_light(struct parser *ps)
     l->kind = kind;
     char what[32];
     snprintf(what, sizeof what, "a %s light", k);
-    unsigned long long seen = read_block(ps, tex_light_rows, kind, l, light_special, l, what);
+    struct block b = {.obj = l};
+    unsigned long long seen = read_block(ps, tex_light_rows, kind, &b, NULL, what);
     const struct tex_param *dir = tex_param_find(tex_light_rows, "direction");
     if ((seen & row_bit(tex_light_rows, "direction")) && !(tex_v3_len(l->direction) > 0))
         fail_at(ps, &at, 0, "light %s must not be zero", dir->name);
@@ -1261,7 +1287,7 @@ static void parse_environment(struct parser *ps, const struct tex_tok *kt)
     if (tex_params_defaults(tex_environment_rows, e) < 0)
         fail_at(ps, &ft, 0, "%s", tex_errmsg());
     if (tex_tok_is_punct(&ps->lx.t, '{'))
-        read_block(ps, tex_environment_rows, -1, e, NULL, NULL, "the environment");
+        read_block(ps, tex_environment_rows, -1, &(struct block){.obj = e}, NULL, "the environment");
     tex_map *m = tex_map_read(path);
     if (!m)
         fail_at(ps, &ft, 1, "cannot read the environment map '%s': %s", path, tex_errmsg());
@@ -1283,7 +1309,7 @@ static void parse_environment(struct parser *ps, const struct tex_tok *kt)
 
 static void parse_camera(struct parser *ps)
 {
-    read_block(ps, tex_camera_rows, -1, ps->s, NULL, NULL, "the camera");
+    read_block(ps, tex_camera_rows, -1, &(struct block){.obj = ps->s}, NULL, "the camera");
 }
 
 static void add_object(struct parser *ps, struct tex_object *ob)
@@ -1300,40 +1326,54 @@ static void add_object(struct parser *ps, struct tex_object *ob)
     s->objects[s->nobjects++] = ob;
 }
 
-/* The setting named by kt (its word already read): 1 if it is one. */
+void tex_scene_read_seed(void *reader, const struct tex_param *p, void *ctx)
+{
+    struct parser *ps = reader;
+    (void)ctx;
+    ps->s->settings.seed = (uint64_t)ranged(ps, p->name, p->min, p->max, 1);
+}
+
+void tex_scene_read_materials(void *reader, const struct tex_param *p, void *ctx)
+{
+    struct parser *ps = reader;
+    struct tex_tok ft = ps->lx.t;
+    (void)ctx;
+    if (ft.kind != TEX_TOK_STR && ft.kind != TEX_TOK_NAME)
+        FAIL(ps, "expected a file name after '%s'", p->name);
+    char *path = pstrdup(ps, ft.text, ft.len);
+    tex_lex_next(&ps->lx);
+    load_materials(ps, path, &ft);
+}
+
+/* colour rgb | spectral [N] */
+void tex_scene_read_colour(void *reader, const struct tex_param *p, void *ctx)
+{
+    struct parser *ps = reader;
+    struct tex_tok mt = ps->lx.t;
+    int bands = 0;
+    (void)ctx;
+    if (tex_tok_is_word(&mt, "spectral")) {
+        tex_lex_next(&ps->lx);
+        bands = TEX_BANDS_DEFAULT;
+        if (ps->lx.t.kind == TEX_TOK_NUM)
+            bands = (int)ranged(ps, "spectral N", p->min, p->max, 1);
+    } else if (tex_tok_is_word(&mt, "rgb")) {
+        tex_lex_next(&ps->lx);
+    } else {
+        FAIL(ps, "%s model must be rgb or spectral [N]", p->name);
+    }
+    if (tex_scene_set_colour(ps->s, bands) < 0)
+        fail_at(ps, &mt, tex_errkind() == TEX_ERR_RUNTIME, "%s", tex_errmsg());
+}
+
+/* A word of the settings (kt, already taken): 1 if it is one. */
 static int settings_word(struct parser *ps, const struct tex_tok *kt)
 {
-    struct tex_scene *s = ps->s;
     const struct tex_param *p = row_of(tex_settings_rows, kt, -1);
+    struct block b = {.obj = ps->s};
     if (!p)
         return 0;
-    if (p->type != TEX_P_SPECIAL) {
-        read_row(ps, p, s);
-    } else if (!strcmp(p->name, "seed")) {
-        s->settings.seed = (uint64_t)ranged(ps, p->name, p->min, p->max, 1);
-    } else if (!strcmp(p->name, "materials")) {
-        struct tex_tok ft = ps->lx.t;
-        if (ft.kind != TEX_TOK_STR && ft.kind != TEX_TOK_NAME)
-            FAIL(ps, "expected a file name after 'materials'");
-        char *path = pstrdup(ps, ft.text, ft.len);
-        tex_lex_next(&ps->lx);
-        load_materials(ps, path, &ft);
-    } else { /* colour rgb | spectral [N] */
-        struct tex_tok mt = ps->lx.t;
-        int bands = 0;
-        if (tex_tok_is_word(&mt, "spectral")) {
-            tex_lex_next(&ps->lx);
-            bands = TEX_BANDS_DEFAULT;
-            if (ps->lx.t.kind == TEX_TOK_NUM)
-                bands = (int)ranged(ps, "spectral N", p->min, p->max, 1);
-        } else if (tex_tok_is_word(&mt, "rgb")) {
-            tex_lex_next(&ps->lx);
-        } else {
-            FAIL(ps, "colour model must be rgb or spectral [N]");
-        }
-        if (tex_scene_set_colour(s, bands) < 0)
-            fail_at(ps, &mt, tex_errkind() == TEX_ERR_RUNTIME, "%s", tex_errmsg());
-    }
+    read_value(ps, p, kt, &b);
     return 1;
 }
 

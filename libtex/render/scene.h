@@ -118,6 +118,15 @@ extern const struct tex_param tex_target_rows[];   /* bump, m, s, blend, normal,
                                                     * TEX_SP_BUMP.. in order */
 extern const struct tex_param tex_environment_rows[]; /* environment FILE { }, over
                                                        * struct tex_environment */
+/* The readers of the rows that the scene language's own code reads (TEX_P_SPECIAL;
+ * render_scene.c): reader is its parser, ctx the block being read. */
+tex_param_read tex_scene_read_seed, tex_scene_read_colour, tex_scene_read_materials;
+tex_param_read tex_scene_read_spectrum, tex_scene_read_falloff;
+tex_param_read tex_scene_read_model, tex_scene_read_material, tex_scene_read_facets,
+    tex_scene_read_specular, tex_scene_read_apply, tex_scene_read_blend;
+tex_param_read tex_scene_read_translate, tex_scene_read_rotate, tex_scene_read_scale,
+    tex_scene_read_cross, tex_scene_read_stretch, tex_scene_read_region;
+tex_param_read tex_scene_read_surface;
 /* The environment's colour (RGB, times its intensity) in direction d (unit, world), for a
  * ray whose footprint spreads by `spread` radians (0: no filtering). */
 void tex_environment_eval(const struct tex_environment *e, const tex_v3 *d, double spread,
