@@ -13,7 +13,7 @@ dir=$(cd "$dir" && pwd)
 cd "$tmp"
 s=$size h=$((size / 2))
 page=$dir/figures.md
-printf '# The thesis'"'"'s figures, rebuilt\n\nMade by `make figures` (patterns/figures.sh); each is checked against a golden image by tests/figures.sh. Captions are translated from the thesis (seed 001) and the colour-model paper (seed 000).\n' >"$page"
+printf '# The thesis'"'"'s figures, rebuilt\n\nMade by `make figures` (patterns/figures.sh); each is checked against a golden image by tests/figures.sh. Captions are translated from the thesis and the colour-model paper (Ferreira 1991).\n' >"$page"
 # figure ID CAPTION COMMANDS: run the commands (which leave fig.exr), keep it as fig_ID, and
 # put it on the page with its caption and commands
 figure() {
@@ -130,7 +130,7 @@ t_apply s.scene -s ${s}x$((3 * s / 4)) -q -o fig.exr"
 figure photo_6.1 "Photo 6.1: Imitation of a fabric texture from a fractal primitive: anisotropic spectral synthesis for the warp and the weft, woven by a checker." "
 '$here/fabric.sh' -o fab -s $s >/dev/null
 t_convert fab_colour.exr -o fig.exr"
-figure seed000_5 "Seed 000, Figure 5: the five spheres rendered with Whitted-Phong in RGB (left) and Cook-Torrance with sampled spectra (right)." "
+figure ferreira_5 "Ferreira (1991), Figure 5: the five spheres rendered with Whitted-Phong in RGB (left) and Cook-Torrance with sampled spectra (right)." "
 '$here/five_spheres.sh' five.png ${s}x$((3 * s / 4)) >/dev/null
 t_convert five.png -o fig.exr"
 echo "wrote $page"

@@ -1,5 +1,5 @@
 #!/bin/sh
-# five_spheres.sh - the seed scene of seed 000 (five spheres on a checkered
+# five_spheres.sh - the scene of Ferreira (1991), section 8 (five spheres on a checkered
 # dielectric) rendered twice with the same camera, lights and surfaces:
 # Whitted-Phong in RGB on the left, Cook-Torrance in the spectral colour model
 # on the right, written side by side (see the discussion in t_apply(5)).

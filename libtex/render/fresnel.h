@@ -1,4 +1,4 @@
-/* fresnel.h - Fresnel reflectance of dielectrics and conductors (seed 000 eqs. 5-8)
+/* fresnel.h - Fresnel reflectance of dielectrics and conductors (Ferreira 1991, eqs. 5-8)
  *
  * Light is taken as unpolarised, so every reflectance here is the mean of
  * the parallel and perpendicular components:  Fr = (r_par^2 + r_perp^2)/2.

@@ -1,4 +1,4 @@
-/* matdb.h - the materials database ("banco de materiais", seed 000 section 5)
+/* matdb.h - the materials database ("banco de materiais", Ferreira 1991, section 5)
  *
  * Optical constants per wavelength, read from a text file (format in
  * textura-materials(5); the shipped one is patterns/materials.txt):

@@ -1,4 +1,4 @@
-/* microfacet.h - the Cook-Torrance specular term (seed 000 eqs. 4, 13-17, 22)
+/* microfacet.h - the Cook-Torrance specular term (Cook and Torrance 1982; Ferreira 1991, eqs. 4, 13-17, 22)
  *
  * A rough surface is a field of mirror-like microfacets.  For a light
  * direction L, view direction V, normal N and half vector H = (L+V)/|L+V|,

@@ -1,4 +1,4 @@
-/* render_ct.h - the Cook-Torrance shading model for t_apply (seed 000 eq. 22)
+/* render_ct.h - the Cook-Torrance shading model for t_apply (Ferreira 1991, eq. 22)
  *
  * A shading model in the sense of render_shade.h, chosen per surface with
  * `model cook-torrance`.  Its own parameters (the model_data of a

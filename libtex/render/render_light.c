@@ -1,4 +1,4 @@
-/* render_light.c - lights (seed 002 section 7.2) and shadows
+/* render_light.c - lights (the Iluminação lecture chapter, 7.2) and shadows
  *
  *   distant  parallel light from direction dir, no attenuation
  *   point    at pos; fatt = 1, 1/d^2, or min(1/(c1 + c2 d + c3 d^2), 1)

@@ -1,4 +1,4 @@
-/* spectrum.h - the spectral colour model (seed 000 section 4)
+/* spectrum.h - the spectral colour model (Ferreira 1991, section 4, after Hall)
  *
  * Curves and bands.  A tex_curve holds a spectral curve at 1 nm from 380 to
  * 780 nm (401 values), built from a table (linear interpolation, constant
