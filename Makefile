@@ -95,7 +95,7 @@ PCFILE   = $(BUILD)/lib/pkgconfig/textura.pc
 # Headers that stay inside libtex: the scene's internals, the shading models'
 # interface, the languages' lexer and evaluator, the OpenImageIO bridge.  (The x86/
 # folders' headers are never installed.)
-RENDER_PRIVATE = scene camera vecmath shape bvh light texture surface mipmap mapping footprint appfn \
+RENDER_PRIVATE = scene camera whitted vecmath shape bvh light texture surface mipmap mapping footprint appfn \
                  packet render_shade render_ct
 PRIVATE_HEADERS = libtex/base/kdtree.h libtex/io/oiio_bridge.h libtex/io/codec_bridge.h \
                   libtex/lang/lex.h libtex/lang/expr.h libtex/lang/rowcode.h \
