@@ -47,11 +47,10 @@
 
 #include <stddef.h>
 
+#include "../base/api.h"
 #include "../prim/prim.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 #define TEX_PROC_MAX_PARAMS 32   /* parameters of one composed primitive */
 #define TEX_PROC_MAX_CALLS 256   /* calls in one definition */
@@ -81,7 +80,5 @@ const struct tex_primitive *tex_procs_find(const struct tex_procs *set, const ch
 /* The composed primitives of set, in the order defined: i from 0 until NULL. */
 const struct tex_primitive *tex_procs_get(const struct tex_procs *set, int i);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

@@ -38,11 +38,10 @@
 
 #include <stddef.h>
 
+#include "../base/api.h"
 #include "../base/map.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 struct tex_script_opts {
     long long max_pixels; /* largest image, in pixels */
@@ -57,7 +56,5 @@ struct tex_script_opts {
 tex_map *tex_script_run(const char *text, size_t len, const char *name,
                         const struct tex_script_opts *o);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

@@ -29,11 +29,11 @@
 #ifndef TEX_COLOUR_H
 #define TEX_COLOUR_H
 
+#include "../base/api.h"
+
 #include <math.h>
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 #define TEX_COLOUR_MAX 64 /* most spectral samples a scene may ask for */
 
@@ -151,7 +151,5 @@ static inline float tex_colour_max(const tex_colour *a, int n)
     return m;
 }
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

@@ -24,12 +24,11 @@
 #ifndef TEX_COLOUR_SPECTRAL_H
 #define TEX_COLOUR_SPECTRAL_H
 
+#include "../base/api.h"
 #include "colour.h"
 #include "spectrum.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 int tex_colour_space_spectral(struct tex_colour_space *cs, int n, const char *colord);
 void tex_colour_space_spectral_free(struct tex_colour_space *cs);
@@ -44,7 +43,5 @@ const struct tex_bands *tex_colour_space_bands(const struct tex_colour_space *cs
 void tex_colour_space_curve(const struct tex_colour_space *cs, const tex_curve *c,
                             tex_colour *out);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

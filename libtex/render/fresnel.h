@@ -39,9 +39,9 @@
 #ifndef TEX_FRESNEL_H
 #define TEX_FRESNEL_H
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "../base/api.h"
+
+TEX_API_BEGIN
 
 double tex_fresnel_dielectric(double cos_i, double eta_i, double eta_t, double *ft);
 double tex_fresnel_conductor(double cos_i, double eta_i, double n, double k);
@@ -49,7 +49,5 @@ double tex_fresnel_conductor_approx(double cos_i, double n, double k);
 void tex_fresnel_conductor_n(double cos_i, double eta_i, const float *n, const float *k,
                              int count, float *out);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

@@ -33,11 +33,10 @@
 #ifndef TEX_MATDB_H
 #define TEX_MATDB_H
 
+#include "../base/api.h"
 #include "spectrum.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 #define TEX_MATDB_NAME 32
 
@@ -61,7 +60,5 @@ int tex_matdb_parse(struct tex_matdb *db, const char *text, const char *name);
 const struct tex_matdb_entry *tex_matdb_find(const struct tex_matdb *db, const char *name);
 void tex_matdb_free(struct tex_matdb *db);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

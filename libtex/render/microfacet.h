@@ -53,9 +53,9 @@
 #ifndef TEX_MICROFACET_H
 #define TEX_MICROFACET_H
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "../base/api.h"
+
+TEX_API_BEGIN
 
 enum tex_facet_dist { TEX_FACET_BECKMANN, TEX_FACET_BLINN };
 
@@ -77,7 +77,5 @@ double tex_ct_geometry(const struct tex_facets *f, double nh, double nv, double 
 /* Per sample: ra[i] = d * rd[i] + s * f0[i]. */
 void tex_ct_ambient(double s, const float *rd, const float *f0, int count, float *ra);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

@@ -20,12 +20,11 @@
 
 #include <stddef.h>
 
+#include "../base/api.h"
 #include "../base/map.h"
 #include "../base/param.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 struct tex_scene;
 struct tex_shading_model;
@@ -100,7 +99,5 @@ struct tex_scene_word {
 extern const struct tex_scene_word tex_quantities[];
 int tex_scene_function(int i, struct tex_scene_word *w);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

@@ -84,9 +84,9 @@
 #ifndef TEX_SPECTRUM_H
 #define TEX_SPECTRUM_H
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "../base/api.h"
+
+TEX_API_BEGIN
 
 #define TEX_LAMBDA_MIN 380
 #define TEX_LAMBDA_MAX 780
@@ -150,7 +150,5 @@ void tex_xyz_to_linear_srgb(const double xyz[3], double rgb[3]);
 void tex_linear_srgb_to_xyz(const double rgb[3], double xyz[3]);
 void tex_gamut_map(double rgb[3], enum tex_gamut g);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif
