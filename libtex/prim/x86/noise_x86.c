@@ -839,8 +839,8 @@ TEX_AVX512 void tex_noise_grid_rows_avx512(const tex_noise_grid *g, int y, int r
 
 /* ---- the analytic gradient over a row ---- */
 
-TEX_AVX2 void tex_noise_grad_avx2(const tex_noise_grid *g, const float *const C[6], int sb, float *dx,
-                           float *dy, float *dz, int x, int x1)
+TEX_AVX2 void tex_noise_grad_avx2(const tex_noise_grid *g, const float *const C[6], int sb,
+                                  float *dx, float *dy, float *dz, int x, int x1)
 {
     __m256i vsb = _mm256_set1_epi32(sb);
 
