@@ -112,13 +112,10 @@ static inline int geo_box(int nu, int nv, double u, double v, double hu, double 
                             double hu, double hv, float *out)                                      \
     {                                                                                              \
         const S *p = f->params;                                                                    \
-        const double *k = ((const struct geo_state *)f->state)->k;                                \
-        for (int i = 0; i < n; i++) {                                                              \
-            double x, y, hx, hy;                                                                   \
+        double x, y, hx, hy, *k = ((struct geo_state *)f->state)->k;                              \
+        for (int i = 0; i < n; i++)                                                                \
             out[i] = geo_box(p->nu, p->nv, u[i], v[i], hu, hv, &x, &y, &hx, &hy)                   \
-                         ? (float)name##_box(p, k, x, y, hx, hy)                                   \
-                         : 0.0f;                                                                   \
-        }                                                                                          \
+                         ? (float)name##_box(p, k, x, y, hx, hy) : 0.0f;                           \
     }
 
 /* 1 when a disc of radius r at distance d from a circle's centre misses the circle of radius R. */

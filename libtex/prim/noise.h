@@ -274,16 +274,20 @@ void tex_octave_rows_mf(const tex_octaves *o, int k, int y, int n, int op,
 
 /* The parameter rows every noise-based primitive shares (param.h), declared once:
  * struct S must have double z, struct tex_reals offset, int fade, int gradients
- * (and struct tex_reals w for TEX_NOISE_W_ROW). */
+ * (and struct tex_reals w for TEX_NOISE_W_ROW).  Where the field lies in the
+ * lattice (slice, offset), then the lattice's own rows (fade, gradients). */
 #define TEX_NOISE_ROWS(S, ...)                                                                     \
+    TEX_NOISE_PLACE_ROWS(S, __VA_ARGS__), TEX_NOISE_TABLE_ROWS(S, __VA_ARGS__)
+#define TEX_NOISE_PLACE_ROWS(S, ...)                                                               \
     TEX_REAL_N("slice", S, z, 0, 0, -1e9, 1e9, "Z",                                                \
                "the slice of the solid field, in map widths", .alias = "z", __VA_ARGS__),          \
         TEX_REALS(S, offset, 0, NULL, -1e12, 1e12, 3, "X[,Y[,Z]]",                                 \
                   "lattice offset added to the scaled coordinates (of the first octave)",          \
-                  __VA_ARGS__),                                                                    \
-        TEX_ENUM(S, fade, 0, "cubic", "cubic|quintic",                                             \
-                 "noise weight function: the thesis's cubic (eq. 5.2) or Perlin's quintic",        \
-                 __VA_ARGS__),                                                                     \
+                  __VA_ARGS__)
+#define TEX_NOISE_TABLE_ROWS(S, ...)                                                               \
+    TEX_ENUM(S, fade, 0, "cubic", "cubic|quintic",                                                 \
+             "noise weight function: the thesis's cubic (eq. 5.2) or Perlin's quintic",            \
+             __VA_ARGS__),                                                                         \
         TEX_INT(S, gradients, 0, 256, 2, TEX_NOISE_MAX_GRADIENTS, "N",                             \
                 "gradients on the sphere (the thesis's n)", __VA_ARGS__)
 #define TEX_NOISE_W_ROW(S, ...)                                                                    \
