@@ -15,15 +15,9 @@
 #include "base/error.h"
 #include "base/simd.h"
 #include "prim/noise.h"
+#include "prim/noise_grid.h"
 #include "prim/prim.h"
 #include "base/rng.h"
-
-/* max then min, as the row kernels clamp (noise.c) */
-static inline float clamp01(float x)
-{
-    float m = x > 0 ? x : 0;
-    return m < 1 ? m : 1;
-}
 
 /* ---- turbulence ---- */
 

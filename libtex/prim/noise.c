@@ -86,6 +86,34 @@ void tex_noise_free(tex_noise_table *t)
     t->grad4 = NULL;
 }
 
+tex_noise_table *tex_noise_new(uint64_t seed, int n, int period)
+{
+    tex_noise_table *t = malloc(sizeof *t);
+
+    if (!t) {
+        tex_error("out of memory");
+        return NULL;
+    }
+    if (tex_noise_init(t, seed, n, period) < 0) {
+        free(t);
+        return NULL;
+    }
+    return t;
+}
+
+void tex_noise_set_fade(tex_noise_table *t, int fade)
+{
+    t->fade = fade;
+}
+
+void tex_noise_delete(tex_noise_table *t)
+{
+    if (!t)
+        return;
+    tex_noise_free(t);
+    free(t);
+}
+
 
 /* The fade's derivative */
 static inline double dfade(int kind, double t)
@@ -310,6 +338,30 @@ static void grid_clear(tex_noise_grid *g)
 void tex_noise_grid_free(tex_noise_grid *g)
 {
     grid_clear(g);
+}
+
+tex_noise_grid *tex_noise_grid_new(const tex_noise_table *t, int w, int h, double fx, double fy,
+                                   const double off[4], int dims, int period)
+{
+    tex_noise_grid *g = malloc(sizeof *g);
+
+    if (!g) {
+        tex_error("out of memory");
+        return NULL;
+    }
+    if (tex_noise_grid_init(g, t, w, h, fx, fy, off, dims, period) < 0) {
+        free(g);
+        return NULL;
+    }
+    return g;
+}
+
+void tex_noise_grid_delete(tex_noise_grid *g)
+{
+    if (!g)
+        return;
+    tex_noise_grid_free(g);
+    free(g);
 }
 
 static int lut_init(tex_noise_grid *g, int fold);
@@ -937,6 +989,32 @@ void tex_octaves_free(tex_octaves *o)
     for (int k = 0; k < o->n; k++)
         tex_noise_grid_free(&o->g[k]);
     o->grid = 0;
+}
+
+tex_octaves *tex_octaves_new(uint64_t seed, int gradients, int fade, int n, double freq,
+                             double lac, const double off[3], double z, double t, int dims,
+                             int tile, int w, int h)
+{
+    tex_octaves *o = malloc(sizeof *o);
+
+    if (!o) {
+        tex_error("out of memory");
+        return NULL;
+    }
+    if (tex_octaves_init(o, seed, gradients, fade, n, freq, lac, off, z, t, dims, tile, w, h) <
+        0) {
+        free(o);
+        return NULL;
+    }
+    return o;
+}
+
+void tex_octaves_delete(tex_octaves *o)
+{
+    if (!o)
+        return;
+    tex_octaves_free(o);
+    free(o);
 }
 
 double tex_octave_point(const tex_octaves *o, int k, double u, double v, double w)

@@ -13,6 +13,44 @@
  * the two lattice rows around it (kept per thread, or from the grid's table),
  * their coefficients P and Q per slot with the row's y weights, then the
  * pixels w0 (P u + Q) + w1 (P' (u - 1) + Q') with the row's operation.
+ *
+ * The types of noise.h are opaque to library users: libtex's own files make
+ * them in their memory (tex_noise_init, tex_noise_grid_init, tex_octaves_init)
+ * and read their fields.
+ *
+ * A grid's cell indices and fractions are computed once per column in
+ * double precision.  A lattice row (the gradients of one lattice y over
+ * the row's lattice columns) is folded once over the slice's corners in z
+ * (and w) into three floats per column; pixel rows inside the same cell
+ * share it (each grid keeps the last two per thread), and a pixel row
+ * combines two of them with its y weights into two coefficients per
+ * lattice column.  The per-pixel work is then four float multiplies and
+ * three adds, with the row's operation (rescale, weighted sum, |n|, the last
+ * octave's finish: tex_noise_grid_row_op) in the same pass.  When cells are
+ * smaller than pixels, so that every pixel row needs lattice rows of its own,
+ * the folded lattice rows are read from a table of all n x n lattice points
+ * made once per grid (the lattice repeats every n cells), and every column
+ * gets its own pair of slots, so that the vector rows read them without
+ * gathers: a map's cost then no longer grows with its frequency.  A row with
+ * more columns than the table has entries, where cells are under 5 pixels
+ * wide, first combines its two table rows with its y weights into one
+ * coefficient pair per entry (the operations each column would do; the table
+ * kept as planes of X, Y and C for it), and each column reads its corners'
+ * pairs: where eight or sixteen columns' corners lie within a register's
+ * entries (cells of about a pixel or more; half a pixel with AVX-512), by
+ * permutes of the coefficients, else one load per column (with AVX-512, one
+ * for two rows, their coefficients interleaved entry by entry).  Rows are made
+ * two at a time where their coefficients fit on the stack together
+ * (tex_noise_grid_rows_op), so that an octave sum, whose octaves' per-column
+ * data outgrow the first-level cache, reads them once for both.  Rows are
+ * vectorised (AVX2, chosen at run time, and AVX-512 for cells 5 pixels wide
+ * or more and for rows from folded table coefficients, unless most of an
+ * octave sum's cells are neither: a map that
+ * switches between the two ran slower; TEXTURA_SIMD=scalar or avx2 caps
+ * the level) and every level performs the
+ * same float operations in the same order, so the bytes are identical
+ * whatever the level, the thread count or the order rows come in.  They
+ * agree with tex_noise3/4 to about 1e-6.
  */
 #ifndef TEX_NOISE_GRID_H
 #define TEX_NOISE_GRID_H
@@ -22,6 +60,80 @@
 #include <stdint.h>
 
 #include "noise.h"
+
+/* ---- the insides of noise.h's types ---- */
+
+struct tex_noise_table {
+    int n;       /* gradients */
+    int period;  /* 0: none; used by tex_noise3/tex_noise4 */
+    int fade;    /* TEX_FADE_CUBIC (eq. 5.2, the default) or TEX_FADE_QUINTIC */
+    int *perm;   /* F, stored twice (2n entries) so that F[a + b] needs no mod */
+    float (*grad)[4];  /* n unit vectors on the sphere (w = 0) */
+    float (*grad4)[4]; /* n unit vectors on the 4D sphere */
+    float (*pgrad)[4]; /* grad[perm[m]] for m < 2n: the last hash step and its gradient in one */
+    unsigned char perm8[256]; /* perm as bytes where n = 256: the point kernel's lookups in
+                               * registers (AVX-512 VBMI) */
+};
+
+/* A table in the caller's memory: tex_noise_new's insides, freed by tex_noise_free. */
+int tex_noise_init(tex_noise_table *t, uint64_t seed, int n, int period);
+void tex_noise_free(tex_noise_table *t);
+
+struct tex_noise_cache; /* lattice rows kept for the next pixel rows (noise.c) */
+
+struct tex_noise_grid {
+    const tex_noise_table *t;
+    int w, h, dims, period;
+    double fy, oy;
+    int nslots, stride;
+    int32_t *slot;     /* per column: slot of its cell's left lattice column */
+    int32_t *lat;      /* per slot: lattice column index reduced mod period and n */
+    float *u, *um1, *w0, *w1; /* per column: fraction, fraction - 1, the two x weights */
+    float *dw0, *dw1;  /* per column: the x weights' derivatives in u */
+    int nz, zh[4];     /* the slice's corners in z (and w) of non-zero weight, hash prefixes */
+    float zm[4][4];    /* their weight W (1, 1, dz, dw) */
+    float zdm[4][4];   /* dims 3: the z derivative's (W', W', W' dz + W, 0) */
+    float (*lut)[4];   /* NULL, or per lattice row mod n the folded (X, Y, C, 0) of every
+                        * lattice column mod n and column 0 again (n + 1 entries), when
+                        * the grid needs more lattice rows than the table has */
+    float *plane;      /* a folded grid's table instead: per lattice row mod n its X, Y and
+                        * C, each over ps entries (entry i is lattice column i mod n) */
+    int ps;
+    int paired;        /* every column has its own two slots, 2x and 2x + 1 */
+    int adjacent;      /* every column's right corner is the table's next entry */
+    int folded;        /* adjacent, with more columns than the table has entries and cells
+                        * under 5 pixels wide: rows from the table row folded with their y
+                        * weights once (fold_row_*), each column reading its corners' pairs */
+    int32_t *corner;   /* folded: per column, the table entry of its left corner */
+    int32_t *corner2;  /* ... twice over (in the same block): an 8-byte index into a
+                        * table of four floats an entry, which loads scale as they are */
+    int span8, span16; /* the most cells between the first and last columns of 8 (16)
+                        * columns from a multiple of 8 (16) */
+    int wide;          /* AVX-512 rows where the CPU has it: cells 5 pixels wide or more, or
+                        * rows made from folded table coefficients */
+    struct tex_noise_cache *cache;
+};
+
+/* A grid in the caller's memory (tex_noise_grid_new's), freed by tex_noise_grid_free. */
+int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int h, double fx,
+                        double fy, const double off[4], int dims, int period);
+void tex_noise_grid_free(tex_noise_grid *g);
+
+struct tex_octaves {
+    tex_noise_table t;
+    int n, dims, grid;
+    double freq[TEX_OCTAVES_MAX], off[TEX_OCTAVES_MAX][4];
+    int period[TEX_OCTAVES_MAX];
+    tex_noise_grid g[TEX_OCTAVES_MAX]; /* when sampled on a grid (w, h > 0) */
+};
+
+/* Octaves in the caller's memory (tex_octaves_new's), freed by tex_octaves_free. */
+int tex_octaves_init(tex_octaves *o, uint64_t seed, int gradients, int fade, int n, double freq,
+                     double lac, const double off[3], double z, double t, int dims, int tile,
+                     int w, int h);
+void tex_octaves_free(tex_octaves *o);
+
+/* ---- rows of a grid ---- */
 
 static inline int imod64(int64_t a, int64_t n)
 {

@@ -8,11 +8,12 @@
 
 #include "base/error.h"
 #include "prim/noise.h"
+#include "prim/noise_grid.h"
 #include "prim/prim.h"
 #include "base/rng.h"
 #include "base/trig.h"
 
-static inline float clamp01(float x)
+static inline float clamp_unit(float x)
 {
     return x < 0 ? 0 : x > 1 ? 1 : x;
 }
@@ -147,7 +148,7 @@ static float holes_point(const struct tex_field *f, struct hole_cache *hc, int d
         }
     }
     double best = rmin < INFINITY ? exp(-8.0 * rmin) : 0;
-    return clamp01((float)(1.0 - p->depth * best));
+    return clamp_unit((float)(1.0 - p->depth * best));
 }
 
 static void holes_eval2(const struct tex_field *f, int n, const double *u, const double *v,
@@ -281,10 +282,10 @@ static void colorvar_fact(const struct tex_field *f, int m, const double *u, con
     for (int i = 0; i < m; i++) {
         double fact = su[i] * sv[i] / (4 * s->sumc * s->sumc);
         if (f->nc == 1)
-            out[i] = clamp01((float)fact);
+            out[i] = clamp_unit((float)fact);
         else
             for (int ch = 0; ch < 3; ch++)
-                out[(size_t)i * 3 + ch] = clamp01((float)(fact * p->color[ch]));
+                out[(size_t)i * 3 + ch] = clamp_unit((float)(fact * p->color[ch]));
     }
 }
 
@@ -406,7 +407,7 @@ static void perturb_values(const struct perturb_params *p, int m, const double *
         a[i] = 2 * M_PI * (p->a * u[i] + p->b / 10 * (p->c * out[i] + 1 + c[i]));
     tex_sin_n(m, a, a, 0);
     for (int i = 0; i < m; i++)
-        out[i] = clamp01((float)(0.5 + 0.5 * a[i]));
+        out[i] = clamp_unit((float)(0.5 + 0.5 * a[i]));
 }
 
 static void perturb_eval3(const struct tex_field *f, int n, const double *u, const double *v,
