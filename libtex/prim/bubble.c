@@ -7,6 +7,7 @@
 #include "base/progress.h"
 #include "base/rng.h"
 #include "prim/cellular.h"
+#include "prim/cellular_impl.h"
 #include "prim/prim.h"
 
 enum { OUT_BUBBLE, OUT_F1, OUT_F2, OUT_F2F1, OUT_CELL };
@@ -35,7 +36,8 @@ static const struct tex_param bubble_rows[] = {
     TEX_ENUM(struct bubble_params, value, 0, "bubble", "bubble|f1|f2|f2-f1|cell",
              "what to write: bubble shading, distances F1, F2, F2-F1, or a random value per cell"),
     TEX_STRING(struct bubble_params, metric, 0, "euclid", "NAME",
-               "distance: euclid|manhattan|chebyshev|minkowski:P with P in 1..64"),
+               "distance: euclid|manhattan|chebyshev|minkowski:P with P in 1.." TEX_XSTR(
+                   TEX_METRIC_P_MAX)),
     TEX_ENUM(struct bubble_params, distribution, 0, "uniform", "uniform|poisson|cluster",
              "how the random points are spread"),
     TEX_INT(struct bubble_params, clusters, 0, 0, 0, 1000000, "N",
@@ -68,6 +70,11 @@ static void bubble_fini(struct tex_field *f)
     f->state = NULL;
 }
 
+/* Messages name a parameter by its row (prim.h) */
+#define OPTION(field) TEX_OPTION(bubble_rows, struct bubble_params, field)
+/* Dart throwing's most points (it slows as the discs fill the square) */
+#define POISSON_MAX 2000000
+
 static int bubble_init(struct tex_field *f)
 {
     const struct bubble_params *p = f->params;
@@ -77,25 +84,26 @@ static int bubble_init(struct tex_field *f)
     tex_points ps;
     int dim = p->dimension + 2;
 
-    if (tex_metric_parse(p->metric, &o.metric, &o.p) < 0)
+    if (tex_metric_parse_as(p->metric, OPTION(metric), &o.metric, &o.p) < 0)
         return -1;
     /* Options of another mode, told by values other than the defaults (the rows
      * serve scenes too, where nothing records what was given). */
     if (p->clusters && p->distribution != TEX_POINTS_CLUSTER)
-        return tex_usage_error("--clusters applies to --distribution cluster only");
+        return tex_usage_error("%s applies to %s cluster only", OPTION(clusters),
+                               OPTION(distribution));
     if (p->z != BUBBLE_SLICE && dim == 2)
-        return tex_usage_error("--slice applies to --dimension 3 only");
+        return tex_usage_error("%s applies to %s 3 only", OPTION(z), OPTION(dimension));
     if (p->points && (p->count != BUBBLE_COUNT || p->distribution || p->clusters))
-        return tex_usage_error("--count, --distribution and --clusters apply to random points, "
-                               "not to --points");
+        return tex_usage_error("%s, %s and %s apply to random points, not to %s", OPTION(count),
+                               OPTION(distribution), OPTION(clusters), OPTION(points));
     tex_progress_stage(0.3, 2); /* the points, then their search structure */
     if (p->points) {
         if (tex_points_read(&ps, p->points, dim) < 0)
             return -1;
     } else {
-        if (p->distribution == TEX_POINTS_POISSON && p->count > 2000000)
-            return tex_usage_error("--distribution poisson takes at most 2000000 points (got %d)",
-                                   p->count);
+        if (p->distribution == TEX_POINTS_POISSON && p->count > POISSON_MAX)
+            return tex_usage_error("%s poisson takes at most %d points (got %d)",
+                                   OPTION(distribution), POISSON_MAX, p->count);
         if (tex_points_random(&ps, dim, p->count, (enum tex_pointdist)p->distribution,
                               p->clusters, f->seed, f->tile) < 0)
             return -1;

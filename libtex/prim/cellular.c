@@ -8,7 +8,7 @@
 #include "prim/cellular.h"
 #include "prim/cellular_impl.h"
 
-int tex_metric_parse(const char *text, enum tex_metric *m, double *p)
+int tex_metric_parse_as(const char *text, const char *name, enum tex_metric *m, double *p)
 {
     *p = 2;
     if (strcmp(text, "euclid") == 0)
@@ -20,14 +20,20 @@ int tex_metric_parse(const char *text, enum tex_metric *m, double *p)
     else if (strncmp(text, "minkowski:", 10) == 0) {
         char *end;
         double v = strtod(text + 10, &end);
-        if (end == text + 10 || *end || !(v >= 1 && v <= 64))
-            return tex_usage_error("--metric minkowski:P needs P in 1..64 (got '%s')", text);
+        if (end == text + 10 || *end || !(v >= 1 && v <= TEX_METRIC_P_MAX))
+            return tex_usage_error("%s minkowski:P needs P in 1..%d (got '%s')", name,
+                                   TEX_METRIC_P_MAX, text);
         *m = TEX_METRIC_MINKOWSKI;
         *p = v;
     } else
-        return tex_usage_error(
-            "--metric must be euclid|manhattan|chebyshev|minkowski:P (got '%s')", text);
+        return tex_usage_error("%s must be euclid|manhattan|chebyshev|minkowski:P (got '%s')",
+                               name, text);
     return 0;
+}
+
+int tex_metric_parse(const char *text, enum tex_metric *m, double *p)
+{
+    return tex_metric_parse_as(text, "the metric", m, p);
 }
 
 void tex_cellular_brute(const struct tex_cellular *c, const double *q, struct best *b)

@@ -268,6 +268,9 @@ lanes(const double *cx, const double *cy, const long *cid, long t0, long e, cons
     }
 
 
+/* tex_metric_parse, its messages naming the parameter name ("--metric") */
+int tex_metric_parse_as(const char *text, const char *name, enum tex_metric *m, double *p);
+
 /* Brute force: every point (and its 3^dim periodic images) */
 void tex_cellular_brute(const struct tex_cellular *c, const double *q, struct best *b);
 

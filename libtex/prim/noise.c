@@ -930,30 +930,66 @@ void tex_noise_grid_row_grad(const tex_noise_grid *g, int y, float *dx, float *d
 
 /* ---- octaves ---- */
 
-int tex_octaves_init(tex_octaves *o, uint64_t seed, int gradients, int fade, int n, double freq,
-                     double lac, const double off[3], double z, double t, int dims, int tile,
-                     int w, int h)
+/* How a message names the parameter called name: as the option of its row in rows (a
+ * primitive's, tex_param_find), or as name itself for the library's callers (rows NULL) */
+static const char *row_option(const struct tex_param *rows, const char *name, char *buf,
+                              size_t n)
+{
+    const struct tex_param *p = rows ? tex_param_find(rows, name) : NULL;
+    return p ? tex_param_option(p, buf, n) : name;
+}
+
+/* A usage error unless the frequency is a whole number >= 1: a tiling lattice's period */
+static int whole_frequency(const struct tex_param *rows, double freq)
+{
+    char nf[64];
+    if (freq != floor(freq) || freq < 1)
+        return tex_usage_error("%s must be a whole number >= 1 with %s (got %g)",
+                               row_option(rows, "frequency", nf, sizeof nf),
+                               rows ? TEX_FIELD_OPTION(tile) : "tile", freq);
+    return 0;
+}
+
+/* The octaves' checks: their count, and with tile whole frequencies within 1e9 */
+static int octaves_check(const struct tex_param *rows, int n, double freq, double lac, int tile)
+{
+    char no[64], nf[64], nl[64];
+    const char *octaves = row_option(rows, "octaves", no, sizeof no);
+    const char *lacunarity = row_option(rows, "lacunarity", nl, sizeof nl);
+
+    if (n < 1 || n > TEX_OCTAVES_MAX)
+        return tex_usage_error("%s must be 1..%d (got %d)", octaves, TEX_OCTAVES_MAX, n);
+    if (!tile)
+        return 0;
+    if (whole_frequency(rows, freq) < 0)
+        return -1;
+    if (lac != floor(lac))
+        return tex_usage_error("%s must be a whole number with %s (got %g)", lacunarity,
+                               rows ? TEX_FIELD_OPTION(tile) : "tile", lac);
+    for (int k = 0; k < n; k++)
+        if (freq * pow(lac, k) > 1e9)
+            return tex_usage_error("%s: the last octave's frequency %g is above 1e9 (lower %s, %s "
+                                   "or %s)", rows ? TEX_FIELD_OPTION(tile) : "tile",
+                                   freq * pow(lac, k), octaves,
+                                   row_option(rows, "frequency", nf, sizeof nf), lacunarity);
+    return 0;
+}
+
+int tex_octaves_init(tex_octaves *o, const struct tex_param *rows, uint64_t seed, int gradients,
+                     int fade, int n, double freq, double lac, const double off[3], double z,
+                     double t, int dims, int tile, int w, int h)
 {
     /* Irrational-looking shifts so that the octaves do not all vanish together. */
     static const double shift[4] = {13.1367, 7.7351, 3.5193, 5.2371};
 
     memset(o, 0, sizeof *o);
-    if (n < 1 || n > TEX_OCTAVES_MAX)
-        return tex_usage_error("--octaves must be 1..%d (got %d)", TEX_OCTAVES_MAX, n);
-    if (tile && (freq != floor(freq) || freq < 1))
-        return tex_usage_error("--frequency must be a whole number >= 1 with --tile (got %g)",
-                               freq);
-    if (tile && lac != floor(lac))
-        return tex_usage_error("--lacunarity must be a whole number with --tile (got %g)", lac);
+    if (octaves_check(rows, n, freq, lac, tile) < 0)
+        return -1;
     o->n = n;
     o->dims = dims;
     for (int k = 0; k < n; k++) {
         double s = pow(lac, k);
         o->freq[k] = freq * s;
-        if (tile && o->freq[k] > 1e9)
-            return tex_usage_error("--tile: the last octave's frequency %g is above 1e9 (lower "
-                                   "--octaves, --frequency or --lacunarity)",
-                                   o->freq[k]);
         o->period[k] = tile ? (int)o->freq[k] : 0;
         o->off[k][0] = s * off[0] + (k ? k * shift[0] : 0);
         o->off[k][1] = s * off[1] + (k ? k * shift[1] : 0);
@@ -1001,8 +1037,8 @@ tex_octaves *tex_octaves_new(uint64_t seed, int gradients, int fade, int n, doub
         tex_error("out of memory");
         return NULL;
     }
-    if (tex_octaves_init(o, seed, gradients, fade, n, freq, lac, off, z, t, dims, tile, w, h) <
-        0) {
+    if (tex_octaves_init(o, NULL, seed, gradients, fade, n, freq, lac, off, z, t, dims, tile, w,
+                         h) < 0) {
         free(o);
         return NULL;
     }
@@ -1215,9 +1251,8 @@ static int state_init(struct tex_field *f, double frequency, const struct tex_re
         return tex_error("out of memory");
     f->state = s;
     if (f->tile) {
-        if (frequency != floor(frequency) || frequency < 1)
-            return tex_usage_error("--frequency must be a whole number >= 1 with --tile (got %g)",
-                                   frequency);
+        if (whole_frequency(f->prim->params, frequency) < 0)
+            return -1;
         s->period = (int)frequency;
     }
     for (int a = 0; a < offset->n; a++)
@@ -1229,14 +1264,23 @@ static int state_init(struct tex_field *f, double frequency, const struct tex_re
     return 0;
 }
 
+/* The loop's rows as every primitive with a loop has them: its messages' names */
+struct loop_params {
+    int frames, frame;
+    double loop_radius;
+};
+static const struct tex_param loop_rows[] = {TEX_NOISE_LOOP_ROWS(struct loop_params), {0}};
+#define LOOP_OPTION(field) TEX_OPTION(loop_rows, struct loop_params, field)
+
 int tex_noise_loop(int frames, int frame, double radius, double *z, double *w, int *dims)
 {
     if (frames == 0 && frame == 0)
         return 0;
     if (frame >= frames)
-        return frames ? tex_usage_error("--frame must be 0..%d for --frames %d (got %d)",
-                                        frames - 1, frames, frame)
-                      : tex_usage_error("--frame %d needs --frames N", frame);
+        return frames ? tex_usage_error("%s must be 0..%d for %s %d (got %d)", LOOP_OPTION(frame),
+                                        frames - 1, LOOP_OPTION(frames), frames, frame)
+                      : tex_usage_error("%s %d needs %s N", LOOP_OPTION(frame), frame,
+                                        LOOP_OPTION(frames));
     double a = 2 * M_PI * ((double)frame / frames);
     *z += radius * cos(a);
     *w += radius * sin(a);
@@ -1356,6 +1400,8 @@ static const struct tex_param dnoise_rows[] = {
              "--normal: height scale, n = normalize(-S dn/dx, S dn/dy_up, 1)"),
     {0}};
 
+#define DNOISE_OPTION(field) TEX_OPTION(dnoise_rows, struct dnoise_params, field)
+
 static int dnoise_init(struct tex_field *f)
 {
     const struct dnoise_params *p = f->params;
@@ -1363,9 +1409,11 @@ static int dnoise_init(struct tex_field *f)
 
     /* Values other than the defaults are the test: the rows are shared with scenes. */
     if (!p->normal && p->strength != 1)
-        return tex_usage_error("--strength applies with --normal only");
+        return tex_usage_error("%s applies with %s only", DNOISE_OPTION(strength),
+                               DNOISE_OPTION(normal));
     if (p->normal && p->channels != 2)
-        return tex_usage_error("--channels applies without --normal only (a normal map has 3)");
+        return tex_usage_error("%s applies without %s only (a normal map has 3)",
+                               DNOISE_OPTION(channels), DNOISE_OPTION(normal));
     f->nc = p->normal ? 3 : p->channels;
     if (state_init(f, p->frequency, &p->offset, p->z, p->gradients, p->fade) < 0)
         return -1;

@@ -127,10 +127,12 @@ struct tex_octaves {
     tex_noise_grid g[TEX_OCTAVES_MAX]; /* when sampled on a grid (w, h > 0) */
 };
 
-/* Octaves in the caller's memory (tex_octaves_new's), freed by tex_octaves_free. */
-int tex_octaves_init(tex_octaves *o, uint64_t seed, int gradients, int fade, int n, double freq,
-                     double lac, const double off[3], double z, double t, int dims, int tile,
-                     int w, int h);
+/* Octaves in the caller's memory (tex_octaves_new's), freed by tex_octaves_free.  Messages
+ * name the parameters as the rows of a primitive call them (octaves, frequency, lacunarity;
+ * NULL rows: by tex_octaves_new's argument names). */
+int tex_octaves_init(tex_octaves *o, const struct tex_param *rows, uint64_t seed, int gradients,
+                     int fade, int n, double freq, double lac, const double off[3], double z,
+                     double t, int dims, int tile, int w, int h);
 void tex_octaves_free(tex_octaves *o);
 
 /* ---- rows of a grid ---- */

@@ -18,12 +18,18 @@ static inline float clamp_unit(float x)
     return x < 0 ? 0 : x > 1 ? 1 : x;
 }
 
-static int whole(double v, const char *opt)
+/* A usage error unless v, the value of the row of rows at offset off, is a whole number
+ * (WHOLE: field fl of *p, a struct S) */
+static int whole(const struct tex_param *rows, size_t off, double v)
 {
+    char name[64];
     if (v != floor(v))
-        return tex_usage_error("%s must be a whole number with --tile (got %g)", opt, v);
+        return tex_usage_error("%s must be a whole number with %s (got %g)",
+                               tex_rows_option(rows, off, name, sizeof name),
+                               TEX_FIELD_OPTION(tile), v);
     return 0;
 }
+#define WHOLE(rows, S, p, fl) whole(rows, offsetof(S, fl), (p)->fl)
 
 /* ---- holes ---- */
 
@@ -219,7 +225,8 @@ static int colorvar_init(struct tex_field *f)
     if (!s)
         return tex_error("out of memory");
     f->state = s;
-    if (f->tile && (whole(p->frequency, "--frequency") < 0 || whole(p->b, "-b") < 0))
+    if (f->tile && (WHOLE(colorvar_rows, struct colorvar_params, p, frequency) < 0 ||
+                    WHOLE(colorvar_rows, struct colorvar_params, p, b) < 0))
         return -1;
     tex_rng r;
     tex_rng_seed(&r, f->seed);
@@ -374,15 +381,16 @@ static int perturb_init(struct tex_field *f)
     if (!s)
         return tex_error("out of memory");
     f->state = s;
-    if (f->tile && (whole(p->a, "-a") < 0 || whole(p->d, "-d") < 0))
+    if (f->tile && (WHOLE(perturb_rows, struct perturb_params, p, a) < 0 ||
+                    WHOLE(perturb_rows, struct perturb_params, p, d) < 0))
         return -1;
     for (int k = 0; k < p->octaves; k++) {
         s->amp[k] = (float)pow(0.5, k);
         sum += s->amp[k];
     }
     s->inv = (float)(1 / sum);
-    return tex_octaves_init(&s->o, f->seed, 256, TEX_FADE_CUBIC, p->octaves, p->frequency, 2, off,
-                            0, 0, 3, f->tile, f->w, f->h);
+    return tex_octaves_init(&s->o, f->prim->params, f->seed, 256, TEX_FADE_CUBIC, p->octaves,
+                            p->frequency, 2, off, 0, 0, 3, f->tile, f->w, f->h);
 }
 
 static void perturb_fini(struct tex_field *f)

@@ -765,7 +765,7 @@ static void test_public(const tex_noise_table *t)
     CHECK(same, "a grid from tex_noise_grid_new gives the rows of one in the caller's memory");
     CHECK(tex_noise_grid_new(h, 0, 8, 5, 5, off, 3, 0) == NULL, "a grid of no columns is refused");
     tex_octaves so, *o = tex_octaves_new(3, 256, 0, 4, 3, 2, off, 0.1, 0, 3, 0, 64, 8);
-    tex_octaves_init(&so, 3, 256, 0, 4, 3, 2, off, 0.1, 0, 3, 0, 64, 8);
+    tex_octaves_init(&so, NULL, 3, 256, 0, 4, 3, 2, off, 0.1, 0, 3, 0, 64, 8);
     same = o != NULL;
     for (int k = 0; o && k < 4; k++) {
         same &= tex_octave_point(o, k, 0.3, 0.6, 0.2) == tex_octave_point(&so, k, 0.3, 0.6, 0.2);
