@@ -34,8 +34,8 @@ static double srgb_decode(double c)
 /* c^(1/2.4) = c^(5/12) for c in (0.0031308, 1) to a relative 1e-14: c = m 2^e with m in
  * [0.5, 1) and e in -8..0; 2^(5e/12) from a table, m^(5/12) from its Taylor polynomial of
  * degree 6 about the centre of m's 32nd of [0.5, 1), where |t| <= 1/128 leaves a remainder
- * below 1e-14, summed by Estrin's scheme (a short chain of dependent operations).  libm's
- * pow, three times per lookup, costs about twice as much. */
+ * below 1e-14, summed by Estrin's scheme (a short chain of dependent operations): cheaper
+ * than libm's pow, three times per lookup. */
 static struct tex_srgb_enc enc;
 static pthread_once_t enc_once = PTHREAD_ONCE_INIT;
 

@@ -443,8 +443,8 @@ static int grid_span(const tex_noise_grid *g, const int64_t *list, int n)
 /* Lattice rows from the table when the rows would fold more lattice points than it has
  * (cells spanning less than a pixel row are not kept); folded rows, with each column's
  * corner entry, where cells are narrower than the wide rows' (5 pixels) and the row has
- * more columns than the table entries (fBm from 1024 cells on 2048 columns: 1.5 times the
- * slots' rows at 2 pixels a cell, 1.1 at 4).  Without memory, rows fold their own. */
+ * more columns than the table entries, where folding each entry once is cheaper than each
+ * column's slots.  Without memory, rows fold their own. */
 static void table_init(tex_noise_grid *g)
 {
     int n = g->t->n;
@@ -1011,8 +1011,7 @@ int tex_octaves_init(tex_octaves *o, const struct tex_param *rows, uint64_t seed
             wide += o->g[k].wide;
         }
         /* AVX-512 rows for the wide octaves only where they are most of the sum: a map that
-         * switches between 512- and 256-bit rows runs slower than on 256 alone (fBm of 8
-         * octaves from 256 cells: 4 %; from 4 cells, all but one wide: 10-30 % faster). */
+         * switches between 512- and 256-bit rows runs slower than on 256 alone. */
         for (int k = 0; 2 * wide < n && k < n; k++)
             o->g[k].wide = 0;
     }

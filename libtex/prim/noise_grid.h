@@ -212,8 +212,7 @@ void tex_noise_lattice_row(const tex_noise_grid *g, int64_t j, int s0, int s1, f
  * from C[r] into out[r]: a folded grid's planar (Q ps floats after P) or interleaved, a
  * slot row's P and Q ROW_NS floats after it (ROW_CHUNK columns touch at most ROW_NS - 24
  * slots).  The kernels' loops over rows are unrolled ("GCC unroll 2"): GCC kept them
- * rolled around a kernel's branches, each row's noise through the stack (doc/performance.md,
- * "Noise kernels"). */
+ * rolled around a kernel's branches, each row's noise through the stack. */
 #define FOLD_ROWS 2
 #define ROW_CHUNK 1024
 #define ROW_NS (2 * ROW_CHUNK + 24)

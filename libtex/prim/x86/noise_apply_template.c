@@ -11,7 +11,7 @@
  * W = |V| / 4 pixels at x of each of the rows at out, their noise r[i], in its
  * order of operations.  The multifractal operations load every row's sum and
  * state before any row's stores; the others go row by row where APPLY_ROWWISE
- * (which is faster where, doc/performance.md "Noise kernels").
+ * (AVX-512's, where that is faster; AVX2's is slower so).
  */
 APPLY_ATTR static inline __attribute__((always_inline)) void APPLY_NAME(
     const int op, const APPLY_V *r, float *const *out, int x, const int rows, struct row_k rk)

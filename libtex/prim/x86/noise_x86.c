@@ -732,8 +732,7 @@ row_planar_avx512_op(const tex_noise_grid *g, struct rowset fr, const int rows, 
 
 /* row_lut_avx2 with the folded rows sixteen columns at a time: by permutes where sixteen
  * columns' corners lie within sixteen entries, else by loads per column (two rows' from one
- * table where there are two: from sixteen entries on, 3-4 % faster than permutes of two
- * registers) */
+ * table where there are two: faster than permutes of two registers) */
 TEX_AVX512 static void row_lut_avx512(const tex_noise_grid *g, const struct yrow *yr, int rows,
                                       float *const *out, int op, struct row_k rk)
 {
@@ -823,8 +822,7 @@ TEX_AVX512 static void row_coeffs_avx512(int ns, const float *wy, const float *d
 
 /* The entry points, which tell the kernels that rows is 1 or FOLD_ROWS (what the callers
  * pass): the kernels' loops over rows and their row buffers are compiled for those alone,
- * as when the rows came from noise.c's grid_rows_k in the same file (without it,
- * doc/performance.md "Noise kernels"). */
+ * as when the rows came from noise.c's grid_rows_k in the same file. */
 TEX_AVX2 void tex_noise_grid_rows_avx2(const tex_noise_grid *g, int y, int rows, int op,
                                        struct row_k rk, float *const *out)
 {
