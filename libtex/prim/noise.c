@@ -76,6 +76,8 @@ int tex_noise_init(tex_noise_table *t, uint64_t seed, int n, int period)
 
 void tex_noise_free(tex_noise_table *t)
 {
+    if (!t)
+        return;
     free(t->perm);
     free(t->grad);
     free(t->grad4);
@@ -86,32 +88,31 @@ void tex_noise_free(tex_noise_table *t)
     t->grad4 = NULL;
 }
 
+/* p made by its init, which returned rc (p NULL: out of memory), or NULL */
+static void *made(void *p, int rc)
+{
+    if (rc < 0) {
+        free(p);
+        return NULL;
+    }
+    return p;
+}
+
+void tex_noise_delete(tex_noise_table *t)
+{
+    tex_noise_free(t); /* NULL: nothing */
+    free(t);
+}
+
 tex_noise_table *tex_noise_new(uint64_t seed, int n, int period)
 {
     tex_noise_table *t = malloc(sizeof *t);
-
-    if (!t) {
-        tex_error("out of memory");
-        return NULL;
-    }
-    if (tex_noise_init(t, seed, n, period) < 0) {
-        free(t);
-        return NULL;
-    }
-    return t;
+    return made(t, t ? tex_noise_init(t, seed, n, period) : tex_error("out of memory"));
 }
 
 void tex_noise_set_fade(tex_noise_table *t, int fade)
 {
     t->fade = fade;
-}
-
-void tex_noise_delete(tex_noise_table *t)
-{
-    if (!t)
-        return;
-    tex_noise_free(t);
-    free(t);
 }
 
 
@@ -337,31 +338,22 @@ static void grid_clear(tex_noise_grid *g)
 
 void tex_noise_grid_free(tex_noise_grid *g)
 {
-    grid_clear(g);
+    if (g)
+        grid_clear(g);
+}
+
+void tex_noise_grid_delete(tex_noise_grid *g)
+{
+    tex_noise_grid_free(g); /* NULL: nothing */
+    free(g);
 }
 
 tex_noise_grid *tex_noise_grid_new(const tex_noise_table *t, int w, int h, double fx, double fy,
                                    const double off[4], int dims, int period)
 {
     tex_noise_grid *g = malloc(sizeof *g);
-
-    if (!g) {
-        tex_error("out of memory");
-        return NULL;
-    }
-    if (tex_noise_grid_init(g, t, w, h, fx, fy, off, dims, period) < 0) {
-        free(g);
-        return NULL;
-    }
-    return g;
-}
-
-void tex_noise_grid_delete(tex_noise_grid *g)
-{
-    if (!g)
-        return;
-    tex_noise_grid_free(g);
-    free(g);
+    return made(g, g ? tex_noise_grid_init(g, t, w, h, fx, fy, off, dims, period)
+                     : tex_error("out of memory"));
 }
 
 static int lut_init(tex_noise_grid *g, int fold);
@@ -1020,10 +1012,18 @@ int tex_octaves_init(tex_octaves *o, const struct tex_param *rows, uint64_t seed
 
 void tex_octaves_free(tex_octaves *o)
 {
+    if (!o)
+        return;
     tex_noise_free(&o->t);
     for (int k = 0; k < o->n; k++)
         tex_noise_grid_free(&o->g[k]);
     o->grid = 0;
+}
+
+void tex_octaves_delete(tex_octaves *o)
+{
+    tex_octaves_free(o); /* NULL: nothing */
+    free(o);
 }
 
 tex_octaves *tex_octaves_new(uint64_t seed, int gradients, int fade, int n, double freq,
@@ -1031,25 +1031,9 @@ tex_octaves *tex_octaves_new(uint64_t seed, int gradients, int fade, int n, doub
                              int tile, int w, int h)
 {
     tex_octaves *o = malloc(sizeof *o);
-
-    if (!o) {
-        tex_error("out of memory");
-        return NULL;
-    }
-    if (tex_octaves_init(o, NULL, seed, gradients, fade, n, freq, lac, off, z, t, dims, tile, w,
-                         h) < 0) {
-        free(o);
-        return NULL;
-    }
-    return o;
-}
-
-void tex_octaves_delete(tex_octaves *o)
-{
-    if (!o)
-        return;
-    tex_octaves_free(o);
-    free(o);
+    return made(o, o ? tex_octaves_init(o, NULL, seed, gradients, fade, n, freq, lac, off, z, t,
+                                        dims, tile, w, h)
+                     : tex_error("out of memory"));
 }
 
 double tex_octave_point(const tex_octaves *o, int k, double u, double v, double w)
