@@ -93,8 +93,12 @@ STATIC   = $(BUILD)/lib/libtex.a
 SHARED   = $(BUILD)/lib/libtex.so.0
 PCFILE   = $(BUILD)/lib/pkgconfig/textura.pc
 # Headers that stay inside libtex: the scene's internals, the shading models'
-# interface, the languages' lexer and evaluator, the OpenImageIO bridge.
-PRIVATE_HEADERS = libtex/base/kdtree.h libtex/base/trig_fdlibm.h libtex/ops/palette_srgb.h libtex/prim/noise_grid.h libtex/prim/cellular_impl.h libtex/io/oiio_bridge.h libtex/io/codec_bridge.h \
+# interface, the languages' lexer and evaluator, the OpenImageIO bridge, and what a
+# module's files and its x86 kernels share (trig's polynomials, the sRGB table, the noise
+# tables and grids, the nearest-point queries).
+PRIVATE_HEADERS = libtex/base/kdtree.h libtex/base/trig_fdlibm.h libtex/io/oiio_bridge.h \
+                  libtex/io/codec_bridge.h libtex/prim/noise_grid.h libtex/prim/cellular_impl.h \
+                  libtex/ops/palette_srgb.h \
                   libtex/lang/lex.h libtex/lang/expr.h libtex/lang/rowcode.h \
                   libtex/render/scene.h libtex/render/render_shade.h libtex/render/render_ct.h
 HEADERS  = $(filter-out $(PRIVATE_HEADERS),$(wildcard libtex/*/*.h)) libtex/prim/primitives.def
