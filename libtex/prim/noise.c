@@ -1,4 +1,5 @@
-/* noise.c - gradient noise: point evaluation, vectorised grid rows, the noise primitive */
+/* noise.c - gradient noise: tables, points, grid rows, octaves, noise and d_noise
+ * (the vector kernels: x86/noise_x86.c, x86/noise_points_x86.c) */
 
 #include "base/fp_strict.h" /* first: no fused multiply-adds in this file */
 
