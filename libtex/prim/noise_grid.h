@@ -1,7 +1,10 @@
-/* noise_grid.h - the insides of noise.c's tables and grids, shared with its x86 kernels
+/* noise_grid.h - the insides of noise.h's tables, grids and octaves, shared with the x86
+ * kernels
  *
- * Internal to libtex (not installed).  noise.c makes the tables and grids and
- * holds every scalar definition; the vector kernels of x86/noise_x86.c (grid
+ * Internal to libtex (not installed).  noise.c makes the tables and noise at
+ * points, noise_grid.c the grids and their rows, octaves.c the octaves, and
+ * noise_primitives.c the noise and d_noise primitives from them; these hold
+ * every scalar definition.  The vector kernels of x86/noise_x86.c (grid
  * rows) and x86/noise_points_x86.c (points) read the same structures and
  * perform the same float operations in the same order, so the bytes never
  * depend on the level.  What both sides need is here: the lattice index and
@@ -58,6 +61,7 @@
 #include <math.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdlib.h>
 
 #include "noise.h"
 
@@ -135,6 +139,21 @@ int tex_octaves_init(tex_octaves *o, const struct tex_param *rows, uint64_t seed
                      double t, int dims, int tile, int w, int h);
 void tex_octaves_free(tex_octaves *o);
 
+/* The public _new functions: p made by its init, which returned rc (p NULL: out of memory),
+ * or NULL */
+static inline void *tex_noise_made(void *p, int rc)
+{
+    if (rc < 0) {
+        free(p);
+        return NULL;
+    }
+    return p;
+}
+
+/* A usage error unless the frequency is a whole number >= 1, a tiling lattice's period; the
+ * message names the frequency and tile as rows (a primitive's) call them (octaves.c) */
+int tex_noise_whole_frequency(const struct tex_param *rows, double freq);
+
 /* ---- rows of a grid ---- */
 
 static inline int imod64(int64_t a, int64_t n)
@@ -165,6 +184,14 @@ static inline int lat_index(int64_t i, int period, int n)
 #define FADE_F(x) ((float)(x))
 FADE_FN(, fade, double, FADE_D)
 FADE_FN(, fadef, float, FADE_F)
+
+/* The fade's derivative */
+static inline double dfade(int kind, double t)
+{
+    if (kind == TEX_FADE_QUINTIC)
+        return -30.0 * t * t * (t - 1.0) * (t - 1.0);
+    return 6.0 * t * (t - 1.0);
+}
 
 /* Lattice rows kept for the pixel rows that follow: one entry per thread
  * that holds it (taken with an atomic flag, so any thread split works, and
