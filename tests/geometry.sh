@@ -58,6 +58,32 @@ check_fails "t_cycloid: width above the arch" 2 t_cycloid -r 20 --arch-width 0.1
 check_fails "t_four_rings: width above radius" 2 t_four_rings -r 0.1 --ring-width 0.2
 check_fails "t_stripe: zero width" 2 t_stripe --stripe-width 0
 check_fails "t_stripe cannot tile" 2 t_stripe --tile
+
+# A message names a parameter as its row does: the current option, not an old name the row
+# still takes (t_ring's -d and --width), and in a scene the row's word.
+bad=
+while IFS='|' read -r cmd want; do
+    got=$($cmd -s 8 2>&1 >/dev/null </dev/null | tail -1)
+    [ "$got" = "$want" ] || bad="$bad${bad:+; }$cmd: $got"
+done <<'EOF'
+t_ring -d 0.9 --radius 0.3|t_ring: error: --ring-width (0.9) must not exceed --radius (0.3)
+t_ellipse --semi-major 0.3 --semi-minor 0.4|t_ellipse: error: --semi-minor (0.4) must not exceed --semi-major (0.3)
+t_ellipse --semi-minor 0.05|t_ellipse: error: --band-width (0.08) must not exceed --semi-minor (0.05)
+t_flower --tile --petal-length 0.7|t_flower: error: --tile with an odd --petals needs --petal-length at most 0.5 (got 0.7)
+t_stripe --stripe-width 0|t_stripe: error: --stripe-width must be above 0 (got 0)
+t_cycloid -r 20 --arch-width 0.1|t_cycloid: error: --arch-width (0.1) must not exceed the arch's height 0.063662 (--radius 20)
+t_hypocycloid -r 0.2 --band-width 0.3|t_hypocycloid: error: --band-width (0.3) must not exceed --radius (0.2)
+t_four_rings -r 0.1 --ring-width 0.2|t_four_rings: error: --ring-width (0.2) must not exceed --radius (0.1)
+t_perturb --tile --stripes 1.5|t_perturb: error: --stripes must be a whole number with --tile (got 1.5)
+t_colorvar --tile --x-phase-frequency 0.5|t_colorvar: error: --x-phase-frequency must be a whole number with --tile (got 0.5)
+t_fractal --hurst -20 --lacunarity 16 --octaves 30|t_fractal: error: --hurst: the octave amplitudes overflow (got -20 over 30 octaves)
+t_bubble --slice 0.2|t_bubble: error: --slice applies to --dimension 3 only
+EOF
+[ -z "$bad" ] && ok "messages name the parameters' current options" || notok "messages name options" "$bad"
+printf 'image 8 8\ntexture t ring { ring-width 0.9 radius 0.3 }\nsurface s { apply t { Kd = f } }\nsphere { surface s }\n' >"$T/ring.scene"
+t_apply "$T/ring.scene" -o "$T/ring.exr" 2>"$T/err"
+grep -q ":2:11: ring-width (0.9) must not exceed radius (0.3)$" "$T/err" &&
+    ok "a scene's message names the row's word" || notok "a scene's message" "$(cat "$T/err")"
 check_fails "t_flower: odd rose past the cell with --tile" 2 t_flower --tile --petals 5 --petal-length 0.7
 check_fails "t_checker: bad colour" 2 t_checker --colour1 purpleish
 check_fails "t_checker: zero repetitions" 2 t_checker --nu 0

@@ -16,8 +16,8 @@
  *
  * Only these instantiations of FLANN's templates are built, in kdtree.cpp,
  * rather than its C API's library, which holds every index and distance for
- * every type: its relocations and its C++ start-up cost every tool about
- * 30 page faults and 0.5 ms of CPU before main (README, departures).
+ * every type: its relocations and its C++ start-up cost every tool page
+ * faults and CPU before main.
  */
 #ifndef TEX_KDTREE_H
 #define TEX_KDTREE_H

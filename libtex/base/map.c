@@ -28,8 +28,8 @@ int tex_map_check_size(long long w, long long h, long long nc)
 }
 
 /* Fresh zeroed pages, *bytes of them rounded up to whole 2 MiB pages on a 2 MiB boundary, in
- * huge pages where the kernel gives them: in 4 KiB pages, an empty 800x600 render spent a
- * third of its time in page faults. NULL if the kernel has no memory. */
+ * huge pages where the kernel gives them: in 4 KiB pages a render spent much of its time in
+ * page faults. NULL if the kernel has no memory. */
 static void *mapped_pages(size_t *bytes)
 {
     const size_t huge = (size_t)2 << 20;

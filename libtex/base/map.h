@@ -43,15 +43,14 @@ typedef struct tex_map {
 
 /* bytes of zeroed memory, 64-byte aligned, for a buffer a caller fills: from min bytes up
  * (and 1), fresh pages (in 2 MiB huge pages where the kernel gives them: a first touch of each
- * 4 KiB page is a page fault, 11 us on a virtual machine measured here), else the heap.
+ * 4 KiB page is a page fault), else the heap.
  * *mapped is what tex_pages_free takes back (0 from the heap); NULL when out of memory. */
 void *tex_pages_new(size_t bytes, size_t min, size_t *mapped);
 void tex_pages_free(void *p, size_t mapped);
 /* For tools, at start (tex_cli_parse): with glibc, memory freed stays on the heap for the
  * next allocation instead of going back to the system, so that buffers of one size made
  * again and again (a band, zlib's state for each compressed chunk, an FFT's spectrum)
- * reuse touched pages instead of faulting in fresh ones (t_checker -s 2048 to a compressed
- * file: 3320 page faults, 20 % of its CPU, down to 660; a third of t_ifft's at 4096^2).
+ * reuse touched pages instead of faulting in fresh ones.
  * tex_pages_new's mappings are not the heap's. Does nothing elsewhere. */
 void tex_keep_heap(void);
 

@@ -12,7 +12,7 @@ const char *tex_simd_name(int level)
 
 /* The CPU's best level, capped by TEXTURA_SIMD (scalar or avx2).  At this level with VBMI
  * (tex_simd_vbmi) the point kernel takes sixteen points at a time and its hashes from byte
- * permutes: 1.75 times the eight-lane AVX2 kernel's speed on a Xeon (Emerald Rapids). */
+ * permutes, faster than the eight-lane AVX2 kernel. */
 enum { VBMI = 4 }; /* beside the level in simd_detect's answer */
 
 static int simd_detect(void)

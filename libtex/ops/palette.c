@@ -13,9 +13,11 @@
 #include "base/error.h"
 #include "base/map.h"
 #include "base/paths.h"
-#include "base/x86/simd_x86.h"
+#include "base/simd.h"
 #include "io/file.h"
 #include "ops/palette.h"
+#include "ops/palette_srgb.h"
+#include "ops/x86/palette_x86.h"
 
 
 #define MAX_FILE (4 << 20)   /* a palette is text: refuse anything larger */
@@ -32,11 +34,9 @@ static double srgb_decode(double c)
 /* c^(1/2.4) = c^(5/12) for c in (0.0031308, 1) to a relative 1e-14: c = m 2^e with m in
  * [0.5, 1) and e in -8..0; 2^(5e/12) from a table, m^(5/12) from its Taylor polynomial of
  * degree 6 about the centre of m's 32nd of [0.5, 1), where |t| <= 1/128 leaves a remainder
- * below 1e-14, summed by Estrin's scheme (a short chain of dependent operations).  libm's
- * pow, three times per lookup, costs about twice as much. */
-enum { ENC_PIECES = 32, ENC_DEGREE = 6 };
-/* coefficient k of piece i at enc_coef[k][i] (a coefficient's pieces together, for permutes) */
-static double enc_coef[ENC_DEGREE + 1][ENC_PIECES], enc_scale[16];
+ * below 1e-14, summed by Estrin's scheme (a short chain of dependent operations): cheaper
+ * than libm's pow, three times per lookup. */
+static struct tex_srgb_enc enc;
 static pthread_once_t enc_once = PTHREAD_ONCE_INIT;
 
 static void enc_setup(void)
@@ -45,12 +45,12 @@ static void enc_setup(void)
     for (int i = 0; i < ENC_PIECES; i++) {
         double c0 = 0.5 + (i + 0.5) / (2 * ENC_PIECES), coef = pow(c0, a);
         for (int k = 0; k <= ENC_DEGREE; k++) { /* binomial(a, k) c0^(a - k) */
-            enc_coef[k][i] = coef;
+            enc.coef[k][i] = coef;
             coef *= (a - k) / ((k + 1) * c0);
         }
     }
     for (int e = 0; e < 9; e++)
-        enc_scale[e] = pow(2, -5.0 * e / 12);
+        enc.scale[e] = pow(2, -5.0 * e / 12);
 }
 
 static double enc_pow(double c)
@@ -64,10 +64,10 @@ static double enc_pow(double c)
     int i = (int)((m - 0.5) * (2 * ENC_PIECES));
     double p[ENC_DEGREE + 1];
     for (int k = 0; k <= ENC_DEGREE; k++)
-        p[k] = enc_coef[k][i];
+        p[k] = enc.coef[k][i];
     double t = m - (0.5 + (i + 0.5) / (2 * ENC_PIECES)), t2 = t * t;
     double y = (p[0] + p[1] * t) + t2 * (p[2] + p[3] * t) + t2 * t2 * (p[4] + p[5] * t + t2 * p[6]);
-    return y * enc_scale[-e];
+    return y * enc.scale[-e];
 }
 
 /* The sRGB encoding of linear c as a float: (float)(1.055 pow(c, 1/2.4) - 0.055) above the
@@ -91,6 +91,11 @@ static float srgb_encode(double c)
     return (float)(1.055 * pow(c, 1 / 2.4) - 0.055);
 }
 
+float tex_palette_srgb_encode(double c)
+{
+    return srgb_encode(c);
+}
+
 void tex_srgb_to_oklab(const float rgb[3], float lab[3])
 {
     double r = srgb_decode(rgb[0]), g = srgb_decode(rgb[1]), b = srgb_decode(rgb[2]);
@@ -101,15 +106,6 @@ void tex_srgb_to_oklab(const float rgb[3], float lab[3])
     lab[1] = (float)(1.9779984951 * l - 2.4285922050 * m + 0.4505937099 * s);
     lab[2] = (float)(0.0259040371 * l + 0.7827717662 * m - 0.8086757660 * s);
 }
-
-/* OKLab to linear sRGB: L, M and S's cube roots from (L, a, b), then RGB from their cubes
- * (a subtraction is the addition of the negated product, to the bit) */
-static const double ok_lms[3][2] = {{0.3963377774, 0.2158037573},
-                                    {-0.1055613458, -0.0638541728},
-                                    {-0.0894841775, -1.2914855480}};
-static const double ok_rgb[3][3] = {{4.0767416621, -3.3077115913, 0.2309699292},
-                                    {-1.2684380046, 2.6097574011, -0.3413193965},
-                                    {-0.0041960863, -0.7034186147, 1.7076147010}};
 
 /* OKLab to linear sRGB, before the encoding */
 static void oklab_linear(const float lab[3], double lin[3])
@@ -123,73 +119,6 @@ static void oklab_linear(const float lab[3], double lin[3])
         lin[k] = ok_rgb[k][0] * c[0] + ok_rgb[k][1] * c[1] + ok_rgb[k][2] * c[2];
 }
 
-#ifdef TEX_X86
-/* srgb_encode of eight values: enc_pow's operations in its order, lane by lane, so the same
- * floats; NaNs, and the lanes where the polynomial cannot decide, go to srgb_encode. */
-TEX_AVX512 static __m256 srgb_encode8(__m512d x)
-{
-    const __m512d half = _mm512_set1_pd(0.5), pieces = _mm512_set1_pd(2 * ENC_PIECES);
-    __mmask8 toe = _mm512_cmp_pd_mask(x, _mm512_set1_pd(0.0031308), _CMP_LE_OQ);
-    __mmask8 mid = _mm512_cmp_pd_mask(x, _mm512_set1_pd(1.0), _CMP_LT_OQ) & ~toe; /* not NaN */
-    __m512i bits = _mm512_castpd_si512(_mm512_mask_blend_pd(mid, half, x)); /* c = m 2^e */
-    __m512i ie = _mm512_sub_epi64(_mm512_set1_epi64(1022), _mm512_srli_epi64(bits, 52)); /* -e */
-    bits = _mm512_or_si512(_mm512_and_si512(bits, _mm512_set1_epi64((INT64_C(1) << 52) - 1)),
-                           _mm512_set1_epi64(INT64_C(1022) << 52));
-    __m512d m = _mm512_castsi512_pd(bits);
-    __m256i i = _mm512_cvttpd_epi32(_mm512_mul_pd(_mm512_sub_pd(m, half), pieces));
-    __m512d centre = _mm512_div_pd(_mm512_add_pd(_mm512_cvtepi32_pd(i), half), pieces);
-    __m512d t = _mm512_sub_pd(m, _mm512_add_pd(half, centre));
-    __m512d t2 = _mm512_mul_pd(t, t), p[ENC_DEGREE + 1];
-    __m512i i64 = _mm512_cvtepi32_epi64(i); /* 0..31: a permute of 16 entries, by bit 4 */
-    __mmask8 upper = _mm512_test_epi64_mask(i64, _mm512_set1_epi64(16));
-    for (int k = 0; k <= ENC_DEGREE; k++) {
-        const double *e = enc_coef[k];
-        __m512d lo16 = _mm512_permutex2var_pd(_mm512_loadu_pd(e), i64, _mm512_loadu_pd(e + 8));
-        __m512d hi16 =
-            _mm512_permutex2var_pd(_mm512_loadu_pd(e + 16), i64, _mm512_loadu_pd(e + 24));
-        p[k] = _mm512_mask_blend_pd(upper, lo16, hi16);
-    }
-    __m512d a = _mm512_add_pd(p[0], _mm512_mul_pd(p[1], t));
-    __m512d b = _mm512_mul_pd(t2, _mm512_add_pd(p[2], _mm512_mul_pd(p[3], t)));
-    __m512d d = _mm512_add_pd(_mm512_add_pd(p[4], _mm512_mul_pd(p[5], t)), _mm512_mul_pd(t2, p[6]));
-    __m512d y = _mm512_add_pd(_mm512_add_pd(a, b), _mm512_mul_pd(_mm512_mul_pd(t2, t2), d));
-    y = _mm512_mul_pd(y, _mm512_permutex2var_pd(_mm512_loadu_pd(enc_scale), ie,
-                                                _mm512_loadu_pd(enc_scale + 8)));
-    __m512d v = _mm512_sub_pd(_mm512_mul_pd(_mm512_set1_pd(1.055), y), _mm512_set1_pd(0.055));
-    __m256 lo = _mm512_cvtpd_ps(_mm512_sub_pd(v, _mm512_set1_pd(2e-12)));
-    __m256 hi = _mm512_cvtpd_ps(_mm512_add_pd(v, _mm512_set1_pd(2e-12)));
-    int done = _mm256_movemask_ps(_mm256_cmp_ps(lo, hi, _CMP_EQ_OQ)) & mid;
-    if (done != 0xff) {
-        __m256 lin = _mm512_cvtpd_ps(_mm512_mul_pd(_mm512_set1_pd(12.92), x)); /* the toe's */
-        double c[8];
-        _mm512_storeu_pd(c, x);
-        for (int k = 0; k < 8; k++)
-            if (!(done >> k & 1))
-                lo[k] = toe >> k & 1 && c[k] > 0.0 ? lin[k] : srgb_encode(c[k]);
-    }
-    return lo;
-}
-
-/* oklab_srgb_n eight colours at a time: oklab_linear's operations lane by lane */
-TEX_AVX512 static void oklab_srgb8(const float *lab[3], float *rgb[3])
-{
-    __m512d L = _mm512_cvtps_pd(_mm256_loadu_ps(lab[0]));
-    __m512d A = _mm512_cvtps_pd(_mm256_loadu_ps(lab[1]));
-    __m512d B = _mm512_cvtps_pd(_mm256_loadu_ps(lab[2])), c[3];
-    for (int k = 0; k < 3; k++) {
-        c[k] = _mm512_add_pd(_mm512_add_pd(L, _mm512_mul_pd(_mm512_set1_pd(ok_lms[k][0]), A)),
-                             _mm512_mul_pd(_mm512_set1_pd(ok_lms[k][1]), B));
-        c[k] = _mm512_mul_pd(_mm512_mul_pd(c[k], c[k]), c[k]);
-    }
-    for (int k = 0; k < 3; k++) {
-        __m512d lin = _mm512_mul_pd(_mm512_set1_pd(ok_rgb[k][0]), c[0]);
-        lin = _mm512_add_pd(lin, _mm512_mul_pd(_mm512_set1_pd(ok_rgb[k][1]), c[1]));
-        lin = _mm512_add_pd(lin, _mm512_mul_pd(_mm512_set1_pd(ok_rgb[k][2]), c[2]));
-        _mm256_storeu_ps(rgb[k], srgb_encode8(lin));
-    }
-}
-#endif
-
 /* tex_oklab_to_srgb of n colours, their channels in separate arrays: eight at a time where
  * the CPU has AVX-512, the same floats */
 static void oklab_srgb_n(const float *const lab[3], float *const rgb[3], int n)
@@ -198,9 +127,7 @@ static void oklab_srgb_n(const float *const lab[3], float *const rgb[3], int n)
     pthread_once(&enc_once, enc_setup);
 #ifdef TEX_X86
     if (tex_simd_level() >= TEX_SIMD_AVX512)
-        for (; i + 8 <= n; i += 8)
-            oklab_srgb8((const float *[3]){lab[0] + i, lab[1] + i, lab[2] + i},
-                        (float *[3]){rgb[0] + i, rgb[1] + i, rgb[2] + i});
+        i = tex_oklab_srgb_avx512(&enc, lab, rgb, n);
 #endif
     for (; i < n; i++) {
         double lin[3];

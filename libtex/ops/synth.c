@@ -20,7 +20,7 @@
 #define PCA_SAMPLES 2048 /* sample pixels the principal axes are estimated from */
 #define PCA_ITERS 24     /* subspace iterations */
 #define MAX_N 15
-#define KD_EPS 1 /* (1+eps)-approximate: 0.3 s less than exact at 512^2, same look */
+#define KD_EPS 1 /* (1+eps)-approximate: faster than exact, the same look */
 #define KD_LEAF 10 /* points a leaf of the kd-tree */
 #define NONE 0xffffffffu
 #define CELL 8           /* side of the sample's occurrence cells */
@@ -74,8 +74,8 @@ static inline int clampi(int v, int lo, int hi)
 /* How far a candidate stays from the sample's edges: half its level's
  * neighbourhood, the rest read beyond the edge in a mirror.  The whole
  * neighbourhood inside (r h) kept the coarse levels, and with them the
- * output's histogram, off the sample's rim (measured: histogram distance
- * 0.10 against 0.066); none (r) broke the courses of bricks. */
+ * output's histogram, off the sample's rim; none (r) broke the courses of
+ * bricks. */
 static inline int margin(const struct synth *y, int h)
 {
     return y->r * h / 2 > y->r ? y->r * h / 2 : y->r;

@@ -124,7 +124,8 @@ enum tex_search tex_cellular_search(const tex_cellular *c);
  * id the index of the nearest; f2 and id may be NULL.  Thread-safe. */
 void tex_cellular_query(const tex_cellular *c, int n, const double *q, double *f1, double *f2,
                         long *id);
-/* Parse a metric: euclid, manhattan, chebyshev or minkowski:P (P in 1..64). */
+/* Parse a metric: euclid, manhattan, chebyshev or minkowski:P (P in 1..TEX_METRIC_P_MAX). */
+#define TEX_METRIC_P_MAX 64
 int tex_metric_parse(const char *text, enum tex_metric *m, double *p);
 
 #ifdef __cplusplus

@@ -9,21 +9,16 @@
 #include "base/fp_strict.h" /* first: no fused multiply-adds in this file */
 
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "base/error.h"
 #include "base/simd.h"
 #include "prim/noise.h"
+#include "prim/noise_grid.h"
 #include "prim/prim.h"
 #include "base/rng.h"
-
-/* max then min, as the row kernels clamp (noise.c) */
-static inline float clamp01(float x)
-{
-    float m = x > 0 ? x : 0;
-    return m < 1 ? m : 1;
-}
 
 /* ---- turbulence ---- */
 
@@ -128,8 +123,8 @@ static int turb_init(struct tex_field *f)
     double z = p->z, w = p->w.n ? p->w.v[0] : 0;
     int dims = p->w.n ? 4 : 3;
     if (tex_noise_loop(p->frames, p->frame, p->loop_radius, &z, &w, &dims) < 0 ||
-        tex_octaves_init(&s->o, f->seed, p->gradients, p->fade, p->octaves, p->frequency,
-                         p->lacunarity, off, z, w, dims, f->tile, f->w, f->h) < 0)
+        tex_octaves_init(&s->o, f->prim->params, f->seed, p->gradients, p->fade, p->octaves,
+                         p->frequency, p->lacunarity, off, z, w, dims, f->tile, f->w, f->h) < 0)
         return -1;
     if (p->band_limit) {
         s->mean = (float)tex_noise_mean_abs(&s->o.t);
@@ -269,8 +264,8 @@ static int wood_init(struct tex_field *f)
     s->s = sin(p->tilt * M_PI / 180);
     if (tex_noise_init(&s->grain, f->seed ^ 0x5bd1e995u, 256, 0) < 0)
         return -1;
-    return tex_octaves_init(&s->turb.o, f->seed, 256, 0, p->octaves, p->frequency, 2, off, 0, 0,
-                            3, 0, 0, 0);
+    return tex_octaves_init(&s->turb.o, f->prim->params, f->seed, 256, 0, p->octaves,
+                            p->frequency, 2, off, 0, 0, 3, 0, 0, 0);
 }
 
 static void wood_fini(struct tex_field *f)
@@ -362,6 +357,7 @@ struct frac_params {
 #define IN(m) (1u << (m))
 #define NOISY (IN(FBM) | IN(RIDGED) | IN(HYBRID))
 #define ESCAPE (IN(MANDELBROT) | IN(JULIA))
+#define MANDEL_X -0.5 /* the centre of a Mandelbrot map without --centre: (MANDEL_X, 0) */
 static const struct tex_param frac_rows[] = {
     TEX_ENUM(struct frac_params, mode, 'm', "fbm",
              "fbm|ridged|hybrid|midpoint|mandelbrot|julia|koch", "the fractal"),
@@ -391,7 +387,8 @@ static const struct tex_param frac_rows[] = {
     TEX_NOISE_W_ROW(struct frac_params, .kinds = NOISY),
     TEX_NOISE_LOOP_ROWS(struct frac_params, .kinds = NOISY),
     TEX_REALS(struct frac_params, centre, 0, NULL, -1e3, 1e3, 2, "X,Y",
-              "mandelbrot, julia: complex point at the centre of the map (-0.5,0 and 0,0)",
+              "mandelbrot, julia: complex point at the centre of the map (" TEX_XSTR(MANDEL_X)
+              ",0 and 0,0)",
               .kinds = ESCAPE),
     TEX_REAL(struct frac_params, zoom, 0, 1, 1e-12, 1e12, "Z",
              "mandelbrot, julia: magnification; the map spans 4/Z", .kinds = ESCAPE),
@@ -652,6 +649,9 @@ static int midpoint(const struct frac_params *p, uint64_t seed, int tile, int w,
 static const char *const mode_names[] = {"fbm", "ridged", "hybrid", "midpoint",
                                          "mandelbrot", "julia", "koch"};
 
+/* Messages name a parameter by its row (prim.h) */
+#define FRAC_OPTION(field) TEX_OPTION(frac_rows, struct frac_params, field)
+
 static int frac_init(struct tex_field *f)
 {
     const struct frac_params *p = f->params;
@@ -664,12 +664,12 @@ static int frac_init(struct tex_field *f)
     f->state = s;
     s->mode = p->mode;
     if (f->tile && p->mode >= MANDELBROT)
-        return tex_usage_error("--tile: --mode %s is not periodic (fbm, ridged, hybrid and "
-                               "midpoint tile)",
-                               mode_names[p->mode]);
+        return tex_usage_error("%s: %s %s is not periodic (fbm, ridged, hybrid and midpoint tile)",
+                               TEX_FIELD_OPTION(tile), FRAC_OPTION(mode), mode_names[p->mode]);
     if (p->mode >= MIDPOINT && (p->frames || p->frame))
-        return tex_usage_error("--frames animates --mode fbm, ridged and hybrid, which are "
-                               "made of noise (got --mode %s)",
+        return tex_usage_error("%s animates %s fbm, ridged and hybrid, which are made of noise "
+                               "(got %s %s)",
+                               FRAC_OPTION(frames), FRAC_OPTION(mode), FRAC_OPTION(mode),
                                mode_names[p->mode]);
     if (p->mode == MIDPOINT) {
         /* Scenes evaluate at points: they get a 512 x 512 map, sampled bilinearly. */
@@ -690,8 +690,8 @@ static int frac_init(struct tex_field *f)
         mones[k] = -1;
     }
     if (!isfinite(sum) || sum <= 0)
-        return tex_usage_error("--h: the octave amplitudes overflow (got %g over %d octaves)",
-                               p->h.v[0], p->octaves);
+        return tex_usage_error("%s: the octave amplitudes overflow (got %g over %d octaves)",
+                               FRAC_OPTION(h), p->h.v[0], p->octaves);
     s->o.n = p->octaves;
     if (p->mode == FBM) {
         s->inv = (float)(1.0 / sum);
@@ -704,7 +704,8 @@ static int frac_init(struct tex_field *f)
         s->lo = hybrid(s, p, mones);
         s->hi = hybrid(s, p, ones);
         if (!(s->hi > s->lo))
-            return tex_usage_error("--mf-offset %g gives hybrid a constant field", p->mf_offset);
+            return tex_usage_error("%s %g gives hybrid a constant field", FRAC_OPTION(mf_offset),
+                                   p->mf_offset);
         s->inv = 1.0f / (s->hi - s->lo);
     }
     offsets(&p->offset, off);
@@ -713,8 +714,8 @@ static int frac_init(struct tex_field *f)
     if (tex_noise_loop(p->frames, p->frame, p->loop_radius, &z, &w, &dims) < 0)
         return -1;
     s->active = p->octaves;
-    if (tex_octaves_init(&s->o, f->seed, p->gradients, p->fade, p->octaves, p->frequency,
-                         p->lacunarity, off, z, w, dims, f->tile, f->w, f->h) < 0)
+    if (tex_octaves_init(&s->o, f->prim->params, f->seed, p->gradients, p->fade, p->octaves,
+                         p->frequency, p->lacunarity, off, z, w, dims, f->tile, f->w, f->h) < 0)
         return -1;
     if (p->band_limit) {
         float fill;
@@ -758,7 +759,7 @@ static float frac_point(const struct tex_field *f, double u, double v, double w)
     switch (s->mode) {
     case MANDELBROT:
     case JULIA:
-        zx = (p->centre.n ? p->centre.v[0] : s->mode == MANDELBROT ? -0.5 : 0) + (u - 0.5) * sc;
+        zx = (p->centre.n ? p->centre.v[0] : s->mode == MANDELBROT ? MANDEL_X : 0) + (u - 0.5) * sc;
         zy = (p->centre.n > 1 ? p->centre.v[1] : 0) + (0.5 - v) * sc;
         if (s->mode == MANDELBROT)
             return escape(0, 0, zx, zy, p->iterations);
@@ -892,10 +893,14 @@ static int frac_grid(const struct tex_field *f, tex_map *m)
  * lattice and rescales by the whole map's range: no window alone has them. */
 static const char *frac_whole(const struct tex_field *f)
 {
+    static _Thread_local char why[128]; /* the reason, its option named by the row */
     const struct frac_params *p = f->params;
-    return p->mode == MIDPOINT ? "--mode midpoint draws the whole lattice in sequence and "
-                                 "rescales by the whole map's range"
-                               : NULL;
+
+    if (p->mode != MIDPOINT)
+        return NULL;
+    snprintf(why, sizeof why, "%s midpoint draws the whole lattice in sequence and rescales by "
+             "the whole map's range", FRAC_OPTION(mode));
+    return why;
 }
 
 const struct tex_primitive tex_prim_fractal = {

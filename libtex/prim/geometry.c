@@ -25,6 +25,12 @@ struct geo_state {
 #define ROW_NV(S, d) TEX_INT(S, nv, 0, d, 1, 4096, "N", "repetitions of the pattern down the map (nv)")
 #define ROW_NW(S, d) TEX_INT(S, nw, 0, d, 1, 4096, "N", "repetitions along w (solid texture only)")
 #define ROW_COLOR(S, k, def, help) TEX_COLOR_N("colour" #k, S, color##k, 0, def, help)
+/* The default colours the figures share, each written once: a warm paper ground, an ink
+ * blue, an ochre and a gold */
+#define PAPER "#f4efe2"
+#define INK "#2b5f8a"
+#define OCHRE "#e0a526"
+#define GOLD "#f2c12e"
 
 /* Position inside a repetition cell: [0,1). */
 static inline double cell(double t, int n)
@@ -112,13 +118,10 @@ static inline int geo_box(int nu, int nv, double u, double v, double hu, double 
                             double hu, double hv, float *out)                                      \
     {                                                                                              \
         const S *p = f->params;                                                                    \
-        const double *k = ((const struct geo_state *)f->state)->k;                                \
-        for (int i = 0; i < n; i++) {                                                              \
-            double x, y, hx, hy;                                                                   \
+        double x, y, hx, hy, *k = ((struct geo_state *)f->state)->k;                              \
+        for (int i = 0; i < n; i++)                                                                \
             out[i] = geo_box(p->nu, p->nv, u[i], v[i], hu, hv, &x, &y, &hx, &hy)                   \
-                         ? (float)name##_box(p, k, x, y, hx, hy)                                   \
-                         : 0.0f;                                                                   \
-        }                                                                                          \
+                         ? (float)name##_box(p, k, x, y, hx, hy) : 0.0f;                           \
     }
 
 /* 1 when a disc of radius r at distance d from a circle's centre misses the circle of radius R. */
@@ -127,13 +130,18 @@ static inline int clear_of(double d, double radius, double r)
     return fabs(d - radius) > r;
 }
 
-/* Usage errors for parameters that depend on each other. */
-static int not_above(const char *a, double va, const char *b, double vb)
+/* Usage errors for parameters that depend on each other: the value va of the row of rows at
+ * offset a must not exceed vb, the value at b (NOT_ABOVE: fields a and b of *p, a struct S). */
+static int not_above(const struct tex_param *rows, size_t a, double va, size_t b, double vb)
 {
+    char na[64], nb[64];
     if (va > vb)
-        return tex_usage_error("--%s (%g) must not exceed --%s (%g)", a, va, b, vb);
+        return tex_usage_error("%s (%g) must not exceed %s (%g)",
+                               tex_rows_option(rows, a, na, sizeof na), va,
+                               tex_rows_option(rows, b, nb, sizeof nb), vb);
     return 0;
 }
+#define NOT_ABOVE(rows, S, p, a, b) not_above(rows, offsetof(S, a), (p)->a, offsetof(S, b), (p)->b)
 
 /* ---- circle: 1 outside, 2 inside ---- */
 
@@ -148,7 +156,7 @@ static const struct tex_param circle_rows[] = {
     ROW_NU(struct circle_params, 1),
     ROW_NV(struct circle_params, 1),
     ROW_NW(struct circle_params, 1),
-    ROW_COLOR(struct circle_params, 1, "#f4efe2", "colour of region 1, outside the circle"),
+    ROW_COLOR(struct circle_params, 1, PAPER, "colour of region 1, outside the circle"),
     ROW_COLOR(struct circle_params, 2, "#b8322a", "colour of region 2, inside the circle"),
     {0}};
 
@@ -216,16 +224,16 @@ static const struct tex_param ring_rows[] = {
     ROW_NU(struct ring_params, 1),
     ROW_NV(struct ring_params, 1),
     ROW_NW(struct ring_params, 1),
-    ROW_COLOR(struct ring_params, 1, "#f4efe2", "colour of region 1, outside the ring"),
-    ROW_COLOR(struct ring_params, 2, "#2b5f8a", "colour of region 2, the ring"),
-    ROW_COLOR(struct ring_params, 3, "#e0a526", "colour of region 3, inside the ring"),
+    ROW_COLOR(struct ring_params, 1, PAPER, "colour of region 1, outside the ring"),
+    ROW_COLOR(struct ring_params, 2, INK, "colour of region 2, the ring"),
+    ROW_COLOR(struct ring_params, 3, OCHRE, "colour of region 3, inside the ring"),
     {0}};
 
 static int ring_init(struct tex_field *f)
 {
     const struct ring_params *p = f->params;
     double *k;
-    if (not_above("width", p->width, "radius", p->radius) < 0 || geo_init(f, 3) < 0)
+    if (NOT_ABOVE(ring_rows, struct ring_params, p, width, radius) < 0 || geo_init(f, 3) < 0)
         return -1;
     k = ((struct geo_state *)f->state)->k;
     k[0] = p->radius * p->radius;
@@ -303,9 +311,9 @@ static const struct tex_param ellipse_rows[] = {
              "angle of the major axis with the horizontal, in degrees, counterclockwise"),
     ROW_NU(struct ellipse_params, 1),
     ROW_NV(struct ellipse_params, 1),
-    ROW_COLOR(struct ellipse_params, 1, "#f4efe2", "colour of region 1, outside the ellipse"),
-    ROW_COLOR(struct ellipse_params, 2, "#2b5f8a", "colour of region 2, the band"),
-    ROW_COLOR(struct ellipse_params, 3, "#e0a526", "colour of region 3, inside the band"),
+    ROW_COLOR(struct ellipse_params, 1, PAPER, "colour of region 1, outside the ellipse"),
+    ROW_COLOR(struct ellipse_params, 2, INK, "colour of region 2, the band"),
+    ROW_COLOR(struct ellipse_params, 3, OCHRE, "colour of region 3, inside the band"),
     {0}};
 
 static int ellipse_init(struct tex_field *f)
@@ -313,19 +321,21 @@ static int ellipse_init(struct tex_field *f)
     const struct ellipse_params *p = f->params;
     double a = p->angle * M_PI / 180, c = cos(a), s = sin(a), *k;
 
-    if (not_above("minor", p->minor, "major", p->major) < 0 ||
-        not_above("width", p->width, "minor", p->minor) < 0)
+    if (NOT_ABOVE(ellipse_rows, struct ellipse_params, p, minor, major) < 0 ||
+        NOT_ABOVE(ellipse_rows, struct ellipse_params, p, width, minor) < 0)
         return -1;
     if (p->minor <= 0)
-        return tex_usage_error("--minor must be above 0 (got %g)", p->minor);
+        return tex_usage_error("%s must be above 0 (got %g)",
+                               TEX_OPTION(ellipse_rows, struct ellipse_params, minor), p->minor);
     if (f->tile && fmod(p->angle, 90) != 0) {
         /* A tilted ellipse is seamless only if it stays inside its cell. */
         double ex = sqrt(pow(p->major * c, 2) + pow(p->minor * s, 2));
         double ey = sqrt(pow(p->major * s, 2) + pow(p->minor * c, 2));
         if (ex > 0.5 || ey > 0.5)
-            return tex_usage_error("--tile needs --angle a multiple of 90 or the ellipse inside "
-                                   "its cell (it reaches %g x %g of 0.5 x 0.5)",
-                                   ex, ey);
+            return tex_usage_error("%s needs %s a multiple of 90 or the ellipse inside its cell "
+                                   "(it reaches %g x %g of 0.5 x 0.5)",
+                                   TEX_FIELD_OPTION(tile),
+                                   TEX_OPTION(ellipse_rows, struct ellipse_params, angle), ex, ey);
     }
     if (geo_init(f, 3) < 0)
         return -1;
@@ -400,7 +410,7 @@ static const struct tex_param flower_rows[] = {
     ROW_NU(struct flower_params, 1),
     ROW_NV(struct flower_params, 1),
     ROW_COLOR(struct flower_params, 1, "#1f4d2b", "colour of region 1, the ground"),
-    ROW_COLOR(struct flower_params, 2, "#f2c12e", "colour of region 2, the flower"),
+    ROW_COLOR(struct flower_params, 2, GOLD, "colour of region 2, the flower"),
     {0}};
 
 static int flower_init(struct tex_field *f)
@@ -408,8 +418,10 @@ static int flower_init(struct tex_field *f)
     const struct flower_params *p = f->params;
     /* Odd roses are mirror symmetric left-right only: seamless while inside the cell. */
     if (f->tile && p->petals % 2 && p->length > 0.5)
-        return tex_usage_error("--tile with an odd --petals needs --length at most 0.5 (got %g)",
-                               p->length);
+        return tex_usage_error("%s with an odd %s needs %s at most 0.5 (got %g)",
+                               TEX_FIELD_OPTION(tile),
+                               TEX_OPTION(flower_rows, struct flower_params, petals),
+                               TEX_OPTION(flower_rows, struct flower_params, length), p->length);
     return geo_init(f, 2);
 }
 
@@ -538,8 +550,8 @@ static const struct tex_param stripe_rows[] = {
              "distance between neighbouring stripes, edge to edge (the thesis's d)", .old = "-d"),
     ROW_NU(struct stripe_params, 1),
     ROW_NV(struct stripe_params, 1),
-    ROW_COLOR(struct stripe_params, 1, "#f4efe2", "colour of region 1, between the stripes"),
-    ROW_COLOR(struct stripe_params, 2, "#2b5f8a", "colour of region 2, the stripes"),
+    ROW_COLOR(struct stripe_params, 1, PAPER, "colour of region 1, between the stripes"),
+    ROW_COLOR(struct stripe_params, 2, INK, "colour of region 2, the stripes"),
     {0}};
 
 static int stripe_init(struct tex_field *f)
@@ -548,7 +560,8 @@ static int stripe_init(struct tex_field *f)
     double a = p->angle * M_PI / 180, *k;
 
     if (p->width <= 0)
-        return tex_usage_error("--width must be above 0 (got %g)", p->width);
+        return tex_usage_error("%s must be above 0 (got %g)",
+                               TEX_OPTION(stripe_rows, struct stripe_params, width), p->width);
     if (geo_init(f, 2) < 0)
         return -1;
     k = ((struct geo_state *)f->state)->k;
@@ -604,9 +617,9 @@ static const struct tex_param cycloid_rows[] = {
                .old = "-d width"),
     ROW_NU(struct cycloid_params, 1),
     ROW_NV(struct cycloid_params, 1),
-    ROW_COLOR(struct cycloid_params, 1, "#f4efe2", "colour of region 1, above the outer arch"),
-    ROW_COLOR(struct cycloid_params, 2, "#2b5f8a", "colour of region 2, between the arches"),
-    ROW_COLOR(struct cycloid_params, 3, "#e0a526", "colour of region 3, inside the inner arch"),
+    ROW_COLOR(struct cycloid_params, 1, PAPER, "colour of region 1, above the outer arch"),
+    ROW_COLOR(struct cycloid_params, 2, INK, "colour of region 2, between the arches"),
+    ROW_COLOR(struct cycloid_params, 3, OCHRE, "colour of region 3, inside the inner arch"),
     {0}};
 
 static int cycloid_init(struct tex_field *f)
@@ -615,8 +628,10 @@ static int cycloid_init(struct tex_field *f)
     double a = p->radius / 100 / (2 * M_PI), *k;
 
     if (p->width > 2 * a)
-        return tex_usage_error("--width (%g) must not exceed the arch's height %g (--radius %g)",
-                               p->width, 2 * a, p->radius);
+        return tex_usage_error("%s (%g) must not exceed the arch's height %g (%s %g)",
+                               TEX_OPTION(cycloid_rows, struct cycloid_params, width), p->width,
+                               2 * a, TEX_OPTION(cycloid_rows, struct cycloid_params, radius),
+                               p->radius);
     if (geo_init(f, 3) < 0)
         return -1;
     k = ((struct geo_state *)f->state)->k;
@@ -704,16 +719,17 @@ static const struct tex_param hypocycloid_rows[] = {
                .old = "-d width"),
     ROW_NU(struct hypocycloid_params, 1),
     ROW_NV(struct hypocycloid_params, 1),
-    ROW_COLOR(struct hypocycloid_params, 1, "#f4efe2", "colour of region 1, outside"),
-    ROW_COLOR(struct hypocycloid_params, 2, "#2b5f8a", "colour of region 2, between the astroids"),
-    ROW_COLOR(struct hypocycloid_params, 3, "#e0a526", "colour of region 3, inside"),
+    ROW_COLOR(struct hypocycloid_params, 1, PAPER, "colour of region 1, outside"),
+    ROW_COLOR(struct hypocycloid_params, 2, INK, "colour of region 2, between the astroids"),
+    ROW_COLOR(struct hypocycloid_params, 3, OCHRE, "colour of region 3, inside"),
     {0}};
 
 static int hypocycloid_init(struct tex_field *f)
 {
     const struct hypocycloid_params *p = f->params;
     double *k;
-    if (not_above("width", p->width, "radius", p->radius) < 0 || geo_init(f, 3) < 0)
+    if (NOT_ABOVE(hypocycloid_rows, struct hypocycloid_params, p, width, radius) < 0 ||
+        geo_init(f, 3) < 0)
         return -1;
     k = ((struct geo_state *)f->state)->k;
     k[0] = cbrt(p->radius * p->radius);
@@ -777,15 +793,16 @@ static const struct tex_param four_rings_rows[] = {
                "width of the rings (the thesis's d), at most r", .old = "-d width"),
     ROW_NU(struct four_rings_params, 1),
     ROW_NV(struct four_rings_params, 1),
-    ROW_COLOR(struct four_rings_params, 1, "#f4efe2", "colour of region 1, the ground"),
-    ROW_COLOR(struct four_rings_params, 2, "#2b5f8a", "colour of region 2, the rings"),
+    ROW_COLOR(struct four_rings_params, 1, PAPER, "colour of region 1, the ground"),
+    ROW_COLOR(struct four_rings_params, 2, INK, "colour of region 2, the rings"),
     {0}};
 
 static int four_rings_init(struct tex_field *f)
 {
     const struct four_rings_params *p = f->params;
     double *k;
-    if (not_above("width", p->width, "radius", p->radius) < 0 || geo_init(f, 2) < 0)
+    if (NOT_ABOVE(four_rings_rows, struct four_rings_params, p, width, radius) < 0 ||
+        geo_init(f, 2) < 0)
         return -1;
     k = ((struct geo_state *)f->state)->k;
     k[0] = p->radius * p->radius;
@@ -849,8 +866,8 @@ static const struct tex_param polygon_rows[] = {
              "direction of the first vertex, in degrees counterclockwise from the right"),
     ROW_NU(struct polygon_params, 1),
     ROW_NV(struct polygon_params, 1),
-    ROW_COLOR(struct polygon_params, 1, "#f4efe2", "colour of region 1, outside"),
-    ROW_COLOR(struct polygon_params, 2, "#2b5f8a", "colour of region 2, inside"),
+    ROW_COLOR(struct polygon_params, 1, PAPER, "colour of region 1, outside"),
+    ROW_COLOR(struct polygon_params, 2, INK, "colour of region 2, inside"),
     {0}};
 
 static const struct tex_param star_rows[] = {
@@ -865,7 +882,7 @@ static const struct tex_param star_rows[] = {
     ROW_NU(struct polygon_params, 1),
     ROW_NV(struct polygon_params, 1),
     ROW_COLOR(struct polygon_params, 1, "#1d2a44", "colour of region 1, outside"),
-    ROW_COLOR(struct polygon_params, 2, "#f2c12e", "colour of region 2, the star"),
+    ROW_COLOR(struct polygon_params, 2, GOLD, "colour of region 2, the star"),
     {0}};
 
 /* k: the sector angle 2 pi/n, the first vertex's angle, the outer vertex
@@ -972,7 +989,7 @@ static const struct tex_param grid_rows[] = {
                "width of the lines as a fraction of a cell", .old = "-d width"),
     ROW_NU(struct grid_params, 8),
     ROW_NV(struct grid_params, 8),
-    ROW_COLOR(struct grid_params, 1, "#f4efe2", "colour of region 1, the cells"),
+    ROW_COLOR(struct grid_params, 1, PAPER, "colour of region 1, the cells"),
     ROW_COLOR(struct grid_params, 2, "#3a3a3a", "colour of region 2, the lines"),
     {0}};
 
@@ -1063,9 +1080,10 @@ static int brick_init(struct tex_field *f)
     k[1] = p->width / 4 * p->nu / p->nv * (f->w > 0 && f->h > 0 ? (double)f->h / f->w : 1);
     if (p->cells) {
         if ((long)p->nu * p->nv > BRICK_CELLS_MAX)
-            return tex_usage_error("--cells numbers at most %d repetitions: nu x nv must be "
-                                   "1..%d (got %d x %d)", BRICK_CELLS_MAX, BRICK_CELLS_MAX,
-                                   p->nu, p->nv);
+            return tex_usage_error("%s numbers at most %d repetitions: nu x nv must be "
+                                   "1..%d (got %d x %d)",
+                                   TEX_OPTION(brick_rows, struct brick_params, cells),
+                                   BRICK_CELLS_MAX, BRICK_CELLS_MAX, p->nu, p->nv);
         int n = 2 * p->nu * p->nv + 1;
         if (!(s->col = malloc(sizeof *s->col * n)))
             return tex_error("out of memory");
@@ -1188,8 +1206,8 @@ static const struct tex_param dots_rows[] = {
              "radius of the dots, in cells (they touch at 0.354)"),
     ROW_NU(struct dots_params, 4),
     ROW_NV(struct dots_params, 4),
-    ROW_COLOR(struct dots_params, 1, "#2b5f8a", "colour of region 1, the ground"),
-    ROW_COLOR(struct dots_params, 2, "#f4efe2", "colour of region 2, the dots"),
+    ROW_COLOR(struct dots_params, 1, INK, "colour of region 1, the ground"),
+    ROW_COLOR(struct dots_params, 2, PAPER, "colour of region 2, the dots"),
     {0}};
 
 static int dots_init(struct tex_field *f)

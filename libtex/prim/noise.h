@@ -12,10 +12,21 @@
  * 4D noise adds an axis l: G4[F[(i + F[(j + F[(k + F[l mod n]) mod n]) mod n]) mod n]]
  * with gradients uniform on the 4D sphere, 16 corners.
  *
- *   tex_noise_table t;
- *   tex_noise_init(&t, seed, 256, 0);       // n = 256, not periodic
- *   double s = tex_noise3(&t, x, y, z);      // signed
- *   tex_noise_points(&t, 0, 3, n, x, y, z, NULL, out); // n points at once
+ * A table holds the gradients and the permutation of one seed; a grid samples
+ * a table on the pixels of a map, a row at a time; octaves are the tables and
+ * grids of a sum of noise at growing frequencies.  Each is made by its _new
+ * function (NULL on failure, with the error in error.h) and freed by its
+ * _delete; their insides are libtex's own.
+ *
+ *   tex_noise_table *t = tex_noise_new(seed, 256, 0);  // n = 256, not periodic
+ *   double s = tex_noise3(t, x, y, z);                  // signed
+ *   tex_noise_points(t, 0, 3, n, x, y, z, NULL, out);   // n points at once
+ *
+ *   double off[4] = {ox, oy, Z, W};                     // lattice offset, slice Z, W
+ *   tex_noise_grid *g = tex_noise_grid_new(t, w, h, fx, fy, off, 3, 0);
+ *   tex_noise_grid_row(g, y, row);                      // w signed values of row y
+ *   tex_noise_grid_delete(g);
+ *   tex_noise_delete(t);
  *
  * 3D noise at a point finds its cell and fractions in double precision and
  * sums the corners in float, as the grid rows do.  Many points at once (the
@@ -24,53 +35,19 @@
  * values are tex_noise3p's bit for bit; the primitives' eval2/eval3 batch
  * their octaves through it.  4D noise and tex_noise3_grad stay in double.
  *
- * With period p > 0 (t.period, or the p argument of the *p variants) the
+ * With period p > 0 (the table's, or the p argument of the *p variants) the
  * lattice wraps every p cells along x and y, so a field sampled over
  * [0,p) tiles.  Lattice cells are found in double precision and 64-bit
  * integers, so coordinates of 1e6 and far beyond keep their texture.
  *
- * Grid sampling (the fast path the primitives' row callbacks use):
- *
- *   tex_noise_grid g;
- *   double off[4] = {ox, oy, Z, W};          // lattice offset, slice Z, W
- *   tex_noise_grid_init(&g, &t, w, h, fx, fy, off, 3, period);
- *   tex_noise_grid_row(&g, y, out);          // w signed values of row y
- *   tex_noise_grid_free(&g);
- *
- * pixel (x,y) is the lattice point (ox + fx (x+0.5)/w, oy + fy (y+0.5)/h,
- * Z[, W]).  Cell indices and fractions are computed once per column in
- * double precision.  A lattice row (the gradients of one lattice y over
- * the row's lattice columns) is folded once over the slice's corners in z
- * (and w) into three floats per column; pixel rows inside the same cell
- * share it (each grid keeps the last two per thread), and a pixel row
- * combines two of them with its y weights into two coefficients per
- * lattice column.  The per-pixel work is then four float multiplies and
- * three adds, with the row's operation (rescale, weighted sum, |n|, the last
- * octave's finish: tex_noise_grid_row_op) in the same pass.  When cells are
- * smaller than pixels, so that every pixel row needs lattice rows of its own,
- * the folded lattice rows are read from a table of all n x n lattice points
- * made once per grid (the lattice repeats every n cells), and every column
- * gets its own pair of slots, so that the vector rows read them without
- * gathers: a map's cost then no longer grows with its frequency.  A row with
- * more columns than the table has entries, where cells are under 5 pixels
- * wide, first combines its two table rows with its y weights into one
- * coefficient pair per entry (the operations each column would do; the table
- * kept as planes of X, Y and C for it), and each column reads its corners'
- * pairs: where eight or sixteen columns' corners lie within a register's
- * entries (cells of about a pixel or more; half a pixel with AVX-512), by
- * permutes of the coefficients, else one load per column (with AVX-512, one
- * for two rows, their coefficients interleaved entry by entry).  Rows are made
- * two at a time where their coefficients fit on the stack together
- * (tex_noise_grid_rows_op), so that an octave sum, whose octaves' per-column
- * data outgrow the first-level cache, reads them once for both.  Rows are
- * vectorised (AVX2, chosen at run time, and AVX-512 for cells 5 pixels wide
- * or more and for rows from folded table coefficients, unless most of an
- * octave sum's cells are neither: a map that
- * switches between the two ran slower; TEXTURA_SIMD=scalar or avx2 caps
- * the level) and every level performs the
- * same float operations in the same order, so the bytes are identical
- * whatever the level, the thread count or the order rows come in.  They
- * agree with tex_noise3/4 to about 1e-6.
+ * A grid's pixel (x,y) is the lattice point (ox + fx (x+0.5)/w, oy + fy
+ * (y+0.5)/h, Z[, W]).  Its rows cost a few float operations a pixel whatever
+ * the frequency, with the row's operation (rescale, weighted sum, |n|, an
+ * octave sum's last step: tex_noise_grid_row_op) in the same pass.  They are
+ * vectorised (AVX2 and AVX-512, chosen at run time; TEXTURA_SIMD=scalar or
+ * avx2 caps the level) and every level performs the same float operations in
+ * the same order, so the bytes are identical whatever the level, the thread
+ * count or the order rows come in.  They agree with tex_noise3/4 to about 1e-6.
  */
 #ifndef TEX_NOISE_H
 #define TEX_NOISE_H
@@ -96,29 +73,24 @@ static inline int64_t tex_noise_cell(double c)
 
 enum { TEX_FADE_CUBIC = 0, TEX_FADE_QUINTIC = 1 };
 
-typedef struct tex_noise_table {
-    int n;       /* gradients */
-    int period;  /* 0: none; used by tex_noise3/tex_noise4 */
-    int fade;    /* TEX_FADE_CUBIC (eq. 5.2, the default) or TEX_FADE_QUINTIC */
-    int *perm;   /* F, stored twice (2n entries) so that F[a + b] needs no mod */
-    float (*grad)[4];  /* n unit vectors on the sphere (w = 0) */
-    float (*grad4)[4]; /* n unit vectors on the 4D sphere */
-    float (*pgrad)[4]; /* grad[perm[m]] for m < 2n: the last hash step and its gradient in one */
-    unsigned char perm8[256]; /* perm as bytes where n = 256: the point kernel's lookups in
-                               * registers (AVX-512 VBMI) */
-} tex_noise_table;
+/* The gradients and permutation of one seed */
+typedef struct tex_noise_table tex_noise_table;
 
-int tex_noise_init(tex_noise_table *t, uint64_t seed, int n, int period);
-void tex_noise_free(tex_noise_table *t);
+/* A table of n gradients (2..TEX_NOISE_MAX_GRADIENTS; the thesis uses 256) from seed, with
+ * period (0: none) for tex_noise3 and tex_noise4; the cubic fade.  NULL on failure. */
+tex_noise_table *tex_noise_new(uint64_t seed, int n, int period);
+/* The fade from now on: TEX_FADE_CUBIC (eq. 5.2, the default) or TEX_FADE_QUINTIC */
+void tex_noise_set_fade(tex_noise_table *t, int fade);
+void tex_noise_delete(tex_noise_table *t);
 double tex_noise3(const tex_noise_table *t, double x, double y, double z);
 double tex_noise4(const tex_noise_table *t, double x, double y, double z, double w);
-/* With an explicit period (0: none) instead of t->period. */
+/* With an explicit period (0: none) instead of the table's. */
 double tex_noise3p(const tex_noise_table *t, int period, double x, double y, double z);
 double tex_noise4p(const tex_noise_table *t, int period, double x, double y, double z, double w);
 /* Noise at n points (x[i], y[i], z[i][, w[i]]), dims 3 or 4 (w unused with 3):
  * the values of tex_noise3p / tex_noise4p, bit for bit, eight points at a
  * time with AVX2 (3D); with 256 gradients and no period, sixteen at a time in
- * 512-bit registers, their hashes from perm8 in registers, where the CPU has
+ * 512-bit registers, the permutation's bytes in registers, where the CPU has
  * AVX-512 VBMI. */
 void tex_noise_points(const tex_noise_table *t, int period, int dims, int n, const double *x,
                       const double *y, const double *z, const double *w, double *out);
@@ -131,44 +103,15 @@ void tex_noise_points_at(const tex_noise_table *t, int period, const double a[3]
 double tex_noise3_grad(const tex_noise_table *t, int period, double x, double y, double z,
                        double g[3]);
 
-struct tex_noise_cache; /* lattice rows kept for the next pixel rows (noise.c) */
+/* A table sampled on the pixels of a w x h map, a row at a time */
+typedef struct tex_noise_grid tex_noise_grid;
 
-typedef struct tex_noise_grid {
-    const tex_noise_table *t;
-    int w, h, dims, period;
-    double fy, oy;
-    int nslots, stride;
-    int32_t *slot;     /* per column: slot of its cell's left lattice column */
-    int32_t *lat;      /* per slot: lattice column index reduced mod period and n */
-    float *u, *um1, *w0, *w1; /* per column: fraction, fraction - 1, the two x weights */
-    float *dw0, *dw1;  /* per column: the x weights' derivatives in u */
-    int nz, zh[4];     /* the slice's corners in z (and w) of non-zero weight, hash prefixes */
-    float zm[4][4];    /* their weight W (1, 1, dz, dw) */
-    float zdm[4][4];   /* dims 3: the z derivative's (W', W', W' dz + W, 0) */
-    float (*lut)[4];   /* NULL, or per lattice row mod n the folded (X, Y, C, 0) of every
-                        * lattice column mod n and column 0 again (n + 1 entries), when
-                        * the grid needs more lattice rows than the table has */
-    float *plane;      /* a folded grid's table instead: per lattice row mod n its X, Y and
-                        * C, each over ps entries (entry i is lattice column i mod n) */
-    int ps;
-    int paired;        /* every column has its own two slots, 2x and 2x + 1 */
-    int adjacent;      /* every column's right corner is the table's next entry */
-    int folded;        /* adjacent, with more columns than the table has entries and cells
-                        * under 5 pixels wide: rows from the table row folded with their y
-                        * weights once (fold_row_*), each column reading its corners' pairs */
-    int32_t *corner;   /* folded: per column, the table entry of its left corner */
-    int32_t *corner2;  /* ... twice over (in the same block): an 8-byte index into a
-                        * table of four floats an entry, which loads scale as they are */
-    int span8, span16; /* the most cells between the first and last columns of 8 (16)
-                        * columns from a multiple of 8 (16) */
-    int wide;          /* AVX-512 rows where the CPU has it: cells 5 pixels wide or more, or
-                        * rows made from folded table coefficients */
-    struct tex_noise_cache *cache;
-} tex_noise_grid;
-
-/* dims is 3 (off[2] is the slice Z) or 4 (off[3] is W); period 0: none. */
-int tex_noise_grid_init(tex_noise_grid *g, const tex_noise_table *t, int w, int h, double fx,
-                        double fy, const double off[4], int dims, int period);
+/* fx and fy lattice cells across and down the map, offset by off[0], off[1]; dims is 3
+ * (off[2] is the slice Z) or 4 (off[3] is W); period 0: none.  The grid reads t, which
+ * must outlive it.  NULL on failure. */
+tex_noise_grid *tex_noise_grid_new(const tex_noise_table *t, int w, int h, double fx, double fy,
+                                   const double off[4], int dims, int period);
+void tex_noise_grid_delete(tex_noise_grid *g);
 /* What a row does with each noise value n, in the same vectorised pass
  * (clamp01(x) is min(max(x, 0), 1)).  The multifractal steps (Musgrave's
  * ridged and hybrid octaves, as fractal.c's points sum them) keep a state st
@@ -215,7 +158,6 @@ void tex_noise_grid_row_add(const tex_noise_grid *g, int y, float amp, float *ou
  * is not NULL, dn/dZ, w floats each (dims 3; the same at every SIMD level,
  * within about 1e-5 of tex_noise3_grad). */
 void tex_noise_grid_row_grad(const tex_noise_grid *g, int y, float *dx, float *dy, float *dz);
-void tex_noise_grid_free(tex_noise_grid *g);
 
 /* Octaves: noise at frequencies F L^k, k = 0..n-1, for turbulence and
  * fractal sums.  Octave k samples the lattice point
@@ -225,20 +167,16 @@ void tex_noise_grid_free(tex_noise_grid *g);
  * u, v, w are texture coordinates; w is the slice for 3D (dims 3) and
  * t the fourth coordinate for dims 4. */
 #define TEX_OCTAVES_MAX 30
-typedef struct tex_octaves {
-    tex_noise_table t;
-    int n, dims, grid;
-    double freq[TEX_OCTAVES_MAX], off[TEX_OCTAVES_MAX][4];
-    int period[TEX_OCTAVES_MAX];
-    tex_noise_grid g[TEX_OCTAVES_MAX]; /* when sampled on a grid (w, h > 0) */
-} tex_octaves;
+typedef struct tex_octaves tex_octaves;
 
-/* off: the offset (x, y, z) in lattice units of octave 0; z and t the slice
- * and fourth coordinate in texture units; usage errors name the options. */
-int tex_octaves_init(tex_octaves *o, uint64_t seed, int gradients, int fade, int n, double freq,
-                     double lac, const double off[3], double z, double t, int dims, int tile,
-                     int w, int h);
-void tex_octaves_free(tex_octaves *o);
+/* n octaves from frequency freq and lacunarity lac, their table of gradients from seed;
+ * off: the offset (x, y, z) in lattice units of octave 0; z and t the slice and fourth
+ * coordinate in texture units; with w, h > 0, sampled on a w x h grid too (the row
+ * functions).  NULL on failure; usage errors name the options. */
+tex_octaves *tex_octaves_new(uint64_t seed, int gradients, int fade, int n, double freq,
+                             double lac, const double off[3], double z, double t, int dims,
+                             int tile, int w, int h);
+void tex_octaves_delete(tex_octaves *o);
 /* Signed noise of octave k at texture point (u, v, w), w added to the slice. */
 double tex_octave_point(const tex_octaves *o, int k, double u, double v, double w);
 /* Signed noise of octave k at n texture points (w NULL: 0), tex_octave_point's
@@ -274,16 +212,20 @@ void tex_octave_rows_mf(const tex_octaves *o, int k, int y, int n, int op,
 
 /* The parameter rows every noise-based primitive shares (param.h), declared once:
  * struct S must have double z, struct tex_reals offset, int fade, int gradients
- * (and struct tex_reals w for TEX_NOISE_W_ROW). */
+ * (and struct tex_reals w for TEX_NOISE_W_ROW).  Where the field lies in the
+ * lattice (slice, offset), then the lattice's own rows (fade, gradients). */
 #define TEX_NOISE_ROWS(S, ...)                                                                     \
+    TEX_NOISE_PLACE_ROWS(S, __VA_ARGS__), TEX_NOISE_TABLE_ROWS(S, __VA_ARGS__)
+#define TEX_NOISE_PLACE_ROWS(S, ...)                                                               \
     TEX_REAL_N("slice", S, z, 0, 0, -1e9, 1e9, "Z",                                                \
                "the slice of the solid field, in map widths", .alias = "z", __VA_ARGS__),          \
         TEX_REALS(S, offset, 0, NULL, -1e12, 1e12, 3, "X[,Y[,Z]]",                                 \
                   "lattice offset added to the scaled coordinates (of the first octave)",          \
-                  __VA_ARGS__),                                                                    \
-        TEX_ENUM(S, fade, 0, "cubic", "cubic|quintic",                                             \
-                 "noise weight function: the thesis's cubic (eq. 5.2) or Perlin's quintic",        \
-                 __VA_ARGS__),                                                                     \
+                  __VA_ARGS__)
+#define TEX_NOISE_TABLE_ROWS(S, ...)                                                               \
+    TEX_ENUM(S, fade, 0, "cubic", "cubic|quintic",                                                 \
+             "noise weight function: the thesis's cubic (eq. 5.2) or Perlin's quintic",            \
+             __VA_ARGS__),                                                                         \
         TEX_INT(S, gradients, 0, 256, 2, TEX_NOISE_MAX_GRADIENTS, "N",                             \
                 "gradients on the sphere (the thesis's n)", __VA_ARGS__)
 #define TEX_NOISE_W_ROW(S, ...)                                                                    \

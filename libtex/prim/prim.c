@@ -55,6 +55,15 @@ const struct tex_param tex_field_rows[] = {
             "sample the field once on an N x N grid"),
     {0}};
 
+const char *tex_rows_option(const struct tex_param *rows, size_t off, char *buf, size_t n)
+{
+    for (const struct tex_param *p = rows; p && p->name; p++)
+        if (p->type != TEX_P_SPECIAL && p->off == off)
+            return tex_param_option(p, buf, n);
+    snprintf(buf, n, "(a parameter)"); /* no row stores it: a bug the tests would show */
+    return buf;
+}
+
 int tex_field_set(struct tex_field *f, const char *name, const char *value)
 {
     const struct tex_param *p = tex_param_find(f->prim->params, name);
@@ -103,9 +112,9 @@ int tex_field_init(struct tex_field *f, int w, int h)
     f->h = h;
     int rc = 0;
     if (f->tile && !(f->prim->flags & TEX_PRIM_TILE))
-        rc = tex_usage_error("%s cannot tile (--tile)", f->prim->name);
+        rc = tex_usage_error("%s cannot tile (%s)", f->prim->name, TEX_FIELD_OPTION(tile));
     else if (f->ids && !(f->prim->flags & TEX_PRIM_REGIONS))
-        rc = tex_usage_error("%s has no subregions (--ids)", f->prim->name);
+        rc = tex_usage_error("%s has no subregions (%s)", f->prim->name, TEX_FIELD_OPTION(ids));
     else if (f->prim->init)
         rc = f->prim->init(f);
     if (rc < 0 && f->style == TEX_PARAM_WORD)

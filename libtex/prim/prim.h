@@ -103,6 +103,14 @@ struct tex_field_opts {
     int seed, tile, ids, size;
 };
 extern const struct tex_param tex_field_rows[]; /* over struct tex_field_opts */
+/* A parameter named by its row, for messages (an init's checks, which tex_field_init turns
+ * into a scene's words): the option of the row of rows that stores its value at offset off
+ * ("--ring-width" for a ring's width), into buf.  So a message names the current option,
+ * never an old name the row still takes.  TEX_OPTION(rows, S, field) gives it a buffer of
+ * its own (alive to the end of the statement's block); TEX_FIELD_OPTION(tile) is "--tile". */
+const char *tex_rows_option(const struct tex_param *rows, size_t off, char *buf, size_t n);
+#define TEX_OPTION(rows, S, f) tex_rows_option(rows, offsetof(S, f), (char[64]){""}, 64)
+#define TEX_FIELD_OPTION(f) TEX_OPTION(tex_field_rows, struct tex_field_opts, f)
 
 struct tex_primitive {
     const char *name;    /* "noise": the tool is t_noise, the scene word is noise */

@@ -560,7 +560,8 @@ static inline float powtab_eval(const struct powtab *t, float x)
     return m * t->p[(u.i >> 23) & 255];
 }
 
-int tex_spectral_fbm(tex_map *m, const struct tex_fbm_spec *p)
+/* tex_spectral_fbm, its messages naming the band as band does ("--band") */
+static int spectral_fbm(tex_map *m, const struct tex_fbm_spec *p, const char *band)
 {
     int w = m->w, h = m->h, hw = w / 2 + 1, any = 0;
     size_t n = (size_t)w * h;
@@ -621,9 +622,9 @@ int tex_spectral_fbm(tex_map *m, const struct tex_fbm_spec *p)
     if (!any) {
         fftwf_destroy_plan(plan);
         fft_free(F);
-        return tex_usage_error("--band %g,%g holds no frequency of a %dx%d map (1 is the "
-                               "lowest, %g the highest)",
-                               p->lo, p->hi, w, h, sqrt(2.0) * side / 2);
+        return tex_usage_error("%s %g,%g holds no frequency of a %dx%d map (1 is the lowest, %g "
+                               "the highest)",
+                               band, p->lo, p->hi, w, h, sqrt(2.0) * side / 2);
     }
     execute(plan);
     fftwf_destroy_plan(plan);
@@ -764,6 +765,11 @@ static tex_map *sparse_convolve(const tex_map *s, int w, int h, const struct tex
     return out;
 }
 
+int tex_spectral_fbm(tex_map *m, const struct tex_fbm_spec *p)
+{
+    return spectral_fbm(m, p, "the band");
+}
+
 /* ---- the spectral primitive ---- */
 
 struct spectral_params {
@@ -774,11 +780,15 @@ struct spectral_params {
 };
 
 #define HURST 0.8 /* the default: another value beside --fractal-dimension is refused */
+#define DIMENSION_MIN 2 /* a surface's fractal dimension, 2..3; 0 is none */
+#define DIMENSION_MAX 3
 static const struct tex_param spectral_rows[] = {
     TEX_REAL_N("hurst", struct spectral_params, h, 0, HURST, -1, 3, "H",
                "Hurst exponent: the amplitude falls as f^-(H+1)", .alias = "h"),
-    TEX_REAL_N("fractal_dimension", struct spectral_params, dimension, 'D', 0, 0, 3, "D",
-               "fractal dimension 2..3 of the surface, sets H = 3 - D (0: use --hurst)",
+    TEX_REAL_N("fractal_dimension", struct spectral_params, dimension, 'D', 0, 0, DIMENSION_MAX,
+               "D",
+               "fractal dimension " TEX_XSTR(DIMENSION_MIN) ".." TEX_XSTR(DIMENSION_MAX) " of "
+               "the surface, sets H = " TEX_XSTR(DIMENSION_MAX) " - D (0: use --hurst)",
                .old = "dimension"),
     TEX_REALS(struct spectral_params, anisotropy, 0, "0,1", -1e6, 1e6, 2, "ANGLE,RATIO",
               "stretch structures RATIO times along ANGLE degrees (counter-clockwise from u)"),
@@ -786,28 +796,35 @@ static const struct tex_param spectral_rows[] = {
               "keep only frequencies LO..HI, in cycles across the longer side"),
     {0}};
 
+/* Messages name a parameter by its row (prim.h) */
+#define SPECTRAL_OPTION(field) TEX_OPTION(spectral_rows, struct spectral_params, field)
+
 static int spectral_init(struct tex_field *f)
 {
     const struct spectral_params *p = f->params;
 
-    if (p->dimension != 0 && p->dimension < 2)
-        return tex_usage_error("--fractal-dimension must be 2..3, or 0 to use --hurst (got %g)",
-                               p->dimension);
+    if (p->dimension != 0 && p->dimension < DIMENSION_MIN)
+        return tex_usage_error("%s must be %d..%d, or 0 to use %s (got %g)",
+                               SPECTRAL_OPTION(dimension), DIMENSION_MIN, DIMENSION_MAX,
+                               SPECTRAL_OPTION(h), p->dimension);
     if (p->dimension != 0 && p->h != HURST)
-        return tex_usage_error("--fractal-dimension and --hurst both set the exponent: give one");
+        return tex_usage_error("%s and %s both set the exponent: give one",
+                               SPECTRAL_OPTION(dimension), SPECTRAL_OPTION(h));
     if (p->anisotropy.n != 2 || !(p->anisotropy.v[1] > 0))
-        return tex_usage_error("--anisotropy must be ANGLE,RATIO with RATIO > 0");
+        return tex_usage_error("%s must be ANGLE,RATIO with RATIO > 0",
+                               SPECTRAL_OPTION(anisotropy));
     if (p->band.n != 2 || p->band.v[0] > p->band.v[1])
-        return tex_usage_error("--band must be LO,HI with LO <= HI");
+        return tex_usage_error("%s must be LO,HI with LO <= HI", SPECTRAL_OPTION(band));
     return 0;
 }
 
 static int spectral_grid(const struct tex_field *f, tex_map *m)
 {
     const struct spectral_params *p = f->params;
-    struct tex_fbm_spec s = {p->dimension ? 3.0 - p->dimension : p->h, p->anisotropy.v[0],
-                             p->anisotropy.v[1], p->band.v[0], p->band.v[1], f->seed};
-    return tex_spectral_fbm(m, &s);
+    struct tex_fbm_spec s = {p->dimension ? DIMENSION_MAX - p->dimension : p->h,
+                             p->anisotropy.v[0], p->anisotropy.v[1], p->band.v[0], p->band.v[1],
+                             f->seed};
+    return spectral_fbm(m, &s, SPECTRAL_OPTION(band));
 }
 
 const struct tex_primitive tex_prim_spectral = {

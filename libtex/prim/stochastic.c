@@ -8,21 +8,28 @@
 
 #include "base/error.h"
 #include "prim/noise.h"
+#include "prim/noise_grid.h"
 #include "prim/prim.h"
 #include "base/rng.h"
 #include "base/trig.h"
 
-static inline float clamp01(float x)
+static inline float clamp_unit(float x)
 {
     return x < 0 ? 0 : x > 1 ? 1 : x;
 }
 
-static int whole(double v, const char *opt)
+/* A usage error unless v, the value of the row of rows at offset off, is a whole number
+ * (WHOLE: field fl of *p, a struct S) */
+static int whole(const struct tex_param *rows, size_t off, double v)
 {
+    char name[64];
     if (v != floor(v))
-        return tex_usage_error("%s must be a whole number with --tile (got %g)", opt, v);
+        return tex_usage_error("%s must be a whole number with %s (got %g)",
+                               tex_rows_option(rows, off, name, sizeof name),
+                               TEX_FIELD_OPTION(tile), v);
     return 0;
 }
+#define WHOLE(rows, S, p, fl) whole(rows, offsetof(S, fl), (p)->fl)
 
 /* ---- holes ---- */
 
@@ -147,7 +154,7 @@ static float holes_point(const struct tex_field *f, struct hole_cache *hc, int d
         }
     }
     double best = rmin < INFINITY ? exp(-8.0 * rmin) : 0;
-    return clamp01((float)(1.0 - p->depth * best));
+    return clamp_unit((float)(1.0 - p->depth * best));
 }
 
 static void holes_eval2(const struct tex_field *f, int n, const double *u, const double *v,
@@ -218,7 +225,8 @@ static int colorvar_init(struct tex_field *f)
     if (!s)
         return tex_error("out of memory");
     f->state = s;
-    if (f->tile && (whole(p->frequency, "--frequency") < 0 || whole(p->b, "-b") < 0))
+    if (f->tile && (WHOLE(colorvar_rows, struct colorvar_params, p, frequency) < 0 ||
+                    WHOLE(colorvar_rows, struct colorvar_params, p, b) < 0))
         return -1;
     tex_rng r;
     tex_rng_seed(&r, f->seed);
@@ -281,10 +289,10 @@ static void colorvar_fact(const struct tex_field *f, int m, const double *u, con
     for (int i = 0; i < m; i++) {
         double fact = su[i] * sv[i] / (4 * s->sumc * s->sumc);
         if (f->nc == 1)
-            out[i] = clamp01((float)fact);
+            out[i] = clamp_unit((float)fact);
         else
             for (int ch = 0; ch < 3; ch++)
-                out[(size_t)i * 3 + ch] = clamp01((float)(fact * p->color[ch]));
+                out[(size_t)i * 3 + ch] = clamp_unit((float)(fact * p->color[ch]));
     }
 }
 
@@ -373,15 +381,16 @@ static int perturb_init(struct tex_field *f)
     if (!s)
         return tex_error("out of memory");
     f->state = s;
-    if (f->tile && (whole(p->a, "-a") < 0 || whole(p->d, "-d") < 0))
+    if (f->tile && (WHOLE(perturb_rows, struct perturb_params, p, a) < 0 ||
+                    WHOLE(perturb_rows, struct perturb_params, p, d) < 0))
         return -1;
     for (int k = 0; k < p->octaves; k++) {
         s->amp[k] = (float)pow(0.5, k);
         sum += s->amp[k];
     }
     s->inv = (float)(1 / sum);
-    return tex_octaves_init(&s->o, f->seed, 256, TEX_FADE_CUBIC, p->octaves, p->frequency, 2, off,
-                            0, 0, 3, f->tile, f->w, f->h);
+    return tex_octaves_init(&s->o, f->prim->params, f->seed, 256, TEX_FADE_CUBIC, p->octaves,
+                            p->frequency, 2, off, 0, 0, 3, f->tile, f->w, f->h);
 }
 
 static void perturb_fini(struct tex_field *f)
@@ -406,7 +415,7 @@ static void perturb_values(const struct perturb_params *p, int m, const double *
         a[i] = 2 * M_PI * (p->a * u[i] + p->b / 10 * (p->c * out[i] + 1 + c[i]));
     tex_sin_n(m, a, a, 0);
     for (int i = 0; i < m; i++)
-        out[i] = clamp01((float)(0.5 + 0.5 * a[i]));
+        out[i] = clamp_unit((float)(0.5 + 0.5 * a[i]));
 }
 
 static void perturb_eval3(const struct tex_field *f, int n, const double *u, const double *v,

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "prim/noise_grid.h" /* the insides: tables and grids in the test's memory */
 #include "textura.h"
 #include "unit.h"
 
@@ -726,6 +727,63 @@ static void test_fractal_statistics(void)
     }
 }
 
+/* The public header's tables, grids and octaves (made by _new, opaque) give what libtex's own
+ * ones in the caller's memory give, and refuse what those refuse. */
+static void test_public(const tex_noise_table *t)
+{
+    tex_noise_table *h = tex_noise_new(3, 256, 0), q;
+    const double off[4] = {0.3, -1.7, 0.4, 0};
+    float a[64], b[64];
+    int same = 1, quintic = 1;
+
+    CHECK(h != NULL, "tex_noise_new makes a table");
+    if (!h)
+        return;
+    for (int i = 0; i < 200; i++) {
+        double x = i * 0.173, y = i * 0.071 - 3, z = 0.25 + i * 0.01;
+        same &= tex_noise3(h, x, y, z) == tex_noise3(t, x, y, z);
+    }
+    tex_noise_init(&q, 3, 256, 0);
+    q.fade = TEX_FADE_QUINTIC;
+    tex_noise_set_fade(h, TEX_FADE_QUINTIC);
+    for (int i = 0; i < 200; i++)
+        quintic &= tex_noise3(h, i * 0.31, 0.5, 0.25) == tex_noise3(&q, i * 0.31, 0.5, 0.25);
+    tex_noise_free(&q);
+    tex_noise_set_fade(h, TEX_FADE_CUBIC);
+    CHECK(same && quintic, "a table from tex_noise_new gives the values of one in the caller's "
+                           "memory, with either fade");
+    tex_noise_grid *g = tex_noise_grid_new(h, 64, 8, 5, 5, off, 3, 0), sg;
+    tex_noise_grid_init(&sg, t, 64, 8, 5, 5, off, 3, 0);
+    same = g != NULL;
+    for (int y = 0; g && y < 8; y++) {
+        tex_noise_grid_row(g, y, a);
+        tex_noise_grid_row(&sg, y, b);
+        same &= memcmp(a, b, sizeof a) == 0;
+    }
+    tex_noise_grid_free(&sg);
+    tex_noise_grid_delete(g);
+    CHECK(same, "a grid from tex_noise_grid_new gives the rows of one in the caller's memory");
+    CHECK(tex_noise_grid_new(h, 0, 8, 5, 5, off, 3, 0) == NULL, "a grid of no columns is refused");
+    tex_octaves so, *o = tex_octaves_new(3, 256, 0, 4, 3, 2, off, 0.1, 0, 3, 0, 64, 8);
+    tex_octaves_init(&so, NULL, 3, 256, 0, 4, 3, 2, off, 0.1, 0, 3, 0, 64, 8);
+    same = o != NULL;
+    for (int k = 0; o && k < 4; k++) {
+        same &= tex_octave_point(o, k, 0.3, 0.6, 0.2) == tex_octave_point(&so, k, 0.3, 0.6, 0.2);
+        tex_octave_row(o, k, 5, a);
+        tex_octave_row(&so, k, 5, b);
+        same &= memcmp(a, b, sizeof a) == 0;
+    }
+    tex_octaves_free(&so);
+    tex_octaves_delete(o);
+    CHECK(same, "octaves from tex_octaves_new give the points and rows of octaves in the "
+                "caller's memory");
+    CHECK(tex_octaves_new(3, 256, 0, TEX_OCTAVES_MAX + 1, 3, 2, off, 0, 0, 3, 0, 0, 0) == NULL,
+          "too many octaves are refused");
+    tex_noise_delete(h);
+    CHECK(tex_noise_new(3, TEX_NOISE_MAX_GRADIENTS + 1, 0) == NULL,
+          "too many gradients are refused");
+}
+
 int main(void)
 {
     tex_noise_table t;
@@ -745,6 +803,7 @@ int main(void)
     test_grid_gradient(&t);
     test_d_noise_rows();
     test_far(&t);
+    test_public(&t);
     tex_noise_free(&t);
     test_primitive_maps();
     test_fractal_statistics();
