@@ -96,7 +96,8 @@ PCFILE   = $(BUILD)/lib/pkgconfig/textura.pc
 # interface, the languages' lexer and evaluator, the OpenImageIO bridge.
 PRIVATE_HEADERS = libtex/base/kdtree.h libtex/io/oiio_bridge.h libtex/io/codec_bridge.h \
                   libtex/lang/lex.h libtex/lang/expr.h libtex/lang/rowcode.h \
-                  libtex/render/scene.h libtex/render/render_shade.h libtex/render/render_ct.h
+                  libtex/render/scene.h libtex/render/render_shade.h libtex/render/render_ct.h \
+                  libtex/cli/internal.h
 HEADERS  = $(filter-out $(PRIVATE_HEADERS),$(wildcard libtex/*/*.h)) libtex/prim/primitives.def
 
 DEBS = build-essential pkg-config liblz4-dev libopenexr-dev libopenimageio-dev openimageio-tools \
