@@ -224,7 +224,11 @@ static void getopt_tables(const struct tex_cli_opt *o, int n, struct tables *tb)
     tb->nnames = tb->nclashes = 0;
     memset(tb->short_opt, -1, sizeof tb->short_opt);
     memset(tb->short_old, 0, sizeof tb->short_old);
-    strcpy(tb->shorts, ":hV"); /* options may follow operands, as in GNU tools; "--" ends them */
+    /* '-': operands come back in order as 1, and read_options puts them last itself:
+     * options may follow operands, as in GNU tools, even under POSIXLY_CORRECT (which
+     * would make getopt stop at the first operand); "--" ends them.  ':': a missing
+     * value is ':', not '?'. */
+    strcpy(tb->shorts, "-:hV");
     for (int i = 0; i < n; i++) {
         tex_param_option(o[i].row, name, sizeof name);
         add_name(tb, o, i, name + 2, 0);
@@ -239,7 +243,7 @@ static void getopt_tables(const struct tex_cli_opt *o, int n, struct tables *tb)
         add_list(tb, o, i, o[i].row->old, 1);
     tb->lo[tb->nnames] = (struct option){"help", no_argument, NULL, 'h'};
     tb->lo[tb->nnames + 1] = (struct option){"version", no_argument, NULL, 'V'};
-    tb->lo[tb->nnames + 2] = (struct option){"help-mdoc", no_argument, NULL, 1};
+    tb->lo[tb->nnames + 2] = (struct option){"help-mdoc", no_argument, NULL, 3};
     tb->lo[tb->nnames + 3] = (struct option){"help-options", no_argument, NULL, 2};
     tb->lo[tb->nnames + 4] = (struct option){0};
 }
@@ -356,7 +360,7 @@ static void take_option(const struct tex_tool *t, int k, char **argv, const stru
     } else if (k == 'V') {
         printf("%s (Textura) %s\n", t->name, TEX_VERSION);
         exit(0);
-    } else if (k == 1) {
+    } else if (k == 3) {
         tex_cli_mdoc(stdout, o, n);
         exit(0);
     } else if (k == 2) {
@@ -463,17 +467,50 @@ static void check_combinations(const struct tex_tool *t, const struct tex_common
                             "--mode");
 }
 
+/* Every option taken, in the order typed; then the operands (the words getopt gave back
+ * as 1, and those after "--") moved after the options, in their order, and optind at the
+ * first, as GNU getopt's permutation leaves argv. */
+static void read_options(const struct tex_tool *t, int argc, char **argv,
+                         const struct tex_cli_opt *o, int n, const struct tables *tb)
+{
+    char **ops = malloc((size_t)argc * (sizeof *ops + 1)), *is_op;
+    int nops = 0, k, j = 1;
+
+    if (!ops) {
+        tex_error("out of memory");
+        tex_die();
+    }
+    is_op = memset(ops + argc, 0, (size_t)argc);
+    opterr = 0;
+    optind = 0; /* getopt starts afresh, as for another process */
+    while ((k = getopt_long(argc, argv, tb->shorts, tb->lo, NULL)) != -1)
+        if (k == 1) /* getopt does not move words in this mode: the operand was the last */
+            is_op[optind - 1] = 1;
+        else
+            take_option(t, k, argv, o, n, tb);
+    for (int i = optind; i < argc; i++)
+        is_op[i] = 1;
+    for (int i = 1; i < argc; i++)
+        if (is_op[i])
+            ops[nops++] = argv[i];
+        else
+            argv[j++] = argv[i]; /* j <= i: the options, in order, move down */
+    memcpy(argv + j, ops, (size_t)nops * sizeof *ops);
+    optind = j;
+    free(ops);
+}
+
 int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_common *c,
                   void *opts)
 {
     static struct tables tb; /* large: not on the stack */
     struct tex_cli_opt o[MAXOPTS];
-    int n, k;
+    int n;
 
     tex_progname = t->name;
     memset(c, 0, sizeof *c);
     {
-        static int registered; /* a tool may parse twice (t_warp) */
+        static int registered; /* a process may parse more than once (the unit tests) */
         if (!registered++) {
             tex_cli_passive_threads(argv);
             tex_keep_heap();
@@ -485,16 +522,13 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
     set_defaults(t, c, opts);
     getopt_tables(o, n, &tb);
 
-    /* The history records the command line as typed, before getopt permutes it. */
+    /* The history records the command line as typed, before the operands move last. */
     if (!(c->cmdline = join_cmdline(argc, argv))) {
         tex_error("out of memory");
         tex_die();
     }
     hide_negatives(argc, argv, &tb);
-    opterr = 0;
-    optind = 1;
-    while ((k = getopt_long(argc, argv, tb.shorts, tb.lo, NULL)) != -1)
-        take_option(t, k, argv, o, n, &tb);
+    read_options(t, argc, argv, o, n, &tb);
     for (int i = 1; i < argc; i++)
         if (argv[i][0] == '\001')
             argv[i]++; /* the marked copy is kept for the life of the program */

@@ -5,7 +5,7 @@
  * tool's own rows.  An option is taken by its row's name, in UK or US
  * spelling, by the row's aliases, and by its old names with a warning that
  * they are deprecated (textura(5) gives the naming rule).  Options may follow
- * the operands, as in GNU tools; "--" ends them.
+ * the operands, as in GNU tools, whatever POSIXLY_CORRECT says; "--" ends them.
  * Options a mode does not use are refused (tex_cli_check_kinds), and so is
  * --format with -o.  --help, --help-mdoc and --version print from the same rows.
  *
