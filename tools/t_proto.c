@@ -27,6 +27,7 @@
 #include <arpa/inet.h>
 #include <microhttpd.h>
 
+#include "io/json.h"
 #include "textura.h"
 
 extern char **environ;
@@ -56,112 +57,52 @@ static int workfd = -1;
 static struct tex_procs *procs;
 static pthread_mutex_t lock = PTHREAD_MUTEX_INITIALIZER;
 
-/* ---- a small growable string ---- */
-
-struct str {
-    char *s;
-    size_t n, cap;
-};
-
-/* Room for n more bytes and a NUL; 0 when memory ran out (the text stays short). */
-static int room(struct str *b, size_t n)
-{
-    if (b->n + n + 1 <= b->cap)
-        return 1;
-    size_t cap = (b->n + n + 1) * 2;
-    char *s = realloc(b->s, cap);
-    if (!s)
-        return 0;
-    b->s = s;
-    b->cap = cap;
-    return 1;
-}
-
-static void sadd(struct str *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void sadd(struct str *b, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    int k = vsnprintf(NULL, 0, fmt, ap);
-    va_end(ap);
-    if (k < 0 || !room(b, (size_t)k))
-        return;
-    va_start(ap, fmt);
-    vsnprintf(b->s + b->n, (size_t)k + 1, fmt, ap);
-    va_end(ap);
-    b->n += k;
-}
-
-/* Bytes, NULs included (a PNG). */
-static void sbytes(struct str *b, const char *data, size_t n)
-{
-    if (!room(b, n))
-        return;
-    memcpy(b->s + b->n, data, n);
-    b->n += n;
-    b->s[b->n] = 0;
-}
-
-static void json_str(struct str *b, const char *s)
-{
-    sadd(b, "\"");
-    for (; s && *s; s++) {
-        if (*s == '"' || *s == '\\')
-            sadd(b, "\\%c", *s);
-        else if ((unsigned char)*s < 0x20)
-            sadd(b, "\\u%04x", *s);
-        else
-            sadd(b, "%c", *s);
-    }
-    sadd(b, "\"");
-}
-
 /* ---- the descriptors, as JSON for the page ---- */
 
-static void json_rows(struct str *b, const struct tex_param *t)
+static void json_rows(struct tex_str *b, const struct tex_param *t)
 {
     static const char *const types[] = {"int", "real", "flag", "enum", "reals", "colour",
                                         "string", "real", "special"};
     char buf[256];
-    sadd(b, "[");
+    tex_str_add(b, "[");
     for (int i = 0; t && t[i].name; i++) {
-        sadd(b, "%s{\"name\":", i ? "," : "");
-        json_str(b, t[i].name);
-        sadd(b, ",\"type\":\"%s\",\"min\":%.17g,\"max\":%.17g,\"default\":", types[t[i].type],
+        tex_str_add(b, "%s{\"name\":", i ? "," : "");
+        tex_json_string(b, t[i].name);
+        tex_str_add(b, ",\"type\":\"%s\",\"min\":%.17g,\"max\":%.17g,\"default\":", types[t[i].type],
              t[i].min, t[i].max);
-        json_str(b, tex_param_default(&t[i], buf, sizeof buf));
-        sadd(b, ",\"help\":");
-        json_str(b, t[i].help);
-        sadd(b, ",\"choices\":");
-        json_str(b, t[i].choices);
-        sadd(b, "}");
+        tex_json_string(b, tex_param_default(&t[i], buf, sizeof buf));
+        tex_str_add(b, ",\"help\":");
+        tex_json_string(b, t[i].help);
+        tex_str_add(b, ",\"choices\":");
+        tex_json_string(b, t[i].choices);
+        tex_str_add(b, "}");
     }
-    sadd(b, "]");
+    tex_str_add(b, "]");
 }
 
-static void json_prim(struct str *b, const struct tex_primitive *p, int composed, int first)
+static void json_prim(struct tex_str *b, const struct tex_primitive *p, int composed, int first)
 {
-    sadd(b, "%s{\"name\":", first ? "" : ",");
-    json_str(b, p->name);
-    sadd(b, ",\"summary\":");
-    json_str(b, p->summary);
-    sadd(b, ",\"composed\":%d,\"grid\":%d,\"tile\":%d,\"params\":", composed,
+    tex_str_add(b, "%s{\"name\":", first ? "" : ",");
+    tex_json_string(b, p->name);
+    tex_str_add(b, ",\"summary\":");
+    tex_json_string(b, p->summary);
+    tex_str_add(b, ",\"composed\":%d,\"grid\":%d,\"tile\":%d,\"params\":", composed,
          !!(p->flags & TEX_PRIM_GRID), !!(p->flags & TEX_PRIM_TILE));
     json_rows(b, p->params);
-    sadd(b, "}");
+    tex_str_add(b, "}");
 }
 
-static void api_prims(struct str *b)
+static void api_prims(struct tex_str *b)
 {
     char names[4096];
-    sadd(b, "{\"primitives\":[");
+    tex_str_add(b, "{\"primitives\":[");
     for (int i = 0; tex_primitives[i]; i++)
         json_prim(b, tex_primitives[i], 0, i == 0);
     for (int i = 0; tex_procs_get(procs, i); i++)
         json_prim(b, tex_procs_get(procs, i), 1, 0);
-    sadd(b, "],\"palettes\":");
-    json_str(b, tex_palette_names(names, sizeof names) >= 0 ? names : "");
-    sadd(b, "}");
+    tex_str_add(b, "],\"palettes\":");
+    tex_json_string(b, tex_palette_names(names, sizeof names) >= 0 ? names : "");
+    tex_str_add(b, "}");
 }
 
 /* ---- requests into pipelines ---- */
@@ -407,16 +348,16 @@ static int build(struct MHD_Connection *c, struct pipeline *pl, int size)
     return r.failed ? -1 : 0;
 }
 
-static void cmdline(const struct pipeline *pl, struct str *b)
+static void cmdline(const struct pipeline *pl, struct tex_str *b)
 {
     for (int i = 0; i < pl->n; i++) {
         if (i)
-            sadd(b, " | ");
+            tex_str_add(b, " | ");
         for (int k = 0; k < pl->st[i].n; k++) {
             const char *w = pl->st[i].argv[k];
             int plain = strspn(w, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
                                   "0123456789_-=.,/:") == strlen(w);
-            sadd(b, plain ? "%s%s" : "%s'%s'", k ? " " : "", w);
+            tex_str_add(b, plain ? "%s%s" : "%s'%s'", k ? " " : "", w);
         }
     }
 }
@@ -457,11 +398,11 @@ static void spawn_stages(struct pipeline *pl, pid_t *pid, int out, int errfd)
 
 /* Run the pipeline; the last stage's standard output into out.  Returns the
  * worst exit status (0 ok, 1 runtime, 2 usage) with stderr's first line in err. */
-static int run(struct pipeline *pl, struct str *out)
+static int run(struct pipeline *pl, struct tex_str *out)
 {
     pid_t pid[MAX_STAGES] = {0};
     int errp[2], outp[2], status = 0;
-    struct str err = {0};
+    struct tex_str err = {0};
     time_t end = time(NULL) + RUN_SECONDS;
 
     if (pipe2(errp, O_CLOEXEC) < 0 || pipe2(outp, O_CLOEXEC) < 0)
@@ -490,10 +431,10 @@ static int run(struct pipeline *pl, struct str *out)
                 fds[k].fd = -1;
                 continue;
             }
-            struct str *b = k ? &err : out;
+            struct tex_str *b = k ? &err : out;
             if (b->n + got > (size_t)64 << 20) /* more than any map of MAX_SIDE */
                 continue;
-            sbytes(b, buf, (size_t)got);
+            tex_str_bytes(b, buf, (size_t)got);
         }
     }
     for (int k = 0; k < 2; k++)
@@ -643,14 +584,14 @@ static int get_size(struct MHD_Connection *c, struct pipeline *pl, int def)
 static int scene_stage(struct pipeline *pl, const char *fn, const char *map)
 {
     char scene[PATH_MAX];
-    struct str s = {0};
+    struct tex_str s = {0};
     const char *apply = !fn || !strcmp(fn, "Kd") ? "Kd = f"
                         : !strcmp(fn, "Ks")      ? "Ks = f"
                         : !strcmp(fn, "bump")    ? "bump = 2"
                                                  : NULL;
     if (!apply)
         return fail(pl, "the application function must be Kd, Ks or bump (got '%.20s')", fn);
-    sadd(&s, "image 192 144\nsamples 1\nambient 0.25 0.25 0.25\nbackground 0.15 0.15 0.17\n"
+    tex_str_add(&s, "image 192 144\nsamples 1\nambient 0.25 0.25 0.25\nbackground 0.15 0.15 0.17\n"
              "camera { eye 0 1.3 -3.6 look 0 0.7 0 fov 42 }\n"
              "light point { position -3 5 -4 intensity 1 }\n"
              "texture m file \"%s\"\n"
@@ -678,7 +619,7 @@ static const char *const proj_exts[] = {"tproj", "txt", NULL};
 /* /api/preview, /api/cmdline and /api/scene (what): the pipeline's PNG, command line, or
  * scene render into out, of *type; the HTTP status */
 static unsigned api_render(struct MHD_Connection *c, struct pipeline *pl, const char *what,
-                           struct str *out, const char **type)
+                           struct tex_str *out, const char **type)
 {
     unsigned code = 200;
     int size = get_size(c, pl, 256);
@@ -691,7 +632,7 @@ static unsigned api_render(struct MHD_Connection *c, struct pipeline *pl, const 
         } else {
             cmdline(pl, out);
             if (map)
-                sadd(out, " > %s", map);
+                tex_str_add(out, " > %s", map);
         }
     } else {
         char map[PATH_MAX];
@@ -701,7 +642,7 @@ static unsigned api_render(struct MHD_Connection *c, struct pipeline *pl, const 
         r = r < 0 ? 2 : run(pl, out);
         if (!r && !strcmp(what, "scene")) {
             free(out->s);
-            *out = (struct str){0};
+            *out = (struct tex_str){0};
             const char *fn = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "apply");
             r = scene_stage(pl, fn, map) < 0 ? 2 : run(pl, out);
         }
@@ -712,9 +653,9 @@ static unsigned api_render(struct MHD_Connection *c, struct pipeline *pl, const 
 }
 
 /* /api/save: a map, palette, command line, scene or project into the work directory */
-static unsigned api_save(struct MHD_Connection *c, struct pipeline *pl, struct str *out)
+static unsigned api_save(struct MHD_Connection *c, struct pipeline *pl, struct tex_str *out)
 {
-    struct str b = {0};
+    struct tex_str b = {0};
     static const char *const pal_exts[] = {"pal", NULL};
     static const char *const sh_exts[] = {"sh", "txt", NULL};
     static const char *const scene_exts[] = {"scene", "txt", NULL};
@@ -743,18 +684,18 @@ static unsigned api_save(struct MHD_Connection *c, struct pipeline *pl, struct s
         if (save_name(pl, name, map_exts) == 0 && to_file(pl, name) == 0 && !run(pl, out))
             rc = save_text(pl, name, out->s, out->n);
         free(out->s);
-        *out = (struct str){0};
+        *out = (struct tex_str){0};
     } else if (!strcmp(kind, "cmdline") || !strcmp(kind, "scene")) {
         if (save_name(pl, name, kind[0] == 'c' ? sh_exts : scene_exts) == 0) {
             const char *map = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "map");
             if (kind[0] == 's') { /* the scene's texture statement, its map from standard input */
-                sadd(&b, "# ");
+                tex_str_add(&b, "# ");
                 cmdline(pl, &b);
-                sadd(&b, " | t_apply THIS.scene\ntexture map file -\n");
+                tex_str_add(&b, " | t_apply THIS.scene\ntexture map file -\n");
             } else if (save_name(pl, map, map_exts) == 0 && to_file(pl, map) == 0) {
-                sadd(&b, "#!/bin/sh\n");
+                tex_str_add(&b, "#!/bin/sh\n");
                 cmdline(pl, &b);
-                sadd(&b, " > %s\n", map);
+                tex_str_add(&b, " > %s\n", map);
             }
             rc = b.n ? save_text(pl, name, b.s, b.n) : -1;
         }
@@ -762,13 +703,13 @@ static unsigned api_save(struct MHD_Connection *c, struct pipeline *pl, struct s
         fail(pl, "kind must be map, palette, cmdline, scene or project (got '%.20s')", kind);
     }
     if (rc == 0)
-        sadd(out, "saved %s", name);
+        tex_str_add(out, "saved %s", name);
     free(b.s);
     return rc == 0 ? 200 : 400;
 }
 
 /* /api/load: a project's text into out */
-static unsigned api_load(struct MHD_Connection *c, struct pipeline *pl, struct str *out)
+static unsigned api_load(struct MHD_Connection *c, struct pipeline *pl, struct tex_str *out)
 {
     unsigned code = 400;
     const char *name = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "name");
@@ -778,7 +719,7 @@ static unsigned api_load(struct MHD_Connection *c, struct pipeline *pl, struct s
         if (fd < 0 || tex_read_fd(fd, &tb, name) < 0 || tb.len > 16384)
             fail(pl, "cannot read project '%s'", name);
         else {
-            sbytes(out, (const char *)tb.data, tb.len);
+            tex_str_bytes(out, (const char *)tb.data, tb.len);
             code = 200;
         }
         if (fd >= 0)
@@ -794,7 +735,7 @@ static enum MHD_Result handle(void *cls, struct MHD_Connection *c, const char *u
 {
     static int first_call;
     struct pipeline *pl;
-    struct str out = {0};
+    struct tex_str out = {0};
     enum MHD_Result ret;
     (void)cls, (void)version, (void)data;
 
