@@ -176,12 +176,16 @@ $(PCFILE): Makefile
 	@mkdir -p $(@D)
 	$(call pc,$(PREFIX),$(LIBDIR)) > $@
 
-# t_proto serves the editor over HTTP with libmicrohttpd.
+# t_proto serves the editor over HTTP with libmicrohttpd; its parts other than main are
+# in tools/proto/ (proto.h), linked into it alone (they are not tools).
+PROTO_OBJ = $(patsubst %.c,$(BUILD)/obj/%.o,$(wildcard tools/proto/*.c))
 $(BUILD)/bin/t_proto: PROG_LDLIBS += -lmicrohttpd
+$(BUILD)/bin/t_proto: PROG_OBJ = $(PROTO_OBJ)
+$(BUILD)/bin/t_proto: $(PROTO_OBJ)
 
 $(BUILD)/bin/%: $(BUILD)/obj/tools/%.o $(OMP_ENV) $(STATIC)
 	@mkdir -p $(@D)
-	$(CC) $(LDFLAGS) $(LINK_LTO) $(PROG_LDFLAGS) -o $@ $< $(OMP_ENV) $(STATIC) $(PROG_LDLIBS)
+	$(CC) $(LDFLAGS) $(LINK_LTO) $(PROG_LDFLAGS) -o $@ $< $(PROG_OBJ) $(OMP_ENV) $(STATIC) $(PROG_LDLIBS)
 
 .PRECIOUS: $(BUILD)/obj/%.o
 $(BUILD)/tests/%: $(BUILD)/obj/tests/unit/%.o $(STATIC)
