@@ -56,7 +56,8 @@ static void test_raw(void)
     static const unsigned char p5[] = "P5 4 1 65535\n\x00\x00\x00\x01\xff\xff\x80\x00";
     static const unsigned char p6[] = "P6 1 1 255\n\x10\x80\xff";
     static const unsigned char p7[] = "P7\nWIDTH 2\nHEIGHT 1\nDEPTH 4\nMAXVAL 255\n"
-                                      "TUPLTYPE RGB_ALPHA\nENDHDR\n\x00\x33\x66\x99\xcc\xff\x01\x02";
+                                      "TUPLTYPE RGB_ALPHA\nENDHDR\n"
+                                      "\x00\x33\x66\x99\xcc\xff\x01\x02";
     float f4[20], f5[4], f6[3], f7[8];
     const unsigned char bits[] = {0xA5, 0xC0, 0x00, 0x40};
     tex_map *m;
