@@ -55,10 +55,10 @@ int main(int argc, char **argv)
                                 o.edge ? TEX_EDGE_CLAMP : TEX_EDGE_WRAP};
     if (!(r = tex_warp(m, by, &wo, w, h)))
         tex_die();
-    tex_cli_write(r, &c);
-    tex_map_free(r);
     tex_map_free(m);
     tex_map_free(by);
+    tex_cli_write(r, &c);
+    tex_map_free(r);
     free(c.cmdline);
     return 0;
 }

@@ -169,13 +169,13 @@ static void test_stream(void)
 
 int main(void)
 {
-    if (!mkdtemp(dir)) {
+    void (*const tests[])(void) = {test_bands, test_stdout, test_stream};
+
+    if (mkdtemp(dir))
+        for (size_t i = 0; i < sizeof tests / sizeof *tests; i++)
+            tests[i]();
+    else
         CHECK(0, "a temporary folder");
-        return unit_done();
-    }
-    test_bands();
-    test_stdout();
-    test_stream();
     rmdir(dir);
     return unit_done();
 }

@@ -10,19 +10,20 @@
 #include "textura.h"
 #include "unit.h"
 
-/* The tool a generator's main makes of its primitive (generate.c). */
-static struct tex_tool tool_of(const struct tex_primitive *p, const char *name)
-{
-    return (struct tex_tool){name, "", p->summary,
-                             TEX_OPT_OUTPUT | TEX_OPT_SIZE | TEX_OPT_SEED | TEX_OPT_WINDOW,
-                             p->params, 0, 0};
-}
-
 static const struct tex_primitive *prim;
 static struct tex_tool tool;
 static char **args;
 static struct tex_common common;
 static void *opts;
+
+/* Parse as t_NAME parses: the tool a generator's main makes of its primitive (generate.c). */
+static void use(const struct tex_primitive *p, const char *name)
+{
+    prim = p;
+    tool = (struct tex_tool){name, "", p->summary,
+                             TEX_OPT_OUTPUT | TEX_OPT_SIZE | TEX_OPT_SEED | TEX_OPT_WINDOW,
+                             p->params, 0, 0};
+}
 
 static int parse(char **argv)
 {
@@ -82,13 +83,18 @@ static int run(char **argv)
 
 #define ARGS(...) (args = (char *[]){__VA_ARGS__, NULL})
 
+/* argv ends the process with status, its standard error the message. */
+static void expect(char **argv, int status, const char *message, const char *what)
+{
+    CHECKF(run(argv) == status && !strcmp(err, message), "%s (%s)", what, msg());
+}
+
 static void test_values(void)
 {
     const struct tex_param *oct;
     int i;
 
-    prim = &tex_prim_turbulence;
-    tool = tool_of(prim, "t_turbulence");
+    use(&tex_prim_turbulence, "t_turbulence");
     oct = tex_param_find(tool.params, "octaves");
     i = parse(ARGS("t_turbulence"));
     CHECKF(i == 1 && common.w == 256 && common.h == 256 && common.seed == 1 &&
@@ -133,58 +139,53 @@ static void test_operands(void)
     CHECK(i == 4 && !strcmp(args[4], "-0.5") && !strcmp(args[5], "-x.exr") && value("a") == -2,
           "a negative number is an operand unless an option takes it; \"--\" ends the options");
     free(common.cmdline);
-    CHECKF(run(ARGS("t_two", "a", "b", "c")) == 2 &&
-               !strcmp(err, "t_two: error: unexpected operand 'c' (usage: t_two [options] MAP "
-                            "BY)\n"),
-           "a third operand is refused by name (%s)", msg());
-    CHECKF(run(ARGS("t_two", "a", "-a", "1")) == 2 &&
-               !strcmp(err, "t_two: error: missing operand (usage: t_two [options] MAP BY)\n"),
-           "a missing operand is a usage error (%s)", msg());
+    expect(ARGS("t_two", "a", "b", "c"), 2,
+           "t_two: error: unexpected operand 'c' (usage: t_two [options] MAP BY)\n",
+           "a third operand is refused by name");
+    expect(ARGS("t_two", "a", "-a", "1"), 2,
+           "t_two: error: missing operand (usage: t_two [options] MAP BY)\n",
+           "a missing operand is a usage error");
 }
 
 static void test_messages(void)
 {
-    prim = &tex_prim_turbulence;
-    tool = tool_of(prim, "t_turbulence");
-    CHECKF(run(ARGS("t_turbulence", "--octaves", "40")) == 2 &&
-               !strcmp(err, "t_turbulence: error: --octaves must be 1..30 (got '40')\n"),
-           "a value out of range: the row's name and range, exit 2 (%s)", msg());
+    use(&tex_prim_turbulence, "t_turbulence");
+    expect(ARGS("t_turbulence", "--octaves", "40"), 2,
+           "t_turbulence: error: --octaves must be 1..30 (got '40')\n",
+           "a value out of range: the row's name and range, exit 2");
     CHECKF(run(ARGS("t_turbulence", "-n", "0")) == 2 && strstr(err, "--octaves must be 1..30"),
            "the short letter's message names the long option (%s)", msg());
-    CHECKF(run(ARGS("t_turbulence", "--oct", "7")) == 2 &&
-               !strcmp(err, "t_turbulence: error: unknown option --oct: options are written "
-                            "whole (--octaves?)\n"),
-           "an abbreviation is refused with the whole name (%s)", msg());
+    expect(ARGS("t_turbulence", "--oct", "7"), 2,
+           "t_turbulence: error: unknown option --oct: options are written "
+           "whole (--octaves?)\n",
+           "an abbreviation is refused with the whole name");
     CHECKF(run(ARGS("t_turbulence", "-s", "0x5")) == 2 && strstr(err, "-s must be N or WxH"),
            "a bad size is a usage error (%s)", msg());
     CHECKF(run(ARGS("t_turbulence", "-o", "x.exr", "--format", "png")) == 2 &&
                strstr(err, "--format applies to standard output only"),
            "--format with -o is refused (%s)", msg());
-    CHECKF(run(ARGS("t_turbulence", "--seed")) == 2 &&
-               !strcmp(err, "t_turbulence: error: missing value for --seed (see t_turbulence "
-                            "--help)\n"),
-           "a missing value (%s)", msg());
-    prim = &tex_prim_fractal;
-    tool = tool_of(prim, "t_fractal");
-    CHECKF(run(ARGS("t_fractal", "--mode", "fbm", "--c", "0.3")) == 2 &&
-               !strcmp(err, "t_fractal: error: --c applies to --mode julia only\n"),
-           "an option of another mode is refused (%s)", msg());
+    expect(ARGS("t_turbulence", "--seed"), 2,
+           "t_turbulence: error: missing value for --seed (see t_turbulence --help)\n",
+           "a missing value");
+    use(&tex_prim_fractal, "t_fractal");
+    expect(ARGS("t_fractal", "--mode", "fbm", "--c", "0.3"), 2,
+           "t_fractal: error: --c applies to --mode julia only\n",
+           "an option of another mode is refused");
 }
 
 static void test_deprecated(void)
 {
-    prim = &tex_prim_ring;
-    tool = tool_of(prim, "t_ring");
-    CHECKF(run(ARGS("t_ring", "--width", "0.2")) == 0 &&
-               !strcmp(err, "t_ring: warning: --width is deprecated and will be removed: "
-                            "write --ring-width\n"),
-           "an old name is taken with a warning naming the new one (%s)", msg());
+    use(&tex_prim_ring, "t_ring");
+    expect(ARGS("t_ring", "--width", "0.2"), 0,
+           "t_ring: warning: --width is deprecated and will be removed: "
+           "write --ring-width\n",
+           "an old name is taken with a warning naming the new one");
     CHECKF(run(ARGS("t_ring", "-q", "-d", "0.2")) == 0 && !err[0], "-q silences it (%s)", msg());
     setenv("TEXTURA_DEPRECATED", "error", 1);
-    CHECKF(run(ARGS("t_ring", "--width", "0.2")) == 2 &&
-               !strcmp(err, "t_ring: error: --width is deprecated: write --ring-width "
-                            "(TEXTURA_DEPRECATED=error)\n"),
-           "TEXTURA_DEPRECATED=error refuses it (%s)", msg());
+    expect(ARGS("t_ring", "--width", "0.2"), 2,
+           "t_ring: error: --width is deprecated: write --ring-width "
+           "(TEXTURA_DEPRECATED=error)\n",
+           "TEXTURA_DEPRECATED=error refuses it");
     unsetenv("TEXTURA_DEPRECATED");
     parse(ARGS("t_ring", "-q", "--width", "0.2"));
     CHECK(value("ring_width") == 0.2, "the old name sets the row's value");
@@ -208,8 +209,7 @@ static void test_help(void)
     char rng[128], def[64], line[512];
     int rows = 0, found = 0, ranged = 0;
 
-    prim = &tex_prim_turbulence;
-    tool = tool_of(prim, "t_turbulence");
+    use(&tex_prim_turbulence, "t_turbulence");
     CHECK(run(ARGS("t_turbulence", "--help")) == 0 && !strncmp(out, "usage: t_turbulence "
           "[options]\n", 29) && strstr(out, prim->summary), "--help: the usage line and summary");
     for (const struct tex_param *p = prim->params; p->name; p++, rows++) {

@@ -9,25 +9,22 @@
 #include "textura.h"
 #include "unit.h"
 
-static tex_map *decode(const void *data, size_t len)
+/* The file image decodes to a w x h x nc map of the samples want, exactly. */
+static void decodes_to(const void *data, size_t len, int w, int h, int nc, const float *want,
+                       const char *what)
 {
     tex_map *m = tex_netpbm_decode(data, len, "in.pnm");
+    int same = m && m->w == w && m->h == h && m->nc == nc;
+
     if (!m)
         printf("# %s\n", tex_errmsg());
-    return m;
-}
-
-/* The map's samples are want[0..n), exactly. */
-static int samples_are(const tex_map *m, int w, int h, int nc, const float *want)
-{
-    if (!m || m->w != w || m->h != h || m->nc != nc)
-        return 0;
-    for (int i = 0; i < w * h * nc; i++)
+    for (int i = 0; same && i < w * h * nc; i++)
         if (m->px[i] != want[i]) {
             printf("# sample %d: %.9g, not %.9g\n", i, m->px[i], want[i]);
-            return 0;
+            same = 0;
         }
-    return 1;
+    CHECK(same, what);
+    tex_map_free(m);
 }
 
 static void test_plain(void)
@@ -37,17 +34,10 @@ static void test_plain(void)
     static const char p3[] = "P3\n2 1\n255\n255 0 0  0 128 255\n";
     const float f1[] = {0, 1, 0, 1, 0, 1}, f2[] = {0, 0.5f, 1};
     const float f3[] = {1, 0, 0, 0, (float)(128 / 255.0), 1};
-    tex_map *m;
 
-    m = decode(p1, sizeof p1 - 1);
-    CHECK(samples_are(m, 3, 2, 1, f1), "P1: 1 is black (0.0), 0 white (1.0)");
-    tex_map_free(m);
-    m = decode(p2, sizeof p2 - 1);
-    CHECK(samples_are(m, 3, 1, 1, f2), "P2: v of maxval 4 reads v/4");
-    tex_map_free(m);
-    m = decode(p3, sizeof p3 - 1);
-    CHECK(samples_are(m, 2, 1, 3, f3), "P3: RGB triples, v/255 the nearest float");
-    tex_map_free(m);
+    decodes_to(p1, sizeof p1 - 1, 3, 2, 1, f1, "P1: 1 is black (0.0), 0 white (1.0)");
+    decodes_to(p2, sizeof p2 - 1, 3, 1, 1, f2, "P2: v of maxval 4 reads v/4");
+    decodes_to(p3, sizeof p3 - 1, 2, 1, 3, f3, "P3: RGB triples, v/255 the nearest float");
 }
 
 static void test_raw(void)
@@ -60,7 +50,6 @@ static void test_raw(void)
                                       "\x00\x33\x66\x99\xcc\xff\x01\x02";
     float f4[20], f5[4], f6[3], f7[8];
     const unsigned char bits[] = {0xA5, 0xC0, 0x00, 0x40};
-    tex_map *m;
 
     for (int y = 0; y < 2; y++)
         for (int x = 0; x < 10; x++)
@@ -69,18 +58,10 @@ static void test_raw(void)
     f6[0] = (float)(16 / 255.0), f6[1] = (float)(128 / 255.0), f6[2] = 1;
     for (int i = 0; i < 8; i++)
         f7[i] = (float)(p7[sizeof p7 - 9 + i] / 255.0);
-    m = decode(p4, sizeof p4 - 1);
-    CHECK(samples_are(m, 10, 2, 1, f4), "P4: rows of bits padded to whole bytes");
-    tex_map_free(m);
-    m = decode(p5, sizeof p5 - 1);
-    CHECK(samples_are(m, 4, 1, 1, f5), "P5 of maxval 65535: big-endian 16-bit samples");
-    tex_map_free(m);
-    m = decode(p6, sizeof p6 - 1);
-    CHECK(samples_are(m, 1, 1, 3, f6), "P6: one RGB pixel");
-    tex_map_free(m);
-    m = decode(p7, sizeof p7 - 1);
-    CHECK(samples_are(m, 2, 1, 4, f7), "P7: RGB_ALPHA as stored, not premultiplied");
-    tex_map_free(m);
+    decodes_to(p4, sizeof p4 - 1, 10, 2, 1, f4, "P4: rows of bits padded to whole bytes");
+    decodes_to(p5, sizeof p5 - 1, 4, 1, 1, f5, "P5 of maxval 65535: big-endian 16-bit samples");
+    decodes_to(p6, sizeof p6 - 1, 1, 1, 3, f6, "P6: one RGB pixel");
+    decodes_to(p7, sizeof p7 - 1, 2, 1, 4, f7, "P7: RGB_ALPHA as stored, not premultiplied");
 }
 
 static void test_pfm(void)
@@ -90,7 +71,6 @@ static void test_pfm(void)
     const float grey[4] = {0.25f, -3.5f, 1e30f, 0}, want[4] = {1e30f, 0, 0.25f, -3.5f};
     const float rgb[3] = {0.5f, 2, -1};
     size_t nle = strlen((char *)le), nbe = strlen((char *)be);
-    tex_map *m;
 
     memcpy(le + nle, grey, sizeof grey); /* this test runs on a little-endian machine */
     for (int i = 0; i < 3; i++) {
@@ -98,12 +78,8 @@ static void test_pfm(void)
         for (int k = 0; k < 4; k++)
             be[nbe + 4 * i + k] = b[3 - k];
     }
-    m = decode(le, nle + sizeof grey);
-    CHECK(samples_are(m, 2, 2, 1, want), "Pf: little-endian, the last row first");
-    tex_map_free(m);
-    m = decode(be, nbe + sizeof rgb);
-    CHECK(samples_are(m, 1, 1, 3, rgb), "PF: big-endian RGB");
-    tex_map_free(m);
+    decodes_to(le, nle + sizeof grey, 2, 2, 1, want, "Pf: little-endian, the last row first");
+    decodes_to(be, nbe + sizeof rgb, 1, 1, 3, rgb, "PF: big-endian RGB");
 }
 
 static void test_refused(void)
