@@ -467,37 +467,41 @@ static void check_combinations(const struct tex_tool *t, const struct tex_common
                             "--mode");
 }
 
-/* Every option taken, in the order typed; then the operands (the words getopt gave back
- * as 1, and those after "--") moved after the options, in their order, and optind at the
- * first, as GNU getopt's permutation leaves argv. */
+/* argv[from..to) moved in front of argv[at..from), each part in its order. */
+static void rotate(char **argv, int at, int from, int to)
+{
+    for (; from < to; from++, at++) {
+        char *w = argv[from];
+        memmove(argv + at + 1, argv + at, (size_t)(from - at) * sizeof *argv);
+        argv[at] = w;
+    }
+}
+
+/* Every option taken, in the order typed, with getopt in order ('-': an operand comes
+ * back as 1) and the operands moved after the options as they come, in their order, as
+ * GNU getopt's permutation leaves argv; optind at the first operand.  argv[1..first)
+ * holds the options read, argv[first..first + nops) the operands. */
 static void read_options(const struct tex_tool *t, int argc, char **argv,
                          const struct tex_cli_opt *o, int n, const struct tables *tb)
 {
-    char **ops = malloc((size_t)argc * (sizeof *ops + 1)), *is_op;
-    int nops = 0, k, j = 1;
+    int first = 1, nops = 0, k;
 
-    if (!ops) {
-        tex_error("out of memory");
-        tex_die();
-    }
-    is_op = memset(ops + argc, 0, (size_t)argc);
     opterr = 0;
     optind = 0; /* getopt starts afresh, as for another process */
-    while ((k = getopt_long(argc, argv, tb->shorts, tb->lo, NULL)) != -1)
-        if (k == 1) /* getopt does not move words in this mode: the operand was the last */
-            is_op[optind - 1] = 1;
-        else
-            take_option(t, k, argv, o, n, tb);
-    for (int i = optind; i < argc; i++)
-        is_op[i] = 1;
-    for (int i = 1; i < argc; i++)
-        if (is_op[i])
-            ops[nops++] = argv[i];
-        else
-            argv[j++] = argv[i]; /* j <= i: the options, in order, move down */
-    memcpy(argv + j, ops, (size_t)nops * sizeof *ops);
-    optind = j;
-    free(ops);
+    while ((k = getopt_long(argc, argv, tb->shorts, tb->lo, NULL)) != -1) {
+        if (k == 1) { /* the word after the operands so far, getopt leaving it in place */
+            nops++;
+            continue;
+        }
+        take_option(t, k, argv, o, n, tb);
+        rotate(argv, first, first + nops, optind); /* the option's words, ahead */
+        first = optind - nops;
+    }
+    if (optind > first + nops) { /* "--", ahead of the operands as GNU getopt puts it */
+        rotate(argv, first, first + nops, optind);
+        first = optind - nops;
+    }
+    optind = first;
 }
 
 int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_common *c,

@@ -688,7 +688,8 @@ tex_map *tex_exr_read_fd(int fd, const void *prefix, size_t prefix_len, const ch
         tex_error("out of memory");
         return NULL;
     }
-    memcpy(r.buf, prefix, prefix_len);
+    if (prefix_len) /* prefix may be NULL then */
+        memcpy(r.buf, prefix, prefix_len);
     tex_pipe_widen(fd);
     init.user_data = &r;
     init.read_fn = read_stream;
@@ -1023,7 +1024,8 @@ tex_rows_reader *tex_rows_open(int fd, const void *prefix, size_t prefix_len, co
             tex_error("out of memory");
             goto fail;
         }
-        memcpy(r->rs.buf, prefix, prefix_len);
+        if (prefix_len)
+            memcpy(r->rs.buf, prefix, prefix_len);
         tex_pipe_widen(fd);
         init.user_data = &r->rs;
         init.read_fn = read_stream;
