@@ -103,7 +103,7 @@ PRIVATE_HEADERS = libtex/base/kdtree.h libtex/base/trig_fdlibm.h libtex/io/oiio_
                   libtex/io/codec_bridge.h libtex/prim/noise_grid.h libtex/prim/cellular_impl.h \
                   libtex/ops/palette_srgb.h \
                   libtex/lang/lex.h libtex/lang/expr.h libtex/lang/rowcode.h \
-                  $(RENDER_PRIVATE:%=libtex/render/%.h)
+                  libtex/cli/internal.h $(RENDER_PRIVATE:%=libtex/render/%.h)
 HEADERS  = $(filter-out $(PRIVATE_HEADERS),$(wildcard libtex/*/*.h)) libtex/prim/primitives.def
 
 DEBS = build-essential pkg-config liblz4-dev libopenexr-dev libopenimageio-dev openimageio-tools \
@@ -182,12 +182,16 @@ $(PCFILE): Makefile
 	@mkdir -p $(@D)
 	$(call pc,$(PREFIX),$(LIBDIR)) > $@
 
-# t_proto serves the editor over HTTP with libmicrohttpd.
+# t_proto serves the editor over HTTP with libmicrohttpd; its parts other than main are
+# in tools/proto/ (proto.h), linked into it alone (they are not tools).
+PROTO_OBJ = $(patsubst %.c,$(BUILD)/obj/%.o,$(wildcard tools/proto/*.c))
 $(BUILD)/bin/t_proto: PROG_LDLIBS += -lmicrohttpd
+$(BUILD)/bin/t_proto: PROG_OBJ = $(PROTO_OBJ)
+$(BUILD)/bin/t_proto: $(PROTO_OBJ)
 
 $(BUILD)/bin/%: $(BUILD)/obj/tools/%.o $(OMP_ENV) $(STATIC)
 	@mkdir -p $(@D)
-	$(CC) $(LDFLAGS) $(LINK_LTO) $(PROG_LDFLAGS) -o $@ $< $(OMP_ENV) $(STATIC) $(PROG_LDLIBS)
+	$(CC) $(LDFLAGS) $(LINK_LTO) $(PROG_LDFLAGS) -o $@ $< $(PROG_OBJ) $(OMP_ENV) $(STATIC) $(PROG_LDLIBS)
 
 .PRECIOUS: $(BUILD)/obj/%.o
 $(BUILD)/tests/%: $(BUILD)/obj/tests/unit/%.o $(STATIC)

@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "io/json.h"
 #include "textura.h"
 
 struct opts {
@@ -26,21 +27,16 @@ static const struct tex_tool tool = {
 
 static const char *const chname[4][4] = {{"Y"}, {"R", "G"}, {"R", "G", "B"}, {"R", "G", "B", "A"}};
 
+/* A JSON string on standard output */
 static void json_string(const char *s)
 {
-    putchar('"');
-    for (; s && *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '"' || c == '\\')
-            printf("\\%c", c);
-        else if (c == '\n')
-            fputs("\\n", stdout);
-        else if (c < 0x20)
-            printf("\\u%04x", c);
-        else
-            putchar(c);
+    struct tex_str b = {0};
+    if (tex_json_string(&b, s) < 0) {
+        tex_error("out of memory");
+        tex_die();
     }
-    putchar('"');
+    fwrite(b.s, 1, b.n, stdout);
+    free(b.s);
 }
 
 /* 0 once what was printed has reached standard output; else the message and exit 1 */

@@ -29,12 +29,6 @@ static const struct tex_tool tool = {
     "t_warp", "MAP BY",
     "domain perturbation: MAP looked up at (u,v) + amount * BY(u,v), as turbulence makes "
     "marble from stripes",
-    TEX_OPT_OUTPUT | TEX_OPT_MAPS, rows, 2, -1};
-
-static const struct tex_tool tool2 = {
-    "t_warp", "MAP BY",
-    "domain perturbation: MAP looked up at (u,v) + amount * BY(u,v), as turbulence makes "
-    "marble from stripes",
     TEX_OPT_OUTPUT | TEX_OPT_MAPS, rows, 2, 2};
 
 int main(int argc, char **argv)
@@ -44,25 +38,7 @@ int main(int argc, char **argv)
     int i = tex_cli_parse(&tool, argc, argv, &c, &o), w, h;
     tex_map *m, *by, *r;
     struct tex_warp_opts wo;
-    char **moved = NULL;
 
-    if (argc - i > 2) {
-        /* Options after MAP BY: move them in front and parse again. */
-        char **v = malloc((argc + 1) * sizeof *v);
-        int k = 0;
-        if (!v)
-            tex_usage_die("out of memory");
-        for (int j = 0; j < i; j++)
-            v[k++] = argv[j];
-        for (int j = i + 2; j < argc; j++)
-            v[k++] = argv[j];
-        v[k++] = argv[i];
-        v[k++] = argv[i + 1];
-        v[k] = NULL;
-        free(c.cmdline);
-        i = tex_cli_parse(&tool2, argc, v, &c, &o);
-        argv = moved = v;
-    }
     if (!strcmp(argv[i], "-") && !strcmp(argv[i + 1], "-"))
         tex_usage_die("standard input (-) can be read only once");
     w = h = 0;
@@ -79,11 +55,10 @@ int main(int argc, char **argv)
                                 o.edge ? TEX_EDGE_CLAMP : TEX_EDGE_WRAP};
     if (!(r = tex_warp(m, by, &wo, w, h)))
         tex_die();
-    tex_cli_write(r, &c);
-    tex_map_free(r);
     tex_map_free(m);
     tex_map_free(by);
-    free(moved);
+    tex_cli_write(r, &c);
+    tex_map_free(r);
     free(c.cmdline);
     return 0;
 }

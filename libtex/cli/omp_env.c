@@ -11,7 +11,7 @@
  *
  * Not in libtex: a library must not replace getenv in the programs that use it.  LLVM's
  * libomp reads the environment itself: a tool built with clang runs itself again with
- * the variable set (cli.c).
+ * the variable set (threads.c).
  */
 #include <stdlib.h>
 #include <string.h>
@@ -37,5 +37,5 @@ char *getenv(const char *name)
     return v;
 }
 #else
-typedef int tex_omp_env_unused; /* clang: cli.c's second start instead */
+typedef int tex_omp_env_unused; /* clang: threads.c's second start instead */
 #endif

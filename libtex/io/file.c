@@ -187,7 +187,8 @@ static int keep_channels(int nc, const char *name)
 
 /* Read fd to its end, refusing more than max bytes (SIZE_MAX: no limit).  pages: an empty
  * b takes a large file's size in fresh pages (tex_pages_new), as maps do: read into the
- * heap, a 2048^2 map's 16 MiB were 4,000 page faults, half of t_palette's CPU. */
+ * heap, a large map's first touch of 4 KiB pages cost more than reading it
+ * (doc/performance.md, io/ and cli/). */
 static int read_fd_max(int fd, tex_buf *b, const char *name, size_t max, int pages)
 {
     struct stat st;

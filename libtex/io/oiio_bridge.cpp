@@ -1,8 +1,8 @@
 // oiio_bridge.cpp - OpenImageIO behind a C interface, loaded with dlopen
 //
 // Textura's only C++ file.  It is built as textura-oiio.so so that a tool
-// on the EXR path never loads OpenImageIO (about 200 ms of start-up and
-// 261 shared libraries); see oiio_bridge.h for the interface.
+// on the EXR path never loads OpenImageIO (its start-up and shared libraries
+// are many times a tool's own: doc/performance.md); see oiio_bridge.h for the interface.
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>

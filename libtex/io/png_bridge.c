@@ -158,10 +158,8 @@ static int b_write(int fd, const void *px, int w, int h, int nc, int bits, char 
     } else if (!setjmp(c.jb)) {
         size_t stride = (size_t)w * nc * (bits / 8);
         png_init_io(png, f);
-        /* zlib level 2 with the Sub and Up filters.  Measured on a 256x256
-         * palette-coloured noise map: 23% larger than level 6 with all five
-         * filters, at half its time; on a 2048x2048 RGBA map about 1.0 s
-         * against ImageMagick's 1.7 s (level 3 with Paeth: +12% time, -4% size). */
+        /* zlib level 2 with the Sub and Up filters: a little larger than level 6 with
+         * all five filters, at half its time (doc/performance.md, io/ and cli/). */
         png_set_compression_level(png, 2);
         png_set_filter(png, 0, PNG_FILTER_SUB | PNG_FILTER_UP);
         png_set_IHDR(png, info, (png_uint_32)w, (png_uint_32)h, bits, types[nc],

@@ -83,8 +83,8 @@ int tex_write_all(int fd, const void *p, size_t n, const char *name)
  * written with a chunk offset table computed in advance, and the chunks pass
  * through buf (emptied), gathered into writes of up to STAGE bytes (the core hands
  * over a scanline's header and its pixels apart: two system calls a row); the table the
- * core writes last must match ours.  STAGE is a pipe's default capacity: 1 MiB took 137
- * more page faults than 64 KiB, 2.5 % of a render's CPU on a virtual machine. */
+ * core writes last must match ours.  STAGE is a pipe's default capacity: a larger stage
+ * costs more first touches of pages than it saves in writes (doc/performance.md). */
 #define STAGE (1 << 16)
 struct wsink {
     tex_buf *buf;
@@ -180,7 +180,7 @@ static int start_streaming(struct wsink *w, const tex_map *m, int nchunks, int l
 }
 
 /* A band of fill's rows from this size up in fresh pages (tex_pages_new): made once, its
- * first touch of 4 KiB pages was 150 page faults of an 800x600 render */
+ * first touch of 4 KiB pages is paid once (doc/performance.md) */
 #define BAND_PAGES (256 << 10)
 
 static const char *const chnames[4][4] = {
@@ -210,8 +210,8 @@ static exr_result_t raw_if_incompressible(exr_encode_pipeline_t *enc)
     return rv;
 }
 
-/* Whether chunks are worth compressing.  Noise maps' float bits shrink by 1-10 % under
- * ZIP for fifteen times the CPU of writing them raw (t_noise -s 2048: 440 ms against 30).
+/* Whether chunks are worth compressing.  Noise maps' float bits shrink little under ZIP,
+ * for many times the CPU of writing them raw (doc/performance.md, io/ and cli/).
  * After four chunks in a row that shrink by less than an eighth, the next fifteen are
  * stored raw (a reader takes a chunk of its raw size as uncompressed, as the file format
  * has it), and every sixteenth is tried again. */
@@ -688,7 +688,8 @@ tex_map *tex_exr_read_fd(int fd, const void *prefix, size_t prefix_len, const ch
         tex_error("out of memory");
         return NULL;
     }
-    memcpy(r.buf, prefix, prefix_len);
+    if (prefix_len) /* prefix may be NULL then */
+        memcpy(r.buf, prefix, prefix_len);
     tex_pipe_widen(fd);
     init.user_data = &r;
     init.read_fn = read_stream;
@@ -1023,7 +1024,8 @@ tex_rows_reader *tex_rows_open(int fd, const void *prefix, size_t prefix_len, co
             tex_error("out of memory");
             goto fail;
         }
-        memcpy(r->rs.buf, prefix, prefix_len);
+        if (prefix_len)
+            memcpy(r->rs.buf, prefix, prefix_len);
         tex_pipe_widen(fd);
         init.user_data = &r->rs;
         init.read_fn = read_stream;

@@ -1,30 +1,21 @@
-/* cli.c - options, help, errors and the generator main for every tool */
+/* options.c - the tools' options from parameter rows: getopt's tables, taking each option,
+ * the operands and the options that go together, and the command line for the history */
 #include <ctype.h>
-#include <errno.h>
 #include <getopt.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-#include <unistd.h>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "cli/cli.h"
+#include "cli/internal.h"
 #include "base/error.h"
 #include "base/progress.h"
 #include "io/file.h"
-#include "ops/palette.h"
-#include "io/stream.h"
 
 #ifndef TEX_VERSION
 #define TEX_VERSION "0.1"
 #endif
-
-const char *tex_progname = "textura";
 
 /* The common options: rows over struct tex_common, each with its mask bit. */
 static const struct {
@@ -65,143 +56,16 @@ static const struct {
 };
 #define NCOMMON (sizeof common_rows / sizeof *common_rows)
 
-static int bar_drawn; /* a progress bar is on the last line of standard error */
-
-/* Messages start on a line of their own. */
-static void end_bar(void)
-{
-    if (bar_drawn)
-        fputc('\n', stderr);
-    bar_drawn = 0;
-}
-
-static void vmsg(const char *kind, const char *fmt, va_list ap)
-{
-    end_bar();
-    fprintf(stderr, "%s: %s", tex_progname, kind);
-    vfprintf(stderr, fmt, ap);
-    fputc('\n', stderr);
-}
-
-static void print_warning(const char *msg)
-{
-    end_bar();
-    fprintf(stderr, "%s: warning: %s\n", tex_progname, msg);
-}
-
-void tex_die(void)
-{
-    tex_set_progress_handler(NULL, NULL); /* the bar ends where the work failed */
-    end_bar();
-    fprintf(stderr, "%s: error: %s\n", tex_progname, tex_errmsg());
-    exit(tex_errkind() == TEX_ERR_USAGE ? 2 : 1);
-}
-
-void tex_usage_die(const char *fmt, ...)
-{
-    va_list ap;
-    tex_set_progress_handler(NULL, NULL);
-    va_start(ap, fmt);
-    vmsg("error: ", fmt, ap);
-    va_end(ap);
-    exit(2);
-}
-
-/* At exit: text written to standard output (help, reports, palettes) must
- * have reached it; a full disk or a closed pipe is an error (exit 1). */
-static void close_stdout(void)
-{
-    tex_progress_done();
-    end_bar();
-    int bad = fflush(stdout) != 0 || ferror(stdout);
-    int e = errno;
-
-    if (fclose(stdout) != 0 && !bad) {
-        e = errno;
-        bad = e != EBADF; /* standard output closed and never written to */
-    }
-    if (bad) {
-        fprintf(stderr, "%s: error: standard output: %s\n", tex_progname,
-                e ? strerror(e) : "write error");
-        fflush(stderr);
-        _exit(1);
-    }
-}
-
-/* One (row, struct) pair per option the tool accepts. */
-struct opt {
-    const struct tex_param *row;
-    void *obj;
-};
-
-static int collect(const struct tex_tool *t, struct tex_common *c, void *opts, struct opt *o)
+static int collect(const struct tex_tool *t, struct tex_common *c, void *opts, struct tex_cli_opt *o)
 {
     int n = 0;
 
     for (size_t i = 0; i < NCOMMON; i++)
         if (!common_rows[i].mask || (t->common & common_rows[i].mask))
-            o[n++] = (struct opt){&common_rows[i].row, c};
+            o[n++] = (struct tex_cli_opt){&common_rows[i].row, c};
     for (const struct tex_param *p = t->params; p && p->name; p++)
-        o[n++] = (struct opt){p, opts};
+        o[n++] = (struct tex_cli_opt){p, opts};
     return n;
-}
-
-static void usage_line(const struct tex_tool *t, FILE *fp)
-{
-    fprintf(fp, "usage: %s [options]%s%s\n", t->name, t->operands && *t->operands ? " " : "",
-            t->operands ? t->operands : "");
-}
-
-static void print_help(const struct tex_tool *t, const struct opt *o, int n)
-{
-    usage_line(t, stdout);
-    printf("%s.\n\nOptions:\n", t->summary);
-    for (int i = 0; i < n; i++) {
-        const struct tex_param *p = o[i].row;
-        char opt[64], lhs[128], rng[128], def[64];
-        tex_param_option(p, opt, sizeof opt);
-        snprintf(lhs, sizeof lhs, "%c%c%s%s%s%s %s", p->key ? '-' : ' ', p->key ? p->key : ' ',
-                 p->key ? ", " : "  ", opt, p->alias ? ", --" : "", p->alias ? p->alias : "",
-                 p->type == TEX_P_FLAG ? "" : p->type == TEX_P_ENUM ? "NAME" : p->meta ? p->meta : "X");
-        printf("  %-28s %s", lhs, p->help);
-        tex_param_range(p, rng, sizeof rng);
-        if (p->type != TEX_P_FLAG && p->type != TEX_P_STRING)
-            printf(" [%s]", rng);
-        if (p->type != TEX_P_FLAG && (p->type != TEX_P_STRING || p->defstr))
-            printf(" (default %s)", tex_param_default(p, def, sizeof def));
-        putchar('\n');
-    }
-    printf("  -h, --help                   show this help\n"
-           "  -V, --version                show the version\n");
-}
-
-/* The option list as mdoc, for the man page (checked by the tests). */
-static void print_mdoc(const struct opt *o, int n)
-{
-    puts(".Bl -tag -width Ds");
-    for (int i = 0; i < n; i++) {
-        const struct tex_param *p = o[i].row;
-        char opt[64], rng[128], def[64];
-        tex_param_option(p, opt, sizeof opt);
-        printf(".It ");
-        if (p->key)
-            printf("Fl %c , ", p->key);
-        printf("Fl %s", opt + 1);
-        if (p->alias)
-            printf(" , Fl -%s", p->alias);
-        if (p->type != TEX_P_FLAG)
-            printf(" Ar %s", p->type == TEX_P_ENUM ? "name" : p->meta ? p->meta : "x");
-        printf("\n%c%s", p->help[0] >= 'a' && p->help[0] <= 'z' ? p->help[0] - 32 : p->help[0],
-               p->help + 1);
-        if (p->type == TEX_P_ENUM)
-            printf(": one of %s", tex_param_range(p, rng, sizeof rng));
-        else if (p->type != TEX_P_FLAG && p->type != TEX_P_STRING)
-            printf(", %s", tex_param_range(p, rng, sizeof rng));
-        if (p->type != TEX_P_FLAG && (p->type != TEX_P_STRING || p->defstr))
-            printf("; default %s", tex_param_default(p, def, sizeof def));
-        puts(".");
-    }
-    puts(".El");
 }
 
 /* Options that cannot change the pixels: -j N, --threads N, -q, --quiet (and their
@@ -291,7 +155,7 @@ struct tables {
     int short_opt[128], short_old[128]; /* option index of a short letter, -1 if none */
 };
 
-static void add_name(struct tables *tb, const struct opt *o, int i, const char *text, int old)
+static void add_name(struct tables *tb, const struct tex_cli_opt *o, int i, const char *text, int old)
 {
     const struct tex_param *p = o[i].row;
     struct lname *ln;
@@ -317,7 +181,7 @@ static void add_name(struct tables *tb, const struct opt *o, int i, const char *
     tb->nnames++;
 }
 
-static void add_short(struct tables *tb, const struct opt *o, int i, int key, int old)
+static void add_short(struct tables *tb, const struct tex_cli_opt *o, int i, int key, int old)
 {
     char *sp = tb->shorts + strlen(tb->shorts);
 
@@ -339,7 +203,7 @@ static void add_short(struct tables *tb, const struct opt *o, int i, int key, in
 }
 
 /* Each word of a space-separated list: "-d" a short letter, else a long name. */
-static void add_list(struct tables *tb, const struct opt *o, int i, const char *list, int old)
+static void add_list(struct tables *tb, const struct tex_cli_opt *o, int i, const char *list, int old)
 {
     char word[48];
 
@@ -351,16 +215,20 @@ static void add_list(struct tables *tb, const struct opt *o, int i, const char *
 }
 
 /* getopt's tables for the n options o, then --help, --version, --help-mdoc and
- * --help-options.  Only the entries made are written: zeroing all 58 KB took a tool
- * 14 page faults (0.4 ms on a virtual machine). */
-static void getopt_tables(const struct opt *o, int n, struct tables *tb)
+ * --help-options.  Only the entries made are written: zeroing the whole tables would
+ * touch pages a tool never needs (doc/performance.md). */
+static void getopt_tables(const struct tex_cli_opt *o, int n, struct tables *tb)
 {
     char name[64], us[64];
 
     tb->nnames = tb->nclashes = 0;
     memset(tb->short_opt, -1, sizeof tb->short_opt);
     memset(tb->short_old, 0, sizeof tb->short_old);
-    strcpy(tb->shorts, ":hV"); /* options may follow operands, as in GNU tools; "--" ends them */
+    /* '-': operands come back in order as 1, and read_options puts them last itself:
+     * options may follow operands, as in GNU tools, even under POSIXLY_CORRECT (which
+     * would make getopt stop at the first operand); "--" ends them.  ':': a missing
+     * value is ':', not '?'. */
+    strcpy(tb->shorts, "-:hV");
     for (int i = 0; i < n; i++) {
         tex_param_option(o[i].row, name, sizeof name);
         add_name(tb, o, i, name + 2, 0);
@@ -375,7 +243,7 @@ static void getopt_tables(const struct opt *o, int n, struct tables *tb)
         add_list(tb, o, i, o[i].row->old, 1);
     tb->lo[tb->nnames] = (struct option){"help", no_argument, NULL, 'h'};
     tb->lo[tb->nnames + 1] = (struct option){"version", no_argument, NULL, 'V'};
-    tb->lo[tb->nnames + 2] = (struct option){"help-mdoc", no_argument, NULL, 1};
+    tb->lo[tb->nnames + 2] = (struct option){"help-mdoc", no_argument, NULL, 3};
     tb->lo[tb->nnames + 3] = (struct option){"help-options", no_argument, NULL, 2};
     tb->lo[tb->nnames + 4] = (struct option){0};
 }
@@ -384,7 +252,7 @@ static void getopt_tables(const struct opt *o, int n, struct tables *tb)
  * stands to it (name, short, alias, spelling, old; clash for a name that
  * another row took first), type, argument: for the test that each flag
  * means one thing across the tools. */
-static void print_names(const struct opt *o, const struct tables *tb)
+static void print_names(const struct tex_cli_opt *o, const struct tables *tb)
 {
     static const char *const types[] = {"int", "real", "flag", "enum", "reals",
                                         "colour", "string", "float", "special"};
@@ -481,19 +349,19 @@ int tex_cli_given(const char *name)
 
 /* One option k from getopt_long: help, version and the lists print and exit, an
  * unknown option or a missing or bad value is a usage error. */
-static void take_option(const struct tex_tool *t, int k, char **argv, const struct opt *o, int n,
+static void take_option(const struct tex_tool *t, int k, char **argv, const struct tex_cli_opt *o, int n,
                         const struct tables *tb)
 {
     int i = -1, old = 0;
 
     if (k == 'h') {
-        print_help(t, o, n);
+        tex_cli_help(stdout, t, o, n);
         exit(0);
     } else if (k == 'V') {
         printf("%s (Textura) %s\n", t->name, TEX_VERSION);
         exit(0);
-    } else if (k == 1) {
-        print_mdoc(o, n);
+    } else if (k == 3) {
+        tex_cli_mdoc(stdout, o, n);
         exit(0);
     } else if (k == 2) {
         print_names(o, tb);
@@ -599,61 +467,58 @@ static void check_combinations(const struct tex_tool *t, const struct tex_common
                             "--mode");
 }
 
-/* OpenMP's idle threads spin after every parallel region (libgomp polls 300000 times,
- * libomp for 200 ms) unless OMP_WAIT_POLICY is passive, and in a pipeline of tools on
- * busy cores that spinning takes the CPU the other stages need: a five-stage pipeline
- * spends about twice the CPU (tests/bench/omp_wait).  With libgomp, every tool's own getenv
- * answers the policy (omp_env.c).  LLVM's libomp reads the environment itself, as it loads,
- * before any code of a tool runs (a constructor, even one in .preinit_array, comes too late
- * or sees its setenv undone): built with clang, a tool whose environment names no policy
- * runs itself again, once, with OMP_WAIT_POLICY=passive; one set (to anything, e.g.
- * active) is kept.  Only at the start of a tool's main: nothing is open or printed yet.
- * A tool asked for one thread (its last -j or --threads is 1) starts none that could spin
- * and is not run again: the second start costs 1.5 ms. */
-#if defined(_OPENMP) && defined(__clang__)
-static int one_thread(char **argv)
+/* argv[from..to) moved in front of argv[at..from), each part in its order. */
+static void rotate(char **argv, int at, int from, int to)
 {
-    const char *last = NULL;
-    for (int i = 1; argv[i] && strcmp(argv[i], "--") != 0; i++) {
-        const char *a = argv[i];
-        if (strncmp(a, "--threads=", 10) == 0)
-            last = a + 10;
-        else if (strncmp(a, "-j", 2) == 0 && a[2])
-            last = a + 2;
-        else if ((strcmp(a, "-j") == 0 || strcmp(a, "--threads") == 0) && argv[i + 1])
-            last = argv[++i];
+    for (; from < to; from++, at++) {
+        char *w = argv[from];
+        memmove(argv + at + 1, argv + at, (size_t)(from - at) * sizeof *argv);
+        argv[at] = w;
     }
-    return last && strcmp(last, "1") == 0;
 }
-#endif
 
-static void passive_threads(char **argv)
+/* Every option taken, in the order typed, with getopt in order ('-': an operand comes
+ * back as 1) and the operands moved after the options as they come, in their order, as
+ * GNU getopt's permutation leaves argv; optind at the first operand.  argv[1..first)
+ * holds the options read, argv[first..first + nops) the operands. */
+static void read_options(const struct tex_tool *t, int argc, char **argv,
+                         const struct tex_cli_opt *o, int n, const struct tables *tb)
 {
-#if defined(_OPENMP) && defined(__clang__)
-    if (getenv("OMP_WAIT_POLICY") || getenv("GOMP_SPINCOUNT") || getenv("KMP_BLOCKTIME") ||
-        one_thread(argv) || setenv("OMP_WAIT_POLICY", "passive", 1) < 0)
-        return;
-    execv("/proc/self/exe", argv); /* returns only on failure (no /proc): spin, then */
-#else
-    (void)argv;
-#endif
+    int first = 1, nops = 0, k;
+
+    opterr = 0;
+    optind = 0; /* getopt starts afresh, as for another process */
+    while ((k = getopt_long(argc, argv, tb->shorts, tb->lo, NULL)) != -1) {
+        if (k == 1) { /* the word after the operands so far, getopt leaving it in place */
+            nops++;
+            continue;
+        }
+        take_option(t, k, argv, o, n, tb);
+        rotate(argv, first, first + nops, optind); /* the option's words, ahead */
+        first = optind - nops;
+    }
+    if (optind > first + nops) { /* "--", ahead of the operands as GNU getopt puts it */
+        rotate(argv, first, first + nops, optind);
+        first = optind - nops;
+    }
+    optind = first;
 }
 
 int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_common *c,
                   void *opts)
 {
     static struct tables tb; /* large: not on the stack */
-    struct opt o[MAXOPTS];
-    int n, k;
+    struct tex_cli_opt o[MAXOPTS];
+    int n;
 
     tex_progname = t->name;
     memset(c, 0, sizeof *c);
     {
-        static int registered; /* a tool may parse twice (t_warp) */
+        static int registered; /* a process may parse more than once (the unit tests) */
         if (!registered++) {
-            passive_threads(argv);
+            tex_cli_passive_threads(argv);
             tex_keep_heap();
-            atexit(close_stdout);
+            atexit(tex_cli_close_stdout);
         }
     }
     ngiven = nold = 0;
@@ -661,16 +526,13 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
     set_defaults(t, c, opts);
     getopt_tables(o, n, &tb);
 
-    /* The history records the command line as typed, before getopt permutes it. */
+    /* The history records the command line as typed, before the operands move last. */
     if (!(c->cmdline = join_cmdline(argc, argv))) {
         tex_error("out of memory");
         tex_die();
     }
     hide_negatives(argc, argv, &tb);
-    opterr = 0;
-    optind = 1;
-    while ((k = getopt_long(argc, argv, tb.shorts, tb.lo, NULL)) != -1)
-        take_option(t, k, argv, o, n, &tb);
+    read_options(t, argc, argv, o, n, &tb);
     for (int i = 1; i < argc; i++)
         if (argv[i][0] == '\001')
             argv[i]++; /* the marked copy is kept for the life of the program */
@@ -688,7 +550,7 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
                           c->nonfinite);
     }
     check_combinations(t, c, opts);
-    tex_set_warning_handler(c->quiet ? NULL : print_warning);
+    tex_set_warning_handler(c->quiet ? NULL : tex_cli_warning);
     tex_set_progress_handler(tex_cli_progress_wanted(c) ? tex_cli_progress : NULL, NULL);
     for (int i = 0; i < nold; i++) {
         char name[64];
@@ -698,314 +560,6 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
                           old_used[i].name, name);
         tex_warning("%s is deprecated and will be removed: write %s", old_used[i].name, name);
     }
-#ifdef _OPENMP
-    if (c->threads > 0)
-        omp_set_num_threads(c->threads);
-#endif
+    tex_cli_threads(c->threads);
     return optind;
-}
-
-
-int tex_cli_depth(const struct tex_common *c)
-{
-    static const int bits[] = {0, 8, 16, 32}; /* the rows of --depth: auto|8|16|32 */
-    return bits[c->depth_choice];
-}
-
-tex_map *tex_cli_read(const char *path)
-{
-    tex_map *m = tex_map_read(path);
-    if (!m)
-        tex_die();
-    return m;
-}
-
-void tex_cli_write(tex_map *m, const struct tex_common *c)
-{
-    struct tex_write_opts o = {tex_cli_depth(c), (enum tex_compression)c->compression, c->format,
-                               c->exr_tiles, c->mipmap};
-
-    tex_progress_done();
-    if (c->cmdline && tex_map_add_history(m, c->cmdline) < 0)
-        tex_die();
-    if (tex_map_write(m, c->output, &o) < 0)
-        tex_die();
-}
-
-/* The colours of subregions 1..n through the palette named. */
-static float *region_colors(const char *palette, int n)
-{
-    tex_palette *pal = tex_palette_load(palette);
-    float *c = pal ? tex_palette_region_colours(pal, n) : NULL;
-    tex_palette_free(pal);
-    return c;
-}
-
-static double seconds(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return t.tv_sec + 1e-9 * t.tv_nsec;
-}
-
-void tex_cli_progress(long done, long total, void *arg)
-{
-    static const char bar[] = "########################################";
-    static double start = -1;
-    int w = (int)sizeof bar - 1, k = total > 0 ? (int)(w * done / total) : w;
-    (void)arg;
-    if (start < 0)
-        start = seconds();
-    if (!bar_drawn && seconds() - start < 0.3)
-        return; /* work that ends within a moment draws no bar */
-    bar_drawn = done < total;
-    fprintf(stderr, "\r%s: [%.*s%*s] %3d%%", tex_progname, k, bar, w - k, "",
-            total > 0 ? (int)(100 * done / total) : 100);
-    if (done >= total)
-        fputc('\n', stderr);
-}
-
-int tex_cli_progress_wanted(const struct tex_common *c)
-{
-    return !c->quiet && isatty(2);
-}
-
-struct gen_job {
-    struct tex_field *f;
-    int x, y, w; /* the window the bands cut (the whole grid without --window) */
-};
-
-/* A band sampled straight into the encoder's rows: a map of its own for each band
- * would be fresh memory each time, and a first touch of a page is dear. */
-static int gen_fill(void *arg, int y, int n, float *rows)
-{
-    struct gen_job *j = arg;
-    tex_map b = {.w = j->w, .h = n, .nc = tex_field_channels(j->f), .px = rows};
-    int rc;
-
-    j->f->wx = j->x;
-    j->f->wy = j->y + y;
-    j->f->ww = j->w;
-    j->f->wh = n;
-    memset(rows, 0, tex_map_samples(&b) * sizeof *rows); /* as tex_map_new's maps come */
-    tex_progress_hold(1); /* the band counts as its rows of the whole map */
-    rc = tex_field_sample_into(j->f, &b);
-    tex_progress_hold(0);
-    if (rc < 0)
-        return -1;
-    tex_progress_add(n);
-    return 0;
-}
-
-void tex_cli_write_rows(tex_map *head, const struct tex_common *c, tex_rows_fn fill, void *arg)
-{
-    struct tex_out o = {.fd = 1};
-    const char *oname = "standard output";
-    int rc;
-
-    if (c->cmdline && tex_map_add_history(head, c->cmdline) < 0)
-        tex_die();
-    if (c->output && strcmp(c->output, "-")) {
-        if (tex_out_open(&o, c->output) < 0) {
-            tex_out_close(&o, -1);
-            tex_die();
-        }
-        oname = c->output;
-    }
-    rc = tex_exr_write_rows(head, fill, arg, 0, (enum tex_compression)c->compression, o.fd,
-                            oname);
-    if (o.fd != 1)
-        rc = tex_out_close(&o, rc);
-    if (rc < 0)
-        tex_die();
-}
-
-static int gen_probe(struct gen_job *j, tex_map **probe)
-{
-    struct tex_field *f = j->f;
-    int saved[4] = {f->wx, f->wy, f->ww, f->wh};
-    f->wx = j->x;
-    f->wy = j->y;
-    f->ww = f->wh = 1;
-    *probe = tex_field_sample(f);
-    f->wx = saved[0], f->wy = saved[1], f->ww = saved[2], f->wh = saved[3];
-    return *probe ? 0 : -1;
-}
-
-/* A generator's map written as it is sampled, a band of rows at a time. */
-static void generate_bands(struct tex_field *f, const struct tex_common *c)
-{
-    int win = f->ww > 0;
-    struct gen_job j = {f, win ? f->wx : 0, win ? f->wy : 0, win ? f->ww : f->w};
-    tex_map head = {0};
-    tex_map *probe;
-    head.w = j.w;
-    head.h = win ? f->wh : f->h;
-    /* channels and subregions as the sampler makes them: its first pixel */
-    if (gen_probe(&j, &probe) < 0)
-        tex_die();
-    head.nc = probe->nc;
-    head.subregions = probe->subregions;
-    tex_map_free(probe);
-    if (win) {
-        head.x0 = f->wx;
-        head.y0 = f->wy;
-        head.full_w = f->w;
-        head.full_h = f->h;
-    }
-    tex_progress_stage(1, head.h);
-    tex_cli_write_rows(&head, c, gen_fill, &j);
-    free(head.history);
-}
-
-int tex_generate_main(const struct tex_primitive *p, int argc, char **argv)
-{
-    char name[64];
-    snprintf(name, sizeof name, "t_%s", p->name);
-    return tex_generate_main_rows(p, name, "", NULL, NULL, argc, argv);
-}
-
-int tex_generate_main_rows(const struct tex_primitive *p, const char *name,
-                           const char *operands, const struct tex_param *rows, void *opts,
-                           int argc, char **argv)
-{
-    float *colors = NULL;
-    struct tex_common c;
-    struct tex_field *f;
-    tex_map *m;
-    int nops = operands[0] != 0;
-    struct tex_tool t = {name, operands, p->summary,
-                         TEX_OPT_OUTPUT | TEX_OPT_SIZE | TEX_OPT_SEED | TEX_OPT_WINDOW,
-                         rows ? rows : p->params, nops, nops};
-
-    if (p->flags & TEX_PRIM_TILE)
-        t.common |= TEX_OPT_TILE;
-    if (p->flags & TEX_PRIM_REGIONS)
-        t.common |= TEX_OPT_IDS | TEX_OPT_PALETTE;
-    if (!(f = tex_field_new(p)))
-        tex_die();
-    if (opts) /* the primitive's parameters lead the tool's own */
-        memcpy(opts, f->params, p->params_size);
-    tex_cli_parse(&t, argc, argv, &c, opts ? opts : f->params);
-    if (opts)
-        memcpy(f->params, opts, p->params_size);
-    if (tex_map_write_check(c.output) < 0)
-        tex_die(); /* now, not after the work */
-    f->seed = (uint64_t)c.seed;
-    f->tile = c.tile;
-    f->ids = c.ids;
-    if (c.palette && c.ids)
-        tex_usage_die("--palette colours the subregions; --ids writes their ids instead: "
-                      "give one of them");
-    if (c.win[2] > 0 && tex_field_window(f, c.win[0], c.win[1], c.win[2], c.win[3]) < 0)
-        tex_die();
-    if (tex_field_init(f, c.w, c.h) < 0)
-        tex_die();
-    if (c.palette && !(colors = region_colors(c.palette, f->nregions)))
-        tex_die();
-    if (colors)
-        f->colors = (const float(*)[3])colors;
-    if (tex_cli_streams(&c) && !tex_field_whole(f)) {
-        generate_bands(f, &c); /* the same pixels, a band of rows at a time */
-    } else {
-        if (!(m = tex_field_sample(f)))
-            tex_die();
-        tex_cli_write(m, &c);
-        tex_map_free(m);
-    }
-    tex_field_free(f);
-    free(colors);
-    free(c.cmdline);
-    return 0;
-}
-
-/* ---- per-pixel tools in bands ---- */
-
-struct band_job {
-    tex_rows_reader *r;
-    const char *name;
-    int w, nc, subregions;
-    tex_map *(*op)(tex_map *, void *);
-    void *arg;
-    tex_map *keep; /* a band the op gave back as it took it, for the next band's rows */
-};
-
-/* The op's band is the last one's map where the op gave that back (the bands are one
- * size but the last): a map of its own for each band would be fresh pages each time. */
-static int band_fill(void *arg, int y, int n, float *rows)
-{
-    struct band_job *j = arg;
-    tex_map *b = j->keep, *o;
-
-    j->keep = NULL;
-    if (b && b->h < n) {
-        tex_map_free(b);
-        b = NULL;
-    }
-    if (!b && !(b = tex_map_new(j->w, n, j->nc)))
-        return -1;
-    b->h = n;
-    b->subregions = j->subregions;
-    if (tex_rows_read(j->r, y, n, b->px, j->name) < 0 ||
-        tex_rows_nonfinite(b->px, j->w, n, j->nc, y, j->name) < 0 || !(o = j->op(b, j->arg))) {
-        tex_map_free(b);
-        return -1;
-    }
-    memcpy(rows, o->px, tex_map_samples(o) * sizeof *rows);
-    if (o->w == j->w && o->nc == j->nc)
-        j->keep = o;
-    else
-        tex_map_free(o);
-    return 0;
-}
-
-int tex_cli_streams(const struct tex_common *c)
-{
-    if (c->exr_tiles || c->mipmap || (c->format && strcmp(c->format, "exr") != 0))
-        return 0;
-    return !c->output || !strcmp(c->output, "-") ||
-           tex_format_from_name(c->output) == TEX_FMT_EXR;
-}
-
-void tex_cli_stream(const char *path, const struct tex_common *c,
-                    tex_map *(*op)(tex_map *band, void *arg), void *arg)
-{
-    const char *name = path && strcmp(path, "-") ? path : "standard input";
-    tex_map head, *whole = NULL, *probe, *m;
-    tex_rows_reader *r = NULL;
-
-    if (tex_map_write_check(c->output) < 0)
-        tex_die();
-    if (tex_cli_streams(c)) {
-        r = tex_map_open_rows(path, &head, &whole);
-        if (!r && !whole)
-            tex_die();
-    } else {
-        whole = tex_cli_read(path);
-    }
-    if (!r) { /* the same op over the whole map */
-        if (!(m = op(whole, arg)))
-            tex_die();
-        tex_cli_write(m, c);
-        tex_map_free(m);
-        return;
-    }
-    if (!(probe = tex_map_new(1, 1, head.nc)))
-        tex_die();
-    for (int k = 0; k < head.nc; k++)
-        probe->px[k] = 1;
-    probe->subregions = head.subregions;
-    if (!(probe = op(probe, arg)))
-        tex_die();
-    {
-        struct band_job j = {r, name, head.w, head.nc, head.subregions, op, arg, NULL};
-        tex_map out = head;
-        out.nc = probe->nc;
-        out.subregions = probe->subregions;
-        tex_map_free(probe);
-        tex_cli_write_rows(&out, c, band_fill, &j);
-        tex_map_free(j.keep);
-        tex_rows_close(r);
-        free(out.history);
-    }
 }

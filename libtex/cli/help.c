@@ -1,0 +1,64 @@
+/* help.c - --help and the man pages' option lists, made from the option rows */
+#include <stdio.h>
+
+#include "cli/cli.h"
+#include "cli/internal.h"
+
+static void usage_line(const struct tex_tool *t, FILE *fp)
+{
+    fprintf(fp, "usage: %s [options]%s%s\n", t->name, t->operands && *t->operands ? " " : "",
+            t->operands ? t->operands : "");
+}
+
+void tex_cli_help(FILE *fp, const struct tex_tool *t, const struct tex_cli_opt *o, int n)
+{
+    usage_line(t, fp);
+    fprintf(fp, "%s.\n\nOptions:\n", t->summary);
+    for (int i = 0; i < n; i++) {
+        const struct tex_param *p = o[i].row;
+        char opt[64], lhs[128], rng[128], def[64];
+        tex_param_option(p, opt, sizeof opt);
+        snprintf(lhs, sizeof lhs, "%c%c%s%s%s%s %s", p->key ? '-' : ' ', p->key ? p->key : ' ',
+                 p->key ? ", " : "  ", opt, p->alias ? ", --" : "", p->alias ? p->alias : "",
+                 p->type == TEX_P_FLAG ? "" : p->type == TEX_P_ENUM ? "NAME" : p->meta ? p->meta : "X");
+        fprintf(fp, "  %-28s %s", lhs, p->help);
+        tex_param_range(p, rng, sizeof rng);
+        if (p->type != TEX_P_FLAG && p->type != TEX_P_STRING)
+            fprintf(fp, " [%s]", rng);
+        if (p->type != TEX_P_FLAG && (p->type != TEX_P_STRING || p->defstr))
+            fprintf(fp, " (default %s)", tex_param_default(p, def, sizeof def));
+        fputc('\n', fp);
+    }
+    fprintf(fp, "  -h, --help                   show this help\n"
+                "  -V, --version                show the version\n");
+}
+
+/* The option list as mdoc, for the man page (checked by the tests). */
+void tex_cli_mdoc(FILE *fp, const struct tex_cli_opt *o, int n)
+{
+    fputs(".Bl -tag -width Ds\n", fp);
+    for (int i = 0; i < n; i++) {
+        const struct tex_param *p = o[i].row;
+        char opt[64], rng[128], def[64];
+        tex_param_option(p, opt, sizeof opt);
+        fprintf(fp, ".It ");
+        if (p->key)
+            fprintf(fp, "Fl %c , ", p->key);
+        fprintf(fp, "Fl %s", opt + 1);
+        if (p->alias)
+            fprintf(fp, " , Fl -%s", p->alias);
+        if (p->type != TEX_P_FLAG)
+            fprintf(fp, " Ar %s", p->type == TEX_P_ENUM ? "name" : p->meta ? p->meta : "x");
+        fprintf(fp, "\n%c%s",
+                p->help[0] >= 'a' && p->help[0] <= 'z' ? p->help[0] - 32 : p->help[0],
+                p->help + 1);
+        if (p->type == TEX_P_ENUM)
+            fprintf(fp, ": one of %s", tex_param_range(p, rng, sizeof rng));
+        else if (p->type != TEX_P_FLAG && p->type != TEX_P_STRING)
+            fprintf(fp, ", %s", tex_param_range(p, rng, sizeof rng));
+        if (p->type != TEX_P_FLAG && (p->type != TEX_P_STRING || p->defstr))
+            fprintf(fp, "; default %s", tex_param_default(p, def, sizeof def));
+        fputs(".\n", fp);
+    }
+    fputs(".El\n", fp);
+}

@@ -1,0 +1,37 @@
+/* internal.h - what the front end's files share and the tools do not use
+ *
+ * tex_cli_parse (options.c) prints --help and --help-mdoc through help.c, makes
+ * message.c's warning the process's warning handler and its checked close of standard
+ * output an exit handler, and sets OpenMP's threads through threads.c.
+ */
+#ifndef TEX_CLI_INTERNAL_H
+#define TEX_CLI_INTERNAL_H
+
+#include <stdio.h>
+
+#include "../base/param.h"
+
+struct tex_tool;
+
+/* One option the tool takes: its row, and the struct the row's offset is into. */
+struct tex_cli_opt {
+    const struct tex_param *row;
+    void *obj;
+};
+
+/* --help: the usage line, the summary and one line per option, then -h and -V. */
+void tex_cli_help(FILE *fp, const struct tex_tool *t, const struct tex_cli_opt *o, int n);
+/* --help-mdoc: the option list as mdoc, for the man page (tests/mkman). */
+void tex_cli_mdoc(FILE *fp, const struct tex_cli_opt *o, int n);
+
+/* "prog: warning: msg" on a line of its own: the warning handler (error.h). */
+void tex_cli_warning(const char *msg);
+/* At exit: standard output flushed and closed, or "standard output: ..." and _exit(1). */
+void tex_cli_close_stdout(void);
+
+/* At the start of main: OpenMP's idle threads made to sleep (may run the tool again). */
+void tex_cli_passive_threads(char **argv);
+/* -j N: N threads (0: OpenMP's default). */
+void tex_cli_threads(int n);
+
+#endif

@@ -1,0 +1,57 @@
+/* maps.h - a tool's maps in and out
+ *
+ * A tool reads its maps with tex_cli_read and writes its result with tex_cli_write:
+ * to -o FILE in the format of its extension, or to standard output (the EXR stream,
+ * or --format's), the command line appended to the map's history.  Each dies with
+ * libtex's message on failure.  A map need not be held whole: where the output is a
+ * scanline EXR (tex_cli_streams), tex_cli_write_rows writes it as a callback makes
+ * its rows, and tex_cli_stream runs a per-pixel operation over an input a band of
+ * rows at a time.
+ *
+ *   tex_map *m = tex_cli_read(argv[i]);        // NULL or "-": standard input
+ *   ...
+ *   tex_cli_write(m, &c);
+ */
+#ifndef TEX_CLI_MAPS_H
+#define TEX_CLI_MAPS_H
+
+#include "../base/map.h"
+#include "options.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Read a map or die. */
+tex_map *tex_cli_read(const char *path);
+/* The bit depth that --depth chose: 0 (auto), 8, 16 or 32. */
+int tex_cli_depth(const struct tex_common *c);
+/* Append the command line to the history and write the map to -o or
+ * standard output, or die. */
+void tex_cli_write(tex_map *m, const struct tex_common *c);
+
+/* A map made a band of rows at a time, never held whole: where -o (or the
+ * format) asks for a scanline EXR (tex_cli_streams), head (size, channels,
+ * place; its history gains the command line) is written to -o or standard
+ * output as fill makes its rows, as tex_exr_write_rows (io/stream.h) calls
+ * it; dies on errors. */
+int tex_cli_streams(const struct tex_common *c);
+void tex_cli_write_rows(tex_map *head, const struct tex_common *c,
+                        int (*fill)(void *arg, int y, int n, float *rows), void *arg);
+
+/* A per-pixel tool's work in bounded memory: the map at path (NULL or "-":
+ * standard input) goes through op a band of rows at a time, each band a
+ * small map of the input's width (op changes it in place and returns it, or
+ * returns a new map and frees the band; NULL with the error set on
+ * failure), and out to -o or standard output, with the history.  Output
+ * channels and subregions are op's on a 1 x 1 band of ones.  When input or
+ * output is not a scanline EXR (another format, tiles, --mipmap), the map
+ * goes through op whole instead: the same pixels either way, op being
+ * per-pixel.  Dies on errors. */
+void tex_cli_stream(const char *path, const struct tex_common *c,
+                    tex_map *(*op)(tex_map *band, void *arg), void *arg);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

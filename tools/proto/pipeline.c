@@ -1,0 +1,273 @@
+/* pipeline.c - a request made into a pipeline of tools: the primitive's tool with its
+ * parameters, the steps, and the standard scene; every word checked as the tool will */
+#include <limits.h>
+#include <pthread.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "textura.h"
+#include "proto.h"
+
+const char *word(struct pipeline *pl, const char *fmt, ...)
+{
+    va_list ap;
+    if (pl->nwords == MAX_STAGES * MAX_WORDS)
+        return NULL;
+    char *w = pl->words[pl->nwords++];
+    va_start(ap, fmt);
+    vsnprintf(w, sizeof pl->words[0], fmt, ap);
+    va_end(ap);
+    return w;
+}
+
+int arg(struct pipeline *pl, const char *w)
+{
+    struct stage *s = &pl->st[pl->n - 1];
+    if (!w || s->n == MAX_WORDS) {
+        snprintf(pl->err, sizeof pl->err, "too many words in one step");
+        return -1;
+    }
+    s->argv[s->n++] = w;
+    return 0;
+}
+
+int stage(struct pipeline *pl, const char *tool)
+{
+    if (pl->n == MAX_STAGES) {
+        snprintf(pl->err, sizeof pl->err, "too many steps (at most %d)", MAX_STAGES - 2);
+        return -1;
+    }
+    pl->st[pl->n++].n = 0;
+    return arg(pl, word(pl, "%s", tool));
+}
+
+int fail(struct pipeline *pl, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(pl->err, sizeof pl->err, fmt, ap);
+    va_end(ap);
+    return -1;
+}
+
+/* A value for a row: checked by the row itself, as the tool will. */
+static int check_value(struct pipeline *pl, const struct tex_param *p, const char *v)
+{
+    void *scratch = calloc(1, p->off + 4096); /* room for the row's value */
+    int rc = 0;
+    if (strlen(v) > 100)
+        rc = fail(pl, "value too long (%.20s...)", v);
+    else if (!scratch || tex_param_parse(p, scratch, v, TEX_PARAM_OPTION) < 0)
+        rc = fail(pl, "%s", tex_errmsg());
+    free(scratch);
+    return rc;
+}
+
+int is_name(const char *s)
+{
+    if (!*s || strlen(s) > 64)
+        return 0;
+    for (; *s; s++)
+        if (!((*s >= 'a' && *s <= 'z') || (*s >= '0' && *s <= '9') || *s == '_' || *s == '-'))
+            return 0;
+    return 1;
+}
+
+struct req {
+    struct MHD_Connection *c;
+    struct pipeline *pl;
+    int size, failed;
+};
+
+/* p=NAME:VALUE: one parameter of the primitive. */
+static enum MHD_Result each_param(void *cls, enum MHD_ValueKind kind, const char *key,
+                                  const char *value)
+{
+    struct req *r = cls;
+    const struct tex_primitive *prim = NULL;
+    const char *colon;
+    char name[72];
+    (void)kind;
+    if (r->failed || strcmp(key, "p") || !value)
+        return MHD_YES;
+    prim = tex_procs_find(proto.procs,
+                          MHD_lookup_connection_value(r->c, MHD_GET_ARGUMENT_KIND, "prim"));
+    if (!(colon = strchr(value, ':')) || colon - value >= (long)sizeof name - 1) {
+        r->failed = fail(r->pl, "malformed parameter '%.40s' (NAME:VALUE)", value);
+        return MHD_NO;
+    }
+    memcpy(name, value, colon - value);
+    name[colon - value] = 0;
+    const struct tex_param *row = tex_param_find(prim->params, name);
+    if (!row) {
+        r->failed = fail(r->pl, "%s has no parameter '%s'", prim->name, name);
+        return MHD_NO;
+    }
+    for (char *c = name; *c; c++) /* the option's spelling */
+        if (*c == '_')
+            *c = '-';
+    if (row->type == TEX_P_FLAG) {
+        if (strcmp(colon + 1, "0") && strcmp(colon + 1, "1"))
+            r->failed = fail(r->pl, "--%s is 0 or 1 (got '%.20s')", name, colon + 1);
+        else if (!strcmp(colon + 1, "1") && arg(r->pl, word(r->pl, "--%s", name)) < 0)
+            r->failed = -1;
+    } else if (check_value(r->pl, row, colon + 1) < 0 ||
+               arg(r->pl, word(r->pl, "--%s=%s", name, colon + 1)) < 0) {
+        r->failed = -1;
+    }
+    return r->failed ? MHD_NO : MHD_YES;
+}
+
+/* step=KIND:ARG:ARG...: one pipeline step, each word checked. */
+static int step(struct pipeline *pl, const char *spec, int size)
+{
+    char buf[256], *w[8];
+    int n = 0;
+    double x;
+    if (strlen(spec) >= sizeof buf)
+        return fail(pl, "step too long");
+    strcpy(buf, spec);
+    for (char *s = strtok(buf, ":"); s && n < 8; s = strtok(NULL, ":"))
+        w[n++] = s;
+    if (!n)
+        return fail(pl, "empty step");
+    for (int i = 1; i < n; i++)
+        if (tex_parse_real(w[i], &x) < 0 && !is_name(w[i]) && !is_saved_palette(w[i]))
+            return fail(pl, "malformed step argument '%.40s'", w[i]);
+    if (!strcmp(w[0], "palette") && n == 2 && is_saved_palette(w[1])) /* one the editor saved */
+        return stage(pl, "t_palette") | arg(pl, word(pl, "%s/%s", proto.dir, w[1])) |
+               arg(pl, "-");
+    if (!strcmp(w[0], "palette") && n == 2) {
+        char path[PATH_MAX];
+        if (!is_name(w[1]) || tex_palette_find(w[1], path, sizeof path) < 0)
+            return fail(pl, "unknown palette '%.40s'", w[1]);
+        return stage(pl, "t_palette") | arg(pl, word(pl, "%s", w[1])) | arg(pl, "-");
+    }
+    if (!strcmp(w[0], "remap") && n == 3 && (!strcmp(w[1], "gamma") || !strcmp(w[1], "bias") ||
+                                             !strcmp(w[1], "gain")))
+        return stage(pl, "t_remap") |
+               arg(pl, word(pl, "--%s=%s", !strcmp(w[1], "gain") ? "perlin-gain" : w[1], w[2])) |
+               arg(pl, "-");
+    if (!strcmp(w[0], "invert") && n == 1)
+        return stage(pl, "t_remap") | arg(pl, "--invert") | arg(pl, "-");
+    if (!strcmp(w[0], "filter") && n >= 2 && n <= 3) { /* filter:OP[:X], X its one parameter */
+        static const char *const ops[][2] = {
+            {"blur", "sigma"},      {"sharpen", "sigma"},      {"box", "radius"},
+            {"median", "radius"},   {"sobel", "strength"},     {"edges", "strength"},
+            {"emboss", "strength"}, {"normal", "strength"},    {"noise", "stddev"},
+            {"smooth", NULL},       {"gradient", NULL}};
+        for (size_t k = 0; k < sizeof ops / sizeof *ops; k++)
+            if (!strcmp(w[1], ops[k][0])) {
+                if ((n == 3) != (ops[k][1] != NULL))
+                    return fail(pl, "filter %s takes %s", ops[k][0],
+                                ops[k][1] ? "one value" : "no value");
+                return stage(pl, "t_filter") | arg(pl, word(pl, "%s", w[1])) |
+                       (n == 3 ? arg(pl, word(pl, "--%s=%s", ops[k][1], w[2])) : 0) |
+                       arg(pl, "-");
+            }
+        return fail(pl, "unknown filter '%.40s'", w[1]);
+    }
+    if (!strcmp(w[0], "blur") && n == 2)
+        return stage(pl, "t_filter") | arg(pl, "blur") | arg(pl, word(pl, "--sigma=%s", w[1])) |
+               arg(pl, "-");
+    if (!strcmp(w[0], "tile") && n == 3)
+        return stage(pl, "t_tile") | arg(pl, word(pl, "--nu=%s", w[1])) |
+               arg(pl, word(pl, "--nv=%s", w[2])) | arg(pl, word(pl, "-s%d", size)) | arg(pl, "-");
+    return fail(pl, "unknown step '%.40s'", spec);
+}
+
+static enum MHD_Result each_step(void *cls, enum MHD_ValueKind kind, const char *key,
+                                 const char *value)
+{
+    struct req *r = cls;
+    (void)kind;
+    if (r->failed || strcmp(key, "step") || !value)
+        return MHD_YES;
+    if (step(r->pl, value, r->size) < 0) {
+        r->failed = -1;
+        return MHD_NO;
+    }
+    return MHD_YES;
+}
+
+/* The pipeline of a request: the primitive's tool, its parameters, the steps. */
+int build(struct MHD_Connection *c, struct pipeline *pl, int size)
+{
+    const char *name = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "prim");
+    const char *seed = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "seed");
+    const char *tile = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "tile");
+    const struct tex_primitive *p;
+    struct req r = {c, pl, size, 0};
+    double s;
+
+    if (!name || !is_name(name) || !(p = tex_procs_find(proto.procs, name)))
+        return fail(pl, "unknown primitive '%.40s'", name ? name : "");
+    if (tex_primitive_find(name)) {
+        if (stage(pl, word(pl, "t_%s", name)) < 0)
+            return -1;
+    } else if (stage(pl, "t_expr") | arg(pl, "--defs") | arg(pl, proto.defs) | arg(pl, name)) {
+        return -1;
+    }
+    if (arg(pl, word(pl, "-s%d", size)) < 0)
+        return -1;
+    if (seed && (tex_parse_real(seed, &s) < 0 || s != (int)s || s < 0 || s > TEX_SEED_MAX))
+        return fail(pl, "seed must be 0..%d (got '%.20s')", TEX_SEED_MAX, seed);
+    if (seed && arg(pl, word(pl, "-S%d", (int)s)) < 0)
+        return -1;
+    if (tile && !strcmp(tile, "1") && arg(pl, "--tile") < 0)
+        return -1;
+    MHD_get_connection_values(c, MHD_GET_ARGUMENT_KIND, each_param, &r);
+    if (!r.failed)
+        MHD_get_connection_values(c, MHD_GET_ARGUMENT_KIND, each_step, &r);
+    return r.failed ? -1 : 0;
+}
+
+void cmdline(const struct pipeline *pl, struct tex_str *b)
+{
+    for (int i = 0; i < pl->n; i++) {
+        if (i)
+            tex_str_add(b, " | ");
+        for (int k = 0; k < pl->st[i].n; k++) {
+            const char *w = pl->st[i].argv[k];
+            int plain = strspn(w, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                  "0123456789_-=.,/:") == strlen(w);
+            tex_str_add(b, plain ? "%s%s" : "%s'%s'", k ? " " : "", w);
+        }
+    }
+}
+
+/* The standard scene (thesis 4.3.7): the map on a sphere over a plane, through the
+ * application function chosen (Kd, Ks, bump). */
+int scene_stage(struct pipeline *pl, const char *fn, const char *map)
+{
+    char scene[PATH_MAX];
+    struct tex_str s = {0};
+    const char *apply = !fn || !strcmp(fn, "Kd") ? "Kd = f"
+                        : !strcmp(fn, "Ks")      ? "Ks = f"
+                        : !strcmp(fn, "bump")    ? "bump = 2"
+                                                 : NULL;
+    if (!apply)
+        return fail(pl, "the application function must be Kd, Ks or bump (got '%.20s')", fn);
+    tex_str_add(&s, "image 192 144\nsamples 1\nambient 0.25 0.25 0.25\nbackground 0.15 0.15 0.17\n"
+             "camera { eye 0 1.3 -3.6 look 0 0.7 0 fov 42 }\n"
+             "light point { position -3 5 -4 intensity 1 }\n"
+             "texture m file \"%s\"\n"
+             "surface ball { Kd 0.8 Ks 0.3 n 40 apply m { mapping sphere %s } }\n"
+             "surface floor { Kd 0.7 Ks 0.1 n 10 apply m { scale 0.5 %s } }\n"
+             "sphere { centre 0 0.8 0 radius 0.8 surface ball }\n"
+             "plane { surface floor }\n",
+         map, apply, apply);
+    snprintf(scene, sizeof scene, "%s/scene.%lx.scene", proto.tmpdir,
+             (unsigned long)pthread_self());
+    FILE *f = fopen(scene, "w");
+    if (!f || fwrite(s.s, 1, s.n, f) != s.n || fclose(f) != 0) {
+        free(s.s);
+        return fail(pl, "cannot write the scene");
+    }
+    free(s.s);
+    pl->n = 0;
+    return stage(pl, "t_apply") | arg(pl, word(pl, "%s", scene)) | arg(pl, "-q") |
+           arg(pl, "--format=png");
+}

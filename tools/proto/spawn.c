@@ -1,0 +1,116 @@
+/* spawn.c - a pipeline run: its stages spawned without a shell, their output and first
+ * error line gathered, all within RUN_SECONDS */
+#define _GNU_SOURCE /* pipe2, posix_spawn_file_actions_addchdir_np */
+#include <fcntl.h>
+#include <limits.h>
+#include <poll.h>
+#include <signal.h>
+#include <spawn.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "proto.h"
+
+/* The pipeline's stages started, each reading the one before (the first /dev/null), the
+ * last writing to out, all to errfd; pid[i] 0 where one could not start */
+static void spawn_stages(struct pipeline *pl, pid_t *pid, int out, int errfd)
+{
+    int in = -1;
+    char path[PATH_MAX + 64];
+
+    for (int i = 0; i < pl->n; i++) {
+        int p[2] = {-1, out};
+        posix_spawn_file_actions_t fa;
+        if (i < pl->n - 1 && pipe2(p, O_CLOEXEC) < 0)
+            break;
+        posix_spawn_file_actions_init(&fa);
+        if (in >= 0)
+            posix_spawn_file_actions_adddup2(&fa, in, 0);
+        else
+            posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
+        posix_spawn_file_actions_adddup2(&fa, i < pl->n - 1 ? p[1] : out, 1);
+        posix_spawn_file_actions_adddup2(&fa, errfd, 2);
+        posix_spawn_file_actions_addchdir_np(&fa, proto.tmpdir);
+        snprintf(path, sizeof path, "%s/%s", proto.bindir, pl->st[i].argv[0]);
+        pl->st[i].argv[pl->st[i].n] = NULL;
+        if (posix_spawn(&pid[i], path, &fa, NULL, (char **)pl->st[i].argv, environ) != 0)
+            pid[i] = 0;
+        posix_spawn_file_actions_destroy(&fa);
+        if (in >= 0)
+            close(in);
+        if (i < pl->n - 1) {
+            close(p[1]);
+            in = p[0];
+        }
+    }
+}
+
+/* Run the pipeline; the last stage's standard output into out.  Returns the
+ * worst exit status (0 ok, 1 runtime, 2 usage) with stderr's first line in err. */
+int run(struct pipeline *pl, struct tex_str *out)
+{
+    pid_t pid[MAX_STAGES] = {0};
+    int errp[2], outp[2], status = 0;
+    struct tex_str err = {0};
+    time_t end = time(NULL) + RUN_SECONDS;
+
+    if (pipe2(errp, O_CLOEXEC) < 0 || pipe2(outp, O_CLOEXEC) < 0)
+        return fail(pl, "cannot make a pipe"), 1;
+    spawn_stages(pl, pid, outp[1], errp[1]);
+    close(outp[1]);
+    close(errp[1]);
+    struct pollfd fds[2] = {{outp[0], POLLIN, 0}, {errp[0], POLLIN, 0}};
+    while (fds[0].fd >= 0 || fds[1].fd >= 0) {
+        int left = (int)(end - time(NULL));
+        if (left <= 0 || poll(fds, 2, left * 1000) <= 0) {
+            for (int i = 0; i < pl->n; i++)
+                if (pid[i] > 0)
+                    kill(pid[i], SIGKILL);
+            snprintf(pl->err, sizeof pl->err, "the pipeline took longer than %d s", RUN_SECONDS);
+            status = 1;
+            break;
+        }
+        for (int k = 0; k < 2; k++) {
+            char buf[65536];
+            ssize_t got;
+            if (fds[k].fd < 0 || !(fds[k].revents & (POLLIN | POLLHUP | POLLERR)))
+                continue;
+            if ((got = read(fds[k].fd, buf, sizeof buf)) <= 0) {
+                close(fds[k].fd);
+                fds[k].fd = -1;
+                continue;
+            }
+            struct tex_str *b = k ? &err : out;
+            if (b->n + got > (size_t)64 << 20) /* more than any map of MAX_SIDE */
+                continue;
+            tex_str_bytes(b, buf, (size_t)got);
+        }
+    }
+    for (int k = 0; k < 2; k++)
+        if (fds[k].fd >= 0)
+            close(fds[k].fd);
+    for (int i = 0; i < pl->n; i++) {
+        int ws;
+        if (pid[i] <= 0) {
+            status = 1;
+            snprintf(pl->err, sizeof pl->err, "cannot run %s", pl->st[i].argv[0]);
+            continue;
+        }
+        waitpid(pid[i], &ws, 0);
+        int code = WIFEXITED(ws) ? WEXITSTATUS(ws) : 1;
+        if (code > status)
+            status = code;
+    }
+    if (status && err.s) {
+        char *nl = strchr(err.s, '\n');
+        if (nl)
+            *nl = 0;
+        snprintf(pl->err, sizeof pl->err, "%s", err.s);
+    }
+    free(err.s);
+    return status;
+}
