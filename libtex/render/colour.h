@@ -64,20 +64,14 @@ float tex_srgb_decode(float encoded);
 /* d->v[i] = expr for every sample i < n: RGB unrolled (n = 3), with all
  * three values computed before any is stored (d may be an operand: the
  * compiler need not reload after each store), spectra vectorised. */
-#define TEX_COLOUR_EACH(n, d, expr)                                                                \
-    do {                                                                                           \
-        if ((n) == 3) {                                                                            \
-            int i = 0;                                                                             \
-            float r0_ = (expr);                                                                    \
-            i = 1;                                                                                 \
-            float r1_ = (expr);                                                                    \
-            i = 2;                                                                                 \
-            float r2_ = (expr);                                                                    \
-            (void)i;                                                                               \
-            (d)->v[0] = r0_, (d)->v[1] = r1_, (d)->v[2] = r2_;                                     \
-        } else {                                                                                   \
-            _Pragma("omp simd") for (int i = 0; i < (n); i++)(d)->v[i] = (expr);                   \
-        }                                                                                          \
+#define TEX_COLOUR_EACH(n, d, expr)                                                        \
+    do {                                                                                   \
+        float r_[3];                                                                       \
+        if ((n) == 3) {                                                                    \
+            for (int i = 0; i < 3; i++) r_[i] = (expr);                                    \
+            (d)->v[0] = r_[0], (d)->v[1] = r_[1], (d)->v[2] = r_[2];                        \
+        } else                                                                             \
+            _Pragma("omp simd") for (int i = 0; i < (n); i++)(d)->v[i] = (expr);           \
     } while (0)
 
 static inline void tex_colour_set(tex_colour *d, int n, float x)
