@@ -99,7 +99,8 @@ PCFILE   = $(BUILD)/lib/pkgconfig/textura.pc
 # installed.)
 RENDER_PRIVATE = scene camera whitted vecmath shape bvh light texture surface mipmap mapping \
                  footprint appfn packet render_shade render_ct
-PRIVATE_HEADERS = libtex/base/kdtree.h libtex/base/trig_fdlibm.h libtex/io/oiio_bridge.h \
+PRIVATE_HEADERS = libtex/base/kdtree.h libtex/base/trig_fdlibm.h libtex/base/simd.h \
+                  libtex/base/fp_strict.h libtex/io/json.h libtex/io/strbuf.h libtex/io/oiio_bridge.h \
                   libtex/io/codec_bridge.h libtex/prim/noise_grid.h libtex/prim/cellular_impl.h \
                   libtex/ops/palette_srgb.h \
                   libtex/lang/lex.h libtex/lang/expr.h libtex/lang/rowcode.h \
@@ -126,6 +127,11 @@ layout:
 	@ln -sfn ../../../share/proto $(BUILD)/share/textura/proto
 	@printf 'CC = %s\nCXX = %s\nSANITIZE = %s\nOPT = %s\n' '$(CC)' '$(CXX)' '$(SANITIZE)' '$(OPT)' \
 	    >$(BUILD)/config.mk
+
+# libtex exports only what its installed headers declare (base/api.h): everything else in
+# it is hidden, FLANN's templates and libstdc++'s included.
+$(BUILD)/obj/libtex/%.o: ALL_CFLAGS += -fvisibility=hidden
+$(BUILD)/obj/libtex/%.o: ALL_CXXFLAGS += -fvisibility=hidden -fvisibility-inlines-hidden
 
 $(BUILD)/obj/%.o: %.c | $(DEPS_FIRST)
 	@mkdir -p $(@D)
@@ -158,9 +164,13 @@ $(STATIC): $(LIB_OBJ)
 	rm -f $@
 	ar rcs $@ $^
 
+# libtex.so's symbols: the tex_ names its objects leave visible (base/api.h); the C++
+# run-time's template instances and OpenMP's named critical sections stay inside.
 $(SHARED): $(LIB_OBJ)
 	@mkdir -p $(@D)
-	$(CC) -shared -Wl,-soname,libtex.so.0 $(LDFLAGS) $(LINK_LTO) -o $@ $^ $(LDLIBS)
+	printf '{ global: tex_*; local: *; };\n' >$(BUILD)/lib/libtex.sym
+	$(CC) -shared -Wl,-soname,libtex.so.0 -Wl,--version-script=$(BUILD)/lib/libtex.sym $(LDFLAGS) \
+	    $(LINK_LTO) -o $@ $^ $(LDLIBS)
 	ln -sf libtex.so.0 $(BUILD)/lib/libtex.so
 
 $(BRIDGE): libtex/io/oiio_bridge.cpp libtex/io/oiio_bridge.h | $(DEPS_FIRST)

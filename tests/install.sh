@@ -50,6 +50,44 @@ check "the public headers compile as C++" c++ -fsyntax-only -I"$T/p/include" -I/
 check "installed tools find the OpenImageIO bridge" "$T/p/bin/t_noise" -s 8 -o "$T/x.bmp"
 check "installed tools find the shipped palettes" bash -c "'$T/p/bin/t_noise' -s 8 | TEXTURA_PALETTES= '$T/p/bin/t_palette' fire | '$T/p/bin/t_info' >/dev/null"
 
+# libtex.so exports exactly what the installed headers declare (base/api.h), every
+# installed header is read by textura.h, and textura.h's overview names each of them.
+# exports LIB: the symbols a shared library defines for programs
+exports() { nm -D --defined-only "$1" | awk '{ print $3 }' | sort; }
+# decls INCLUDE: what the headers under INCLUDE/textura declare, then the headers read
+decls() { python3 "$top/tests/api_decls.py" "$1"; }
+if ! command -v clang >/dev/null; then
+    skip "libtex.so exports what the installed headers declare" "no clang (make deps installs it)"
+elif decls "$T/p/include" >"$T/decls" 2>"$T/decls.err"; then
+    sed -n 's/^D //p' "$T/decls" | sort >"$T/declared"
+    exports "$T/p/lib/libtex.so.0" >"$T/exported"
+    diff=$(comm -3 "$T/declared" "$T/exported" | head -20)
+    [ -s "$T/declared" ] && [ -z "$diff" ] \
+        && ok "libtex.so exports exactly the $(wc -l <"$T/declared") functions and variables the installed headers declare" \
+        || notok "libtex.so's exports against the headers' declarations (left: declared only)" "$diff"
+    (cd "$T/p/include/textura" && find . -type f | sed 's|^\./||' | sort) >"$T/installed"
+    sed -n 's/^H //p' "$T/decls" | sort >"$T/read"
+    missing=$(comm -23 "$T/installed" "$T/read" | grep -vx 'textura.h')
+    [ -z "$missing" ] && ok "textura.h reads every installed header" \
+        || notok "installed headers textura.h does not read" "$missing"
+    unnamed=$(while read -r h; do
+        grep -q "^ \*  *$(basename "$h" | sed 's/\./\\./g')\b\|[ (]$(basename "$h" | sed 's/\./\\./g')[ ,)]" \
+            "$T/p/include/textura/textura.h" || echo "$h"; done < <(grep -vx 'textura.h' "$T/installed"))
+    [ -z "$unnamed" ] && ok "textura.h's overview names every installed header" \
+        || notok "headers textura.h's overview leaves out" "$unnamed"
+    # the checks find a planted declaration and a planted header
+    cp -R "$T/p/include" "$T/inc2"
+    printf '#include "api.h"\nTEX_API_BEGIN\nint tex_planted(void);\nTEX_API_END\n' >>"$T/inc2/textura/base/rng.h"
+    : >"$T/inc2/textura/base/planted.h"
+    decls "$T/inc2" >"$T/decls2" 2>/dev/null
+    sed -n 's/^D //p' "$T/decls2" | sort | comm -23 - "$T/exported" | grep -qx tex_planted \
+        && ! sed -n 's/^H //p' "$T/decls2" | grep -qx base/planted.h \
+        && ok "the export check finds a planted declaration and a header textura.h does not read" \
+        || notok "the export check finds what is planted"
+else
+    notok "the installed headers' declarations" "$(head -3 "$T/decls.err")"
+fi
+
 # The renderer's public header is the only one of its own that is installed,
 # and it is enough to render.
 [ -e "$T/p/include/textura/render/render.h" ] && [ ! -e "$T/p/include/textura/render/scene.h" ] \

@@ -12,9 +12,9 @@
 #ifndef TEX_ERROR_H
 #define TEX_ERROR_H
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "api.h"
+
+TEX_API_BEGIN
 
 enum tex_err_kind { TEX_ERR_RUNTIME = 1, TEX_ERR_USAGE = 2 };
 
@@ -36,7 +36,5 @@ typedef void (*tex_warning_fn)(const char *msg);
 void tex_set_warning_handler(tex_warning_fn fn);
 void tex_warning(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

@@ -22,11 +22,11 @@
 #ifndef TEX_MAP_H
 #define TEX_MAP_H
 
+#include "api.h"
+
 #include <stddef.h>
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 #define TEX_MAP_MAX_SIDE 65536
 #define TEX_MAP_MAX_SAMPLES (1ULL << 30)
@@ -130,8 +130,6 @@ struct tex_stats {
 };
 void tex_map_stats(const tex_map *m, int channel, struct tex_stats *s);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif
 

@@ -43,12 +43,12 @@
 #ifndef TEX_PARAM_H
 #define TEX_PARAM_H
 
+#include "api.h"
+
 #include <stddef.h>
 #include <stdio.h>
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 struct tex_param;
 /* A SPECIAL row's reader: reader is the caller's (a scene's parser, which has just taken the
@@ -186,7 +186,5 @@ int tex_parse_real(const char *text, double *out);         /* -1 if not a finite
 int tex_parse_color(const char *text, float rgba[4]);      /* -1 if malformed */
 int tex_parse_size(const char *text, int *w, int *h);      /* N or WxH; -1 outside the map limits */
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

@@ -16,9 +16,9 @@
 #ifndef TEX_PATHS_H
 #define TEX_PATHS_H
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "api.h"
+
+TEX_API_BEGIN
 
 enum tex_dir {
     TEX_DIR_LIB, /* LIBDIR: the bridges are in its textura/ folder */
@@ -28,7 +28,5 @@ enum tex_dir {
 /* The folder, without a trailing '/'; never NULL. */
 const char *tex_install_dir(enum tex_dir d);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

@@ -17,9 +17,9 @@
 #ifndef TEX_PROGRESS_H
 #define TEX_PROGRESS_H
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "api.h"
+
+TEX_API_BEGIN
 
 typedef void (*tex_progress_fn)(long done, long total, void *arg);
 
@@ -34,7 +34,5 @@ void tex_progress_hold(int on);
 /* The work is over: the bar reaches 100% (if it was started at all). */
 void tex_progress_done(void);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

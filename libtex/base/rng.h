@@ -14,11 +14,11 @@
 #ifndef TEX_RNG_H
 #define TEX_RNG_H
 
+#include "api.h"
+
 #include <stdint.h>
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 typedef struct tex_rng {
     uint64_t s[4];
@@ -40,7 +40,5 @@ uint32_t tex_rng_below(tex_rng *r, uint32_t n); /* 0..n-1 */
 double tex_rng_gauss(tex_rng *r);     /* standard normal */
 void tex_rng_shuffle(tex_rng *r, int *a, int n); /* Fisher-Yates */
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

@@ -28,9 +28,9 @@
 #ifndef TEX_TRIG_H
 #define TEX_TRIG_H
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "api.h"
+
+TEX_API_BEGIN
 
 /* out[i] = sin(x[i] + quarter pi/2) for i < n: quarter 0 sine, 1 cosine. out may be x. */
 void tex_sin_n(int n, const double *x, double *out, int quarter);
@@ -40,7 +40,5 @@ double tex_atan2(double y, double x);
 /* out[i] = tex_atan2(y[i], x[i]) for i < n, eight at a time where the CPU has AVX-512. */
 void tex_atan2_n(int n, const double *y, const double *x, double *out);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

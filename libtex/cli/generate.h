@@ -12,12 +12,11 @@
 #ifndef TEX_CLI_GENERATE_H
 #define TEX_CLI_GENERATE_H
 
+#include "../base/api.h"
 #include "../base/param.h"
 #include "../prim/prim.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 /* The whole main of a generator tool t_NAME: parse, sample, write. */
 int tex_generate_main(const struct tex_primitive *p, int argc, char **argv);
@@ -29,7 +28,5 @@ int tex_generate_main_rows(const struct tex_primitive *p, const char *name,
                            const char *operands, const struct tex_param *rows, void *opts,
                            int argc, char **argv);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

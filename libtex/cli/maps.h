@@ -15,12 +15,11 @@
 #ifndef TEX_CLI_MAPS_H
 #define TEX_CLI_MAPS_H
 
+#include "../base/api.h"
 #include "../base/map.h"
 #include "options.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 /* Read a map or die. */
 tex_map *tex_cli_read(const char *path);
@@ -51,7 +50,5 @@ void tex_cli_write_rows(tex_map *head, const struct tex_common *c,
 void tex_cli_stream(const char *path, const struct tex_common *c,
                     tex_map *(*op)(tex_map *band, void *arg), void *arg);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

@@ -15,9 +15,9 @@
 #ifndef TEX_CLI_MESSAGE_H
 #define TEX_CLI_MESSAGE_H
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+#include "../base/api.h"
+
+TEX_API_BEGIN
 
 struct tex_common;
 
@@ -37,7 +37,5 @@ void tex_usage_die(const char *fmt, ...) __attribute__((noreturn, format(printf,
 void tex_cli_progress(long done, long total, void *arg);
 int tex_cli_progress_wanted(const struct tex_common *c);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

@@ -31,11 +31,10 @@
 #ifndef TEX_CLI_OPTIONS_H
 #define TEX_CLI_OPTIONS_H
 
+#include "../base/api.h"
 #include "../base/param.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 enum {
     TEX_OPT_OUTPUT = 1 << 0,
@@ -94,7 +93,5 @@ int tex_cli_given(const char *name);
 void tex_cli_check_kinds(const struct tex_tool *t, const char *choices, int kind,
                          const char *what);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

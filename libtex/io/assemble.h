@@ -16,11 +16,10 @@
 #ifndef TEX_ASSEMBLE_H
 #define TEX_ASSEMBLE_H
 
+#include "../base/api.h"
 #include "stream.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 /* Assemble the n window files into fd (a regular file or a pipe), in
  * tile x tile tiles when tile > 0 (a file only); name is for messages; history (may be NULL) is appended to the first window's.
@@ -28,7 +27,5 @@ extern "C" {
 int tex_assemble(const char *const *paths, int n, int fd, const char *name, int tile,
                  enum tex_compression c, const char *history);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

@@ -32,12 +32,11 @@
 #ifndef TEX_FILE_H
 #define TEX_FILE_H
 
+#include "../base/api.h"
 #include "../base/map.h"
 #include "stream.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 enum tex_format {
     TEX_FMT_UNKNOWN, TEX_FMT_EXR, TEX_FMT_PNG, TEX_FMT_TIFF, TEX_FMT_PNM, TEX_FMT_PFM,
@@ -126,7 +125,5 @@ int tex_read_fd(int fd, tex_buf *b, const char *name);
  * than MAX bytes" naming `what` ("a scene") past the limit. */
 char *tex_read_text(const char *path, size_t max, size_t *len, const char *what);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

@@ -28,11 +28,10 @@
 
 #include <stddef.h>
 
+#include "../base/api.h"
 #include "../base/map.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 enum tex_pnm_variant { TEX_PNM_AUTO, TEX_PNM_PAM, TEX_PNM_PBM };
 
@@ -41,7 +40,5 @@ int tex_pnm_write_fd(const tex_map *m, int fd, int depth, enum tex_pnm_variant v
                      const char *name);
 int tex_pfm_write_fd(const tex_map *m, int fd, const char *name);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

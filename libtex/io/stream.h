@@ -23,11 +23,10 @@
 
 #include <stddef.h>
 
+#include "../base/api.h"
 #include "../base/map.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 enum tex_compression { TEX_COMPRESS_NONE, TEX_COMPRESS_ZIP, TEX_COMPRESS_PIZ };
 
@@ -110,7 +109,5 @@ tex_map **tex_exr_decode_levels(const void *data, size_t len, const char *name, 
  * hands whole files to OpenImageIO instead. */
 const char *tex_exr_unsupported(const void *data, size_t len);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

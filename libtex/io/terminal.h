@@ -23,11 +23,10 @@
 
 #include <stdio.h>
 
+#include "../base/api.h"
 #include "../base/map.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 enum tex_terminal_proto { TEX_TERMINAL_SIXEL, TEX_TERMINAL_KITTY };
 
@@ -35,7 +34,5 @@ enum tex_terminal_proto tex_terminal_guess(void);
 /* Draw m (1..4 channels) at the cursor; -1 with tex_error() on a write error. */
 int tex_terminal_write(FILE *fp, const tex_map *m, enum tex_terminal_proto proto);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

@@ -31,12 +31,11 @@
 #ifndef TEX_COMPOSE_H
 #define TEX_COMPOSE_H
 
+#include "../base/api.h"
 #include "../base/map.h"
 #include "transform.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 enum tex_op {
     TEX_OP_ADD, TEX_OP_SUB, TEX_OP_MUL, TEX_OP_DIV, TEX_OP_MIN, TEX_OP_MAX, TEX_OP_MIX,
@@ -117,7 +116,5 @@ tex_map *tex_warp(const tex_map *m, const tex_map *by, const struct tex_warp_opt
 #define TEX_BLUR_MAX 256
 tex_map *tex_blur(const tex_map *m, double sigma);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

@@ -43,11 +43,10 @@
 
 #include <stdint.h>
 
+#include "../base/api.h"
 #include "../base/map.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 /* The blur kernel's half-width for sigma: ceil(4 sigma). */
 int tex_blur_radius(double sigma);
@@ -72,7 +71,5 @@ tex_map *tex_filter_gradient(const tex_map *m, enum tex_edge e);
  * and smooth.  Any r: the edge rule extends the map as far as it needs. */
 tex_map *tex_filter_separable(const tex_map *m, const float *k, int r, enum tex_edge e);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

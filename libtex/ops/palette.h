@@ -51,12 +51,12 @@
 #ifndef TEX_PALETTE_H
 #define TEX_PALETTE_H
 
+#include "../base/api.h"
+
 #include <stddef.h>
 #include <stdio.h>
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 enum tex_palette_space { TEX_SPACE_RGB, TEX_SPACE_OKLAB };
 
@@ -118,7 +118,5 @@ float tex_palette_t(double v, double lo, double hi, enum tex_outside outside);
 void tex_srgb_to_oklab(const float rgb[3], float lab[3]);
 void tex_oklab_to_srgb(const float lab[3], float rgb[3]);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

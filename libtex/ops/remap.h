@@ -22,11 +22,10 @@
 #ifndef TEX_REMAP_H
 #define TEX_REMAP_H
 
+#include "../base/api.h"
 #include "../base/map.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 struct tex_remap {
     double bias, gain, gamma;   /* 0.5, 0.5, 1: identity */
@@ -47,7 +46,5 @@ int tex_remap_check(const struct tex_remap *r);
 /* Remap m's colour channels in place (parallel); -1 if r is invalid. */
 int tex_remap_map(tex_map *m, const struct tex_remap *r);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

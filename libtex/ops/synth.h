@@ -79,11 +79,10 @@
 
 #include <stdint.h>
 
+#include "../base/api.h"
 #include "../base/map.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 /* 16384^2: the coordinates and neighbourhoods take about 16 bytes a pixel. */
 #define TEX_SYNTH_MAX_PIXELS (1LL << 28)
@@ -107,7 +106,5 @@ struct tex_synth_opts {
 tex_map *tex_synth(const tex_map *sample, int w, int h, const struct tex_synth_opts *o,
                    const tex_map *guide, const tex_map *mask);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

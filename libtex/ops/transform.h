@@ -28,11 +28,10 @@
 #ifndef TEX_TRANSFORM_H
 #define TEX_TRANSFORM_H
 
+#include "../base/api.h"
 #include "../base/map.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 struct tex_sampler {
     const tex_map *m;
@@ -71,7 +70,5 @@ tex_map *tex_expand(const tex_map *m, int w, int h, const float bg[4]);
 /* The window [x0,x1) x [y0,y1), which must lie inside m. */
 tex_map *tex_clip(const tex_map *m, int x0, int y0, int x1, int y1);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

@@ -60,11 +60,11 @@
 #ifndef TEX_CELLULAR_H
 #define TEX_CELLULAR_H
 
+#include "../base/api.h"
+
 #include <stdint.h>
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 #define TEX_POINTS_MAX 10000000
 
@@ -128,7 +128,5 @@ void tex_cellular_query(const tex_cellular *c, int n, const double *q, double *f
 #define TEX_METRIC_P_MAX 64
 int tex_metric_parse(const char *text, enum tex_metric *m, double *p);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

@@ -41,16 +41,13 @@
 #ifndef TEX_GEOMETRY_H
 #define TEX_GEOMETRY_H
 
+#include "../base/api.h"
 #include "prim.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 /* The region id of an initialised geometric field at one point (u,v). */
 int tex_geometry_region(const struct tex_field *f, double u, double v);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

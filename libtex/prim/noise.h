@@ -54,11 +54,10 @@
 
 #include <stdint.h>
 
+#include "../base/api.h"
 #include "../base/param.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 #define TEX_NOISE_MAX_GRADIENTS 4096
 
@@ -249,7 +248,5 @@ void tex_octave_rows_mf(const tex_octaves *o, int k, int y, int n, int op,
  * still map, unchanged); -1 with a usage error when frame is not 0..frames-1. */
 int tex_noise_loop(int frames, int frame, double radius, double *z, double *w, int *dims);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

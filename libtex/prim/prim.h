@@ -40,12 +40,11 @@
 
 #include <stdint.h>
 
+#include "../base/api.h"
 #include "../base/map.h"
 #include "../base/param.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 enum {
     TEX_PRIM_2D = 1 << 0,
@@ -192,7 +191,5 @@ int tex_field_sample_into(const struct tex_field *f, tex_map *m);
  * no window): the same rows, made the same way, into a map made once (a benchmark's fills). */
 int tex_field_sample_rows(const struct tex_field *f, tex_map *m);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif

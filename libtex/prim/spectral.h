@@ -84,11 +84,10 @@
 
 #include <stdint.h>
 
+#include "../base/api.h"
 #include "../base/map.h"
 
-#ifdef __cplusplus
-extern "C" {
-#endif
+TEX_API_BEGIN
 
 enum tex_fft_output { TEX_FFT_LOGMAG, TEX_FFT_MAG, TEX_FFT_PHASE, TEX_FFT_COMPLEX };
 enum tex_ifft_phase { TEX_PHASE_RANDOM, TEX_PHASE_ZERO, TEX_PHASE_MAP };
@@ -128,7 +127,5 @@ tex_map *tex_sparse_convolve(const tex_map *sample, int w, int h, const struct t
  * (after "what: " unless what is NULL). */
 int tex_check_finite(const tex_map *m, const char *what);
 
-#ifdef __cplusplus
-}
-#endif
+TEX_API_END
 #endif
