@@ -14,7 +14,7 @@
 #   make fuzz       build the fuzz targets (clang, libFuzzer)
 #
 # Sources are found by wildcard: a new libtex/LAYER/*.c joins the library, a new
-# tools/t_*.c becomes a tool, tests/unit/*.c and tests/*.sh join the suite.
+# tools/t_*.c becomes a tool, tests/LAYER/test_*.c and tests/LAYER/*.sh join the suite.
 
 # One job per core unless -j is given: every tree, and make test's three at once.
 JOBS    ?= $(shell nproc 2>/dev/null || echo 2)
@@ -80,8 +80,11 @@ LIB_CXX  = $(filter-out %_bridge.cpp,$(foreach l,$(LAYERS),$(wildcard libtex/$(l
 LIB_OBJ  = $(LIB_SRC:%.c=$(BUILD)/obj/%.o) $(LIB_CXX:%.cpp=$(BUILD)/obj/%.o)
 TOOL_SRC = $(wildcard tools/t_*.c)
 TOOLS    = $(TOOL_SRC:tools/%.c=$(BUILD)/bin/%)
-UNIT_SRC = $(wildcard tests/unit/test_*.c)
-UNITS    = $(UNIT_SRC:tests/unit/%.c=$(BUILD)/tests/%)
+# The tests follow the layers (tests/base ... tests/cli), the tools' end-to-end and the house's
+# own checks beside them; a unit test's program is BUILD/tests/test_NAME.
+TEST_DIRS = base io prim ops lang render cli tools house
+UNIT_SRC = $(foreach d,$(TEST_DIRS),$(wildcard tests/$(d)/test_*.c))
+UNITS    = $(addprefix $(BUILD)/tests/,$(basename $(notdir $(UNIT_SRC))))
 BRIDGE   = $(BUILD)/lib/textura/textura-oiio.so
 # One small bridge per codec library, each loaded when a file needs it.
 CODECS   = png jpeg tiff
@@ -204,11 +207,13 @@ $(BUILD)/bin/%: $(BUILD)/obj/tools/%.o $(OMP_ENV) $(STATIC)
 	$(CC) $(LDFLAGS) $(LINK_LTO) $(PROG_LDFLAGS) -o $@ $< $(PROG_OBJ) $(OMP_ENV) $(STATIC) $(PROG_LDLIBS)
 
 .PRECIOUS: $(BUILD)/obj/%.o
-$(BUILD)/tests/%: $(BUILD)/obj/tests/unit/%.o $(STATIC)
+# each unit test's program from its object, wherever its layer's folder is
+$(foreach t,$(UNIT_SRC),$(eval $(BUILD)/tests/$(basename $(notdir $(t))): $(BUILD)/obj/$(t:.c=.o)))
+$(UNITS): $(STATIC)
 	@mkdir -p $(@D)
-	$(CC) $(LDFLAGS) $(LINK_LTO) -o $@ $< $(STATIC) $(PROG_LDLIBS)
+	$(CC) $(LDFLAGS) $(LINK_LTO) -o $@ $(filter %.o,$^) $(STATIC) $(PROG_LDLIBS)
 
-$(BUILD)/obj/tests/unit/%.o: CPPFLAGS += -Itests/unit
+$(BUILD)/obj/tests/%.o: CPPFLAGS += -Itests
 
 check: all $(UNITS)
 
@@ -221,7 +226,7 @@ demo: all
 	@echo "wrote demo.png"
 
 # make test: the suite as built and again built with AddressSanitizer and UBSan, and
-# tests/compilers.sh on a clang build (maps must not depend on the compiler).  The three
+# tests/house/compilers.sh on a clang build (maps must not depend on the compiler).  The three
 # trees build at once, one job per core in all; tests/run runs the files concurrently.
 # make test-clang runs the whole suite on the clang build (CI runs it after make test).
 # The sanitizer and clang trees keep line tables only (-g1): reports and backtraces

@@ -2,10 +2,10 @@
  *
  * Include this one header, link with `pkg-config --libs textura`.
  * libtex is layered; each folder is a layer and includes point only down
- * the list (tests/layers.sh checks it). Each module has its own header,
+ * the list (tests/house/layers.sh checks it). Each module has its own header,
  * whose top is its manual.  These are the installed ones, every one of them
  * included here; libtex.so exports what they declare and nothing else
- * (base/api.h; tests/install.sh checks it).
+ * (base/api.h; tests/house/install.sh checks it).
  *
  * base/     the foundation
  *   api.h       what the headers export

@@ -3,7 +3,7 @@
 # primitives, and the seed paper's five spheres: DIR/fig_ID.png and .exr for each, and
 # DIR/figures.md, a page with each one's caption (translated) and the commands that made it.
 #   patterns/figures.sh [-o DIR] [-s N]      (default doc/figures, maps N = 256 wide)
-# `make figures` runs it; tests/figures.sh checks each figure against a golden image.
+# `make figures` runs it; tests/tools/figures.sh checks each figure against a golden image.
 recipe=doc/figures # -o: the folder
 size=256
 . "$(dirname "$0")/recipe.sh"
@@ -13,7 +13,7 @@ dir=$(cd "$dir" && pwd)
 cd "$tmp"
 s=$size h=$((size / 2))
 page=$dir/figures.md
-printf '# The thesis'"'"'s figures, rebuilt\n\nMade by `make figures` (patterns/figures.sh); each is checked against a golden image by tests/figures.sh. Captions are translated from the thesis and the colour-model paper (Ferreira 1991).\n' >"$page"
+printf '# The thesis'"'"'s figures, rebuilt\n\nMade by `make figures` (patterns/figures.sh); each is checked against a golden image by tests/tools/figures.sh. Captions are translated from the thesis and the colour-model paper (Ferreira 1991).\n' >"$page"
 # figure ID CAPTION COMMANDS: run the commands (which leave fig.exr), keep it as fig_ID, and
 # put it on the page with its caption and commands
 figure() {

@@ -11,7 +11,7 @@
  *
  * The headers that stay inside libtex (render/scene.h, lang/expr.h, base/simd.h ...) use
  * neither: what they declare is libtex's own, shared between its files and hidden from
- * programs.  tests/install.sh checks that libtex.so exports exactly what the installed
+ * programs.  tests/house/install.sh checks that libtex.so exports exactly what the installed
  * headers declare.
  */
 #ifndef TEX_API_H

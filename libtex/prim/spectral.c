@@ -41,7 +41,7 @@ static void setup(void)
 
 /* Plans use as many threads as OpenMP (-j).  ESTIMATE plans do not depend
  * on timings, and FFTW's threads split independent rows and columns, so the
- * bits do not depend on the thread count (tests/spectral.sh checks it). */
+ * bits do not depend on the thread count (tests/prim/spectral.sh checks it). */
 static void plan_setup(void)
 {
     pthread_once(&setup_once, setup);

@@ -111,7 +111,7 @@ static const double log2_poly[7] = {1.4426913825514791,   -0.72114329207588301,
  * [0, nlevels - 1], l = floor(lod), *a = lod - l.  log2(x2) from the exponent bits and a
  * polynomial in the mantissa, not libm's, which cost a sixth of a textured hit: log2(1 + m) / m
  * interpolated at the 7 Chebyshev nodes of [0, 1], scaled to give 1 at m = 1; so *a is within
- * 1.1e-6 of libm's, monotonic and exact at powers of two (tests/unit/test_render_mip.c). */
+ * 1.1e-6 of libm's, monotonic and exact at powers of two (tests/render/test_render_mip.c). */
 static inline int mip_level(const struct tex_texture *t, double x2, double *a)
 {
     *a = 0;

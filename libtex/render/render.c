@@ -17,7 +17,7 @@
  * (plain_shade), the others one by one.  A point gets the same value in a call
  * of any length, and each pixel draws from its own rng in the same order, so
  * the image is the one pixel-by-pixel tracing makes; TEXTURA_PACKETS=0 in the
- * environment traces pixel by pixel (tests/t_apply_packets.sh compares the
+ * environment traces pixel by pixel (tests/render/t_apply_packets.sh compares the
  * two).
  */
 #include <math.h>

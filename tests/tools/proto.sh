@@ -1,0 +1,156 @@
+#!/usr/bin/env bash
+# t_proto: the editor's server on a free port: token, previews from the descriptors,
+# saves equal to the command line's output, confinement, bad requests and bursts.
+. "$(dirname "$0")/../lib.sh"
+top=${TEXTURA_TOP:-.}
+mkdir -p "$T/work"
+start_proto "$T/work" --defs "$top/patterns/primitives.tp"
+url=$proto_url
+case $url in http://127.0.0.1:*/\?token=*) ok "t_proto prints a 127.0.0.1 URL with a token" ;;
+    *) notok "t_proto URL" "$(cat "$T/.proto_url" "$T/.proto_log")"; exit 0 ;; esac
+python3 - "$url" "$T/work" "$T" <<'PY'
+import http.client, json, os, subprocess, sys, threading, time, urllib.parse as up
+url, work, tmp = sys.argv[1:4]
+u = up.urlsplit(url)
+token = up.parse_qs(u.query)["token"][0]
+host, port = u.hostname, u.port
+def say(ok, name, why=""):
+    print(("ok - " if ok else "not ok - ") + name + ("" if ok else ": " + str(why)[:300]), flush=True)
+def get(path, params=None, tok=True):
+    q = list(params or [])
+    if tok:
+        q.insert(0, ("token", token))
+    c = http.client.HTTPConnection(host, port, timeout=60)
+    c.request("GET", path + "?" + up.urlencode(q))
+    r = c.getresponse()
+    body = r.read()
+    c.close()
+    return r.status, body
+
+s, b = get("/", tok=False)
+say(s == 403, "a request without the token gets 403", s)
+s, b = get("/", [("token", "0" * 32)], tok=False)
+say(s == 403, "a wrong token gets 403", s)
+s, b = get("/")
+say(s == 200 and b"<html" in b, "the page is served with the token", s)
+s, b = get("/api/primitives")
+j = json.loads(b)
+names = {p["name"]: p for p in j["primitives"]}
+freq = [r for r in names["noise"]["params"] if r["name"] == "frequency"]
+say(freq and freq[0]["max"] == 1e6 and freq[0]["default"] == "8",
+    "primitives and parameter rows come from the descriptors", freq)
+say("marble" in names and names["marble"]["composed"] == 1 and
+    any(r["name"] == "veins" for r in names["marble"]["params"]), "composed primitives are offered")
+
+base = [("prim", "noise"), ("seed", "3")]
+s1, a = get("/api/preview", base + [("p", "frequency:4")])
+s2, b2 = get("/api/preview", base + [("p", "frequency:9")])
+say(s1 == 200 and a[:8] == b"\x89PNG\r\n\x1a\n", "a preview is a PNG", s1)
+say(s2 == 200 and a != b2, "moving the frequency changes the preview")
+s, b = get("/api/preview", [("prim", "marble"), ("p", "veins:2"), ("step", "palette:marble")])
+say(s == 200 and b[:4] == b"\x89PNG", "a composed primitive previews through t_expr --defs", (s, b[:80]))
+s, pal = get("/api/preview", base + [("p", "frequency:4"), ("step", "palette:marble")])
+say(s == 200 and pal != a, "a palette step changes the preview", s)
+times = []
+for _ in range(9):
+    t0 = time.time(); get("/api/preview", [("prim", "noise"), ("p", "frequency:6")]); times.append(time.time() - t0)
+times.sort()
+say(times[4] < 0.5, "a 256x256 preview comes back quickly (median %.0f ms)" % (1000 * times[4]))
+
+# save, then the command line in a shell gives the same bytes
+q = base + [("p", "frequency:5"), ("step", "filter:median:2"), ("step", "palette:marble"),
+            ("step", "blur:1.5"), ("step", "filter:emboss:2"), ("size", "200")]
+for bad in ["filter:frob:1", "filter:median", "filter:smooth:2"]:
+    s, b = get("/api/preview", base + [("step", bad)])
+    say(s == 400, "a bad filter step is refused: " + bad, (s, b[:80]))
+s, b = get("/api/save", q + [("kind", "map"), ("name", "saved.png")])
+say(s == 200 and os.path.exists(os.path.join(work, "saved.png")), "a map is saved in the working folder", b)
+s, cmd = get("/api/cmdline", q + [("map", "shell.png")])
+r = subprocess.run(["sh", "-c", cmd.decode()], cwd=work, capture_output=True)
+same = r.returncode == 0 and open(os.path.join(work, "saved.png"), "rb").read() == \
+    open(os.path.join(work, "shell.png"), "rb").read()
+say(same, "the command line run in a shell gives the saved map byte for byte", cmd.decode() + r.stderr.decode())
+s, b = get("/api/save", q + [("kind", "cmdline"), ("name", "make.sh"), ("map", "again.png")])
+r = subprocess.run(["sh", "make.sh"], cwd=work, capture_output=True)
+say(s == 200 and r.returncode == 0 and open(os.path.join(work, "again.png"), "rb").read() ==
+    open(os.path.join(work, "saved.png"), "rb").read(), "the saved command line file makes the same map", b)
+s, b = get("/api/save", [("kind", "palette"), ("name", "two.pal"),
+                        ("text", "space oklab\n0 #203060\n1 #f0e0b0\n")])
+subprocess.run(["t_noise", "-s", "16", "-o", os.path.join(tmp, "n.exr")], check=True)
+r = subprocess.run(["t_palette", os.path.join(work, "two.pal"), os.path.join(tmp, "n.exr"),
+                    "-o", os.path.join(tmp, "p.exr")], capture_output=True)
+say(s == 200 and r.returncode == 0, "a palette from the editor is saved and t_palette reads it", b)
+s, b = get("/api/preview", base + [("step", "palette:two.pal")])
+say(s == 200 and b[:4] == b"\x89PNG", "a saved palette serves as a pipeline step", (s, b[:80]))
+proj = up.urlencode(q)
+s, b = get("/api/save", [("kind", "project"), ("name", "p.tproj"), ("text", proj)])
+s2, b2 = get("/api/load", [("name", "p.tproj")])
+say(s == 200 and s2 == 200 and b2.decode() == proj, "a project is saved and loaded back")
+s, b = get("/api/save", q + [("kind", "scene"), ("name", "t.scene")])
+text = open(os.path.join(work, "t.scene")).read() if s == 200 else ""
+say(s == 200 and text.startswith("# t_noise") and "texture map file -" in text,
+    "a scene's texture statement is saved", (s, b, text))
+s, b = get("/api/scene", base + [("apply", "bump")])
+say(s == 200 and b[:4] == b"\x89PNG", "the standard scene renders the map (bump)", s)
+
+# confinement and bad requests: each a 4xx, the server alive after
+os.symlink(os.path.join(tmp, "outside.png"), os.path.join(work, "evil.png"))
+for name, params in [
+        ("a path with ..", [("kind", "map"), ("name", "../up.png")]),
+        ("an absolute path", [("kind", "map"), ("name", os.path.join(tmp, "abs.png"))]),
+        ("a symlink out of the folder", [("kind", "map"), ("name", "evil.png")]),
+        ("a project through ..", [("kind", "project"), ("name", "../p.tproj"), ("text", "x")]),
+        ("a command line whose map is out of the folder",
+         [("kind", "cmdline"), ("name", "out.sh"), ("map", "../out.png")]),
+        ("a command line without a map", [("kind", "cmdline"), ("name", "out.sh")]),
+        ("a kind it does not know", [("kind", "frob"), ("name", "x.txt")])]:
+    s, b = get("/api/save", base + params)
+    say(s == 400, "save refuses " + name, (s, b))
+say(not os.path.exists(os.path.join(work, "out.sh")), "a refused command line leaves no file")
+say(not os.path.exists(os.path.join(tmp, "outside.png")) and not os.path.exists(os.path.join(tmp, "up.png"))
+    and not os.path.exists(os.path.join(tmp, "abs.png")), "nothing was written outside the working folder")
+s, b = get("/api/load", [("name", "../url")])
+say(s == 400, "load refuses a path out of the folder", s)
+for name, params, want in [
+        ("an out-of-range parameter", base + [("p", "frequency:-3")], b"--frequency must be 0..1000000"),
+        ("a parameter the primitive lacks", base + [("p", "octaves:3")], b"noise has no parameter 'octaves'"),
+        ("a malformed parameter", base + [("p", "frequency")], b"malformed parameter"),
+        ("an unknown primitive", [("prim", "nosuch")], b"unknown primitive"),
+        ("a size too large", base + [("size", "100000")], b"size must be 1..4096"),
+        ("an unknown step", base + [("step", "rm:-rf")], b"unknown step"),
+        ("a palette that is a path", base + [("step", "palette:/etc/passwd")], b"malformed step argument"),
+        ("an option smuggled as a value", base + [("p", "frequency:4 -o x")], b"frequency")]:
+    s, b = get("/api/preview", params)
+    say(400 <= s < 500 and want in b, "a 4xx with the message for " + name, (s, b))
+c = http.client.HTTPConnection(host, port, timeout=30)
+c.putrequest("POST", "/api/preview?token=" + token)
+c.putheader("Content-Length", str(100 << 20))
+c.endheaders()
+try:
+    c.send(b"x" * 65536)
+except OSError:
+    pass
+r = c.getresponse()
+say(r.status == 413, "a 100 MB body is refused (413) without being read", r.status)
+c.close()
+
+codes = {}
+def burst(n):
+    for _ in range(n):
+        try:
+            s, _ = get("/api/primitives")
+        except Exception as e:
+            s = "error"
+        codes[s] = codes.get(s, 0) + 1
+ts = [threading.Thread(target=burst, args=(125,)) for _ in range(8)]
+[t.start() for t in ts]; [t.join() for t in ts]
+say(codes.get(429, 0) > 0 and set(codes) <= {200, 429}, "1000 requests in a burst: 200 or 429, nothing else", codes)
+# the limiter refills: poll for the first 200 rather than sleep its whole window
+end = time.time() + 10
+while True:
+    s, b = get("/api/preview", base)
+    if s == 200 or time.time() > end:
+        break
+    time.sleep(0.05)
+say(s == 200, "the server keeps serving after all that", s)
+PY

@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# The recipes in patterns/: each runs at a small size, from the source tree and from a copy
+# laid out as the installed share directory, and writes sane PNG and EXR maps; the tileable
+# ones have no seam.
+. "$(dirname "$0")/../lib.sh"
+top=${TEXTURA_TOP:-.}
+mkdir -p "$T/share/textura"
+cp -R "$top/patterns" "$T/share/textura/patterns"
+recipes="wood_plank marble_vase brick_wall granite orange_peel fabric clouds water rust_steel terrain tileable
+         composed_marble composed_rings composed_cracks"
+for r in $recipes; do
+    for where in "$top/patterns" "$T/share/textura/patterns"; do
+        label=source; [ "$where" = "$top/patterns" ] || label=installed
+        if (cd "$T" && "$where/$r.sh" -o "$T/${label}_$r" -s 48 >"$T/out" 2>"$T/err"); then
+            n=$(grep -c "^wrote " "$T/out")
+            missing=$(sed -n 's/^wrote \(.*\)\.png and \.exr$/\1/p' "$T/out" | while read -r p; do
+                [ -s "$p.png" ] && [ -s "$p.exr" ] || echo "$p"; done)
+            [ "$n" -gt 0 ] && [ -z "$missing" ] && ok "recipe $r runs from the $label tree ($n maps)" ||
+                notok "recipe $r from the $label tree" "missing: $missing"
+        else
+            notok "recipe $r runs from the $label tree" "$(head -c 300 "$T/err")"
+        fi
+    done
+done
+# every map finite, not flat
+bad=0
+for f in "$T"/source_*.exr; do
+    r=$(t_info --json "$f" | python3 -c '
+import json, sys
+s = json.load(sys.stdin)["stats"]
+print("ok" if all(c["nonfinite"] == 0 for c in s) and max(c["stddev"] for c in s[:3]) > 1e-3 else "bad")')
+    [ "$r" = ok ] || { notok "$(basename "$f"): finite and not flat"; bad=1; }
+done
+[ "$bad" = 0 ] && ok "every recipe map is finite and not flat"
+check "a recipe's -h prints its header" "$top/patterns/granite.sh" -h
+"$top/patterns/granite.sh" -s x12 -o "$T/x" 2>/dev/null; [ $? = 2 ] && ok "a recipe refuses a bad size (exit 2)" ||
+    notok "recipe bad size"
+# the tileable maps: across the wrap no larger a step than between neighbouring columns
+for m in wood stone fabric ground; do
+    t_convert "$T/source_tileable_$m.exr" -o "$T/t.pfm"
+    r=$(python3 - "$T/t.pfm" <<'P'
+import array, sys
+d = open(sys.argv[1], 'rb').read(); k, s, sc, rest = d.split(b'\n', 3)
+w, h = map(int, s.split()); nc = 3 if k == b'PF' else 1
+a = array.array('f'); a.frombytes(rest[:w * h * nc * 4])
+px = lambda x, y: a[(y * w + x) * nc:(y * w + x) * nc + nc]
+def step(x0, x1): return sum(abs(p - q) for y in range(h) for p, q in zip(px(x0, y), px(x1, y))) / h
+inner = sum(step(x, x + 1) for x in range(w - 1)) / (w - 1)
+rows = lambda y0, y1: sum(abs(p - q) for x in range(w) for p, q in zip(px(x, y0), px(x, y1))) / w
+inner_v = sum(rows(y, y + 1) for y in range(h - 1)) / (h - 1)
+print("ok" if step(w - 1, 0) < 3 * inner + 1e-6 and rows(h - 1, 0) < 3 * inner_v + 1e-6 else
+      "seam %.4f %.4f vs %.4f %.4f" % (step(w - 1, 0), rows(h - 1, 0), inner, inner_v))
+P
+)
+    [ "$r" = ok ] && ok "tileable $m has no seam" || notok "tileable $m" "$r"
+done
+# the gallery: its page links only files that exist, and shows every primitive
+if ! "$top/patterns/gallery.sh" -o "$T/gal" -s 24 >"$T/gout" 2>&1; then
+    notok "gallery.sh runs" "$(grep -m3 'ERROR\|error\|failed' "$T/gout")"
+    exit 0
+fi
+ok "gallery.sh runs"
+missing=$(sed -n 's/.*<img src="\([^"]*\)".*/\1/p' "$T/gal/index.html" | while read -r f; do
+    [ -s "$T/gal/$f" ] || echo "$f"; done)
+n=$(grep -c '<img src=' "$T/gal/index.html")
+[ "$n" -gt 60 ] && [ -z "$missing" ] && ok "the gallery page links $n pictures, all present" ||
+    notok "gallery links" "$n pictures, missing: $missing"
+bad=0
+for p in $(t_info --primitives | awk '{ print $1 }'); do
+    grep -q "t_$p " "$T/gal/index.html" || { notok "the gallery shows t_$p"; bad=1; }
+done
+[ "$bad" = 0 ] && ok "the gallery shows every primitive of t_info --primitives"
+if command -v montage >/dev/null; then
+    [ -s "$T/gal/gallery.png" ] && ok "the contact sheet is written" || notok "contact sheet"
+else
+    skip "the contact sheet is written" "ImageMagick's montage is not installed"
+fi
