@@ -28,7 +28,8 @@ static char *lookup(const char *name)
     return NULL;
 }
 
-char *getenv(const char *name)
+/* default visibility: libtex's objects are built hidden, and an interposer must be seen */
+__attribute__((visibility("default"))) char *getenv(const char *name)
 {
     char *v = lookup(name);
     if (!v && strcmp(name, "OMP_WAIT_POLICY") == 0 && !lookup("GOMP_SPINCOUNT") &&
