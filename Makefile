@@ -111,7 +111,7 @@ PRIVATE_HEADERS = libtex/base/kdtree.h libtex/base/trig_fdlibm.h libtex/base/sim
 HEADERS  = $(filter-out $(PRIVATE_HEADERS),$(wildcard libtex/*/*.h)) libtex/prim/primitives.def
 
 DEBS = build-essential pkg-config liblz4-dev libopenexr-dev libopenimageio-dev openimageio-tools \
-       libpng-dev libjpeg62-turbo-dev libtiff-dev \
+       libpng-dev libjpeg62-turbo-dev libtiff-dev libvips-dev \
        libflann-dev libfftw3-dev colord-data mandoc netpbm imagemagick libnoise-dev povray \
        hyperfine clang libclang-rt-14-dev libomp-dev python3 parallel libmicrohttpd-dev chromium ffmpeg
 
