@@ -34,73 +34,101 @@ static const struct tex_param rows[] = {
              "tileable) or mirror", .kinds = 0x6ff),
     {0}};
 
-typedef tex_map *filter_fn(const tex_map *m, const struct opts *o);
+/* Each operation over a map, or a band of one (b: where it sits; noise and gradient
+ * depend on the place) */
+typedef tex_map *filter_fn(const tex_map *m, const struct opts *o, const struct tex_band *b);
 
-static tex_map *blur(const tex_map *m, const struct opts *o)
+static tex_map *blur(const tex_map *m, const struct opts *o, const struct tex_band *b)
 {
+    (void)b;
     return tex_filter_blur(m, o->sigma, (enum tex_edge)o->edge);
 }
-static tex_map *box(const tex_map *m, const struct opts *o)
+static tex_map *box(const tex_map *m, const struct opts *o, const struct tex_band *b)
 {
+    (void)b;
     return tex_filter_box(m, o->radius, (enum tex_edge)o->edge);
 }
-static tex_map *smooth(const tex_map *m, const struct opts *o)
+static tex_map *smooth(const tex_map *m, const struct opts *o, const struct tex_band *b)
 {
+    (void)b;
     return tex_filter_smooth(m, (enum tex_edge)o->edge);
 }
-static tex_map *sharpen(const tex_map *m, const struct opts *o)
+static tex_map *sharpen(const tex_map *m, const struct opts *o, const struct tex_band *b)
 {
+    (void)b;
     return tex_filter_sharpen(m, o->sigma, o->strength, (enum tex_edge)o->edge);
 }
-static tex_map *sobel(const tex_map *m, const struct opts *o)
+static tex_map *sobel(const tex_map *m, const struct opts *o, const struct tex_band *b)
 {
+    (void)b;
     return tex_filter_sobel(m, o->direction, o->strength, (enum tex_edge)o->edge);
 }
-static tex_map *edges(const tex_map *m, const struct opts *o)
+static tex_map *edges(const tex_map *m, const struct opts *o, const struct tex_band *b)
 {
+    (void)b;
     return tex_filter_edges(m, o->strength, (enum tex_edge)o->edge);
 }
-static tex_map *emboss(const tex_map *m, const struct opts *o)
+static tex_map *emboss(const tex_map *m, const struct opts *o, const struct tex_band *b)
 {
+    (void)b;
     return tex_filter_emboss(m, o->angle, o->strength, (enum tex_edge)o->edge);
 }
-static tex_map *median(const tex_map *m, const struct opts *o)
+static tex_map *median(const tex_map *m, const struct opts *o, const struct tex_band *b)
 {
+    (void)b;
     return tex_filter_median(m, o->radius, (enum tex_edge)o->edge);
 }
-static tex_map *noise(const tex_map *m, const struct opts *o)
+static tex_map *noise(const tex_map *m, const struct opts *o, const struct tex_band *b)
 {
-    return tex_filter_noise(m, o->amount, o->seed);
+    return tex_filter_noise_rows(m, o->amount, o->seed, b->y - b->margin);
 }
-static tex_map *normal(const tex_map *m, const struct opts *o)
+static tex_map *normal(const tex_map *m, const struct opts *o, const struct tex_band *b)
 {
+    (void)b;
     return tex_filter_normal(m, o->strength, (enum tex_edge)o->edge);
 }
-static tex_map *gradient(const tex_map *m, const struct opts *o)
+static tex_map *gradient(const tex_map *m, const struct opts *o, const struct tex_band *b)
 {
-    return tex_filter_gradient(m, (enum tex_edge)o->edge);
+    return tex_filter_gradient_rows(m, (enum tex_edge)o->edge, b->full_h);
 }
 
-/* The operations: name, function, what it takes (see t_filter(1)).  The rows'
+/* How far an operation reaches above and below a row: nothing, the 3x3 neighbours, the
+ * Gaussian's ceil(4 sigma), or --radius rows */
+enum reach { NONE, ONE, SIGMA, RADIUS };
+
+/* The operations: name, function, reach, what it takes (see t_filter(1)).  The rows'
  * kinds are bits in this order. */
 static const struct {
     const char *name;
     filter_fn *fn;
+    enum reach reach;
     const char *help;
 } ops[] = {
-    {"blur", blur, "Gaussian blur (--sigma)"},
-    {"box", box, "box filter (--radius)"},
-    {"smooth", smooth, "3x3 binomial smoothing"},
-    {"sharpen", sharpen, "unsharp mask (--sigma, --strength)"},
-    {"sobel", sobel, "gradient magnitude or direction (--strength, --direction)"},
-    {"edges", edges, "edge enhancement (--strength)"},
-    {"emboss", emboss, "relief lit from --angle (--strength)"},
-    {"median", median, "median of a window (--radius)"},
-    {"noise", noise, "added Gaussian noise (--stddev, --seed)"},
-    {"normal", normal, "a height map's tangent-space normal map (--strength)"},
-    {"gradient", gradient, "a height map's gradient"},
+    {"blur", blur, SIGMA, "Gaussian blur (--sigma)"},
+    {"box", box, RADIUS, "box filter (--radius)"},
+    {"smooth", smooth, ONE, "3x3 binomial smoothing"},
+    {"sharpen", sharpen, SIGMA, "unsharp mask (--sigma, --strength)"},
+    {"sobel", sobel, ONE, "gradient magnitude or direction (--strength, --direction)"},
+    {"edges", edges, ONE, "edge enhancement (--strength)"},
+    {"emboss", emboss, ONE, "relief lit from --angle (--strength)"},
+    {"median", median, RADIUS, "median of a window (--radius)"},
+    {"noise", noise, NONE, "added Gaussian noise (--stddev, --seed)"},
+    {"normal", normal, ONE, "a height map's tangent-space normal map (--strength)"},
+    {"gradient", gradient, ONE, "a height map's gradient"},
 };
 enum { NOPS = sizeof ops / sizeof *ops };
+
+struct job {
+    filter_fn *fn;
+    const struct opts *o;
+};
+
+/* A band's rows filtered: the filter over the band, of which the caller keeps the middle */
+static tex_map *filter_band(tex_map *band, const struct tex_band *b, void *arg)
+{
+    const struct job *j = arg;
+    return j->fn(band, j->o, b);
+}
 
 /* --help's summary, from the table: each operation and what it takes. */
 static const char *summary(void)
@@ -120,8 +148,6 @@ int main(int argc, char **argv)
     struct opts o;
     int i = tex_cli_parse(&tool, argc, argv, &c, &o), k = 0;
     const char *op = argv[i++];
-    tex_map *m, *out;
-
     char choices[256] = "";
 
     for (int j = 0; j < NOPS; j++)
@@ -133,12 +159,13 @@ int main(int argc, char **argv)
         tex_usage_die("unknown operation '%s' (one of %s)", op, choices);
     tex_cli_check_kinds(&tool, choices, k, "the operation");
     o.seed = (uint64_t)c.seed;
-    m = tex_cli_read(i < argc ? argv[i] : "-");
-    if (!(out = ops[k].fn(m, &o)))
-        tex_die();
-    tex_cli_write(out, &c);
-    tex_map_free(out);
-    tex_map_free(m);
+    struct job j = {ops[k].fn, &o};
+    int margin = ops[k].reach == ONE      ? 1
+                 : ops[k].reach == SIGMA  ? tex_blur_radius(o.sigma)
+                 : ops[k].reach == RADIUS ? o.radius
+                                          : 0;
+    tex_cli_stream_window(i < argc ? argv[i] : "-", &c, margin, (enum tex_edge)o.edge, filter_band,
+                          &j);
     free(c.cmdline);
     return 0;
 }

@@ -58,42 +58,185 @@ void tex_cli_write_rows(tex_map *head, const struct tex_common *c, tex_rows_fn f
         tex_die();
 }
 
-struct band_job {
+/* A band op's work: the band (n + 2 margin rows of input, from row y - margin) read a
+ * band at a time, its output served to the writer's fill calls, whatever their size. */
+struct window_job {
     tex_rows_reader *r;
     const char *name;
-    int w, nc, subregions;
-    tex_map *(*op)(tex_map *, void *);
+    int w, nc, subregions, h, margin, rows; /* rows: a band's output rows */
+    enum tex_edge edge;
+    tex_band_fn *op;
     void *arg;
-    tex_map *keep; /* a band the op gave back as it took it, for the next band's rows */
+    int consumes;  /* op frees the band it does not give back (tex_cli_stream's ops) */
+    tex_map *band; /* kept from band to band: the overlap, and no fresh pages each time */
+    tex_map *out;  /* the output of rows oy..oy+on-1, from row ofs of out */
+    int oy, on, ofs;
 };
 
-/* The op's band is the last one's map where the op gave that back (the bands are one
- * size but the last): a map of its own for each band would be fresh pages each time. */
-static int band_fill(void *arg, int y, int n, float *rows)
+/* Band rows y-margin..y+n-1+margin in j->band: the 2 margin rows the last band shared with
+ * this one moved up, the next rows read, and the rows beyond the edges filled in. */
+static int window_rows(struct window_job *j, int y, int n)
 {
-    struct band_job *j = arg;
-    tex_map *b = j->keep, *o;
+    int m = j->margin, top = y - m, cap = j->rows + 2 * m;
+    size_t row = (size_t)j->w * j->nc;
+    int from = top < 0 ? 0 : top, to = y + n + m < j->h ? y + n + m : j->h;
 
-    j->keep = NULL;
-    if (b && b->h < n) {
-        tex_map_free(b);
-        b = NULL;
-    }
-    if (!b && !(b = tex_map_new(j->w, n, j->nc)))
+    if (!j->band && !(j->band = tex_map_new(j->w, cap, j->nc)))
         return -1;
-    b->h = n;
-    b->subregions = j->subregions;
-    if (tex_rows_read(j->r, y, n, b->px, j->name) < 0 ||
-        tex_rows_nonfinite(b->px, j->w, n, j->nc, y, j->name) < 0 || !(o = j->op(b, j->arg))) {
-        tex_map_free(b);
-        return -1;
+    if (y > 0 && m > 0) { /* the last band began at y - rows - m */
+        memmove(j->band->px, j->band->px + (size_t)j->rows * row, 2 * m * row * sizeof(float));
+        from = y + m < to ? y + m : to;
     }
-    memcpy(rows, o->px, tex_map_samples(o) * sizeof *rows);
-    if (o->w == j->w && o->nc == j->nc)
-        j->keep = o;
-    else
-        tex_map_free(o);
+    float *at = j->band->px + (size_t)(from - top) * row;
+    if (to > from && (tex_rows_read(j->r, from, to - from, at, j->name) < 0 ||
+                      tex_rows_nonfinite(at, j->w, to - from, j->nc, from, j->name) < 0))
+        return -1;
+    for (int v = top; v < y + n + m; v++)
+        if (v < 0 || v >= j->h)
+            memcpy(j->band->px + (size_t)(v - top) * row,
+                   j->band->px + (size_t)(tex_edge_index(v, j->h, j->edge) - top) * row,
+                   row * sizeof(float));
+    j->band->h = n + 2 * m;
+    j->band->subregions = j->subregions;
     return 0;
+}
+
+/* The next band's output, rows y.. of the map */
+static int window_next(struct window_job *j, int y)
+{
+    int n = j->h - y < j->rows ? j->h - y : j->rows;
+    struct tex_band b = {y, n, j->margin, j->h};
+    tex_map *o;
+
+    if (j->out != j->band)
+        tex_map_free(j->out);
+    j->out = NULL;
+    if (window_rows(j, y, n) < 0 || !(o = j->op(j->band, &b, j->arg)))
+        return -1;
+    if (o != j->band && j->consumes)
+        j->band = NULL; /* freed by op */
+    if (o->w != j->w || (o->h != n && o->h != n + 2 * j->margin)) {
+        if (o != j->band)
+            tex_map_free(o);
+        return tex_error("%s: a band of %d rows gave %dx%d", j->name, n, o->w, o->h);
+    }
+    j->out = o, j->oy = y, j->on = n, j->ofs = o->h == n ? 0 : j->margin;
+    return 0;
+}
+
+static int window_fill(void *arg, int y, int n, float *rows)
+{
+    struct window_job *j = arg;
+
+    while (n > 0) {
+        if (y >= j->oy + j->on && window_next(j, y) < 0)
+            return -1;
+        int k = j->oy + j->on - y < n ? j->oy + j->on - y : n;
+        size_t orow = (size_t)j->w * j->out->nc;
+        memcpy(rows, j->out->px + (size_t)(y - j->oy + j->ofs) * orow, k * orow * sizeof *rows);
+        rows += k * orow, y += k, n -= k;
+    }
+    return 0;
+}
+
+/* Rows of output per band: $TEXTURA_BAND_ROWS, or about 16 MiB of input in whole
+ * multiples of the writer's 64 rows */
+static int band_rows(int w, int nc)
+{
+    const char *e = getenv("TEXTURA_BAND_ROWS");
+    char *end;
+    long n;
+
+    if (e && *e) {
+        n = strtol(e, &end, 10);
+        if (*end || n < 1 || n > 65536)
+            tex_usage_die("TEXTURA_BAND_ROWS must be 1..65536 (got '%s')", e);
+        return (int)n;
+    }
+    n = (16L << 20) / ((long)w * nc * (long)sizeof(float)) / 64 * 64;
+    return n < 64 ? 64 : n > 4096 ? 4096 : (int)n;
+}
+
+static void stream_whole(tex_map *whole, const struct tex_common *c, tex_band_fn *op, void *arg,
+                         int consumes)
+{
+    struct tex_band b = {0, whole->h, 0, whole->h};
+    tex_map *m = op(whole, &b, arg);
+
+    if (!m)
+        tex_die();
+    tex_cli_write(m, c);
+    if (m != whole && !consumes)
+        tex_map_free(whole);
+    tex_map_free(m);
+}
+
+static void stream_window(const char *path, const struct tex_common *c, int margin,
+                          enum tex_edge edge, tex_band_fn *op, void *arg, int consumes)
+{
+    const char *name = path && strcmp(path, "-") ? path : "standard input";
+    tex_map head, *whole = NULL;
+    tex_rows_reader *r = NULL;
+
+    if (tex_map_write_check(c->output) < 0)
+        tex_die();
+    if (tex_cli_streams(c)) {
+        r = tex_map_open_rows(path, &head, &whole);
+        if (!r && !whole)
+            tex_die();
+    } else {
+        whole = tex_cli_read(path);
+    }
+    if (r && margin > 0 && (edge == TEX_EDGE_WRAP || head.h < 2 * margin + 1)) {
+        /* the rows read so far are none: the same reader reads the whole map */
+        if (!(whole = tex_map_new(head.w, head.h, head.nc)) ||
+            tex_rows_read(r, 0, head.h, whole->px, name) < 0 ||
+            tex_rows_nonfinite(whole->px, head.w, head.h, head.nc, 0, name) < 0)
+            tex_die();
+        whole->subregions = head.subregions;
+        tex_map_inherit_place(whole, &head);
+        whole->history = head.history;
+        head.history = NULL;
+        tex_rows_close(r);
+        r = NULL;
+    }
+    if (!r) {
+        stream_whole(whole, c, op, arg, consumes);
+        return;
+    }
+    struct window_job j = {.r = r, .name = name, .w = head.w, .nc = head.nc,
+                           .subregions = head.subregions, .h = head.h, .margin = margin,
+                           .rows = band_rows(head.w, head.nc), .edge = edge, .op = op,
+                           .arg = arg, .consumes = consumes};
+    if (window_next(&j, 0) < 0) /* the first band before the header: its channels */
+        tex_die();
+    tex_map out = head;
+    out.nc = j.out->nc;
+    out.subregions = j.out->subregions;
+    tex_cli_write_rows(&out, c, window_fill, &j);
+    if (j.out != j.band)
+        tex_map_free(j.out);
+    tex_map_free(j.band);
+    tex_rows_close(r);
+    free(out.history);
+}
+
+void tex_cli_stream_window(const char *path, const struct tex_common *c, int margin,
+                           enum tex_edge edge, tex_band_fn *op, void *arg)
+{
+    stream_window(path, c, margin, edge, op, arg, 0);
+}
+
+struct pixel_op {
+    tex_map *(*op)(tex_map *band, void *arg);
+    void *arg;
+};
+
+static tex_map *pixel_band(tex_map *band, const struct tex_band *b, void *arg)
+{
+    struct pixel_op *p = arg;
+    (void)b;
+    return p->op(band, p->arg);
 }
 
 int tex_cli_streams(const struct tex_common *c)
@@ -107,42 +250,6 @@ int tex_cli_streams(const struct tex_common *c)
 void tex_cli_stream(const char *path, const struct tex_common *c,
                     tex_map *(*op)(tex_map *band, void *arg), void *arg)
 {
-    const char *name = path && strcmp(path, "-") ? path : "standard input";
-    tex_map head, *whole = NULL, *probe, *m;
-    tex_rows_reader *r = NULL;
-
-    if (tex_map_write_check(c->output) < 0)
-        tex_die();
-    if (tex_cli_streams(c)) {
-        r = tex_map_open_rows(path, &head, &whole);
-        if (!r && !whole)
-            tex_die();
-    } else {
-        whole = tex_cli_read(path);
-    }
-    if (!r) { /* the same op over the whole map */
-        if (!(m = op(whole, arg)))
-            tex_die();
-        tex_cli_write(m, c);
-        tex_map_free(m);
-        return;
-    }
-    if (!(probe = tex_map_new(1, 1, head.nc)))
-        tex_die();
-    for (int k = 0; k < head.nc; k++)
-        probe->px[k] = 1;
-    probe->subregions = head.subregions;
-    if (!(probe = op(probe, arg)))
-        tex_die();
-    {
-        struct band_job j = {r, name, head.w, head.nc, head.subregions, op, arg, NULL};
-        tex_map out = head;
-        out.nc = probe->nc;
-        out.subregions = probe->subregions;
-        tex_map_free(probe);
-        tex_cli_write_rows(&out, c, band_fill, &j);
-        tex_map_free(j.keep);
-        tex_rows_close(r);
-        free(out.history);
-    }
+    struct pixel_op p = {op, arg};
+    stream_window(path, c, 0, TEX_EDGE_CLAMP, pixel_band, &p, 1);
 }

@@ -50,5 +50,25 @@ void tex_cli_write_rows(tex_map *head, const struct tex_common *c,
 void tex_cli_stream(const char *path, const struct tex_common *c,
                     tex_map *(*op)(tex_map *band, void *arg), void *arg);
 
+/* A neighbourhood operation's work in bounded memory: output rows y..y+n-1 need input rows
+ * y-margin..y+n-1+margin, those beyond the top and bottom given by the edge rule.  op gets
+ * each band as a map of the input's width and n + 2 margin rows (the rows beyond the edges
+ * filled in, clamped or mirrored), with b saying where it sits, and returns a map of n or of
+ * n + 2 margin rows (the middle n are the band's output) that the caller frees, or NULL with
+ * the error set; it must not free the band.  The whole map goes through op instead (b: y 0,
+ * margin 0, n its height) when input or output is not a scanline EXR, when edge is
+ * TEX_EDGE_WRAP (the first rows would need the last), and when the map has fewer than
+ * 2 margin + 1 rows: the same pixels either way, when op's rows of output depend on
+ * nothing but those rows of input.  Bands are about 16 MiB of input, and a multiple of
+ * 64 rows; $TEXTURA_BAND_ROWS (1..65536) sets their height instead, to show that the
+ * output does not depend on it.  Dies on errors. */
+struct tex_band {
+    int y, n, margin; /* the output rows and the rows of context above and below */
+    int full_h;       /* the whole map's height */
+};
+typedef tex_map *tex_band_fn(tex_map *band, const struct tex_band *b, void *arg);
+void tex_cli_stream_window(const char *path, const struct tex_common *c, int margin,
+                           enum tex_edge edge, tex_band_fn *op, void *arg);
+
 TEX_API_END
 #endif

@@ -346,7 +346,7 @@ tex_map *tex_filter_emboss(const tex_map *m, double angle, double strength, enum
 
 /* The Sobel slopes of a map's height: a tangent-space normal map of strength k
  * (normal set), or the 2-channel gradient (Fu, Fv) per unit of texture space. */
-static tex_map *slopes(const tex_map *m, enum tex_edge e, int normal, float k)
+static tex_map *slopes(const tex_map *m, enum tex_edge e, int normal, float k, int full_h)
 {
     tex_map *h = height_of(m), *o;
 
@@ -369,7 +369,7 @@ static tex_map *slopes(const tex_map *m, enum tex_edge e, int normal, float k)
                 p[2] = 0.5f + 0.5f / len;
             } else {
                 p[0] = gx * (float)m->w;
-                p[1] = gy * (float)m->h;
+                p[1] = gy * (float)full_h;
             }
         }
     if (h != m)
@@ -379,12 +379,17 @@ static tex_map *slopes(const tex_map *m, enum tex_edge e, int normal, float k)
 
 tex_map *tex_filter_normal(const tex_map *m, double strength, enum tex_edge e)
 {
-    return slopes(m, e, 1, (float)strength);
+    return slopes(m, e, 1, (float)strength, m->h);
 }
 
 tex_map *tex_filter_gradient(const tex_map *m, enum tex_edge e)
 {
-    return slopes(m, e, 0, 0.0f);
+    return slopes(m, e, 0, 0.0f, m->h);
+}
+
+tex_map *tex_filter_gradient_rows(const tex_map *m, enum tex_edge e, int full_h)
+{
+    return slopes(m, e, 0, 0.0f, full_h);
 }
 
 /* ---- median ---- */
@@ -466,10 +471,16 @@ tex_map *tex_filter_median(const tex_map *m, int radius, enum tex_edge e)
 
 tex_map *tex_filter_noise(const tex_map *m, double sd, uint64_t seed)
 {
+    return tex_filter_noise_rows(m, sd, seed, 0);
+}
+
+tex_map *tex_filter_noise_rows(const tex_map *m, double sd, uint64_t seed, int y0)
+{
     tex_map *o = like(m, m->nc);
     size_t n = tex_map_samples(m);
     int nc = m->nc, cc = colour_channels(m);
     uint64_t key = tex_hash64(seed ^ 0x6e6f697365ULL); /* "noise" */
+    uint64_t first = (uint64_t)y0 * m->w * nc;
 
     if (!o)
         return NULL;
@@ -479,7 +490,7 @@ tex_map *tex_filter_noise(const tex_map *m, double sd, uint64_t seed)
     for (size_t i = 0; i < n; i++) {
         float v = m->px[i];
         if ((int)(i % nc) < cc) {
-            uint64_t h1 = tex_hash64(key + 2 * i), h2 = tex_hash64(key + 2 * i + 1);
+            uint64_t h1 = tex_hash64(key + 2 * (first + i)), h2 = tex_hash64(key + 2 * (first + i) + 1);
             double u1 = ((h1 >> 11) + 1) * 0x1p-53, u2 = (h2 >> 11) * 0x1p-53;
             v += (float)(sd * sqrt(-2 * log(u1)) * cos(2 * M_PI * u2));
         }

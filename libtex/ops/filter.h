@@ -63,8 +63,14 @@ tex_map *tex_filter_sobel(const tex_map *m, int direction, double scale, enum te
 tex_map *tex_filter_emboss(const tex_map *m, double angle, double strength, enum tex_edge e);
 tex_map *tex_filter_median(const tex_map *m, int radius, enum tex_edge e);
 tex_map *tex_filter_noise(const tex_map *m, double sd, uint64_t seed);
+/* The noise of rows y0.. of a map of m's width, m holding those rows (a band of a stream):
+ * each sample's noise is that of its place in the whole map. */
+tex_map *tex_filter_noise_rows(const tex_map *m, double sd, uint64_t seed, int y0);
 tex_map *tex_filter_normal(const tex_map *m, double strength, enum tex_edge e);
 tex_map *tex_filter_gradient(const tex_map *m, enum tex_edge e);
+/* The gradient in the texture units of a map full_h rows high of which m holds some rows
+ * (a band of a stream): v runs down full_h, not m's height. */
+tex_map *tex_filter_gradient_rows(const tex_map *m, enum tex_edge e, int full_h);
 
 /* A separable convolution with the symmetric kernel k[0..r] (k[j] weighs
  * offsets +j and -j) along x and then y; the building block of blur, box
