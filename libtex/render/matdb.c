@@ -2,6 +2,7 @@
 #include "render/matdb.h"
 
 #include "base/error.h"
+#include "base/names.h"
 #include "io/file.h"
 
 #include <ctype.h>
@@ -17,8 +18,8 @@ struct pending {
     double c[6];
     int nrows, cap;
     double *wl, *n, *k;
-    int mcap;            /* room in db->m */
-    int *slot, nslot;    /* the names so far: index + 1 into db->m by hash, 0 empty */
+    int mcap;               /* room in db->m */
+    struct tex_names names; /* the names so far */
 };
 
 void tex_matdb_free(struct tex_matdb *db)
@@ -91,20 +92,9 @@ static int finish(struct pending *p, const char *file, int line)
     return 0;
 }
 
-/* The slot of name in p's table: where it is, or the empty slot where it would go.  A
- * search of every name before it took 20 s for 2 10^5 materials. */
-static int *name_slot(const struct tex_matdb *db, const struct pending *p, const char *name)
-{
-    unsigned h = 2166136261u; /* FNV-1a */
-    for (const char *c = name; *c; c++)
-        h = (h ^ (unsigned char)*c) * 16777619u;
-    for (unsigned i = h & (p->nslot - 1);; i = (i + 1) & (p->nslot - 1))
-        if (!p->slot[i] || !strcmp(db->m[p->slot[i] - 1].name, name))
-            return &p->slot[i];
-}
-
-/* Room for one more material and its name: db->m and the table grow by doubling. */
-static int make_room(struct tex_matdb *db, struct pending *p)
+/* db->m grows by doubling, and a name defined twice is found through p's table: a search of
+ * every name before it took 20 s for 2 10^5 materials. */
+static int add(struct tex_matdb *db, struct pending *p)
 {
     if (db->count == p->mcap) {
         int cap = p->mcap ? 2 * p->mcap : 16;
@@ -114,33 +104,15 @@ static int make_room(struct tex_matdb *db, struct pending *p)
         db->m = nm;
         p->mcap = cap;
     }
-    if (2 * (db->count + 1) > p->nslot) {
-        int n = p->nslot ? 2 * p->nslot : 64, *old = p->slot, nold = p->nslot;
-        if (!(p->slot = calloc((size_t)n, sizeof *p->slot))) {
-            p->slot = old;
-            return tex_error("out of memory");
-        }
-        p->nslot = n;
-        for (int i = 0; i < nold; i++)
-            if (old[i])
-                *name_slot(db, p, db->m[old[i] - 1].name) = old[i];
-        free(old);
-    }
-    return 0;
-}
-
-static int add(struct tex_matdb *db, struct pending *p)
-{
-    if (make_room(db, p) < 0)
+    if (tex_names_put(&p->names, p->mat.name, p) < 0)
         return -1;
     db->m[db->count++] = p->mat;
-    *name_slot(db, p, p->mat.name) = db->count;
     p->mat.source = NULL;
     return 0;
 }
 
 /* 'material NAME conductor|dielectric': opens p. */
-static int begin_material(const struct tex_matdb *db, struct pending *p, int in, const char *q,
+static int begin_material(struct pending *p, int in, const char *q,
                           const char *file, int line)
 {
     char name[64], kind[64], extra[2];
@@ -153,7 +125,7 @@ static int begin_material(const struct tex_matdb *db, struct pending *p, int in,
     if (strlen(name) >= TEX_MATDB_NAME)
         return tex_usage_error("%s:%d: material name longer than %d characters", file, line,
                                TEX_MATDB_NAME - 1);
-    if (p->nslot && *name_slot(db, p, name))
+    if (tex_names_get(&p->names, name))
         return tex_usage_error("%s:%d: material '%s' defined twice", file, line, name);
     memset(&p->mat, 0, sizeof p->mat);
     strcpy(p->mat.name, name);
@@ -287,7 +259,7 @@ int tex_matdb_parse(struct tex_matdb *db, const char *text, const char *file)
         if (*q)
             *q++ = 0;
         if (!strcmp(kw, "material"))
-            in = (rc = begin_material(db, &p, in, q, file, line)) == 0 || in;
+            in = (rc = begin_material(&p, in, q, file, line)) == 0 || in;
         else if (!in)
             rc = tex_usage_error("%s:%d: '%s' outside a material (expected 'material')", file,
                                  line, kw);
@@ -300,7 +272,7 @@ int tex_matdb_parse(struct tex_matdb *db, const char *text, const char *file)
     free(p.wl);
     free(p.n);
     free(p.k);
-    free(p.slot);
+    tex_names_free(&p.names);
     if (rc < 0)
         tex_matdb_free(db);
     return rc;
