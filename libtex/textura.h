@@ -19,6 +19,7 @@
  * io/       maps in and out
  *   stream.h    the OpenEXR stream between tools
  *   file.h      reading and writing maps: files, pipes, other formats
+ *   limit.h     the one limit on what readers take in (TEXTURA_MAX_INPUT)
  *   netpbm.h    PNM, PAM and PFM, read and written natively
  *   assemble.h  windows of a map put together into the whole
  *   terminal.h  a map drawn in a terminal (sixel, kitty)
@@ -70,6 +71,7 @@
 #include "base/trig.h"
 #include "io/stream.h"
 #include "io/file.h"
+#include "io/limit.h"
 #include "io/netpbm.h"
 #include "io/terminal.h"
 #include "io/assemble.h"

@@ -18,6 +18,7 @@
 #include "base/paths.h"
 #include "io/codec_bridge.h"
 #include "io/file.h"
+#include "io/limit.h"
 #include "io/netpbm.h"
 #include "io/oiio_bridge.h"
 
@@ -227,7 +228,14 @@ static int read_fd_max(int fd, tex_buf *b, const char *name, size_t max, int pag
 
 int tex_read_fd(int fd, tex_buf *b, const char *name)
 {
-    return read_fd_max(fd, b, name, SIZE_MAX, 1);
+    size_t max;
+    if (tex_input_max(&max) < 0)
+        return -1;
+    if (read_fd_max(fd, b, name, max, 1) < 0)
+        return b->len > max ? tex_error("%s: over the input limit of %zu bytes (TEXTURA_MAX_INPUT)",
+                                        name, max)
+                            : -1;
+    return 0;
 }
 
 char *tex_read_text(const char *path, size_t max, size_t *len, const char *what)
@@ -274,7 +282,8 @@ static tex_map *read_bridged(const char *path, const void *mem, size_t len, enum
         return NULL;
     }
     nc = keep_channels(nc, name);
-    if (tex_map_check_size(w, h, nc) < 0 || !(m = tex_map_new(w, h, nc))) {
+    if (tex_map_check_size(w, h, nc) < 0 || tex_input_check_decoded(w, h, nc) < 0 ||
+        !(m = tex_map_new(w, h, nc))) {
         tex_error_context(name);
     } else if (br->read(in, m->px, nc, err, sizeof err) < 0) {
         tex_error("%s: %s", name, err);
@@ -305,7 +314,8 @@ static tex_map *read_codec(const char *path, const void *data, size_t len, enum 
         return NULL;
     }
     nc = keep_channels(nc, name);
-    if (tex_map_check_size(w, h, nc) < 0 || !(m = tex_map_new(w, h, nc))) {
+    if (tex_map_check_size(w, h, nc) < 0 || tex_input_check_decoded(w, h, nc) < 0 ||
+        !(m = tex_map_new(w, h, nc))) {
         tex_error_context(name);
         return NULL;
     }

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "base/error.h"
+#include "io/limit.h"
 #include "io/netpbm.h"
 #include "io/stream.h"
 
@@ -68,7 +69,8 @@ static tex_map *new_map(long w, long h, int nc, const char *name)
 {
     tex_map *m;
 
-    if (tex_map_check_size(w, h, nc) < 0 || !(m = tex_map_new((int)w, (int)h, nc))) {
+    if (tex_map_check_size(w, h, nc) < 0 || tex_input_check_decoded(w, h, nc) < 0 ||
+        !(m = tex_map_new((int)w, (int)h, nc))) {
         tex_error_context(name);
         return NULL;
     }

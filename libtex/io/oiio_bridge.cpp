@@ -5,6 +5,7 @@
 // are many times a tool's own: doc/performance.md); see oiio_bridge.h for the interface.
 #include <cstdio>
 #include <cstdlib>
+#include <cerrno>
 #include <cstring>
 #include <memory>
 #include <string>
@@ -151,6 +152,47 @@ static void b_close(tex_oiio_in *r)
     delete r;
 }
 
+/* Every byte of b to the file at path, or a message: a short write (ENOSPC) fails. */
+static int write_checked(const char *path, const std::vector<unsigned char> &b, char *err,
+                         size_t errlen)
+{
+    int fd = open(path, O_WRONLY | O_TRUNC | O_CLOEXEC);
+    const unsigned char *p = b.data();
+    size_t left = b.size();
+
+    if (fd < 0) {
+        say(err, errlen, std::string("cannot open: ") + strerror(errno));
+        return -1;
+    }
+    while (left > 0) {
+        ssize_t k = write(fd, p, left);
+        if (k < 0 && errno == EINTR)
+            continue;
+        if (k <= 0) {
+            say(err, errlen, std::string("write failed: ") + strerror(k < 0 ? errno : ENOSPC));
+            close(fd);
+            return -1;
+        }
+        p += k;
+        left -= (size_t)k;
+    }
+    if (close(fd) < 0) {
+        say(err, errlen, std::string("write failed: ") + strerror(errno));
+        return -1;
+    }
+    return 0;
+}
+
+static int write_direct(ImageOutput *out, const char *path, const ImageSpec &spec, TypeDesc t,
+                        const void *px, char *err, size_t errlen)
+{
+    if (!out->open(path, spec) || !out->write_image(t, px) || !out->close()) {
+        say(err, errlen, out->geterror());
+        return -1;
+    }
+    return 0;
+}
+
 static int b_write(const char *path, const char *format_name, const void *px, int w, int h,
                    int nc, int bits, char *err, size_t errlen)
 {
@@ -168,11 +210,19 @@ static int b_write(const char *path, const char *format_name, const void *px, in
         spec.channelnames = {"Y", "A"};
         spec.alpha_channel = 1;
     }
-    if (!out->open(path, spec) || !out->write_image(t, px) || !out->close()) {
+    // OIIO's BMP and TGA writers ignore a short write (a full disk left a
+    // corrupt file and success): where the writer takes a proxy, it encodes
+    // into memory and every byte goes to the file here, checked.
+    if (!out->supports("ioproxy"))
+        return write_direct(out.get(), path, spec, t, px, err, errlen);
+    std::vector<unsigned char> bytes;
+    Filesystem::IOVecOutput mem(bytes);
+    if (!out->set_ioproxy(&mem) || !out->open(path, spec) || !out->write_image(t, px) ||
+        !out->close()) {
         say(err, errlen, out->geterror());
         return -1;
     }
-    return 0;
+    return write_checked(path, bytes, err, errlen);
 }
 
 // The one exported symbol; const would otherwise give it internal linkage in C++.

@@ -16,6 +16,7 @@
 #include <openexr.h>
 
 #include "base/error.h"
+#include "io/limit.h"
 #include "io/stream.h"
 
 #define ATTR_SUBREGIONS "textura:subregions"
@@ -922,7 +923,8 @@ static tex_map *decode(exr_context_initializer_t *initp, const char *name, tex_m
     if (decode_header(ctx, &dw, &cl, &lines) < 0)
         goto fail;
     nc = order_channels(cl, order);
-    if (!(m = tex_map_new(dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1, nc)) ||
+    if (tex_input_check_decoded(dw.max.x - dw.min.x + 1LL, dw.max.y - dw.min.y + 1LL, nc) < 0 ||
+        !(m = tex_map_new(dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1, nc)) ||
         header_attrs(ctx, cl, order, dw, name, m) < 0)
         goto fail;
     if (decode_chunks(ctx, &dec, dw, lines, order, m, 0) < 0)

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "base/error.h"
+#include "base/names.h"
 #include "io/file.h"
 #include "lang/expr.h"
 #include "lang/lex.h"
@@ -44,14 +45,15 @@ struct proc {
     struct tex_param rows[TEX_PROC_MAX_PARAMS + 1];
     char pnames[TEX_PROC_MAX_PARAMS][NAME_MAX_LEN + 1];
     char *phelp[TEX_PROC_MAX_PARAMS];
-    int nparams, ncalls, depth, line, col;
-    struct call calls[TEX_PROC_MAX_CALLS];
+    int nparams, ncalls, capcalls, depth, line, col;
+    struct call *calls; /* grown as calls are read: 256 in place made each definition 23 KB */
     struct tex_rowcode *code;
     struct proc *next;
 };
 
 struct tex_procs {
     struct proc *first, *last;
+    struct tex_names names; /* each proc by name: a walk of the list per name was quadratic */
     struct proc *building; /* the definition being read, freed if it fails */
 };
 
@@ -303,6 +305,7 @@ static void proc_free(struct proc *p)
     for (int i = 0; i < TEX_PROC_MAX_PARAMS; i++) /* a help read before its row failed too */
         free(p->phelp[i]);
     tex_rowcode_free(p->code);
+    free(p->calls);
     free(p->summary);
     free(p->file);
     free(p);
@@ -463,18 +466,27 @@ static struct tex_enode *call(struct tex_expr_parser *xp)
                      "counting those of the primitives called)", TEX_PROC_MAX_NEST);
     if (depth > p->depth)
         p->depth = depth;
+    if (p->ncalls == p->capcalls) {
+        int cap = p->capcalls ? 2 * p->capcalls : 4;
+        struct call *nc = xalloc(lx, realloc(p->calls, cap * sizeof *nc));
+        memset(nc + p->ncalls, 0, (size_t)(cap - p->ncalls) * sizeof *nc);
+        p->calls = nc;
+        p->capcalls = cap;
+    }
     c = &p->calls[p->ncalls];
     c->prim = callee;
     c->line = e->line;
     c->col = e->col;
     c->args = xalloc(lx, calloc(64, sizeof *c->args));
     e->op = L_CALL;
-    e->ptr = (const void *)(intptr_t)p->ncalls++;
+    int k = p->ncalls++;
+    e->ptr = (const void *)(intptr_t)k;
     tex_lex_expect(lx, '(');
     tex_expr_enter(xp);
     rd->nest++;
     for (int first = 1; !tex_tok_is_punct(&lx->t, ')'); first = 0) {
         struct tex_tok after;
+        c = &p->calls[k]; /* calls inside the arguments may have moved the array */
         if (!first)
             tex_lex_expect(lx, ',');
         after = peek(lx);
@@ -491,8 +503,10 @@ static struct tex_enode *call(struct tex_expr_parser *xp)
             tex_lex_fail(lx, lx->t.line, lx->t.col, "%s takes at most 3 coordinates (u, v, w)",
                          name);
         struct tex_rowcode *rc = compile(rd, tex_expr_parse(xp));
+        c = &p->calls[k];
         c->coord[c->ncoord++] = rc;
     }
+    c = &p->calls[k];
     tex_lex_next(lx);
     rd->nest--;
     tex_expr_leave(xp);
@@ -559,10 +573,10 @@ static void check_name(struct reader *rd, const char *name, int line, int col, i
     }
     if (tex_primitive_find(name))
         tex_lex_fail(rd->lx, line, col, "'%s' is a primitive already", name);
-    for (const struct proc *q = rd->set->first; q; q = q->next)
-        if (!strcmp(q->name, name))
-            tex_lex_fail(rd->lx, line, col, "primitive '%s' is defined twice (first at %s:%d:%d)",
-                         name, q->file, q->line, q->col);
+    const struct proc *q = tex_names_get(&rd->set->names, name);
+    if (q)
+        tex_lex_fail(rd->lx, line, col, "primitive '%s' is defined twice (first at %s:%d:%d)",
+                     name, q->file, q->line, q->col);
 }
 
 /* ( NAME = DEFAULT in MIN to MAX ["help"], ... ) */
@@ -641,6 +655,8 @@ static const struct tex_primitive *finish(struct reader *rd)
 {
     struct tex_procs *set = rd->set;
     trial(rd);
+    if (tex_names_put(&set->names, rd->p->name, rd->p) < 0)
+        longjmp(*rd->lx->fail, 1);
     if (set->last)
         set->last->next = rd->p;
     else
@@ -798,15 +814,14 @@ void tex_procs_free(struct tex_procs *set)
         proc_free(p);
     }
     proc_free(set->building);
+    tex_names_free(&set->names);
     free(set);
 }
 
 const struct tex_primitive *tex_procs_find(const struct tex_procs *set, const char *name)
 {
-    for (const struct proc *p = set ? set->first : NULL; p; p = p->next)
-        if (!strcmp(p->name, name))
-            return &p->prim;
-    return tex_primitive_find(name);
+    const struct proc *p = set ? tex_names_get(&set->names, name) : NULL;
+    return p ? &p->prim : tex_primitive_find(name);
 }
 
 const struct tex_primitive *tex_procs_get(const struct tex_procs *set, int i)

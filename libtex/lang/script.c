@@ -7,11 +7,13 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "ops/compose.h"
 #include "base/error.h"
+#include "base/names.h"
 #include "base/progress.h"
 #include "io/file.h"
 #include "prim/prim.h"
@@ -83,10 +85,12 @@ struct S {
     float bg[4];
     struct def *defs;
     int ndefs, capdefs;
+    struct tex_names defnames; /* index + 1 of each def by name: a walk per name was quadratic */
     struct node **refs;
     int nrefs, caprefs;
     struct cellref *cells;
     int ncells, capcells;
+    struct tex_names cellnames; /* "I,J" to the line of its cell: a walk per cell was quadratic */
     int evaldepth, stdin_used;
     struct tex_procs *procs; /* the script's composed primitives */
 };
@@ -554,10 +558,8 @@ static const struct tex_expr_lang script_lang = {binops, operand};
 
 static struct def *find_def(struct S *s, const char *name)
 {
-    for (int i = 0; i < s->ndefs; i++)
-        if (!strcmp(s->defs[i].name, name))
-            return &s->defs[i];
-    return NULL;
+    intptr_t k = (intptr_t)tex_names_get(&s->defnames, name);
+    return k ? &s->defs[k - 1] : NULL;
 }
 
 static void define(struct S *s, char *name, struct node *e, int line, int col)
@@ -573,6 +575,8 @@ static void define(struct S *s, char *name, struct node *e, int line, int col)
         d = &s->defs[s->ndefs++];
         memset(d, 0, sizeof *d);
         d->name = name;
+        if (tex_names_put(&s->defnames, name, (void *)(intptr_t)s->ndefs) < 0)
+            longjmp(s->fail, 1);
     }
     d->expr = e;
     d->line = line;
@@ -716,10 +720,14 @@ static void parse_layout(struct S *s)
         expect_punct(s, ',');
         c->j = integer(s, 1, rows, "the row of a cell");
         expect_punct(s, ')');
-        for (int k = 0; k < s->ncells; k++)
-            if (s->cells[k].i == c->i && s->cells[k].j == c->j)
-                fail_at(s, line, col, "cell (%d,%d) is given twice (first at line %d)", c->i,
-                        c->j, s->cells[k].line);
+        char key[24];
+        snprintf(key, sizeof key, "%d,%d", c->i, c->j);
+        intptr_t first = (intptr_t)tex_names_get(&s->cellnames, key);
+        if (first)
+            fail_at(s, line, col, "cell (%d,%d) is given twice (first at line %d)", c->i, c->j,
+                    (int)first);
+        if (tex_names_put(&s->cellnames, key, (void *)(intptr_t)line) < 0)
+            longjmp(s->fail, 1);
         c->expr = expr(s);
         s->ncells++;
         expect_punct(s, ';');
@@ -1359,6 +1367,8 @@ tex_map *tex_script_run(const char *text, size_t len, const char *name,
     for (int i = 0; i < s->ndefs; i++)
         tex_map_free(s->defs[i].map);
     free(s->defs);
+    tex_names_free(&s->defnames);
+    tex_names_free(&s->cellnames);
     free(s->refs);
     free(s->cells);
     tex_procs_free(s->procs); /* after every field made from it */

@@ -344,7 +344,10 @@ static int level_sets(const struct synth *y, struct level *L, float *proj)
                 if (L->ok[u])
                     cs[got++] = (uint32_t)ux | (uint32_t)uy << 16;
                 for (int t = 0; t < K && got < k; t++) {
-                    int v = L->vlist[ind[(size_t)q * K + t]], vx = v % W, vy = v / W;
+                    int i = ind[(size_t)q * K + t];
+                    if (i < 0 || i >= L->nvalid)
+                        continue; /* no neighbour: distances overflowed to inf (1e20) */
+                    int v = L->vlist[i], vx = v % W, vy = v / W;
                     int dx = abs(vx - ux), dy = abs(vy - uy);
                     if ((dx > dy ? dx : dy) * 2 > h)
                         cs[got++] = (uint32_t)vx | (uint32_t)vy << 16;
@@ -527,7 +530,8 @@ static int correct_pixel(const struct synth *y, const struct level *L, int l, in
             project(y, L, v, q);
             if (tex_kdtree_knn_f(L->index, q, 1, K, KD_EPS, 1, ind, dst) == 0)
                 for (int t = 0; t < K; t++)
-                    cand_add(c, L, L->vlist[ind[t]], p);
+                    if (ind[t] >= 0 && ind[t] < L->nvalid) /* as in the candidate sets */
+                        cand_add(c, L, L->vlist[ind[t]], p);
         }
         if (y->gt) { /* two sample positions of about the guide's luma */
             const float *key = L->ge;
@@ -783,10 +787,12 @@ static int start_quilt(struct synth *y, const struct level *L)
                 best = cost[c] < best ? cost[c] : best;
             for (int c = 0; c < ncand; c++)
                 nc += cost[c] <= best * 1.1f + 1e-6f;
+            /* costs all NaN (inf - inf, from values near FLT_MAX): any origin will do */
+            int any = nc == 0;
             uint64_t z = tex_hash64(y->o->seed ^ tex_hash64(0x5747ULL + (uint64_t)by * Q.nbx + bx));
-            pick = (int)(z % (uint64_t)nc);
+            pick = (int)(z % (uint64_t)(any ? ncand : nc));
             for (int c = 0; c < ncand; c++)
-                if (cost[c] <= best * 1.1f + 1e-6f && i++ == pick) {
+                if ((any || cost[c] <= best * 1.1f + 1e-6f) && i++ == pick) {
                     int cx = c % ncx, cy = c / ncx;
                     int ox = Q.m + cx * Q.step, oy = Q.m + cy * Q.step;
                     for (int yy = by * Q.B; yy < (by + 1) * Q.B && yy < y->oh; yy++)

@@ -1,4 +1,5 @@
 /* cellular_kdtree.c - nearest points through FLANN's kd-tree, for any set and metric */
+#define _GNU_SOURCE /* qsort_r */
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
@@ -19,6 +20,71 @@ static int morton_cmp(const void *a, const void *b)
 {
     const struct morton *x = a, *y = b;
     return x->key != y->key ? (x->key < y->key ? -1 : 1) : (x->at > y->at) - (x->at < y->at);
+}
+
+/* Reps i and j (indices into c->rep) at the same place with the same radii: every
+ * query finds them at the same distance, bit for bit. */
+static int rep_place_cmp(const struct tex_cellular *c, long i, long j)
+{
+    for (int d = 0; d < c->dim; d++) {
+        double x = c->rep[i * c->dim + d], y = c->rep[j * c->dim + d];
+        if (x != y)
+            return x < y ? -1 : 1;
+    }
+    for (int d = 0; c->ia && d < c->dim; d++) {
+        double x = c->ia[c->repid[i] * c->dim + d], y = c->ia[c->repid[j] * c->dim + d];
+        if (x != y)
+            return x < y ? -1 : 1;
+    }
+    return 0;
+}
+
+/* By place, then by point id */
+static int rep_cmp(const void *a, const void *b, void *arg)
+{
+    const struct tex_cellular *c = arg;
+    long i = *(const long *)a, j = *(const long *)b;
+    int k = rep_place_cmp(c, i, j);
+    return k ? k : (c->repid[i] > c->repid[j]) - (c->repid[i] < c->repid[j]);
+}
+
+/* Coincident points (10^4 copies of one): FLANN then visits every leaf for
+ * every query, and the candidate tree splits to its depth everywhere, for a
+ * minute and more.  best_add keeps the nearest's distance and lowest id and
+ * the second distance, so of reps at one place with the same radii the two
+ * of lowest id give the same answers as all of them: the others go, the
+ * order of those kept stays.  Equal reps share a Morton key, so only runs
+ * of one key are compared; a set without coincident points is unchanged.
+ * Returns the number of reps kept, now m's first entries. */
+static long rep_dedup(const struct tex_cellular *c, struct morton *m, long n)
+{
+    long *run = NULL, cap = 0, kept = 0;
+    unsigned char *drop = NULL;
+    for (long r0 = 0, r1; r0 < n; r0 = r1) {
+        for (r1 = r0 + 1; r1 < n && m[r1].key == m[r0].key; r1++)
+            ;
+        if (r1 - r0 < 3)
+            continue;
+        if (r1 - r0 > cap) {
+            long *g = realloc(run, (r1 - r0) * sizeof *run);
+            if (!g)
+                break; /* keep them all: slower, the same answers */
+            run = g, cap = r1 - r0;
+        }
+        if (!drop && !(drop = calloc(n, 1)))
+            break;
+        for (long i = r0; i < r1; i++)
+            run[i - r0] = m[i].at;
+        qsort_r(run, r1 - r0, sizeof *run, rep_cmp, (void *)c);
+        for (long i = 2; i < r1 - r0; i++)
+            drop[run[i]] = !rep_place_cmp(c, run[i], run[i - 2]);
+    }
+    for (long i = 0; i < n; i++)
+        if (!drop || !drop[m[i].at])
+            m[kept++] = m[i];
+    free(run);
+    free(drop);
+    return kept;
 }
 
 static int rep_sort(struct tex_cellular *c)
@@ -51,6 +117,7 @@ static int rep_sort(struct tex_cellular *c)
         m[i].at = i;
     }
     qsort(m, n, sizeof *m, morton_cmp);
+    n = rep_dedup(c, m, n);
     for (long i = 0; i < n; i++) {
         memcpy(rep + i * dim, c->rep + m[i].at * dim, dim * sizeof *rep);
         repid[i] = c->repid[m[i].at];
@@ -60,6 +127,7 @@ static int rep_sort(struct tex_cellular *c)
     c->rep = rep;
     c->repid = repid;
     c->repshift = shift;
+    c->nrep = n;
     return 0;
 }
 

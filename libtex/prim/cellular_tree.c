@@ -43,7 +43,7 @@ struct act_list {
 struct act_build {
     int rind[ACT_RMAX];
     double rdist[ACT_RMAX];
-    long nnode, capnode, nent, capent, budget, nodebudget;
+    long nnode, capnode, nent, capent, budget, nodebudget, work, workbudget;
     struct act_list kid[ACT_DEPTH + 2], own[ACT_DEPTH + 2];
 };
 
@@ -129,7 +129,7 @@ act_filter(const double *lp, const long *lid, int n, const int D, double clo[8][
 }
 
 /* What act_gather decided for a node. */
-enum { ACT_LISTED, ACT_SPLIT, ACT_DONE };
+enum { ACT_LISTED, ACT_SPLIT, ACT_DONE, ACT_OVER };
 
 /* F2 at m from its two nearest representatives: the reach R within which
  * every point that may matter in a box of half-diagonal hd lies, F2 itself,
@@ -218,6 +218,8 @@ static int act_gather(struct tex_cellular *c, struct act_build *B, long node, co
         float r2 = R == INFINITY ? INFINITY : nextafterf((float)(R * R), INFINITY);
         if (maxnn > c->nrep)
             maxnn = (int)c->nrep + 1;
+        if ((B->work += maxnn) > B->workbudget)
+            return ACT_OVER;
         got = tex_kdtree_radius_d(c->index, m, r2, maxnn, B->rind, B->rdist);
         if (got < 0)
             return -1;
@@ -329,6 +331,8 @@ static int act_node(struct tex_cellular *c, struct act_build *B, long node, cons
             return -1;
         if (r == ACT_DONE)
             return 0;
+        if (r == ACT_OVER)
+            return 1;
         if (r == ACT_SPLIT)
             return act_split(c, B, node, lo, side, depth, NULL, NULL, 0);
         lp = B->own[depth].p;
@@ -350,7 +354,10 @@ void tex_cellular_tree_free(struct tex_cellular *c)
 }
 
 /* Top boxes of about ACT_K / 4 points; an entry budget keeps memory in
- * check (beyond it the queries go to kdtree_query). */
+ * check (beyond it the queries go to kdtree_query), and a budget of points
+ * asked of FLANN keeps time in check: 10^4 points within 10^-12 of one
+ * another fill every box to ACT_RMAX down to ACT_DEPTH (over a minute); sets
+ * spread as users make them ask about 22 n. */
 int tex_cellular_tree_build(struct tex_cellular *c)
 {
     int dim = c->dim, T = 1, ret = 0;
@@ -361,6 +368,7 @@ int tex_cellular_tree_build(struct tex_cellular *c)
         return tex_error("out of memory for the candidate tree");
     B->budget = 32 * c->n + (1L << 20);
     B->nodebudget = 16 * c->n + (1L << 16);
+    B->workbudget = 256 * c->n + (1L << 24);
     while (pow(2.0 * T, dim) <= c->n / 32.0 && T < (dim == 2 ? 1024 : 64))
         T *= 2;
     ntop = dim == 2 ? (long)T * T : (long)T * T * T;

@@ -7,6 +7,8 @@
 
 #include "base/error.h"
 #include "base/rng.h"
+#include "io/file.h"
+#include "io/limit.h"
 #include "prim/cellular.h"
 #include "prim/cellular_impl.h"
 
@@ -240,32 +242,37 @@ static int add_point(tex_points *ps, const double *v, int cols, long n, size_t *
     return 0;
 }
 
+/* The file is read whole under the one input limit (io/limit.h): getline
+ * grew one line of /dev/zero to 5.3 GB. */
 int tex_points_read(tex_points *ps, const char *path, int dim)
 {
-    FILE *fp;
-    char *line = NULL;
-    size_t cap = 0, alloc = 0;
+    char *text, *line, *next;
+    size_t len, max, alloc = 0;
     long lineno = 0, n = 0;
     int ret = -1;
 
     memset(ps, 0, sizeof *ps);
     ps->dim = dim;
-    if (!(fp = fopen(path, "r")))
-        return tex_error("%s: %s", path, strerror(errno));
-    while (getline(&line, &cap, fp) >= 0) {
+    if (tex_input_max(&max) < 0 || !(text = tex_read_text(path, max, &len, "a points file")))
+        return -1;
+    if (memchr(text, 0, len)) {
+        free(text);
+        return tex_error("%s: binary data in a points file", path);
+    }
+    for (line = text; line < text + len; line = next) {
         double v[5];
-        int cols = point_line(line, v, dim, path, ++lineno);
-        if (cols < 0)
+        int cols;
+        if ((next = strchr(line, '\n')))
+            *next++ = '\0';
+        else
+            next = text + len;
+        if ((cols = point_line(line, v, dim, path, ++lineno)) < 0)
             goto out;
         if (cols == 0)
             continue;
         if (add_point(ps, v, cols, n, &alloc, path, lineno) < 0)
             goto out;
         n++;
-    }
-    if (ferror(fp)) {
-        tex_error("%s: %s", path, strerror(errno));
-        goto out;
     }
     if (n == 0) {
         tex_error("%s:%ld: no points in the file", path, lineno);
@@ -274,8 +281,7 @@ int tex_points_read(tex_points *ps, const char *path, int dim)
     ps->n = n;
     ret = 0;
 out:
-    free(line);
-    fclose(fp);
+    free(text);
     if (ret < 0)
         tex_points_free(ps);
     return ret;

@@ -41,6 +41,7 @@ struct parser {
     int whole_vectors;
     int sample_size; /* tex_scene_opts */
     struct tex_tok kt; /* the word of the row a reader reads (struct tex_param's read) */
+    size_t caplights, capsurfaces; /* room in s->lights and s->surfaces (pgrow) */
 };
 
 /* The block a row's reader reads into (struct tex_param's read, ctx): the block's struct
@@ -80,6 +81,20 @@ static void *palloc(struct parser *ps, size_t n)
         fail_at(ps, &ps->lx.t, 1, "out of memory");
     s->pool[s->npool++] = m;
     return m;
+}
+
+/* a, an array of n elements of size bytes from the pool, with room for one more: a copy at
+ * twice the capacity *cap when it is full.  The old copies stay in the pool until the scene
+ * goes, a geometric sum: a copy one longer per element took 990 MB for 2,000 lights. */
+static void *pgrow(struct parser *ps, void *a, size_t n, size_t *cap, size_t size)
+{
+    if (n < *cap)
+        return a;
+    *cap = *cap ? 2 * *cap : 8;
+    void *b = palloc(ps, *cap * size);
+    if (n)
+        memcpy(b, a, n * size);
+    return b;
 }
 
 static char *pstrdup(struct parser *ps, const char *t, size_t n)
@@ -875,8 +890,8 @@ static void parse_surface(struct parser *ps)
         if (!strcmp(ps->s->surfaces[i]->name, name))
             fail_at(ps, &at, 0, "surface '%s' is defined twice", name);
     struct tex_surface *sf = palloc(ps, sizeof *sf);
-    struct tex_surface **a = palloc(ps, (ps->s->nsurfaces + 1) * sizeof *a);
-    memcpy(a, ps->s->surfaces, ps->s->nsurfaces * sizeof *a);
+    struct tex_surface **a =
+        pgrow(ps, ps->s->surfaces, ps->s->nsurfaces, &ps->capsurfaces, sizeof *a);
     a[ps->s->nsurfaces++] = sf;
     ps->s->surfaces = a;
     sf->name = name;
@@ -1234,9 +1249,7 @@ static void parse_light(struct parser *ps)
     if (!kinds[kind])
         fail_at(ps, &at, 0, "unknown light '%s' (distant|point|spot|area)", k);
     struct tex_scene *s = ps->s;
-    struct tex_light *a = palloc(ps, (s->nlights + 1) * sizeof *a);
-    if (s->nlights)
-        memcpy(a, s->lights, s->nlights * sizeof *a);
+    struct tex_light *a = pgrow(ps, s->lights, s->nlights, &ps->caplights, sizeof *a);
     s->lights = a;
     struct tex_light *l = &a[s->nlights++];
     if (tex_params_defaults(tex_light_rows, l) < 0)
@@ -1431,7 +1444,7 @@ static int parse_all(struct parser *ps)
     struct tex_surface *def = palloc(ps, sizeof *def);
     def->name = "default";
     surface_defaults(ps, def);
-    ps->s->surfaces = palloc(ps, sizeof *ps->s->surfaces);
+    ps->s->surfaces = pgrow(ps, NULL, 0, &ps->capsurfaces, sizeof *ps->s->surfaces);
     ps->s->surfaces[0] = def;
     ps->s->nsurfaces = 1;
     parse_scene(ps);

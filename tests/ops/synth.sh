@@ -169,3 +169,20 @@ else notok "patterns/synth_tile.sh: the map tiles" "seam $seam inner $inner"; fi
 # A mask over the whole sample leaves nothing to copy from.
 t_circle -s 128 -r 0.1 --colour1 1,1,1 --colour2 1,1,1 -o "$T/all.pfm"
 bad "a mask over the whole sample" 1 "$T/s.pfm" --mask "$T/all.pfm"
+
+# Values whose squared distances overflow: 1e20 made FLANN hand back no
+# neighbour (index -1, SIGSEGV), 3e38 everywhere made every quilting cost NaN
+# (a division by zero candidates, SIGFPE).  Both synthesise, from a file and
+# from standard input, and keep the sample's range.
+t_noise -s 64 -f 64 | t_op mul - 1e20 >"$T/e20.exr"
+t_noise -s 64 | t_op mul - 0 | t_op add - 3e38 >"$T/e38.exr"
+for m in e20 e38; do
+    check "t_synth, a sample of $m: from a file" t_synth -s 32 "$T/$m.exr" -o "$T/$m-f.exr"
+    check "t_synth, a sample of $m: from standard input" \
+        sh -c "t_synth -s 32 - -o '$T/$m-s.exr' <'$T/$m.exr'"
+done
+approx "$(info_json "$T/e38-f.exr" stats 0 min)" 3e38 1e32 && approx "$(info_json "$T/e38-s.exr" stats 0 max)" 3e38 1e32 &&
+    ok "t_synth, a sample of 3e38: 3e38 everywhere" ||
+    notok "t_synth, a sample of 3e38" "$(t_info "$T/e38-f.exr" | sed -n 2p)"
+approx "$(info_json "$T/e20-f.exr" stats 0 min)" 2e19 2e19 && ok "t_synth, a sample of 1e20: in its range" ||
+    notok "t_synth, a sample of 1e20: in its range" "$(t_info "$T/e20-f.exr" | sed -n 2p)"

@@ -111,3 +111,36 @@ grep -q "garbage.txt:2: " "$T/msg" && ok "the message names file:line" || notok 
 t_bubble -s 16 --points "$T/short.txt" -o "$T/bad.pfm" 2>"$T/msg"
 grep -q "short.txt:3: " "$T/msg" && ok "blank lines count in line numbers" || notok "line numbers" "$(cat "$T/msg")"
 [ ! -e "$T/bad.pfm" ] && ok "nothing written on errors" || notok "nothing written on errors"
+
+# Coincident points: FLANN's kd-tree visited every leaf for every query and the candidate
+# tree split to its depth everywhere (10^4 copies of one point: over a minute; 10^4 within
+# 10^-12 of one another: as long).  Each search answers within seconds, as the grid does.
+python3 - "$T" <<'PY'
+import random, sys
+random.seed(7)
+t = sys.argv[1]
+same = ['0.5 0.5'] * 9000 + ['%.6f %.6f' % (random.random(), random.random()) for _ in range(200)]
+same += ['0.25 0.75'] * 3000
+random.shuffle(same)
+open(t + '/same.txt', 'w').write('\n'.join(same) + '\n')
+near = ['%.17g %.17g' % (0.5 + random.random() * 1e-12, 0.5 + random.random() * 1e-12)
+        for _ in range(10000)]
+open(t + '/near.txt', 'w').write('\n'.join(near) + '\n')
+open(t + '/same3.txt', 'w').write('0.5 0.5 0.5\n' * 10000 + '0.2 0.3 0.4\n')
+PY
+for f in same near; do
+    for s in kdtree grid; do
+        for v in f2 cell; do
+            timeout 20 t_bubble -s 48 --points "$T/$f.txt" --search $s --value $v -o "$T/$f-$s-$v.pfm"
+            st=$?
+            [ $st = 0 ] || notok "$f.txt --search $s --value $v within 20 s" "exit $st"
+        done
+    done
+    cmp -s "$T/$f-kdtree-f2.pfm" "$T/$f-grid-f2.pfm" && cmp -s "$T/$f-kdtree-cell.pfm" "$T/$f-grid-cell.pfm" &&
+        ok "$f.txt: the kd-tree answers within 20 s, as the grid does" ||
+        notok "$f.txt: the kd-tree answers as the grid does"
+done
+timeout 20 t_bubble -s 32 --dimension 3 --points "$T/same3.txt" --search kdtree -o "$T/s3k.pfm" &&
+    t_bubble -s 32 --dimension 3 --points "$T/same3.txt" --search brute -o "$T/s3b.pfm" &&
+    cmp -s "$T/s3k.pfm" "$T/s3b.pfm" && ok "10^4 coincident points in 3D: the kd-tree as brute force" ||
+    notok "10^4 coincident points in 3D: the kd-tree as brute force"

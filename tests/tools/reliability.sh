@@ -258,3 +258,17 @@ t_apply --nonfinite 0.5 nan.scene -o nan.exr && [ "$(info_json nan.exr stats 0 n
     ok "t_apply --nonfinite 0.5 renders a finite image" || notok "t_apply --nonfinite 0.5"
 [ "$(info_json nan.pfm stats 0 nonfinite)" = 3 ] && ok "t_info counts them (3)" || notok "t_info counts them"
 check_fails "--nonfinite with a bad value" 2 t_filter blur --nonfinite nan nan.pfm -o out.pfm
+
+# A full disk: every writer fails with one line and leaves nothing.  OIIO's
+# BMP and TGA writers ignored a short write and exited 0 with a corrupt file.
+mkdir -p "$T/full"
+if mount -t tmpfs -o size=1m tmpfs "$T/full" 2>/dev/null; then
+    for e in bmp tga exr pfm ppm; do
+        check_fails "a full disk, .$e: refused" 1 t_noise -s 2048 -o "$T/full/x.$e"
+        [ -z "$(ls -A "$T/full")" ] && ok "a full disk, .$e: nothing left" ||
+            notok "a full disk, .$e: nothing left" "$(ls -A "$T/full")"
+    done
+    umount "$T/full"
+else
+    skip "a full disk" "cannot mount a tmpfs here (not root)"
+fi

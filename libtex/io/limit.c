@@ -1,0 +1,43 @@
+/* limit.c - the one limit on what a reader takes in ($TEXTURA_MAX_INPUT) */
+#include <errno.h>
+#include <stdint.h>
+#include <stdlib.h>
+
+#include "base/error.h"
+#include "io/limit.h"
+
+int tex_input_max(size_t *max)
+{
+    const char *s = getenv("TEXTURA_MAX_INPUT");
+    char *end;
+    unsigned long long v, unit = 1;
+
+    *max = TEX_INPUT_MAX_DEFAULT;
+    if (!s || !*s)
+        return 0;
+    errno = 0;
+    v = strtoull(s, &end, 10);
+    switch (*end) {
+    case 'k': case 'K': unit = 1ULL << 10, end++; break;
+    case 'm': case 'M': unit = 1ULL << 20, end++; break;
+    case 'g': case 'G': unit = 1ULL << 30, end++; break;
+    }
+    if (*s < '0' || *s > '9' || *end || errno || v > SIZE_MAX / unit || v * unit < 1024)
+        return tex_usage_error("TEXTURA_MAX_INPUT must be a size from 1K, in bytes or with K, "
+                               "M or G (got \"%s\")", s);
+    *max = (size_t)(v * unit);
+    return 0;
+}
+
+int tex_input_check_decoded(long long w, long long h, long long nc)
+{
+    size_t max;
+    if (tex_input_max(&max) < 0)
+        return -1;
+    /* sides and channels are checked first (tex_map_check_size): the product fits */
+    if (w > 0 && h > 0 && nc > 0 && (unsigned long long)w * h * nc * 4 > max)
+        return tex_error("%lldx%lld with %lld channel%s is %llu bytes as float, over the input "
+                         "limit of %zu (TEXTURA_MAX_INPUT)",
+                         w, h, nc, nc > 1 ? "s" : "", (unsigned long long)w * h * nc * 4, max);
+    return 0;
+}
