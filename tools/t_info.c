@@ -49,6 +49,66 @@ static int stdout_flushed(void)
     return 0;
 }
 
+/* The thumbnail: at most 256 pixels a side, area-filtered */
+static void preview(tex_map *m, int how)
+{
+    int tw = m->w, th = m->h, side = m->w > m->h ? m->w : m->h;
+    if (side > 256) {
+        tw = (int)((long)m->w * 256 / side), th = (int)((long)m->h * 256 / side);
+        tw = tw > 0 ? tw : 1, th = th > 0 ? th : 1;
+    }
+    tex_map *t = tw == m->w && th == m->h ? m : tex_resize(m, tw, th);
+    if (!t || tex_terminal_write(stdout, t, how == 1   ? tex_terminal_guess()
+                                            : how == 2 ? TEX_TERMINAL_SIXEL
+                                                       : TEX_TERMINAL_KITTY) < 0)
+        tex_die();
+    if (t != m)
+        tex_map_free(t);
+    tex_map_free(m);
+}
+
+/* The map's header into head and its statistics into st: from a scanline EXR a band of
+ * rows at a time as they pass (about 1 MiB each), from anything else the whole map. */
+static tex_map *gather(const char *name, tex_map *head, struct tex_stats *st)
+{
+    tex_map *whole = NULL;
+    struct tex_stats_acc a[4];
+    tex_rows_reader *r = tex_map_open_rows(name, head, &whole);
+
+    if (!r && !whole)
+        tex_die();
+    if (!r) {
+        for (int k = 0; k < whole->nc; k++)
+            tex_map_stats(whole, k, &st[k]);
+        *head = *whole;
+        head->px = NULL, head->mapped = 0;
+        whole->history = NULL;
+        tex_map_free(whole);
+        return head;
+    }
+    int rows = (int)((1L << 20) / ((long)head->w * head->nc * (long)sizeof(float)));
+    rows = rows < 1 ? 1 : rows > head->h ? head->h : rows;
+    float *band = malloc((size_t)rows * head->w * head->nc * sizeof *band);
+    if (!band) {
+        tex_error("out of memory");
+        tex_die();
+    }
+    for (int k = 0; k < head->nc; k++)
+        tex_stats_begin(&a[k]);
+    for (int y = 0; y < head->h; y += rows) {
+        int n = head->h - y < rows ? head->h - y : rows;
+        if (tex_rows_read(r, y, n, band, strcmp(name, "-") ? name : "standard input") < 0)
+            tex_die();
+        for (int k = 0; k < head->nc; k++)
+            tex_stats_add(&a[k], band + k, (size_t)head->w, (size_t)n, head->nc);
+    }
+    for (int k = 0; k < head->nc; k++)
+        tex_stats_end(&a[k], &st[k]);
+    free(band);
+    tex_rows_close(r);
+    return head;
+}
+
 int main(int argc, char **argv)
 {
     struct tex_common c;
@@ -62,28 +122,16 @@ int main(int argc, char **argv)
     }
     const char *name = i < argc ? argv[i] : "-";
     tex_map_set_nonfinite(TEX_NONFINITE_KEEP, 0); /* it counts them */
-    tex_map *m = tex_cli_read(name);
+    tex_map head, *m;
     struct tex_stats st[4];
 
     if (o.preview) {
-        int tw = m->w, th = m->h, side = m->w > m->h ? m->w : m->h;
-        if (side > 256) { /* shrunk, area-filtered, to 256 on the longer side */
-            tw = (int)((long)m->w * 256 / side), th = (int)((long)m->h * 256 / side);
-            tw = tw > 0 ? tw : 1, th = th > 0 ? th : 1;
-        }
-        tex_map *t = tw == m->w && th == m->h ? m : tex_resize(m, tw, th);
-        if (!t || tex_terminal_write(stdout, t, o.preview == 1   ? tex_terminal_guess()
-                                                : o.preview == 2 ? TEX_TERMINAL_SIXEL
-                                                                 : TEX_TERMINAL_KITTY) < 0)
-            tex_die();
-        if (t != m)
-            tex_map_free(t);
-        tex_map_free(m);
+        preview(tex_cli_read(name), o.preview);
         free(c.cmdline);
         return stdout_flushed();
     }
-    for (int k = 0; k < m->nc; k++)
-        tex_map_stats(m, k, &st[k]);
+    m = gather(name, &head, st);
+
     if (o.json) {
         printf("{\"width\": %d, \"height\": %d, \"channels\": %d, \"subregions\": %d,\n", m->w, m->h,
                m->nc, m->subregions);
@@ -120,7 +168,7 @@ int main(int argc, char **argv)
             }
         }
     }
-    tex_map_free(m);
+    free(m->history);
     free(c.cmdline);
     return stdout_flushed();
 }

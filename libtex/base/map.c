@@ -169,35 +169,62 @@ int tex_map_add_history(tex_map *m, const char *line)
     return 0;
 }
 
+void tex_stats_begin(struct tex_stats_acc *a)
+{
+    *a = (struct tex_stats_acc){.lo = INFINITY, .hi = -INFINITY};
+}
+
+void tex_stats_add(struct tex_stats_acc *a, const float *px, size_t w, size_t rows, int nc)
+{
+    for (size_t y = 0; y < rows; y++, px += w * nc) {
+        if (!a->shifted) { /* the first row with a finite sample: its mean is the shift */
+            double t = 0;
+            size_t k = 0;
+            for (size_t x = 0; x < w; x++)
+                if (isfinite(px[x * nc]))
+                    t += px[x * nc], k++;
+            if (k)
+                a->shift = t / k, a->shifted = 1;
+        }
+        double sum = a->sum, s1 = a->s1, s2 = a->s2, k0 = a->shift;
+        float lo = a->lo, hi = a->hi;
+        size_t n = a->n;
+        for (size_t x = 0; x < w; x++) {
+            float v = px[x * nc];
+            if (!isfinite(v))
+                continue;
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
+            sum += v;
+            double d = v - k0;
+            s1 += d;
+            s2 += d * d;
+            n++;
+        }
+        a->nonfinite += w - (n - a->n);
+        a->sum = sum, a->s1 = s1, a->s2 = s2, a->lo = lo, a->hi = hi, a->n = n;
+    }
+}
+
+void tex_stats_end(const struct tex_stats_acc *a, struct tex_stats *s)
+{
+    size_t n = a->n;
+    double m1 = n ? a->s1 / n : 0, var = n ? a->s2 / n - m1 * m1 : 0;
+
+    s->min = n ? a->lo : 0;
+    s->max = n ? a->hi : 0;
+    s->mean = n ? a->sum / n : 0;
+    s->stddev = var > 0 ? sqrt(var) : 0;
+    s->nonfinite = a->nonfinite;
+}
+
 void tex_map_stats(const tex_map *m, int c, struct tex_stats *s)
 {
-    double sum = 0, sum2 = 0, mean;
-    size_t n = 0, bad = 0, total = (size_t)m->w * m->h;
-    float lo = INFINITY, hi = -INFINITY;
+    struct tex_stats_acc a;
 
-    /* Two passes in a fixed order: the figures are the same on every run. */
-    for (size_t i = 0; i < total; i++) {
-        float v = m->px[i * m->nc + c];
-        if (!isfinite(v)) {
-            bad++;
-            continue;
-        }
-        lo = v < lo ? v : lo;
-        hi = v > hi ? v : hi;
-        sum += v;
-        n++;
-    }
-    mean = n ? sum / n : 0;
-    for (size_t i = 0; i < total; i++) {
-        float v = m->px[i * m->nc + c];
-        if (isfinite(v))
-            sum2 += (v - mean) * (v - mean);
-    }
-    s->min = n ? lo : 0;
-    s->max = n ? hi : 0;
-    s->mean = mean;
-    s->stddev = n ? sqrt(sum2 / n) : 0;
-    s->nonfinite = bad;
+    tex_stats_begin(&a);
+    tex_stats_add(&a, m->px + c, (size_t)m->w, (size_t)m->h, m->nc);
+    tex_stats_end(&a, s);
 }
 
 int tex_parse_window(const char *text, int full_w, int full_h, int r[4])

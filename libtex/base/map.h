@@ -130,6 +130,27 @@ struct tex_stats {
 };
 void tex_map_stats(const tex_map *m, int channel, struct tex_stats *s);
 
+/* The same statistics gathered as rows pass (a stream), in one pass: samples are added in
+ * the map's order, so the figures do not depend on how the rows were split.  The mean is
+ * the sum of the samples in that order over their count; the deviation is taken from sums
+ * about the mean of the first row that has a finite sample, which keeps it as exact as a
+ * second pass about the mean would.
+ *
+ *   struct tex_stats_acc a[4];
+ *   for (c...) tex_stats_begin(&a[c]);
+ *   for each band: tex_stats_add(&a[c], band + c, pixels_per_row, rows, nc);
+ *   tex_stats_end(&a[c], &s); */
+struct tex_stats_acc {
+    double sum, shift, s1, s2;
+    float lo, hi;
+    size_t n, nonfinite;
+    int shifted; /* the shift is set */
+};
+void tex_stats_begin(struct tex_stats_acc *a);
+/* Add rows of w samples each, nc floats apart (px: the channel's first sample). */
+void tex_stats_add(struct tex_stats_acc *a, const float *px, size_t w, size_t rows, int nc);
+void tex_stats_end(const struct tex_stats_acc *a, struct tex_stats *s);
+
 TEX_API_END
 #endif
 

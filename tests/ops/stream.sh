@@ -33,6 +33,16 @@ TEXTURA_BAND_ROWS=5 t_filter blur --sigma 1.5 "$T/rgb.exr" -o "$T/bands.exr"
 same "t_filter reads a file operand in bands, with the same pixels" "$T/whole.exr" "$T/bands.exr"
 check_fails "TEXTURA_BAND_ROWS out of range" 2 bash -c "TEXTURA_BAND_ROWS=0 t_filter blur '$T/y.exr'"
 
+# t_info: the figures of a stream gathered as its rows pass are those of the whole map
+bad=""
+for src in y rgb whole; do
+    for j in "" --json; do
+        [ "$(t_info $j <"$T/$src.exr")" = "$(cat "$T/$src.exr" | t_info $j)" ] || bad+=" $src$j"
+    done
+done
+[ -z "$bad" ] && ok "t_info gives a stream's figures as it passes, the same as the whole map's" ||
+    notok "t_info streamed" "differs for$bad"
+
 # Bounded memory: a 4096x4096 RGB map (192 MiB, three times that for the whole-map blur)
 # through t_filter under a limit below the map's size
 lim=180000
@@ -42,6 +52,10 @@ want=$(t_filter blur --sigma 2 <"$T/big.exr" | md5sum)
 got=$(cat "$T/big.exr" | (ulimit -v $lim; t_filter blur --sigma 2) | md5sum)
 [ "$got" = "$want" ] && ok "t_filter blur streams a 4096x4096 map under ulimit -v $lim KB" ||
     notok "t_filter blur under ulimit -v $lim" "$got vs $want"
+want=$(t_info <"$T/big.exr")
+got=$(cat "$T/big.exr" | (ulimit -v $lim; t_info))
+[ "$got" = "$want" ] && ok "t_info reads a 4096x4096 stream under ulimit -v $lim KB" ||
+    notok "t_info under ulimit -v $lim" "$got"
 rm -f "$T/big.exr"
 
 # A slow producer: half the stream, then nothing more until t_filter has written its first
