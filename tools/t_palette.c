@@ -176,6 +176,68 @@ static tex_map *colour(tex_map *band, void *arg)
     return out;
 }
 
+struct spool {
+    tex_rows_reader *r;
+    const char *name;
+    int w, nc;
+    struct tex_stats_acc range; /* of channel 0, as tex_palette_map's auto range */
+};
+
+static int spool_fill(void *arg, int y, int n, float *rows)
+{
+    struct spool *s = arg;
+    if (tex_rows_read(s->r, y, n, rows, s->name) < 0 ||
+        tex_rows_nonfinite(rows, s->w, n, s->nc, y, s->name) < 0)
+        return -1;
+    tex_stats_add(&s->range, rows, (size_t)s->w, (size_t)n, s->nc);
+    return 0;
+}
+
+/* The map's own range: from a stream, in bounded memory, its rows pass to a temporary file
+ * (unlinked at once) as their range is taken, and are coloured from there a band at a
+ * time; anything else is coloured whole. */
+static void colour_auto(struct colouring *k, const struct tex_common *c)
+{
+    const char *dir = getenv("TMPDIR"), *name = strcmp(k->input, "-") ? k->input : "standard input";
+    char tmp[4096], path[64];
+    tex_map head, *whole = NULL;
+    tex_rows_reader *r = NULL;
+    struct tex_stats st;
+    int fd;
+
+    if (tex_cli_streams(c)) {
+        if (!(r = tex_map_open_rows(k->input, &head, &whole)) && !whole)
+            tex_die();
+    } else {
+        whole = tex_cli_read(k->input);
+    }
+    if (!r) {
+        tex_map *out = colour(whole, k);
+        if (!out)
+            tex_die();
+        tex_cli_write(out, c);
+        tex_map_free(out);
+        return;
+    }
+    snprintf(tmp, sizeof tmp, "%s/.t_palette.XXXXXX", dir && *dir ? dir : "/tmp");
+    if ((fd = mkstemp(tmp)) < 0) {
+        tex_error("%s: %s", tmp, strerror(errno));
+        tex_die();
+    }
+    unlink(tmp);
+    struct spool s = {.r = r, .name = name, .w = head.w, .nc = head.nc};
+    tex_stats_begin(&s.range);
+    if (tex_exr_write_rows(&head, spool_fill, &s, 0, TEX_COMPRESS_NONE, fd, name) < 0)
+        tex_die();
+    tex_rows_close(r);
+    free(head.history);
+    tex_stats_end(&s.range, &st);
+    k->lo = st.min, k->hi = st.max;
+    snprintf(path, sizeof path, "/proc/self/fd/%d", fd);
+    tex_cli_stream(path, c, colour, k);
+    close(fd);
+}
+
 int main(int argc, char **argv)
 {
     struct tex_common c;
@@ -184,7 +246,6 @@ int main(int argc, char **argv)
     const char *first = argc > 1 && argv[1][0] != '-' ? argv[1] : NULL, *name, *input = "-";
     double lo, hi;
     tex_palette *p;
-    tex_map *m, *out;
     int i = tex_cli_parse(&tool, argc, argv, &c, &o);
 
     if (o.list) {
@@ -220,15 +281,10 @@ int main(int argc, char **argv)
     parse_range(o.range, &lo, &hi);
     die_if(!(p = tex_palette_load(name)));
     struct colouring k = {p, lo, hi, o.outside, input};
-    if (!isnan(lo)) { /* a given range is per pixel: a band of rows at a time */
+    if (!isnan(lo)) /* a given range is per pixel: a band of rows at a time */
         tex_cli_stream(input, &c, colour, &k);
-    } else { /* auto: the map's own range, from the whole map */
-        m = tex_cli_read(input);
-        if (!(out = colour(m, &k)))
-            tex_die();
-        tex_cli_write(out, &c);
-        tex_map_free(out);
-    }
+    else
+        colour_auto(&k, &c);
     tex_palette_free(p);
     free(c.cmdline);
     return 0;

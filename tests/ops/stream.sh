@@ -43,6 +43,17 @@ done
 [ -z "$bad" ] && ok "t_info gives a stream's figures as it passes, the same as the whole map's" ||
     notok "t_info streamed" "differs for$bad"
 
+# t_palette's auto range from a stream: spooled, then coloured a band at a time
+bad=""
+for pal in marble greys; do
+    for rows in "" 7; do
+        [ "$(t_palette $pal <"$T/y.exr" | md5sum)" = "$(cat "$T/y.exr" | TEXTURA_BAND_ROWS=$rows t_palette $pal | md5sum)" ] ||
+            bad+=" $pal/${rows:-default}"
+    done
+done
+[ -z "$bad" ] && ok "t_palette's auto range from a stream gives the whole map's bytes" ||
+    notok "t_palette auto range streamed" "differs for$bad"
+
 # Bounded memory: a 4096x4096 RGB map (192 MiB, three times that for the whole-map blur)
 # through t_filter under a limit below the map's size
 lim=180000
@@ -52,6 +63,12 @@ want=$(t_filter blur --sigma 2 <"$T/big.exr" | md5sum)
 got=$(cat "$T/big.exr" | (ulimit -v $lim; t_filter blur --sigma 2) | md5sum)
 [ "$got" = "$want" ] && ok "t_filter blur streams a 4096x4096 map under ulimit -v $lim KB" ||
     notok "t_filter blur under ulimit -v $lim" "$got vs $want"
+t_noise -s 4096 -f 8 >"$T/bigy.exr"
+want=$(t_palette marble <"$T/bigy.exr" | md5sum)
+got=$(cat "$T/bigy.exr" | (ulimit -v $lim; t_palette marble) | md5sum)
+[ "$got" = "$want" ] && ok "t_palette's auto range streams a 4096x4096 map under ulimit -v $lim KB" ||
+    notok "t_palette auto range under ulimit -v $lim" "$got vs $want"
+rm -f "$T/bigy.exr"
 want=$(t_info <"$T/big.exr")
 got=$(cat "$T/big.exr" | (ulimit -v $lim; t_info))
 [ "$got" = "$want" ] && ok "t_info reads a 4096x4096 stream under ulimit -v $lim KB" ||
