@@ -33,14 +33,14 @@ TEXTURA_BAND_ROWS=5 t_filter blur --sigma 1.5 "$T/rgb.exr" -o "$T/bands.exr"
 same "t_filter reads a file operand in bands, with the same pixels" "$T/whole.exr" "$T/bands.exr"
 check_fails "TEXTURA_BAND_ROWS out of range" 2 bash -c "TEXTURA_BAND_ROWS=0 t_filter blur '$T/y.exr'"
 
-# t_info: the figures of a stream gathered as its rows pass are those of the whole map
+# t_info: the figures of a stream are those of the same map from a file
 bad=""
 for src in y rgb whole; do
     for j in "" --json; do
         [ "$(t_info $j <"$T/$src.exr")" = "$(cat "$T/$src.exr" | t_info $j)" ] || bad+=" $src$j"
     done
 done
-[ -z "$bad" ] && ok "t_info gives a stream's figures as it passes, the same as the whole map's" ||
+[ -z "$bad" ] && ok "t_info gives a stream's figures, the same as a file's" ||
     notok "t_info streamed" "differs for$bad"
 
 # t_palette's auto range from a stream: spooled, then coloured a band at a time
@@ -69,10 +69,6 @@ got=$(cat "$T/bigy.exr" | (ulimit -v $lim; t_palette marble) | md5sum)
 [ "$got" = "$want" ] && ok "t_palette's auto range streams a 4096x4096 map under ulimit -v $lim KB" ||
     notok "t_palette auto range under ulimit -v $lim" "$got vs $want"
 rm -f "$T/bigy.exr"
-want=$(t_info <"$T/big.exr")
-got=$(cat "$T/big.exr" | (ulimit -v $lim; t_info))
-[ "$got" = "$want" ] && ok "t_info reads a 4096x4096 stream under ulimit -v $lim KB" ||
-    notok "t_info under ulimit -v $lim" "$got"
 rm -f "$T/big.exr"
 
 # A slow producer: half the stream, then nothing more until t_filter has written its first
