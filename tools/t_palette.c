@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "ops/palette.h"
@@ -233,6 +234,15 @@ static void colour_auto(struct colouring *k, const struct tex_common *c)
     free(head.history);
     tex_stats_end(&s.range, &st);
     k->lo = st.min, k->hi = st.max;
+    /* The spool holds rows already taken in under the input limit, but no longer compressed
+     * and with a chunk table: near the limit it may pass it, and is no input to judge */
+    struct stat sb;
+    size_t max;
+    char lim[32];
+    if (fstat(fd, &sb) == 0 && tex_input_max(&max) == 0 && (size_t)sb.st_size > max) {
+        snprintf(lim, sizeof lim, "%lld", (long long)sb.st_size);
+        setenv("TEXTURA_MAX_INPUT", lim, 1);
+    }
     snprintf(path, sizeof path, "/proc/self/fd/%d", fd);
     tex_cli_stream(path, c, colour, k);
     close(fd);

@@ -494,16 +494,21 @@ tex_rows_reader *tex_map_open_rows(const char *path, tex_map *head, tex_map **wh
     *whole = NULL;
     if (path && strcmp(path, "-") != 0) {
         int fd = open(path, O_RDONLY);
+        size_t max;
         if (fd < 0) {
             tex_error("%s: %s", path, strerror(errno));
             return NULL;
         }
         ssize_t k = read(fd, pre, 4);
+        /* a file over the input limit, or not a regular one: the whole reader refuses it
+         * with its words, or counts the bytes it reads */
+        int plain = fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && tex_input_max(&max) == 0 &&
+                    (unsigned long long)st.st_size <= max;
         close(fd);
-        if (k == 4 && tex_format_sniff(pre, 4) == TEX_FMT_EXR &&
-            (r = tex_rows_open(-1, NULL, 0, path, name, head)))
+        if (plain && k == 4 && tex_format_sniff(pre, 4) == TEX_FMT_EXR &&
+            (r = tex_rows_open(-1, NULL, 0, path, name, head, NULL)))
             return r;
-        *whole = tex_map_read(path); /* another format, or a tiled EXR */
+        *whole = tex_map_read(path); /* another format, a tiled EXR, or refused */
         return NULL;
     }
     if (isatty(0) || fstat(0, &st) != 0 || !S_ISFIFO(st.st_mode)) {
@@ -522,8 +527,13 @@ tex_rows_reader *tex_map_open_rows(const char *path, tex_map *head, tex_map **wh
             break;
         n += (size_t)k;
     }
-    if (tex_format_sniff(pre, n) == TEX_FMT_EXR)
-        return tex_rows_open(0, pre, n, NULL, name, head);
+    if (tex_format_sniff(pre, n) == TEX_FMT_EXR) {
+        tex_map *m = NULL;
+        if ((r = tex_rows_open(0, pre, n, NULL, name, head, &m)) || !m)
+            return r;
+        *whole = nonfinite(m, name); /* tiled: decoded whole from what the pipe had sent */
+        return NULL;
+    }
     *whole = nonfinite(read_rest(0, pre, n, NULL, name), name);
     return NULL;
 }

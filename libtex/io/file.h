@@ -78,7 +78,9 @@ tex_map **tex_map_read_levels(const char *path, int *n);
 /* Open a map to be read a band of rows at a time (stream.h, tex_rows_read),
  * from path or standard input (NULL or "-"), when it is a scanline EXR;
  * otherwise the map is read whole into *whole and NULL is returned (NULL
- * with *whole NULL: an error).  Rows read are checked for non-finite
+ * with *whole NULL: an error); a tiled EXR on a pipe is decoded whole from
+ * what the pipe has sent.  The input limit (limit.h) holds as for
+ * tex_map_read, with its words.  Rows read are checked for non-finite
  * samples by the caller with tex_rows_nonfinite. */
 tex_rows_reader *tex_map_open_rows(const char *path, tex_map *head, tex_map **whole);
 /* The --nonfinite policy over n rows of w x nc samples starting at row y0:

@@ -569,7 +569,33 @@ struct rstream {
     size_t cap, len;
     uint64_t base; /* stream offset of buf[0] */
     int eof;
+    size_t max;    /* the input limit (io/limit.h) on the bytes read, base + len */
+    int over;      /* the stream passed it */
 };
+
+/* A pipe's window of 1 MiB holding prefix_len bytes read before; -1 with the error set
+ * (the limit's variable malformed, or no memory). */
+static int rstream_open(struct rstream *r, int fd, const char *name, const void *prefix,
+                        size_t prefix_len)
+{
+    *r = (struct rstream){fd, name, NULL, 1 << 20, prefix_len, 0, 0, 0, 0};
+    if (tex_input_max(&r->max) < 0)
+        return -1;
+    if (prefix_len > r->cap || !(r->buf = malloc(r->cap)))
+        return tex_error("out of memory");
+    if (prefix_len) /* prefix may be NULL then */
+        memcpy(r->buf, prefix, prefix_len);
+    tex_pipe_widen(fd);
+    return 0;
+}
+
+/* The limit's word when the stream passed it: the decoder's own word on the read that
+ * failed would hide it.  Without the input's name, which callers add. */
+static void rstream_limit_word(const struct rstream *r)
+{
+    if (r->over)
+        tex_error("over the input limit of %zu bytes (TEXTURA_MAX_INPUT)", r->max);
+}
 
 static int64_t read_stream(exr_const_context_t ctxt, void *ud, void *dst, uint64_t sz,
                            uint64_t off, exr_stream_error_func_ptr_t ecb)
@@ -596,8 +622,12 @@ static int64_t read_stream(exr_const_context_t ctxt, void *ud, void *dst, uint64
         r->buf = b;
         r->cap = cap;
     }
-    while (r->len < need && !r->eof) {
-        ssize_t k = read(r->fd, r->buf + r->len, r->cap - r->len);
+    /* Bytes past the limit are refused as the whole-map readers refuse them, once a
+     * request reaches them (the header's is 4 KiB, its declared size judged first);
+     * reads stop a byte past it. */
+    while (r->len < need && !r->eof && r->base + r->len <= r->max) {
+        size_t room = r->cap - r->len, left = (size_t)(r->max + 1 - r->base - r->len);
+        ssize_t k = read(r->fd, r->buf + r->len, room < left ? room : left);
         if (k < 0 && errno == EINTR)
             continue;
         if (k < 0)
@@ -605,6 +635,10 @@ static int64_t read_stream(exr_const_context_t ctxt, void *ud, void *dst, uint64
         if (k == 0)
             r->eof = 1;
         r->len += (size_t)k;
+    }
+    if (r->base + r->len > r->max && off + sz > r->max) {
+        r->over = 1;
+        return ecb(ctxt, EXR_ERR_READ_IO, "over the input limit"), -1;
     }
     avail = r->base + r->len > off ? (size_t)(r->base + r->len - off) : 0;
     if (avail > sz)
@@ -681,21 +715,18 @@ tex_map **tex_exr_decode_levels(const void *data, size_t len, const char *name, 
 tex_map *tex_exr_read_fd(int fd, const void *prefix, size_t prefix_len, const char *name)
 {
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    struct rstream r = {fd, name, malloc(1 << 20), 1 << 20, prefix_len, 0, 0};
+    struct rstream r;
     tex_map *m = NULL;
 
-    if (!r.buf || prefix_len > r.cap) {
+    if (rstream_open(&r, fd, name, prefix, prefix_len) < 0) {
         free(r.buf);
-        tex_error("out of memory");
         return NULL;
     }
-    if (prefix_len) /* prefix may be NULL then */
-        memcpy(r.buf, prefix, prefix_len);
-    tex_pipe_widen(fd);
     init.user_data = &r;
     init.read_fn = read_stream;
     init.size_fn = size_unknown;
-    m = decode(&init, name, NULL, NULL);
+    if (!(m = decode(&init, name, NULL, NULL)))
+        rstream_limit_word(&r);
     free(r.buf);
     return m;
 }
@@ -1001,8 +1032,31 @@ struct tex_rows_reader {
     int cy;              /* its first row (relative to the data window), -1: none */
 };
 
+/* The tiled map on r's pipe decoded whole, from the bytes r's window holds from offset 0
+ * on (the header's) and the rest of the pipe: NULL with the error set, naming name. */
+static tex_map *rows_whole(tex_rows_reader *r, const char *name)
+{
+    exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
+    tex_map *m;
+
+    exr_finish(&r->ctx);
+    r->ctx = NULL;
+    if (r->rs.base != 0) { /* the header alone passed the window's 1 MiB */
+        tex_error("%s: a tiled stream with a header over 1 MiB", name);
+        return NULL;
+    }
+    init.user_data = &r->rs;
+    init.read_fn = read_stream;
+    init.size_fn = size_unknown;
+    if (!(m = decode(&init, name, NULL, NULL))) {
+        rstream_limit_word(&r->rs);
+        tex_error_context(name);
+    }
+    return m;
+}
+
 tex_rows_reader *tex_rows_open(int fd, const void *prefix, size_t prefix_len, const char *path,
-                               const char *name, tex_map *head)
+                               const char *name, tex_map *head, tex_map **whole)
 {
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     tex_rows_reader *r = calloc(1, sizeof *r);
@@ -1010,6 +1064,8 @@ tex_rows_reader *tex_rows_open(int fd, const void *prefix, size_t prefix_len, co
     exr_result_t rv;
 
     memset(head, 0, sizeof *head);
+    if (whole)
+        *whole = NULL;
     if (!r) {
         tex_error("out of memory");
         return NULL;
@@ -1021,25 +1077,26 @@ tex_rows_reader *tex_rows_open(int fd, const void *prefix, size_t prefix_len, co
     init.max_image_width = TEX_MAP_MAX_SIDE;
     init.max_image_height = TEX_MAP_MAX_SIDE;
     if (!path) { /* a pipe: the stream's window */
-        r->rs = (struct rstream){fd, name, malloc(1 << 20), 1 << 20, prefix_len, 0, 0};
-        if (!r->rs.buf || prefix_len > r->rs.cap) {
-            tex_error("out of memory");
+        if (rstream_open(&r->rs, fd, name, prefix, prefix_len) < 0)
             goto fail;
-        }
-        if (prefix_len)
-            memcpy(r->rs.buf, prefix, prefix_len);
-        tex_pipe_widen(fd);
         init.user_data = &r->rs;
         init.read_fn = read_stream;
         init.size_fn = size_unknown;
     }
     tex_error("unknown error");
     if ((rv = exr_start_read(&r->ctx, path ? path : name, &init))) {
-        tex_error("%s: not a valid OpenEXR stream (%s)", name, exr_get_default_error_message(rv));
+        rstream_limit_word(&r->rs);
+        if (!r->rs.over)
+            tex_error("not a valid OpenEXR stream (%s)", exr_get_default_error_message(rv));
+        tex_error_context(name);
         goto fail;
     }
     if (decode_header(r->ctx, &r->dw, &cl, &r->lines) < 0) {
         tex_error_context(name);
+        goto fail;
+    }
+    if (r->lines <= 0 && whole && !path) {
+        *whole = rows_whole(r, name);
         goto fail;
     }
     if (r->lines <= 0) {
@@ -1049,6 +1106,10 @@ tex_rows_reader *tex_rows_open(int fd, const void *prefix, size_t prefix_len, co
     head->nc = order_channels(cl, r->order);
     head->w = r->dw.max.x - r->dw.min.x + 1;
     head->h = r->dw.max.y - r->dw.min.y + 1;
+    if (tex_input_check_decoded(head->w, head->h, head->nc) < 0) { /* as decode() refuses */
+        tex_error_context(name);
+        goto fail;
+    }
     if (header_attrs(r->ctx, cl, r->order, r->dw, name, head) < 0)
         goto fail;
     if (!(r->chunk = tex_map_new(head->w, r->lines, head->nc)))
@@ -1071,10 +1132,14 @@ int tex_rows_read(tex_rows_reader *r, int y, int n, float *rows, const char *nam
             exr_chunk_info_t ci;
             exr_result_t rv;
             int cy = k - k % r->lines;
-            if ((rv = exr_read_scanline_chunk_info(r->ctx, 0, r->dw.min.y + cy, &ci)))
-                return tex_error("%s: corrupt OpenEXR stream (%s)", name,
-                                 exr_get_default_error_message(rv));
+            if ((rv = exr_read_scanline_chunk_info(r->ctx, 0, r->dw.min.y + cy, &ci))) {
+                tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv));
+                rstream_limit_word(&r->rs);
+                tex_error_context(name);
+                return -1;
+            }
             if (decode_one(r->ctx, &r->dec, &ci, r->first, r->order, r->chunk, 0, 0) < 0) {
+                rstream_limit_word(&r->rs);
                 tex_error_context(name);
                 return -1;
             }

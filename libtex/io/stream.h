@@ -71,11 +71,16 @@ int tex_exr_write_rows(const tex_map *head, tex_rows_fn fill, void *arg, int til
  * file at path, or (path NULL) from the pipe fd of which prefix_len bytes
  * were read into prefix.  head gets the size, channels, metadata and place
  * (head->px NULL; free head->history).  NULL with the error set, also for a
- * tiled file (read those whole).  Rows must be asked for from the top down:
- * tex_rows_read copies rows y..y+n-1 (w * nc floats each) into rows. */
+ * tiled file at path (read those whole).  A tiled file on the pipe, which
+ * cannot be read again, is decoded whole into *whole (NULL returned) when
+ * whole is not NULL, and refused otherwise.  The input limit (limit.h)
+ * holds as for the whole-map readers: a header declaring more is refused,
+ * and a pipe's bytes are counted as they are read.  Rows must be asked for
+ * from the top down: tex_rows_read copies rows y..y+n-1 (w * nc floats
+ * each) into rows. */
 typedef struct tex_rows_reader tex_rows_reader;
 tex_rows_reader *tex_rows_open(int fd, const void *prefix, size_t prefix_len, const char *path,
-                               const char *name, tex_map *head);
+                               const char *name, tex_map *head, tex_map **whole);
 int tex_rows_read(tex_rows_reader *r, int y, int n, float *rows, const char *name);
 void tex_rows_close(tex_rows_reader *r);
 

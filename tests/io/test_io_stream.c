@@ -125,7 +125,7 @@ static void test_rows(void)
     CHECK(same_map(m, r) && same_metadata(m, r), "read whole: the same map and metadata");
     tex_map_free(r);
     memset(&head, 0, sizeof head);
-    rd = tex_rows_open(-1, NULL, 0, path, path, &head);
+    rd = tex_rows_open(-1, NULL, 0, path, path, &head, NULL);
     CHECK(rd && head.w == 50 && head.h == 300 && head.nc == 2 && head.subregions == 5,
           "the rows reader gives the header");
     float *band = malloc(sizeof *band * 50 * 2 * 64);
