@@ -67,13 +67,49 @@ static void preview(tex_map *m, int how)
     tex_map_free(m);
 }
 
-/* The map's header into head and its statistics into st, from the whole map: a stream's
- * rows would pass in bounded memory (tex_stats_acc), but the input limit and tiled streams
- * on a pipe are the whole-map reader's today */
-static tex_map *gather(const char *name, tex_map *head, struct tex_stats *st)
+/* The statistics of a stream's rows into st, as they pass a band of about 1 MiB at a time */
+static void gather_rows(tex_rows_reader *r, const char *name, const tex_map *head,
+                        struct tex_stats *st)
 {
-    tex_map *whole = tex_cli_read(name);
+    struct tex_stats_acc a[4];
+    int rows = (int)((1L << 20) / ((long)head->w * head->nc * (long)sizeof(float)));
+    rows = rows < 1 ? 1 : rows > head->h ? head->h : rows;
+    float *band = malloc((size_t)rows * head->w * head->nc * sizeof *band);
 
+    if (!band) {
+        tex_error("out of memory");
+        tex_die();
+    }
+    for (int k = 0; k < head->nc; k++)
+        tex_stats_begin(&a[k]);
+    for (int y = 0; y < head->h; y += rows) {
+        int n = head->h - y < rows ? head->h - y : rows;
+        if (tex_rows_read(r, y, n, band, name) < 0)
+            tex_die();
+        for (int k = 0; k < head->nc; k++)
+            tex_stats_add(&a[k], band + k, (size_t)head->w, (size_t)n, head->nc);
+    }
+    for (int k = 0; k < head->nc; k++)
+        tex_stats_end(&a[k], &st[k]);
+    free(band);
+}
+
+/* The map's header into head and its statistics into st: from a scanline EXR (a pipe or a
+ * file) a band of rows at a time as they pass, from anything else (another format, a tiled
+ * EXR) the whole map.  The input limit holds either way (tex_map_open_rows). */
+static tex_map *gather(const char *path, tex_map *head, struct tex_stats *st)
+{
+    const char *name = strcmp(path, "-") ? path : "standard input";
+    tex_map *whole = NULL;
+    tex_rows_reader *r = tex_map_open_rows(path, head, &whole);
+
+    if (!r && !whole)
+        tex_die();
+    if (r) {
+        gather_rows(r, name, head, st);
+        tex_rows_close(r);
+        return head;
+    }
     for (int k = 0; k < whole->nc; k++)
         tex_map_stats(whole, k, &st[k]);
     *head = *whole;

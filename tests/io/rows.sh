@@ -3,7 +3,7 @@
 # every tool that streams its input: a tiled or mip-mapped EXR on a pipe is read whole, as
 # the whole-map reader reads it (it was refused, "standard input: tiled: read whole"), and
 # the input limit (TEXTURA_MAX_INPUT, io/limit.h) holds as for the whole-map readers, with
-# their words.
+# their words; t_info gathers a stream's figures in bounded memory.
 . "$(dirname "$0")/../lib.sh"
 cd "$T" || exit 1
 
@@ -76,3 +76,14 @@ TEXTURA_MAX_INPUT=17K check_fails "t_op, a stream whose bytes pass the limit" 1 
 grep -qF "standard input: over the input limit of 17408 bytes (TEXTURA_MAX_INPUT)" "$T/.err" ||
     notok "t_op: the same words" "$(cat "$T/.err")"
 [ ! -e out2.exr ] && ok "no output after a refusal" || notok "output left behind"
+
+# t_info streams: a 4096x4096 RGB map (192 MiB) under a limit far below it
+lim=180000
+nm "$TEXTURA_BUILD/lib/libtex.a" 2>/dev/null | grep -q __asan_ && lim=unlimited
+t_noise -s 4096 -f 8 | t_palette --range 0,1 marble >big.exr
+want=$(t_info <big.exr)
+got=$(cat big.exr | (ulimit -v $lim; t_info))
+[ "$got" = "$want" ] && ok "t_info reads a 4096x4096 stream under ulimit -v $lim KB" ||
+    notok "t_info under ulimit -v $lim" "$got"
+got=$( (ulimit -v $lim; t_info big.exr) | sed 1d)
+[ "$got" = "$(sed 1d <<<"$want")" ] && ok "and the file, a band at a time" || notok "t_info big.exr under ulimit -v $lim" "$got"
