@@ -206,7 +206,7 @@ static void colour_auto(struct colouring *k, const struct tex_common *c)
     struct tex_stats st;
     int fd;
 
-    if (tex_cli_streams(c)) {
+    if (tex_cli_takes_rows(c)) {
         if (!(r = tex_map_open_rows(k->input, &head, &whole)) && !whole)
             tex_die();
     } else {

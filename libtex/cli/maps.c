@@ -15,6 +15,14 @@ int tex_cli_depth(const struct tex_common *c)
     return bits[c->depth_choice];
 }
 
+/* The write options -o, --depth, --compression, --format, --exr-tiles and --mipmap give */
+static struct tex_write_opts write_opts(const struct tex_common *c)
+{
+    struct tex_write_opts o = {tex_cli_depth(c), (enum tex_compression)c->compression, c->format,
+                               c->exr_tiles, c->mipmap};
+    return o;
+}
+
 tex_map *tex_cli_read(const char *path)
 {
     tex_map *m = tex_map_read(path);
@@ -25,8 +33,7 @@ tex_map *tex_cli_read(const char *path)
 
 void tex_cli_write(tex_map *m, const struct tex_common *c)
 {
-    struct tex_write_opts o = {tex_cli_depth(c), (enum tex_compression)c->compression, c->format,
-                               c->exr_tiles, c->mipmap};
+    struct tex_write_opts o = write_opts(c);
 
     tex_progress_done();
     if (c->cmdline && tex_map_add_history(m, c->cmdline) < 0)
@@ -37,24 +44,11 @@ void tex_cli_write(tex_map *m, const struct tex_common *c)
 
 void tex_cli_write_rows(tex_map *head, const struct tex_common *c, tex_rows_fn fill, void *arg)
 {
-    struct tex_out o = {.fd = 1};
-    const char *oname = "standard output";
-    int rc;
+    struct tex_write_opts o = write_opts(c);
 
     if (c->cmdline && tex_map_add_history(head, c->cmdline) < 0)
         tex_die();
-    if (c->output && strcmp(c->output, "-")) {
-        if (tex_out_open(&o, c->output) < 0) {
-            tex_out_close(&o, -1);
-            tex_die();
-        }
-        oname = c->output;
-    }
-    rc = tex_exr_write_rows(head, fill, arg, 0, (enum tex_compression)c->compression, o.fd,
-                            oname);
-    if (o.fd != 1)
-        rc = tex_out_close(&o, rc);
-    if (rc < 0)
+    if (tex_map_write_rows(head, fill, arg, c->output, &o) < 0)
         tex_die();
 }
 
@@ -180,7 +174,7 @@ static void stream_window(const char *path, const struct tex_common *c, int marg
 
     if (tex_map_write_check(c->output) < 0)
         tex_die();
-    if (tex_cli_streams(c)) {
+    if (tex_cli_takes_rows(c)) {
         r = tex_map_open_rows(path, &head, &whole);
         if (!r && !whole)
             tex_die();
@@ -245,6 +239,12 @@ int tex_cli_streams(const struct tex_common *c)
         return 0;
     return !c->output || !strcmp(c->output, "-") ||
            tex_format_from_name(c->output) == TEX_FMT_EXR;
+}
+
+int tex_cli_takes_rows(const struct tex_common *c)
+{
+    struct tex_write_opts o = write_opts(c);
+    return tex_map_write_streams(c->output, &o);
 }
 
 void tex_cli_stream(const char *path, const struct tex_common *c,

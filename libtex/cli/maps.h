@@ -3,10 +3,10 @@
  * A tool reads its maps with tex_cli_read and writes its result with tex_cli_write:
  * to -o FILE in the format of its extension, or to standard output (the EXR stream,
  * or --format's), the command line appended to the map's history.  Each dies with
- * libtex's message on failure.  A map need not be held whole: where the output is a
- * scanline EXR (tex_cli_streams), tex_cli_write_rows writes it as a callback makes
- * its rows, and tex_cli_stream runs a per-pixel operation over an input a band of
- * rows at a time.
+ * libtex's message on failure.  A map need not be held whole: where the output takes
+ * rows (tex_cli_takes_rows), tex_cli_write_rows writes it as a callback makes its
+ * rows, and tex_cli_stream runs a per-pixel operation over an input a band of rows at
+ * a time.
  *
  *   tex_map *m = tex_cli_read(argv[i]);        // NULL or "-": standard input
  *   ...
@@ -30,11 +30,15 @@ int tex_cli_depth(const struct tex_common *c);
 void tex_cli_write(tex_map *m, const struct tex_common *c);
 
 /* A map made a band of rows at a time, never held whole: where -o (or the
- * format) asks for a scanline EXR (tex_cli_streams), head (size, channels,
- * place; its history gains the command line) is written to -o or standard
- * output as fill makes its rows, as tex_exr_write_rows (io/stream.h) calls
- * it; dies on errors. */
+ * format) takes rows (tex_cli_takes_rows: io/file.h's tex_map_write_streams,
+ * the EXR stream and files, PNG, JPEG, PNM, PAM, PBM, and TIFF and PFM files),
+ * head (size, channels, place; its history gains the command line) is
+ * written to -o or standard output as fill makes its rows, as
+ * tex_map_write_rows calls it, with tex_cli_write's bytes; dies on errors.
+ * tex_cli_streams: whether -o asks for a scanline EXR, where tools that do
+ * more for other formats (t_apply's sRGB) stream. */
 int tex_cli_streams(const struct tex_common *c);
+int tex_cli_takes_rows(const struct tex_common *c);
 void tex_cli_write_rows(tex_map *head, const struct tex_common *c,
                         int (*fill)(void *arg, int y, int n, float *rows), void *arg);
 
@@ -43,10 +47,10 @@ void tex_cli_write_rows(tex_map *head, const struct tex_common *c,
  * small map of the input's width (op changes it in place and returns it, or
  * returns a new map and frees the band; NULL with the error set on
  * failure), and out to -o or standard output, with the history.  Output
- * channels and subregions are op's on a 1 x 1 band of ones.  When input or
- * output is not a scanline EXR (another format, tiles, --mipmap), the map
- * goes through op whole instead: the same pixels either way, op being
- * per-pixel.  Dies on errors. */
+ * channels and subregions are op's on a 1 x 1 band of ones.  When the input
+ * is not a scanline EXR (another format, tiles) or the output takes no rows
+ * (tex_cli_takes_rows: --mipmap, BMP...), the map goes through op whole
+ * instead: the same pixels either way, op being per-pixel.  Dies on errors. */
 void tex_cli_stream(const char *path, const struct tex_common *c,
                     tex_map *(*op)(tex_map *band, void *arg), void *arg);
 
@@ -56,7 +60,8 @@ void tex_cli_stream(const char *path, const struct tex_common *c,
  * filled in, clamped or mirrored), with b saying where it sits, and returns a map of n or of
  * n + 2 margin rows (the middle n are the band's output) that the caller frees, or NULL with
  * the error set; it must not free the band.  The whole map goes through op instead (b: y 0,
- * margin 0, n its height) when input or output is not a scanline EXR, when edge is
+ * margin 0, n its height) when the input is not a scanline EXR or the output takes no
+ * rows (tex_cli_takes_rows), when edge is
  * TEX_EDGE_WRAP (the first rows would need the last), and when the map has fewer than
  * 2 margin + 1 rows: the same pixels either way, when op's rows of output depend on
  * nothing but those rows of input.  Bands are about 16 MiB of input, and a multiple of

@@ -20,7 +20,7 @@
 
 #include <stddef.h>
 
-#define TEX_CODEC_BRIDGE_VERSION 1
+#define TEX_CODEC_BRIDGE_VERSION 2
 
 /* What read and info return besides 0 and -1: the bridge does not take this
  * variant of its format (e.g. a CMYK JPEG); the caller may try OpenImageIO. */
@@ -37,6 +37,26 @@ struct tex_codec_bridge {
      * which may be a pipe for PNG and JPEG (TIFF needs a file it can seek). */
     int (*write)(int fd, const void *px, int w, int h, int nc, int bits, char *err,
                  size_t errlen);
+    /* The same file, its rows asked for as it encodes them, never held whole: rows(arg,
+     * y, n, dst) puts rows y..y+n-1 (w*nc samples of bits each, one after the other) at
+     * dst, from the top, n at most TEX_CODEC_BAND; 0, or -1 with its own error (err then
+     * says "rows").  write is this with rows copied from px: the same bytes. */
+    int (*write_rows)(int fd, int w, int h, int nc, int bits,
+                      int (*rows)(void *arg, int y, int n, void *dst), void *arg, char *err,
+                      size_t errlen);
 };
+#define TEX_CODEC_BAND 64
+
+/* write's rows from px: a bridge's write calls its write_rows with copy_rows and this. */
+struct tex_codec_px {
+    const unsigned char *px;
+    size_t stride; /* bytes a row */
+};
+static inline int tex_codec_copy_rows(void *arg, int y, int n, void *dst)
+{
+    const struct tex_codec_px *p = arg;
+    __builtin_memcpy(dst, p->px + p->stride * (size_t)y, p->stride * (size_t)n);
+    return 0;
+}
 
 #endif

@@ -543,16 +543,11 @@ tex_rows_reader *tex_map_open_rows(const char *path, tex_map *head, tex_map **wh
 /* Quantise to 8 or 16 bits with clamping and rounding; NaN becomes 0. */
 /* m's samples as 8- or 16-bit integers, in memory of tex_pages_new's (*mapped for
  * tex_pages_free): on the heap a 2048^2 map's were a first touch of 1,000 pages. */
-static void *quantise(const tex_map *m, int bits, size_t *mapped)
+static void quantise_to(const tex_map *m, int bits, void *q)
 {
     size_t n = tex_map_samples(m);
     float scale = bits == 8 ? 255.0f : 65535.0f;
-    void *q = tex_pages_new(n * (bits / 8), PAGES_FROM, mapped);
 
-    if (!q) {
-        tex_error("out of memory");
-        return NULL;
-    }
     for (size_t i = 0; i < n; i++) {
         float v = m->px[i];
         v = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f; /* NaN fails v > 0 */
@@ -561,6 +556,17 @@ static void *quantise(const tex_map *m, int bits, size_t *mapped)
         else
             ((unsigned short *)q)[i] = (unsigned short)lrintf(v * scale);
     }
+}
+
+static void *quantise(const tex_map *m, int bits, size_t *mapped)
+{
+    void *q = tex_pages_new(tex_map_samples(m) * (bits / 8), PAGES_FROM, mapped);
+
+    if (!q) {
+        tex_error("out of memory");
+        return NULL;
+    }
+    quantise_to(m, bits, q);
     return q;
 }
 
@@ -913,22 +919,29 @@ static int write_stream(const tex_map *m, enum tex_format f, int depth, int fd,
     }
 }
 
-static int write_stdout(const tex_map *m, const struct tex_write_opts *o)
+/* The format of standard output: o->format's, or the EXR stream */
+static enum tex_format stdout_format(const struct tex_write_opts *o)
 {
-    const char *name = "standard output";
     enum tex_format f = TEX_FMT_EXR;
-    int depth;
-
-    if (tex_map_write_check(NULL) < 0)
-        return -1;
     if (o->format) {
         char probe[32];
         snprintf(probe, sizeof probe, "x.%s", o->format);
         if ((f = tex_format_from_name(probe)) == TEX_FMT_UNKNOWN)
-            return tex_usage_error("--format %s: unknown format (exr, png, tif, pnm, pam, pbm, "
-                                   "pfm, bmp, tga, hdr, jpg, webp, dpx)",
-                                   o->format);
+            tex_usage_error("--format %s: unknown format (exr, png, tif, pnm, pam, pbm, "
+                            "pfm, bmp, tga, hdr, jpg, webp, dpx)",
+                            o->format);
     }
+    return f;
+}
+
+static int write_stdout(const tex_map *m, const struct tex_write_opts *o)
+{
+    const char *name = "standard output";
+    enum tex_format f;
+    int depth;
+
+    if (tex_map_write_check(NULL) < 0 || (f = stdout_format(o)) == TEX_FMT_UNKNOWN)
+        return -1;
     if ((depth = choose_depth(f, o->depth, name)) < 0)
         return -1;
     return write_stream(m, f, depth, 1, o, name);
@@ -1017,4 +1030,169 @@ int tex_map_write(const tex_map *m, const char *path, const struct tex_write_opt
     r = out.direct ? write_stream(m, f, depth, out.fd, o, path)
                    : write_to_path(m, f, depth, out.tmp, out.fd, o, path);
     return tex_out_close(&out, r);
+}
+
+/* ---- writing a band of rows at a time ---- */
+
+/* Where o sends a map: the format, and whether the output can seek (a regular file,
+ * not standard output, a FIFO or a device).  TEX_FMT_UNKNOWN with the error set. */
+static enum tex_format rows_target(const char *path, const struct tex_write_opts *o, int *seeks)
+{
+    struct stat st;
+
+    *seeks = 0;
+    if (!path || strcmp(path, "-") == 0)
+        return stdout_format(o);
+    *seeks = stat(path, &st) != 0 || S_ISREG(st.st_mode);
+    return tex_format_from_name(path);
+}
+
+int tex_map_write_streams(const char *path, const struct tex_write_opts *o)
+{
+    int seeks;
+    enum tex_format f = rows_target(path, o, &seeks);
+
+    switch (f) {
+    case TEX_FMT_EXR:
+        return !o->mipmap && (!o->tiled || seeks); /* tiles go at their offsets */
+    case TEX_FMT_PNG: case TEX_FMT_JPEG: case TEX_FMT_PNM: case TEX_FMT_PAM: case TEX_FMT_PBM:
+        return 1;
+    case TEX_FMT_TIFF: case TEX_FMT_PFM: /* TIFF seeks; PFM's rows run bottom to top */
+        return seeks;
+    default:
+        return 0; /* OpenImageIO's writers take the whole map */
+    }
+}
+
+/* A map's rows on their way to a file of another format than EXR: fill's rows of head's
+ * channels into band, adapted to the file's channels (adapt_channels, as the whole map's)
+ * and, for a codec, quantised to depth bits. */
+struct rows_out {
+    tex_rows_fn fill;
+    void *arg;
+    enum tex_format f;
+    int depth, h, fd, pfm_head;
+    tex_map *band;
+    const char *name;
+};
+
+/* Rows y..y+n-1 of fill's in s->band, adapted: the band, or a new map to free (*adapted) */
+static const tex_map *out_band(struct rows_out *s, int y, int n, tex_map **adapted)
+{
+    s->band->h = n;
+    *adapted = NULL;
+    if (s->fill(s->arg, y, n, s->band->px) < 0)
+        return NULL;
+    if (formats[s->f].nc_ok & (1u << (s->band->nc - 1)))
+        return s->band;
+    if (!(*adapted = adapt_channels(s->band, s->f)))
+        tex_error_context(s->name);
+    return *adapted;
+}
+
+static int codec_rows(void *arg, int y, int n, void *dst)
+{
+    struct rows_out *s = arg;
+    tex_map *a;
+    const tex_map *b = out_band(s, y, n, &a);
+
+    if (!b)
+        return -1;
+    if (s->depth == 32)
+        memcpy(dst, b->px, tex_map_samples(b) * sizeof(float));
+    else
+        quantise_to(b, s->depth, dst);
+    tex_map_free(a);
+    return 0;
+}
+
+/* The file after its header, a band of TEX_CODEC_BAND rows at a time */
+static int netpbm_rows(struct rows_out *s)
+{
+    enum tex_pnm_variant v = s->f == TEX_FMT_PAM ? TEX_PNM_PAM
+                             : s->f == TEX_FMT_PBM ? TEX_PNM_PBM : TEX_PNM_AUTO;
+    int r = 0;
+
+    for (int y = 0; y < s->h && r == 0; y += TEX_CODEC_BAND) {
+        tex_map *a;
+        const tex_map *b = out_band(s, y, s->h - y < TEX_CODEC_BAND ? s->h - y : TEX_CODEC_BAND, &a);
+        r = !b ? -1
+            : s->f == TEX_FMT_PFM ? tex_pfm_write_band(b, y, s->h, s->pfm_head, s->fd, s->name)
+                                  : tex_pnm_write_band(b, s->fd, s->depth, v, s->name);
+        tex_map_free(a);
+    }
+    return r;
+}
+
+/* head's rows from fill in format f (not EXR) to fd */
+static int write_rows_as(const tex_map *head, struct rows_out *s)
+{
+    int nc = head->nc;
+
+    if (!(formats[s->f].nc_ok & (1u << (nc - 1)))) { /* the channels the file will hold */
+        tex_map one = *head;
+        one.w = one.h = 1;
+        float px[4] = {0};
+        one.px = px;
+        tex_map *a = adapt_channels(&one, s->f);
+        if (!a) {
+            tex_error_context(s->name);
+            return -1;
+        }
+        nc = a->nc;
+        tex_map_free(a);
+    }
+    if (!(s->band = tex_map_new(head->w, TEX_CODEC_BAND, head->nc)))
+        return -1;
+    if (codec_slot(s->f)) {
+        const struct tex_codec_bridge *br = bridge_load(codec_slot(s->f));
+        char err[400] = "";
+        if (!br) {
+            tex_error_context(s->name);
+            return -1;
+        }
+        if (br->write_rows(s->fd, head->w, head->h, nc, s->depth, codec_rows, s, err,
+                           sizeof err) < 0)
+            return strcmp(err, "rows") ? tex_error("%s: %s", s->name, err) : -1;
+        return 0;
+    }
+    if (s->f == TEX_FMT_PFM)
+        s->pfm_head = tex_pfm_write_head(head->w, head->h, nc, s->fd, s->name);
+    else
+        s->pfm_head = tex_pnm_write_head(head->w, head->h, nc, s->fd, s->depth,
+                                         s->f == TEX_FMT_PAM   ? TEX_PNM_PAM
+                                         : s->f == TEX_FMT_PBM ? TEX_PNM_PBM
+                                                               : TEX_PNM_AUTO,
+                                         s->name);
+    return s->pfm_head < 0 ? -1 : netpbm_rows(s);
+}
+
+int tex_map_write_rows(const tex_map *head, tex_rows_fn fill, void *arg, const char *path,
+                       const struct tex_write_opts *o)
+{
+    static const struct tex_write_opts defaults = TEX_WRITE_DEFAULTS;
+    struct tex_out out = {.fd = 1};
+    const char *name = path && strcmp(path, "-") ? path : "standard output";
+    int seeks, depth, r;
+    enum tex_format f;
+
+    if (!o)
+        o = &defaults;
+    if (tex_map_write_check(path) < 0 || (f = rows_target(path, o, &seeks)) == TEX_FMT_UNKNOWN ||
+        (depth = choose_depth(f, o->depth, name)) < 0)
+        return -1;
+    if (!tex_map_write_streams(path, o))
+        return tex_usage_error("%s: %s is written whole, not a band of rows at a time", name,
+                               tex_format_name(f));
+    if (path && strcmp(path, "-") && tex_out_open(&out, path) < 0)
+        return tex_out_close(&out, -1);
+    if (f == TEX_FMT_EXR) {
+        r = tex_exr_write_rows(head, fill, arg, o->tiled ? TEX_EXR_TILE : 0, o->compression,
+                               out.fd, name);
+    } else {
+        struct rows_out s = {fill, arg, f, depth, head->h, out.fd, 0, NULL, name};
+        r = write_rows_as(head, &s);
+        tex_map_free(s.band);
+    }
+    return out.fd == 1 ? r : tex_out_close(&out, r);
 }

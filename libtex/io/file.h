@@ -90,6 +90,16 @@ int tex_rows_nonfinite(float *px, int w, int n, int nc, int y0, const char *name
 tex_map *tex_map_read_memory(const void *data, size_t len, const char *name);
 /* Write a map; NULL or "-" is standard output. */
 int tex_map_write(const tex_map *m, const char *path, const struct tex_write_opts *o);
+/* A map written a band of rows at a time, never held whole: head gives its size,
+ * channels, metadata and place (px unused), fill(arg, y, n, rows) its rows from the top
+ * (stream.h's tex_rows_fn, n at least 64 rows but the last), to path as tex_map_write
+ * writes it, with the same bytes.  tex_map_write_streams tells whether o's output takes
+ * rows: the EXR stream and scanline files, EXR tiles to a file (not --mipmap), PNG, JPEG,
+ * PNM, PAM and PBM anywhere, TIFF and PFM (which seek) to a file; others are written
+ * whole, and tex_map_write_rows refuses them (a usage error). */
+int tex_map_write_streams(const char *path, const struct tex_write_opts *o);
+int tex_map_write_rows(const tex_map *head, tex_rows_fn fill, void *arg, const char *path,
+                       const struct tex_write_opts *o);
 /* Whether tex_map_write could take path by its name (a known extension, not
  * a directory; standard output not a terminal): 0, or -1 with its error.  Tools that write images check it
  * before the work (a palette file is not an image: it is not checked). */

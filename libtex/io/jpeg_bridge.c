@@ -122,19 +122,27 @@ static int b_read(const void *mem, size_t len, float *px, char *err, size_t errl
     return r;
 }
 
-static int b_write(int fd, const void *px, int w, int h, int nc, int bits, char *err,
-                   size_t errlen)
+/* Scanlines asked for TEX_CODEC_BAND at a time and written one by one, as before. */
+static int b_write_rows(int fd, int w, int h, int nc, int bits,
+                        int (*rows)(void *arg, int y, int n, void *dst), void *arg, char *err,
+                        size_t errlen)
 {
     struct jpeg_compress_struct c;
     struct err_mgr e;
     int dfd = dup(fd);
     FILE *volatile f = dfd >= 0 ? fdopen(dfd, "wb") : NULL;
+    unsigned char *volatile band = NULL;
     volatile int r = -1;
 
-    if (!f || bits != 8 || (nc != 1 && nc != 3)) {
-        snprintf(err, errlen, "%s", !f ? "cannot start the JPEG writer" : "bad JPEG layout");
+    if (!f || bits != 8 || (nc != 1 && nc != 3) ||
+        !(band = malloc((size_t)w * nc * TEX_CODEC_BAND))) {
+        snprintf(err, errlen, "%s", !f ? "cannot start the JPEG writer"
+                                    : bits != 8 || (nc != 1 && nc != 3) ? "bad JPEG layout"
+                                                                        : "out of memory");
         if (!f && dfd >= 0)
             close(dfd);
+        if (f)
+            fclose(f);
         return -1;
     }
     memset(&c, 0, sizeof c);
@@ -155,14 +163,24 @@ static int b_write(int fd, const void *px, int w, int h, int nc, int bits, char 
         for (int i = 0; i < c.num_components; i++)
             c.comp_info[i].h_samp_factor = c.comp_info[i].v_samp_factor = 1;
         jpeg_start_compress(&c, TRUE);
-        while (c.next_scanline < c.image_height) {
-            JSAMPROW rp = (JSAMPROW)px + (size_t)c.next_scanline * w * nc;
-            jpeg_write_scanlines(&c, &rp, 1);
+        for (int y = 0; y < h; y += TEX_CODEC_BAND) {
+            int n = h - y < TEX_CODEC_BAND ? h - y : TEX_CODEC_BAND;
+            if (rows(arg, y, n, band) < 0) {
+                snprintf(err, errlen, "rows");
+                break;
+            }
+            for (int k = 0; k < n; k++) {
+                JSAMPROW rp = (JSAMPROW)band + (size_t)k * w * nc;
+                jpeg_write_scanlines(&c, &rp, 1);
+            }
+            if (y + n >= h) {
+                jpeg_finish_compress(&c);
+                r = 0;
+            }
         }
-        jpeg_finish_compress(&c);
-        r = 0;
     }
     jpeg_destroy_compress(&c);
+    free(band);
     if (fclose(f) != 0 && r == 0) {
         snprintf(err, errlen, "write error");
         r = -1;
@@ -170,5 +188,12 @@ static int b_write(int fd, const void *px, int w, int h, int nc, int bits, char 
     return r;
 }
 
+static int b_write(int fd, const void *px, int w, int h, int nc, int bits, char *err,
+                   size_t errlen)
+{
+    struct tex_codec_px p = {px, (size_t)w * nc};
+    return b_write_rows(fd, w, h, nc, bits, tex_codec_copy_rows, &p, err, errlen);
+}
+
 __attribute__((visibility("default"))) const struct tex_codec_bridge tex_jpeg_bridge = {
-    TEX_CODEC_BRIDGE_VERSION, b_info, b_read, b_write};
+    TEX_CODEC_BRIDGE_VERSION, b_info, b_read, b_write, b_write_rows};

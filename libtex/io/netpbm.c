@@ -1,9 +1,12 @@
 /* netpbm.c - PNM, PAM and PFM without a library (see netpbm.h) */
+#define _GNU_SOURCE
+#include <errno.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "base/error.h"
 #include "io/limit.h"
@@ -341,8 +344,8 @@ static int write_rows(const tex_map *m, int fd, int depth, enum tex_pnm_variant 
     return r;
 }
 
-int tex_pnm_write_fd(const tex_map *m, int fd, int depth, enum tex_pnm_variant v,
-                     const char *name)
+int tex_pnm_write_head(int w, int h, int nc, int fd, int depth, enum tex_pnm_variant v,
+                       const char *name)
 {
     static const char *const tupl[] = {"", "GRAYSCALE", "GRAYSCALE_ALPHA", "RGB", "RGB_ALPHA"};
     char head[160];
@@ -351,29 +354,65 @@ int tex_pnm_write_fd(const tex_map *m, int fd, int depth, enum tex_pnm_variant v
     if (depth != 8 && depth != 16)
         return tex_usage_error("%s: PNM holds 8 or 16-bit samples (got %d)", name, depth);
     if (v == TEX_PNM_PBM)
-        n = snprintf(head, sizeof head, "P4\n%d %d\n", m->w, m->h);
+        n = snprintf(head, sizeof head, "P4\n%d %d\n", w, h);
     else if (v == TEX_PNM_PAM)
         n = snprintf(head, sizeof head, "P7\nWIDTH %d\nHEIGHT %d\nDEPTH %d\nMAXVAL %d\nTUPLTYPE %s\nENDHDR\n",
-                     m->w, m->h, m->nc, depth == 16 ? 65535 : 255, tupl[m->nc]);
-    else if (m->nc == 1 || m->nc == 3)
-        n = snprintf(head, sizeof head, "P%c\n%d %d\n%d\n", m->nc == 1 ? '5' : '6', m->w, m->h,
+                     w, h, nc, depth == 16 ? 65535 : 255, tupl[nc]);
+    else if (nc == 1 || nc == 3)
+        n = snprintf(head, sizeof head, "P%c\n%d %d\n%d\n", nc == 1 ? '5' : '6', w, h,
                      depth == 16 ? 65535 : 255);
     else
-        return tex_error("%s: PNM holds 1 or 3 channels (got %d)", name, m->nc);
-    if (tex_write_all(fd, head, (size_t)n, name) < 0)
+        return tex_error("%s: PNM holds 1 or 3 channels (got %d)", name, nc);
+    return tex_write_all(fd, head, (size_t)n, name);
+}
+
+int tex_pnm_write_band(const tex_map *band, int fd, int depth, enum tex_pnm_variant v,
+                       const char *name)
+{
+    return write_rows(band, fd, depth, v, name);
+}
+
+int tex_pnm_write_fd(const tex_map *m, int fd, int depth, enum tex_pnm_variant v,
+                     const char *name)
+{
+    if (tex_pnm_write_head(m->w, m->h, m->nc, fd, depth, v, name) < 0)
         return -1;
     return write_rows(m, fd, depth, v, name);
 }
 
-int tex_pfm_write_fd(const tex_map *m, int fd, const char *name)
+int tex_pfm_write_head(int w, int h, int nc, int fd, const char *name)
 {
     char head[64];
-    int n, r;
+    int n;
 
-    if (m->nc != 1 && m->nc != 3)
-        return tex_error("%s: PFM holds 1 or 3 channels (got %d)", name, m->nc);
-    n = snprintf(head, sizeof head, "%s\n%d %d\n-1.0\n", m->nc == 3 ? "PF" : "Pf", m->w, m->h);
-    r = tex_write_all(fd, head, (size_t)n, name);
+    if (nc != 1 && nc != 3)
+        return tex_error("%s: PFM holds 1 or 3 channels (got %d)", name, nc);
+    n = snprintf(head, sizeof head, "%s\n%d %d\n-1.0\n", nc == 3 ? "PF" : "Pf", w, h);
+    return tex_write_all(fd, head, (size_t)n, name) < 0 ? -1 : n;
+}
+
+int tex_pfm_write_band(const tex_map *band, int y, int h, int head, int fd, const char *name)
+{
+    size_t row = (size_t)band->w * band->nc * sizeof(float);
+
+    for (int k = 0; k < band->h; k++) {
+        const char *p = (const char *)tex_map_row(band, k);
+        off_t at = (off_t)head + (off_t)(h - 1 - (y + k)) * (off_t)row;
+        for (size_t done = 0; done < row;) {
+            ssize_t n = pwrite(fd, p + done, row - done, at + (off_t)done);
+            if (n < 0 && errno == EINTR)
+                continue;
+            if (n <= 0)
+                return tex_error("%s: write error: %s", name, strerror(errno));
+            done += (size_t)n;
+        }
+    }
+    return 0;
+}
+
+int tex_pfm_write_fd(const tex_map *m, int fd, const char *name)
+{
+    int r = tex_pfm_write_head(m->w, m->h, m->nc, fd, name) < 0 ? -1 : 0;
     for (int y = m->h - 1; y >= 0 && r == 0; y--)
         r = tex_write_all(fd, tex_map_row(m, y), (size_t)m->w * m->nc * sizeof(float), name);
     return r;

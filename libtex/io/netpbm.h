@@ -40,5 +40,16 @@ int tex_pnm_write_fd(const tex_map *m, int fd, int depth, enum tex_pnm_variant v
                      const char *name);
 int tex_pfm_write_fd(const tex_map *m, int fd, const char *name);
 
+/* The same files a band of rows at a time: the header of a w x h map of nc channels, then
+ * its rows from the top, each band a map of the width and some rows.  PFM's rows run
+ * bottom to top: tex_pfm_write_head returns the header's length, and each band (rows y..
+ * of an h-row map) lands at its place in a regular file (pwrite), after it. */
+int tex_pnm_write_head(int w, int h, int nc, int fd, int depth, enum tex_pnm_variant v,
+                       const char *name);
+int tex_pnm_write_band(const tex_map *band, int fd, int depth, enum tex_pnm_variant v,
+                       const char *name);
+int tex_pfm_write_head(int w, int h, int nc, int fd, const char *name);
+int tex_pfm_write_band(const tex_map *band, int y, int h, int head, int fd, const char *name);
+
 TEX_API_END
 #endif

@@ -138,8 +138,11 @@ static int b_read(const void *mem, size_t len, float *px, char *err, size_t errl
     return r;
 }
 
-static int b_write(int fd, const void *px, int w, int h, int nc, int bits, char *err,
-                   size_t errlen)
+/* Rows are asked for TEX_CODEC_BAND at a time and written one by one (png_write_image is
+ * png_write_row over the rows: the same bytes). */
+static int b_write_rows(int fd, int w, int h, int nc, int bits,
+                        int (*rows)(void *arg, int y, int n, void *dst), void *arg, char *err,
+                        size_t errlen)
 {
     static const int types[] = {0, PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA,
                                 PNG_COLOR_TYPE_RGB, PNG_COLOR_TYPE_RGB_ALPHA};
@@ -148,7 +151,7 @@ static int b_write(int fd, const void *px, int w, int h, int nc, int bits, char 
     FILE *volatile f = dfd >= 0 ? fdopen(dfd, "wb") : NULL;
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &c, on_error, on_warning);
     png_infop info = png ? png_create_info_struct(png) : NULL;
-    png_bytep *volatile rows = NULL;
+    unsigned char *volatile band = NULL;
     int r = -1;
 
     if (!f || !info || (bits != 8 && bits != 16) || nc < 1 || nc > 4) {
@@ -167,15 +170,19 @@ static int b_write(int fd, const void *px, int w, int h, int nc, int bits, char 
         png_write_info(png, info);
         if (bits == 16 && *(const unsigned char *)&(uint16_t){1})
             png_set_swap(png);
-        if (!(rows = malloc(sizeof *rows * (size_t)h)))
+        if (!(band = malloc(stride * TEX_CODEC_BAND)))
             png_error(png, "out of memory");
-        for (int y = 0; y < h; y++)
-            rows[y] = (png_bytep)px + stride * (size_t)y;
-        png_write_image(png, rows);
+        for (int y = 0; y < h; y += TEX_CODEC_BAND) {
+            int n = h - y < TEX_CODEC_BAND ? h - y : TEX_CODEC_BAND;
+            if (rows(arg, y, n, band) < 0)
+                png_error(png, "rows");
+            for (int k = 0; k < n; k++)
+                png_write_row(png, band + stride * (size_t)k);
+        }
         png_write_end(png, NULL);
         r = 0;
     }
-    free(rows);
+    free(band);
     png_destroy_write_struct(&png, &info);
     if (f && fclose(f) != 0 && r == 0) {
         snprintf(err, errlen, "write error");
@@ -184,5 +191,12 @@ static int b_write(int fd, const void *px, int w, int h, int nc, int bits, char 
     return r;
 }
 
+static int b_write(int fd, const void *px, int w, int h, int nc, int bits, char *err,
+                   size_t errlen)
+{
+    struct tex_codec_px p = {px, (size_t)w * nc * (bits / 8)};
+    return b_write_rows(fd, w, h, nc, bits, tex_codec_copy_rows, &p, err, errlen);
+}
+
 __attribute__((visibility("default"))) const struct tex_codec_bridge tex_png_bridge = {
-    TEX_CODEC_BRIDGE_VERSION, b_info, b_read, b_write};
+    TEX_CODEC_BRIDGE_VERSION, b_info, b_read, b_write, b_write_rows};

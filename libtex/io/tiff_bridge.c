@@ -225,14 +225,16 @@ static int b_read(const void *mem, size_t len, float *px, char *err, size_t errl
     return r;
 }
 
-static int b_write(int fd, const void *px, int w, int h, int nc, int bits, char *err,
-                   size_t errlen)
+/* Scanlines asked for TEX_CODEC_BAND at a time and written one by one, as before. */
+static int b_write_rows(int fd, int w, int h, int nc, int bits,
+                        int (*rows)(void *arg, int y, int n, void *dst), void *arg, char *err,
+                        size_t errlen)
 {
     int dfd = dup(fd);
     TIFF *t;
     size_t stride = (size_t)w * nc * (bits / 8);
     uint16_t extra = nc == 4 ? EXTRASAMPLE_UNASSALPHA : EXTRASAMPLE_UNSPECIFIED;
-    unsigned char *row = NULL;
+    unsigned char *band = NULL;
     int r = 0;
 
     TIFFSetErrorHandler(on_error);
@@ -257,22 +259,34 @@ static int b_write(int fd, const void *px, int w, int h, int nc, int bits, char 
     TIFFSetField(t, TIFFTAG_COMPRESSION, COMPRESSION_ADOBE_DEFLATE);
     TIFFSetField(t, TIFFTAG_PREDICTOR, bits == 32 ? PREDICTOR_FLOATINGPOINT : PREDICTOR_HORIZONTAL);
     TIFFSetField(t, TIFFTAG_ROWSPERSTRIP, TIFFDefaultStripSize(t, 0));
-    /* The predictor rewrites the row it is given: hand it a copy. */
-    if (!(row = malloc(stride)))
+    /* The predictor rewrites the row it is given: the band is a copy. */
+    if (!(band = malloc(stride * TEX_CODEC_BAND)))
         r = -1;
-    for (int y = 0; y < h && r == 0; y++) {
-        memcpy(row, (const unsigned char *)px + stride * (size_t)y, stride);
-        if (TIFFWriteScanline(t, row, (uint32_t)y, 0) < 0)
+    for (int y = 0; y < h && r == 0; y += TEX_CODEC_BAND) {
+        int n = h - y < TEX_CODEC_BAND ? h - y : TEX_CODEC_BAND;
+        if (rows(arg, y, n, band) < 0) {
+            snprintf(last_error, sizeof last_error, "rows");
             r = -1;
+        }
+        for (int k = 0; k < n && r == 0; k++)
+            if (TIFFWriteScanline(t, band + stride * (size_t)k, (uint32_t)(y + k), 0) < 0)
+                r = -1;
     }
     if (r == 0 && !TIFFWriteDirectory(t))
         r = -1;
-    free(row);
+    free(band);
     TIFFClose(t);
     if (r < 0)
         say(err, errlen, "write error");
     return r;
 }
 
+static int b_write(int fd, const void *px, int w, int h, int nc, int bits, char *err,
+                   size_t errlen)
+{
+    struct tex_codec_px p = {px, (size_t)w * nc * (bits / 8)};
+    return b_write_rows(fd, w, h, nc, bits, tex_codec_copy_rows, &p, err, errlen);
+}
+
 __attribute__((visibility("default"))) const struct tex_codec_bridge tex_tiff_bridge = {
-    TEX_CODEC_BRIDGE_VERSION, b_info, b_read, b_write};
+    TEX_CODEC_BRIDGE_VERSION, b_info, b_read, b_write, b_write_rows};

@@ -1,0 +1,89 @@
+#!/usr/bin/env bash
+# write_rows.sh - maps written a band of rows at a time (io/file.h tex_map_write_rows) to
+# every format whose writer takes rows: PNG (libpng's rows), TIFF (scanlines), PNM, PAM,
+# PBM and PFM, JPEG (libjpeg-turbo's scanlines), EXR scanline and tiled.  The bytes are
+# those of the whole map's writer for any band height, and t_convert holds a band, not the
+# map.
+. "$(dirname "$0")/../lib.sh"
+cd "$T" || exit 1
+
+# Odd sizes, no multiple of a band: one channel, RGB, and two channels (adapted by the
+# writer: PNG takes them as RGB)
+t_noise -s 301x203 -S 3 >y.exr
+t_noise -s 301x203 -S 4 | t_palette marble >rgb.exr
+t_filter gradient y.exr >ya.exr
+# (ext depth): the formats and depths that take rows, to a file
+cases="png: png:16 tif: tif:16 tif:32 pgm: pgm:16 ppm: pam: pam:16 pbm: pfm: jpg: exr: exr:tiles"
+# (the same output name in w/ and s/: an EXR's history holds the command line)
+mkdir w s
+bad="" n=0
+for src in y rgb ya; do
+    for c in $cases; do
+        ext=${c%%:*} d=${c#*:} opt=""
+        case $d in tiles) opt="--exr-tiles" ;; ?*) opt="--depth $d" ;; esac
+        # a file on standard input is read whole, and written whole: today's bytes
+        (cd w && t_convert $opt -o o.$ext <../$src.exr 2>/dev/null) || continue
+        n=$((n + 1))
+        rowset="7"
+        [ "$src" = rgb ] && rowset="1 7 64 default"
+        for rows in $rowset; do
+            [ "$rows" = default ] && rows=""
+            (cd s && cat ../$src.exr | TEXTURA_BAND_ROWS=$rows t_convert $opt -o o.$ext 2>../err) &&
+                cmp -s w/o.$ext s/o.$ext || bad+=" [$src $c ${rows:-default}: $(head -c 80 err)]"
+        done
+    done
+done
+[ "$n" -ge 35 ] && [ -z "$bad" ] && ok "t_convert streams to $n kinds of file with the whole map's bytes" ||
+    notok "t_convert streamed to files ($n kinds)" "$bad"
+
+# standard output: the formats that need no seeking stream there too
+bad=""
+for f in png pgm ppm pam pbm jpg exr; do
+    for src in y rgb; do
+        want=$(t_convert --format $f <$src.exr 2>&1 | md5sum)
+        for rows in "" 7; do
+            got=$(cat $src.exr | TEXTURA_BAND_ROWS=$rows t_convert --format $f 2>&1 | md5sum)
+            [ "$got" = "$want" ] || bad+=" $f/$src/${rows:-default}"
+        done
+    done
+done
+[ -z "$bad" ] && ok "t_convert --format streams to standard output with the whole map's bytes" ||
+    notok "t_convert --format streamed" "$bad"
+
+# every per-pixel and neighbourhood tool writes those formats in bands too
+bad=""
+for cmd in "t_filter blur --sigma 1.5" "t_remap --gamma 2" "t_palette marble --range 0,1" "t_palette marble"; do
+    for ext in png tif ppm; do
+        [ "$ext" = ppm ] && [ "${cmd%% *}" = t_filter ] && src=rgb || src=y
+        (cd w && $cmd -o o.$ext <../$src.exr) && (cd s && cat ../$src.exr | TEXTURA_BAND_ROWS=7 $cmd -o o.$ext 2>../err) &&
+            cmp -s w/o.$ext s/o.$ext || bad+=" [$cmd $ext: $(head -c 80 err)]"
+    done
+done
+[ -z "$bad" ] && ok "t_filter, t_remap and t_palette write PNG, TIFF and PPM in bands" ||
+    notok "tools writing other formats in bands" "$bad"
+
+# Formats written whole still are: a mip-mapped EXR, BMP (OpenImageIO), TIFF to a pipe
+for o in "--mipmap -o w.exr" "-o w.bmp" "--format tif"; do
+    want=$(t_convert $o <y.exr 2>/dev/null | md5sum; md5sum <"${o##* }" 2>/dev/null)
+    got=$(cat y.exr | t_convert $o 2>/dev/null | md5sum; md5sum <"${o##* }" 2>/dev/null)
+    [ "$got" = "$want" ] && ok "t_convert $o: written whole, the same bytes" || notok "t_convert $o"
+done
+
+# A failing writer leaves nothing: a stream cut short, written to PNG
+t_noise -s 256x512 | t_convert --compression none -o tall.exr
+head -c 300000 tall.exr >cut.exr
+check_fails "a truncated stream to PNG: exit 1, one line" 1 bash -c "cat cut.exr | t_convert -o out.png"
+[ ! -e out.png ] && ok "no PNG left behind" || notok "a PNG left behind"
+
+# Bounded memory: a 4096x4096 RGB map (192 MiB as float) to PNG, TIFF and PPM under a limit
+# far below it (the whole-map writer holds the map and its 8-bit copy)
+lim=180000
+nm "$TEXTURA_BUILD/lib/libtex.a" 2>/dev/null | grep -q __asan_ && lim=unlimited
+t_noise -s 4096 -f 8 | t_palette --range 0,1 marble >big.exr
+for ext in png ppm; do
+    t_convert -o w.$ext <big.exr
+    cat big.exr | (ulimit -v $lim; t_convert -o s.$ext) 2>err
+    cmp -s w.$ext s.$ext && ok "t_convert streams a 4096x4096 map to .$ext under ulimit -v $lim KB" ||
+        notok "t_convert to .$ext under ulimit -v $lim" "$(head -c 200 err)"
+    rm -f w.$ext s.$ext
+done
