@@ -483,12 +483,42 @@ static tex_map *read_rest(int fd, const void *head, size_t n, const char *path, 
     return m;
 }
 
+/* The pipe fd (standard input, or a FIFO named on the command line, closed here or by
+ * tex_rows_close) opened for rows, or read whole into *whole */
+static tex_rows_reader *open_pipe_rows(int fd, const char *name, tex_map *head, tex_map **whole)
+{
+    unsigned char pre[64];
+    size_t n = 0;
+    tex_rows_reader *r = NULL;
+    tex_map *m = NULL;
+    int failed = 0;
+
+    while (n < sizeof pre && !failed) {
+        ssize_t k = read(fd, pre + n, sizeof pre - n);
+        if (k < 0 && errno == EINTR)
+            continue;
+        if (k <= 0)
+            failed = k < 0 ? tex_error("%s: %s", name, strerror(errno)) : 0;
+        if (k <= 0)
+            break;
+        n += (size_t)k;
+    }
+    if (failed)
+        ;
+    else if (tex_format_sniff(pre, n) != TEX_FMT_EXR)
+        *whole = nonfinite(read_rest(fd, pre, n, NULL, name), name);
+    else if (!(r = tex_rows_open(fd, pre, n, NULL, name, head, &m)) && m)
+        *whole = nonfinite(m, name); /* tiled: decoded whole from what the pipe had sent */
+    if (!r && fd != 0)
+        close(fd);
+    return r;
+}
+
 tex_rows_reader *tex_map_open_rows(const char *path, tex_map *head, tex_map **whole)
 {
     const char *name = path && strcmp(path, "-") ? path : "standard input";
-    unsigned char pre[64];
+    unsigned char pre[4];
     struct stat st;
-    size_t n = 0;
     tex_rows_reader *r;
 
     *whole = NULL;
@@ -499,13 +529,14 @@ tex_rows_reader *tex_map_open_rows(const char *path, tex_map *head, tex_map **wh
             tex_error("%s: %s", path, strerror(errno));
             return NULL;
         }
-        ssize_t k = read(fd, pre, 4);
-        /* a file over the input limit, or not a regular one: the whole reader refuses it
-         * with its words, or counts the bytes it reads */
+        if (fstat(fd, &st) == 0 && S_ISFIFO(st.st_mode))
+            return open_pipe_rows(fd, name, head, whole); /* <(t_noise ...) */
+        /* a file over the input limit, or not a regular one (a device): the whole reader
+         * refuses it with its words, or counts the bytes it reads */
         int plain = fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && tex_input_max(&max) == 0 &&
-                    (unsigned long long)st.st_size <= max;
+                    (unsigned long long)st.st_size <= max && read(fd, pre, 4) == 4;
         close(fd);
-        if (plain && k == 4 && tex_format_sniff(pre, 4) == TEX_FMT_EXR &&
+        if (plain && tex_format_sniff(pre, 4) == TEX_FMT_EXR &&
             (r = tex_rows_open(-1, NULL, 0, path, name, head, NULL)))
             return r;
         *whole = tex_map_read(path); /* another format, a tiled EXR, or refused */
@@ -515,27 +546,7 @@ tex_rows_reader *tex_map_open_rows(const char *path, tex_map *head, tex_map **wh
         *whole = tex_map_read(NULL); /* a file on standard input: as tex_map_read does */
         return NULL;
     }
-    while (n < sizeof pre) {
-        ssize_t k = read(0, pre + n, sizeof pre - n);
-        if (k < 0 && errno == EINTR)
-            continue;
-        if (k < 0) {
-            tex_error("%s: %s", name, strerror(errno));
-            return NULL;
-        }
-        if (k == 0)
-            break;
-        n += (size_t)k;
-    }
-    if (tex_format_sniff(pre, n) == TEX_FMT_EXR) {
-        tex_map *m = NULL;
-        if ((r = tex_rows_open(0, pre, n, NULL, name, head, &m)) || !m)
-            return r;
-        *whole = nonfinite(m, name); /* tiled: decoded whole from what the pipe had sent */
-        return NULL;
-    }
-    *whole = nonfinite(read_rest(0, pre, n, NULL, name), name);
-    return NULL;
+    return open_pipe_rows(0, name, head, whole);
 }
 
 /* ---- writing ---- */

@@ -1118,6 +1118,7 @@ tex_rows_reader *tex_rows_open(int fd, const void *prefix, size_t prefix_len, co
 fail:
     free(head->history);
     head->history = NULL;
+    r->rs.fd = -1; /* the caller's still */
     tex_rows_close(r);
     return NULL;
 }
@@ -1160,6 +1161,8 @@ void tex_rows_close(tex_rows_reader *r)
         exr_finish(&r->ctx);
     }
     tex_map_free(r->chunk);
+    if (r->rs.buf && r->rs.fd > 0) /* a pipe other than standard input */
+        close(r->rs.fd);
     free(r->rs.buf);
     free(r);
 }

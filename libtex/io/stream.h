@@ -75,7 +75,8 @@ int tex_exr_write_rows(const tex_map *head, tex_rows_fn fill, void *arg, int til
  * cannot be read again, is decoded whole into *whole (NULL returned) when
  * whole is not NULL, and refused otherwise.  The input limit (limit.h)
  * holds as for the whole-map readers: a header declaring more is refused,
- * and a pipe's bytes are counted as they are read.  Rows must be asked for
+ * and a pipe's bytes are counted as they are read.  The reader returned
+ * owns a pipe fd other than standard input (0): tex_rows_close closes it.  Rows must be asked for
  * from the top down: tex_rows_read copies rows y..y+n-1 (w * nc floats
  * each) into rows. */
 typedef struct tex_rows_reader tex_rows_reader;
