@@ -151,6 +151,21 @@ static int band_rows(int w, int nc)
     return n < 64 ? 64 : n > 4096 ? 4096 : (int)n;
 }
 
+tex_map *tex_cli_rows_whole(tex_rows_reader *r, tex_map *head, const char *name)
+{
+    tex_map *whole = tex_map_new(head->w, head->h, head->nc);
+
+    if (!whole || tex_rows_read(r, 0, head->h, whole->px, name) < 0 ||
+        tex_rows_nonfinite(whole->px, head->w, head->h, head->nc, 0, name) < 0)
+        tex_die();
+    whole->subregions = head->subregions;
+    tex_map_inherit_place(whole, head);
+    whole->history = head->history;
+    head->history = NULL;
+    tex_rows_close(r);
+    return whole;
+}
+
 static void stream_whole(tex_map *whole, const struct tex_common *c, tex_band_fn *op, void *arg,
                          int consumes)
 {
@@ -182,16 +197,7 @@ static void stream_window(const char *path, const struct tex_common *c, int marg
         whole = tex_cli_read(path);
     }
     if (r && margin > 0 && (edge == TEX_EDGE_WRAP || head.h < 2 * margin + 1)) {
-        /* the rows read so far are none: the same reader reads the whole map */
-        if (!(whole = tex_map_new(head.w, head.h, head.nc)) ||
-            tex_rows_read(r, 0, head.h, whole->px, name) < 0 ||
-            tex_rows_nonfinite(whole->px, head.w, head.h, head.nc, 0, name) < 0)
-            tex_die();
-        whole->subregions = head.subregions;
-        tex_map_inherit_place(whole, &head);
-        whole->history = head.history;
-        head.history = NULL;
-        tex_rows_close(r);
+        whole = tex_cli_rows_whole(r, &head, name); /* none read so far */
         r = NULL;
     }
     if (!r) {

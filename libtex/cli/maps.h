@@ -17,6 +17,7 @@
 
 #include "../base/api.h"
 #include "../base/map.h"
+#include "../io/stream.h"
 #include "options.h"
 
 TEX_API_BEGIN
@@ -67,6 +68,11 @@ void tex_cli_stream(const char *path, const struct tex_common *c,
  * nothing but those rows of input.  Bands are about 16 MiB of input, and a multiple of
  * 64 rows; $TEXTURA_BAND_ROWS (1..65536) sets their height instead, to show that the
  * output does not depend on it.  Dies on errors. */
+/* The map a row reader opened for (io/file.h tex_map_open_rows), none of its rows read
+ * yet, read whole after all, with head's metadata (its history taken); the reader is
+ * closed.  Dies on errors. */
+tex_map *tex_cli_rows_whole(tex_rows_reader *r, tex_map *head, const char *name);
+
 struct tex_band {
     int y, n, margin; /* the output rows and the rows of context above and below */
     int full_h;       /* the whole map's height */

@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# lockstep.sh - t_op reads its map operands a band of rows at a time, in lockstep, and
+# writes each band of the result as it passes: the whole map's bytes for every operator
+# and band height, two pipes at once, and a map of any size in bounded memory.
+. "$(dirname "$0")/../lib.sh"
+cd "$T" || exit 1
+
+# Odd sizes, no multiple of a band: one channel and RGB
+t_noise -s 301x203 -S 1 >a.exr
+t_noise -s 301x203 -S 2 | t_palette marble >b.exr
+t_noise -s 301x203 -S 3 >w.exr
+
+# every operator, from t_op's help; its arity found by asking (a usage error names it)
+ops=$(t_op --help | sed -n '2p' | sed 's/.*pixel: //; s/;.*//; s/(Porter-Duff)//; s/,/ /g')
+[ "$(wc -w <<<"$ops")" -ge 16 ] && ok "t_op lists its operators ($(wc -w <<<"$ops"))" || notok "t_op's operators" "$ops"
+bad="" n=0
+for op in $ops; do
+    for operands in "- b.exr w.exr" "- a.exr w.exr" "b.exr - w.exr"; do
+        set -- $operands
+        args=""
+        for k in 1 2 3; do
+            args=$(echo $operands | cut -d' ' -f1-$k)
+            t_op $op $args <a.exr >/dev/null 2>&1 && break
+            args=""
+        done
+        [ -n "$args" ] || continue
+        # a file on standard input is read whole: the whole map's bytes
+        want=$(t_op $op $args <a.exr | md5sum)
+        n=$((n + 1))
+        for rows in "" 1 7 64; do
+            got=$(cat a.exr | TEXTURA_BAND_ROWS=$rows t_op $op $args | md5sum)
+            [ "$got" = "$want" ] || bad+=" $op($args)/${rows:-default}"
+        done
+    done
+done
+[ "$n" -ge 40 ] && [ -z "$bad" ] && ok "t_op: $n operations in lockstep give the whole map's bytes" ||
+    notok "t_op in lockstep ($n operations)" "$bad"
+# with threads: the same bytes for any -j
+want=$(t_op mix - b.exr w.exr <a.exr | md5sum)
+for j in 1 2 3; do
+    [ "$(cat a.exr | t_op -j $j mix - b.exr w.exr | md5sum)" = "$want" ] || bad+=" -j$j"
+done
+[ -z "$bad" ] && ok "and for -j 1, 2, 3" || notok "t_op lockstep with threads" "$bad"
+
+# two pipes at once, and a constant beside them
+same "t_op add <(a) <(b): two pipes in lockstep" <(t_op add <(cat a.exr) <(cat b.exr)) <(t_op add - b.exr <a.exr)
+same "t_op mix <(a) 0.5,0.2,0.1 <(w)" <(t_op mix <(cat a.exr) 0.5,0.2,0.1 <(cat w.exr)) <(t_op mix - 0.5,0.2,0.1 w.exr <a.exr)
+# to other formats in bands too
+t_op add - b.exr -o whole.png <a.exr
+cat a.exr | t_op add - b.exr -o bands.png
+cmp -s whole.png bands.png && ok "t_op writes PNG in bands with the whole map's bytes" || notok "t_op to PNG in bands"
+# operands of other sizes are read whole and fitted, as before
+t_noise -s 100 >small.exr
+check_fails "an operand of another size: the whole map's usage error" 2 bash -c "cat a.exr | t_op add - small.exr"
+grep -q "small.exr is 100x100 but the result is 301x203" "$T/.err" || notok "the size message" "$(cat "$T/.err")"
+[ "$(cat a.exr | t_op add - small.exr --resize tile | md5sum)" = "$(t_op add - small.exr --resize tile <a.exr | md5sum)" ] &&
+    ok "--resize tile: the whole map's bytes" || notok "--resize tile"
+
+# a stream cut short: one line naming standard input, nothing left behind
+head -c 100000 a.exr >cut.exr
+check_fails "a truncated operand: exit 1, one line" 1 bash -c "cat cut.exr | t_op add - b.exr -o out.exr"
+grep -q "standard input" "$T/.err" && [ ! -e out.exr ] && ok "it names standard input and leaves nothing" ||
+    notok "truncated operand" "$(cat "$T/.err")"
+
+# Bounded memory: two 4096x4096 generators (64 MiB each as float, 192 MiB with the result
+# whole) added under a limit far below them
+lim=120000
+nm "$TEXTURA_BUILD/lib/libtex.a" 2>/dev/null | grep -q __asan_ && lim=unlimited
+want=$(t_op add <(t_noise -s 4096 -f 8 -S 1) <(t_noise -s 4096 -f 8 -S 2) | md5sum)
+got=$( (ulimit -v $lim; t_op add <(t_noise -s 4096 -f 8 -S 1) <(t_noise -s 4096 -f 8 -S 2)) | md5sum)
+[ "$got" = "$want" ] && ok "t_op adds two 4096x4096 streams under ulimit -v $lim KB" ||
+    notok "t_op under ulimit -v $lim" "$got vs $want"
