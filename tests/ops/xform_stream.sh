@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# xform_stream.sh - t_xform's expand, whole-pixel shift (with and without --wrap) and clip
+# go a band of rows at a time: the whole map's bytes for any band height and -j, the same
+# usage errors, a map of any size in bounded memory; rotate, scale and fractional shifts
+# still read the whole map, with their bytes.
+. "$(dirname "$0")/../lib.sh"
+cd "$T" || exit 1
+
+# odd sizes, one channel and RGB
+t_noise -s 301x203 -S 1 >y.exr
+t_noise -s 301x203 -S 2 | t_palette marble >rgb.exr
+bad="" n=0
+while read -r args; do
+    for src in y rgb; do
+        # a file on standard input is read whole: the whole map's bytes and messages
+        want=$(t_xform $args <$src.exr 2>&1 | md5sum)
+        n=$((n + 1))
+        for rows in "" 1 7 64; do
+            got=$(cat $src.exr | TEXTURA_BAND_ROWS=$rows t_xform $args 2>&1 | md5sum)
+            [ "$got" = "$want" ] || bad+=" [$src $args /${rows:-default}]"
+        done
+    done
+done <<'ARGS'
+--shift 10,20
+--shift -7,-33
+--shift -7,-33 --wrap
+--shift 75,50 --wrap
+--shift 3,1000 --wrap
+--shift 3,1000
+--shift 0,0 --wrap
+--clip 10,20,200,150
+--clip 0,0,301,203
+--expand 400x300
+--expand 250x100
+--expand 400x300 --background #ff000080
+--expand 400x301 --shift 13,-17 --clip 5,5,300,290
+--expand 400x300 --shift 20,30 --wrap --background #00ff0080
+--shift 2.5,1
+--rotate 30 --shift 4,4
+--scale 0.5 --clip 0,0,100,100
+ARGS
+[ -z "$bad" ] && ok "t_xform: $n chains from a stream give the whole map's bytes" ||
+    notok "t_xform streamed" "$bad"
+for j in 1 3; do
+    [ "$(cat rgb.exr | t_xform -j $j --shift 5,9 --wrap | md5sum)" = "$(t_xform --shift 5,9 --wrap <rgb.exr | md5sum)" ] ||
+        bad+=" -j$j"
+done
+[ -z "$bad" ] && ok "and for -j 1 and 3" || notok "t_xform with threads" "$bad"
+check_fails "a clip outside the map: the whole map's usage error" 2 bash -c "cat y.exr | t_xform --clip 0,0,400,100"
+grep -q "clip window 0,0 to 400,100 must lie inside the 301x203 map" "$T/.err" || notok "the clip message" "$(cat "$T/.err")"
+# to PNG in bands too
+t_xform --expand 320x240 --shift 5,5 -o whole.png <rgb.exr
+cat rgb.exr | t_xform --expand 320x240 --shift 5,5 -o bands.png
+cmp -s whole.png bands.png && ok "t_xform writes PNG in bands with the whole map's bytes" || notok "t_xform to PNG in bands"
+# a stream cut short: one line naming standard input, nothing left
+head -c 100000 y.exr >cut.exr
+check_fails "a truncated stream: exit 1, one line" 1 bash -c "cat cut.exr | t_xform --shift 3,3 -o out.exr"
+grep -q "standard input" "$T/.err" && [ ! -e out.exr ] && ok "it names standard input and leaves nothing" ||
+    notok "truncated stream" "$(cat "$T/.err")"
+
+# Bounded memory: a 4096x4096 RGB map (192 MiB as float) shifted with and without a wrap
+# (spooled to TMPDIR) and clipped, under a limit far below it
+lim=180000
+nm "$TEXTURA_BUILD/lib/libtex.a" 2>/dev/null | grep -q __asan_ && lim=unlimited
+t_noise -s 4096 -f 8 | t_palette --range 0,1 marble >big.exr
+for args in "--shift 1024,1024 --wrap" "--expand 4200x4100 --shift -9,7 --clip 8,8,4000,4000"; do
+    want=$(t_xform $args <big.exr | md5sum)
+    got=$(cat big.exr | (ulimit -v $lim; t_xform $args) | md5sum)
+    [ "$got" = "$want" ] && ok "t_xform $args: a 4096x4096 stream under ulimit -v $lim KB" ||
+        notok "t_xform $args under ulimit -v $lim" "$got vs $want"
+done
