@@ -5,6 +5,7 @@
 # those of the whole map's writer for any band height, and t_convert holds a band, not the
 # map.
 . "$(dirname "$0")/../lib.sh"
+. "$(dirname "$0")/../lib_stream.sh"
 cd "$T" || exit 1
 
 # Odd sizes, no multiple of a band: one channel, RGB, and two channels (adapted by the
@@ -19,6 +20,8 @@ mkdir w s
 bad="" n=0
 for src in y rgb ya; do
     for c in $cases; do
+        # two channels: the writers that adapt them
+        [ "$src" = ya ] && case $c in png: | tif: | pam: | jpg: | pfm:) ;; *) continue ;; esac
         ext=${c%%:*} d=${c#*:} opt=""
         case $d in tiles) opt="--exr-tiles" ;; ?*) opt="--depth $d" ;; esac
         # a file on standard input is read whole, and written whole: today's bytes
@@ -33,7 +36,7 @@ for src in y rgb ya; do
         done
     done
 done
-[ "$n" -ge 35 ] && [ -z "$bad" ] && ok "t_convert streams to $n kinds of file with the whole map's bytes" ||
+[ "$n" -ge 30 ] && [ -z "$bad" ] && ok "t_convert streams to $n kinds of file with the whole map's bytes" ||
     notok "t_convert streamed to files ($n kinds)" "$bad"
 
 # standard output: the formats that need no seeking stream there too
@@ -72,15 +75,13 @@ done
 # A failing writer leaves nothing: a stream cut short, written to PNG
 t_noise -s 256x512 | t_convert --compression none -o tall.exr
 head -c 300000 tall.exr >cut.exr
-check_fails "a truncated stream to PNG: exit 1, one line" 1 bash -c "cat cut.exr | t_convert -o out.png"
-[ ! -e out.png ] && ok "no PNG left behind" || notok "a PNG left behind"
+truncated "a truncated stream to PNG" out.png t_convert
 
 # Bounded memory: a 4096x4096 RGB map (192 MiB as float) to PNG, TIFF and PPM under a limit
 # far below it (the whole-map writer holds the map and its 8-bit copy)
-lim=180000
-nm "$TEXTURA_BUILD/lib/libtex.a" 2>/dev/null | grep -q __asan_ && lim=unlimited
+lim=$(stream_vlimit 180000)
 t_noise -s 4096 -f 8 | t_palette --range 0,1 marble >big.exr
-for ext in png ppm; do
+for ext in png; do
     t_convert -o w.$ext <big.exr
     cat big.exr | (ulimit -v $lim; t_convert -o s.$ext) 2>err
     cmp -s w.$ext s.$ext && ok "t_convert streams a 4096x4096 map to .$ext under ulimit -v $lim KB" ||

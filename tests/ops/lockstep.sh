@@ -3,6 +3,7 @@
 # writes each band of the result as it passes: the whole map's bytes for every operator
 # and band height, two pipes at once, and a map of any size in bounded memory.
 . "$(dirname "$0")/../lib.sh"
+. "$(dirname "$0")/../lib_stream.sh"
 cd "$T" || exit 1
 
 # Odd sizes, no multiple of a band: one channel and RGB
@@ -12,7 +13,7 @@ t_noise -s 301x203 -S 3 >w.exr
 
 # every operator, from t_op's help; its arity found by asking (a usage error names it)
 ops=$(t_op --help | sed -n '2p' | sed 's/.*pixel: //; s/;.*//; s/(Porter-Duff)//; s/,/ /g')
-[ "$(wc -w <<<"$ops")" -ge 16 ] && ok "t_op lists its operators ($(wc -w <<<"$ops"))" || notok "t_op's operators" "$ops"
+[ "$(wc -w <<<"$ops")" -ge 15 ] && ok "t_op lists its operators ($(wc -w <<<"$ops"))" || notok "t_op's operators" "$ops"
 bad="" n=0
 for op in $ops; do
     for operands in "- b.exr w.exr" "- a.exr w.exr" "b.exr - w.exr"; do
@@ -58,14 +59,11 @@ grep -q "small.exr is 100x100 but the result is 301x203" "$T/.err" || notok "the
 
 # a stream cut short: one line naming standard input, nothing left behind
 head -c 100000 a.exr >cut.exr
-check_fails "a truncated operand: exit 1, one line" 1 bash -c "cat cut.exr | t_op add - b.exr -o out.exr"
-grep -q "standard input" "$T/.err" && [ ! -e out.exr ] && ok "it names standard input and leaves nothing" ||
-    notok "truncated operand" "$(cat "$T/.err")"
+truncated "a truncated operand" out.exr t_op add - b.exr
 
 # Bounded memory: two 4096x4096 generators (64 MiB each as float, 192 MiB with the result
 # whole) added under a limit far below them
-lim=120000
-nm "$TEXTURA_BUILD/lib/libtex.a" 2>/dev/null | grep -q __asan_ && lim=unlimited
+lim=$(stream_vlimit 120000)
 want=$(t_op add <(t_noise -s 4096 -f 8 -S 1) <(t_noise -s 4096 -f 8 -S 2) | md5sum)
 got=$( (ulimit -v $lim; t_op add <(t_noise -s 4096 -f 8 -S 1) <(t_noise -s 4096 -f 8 -S 2)) | md5sum)
 [ "$got" = "$want" ] && ok "t_op adds two 4096x4096 streams under ulimit -v $lim KB" ||
