@@ -56,6 +56,7 @@
  *   options.h   options from rows: getopt, operands, --help, the history
  *   message.h   errors, warnings and progress on standard error
  *   maps.h      a tool's maps read and written, whole or in bands of rows
+ *   lockstep.h  per-pixel work over several maps read in bands, in step
  *   generate.h  the generators' main, from a primitive's descriptor
  */
 #ifndef TEXTURA_H

@@ -14,6 +14,11 @@
 #                                 (TEXTURA_REGOLD=1 rewrites the golden)
 #   start_proto DIR [ARGS...]     start t_proto on a free port serving DIR; sets $proto_pid
 #                                 and $proto_url (its address with the token); killed at exit
+#   truncated NAME OUT CMD...     the tools that stream: CMD (a command line) reads cut.exr,
+#                                 a stream cut short, on a pipe: exit 1, one line naming
+#                                 standard input, and OUT (its -o) not left behind
+#   stream_vlimit KB              the ulimit -v of a bounded-memory check: KB, or unlimited
+#                                 in a sanitizer build (its shadow reserves terabytes)
 #   $T                            a fresh temporary folder, removed at exit
 set -u
 T=$(mktemp -d "${TMPDIR:-/tmp}/textura-test.XXXXXX")
@@ -106,4 +111,15 @@ start_proto() {
     trap 'kill $proto_pid 2>/dev/null; rm -rf "$T"' EXIT
     for _ in $(seq 50); do grep -q token= "$T/.proto_url" && break; sleep 0.1; done
     proto_url=$(sed -n 's/.* on \(http:[^ ]*\)$/\1/p' "$T/.proto_url")
+}
+
+truncated() {
+    local name=$1 out=$2
+    shift 2
+    check_fails "$name: exit 1, one line" 1 bash -c "cat cut.exr | $* -o $out"
+    grep -q "standard input" "$T/.err" && [ ! -e "$out" ] &&
+        ok "$name: it names standard input and leaves nothing" || notok "$name" "$(cat "$T/.err")"
+}
+stream_vlimit() {
+    nm "$TEXTURA_BUILD/lib/libtex.a" 2>/dev/null | grep -q __asan_ && echo unlimited || echo "$1"
 }

@@ -25,6 +25,23 @@ static const struct tex_tool tool = {
     "a cascade of texture maps: region K of the region-id map IDS is filled with MAP",
     TEX_OPT_OUTPUT | TEX_OPT_MAPS, rows, 2, -1};
 
+/* The cascade of a band of the ids and of each region's map */
+struct cascade_job {
+    int n, nreg;
+    const long *key;
+    const tex_map **maps; /* nreg + 1 */
+    const float *fallback;
+};
+
+static tex_map *cascade_band(tex_map *const *bands, void *arg)
+{
+    struct cascade_job *j = arg;
+
+    for (int k = 0; k < j->n; k++)
+        j->maps[j->key[k]] = bands[k + 1];
+    return tex_cascade(bands[0], j->nreg, j->maps, j->fallback);
+}
+
 int main(int argc, char **argv)
 {
     struct tex_common c;
@@ -49,8 +66,11 @@ int main(int argc, char **argv)
             if (key[j] == key[k])
                 tex_usage_die("region %ld is given two maps", key[k]);
     }
-    ids = tex_cli_read(argv[i]);
-    nreg = o.regions ? o.regions : ids->subregions;
+    /* The ids and the maps on pipes or in scanline EXR files of one size go a band at a
+     * time, in lockstep, to an output that takes rows; anything else is read whole. */
+    tex_lockstep *l = tex_cli_lockstep_new(n + 1);
+    const tex_map *head = tex_cli_lockstep_add(l, 0, argv[i]);
+    nreg = o.regions ? o.regions : head->subregions;
     if (nreg < 1)
         tex_usage_die("%s has no textura:subregions attribute: it is not a region-id map (give "
                       "--regions N to use its values as ids)", argv[i]);
@@ -60,13 +80,24 @@ int main(int argc, char **argv)
                           nreg);
     if (!(maps = calloc(nreg + 1, sizeof *maps)))
         tex_usage_die("out of memory");
+    for (int k = 0; k < n; k++)
+        tex_cli_lockstep_add(l, k + 1, strchr(argv[i + 1 + k], '=') + 1);
+    if (tex_cli_lockstep_streams(l, &c)) {
+        struct cascade_job j = {n, nreg, key, (const tex_map **)maps, o.fallback};
+        tex_cli_lockstep_write(l, &c, 0, cascade_band, &j);
+        tex_cli_lockstep_free(l);
+        free(maps), free(key), free(c.cmdline);
+        return 0;
+    }
+    ids = tex_cli_lockstep_whole(l, 0);
     for (int k = 0; k < n; k++) {
         const char *a = strchr(argv[i + 1 + k], '=') + 1;
-        tex_map *m = tex_cli_read(a);
+        tex_map *m = tex_cli_lockstep_whole(l, k + 1);
         if (!(maps[key[k]] = tex_fit(m, ids->w, ids->h, (enum tex_fit)o.resize, a)))
             tex_die();
         tex_map_free(m);
     }
+    tex_cli_lockstep_free(l);
     if (!(r = tex_cascade(ids, nreg, (const tex_map *const *)maps, o.fallback)))
         tex_die();
     tex_cli_write(r, &c);

@@ -24,72 +24,22 @@ static const struct tex_tool tool = {
     "constant such as 0.5 or 1,0,0",
     TEX_OPT_OUTPUT | TEX_OPT_MAPS, rows, 2, 4};
 
-/* The operands a band of rows at a time, read in lockstep from each map's reader */
-struct lockstep {
+/* The operation on a band of each map operand (the constants as they are) */
+struct op_job {
     int op, n;
     double t;
-    struct tex_operand ops[3]; /* a map operand's map is its band */
-    tex_rows_reader *r[3];
-    tex_map *band[3];
-    const char *name[3];
-    int rows; /* the bands' room */
+    struct tex_operand ops[3];
 };
 
-static int lockstep_fill(void *arg, int y, int n, float *rows)
+static tex_map *op_band(tex_map *const *bands, void *arg)
 {
-    struct lockstep *s = arg;
-    tex_map *out;
+    struct op_job *j = arg;
 
-    for (int k = 0; k < s->n; k++) {
-        tex_map *b = s->band[k];
-        if (!s->r[k])
-            continue;
-        if (n > s->rows) { /* the writer's bands: the same height but the last */
-            int w = b->w, nc = b->nc;
-            tex_map_free(b);
-            if (!(b = s->band[k] = tex_map_new(w, n, nc)))
-                return -1;
-            s->ops[k].map = b;
-        }
-        b->h = n;
-        if (tex_rows_read(s->r[k], y, n, b->px, s->name[k]) < 0 ||
-            tex_rows_nonfinite(b->px, b->w, n, b->nc, y, s->name[k]) < 0)
-            return -1;
-    }
-    if (!(out = tex_op_apply(s->op, &s->ops[0], s->n > 1 ? &s->ops[1] : NULL,
-                             s->n > 2 ? &s->ops[2] : NULL, s->t)))
-        return -1;
-    memcpy(rows, out->px, tex_map_samples(out) * sizeof *rows);
-    tex_map_free(out);
-    s->rows = n > s->rows ? n : s->rows;
-    return 0;
-}
-
-/* Every map operand open for rows (heads[k]), all of one size: the result written as bands
- * of them pass, in lockstep.  The channels are those of the operation on 1 x 1 bands. */
-static void lockstep(struct lockstep *s, tex_map *heads, const struct tex_common *c)
-{
-    tex_map head = {0}, *probe;
-
-    for (int k = 0; k < s->n; k++)
-        if (s->r[k]) {
-            if (!(s->band[k] = tex_map_new(heads[k].w, 1, heads[k].nc)))
-                tex_die();
-            s->band[k]->subregions = heads[k].subregions;
-            s->ops[k].map = s->band[k];
-            if (!head.w)
-                head.w = heads[k].w, head.h = heads[k].h;
-        }
-    if (!(probe = tex_op_apply(s->op, &s->ops[0], s->n > 1 ? &s->ops[1] : NULL,
-                               s->n > 2 ? &s->ops[2] : NULL, s->t)))
-        tex_die();
-    head.nc = probe->nc;
-    tex_map_free(probe);
-    s->rows = 1;
-    if (s->r[0] && heads[0].history) /* the result's history is the first operand's */
-        head.history = heads[0].history, heads[0].history = NULL;
-    tex_cli_write_rows(&head, c, lockstep_fill, s);
-    free(head.history);
+    for (int k = 0; k < j->n; k++)
+        if (bands[k])
+            j->ops[k].map = bands[k];
+    return tex_op_apply(j->op, &j->ops[0], j->n > 1 ? &j->ops[1] : NULL,
+                        j->n > 2 ? &j->ops[2] : NULL, j->t);
 }
 
 int main(int argc, char **argv)
@@ -116,43 +66,27 @@ int main(int argc, char **argv)
         if (!strcmp(a, "-") && stdin_used++)
             tex_usage_die("standard input (-) can be read only once");
     }
-    /* To an output that takes rows, maps on a pipe or in scanline EXR files of one size go
-     * a band at a time, in lockstep; anything else is read whole. */
-    struct lockstep s = {.op = op, .n = n, .t = o.threshold};
-    tex_map heads[3];
-    int rows = tex_cli_takes_rows(&c), w = -1, h = -1;
-    for (int k = 0; k < n; k++) {
-        const char *a = argv[i + 1 + k];
-        s.ops[k] = ops[k];
-        if (tex_operand_parse(a, &ops[k]) == 0)
-            continue;
-        s.name[k] = strcmp(a, "-") ? a : "standard input";
-        if (!rows)
-            owned[k] = tex_cli_read(a);
-        else if (!(s.r[k] = tex_map_open_rows(a, &heads[k], &owned[k])) && !owned[k])
-            tex_die();
-        const tex_map *m = s.r[k] ? &heads[k] : owned[k];
-        rows &= s.r[k] && (w < 0 || (m->w == w && m->h == h));
-        w = w < 0 ? m->w : w, h = h < 0 ? m->h : h;
-    }
-    if (rows) {
-        lockstep(&s, heads, &c);
-        for (int k = 0; k < n; k++) {
-            tex_map_free(s.band[k]);
-            tex_rows_close(s.r[k]);
-            if (s.r[k])
-                free(heads[k].history);
-        }
+    /* Maps on pipes or in scanline EXR files of one size go a band at a time, in lockstep,
+     * to an output that takes rows; anything else is read whole. */
+    tex_lockstep *l = tex_cli_lockstep_new(n);
+    struct op_job job = {op, n, o.threshold, {ops[0], ops[1], ops[2]}};
+    for (int k = 0; k < n; k++)
+        if (tex_operand_parse(argv[i + 1 + k], &job.ops[k]) != 0)
+            tex_cli_lockstep_add(l, k, argv[i + 1 + k]);
+    if (tex_cli_lockstep_streams(l, &c)) {
+        tex_cli_lockstep_write(l, &c, 0, op_band, &job);
+        tex_cli_lockstep_free(l);
         free(c.cmdline);
         return 0;
     }
     for (int k = 0; k < n; k++) {
-        if (s.r[k])
-            owned[k] = tex_cli_rows_whole(s.r[k], &heads[k], s.name[k]);
-        ops[k].map = owned[k];
-        if (owned[k] && !first)
+        if (tex_operand_parse(argv[i + 1 + k], &ops[k]) == 0)
+            continue;
+        ops[k].map = owned[k] = tex_cli_lockstep_whole(l, k);
+        if (!first)
             first = owned[k];
     }
+    tex_cli_lockstep_free(l);
     for (int k = 0; k < n && first; k++) {
         tex_map *f;
         if (!owned[k] || owned[k] == first)

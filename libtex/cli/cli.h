@@ -8,6 +8,7 @@
  *               1 for runtime ones, warnings, the progress bar;
  *   maps.h      its maps read and written (-o, standard output, the history), whole
  *               or a band of rows at a time;
+ *   lockstep.h  per-pixel work over several maps read a band at a time, in step;
  *   generate.h  the whole main of a generator tool.
  *
  *   static struct opts { int json; } o;
@@ -29,6 +30,7 @@
 #include "../base/param.h"
 #include "../prim/prim.h"
 #include "generate.h"
+#include "lockstep.h"
 #include "maps.h"
 #include "message.h"
 #include "options.h"

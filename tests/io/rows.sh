@@ -5,7 +5,6 @@
 # the input limit (TEXTURA_MAX_INPUT, io/limit.h) holds as for the whole-map readers, with
 # their words; t_info gathers a stream's figures in bounded memory.
 . "$(dirname "$0")/../lib.sh"
-. "$(dirname "$0")/../lib_stream.sh"
 cd "$T" || exit 1
 
 # The tools that read their input through the row reader (tex_map_open_rows,

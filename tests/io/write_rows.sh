@@ -5,7 +5,6 @@
 # those of the whole map's writer for any band height, and t_convert holds a band, not the
 # map.
 . "$(dirname "$0")/../lib.sh"
-. "$(dirname "$0")/../lib_stream.sh"
 cd "$T" || exit 1
 
 # Odd sizes, no multiple of a band: one channel, RGB, and two channels (adapted by the

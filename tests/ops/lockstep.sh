@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# lockstep.sh - t_op reads its map operands a band of rows at a time, in lockstep, and
-# writes each band of the result as it passes: the whole map's bytes for every operator
-# and band height, two pipes at once, and a map of any size in bounded memory.
+# lockstep.sh - t_op and t_cascade read their maps a band of rows at a time, in lockstep
+# (cli/lockstep.h), and write each band of the result as it passes: the whole map's bytes
+# for every operator and band height, two pipes at once, and a map of any size in bounded
+# memory.
 . "$(dirname "$0")/../lib.sh"
-. "$(dirname "$0")/../lib_stream.sh"
 cd "$T" || exit 1
 
 # Odd sizes, no multiple of a band: one channel and RGB
@@ -68,3 +68,28 @@ want=$(t_op add <(t_noise -s 4096 -f 8 -S 1) <(t_noise -s 4096 -f 8 -S 2) | md5s
 got=$( (ulimit -v $lim; t_op add <(t_noise -s 4096 -f 8 -S 1) <(t_noise -s 4096 -f 8 -S 2)) | md5sum)
 [ "$got" = "$want" ] && ok "t_op adds two 4096x4096 streams under ulimit -v $lim KB" ||
     notok "t_op under ulimit -v $lim" "$got vs $want"
+
+# t_cascade: the ids and the regions' maps in lockstep
+t_circle -s 301x203 --ids -o ids.exr
+t_op threshold a.exr | t_op add - 1 >ids2.exr
+bad="" n=0
+while read -r in args; do
+    want=$(t_cascade $args <$in 2>&1 | md5sum)
+    n=$((n + 1))
+    for rows in "" 1 7 64; do
+        got=$(cat $in | TEXTURA_BAND_ROWS=$rows t_cascade $args 2>&1 | md5sum)
+        [ "$got" = "$want" ] || bad+=" [$args/${rows:-default}]"
+    done
+done <<'ARGS'
+b.exr ids.exr 1=-
+b.exr --regions 2 ids2.exr 1=a.exr 2=-
+ids2.exr --regions 2 - 1=a.exr 2=b.exr
+a.exr --regions 2 ids2.exr 2=- --default #ff000080
+a.exr ids.exr 1=- 2=b.exr
+a.exr --regions 2 ids2.exr 1=- 2=small.exr --resize tile
+ARGS
+[ -z "$bad" ] && ok "t_cascade: $n cascades in lockstep give the whole map's bytes" || notok "t_cascade in lockstep" "$bad"
+want=$(t_cascade <(t_circle -s 4096 --ids) 1=<(t_noise -s 4096 -f 8) | md5sum)
+got=$( (ulimit -v $lim; t_cascade <(t_circle -s 4096 --ids) 1=<(t_noise -s 4096 -f 8)) | md5sum)
+[ "$got" = "$want" ] && ok "t_cascade fills a 4096x4096 stream under ulimit -v $lim KB" ||
+    notok "t_cascade under ulimit -v $lim" "$got vs $want"

@@ -4,7 +4,6 @@
 # usage errors, a map of any size in bounded memory; rotate, scale and fractional shifts
 # still read the whole map, with their bytes.
 . "$(dirname "$0")/../lib.sh"
-. "$(dirname "$0")/../lib_stream.sh"
 cd "$T" || exit 1
 
 # odd sizes, one channel and RGB
