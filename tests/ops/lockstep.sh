@@ -46,6 +46,11 @@ done
 # two pipes at once, and a constant beside them
 same "t_op add <(a) <(b): two pipes in lockstep" <(t_op add <(cat a.exr) <(cat b.exr)) <(t_op add - b.exr <a.exr)
 same "t_op mix <(a) 0.5,0.2,0.1 <(w)" <(t_op mix <(cat a.exr) 0.5,0.2,0.1 <(cat w.exr)) <(t_op mix - 0.5,0.2,0.1 w.exr <a.exr)
+# standard output redirected to a file: the uncompressed stream, as the whole map's writer
+# sends it (the first streaming tools compress it there; these keep their bytes)
+t_op add - b.exr <a.exr >whole.exr
+cat a.exr | t_op add - b.exr >bands.exr
+cmp -s whole.exr bands.exr && ok "t_op > FILE: the whole map's bytes" || notok "t_op > FILE differs"
 # to other formats in bands too
 t_op add - b.exr -o whole.png <a.exr
 cat a.exr | t_op add - b.exr -o bands.png

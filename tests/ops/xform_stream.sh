@@ -15,7 +15,9 @@ while read -r args; do
         # a file on standard input is read whole: the whole map's bytes and messages
         want=$(t_xform $args <$src.exr 2>&1 | md5sum)
         n=$((n + 1))
-        for rows in "" 1 7 64; do
+        rowset="1 64" # and the default below
+        [ "$src" = y ] && rowset="7"
+        for rows in $rowset ""; do
             got=$(cat $src.exr | TEXTURA_BAND_ROWS=$rows t_xform $args 2>&1 | md5sum)
             [ "$got" = "$want" ] || bad+=" [$src $args /${rows:-default}]"
         done
@@ -48,6 +50,10 @@ done
 [ -z "$bad" ] && ok "and for -j 1 and 3" || notok "t_xform with threads" "$bad"
 check_fails "a clip outside the map: the whole map's usage error" 2 bash -c "cat y.exr | t_xform --clip 0,0,400,100"
 grep -q "clip window 0,0 to 400,100 must lie inside the 301x203 map" "$T/.err" || notok "the clip message" "$(cat "$T/.err")"
+# standard output redirected to a file: the uncompressed stream, as before
+t_xform --shift 5,9 <rgb.exr >whole.exr
+cat rgb.exr | t_xform --shift 5,9 >bands.exr
+cmp -s whole.exr bands.exr && ok "t_xform > FILE: the whole map's bytes" || notok "t_xform > FILE differs"
 # to PNG in bands too
 t_xform --expand 320x240 --shift 5,5 -o whole.png <rgb.exr
 cat rgb.exr | t_xform --expand 320x240 --shift 5,5 -o bands.png
@@ -56,11 +62,11 @@ cmp -s whole.png bands.png && ok "t_xform writes PNG in bands with the whole map
 head -c 100000 y.exr >cut.exr
 truncated "a truncated stream" out.exr t_xform --shift 3,3
 
-# Bounded memory: a 4096x4096 RGB map (192 MiB as float) shifted with and without a wrap
+# Bounded memory: a 4096x4096 RGB map (192 MiB as float) expanded, shifted with a wrap
 # (spooled to TMPDIR) and clipped, under a limit far below it
 lim=$(stream_vlimit 180000)
 t_noise -s 4096 -f 8 | t_palette --range 0,1 marble >big.exr
-for args in "--shift 1024,1024 --wrap" "--expand 4200x4100 --shift -9,7 --clip 8,8,4000,4000"; do
+for args in "--expand 4200x4100 --shift 1024,-1030 --wrap --clip 8,8,4000,4000"; do
     want=$(t_xform $args <big.exr | md5sum)
     got=$(cat big.exr | (ulimit -v $lim; t_xform $args) | md5sum)
     [ "$got" = "$want" ] && ok "t_xform $args: a 4096x4096 stream under ulimit -v $lim KB" ||
