@@ -27,7 +27,7 @@ for src in y rgb ya; do
         (cd w && t_convert $opt -o o.$ext <../$src.exr 2>/dev/null) || continue
         n=$((n + 1))
         rowset="7"
-        [ "$src" = rgb ] && rowset="1 7 64 default"
+        [ "$src" = rgb ] && rowset="1 64 default"
         for rows in $rowset; do
             [ "$rows" = default ] && rows=""
             (cd s && cat ../$src.exr | TEXTURA_BAND_ROWS=$rows t_convert $opt -o o.$ext 2>../err) &&
