@@ -20,7 +20,9 @@ figure() {
     sh -eu -c "$3"
     t_convert fig.exr -o "$dir/fig_$1.exr"
     t_convert fig.exr -o "$dir/fig_$1.png"
-    printf '\n## %s\n\n%s\n\n![%s](fig_%s.png)\n\n```sh\n%s\n```\n' "$1" "$2" "$1" "$1" "$3" >>"$page"
+    # the recipes by their place in the source tree, not this machine's
+    printf '\n## %s\n\n%s\n\n![%s](fig_%s.png)\n\n```sh\n%s\n```\n' "$1" "$2" "$1" "$1" \
+        "$(printf '%s\n' "$3" | sed "s|'$here/\([^']*\)'|patterns/\\1|g")" >>"$page"
     echo "wrote fig_$1"
 }
 figure 5.1 "Figure 5.1: t_flower in different instances, for different values of the colours, the number of petals and the petal length." "
@@ -46,7 +48,7 @@ t_tile --matrix cycle --nu 3 --nv 2 -s $((3 * h))x$((2 * h)) e.exr b.exr g.exr m
 figure 5.6 "Figure 5.6: An instance of the function t_turbulence." "
 t_turbulence -s $s -n 7 -S 2 -o fig.exr"
 figure 5.7 "Figure 5.7: The Koch curve." "
-t_fractal -m koch -s $s -o fig.exr"
+t_fractal -m koch --koch curve -s $s -o fig.exr"
 figure 5.8 "Figure 5.8: The matrix of texture models of diagonal_flower: a circle where u' = v', a flower elsewhere." "
 t_circle -s $((s / 3)) -o c.exr
 t_flower -s $((s / 3)) --petals 4 -o f.exr
@@ -58,7 +60,7 @@ t_cascade ids.exr 1=f.exr --default '#204060' -o fig.exr"
 figure 5.10 "Figure 5.10: The function t_turbulence composed with the primitive t_stripe (domain perturbation): marble veins." "
 t_stripe -s $s -o st.exr
 t_turbulence -s $s -S 2 --tile -o tu.exr
-t_warp st.exr tu.exr --displacement 0.1 -o fig.exr"
+t_warp st.exr tu.exr --displacement 0.1 --edge clamp -o fig.exr"
 figure 5.11 "Figure 5.11: Repetitions of a t_stripe primitive." "
 t_stripe -s $((s / 3)) -a 30 -o s1.exr
 t_tile --nu 3 --nv 2 -s ${s}x$((2 * s / 3)) s1.exr -o fig.exr"
