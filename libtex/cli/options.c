@@ -146,7 +146,8 @@ struct lname {
     char text[48]; /* without the dashes */
 };
 struct tables {
-    struct option lo[MAXNAMES + 5]; /* and --help, --version, --help-mdoc, --help-options, 0 */
+    struct option lo[MAXNAMES + 6]; /* and --help, --version, --help-mdoc, --help-options,
+                                      * --help-synopsis, 0 */
     struct lname names[MAXNAMES];
     int nnames;
     struct lname clashes[16]; /* a current name taken already by another row */
@@ -245,7 +246,8 @@ static void getopt_tables(const struct tex_cli_opt *o, int n, struct tables *tb)
     tb->lo[tb->nnames + 1] = (struct option){"version", no_argument, NULL, 'V'};
     tb->lo[tb->nnames + 2] = (struct option){"help-mdoc", no_argument, NULL, 3};
     tb->lo[tb->nnames + 3] = (struct option){"help-options", no_argument, NULL, 2};
-    tb->lo[tb->nnames + 4] = (struct option){0};
+    tb->lo[tb->nnames + 4] = (struct option){"help-synopsis", no_argument, NULL, 4};
+    tb->lo[tb->nnames + 5] = (struct option){0};
 }
 
 /* Every name the tool takes, one a line: NAME, the row's option, how the name
@@ -362,6 +364,9 @@ static void take_option(const struct tex_tool *t, int k, char **argv, const stru
         exit(0);
     } else if (k == 3) {
         tex_cli_mdoc(stdout, o, n);
+        exit(0);
+    } else if (k == 4) {
+        tex_cli_synopsis(stdout, t, o, n);
         exit(0);
     } else if (k == 2) {
         print_names(o, tb);
