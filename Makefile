@@ -276,6 +276,8 @@ man: all
 # primitive, palette, filter and operator (gallery/index.html, gallery/gallery.png)
 figures: all
 	PATH="$(CURDIR)/$(BUILD)/bin:$$PATH" patterns/figures.sh -o doc/figures
+	PATH="$(CURDIR)/$(BUILD)/bin:$$PATH" FIGURES=photo_4.1 patterns/figures.sh -o $(BUILD)/photo -s 800
+	cp $(BUILD)/photo/fig_photo_4.1.png doc/images/photo_4.1.png
 
 gallery: all
 	PATH="$(CURDIR)/$(BUILD)/bin:$$PATH" patterns/gallery.sh -o gallery
