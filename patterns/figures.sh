@@ -147,7 +147,7 @@ place=\"--expand ${s}x$((3 * s / 4)) --shift $((s / 64 - 3 * s / 8 + 2)),$((s / 
 t_xform \$place inset.exr -o over.exr
 t_op mul inset.exr 0 | t_op add - 1 | t_xform \$place -o mask.exr
 t_op mix scene.exr over.exr mask.exr -o fig.exr"
-figure photo_6.1 "Photo 6.1: Imitation of a fabric texture from a fractal primitive: anisotropic spectral synthesis for the warp and the weft, woven by a checker." "
+figure photo_6.1 "Photo 6.1: Imitation of a fabric texture from a fractal primitive: a 2/2 twill of indigo warp and paler weft threads with irregular yarns (t_weave), its dye mottled by fBm." "
 '$here/fabric.sh' -o fab -s $s >/dev/null
 t_convert fab_colour.exr -o fig.exr"
 figure ferreira_5 "Ferreira (1991), Figure 5: the five spheres rendered with Whitted-Phong in RGB (left) and Cook-Torrance with sampled spectra (right)." "
