@@ -26,17 +26,17 @@ struct segments_params {
 };
 
 static const struct tex_param segments_rows[] = {
-    TEX_INT_N("segments", struct segments_params, count, 'n', 300, 1, 1000000, "N",
+    TEX_INT_N("segments", struct segments_params, count, 0, 300, 1, 1000000, "N",
               "mean number of segments per unit square of the map (per unit cube in space)"),
     TEX_REAL(struct segments_params, angle, 'a', 0, -360, 360, "DEG",
              "direction of the segments, degrees counter-clockwise from +u"),
     TEX_REAL_N("angle_spread", struct segments_params, spread, 0, 4, 0, 90, "DEG",
                "each segment's direction varies by up to this many degrees either way"),
-    TEX_REAL(struct segments_params, length, 'l', 0.2, 0.001, 1, "L",
+    TEX_REAL(struct segments_params, length, 0, 0.2, 0.001, 1, "L",
              "mean length of a segment, in map widths"),
     TEX_REAL_N("length_spread", struct segments_params, length_spread, 0, 0.5, 0, 0.99, "F",
                "each length varies by up to this fraction of L either way"),
-    TEX_REAL(struct segments_params, width, 'w', 0.004, 0.0001, 0.2, "W",
+    TEX_REAL(struct segments_params, width, 0, 0.004, 0.0001, 0.2, "W",
              "width of a segment's groove, in map widths"),
     {0}};
 
