@@ -40,6 +40,10 @@ int main(int argc, char **argv)
     for (const struct tex_filter_op *o = tex_filter_ops; o->name; o++)
         snprintf(choices + strlen(choices), sizeof choices - strlen(choices), "%s%s",
                  o == tex_filter_ops ? "" : "|", o->name);
+    char near[32];
+    if (!op && tex_choice_nearest(choices, argv[i - 1], near, sizeof near))
+        tex_usage_die("unknown operation '%s'; did you mean %s? (one of %s)", argv[i - 1], near,
+                      choices);
     if (!op)
         tex_usage_die("unknown operation '%s' (one of %s)", argv[i - 1], choices);
     tex_cli_check_kinds(&tool, choices, tex_filter_op_index(op), "the operation");

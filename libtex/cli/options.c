@@ -9,6 +9,7 @@
 
 #include "cli/cli.h"
 #include "cli/internal.h"
+#include "base/nearest.h"
 #include "base/error.h"
 #include "base/progress.h"
 #include "io/file.h"
@@ -349,6 +350,24 @@ int tex_cli_given(const char *name)
     return 0;
 }
 
+/* An unknown long option: the message names the nearest current one, if one is near. */
+static void unknown_long(const struct tex_tool *t, const char *bad, const struct tables *tb)
+{
+    struct tex_nearest nr;
+    char word[64];
+    const char *near;
+
+    snprintf(word, sizeof word, "%.*s", (int)strcspn(bad + 2, "="), bad + 2);
+    tex_nearest_init(&nr, word);
+    for (int i = 0; i < tb->nnames; i++)
+        if (!tb->names[i].old)
+            tex_nearest_try(&nr, tb->names[i].text, strlen(tb->names[i].text));
+    for (int i = tb->nnames; tb->lo[i].name; i++) /* --help, --version... */
+        tex_nearest_try(&nr, tb->lo[i].name, strlen(tb->lo[i].name));
+    if ((near = tex_nearest_name(&nr)))
+        tex_usage_die("unknown option %s; did you mean --%s? (see %s --help)", bad, near, t->name);
+}
+
 /* One option k from getopt_long: help, version and the lists print and exit, an
  * unknown option or a missing or bad value is a usage error. */
 static void take_option(const struct tex_tool *t, int k, char **argv, const struct tex_cli_opt *o, int n,
@@ -376,6 +395,8 @@ static void take_option(const struct tex_tool *t, int k, char **argv, const stru
         if (optopt && optopt < 256)
             tex_usage_die("%s -%c (see %s --help)",
                           k == ':' ? "missing value for" : "unknown option", optopt, t->name);
+        if (k == '?' && !strncmp(bad, "--", 2))
+            unknown_long(t, bad, tb);
         tex_usage_die("%s %s (see %s --help)", k == ':' ? "missing value for" : "unknown option",
                       bad, t->name);
     } else if (k >= 256) {
