@@ -102,7 +102,7 @@ PCFILE   = $(BUILD)/lib/pkgconfig/textura.pc
 # installed.)
 RENDER_PRIVATE = scene camera whitted vecmath shape bvh light texture surface mipmap mapping \
                  footprint appfn packet render_shade render_ct
-PRIVATE_HEADERS = libtex/base/kdtree.h libtex/base/names.h libtex/base/trig_fdlibm.h libtex/base/simd.h \
+PRIVATE_HEADERS = libtex/base/kdtree.h libtex/base/names.h libtex/base/nearest.h libtex/base/trig_fdlibm.h libtex/base/simd.h \
                   libtex/base/fp_strict.h libtex/io/json.h libtex/io/strbuf.h libtex/io/oiio_bridge.h \
                   libtex/io/codec_bridge.h libtex/prim/noise_grid.h libtex/prim/cellular_impl.h \
                   libtex/ops/palette_srgb.h \
@@ -276,6 +276,8 @@ man: all
 # primitive, palette, filter and operator (gallery/index.html, gallery/gallery.png)
 figures: all
 	PATH="$(CURDIR)/$(BUILD)/bin:$$PATH" patterns/figures.sh -o doc/figures
+	PATH="$(CURDIR)/$(BUILD)/bin:$$PATH" FIGURES=photo_4.1 patterns/figures.sh -o $(BUILD)/photo -s 800
+	cp $(BUILD)/photo/fig_photo_4.1.png doc/images/photo_4.1.png
 
 gallery: all
 	PATH="$(CURDIR)/$(BUILD)/bin:$$PATH" patterns/gallery.sh -o gallery

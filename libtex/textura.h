@@ -33,6 +33,7 @@
  * ops/      general tools and composition of maps
  *   palette.h   palettes: scalars and region ids to colours
  *   filter.h    neighbourhood filters (blur, edges, normal maps...)
+ *   filter_ops.h the filters by name, with their parameters (t_filter, scripts)
  *   remap.h     bias, gain, gamma, levels, clamp, quantise
  *   transform.h filtered rotate, scale, shift, expand, clip
  *   compose.h   per-pixel operators, cascades, tiling, warps
@@ -83,6 +84,7 @@
 #include "prim/spectral.h"
 #include "ops/palette.h"
 #include "ops/filter.h"
+#include "ops/filter_ops.h"
 #include "ops/remap.h"
 #include "ops/transform.h"
 #include "ops/compose.h"

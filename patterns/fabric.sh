@@ -1,14 +1,34 @@
 #!/bin/sh
-# fabric.sh - a woven fabric as in the thesis's Photo 6.1: anisotropic spectral synthesis
-# makes the threads (structures stretched along u for the warp, along v for the weft),
-# and a checker of weave cells chooses warp or weft in each (a plain weave, t_cascade).
-#   patterns/fabric.sh [-o PREFIX] [-s N]   -> PREFIX_colour
+# fabric.sh - a woven fabric, the thesis's Photo 6.1 (an imitation of cloth from a fractal
+# primitive) with the threads its future work asks for (section 6.2): t_weave interlaces an
+# indigo warp and a paler weft in a 2/2 twill, with yarn irregularity; a fractal (fBm)
+# mottles the dye as the photo's clouds do; the weave's height map gives the bump, and a
+# render drapes the cloth over a cylinder.
+#   patterns/fabric.sh [-o PREFIX] [-s N]   -> PREFIX_colour, _height, _render
 recipe=fabric
 . "$(dirname "$0")/recipe.sh"
-t_spectral -s "$size" --hurst 0.6 --anisotropy 0,12 -S 21 --tile -o "$tmp/warp.exr"
-t_spectral -s "$size" --hurst 0.6 --anisotropy 90,12 -S 22 --tile -o "$tmp/weft.exr"
-t_checker -s "$size" --nu 32 --nv 32 --ids --tile -o "$tmp/weave.exr"
-t_cascade "$tmp/weave.exr" 1="$tmp/warp.exr" 2="$tmp/weft.exr" -o "$tmp/threads.exr"
-printf 'space oklab\n0 #1d2f5a\n1 #8da4d4\n' >"$tmp/indigo.pal"
-t_palette "$tmp/indigo.pal" "$tmp/threads.exr" -o "$tmp/colour.exr"
+# about 10 pixels a thread, so that each thread's crown and sides show
+n=$((size / 10 < 8 ? 8 : size / 10))
+n=$(((n + 3) / 4 * 4)) # whole repeats of the twill: the map tiles
+weave="-s $size --thread-count $n --weave twill --irregularity 0.35 --warp-colours #26406e --weft-colours #8fa3c8 -S 21 --tile"
+t_weave $weave -o "$tmp/weave.exr"
+t_weave $weave --map height -o "$tmp/height.exr"
+t_fractal -s "$size" --octaves 6 -S 22 --tile | t_remap --levels 0.2,0.8,0.75,1.1 -o "$tmp/mottle.exr"
+t_op mul "$tmp/weave.exr" "$tmp/mottle.exr" -o "$tmp/colour.exr"
 write "$tmp/colour.exr" colour
+write "$tmp/height.exr" height
+scene "image 640 400
+samples 4
+ambient 0.25 0.25 0.25
+background 0.9 0.9 0.92
+camera { eye 0 1.2 -3.4 look 0 0.3 0 fov 40 }
+light point { position -2 4 -3 intensity 0.9 }
+texture cloth file \"@TMP@/colour.exr\"
+texture relief file \"@TMP@/height.exr\"
+surface fabric { Ka 0.5 Kd 1 Ks 0.08 n 8
+    apply cloth { mapping natural repeat 4 2 Kd = f }
+    apply relief { mapping natural repeat 4 2 bump = 0.004 }
+}
+cylinder { base -1.5 0.3 0 top 1.5 0.3 0 radius 0.6 surface fabric }"
+t_apply "$tmp/s.scene" -s "$((size * 5 / 4))x$((size * 25 / 32))" -q -o "$tmp/render.exr"
+write "$tmp/render.exr" render

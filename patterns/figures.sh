@@ -3,6 +3,7 @@
 # primitives, and the seed paper's five spheres: DIR/fig_ID.png and .exr for each, and
 # DIR/figures.md, a page with each one's caption (translated) and the commands that made it.
 #   patterns/figures.sh [-o DIR] [-s N]      (default doc/figures, maps N = 256 wide)
+#   FIGURES="ID ..." patterns/figures.sh ...  (only those figures)
 # `make figures` runs it; tests/tools/figures.sh checks each figure against a golden image.
 recipe=doc/figures # -o: the folder
 size=256
@@ -15,14 +16,21 @@ s=$size h=$((size / 2))
 page=$dir/figures.md
 printf '# The thesis'"'"'s figures, rebuilt\n\nMade by `make figures` (patterns/figures.sh); each is checked against a golden image by tests/tools/figures.sh. Captions are translated from the thesis and the colour-model paper (Ferreira 1991).\n' >"$page"
 # figure ID CAPTION COMMANDS: run the commands (which leave fig.exr), keep it as fig_ID, and
-# put it on the page with its caption and commands
+# put it on the page with its caption and commands; with $FIGURES set, only the figures it
+# lists (make figures renders the README's Photo 4.1 at 800 x 600 so)
 figure() {
+    [ -z "${FIGURES:-}" ] || case " $FIGURES " in *" $1 "*) ;; *) return 0 ;; esac
     sh -eu -c "$3"
     t_convert fig.exr -o "$dir/fig_$1.exr"
     t_convert fig.exr -o "$dir/fig_$1.png"
-    printf '\n## %s\n\n%s\n\n![%s](fig_%s.png)\n\n```sh\n%s\n```\n' "$1" "$2" "$1" "$1" "$3" >>"$page"
+    # the recipes by their place in the source tree, not this machine's
+    printf '\n## %s\n\n%s\n\n![%s](fig_%s.png)\n\n```sh\n%s\n```\n' "$1" "$2" "$1" "$1" \
+        "$(printf '%s\n' "$3" | sed "s|'$here/\([^']*\)'|patterns/\\1|g")" >>"$page"
     echo "wrote fig_$1"
 }
+figure 4.7 "Figure 4.7: The texture maps of the wood plank, left to right: the map for the colour, the map for the brightness (constant: a varnish shines alike everywhere), the map for the roughness (nearly parallel line segments, applied as a bump)." "
+'$here/wood_plank.sh' -o wood -s $s >/dev/null
+t_tile --matrix cycle --nu 3 --nv 1 -s $((3 * h))x$h wood_colour.exr wood_brightness.exr wood_roughness.exr -o fig.exr"
 figure 5.1 "Figure 5.1: t_flower in different instances, for different values of the colours, the number of petals and the petal length." "
 t_flower -s $h -o f1.exr
 t_flower -s $h --petals 3 --petal-length 0.3 --colour1 '#f4efe2' --colour2 '#b8322a' -o f2.exr
@@ -46,7 +54,7 @@ t_tile --matrix cycle --nu 3 --nv 2 -s $((3 * h))x$((2 * h)) e.exr b.exr g.exr m
 figure 5.6 "Figure 5.6: An instance of the function t_turbulence." "
 t_turbulence -s $s -n 7 -S 2 -o fig.exr"
 figure 5.7 "Figure 5.7: The Koch curve." "
-t_fractal -m koch -s $s -o fig.exr"
+t_fractal -m koch --koch curve -s $s -o fig.exr"
 figure 5.8 "Figure 5.8: The matrix of texture models of diagonal_flower: a circle where u' = v', a flower elsewhere." "
 t_circle -s $((s / 3)) -o c.exr
 t_flower -s $((s / 3)) --petals 4 -o f.exr
@@ -58,7 +66,7 @@ t_cascade ids.exr 1=f.exr --default '#204060' -o fig.exr"
 figure 5.10 "Figure 5.10: The function t_turbulence composed with the primitive t_stripe (domain perturbation): marble veins." "
 t_stripe -s $s -o st.exr
 t_turbulence -s $s -S 2 --tile -o tu.exr
-t_warp st.exr tu.exr --displacement 0.1 -o fig.exr"
+t_warp st.exr tu.exr --displacement 0.1 --edge clamp -o fig.exr"
 figure 5.11 "Figure 5.11: Repetitions of a t_stripe primitive." "
 t_stripe -s $((s / 3)) -a 30 -o s1.exr
 t_tile --nu 3 --nv 2 -s ${s}x$((2 * s / 3)) s1.exr -o fig.exr"
@@ -89,32 +97,36 @@ t_apply s.scene -s $((2 * s))x$((3 * s / 5)) -q -o fig.exr"
 figure orange_peel "Section 2.3.3: the orange peel, midpoint displacement with one Hurst exponent per level (h = 10, 0, 0, 0, 0, 0, -10, 10), as a bump." "
 '$here/orange_peel.sh' -o op -s $s >/dev/null
 t_convert op_render.exr -o fig.exr"
-figure photo_4.1 "Photo 4.1: A synthetic scene with the wood texture: a varnished table (colour, brightness and roughness maps from one map of rings), a brick wall whose bricks vary in colour at random, and a vase of marble made as a solid texture." "
-t_wood -s 512 --tilt 84 --axis-offset 0.42 --rings 9 --turbulence 0.05 --grain 0.3 -S 4 -o rings.exr
-t_palette wood rings.exr -o wood.exr
-printf 'space oklab\n0 #6e2a1a\n0.35 #9a3b22\n0.7 #b5573a\n1 #c98a5a\nindex 1 #cfc6b8\n' >clay.pal
+figure photo_4.1 "Photo 4.1: A synthetic scene with the wood texture, modelled as section 4.5 does: the colour from concentric ellipses with perturbed edges and dark lines between them, a uniform brightness (a varnish of high specularity), and a roughness of randomly placed, nearly parallel line segments applied as a bump; a brick wall whose bricks vary in colour at random, and a vase of marble made as a solid texture. Top left, the same scene before texturing." "
+'$here/wood_plank.sh' -o wood -s 512 >/dev/null
+# the grain along the table's length (x, the planar mapping's u), one plank across it
+t_xform --rotate 90 wood_colour.exr -o wood_u.exr
+t_xform --rotate 90 wood_roughness.exr -o grooves_u.exr
+printf 'space oklab\\n0 #6e2a1a\\n0.35 #9a3b22\\n0.7 #b5573a\\n1 #c98a5a\\nindex 1 #cfc6b8\\n' >clay.pal
 t_brick -s 512 --nu 4 --nv 8 --cells --palette clay.pal -S 7 --tile -o bricks.exr
 t_brick -s 512 --nu 4 --nv 8 --tile --palette greys | t_filter blur --sigma 1.5 --edge wrap -o mortar.exr
 cat >s.scene <<S
-image 640 480
 samples 4
 ambient 0.3 0.3 0.3
 camera { eye 0.3 2.3 -4.2 look 0 1.1 1 fov 50 }
 light point { position -2.5 4.5 -3 intensity 0.9 }
 light distant { direction 2 2 -1 intensity 0.3 }
-texture wood file \"wood.exr\"
-texture rings file \"rings.exr\"
+texture wood file \"wood_u.exr\"
+texture grooves file \"grooves_u.exr\"
 texture bricks file \"bricks.exr\"
 texture mortar file \"mortar.exr\"
 texture veins turbulence { solid frequency 2 octaves 6 seed 3 }
-surface varnish { Ka 0.4 Kd 1 Ks 0.6 n 90 Kr 0.08
-    apply wood { mapping planar Kd = f }
-    apply rings { mapping planar Kd = p * (1.1 - 0.4 * f) n = 20 + 200 * (1 - f) } }
-surface wall { Ka 0.5 Kd 1
+surface varnish { Ka 0.4 Kd 0.8 0.55 0.35 Ks 0.6 n 90 Kr 0.08
+    apply wood { mapping planar scale 0.25 Kd = f }
+    apply grooves { mapping planar scale 0.25 bump = -0.002 }
+}
+surface wall { Ka 0.5 Kd 0.75 0.45 0.35
     apply bricks { mapping natural repeat 3 1 Kd = f }
-    apply mortar { mapping natural repeat 3 1 bump = 0.02 } }
-surface marble { Ka 0.35 Kd 0.9 Ks 0.6 n 80 Kr 0.06
-    apply veins { mapping solid Kd = palette(marble, 0.5 + 0.5 * sin(6 * ox + 12 * f)) } }
+    apply mortar { mapping natural repeat 3 1 bump = 0.02 }
+}
+surface marble { Ka 0.35 Kd 0.9 0.88 0.85 Ks 0.6 n 80 Kr 0.06
+    apply veins { mapping solid Kd = palette(marble, 0.5 + 0.5 * sin(6 * ox + 12 * f)) }
+}
 surface floor { Ka 0.4 Kd 0.35 0.33 0.3 }
 box { min -2 0.9 -1 max 2 1 1.2 surface varnish }
 box { min -1.8 0 -0.8 max -1.6 0.9 -0.6 surface varnish }
@@ -126,8 +138,16 @@ union { sphere { centre 0.6 1.45 0.3 radius 0.45 } cylinder { base 0.6 1.7 0.3 t
     surface marble }
 plane { surface floor }
 S
-t_apply s.scene -s ${s}x$((3 * s / 4)) -q -o fig.exr"
-figure photo_6.1 "Photo 6.1: Imitation of a fabric texture from a fractal primitive: anisotropic spectral synthesis for the warp and the weft, woven by a checker." "
+t_apply s.scene -s ${s}x$((3 * s / 4)) -q -o scene.exr
+# the inset, top left: the scene before texturing, a quarter as wide, in a white frame
+grep -v 'apply ' s.scene >plain.scene
+t_apply plain.scene -s $((s / 4))x$((3 * s / 16)) -q |
+    t_xform --expand $((s / 4 + 4))x$((3 * s / 16 + 4)) --background 1,1,1 -o inset.exr
+place=\"--expand ${s}x$((3 * s / 4)) --shift $((s / 64 - 3 * s / 8 + 2)),$((s / 64 - 9 * s / 32 + 2))\"
+t_xform \$place inset.exr -o over.exr
+t_op mul inset.exr 0 | t_op add - 1 | t_xform \$place -o mask.exr
+t_op mix scene.exr over.exr mask.exr -o fig.exr"
+figure photo_6.1 "Photo 6.1: Imitation of a fabric texture from a fractal primitive: a 2/2 twill of indigo warp and paler weft threads with irregular yarns (t_weave), its dye mottled by fBm." "
 '$here/fabric.sh' -o fab -s $s >/dev/null
 t_convert fab_colour.exr -o fig.exr"
 figure ferreira_5 "Ferreira (1991), Figure 5: the five spheres rendered with Whitted-Phong in RGB (left) and Cook-Torrance with sampled spectra (right)." "

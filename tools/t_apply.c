@@ -208,6 +208,17 @@ static int render_band(void *arg, int y, int n, float *rows)
     return 0;
 }
 
+/* The whole image's tiles, as the rest of the one bar (tex_render reports them). */
+static void tiles_done(long done, long total, void *arg)
+{
+    static long last = -1;
+    (void)arg;
+    if (last < 0)
+        tex_progress_stage(1, total);
+    tex_progress_add(done - (last < 0 ? 0 : last));
+    last = done;
+}
+
 /* Region r of the render written out: to a scanline EXR in bands, the image never held
  * whole (less memory to take and clear: the same pixels, each band a region); else whole,
  * sRGB-encoded for 8- and 16-bit formats. */
@@ -226,8 +237,7 @@ static void render_out(struct tex_scene *s, const int r[4], const struct tex_com
         free(head.history);
         return;
     }
-    tex_map *img = tex_render_region(s, r[0], r[1], r[2], r[3],
-                                     tex_cli_progress_wanted(c) ? tex_cli_progress : NULL, NULL);
+    tex_map *img = tex_render_region(s, r[0], r[1], r[2], r[3], tiles_done, NULL);
     if (!img)
         tex_die();
     if (wants_srgb(c, o))
@@ -268,6 +278,9 @@ int main(int argc, char **argv)
     const struct tex_shading_model *model = NULL;
     if (o.model && !(model = tex_shading_find(o.model)))
         tex_usage_die("--model '%s' must be phong or cook-torrance", o.model);
+    /* one bar: the scene's loading (its maps sampled, read, mip-mapped) a tenth of it */
+    tex_progress_stage(0.1, 1);
+    tex_progress_hold(1);
     struct tex_scene *s = tex_scene_load(argv[i]);
     if (!s)
         tex_die();
@@ -280,6 +293,8 @@ int main(int argc, char **argv)
         tex_scene_set_threads(s, c.threads);
     if (tex_scene_prepare(s) < 0)
         die_freeing(s);
+    tex_progress_hold(0);
+    tex_progress_add(1);
     int r[4] = {0, 0, 0, 0};
     tex_scene_size(s, &r[2], &r[3]);
     if (o.region && tex_parse_window(o.region, r[2], r[3], r) < 0) {

@@ -7,6 +7,7 @@
 
 #include "base/error.h"
 #include "base/map.h"
+#include "base/nearest.h"
 #include "base/param.h"
 
 #define AT(obj, p, T) ((T *)((char *)(obj) + (p)->off))
@@ -276,16 +277,45 @@ int tex_param_deprecated_is_error(void)
 }
 
 /* "NAME must be RANGE (got V)": V is the text given, or else the number v. */
+const char *tex_param_nearest(const struct tex_param *t, int kind, const char *word, char *buf,
+                              size_t n)
+{
+    struct tex_nearest nr;
+    tex_nearest_init(&nr, word);
+    for (const struct tex_param *p = t; p && p->name; p++)
+        if (kind < 0 || !p->kinds || (p->kinds >> kind & 1))
+            tex_nearest_try(&nr, p->name, strlen(p->name));
+    if (!tex_nearest_name(&nr))
+        return NULL;
+    snprintf(buf, n, "%s", tex_nearest_name(&nr));
+    for (char *c = buf; *c; c++) /* rows' names are written with '-' in scenes and options */
+        *c = *c == '_' ? '-' : *c;
+    return buf;
+}
+
+const char *tex_choice_nearest(const char *choices, const char *word, char *buf, size_t n)
+{
+    struct tex_nearest nr;
+    tex_nearest_init(&nr, word);
+    tex_nearest_try_list(&nr, choices);
+    if (!tex_nearest_name(&nr))
+        return NULL;
+    snprintf(buf, n, "%s", tex_nearest_name(&nr));
+    return buf;
+}
+
 static int bad(const struct tex_param *p, enum tex_param_style style, const char *text, double v)
 {
-    char o[64], r[96], got[64];
+    char o[64], r[96], got[64], near[96] = "";
 
     if (text)
         snprintf(got, sizeof got, style == TEX_PARAM_OPTION ? "'%.50s'" : "%.50s", text);
     else
         snprintf(got, sizeof got, "%g", v);
-    return tex_usage_error("%s must be %s (got %s)", tex_param_name(p, o, sizeof o, style),
-                           tex_param_range(p, r, sizeof r), got);
+    if (p->type == TEX_P_ENUM && text && tex_choice_nearest(p->choices, text, o, sizeof o))
+        snprintf(near, sizeof near, "; did you mean %s?", o); /* a mistyped choice */
+    return tex_usage_error("%s must be %s (got %s)%s", tex_param_name(p, o, sizeof o, style),
+                           tex_param_range(p, r, sizeof r), got, near);
 }
 
 /* "Kd takes 1 or 3 numbers (got 2)" */

@@ -170,6 +170,12 @@ int tex_param_deprecated_is_error(void);
 /* The next word of a row's space-separated name list (.alias, .old) into word,
  * advancing *list; NULL at the end.  Words longer than n are skipped. */
 const char *tex_param_list_next(const char **list, char *word, size_t n);
+/* The name of the row of t (of kind kind, or any for -1) nearest to a mistyped word, for a
+ * message's "did you mean", or NULL when none is near (base/nearest.h's rule). */
+const char *tex_param_nearest(const struct tex_param *t, int kind, const char *word, char *buf,
+                              size_t n);
+/* The word of choices ("add|sub|mul") nearest to a mistyped word, or NULL (the same rule). */
+const char *tex_choice_nearest(const char *choices, const char *word, char *buf, size_t n);
 /* Do two names match as tex_param_find matches them ('-' or '_', UK or US)? */
 int tex_param_same_name(const char *a, const char *b);
 /* name in US spelling with '-' for '_' ("colour1" -> "color1"), into buf. */

@@ -29,6 +29,10 @@ void tex_progress_stage(double span, long total)
 {
     if (!pr.fn || pr.held)
         return;
+    if (pr.shown < 0) { /* the first stage: the bar starts at 0% */
+        pr.shown = 0;
+        pr.fn(0, 100, pr.arg);
+    }
     pr.at += pr.span;
     pr.span = span * (1 - pr.at);
     pr.total = total > 0 ? total : 1;

@@ -11,8 +11,9 @@
  *   tex_progress_stage(1, h);                // the rest, in rows
  *
  * tex_progress_add may be called from any thread; the handler is called
- * from one thread at a time, each time the whole percentage grows, with
- * (percent, 100), and once more with (100, 100) by tex_progress_done.
+ * from one thread at a time: with (0, 100) when the first stage starts,
+ * each time the whole percentage grows, with (percent, 100), and once more
+ * with (100, 100) by tex_progress_done.
  */
 #ifndef TEX_PROGRESS_H
 #define TEX_PROGRESS_H

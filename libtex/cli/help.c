@@ -1,5 +1,6 @@
 /* help.c - --help and the man pages' option lists, made from the option rows */
 #include <stdio.h>
+#include <string.h>
 
 #include "cli/cli.h"
 #include "cli/internal.h"
@@ -31,6 +32,73 @@ void tex_cli_help(FILE *fp, const struct tex_tool *t, const struct tex_cli_opt *
     }
     fprintf(fp, "  -h, --help                   show this help\n"
                 "  -V, --version                show the version\n");
+}
+
+/* One option of the synopsis: its short letter if it has one, and its argument. */
+static void synopsis_option(FILE *fp, const struct tex_param *p)
+{
+    char opt[64];
+    tex_param_option(p, opt, sizeof opt);
+    if (p->key)
+        fprintf(fp, ".Op Fl %c", p->key);
+    else
+        fprintf(fp, ".Op Fl %s", opt + 1);
+    if (p->type == TEX_P_ENUM && strlen(p->choices) <= 32)
+        fprintf(fp, " Cm %s", p->choices);
+    else if (p->type != TEX_P_FLAG)
+        fprintf(fp, " Ar %s", p->type == TEX_P_ENUM ? "name" : p->meta ? p->meta : "x");
+    fputc('\n', fp);
+}
+
+/* The operands as mdoc: "OP A [B [W]]" is .Ar OP A and .Op Ar B Op Ar W. */
+static void synopsis_operands(FILE *fp, const char *s)
+{
+    int depth = 0, line = 0; /* line: a macro line is open */
+    while (s && *s) {
+        size_t n = strcspn(s, " []");
+        if (*s == ' ') {
+            s++;
+        } else if (*s == '[') {
+            if (!depth && line)
+                fputc('\n', fp);
+            fputs(depth++ ? " Op" : ".Op", fp);
+            line = 1;
+            s++;
+        } else if (*s == ']') {
+            if (--depth == 0) {
+                fputc('\n', fp);
+                line = 0;
+            }
+            s++;
+        } else {
+            int dots = n > 3 && !strncmp(s + n - 3, "...", 3);
+            fprintf(fp, "%s%.*s%s", !line ? ".Ar " : depth ? " Ar " : " ", (int)(n - 3 * dots),
+                    s, dots ? " ..." : "");
+            line = 1;
+            s += n;
+        }
+    }
+    if (line)
+        fputc('\n', fp);
+}
+
+static int own_row(const struct tex_tool *t, const struct tex_param *p)
+{
+    for (const struct tex_param *q = t->params; q && q->name; q++)
+        if (q == p)
+            return 1;
+    return 0;
+}
+
+/* The synopsis as mdoc: the tool's own options, the shared ones, the operands. */
+void tex_cli_synopsis(FILE *fp, const struct tex_tool *t, const struct tex_cli_opt *o, int n)
+{
+    fputs(".Nm\n", fp);
+    for (int own = 1; own >= 0; own--)
+        for (int i = 0; i < n; i++)
+            if (own_row(t, o[i].row) == own)
+                synopsis_option(fp, o[i].row);
+    synopsis_operands(fp, t->operands);
 }
 
 /* The option list as mdoc, for the man page (checked by the tests). */

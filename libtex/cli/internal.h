@@ -21,6 +21,8 @@ struct tex_cli_opt {
 
 /* --help: the usage line, the summary and one line per option, then -h and -V. */
 void tex_cli_help(FILE *fp, const struct tex_tool *t, const struct tex_cli_opt *o, int n);
+/* --help-synopsis: the SYNOPSIS as mdoc, every option and the operands (tests/mkman). */
+void tex_cli_synopsis(FILE *fp, const struct tex_tool *t, const struct tex_cli_opt *o, int n);
 /* --help-mdoc: the option list as mdoc, for the man page (tests/mkman). */
 void tex_cli_mdoc(FILE *fp, const struct tex_cli_opt *o, int n);
 

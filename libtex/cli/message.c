@@ -84,21 +84,50 @@ static double seconds(void)
     return t.tv_sec + 1e-9 * t.tv_nsec;
 }
 
+/* A time as people read it: "8.4 s", "2:05", "1:02:05". */
+static const char *clock_text(double s, char *b, size_t n)
+{
+    long t = (long)(s + 0.5);
+    if (s < 60)
+        snprintf(b, n, "%.1f s", s);
+    else if (t < 3600)
+        snprintf(b, n, "%ld:%02ld", t / 60, t % 60);
+    else
+        snprintf(b, n, "%ld:%02ld:%02ld", t / 3600, t / 60 % 60, t % 60);
+    return b;
+}
+
+/* The bar: drawn from 0% when the work starts, at most ten times a second, with the time
+ * spent and an estimate of the time left from the rate so far; at the end it becomes one
+ * line with the whole time, or is erased when the work took less than a moment (a quick
+ * stage of a pipeline leaves nothing on the screen). */
 void tex_cli_progress(long done, long total, void *arg)
 {
-    static const char bar[] = "########################################";
-    static double start = -1;
-    int w = (int)sizeof bar - 1, k = total > 0 ? (int)(w * done / total) : w;
+    static const char full[] = "##############################";
+    static double start = -1, last;
+    double now = seconds(), t, f = total > 0 ? (double)done / (double)total : 1;
+    int w = (int)sizeof full - 1, k = (int)(w * f);
+    char a[24], b[24];
     (void)arg;
     if (start < 0)
-        start = seconds();
-    if (!bar_drawn && seconds() - start < 0.3)
-        return; /* work that ends within a moment draws no bar */
-    bar_drawn = done < total;
-    fprintf(stderr, "\r%s: [%.*s%*s] %3d%%", tex_progname, k, bar, w - k, "",
-            total > 0 ? (int)(100 * done / total) : 100);
-    if (done >= total)
-        fputc('\n', stderr);
+        start = now, last = now - 1;
+    t = now - start;
+    if (f < 1) {
+        if (now - last < 0.1)
+            return;
+        last = now;
+        bar_drawn = 1;
+        fprintf(stderr, "\r%s: [%.*s%*s] %3d%%  %s, %s left\033[K", tex_progname, k, full, w - k,
+                "", (int)(100 * f), clock_text(t, a, sizeof a),
+                f > 0 ? clock_text(t * (1 - f) / f, b, sizeof b) : "?");
+    } else if (bar_drawn) {
+        bar_drawn = 0;
+        if (t < 0.3)
+            fputs("\r\033[K", stderr);
+        else
+            fprintf(stderr, "\r%s: [%s] 100%%  done in %s\033[K\n", tex_progname, full,
+                    clock_text(t, a, sizeof a));
+    }
 }
 
 int tex_cli_progress_wanted(const struct tex_common *c)

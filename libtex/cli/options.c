@@ -9,6 +9,7 @@
 
 #include "cli/cli.h"
 #include "cli/internal.h"
+#include "base/nearest.h"
 #include "base/error.h"
 #include "base/progress.h"
 #include "io/file.h"
@@ -146,7 +147,8 @@ struct lname {
     char text[48]; /* without the dashes */
 };
 struct tables {
-    struct option lo[MAXNAMES + 5]; /* and --help, --version, --help-mdoc, --help-options, 0 */
+    struct option lo[MAXNAMES + 6]; /* and --help, --version, --help-mdoc, --help-options,
+                                      * --help-synopsis, 0 */
     struct lname names[MAXNAMES];
     int nnames;
     struct lname clashes[16]; /* a current name taken already by another row */
@@ -245,7 +247,8 @@ static void getopt_tables(const struct tex_cli_opt *o, int n, struct tables *tb)
     tb->lo[tb->nnames + 1] = (struct option){"version", no_argument, NULL, 'V'};
     tb->lo[tb->nnames + 2] = (struct option){"help-mdoc", no_argument, NULL, 3};
     tb->lo[tb->nnames + 3] = (struct option){"help-options", no_argument, NULL, 2};
-    tb->lo[tb->nnames + 4] = (struct option){0};
+    tb->lo[tb->nnames + 4] = (struct option){"help-synopsis", no_argument, NULL, 4};
+    tb->lo[tb->nnames + 5] = (struct option){0};
 }
 
 /* Every name the tool takes, one a line: NAME, the row's option, how the name
@@ -347,6 +350,24 @@ int tex_cli_given(const char *name)
     return 0;
 }
 
+/* An unknown long option: the message names the nearest current one, if one is near. */
+static void unknown_long(const struct tex_tool *t, const char *bad, const struct tables *tb)
+{
+    struct tex_nearest nr;
+    char word[64];
+    const char *near;
+
+    snprintf(word, sizeof word, "%.*s", (int)strcspn(bad + 2, "="), bad + 2);
+    tex_nearest_init(&nr, word);
+    for (int i = 0; i < tb->nnames; i++)
+        if (!tb->names[i].old)
+            tex_nearest_try(&nr, tb->names[i].text, strlen(tb->names[i].text));
+    for (int i = tb->nnames; tb->lo[i].name; i++) /* --help, --version... */
+        tex_nearest_try(&nr, tb->lo[i].name, strlen(tb->lo[i].name));
+    if ((near = tex_nearest_name(&nr)))
+        tex_usage_die("unknown option %s; did you mean --%s? (see %s --help)", bad, near, t->name);
+}
+
 /* One option k from getopt_long: help, version and the lists print and exit, an
  * unknown option or a missing or bad value is a usage error. */
 static void take_option(const struct tex_tool *t, int k, char **argv, const struct tex_cli_opt *o, int n,
@@ -363,6 +384,9 @@ static void take_option(const struct tex_tool *t, int k, char **argv, const stru
     } else if (k == 3) {
         tex_cli_mdoc(stdout, o, n);
         exit(0);
+    } else if (k == 4) {
+        tex_cli_synopsis(stdout, t, o, n);
+        exit(0);
     } else if (k == 2) {
         print_names(o, tb);
         exit(0);
@@ -371,6 +395,8 @@ static void take_option(const struct tex_tool *t, int k, char **argv, const stru
         if (optopt && optopt < 256)
             tex_usage_die("%s -%c (see %s --help)",
                           k == ':' ? "missing value for" : "unknown option", optopt, t->name);
+        if (k == '?' && !strncmp(bad, "--", 2))
+            unknown_long(t, bad, tb);
         tex_usage_die("%s %s (see %s --help)", k == ':' ? "missing value for" : "unknown option",
                       bad, t->name);
     } else if (k >= 256) {

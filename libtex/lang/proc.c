@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "base/error.h"
+#include "base/nearest.h"
 #include "base/names.h"
 #include "io/file.h"
 #include "lang/expr.h"
@@ -415,8 +416,13 @@ static void named_arg(struct tex_expr_parser *xp, struct call *c)
     if (!strcmp(a->name, "size"))
         tex_lex_fail(lx, a->line, a->col, "size has no meaning at a point");
     if (strcmp(a->name, "channel") && !tex_param_find(c->prim->params, a->name) &&
-        !tex_param_find(tex_field_rows, a->name))
-        tex_lex_fail(lx, a->line, a->col, "%s has no parameter '%s'", c->prim->name, a->name);
+        !tex_param_find(tex_field_rows, a->name)) {
+        char near[64], hint[80] = "";
+        if (tex_param_nearest(c->prim->params, -1, a->name, near, sizeof near))
+            snprintf(hint, sizeof hint, "; did you mean %s?", near);
+        tex_lex_fail(lx, a->line, a->col, "%s has no parameter '%s'%s", c->prim->name, a->name,
+                     hint);
+    }
     for (int i = 0; i < c->nargs; i++)
         if (!strcmp(c->args[i].name, a->name))
             tex_lex_fail(lx, a->line, a->col, "%s is given twice", a->name);
@@ -453,8 +459,16 @@ static struct tex_enode *call(struct tex_expr_parser *xp)
     name_of(lx, name, "a primitive");
     if (!strcmp(name, p->name))
         tex_lex_fail(lx, e->line, e->col, "recursive definition: '%s' calls itself", name);
-    if (!(callee = tex_procs_find(rd->set, name)))
-        tex_lex_fail(lx, e->line, e->col, "unknown primitive or function '%s'", name);
+    if (!(callee = tex_procs_find(rd->set, name))) {
+        struct tex_nearest nr;
+        char hint[96] = "";
+        tex_nearest_init(&nr, name);
+        for (int i = 0; tex_primitives[i]; i++)
+            tex_nearest_try(&nr, tex_primitives[i]->name, strlen(tex_primitives[i]->name));
+        if (tex_nearest_name(&nr))
+            snprintf(hint, sizeof hint, "; did you mean %s?", tex_nearest_name(&nr));
+        tex_lex_fail(lx, e->line, e->col, "unknown primitive or function '%s'%s", name, hint);
+    }
     if (!callee->eval2 && !callee->eval3)
         tex_lex_fail(lx, e->line, e->col, "%s is made on a whole grid: it has no value at a "
                      "point to compose", name);

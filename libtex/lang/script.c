@@ -10,6 +10,8 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
+#include <sys/stat.h>
 
 #include "ops/compose.h"
 #include "base/error.h"
@@ -19,6 +21,7 @@
 #include "prim/prim.h"
 #include "lang/script.h"
 #include "ops/transform.h"
+#include "ops/filter_ops.h"
 #include "lang/expr.h"
 #include "lang/lex.h"
 #include "lang/proc.h"
@@ -26,6 +29,11 @@
 #define MAX_EVAL_DEPTH 500 /* chains of definitions */
 
 /* ---- syntax tree ---- */
+
+/* The tessellations: the canvas cut into rectangles, hexagons, triangles or rows of
+ * bricks. */
+enum tess { T_RECTANGULAR, T_HEXAGONAL, T_TRIANGULAR, T_BRICK };
+static const char *const tess_names[] = {"rectangular", "hexagonal", "triangular", "brick", NULL};
 
 enum nk { N_REF, N_FILE, N_PRIM, N_NUM, N_EXPR, N_EXPAND, N_ROTATE, N_SCALE, N_RESIZE, N_SHIFT,
           N_CLIP, N_FILTER, N_TILE, N_MATRIX, N_WARP, N_MIX };
@@ -39,7 +47,9 @@ struct node {
     enum nk k;
     int line, col;
     int op;               /* N_MATRIX: enum tex_rule */
-    const struct filter *filter; /* N_FILTER */
+    const struct filter *filter; /* N_FILTER: the script's own filter, or NULL */
+    const struct tex_filter_op *fop; /* N_FILTER: else t_filter's, with fargs */
+    struct tex_filter_args *fargs;
     struct tex_enode *x;  /* N_EXPR: an expression of lang/expr.h */
     int flag;             /* wrap, mirror, isotropic, background given */
     char *s;              /* name, file, primitive */
@@ -82,6 +92,7 @@ struct S {
     /* what the script says */
     char *title;
     int have_kind, have_size, w, h, cw, ch;
+    enum tess kind;
     float bg[4];
     struct def *defs;
     int ndefs, capdefs;
@@ -142,9 +153,25 @@ static void next(struct S *s)
     tex_lex_next(&s->lx);
 }
 
+/* Keywords as the thesis writes them: in Portuguese, and its operations' capitals
+ * (Rotate(a, P)).  Each row: the word, the keyword it stands for. */
+static const char *const aliases[][2] = {
+    {"celula", "cell"},        {"retangular", "rectangular"}, {"tijolo", "brick"},
+    {"tamanho", "size"},       {"fundo", "background"},       {"imagens", "images"},
+    {"expandir", "expand"},    {"rotacionar", "rotate"},      {"escalar", "scale"},
+    {"deslocar", "shift"},     {"recortar", "clipping"},      {"filtro", "filter"},
+    {"Rotate", "rotate"},      {"Scale", "scale"},            {"Shift", "shift"},
+    {"Filter", "filter"},
+};
+
 static int is_word(const struct S *s, const char *w)
 {
-    return tex_tok_is_word(&s->lx.t, w);
+    if (tex_tok_is_word(&s->lx.t, w))
+        return 1;
+    for (size_t i = 0; i < sizeof aliases / sizeof *aliases; i++)
+        if (!strcmp(aliases[i][1], w) && tex_tok_is_word(&s->lx.t, aliases[i][0]))
+            return 1;
+    return 0;
 }
 
 static int is_punct(const struct S *s, char c)
@@ -259,6 +286,7 @@ static struct node *new_node(struct S *s, enum nk k, int line, int col)
 }
 
 static struct node *unary(struct S *s);
+static struct node *expr(struct S *s);
 
 /* A file, an image's name or a primitive call (numbers and parentheses are lang/expr.c's). */
 static struct node *primary(struct S *s)
@@ -273,7 +301,7 @@ static struct node *primary(struct S *s)
         if (memchr(n->s, '\0', s->lx.t.len))
             fail_at(s, line, col, "NUL byte in a string");
         next(s);
-        if (s->lx.t.kind == TEX_TOK_NUM)
+        if (s->lx.t.kind == TEX_TOK_NUM && !tex_tok_is_signed(&s->lx.t))
             size_pair(s, &n->w, &n->h, "an image size");
         return n;
     }
@@ -281,9 +309,11 @@ static struct node *primary(struct S *s)
         fail_at(s, line, col, "expected an image, found %s", tok_desc(s));
     n = new_node(s, N_REF, line, col);
     n->s = take_name(s, "an image name");
-    if (!is_punct(s, '(')) {
+    if (!is_punct(s, '(')) { /* an image, or a file by its bare name (the thesis's leo) */
         s->refs = grow(s, s->refs, &s->caprefs, s->nrefs, sizeof *s->refs);
         s->refs[s->nrefs++] = n;
+        if (s->lx.t.kind == TEX_TOK_NUM && !tex_tok_is_signed(&s->lx.t))
+            size_pair(s, &n->w, &n->h, "an image size");
         return n;
     }
     /* A primitive call: name(param = value, ...) [W by H]. */
@@ -313,7 +343,7 @@ static struct node *primary(struct S *s)
             expect_punct(s, ',');
     }
     next(s);
-    if (s->lx.t.kind == TEX_TOK_NUM)
+    if (s->lx.t.kind == TEX_TOK_NUM && !tex_tok_is_signed(&s->lx.t))
         size_pair(s, &n->w, &n->h, "an image size");
     return n;
 }
@@ -386,6 +416,107 @@ static const void *pick(struct S *s, const void *table, size_t stride, const cha
     fail_at(s, line, col, "unknown %s %s", what, tok_desc(s));
 }
 
+/* One of t_filter's parameters (p) of a filter node: the value at the token. */
+static void filter_row(struct S *s, struct node *n, const struct tex_param *p)
+{
+    char text[64];
+    int line = s->lx.t.line, col = s->lx.t.col;
+
+    if (s->lx.t.kind == TEX_TOK_NAME || s->lx.t.kind == TEX_TOK_STR) {
+        snprintf(text, sizeof text, "%.*s", (int)(s->lx.t.len < 60 ? s->lx.t.len : 60),
+                 s->lx.t.text);
+        next(s);
+    } else {
+        snprintf(text, sizeof text, "%.17g", number(s));
+    }
+    if (tex_param_parse(p, n->fargs, text, TEX_PARAM_WORD) < 0)
+        fail_at(s, line, col, "filter %s: %s", n->fop->name, tex_errmsg());
+}
+
+/* After a t_filter operation's image: 'by VALUE' for its main parameter, then any of its
+ * parameters by name, as t_filter(1)'s options (seed: -S); none after Filter(NAME, P). */
+static void filter_params(struct S *s, struct node *n, int func)
+{
+    const struct tex_filter_op *op = n->fop;
+
+    n->fargs = arena(s, sizeof *n->fargs);
+    tex_params_defaults(tex_filter_rows, n->fargs);
+    n->fargs->seed = 1; /* t_filter's -S */
+    if (func)
+        return;
+    if (is_word(s, "by")) {
+        if (!op->by)
+            fail_at(s, s->lx.t.line, s->lx.t.col, "filter %s takes no 'by'", op->name);
+        next(s);
+        filter_row(s, n, tex_param_find(tex_filter_rows, op->by));
+    }
+    while (s->lx.t.kind == TEX_TOK_NAME) {
+        char name[32];
+        const struct tex_param *p;
+        int line = s->lx.t.line, col = s->lx.t.col;
+        if (accept_word(s, "seed")) {
+            n->fargs->seed = (uint64_t)integer(s, 0, TEX_SEED_MAX, "the seed");
+            continue;
+        }
+        snprintf(name, sizeof name, "%.*s", (int)(s->lx.t.len < 31 ? s->lx.t.len : 31),
+                 s->lx.t.text);
+        if (!(p = tex_param_find(tex_filter_rows, name)))
+            break; /* an operator, or what follows the operand */
+        if (p->kinds && !(p->kinds >> tex_filter_op_index(op) & 1))
+            fail_at(s, line, col, "%s does not apply to filter %s", name, op->name);
+        next(s);
+        filter_row(s, n, p);
+    }
+}
+
+/* The script's own filter called name, or NULL. */
+static const struct filter *own_filter(const char *name)
+{
+    for (const struct filter *f = filters; f->name; f++)
+        if (!strcmp(f->name, name))
+            return f;
+    return NULL;
+}
+
+/* filter NAME IMAGE [by V] [PARAM V ...], or the thesis's Filter(NAME, IMAGE). */
+static void parse_filter(struct S *s, struct node *n, int line, int col)
+{
+    int func = is_punct(s, '(');
+    char name[32];
+
+    if (func)
+        next(s);
+    if (s->lx.t.kind != TEX_TOK_NAME)
+        fail_at(s, s->lx.t.line, s->lx.t.col, "expected a filter's name, found %s", tok_desc(s));
+    snprintf(name, sizeof name, "%.*s", (int)(s->lx.t.len < 31 ? s->lx.t.len : 31), s->lx.t.text);
+    n->filter = own_filter(name);
+    if (!n->filter && !(n->fop = tex_filter_op_find(name))) {
+        char list[256] = "";
+        for (const struct filter *f = filters; f->name; f++)
+            snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", f->name, "|");
+        for (const struct tex_filter_op *o = tex_filter_ops; o->name; o++)
+            if (!own_filter(o->name)) /* blur is the script's own */
+                snprintf(list + strlen(list), sizeof list - strlen(list), "%s%s", o->name,
+                         o[1].name ? "|" : "");
+        fail_at(s, s->lx.t.line, s->lx.t.col, "unknown filter %s (one of %s)", tok_desc(s), list);
+    }
+    next(s);
+    if (func)
+        expect_punct(s, ',');
+    n->a = func ? expr(s) : unary(s);
+    if (func)
+        expect_punct(s, ')');
+    if (n->fop) {
+        filter_params(s, n, func);
+        return;
+    }
+    n->v[0] = n->filter->by;
+    if (!func && (n->flag = accept_word(s, "by")))
+        n->v[0] = number(s);
+    if (n->filter->radius && !(n->v[0] >= 0 && n->v[0] <= s->o->max_blur))
+        fail_at(s, line, col, "blur radius must be 0..%d (got %g)", s->o->max_blur, n->v[0]);
+}
+
 /* An operand inside a transform, and a whole expression: lang/expr.c's, as nodes. */
 static struct node *wrap(struct S *s, struct tex_enode *e)
 {
@@ -416,13 +547,7 @@ static struct node *transform2(struct S *s, int line, int col)
 
     if (accept_word(s, "filter")) {
         n = new_node(s, N_FILTER, line, col);
-        n->filter = pick(s, filters, sizeof *filters, "filter");
-        n->a = unary(s);
-        n->v[0] = n->filter->by;
-        if ((n->flag = accept_word(s, "by")))
-            n->v[0] = number(s);
-        if (n->filter->radius && !(n->v[0] >= 0 && n->v[0] <= s->o->max_blur))
-            fail_at(s, line, col, "blur radius must be 0..%d (got %g)", s->o->max_blur, n->v[0]);
+        parse_filter(s, n, line, col);
     } else if (accept_word(s, "tile")) {
         n = new_node(s, N_TILE, line, col);
         n->a = unary(s);
@@ -469,8 +594,40 @@ static struct node *transform2(struct S *s, int line, int col)
     return n;
 }
 
+/* After rotate, scale or shift: the thesis's form OP(n numbers, P) sets n->v and n->a and
+ * gives 1; else 0, with *group the word form's image if it was in parentheses
+ * (rotate (a over b) by 10). */
+static int functional(struct S *s, struct node *n, int nnum, struct node **group)
+{
+    int line = s->lx.t.line, col = s->lx.t.col;
+    struct node *first;
+
+    *group = NULL;
+    if (!is_punct(s, '('))
+        return 0;
+    next(s);
+    first = expr(s);
+    if (!is_punct(s, ',')) {
+        expect_punct(s, ')');
+        *group = first;
+        return 0;
+    }
+    if (first->k != N_NUM)
+        fail_at(s, line, col, "expected %d number%s and then an image", nnum, nnum > 1 ? "s" : "");
+    n->v[0] = first->v[0];
+    for (int k = 1; k < nnum; k++) {
+        expect_punct(s, ',');
+        n->v[k] = number(s);
+    }
+    expect_punct(s, ',');
+    n->a = expr(s);
+    expect_punct(s, ')');
+    return 1;
+}
+
 static struct node *transform(struct S *s)
 {
+    struct node *g;
     int line = s->lx.t.line, col = s->lx.t.col;
     struct node *n;
 
@@ -484,7 +641,12 @@ static struct node *transform(struct S *s)
             colour(s, n->colour);
     } else if (accept_word(s, "rotate")) {
         n = new_node(s, N_ROTATE, line, col);
-        n->a = unary(s);
+        memcpy(n->colour, (float[4]){0, 0, 0, 1}, sizeof n->colour);
+        if (functional(s, n, 1, &g)) { /* Rotate(alpha, P): alpha in radians */
+            n->v[0] *= 180 / M_PI;
+            return n;
+        }
+        n->a = g ? g : unary(s);
         expect_word(s, "by");
         n->v[0] = number(s);
         if ((n->flag = accept_word(s, "around"))) {
@@ -492,17 +654,18 @@ static struct node *transform(struct S *s)
             expect_punct(s, ',');
             n->v[2] = number(s);
         }
-        memcpy(n->colour, (float[4]){0, 0, 0, 1}, sizeof n->colour);
         if (accept_word(s, "background"))
             colour(s, n->colour);
     } else if (accept_word(s, "scale")) {
         n = new_node(s, N_SCALE, line, col);
-        n->a = unary(s);
-        expect_word(s, "by");
-        n->v[0] = n->v[1] = number(s);
-        if (is_punct(s, ',')) {
-            next(s);
-            n->v[1] = number(s);
+        if (!functional(s, n, 2, &g)) {
+            n->a = g ? g : unary(s);
+            expect_word(s, "by");
+            n->v[0] = n->v[1] = number(s);
+            if (is_punct(s, ',')) {
+                next(s);
+                n->v[1] = number(s);
+            }
         }
         if (!(n->v[0] >= 1e-3 && n->v[0] <= 1e3 && n->v[1] >= 1e-3 && n->v[1] <= 1e3))
             fail_at(s, line, col, "scale factors must be in 0.001..1000 (got %g, %g)", n->v[0],
@@ -514,13 +677,15 @@ static struct node *transform(struct S *s)
         size_pair(s, &n->w, &n->h, "a size");
     } else if (accept_word(s, "shift")) {
         n = new_node(s, N_SHIFT, line, col);
-        n->a = unary(s);
+        memcpy(n->colour, (float[4]){0, 0, 0, 1}, sizeof n->colour);
+        if (functional(s, n, 2, &g))
+            return n;
+        n->a = g ? g : unary(s);
         expect_word(s, "by");
         n->v[0] = number(s);
         expect_punct(s, ',');
         n->v[1] = number(s);
         n->flag = accept_word(s, "wrap");
-        memcpy(n->colour, (float[4]){0, 0, 0, 1}, sizeof n->colour);
         if (accept_word(s, "background"))
             colour(s, n->colour);
     } else if (accept_word(s, "clipping") || accept_word(s, "clip")) {
@@ -539,11 +704,59 @@ static struct node *transform(struct S *s)
     return n;
 }
 
-/* lang/expr.c's hook: the script's own operands, as leaves. */
+/* The thesis's operators written as functions: AND(P1,P2), OR, XOR, and +_up(P1,P2) (P2
+ * over P1), +_down(P1,P2) (P2 under P1); in any case. */
+static const struct {
+    const char *name;
+    enum tex_op op;
+    int swap; /* the operands in the other order: P2 op P1 */
+} op_calls[] = {{"and", TEX_OP_AND, 0}, {"or", TEX_OP_OR, 0},       {"xor", TEX_OP_XOR, 0},
+                {"_up", TEX_OP_OVER, 1}, {"_down", TEX_OP_UNDER, 1}};
+
+/* An operator call at the token, as a binary node; NULL if there is none. */
+static struct tex_enode *op_call(struct S *s)
+{
+    struct tex_lexer at = s->lx;
+    struct tex_tok t = s->lx.t;
+    int plus = is_punct(s, '+'), k;
+    struct tex_enode *e;
+
+    if (plus)
+        tex_lex_next(&at);
+    for (k = 0; k < (int)(sizeof op_calls / sizeof *op_calls); k++)
+        if (at.t.kind == TEX_TOK_NAME && at.t.len == strlen(op_calls[k].name) &&
+            !strncasecmp(at.t.text, op_calls[k].name, at.t.len) &&
+            plus == (op_calls[k].name[0] == '_'))
+            break;
+    if (k == (int)(sizeof op_calls / sizeof *op_calls))
+        return NULL;
+    tex_lex_next(&at);
+    if (!tex_tok_is_punct(&at.t, '('))
+        return NULL;
+    if (++s->xp.nterms > TEX_EXPR_MAX_TERMS)
+        fail_at(s, t.line, t.col, "expression too long (more than %d operators)",
+                TEX_EXPR_MAX_TERMS);
+    s->lx = at; /* past the name */
+    next(s);
+    e = tex_expr_node(&s->lx, TEX_EK_BIN, &t);
+    e->op = op_calls[k].op;
+    struct tex_enode *p1 = tex_expr_parse(&s->xp);
+    expect_punct(s, ',');
+    struct tex_enode *p2 = tex_expr_parse(&s->xp);
+    expect_punct(s, ')');
+    e->a = op_calls[k].swap ? p2 : p1;
+    e->b = op_calls[k].swap ? p1 : p2;
+    return e;
+}
+
+/* lang/expr.c's hook: the script's own operands, as leaves, or an operator call. */
 static struct tex_enode *operand(struct tex_expr_parser *xp)
 {
     struct S *s = xp->ctx;
-    struct tex_enode *e = tex_expr_node(&s->lx, TEX_EK_LEAF, &s->lx.t);
+    struct tex_enode *e = op_call(s);
+    if (e)
+        return e;
+    e = tex_expr_node(&s->lx, TEX_EK_LEAF, &s->lx.t);
     e->ptr = transform(s);
     return e;
 }
@@ -617,19 +830,30 @@ static void read_procs(struct S *s, int line, int col)
     next(s);
 }
 
+/* The kind after a second 'tessellation'. */
+static void tess_kind(struct S *s, int line, int col)
+{
+    int k;
+    if (s->have_kind++)
+        fail_at(s, line, col, "the tessellation kind is given twice");
+    for (k = 0; tess_names[k] && !accept_word(s, tess_names[k]); k++)
+        ;
+    if (!tess_names[k])
+        fail_at(s, s->lx.t.line, s->lx.t.col,
+                "unknown tessellation %s (rectangular, hexagonal, triangular or brick)",
+                tok_desc(s));
+    s->kind = (enum tess)k;
+}
+
 static void parse_header(struct S *s)
 {
     for (;;) {
         int line = s->lx.t.line, col = s->lx.t.col;
         if (is_tess(s)) {
-            char *w = take_name(s, "a name");
             if (!s->title)
-                s->title = w;
-            else if (s->have_kind++)
-                fail_at(s, line, col, "the tessellation kind is given twice");
-            else if (strcmp(w, "rectangular"))
-                fail_at(s, line, col, "unknown tessellation '%s' (only rectangular is supported)",
-                        w);
+                s->title = take_name(s, "a name");
+            else
+                tess_kind(s, line, col);
         } else if (accept_word(s, "size")) {
             size_pair(s, &s->w, &s->h, "the size");
             s->have_size = 1;
@@ -701,6 +925,77 @@ static void parse_defs(struct S *s)
     }
 }
 
+/* ---- tessellations ----
+ *
+ * A cell's box is cw x ch and its image is centred in it.  Rectangles fill the canvas from
+ * its top left corner.  Bricks are rectangles whose odd rows (the 2nd, 4th...) start half a
+ * cell to the left.  Hexagons stand on a vertex, inscribed in the box (regular when ch =
+ * 2 cw / sqrt 3); their rows are 3/4 ch apart, the odd ones half a cell to the left.
+ * Triangles are inscribed in the box too, base cw and height ch (regular when ch =
+ * cw sqrt 3 / 2), half a cell apart and alternately pointing up and down: cell (1,1)
+ * points up, centred on the left edge. */
+
+/* The columns and rows of cells that reach the canvas. */
+static void tess_grid(const struct S *s, int *cols, int *rows)
+{
+    double w = s->cw, h = s->ch;
+    switch (s->kind) {
+    case T_BRICK:
+        *cols = (int)ceil((s->w + w / 2) / w);
+        *rows = (int)ceil(s->h / h);
+        break;
+    case T_HEXAGONAL:
+        *cols = (int)floor((s->w - 0.5 + w / 2) / w) + 1;
+        *rows = (int)floor((s->h - 0.5) / (0.75 * h)) + 1;
+        break;
+    case T_TRIANGULAR:
+        *cols = (int)floor((s->w - 0.5) / (w / 2)) + 2;
+        *rows = (int)ceil(s->h / h);
+        break;
+    default:
+        *cols = (int)ceil(s->w / w);
+        *rows = (int)ceil(s->h / h);
+    }
+}
+
+/* The cell (i, j), from 0, whose shape holds the centre of pixel (x, y) of a brick,
+ * hexagonal or triangular tessellation, and the pixel's place (lx, ly) in its box. */
+static void tess_locate(const struct S *s, int x, int y, int *i, int *j, int *lx, int *ly)
+{
+    double w = s->cw, h = s->ch, px = x + 0.5, py = y + 0.5, bx, by, off;
+    if (s->kind == T_TRIANGULAR) {
+        int k;
+        *j = (int)floor(py / h);
+        k = (int)floor(px / (w / 2));
+        double t = py / h - *j, u = px / (w / 2) - k;
+        int up = ((k + *j) & 1) == 0; /* triangle k's right half, or k+1's left half */
+        *i = (up ? t >= u : t <= 1 - u) ? k : k + 1;
+        bx = *i * (w / 2) - w / 2;
+        by = *j * h;
+    } else if (s->kind == T_HEXAGONAL) {
+        int r = (int)floor(py / (0.75 * h));
+        off = (r & 1) ? w / 2 : 0;
+        double xx = px + off - w * floor((px + off) / w), yy = py - r * 0.75 * h;
+        if (yy < h / 4 && yy < h / 4 * fabs(xx - w / 2) / (w / 2)) /* above a slanted edge */
+            r--;
+        off = (r & 1) ? w / 2 : 0;
+        *j = r;
+        *i = (int)floor((px + off) / w);
+        bx = *i * w - off;
+        by = r * 0.75 * h;
+    } else { /* bricks */
+        *j = (int)floor(py / h);
+        off = (*j & 1) ? w / 2 : 0;
+        *i = (int)floor((px + off) / w);
+        bx = *i * w - off;
+        by = *j * h;
+    }
+    *lx = (int)floor(px - bx);
+    *ly = (int)floor(py - by);
+    *lx = *lx < 0 ? 0 : *lx >= s->cw ? s->cw - 1 : *lx;
+    *ly = *ly < 0 ? 0 : *ly >= s->ch ? s->ch - 1 : *ly;
+}
+
 /* The layout 'built with (I,J) EXPR; ... end tessellation;': each cell inside the
  * tessellation and given once; nothing may follow. */
 static void parse_layout(struct S *s)
@@ -710,7 +1005,8 @@ static void parse_layout(struct S *s)
     while (!is_word(s, "end")) {
         struct cellref *c;
         int line = s->lx.t.line, col = s->lx.t.col;
-        int cols = (s->w + s->cw - 1) / s->cw, rows = (s->h + s->ch - 1) / s->ch;
+        int cols, rows;
+        tess_grid(s, &cols, &rows);
         expect_punct(s, '(');
         s->cells = grow(s, s->cells, &s->capcells, s->ncells, sizeof *s->cells);
         c = &s->cells[s->ncells];
@@ -740,15 +1036,46 @@ static void parse_layout(struct S *s)
         fail_at(s, s->lx.t.line, s->lx.t.col, "unexpected %s after 'end tessellation;'", tok_desc(s));
 }
 
-/* Every name used must be defined somewhere: checked once all is read, as a use may come
- * before its definition. */
+/* The extensions a bare name may stand for, in the order they are tried. */
+static const char image_exts[] = "exr png tif tiff pnm ppm pgm pbm pfm pam jpg jpeg hdr bmp tga dpx gif webp";
+
+/* The file a bare name stands for, as the thesis's maps were named (leo): the name
+ * itself, or with the first of image_exts that exists; NULL if none does. */
+static char *image_file(struct S *s, const char *name)
+{
+    struct stat st;
+    size_t n = strlen(name);
+    char *path = arena(s, n + 8);
+
+    memcpy(path, name, n + 1);
+    for (const char *e = image_exts;; e += strcspn(e, " ") + (e[strcspn(e, " ")] == ' ')) {
+        if (stat(path, &st) == 0 && S_ISREG(st.st_mode))
+            return path;
+        if (!*e)
+            return NULL;
+        snprintf(path + n, 8, ".%.*s", (int)strcspn(e, " "), e);
+    }
+}
+
+/* Every name used must be defined somewhere, or be the bare name of an image file:
+ * checked once all is read, as a use may come before its definition. */
 static void resolve_refs(struct S *s)
 {
     for (int i = 0; i < s->nrefs; i++) {
         struct node *r = s->refs[i];
         struct def *d = find_def(s, r->s);
+        char *file;
+        if (!d && s->o->allow_files && (file = image_file(s, r->s))) {
+            r->k = N_FILE;
+            r->s = file;
+            continue;
+        }
         if (!d)
-            fail_at(s, r->line, r->col, "undefined image '%s'", r->s);
+            fail_at(s, r->line, r->col,
+                    s->o->allow_files ? "undefined image '%s' (nor a file of that name, "
+                                        "with or without .exr, .png, .tif...)"
+                                      : "undefined image '%s'",
+                    r->s);
         if (!d->expr)
             fail_at(s, r->line, r->col, "image '%s' is declared (line %d) but never defined",
                     r->s, d->line);
@@ -861,6 +1188,10 @@ static int eval_def(struct S *s, const struct node *ref, struct val *out)
             return err_at(s, ref);
         d->state = 2;
     }
+    if (ref->w && (ref->w != d->map->w || ref->h != d->map->h)) /* name W by H */
+        return check_pixels(s, ref, ref->w, ref->h) < 0
+                   ? -1
+                   : set_result(s, ref, out, tex_resize(d->map, ref->w, ref->h));
     /* Uses borrow the map, which lives until the script ends: a value that
      * borrowed it may still be alive when another use comes. */
     out->m = d->map;
@@ -1186,8 +1517,14 @@ static int eval_clip(struct S *s, const struct node *n, struct val *v, struct va
 
 static int eval_filter(struct S *s, const struct node *n, struct val *v, struct val *out)
 {
-    if (eval_map(s, n->a, &v[0], n->filter->name) < 0)
+    if (eval_map(s, n->a, &v[0], n->filter ? n->filter->name : n->fop->name) < 0)
         return -1;
+    if (n->fop) {
+        tex_map *r = tex_filter_op_apply(n->fop, v[0].m, n->fargs, 0, v[0].m->h);
+        if (!r)
+            tex_error_in_words();
+        return set_result(s, n, out, r);
+    }
     return set_result(s, n, out, n->filter->fn(v[0].m, n->v[0]));
 }
 
@@ -1273,6 +1610,49 @@ static int eval(struct S *s, const struct node *n, struct val *out)
     return rc;
 }
 
+/* The cells of a brick, hexagonal or triangular tessellation on the canvas: each pixel
+ * from the image of the cell whose shape holds it, the image centred in the cell's box. */
+static int place_shapes(struct S *s, tex_map *canvas, const struct val *v)
+{
+    int cols, rows, nc = canvas->nc, rc = 0;
+    tess_grid(s, &cols, &rows);
+    int *at = malloc((size_t)cols * rows * sizeof *at);
+    tex_map **img = calloc(s->ncells ? s->ncells : 1, sizeof *img);
+
+    if (!at || !img) {
+        rc = tex_error("out of memory");
+        goto done;
+    }
+    for (int k = 0; k < cols * rows; k++)
+        at[k] = -1;
+    for (int k = 0; k < s->ncells; k++) {
+        tex_map *e = tex_expand(v[k].m, s->cw, s->ch, s->bg);
+        img[k] = e && e->nc != nc ? tex_map_channels(e, nc) : e;
+        if (img[k] != e)
+            tex_map_free(e);
+        if (!img[k]) {
+            rc = -1;
+            goto done;
+        }
+        at[(s->cells[k].j - 1) * cols + s->cells[k].i - 1] = k;
+    }
+#pragma omp parallel for schedule(static)
+    for (int y = 0; y < s->h; y++)
+        for (int x = 0; x < s->w; x++) {
+            int i, j, lx, ly;
+            tess_locate(s, x, y, &i, &j, &lx, &ly);
+            if (i >= 0 && j >= 0 && i < cols && j < rows && at[j * cols + i] >= 0)
+                memcpy(tex_map_px(canvas, x, y), tex_map_px(img[at[j * cols + i]], lx, ly),
+                       (size_t)nc * sizeof(float));
+        }
+done:
+    for (int k = 0; img && k < s->ncells; k++)
+        tex_map_free(img[k]);
+    free(img);
+    free(at);
+    return rc;
+}
+
 /* Lay the cells out on the canvas. */
 static tex_map *build(struct S *s)
 {
@@ -1312,7 +1692,9 @@ static tex_map *build(struct S *s)
         for (size_t i = 0; i < n; i++)
             memcpy(canvas->px + i * nc, b, nc * sizeof *b);
     }
-    for (int k = 0; k < s->ncells; k++) {
+    if (s->kind != T_RECTANGULAR && place_shapes(s, canvas, v) < 0)
+        goto fail;
+    for (int k = 0; s->kind == T_RECTANGULAR && k < s->ncells; k++) {
         const struct cellref *c = &s->cells[k];
         int x0 = (c->i - 1) * s->cw, y0 = (c->j - 1) * s->ch;
         int cw = x0 + s->cw > s->w ? s->w - x0 : s->cw, ch = y0 + s->ch > s->h ? s->h - y0 : s->ch;

@@ -1,11 +1,14 @@
 /* script.h - the pattern composition language (thesis 5.2.4.2)
  *
- * A script builds one texture map: a rectangular tessellation of cells,
- * each showing a named image, where images come from files, standard
- * input or primitives and are combined by transforms (expand, rotate,
- * scale, shift, clipping, filter, tile, warp) and operators (over, under,
- * and, or, xor, +, -, *, min, max).  man 5 t_compose is the reference;
- * the thesis's example, in English:
+ * A script builds one texture map: a tessellation of cells (rectangles,
+ * bricks, hexagons or triangles), each showing a named image, where images
+ * come from files, standard input or primitives and are combined by
+ * transforms (expand, rotate, scale, shift, clipping, filter with every
+ * t_filter operation, tile, warp) and operators (over, under, and, or,
+ * xor, +, -, *, min, max).  The thesis's Portuguese keywords (celula,
+ * retangular) and its operators written as functions (+_up(P1,P2),
+ * AND(P1,P2), Rotate(alpha,P)) are read too.  man 5 t_compose is the
+ * reference; the thesis's example, in English:
  *
  *   tessellation test2;
  *   size 400 by 400;

@@ -17,6 +17,10 @@ int tex_op_find(const char *name)
     for (int i = 0; i < TEX_OP_COUNT; i++)
         if (!strcmp(name, op_names[i]))
             return i;
+    char near[32];
+    if (tex_choice_nearest(tex_op_names(), name, near, sizeof near))
+        return tex_usage_error("unknown operator '%s'; did you mean %s? (valid: %s)", name, near,
+                               tex_op_names());
     return tex_usage_error("unknown operator '%s' (valid: %s)", name, tex_op_names());
 }
 

@@ -15,6 +15,7 @@
 #include "base/paths.h"
 #include "base/simd.h"
 #include "io/file.h"
+#include "base/nearest.h"
 #include "ops/palette.h"
 #include "ops/palette_srgb.h"
 #include "ops/x86/palette_x86.h"
@@ -523,9 +524,21 @@ int tex_palette_find(const char *name, char *buf, size_t n)
                                    name);
     if (each_dir(find_in, &c))
         return 0;
-    if (tex_palette_names(known, sizeof known) > 0)
-        return tex_usage_error("unknown palette '%s' (known: %s; or a file NAME.pal)", name,
-                               known);
+    if (tex_palette_names(known, sizeof known) > 0) {
+        struct tex_nearest nr;
+        char near[96] = "";
+        tex_nearest_init(&nr, name);
+        for (const char *k = known; *k;) { /* "brick, clouds, ..." */
+            size_t len = strcspn(k, ",");
+            tex_nearest_try(&nr, k, len);
+            k += len;
+            k += strspn(k, ", ");
+        }
+        if (tex_nearest_name(&nr))
+            snprintf(near, sizeof near, "did you mean %s? ", tex_nearest_name(&nr));
+        return tex_usage_error("unknown palette '%s' (%sknown: %s; or a file NAME.pal)", name,
+                               near, known);
+    }
     return tex_usage_error("unknown palette '%s' (no %s.pal in $TEXTURA_PALETTES or %s/palettes)",
                            name, name, tex_install_dir(TEX_DIR_DATA));
 }

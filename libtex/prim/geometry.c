@@ -398,13 +398,17 @@ const struct tex_primitive tex_prim_ellipse = {
 
 struct flower_params {
     GEO_HEAD;
-    int petals;
+    int petals, rose;
     double length;
 };
 
 static const struct tex_param flower_rows[] = {
     TEX_INT(struct flower_params, petals, 0, 5, 1, 1000, "N",
-            "the rose's n: n petals for odd n, 2n for even n", .old = "-n"),
+            "number of petals (the thesis's n): the lobes where d sin(n theta) > 0",
+            .old = "-n"),
+    TEX_INT(struct flower_params, rose, 0, 0, 0, 1000, "N",
+            "draw the whole rose r = d sin(n theta) instead, n petals for odd n and 2n for even "
+            "n (0: use --petals)"),
     TEX_REAL_N("petal_length", struct flower_params, length, 0, 0.45, 0, 1, "D",
                "length of the petals, in cells (the thesis's d, the rose's a)", .old = "-d length"),
     ROW_NU(struct flower_params, 1),
@@ -416,11 +420,14 @@ static const struct tex_param flower_rows[] = {
 static int flower_init(struct tex_field *f)
 {
     const struct flower_params *p = f->params;
-    /* Odd roses are mirror symmetric left-right only: seamless while inside the cell. */
-    if (f->tile && p->petals % 2 && p->length > 0.5)
-        return tex_usage_error("%s with an odd %s needs %s at most 0.5 (got %g)",
+    /* Odd roses are mirror symmetric left-right only, and the petals alone of an even n
+     * neither way: seamless while inside the cell. */
+    if (f->tile && (p->rose ? p->rose % 2 : 1) && p->length > 0.5)
+        return tex_usage_error(p->rose ? "%s with an odd %s needs %s at most 0.5 (got %g)"
+                                       : "%s with %s needs %s at most 0.5 (got %g)",
                                TEX_FIELD_OPTION(tile),
-                               TEX_OPTION(flower_rows, struct flower_params, petals),
+                               p->rose ? TEX_OPTION(flower_rows, struct flower_params, rose)
+                                       : TEX_OPTION(flower_rows, struct flower_params, petals),
                                TEX_OPTION(flower_rows, struct flower_params, length), p->length);
     return geo_init(f, 2);
 }
@@ -429,17 +436,21 @@ static int flower_init(struct tex_field *f)
  * r = d sin(n theta) when rho <= d sin(n theta) or, through the negative half
  * of the curve drawn at theta + pi, rho <= -d sin(n theta + n pi).  For odd n
  * both say rho <= d sin(n theta) (n petals); for even n together they say
- * rho <= d |sin(n theta)| (2n petals). */
+ * rho <= d |sin(n theta)| (2n petals).  --petals n keeps the first half, the n
+ * lobes where sin(n theta) > 0, so that n counts the petals as the thesis means. */
+static inline double flower_sin(const struct flower_params *p, double theta)
+{
+    int n = p->rose ? p->rose : p->petals;
+    double s = sin(n * theta);
+    return p->rose && n % 2 == 0 ? fabs(s) : s;
+}
+
 static inline int flower_id(const struct flower_params *p, const double *k, double x, double y)
 {
-    double s;
     (void)k;
     x -= 0.5;
     y -= 0.5;
-    s = sin(p->petals * atan2(y, x));
-    if (p->petals % 2 == 0)
-        s = fabs(s);
-    return sqrt(x * x + y * y) <= p->length * s ? 2 : 1;
+    return sqrt(x * x + y * y) <= p->length * flower_sin(p, atan2(y, x)) ? 2 : 1;
 }
 GEO_EVAL2(flower, struct flower_params)
 
@@ -452,10 +463,8 @@ static inline int flower_box(const struct flower_params *p, const double *k, dou
     double cx = x - 0.5, cy = y - 0.5, rho = hypot(cx, cy), r = hypot(hx, hy), s, ds;
     if (rho <= r)
         return 0;
-    s = sin(p->petals * atan2(cy, cx));
-    if (p->petals % 2 == 0)
-        s = fabs(s);
-    ds = p->petals * asin(r / rho);
+    s = flower_sin(p, atan2(cy, cx));
+    ds = (p->rose ? p->rose : p->petals) * asin(r / rho);
     if (rho + r < p->length * (s - ds))
         return 2;
     if (rho - r > p->length * (s + ds))

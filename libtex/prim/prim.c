@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "base/error.h"
+#include "base/nearest.h"
 #include "base/progress.h"
 #include "prim/prim.h"
 
@@ -21,11 +22,18 @@ const struct tex_primitive *tex_primitive_find(const char *name)
     for (int i = 0; tex_primitives[i]; i++)
         if (strcmp(tex_primitives[i]->name, name) == 0)
             return tex_primitives[i];
+    struct tex_nearest nr;
+    char near[96] = "";
     known[0] = '\0';
-    for (int i = 0; tex_primitives[i] && n < sizeof known; i++)
+    tex_nearest_init(&nr, name);
+    for (int i = 0; tex_primitives[i] && n < sizeof known; i++) {
         n += (size_t)snprintf(known + n, sizeof known - n, "%s%s", i ? ", " : "",
                               tex_primitives[i]->name);
-    tex_usage_error("unknown primitive '%s' (known: %s)", name, known);
+        tex_nearest_try(&nr, tex_primitives[i]->name, strlen(tex_primitives[i]->name));
+    }
+    if (tex_nearest_name(&nr))
+        snprintf(near, sizeof near, "did you mean %s? ", tex_nearest_name(&nr));
+    tex_usage_error("unknown primitive '%s' (%sknown: %s)", name, near, known);
     return NULL;
 }
 
@@ -78,8 +86,13 @@ int tex_field_set(struct tex_field *f, const char *name, const char *value)
         f->size = o.size;
         return 0;
     }
-    if (!p)
+    if (!p) {
+        char near[64];
+        if (tex_param_nearest(f->prim->params, -1, name, near, sizeof near))
+            return tex_usage_error("%s has no parameter '%s'; did you mean %s?", f->prim->name,
+                                   name, near);
         return tex_usage_error("%s has no parameter '%s'", f->prim->name, name);
+    }
     return tex_param_parse(p, f->params, value, TEX_PARAM_WORD);
 }
 

@@ -173,6 +173,20 @@ static const struct tex_param *row_of(const struct tex_param *rows, const struct
     return NULL;
 }
 
+/* For an unknown word: "; did you mean NAME?" with the nearest row of the kind, or "". */
+static const char *nearest_row(const struct tex_param *rows, int kind, const struct tex_tok *t)
+{
+    static _Thread_local char msg[96];
+    char word[64], near[64];
+    snprintf(word, sizeof word, "%.*s", (int)(t->len < 63 ? t->len : 63), t->text);
+    msg[0] = 0;
+    /* a word of the block's kind, else of another kind (which then says it does not apply) */
+    if (t->kind == TEX_TOK_NAME && (tex_param_nearest(rows, kind, word, near, sizeof near) ||
+                                    tex_param_nearest(rows, -1, word, near, sizeof near)))
+        snprintf(msg, sizeof msg, "; did you mean %s?", near);
+    return msg;
+}
+
 /* Row p's value into obj: as many numbers as it stores, a word, or nothing (a flag). */
 static void read_row(struct parser *ps, const struct tex_param *p, void *obj)
 {
@@ -235,7 +249,8 @@ static unsigned long long read_block(struct parser *ps, const struct tex_param *
             fail_at(ps, &kt, 0, "expected '}' to end %s, found the end of the file", what);
         } else if (!words || !words(ps, &kt, b)) {
             char b[64];
-            fail_at(ps, &kt, 0, "unknown word %s in %s", tex_tok_desc(&kt, b, sizeof b), what);
+            fail_at(ps, &kt, 0, "unknown word %s in %s%s", tex_tok_desc(&kt, b, sizeof b), what,
+                    nearest_row(rows, kind, &kt));
         }
     }
     tex_lex_next(&ps->lx);
@@ -1424,8 +1439,8 @@ static void parse_scene(struct parser *ps)
             parse_environment(ps, &kt);
         } else if (!settings_word(ps, &kt)) {
             char b[64];
-            fail_at(ps, &kt, 0, "unknown word %s at the top of the scene",
-                    tex_tok_desc(&kt, b, sizeof b));
+            fail_at(ps, &kt, 0, "unknown word %s at the top of the scene%s",
+                    tex_tok_desc(&kt, b, sizeof b), nearest_row(tex_settings_rows, -1, &kt));
         }
     }
     tex_v3 f = tex_v3_sub(s->look, s->eye);

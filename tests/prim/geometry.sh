@@ -46,7 +46,28 @@ check_fails "t_ring: --palette with --ids" 2 t_ring --palette viridis --ids
 check "t_checker | t_convert -o png" sh -c "t_checker -s 64 | t_convert -o '$T/c.png'"
 check "t_stripe --angle 0 --stripe-width 0.2" t_stripe --angle 0 --stripe-width 0.2 -s 32 -o "$T/s.exr"
 check "t_ring --tile" t_ring --tile -s 32 -o "$T/r.exr"
-check "t_flower --tile with even petals past the cell" t_flower --tile --petals 4 --petal-length 0.7 -s 32 -o "$T/f.exr"
+check "t_flower --tile with an even rose past the cell" t_flower --tile --rose 4 --petal-length 0.7 -s 32 -o "$T/f.exr"
+check_fails "t_flower --tile with petals past the cell" 2 t_flower --tile --petals 4 --petal-length 0.7 -s 32 -o "$T/f.exr"
+# --petals N draws N petals, whatever N: count the runs of flower on a circle of radius d/2.
+for n in 1 2 3 4 5 6 7 8 12; do
+    t_flower -s 256 --petals $n --ids -o "$T/fl.pfm"
+    got=$(python3 - "$T/fl.pfm" <<'P'
+import struct, sys, math
+d = open(sys.argv[1], 'rb').read().split(b'\n', 3)
+w, h = map(int, d[1].split()); px = struct.unpack('<%df' % (w * h), d[3][:4 * w * h])
+on = [px[int(h / 2 + 0.2 * h * math.sin(t)) * w + int(w / 2 + 0.2 * w * math.cos(t))] == 2
+      for t in (2 * math.pi * i / 3600 for i in range(3600))]
+print(sum(1 for i in range(3600) if on[i] and not on[i - 1]))
+P
+)
+    [ "$got" = $n ] && ok "t_flower --petals $n draws $n petals" || notok "t_flower --petals $n draws $n petals" "$got"
+done
+t_flower -s 256 --rose 4 --ids -o "$T/fl.pfm"
+t_op sub "$T/fl.pfm" 1 | info_json - stats 0 mean >"$T/rose"
+t_flower -s 256 --petals 4 --ids -o "$T/fl.pfm"
+t_op sub "$T/fl.pfm" 1 | info_json - stats 0 mean >"$T/petals"
+awk -v r="$(cat "$T/rose")" -v p="$(cat "$T/petals")" 'BEGIN { exit !(r > 1.9 * p && r < 2.1 * p) }' &&
+    ok "--rose 4 draws the whole rose, twice the petals of --petals 4" || notok "--rose 4" "$(cat "$T/rose") vs $(cat "$T/petals")"
 
 check_fails "t_ring: width above radius" 2 t_ring -r 0.1 --ring-width 0.2
 check_fails "t_flower: no petals" 2 t_flower --petals 0
@@ -69,7 +90,7 @@ done <<'EOF'
 t_ring -d 0.9 --radius 0.3|t_ring: error: --ring-width (0.9) must not exceed --radius (0.3)
 t_ellipse --semi-major 0.3 --semi-minor 0.4|t_ellipse: error: --semi-minor (0.4) must not exceed --semi-major (0.3)
 t_ellipse --semi-minor 0.05|t_ellipse: error: --band-width (0.08) must not exceed --semi-minor (0.05)
-t_flower --tile --petal-length 0.7|t_flower: error: --tile with an odd --petals needs --petal-length at most 0.5 (got 0.7)
+t_flower --tile --petal-length 0.7|t_flower: error: --tile with --petals needs --petal-length at most 0.5 (got 0.7)
 t_stripe --stripe-width 0|t_stripe: error: --stripe-width must be above 0 (got 0)
 t_cycloid -r 20 --arch-width 0.1|t_cycloid: error: --arch-width (0.1) must not exceed the arch's height 0.063662 (--radius 20)
 t_hypocycloid -r 0.2 --band-width 0.3|t_hypocycloid: error: --band-width (0.3) must not exceed --radius (0.2)

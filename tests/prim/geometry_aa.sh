@@ -50,7 +50,7 @@ cmp_aa "ellipse thin band at 30 degrees" t_ellipse --M 0.48 --m 0.1 --band-width
 cmp_aa "ellipse band = minor, 7 x 2 cells" t_ellipse --m 0.2 --band-width 0.2 -a -75 --nu 7 --nv 2
 cmp_aa "flower" t_flower
 cmp_aa "flower 41 petals" t_flower --petals 41 --petal-length 0.49
-cmp_aa "flower 40 (80) petals, 3 x 3" t_flower --petals 40 --nu 3 --nv 3
+cmp_aa "flower 40 petals, 3 x 3" t_flower --petals 40 --nu 3 --nv 3
 cmp_aa "flower 1000 petals" t_flower --petals 1000
 cmp_aa "checker" t_checker
 cmp_aa "checker 3 x 5 cells" t_checker --nu 3 --nv 5

@@ -85,12 +85,19 @@ static void known_points_round(void)
           "flower 5: on a petal 2, between petals 1 (a petal straight up, none down)");
     tex_field_free(f);
 
-    f = field("flower", 1, 0, 0, "petals=2", NULL);
+    f = field("flower", 1, 0, 0, "rose=2", NULL);
     CHECK(at(f, 0.5 + 0.3 * cos(M_PI / 4), 0.5 + 0.3 * sin(M_PI / 4)) == 2 &&
               at(f, 0.5 - 0.3 * cos(M_PI / 4), 0.5 - 0.3 * sin(M_PI / 4)) == 2 &&
               at(f, 0.5 + 0.3 * cos(3 * M_PI / 4), 0.5 + 0.3 * sin(3 * M_PI / 4)) == 2 &&
               at(f, 0.5 + 0.3, 0.5) == 1,
-          "flower 2: four petals on the diagonals");
+          "rose 2: four petals on the diagonals");
+    tex_field_free(f);
+    f = field("flower", 1, 0, 0, "petals=2", NULL);
+    CHECK(at(f, 0.5 + 0.3 * cos(M_PI / 4), 0.5 + 0.3 * sin(M_PI / 4)) == 2 &&
+              at(f, 0.5 - 0.3 * cos(M_PI / 4), 0.5 - 0.3 * sin(M_PI / 4)) == 2 &&
+              at(f, 0.5 + 0.3 * cos(3 * M_PI / 4), 0.5 + 0.3 * sin(3 * M_PI / 4)) == 1 &&
+              at(f, 0.5 - 0.3 * cos(3 * M_PI / 4), 0.5 - 0.3 * sin(3 * M_PI / 4)) == 1,
+          "flower 2 petals: two, on one diagonal");
     tex_field_free(f);
 }
 
@@ -186,7 +193,10 @@ static void areas(void)
     check_area("flower, odd n: pi d^2/4", f, 2, M_PI * 0.45 * 0.45 / 4);
     tex_field_free(f);
     f = field("flower", 1, N, N, "petals=4", "petal_length=0.45", NULL);
-    check_area("flower, even n: pi d^2/2", f, 2, M_PI * 0.45 * 0.45 / 2);
+    check_area("flower, 4 petals: pi d^2/4", f, 2, M_PI * 0.45 * 0.45 / 4);
+    tex_field_free(f);
+    f = field("flower", 1, N, N, "rose=4", "petal_length=0.45", NULL);
+    check_area("rose, even n: pi d^2/2", f, 2, M_PI * 0.45 * 0.45 / 2);
     tex_field_free(f);
 
     f = field("checker", 1, N, N, "nu=3", "nv=5", NULL);
@@ -253,15 +263,17 @@ static int mismatches(const struct tex_field *f, double angle)
 static void symmetry(void)
 {
     static const char *ns[] = {"3", "5", "7", "2", "4", "6"};
-    for (int i = 0; i < 6; i++) {
-        int n = atoi(ns[i]);
-        char pet[32];
-        snprintf(pet, sizeof pet, "petals=%d", n);
-        struct tex_field *f = field("flower", 1, 0, 0, pet, NULL);
-        double step = n % 2 ? 2 * M_PI / n : M_PI / n;
-        CHECKF(mismatches(f, step) == 0, "flower n=%d invariant under rotation by %s/%d", n,
-               n % 2 ? "2pi" : "pi", n);
-        CHECKF(mismatches(f, step / 2) > 400, "flower n=%d not invariant under half that", n);
+    for (int i = 0; i < 12; i++) {
+        int n = atoi(ns[i % 6]), rose = i >= 6;
+        char arg[32];
+        snprintf(arg, sizeof arg, "%s=%d", rose ? "rose" : "petals", n);
+        struct tex_field *f = field("flower", 1, 0, 0, arg, NULL);
+        /* n petals repeat every 2pi/n; the whole rose of an even n every pi/n */
+        int half = rose && n % 2 == 0;
+        double step = half ? M_PI / n : 2 * M_PI / n;
+        CHECKF(mismatches(f, step) == 0, "flower %s invariant under rotation by %s/%d", arg,
+               half ? "pi" : "2pi", n);
+        CHECKF(mismatches(f, step / 2) > 400, "flower %s not invariant under half that", arg);
         tex_field_free(f);
     }
 }

@@ -32,7 +32,7 @@ says "scene size above the limit" 2 'texture t noise { size 65537 }' \
 # the shapes' words are rows too (tex_object_rows): each shape takes its own only
 says "word of another shape" 2 'sphere { major 1 }' "1:10: unknown word 'major' in a sphere"
 says "a cone's word in a cylinder" 2 'cylinder { radius1 2 }' \
-    "1:12: unknown word 'radius1' in a cylinder"
+    "1:12: unknown word 'radius1' in a cylinder; did you mean radius?"
 says "a torus's word in a box" 2 'box { axis 0 1 0 }' "1:7: unknown word 'axis' in a box"
 says "a shape's checks keep their words" 2 'sphere { radius -1 }' '1:1: sphere radius must be > 0'
 says "torus minor radius checked after the rows" 2 'torus { minor 0 }' \

@@ -23,7 +23,7 @@ mkdir -p "$F/patterns"
         t_circle -s 128 -r 0.1 --colour1 0 --colour2 1 -o hole.png &&
         t_convert --compression zip map.exr -o tiled.exr &&
         printf '0.25 0.25\n0.75 0.5\n0.5 0.8\n' >stars.txt &&
-        cp "$top/patterns/tessellation.tc" patterns/ &&
+        cp "$top/patterns/tessellation.tc" "$top/patterns/thesis_tessellation.tc" patterns/ &&
         # the script t_compose(5) shows, as its example runs it
         awk '/^\.Bd -literal/ { b = "" ; next } /^\.Ed/ { if (b ~ /^tessellation marble;/) s = b; next }
              { b = b $0 "\n" } END { printf "%s", s }' "$top/man/man5/t_compose.5" >marble.tc &&
