@@ -98,13 +98,13 @@ PCFILE   = $(BUILD)/lib/pkgconfig/textura.pc
 # Headers that stay inside libtex: the scene's internals, the shading models'
 # interface, the languages' lexer and evaluator, the OpenImageIO bridge, and what a
 # module's files and its x86 kernels share (trig's polynomials, the sRGB table, the noise
-# tables and grids, the nearest-point queries).  (The x86/ folders' headers are never
+# tables and grids, the nearest-point queries, the solid textures' cells).  (The x86/ folders' headers are never
 # installed.)
 RENDER_PRIVATE = scene camera whitted vecmath shape bvh light texture surface mipmap mapping \
                  footprint appfn packet render_shade render_ct
 PRIVATE_HEADERS = libtex/base/kdtree.h libtex/base/names.h libtex/base/trig_fdlibm.h libtex/base/simd.h \
                   libtex/base/fp_strict.h libtex/io/json.h libtex/io/strbuf.h libtex/io/oiio_bridge.h \
-                  libtex/io/codec_bridge.h libtex/prim/noise_grid.h libtex/prim/cellular_impl.h \
+                  libtex/io/codec_bridge.h libtex/prim/noise_grid.h libtex/prim/cellular_impl.h libtex/prim/cell.h \
                   libtex/ops/palette_srgb.h \
                   libtex/lang/lex.h libtex/lang/expr.h libtex/lang/rowcode.h \
                   libtex/cli/internal.h $(RENDER_PRIVATE:%=libtex/render/%.h)
