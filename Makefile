@@ -12,6 +12,8 @@
 #   make uninstall  remove what make install put in PREFIX
 #   make man        refresh the option lists of the man pages from the tools
 #   make fuzz       build the fuzz targets (clang, libFuzzer)
+#   make fuzz-libs  libpng and OpenEXR's core from Debian's sources with the fuzzer's coverage,
+#                   which make fuzz then links into the targets (tests/fuzz/libs.sh)
 #
 # Sources are found by wildcard: a new libtex/LAYER/*.c joins the library, a new
 # tools/t_*.c becomes a tool, tests/LAYER/test_*.c and tests/LAYER/*.sh join the suite.
@@ -98,13 +100,13 @@ PCFILE   = $(BUILD)/lib/pkgconfig/textura.pc
 # Headers that stay inside libtex: the scene's internals, the shading models'
 # interface, the languages' lexer and evaluator, the OpenImageIO bridge, and what a
 # module's files and its x86 kernels share (trig's polynomials, the sRGB table, the noise
-# tables and grids, the nearest-point queries).  (The x86/ folders' headers are never
+# tables and grids, the nearest-point queries, the solid textures' cells).  (The x86/ folders' headers are never
 # installed.)
 RENDER_PRIVATE = scene camera whitted vecmath shape bvh light texture surface mipmap mapping \
                  footprint appfn packet render_shade render_ct
 PRIVATE_HEADERS = libtex/base/kdtree.h libtex/base/names.h libtex/base/nearest.h libtex/base/trig_fdlibm.h libtex/base/simd.h \
                   libtex/base/fp_strict.h libtex/io/json.h libtex/io/strbuf.h libtex/io/oiio_bridge.h \
-                  libtex/io/codec_bridge.h libtex/prim/noise_grid.h libtex/prim/cellular_impl.h \
+                  libtex/io/codec_bridge.h libtex/prim/noise_grid.h libtex/prim/cellular_impl.h libtex/prim/cell.h \
                   libtex/ops/palette_srgb.h \
                   libtex/lang/lex.h libtex/lang/expr.h libtex/lang/rowcode.h \
                   libtex/cli/internal.h $(RENDER_PRIVATE:%=libtex/render/%.h)
@@ -115,7 +117,7 @@ DEBS = build-essential pkg-config liblz4-dev libopenexr-dev libopenimageio-dev o
        libflann-dev libfftw3-dev colord-data mandoc netpbm imagemagick libnoise-dev povray \
        hyperfine clang libclang-rt-14-dev libomp-dev python3 parallel libmicrohttpd-dev chromium ffmpeg
 
-.PHONY: all deps demo test test-plain test-clang check bench install uninstall man fuzz fuzz-smoke figures \
+.PHONY: all deps demo test test-plain test-clang check bench install uninstall man fuzz fuzz-libs fuzz-smoke figures \
         gallery clean tsan
 
 # layout: build/share/textura holds links to the data, so that a build tree is laid
@@ -285,9 +287,13 @@ gallery: all
 fuzz:
 	$(MAKE) -C tests/fuzz BUILD=$(abspath $(BUILD))/fuzz
 
-# CI (.ci/run, after make test): each fuzz target ~30 s over its seed corpus, ~6 min in all
+fuzz-libs:
+	$(MAKE) -C tests/fuzz libs BUILD=$(abspath $(BUILD))/fuzz
+
+# CI (.ci/run, after make test): each fuzz target 20 s over its seed corpus, 15 targets two
+# at a time: under 3 min
 fuzz-smoke: fuzz
-	tests/fuzz/smoke.sh $(abspath $(BUILD))/fuzz 30
+	tests/fuzz/smoke.sh $(abspath $(BUILD))/fuzz 20
 
 # The installed libtex.a holds machine code alone: the LTO bytecode of the renderer's
 # objects (t_apply's) would have gcc optimise them again in every program linked with

@@ -67,6 +67,12 @@ static void preview(tex_map *m, int how)
     tex_map_free(m);
 }
 
+/* Whether channel statistics s of map m found no finite sample (its figures are 0s then) */
+static int none_finite(const tex_map *m, const struct tex_stats *s)
+{
+    return s->nonfinite == (size_t)m->w * (size_t)m->h;
+}
+
 /* The statistics of a stream's rows into st, as they pass a band of about 1 MiB at a time */
 static void gather_rows(tex_rows_reader *r, const char *name, const tex_map *head,
                         struct tex_stats *st)
@@ -146,11 +152,16 @@ int main(int argc, char **argv)
         printf("{\"width\": %d, \"height\": %d, \"channels\": %d, \"subregions\": %d,\n", m->w, m->h,
                m->nc, m->subregions);
         printf(" \"stats\": [");
-        for (int k = 0; k < m->nc; k++)
-            printf("%s\n  {\"channel\": \"%s\", \"min\": %.9g, \"max\": %.9g, \"mean\": %.9g, "
-                   "\"stddev\": %.9g, \"nonfinite\": %zu}",
-                   k ? "," : "", chname[m->nc - 1][k], st[k].min, st[k].max, st[k].mean,
-                   st[k].stddev, st[k].nonfinite);
+        for (int k = 0; k < m->nc; k++) {
+            char f[4][32]; /* null where no sample is finite: there are no figures */
+            const double v[4] = {st[k].min, st[k].max, st[k].mean, st[k].stddev};
+            for (int i = 0; i < 4; i++)
+                snprintf(f[i], sizeof f[i], none_finite(m, &st[k]) ? "null" : "%.9g", v[i]);
+            printf("%s\n  {\"channel\": \"%s\", \"min\": %s, \"max\": %s, \"mean\": %s, "
+                   "\"stddev\": %s, \"nonfinite\": %zu, \"nan\": %zu}",
+                   k ? "," : "", chname[m->nc - 1][k], f[0], f[1], f[2], f[3], st[k].nonfinite,
+                   st[k].nan);
+        }
         printf("],\n \"history\": ");
         json_string(m->history ? m->history : "");
         printf("}\n");
@@ -161,10 +172,16 @@ int main(int argc, char **argv)
             printf(", %d subregions", m->subregions);
         putchar('\n');
         for (int k = 0; k < m->nc; k++) {
+            size_t nan = st[k].nan, inf = st[k].nonfinite - nan;
+            if (none_finite(m, &st[k])) {
+                printf("  %-2s no finite values: %zu NaN, %zu inf\n", chname[m->nc - 1][k], nan,
+                       inf);
+                continue;
+            }
             printf("  %-2s min %-12.6g max %-12.6g mean %-12.6g stddev %.6g", chname[m->nc - 1][k],
                    st[k].min, st[k].max, st[k].mean, st[k].stddev);
             if (st[k].nonfinite)
-                printf("  (%zu NaN/inf)", st[k].nonfinite);
+                printf("  (%zu NaN, %zu inf)", nan, inf);
             putchar('\n');
         }
         if (m->history) {

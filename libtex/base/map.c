@@ -13,11 +13,13 @@
 #include "base/error.h"
 #include "base/map.h"
 
+_Static_assert(TEX_MAP_MAX_SIDE == 65536 && TEX_MAP_MAX_SAMPLES == 1ULL << 30,
+               "TEX_MAP_SIZE_RULE says these limits");
+
 int tex_map_check_size(long long w, long long h, long long nc)
 {
     if (w < 1 || w > TEX_MAP_MAX_SIDE || h < 1 || h > TEX_MAP_MAX_SIDE)
-        return tex_usage_error("size %lldx%lld is out of range: each side must be 1..%d", w, h,
-                               TEX_MAP_MAX_SIDE);
+        return tex_usage_error("size %lldx%lld is out of range: " TEX_MAP_SIZE_RULE, w, h);
     if (nc < 1 || nc > TEX_MAP_MAX_CHANNELS)
         return tex_usage_error("%lld channels is out of range: 1..%d", nc, TEX_MAP_MAX_CHANNELS);
     /* Each factor is at most 2^16, so the product fits in 64 bits. */
@@ -188,11 +190,13 @@ void tex_stats_add(struct tex_stats_acc *a, const float *px, size_t w, size_t ro
         }
         double sum = a->sum, s1 = a->s1, s2 = a->s2, k0 = a->shift;
         float lo = a->lo, hi = a->hi;
-        size_t n = a->n;
+        size_t n = a->n, nan = a->nan;
         for (size_t x = 0; x < w; x++) {
             float v = px[x * nc];
-            if (!isfinite(v))
+            if (!isfinite(v)) {
+                nan += v != v;
                 continue;
+            }
             lo = v < lo ? v : lo;
             hi = v > hi ? v : hi;
             sum += v;
@@ -202,7 +206,7 @@ void tex_stats_add(struct tex_stats_acc *a, const float *px, size_t w, size_t ro
             n++;
         }
         a->nonfinite += w - (n - a->n);
-        a->sum = sum, a->s1 = s1, a->s2 = s2, a->lo = lo, a->hi = hi, a->n = n;
+        a->sum = sum, a->s1 = s1, a->s2 = s2, a->lo = lo, a->hi = hi, a->n = n, a->nan = nan;
     }
 }
 
@@ -216,6 +220,7 @@ void tex_stats_end(const struct tex_stats_acc *a, struct tex_stats *s)
     s->mean = n ? a->sum / n : 0;
     s->stddev = var > 0 ? sqrt(var) : 0;
     s->nonfinite = a->nonfinite;
+    s->nan = a->nan;
 }
 
 void tex_map_stats(const tex_map *m, int c, struct tex_stats *s)

@@ -30,6 +30,9 @@ TEX_API_BEGIN
 
 #define TEX_MAP_MAX_SIDE 65536
 #define TEX_MAP_MAX_SAMPLES (1ULL << 30)
+/* The rule for a map's size in pixels, as messages say it where a size is refused (-s): a
+ * side's limit alone hid the other, 32769 x 32769 is too large */
+#define TEX_MAP_SIZE_RULE "each side 1..65536 and W x H at most 2^30 (1073741824) pixels"
 #define TEX_MAP_MAX_CHANNELS 4
 
 typedef struct tex_map {
@@ -123,10 +126,11 @@ tex_map *tex_map_reduce(const tex_map *s);
  * into r[0..3]: 0, or -1 when malformed, of zero size or not wholly inside. */
 int tex_parse_window(const char *text, int full_w, int full_h, int r[4]);
 
-/* Statistics of one channel over its finite samples; nonfinite counts NaN and infinities. */
+/* Statistics of one channel over its finite samples (0 when it has none); nonfinite counts
+ * NaN and infinities, nan the NaN among them (as oiiotool --stats counts them apart). */
 struct tex_stats {
     double min, max, mean, stddev;
-    size_t nonfinite;
+    size_t nonfinite, nan;
 };
 void tex_map_stats(const tex_map *m, int channel, struct tex_stats *s);
 
@@ -143,7 +147,7 @@ void tex_map_stats(const tex_map *m, int channel, struct tex_stats *s);
 struct tex_stats_acc {
     double sum, shift, s1, s2;
     float lo, hi;
-    size_t n, nonfinite;
+    size_t n, nonfinite, nan;
     int shifted; /* the shift is set */
 };
 void tex_stats_begin(struct tex_stats_acc *a);

@@ -456,8 +456,7 @@ static void check_operands(const struct tex_tool *t, int argc, char **argv,
     int nops;
 
     if ((t->common & TEX_OPT_SIZE) && tex_parse_size(c->size, &c->w, &c->h) < 0)
-        tex_usage_die("-s must be N or WxH with each side 1..%d (got '%s')", TEX_MAP_MAX_SIDE,
-                      c->size);
+        tex_usage_die("-s must be N or WxH with " TEX_MAP_SIZE_RULE " (got '%s')", c->size);
     if ((t->common & TEX_OPT_WINDOW) && c->window &&
         tex_parse_window(c->window, c->w, c->h, c->win) < 0)
         tex_usage_die("--window must be X,Y,W,H with W, H >= 1 inside the %dx%d map (got '%s')",

@@ -101,24 +101,32 @@ int tex_assemble(const char *const *paths, int n, int fd, const char *name, int 
     qsort(p, (size_t)n, sizeof *p, by_place);
     if (check_cover(p, n) < 0)
         goto done;
-    /* The full map's metadata: the top-left window's, without a place. */
+    /* The full map's metadata: the top-left window's, without a place.  The window stays
+     * read for fill: read again, it warned twice of what it holds (channels dropped). */
     if (!(first = tex_map_read(p[0].path)))
         goto done;
     head.w = p[0].head.full_w;
     head.h = p[0].head.full_h;
     head.nc = j.nc = p[0].head.nc;
     head.subregions = first->subregions;
-    head.history = first->history;
     if (history && tex_map_add_history(first, history) < 0)
         goto done;
-    head.history = first->history;
-    tex_map_free(p[0].m);
-    p[0].m = NULL;
+    if (first->history && !(head.history = strdup(first->history))) {
+        r = tex_error("out of memory");
+        goto done;
+    }
+    p[0].m = first;
+    first = NULL;
+    if (p[0].m->w != p[0].head.w || p[0].m->h != p[0].head.h || p[0].m->nc != j.nc) {
+        r = tex_error("%s: changed while being assembled", p[0].path);
+        goto done;
+    }
     r = tex_exr_write_rows(&head, fill, &j, tile, c, fd, name);
 done:
     for (int i = 0; i < n; i++)
         tex_map_free(p[i].m);
     tex_map_free(first);
+    free(head.history);
     free(p);
     return r;
 }

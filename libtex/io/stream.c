@@ -538,6 +538,12 @@ struct rsrc {
     size_t len;
 };
 
+/* Set when a read of the data came back short: the chunk that then fails lies past the end
+ * of the data, and the message says "truncated" as PNG, PNM and PFM do (the core says only
+ * that a chunk's leader is corrupt).  Cleared once the header is read, whose parse may
+ * read past the end of a small file. */
+static _Thread_local int exr_ran_short;
+
 static int64_t read_mem(exr_const_context_t ctxt, void *ud, void *dst, uint64_t sz, uint64_t off,
                         exr_stream_error_func_ptr_t ecb)
 {
@@ -545,6 +551,8 @@ static int64_t read_mem(exr_const_context_t ctxt, void *ud, void *dst, uint64_t 
 
     (void)ctxt;
     (void)ecb;
+    if (off >= r->len || sz > r->len - off)
+        exr_ran_short = 1;
     if (off >= r->len)
         return 0;
     if (sz > r->len - off)
@@ -643,6 +651,7 @@ static int64_t read_stream(exr_const_context_t ctxt, void *ud, void *dst, uint64
     avail = r->base + r->len > off ? (size_t)(r->base + r->len - off) : 0;
     if (avail > sz)
         avail = (size_t)sz;
+    exr_ran_short |= avail < sz;
     memcpy(dst, r->buf + (off - r->base), avail);
     return (int64_t)avail;
 }
@@ -685,7 +694,7 @@ tex_map *tex_exr_decode(const void *data, size_t len, const char *name)
 
     init.user_data = &src;
     init.read_fn = read_mem;
-    init.size_fn = size_mem;
+    init.size_fn = size_unknown; /* a chunk past the end is then read short: "truncated" */
     return decode(&init, name, NULL, NULL);
 }
 
@@ -697,7 +706,7 @@ tex_map **tex_exr_decode_levels(const void *data, size_t len, const char *name, 
 
     init.user_data = &src;
     init.read_fn = read_mem;
-    init.size_fn = size_mem;
+    init.size_fn = size_unknown; /* as tex_exr_decode */
     *n = 0;
     tex_map *m = decode(&init, name, &lv, n);
     if (m && !lv) { /* scanline: one level */
@@ -808,6 +817,17 @@ static void aim_channels(exr_decode_pipeline_t *dec, const int *order, tex_map *
     }
 }
 
+/* The error of the chunk at scanline or tile row y that could not be read (rv: the core's
+ * code, 0 when decoding failed): truncated where the data ran short, else corrupt. */
+static int chunk_error(exr_result_t rv, const char *where, int y)
+{
+    if (exr_ran_short)
+        return tex_error("truncated OpenEXR data at %s %d", where, y);
+    if (rv)
+        return tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv));
+    return tex_error("truncated or corrupt OpenEXR data at %s %d", where, y);
+}
+
 /* Decode one chunk whose info is ci into m at (x, y); first: the pipeline is new. */
 static int decode_one(exr_context_t ctx, exr_decode_pipeline_t *dec, exr_chunk_info_t *ci,
                       int first, const int *order, tex_map *m, int x, int y)
@@ -819,10 +839,11 @@ static int decode_one(exr_context_t ctx, exr_decode_pipeline_t *dec, exr_chunk_i
     aim_channels(dec, order, m, x, y);
     if (first && (rv = exr_decoding_choose_default_routines(ctx, 0, dec)))
         return tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv));
-    if (exr_decoding_run(ctx, 0, dec))
-        return tex_error("truncated or corrupt OpenEXR data at %s %d", ci->type == EXR_STORAGE_TILED
-                                                                        ? "tile row" : "scanline",
-                         y);
+    /* A chunk read short decodes (the core, not told the data's size, fills the rest): the
+     * data ended in it.  (Returning -1 from the read instead overran the core's buffer.) */
+    exr_ran_short = 0; /* the header's parse, or another reader's, may have read short */
+    if (exr_decoding_run(ctx, 0, dec) || exr_ran_short)
+        return chunk_error(0, ci->type == EXR_STORAGE_TILED ? "tile row" : "scanline", y);
     return 0;
 }
 
@@ -838,8 +859,7 @@ static int decode_chunks(exr_context_t ctx, exr_decode_pipeline_t *dec, exr_attr
         for (int y = dw.min.y; y <= dw.max.y; y += lines)
             if ((rv = exr_read_scanline_chunk_info(ctx, 0, y, &ci)) ||
                 decode_one(ctx, dec, &ci, y == dw.min.y, order, m, 0, y - dw.min.y) < 0)
-                return rv ? tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv))
-                          : -1;
+                return rv ? chunk_error(rv, "scanline", y - dw.min.y) : -1;
         return 0;
     }
     if ((rv = exr_get_tile_sizes(ctx, 0, l, l, &tw, &th)) || tw < 1 || th < 1)
@@ -849,8 +869,7 @@ static int decode_chunks(exr_context_t ctx, exr_decode_pipeline_t *dec, exr_attr
             if ((rv = exr_read_tile_chunk_info(ctx, 0, tx, ty, l, l, &ci)) ||
                 decode_one(ctx, dec, &ci, l == 0 && tx == 0 && ty == 0, order, m, tx * tw,
                            ty * th) < 0)
-                return rv ? tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv))
-                          : -1;
+                return rv ? chunk_error(rv, "tile row", ty * th) : -1;
     return 0;
 }
 
@@ -958,6 +977,7 @@ static tex_map *decode(exr_context_initializer_t *initp, const char *name, tex_m
         !(m = tex_map_new(dw.max.x - dw.min.x + 1, dw.max.y - dw.min.y + 1, nc)) ||
         header_attrs(ctx, cl, order, dw, name, m) < 0)
         goto fail;
+    exr_ran_short = 0;
     if (decode_chunks(ctx, &dec, dw, lines, order, m, 0) < 0)
         goto fail;
     if (levels && lines == 0 && decode_levels(ctx, &dec, dw, order, m, levels, nlevels) < 0)

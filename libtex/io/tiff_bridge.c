@@ -151,7 +151,26 @@ static void convert(const unsigned char *s, const struct layout *l, float *d, si
         }
 }
 
-static int read_native(TIFF *t, const struct layout *l, float *px)
+/* The message of a failed read of the data, row the first row of the strip or tile that
+ * failed (-1: unknown).  libtiff names the row it had before the first read, "Read error
+ * at scanline 4294967295; got 226 bytes, expected 240000", and says the data ends early
+ * only by its figures: a truncation is said as PNG, PNM and PFM say it. */
+static void data_error(char *err, size_t errlen, long row)
+{
+    unsigned long got, want;
+    const char *g = strstr(last_error, "got ");
+    if (g && sscanf(g, "got %lu bytes, expected %lu", &got, &want) == 2 && got < want)
+        snprintf(err, errlen, "truncated TIFF data at row %ld (%lu of %lu bytes)",
+                 row < 0 ? 0 : row, got, want);
+    else if (row >= 0)
+        snprintf(err, errlen, "unreadable TIFF data at row %ld (%s)", row,
+                 last_error[0] ? last_error : "no detail");
+    else
+        say(err, errlen, "unreadable TIFF data");
+}
+
+/* The samples as stored; -1 with *bad the first row of the strip or tile that failed. */
+static int read_native(TIFF *t, const struct layout *l, float *px, long *bad)
 {
     size_t row = (size_t)l->w * l->nc;
 
@@ -165,6 +184,7 @@ static int read_native(TIFF *t, const struct layout *l, float *px)
         for (uint32_t y = 0; y < l->h; y += th)
             for (uint32_t x = 0; x < l->w; x += tw) {
                 if (TIFFReadTile(t, buf, x, y, 0, 0) < 0) {
+                    *bad = y;
                     _TIFFfree(buf);
                     return -1;
                 }
@@ -181,6 +201,7 @@ static int read_native(TIFF *t, const struct layout *l, float *px)
             return -1;
         for (uint32_t y = 0; y < l->h; y++) {
             if (TIFFReadScanline(t, buf, y, 0) < 0) {
+                *bad = y;
                 _TIFFfree(buf);
                 return -1;
             }
@@ -214,13 +235,14 @@ static int b_read(const void *mem, size_t len, float *px, char *err, size_t errl
     struct memsrc src = {mem, len, 0};
     struct layout l;
     TIFF *t = open_mem(&src, &l, err, errlen);
+    long bad = -1;
     int r;
 
     if (!t)
         return -1;
-    r = l.native ? read_native(t, &l, px) : read_rgba(t, &l, px);
+    r = l.native ? read_native(t, &l, px, &bad) : read_rgba(t, &l, px);
     if (r < 0)
-        say(err, errlen, "unreadable TIFF data");
+        data_error(err, errlen, bad);
     TIFFClose(t);
     return r;
 }

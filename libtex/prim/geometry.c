@@ -4,6 +4,7 @@
 
 #include "base/error.h"
 #include "base/rng.h"
+#include "prim/cell.h"
 #include "prim/geometry.h"
 
 /* Every primitive's parameter struct starts with this head, so that the
@@ -37,6 +38,12 @@ static inline double cell(double t, int n)
 {
     double s = t * n;
     return s - floor(s);
+}
+
+/* cell's for a solid texture, whose surfaces may lie on the cells' faces (prim/cell.h) */
+static inline double cell3(double t, int n)
+{
+    return tex_cell_frac(t * n);
 }
 
 static int geo_init(struct tex_field *f, int nregions)
@@ -191,7 +198,7 @@ static void circle_eval3(const struct tex_field *f, int n, const double *u, cons
     const struct circle_params *p = f->params;
     const double *k = ((const struct geo_state *)f->state)->k;
     for (int i = 0; i < n; i++) {
-        double x = cell(u[i], p->nu) - 0.5, y = cell(v[i], p->nv) - 0.5, z = cell(w[i], p->nw) - 0.5;
+        double x = cell3(u[i], p->nu) - 0.5, y = cell3(v[i], p->nv) - 0.5, z = cell3(w[i], p->nw) - 0.5;
         out[i] = x * x + y * y + z * z <= k[0] ? 2.0f : 1.0f;
     }
 }
@@ -272,7 +279,7 @@ static void ring_eval3(const struct tex_field *f, int n, const double *u, const 
     const struct ring_params *p = f->params;
     const double *k = ((const struct geo_state *)f->state)->k;
     for (int i = 0; i < n; i++) {
-        double x = cell(u[i], p->nu) - 0.5, y = cell(v[i], p->nv) - 0.5, z = cell(w[i], p->nw) - 0.5;
+        double x = cell3(u[i], p->nu) - 0.5, y = cell3(v[i], p->nv) - 0.5, z = cell3(w[i], p->nw) - 0.5;
         out[i] = (float)ring_of(k, x * x + y * y + z * z);
     }
 }
@@ -521,13 +528,22 @@ static inline int checker_box(const struct checker_params *p, const double *k, d
 }
 GEO_BOX2(checker, struct checker_params)
 
+/* Whether s lies in the upper half of its cell, cell(s) >= 0.5 (floor(2 s) odd), with a
+ * half-cell face counted in the half above it (prim/cell.h); 0 for NaN and infinities, as
+ * that comparison gives. */
+static inline int half_odd(double s)
+{
+    double c = tex_cell_floor(2 * s);
+    return isfinite(c) && c - 2 * floor(c / 2) != 0;
+}
+
 static void checker_eval3(const struct tex_field *f, int n, const double *u, const double *v,
                           const double *w, float *out)
 {
     const struct checker_params *p = f->params;
     for (int i = 0; i < n; i++)
-        out[i] = (float)(1 + (((cell(u[i], p->nu) >= 0.5) + (cell(v[i], p->nv) >= 0.5) +
-                               (cell(w[i], p->nw) >= 0.5)) & 1));
+        out[i] = (float)(1 + ((half_odd(u[i] * p->nu) + half_odd(v[i] * p->nv) +
+                               half_odd(w[i] * p->nw)) & 1));
 }
 
 const struct tex_primitive tex_prim_checker = {

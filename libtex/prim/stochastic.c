@@ -69,8 +69,12 @@ static int hole(const struct tex_field *f, int dims, const int64_t c[3], double 
     if (r3 >= p->density)
         return 0;
     *d = p->diameter * (1 + p->jitter * (2 * r2 - 1));
-    /* Keep the rim inside the cell so that the 3 x 3 neighbourhood sees every hole. */
-    double room = 1 - (*d < 1 ? *d : 1); /* fmin's value: d is never NaN */
+    /* On the map, the rim inside the cell, so that the 3 x 3 neighbourhood sees every hole.
+     * In space, the centre anywhere the rim stays within the neighbouring cells (a diameter
+     * up to 1: anywhere in the cell), where the 27 cells around a point see it: kept inside
+     * its cell, no hole would reach a cell's face, and a box's face, which lies on one
+     * under the solid mapping, or the floor y = 0 under the world mapping, had none. */
+    double room = dims == 3 ? (*d < 1 ? 1 : 2 - *d) : 1 - (*d < 1 ? *d : 1);
     ctr[0] = c[0] + 0.5 + (r0 - 0.5) * room;
     ctr[1] = c[1] + 0.5 + (r1 - 0.5) * room;
     /* in space: the third coordinate from the hash's other bits */

@@ -2,12 +2,23 @@
 #include <math.h>
 #include <string.h>
 
+#include "prim/cell.h"
 #include "render/mapping.h"
 
 /* The wavy projection's shift of u at height y of the texture's frame */
 static inline double wave_at(const struct tex_apply *ap, double y)
 {
     return ap->wave[0] * sin(2 * M_PI * y / ap->wave[1]);
+}
+
+/* fract for the world mapping's repetition, robust where a surface lies on a whole
+ * coordinate (the floor y = 0): a hit that rounding put less than TEX_CELL_EPS below it
+ * is on it, at 0, where fract gave about 1 to its neighbours, the far side of the
+ * repetition (prim/cell.h); elsewhere fract's, bit for bit. */
+static inline double wrap_world(double c)
+{
+    double r = c - tex_floord(c + TEX_CELL_EPS);
+    return r > 0 ? r : 0;
 }
 
 /* The world and solid mappings, from the world point P: face 1 */
@@ -26,9 +37,9 @@ static int map_point_world(const struct tex_apply *ap, const struct tex_object *
         P = &Pt;
     }
     if (mp == TEX_MAP_WORLD || (mp == TEX_MAP_SOLID && !bounded_solid)) {
-        uvw[0] = fract(P->x * ap->scale);
-        uvw[1] = fract(-P->y * ap->scale);
-        uvw[2] = fract(P->z * ap->scale);
+        uvw[0] = wrap_world(P->x * ap->scale);
+        uvw[1] = wrap_world(-P->y * ap->scale);
+        uvw[2] = wrap_world(P->z * ap->scale);
         if (mp == TEX_MAP_WORLD) {
             double t = uvw[1];
             uvw[1] = uvw[2], uvw[2] = t; /* 2D maps lie in the ground plane x,z */

@@ -187,6 +187,25 @@ static const char *nearest_row(const struct tex_param *rows, int kind, const str
     return msg;
 }
 
+/* Row p's numbers, from vt, refused (tex_param_store's error); next, the word that ended
+ * them short, or NULL.  "eye 0 1.5 inf": inf and nan are names to the lexer, and the count
+ * alone ("eye takes 3 numbers (got 2)") hid what was wrong with the third. */
+static void short_row(struct parser *ps, const struct tex_param *p, const struct tex_tok *vt,
+                      const struct tex_tok *next)
+{
+    char name[64], text[64];
+    if (next && next->kind == TEX_TOK_NAME && next->len < sizeof text) {
+        char *end;
+        memcpy(text, next->text, next->len);
+        text[next->len] = '\0';
+        double x = strtod(text, &end);
+        if (*end == '\0' && !isfinite(x))
+            fail_at(ps, next, 0, "%s takes finite numbers (got %s)",
+                    tex_param_name(p, name, sizeof name, TEX_PARAM_WORD), text);
+    }
+    fail_at(ps, vt, 0, "%s", tex_errmsg());
+}
+
 /* Row p's value into obj: as many numbers as it stores, a word, or nothing (a flag). */
 static void read_row(struct parser *ps, const struct tex_param *p, void *obj)
 {
@@ -212,7 +231,7 @@ static void read_row(struct parser *ps, const struct tex_param *p, void *obj)
             v[k++] = number(ps);
         while (k < n && k < 8 && (ps->lx.t.kind == TEX_TOK_NUM || ps->whole_vectors));
     if (tex_param_store(p, obj, v, k, TEX_PARAM_WORD) < 0)
-        fail_at(ps, &vt, 0, "%s", tex_errmsg());
+        short_row(ps, p, &vt, k < n ? &ps->lx.t : NULL);
 }
 
 /* A block's own reading of a word kt of no row: 1 if it took it. */

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# tests/fuzz/campaign.sh [-j JOBS] [EXECUTIONS] [SECONDS] [TARGET...] - the long fuzz run:
-# each target (default: every fuzz_* in build/fuzz, built by `make fuzz`) runs in
-# pieces of at most SECONDS (default 600) until the ledger tests/fuzz/campaign.log
-# holds EXECUTIONS (default 10^7) executions for it since its last crash.  Pieces
+# tests/fuzz/campaign.sh [-j JOBS] [-n EXECUTIONS] [EXECUTIONS] [SECONDS] [TARGET...] - the
+# long fuzz run: each target (default: every fuzz_* in build/fuzz, built by `make fuzz`)
+# runs in pieces of at most SECONDS (default 600) until the ledger tests/fuzz/campaign.log
+# ($LEDGER) holds EXECUTIONS (default 10^7; -n 100000 for a short run) executions for it
+# since its last crash.  At the end each target's count is printed and written to the
+# ledger as a "# total" line.  Pieces
 # grow the scratch corpus tests/fuzz/corpus-NAME (not kept; the seeds are), JOBS
 # targets at a time (default 1).  A crash stops its target: the input is kept as
 # tests/fuzz/crash-NAME-*, the ledger says so, and the exit status is 1.  To stop
@@ -17,19 +19,30 @@
 # it they run 2.4 times as many inputs; so is rereading the corpus directory (a
 # tenth), which only other processes write.
 set -u
-jobs=1
-[ "${1:-}" = -j ] && { jobs=$2; shift 2; }
-want=${1:-10000000}
-secs=${2:-600}
-shift 2 2>/dev/null || shift $#
+jobs=1 want=
+while getopts j:n: o; do
+    case $o in
+    j) jobs=$OPTARG ;;
+    n) want=$OPTARG ;;
+    *) echo "usage: campaign.sh [-j JOBS] [-n EXECUTIONS] [EXECUTIONS] [SECONDS] [TARGET...]" >&2; exit 2 ;;
+    esac
+done
+shift $((OPTIND - 1))
+whole() { case $1 in '' | *[!0-9]*) return 1 ;; esac; }
+# the positional form: EXECUTIONS (unless -n gave it), then SECONDS, where numbers are
+[ -z "$want" ] && whole "${1:-}" && { want=$1; shift; }
+secs=600
+whole "${1:-}" && { secs=$1; shift; }
+want=${want:-10000000}
+whole "$want" && whole "$jobs" || { echo "campaign.sh: -n and -j take whole numbers" >&2; exit 2; }
 here=$(cd "$(dirname "$0")" && pwd)
 fuzz=${FUZZDIR:-$here/../../build/fuzz}
 ledger=${LEDGER:-$here/campaign.log}
 commit=$(git -C "$here" rev-parse --short HEAD 2>/dev/null || echo unknown)
 
-# executions of a target in the ledger since its last crash
+# executions of a target in the ledger since its last crash ("# total" lines are summaries)
 done_runs() {
-    awk -v t="$1" '$3 == t { n = ($6 == "crash") ? 0 : n + $4 } END { print n + 0 }' "$ledger" 2>/dev/null || echo 0
+    awk -v t="$1" '$1 != "#" && $3 == t { n = ($6 == "crash") ? 0 : n + $4 } END { print n + 0 }' "$ledger" 2>/dev/null || echo 0
 }
 
 one() {
@@ -73,3 +86,8 @@ export fuzz here ledger want secs commit
 [ $# -gt 0 ] || { echo "not ok - no fuzz targets in $fuzz (make fuzz)"; exit 1; }
 export OMP_NUM_THREADS=1
 parallel --line-buffer -j "$jobs" one ::: "$@"
+st=$?
+for name in "$@"; do # each target's count, on the screen and in the ledger
+    echo "# total $(date -u +%FT%TZ) $commit $name $(done_runs "$name") of $want" | tee -a "$ledger"
+done
+exit $st

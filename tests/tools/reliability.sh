@@ -272,3 +272,66 @@ if mount -t tmpfs -o size=1m tmpfs "$T/full" 2>/dev/null; then
 else
     skip "a full disk" "cannot mount a tmpfs here (not root)"
 fi
+
+# ---- messages that said the wrong thing (issue 59, item 9) ----
+# -s: the real limit is 2^30 pixels, not only 65536 a side (65536x16384 is taken).
+check_fails "-s 32769: refused" 2 t_noise -s 32769 -o big.exr
+grep -q "2^30" "$T/.err" && ok "-s 32769 says the 2^30-pixel limit" || notok "-s 32769's message" "$(cat "$T/.err")"
+check_fails "-s 65536x16385: refused" 2 t_noise -s 65536x16385 -o big.exr
+grep -q "2^30" "$T/.err" && ok "-s 65536x16385 says the 2^30-pixel limit" ||
+    notok "-s 65536x16385's message" "$(cat "$T/.err")"
+# A TIFF of 60,000 samples per pixel whose strip ends early: "truncated", at row 0 (libtiff
+# said "Read error at scanline 4294967295").
+python3 - <<'P'
+import struct
+w, h, spp = 4, 4, 60000
+data = bytes(100)
+tags = [(256, 3, w), (257, 3, h), (258, 3, 8), (259, 3, 1), (262, 3, 1), (273, 4, 8),
+        (277, 3, spp), (278, 3, h), (279, 4, w * h * spp), (284, 3, 1)]
+ifd = struct.pack('<H', len(tags)) + b''.join(
+    struct.pack('<HHI', t, k, 1) + (struct.pack('<HH', v, 0) if k == 3 else struct.pack('<I', v))
+    for t, k, v in tags) + struct.pack('<I', 0)
+open('spp.tif', 'wb').write(b'II*\0' + struct.pack('<I', 8 + len(data)) + data + ifd)
+P
+check_fails "a TIFF of 60000 samples per pixel, cut short: refused" 1 t_info -q spp.tif
+grep -q "truncated TIFF data at row 0" "$T/.err" && ! grep -q 4294967295 "$T/.err" &&
+    ok "the TIFF of 60000 samples per pixel says truncated, at row 0" ||
+    notok "the TIFF's message" "$(cat "$T/.err")"
+# A truncated EXR says "truncated" as PNG, PNM and PFM do, from a file and on a pipe, in
+# scanlines (plain and zip) and tiles, wherever it is cut.
+t_noise -s 64 --compression none -o plain.exr && t_noise -s 64 -o zip.exr &&
+    t_noise -s 64 --exr-tiles -o tiles.exr
+bad=""
+for f in plain zip tiles; do
+    sz=$(stat -c %s $f.exr)
+    for p in 20 50 90; do
+        head -c $((sz * p / 100)) $f.exr >cut.exr
+        t_info cut.exr >/dev/null 2>cut.err && bad="$bad $f-$p(read)"
+        grep -q "truncated OpenEXR data" cut.err || bad="$bad $f-$p($(cat cut.err))"
+        t_info - <cut.exr >/dev/null 2>cut.err
+        grep -q "truncated OpenEXR data" cut.err || bad="$bad $f-$p-pipe($(cat cut.err))"
+    done
+done
+[ -z "$bad" ] && ok "truncated EXRs (plain, zip, tiles; 20, 50, 90 %) say truncated" ||
+    notok "truncated EXR messages" "${bad:0:300}"
+# eye 0 1.5 inf: the third number is what is wrong, not the count.
+printf 'camera { eye 0 1.5 inf look 0 0 0 }\nsphere { }\n' >inf.scene
+check_fails "eye 0 1.5 inf: refused" 2 t_apply inf.scene -o inf.exr
+grep -q "inf.scene:1:20: eye takes finite numbers (got inf)" "$T/.err" &&
+    ok "eye 0 1.5 inf says the number is not finite, at it" || notok "eye inf's message" "$(cat "$T/.err")"
+# t_info on a map of NaN alone: no figures of nothing, its NaN counted.
+python3 -c "import struct, sys; sys.stdout.buffer.write(b'Pf\n8 8\n-1.0\n' + struct.pack('<64f', *[float('nan')] * 64))" >nan64.pfm
+out=$(t_info nan64.pfm)
+case $out in
+*"min 0"*) notok "t_info on all NaN" "$out" ;;
+*"no finite values: 64 NaN, 0 inf"*) ok "t_info on all NaN: no figures, 64 NaN" ;;
+*) notok "t_info on all NaN" "$out" ;;
+esac
+[ "$(info_json nan64.pfm stats 0 nan)" = 64 ] && [ "$(info_json nan64.pfm stats 0 min)" = null ] &&
+    ok "t_info --json on all NaN: nan 64, min null" || notok "t_info --json on all NaN" "$(t_info --json nan64.pfm)"
+# t_assemble: a window's warning once (the first window was read twice).
+oiiotool --create 8x4 5 --fullsize 8x8 -o w5a.exr 2>/dev/null &&
+    oiiotool --create 8x4 5 --origin +0+4 --fullsize 8x8 -o w5b.exr 2>/dev/null
+t_assemble w5a.exr w5b.exr -o w5.exr 2>w5.err
+[ "$(grep -c "w5a.exr: 5 channels" w5.err)" = 1 ] && [ "$(grep -c "w5b.exr: 5 channels" w5.err)" = 1 ] &&
+    ok "t_assemble warns of each window once" || notok "t_assemble's warnings" "$(cat w5.err)"
