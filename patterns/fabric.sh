@@ -17,14 +17,12 @@ t_fractal -s "$size" --octaves 6 -S 22 --tile | t_remap --levels 0.2,0.8,0.75,1.
 t_op mul "$tmp/weave.exr" "$tmp/mottle.exr" -o "$tmp/colour.exr"
 write "$tmp/colour.exr" colour
 write "$tmp/height.exr" height
-scene "image 640 400
-samples 4
-ambient 0.25 0.25 0.25
-background 0.9 0.9 0.92
+scene "texture cloth file \"@TMP@/colour.exr\"
+texture relief file \"@TMP@/height.exr\"
 camera { eye 0 1.2 -3.4 look 0 0.3 0 fov 40 }
 light point { position -2 4 -3 intensity 0.9 }
-texture cloth file \"@TMP@/colour.exr\"
-texture relief file \"@TMP@/height.exr\"
+image 640 400 samples 4
+ambient 0.25 0.25 0.25 background 0.9 0.9 0.92
 surface fabric { Ka 0.5 Kd 1 Ks 0.08 n 8
     apply cloth { mapping natural repeat 4 2 Kd = f }
     apply relief { mapping natural repeat 4 2 bump = 0.004 }

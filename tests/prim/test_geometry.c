@@ -85,20 +85,22 @@ static void known_points_round(void)
           "flower 5: on a petal 2, between petals 1 (a petal straight up, none down)");
     tex_field_free(f);
 
-    f = field("flower", 1, 0, 0, "rose=2", NULL);
-    CHECK(at(f, 0.5 + 0.3 * cos(M_PI / 4), 0.5 + 0.3 * sin(M_PI / 4)) == 2 &&
-              at(f, 0.5 - 0.3 * cos(M_PI / 4), 0.5 - 0.3 * sin(M_PI / 4)) == 2 &&
-              at(f, 0.5 + 0.3 * cos(3 * M_PI / 4), 0.5 + 0.3 * sin(3 * M_PI / 4)) == 2 &&
-              at(f, 0.5 + 0.3, 0.5) == 1,
-          "rose 2: four petals on the diagonals");
-    tex_field_free(f);
-    f = field("flower", 1, 0, 0, "petals=2", NULL);
-    CHECK(at(f, 0.5 + 0.3 * cos(M_PI / 4), 0.5 + 0.3 * sin(M_PI / 4)) == 2 &&
-              at(f, 0.5 - 0.3 * cos(M_PI / 4), 0.5 - 0.3 * sin(M_PI / 4)) == 2 &&
-              at(f, 0.5 + 0.3 * cos(3 * M_PI / 4), 0.5 + 0.3 * sin(3 * M_PI / 4)) == 1 &&
-              at(f, 0.5 - 0.3 * cos(3 * M_PI / 4), 0.5 - 0.3 * sin(3 * M_PI / 4)) == 1,
-          "flower 2 petals: two, on one diagonal");
-    tex_field_free(f);
+    /* the ids at 45, 225, 135 and 315 degrees, 0.3 from the centre, and on the right */
+    static const struct {
+        const char *arg, *what;
+        int id[5];
+    } twos[] = {{"rose=2", "rose 2: four petals on the diagonals", {2, 2, 2, 2, 1}},
+                {"petals=2", "flower 2 petals: two, on one diagonal", {2, 2, 1, 1, 1}}};
+    for (int t = 0; t < 2; t++) {
+        static const double deg[5] = {45, 225, 135, 315, 0};
+        int good = 1;
+        f = field("flower", 1, 0, 0, twos[t].arg, NULL);
+        for (int i = 0; i < 5; i++)
+            good &= at(f, 0.5 + 0.3 * cos(deg[i] * M_PI / 180),
+                       0.5 + 0.3 * sin(deg[i] * M_PI / 180)) == twos[t].id[i];
+        CHECK(good, twos[t].what);
+        tex_field_free(f);
+    }
 }
 
 /* ... and of the others: checker, stripe, the cycloids, four rings, polygon, star */
