@@ -1047,10 +1047,32 @@ struct tex_rows_reader {
     exr_decode_pipeline_t dec;
     exr_attr_box2i_t dw;
     struct rstream rs;   /* a pipe's window, when reading one */
+    int file;            /* a file's descriptor, when reading one, else -1 */
     int lines, order[4], first;
     tex_map *chunk;      /* the rows of the chunk decoded last */
     int cy;              /* its first row (relative to the data window), -1: none */
 };
+
+/* A file read at any offset, its size not told to the core: a chunk past the end of a cut
+ * file is read short, and says "truncated" as a pipe's does. */
+static int64_t read_file(exr_const_context_t ctxt, void *ud, void *dst, uint64_t sz,
+                         uint64_t off, exr_stream_error_func_ptr_t ecb)
+{
+    const int *fd = ud;
+    uint64_t got = 0;
+    (void)ctxt;
+    (void)ecb;
+    while (got < sz) {
+        ssize_t n = pread(*fd, (char *)dst + got, sz - got, (off_t)(off + got));
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n <= 0)
+            break;
+        got += (uint64_t)n;
+    }
+    exr_ran_short |= got < sz;
+    return (int64_t)got;
+}
 
 /* The tiled map on r's pipe decoded whole, from the bytes r's window holds from offset 0
  * on (the header's) and the rest of the pipe: NULL with the error set, naming name. */
@@ -1092,6 +1114,7 @@ tex_rows_reader *tex_rows_open(int fd, const void *prefix, size_t prefix_len, co
     }
     r->cy = -1;
     r->first = 1;
+    r->file = -1;
     init.error_handler_fn = on_exr_error;
     init.flags = EXR_CONTEXT_FLAG_SILENT_HEADER_PARSE | EXR_CONTEXT_FLAG_DISABLE_CHUNK_RECONSTRUCTION;
     init.max_image_width = TEX_MAP_MAX_SIDE;
@@ -1101,6 +1124,13 @@ tex_rows_reader *tex_rows_open(int fd, const void *prefix, size_t prefix_len, co
             goto fail;
         init.user_data = &r->rs;
         init.read_fn = read_stream;
+        init.size_fn = size_unknown;
+    } else if ((r->file = open(path, O_RDONLY | O_CLOEXEC)) < 0) {
+        tex_error("%s: %s", name, strerror(errno));
+        goto fail;
+    } else {
+        init.user_data = &r->file;
+        init.read_fn = read_file;
         init.size_fn = size_unknown;
     }
     tex_error("unknown error");
@@ -1153,8 +1183,9 @@ int tex_rows_read(tex_rows_reader *r, int y, int n, float *rows, const char *nam
             exr_chunk_info_t ci;
             exr_result_t rv;
             int cy = k - k % r->lines;
+            exr_ran_short = 0; /* a leader read short: the data ended before it */
             if ((rv = exr_read_scanline_chunk_info(r->ctx, 0, r->dw.min.y + cy, &ci))) {
-                tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv));
+                chunk_error(rv, "scanline", cy);
                 rstream_limit_word(&r->rs);
                 tex_error_context(name);
                 return -1;
@@ -1181,6 +1212,8 @@ void tex_rows_close(tex_rows_reader *r)
         exr_finish(&r->ctx);
     }
     tex_map_free(r->chunk);
+    if (r->file >= 0)
+        close(r->file);
     if (r->rs.buf && r->rs.fd > 0) /* a pipe other than standard input */
         close(r->rs.fd);
     free(r->rs.buf);
