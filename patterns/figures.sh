@@ -98,7 +98,7 @@ figure orange_peel "Section 2.3.3: the orange peel, midpoint displacement with o
 '$here/orange_peel.sh' -o op -s $s >/dev/null
 t_convert op_render.exr -o fig.exr"
 figure photo_4.1 "Photo 4.1: A synthetic scene with the wood texture, modelled as section 4.5 does: the colour from concentric ellipses with perturbed edges and dark lines between them, a uniform brightness (a varnish of high specularity), and a roughness of randomly placed, nearly parallel line segments applied as a bump; a brick wall whose bricks vary in colour at random, and a vase of marble made as a solid texture. Top left, the same scene before texturing." "
-'$here/wood_plank.sh' -o wood -s 512 >/dev/null
+'$here/wood_plank.sh' -o wood -s $((2 * s)) >/dev/null
 # the grain along the table's length (x, the planar mapping's u), one plank across it
 t_xform --rotate 90 wood_colour.exr -o wood_u.exr
 t_xform --rotate 90 wood_roughness.exr -o grooves_u.exr

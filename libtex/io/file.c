@@ -52,6 +52,11 @@ const char *tex_format_name(enum tex_format f)
     return formats[f].name;
 }
 
+const char *tex_format_exts(enum tex_format f)
+{
+    return formats[f].exts;
+}
+
 enum tex_format tex_format_from_name(const char *path)
 {
     const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');

@@ -49,6 +49,8 @@ enum tex_format tex_format_sniff(const void *head, size_t n);
 /* The format of a file name from its extension; TEX_FMT_UNKNOWN if none. */
 enum tex_format tex_format_from_name(const char *path);
 const char *tex_format_name(enum tex_format f); /* "exr", "png", ... */
+/* Every extension that names the format, space-separated: " tif tiff ". */
+const char *tex_format_exts(enum tex_format f);
 
 struct tex_write_opts {
     int depth;                        /* 0, 8, 16 or 32 */

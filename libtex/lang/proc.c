@@ -8,7 +8,6 @@
 #include <string.h>
 
 #include "base/error.h"
-#include "base/nearest.h"
 #include "base/names.h"
 #include "io/file.h"
 #include "lang/expr.h"
@@ -444,6 +443,16 @@ static void named_arg(struct tex_expr_parser *xp, struct call *c)
     }
 }
 
+/* "unknown primitive or function 'nosie'; did you mean noise?", at e. */
+__attribute__((noreturn)) static void unknown_callee(struct tex_lexer *lx,
+                                                    const struct tex_enode *e, const char *name)
+{
+    char near[64], hint[96] = "";
+    if (tex_primitive_nearest(name, near, sizeof near))
+        snprintf(hint, sizeof hint, "; did you mean %s?", near);
+    tex_lex_fail(lx, e->line, e->col, "unknown primitive or function '%s'%s", name, hint);
+}
+
 /* NAME(coordinates, name = value, ...) at the current token. */
 static struct tex_enode *call(struct tex_expr_parser *xp)
 {
@@ -459,16 +468,8 @@ static struct tex_enode *call(struct tex_expr_parser *xp)
     name_of(lx, name, "a primitive");
     if (!strcmp(name, p->name))
         tex_lex_fail(lx, e->line, e->col, "recursive definition: '%s' calls itself", name);
-    if (!(callee = tex_procs_find(rd->set, name))) {
-        struct tex_nearest nr;
-        char hint[96] = "";
-        tex_nearest_init(&nr, name);
-        for (int i = 0; tex_primitives[i]; i++)
-            tex_nearest_try(&nr, tex_primitives[i]->name, strlen(tex_primitives[i]->name));
-        if (tex_nearest_name(&nr))
-            snprintf(hint, sizeof hint, "; did you mean %s?", tex_nearest_name(&nr));
-        tex_lex_fail(lx, e->line, e->col, "unknown primitive or function '%s'%s", name, hint);
-    }
+    if (!(callee = tex_procs_find(rd->set, name)))
+        unknown_callee(lx, e, name);
     if (!callee->eval2 && !callee->eval3)
         tex_lex_fail(lx, e->line, e->col, "%s is made on a whole grid: it has no value at a "
                      "point to compose", name);

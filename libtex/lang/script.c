@@ -1036,11 +1036,9 @@ static void parse_layout(struct S *s)
         fail_at(s, s->lx.t.line, s->lx.t.col, "unexpected %s after 'end tessellation;'", tok_desc(s));
 }
 
-/* The extensions a bare name may stand for, in the order they are tried. */
-static const char image_exts[] = "exr png tif tiff pnm ppm pgm pbm pfm pam jpg jpeg hdr bmp tga dpx gif webp";
-
 /* The file a bare name stands for, as the thesis's maps were named (leo): the name
- * itself, or with the first of image_exts that exists; NULL if none does. */
+ * itself, or with the first extension of a format Textura reads (io/file.h's order)
+ * that exists; NULL if none does. */
 static char *image_file(struct S *s, const char *name)
 {
     struct stat st;
@@ -1048,13 +1046,16 @@ static char *image_file(struct S *s, const char *name)
     char *path = arena(s, n + 8);
 
     memcpy(path, name, n + 1);
-    for (const char *e = image_exts;; e += strcspn(e, " ") + (e[strcspn(e, " ")] == ' ')) {
-        if (stat(path, &st) == 0 && S_ISREG(st.st_mode))
-            return path;
-        if (!*e)
-            return NULL;
-        snprintf(path + n, 8, ".%.*s", (int)strcspn(e, " "), e);
-    }
+    if (stat(path, &st) == 0 && S_ISREG(st.st_mode))
+        return path;
+    for (int f = TEX_FMT_EXR; f <= TEX_FMT_PBM; f++)
+        for (const char *e = tex_format_exts((enum tex_format)f); *(e += strspn(e, " "));
+             e += strcspn(e, " ")) {
+            snprintf(path + n, 8, ".%.*s", (int)strcspn(e, " "), e);
+            if (stat(path, &st) == 0 && S_ISREG(st.st_mode))
+                return path;
+        }
+    return NULL;
 }
 
 /* Every name used must be defined somewhere, or be the bare name of an image file:

@@ -102,20 +102,12 @@ static inline float bit(float x, float t)
     return x >= t ? 1.0f : 0.0f;
 }
 
-tex_map *tex_op_apply(enum tex_op op, const struct tex_operand *a, const struct tex_operand *b,
-                      const struct tex_operand *w, double t)
+/* The map whose size the nops operands share, and their channels into *nc: NULL with a
+ * usage error when one is missing, sizes differ, none is a map or channels do not combine. */
+static const tex_map *operands_size(enum tex_op op, const struct tex_operand *const *ops,
+                                    int nops, int *nc)
 {
-    const struct tex_operand *ops[3] = {a, b, w};
     const tex_map *size = NULL;
-    int nops = tex_op_arity(op), nc;
-    float ft = (float)t;
-    tex_map *r;
-    size_t n;
-
-    if (op < 0 || op >= TEX_OP_COUNT)
-        return tex_usage_error("unknown operator"), NULL;
-    if (op == TEX_OP_THRESHOLD && b)
-        nops = 2;
     for (int k = 0; k < nops; k++) {
         if (!ops[k])
             return tex_usage_error("%s needs %d operands", op_names[op], nops), NULL;
@@ -130,10 +122,30 @@ tex_map *tex_op_apply(enum tex_op op, const struct tex_operand *a, const struct 
     }
     if (!size)
         return tex_usage_error("%s: at least one operand must be a map", op_names[op]), NULL;
-    if ((nc = combine_nc(ops, nops)) < 0)
+    if ((*nc = combine_nc(ops, nops)) < 0)
         return tex_usage_error("%s: operands of %d, %d%s channels do not combine (1 broadcasts, "
-                               "3 meets 4 as opaque)", op_names[op], operand_nc(a),
-                               nops > 1 ? operand_nc(b) : 0, nops > 2 ? " and more" : ""), NULL;
+                               "3 meets 4 as opaque)", op_names[op], operand_nc(ops[0]),
+                               nops > 1 ? operand_nc(ops[1]) : 0, nops > 2 ? " and more" : ""),
+               NULL;
+    return size;
+}
+
+tex_map *tex_op_apply(enum tex_op op, const struct tex_operand *a, const struct tex_operand *b,
+                      const struct tex_operand *w, double t)
+{
+    const struct tex_operand *ops[3] = {a, b, w};
+    const tex_map *size;
+    int nops = tex_op_arity(op), nc;
+    float ft = (float)t;
+    tex_map *r;
+    size_t n;
+
+    if (op < 0 || op >= TEX_OP_COUNT)
+        return tex_usage_error("unknown operator"), NULL;
+    if (op == TEX_OP_THRESHOLD && b)
+        nops = 2;
+    if (!(size = operands_size(op, ops, nops, &nc)))
+        return NULL;
     if (!(r = tex_map_new(size->w, size->h, nc)))
         return NULL;
     if (a->map && a->map->history && tex_map_set_history(r, a->map->history) < 0) {

@@ -14,26 +14,34 @@ const struct tex_primitive *const tex_primitives[] = {
 #undef TEX_PRIMITIVE
     NULL};
 
+const char *tex_primitive_nearest(const char *name, char *buf, size_t n)
+{
+    struct tex_nearest nr;
+    tex_nearest_init(&nr, name);
+    for (int i = 0; tex_primitives[i]; i++)
+        tex_nearest_try(&nr, tex_primitives[i]->name, strlen(tex_primitives[i]->name));
+    if (!tex_nearest_name(&nr))
+        return NULL;
+    snprintf(buf, n, "%s", tex_nearest_name(&nr));
+    return buf;
+}
+
 const struct tex_primitive *tex_primitive_find(const char *name)
 {
-    char known[1024];
+    char known[1024], near[64];
     size_t n = 0;
 
     for (int i = 0; tex_primitives[i]; i++)
         if (strcmp(tex_primitives[i]->name, name) == 0)
             return tex_primitives[i];
-    struct tex_nearest nr;
-    char near[96] = "";
     known[0] = '\0';
-    tex_nearest_init(&nr, name);
-    for (int i = 0; tex_primitives[i] && n < sizeof known; i++) {
+    for (int i = 0; tex_primitives[i] && n < sizeof known; i++)
         n += (size_t)snprintf(known + n, sizeof known - n, "%s%s", i ? ", " : "",
                               tex_primitives[i]->name);
-        tex_nearest_try(&nr, tex_primitives[i]->name, strlen(tex_primitives[i]->name));
-    }
-    if (tex_nearest_name(&nr))
-        snprintf(near, sizeof near, "did you mean %s? ", tex_nearest_name(&nr));
-    tex_usage_error("unknown primitive '%s' (%sknown: %s)", name, near, known);
+    if (tex_primitive_nearest(name, near, sizeof near))
+        tex_usage_error("unknown primitive '%s' (did you mean %s? known: %s)", name, near, known);
+    else
+        tex_usage_error("unknown primitive '%s' (known: %s)", name, known);
     return NULL;
 }
 

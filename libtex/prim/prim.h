@@ -159,6 +159,8 @@ struct tex_primitive {
 extern const struct tex_primitive *const tex_primitives[];
 /* The primitive called name; NULL with a usage error listing the known ones. */
 const struct tex_primitive *tex_primitive_find(const char *name);
+/* The registered primitive's name nearest to a mistyped one, into buf; NULL if none is near. */
+const char *tex_primitive_nearest(const char *name, char *buf, size_t n);
 
 /* A field with the primitive's defaults; NULL on allocation failure. */
 struct tex_field *tex_field_new(const struct tex_primitive *p);

@@ -23,7 +23,12 @@ awk '{ p = $0; sub(/^.*\] */, "", p); sub(/%.*/, "", p); if (p + 0 < last) bad =
     notok "one bar: its percentage only grows" "$(tr '\n' ' ' <"$T/bars" | head -c 300)"
 first=$(head -1 "$T/bars" | sed 's/^.*\] *//; s/%.*//')
 [ "${first:-100}" = 0 ] && ok "the bar starts at 0%" || notok "the bar starts at 0%" "$first%"
-# -q, and a standard error that is not a terminal: no bar.
+# -q, and a standard error that is not a terminal: no bar.  The bar is drawn from the
+# start, so a small render shows it as well as a long one.
+job="t_apply $top/patterns/still_life.scene -s 96x72 --spp 1 -o $T/r.png < $T/n.exr"
+script -qec "$job" /dev/null >"$T/small.out" 2>&1
+grep -aq 't_apply: \[' "$T/small.out" && ok "a small render on a terminal draws the bar too" ||
+    notok "a small render draws the bar" "$(cat -v "$T/small.out" | head -c 200)"
 script -qec "$job -q" /dev/null >"$T/q.out" 2>&1
 grep -aq '%' "$T/q.out" && notok "-q draws no bar" "$(head -c 200 "$T/q.out")" || ok "-q draws no bar"
 eval "$job" 2>"$T/err.out"

@@ -55,4 +55,5 @@ check_fails "a satin of 6 shafts" 2 t_weave --weave satin --shafts 6 -o "$T/x.ex
 check_fails "2 shafts" 2 t_weave --weave twill --shafts 2 -o "$T/x.exr"
 check_fails "a colour by name" 2 t_weave --warp-colours red -o "$T/x.exr"
 check_fails "an empty colour list" 2 t_weave --weft-colours '' -o "$T/x.exr"
+check_fails "65 colours" 2 t_weave --warp-colours "$(printf '#102030,%.0s' $(seq 64))#405060" -o "$T/x.exr"
 check "nothing written" test ! -e "$T/x.exr"
