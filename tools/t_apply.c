@@ -71,14 +71,8 @@ static int wants_srgb(const struct tex_common *c, const struct opts *o)
 {
     if (o->linear || tex_cli_depth(c) == 32)
         return 0;
-    enum tex_format f = c->output && strcmp(c->output, "-")
-                            ? tex_format_from_name(c->output)
-                            : c->format ? tex_format_from_name(c->format) : TEX_FMT_EXR;
-    if (f == TEX_FMT_UNKNOWN && c->format && !(c->output && strcmp(c->output, "-"))) {
-        char name[64];
-        snprintf(name, sizeof name, "x.%s", c->format);
-        f = tex_format_from_name(name);
-    }
+    const char *file;
+    enum tex_format f = tex_output_format(c->output, c->format, &file);
     return !(f == TEX_FMT_EXR || f == TEX_FMT_PFM || f == TEX_FMT_HDR);
 }
 
@@ -258,7 +252,7 @@ int main(int argc, char **argv)
         list_materials(i < argc ? argv[i] : NULL);
     if (i >= argc)
         tex_usage_die("missing operand (usage: %s [options] %s)", tool.name, tool.operands);
-    if (tex_map_write_check(c.output) < 0)
+    if (tex_map_write_check(c.output, c.format) < 0)
         tex_die(); /* now, not after the render */
     /* options first: a usage error must not leave the scene allocated (LSan) */
     int w = 0, h = 0;

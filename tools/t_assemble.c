@@ -21,18 +21,18 @@ int main(int argc, char **argv)
         tex_usage_die("--mipmap needs the whole map in memory: assemble, then t_convert "
                       "--mipmap");
 
-    if (c.output && strcmp(c.output, "-") != 0) {
-        if (tex_format_from_name(c.output) != TEX_FMT_EXR)
-            tex_usage_die("%s: assembled maps are written as EXR (.exr)", c.output);
-        if (tex_map_write_check(c.output) < 0 || tex_out_open(&out, c.output) < 0) {
+    const char *file;
+    enum tex_format f = tex_output_format(c.output, c.format, &file);
+    if (f == TEX_FMT_UNKNOWN || tex_map_write_check(c.output, c.format) < 0)
+        tex_die();
+    if (f != TEX_FMT_EXR)
+        tex_usage_die("%s: assembled maps are written as EXR", c.format ? c.format : c.output);
+    if (file) {
+        if (tex_out_open(&out, file) < 0) {
             tex_out_close(&out, -1);
             tex_die();
         }
-        name = c.output;
-    } else if (c.format && strcmp(c.format, "exr") != 0) {
-        tex_usage_die("--format %s: assembled maps are written as EXR", c.format);
-    } else if (tex_map_write_check(NULL) < 0) {
-        tex_die();
+        name = file;
     }
     r = tex_assemble((const char *const *)argv + i, argc - i, out.fd, name,
                      c.exr_tiles ? TEX_EXR_TILE : 0, (enum tex_compression)c.compression,

@@ -14,16 +14,17 @@ static const struct tex_param rows[] = {
     TEX_FLAG(struct opts, json, 0, "print JSON instead of text"),
     TEX_ENUM(struct opts, preview, 0, "none", "none|auto|sixel|kitty",
              "draw a thumbnail (at most 256 pixels a side) in the terminal instead: sixel or "
-             "the kitty graphics protocol, auto picks from the environment"),
+             "the kitty graphics protocol, auto picks from the environment",
+             .bare = "auto"),
     TEX_FLAG(struct opts, primitives, 0,
              "list every primitive (the tool t_NAME, the scene word NAME) with its summary, and "
              "exit"),
     {0}};
 
 static const struct tex_tool tool = {
-    "t_info", "[MAP]", "print the size, channels, per-channel statistics, subregions and history "
-                       "of a texture map",
-    0, rows, 0, 1};
+    "t_info", "[MAP...]", "print the size, channels, per-channel statistics, subregions and "
+                          "history of each texture map",
+    0, rows, 0, -1};
 
 static const char *const chname[4][4] = {{"Y"}, {"R", "G"}, {"R", "G", "B"}, {"R", "G", "B", "A"}};
 
@@ -49,22 +50,26 @@ static int stdout_flushed(void)
     return 0;
 }
 
-/* The thumbnail: at most 256 pixels a side, area-filtered */
-static void preview(tex_map *m, int how)
+/* The thumbnail of the map at path: at most 256 pixels a side, area-filtered */
+static int preview(const char *path, int how)
 {
+    tex_map *m = tex_map_read(path);
+    if (!m)
+        return -1;
     int tw = m->w, th = m->h, side = m->w > m->h ? m->w : m->h;
     if (side > 256) {
         tw = (int)((long)m->w * 256 / side), th = (int)((long)m->h * 256 / side);
         tw = tw > 0 ? tw : 1, th = th > 0 ? th : 1;
     }
     tex_map *t = tw == m->w && th == m->h ? m : tex_resize(m, tw, th);
-    if (!t || tex_terminal_write(stdout, t, how == 1   ? tex_terminal_guess()
-                                            : how == 2 ? TEX_TERMINAL_SIXEL
-                                                       : TEX_TERMINAL_KITTY) < 0)
-        tex_die();
-    if (t != m)
+    int r = !t ? -1
+               : tex_terminal_write(stdout, t, how == 1   ? tex_terminal_guess()
+                                               : how == 2 ? TEX_TERMINAL_SIXEL
+                                                          : TEX_TERMINAL_KITTY);
+    if (t && t != m)
         tex_map_free(t);
     tex_map_free(m);
+    return r;
 }
 
 /* Whether channel statistics s of map m found no finite sample (its figures are 0s then) */
@@ -74,7 +79,7 @@ static int none_finite(const tex_map *m, const struct tex_stats *s)
 }
 
 /* The statistics of a stream's rows into st, as they pass a band of about 1 MiB at a time */
-static void gather_rows(tex_rows_reader *r, const char *name, const tex_map *head,
+static int gather_rows(tex_rows_reader *r, const char *name, const tex_map *head,
                         struct tex_stats *st)
 {
     struct tex_stats_acc a[4];
@@ -82,27 +87,29 @@ static void gather_rows(tex_rows_reader *r, const char *name, const tex_map *hea
     rows = rows < 1 ? 1 : rows > head->h ? head->h : rows;
     float *band = malloc((size_t)rows * head->w * head->nc * sizeof *band);
 
-    if (!band) {
-        tex_error("out of memory");
-        tex_die();
-    }
+    if (!band)
+        return tex_error("out of memory");
     for (int k = 0; k < head->nc; k++)
         tex_stats_begin(&a[k]);
     for (int y = 0; y < head->h; y += rows) {
         int n = head->h - y < rows ? head->h - y : rows;
-        if (tex_rows_read(r, y, n, band, name) < 0)
-            tex_die();
+        if (tex_rows_read(r, y, n, band, name) < 0) {
+            free(band);
+            return -1;
+        }
         for (int k = 0; k < head->nc; k++)
             tex_stats_add(&a[k], band + k, (size_t)head->w, (size_t)n, head->nc);
     }
     for (int k = 0; k < head->nc; k++)
         tex_stats_end(&a[k], &st[k]);
     free(band);
+    return 0;
 }
 
 /* The map's header into head and its statistics into st: from a scanline EXR (a pipe or a
  * file) a band of rows at a time as they pass, from anything else (another format, a tiled
- * EXR) the whole map.  The input limit holds either way (tex_map_open_rows). */
+ * EXR) the whole map.  The input limit holds either way (tex_map_open_rows).  NULL with
+ * the error set. */
 static tex_map *gather(const char *path, tex_map *head, struct tex_stats *st)
 {
     const char *name = strcmp(path, "-") ? path : "standard input";
@@ -110,11 +117,11 @@ static tex_map *gather(const char *path, tex_map *head, struct tex_stats *st)
     tex_rows_reader *r = tex_map_open_rows(path, head, &whole);
 
     if (!r && !whole)
-        tex_die();
+        return NULL;
     if (r) {
-        gather_rows(r, name, head, st);
+        int ok = gather_rows(r, name, head, st);
         tex_rows_close(r);
-        return head;
+        return ok < 0 ? NULL : head;
     }
     for (int k = 0; k < whole->nc; k++)
         tex_map_stats(whole, k, &st[k]);
@@ -125,32 +132,21 @@ static tex_map *gather(const char *path, tex_map *head, struct tex_stats *st)
     return head;
 }
 
-int main(int argc, char **argv)
+/* The report of the map at path, as text or JSON (sep: what comes before a JSON object);
+ * -1 with the error set. */
+static int describe(const char *path, const struct opts *o, const char *sep)
 {
-    struct tex_common c;
-    struct opts o;
-    int i = tex_cli_parse(&tool, argc, argv, &c, &o);
-    if (o.primitives) { /* from the registry: a new primitive is listed by itself */
-        for (const struct tex_primitive *const *p = tex_primitives; *p; p++)
-            printf("%-14s %s\n", (*p)->name, (*p)->summary);
-        free(c.cmdline);
-        return stdout_flushed();
-    }
-    const char *name = i < argc ? argv[i] : "-";
-    tex_map_set_nonfinite(TEX_NONFINITE_KEEP, 0); /* it counts them */
     tex_map head, *m;
     struct tex_stats st[4];
 
-    if (o.preview) {
-        preview(tex_cli_read(name), o.preview);
-        free(c.cmdline);
-        return stdout_flushed();
-    }
-    m = gather(name, &head, st);
-
-    if (o.json) {
-        printf("{\"width\": %d, \"height\": %d, \"channels\": %d, \"subregions\": %d,\n", m->w, m->h,
-               m->nc, m->subregions);
+    if (!(m = gather(path, &head, st)))
+        return -1;
+    if (o->json) {
+        fputs(sep, stdout);
+        printf("{\"file\": ");
+        json_string(strcmp(path, "-") ? path : "-");
+        printf(", \"width\": %d, \"height\": %d, \"channels\": %d, \"subregions\": %d,\n", m->w,
+               m->h, m->nc, m->subregions);
         printf(" \"stats\": [");
         for (int k = 0; k < m->nc; k++) {
             char f[4][32]; /* null where no sample is finite: there are no figures */
@@ -164,9 +160,9 @@ int main(int argc, char **argv)
         }
         printf("],\n \"history\": ");
         json_string(m->history ? m->history : "");
-        printf("}\n");
+        printf("}");
     } else {
-        printf("%s: %dx%d, %d channel%s", strcmp(name, "-") ? name : "standard input", m->w, m->h,
+        printf("%s: %dx%d, %d channel%s", strcmp(path, "-") ? path : "standard input", m->w, m->h,
                m->nc, m->nc > 1 ? "s" : "");
         if (m->subregions)
             printf(", %d subregions", m->subregions);
@@ -196,6 +192,40 @@ int main(int argc, char **argv)
         }
     }
     free(m->history);
+    return 0;
+}
+
+int main(int argc, char **argv)
+{
+    struct tex_common c;
+    struct opts o;
+    int i = tex_cli_parse(&tool, argc, argv, &c, &o), status = 0, n = 0;
+    if (o.primitives) { /* from the registry: a new primitive is listed by itself */
+        for (const struct tex_primitive *const *p = tex_primitives; *p; p++)
+            printf("%-14s %s\n", (*p)->name, (*p)->summary);
+        free(c.cmdline);
+        return stdout_flushed();
+    }
+    char *stdin_only[] = {"-", NULL};
+    char **names = i < argc ? argv + i : stdin_only;
+    int several = argc - i > 1;
+    tex_map_set_nonfinite(TEX_NONFINITE_KEEP, 0); /* it counts them */
+    if (o.json && several)
+        putchar('[');
+    for (; *names; names++) { /* each map reported, a failing one in a line of its own */
+        int r = o.preview ? preview(*names, o.preview)
+                          : describe(*names, &o, o.json && n ? ",\n" : "");
+        if (r < 0) {
+            r = tex_report();
+            status = status > r ? status : r;
+        } else {
+            n++;
+        }
+        fflush(stdout);
+    }
+    if (o.json && (several || n))
+        fputs(several ? "]\n" : "\n", stdout);
     free(c.cmdline);
-    return stdout_flushed();
+    stdout_flushed();
+    return status;
 }

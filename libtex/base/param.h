@@ -81,6 +81,8 @@ struct tex_param {
     const char *alias;  /* another long name, documented: the thesis's letter ("h" for hurst) */
     const char *old;    /* deprecated names, still taken with a warning: "-d width" */
     tex_param_read *read; /* SPECIAL: parses the row's value */
+    const char *bare;   /* ENUM: the value of the option given alone, as GNU's --color; the
+                         * next word is its value only when it is one of the choices */
 };
 
 /* How messages name a parameter: as an option ("--major-radius") or as the

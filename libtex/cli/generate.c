@@ -116,7 +116,7 @@ int tex_generate_main_rows(const struct tex_primitive *p, const char *name,
     tex_cli_parse(&t, argc, argv, &c, opts ? opts : f->params);
     if (opts)
         memcpy(f->params, opts, p->params_size);
-    if (tex_map_write_check(c.output) < 0)
+    if (tex_map_write_check(c.output, c.format) < 0)
         tex_die(); /* now, not after the work */
     f->seed = (uint64_t)c.seed;
     f->tile = c.tile;

@@ -21,13 +21,16 @@ void tex_cli_help(FILE *fp, const struct tex_tool *t, const struct tex_cli_opt *
         tex_param_option(p, opt, sizeof opt);
         snprintf(lhs, sizeof lhs, "%c%c%s%s%s%s %s", p->key ? '-' : ' ', p->key ? p->key : ' ',
                  p->key ? ", " : "  ", opt, p->alias ? ", --" : "", p->alias ? p->alias : "",
-                 p->type == TEX_P_FLAG ? "" : p->type == TEX_P_ENUM ? "NAME" : p->meta ? p->meta : "X");
+                 p->type == TEX_P_FLAG ? "" : p->bare ? "[NAME]" : p->type == TEX_P_ENUM ? "NAME"
+                 : p->meta ? p->meta : "X");
         fprintf(fp, "  %-28s %s", lhs, p->help);
         tex_param_range(p, rng, sizeof rng);
         if (p->type != TEX_P_FLAG && p->type != TEX_P_STRING)
             fprintf(fp, " [%s]", rng);
         if (p->type != TEX_P_FLAG && (p->type != TEX_P_STRING || p->defstr))
             fprintf(fp, " (default %s)", tex_param_default(p, def, sizeof def));
+        if (p->bare)
+            fprintf(fp, " (alone: %s)", p->bare);
         fputc('\n', fp);
     }
     fprintf(fp, "  -h, --help                   show this help\n"
@@ -44,7 +47,7 @@ static void synopsis_option(FILE *fp, const struct tex_param *p)
     else
         fprintf(fp, ".Op Fl %s", opt + 1);
     if (p->type == TEX_P_ENUM && strlen(p->choices) <= 32)
-        fprintf(fp, " Cm %s", p->choices);
+        fprintf(fp, p->bare ? " Op Cm %s" : " Cm %s", p->choices);
     else if (p->type != TEX_P_FLAG)
         fprintf(fp, " Ar %s", p->type == TEX_P_ENUM ? "name" : p->meta ? p->meta : "x");
     fputc('\n', fp);
@@ -102,11 +105,17 @@ void tex_cli_synopsis(FILE *fp, const struct tex_tool *t, const struct tex_cli_o
 }
 
 /* The option list as mdoc, for the man page (checked by the tests). */
-void tex_cli_mdoc(FILE *fp, const struct tex_cli_opt *o, int n)
+void tex_cli_mdoc(FILE *fp, const struct tex_tool *t, const struct tex_cli_opt *o, int n)
 {
+    int shared = 0;
+
     fputs(".Bl -tag -width Ds\n", fp);
     for (int i = 0; i < n; i++) {
         const struct tex_param *p = o[i].row;
+        if (t && !own_row(t, p)) {
+            shared++;
+            continue;
+        }
         char opt[64], rng[128], def[64];
         tex_param_option(p, opt, sizeof opt);
         fprintf(fp, ".It ");
@@ -116,7 +125,8 @@ void tex_cli_mdoc(FILE *fp, const struct tex_cli_opt *o, int n)
         if (p->alias)
             fprintf(fp, " , Fl -%s", p->alias);
         if (p->type != TEX_P_FLAG)
-            fprintf(fp, " Ar %s", p->type == TEX_P_ENUM ? "name" : p->meta ? p->meta : "x");
+            fprintf(fp, p->bare ? " Op Ar %s" : " Ar %s",
+                    p->type == TEX_P_ENUM ? "name" : p->meta ? p->meta : "x");
         fprintf(fp, "\n%c%s",
                 p->help[0] >= 'a' && p->help[0] <= 'z' ? p->help[0] - 32 : p->help[0],
                 p->help + 1);
@@ -126,7 +136,25 @@ void tex_cli_mdoc(FILE *fp, const struct tex_cli_opt *o, int n)
             fprintf(fp, ", %s", tex_param_range(p, rng, sizeof rng));
         if (p->type != TEX_P_FLAG && (p->type != TEX_P_STRING || p->defstr))
             fprintf(fp, "; default %s", tex_param_default(p, def, sizeof def));
+        if (p->bare)
+            fprintf(fp, "; given alone, %s", p->bare);
         fputs(".\n", fp);
+    }
+    if (shared) { /* documented once, in textura(5) */
+        fputs(".It Xo\n", fp);
+        for (int i = 0, k = 0; i < n; i++) {
+            const struct tex_param *p = o[i].row;
+            char opt[64];
+            if (own_row(t, p))
+                continue;
+            tex_param_option(p, opt, sizeof opt);
+            if (p->key)
+                fprintf(fp, ".Fl %c%s\n", p->key, ++k < shared ? " ," : "");
+            else
+                fprintf(fp, ".Fl %s%s\n", opt + 1, ++k < shared ? " ," : "");
+        }
+        fputs(".Xc\nThe options this tool shares with others, described once in\n"
+              ".Xr textura 5 ,\nCOMMON OPTIONS.\n", fp);
     }
     fputs(".El\n", fp);
 }

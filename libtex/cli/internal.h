@@ -23,8 +23,10 @@ struct tex_cli_opt {
 void tex_cli_help(FILE *fp, const struct tex_tool *t, const struct tex_cli_opt *o, int n);
 /* --help-synopsis: the SYNOPSIS as mdoc, every option and the operands (tests/mkman). */
 void tex_cli_synopsis(FILE *fp, const struct tex_tool *t, const struct tex_cli_opt *o, int n);
-/* --help-mdoc: the option list as mdoc, for the man page (tests/mkman). */
-void tex_cli_mdoc(FILE *fp, const struct tex_cli_opt *o, int n);
+/* --help-mdoc: the option list as mdoc, for the man page (tests/mkman): t's own options
+ * in full, then one item naming the shared ones, which textura(5) describes once
+ * (--help-common-mdoc: every row in full, t NULL). */
+void tex_cli_mdoc(FILE *fp, const struct tex_tool *t, const struct tex_cli_opt *o, int n);
 
 /* "prog: warning: msg" on a line of its own: the warning handler (error.h). */
 void tex_cli_warning(const char *msg);

@@ -197,7 +197,7 @@ static void stream_window(const char *path, const struct tex_common *c, int marg
     tex_map head, *whole = NULL;
     tex_rows_reader *r = NULL;
 
-    if (tex_map_write_check(c->output) < 0)
+    if (tex_map_write_check(c->output, c->format) < 0)
         tex_die();
     if (tex_cli_takes_rows(c)) {
         r = tex_map_open_rows(path, &head, &whole);
@@ -251,10 +251,10 @@ static tex_map *pixel_band(tex_map *band, const struct tex_band *b, void *arg)
 
 int tex_cli_streams(const struct tex_common *c)
 {
-    if (c->exr_tiles || c->mipmap || (c->format && strcmp(c->format, "exr") != 0))
-        return 0;
-    return !c->output || !strcmp(c->output, "-") ||
-           tex_format_from_name(c->output) == TEX_FMT_EXR;
+    const char *file;
+
+    return !c->exr_tiles && !c->mipmap &&
+           tex_output_format(c->output, c->format, &file) == TEX_FMT_EXR;
 }
 
 int tex_cli_takes_rows(const struct tex_common *c)

@@ -46,6 +46,13 @@ void tex_die(void)
     exit(tex_errkind() == TEX_ERR_USAGE ? 2 : 1);
 }
 
+int tex_report(void)
+{
+    end_bar();
+    fprintf(stderr, "%s: error: %s\n", tex_progname, tex_errmsg());
+    return tex_errkind() == TEX_ERR_USAGE ? 2 : 1;
+}
+
 void tex_usage_die(const char *fmt, ...)
 {
     va_list ap;

@@ -25,6 +25,9 @@ extern const char *tex_progname;
 
 /* Print "prog: error: <tex_errmsg()>" and exit with its kind's status. */
 void tex_die(void) __attribute__((noreturn));
+/* Print "prog: error: <tex_errmsg()>" and go on, for a tool that reports each of
+ * several operands as identify does; returns the status it would have exited with. */
+int tex_report(void);
 /* Print "prog: error: ..." and exit 2 (usage). */
 void tex_usage_die(const char *fmt, ...) __attribute__((noreturn, format(printf, 1, 2)));
 

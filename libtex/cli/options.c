@@ -24,15 +24,17 @@ static const struct {
     struct tex_param row;
 } common_rows[] = {
     {TEX_OPT_OUTPUT, TEX_STRING(struct tex_common, output, 'o', NULL, "FILE",
-                                "write to FILE, its format from the extension (default: the EXR "
-                                "stream on standard output)")},
+                                "write to FILE, its format from a FMT: prefix (png:-), --format "
+                                "or the extension; a stream without one gets EXR (default: "
+                                "standard output)")},
     {TEX_OPT_OUTPUT, TEX_ROW_ENUM("depth", struct tex_common, depth_choice, "auto", "auto|8|16|32",
                                   "bits per sample of integer formats, or 32 for float")},
     {TEX_OPT_OUTPUT,
      TEX_ROW_ENUM("compression", struct tex_common, compression, "zip", "none|zip|piz",
                   "compression of EXR files on disk (the stream is never compressed)")},
     {TEX_OPT_OUTPUT, TEX_STRING(struct tex_common, format, 0, NULL, "EXT",
-                                "format of standard output, e.g. png (default: exr)")},
+                                "the output's format, as an extension names it, e.g. png "
+                                "(default: -o's extension, else exr)")},
     {TEX_OPT_OUTPUT, TEX_FLAG(struct tex_common, exr_tiles, 0,
                               "write the EXR in 64 x 64 tiles instead of scanlines")},
     {TEX_OPT_OUTPUT, TEX_FLAG(struct tex_common, mipmap, 0,
@@ -147,7 +149,7 @@ struct lname {
     char text[48]; /* without the dashes */
 };
 struct tables {
-    struct option lo[MAXNAMES + 6]; /* and --help, --version, --help-mdoc, --help-options,
+    struct option lo[MAXNAMES + 7]; /* and --help, --version, --help-mdoc, --help-options,
                                       * --help-synopsis, 0 */
     struct lname names[MAXNAMES];
     int nnames;
@@ -178,7 +180,9 @@ static void add_name(struct tables *tb, const struct tex_cli_opt *o, int i, cons
     *ln = (struct lname){i, old, ""};
     snprintf(ln->text, sizeof ln->text, "%s", text);
     tb->lo[tb->nnames] = (struct option){ln->text,
-                                         p->type == TEX_P_FLAG ? no_argument : required_argument,
+                                         p->type == TEX_P_FLAG ? no_argument
+                                         : p->bare             ? optional_argument
+                                                               : required_argument,
                                          NULL, 256 + tb->nnames};
     tb->nnames++;
 }
@@ -248,7 +252,8 @@ static void getopt_tables(const struct tex_cli_opt *o, int n, struct tables *tb)
     tb->lo[tb->nnames + 2] = (struct option){"help-mdoc", no_argument, NULL, 3};
     tb->lo[tb->nnames + 3] = (struct option){"help-options", no_argument, NULL, 2};
     tb->lo[tb->nnames + 4] = (struct option){"help-synopsis", no_argument, NULL, 4};
-    tb->lo[tb->nnames + 5] = (struct option){0};
+    tb->lo[tb->nnames + 5] = (struct option){"help-common-mdoc", no_argument, NULL, 5};
+    tb->lo[tb->nnames + 6] = (struct option){0};
 }
 
 /* Every name the tool takes, one a line: NAME, the row's option, how the name
@@ -370,8 +375,18 @@ static void unknown_long(const struct tex_tool *t, const char *bad, const struct
 
 /* One option k from getopt_long: help, version and the lists print and exit, an
  * unknown option or a missing or bad value is a usage error. */
-static void take_option(const struct tex_tool *t, int k, char **argv, const struct tex_cli_opt *o, int n,
-                        const struct tables *tb)
+/* Whether word is one of choices ("a|b|c") */
+static int is_choice(const char *choices, const char *word)
+{
+    size_t len = strlen(word);
+    for (const char *c = choices; *c; c += strcspn(c, "|"), c += *c == '|')
+        if (strcspn(c, "|") == len && !strncmp(c, word, len))
+            return 1;
+    return 0;
+}
+
+static void take_option(const struct tex_tool *t, int k, int argc, char **argv,
+                        const struct tex_cli_opt *o, int n, const struct tables *tb)
 {
     int i = -1, old = 0;
 
@@ -382,7 +397,13 @@ static void take_option(const struct tex_tool *t, int k, char **argv, const stru
         printf("%s (Textura) %s\n", t->name, TEX_VERSION);
         exit(0);
     } else if (k == 3) {
-        tex_cli_mdoc(stdout, o, n);
+        tex_cli_mdoc(stdout, t, o, n);
+        exit(0);
+    } else if (k == 5) { /* every tool's shared options, for textura(5) */
+        struct tex_cli_opt all[NCOMMON];
+        for (size_t j = 0; j < NCOMMON; j++)
+            all[j] = (struct tex_cli_opt){&common_rows[j].row, NULL};
+        tex_cli_mdoc(stdout, NULL, all, (int)NCOMMON);
         exit(0);
     } else if (k == 4) {
         tex_cli_synopsis(stdout, t, o, n);
@@ -400,6 +421,9 @@ static void take_option(const struct tex_tool *t, int k, char **argv, const stru
         tex_usage_die("%s %s (see %s --help)", k == ':' ? "missing value for" : "unknown option",
                       bad, t->name);
     } else if (k >= 256) {
+        const struct tex_param *row = o[tb->names[k - 256].opt].row;
+        if (!optarg && row->bare && optind < argc && is_choice(row->choices, argv[optind]))
+            optarg = argv[optind++]; /* "--preview sixel": the next word is a choice */
         /* the word as typed: before its value when that came as the next word */
         const char *w = argv[optind - (optarg && optarg == argv[optind - 1] ? 2 : 1)];
         size_t len = strcspn(w + 2, "=");
@@ -412,7 +436,8 @@ static void take_option(const struct tex_tool *t, int k, char **argv, const stru
         i = tb->short_opt[k];
         old = tb->short_old[k];
     }
-    if (i < 0 || tex_param_set(o[i].row, o[i].obj, optarg ? optarg : "") < 0)
+    if (i < 0 || tex_param_set(o[i].row, o[i].obj,
+                               optarg ? optarg : o[i].row->bare ? o[i].row->bare : "") < 0)
         tex_die();
     if (ngiven < MAXOPTS) {
         given[ngiven].row = o[i].row;
@@ -461,13 +486,15 @@ static void check_operands(const struct tex_tool *t, int argc, char **argv,
         tex_parse_window(c->window, c->w, c->h, c->win) < 0)
         tex_usage_die("--window must be X,Y,W,H with W, H >= 1 inside the %dx%d map (got '%s')",
                       c->w, c->h, c->window);
-    if ((t->common & TEX_OPT_OUTPUT) && (c->exr_tiles || c->mipmap)) {
-        const char *out = c->output && strcmp(c->output, "-") ? c->output : NULL;
-        char probe[40];
-        snprintf(probe, sizeof probe, "x.%.32s", c->format ? c->format : "exr");
-        if (tex_format_from_name(out ? out : probe) != TEX_FMT_EXR)
+    if ((t->common & TEX_OPT_OUTPUT) && (c->format || c->exr_tiles || c->mipmap)) {
+        /* the output's format, before any work (-o alone may name a palette file) */
+        const char *file;
+        enum tex_format f = tex_output_format(c->output, c->format, &file);
+        if (f == TEX_FMT_UNKNOWN)
+            tex_die();
+        if ((c->exr_tiles || c->mipmap) && f != TEX_FMT_EXR)
             tex_usage_die("%s writes EXR only (got %s)", c->mipmap ? "--mipmap" : "--exr-tiles",
-                          out ? out : "--format");
+                          c->format ? c->format : c->output);
     }
     nops = argc - optind;
     if (nops < t->min_operands || (t->max_operands >= 0 && nops > t->max_operands)) {
@@ -479,14 +506,10 @@ static void check_operands(const struct tex_tool *t, int argc, char **argv,
 }
 
 /* Options that only apply together with others. */
-static void check_combinations(const struct tex_tool *t, const struct tex_common *c,
-                               const void *opts)
+static void check_combinations(const struct tex_tool *t, const void *opts)
 {
     const struct tex_param *mode = t->params ? tex_param_find(t->params, "mode") : NULL;
 
-    if (c->output && c->format)
-        tex_usage_die("--format applies to standard output only: -o %s takes its format from "
-                      "the extension", c->output);
     if (mode && mode->type == TEX_P_ENUM)
         tex_cli_check_kinds(t, mode->choices, *(const int *)((const char *)opts + mode->off),
                             "--mode");
@@ -518,7 +541,7 @@ static void read_options(const struct tex_tool *t, int argc, char **argv,
             nops++;
             continue;
         }
-        take_option(t, k, argv, o, n, tb);
+        take_option(t, k, argc, argv, o, n, tb);
         rotate(argv, first, first + nops, optind); /* the option's words, ahead */
         first = optind - nops;
     }
@@ -574,7 +597,7 @@ int tex_cli_parse(const struct tex_tool *t, int argc, char **argv, struct tex_co
             tex_usage_die("--nonfinite must be refuse, keep or a finite number (got '%s')",
                           c->nonfinite);
     }
-    check_combinations(t, c, opts);
+    check_combinations(t, opts);
     tex_set_warning_handler(c->quiet ? NULL : tex_cli_warning);
     tex_set_progress_handler(tex_cli_progress_wanted(c) ? tex_cli_progress : NULL, NULL);
     for (int i = 0; i < nold; i++) {

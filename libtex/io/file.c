@@ -34,7 +34,7 @@ static const struct {
     {TEX_FMT_EXR, "exr", " exr ", 1, 0, 15},
     {TEX_FMT_PNG, "png", " png ", 0, 16, 13}, /* 2 channels: RGB, B = 0, not grey+alpha */
     {TEX_FMT_TIFF, "tif", " tif tiff ", 1, 16, 15},
-    {TEX_FMT_PNM, "pnm", " pnm ppm pgm ", 0, 16, 5},
+    {TEX_FMT_PNM, "pnm", " pnm ", 0, 16, 5},
     {TEX_FMT_PFM, "pfm", " pfm ", 1, 0, 5},
     {TEX_FMT_BMP, "bmp", " bmp ", 0, 8, 13},
     {TEX_FMT_TGA, "tga", " tga ", 0, 8, 15},
@@ -45,6 +45,8 @@ static const struct {
     {TEX_FMT_DPX, "dpx", " dpx ", 0, 16, 13},
     {TEX_FMT_PAM, "pam", " pam ", 0, 16, 13},
     {TEX_FMT_PBM, "pbm", " pbm ", 0, 8, 5},
+    {TEX_FMT_PPM, "ppm", " ppm ", 0, 16, 4},
+    {TEX_FMT_PGM, "pgm", " pgm ", 0, 16, 1},
 };
 
 const char *tex_format_name(enum tex_format f)
@@ -57,20 +59,88 @@ const char *tex_format_exts(enum tex_format f)
     return formats[f].exts;
 }
 
+/* The format an extension word names (ext[0..n)), TEX_FMT_UNKNOWN if none. */
+static enum tex_format format_of_word(const char *ext, size_t n)
+{
+    char w[16];
+
+    if (n == 0 || n > 5)
+        return TEX_FMT_UNKNOWN;
+    snprintf(w, sizeof w, " %.*s ", (int)n, ext);
+    for (char *p = w; *p; p++)
+        *p = (char)(*p >= 'A' && *p <= 'Z' ? *p + 32 : *p);
+    for (size_t i = 1; i < sizeof formats / sizeof *formats; i++)
+        if (strstr(formats[i].exts, w))
+            return formats[i].f;
+    return TEX_FMT_UNKNOWN;
+}
+
 enum tex_format tex_format_from_name(const char *path)
 {
     const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
-    char ext[16];
-    size_t n;
 
-    if (!dot || (slash && dot < slash) || (n = strlen(dot + 1)) == 0 || n > 5)
+    if (!dot || (slash && dot < slash))
         return TEX_FMT_UNKNOWN;
-    snprintf(ext, sizeof ext, " %s ", dot + 1);
-    for (char *p = ext; *p; p++)
-        *p = (char)(*p >= 'A' && *p <= 'Z' ? *p + 32 : *p);
-    for (size_t i = 1; i < sizeof formats / sizeof *formats; i++)
-        if (strstr(formats[i].exts, ext))
-            return formats[i].f;
+    return format_of_word(dot + 1, strlen(dot + 1));
+}
+
+/* The formats netpbm.c writes (PFM aside). */
+static int is_netpbm(enum tex_format f)
+{
+    return f == TEX_FMT_PNM || f == TEX_FMT_PPM || f == TEX_FMT_PGM || f == TEX_FMT_PAM ||
+           f == TEX_FMT_PBM;
+}
+
+#define FORMAT_LIST "exr, png, tif, pnm, ppm, pgm, pam, pbm, pfm, bmp, tga, hdr, jpg, webp, dpx"
+
+/* Standard output by another name: /dev/stdout, /dev/fd/1, /proc/self/fd/1. */
+static int names_stdout(const char *name)
+{
+    return !strcmp(name, "/dev/stdout") || !strcmp(name, "/dev/fd/1") ||
+           !strcmp(name, "/proc/self/fd/1");
+}
+
+enum tex_format tex_output_format(const char *name, const char *format, const char **file)
+{
+    const char *colon = name ? strchr(name, ':') : NULL;
+    enum tex_format f = TEX_FMT_UNKNOWN, g = TEX_FMT_UNKNOWN;
+    struct stat st;
+
+    if (format && (g = format_of_word(format, strlen(format))) == TEX_FMT_UNKNOWN) {
+        tex_usage_error("--format %s: unknown format (" FORMAT_LIST ")", format);
+        return TEX_FMT_UNKNOWN;
+    }
+    if (colon && (f = format_of_word(name, (size_t)(colon - name))) != TEX_FMT_UNKNOWN) {
+        if (format && g != f) {
+            tex_usage_error("--format %s contradicts %s", format, name);
+            return TEX_FMT_UNKNOWN;
+        }
+        name = colon + 1;
+    }
+    *file = !name || !strcmp(name, "-") || names_stdout(name) ? NULL : name;
+    if (f != TEX_FMT_UNKNOWN)
+        return f;
+    if (g != TEX_FMT_UNKNOWN) {
+        if (*file && (f = tex_format_from_name(*file)) != TEX_FMT_UNKNOWN && f != g) {
+            tex_usage_error("--format %s contradicts the extension of %s (prefix it: %s:%s)",
+                            format, *file, format, *file);
+            return TEX_FMT_UNKNOWN;
+        }
+        return g;
+    }
+    if (!*file)
+        return TEX_FMT_EXR;
+    if ((f = tex_format_from_name(*file)) != TEX_FMT_UNKNOWN)
+        return f;
+    if (stat(*file, &st) == 0 && S_ISDIR(st.st_mode)) {
+        tex_error("%s: is a directory", *file);
+        return TEX_FMT_UNKNOWN;
+    }
+    if (!strncmp(*file, "/dev/fd/", 8) || (stat(*file, &st) == 0 && !S_ISREG(st.st_mode)))
+        return TEX_FMT_EXR; /* a stream, as standard output */
+    tex_usage_error("%s: cannot tell the format from the extension (give it one of " FORMAT_LIST
+                    ", a prefix such as png:%s, or --format)",
+                    *file, *file);
     return TEX_FMT_UNKNOWN;
 }
 
@@ -358,7 +428,7 @@ static tex_map *decode(const char *path, const void *data, size_t len, const cha
             tex_error_context(name);
         return m;
     }
-    if (f == TEX_FMT_PNM || f == TEX_FMT_PAM || f == TEX_FMT_PBM || f == TEX_FMT_PFM)
+    if (is_netpbm(f) || f == TEX_FMT_PFM)
         return tex_netpbm_decode(data, len, name);
     if (codec_slot(f))
         return read_codec(path, data, len, f, name);
@@ -608,7 +678,7 @@ static int choose_depth(enum tex_format f, int depth, const char *name)
  * a 2-vector (R,G) gains B = 0, alpha is added (1) or dropped. */
 static tex_map *adapt_channels(const tex_map *m, enum tex_format f)
 {
-    static const int prefer[5][3] = {{0}, {3, 4, 0}, {3, 4, 1}, {4, 0, 0}, {3, 0, 0}};
+    static const int prefer[5][3] = {{0}, {3, 4, 0}, {3, 4, 1}, {4, 1, 0}, {3, 1, 0}};
     int nc = 0;
     tex_map *a;
 
@@ -629,8 +699,11 @@ static tex_map *adapt_channels(const tex_map *m, enum tex_format f)
             rgba[2] = m->nc >= 3 ? s[2] : 0.0f;
             rgba[3] = m->nc == 4 ? s[3] : 1.0f;
         }
-        for (int c = 0; c < nc; c++)
-            d[c] = nc == 1 ? s[0] : rgba[c];
+        if (nc == 1) /* colour to grey as ppmtopgm weighs it */
+            d[0] = m->nc >= 3 ? 0.299f * s[0] + 0.587f * s[1] + 0.114f * s[2] : s[0];
+        else
+            for (int c = 0; c < nc; c++)
+                d[c] = rgba[c];
     }
     return a;
 }
@@ -652,7 +725,7 @@ static int write_to_path(const tex_map *m, enum tex_format f, int depth, const c
     }
     if (f == TEX_FMT_PFM)
         return tex_pfm_write_fd(m, fd, name);
-    if (f == TEX_FMT_PNM || f == TEX_FMT_PAM || f == TEX_FMT_PBM)
+    if (is_netpbm(f))
         return tex_pnm_write_fd(m, fd, depth,
                                 f == TEX_FMT_PAM   ? TEX_PNM_PAM
                                 : f == TEX_FMT_PBM ? TEX_PNM_PBM
@@ -851,6 +924,15 @@ int tex_out_open(struct tex_out *o, const char *path)
     o->fd = -1;
     o->slot = -1;
     o->name = path;
+    /* /dev/fd/N is descriptor N as the shell opened it (appending, say), not reopened */
+    if (strncmp(path, "/dev/fd/", 8) == 0 && path[8] >= '0' && path[8] <= '9') {
+        char *end;
+        long n = strtol(path + 8, &end, 10);
+        o->direct = 1;
+        if (*end || n > INT_MAX || (o->fd = fcntl((int)n, F_DUPFD_CLOEXEC, 3)) < 0)
+            return tex_error("%s: %s", path, *end ? "not a descriptor" : strerror(errno));
+        return 0;
+    }
     /* A FIFO or a device is written straight: renaming only makes sense for files. */
     if (stat(path, &st) == 0 && (S_ISFIFO(st.st_mode) || S_ISCHR(st.st_mode))) {
         o->direct = 1;
@@ -911,8 +993,8 @@ static int write_stream(const tex_map *m, enum tex_format f, int depth, int fd,
 
     /* These writers stream; TIFF seeks and OpenImageIO writes files: they go
      * through a temporary one. */
-    if (f != TEX_FMT_TIFF && (f == TEX_FMT_EXR || f == TEX_FMT_PFM || f == TEX_FMT_PNM ||
-                              f == TEX_FMT_PAM || f == TEX_FMT_PBM || codec_slot(f)))
+    if (f != TEX_FMT_TIFF && (f == TEX_FMT_EXR || f == TEX_FMT_PFM || is_netpbm(f) ||
+                              codec_slot(f)))
         return write_to_path(m, f, depth, NULL, fd, o, name);
     {
         const char *dir = getenv("TMPDIR");
@@ -935,48 +1017,26 @@ static int write_stream(const tex_map *m, enum tex_format f, int depth, int fd,
     }
 }
 
-/* The format of standard output: o->format's, or the EXR stream */
-static enum tex_format stdout_format(const struct tex_write_opts *o)
+int tex_map_write_check(const char *path, const char *format)
 {
-    enum tex_format f = TEX_FMT_EXR;
-    if (o->format) {
-        char probe[32];
-        snprintf(probe, sizeof probe, "x.%s", o->format);
-        if ((f = tex_format_from_name(probe)) == TEX_FMT_UNKNOWN)
-            tex_usage_error("--format %s: unknown format (exr, png, tif, pnm, pam, pbm, "
-                            "pfm, bmp, tga, hdr, jpg, webp, dpx)",
-                            o->format);
-    }
-    return f;
-}
-
-static int write_stdout(const tex_map *m, const struct tex_write_opts *o)
-{
-    const char *name = "standard output";
-    enum tex_format f;
-    int depth;
-
-    if (tex_map_write_check(NULL) < 0 || (f = stdout_format(o)) == TEX_FMT_UNKNOWN)
-        return -1;
-    if ((depth = choose_depth(f, o->depth, name)) < 0)
-        return -1;
-    return write_stream(m, f, depth, 1, o, name);
-}
-
-int tex_map_write_check(const char *path)
-{
+    const char *file;
     struct stat st;
 
-    if (!path || strcmp(path, "-") == 0)
+    if (tex_output_format(path, format, &file) == TEX_FMT_UNKNOWN)
+        return -1;
+    if (!file)
         return isatty(1) ? tex_usage_error("refusing to write image data to a terminal; use -o "
                                            "FILE or a pipe")
                          : 0;
-    if (stat(path, &st) == 0 && S_ISDIR(st.st_mode))
-        return tex_error("%s: is a directory", path);
-    if (tex_format_from_name(path) == TEX_FMT_UNKNOWN)
-        return tex_usage_error("%s: cannot tell the format from the extension (use .exr, .png, "
-                               ".tif, .pnm, .pam, .pfm, .bmp, .tga, .hdr, .jpg, .webp or .dpx)",
-                               path);
+    if (stat(file, &st) == 0 && S_ISDIR(st.st_mode))
+        return tex_error("%s: is a directory", file);
+    if (stat(file, &st) == 0 && S_ISCHR(st.st_mode)) {
+        int fd = open(file, O_WRONLY | O_NOCTTY | O_NONBLOCK | O_CLOEXEC), tty = isatty(fd);
+        if (fd >= 0)
+            close(fd);
+        if (tty)
+            return tex_usage_error("%s: refusing to write image data to a terminal", file);
+    }
     return 0;
 }
 
@@ -1029,49 +1089,53 @@ int tex_map_write(const tex_map *m, const char *path, const struct tex_write_opt
 {
     static const struct tex_write_opts defaults = TEX_WRITE_DEFAULTS;
     struct tex_out out;
+    const char *file;
     enum tex_format f;
     int depth, r;
 
     if (!o)
         o = &defaults;
-    if (!path || strcmp(path, "-") == 0)
-        return write_stdout(m, o);
-    if (tex_map_write_check(path) < 0)
+    if (tex_map_write_check(path, o->format) < 0)
         return -1;
-    f = tex_format_from_name(path);
-    if ((depth = choose_depth(f, o->depth, path)) < 0)
+    f = tex_output_format(path, o->format, &file);
+    if ((depth = choose_depth(f, o->depth, file ? file : "standard output")) < 0)
         return -1;
-    if (tex_out_open(&out, path) < 0)
+    if (!file)
+        return write_stream(m, f, depth, 1, o, "standard output");
+    if (tex_out_open(&out, file) < 0)
         return tex_out_close(&out, -1);
-    r = out.direct ? write_stream(m, f, depth, out.fd, o, path)
-                   : write_to_path(m, f, depth, out.tmp, out.fd, o, path);
+    r = out.direct ? write_stream(m, f, depth, out.fd, o, file)
+                   : write_to_path(m, f, depth, out.tmp, out.fd, o, file);
     return tex_out_close(&out, r);
 }
 
 /* ---- writing a band of rows at a time ---- */
 
-/* Where o sends a map: the format, and whether the output can seek (a regular file,
- * not standard output, a FIFO or a device).  TEX_FMT_UNKNOWN with the error set. */
-static enum tex_format rows_target(const char *path, const struct tex_write_opts *o, int *seeks)
+/* Where o sends a map: the format, the file (NULL: standard output), and whether the
+ * output can seek (a regular file, not a FIFO or a device).  TEX_FMT_UNKNOWN with the
+ * error set. */
+static enum tex_format rows_target(const char *path, const struct tex_write_opts *o,
+                                   const char **file, int *seeks)
 {
     struct stat st;
+    enum tex_format f = tex_output_format(path, o->format, file);
 
-    *seeks = 0;
-    if (!path || strcmp(path, "-") == 0)
-        return stdout_format(o);
-    *seeks = stat(path, &st) != 0 || S_ISREG(st.st_mode);
-    return tex_format_from_name(path);
+    *seeks = *file && strncmp(*file, "/dev/fd/", 8) &&
+             (stat(*file, &st) != 0 || S_ISREG(st.st_mode));
+    return f;
 }
 
 int tex_map_write_streams(const char *path, const struct tex_write_opts *o)
 {
     int seeks;
-    enum tex_format f = rows_target(path, o, &seeks);
+    const char *file;
+    enum tex_format f = rows_target(path, o, &file, &seeks);
 
     switch (f) {
     case TEX_FMT_EXR:
         return !o->mipmap && (!o->tiled || seeks); /* tiles go at their offsets */
     case TEX_FMT_PNG: case TEX_FMT_JPEG: case TEX_FMT_PNM: case TEX_FMT_PAM: case TEX_FMT_PBM:
+    case TEX_FMT_PPM: case TEX_FMT_PGM:
         return 1;
     case TEX_FMT_TIFF: case TEX_FMT_PFM: /* TIFF seeks; PFM's rows run bottom to top */
         return seeks;
@@ -1188,19 +1252,22 @@ int tex_map_write_rows(const tex_map *head, tex_rows_fn fill, void *arg, const c
 {
     static const struct tex_write_opts defaults = TEX_WRITE_DEFAULTS;
     struct tex_out out = {.fd = 1};
-    const char *name = path && strcmp(path, "-") ? path : "standard output";
+    const char *name, *file;
     int seeks, depth, r;
     enum tex_format f;
 
     if (!o)
         o = &defaults;
-    if (tex_map_write_check(path) < 0 || (f = rows_target(path, o, &seeks)) == TEX_FMT_UNKNOWN ||
-        (depth = choose_depth(f, o->depth, name)) < 0)
+    if (tex_map_write_check(path, o->format) < 0)
+        return -1;
+    f = rows_target(path, o, &file, &seeks);
+    name = file ? file : "standard output";
+    if ((depth = choose_depth(f, o->depth, name)) < 0)
         return -1;
     if (!tex_map_write_streams(path, o))
         return tex_usage_error("%s: %s is written whole, not a band of rows at a time", name,
                                tex_format_name(f));
-    if (path && strcmp(path, "-") && tex_out_open(&out, path) < 0)
+    if (file && tex_out_open(&out, file) < 0)
         return tex_out_close(&out, -1);
     if (f == TEX_FMT_EXR) {
         r = tex_exr_write_rows(head, fill, arg, o->tiled ? TEX_EXR_TILE : 0, o->compression,

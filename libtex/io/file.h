@@ -16,8 +16,9 @@
  * chunks are ignored.  A file with more than four channels keeps the first
  * four, with a warning (error.h).
  *
- * Writing: a file's format follows its extension; standard output carries
- * the uncompressed EXR stream unless o.format names another.  Files are
+ * Writing: a file's format follows a "FMT:" prefix, o.format, or its extension;
+ * standard output and other streams carry the uncompressed EXR stream unless
+ * one of the first two names another (tex_output_format).  Files are
  * written to a temporary name in the same folder and renamed on success,
  * so a failure or a signal leaves no partial file (tex_out below); a FIFO
  * or character device is written straight.  Image data is never written to a
@@ -41,13 +42,22 @@ TEX_API_BEGIN
 enum tex_format {
     TEX_FMT_UNKNOWN, TEX_FMT_EXR, TEX_FMT_PNG, TEX_FMT_TIFF, TEX_FMT_PNM, TEX_FMT_PFM,
     TEX_FMT_BMP, TEX_FMT_TGA, TEX_FMT_HDR, TEX_FMT_JPEG, TEX_FMT_GIF, TEX_FMT_WEBP, TEX_FMT_DPX,
-    TEX_FMT_PAM, TEX_FMT_PBM
+    TEX_FMT_PAM, TEX_FMT_PBM, TEX_FMT_PPM, TEX_FMT_PGM, TEX_FMT_COUNT
 };
 
 /* The format of a file image from its first bytes (at least 18 wanted). */
 enum tex_format tex_format_sniff(const void *head, size_t n);
-/* The format of a file name from its extension; TEX_FMT_UNKNOWN if none. */
+/* The format of a file name from its extension; TEX_FMT_UNKNOWN if none.  .pnm lets
+ * the map choose PGM or PPM by its channels; .ppm is always P6, .pgm always P5, as
+ * ImageMagick writes them. */
 enum tex_format tex_format_from_name(const char *path);
+/* Where an output name sends a map (textura(5), OUTPUT): "FMT:NAME" names the format
+ * as ImageMagick's prefixes do ("png:-", "exr:out.dat"); else format (--format, an
+ * extension word); else the name's extension; else, for standard output (NULL, "-",
+ * /dev/stdout) and anything that is not a regular file (a FIFO, /dev/fd/N), the EXR
+ * stream.  *file is the name without its prefix, NULL for standard output.
+ * TEX_FMT_UNKNOWN with the error set: a usage error, or a runtime one for a folder. */
+enum tex_format tex_output_format(const char *name, const char *format, const char **file);
 const char *tex_format_name(enum tex_format f); /* "exr", "png", ... */
 /* Every extension that names the format, space-separated: " tif tiff ". */
 const char *tex_format_exts(enum tex_format f);
@@ -55,7 +65,7 @@ const char *tex_format_exts(enum tex_format f);
 struct tex_write_opts {
     int depth;                        /* 0, 8, 16 or 32 */
     enum tex_compression compression; /* EXR files on disk */
-    const char *format;               /* for standard output: an extension; NULL = EXR */
+    const char *format;               /* an extension word naming the format, or NULL */
     int tiled, mipmap;                /* EXR only: 64 x 64 tiles; with mip-map levels */
 };
 #define TEX_WRITE_DEFAULTS {0, TEX_COMPRESS_ZIP, NULL, 0, 0}
@@ -102,16 +112,17 @@ int tex_map_write(const tex_map *m, const char *path, const struct tex_write_opt
 int tex_map_write_streams(const char *path, const struct tex_write_opts *o);
 int tex_map_write_rows(const tex_map *head, tex_rows_fn fill, void *arg, const char *path,
                        const struct tex_write_opts *o);
-/* Whether tex_map_write could take path by its name (a known extension, not
- * a directory; standard output not a terminal): 0, or -1 with its error.  Tools that write images check it
- * before the work (a palette file is not an image: it is not checked). */
-int tex_map_write_check(const char *path);
+/* Whether tex_map_write could take path with format (tex_output_format: a format
+ * known, not a directory; standard output not a terminal): 0, or -1 with its error.
+ * Tools that write images check it before the work (a palette file is not an image: it
+ * is not checked). */
+int tex_map_write_check(const char *path, const char *format);
 
 /* An output file.  tex_out_open writes a regular file (new or not) through
  * a temporary ".NAME.XXXXXX" beside it that tex_out_close renames onto it
  * on success (r == 0) and removes otherwise; a symbolic link is followed
  * and its target replaced so, the link kept.  A FIFO or character device
- * is written straight (direct).  While the temporary file exists,
+ * is written straight (direct), and so is /dev/fd/N (the descriptor N).  While the temporary file exists,
  * SIGINT, SIGTERM, SIGHUP and SIGPIPE remove it before ending the process
  * as they would have (signals the process ignores stay ignored).
  *

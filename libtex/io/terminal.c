@@ -28,11 +28,118 @@ static void rgb8(const tex_map *m, int x, int y, unsigned char out[3])
     }
 }
 
-/* The register of the 6x6x6 cube nearest to an 8-bit colour */
-static int cube(const unsigned char c[3])
+/* Median cut: the pixels' colours split, box by box, at the median of the widest channel
+ * of the box whose range is widest, until there are at most 256 boxes; each register
+ * is its box's mean.  idx holds the n pixels' indices into rgb (reordered).  Returns
+ * the number of registers in pal (3 bytes each). */
+struct box { int lo, hi, axis, range; };
+
+static int cmp_axis;
+static const unsigned char *cmp_rgb;
+static int by_axis(const void *a, const void *b)
 {
-    int r = (c[0] * 5 + 127) / 255, g = (c[1] * 5 + 127) / 255, b = (c[2] * 5 + 127) / 255;
-    return 36 * r + 6 * g + b;
+    return cmp_rgb[*(const int *)a * 3 + cmp_axis] - cmp_rgb[*(const int *)b * 3 + cmp_axis];
+}
+
+static void box_measure(struct box *b, const int *idx, const unsigned char *rgb)
+{
+    int lo[3] = {255, 255, 255}, hi[3] = {0, 0, 0};
+    for (int i = b->lo; i < b->hi; i++)
+        for (int k = 0; k < 3; k++) {
+            int v = rgb[idx[i] * 3 + k];
+            lo[k] = v < lo[k] ? v : lo[k], hi[k] = v > hi[k] ? v : hi[k];
+        }
+    b->axis = 0;
+    for (int k = 1; k < 3; k++)
+        if (hi[k] - lo[k] > hi[b->axis] - lo[b->axis])
+            b->axis = k;
+    b->range = hi[b->axis] - lo[b->axis];
+}
+
+static int median_cut(const unsigned char *rgb, int *idx, int n, unsigned char *pal)
+{
+    struct box box[256] = {{0, n, 0, 0}};
+    int nb = 1;
+
+    box_measure(&box[0], idx, rgb);
+    while (nb < 256) {
+        int w = -1;
+        for (int i = 0; i < nb; i++) /* the widest box that can split */
+            if (box[i].range > 0 && (w < 0 || box[i].range > box[w].range))
+                w = i;
+        if (w < 0)
+            break;
+        cmp_axis = box[w].axis, cmp_rgb = rgb;
+        qsort(idx + box[w].lo, (size_t)(box[w].hi - box[w].lo), sizeof *idx, by_axis);
+        int mid = box[w].lo + (box[w].hi - box[w].lo) / 2;
+        /* the cut between two values, so equal colours stay in one box */
+        unsigned char v = rgb[idx[mid] * 3 + box[w].axis];
+        while (mid > box[w].lo && rgb[idx[mid - 1] * 3 + box[w].axis] == v)
+            mid--;
+        if (mid == box[w].lo)
+            while (mid < box[w].hi && rgb[idx[mid] * 3 + box[w].axis] == v)
+                mid++;
+        box[nb] = (struct box){mid, box[w].hi, 0, 0};
+        box[w].hi = mid;
+        box_measure(&box[w], idx, rgb);
+        box_measure(&box[nb++], idx, rgb);
+    }
+    for (int i = 0; i < nb; i++) {
+        double sum[3] = {0, 0, 0};
+        for (int j = box[i].lo; j < box[i].hi; j++)
+            for (int k = 0; k < 3; k++)
+                sum[k] += rgb[idx[j] * 3 + k];
+        for (int k = 0; k < 3; k++)
+            pal[i * 3 + k] = (unsigned char)(sum[k] / (box[i].hi - box[i].lo) + 0.5);
+    }
+    return nb;
+}
+
+/* The register nearest to colour c (Euclidean in 8-bit RGB; the first of equals) */
+static int nearest(const float c[3], const unsigned char *pal, int np)
+{
+    int best = 0;
+    float bd = 1e30f;
+    for (int i = 0; i < np; i++) {
+        float dr = c[0] - pal[i * 3], dg = c[1] - pal[i * 3 + 1], db = c[2] - pal[i * 3 + 2];
+        float d = dr * dr + dg * dg + db * db;
+        if (d < bd)
+            bd = d, best = i;
+    }
+    return best;
+}
+
+/* Each pixel's register into reg, Floyd-Steinberg's error carried to its neighbours;
+ * err holds two rows of 3 floats per pixel and a pixel each side. */
+static void diffuse(const tex_map *m, const unsigned char *rgb, const unsigned char *pal, int np,
+                    unsigned char *reg, float *err)
+{
+    size_t row = (size_t)(m->w + 2) * 3;
+    float *cur = err, *next = err + row;
+
+    memset(err, 0, 2 * row * sizeof *err);
+    for (int y = 0; y < m->h; y++) {
+        memset(next, 0, row * sizeof *next);
+        for (int x = 0; x < m->w; x++) {
+            const unsigned char *p = rgb + ((size_t)y * m->w + x) * 3;
+            float c[3], *e = cur + (size_t)(x + 1) * 3, *en = next + (size_t)(x + 1) * 3;
+            for (int k = 0; k < 3; k++) {
+                c[k] = p[k] + e[k];
+                c[k] = c[k] < 0 ? 0 : c[k] > 255 ? 255 : c[k];
+            }
+            int r = nearest(c, pal, np);
+            reg[(size_t)y * m->w + x] = (unsigned char)r;
+            for (int k = 0; k < 3; k++) {
+                float d = c[k] - pal[r * 3 + k];
+                e[k + 3] += d * 7 / 16;
+                en[k - 3] += d * 3 / 16;
+                en[k] += d * 5 / 16;
+                en[k + 3] += d * 1 / 16;
+            }
+        }
+        float *t = cur;
+        cur = next, next = t;
+    }
 }
 
 static void sixel_run(FILE *fp, int ch, int n)
@@ -44,26 +151,38 @@ static void sixel_run(FILE *fp, int ch, int n)
             putc(63 + ch, fp);
 }
 
-static void sixel(FILE *fp, const tex_map *m, unsigned char *reg)
+static int sixel(FILE *fp, const tex_map *m, unsigned char *rgb)
 {
+    size_t n = (size_t)m->w * m->h;
+    unsigned char pal[256 * 3], *reg = malloc(n);
+    int *idx = malloc(n * sizeof *idx), np;
+    float *err = malloc((size_t)(m->w + 2) * 6 * sizeof *err);
+
+    if (!reg || !idx || !err) {
+        free(reg), free(idx), free(err);
+        return tex_error("out of memory");
+    }
+    for (int y = 0; y < m->h; y++)
+        for (int x = 0; x < m->w; x++)
+            rgb8(m, x, y, rgb + ((size_t)y * m->w + x) * 3);
+    for (size_t i = 0; i < n; i++)
+        idx[i] = (int)i;
+    np = median_cut(rgb, idx, (int)n, pal);
+    diffuse(m, rgb, pal, np, reg, err);
+    free(idx), free(err);
     fputs("\033Pq\"1;1;", fp);
     fprintf(fp, "%d;%d", m->w, m->h);
-    for (int i = 0; i < 216; i++) /* registers in percent */
-        fprintf(fp, "#%d;2;%d;%d;%d", i, i / 36 * 20, i / 6 % 6 * 20, i % 6 * 20);
-    for (int y = 0; y < m->h; y++)
-        for (int x = 0; x < m->w; x++) {
-            unsigned char c[3];
-            rgb8(m, x, y, c);
-            reg[(size_t)y * m->w + x] = (unsigned char)cube(c);
-        }
+    for (int i = 0; i < np; i++) /* registers in percent */
+        fprintf(fp, "#%d;2;%d;%d;%d", i, (pal[i * 3] * 100 + 127) / 255,
+                (pal[i * 3 + 1] * 100 + 127) / 255, (pal[i * 3 + 2] * 100 + 127) / 255);
     for (int y0 = 0; y0 < m->h; y0 += 6) { /* a band of six rows */
         int rows = m->h - y0 < 6 ? m->h - y0 : 6;
-        char used[216] = {0};
+        char used[256] = {0};
         for (int j = 0; j < rows; j++)
             for (int x = 0; x < m->w; x++)
                 used[reg[(size_t)(y0 + j) * m->w + x]] = 1;
         int first = 1;
-        for (int r = 0; r < 216; r++) {
+        for (int r = 0; r < np; r++) {
             if (!used[r])
                 continue;
             if (!first)
@@ -85,6 +204,8 @@ static void sixel(FILE *fp, const tex_map *m, unsigned char *reg)
         putc('-', fp); /* the next band */
     }
     fputs("\033\\", fp);
+    free(reg);
+    return 0;
 }
 
 static void kitty(FILE *fp, const tex_map *m, unsigned char *rgb)
@@ -118,10 +239,12 @@ int tex_terminal_write(FILE *fp, const tex_map *m, enum tex_terminal_proto proto
     unsigned char *buf = malloc((size_t)m->w * m->h * 3);
     if (!buf)
         return tex_error("out of memory");
-    if (proto == TEX_TERMINAL_KITTY)
+    if (proto == TEX_TERMINAL_KITTY) {
         kitty(fp, m, buf);
-    else
-        sixel(fp, m, buf);
+    } else if (sixel(fp, m, buf) < 0) {
+        free(buf);
+        return -1;
+    }
     free(buf);
     putc('\n', fp);
     if (fflush(fp) != 0 || ferror(fp))

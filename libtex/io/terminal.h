@@ -8,8 +8,10 @@
  * map red and green, an alpha channel composes over black.
  *
  *   sixel  DEC's sixel graphics (xterm -ti vt340, mlterm, foot, WezTerm,
- *          Contour, mintty...): a 6x6x6 colour cube of 216 registers, rows
- *          of six pixels, runs compressed (DEC's "!" repeat).
+ *          Contour, mintty...): at most 256 registers chosen for the map by
+ *          median cut, Floyd-Steinberg error diffusion between them (so a
+ *          smooth ramp stays smooth and a white marble white), rows of six
+ *          pixels, runs compressed (DEC's "!" repeat).
  *   kitty  the kitty terminal's graphics protocol (kitty, WezTerm,
  *          Konsole, Ghostty): 24-bit RGB, base64 in chunks of 4096.
  *

@@ -628,7 +628,7 @@ static void params(struct reader *rd)
         p->rows[i] = (struct tex_param){p->pnames[i], 0, TEX_P_REAL, i * sizeof(double), def,
                                         lo, hi, NULL, NULL, 0, "X",
                                         p->phelp[i] ? p->phelp[i] : "a parameter", 0, 0, 0,
-                                        NULL, NULL, NULL};
+                                        NULL, NULL, NULL, NULL};
         p->nparams++;
     }
     tex_lex_next(lx);

@@ -1048,7 +1048,7 @@ static char *image_file(struct S *s, const char *name)
     memcpy(path, name, n + 1);
     if (stat(path, &st) == 0 && S_ISREG(st.st_mode))
         return path;
-    for (int f = TEX_FMT_EXR; f <= TEX_FMT_PBM; f++)
+    for (int f = TEX_FMT_EXR; f < TEX_FMT_COUNT; f++)
         for (const char *e = tex_format_exts((enum tex_format)f); *(e += strspn(e, " "));
              e += strcspn(e, " ")) {
             snprintf(path + n, 8, ".%.*s", (int)strcspn(e, " "), e);

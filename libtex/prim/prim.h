@@ -97,7 +97,7 @@ struct tex_field {
     TEX_FLAG(S, f, 0, "make the map tile seamlessly left-right and top-bottom")
 #define TEX_IDS_ROW(S, f)                                                                        \
     TEX_FLAG(S, f, 0, "write the subregion id of each pixel instead of colours")
-#define TEX_SIZE_HELP "size of the map in pixels, 1.." TEX_XSTR(TEX_MAP_MAX_SIDE) " a side"
+#define TEX_SIZE_HELP "size of the map in pixels, N x N or W x H: " TEX_MAP_SIZE_RULE
 struct tex_field_opts {
     int seed, tile, ids, size;
 };

@@ -30,7 +30,7 @@ const struct tex_param tex_settings_rows[] = {
             "maximum recursion depth of reflected and refracted rays"),
     {"bailout", 0, TEX_P_REAL, offsetof(struct tex_scene, settings.bailout), 1.0 / 255, 0, 1, NULL,
      NULL, 0, "W", "rays weighing less than W are not traced (0: trace to the depth)", 1, 0, 0,
-     NULL, NULL, NULL},
+     NULL, NULL, NULL, NULL},
     TEX_ROW("threads", struct tex_scene, settings.threads, TEX_P_INT, "0", 0, 1024, 1, 0, "N",
             "OpenMP threads (0: one per core)"),
     TEX_SPECIAL("seed", 0, TEX_SEED_MAX, "0", "N",
@@ -64,7 +64,7 @@ const struct tex_param tex_camera_rows[] = {
 #define PLACED (LIT(POINT) | LIT(SPOT) | LIT(AREA))
 #define LROW(name, f, T, d, lo, hi, n, meta, kinds, help)                                         \
     {name, 0, T, offsetof(struct tex_light, f), 0, lo, hi, d, NULL, 0, meta, help, n, 0, kinds,  \
-     NULL, NULL, NULL}
+     NULL, NULL, NULL, NULL}
 const struct tex_param tex_light_rows[] = {
     LROW("colour", colour, TEX_P_FLOAT, "1,1,1", 0, 1e6, 3, "R G B", 0,
          "colour of the light (also color)"),
@@ -134,7 +134,7 @@ const struct tex_param tex_surface_rows[] = {
 
 /* The targets beyond the surface's own rows (no storage: the renderer's per hit) */
 #define TARGET(name, lo, hi, meta, help) {name, 0, TEX_P_REAL, 0, 0, lo, hi, NULL, NULL, 0, meta, \
-                                          help, 0, 0, 0, NULL, NULL, NULL}
+                                          help, 0, 0, 0, NULL, NULL, NULL, NULL}
 const struct tex_param tex_target_rows[] = {
     TARGET("bump", -1000, 1000, "S",
            "bump mapping: the normal tilts by S times the map's gradient across the surface"),
@@ -195,7 +195,7 @@ const struct tex_param tex_apply_rows[] = {
 #define SHP(k) KIND(TEX_SHAPE_##k)
 #define OROW(name, f, d, n, meta, kinds, help)                                                    \
     {name, 0, TEX_P_REAL, offsetof(struct tex_shape_params, f), 0, -INF, INF, d, NULL, 0, meta,  \
-     help, n, 0, kinds, NULL, NULL, NULL}
+     help, n, 0, kinds, NULL, NULL, NULL, NULL}
 const struct tex_param tex_object_rows[] = {
     OROW("centre", centre, "0,0,0", 3, "X Y Z", SHP(SPHERE) | SHP(TORUS),
          "sphere, torus: the centre (also center)"),

@@ -163,7 +163,8 @@ static void test_sniff(void)
         CHECKF(tex_format_sniff(cases[i].bytes, cases[i].n) == cases[i].f, "sniff case %zu (%s)",
                i, tex_format_name(cases[i].f));
     CHECK(tex_format_from_name("a/b.TIFF") == TEX_FMT_TIFF && tex_format_from_name("x.pgm") ==
-          TEX_FMT_PNM && tex_format_from_name("dir.png/x") == TEX_FMT_UNKNOWN,
+              TEX_FMT_PGM && tex_format_from_name("x.pnm") == TEX_FMT_PNM &&
+              tex_format_from_name("dir.png/x") == TEX_FMT_UNKNOWN,
           "formats from extensions");
 }
 

@@ -119,7 +119,7 @@ check "t_fractal -m koch --recursions 3" "$B/t_fractal" -m koch --recursions 3 -
 says "t_filter blur --radius" "--radius applies to the operation box, median only" "$B/t_filter" blur --radius 3 "$T/n.pfm"
 check "t_filter box --radius" "$B/t_filter" box --radius 3 "$T/n.pfm" -o "$T/f.pfm"
 says "t_d_noise --strength without --normal" "--strength applies with --normal only" "$B/t_d_noise" --strength 2
-says "--format beside -o" "--format applies to standard output only" "$B/t_noise" -o "$T/x.png" --format tif
+says "--format against -o's extension" "--format tif contradicts the extension of $T/x.png" "$B/t_noise" -o "$T/x.png" --format tif
 says "t_spectral -D with --h" "give one" "$B/t_spectral" -D 2.5 --h 0.5
 says "t_bubble --clusters without the cluster distribution" "--clusters applies to --distribution cluster only" "$B/t_bubble" --clusters 4
 says "t_palette --stops without --from" "--stops and --space apply" "$B/t_palette" --stops 4 marble "$T/n.pfm"

@@ -162,8 +162,8 @@ static void test_messages(void)
     CHECKF(run(ARGS("t_turbulence", "-s", "0x5")) == 2 && strstr(err, "-s must be N or WxH"),
            "a bad size is a usage error (%s)", msg());
     CHECKF(run(ARGS("t_turbulence", "-o", "x.exr", "--format", "png")) == 2 &&
-               strstr(err, "--format applies to standard output only"),
-           "--format with -o is refused (%s)", msg());
+               strstr(err, "--format png contradicts the extension of x.exr"),
+           "--format against -o's extension is refused (%s)", msg());
     expect(ARGS("t_turbulence", "--seed"), 2,
            "t_turbulence: error: missing value for --seed (see t_turbulence --help)\n",
            "a missing value");

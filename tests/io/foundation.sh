@@ -147,7 +147,7 @@ check_fails "NaN frequency is a usage error" 2 t_noise --frequency nan
 check_fails "a negative frequency is a usage error" 2 t_noise --frequency -1
 check_fails "an unknown option is a usage error" 2 t_noise --octaves 3
 check_fails "a missing option value is a usage error" 2 t_noise -s
-check_fails "an extra operand is a usage error" 2 t_info a b
+check_fails "an extra operand is a usage error" 2 t_convert a b c
 check_fails "--tile needs a whole frequency" 2 t_noise --tile --frequency 2.5
 t_noise --frequency -1 2>"$T/e3"
 check "the message names the option and its range" grep -q "frequency must be 0..1000000 (got '-1')" "$T/e3"

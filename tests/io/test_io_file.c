@@ -102,7 +102,7 @@ static void test_atomic(void)
     }
     unlink(in_dir("link.pfm"));
     unlink(in_dir("target.pfm"));
-    CHECK(tex_map_write_check(in_dir("x.unknown")) < 0 && !strcmp(listing(), ""),
+    CHECK(tex_map_write_check(in_dir("x.unknown"), NULL) < 0 && !strcmp(listing(), ""),
           "an unknown extension is refused before anything is written");
     tex_map_free(small_map);
     tex_map_free(m);
