@@ -4,16 +4,16 @@
 # indigo warp and a paler weft in a 2/2 twill, with yarn irregularity; a fractal (fBm)
 # mottles the dye as the photo's clouds do; the weave's height map gives the bump, and a
 # render drapes the cloth over a cylinder.
-#   patterns/fabric.sh [-o PREFIX] [-s N]   -> PREFIX_colour, _height, _render
+#   patterns/fabric.sh [-o PREFIX] [-s N|WxH] [-S SEED]   -> PREFIX_colour, _height, _render
 recipe=fabric
 . "$(dirname "$0")/recipe.sh"
 # about 10 pixels a thread, so that each thread's crown and sides show
-n=$((size / 10 < 8 ? 8 : size / 10))
+n=$((W / 10 < 8 ? 8 : W / 10))
 n=$(((n + 3) / 4 * 4)) # whole repeats of the twill: the map tiles
-weave="-s $size --thread-count $n --weave twill --irregularity 0.35 --warp-colours #26406e --weft-colours #8fa3c8 -S 21 --tile"
+weave="-s $size --thread-count $n --weave twill --irregularity 0.35 --warp-colours #26406e --weft-colours #8fa3c8 -S $((21 + S)) --tile"
 t_weave $weave -o "$tmp/weave.exr"
 t_weave $weave --map height -o "$tmp/height.exr"
-t_fractal -s "$size" --octaves 6 -S 22 --tile | t_remap --levels 0.2,0.8,0.75,1.1 -o "$tmp/mottle.exr"
+t_fractal -s "$size" --octaves 6 -S $((22 + S)) --tile | t_remap --levels 0.2,0.8,0.75,1.1 -o "$tmp/mottle.exr"
 t_op mul "$tmp/weave.exr" "$tmp/mottle.exr" -o "$tmp/colour.exr"
 write "$tmp/colour.exr" colour
 write "$tmp/height.exr" height
@@ -28,5 +28,5 @@ surface fabric { Ka 0.5 Kd 1 Ks 0.08 n 8
     apply relief { mapping natural repeat 4 2 bump = 0.004 }
 }
 cylinder { base -1.5 0.3 0 top 1.5 0.3 0 radius 0.6 surface fabric }"
-t_apply "$tmp/s.scene" -s "$((size * 5 / 4))x$((size * 25 / 32))" -q -o "$tmp/render.exr"
+t_apply "$tmp/s.scene" -s "$((W * 5 / 4))x$((W * 25 / 32))" -q -o "$tmp/render.exr"
 write "$tmp/render.exr" render

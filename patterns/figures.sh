@@ -2,17 +2,18 @@
 # figures.sh - the thesis's figures and photos that are pictures, rebuilt from the real
 # primitives, and the seed paper's five spheres: DIR/fig_ID.png and .exr for each, and
 # DIR/figures.md, a page with each one's caption (translated) and the commands that made it.
-#   patterns/figures.sh [-o DIR] [-s N]      (default doc/figures, maps N = 256 wide)
+#   patterns/figures.sh [-o DIR] [-s N|WxH]      (default doc/figures, maps N = 256 wide)
 #   FIGURES="ID ..." patterns/figures.sh ...  (only those figures)
 # `make figures` runs it; tests/tools/figures.sh checks each figure against a golden image.
 recipe=doc/figures # -o: the folder
 size=256
+fixed_seeds=1
 . "$(dirname "$0")/recipe.sh"
 dir=$out
 mkdir -p "$dir"
 dir=$(cd "$dir" && pwd)
 cd "$tmp"
-s=$size h=$((size / 2))
+s=$size h=$((W / 2))
 page=$dir/figures.md
 printf '# The thesis'"'"'s figures, rebuilt\n\nMade by `make figures` (patterns/figures.sh); each is checked against a golden image by tests/tools/figures.sh. Captions are translated from the thesis and the colour-model paper (Ferreira 1991).\n' >"$page"
 # figure ID CAPTION COMMANDS: run the commands (which leave fig.exr), keep it as fig_ID, and
@@ -151,6 +152,6 @@ figure photo_6.1 "Photo 6.1: Imitation of a fabric texture from a fractal primit
 '$here/fabric.sh' -o fab -s $s >/dev/null
 t_convert fab_colour.exr -o fig.exr"
 figure ferreira_5 "Ferreira (1991), Figure 5: the five spheres rendered with Whitted-Phong in RGB (left) and Cook-Torrance with sampled spectra (right)." "
-'$here/five_spheres.sh' five.png ${s}x$((3 * s / 4)) >/dev/null
-t_convert five.png -o fig.exr"
+'$here/five_spheres.sh' -o five -s ${s}x$((3 * s / 4)) >/dev/null
+t_convert five_render.exr -o fig.exr"
 echo "wrote $page"

@@ -5,10 +5,11 @@
 # themselves (t_info --primitives, the palette folder, t_filter's and t_op's operation
 # tables), so a new primitive, palette or operation appears by itself; each picture is
 # labelled with the command that made it, ready to copy.
-#   patterns/gallery.sh [-o DIR] [-s N]       (default: gallery/, pictures N = 128 wide)
+#   patterns/gallery.sh [-o DIR] [-s N|WxH]       (default: gallery/, pictures N = 128 wide)
 # writes DIR/index.html, DIR/gallery.png (ImageMagick's montage) and DIR/*.png.
 recipe=gallery # -o: the folder
 size=128
+fixed_seeds=1
 . "$(dirname "$0")/recipe.sh"
 dir=$out
 mkdir -p "$dir"

@@ -3,7 +3,7 @@
 # turbulence moving through 4D noise on a circle, so that the last frame leads back into
 # the first as smoothly as any frame into the next.  With ffmpeg installed it also encodes
 # a looping GIF and an MP4; without it, the frames alone.
-#   patterns/loop.sh [-o PREFIX] [-s N]   -> PREFIX_0000.png ... (frames=N in the
+#   patterns/loop.sh [-o PREFIX] [-s N|WxH] [-S SEED]   -> PREFIX_0000.png ... (frames=N in the
 #                                            environment, default 24), PREFIX.gif, PREFIX.mp4
 recipe=loop
 size=${size:-256}
@@ -13,7 +13,7 @@ case $frames in '' | *[!0-9]* | 0) echo "$0: frames must be a whole number >= 1 
 k=0
 while [ "$k" -lt "$frames" ]; do
     name=$(printf '%s_%04d.png' "$out" "$k")
-    t_turbulence -s "$size" -f 3 -n 6 -S 5 --frames "$frames" --frame "$k" --loop-radius 0.3 |
+    t_turbulence -s "$size" -f 3 -n 6 -S $((5 + S)) --frames "$frames" --frame "$k" --loop-radius 0.3 |
         t_palette marble -o "$name"
     k=$((k + 1))
 done

@@ -2,7 +2,7 @@
 # marble_vase.sh - a marble vase carved from a solid texture (thesis 5.2.4.1): the veins
 # are Perlin's marble, sin(6 x + 12 turbulence) through the marble palette, evaluated
 # at each hit point, so they run through the vase's body and neck alike.
-#   patterns/marble_vase.sh [-o PREFIX] [-s N]   -> PREFIX_render, PREFIX_slice
+#   patterns/marble_vase.sh [-o PREFIX] [-s N|WxH] [-S SEED]   -> PREFIX_render, PREFIX_slice
 recipe=marble_vase
 . "$(dirname "$0")/recipe.sh"
 scene "image 480 480
@@ -23,9 +23,9 @@ union {
     surface marble
 }
 box { min -2 -0.2 -2 max 2 0.15 2 surface plinth }"
-t_apply "$tmp/s.scene" -s "${size}x$size" -q -o "$tmp/render.exr"
+t_apply "$tmp/s.scene" -s "${W}x$H" -q -o "$tmp/render.exr"
 write "$tmp/render.exr" render
 # the same field as a flat map: a slice through the block
-t_turbulence -s "$size" -f 2 -n 6 -S 3 --slice 0.5 -o "$tmp/t.exr"
+t_turbulence -s "$size" -f 2 -n 6 -S $((3 + S)) --slice 0.5 -o "$tmp/t.exr"
 t_palette marble "$tmp/t.exr" -o "$tmp/slice.exr"
 write "$tmp/slice.exr" slice

@@ -1,15 +1,13 @@
 #!/bin/sh
 # synth_tile.sh - a tileable texture from a photo-like sample: bubbles coloured by a
 # palette stand in for a photo of a material; t_synth grows a seamless map from it.
-#
-#   patterns/synth_tile.sh [OUT.png] [SIZE] [SEED]    (default synth_tile.png 1024 7)
-#
+#   patterns/synth_tile.sh [-o PREFIX] [-s N|WxH] [-S SEED]   -> PREFIX_sample, PREFIX_tile
+#                                                              (default size 1024)
 # Any photo works in place of the sample: t_synth PHOTO.png -s 1024 --tile -o OUT.png.
-# The tools must be on PATH (build/bin).
-set -eu
-out=${1:-synth_tile.png}
-size=${2:-1024}
-seed=${3:-7}
-t_bubble -s 128 -c 40 -S "$seed" --size-spread 0.4 | t_palette marble |
-    t_synth -s "$size" --tile -S "$seed" -o "$out"
-echo "wrote $out (${size}x$size, tiles seamlessly)"
+recipe=synth_tile
+size=${size:-1024}
+. "$(dirname "$0")/recipe.sh"
+t_bubble -s 128 -c 40 -S $((7 + S)) --size-spread 0.4 | t_palette marble -o "$tmp/sample.exr"
+t_synth -s "$size" --tile -S $((7 + S)) -o "$tmp/tile.exr" "$tmp/sample.exr"
+write "$tmp/sample.exr" sample
+write "$tmp/tile.exr" tile

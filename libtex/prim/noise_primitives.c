@@ -1,4 +1,4 @@
-/* noise_primitives.c - the noise primitives: gradient noise rescaled to [0,1] (noise), and
+/* noise_primitives.c - the noise primitives: gradient noise as 0.5 + 0.5 n (noise), and
  * its analytic gradient or a normal map from it (d_noise) */
 #include "base/fp_strict.h" /* first: no fused multiply-adds in this file */
 
@@ -167,7 +167,8 @@ static void noise_row(const struct tex_field *f, int y, float *out)
 
 const struct tex_primitive tex_prim_noise = {
     .name = "noise",
-    .summary = "gradient noise of the thesis (Perlin), rescaled to [0,1]",
+    .summary = "gradient noise of the thesis (Perlin) as 0.5 + 0.5 n: mostly 0.2..0.8 in a map, "
+               "never past 0..1 (t_remap --levels stretches it)",
     .flags = TEX_PRIM_2D | TEX_PRIM_3D | TEX_PRIM_TILE,
     .params_size = sizeof(struct noise_params),
     .params = noise_rows,

@@ -88,3 +88,12 @@ check_fails "turbulence octaves 0" 2 t_turbulence -n 0
 check_fails "turbulence octaves 1000" 2 t_turbulence -n 1000
 check_fails "turbulence fractional lacunarity with --tile" 2 t_turbulence --tile -l 2.5
 check_fails "d_noise 4 channels" 2 t_d_noise --channels 4
+# the help states the range a map has (issue 64: "rescaled to [0,1]" while a map spans
+# about 0.24..0.75): the words and the figures agree
+range=$(t_noise --help | sed -n 's/.*mostly \([0-9.]*\)\.\.\([0-9.]*\) in a map.*/\1 \2/p')
+t_noise -s 512 -f 32 -S 9 -o "$T/range.exr"
+lo=$(info_json "$T/range.exr" stats 0 min) hi=$(info_json "$T/range.exr" stats 0 max)
+[ -n "$range" ] && awk -v r="$range" -v lo="$lo" -v hi="$hi" 'BEGIN { split(r, a, " ")
+    exit !(lo >= a[1] - 0.05 && hi <= a[2] + 0.05 && lo < a[1] + 0.1 && hi > a[2] - 0.1) }' &&
+    ok "t_noise's help states the range of its maps ($range; a map spans $lo..$hi)" ||
+    notok "t_noise's stated range" "help '$range', map $lo..$hi"

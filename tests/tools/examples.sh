@@ -73,4 +73,10 @@ for page in "$top"/man/man1/*.1 "$top"/man/man5/*.5; do
     flush
     [ -z "$bad" ] && ok "$name: its examples run" || notok "$name: examples" "${bad#; }"
 done
+# what an example shows, not only that it runs: t_cascade(1)'s flower fills the circle
+d=$T/run-t_cascade.1
+[ -s "$d/cf.exr" ] && t_xform --clip 100,100,156,156 "$d/cf.exr" -o "$T/cf_in.exr" &&
+    t_xform --clip 100,100,156,156 "$F/flower.exr" -o "$T/fl_in.exr" &&
+    same "t_cascade(1): the flower fills the circle's inside" "$T/cf_in.exr" "$T/fl_in.exr" ||
+    notok "t_cascade(1)'s example"
 [ "$npages" -ge 40 ] && ok "$npages manuals have examples" || notok "few manuals with examples: $npages"

@@ -39,6 +39,20 @@ done
 check "a recipe's -h prints its header" "$top/patterns/granite.sh" -h
 "$top/patterns/granite.sh" -s x12 -o "$T/x" 2>/dev/null; [ $? = 2 ] && ok "a recipe refuses a bad size (exit 2)" ||
     notok "recipe bad size"
+# one option set in every recipe, and the tools found beside them (not on PATH)
+(cd "$T" && env PATH=/usr/bin:/bin "$top/patterns/granite.sh" -o "$T/bare" -s 40x24 -S 5 >/dev/null) &&
+    [ "$(info_json "$T/bare_colour.exr" width)x$(info_json "$T/bare_colour.exr" height)" = 40x24 ] &&
+    ok "a recipe finds the tools beside it, and takes -s WxH" || notok "recipe without PATH, -s WxH"
+(cd "$T" && "$top/patterns/granite.sh" -o "$T/s0" -s 24 >/dev/null) &&
+    (cd "$T" && "$top/patterns/granite.sh" -o "$T/s1" -s 24 -S 1 >/dev/null) &&
+    ! cmp -s "$T/s0_colour.exr" "$T/s1_colour.exr" && ok "-S gives another picture" || notok "recipe -S"
+for r in synth_tile five_spheres; do
+    (cd "$T" && "$top/patterns/$r.sh" -o "$T/$r" -s 32x24 -S 2 >"$T/out" 2>"$T/err") &&
+        grep -q "^wrote $T/$r" "$T/out" && ok "$r.sh takes -o, -s WxH and -S as the others do" ||
+        notok "$r.sh options" "$(head -c 300 "$T/err")"
+done
+"$top/patterns/synth_tile.sh" out.png 2>"$T/err"; [ $? = 2 ] && grep -q "unexpected operand" "$T/err" &&
+    ok "a recipe refuses an operand" || notok "recipe operand"
 # the tileable maps: across the wrap no larger a step than between neighbouring columns
 for m in wood stone fabric ground; do
     t_convert "$T/source_tileable_$m.exr" -o "$T/t.pfm"
