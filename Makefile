@@ -280,6 +280,9 @@ figures: all
 	PATH="$(CURDIR)/$(BUILD)/bin:$$PATH" patterns/figures.sh -o doc/figures
 	PATH="$(CURDIR)/$(BUILD)/bin:$$PATH" FIGURES=photo_4.1 patterns/figures.sh -o $(BUILD)/photo -s 800
 	cp $(BUILD)/photo/fig_photo_4.1.png doc/images/photo_4.1.png
+	$(BUILD)/bin/t_apply patterns/resolution.scene -s 720x405 -q -o doc/images/resolution.png
+	$(BUILD)/bin/t_fractal --mode fbm -s 1024x512 -f 6 | $(BUILD)/bin/t_palette sky | \
+	    $(BUILD)/bin/t_apply patterns/mirror_ball.scene -s 720x480 -q -o doc/images/mirror_ball.png
 
 gallery: all
 	PATH="$(CURDIR)/$(BUILD)/bin:$$PATH" patterns/gallery.sh -o gallery

@@ -72,24 +72,3 @@ P
 )
     [ "$r" = ok ] && ok "tileable $m has no seam" || notok "tileable $m" "$r"
 done
-# the gallery: its page links only files that exist, and shows every primitive
-if ! "$top/patterns/gallery.sh" -o "$T/gal" -s 24 >"$T/gout" 2>&1; then
-    notok "gallery.sh runs" "$(grep -m3 'ERROR\|error\|failed' "$T/gout")"
-    exit 0
-fi
-ok "gallery.sh runs"
-missing=$(sed -n 's/.*<img src="\([^"]*\)".*/\1/p' "$T/gal/index.html" | while read -r f; do
-    [ -s "$T/gal/$f" ] || echo "$f"; done)
-n=$(grep -c '<img src=' "$T/gal/index.html")
-[ "$n" -gt 60 ] && [ -z "$missing" ] && ok "the gallery page links $n pictures, all present" ||
-    notok "gallery links" "$n pictures, missing: $missing"
-bad=0
-for p in $(t_info --primitives | awk '{ print $1 }'); do
-    grep -q "t_$p " "$T/gal/index.html" || { notok "the gallery shows t_$p"; bad=1; }
-done
-[ "$bad" = 0 ] && ok "the gallery shows every primitive of t_info --primitives"
-if command -v montage >/dev/null; then
-    [ -s "$T/gal/gallery.png" ] && ok "the contact sheet is written" || notok "contact sheet"
-else
-    skip "the contact sheet is written" "ImageMagick's montage is not installed"
-fi
