@@ -134,8 +134,12 @@ void tex_cli_mdoc(FILE *fp, const struct tex_tool *t, const struct tex_cli_opt *
             fprintf(fp, ": one of %s", tex_param_range(p, rng, sizeof rng));
         else if (p->type != TEX_P_FLAG && p->type != TEX_P_STRING)
             fprintf(fp, ", %s", tex_param_range(p, rng, sizeof rng));
-        if (p->type != TEX_P_FLAG && (p->type != TEX_P_STRING || p->defstr))
-            fprintf(fp, "; default %s", tex_param_default(p, def, sizeof def));
+        if (p->type != TEX_P_FLAG && (p->type != TEX_P_STRING || p->defstr)) {
+            /* a default that ends in a full stop ("." the current folder) is quoted */
+            const char *d = tex_param_default(p, def, sizeof def);
+            size_t len = strlen(d);
+            fprintf(fp, len && d[len - 1] == '.' ? "; default \\(lq%s\\(rq" : "; default %s", d);
+        }
         if (p->bare)
             fprintf(fp, "; given alone, %s", p->bare);
         fputs(".\n", fp);

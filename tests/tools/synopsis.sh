@@ -20,3 +20,9 @@ for bin in "$TEXTURA_BUILD"/bin/t_*; do
     n=$((n + 1))
 done
 [ "$n" -ge 40 ] && ok "every tool was checked ($n)" || notok "every tool was checked" "$n"
+# the rendered pages read as prose: no "default .." where a default ends in a full stop,
+# no stray tab or accent standing for a symbol
+bad=$(for p in "${TEXTURA_TOP:-.}"/man/man1/*.1 "${TEXTURA_TOP:-.}"/man/man5/*.5; do
+    mandoc -Tutf8 "$p" 2>/dev/null | col -bx | grep -n 'default \.\.\|´' | sed "s|^|$(basename "$p"):|"
+done)
+[ -z "$bad" ] && ok "no page renders 'default ..' or an accent for a prime" || notok "rendered pages" "$bad"
