@@ -36,6 +36,7 @@ static int whole(const struct tex_param *rows, size_t off, double v)
 struct holes_params {
     int count;
     double diameter, jitter, density, depth;
+    int formula;
 };
 
 static const struct tex_param holes_rows[] = {
@@ -49,6 +50,9 @@ static const struct tex_param holes_rows[] = {
                "probability that a cell has a hole", .old = "density"),
     TEX_REAL_N("hole_depth", struct holes_params, depth, 0, 1, 0, 1, "A",
                "depth of the holes (Fact)", .old = "depth"),
+    TEX_ENUM(struct holes_params, formula, 0, "scaled", "scaled|thesis",
+             "the well: 1 - A e^(-8 R/D), the same shape at any diameter, or the thesis's "
+             "-A e^(-N^2 R/D) with N = 4/D, R and D in cells"),
     {0}};
 
 /* The hole of cell (i, j[, k]), wrapped by the grid: centre in cell units, diameter.  A solid
@@ -161,13 +165,52 @@ static float holes_point(const struct tex_field *f, struct hole_cache *hc, int d
     return clamp_unit((float)(1.0 - p->depth * best));
 }
 
+/* The thesis's well as printed, -A e^(-N^2 R / D) with N = 4/D, R and D in cells: the
+ * exponent 16 R / D^3 depends on the diameter's size, not only on R / D.  The deepest hole
+ * is the one of least R / D^3; a neighbour whose gap exceeds the least so far times dmax^3
+ * cannot lower it. */
+static float holes_point_thesis(const struct tex_field *f, struct hole_cache *hc, int dims,
+                                const double *pt)
+{
+    const struct holes_params *p = f->params;
+    double x[3] = {0, 0, 0}, qmin = INFINITY, lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+    double dmax = p->diameter * (1 + p->jitter) * (1 + 1e-9), dmax3 = dmax * dmax * dmax;
+    int64_t i[3] = {0, 0, 0};
+    for (int a = 0; a < dims; a++) {
+        x[a] = pt[a] * p->count;
+        i[a] = (int64_t)floor(x[a]);
+        lo[a] = x[a] - i[a], hi[a] = i[a] + 1 - x[a];
+    }
+    for (int di = -1; di <= 1; di++)
+        for (int dj = -1; dj <= 1; dj++)
+            for (int dk = dims == 3 ? -1 : 0; dk <= (dims == 3 ? 1 : 0); dk++) {
+                double g[3] = {di < 0 ? lo[0] : di > 0 ? hi[0] : 0,
+                               dj < 0 ? lo[1] : dj > 0 ? hi[1] : 0,
+                               dk < 0 ? lo[2] : dk > 0 ? hi[2] : 0};
+                double bound = qmin * dmax3;
+                if (g[0] * g[0] + g[1] * g[1] + g[2] * g[2] > bound * bound)
+                    continue;
+                int64_t c[3] = {i[0] + di, i[1] + dj, i[2] + dk};
+                double ctr[3], d;
+                if (!cached_hole(hc, f, dims, c, ctr, &d))
+                    continue;
+                double e[3] = {x[0] - ctr[0], x[1] - ctr[1], dims == 3 ? x[2] - ctr[2] : 0};
+                double q = sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]) / (d * d * d);
+                qmin = q < qmin ? q : qmin;
+            }
+    double best = qmin < INFINITY ? exp(-16.0 * qmin) : 0;
+    return clamp_unit((float)(1.0 - p->depth * best));
+}
+
 static void holes_eval2(const struct tex_field *f, int n, const double *u, const double *v,
                         float *out)
 {
     struct hole_cache hc;
     hole_cache_init(&hc);
     for (int i = 0; i < n; i++)
-        out[i] = holes_point(f, &hc, 2, (const double[2]){u[i], v[i]});
+        out[i] = ((const struct holes_params *)f->params)->formula
+                     ? holes_point_thesis(f, &hc, 2, (const double[2]){u[i], v[i]})
+                     : holes_point(f, &hc, 2, (const double[2]){u[i], v[i]});
 }
 
 /* Spherical holes in space (thesis 5.2.2.6): the cells are cubes. */
@@ -177,7 +220,9 @@ static void holes_eval3(const struct tex_field *f, int n, const double *u, const
     struct hole_cache hc;
     hole_cache_init(&hc);
     for (int i = 0; i < n; i++)
-        out[i] = holes_point(f, &hc, 3, (const double[3]){u[i], v[i], w[i]});
+        out[i] = ((const struct holes_params *)f->params)->formula
+                     ? holes_point_thesis(f, &hc, 3, (const double[3]){u[i], v[i], w[i]})
+                     : holes_point(f, &hc, 3, (const double[3]){u[i], v[i], w[i]});
 }
 
 const struct tex_primitive tex_prim_holes = {
@@ -194,7 +239,7 @@ const struct tex_primitive tex_prim_holes = {
 
 struct colorvar_params {
     double frequency, k1, k2, b, noise;
-    int terms;
+    int terms, formula;
     float color[4];
 };
 
@@ -213,6 +258,10 @@ static const struct tex_param colorvar_rows[] = {
              "add A times gradient noise to both phases (breaks the regularity)"),
     TEX_COLOR_N("colour", struct colorvar_params, color, 0, NULL,
                 "write an RGB map: the colour scaled by Fact (default: Fact alone)"),
+    TEX_ENUM(struct colorvar_params, formula, 0, "scaled", "scaled|thesis",
+             "Fact: the product over its largest value, random phases per term, in [0,1]; "
+             "or the thesis's 0.5 + 0.5 (product), no phases, C_1 making the product at "
+             "most 1, in [0.5,1]"),
     {0}};
 
 struct colorvar_state {
@@ -238,6 +287,8 @@ static int colorvar_init(struct tex_field *f)
         s->sumc += c;
         s->phase[0][i] = 2 * M_PI * tex_rng_uniform(&r);
         s->phase[1][i] = 2 * M_PI * tex_rng_uniform(&r);
+        if (p->formula) /* the thesis's sums have no phases of their own */
+            s->phase[0][i] = s->phase[1][i] = 0;
     }
     f->nc = p->color[3] > 0 ? 3 : 1;
     return tex_noise_init(&s->t, f->seed, 256, f->tile ? 4 : 0);
@@ -291,7 +342,10 @@ static void colorvar_fact(const struct tex_field *f, int m, const double *u, con
             sv[i] += c * (a[i] + 1);
     }
     for (int i = 0; i < m; i++) {
+        /* the product over its largest, (2 sum C_i)^2: in [0,1]; the thesis's 0.5 + 0.5 x */
         double fact = su[i] * sv[i] / (4 * s->sumc * s->sumc);
+        if (p->formula)
+            fact = 0.5 + 0.5 * fact;
         if (f->nc == 1)
             out[i] = clamp_unit((float)fact);
         else
