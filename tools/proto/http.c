@@ -247,7 +247,8 @@ static unsigned api_render(struct MHD_Connection *c, struct pipeline *pl, const 
             free(out->s);
             *out = (struct tex_str){0};
             const char *fn = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "apply");
-            r = scene_stage(pl, fn, map) < 0 ? 2 : run(pl, out);
+            const char *k = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "strength");
+            r = scene_stage(pl, fn, k, map) < 0 ? 2 : run(pl, out);
         }
         code = r == 0 ? 200 : r == 2 ? 400 : 500;
         *type = r == 0 ? "image/png" : *type;

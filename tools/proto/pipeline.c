@@ -297,31 +297,35 @@ static int scene_string(struct tex_str *b, const char *s)
 }
 
 /* The standard scene (thesis 4.3.7): the map on a sphere over a plane, through the
- * application function chosen (Kd, Ks, bump). */
-int scene_stage(struct pipeline *pl, const char *fn, const char *map)
+ * application function chosen: Kd; Ks, on a dull surface lit wide so the highlight spreads
+ * over the map; bump, its strength given (t_apply's bump target's range). */
+int scene_stage(struct pipeline *pl, const char *fn, const char *strength, const char *map)
 {
-    char scene[PATH_MAX + 64];
+    char scene[PATH_MAX + 64], apply[64];
     struct tex_str s = {0};
-    const char *apply = !fn || !strcmp(fn, "Kd") ? "Kd = f"
-                        : !strcmp(fn, "Ks")      ? "Ks = f"
-                        : !strcmp(fn, "bump")    ? "bump = 2"
-                                                 : NULL;
-    if (!apply)
+    double k = 0.2;
+    int ks = fn && !strcmp(fn, "Ks");
+    if (fn && strcmp(fn, "Kd") && strcmp(fn, "Ks") && strcmp(fn, "bump"))
         return fail(pl, "the application function must be Kd, Ks or bump (got '%.20s')", fn);
+    if (strength && (tex_parse_real(strength, &k) < 0 || k < -1000 || k > 1000))
+        return fail(pl, "the bump strength must be -1000..1000 (got '%.20s')", strength);
+    snprintf(apply, sizeof apply, !fn || !strcmp(fn, "Kd") ? "Kd = f"
+                                  : ks                      ? "Ks = f"
+                                                            : "bump = %.17g", k);
     tex_str_add(&s, "image 192 144\nsamples 1\nambient 0.25 0.25 0.25\nbackground 0.15 0.15 0.17\n"
              "camera { eye 0 1.3 -3.6 look 0 0.7 0 fov 42 }\n"
-             "light point { position -3 5 -4 intensity 1 }\n"
-             "texture m file ");
+             "light point { position %s intensity 1 }\n"
+             "texture m file ", ks ? "0 1.6 -3.4" : "-3 5 -4");
     if (scene_string(&s, map) < 0) {
         free(s.s);
         return fail(pl, "the map's path has a control character");
     }
     tex_str_add(&s, "\n"
-             "surface ball { Kd 0.8 Ks 0.3 n 40 apply m { mapping sphere %s } }\n"
-             "surface floor { Kd 0.7 Ks 0.1 n 10 apply m { scale 0.5 %s } }\n"
+             "surface ball { Kd %s Ks 0.3 n %s apply m { mapping sphere %s } }\n"
+             "surface floor { Kd %s Ks 0.1 n %s apply m { scale 0.5 %s } }\n"
              "sphere { centre 0 0.8 0 radius 0.8 surface ball }\n"
              "plane { surface floor }\n",
-         apply, apply);
+             ks ? "0.08" : "0.8", ks ? "2" : "40", apply, ks ? "0.08" : "0.7", ks ? "2" : "10", apply);
     snprintf(scene, sizeof scene, "%s/scene.%lx.scene", proto.tmpdir,
              (unsigned long)pthread_self());
     FILE *f = fopen(scene, "w");

@@ -52,6 +52,7 @@ struct pipeline {
     char words[MAX_STAGES * MAX_WORDS * 128]; /* the words, one after the other */
     size_t used;
     int nsteps;
+    int overwrite, exists; /* a save may replace a file; it did not, the file exists */
     long end; /* the time (time(NULL)) every run of the request ends by, or 0 */
     char err[512];
 };
@@ -68,7 +69,7 @@ int fail(struct pipeline *pl, const char *fmt, ...) __attribute__((format(printf
 int is_name(const char *s);
 int build(struct MHD_Connection *c, struct pipeline *pl, int size);
 void cmdline(const struct pipeline *pl, struct tex_str *b);
-int scene_stage(struct pipeline *pl, const char *fn, const char *map);
+int scene_stage(struct pipeline *pl, const char *fn, const char *strength, const char *map);
 
 /* spawn.c: the worst exit status (0 ok, 1 runtime, 2 usage), the output in out; and every
  * running pipeline killed (on a signal, before the temporary folder goes) */
