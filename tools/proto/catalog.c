@@ -1,5 +1,6 @@
 /* catalog.c - the primitives and their parameter rows, as JSON for the page */
 #include <dirent.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -60,7 +61,7 @@ static void json_palettes(struct tex_str *b)
         k += len;
         k += strspn(k, ", ");
     }
-    int fd = dup(proto.workfd);
+    int fd = openat(proto.workfd, ".", O_RDONLY | O_DIRECTORY | O_CLOEXEC); /* its own offset */
     DIR *d = fd >= 0 ? fdopendir(fd) : NULL;
     struct dirent *e;
     if (!d && fd >= 0)
