@@ -22,7 +22,8 @@
 #define MAX_STEPS 8       /* pipeline steps after the primitive */
 #define MAX_STAGES (1 + MAX_STEPS)
 #define MAX_ARGS 64       /* query parameters of one request */
-#define RUN_SECONDS 30    /* a pipeline's time limit */
+#define RUN_SECONDS 30    /* a request's time limit for its pipelines */
+#define MAX_RUNS 8        /* pipelines running at once; more wait their turn */
 #define HEAD_SECONDS 5    /* a request's time to arrive whole (and a kept connection's idle time) */
 #define CONN_SLOTS 48     /* connections held at once: a new one drops the oldest still arriving */
 #define BURST 60          /* requests allowed at once ... */

@@ -95,14 +95,49 @@ static void spawn_stages(struct pipeline *pl, pid_t *pid, int out, int errfd)
     posix_spawnattr_destroy(&at);
 }
 
+/* At most MAX_RUNS pipelines at once (a thread per connection would otherwise start one
+ * per request): a slot, waited for until the request's end; 0, or -1 with pl->err. */
+static pthread_mutex_t slots_lock = PTHREAD_MUTEX_INITIALIZER;
+static pthread_cond_t slots_free = PTHREAD_COND_INITIALIZER;
+static int running;
+
+static int slot(struct pipeline *pl, time_t end, int take)
+{
+    struct timespec until = {end, 0};
+    int rc = 0;
+    pthread_mutex_lock(&slots_lock);
+    if (!take) {
+        running--;
+        pthread_cond_signal(&slots_free);
+    } else {
+        while (running >= MAX_RUNS && rc == 0)
+            rc = pthread_cond_timedwait(&slots_free, &slots_lock, &until);
+        if (running < MAX_RUNS)
+            running++, rc = 0;
+    }
+    pthread_mutex_unlock(&slots_lock);
+    return rc ? fail(pl, "busy: %d pipelines ran for the whole %d s", MAX_RUNS, RUN_SECONDS) : 0;
+}
+
+static int run_slot(struct pipeline *pl, struct tex_str *out, time_t end);
+
 /* Run the pipeline; the last stage's standard output into out.  Returns the
  * worst exit status (0 ok, 1 runtime, 2 usage) with stderr's first line in err. */
 int run(struct pipeline *pl, struct tex_str *out)
 {
+    time_t end = pl->end ? (time_t)pl->end : time(NULL) + RUN_SECONDS;
+    if (slot(pl, end, 1) < 0)
+        return 1;
+    int status = run_slot(pl, out, end);
+    slot(pl, end, 0);
+    return status;
+}
+
+static int run_slot(struct pipeline *pl, struct tex_str *out, time_t end)
+{
     pid_t pid[MAX_STAGES] = {0};
     int errp[2], outp[2], status = 0;
     struct tex_str err = {0};
-    time_t end = pl->end ? (time_t)pl->end : time(NULL) + RUN_SECONDS;
 
     if (pipe2(errp, O_CLOEXEC) < 0 || pipe2(outp, O_CLOEXEC) < 0)
         return fail(pl, "cannot make a pipe"), 1;
