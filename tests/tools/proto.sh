@@ -6,26 +6,12 @@ top=${TEXTURA_TOP:-.}
 mkdir -p "$T/work"
 start_proto "$T/work" --defs "$top/patterns/primitives.tp"
 url=$proto_url
-case $url in http://127.0.0.1:*/\?token=*) ok "t_proto prints a 127.0.0.1 URL with a token" ;;
-    *) notok "t_proto URL" "$(cat "$T/.proto_url" "$T/.proto_log")"; exit 0 ;; esac
-python3 - "$url" "$T/work" "$T" <<'PY'
+proto_up "t_proto prints a 127.0.0.1 URL with a token" || exit 0
+PYTHONPATH="$(dirname "$0")" python3 - "$url" "$T/work" "$T" <<'PY'
 import http.client, json, os, subprocess, sys, threading, time, urllib.parse as up
+from protoclient import Proto, say
 url, work, tmp = sys.argv[1:4]
-u = up.urlsplit(url)
-token = up.parse_qs(u.query)["token"][0]
-host, port = u.hostname, u.port
-def say(ok, name, why=""):
-    print(("ok - " if ok else "not ok - ") + name + ("" if ok else ": " + str(why)[:300]), flush=True)
-def get(path, params=None, tok=True):
-    q = list(params or [])
-    if tok:
-        q.insert(0, ("token", token))
-    c = http.client.HTTPConnection(host, port, timeout=60)
-    c.request("GET", path + "?" + up.urlencode(q))
-    r = c.getresponse()
-    body = r.read()
-    c.close()
-    return r.status, body
+token, host, port, get = Proto(url).parts()
 
 s, b = get("/", tok=False)
 say(s == 403, "a request without the token gets 403", s)
@@ -103,7 +89,6 @@ s, b = get("/api/save", [("kind", "palette"), ("name", "two.pal"), ("overwrite",
                          ("text", "space oklab\n0 #102040\n1 #f0e0b0\n")])
 say(s == 200 and "#102040" in open(pal).read(), "overwrite=1 replaces it", (s, b))
 # the standard scene: bump with a strength, a Ks view that shows the map
-sys.path.insert(0, os.path.join(os.environ.get("TEXTURA_TOP", "."), "tests", "tools"))
 from cdp import png_pixels
 def grey(png):
     w, h, ch, rows = png_pixels(png)

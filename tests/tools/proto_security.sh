@@ -10,25 +10,12 @@ mkdir -p "$T/work" "$T/tmp"
 export TEXTURA_MAX_INPUT=1M
 TMPDIR=$T/tmp start_proto "$T/work"
 url=$proto_url
-case $url in http://127.0.0.1:*/\?token=*) ok "t_proto starts" ;;
-    *) notok "t_proto starts" "$(cat "$T/.proto_url" "$T/.proto_log")"; exit 0 ;; esac
-python3 - "$url" "$T/work" "$T" <<'PY'
+proto_up "t_proto starts" || exit 0
+PYTHONPATH="$(dirname "$0")" python3 - "$url" "$T/work" "$T" <<'PY'
 import http.client, os, shlex, socket, subprocess, sys, threading, time, urllib.parse as up
+from protoclient import Proto, say
 url, work, tmp = sys.argv[1:4]
-u = up.urlsplit(url)
-token = up.parse_qs(u.query)["token"][0]
-host, port = u.hostname, u.port
-def say(ok, name, why=""):
-    print(("ok - " if ok else "not ok - ") + name + ("" if ok else ": " + str(why)[:300]), flush=True)
-def get(path, params=(), tok=True, headers=None, source=None, timeout=20):
-    q = ([("token", token)] if tok else []) + list(params)
-    c = http.client.HTTPConnection(host, port, timeout=timeout,
-                                   source_address=(source, 0) if source else None)
-    c.request("GET", path + "?" + up.urlencode(q), headers=headers or {})
-    r = c.getresponse()
-    body = r.read()
-    c.close()
-    return r.status, body
+token, host, port, get = Proto(url).parts()
 
 # shell quoting: a quote in a value cannot end the word in the command line shown or saved
 evil = "#fff'; touch PWNED; echo '"
