@@ -92,6 +92,7 @@ int main(int argc, char **argv)
 
     static char dir[PATH_MAX];
     tex_cli_parse(&tool, argc, argv, &c, &o);
+    free(c.cmdline); /* no map of its own records it */
     self_dir();
     if (!realpath(o.dir, dir) ||
         (proto.workfd = open(dir, O_RDONLY | O_DIRECTORY | O_CLOEXEC)) < 0)

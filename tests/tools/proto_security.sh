@@ -212,7 +212,7 @@ wait $a 2>/dev/null
 # the temporary folder goes with it on SIGTERM, SIGINT and SIGHUP
 for sig in TERM INT HUP; do
     rm -rf "$T/tmp"/t_proto.* "$T/s.url"
-    TMPDIR=$T/tmp t_proto -C "$T/work" -p 0 >"$T/s.url" 2>/dev/null &
+    TMPDIR=$T/tmp t_proto -C "$T/work" -p 0 >"$T/s.url" 2>"$T/s.err" &
     pid=$!
     for _ in $(seq 50); do grep -q token= "$T/s.url" && break; sleep 0.1; done
     u=$(sed -n 's/.* on \(http:[^ ]*\)$/\1/p' "$T/s.url")
@@ -220,10 +220,13 @@ for sig in TERM INT HUP; do
     made=$(ls -d "$T/tmp"/t_proto.* 2>/dev/null | wc -l)
     kill -s $sig $pid
     wait $pid 2>/dev/null
+    st=$?
     left=$(ls -d "$T/tmp"/t_proto.* 2>/dev/null | wc -l)
-    if [ "$made" = 1 ] && [ "$left" = 0 ]; then
-        ok "the temporary folder is removed on SIG$sig"
+    # status 0 and nothing said: a sanitizer build's leak report would be here
+    if [ "$made" = 1 ] && [ "$left" = 0 ] && [ $st = 0 ] && [ ! -s "$T/s.err" ]; then
+        ok "the temporary folder is removed on SIG$sig, and t_proto ends cleanly"
     else
-        notok "the temporary folder is removed on SIG$sig" "made $made, left $left"
+        notok "the temporary folder is removed on SIG$sig, and t_proto ends cleanly" \
+            "made $made, left $left, status $st: $(head -c 300 "$T/s.err")"
     fi
 done
