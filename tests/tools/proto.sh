@@ -100,6 +100,10 @@ s2, hard = get("/api/scene", base + [("apply", "bump"), ("strength", "2")])
 say(s1 == 200 and s2 == 200 and soft != hard, "the bump's strength is a control", (s1, s2))
 s, b = get("/api/scene", base + [("apply", "bump"), ("strength", "5000")])
 say(s == 400 and b"strength must be -1000..1000" in b, "a bump strength out of range is refused", (s, b))
+s, b = get("/api/scene", base + [("apply", "Kr")])
+s2, b2 = get("/api/scene", base + [("apply", "Kt")])
+say(s == 200 and b[:4] == b"\x89PNG" and s2 == 400 and b"Kd, Ks, Kr or bump" in b2,
+    "the scene's application functions are Kd, Ks, Kr and bump", (s, s2, b2[:80]))
 s1, a = get("/api/scene", [("prim", "noise"), ("p", "frequency:3"), ("apply", "Ks")])
 s2, c = get("/api/scene", [("prim", "noise"), ("p", "frequency:12"), ("apply", "Ks")])
 d = diff(a, c) if s1 == s2 == 200 else 0

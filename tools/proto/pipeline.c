@@ -296,36 +296,53 @@ static int scene_string(struct tex_str *b, const char *s)
     return 0;
 }
 
-/* The standard scene (thesis 4.3.7): the map on a sphere over a plane, through the
- * application function chosen: Kd; Ks, on a dull surface lit wide so the highlight spreads
- * over the map; bump, its strength given (t_apply's bump target's range). */
+/* The standard scene (thesis 4.3.7): the map on a sphere and a box over a plane, through the
+ * application function chosen.  Each view lights its function's effect: Ks on a dull surface
+ * lit wide so the highlight spreads over the map; Kr with the floor textured, for the objects
+ * to mirror it; bump with the strength given (t_apply's bump target's range). */
+static const struct view {
+    const char *fn, *light, *kd, *n, *floor_kd, *floor_n, *floor_apply;
+} views[] = {
+    {"Kd", "-3 5 -4", "0.8", "40", "0.7", "10", NULL},
+    {"Ks", "0 1.6 -3.4", "0.08", "2", "0.08", "2", NULL},
+    {"Kr", "-3 5 -4", "0.25", "40", "0.7", "10", "Kd = f"},
+    {"bump", "-3 5 -4", "0.8", "40", "0.7", "10", NULL},
+};
+
 int scene_stage(struct pipeline *pl, const char *fn, const char *strength, const char *map)
 {
     char scene[PATH_MAX + 64], apply[64];
     struct tex_str s = {0};
+    const struct view *v = NULL;
     double k = 0.2;
-    int ks = fn && !strcmp(fn, "Ks");
-    if (fn && strcmp(fn, "Kd") && strcmp(fn, "Ks") && strcmp(fn, "bump"))
-        return fail(pl, "the application function must be Kd, Ks or bump (got '%.20s')", fn);
+    for (size_t i = 0; i < sizeof views / sizeof *views; i++)
+        if (!strcmp(fn ? fn : "Kd", views[i].fn))
+            v = &views[i];
+    if (!v)
+        return fail(pl, "the application function must be Kd, Ks, Kr or bump (got '%.20s')", fn);
     if (strength && (tex_parse_real(strength, &k) < 0 || k < -1000 || k > 1000))
         return fail(pl, "the bump strength must be -1000..1000 (got '%.20s')", strength);
-    snprintf(apply, sizeof apply, !fn || !strcmp(fn, "Kd") ? "Kd = f"
-                                  : ks                      ? "Ks = f"
-                                                            : "bump = %.17g", k);
+    if (!strcmp(v->fn, "bump"))
+        snprintf(apply, sizeof apply, "bump = %.17g", k);
+    else
+        snprintf(apply, sizeof apply, "%s = f", v->fn);
     tex_str_add(&s, "image 192 144\nsamples 1\nambient 0.25 0.25 0.25\nbackground 0.15 0.15 0.17\n"
-             "camera { eye 0 1.3 -3.6 look 0 0.7 0 fov 42 }\n"
+             "camera { eye 0 1.3 -3.6 look 0 0.55 0 fov 42 }\n"
              "light point { position %s intensity 1 }\n"
-             "texture m file ", ks ? "0 1.6 -3.4" : "-3 5 -4");
+             "texture m file ", v->light);
     if (scene_string(&s, map) < 0) {
         free(s.s);
         return fail(pl, "the map's path has a control character");
     }
     tex_str_add(&s, "\n"
              "surface ball { Kd %s Ks 0.3 n %s apply m { mapping sphere %s } }\n"
+             "surface cube { Kd %s Ks 0.3 n %s apply m { mapping box %s } }\n"
              "surface floor { Kd %s Ks 0.1 n %s apply m { scale 0.5 %s } }\n"
-             "sphere { centre 0 0.8 0 radius 0.8 surface ball }\n"
+             "sphere { centre -0.55 0.6 0 radius 0.6 surface ball }\n"
+             "box { min 0.2 0 -0.35 max 0.9 0.7 0.35 surface cube }\n"
              "plane { surface floor }\n",
-             ks ? "0.08" : "0.8", ks ? "2" : "40", apply, ks ? "0.08" : "0.7", ks ? "2" : "10", apply);
+             v->kd, v->n, apply, v->kd, v->n, apply, v->floor_kd, v->floor_n,
+             v->floor_apply ? v->floor_apply : apply);
     snprintf(scene, sizeof scene, "%s/scene.%lx.scene", proto.tmpdir,
              (unsigned long)pthread_self());
     FILE *f = fopen(scene, "w");
