@@ -387,11 +387,18 @@ def project(page, work, shots):
     v = ed.version()
     ed.set("#params [data-name=rings]", "5.5")
     ed.settled(v)
-    page.js("(() => { document.getElementById('c0').value = '#102030'; document.getElementById('c1').value = '#e0c040';"
+    # three stops: the two there, recoloured, and one added between them
+    page.js("(() => { document.getElementById('addstop').click();"
+            " const c = document.querySelectorAll('#stops .stopcolour'), p = document.querySelectorAll('#stops .stoppos');"
+            " const set = (e, v) => { e.value = v; e.dispatchEvent(new Event('input')); };"
+            " set(c[0], '#102030'); set(p[1], '0.3'); set(c[1], '#40a060'); set(c[2], '#e0c040');"
             " document.getElementById('space').value = 'rgb'; document.getElementById('palname').value = 'leaf.pal';"
             " document.getElementById('savepal').click(); })()")
     page.until("document.getElementById('status').textContent.includes('saved leaf.pal')")
     page.until("palettes.includes('leaf.pal')")
+    lines = [l for l in open(os.path.join(work, "leaf.pal")).read().splitlines() if not l.startswith("#")]
+    say(lines == ["space rgb", "0 #102030", "0.3 #40a060", "1 #e0c040"],
+        "the palette editor saves any number of stops", lines)
     v = ed.version()
     page.js("(() => { document.getElementById('stepkind').value = 'palette';"
             " document.getElementById('addstep').click(); })()")
@@ -412,7 +419,7 @@ def project(page, work, shots):
         j = {"error": str(e)}
     say(j.get("primitive") == "wood" and j.get("params") == {"rings": "5.5"} and j.get("size") == 300
         and j.get("steps") == [{"kind": "palette", "args": ["leaf.pal"]}] and "leaf.pal" in j.get("palettes", {})
-        and j.get("palette_editor", {}).get("from") == "#102030",
+        and j.get("palette_editor", {}).get("stops") == [[0, "#102030"], [0.3, "#40a060"], [1, "#e0c040"]],
         "a project is readable JSON: primitive, parameters, steps, palettes, size, name", j)
     text0 = open(path).read()
     page.js("window.asked = 0; window.confirm = () => { window.asked++; return false; }")
@@ -442,11 +449,12 @@ def project(page, work, shots):
         steps: steps.map(s => s.kind + ':' + s.args.join(':')),
         listed: Array.from(document.querySelectorAll('#steps .steparg option')).map(o => o.value).includes('leaf.pal'),
         chosen: document.querySelector('#steps .steparg').value,
-        c0: document.getElementById('c0').value, c1: document.getElementById('c1').value,
+        stops: Array.from(document.querySelectorAll('#stops .stop')).map(d =>
+            d.querySelector('.stoppos').value + ' ' + d.querySelector('.stopcolour').value),
         space: document.getElementById('space').value, size: document.getElementById('size').value,
         status: document.getElementById('status').textContent})""")
     say(state == {"prim": "wood", "rings": "5.5", "steps": ["palette:leaf.pal"], "listed": True,
-                  "chosen": "leaf.pal", "c0": "#102030", "c1": "#e0c040", "space": "rgb", "size": "300",
+                  "chosen": "leaf.pal", "stops": ["0 #102030", "0.3 #40a060", "1 #e0c040"], "space": "rgb", "size": "300",
                   "status": "loaded leaf.tproj"},
         "a project loads back to the same state after a reload, and the message stays", state)
     after = page.js(PREVIEW)
