@@ -4,9 +4,11 @@
  * the descriptor rows, adds pipeline steps, and shows the map and a standard scene.  Every
  * map is made by the tools themselves, run as a pipeline of processes without a shell
  * (argv arrays of checked words): the command line the page shows is what ran, so it
- * gives the same bytes when run in a shell.  Safe by default: 127.0.0.1 only, a random
- * token on every request (403 without it), saves confined to the working folder (plain
- * names, no symlinks), bounded sizes, bodies and times, 429 on bursts.
+ * gives the same bytes when run in a shell, every word quoted.  Safe by default:
+ * 127.0.0.1 only, Host and Origin its own, a random token on every request (403 without
+ * it), saves confined to the working folder (plain names, no symlinks, no overwriting
+ * unless asked), files read only from inside it, bounded sizes, bodies, query parameters
+ * and times (a request's whole time, not its idle time), 429 on one client's bursts.
  *
  * main is here; the rest is in proto/ (proto.h lists the files). */
 #include <dirent.h>
