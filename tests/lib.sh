@@ -108,6 +108,7 @@ golden() {
 start_proto() {
     local dir=$1
     shift
+    rm -f "$T/.proto_url" # a second start must not read the first one's URL
     t_proto -C "$dir" -p 0 "$@" >"$T/.proto_url" 2>"$T/.proto_log" &
     proto_pid=$!
     trap 'kill $proto_pid 2>/dev/null; rm -rf "$T"' EXIT

@@ -171,25 +171,18 @@ mkdir -p "$long"
 kill "$proto_pid" 2>/dev/null
 wait "$proto_pid" 2>/dev/null
 start_proto "$long"
-python3 - "$proto_url" "$long" <<'PY'
-import http.client, sys, urllib.parse as up
+proto_up "t_proto serves a working folder of $(printf %s "$long" | wc -c) characters" &&
+PYTHONPATH="$(dirname "$0")" python3 - "$proto_url" "$long" <<'PY'
+import sys
+from protoclient import Proto, say
 url, work = sys.argv[1:3]
-u = up.urlsplit(url); token = up.parse_qs(u.query)["token"][0]
-def get(params):
-    c = http.client.HTTPConnection(u.hostname, u.port, timeout=30)
-    c.request("GET", "/api/" + up.urlencode([("token", token)] + params).replace("token=", "?token=", 1)
-              .replace("?", "", 0))
-    r = c.getresponse(); return r.status, r.read()
-def api(path, params):
-    c = http.client.HTTPConnection(u.hostname, u.port, timeout=30)
-    c.request("GET", path + "?" + up.urlencode([("token", token)] + params))
-    r = c.getresponse(); return r.status, r.read()
-s1, b1 = api("/api/save", [("kind", "palette"), ("name", "two.pal"), ("text", "space rgb\n0 #000000\n1 #ff8000\n")])
-s2, b2 = api("/api/preview", [("prim", "noise"), ("step", "palette:two.pal")])
-s3, b3 = api("/api/scene", [("prim", "noise")])
-ok = s1 == 200 and s2 == 200 and b2[:4] == b"\x89PNG" and s3 == 200
-print(("ok - " if ok else "not ok - ") + "a working folder of %d characters: a saved palette and the scene work" % len(work)
-      + ("" if ok else ": %s" % [(s1, b1[:80]), (s2, b2[:120]), (s3, b3[:80])]))
+token, host, port, get = Proto(url).parts()
+s1, b1 = get("/api/save", [("kind", "palette"), ("name", "two.pal"), ("text", "space rgb\n0 #000000\n1 #ff8000\n")])
+s2, b2 = get("/api/preview", [("prim", "noise"), ("step", "palette:two.pal")])
+s3, b3 = get("/api/scene", [("prim", "noise")])
+say(s1 == 200 and s2 == 200 and b2[:4] == b"\x89PNG" and s3 == 200,
+    "in a working folder of %d characters, a saved palette and the scene work" % len(work),
+    [(s1, b1[:80]), (s2, b2[:120]), (s3, b3[:80])])
 PY
 kill "$proto_pid" 2>/dev/null
 wait "$proto_pid" 2>/dev/null
