@@ -14,6 +14,8 @@
 #                                 (TEXTURA_REGOLD=1 rewrites the golden)
 #   start_proto DIR [ARGS...]     start t_proto on a free port serving DIR; sets $proto_pid
 #                                 and $proto_url (its address with the token); killed at exit
+#   proto_up NAME                 ok NAME when t_proto printed its URL with a token, else not
+#                                 ok with its output and log, and status 1
 #   truncated NAME OUT CMD...     the tools that stream: CMD (a command line) reads cut.exr,
 #                                 a stream cut short, on a pipe: exit 1, one line naming
 #                                 standard input, and OUT (its -o) not left behind
@@ -106,11 +108,19 @@ golden() {
 start_proto() {
     local dir=$1
     shift
+    rm -f "$T/.proto_url" # a second start must not read the first one's URL
     t_proto -C "$dir" -p 0 "$@" >"$T/.proto_url" 2>"$T/.proto_log" &
     proto_pid=$!
     trap 'kill $proto_pid 2>/dev/null; rm -rf "$T"' EXIT
     for _ in $(seq 50); do grep -q token= "$T/.proto_url" && break; sleep 0.1; done
     proto_url=$(sed -n 's/.* on \(http:[^ ]*\)$/\1/p' "$T/.proto_url")
+}
+
+proto_up() {
+    case $proto_url in
+    http://127.0.0.1:*/\?token=*) ok "$1" ;;
+    *) notok "$1" "$(cat "$T/.proto_url" "$T/.proto_log")"; return 1 ;;
+    esac
 }
 
 truncated() {

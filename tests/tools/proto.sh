@@ -6,26 +6,12 @@ top=${TEXTURA_TOP:-.}
 mkdir -p "$T/work"
 start_proto "$T/work" --defs "$top/patterns/primitives.tp"
 url=$proto_url
-case $url in http://127.0.0.1:*/\?token=*) ok "t_proto prints a 127.0.0.1 URL with a token" ;;
-    *) notok "t_proto URL" "$(cat "$T/.proto_url" "$T/.proto_log")"; exit 0 ;; esac
-python3 - "$url" "$T/work" "$T" <<'PY'
+proto_up "t_proto prints a 127.0.0.1 URL with a token" || exit 0
+PYTHONPATH="$(dirname "$0")" python3 - "$url" "$T/work" "$T" <<'PY'
 import http.client, json, os, subprocess, sys, threading, time, urllib.parse as up
+from protoclient import Proto, say
 url, work, tmp = sys.argv[1:4]
-u = up.urlsplit(url)
-token = up.parse_qs(u.query)["token"][0]
-host, port = u.hostname, u.port
-def say(ok, name, why=""):
-    print(("ok - " if ok else "not ok - ") + name + ("" if ok else ": " + str(why)[:300]), flush=True)
-def get(path, params=None, tok=True):
-    q = list(params or [])
-    if tok:
-        q.insert(0, ("token", token))
-    c = http.client.HTTPConnection(host, port, timeout=60)
-    c.request("GET", path + "?" + up.urlencode(q))
-    r = c.getresponse()
-    body = r.read()
-    c.close()
-    return r.status, body
+token, host, port, get = Proto(url).parts()
 
 s, b = get("/", tok=False)
 say(s == 403, "a request without the token gets 403", s)
@@ -82,6 +68,46 @@ r = subprocess.run(["t_palette", os.path.join(work, "two.pal"), os.path.join(tmp
 say(s == 200 and r.returncode == 0, "a palette from the editor is saved and t_palette reads it", b)
 s, b = get("/api/preview", base + [("step", "palette:two.pal")])
 say(s == 200 and b[:4] == b"\x89PNG", "a saved palette serves as a pipeline step", (s, b[:80]))
+# the palettes are a list (they were one string, split wrong by the page), each a step
+pals = j["palettes"]
+say(isinstance(pals, list) and "marble" in pals and all(" " not in n and "," not in n for n in pals),
+    "the palettes are a list of names", pals)
+bad = [n for n in pals if get("/api/preview", base + [("step", "palette:" + n)])[0] != 200]
+say(isinstance(pals, list) and len(pals) >= 10 and not bad, "every palette listed works as a step", bad)
+s, b = get("/api/primitives")
+say("two.pal" in json.loads(b)["palettes"], "a palette saved in the folder is listed")
+rows = {r["name"]: r for r in names["fractal"]["params"]}
+say(rows.get("ridge_gain", {}).get("kinds") == 2 and rows.get("mode", {}).get("kinds") == 0 and
+    rows.get("octaves", {}).get("kinds") == 7, "each row gives the modes it applies to (kinds)",
+    [(k, r.get("kinds")) for k, r in rows.items()][:6])
+# saving over a file: refused (409) unless the request says overwrite=1
+pal = os.path.join(work, "two.pal")
+before = open(pal).read()
+s, b = get("/api/save", [("kind", "palette"), ("name", "two.pal"), ("text", "space rgb\n0 #000000\n1 #ffffff\n")])
+say(s == 409 and open(pal).read() == before, "saving over a file is refused (409) and leaves it", (s, b))
+s, b = get("/api/save", [("kind", "palette"), ("name", "two.pal"), ("overwrite", "1"),
+                         ("text", "space oklab\n0 #102040\n1 #f0e0b0\n")])
+say(s == 200 and "#102040" in open(pal).read(), "overwrite=1 replaces it", (s, b))
+# the standard scene: bump with a strength, a Ks view that shows the map
+from cdp import png_pixels
+def grey(png):
+    w, h, ch, rows = png_pixels(png)
+    return [sum(r[x * ch:x * ch + 3]) / 3 for r in rows for x in range(w)]
+def diff(a, b):
+    return sum(abs(x - y) for x, y in zip(grey(a), grey(b))) / len(grey(a))
+s1, soft = get("/api/scene", base + [("apply", "bump"), ("strength", "0.05")])
+s2, hard = get("/api/scene", base + [("apply", "bump"), ("strength", "2")])
+say(s1 == 200 and s2 == 200 and soft != hard, "the bump's strength is a control", (s1, s2))
+s, b = get("/api/scene", base + [("apply", "bump"), ("strength", "5000")])
+say(s == 400 and b"strength must be -1000..1000" in b, "a bump strength out of range is refused", (s, b))
+s, b = get("/api/scene", base + [("apply", "Kr")])
+s2, b2 = get("/api/scene", base + [("apply", "Kt")])
+say(s == 200 and b[:4] == b"\x89PNG" and s2 == 400 and b"Kd, Ks, Kr or bump" in b2,
+    "the scene's application functions are Kd, Ks, Kr and bump", (s, s2, b2[:80]))
+s1, a = get("/api/scene", [("prim", "noise"), ("p", "frequency:3"), ("apply", "Ks")])
+s2, c = get("/api/scene", [("prim", "noise"), ("p", "frequency:12"), ("apply", "Ks")])
+d = diff(a, c) if s1 == s2 == 200 else 0
+say(d > 2, "the Ks view shows the map: two maps differ by %.1f grey levels a pixel" % d, (s1, s2))
 proj = up.urlencode(q)
 s, b = get("/api/save", [("kind", "project"), ("name", "p.tproj"), ("text", proj)])
 s2, b2 = get("/api/load", [("name", "p.tproj")])

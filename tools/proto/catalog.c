@@ -1,4 +1,10 @@
 /* catalog.c - the primitives and their parameter rows, as JSON for the page */
+#include <dirent.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
 #include "io/json.h"
 #include "textura.h"
 #include "proto.h"
@@ -19,7 +25,8 @@ static void json_rows(struct tex_str *b, const struct tex_param *t)
         tex_json_string(b, t[i].help);
         tex_str_add(b, ",\"choices\":");
         tex_json_string(b, t[i].choices);
-        tex_str_add(b, "}");
+        /* the modes of the "mode" row it applies to, bit k for mode k (0: every mode) */
+        tex_str_add(b, ",\"kinds\":%u}", t[i].kinds);
     }
     tex_str_add(b, "]");
 }
@@ -36,15 +43,47 @@ static void json_prim(struct tex_str *b, const struct tex_primitive *p, int comp
     tex_str_add(b, "}");
 }
 
-void api_prims(struct tex_str *b)
+/* The palette names: the installed ones ("brick, clouds, ...") and NAME.pal files the
+ * editor saved in the working folder, each a JSON string. */
+static void json_palettes(struct tex_str *b)
 {
     char names[4096];
+    int first = 1;
+    if (tex_palette_names(names, sizeof names) < 0)
+        names[0] = 0;
+    for (const char *k = names; *k;) {
+        char one[128];
+        size_t len = strcspn(k, ",");
+        snprintf(one, sizeof one, "%.*s", (int)len, k);
+        tex_str_add(b, first ? "" : ",");
+        tex_json_string(b, one);
+        first = 0;
+        k += len;
+        k += strspn(k, ", ");
+    }
+    int fd = openat(proto.workfd, ".", O_RDONLY | O_DIRECTORY | O_CLOEXEC); /* its own offset */
+    DIR *d = fd >= 0 ? fdopendir(fd) : NULL;
+    struct dirent *e;
+    if (!d && fd >= 0)
+        close(fd);
+    for (int n = 0; d && n < 1000 && (e = readdir(d)); n++) /* bounded: a huge folder */
+        if (is_saved_palette(e->d_name)) {
+            tex_str_add(b, first ? "" : ",");
+            tex_json_string(b, e->d_name);
+            first = 0;
+        }
+    if (d)
+        closedir(d);
+}
+
+void api_prims(struct tex_str *b)
+{
     tex_str_add(b, "{\"primitives\":[");
     for (int i = 0; tex_primitives[i]; i++)
         json_prim(b, tex_primitives[i], 0, i == 0);
     for (int i = 0; tex_procs_get(proto.procs, i); i++)
         json_prim(b, tex_procs_get(proto.procs, i), 1, 0);
-    tex_str_add(b, "],\"palettes\":");
-    tex_json_string(b, tex_palette_names(names, sizeof names) >= 0 ? names : "");
-    tex_str_add(b, "}");
+    tex_str_add(b, "],\"palettes\":[");
+    json_palettes(b);
+    tex_str_add(b, "]}");
 }

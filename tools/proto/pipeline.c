@@ -6,19 +6,23 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "textura.h"
 #include "proto.h"
 
+/* Words go one after the other in pl->words: a path is as long as the folder's. */
 const char *word(struct pipeline *pl, const char *fmt, ...)
 {
     va_list ap;
-    if (pl->nwords == MAX_STAGES * MAX_WORDS)
-        return NULL;
-    char *w = pl->words[pl->nwords++];
+    size_t room = sizeof pl->words - pl->used;
+    char *w = pl->words + pl->used;
     va_start(ap, fmt);
-    vsnprintf(w, sizeof pl->words[0], fmt, ap);
+    int n = vsnprintf(w, room, fmt, ap);
     va_end(ap);
+    if (n < 0 || (size_t)n >= room)
+        return NULL;
+    pl->used += (size_t)n + 1;
     return w;
 }
 
@@ -26,7 +30,7 @@ int arg(struct pipeline *pl, const char *w)
 {
     struct stage *s = &pl->st[pl->n - 1];
     if (!w || s->n == MAX_WORDS) {
-        snprintf(pl->err, sizeof pl->err, "too many words in one step");
+        snprintf(pl->err, sizeof pl->err, "too many words in one step (at most %d)", MAX_WORDS);
         return -1;
     }
     s->argv[s->n++] = w;
@@ -36,7 +40,7 @@ int arg(struct pipeline *pl, const char *w)
 int stage(struct pipeline *pl, const char *tool)
 {
     if (pl->n == MAX_STAGES) {
-        snprintf(pl->err, sizeof pl->err, "too many steps (at most %d)", MAX_STAGES - 2);
+        snprintf(pl->err, sizeof pl->err, "too many steps (at most %d)", MAX_STEPS);
         return -1;
     }
     pl->st[pl->n++].n = 0;
@@ -52,12 +56,36 @@ int fail(struct pipeline *pl, const char *fmt, ...)
     return -1;
 }
 
-/* A value for a row: checked by the row itself, as the tool will. */
+/* A file a row names (meta "FILE"): a plain file inside the working folder, whole path
+ * resolved, within the input limit; the resolved path into w (NULL with pl->err). */
+static const char *inside(struct pipeline *pl, const char *opt, const char *v)
+{
+    char rel[PATH_MAX + 128], real[PATH_MAX];
+    struct stat st;
+    size_t max, n = strlen(proto.dir);
+    snprintf(rel, sizeof rel, "%s%s%s", v[0] == '/' ? "" : proto.dir, v[0] == '/' ? "" : "/", v);
+    if (!realpath(rel, real) || strncmp(real, proto.dir, n) || (real[n] != '/' && real[n]))
+        return fail(pl, "--%s: '%.60s' is not a file inside the working folder", opt, v), NULL;
+    if (stat(real, &st) < 0 || !S_ISREG(st.st_mode))
+        return fail(pl, "--%s: '%.60s' is not a plain file", opt, v), NULL;
+    if (tex_input_max(&max) < 0 || (unsigned long long)st.st_size > max)
+        return fail(pl, "--%s: '%.60s' is over the input limit of %zu bytes", opt, v, max), NULL;
+    return word(pl, "--%s=%s", opt, real);
+}
+
+/* A value for a row: checked by the row itself, as the tool will; no control characters
+ * (a newline would end a scene's comment line). */
 static int check_value(struct pipeline *pl, const struct tex_param *p, const char *v)
 {
     void *scratch = calloc(1, p->off + 4096); /* room for the row's value */
     int rc = 0;
-    if (strlen(v) > 100)
+    for (const char *c = v; *c && !rc; c++)
+        if ((unsigned char)*c < 0x20 || *c == 0x7f)
+            rc = fail(pl, "the value of %s has a control character (byte 0x%02x)", p->name,
+                      (unsigned char)*c);
+    if (rc)
+        ;
+    else if (strlen(v) > 100)
         rc = fail(pl, "value too long (%.20s...)", v);
     else if (!scratch || tex_param_parse(p, scratch, v, TEX_PARAM_OPTION) < 0)
         rc = fail(pl, "%s", tex_errmsg());
@@ -113,8 +141,13 @@ static enum MHD_Result each_param(void *cls, enum MHD_ValueKind kind, const char
             r->failed = fail(r->pl, "--%s is 0 or 1 (got '%.20s')", name, colon + 1);
         else if (!strcmp(colon + 1, "1") && arg(r->pl, word(r->pl, "--%s", name)) < 0)
             r->failed = -1;
-    } else if (check_value(r->pl, row, colon + 1) < 0 ||
-               arg(r->pl, word(r->pl, "--%s=%s", name, colon + 1)) < 0) {
+    } else if (check_value(r->pl, row, colon + 1) < 0) {
+        r->failed = -1;
+    } else if (row->type == TEX_P_STRING && row->meta && !strcmp(row->meta, "FILE")) {
+        const char *w = inside(r->pl, name, colon + 1);
+        if (!w || arg(r->pl, w) < 0)
+            r->failed = -1;
+    } else if (arg(r->pl, word(r->pl, "--%s=%s", name, colon + 1)) < 0) {
         r->failed = -1;
     }
     return r->failed ? MHD_NO : MHD_YES;
@@ -185,6 +218,10 @@ static enum MHD_Result each_step(void *cls, enum MHD_ValueKind kind, const char 
     (void)kind;
     if (r->failed || strcmp(key, "step") || !value)
         return MHD_YES;
+    if (++r->pl->nsteps > MAX_STEPS) {
+        r->failed = fail(r->pl, "too many steps (at most %d)", MAX_STEPS);
+        return MHD_NO;
+    }
     if (step(r->pl, value, r->size) < 0) {
         r->failed = -1;
         return MHD_NO;
@@ -224,6 +261,8 @@ int build(struct MHD_Connection *c, struct pipeline *pl, int size)
     return r.failed ? -1 : 0;
 }
 
+/* Words as a shell reads them back: plain ones bare, others in single quotes, a quote
+ * inside written '\'' */
 void cmdline(const struct pipeline *pl, struct tex_str *b)
 {
     for (int i = 0; i < pl->n; i++) {
@@ -231,34 +270,79 @@ void cmdline(const struct pipeline *pl, struct tex_str *b)
             tex_str_add(b, " | ");
         for (int k = 0; k < pl->st[i].n; k++) {
             const char *w = pl->st[i].argv[k];
-            int plain = strspn(w, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                  "0123456789_-=.,/:") == strlen(w);
-            tex_str_add(b, plain ? "%s%s" : "%s'%s'", k ? " " : "", w);
+            int plain = *w && strspn(w, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                        "0123456789_-=.,/:") == strlen(w);
+            tex_str_add(b, "%s%s", k ? " " : "", plain ? w : "'");
+            for (; !plain && *w; w++)
+                tex_str_bytes(b, *w == '\'' ? "'\\''" : w, *w == '\'' ? 4 : 1);
+            if (!plain)
+                tex_str_add(b, "'");
         }
     }
 }
 
-/* The standard scene (thesis 4.3.7): the map on a sphere over a plane, through the
- * application function chosen (Kd, Ks, bump). */
-int scene_stage(struct pipeline *pl, const char *fn, const char *map)
+/* A scene's string: '"' and '\\' escaped; a control character cannot be written */
+static int scene_string(struct tex_str *b, const char *s)
 {
-    char scene[PATH_MAX];
+    tex_str_add(b, "\"");
+    for (; *s; s++) {
+        if ((unsigned char)*s < 0x20 || *s == 0x7f)
+            return -1;
+        if (*s == '"' || *s == '\\')
+            tex_str_bytes(b, "\\", 1);
+        tex_str_bytes(b, s, 1);
+    }
+    tex_str_add(b, "\"");
+    return 0;
+}
+
+/* The standard scene (thesis 4.3.7): the map on a sphere and a box over a plane, through the
+ * application function chosen.  Each view lights its function's effect: Ks on a dull surface
+ * lit wide so the highlight spreads over the map; Kr with the floor textured, for the objects
+ * to mirror it; bump with the strength given (t_apply's bump target's range). */
+static const struct view {
+    const char *fn, *light, *kd, *n, *floor_kd, *floor_n, *floor_apply;
+} views[] = {
+    {"Kd", "-3 5 -4", "0.8", "40", "0.7", "10", NULL},
+    {"Ks", "0 1.6 -3.4", "0.08", "2", "0.08", "2", NULL},
+    {"Kr", "-3 5 -4", "0.25", "40", "0.7", "10", "Kd = f"},
+    {"bump", "-3 5 -4", "0.8", "40", "0.7", "10", NULL},
+};
+
+int scene_stage(struct pipeline *pl, const char *fn, const char *strength, const char *map)
+{
+    char scene[PATH_MAX + 64], apply[64];
     struct tex_str s = {0};
-    const char *apply = !fn || !strcmp(fn, "Kd") ? "Kd = f"
-                        : !strcmp(fn, "Ks")      ? "Ks = f"
-                        : !strcmp(fn, "bump")    ? "bump = 2"
-                                                 : NULL;
-    if (!apply)
-        return fail(pl, "the application function must be Kd, Ks or bump (got '%.20s')", fn);
+    const struct view *v = NULL;
+    double k = 0.2;
+    for (size_t i = 0; i < sizeof views / sizeof *views; i++)
+        if (!strcmp(fn ? fn : "Kd", views[i].fn))
+            v = &views[i];
+    if (!v)
+        return fail(pl, "the application function must be Kd, Ks, Kr or bump (got '%.20s')", fn);
+    if (strength && (tex_parse_real(strength, &k) < 0 || k < -1000 || k > 1000))
+        return fail(pl, "the bump strength must be -1000..1000 (got '%.20s')", strength);
+    if (!strcmp(v->fn, "bump"))
+        snprintf(apply, sizeof apply, "bump = %.17g", k);
+    else
+        snprintf(apply, sizeof apply, "%s = f", v->fn);
     tex_str_add(&s, "image 192 144\nsamples 1\nambient 0.25 0.25 0.25\nbackground 0.15 0.15 0.17\n"
-             "camera { eye 0 1.3 -3.6 look 0 0.7 0 fov 42 }\n"
-             "light point { position -3 5 -4 intensity 1 }\n"
-             "texture m file \"%s\"\n"
-             "surface ball { Kd 0.8 Ks 0.3 n 40 apply m { mapping sphere %s } }\n"
-             "surface floor { Kd 0.7 Ks 0.1 n 10 apply m { scale 0.5 %s } }\n"
-             "sphere { centre 0 0.8 0 radius 0.8 surface ball }\n"
+             "camera { eye 0 1.3 -3.6 look 0 0.55 0 fov 42 }\n"
+             "light point { position %s intensity 1 }\n"
+             "texture m file ", v->light);
+    if (scene_string(&s, map) < 0) {
+        free(s.s);
+        return fail(pl, "the map's path has a control character");
+    }
+    tex_str_add(&s, "\n"
+             "surface ball { Kd %s Ks 0.3 n %s apply m { mapping sphere %s } }\n"
+             "surface cube { Kd %s Ks 0.3 n %s apply m { mapping box %s } }\n"
+             "surface floor { Kd %s Ks 0.1 n %s apply m { scale 0.5 %s } }\n"
+             "sphere { centre -0.55 0.6 0 radius 0.6 surface ball }\n"
+             "box { min 0.2 0 -0.35 max 0.9 0.7 0.35 surface cube }\n"
              "plane { surface floor }\n",
-         map, apply, apply);
+             v->kd, v->n, apply, v->kd, v->n, apply, v->floor_kd, v->floor_n,
+             v->floor_apply ? v->floor_apply : apply);
     snprintf(scene, sizeof scene, "%s/scene.%lx.scene", proto.tmpdir,
              (unsigned long)pthread_self());
     FILE *f = fopen(scene, "w");

@@ -19,8 +19,13 @@
 #define MAX_BODY 65536    /* bytes of a request body */
 #define MAX_SIDE 4096     /* largest map the editor makes */
 #define MAX_WORDS 48      /* argv words of one stage */
-#define MAX_STAGES 10     /* primitive + steps + the writer */
-#define RUN_SECONDS 30    /* a pipeline's time limit */
+#define MAX_STEPS 8       /* pipeline steps after the primitive */
+#define MAX_STAGES (1 + MAX_STEPS)
+#define MAX_ARGS 64       /* query parameters of one request */
+#define RUN_SECONDS 30    /* a request's time limit for its pipelines */
+#define MAX_RUNS 8        /* pipelines running at once; more wait their turn */
+#define HEAD_SECONDS 5    /* a request's time to arrive whole (and a kept connection's idle time) */
+#define CONN_SLOTS 48     /* connections held at once: a new one drops the oldest still arriving */
 #define BURST 60          /* requests allowed at once ... */
 #define RATE 40           /* ... refilled per second */
 
@@ -31,7 +36,8 @@ struct proto {
     int workfd;              /* the working folder, open */
     char token[33];          /* every request carries it */
     char bindir[PATH_MAX];   /* the tools: beside t_proto */
-    char tmpdir[64];         /* the tools run there */
+    char tmpdir[PATH_MAX];   /* the tools run there: in $TMPDIR, else /tmp */
+    unsigned port;           /* the port it listens on: Host and Origin must name it */
     struct tex_procs *procs; /* built-in and composed primitives */
 };
 extern struct proto proto;
@@ -44,8 +50,11 @@ struct stage {
 struct pipeline {
     struct stage st[MAX_STAGES];
     int n;
-    char words[MAX_STAGES * MAX_WORDS][128];
-    int nwords;
+    char words[MAX_STAGES * MAX_WORDS * 128]; /* the words, one after the other */
+    size_t used;
+    int nsteps;
+    int overwrite, exists; /* a save may replace a file; it did not, the file exists */
+    long end; /* the time (time(NULL)) every run of the request ends by, or 0 */
     char err[512];
 };
 
@@ -61,10 +70,12 @@ int fail(struct pipeline *pl, const char *fmt, ...) __attribute__((format(printf
 int is_name(const char *s);
 int build(struct MHD_Connection *c, struct pipeline *pl, int size);
 void cmdline(const struct pipeline *pl, struct tex_str *b);
-int scene_stage(struct pipeline *pl, const char *fn, const char *map);
+int scene_stage(struct pipeline *pl, const char *fn, const char *strength, const char *map);
 
-/* spawn.c: the worst exit status (0 ok, 1 runtime, 2 usage), the output in out */
+/* spawn.c: the worst exit status (0 ok, 1 runtime, 2 usage), the output in out; and every
+ * running pipeline killed (on a signal, before the temporary folder goes) */
 int run(struct pipeline *pl, struct tex_str *out);
+void kill_all(void);
 
 /* save.c */
 extern const char *const map_exts[];
@@ -75,8 +86,8 @@ unsigned api_save(struct MHD_Connection *c, struct pipeline *pl, struct tex_str 
 unsigned api_load(struct MHD_Connection *c, struct pipeline *pl, struct tex_str *out);
 
 /* http.c: the size asked for (def if none; -1 with pl->err), and the server on
- * 127.0.0.1:port (0: any free port), NULL if it cannot listen */
+ * socket fd (listening on 127.0.0.1), NULL if it cannot start */
 int get_size(struct MHD_Connection *c, struct pipeline *pl, int def);
-struct MHD_Daemon *serve(int port);
+struct MHD_Daemon *serve(int fd);
 
 #endif

@@ -1,5 +1,6 @@
 /* save.c - saving into the folder t_proto serves: plain names only, never through a
  * symlink, written whole or not at all */
+#define _GNU_SOURCE /* renameat2 */
 #include <errno.h>
 #include <fcntl.h>
 #include <stdio.h>
@@ -60,7 +61,9 @@ int to_file(struct pipeline *pl, const char *name)
     return arg(pl, word(pl, "--format=%s", strrchr(name, '.') + 1));
 }
 
-/* Write text to name in the working folder, atomically, never through a symlink. */
+/* Write text to name in the working folder, atomically, never through a symlink, and over
+ * an existing file only when the request says overwrite=1 (the page asks first): else
+ * pl->exists is set. */
 static int save_text(struct pipeline *pl, const char *name, const char *text, size_t n)
 {
     char tmp[160];
@@ -71,7 +74,17 @@ static int save_text(struct pipeline *pl, const char *name, const char *text, si
         return fail(pl, "cannot write '%s': %s", name, strerror(errno));
     int ok = write(fd, text, n) == (ssize_t)n;
     ok &= close(fd) == 0;
-    if (!ok || renameat(proto.workfd, tmp, proto.workfd, name) < 0) {
+    if (ok && renameat2(proto.workfd, tmp, proto.workfd, name,
+                        pl->overwrite ? 0 : RENAME_NOREPLACE) < 0) {
+        int e = errno;
+        unlinkat(proto.workfd, tmp, 0);
+        if (e == EEXIST) {
+            pl->exists = 1;
+            return fail(pl, "'%s' exists: saving again replaces it (overwrite=1)", name);
+        }
+        return fail(pl, "cannot write '%s': %s", name, strerror(e));
+    }
+    if (!ok) {
         unlinkat(proto.workfd, tmp, 0);
         return fail(pl, "cannot write '%s'", name);
     }
@@ -88,8 +101,10 @@ unsigned api_save(struct MHD_Connection *c, struct pipeline *pl, struct tex_str 
     const char *kind = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "kind");
     const char *name = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "name");
     const char *body = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "text");
+    const char *over = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "overwrite");
     int size = get_size(c, pl, 512), rc = -1;
     kind = kind ? kind : "";
+    pl->overwrite = over && !strcmp(over, "1");
     if (!strcmp(kind, "palette") || !strcmp(kind, "project")) {
         /* text the page made: a palette file, or a project (the query) */
         if (save_name(pl, name, kind[1] == 'a' ? pal_exts : proj_exts) == 0) {
@@ -131,7 +146,7 @@ unsigned api_save(struct MHD_Connection *c, struct pipeline *pl, struct tex_str 
     if (rc == 0)
         tex_str_add(out, "saved %s", name);
     free(b.s);
-    return rc == 0 ? 200 : 400;
+    return rc == 0 ? 200 : pl->exists ? 409 : 400;
 }
 
 /* /api/load: a project's text into out */

@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <limits.h>
 #include <poll.h>
+#include <pthread.h>
 #include <signal.h>
 #include <spawn.h>
 #include <stdio.h>
@@ -15,12 +16,49 @@
 
 #include "proto.h"
 
+/* The running pipelines' process groups: a signal to t_proto kills them all. */
+static pthread_mutex_t groups_lock = PTHREAD_MUTEX_INITIALIZER;
+static pid_t groups[256];
+
+static void group_set(pid_t old, pid_t new)
+{
+    pthread_mutex_lock(&groups_lock);
+    for (size_t i = 0; i < sizeof groups / sizeof *groups; i++)
+        if (groups[i] == old) {
+            groups[i] = new;
+            break;
+        }
+    pthread_mutex_unlock(&groups_lock);
+}
+
+void kill_all(void)
+{
+    pthread_mutex_lock(&groups_lock);
+    for (size_t i = 0; i < sizeof groups / sizeof *groups; i++)
+        if (groups[i] > 0)
+            kill(-groups[i], SIGKILL);
+    pthread_mutex_unlock(&groups_lock);
+}
+
 /* The pipeline's stages started, each reading the one before (the first /dev/null), the
  * last writing to out, all to errfd; pid[i] 0 where one could not start */
 static void spawn_stages(struct pipeline *pl, pid_t *pid, int out, int errfd)
 {
     int in = -1;
     char path[PATH_MAX + 64];
+    posix_spawnattr_t at;
+    sigset_t none, dfl;
+
+    /* the stages in a process group of their own, with t_proto's blocked signals and
+     * ignored SIGPIPE undone */
+    sigemptyset(&none);
+    sigemptyset(&dfl);
+    sigaddset(&dfl, SIGPIPE);
+    posix_spawnattr_init(&at);
+    posix_spawnattr_setsigmask(&at, &none);
+    posix_spawnattr_setsigdefault(&at, &dfl);
+    posix_spawnattr_setflags(&at, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF |
+                                      POSIX_SPAWN_SETPGROUP);
 
     for (int i = 0; i < pl->n; i++) {
         int p[2] = {-1, out};
@@ -37,26 +75,69 @@ static void spawn_stages(struct pipeline *pl, pid_t *pid, int out, int errfd)
         posix_spawn_file_actions_addchdir_np(&fa, proto.tmpdir);
         snprintf(path, sizeof path, "%s/%s", proto.bindir, pl->st[i].argv[0]);
         pl->st[i].argv[pl->st[i].n] = NULL;
-        if (posix_spawn(&pid[i], path, &fa, NULL, (char **)pl->st[i].argv, environ) != 0)
+        posix_spawnattr_setpgroup(&at, i ? pid[0] : 0);
+        if ((i && pid[0] <= 0) ||
+            posix_spawn(&pid[i], path, &fa, &at, (char **)pl->st[i].argv, environ) != 0)
             pid[i] = 0;
+        if (i == 0 && pid[0] > 0)
+            group_set(0, pid[0]);
         posix_spawn_file_actions_destroy(&fa);
         if (in >= 0)
             close(in);
+        in = -1;
         if (i < pl->n - 1) {
             close(p[1]);
             in = p[0];
         }
     }
+    if (in >= 0)
+        close(in);
+    posix_spawnattr_destroy(&at);
 }
+
+/* At most MAX_RUNS pipelines at once (a thread per connection would otherwise start one
+ * per request): a slot, waited for until the request's end; 0, or -1 with pl->err. */
+static pthread_mutex_t slots_lock = PTHREAD_MUTEX_INITIALIZER;
+static pthread_cond_t slots_free = PTHREAD_COND_INITIALIZER;
+static int running;
+
+static int slot(struct pipeline *pl, time_t end, int take)
+{
+    struct timespec until = {end, 0};
+    int rc = 0;
+    pthread_mutex_lock(&slots_lock);
+    if (!take) {
+        running--;
+        pthread_cond_signal(&slots_free);
+    } else {
+        while (running >= MAX_RUNS && rc == 0)
+            rc = pthread_cond_timedwait(&slots_free, &slots_lock, &until);
+        if (running < MAX_RUNS)
+            running++, rc = 0;
+    }
+    pthread_mutex_unlock(&slots_lock);
+    return rc ? fail(pl, "busy: %d pipelines ran for the whole %d s", MAX_RUNS, RUN_SECONDS) : 0;
+}
+
+static int run_slot(struct pipeline *pl, struct tex_str *out, time_t end);
 
 /* Run the pipeline; the last stage's standard output into out.  Returns the
  * worst exit status (0 ok, 1 runtime, 2 usage) with stderr's first line in err. */
 int run(struct pipeline *pl, struct tex_str *out)
 {
+    time_t end = pl->end ? (time_t)pl->end : time(NULL) + RUN_SECONDS;
+    if (slot(pl, end, 1) < 0)
+        return 1;
+    int status = run_slot(pl, out, end);
+    slot(pl, end, 0);
+    return status;
+}
+
+static int run_slot(struct pipeline *pl, struct tex_str *out, time_t end)
+{
     pid_t pid[MAX_STAGES] = {0};
     int errp[2], outp[2], status = 0;
     struct tex_str err = {0};
-    time_t end = time(NULL) + RUN_SECONDS;
 
     if (pipe2(errp, O_CLOEXEC) < 0 || pipe2(outp, O_CLOEXEC) < 0)
         return fail(pl, "cannot make a pipe"), 1;
@@ -67,9 +148,8 @@ int run(struct pipeline *pl, struct tex_str *out)
     while (fds[0].fd >= 0 || fds[1].fd >= 0) {
         int left = (int)(end - time(NULL));
         if (left <= 0 || poll(fds, 2, left * 1000) <= 0) {
-            for (int i = 0; i < pl->n; i++)
-                if (pid[i] > 0)
-                    kill(pid[i], SIGKILL);
+            if (pid[0] > 0)
+                kill(-pid[0], SIGKILL);
             snprintf(pl->err, sizeof pl->err, "the pipeline took longer than %d s", RUN_SECONDS);
             status = 1;
             break;
@@ -105,6 +185,8 @@ int run(struct pipeline *pl, struct tex_str *out)
         if (code > status)
             status = code;
     }
+    if (pid[0] > 0)
+        group_set(pid[0], 0);
     if (status && err.s) {
         char *nl = strchr(err.s, '\n');
         if (nl)

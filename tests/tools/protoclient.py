@@ -1,0 +1,29 @@
+"""tests/tools/protoclient.py - a client of t_proto for the tests (proto.sh,
+proto_security.sh): the printed URL's parts, say() for a TAP line, get() for a reply."""
+import http.client
+import urllib.parse as up
+
+
+def say(ok, name, why=""):
+    print(("ok - " if ok else "not ok - ") + name + ("" if ok else ": " + str(why)[:300]), flush=True)
+
+
+class Proto:
+    def __init__(self, url):
+        u = up.urlsplit(url)
+        self.token = up.parse_qs(u.query)["token"][0]
+        self.host, self.port = u.hostname, u.port
+
+    def parts(self):
+        return self.token, self.host, self.port, self.get
+
+    def get(self, path, params=None, tok=True, headers=None, source=None, timeout=60):
+        """(status, body) of GET path?token=...&params; source: the client's address."""
+        q = ([("token", self.token)] if tok else []) + list(params or [])
+        c = http.client.HTTPConnection(self.host, self.port, timeout=timeout,
+                                       source_address=(source, 0) if source else None)
+        c.request("GET", path + "?" + up.urlencode(q), headers=headers or {})
+        r = c.getresponse()
+        body = r.read()
+        c.close()
+        return r.status, body
