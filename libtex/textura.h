@@ -21,6 +21,7 @@
  *   file.h      reading and writing maps: files, pipes, other formats
  *   limit.h     the one limit on what readers take in (TEXTURA_MAX_INPUT)
  *   netpbm.h    PNM, PAM and PFM, read and written natively
+ *   prosim.h    ProSim's headerless NAME.r/.g/.b and NAME.pic, by their names
  *   assemble.h  windows of a map put together into the whole
  *   terminal.h  a map drawn in a terminal (sixel, kitty)
  * prim/     the primitives
@@ -75,6 +76,7 @@
 #include "io/file.h"
 #include "io/limit.h"
 #include "io/netpbm.h"
+#include "io/prosim.h"
 #include "io/terminal.h"
 #include "io/assemble.h"
 #include "prim/prim.h"

@@ -20,6 +20,7 @@
 #include "io/file.h"
 #include "io/limit.h"
 #include "io/netpbm.h"
+#include "io/prosim.h"
 #include "io/oiio_bridge.h"
 
 static const struct {
@@ -47,6 +48,8 @@ static const struct {
     {TEX_FMT_PBM, "pbm", " pbm ", 0, 8, 5},
     {TEX_FMT_PPM, "ppm", " ppm ", 0, 16, 4},
     {TEX_FMT_PGM, "pgm", " pgm ", 0, 16, 1},
+    {TEX_FMT_PROSIM, "r", " r g b ", 0, 8, 4}, /* ProSim's three files (prosim.h) */
+    {TEX_FMT_PIC, "pic", " pic ", 1, 0, 1},
 };
 
 const char *tex_format_name(enum tex_format f)
@@ -91,7 +94,9 @@ static int is_netpbm(enum tex_format f)
            f == TEX_FMT_PBM;
 }
 
-#define FORMAT_LIST "exr, png, tif, pnm, ppm, pgm, pam, pbm, pfm, bmp, tga, hdr, jpg, webp, dpx"
+#define FORMAT_LIST                                                                          \
+    "exr, png, tif, pnm, ppm, pgm, pam, pbm, pfm, bmp, tga, hdr, jpg, webp, dpx, r (ProSim's " \
+    ".r/.g/.b), pic"
 
 /* Standard output by another name: /dev/stdout, /dev/fd/1, /proc/self/fd/1. */
 static int names_stdout(const char *name)
@@ -430,6 +435,8 @@ static tex_map *decode(const char *path, const void *data, size_t len, const cha
     }
     if (is_netpbm(f) || f == TEX_FMT_PFM)
         return tex_netpbm_decode(data, len, name);
+    if (f == TEX_FMT_PROSIM || f == TEX_FMT_PIC) /* one file of the three: one channel */
+        return tex_prosim_decode(data, len, f == TEX_FMT_PIC, path);
     if (codec_slot(f))
         return read_codec(path, data, len, f, name);
     /* A named file is opened by OpenImageIO itself (some formats can't read from memory). */
@@ -492,6 +499,9 @@ tex_map *tex_map_read(const char *path)
 
     struct stat st;
 
+    if (path && strcmp(path, "-") != 0 && (tex_format_from_name(path) == TEX_FMT_PROSIM ||
+                                           tex_format_from_name(path) == TEX_FMT_PIC))
+        return nonfinite(tex_prosim_read(path), path); /* no magic: the name says it */
     if (path && strcmp(path, "-") != 0) {
         name = path;
         if ((fd = open(path, O_RDONLY)) < 0) {
@@ -1100,6 +1110,19 @@ int tex_map_write(const tex_map *m, const char *path, const struct tex_write_opt
     f = tex_output_format(path, o->format, &file);
     if ((depth = choose_depth(f, o->depth, file ? file : "standard output")) < 0)
         return -1;
+    if (f == TEX_FMT_PROSIM || f == TEX_FMT_PIC) { /* files of their own, no stream */
+        tex_map *a = NULL;
+        if (!file)
+            return tex_usage_error("standard output: ProSim's .%s files have no header to "
+                                   "stream; name the file", tex_format_name(f));
+        if (!(formats[f].nc_ok & (1u << (m->nc - 1))) && !(a = adapt_channels(m, f))) {
+            tex_error_context(file);
+            return -1;
+        }
+        r = tex_prosim_write(a ? a : m, file, f == TEX_FMT_PIC, file);
+        tex_map_free(a);
+        return r;
+    }
     if (!file)
         return write_stream(m, f, depth, 1, o, "standard output");
     if (tex_out_open(&out, file) < 0)

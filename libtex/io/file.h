@@ -42,7 +42,8 @@ TEX_API_BEGIN
 enum tex_format {
     TEX_FMT_UNKNOWN, TEX_FMT_EXR, TEX_FMT_PNG, TEX_FMT_TIFF, TEX_FMT_PNM, TEX_FMT_PFM,
     TEX_FMT_BMP, TEX_FMT_TGA, TEX_FMT_HDR, TEX_FMT_JPEG, TEX_FMT_GIF, TEX_FMT_WEBP, TEX_FMT_DPX,
-    TEX_FMT_PAM, TEX_FMT_PBM, TEX_FMT_PPM, TEX_FMT_PGM, TEX_FMT_COUNT
+    TEX_FMT_PAM, TEX_FMT_PBM, TEX_FMT_PPM, TEX_FMT_PGM, TEX_FMT_PROSIM, TEX_FMT_PIC,
+    TEX_FMT_COUNT
 };
 
 /* The format of a file image from its first bytes (at least 18 wanted). */
@@ -79,7 +80,8 @@ void tex_map_set_nonfinite(enum tex_nonfinite policy, float value);
 
 /* Read a map from a path, or standard input for NULL or "-" (refused, a
  * usage error, when it is a terminal).  Non-finite samples follow the
- * policy above. */
+ * policy above.  ProSim's headerless files (prosim.h: NAME.r/.g/.b, NAME.pic) are
+ * read by their name. */
 tex_map *tex_map_read(const char *path);
 /* Read a map file with its mip levels, when it is an EXR file that has
  * them (written with --mipmap, or by maketx): an array of *n maps, the full

@@ -1,4 +1,5 @@
-/* fuzz_netpbm.c - libFuzzer target: the native PNM, PAM and PFM reader.
+/* fuzz_netpbm.c - libFuzzer target: the native PNM, PAM and PFM reader, and ProSim's
+ * headerless .r and .pic (prosim.h), their size from the name or the square.
  * Any input must decode or fail with a message; never crash, leak or hang.
  * What decodes as PAM at 16 bits must re-encode and decode to within half a step. */
 #define _GNU_SOURCE
@@ -10,11 +11,25 @@
 
 #include "textura.h"
 
+/* ProSim's files: the first byte picks bytes or floats and a name with or without a size */
+static void prosim(const uint8_t *data, size_t size)
+{
+    static const char *const names[4] = {"fuzz.r", "fuzz_7x3.r", "fuzz.pic", "fuzz_4x2.pic"};
+    if (size < 1)
+        return;
+    int k = data[0] & 3;
+    tex_map *m = tex_prosim_decode(data + 1, size - 1, k >= 2, names[k]);
+    if (m && (size_t)m->w * m->h * (k >= 2 ? 4 : 1) != size - 1)
+        abort(); /* every byte is a sample */
+    tex_map_free(m);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     tex_map *m = tex_netpbm_decode(data, size, "fuzz");
     int fd;
 
+    prosim(data, size);
     if (!m)
         return 0;
     if ((fd = memfd_create("fuzz", 0)) >= 0) {
