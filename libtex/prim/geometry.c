@@ -11,7 +11,8 @@
  * shared code reads repetitions and colours through struct geo_head. */
 #define GEO_HEAD                                                                                   \
     int nu, nv, nw;                                                                                \
-    float color1[4], color2[4], color3[4]
+    float color1[4], color2[4], color3[4];                                                         \
+    struct tex_reals centre
 struct geo_head {
     GEO_HEAD;
 };
@@ -19,12 +20,18 @@ struct geo_head {
 struct geo_state {
     float col[3][3]; /* region colours as RGB, for f->colors */
     double k[8];     /* constants the primitive precomputes */
+    double du, dv;   /* the shift of (u, v) that puts the figure's centre at (h, k) */
 };
 
 #define ROW_NU(S, d)                                                                               \
     TEX_INT(S, nu, 0, d, 1, 4096, "N", "repetitions of the pattern across the map (the thesis's nu)")
 #define ROW_NV(S, d) TEX_INT(S, nv, 0, d, 1, 4096, "N", "repetitions of the pattern down the map (nv)")
 #define ROW_NW(S, d) TEX_INT(S, nw, 0, d, 1, 4096, "N", "repetitions along w (solid texture only)")
+/* Appendix A's center(h, k): where the figure's centre lies in its cell */
+#define ROW_CENTRE(S)                                                                              \
+    TEX_REALS_N("cell_centre", S, centre, 0, "0.5,0.5", -1e3, 1e3, 2, "H,K",                     \
+                "the figure's centre in its cell, x right and y up (Appendix A's center(h,k)): "   \
+                "0.5,0.5 the middle, 0,0 the lower-left corner")
 #define ROW_COLOR(S, k, def, help) TEX_COLOR_N("colour" #k, S, color##k, 0, def, help)
 /* The default colours the figures share, each written once: a warm paper ground, an ink
  * blue, an ochre and a gold */
@@ -57,6 +64,9 @@ static int geo_init(struct tex_field *f, int nregions)
     for (int k = 0; k < nregions && k < 3; k++)
         for (int j = 0; j < 3; j++)
             s->col[k][j] = c[k][j];
+    /* 0 at the default: u - 0 is u to the bit */
+    s->du = (h->centre.v[0] - 0.5) / h->nu;
+    s->dv = (h->centre.v[1] - 0.5) / h->nv;
     f->state = s;
     f->nregions = nregions;
     f->colors = (const float(*)[3])s->col;
@@ -85,9 +95,10 @@ int tex_geometry_region(const struct tex_field *f, double u, double v)
                              float *out)                                                           \
     {                                                                                              \
         const S *p = f->params;                                                                    \
-        const double *k = ((const struct geo_state *)f->state)->k;                                \
+        const struct geo_state *s = f->state;                                                      \
         for (int i = 0; i < n; i++)                                                                \
-            out[i] = (float)name##_id(p, k, cell(u[i], p->nu), 1.0 - cell(v[i], p->nv));           \
+            out[i] = (float)name##_id(p, s->k, cell(u[i] - s->du, p->nu),                         \
+                                      1.0 - cell(v[i] + s->dv, p->nv));                            \
     }
 
 /* box2 (prim.h): the one region of a box of points, or 0 when unsure.
@@ -125,10 +136,11 @@ static inline int geo_box(int nu, int nv, double u, double v, double hu, double 
                             double hu, double hv, float *out)                                      \
     {                                                                                              \
         const S *p = f->params;                                                                    \
-        double x, y, hx, hy, *k = ((struct geo_state *)f->state)->k;                              \
+        const struct geo_state *s = f->state;                                                      \
+        double x, y, hx, hy;                                                                       \
         for (int i = 0; i < n; i++)                                                                \
-            out[i] = geo_box(p->nu, p->nv, u[i], v[i], hu, hv, &x, &y, &hx, &hy)                   \
-                         ? (float)name##_box(p, k, x, y, hx, hy) : 0.0f;                           \
+            out[i] = geo_box(p->nu, p->nv, u[i] - s->du, v[i] + s->dv, hu, hv, &x, &y, &hx, &hy)   \
+                         ? (float)name##_box(p, s->k, x, y, hx, hy) : 0.0f;                        \
     }
 
 /* 1 when a disc of radius r at distance d from a circle's centre misses the circle of radius R. */
@@ -162,6 +174,7 @@ static const struct tex_param circle_rows[] = {
              "radius of the circle, in cells (0.5 touches the cell's sides)"),
     ROW_NU(struct circle_params, 1),
     ROW_NV(struct circle_params, 1),
+    ROW_CENTRE(struct circle_params),
     ROW_NW(struct circle_params, 1),
     ROW_COLOR(struct circle_params, 1, PAPER, "colour of region 1, outside the circle"),
     ROW_COLOR(struct circle_params, 2, "#b8322a", "colour of region 2, inside the circle"),
@@ -230,6 +243,7 @@ static const struct tex_param ring_rows[] = {
                "width of the ring (the thesis's d), at most the radius", .old = "-d width"),
     ROW_NU(struct ring_params, 1),
     ROW_NV(struct ring_params, 1),
+    ROW_CENTRE(struct ring_params),
     ROW_NW(struct ring_params, 1),
     ROW_COLOR(struct ring_params, 1, PAPER, "colour of region 1, outside the ring"),
     ROW_COLOR(struct ring_params, 2, INK, "colour of region 2, the ring"),
@@ -318,6 +332,7 @@ static const struct tex_param ellipse_rows[] = {
              "angle of the major axis with the horizontal, in degrees, counterclockwise"),
     ROW_NU(struct ellipse_params, 1),
     ROW_NV(struct ellipse_params, 1),
+    ROW_CENTRE(struct ellipse_params),
     ROW_COLOR(struct ellipse_params, 1, PAPER, "colour of region 1, outside the ellipse"),
     ROW_COLOR(struct ellipse_params, 2, INK, "colour of region 2, the band"),
     ROW_COLOR(struct ellipse_params, 3, OCHRE, "colour of region 3, inside the band"),
@@ -420,6 +435,7 @@ static const struct tex_param flower_rows[] = {
                "length of the petals, in cells (the thesis's d, the rose's a)", .old = "-d length"),
     ROW_NU(struct flower_params, 1),
     ROW_NV(struct flower_params, 1),
+    ROW_CENTRE(struct flower_params),
     ROW_COLOR(struct flower_params, 1, "#1f4d2b", "colour of region 1, the ground"),
     ROW_COLOR(struct flower_params, 2, GOLD, "colour of region 2, the flower"),
     {0}};
@@ -502,6 +518,7 @@ struct checker_params {
 static const struct tex_param checker_rows[] = {
     ROW_NU(struct checker_params, 4),
     ROW_NV(struct checker_params, 4),
+    ROW_CENTRE(struct checker_params),
     ROW_NW(struct checker_params, 4),
     ROW_COLOR(struct checker_params, 1, "#f0e9dc", "colour of region 1, the top-left square's kind"),
     ROW_COLOR(struct checker_params, 2, "#262626", "colour of region 2, the other squares"),
@@ -564,6 +581,7 @@ const struct tex_primitive tex_prim_checker = {
 struct stripe_params {
     GEO_HEAD;
     double angle, width, spacing;
+    int measured;
 };
 
 static const struct tex_param stripe_rows[] = {
@@ -573,8 +591,12 @@ static const struct tex_param stripe_rows[] = {
                "width of a stripe across it, in cells (the thesis's l)", .old = "-l width"),
     TEX_REAL(struct stripe_params, spacing, 0, 0.1, 0, 1, "D",
              "distance between neighbouring stripes, edge to edge (the thesis's d)", .old = "-d"),
+    TEX_ENUM(struct stripe_params, measured, 0, "across", "across|horizontal",
+             "how the width and distance are measured: across the stripes, or along the "
+             "horizontal as Appendix A gives l and d"),
     ROW_NU(struct stripe_params, 1),
     ROW_NV(struct stripe_params, 1),
+    ROW_CENTRE(struct stripe_params),
     ROW_COLOR(struct stripe_params, 1, PAPER, "colour of region 1, between the stripes"),
     ROW_COLOR(struct stripe_params, 2, INK, "colour of region 2, the stripes"),
     {0}};
@@ -592,15 +614,23 @@ static int stripe_init(struct tex_field *f)
     k = ((struct geo_state *)f->state)->k;
     k[0] = sin(a);
     k[1] = cos(a);
-    k[2] = p->width + p->spacing;
+    /* a horizontal run of l crosses l |sin a| of the stripe */
+    double across = p->measured ? fabs(k[0]) : 1;
+    if (p->measured && across < 1e-9)
+        return tex_usage_error("%s horizontal needs stripes that cross the horizontal (got "
+                               "an angle of %g)",
+                               TEX_OPTION(stripe_rows, struct stripe_params, measured), p->angle);
+    k[3] = p->width * across;
+    k[2] = k[3] + p->spacing * across;
     return 0;
 }
 
 /* t runs across the stripes; one stripe is centred on the cell's centre. */
 static inline int stripe_id(const struct stripe_params *p, const double *k, double x, double y)
 {
-    double t = (x - 0.5) * k[0] - (y - 0.5) * k[1] + 0.5 * p->width, q = t / k[2];
-    return (q - floor(q)) * k[2] < p->width ? 2 : 1;
+    double t = (x - 0.5) * k[0] - (y - 0.5) * k[1] + 0.5 * k[3], q = t / k[2];
+    (void)p;
+    return (q - floor(q)) * k[2] < k[3] ? 2 : 1;
 }
 GEO_EVAL2(stripe, struct stripe_params)
 
@@ -609,9 +639,9 @@ GEO_EVAL2(stripe, struct stripe_params)
 static inline int stripe_box(const struct stripe_params *p, const double *k, double x, double y,
                              double hx, double hy)
 {
-    double t = (x - 0.5) * k[0] - (y - 0.5) * k[1] + 0.5 * p->width, q = t / k[2];
+    double t = (x - 0.5) * k[0] - (y - 0.5) * k[1] + 0.5 * k[3], q = t / k[2];
     double ph = (q - floor(q)) * k[2], r = hx * fabs(k[0]) + hy * fabs(k[1]);
-    return ph > r && k[2] - ph > r && fabs(ph - p->width) > r ? stripe_id(p, k, x, y) : 0;
+    return ph > r && k[2] - ph > r && fabs(ph - k[3]) > r ? stripe_id(p, k, x, y) : 0;
 }
 GEO_BOX2(stripe, struct stripe_params)
 
@@ -642,6 +672,7 @@ static const struct tex_param cycloid_rows[] = {
                .old = "-d width"),
     ROW_NU(struct cycloid_params, 1),
     ROW_NV(struct cycloid_params, 1),
+    ROW_CENTRE(struct cycloid_params),
     ROW_COLOR(struct cycloid_params, 1, PAPER, "colour of region 1, above the outer arch"),
     ROW_COLOR(struct cycloid_params, 2, INK, "colour of region 2, between the arches"),
     ROW_COLOR(struct cycloid_params, 3, OCHRE, "colour of region 3, inside the inner arch"),
@@ -744,6 +775,7 @@ static const struct tex_param hypocycloid_rows[] = {
                .old = "-d width"),
     ROW_NU(struct hypocycloid_params, 1),
     ROW_NV(struct hypocycloid_params, 1),
+    ROW_CENTRE(struct hypocycloid_params),
     ROW_COLOR(struct hypocycloid_params, 1, PAPER, "colour of region 1, outside"),
     ROW_COLOR(struct hypocycloid_params, 2, INK, "colour of region 2, between the astroids"),
     ROW_COLOR(struct hypocycloid_params, 3, OCHRE, "colour of region 3, inside"),
@@ -818,6 +850,7 @@ static const struct tex_param four_rings_rows[] = {
                "width of the rings (the thesis's d), at most r", .old = "-d width"),
     ROW_NU(struct four_rings_params, 1),
     ROW_NV(struct four_rings_params, 1),
+    ROW_CENTRE(struct four_rings_params),
     ROW_COLOR(struct four_rings_params, 1, PAPER, "colour of region 1, the ground"),
     ROW_COLOR(struct four_rings_params, 2, INK, "colour of region 2, the rings"),
     {0}};
@@ -891,6 +924,7 @@ static const struct tex_param polygon_rows[] = {
              "direction of the first vertex, in degrees counterclockwise from the right"),
     ROW_NU(struct polygon_params, 1),
     ROW_NV(struct polygon_params, 1),
+    ROW_CENTRE(struct polygon_params),
     ROW_COLOR(struct polygon_params, 1, PAPER, "colour of region 1, outside"),
     ROW_COLOR(struct polygon_params, 2, INK, "colour of region 2, inside"),
     {0}};
@@ -906,6 +940,7 @@ static const struct tex_param star_rows[] = {
              "direction of the first point, in degrees counterclockwise from the right"),
     ROW_NU(struct polygon_params, 1),
     ROW_NV(struct polygon_params, 1),
+    ROW_CENTRE(struct polygon_params),
     ROW_COLOR(struct polygon_params, 1, "#1d2a44", "colour of region 1, outside"),
     ROW_COLOR(struct polygon_params, 2, GOLD, "colour of region 2, the star"),
     {0}};
@@ -1014,6 +1049,7 @@ static const struct tex_param grid_rows[] = {
                "width of the lines as a fraction of a cell", .old = "-d width"),
     ROW_NU(struct grid_params, 8),
     ROW_NV(struct grid_params, 8),
+    ROW_CENTRE(struct grid_params),
     ROW_COLOR(struct grid_params, 1, PAPER, "colour of region 1, the cells"),
     ROW_COLOR(struct grid_params, 2, "#3a3a3a", "colour of region 2, the lines"),
     {0}};
@@ -1071,6 +1107,7 @@ static const struct tex_param brick_rows[] = {
                "width of the mortar joints as a fraction of a course's height", .old = "-d width"),
     ROW_NU(struct brick_params, 4),
     ROW_NV(struct brick_params, 4),
+    ROW_CENTRE(struct brick_params),
     ROW_COLOR(struct brick_params, 1, "#a8452e", "colour of region 1, the bricks"),
     ROW_COLOR(struct brick_params, 2, "#d9d2c3", "colour of region 2, the mortar"),
     TEX_FLAG(struct brick_params, cells, 0,
@@ -1100,6 +1137,8 @@ static int brick_init(struct tex_field *f)
     f->nregions = 2;
     f->colors = (const float(*)[3])s->g.col;
     f->nc = 1;
+    s->g.du = (p->centre.v[0] - 0.5) / p->nu;
+    s->g.dv = (p->centre.v[1] - 0.5) / p->nv;
     double *k = s->g.k;
     k[0] = p->width / 4;
     k[1] = p->width / 4 * p->nu / p->nv * (f->w > 0 && f->h > 0 ? (double)f->h / f->w : 1);
@@ -1167,10 +1206,12 @@ static void brick_eval2(const struct tex_field *f, int n, const double *u, const
                         float *out)
 {
     const struct brick_params *p = f->params;
-    const double *k = ((const struct brick_state *)f->state)->g.k;
+    const struct geo_state *g = &((const struct brick_state *)f->state)->g;
+    const double *k = g->k;
     for (int i = 0; i < n; i++)
-        out[i] = p->cells ? (float)brick_cell(f, k, u[i], v[i])
-                          : (float)brick_id(p, k, cell(u[i], p->nu), 1.0 - cell(v[i], p->nv));
+        out[i] = p->cells ? (float)brick_cell(f, k, u[i] - g->du, v[i] + g->dv)
+                          : (float)brick_id(p, k, cell(u[i] - g->du, p->nu),
+                                            1.0 - cell(v[i] + g->dv, p->nv));
 }
 
 /* The mortar is axis-aligned bands: the box is one region when it lies in one
@@ -1196,13 +1237,14 @@ static void brick_box2(const struct tex_field *f, int n, const double *u, const 
                        double hu, double hv, float *out)
 {
     const struct brick_params *p = f->params;
-    const double *k = ((const struct brick_state *)f->state)->g.k;
+    const struct geo_state *g = &((const struct brick_state *)f->state)->g;
+    const double *k = g->k;
     for (int i = 0; i < n; i++) {
-        double x, y, hx, hy;
-        int id = geo_box(p->nu, p->nv, u[i], v[i], hu, hv, &x, &y, &hx, &hy)
+        double x, y, hx, hy, uu = u[i] - g->du, vv = v[i] + g->dv;
+        int id = geo_box(p->nu, p->nv, uu, vv, hu, hv, &x, &y, &hx, &hy)
                      ? brick_box(p, k, x, y, hx, hy) : 0;
         if (p->cells && id)
-            id = id == 2 ? 1 : brick_cell(f, k, u[i], v[i]);
+            id = id == 2 ? 1 : brick_cell(f, k, uu, vv);
         out[i] = (float)id;
     }
 }
@@ -1231,6 +1273,7 @@ static const struct tex_param dots_rows[] = {
              "radius of the dots, in cells (they touch at 0.354)"),
     ROW_NU(struct dots_params, 4),
     ROW_NV(struct dots_params, 4),
+    ROW_CENTRE(struct dots_params),
     ROW_COLOR(struct dots_params, 1, INK, "colour of region 1, the ground"),
     ROW_COLOR(struct dots_params, 2, PAPER, "colour of region 2, the dots"),
     {0}};
