@@ -595,6 +595,38 @@ void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *s
     }
 }
 
+int tex_surface_energy(const struct tex_surface *sf, double *e)
+{
+    static const double corner[9][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 0, 1},
+                                        {1, 0, 1}, {0, 1, 1}, {1, 1, 1}, {0.5, 0.5, 0.5}};
+    struct tex_material ctm;
+    int ks_textured = 0, levels = sf->apply ? 17 : 1, places = sf->apply ? 9 : 1;
+    for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next)
+        for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next) {
+            ks_textured |= fn->param == TEX_SP_KS;
+            for (int i = 0; i < fn->e->n; i++)
+                if (fn->e->code[i].op == TEX_EOP_LEAF && fn->e->code[i].leaf >= TEX_LEAF_Q)
+                    return 0; /* the hit's quantities: no value without a hit */
+        }
+    tex_ct_material(&ctm, sf->ct);
+    *e = 0;
+    for (int l = 0; l < levels; l++)
+        for (int c = 0; c < places; c++) {
+            struct params pr = {{sf->kd[0], sf->kd[1], sf->kd[2]}, sf->ka, sf->ks[0],
+                                (float)sf->n, (float)sf->kr, (float)sf->kt, (float)sf->ior, 0,
+                                ctm.m, ctm.s, 0, {0.5f, 0.5f, 1}, {0, 0, 0}, 0};
+            float f[3] = {(float)l / 16, (float)l / 16, (float)l / 16};
+            for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next)
+                for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next)
+                    apply_fn(fn, NULL, f, corner[c], 0, NULL, &pr);
+            double kd = fmax(pr.kd[0], fmax(pr.kd[1], pr.kd[2]));
+            double ks = ks_textured ? pr.ks : fmax(sf->ks[0], fmax(sf->ks[1], sf->ks[2]));
+            double sum = kd + ks + pr.kr + pr.kt;
+            *e = sum > *e ? sum : *e;
+        }
+    return 1;
+}
+
 int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
 {
     int textured = 0, nfn = 0, nap = 0; /* textured: bits of enum tex_sparam */

@@ -35,6 +35,12 @@ struct params {
     float end;
 };
 
+/* Thesis 4.4: the largest of Kd's channels plus Ks, Kr and Kt, the surface's own and,
+ * where its textures set them, its functions' at texture values 0, 1/16, ..., 1 (grey) and
+ * at the corners and middle of (u, v, w), every function in order, regions alike, into *e:
+ * 1, or 0 when it cannot tell (a function reads the hit's quantities). */
+int tex_surface_energy(const struct tex_surface *sf, double *e);
+
 struct tex_surface_cache {
     struct params base;          /* the surface's own parameters */
     tex_colour col[3];           /* Ka Kd, Kd, Ks in the scene's colour space */

@@ -112,6 +112,10 @@ const struct tex_param tex_surface_rows[] = {
             "index of refraction (a dielectric material gives its own)"),
     TEX_SPECIAL("model", 0, 0, "phong", "phong|cook-torrance", "the shading model",
                 tex_scene_read_model),
+    TEX_SPECIAL("character", 0, 0, NULL, TEX_CHARACTERS,
+                "an optical character (thesis 4.4): a consistent Ka, Kd, Ks, n, Kr, Kt and ior "
+                "for those of them the surface does not give",
+                tex_scene_read_character),
     TEX_SPECIAL("material", 0, 0, NULL, "NAME",
                 "optical constants n + ik from the materials database", tex_scene_read_material),
     TEX_SPECIAL("facets", TEX_CT_M_MIN, TEX_CT_M_MAX, "beckmann " STR(TEX_CT_M),
@@ -135,6 +139,19 @@ const struct tex_param tex_surface_rows[] = {
 /* The targets beyond the surface's own rows (no storage: the renderer's per hit) */
 #define TARGET(name, lo, hi, meta, help) {name, 0, TEX_P_REAL, 0, 0, lo, hi, NULL, NULL, 0, meta, \
                                           help, 0, 0, 0, NULL, NULL, NULL, NULL}
+const struct tex_character tex_characters[] = {
+    {"matte", {{"Ka", "0.1"}, {"Kd", "0.9"}, {"Ks", "0"}, {"n", "5"}, {"Kr", "0"}, {"Kt", "0"}}},
+    {"glossy", {{"Ka", "0.1"}, {"Kd", "0.6"}, {"Ks", "0.4"}, {"n", "60"}, {"Kr", "0"},
+                {"Kt", "0"}}},
+    {"metal", {{"Ka", "0.1"}, {"Kd", "0.25"}, {"Ks", "0.45"}, {"n", "150"}, {"Kr", "0.3"},
+               {"Kt", "0"}}},
+    {"glass", {{"Ka", "0"}, {"Kd", "0.05"}, {"Ks", "0.15"}, {"n", "300"}, {"Kr", "0.1"},
+               {"Kt", "0.7"}, {"ior", "1.5"}}},
+    /* the thesis's varnished table (4.5): a uniform brightness of high specularity */
+    {"varnished", {{"Ka", "0.1"}, {"Kd", "0.5"}, {"Ks", "0.3"}, {"n", "400"}, {"Kr", "0.2"},
+                   {"Kt", "0"}}},
+    {NULL, {{NULL}}}};
+
 const struct tex_param tex_target_rows[] = {
     TARGET("bump", -1000, 1000, "S",
            "bump mapping: the normal tilts by S times the map's gradient across the surface"),

@@ -21,6 +21,7 @@
 #include "ops/palette.h"
 #include "render/scene.h"
 #include "render/render_ct.h"
+#include "render/appfn.h"
 #include "lang/expr.h"
 #include "lang/lex.h"
 #include "lang/proc.h"
@@ -886,6 +887,36 @@ void tex_scene_read_model(void *reader, const struct tex_param *p, void *ctx)
         fail_at(ps, &mt, 0, "%s must be %s (got %s)", p->name, p->meta, m);
 }
 
+void tex_scene_read_character(void *reader, const struct tex_param *p, void *ctx)
+{
+    struct parser *ps = reader;
+    struct tex_surface *sf = ((struct block *)ctx)->obj;
+    struct tex_tok mt = ps->lx.t;
+    char *m = word(ps, "an optical character"), near[64];
+    for (int i = 0; tex_characters[i].name; i++)
+        if (!strcmp(tex_characters[i].name, m)) {
+            sf->character = i + 1;
+            return;
+        }
+    if (tex_choice_nearest(p->meta, m, near, sizeof near))
+        fail_at(ps, &mt, 0, "%s must be %s (got %s); did you mean %s?", p->name, p->meta, m,
+                near);
+    fail_at(ps, &mt, 0, "%s must be %s (got %s)", p->name, p->meta, m);
+}
+
+/* The surface's character's words, for those the surface did not give (seen) */
+static void apply_character(struct parser *ps, struct tex_surface *sf, unsigned long long seen,
+                            const struct tex_tok *at)
+{
+    const struct tex_character *c = &tex_characters[sf->character - 1];
+    for (int i = 0; i < 8 && c->words[i][0]; i++) {
+        const struct tex_param *row = tex_param_find(tex_surface_rows, c->words[i][0]);
+        if (!(seen & row_bit(tex_surface_rows, c->words[i][0])) &&
+            tex_param_set(row, sf, c->words[i][1]) < 0)
+            fail_at(ps, at, 0, "%s", tex_errmsg());
+    }
+}
+
 void tex_scene_read_blend(void *reader, const struct tex_param *p, void *ctx)
 {
     struct parser *ps = reader;
@@ -934,6 +965,9 @@ static void parse_surface(struct parser *ps)
     sf->col = at.col;
     struct block b = {.obj = sf, .tail = &sf->apply};
     unsigned long long seen = read_block(ps, tex_surface_rows, -1, &b, NULL, "a surface");
+    if (sf->character)
+        apply_character(ps, sf, seen, &at);
+    /* a dielectric's own index wins over a character's */
     int ior_set = (seen & row_bit(tex_surface_rows, "ior")) != 0;
     struct tex_ct *ct = sf->ct;
     if (ct) {
@@ -958,6 +992,23 @@ static void parse_surface(struct parser *ps)
                 fail_at(ps, &ft, 0, "m is Beckmann's slope: surface '%s' has blinn facets",
                         name);
         }
+}
+
+int tex_scene_check_energy(struct tex_scene *s)
+{
+    int n = 0;
+    for (int i = 0; i < s->nsurfaces; i++) {
+        const struct tex_surface *sf = s->surfaces[i];
+        double e;
+        if (tex_surface_energy(sf, &e) && e > 1 + 1e-6) {
+            tex_scene_warn(s, "%s:%d:%d: warning: surface '%s' breaks energy: Kd + Ks + Kr + Kt "
+                              "reaches %.3g, above 1 (thesis 4.4; a character gives consistent "
+                              "values)",
+                           s->file, sf->line, sf->col, sf->name, e);
+            n++;
+        }
+    }
+    return n;
 }
 
 /* ---- objects -------------------------------------------------------------------- */

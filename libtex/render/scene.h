@@ -122,7 +122,8 @@ extern const struct tex_param tex_environment_rows[]; /* environment FILE { }, o
  * render_scene.c): reader is its parser, ctx the block being read. */
 tex_param_read tex_scene_read_seed, tex_scene_read_colour, tex_scene_read_materials;
 tex_param_read tex_scene_read_spectrum, tex_scene_read_falloff;
-tex_param_read tex_scene_read_model, tex_scene_read_material, tex_scene_read_facets,
+tex_param_read tex_scene_read_model, tex_scene_read_character, tex_scene_read_material,
+    tex_scene_read_facets,
     tex_scene_read_specular, tex_scene_read_apply, tex_scene_read_blend;
 tex_param_read tex_scene_read_translate, tex_scene_read_rotate, tex_scene_read_scale,
     tex_scene_read_cross, tex_scene_read_stretch, tex_scene_read_region;

@@ -176,6 +176,17 @@ struct tex_apply {
     int line, col;
 };
 
+/* The optical characters a surface may be described by (thesis 4.4, items 6 and 7), each a
+ * consistent set of the shading parameters that model it (table 4.1): the largest of Kd's
+ * channels plus Ks, Kr and Kt is at most 1.  words[i] is a row of tex_surface_rows and its
+ * value, as a scene writes them; NULL ends. */
+#define TEX_CHARACTERS "matte|glossy|metal|glass|varnished"
+struct tex_character {
+    const char *name;
+    const char *words[8][2];
+};
+extern const struct tex_character tex_characters[];
+
 struct tex_surface {
     char *name;
     float ka, kd[3], ks[3]; /* ka scalar times kd colour; ks scalar times white or colour */
@@ -183,6 +194,7 @@ struct tex_surface {
     const struct tex_shading_model *model;
     struct tex_ct *ct;      /* Cook-Torrance parameters (render_ct.h); NULL: its defaults */
     const struct tex_surface *blend; /* `blend SURFACE`: mixed in by `blend = h`, or NULL */
+    int character;                   /* `character NAME`: 1 + its index in tex_characters, or 0 */
     struct tex_apply *apply;
     int line, col;
     struct tex_surface_cache *cache; /* tex_render's (appfn.c), or NULL */
