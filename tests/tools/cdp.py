@@ -116,6 +116,44 @@ class Page:
         raise RuntimeError("timed out waiting for " + expr)
 
 
+class Chromium:
+    """Headless chromium on url, its page driven through the DevTools protocol: `with
+    Chromium(path, url) as page:`; exits 3, saying why, when chromium cannot start."""
+
+    def __init__(self, chromium, url, size="1100,900"):
+        self.profile = tempfile.mkdtemp(prefix="textura-chromium.")
+        self.proc = subprocess.Popen([chromium, "--headless=new", "--no-sandbox", "--disable-gpu",
+                                      "--no-first-run", "--disable-extensions",
+                                      "--remote-debugging-port=0", "--user-data-dir=" + self.profile,
+                                      "--window-size=" + size, url],
+                                     stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+
+    def __enter__(self):
+        port_file = os.path.join(self.profile, "DevToolsActivePort")
+        for _ in range(300):
+            if (os.path.exists(port_file) and open(port_file).read().count("\n") >= 1) or \
+                    self.proc.poll() is not None:
+                break
+            time.sleep(0.1)
+        if not os.path.exists(port_file):
+            sys.stderr.write("chromium did not start: %s\n" %
+                             self.proc.stderr.read1(400).decode(errors="replace")
+                             if self.proc.poll() is not None else
+                             "chromium did not open its DevTools port\n")
+            self.__exit__()
+            sys.exit(3)
+        port = int(open(port_file).read().split()[0])
+        targets = json.load(urllib.request.urlopen("http://127.0.0.1:%d/json/list" % port, timeout=10))
+        page = Page(next(t for t in targets if t["type"] == "page")["webSocketDebuggerUrl"])
+        page.call("Runtime.enable")
+        return page
+
+    def __exit__(self, *exc):
+        self.proc.kill()
+        self.proc.wait()
+        shutil.rmtree(self.profile, ignore_errors=True)
+
+
 def say(ok, name, why=""):
     print(("ok - " if ok else "not ok - ") + name + ("" if ok else ": " + str(why)[:300]), flush=True)
 
@@ -468,36 +506,12 @@ def project(page, work, shots):
 def main():
     chromium, url, work, shots, scenario = sys.argv[1:6]
     os.makedirs(shots, exist_ok=True)
-    profile = tempfile.mkdtemp(prefix="textura-chromium.")
-    proc = subprocess.Popen([chromium, "--headless=new", "--no-sandbox", "--disable-gpu",
-                             "--no-first-run", "--disable-extensions", "--remote-debugging-port=0",
-                             "--user-data-dir=" + profile, "--window-size=1100,900", url],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    try:
-        port_file = os.path.join(profile, "DevToolsActivePort")
-        for _ in range(300):
-            if os.path.exists(port_file) and open(port_file).read().count("\n") >= 1:
-                break
-            if proc.poll() is not None:
-                break
-            time.sleep(0.1)
-        if not os.path.exists(port_file):
-            sys.stderr.write("chromium did not start: %s\n" % proc.stderr.read1(400).decode(errors="replace")
-                             if proc.poll() is not None else "chromium did not open its DevTools port\n")
-            sys.exit(3)
-        port = int(open(port_file).read().split()[0])
-        targets = json.load(urllib.request.urlopen("http://127.0.0.1:%d/json/list" % port, timeout=10))
-        page = Page(next(t for t in targets if t["type"] == "page")["webSocketDebuggerUrl"])
-        page.call("Runtime.enable")
+    with Chromium(chromium, url) as page:
         page.call("Page.enable")
         page.until("document.querySelectorAll('#prim option').length > 10")
         page.until("%s > 0" % VERSION)
         say(True, "chromium loads the editor and its primitives")
         {"basic": basic, "prims": prims, "values": values, "project": project}[scenario](page, work, shots)
-    finally:
-        proc.kill()
-        proc.wait()
-        shutil.rmtree(profile, ignore_errors=True)
 
 
 if __name__ == "__main__":

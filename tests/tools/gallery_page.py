@@ -10,11 +10,10 @@ beside it (drawn on a canvas at 32x32); a picture links to itself at full size. 
 screenshot to SHOT.  Prints "ok - ..." / "not ok - ..." lines; exits 3 (the reason on
 stderr) when chromium cannot start.
 """
-import base64, functools, http.server, json, os, shutil, subprocess, sys, tempfile, threading, time
-import urllib.request
+import base64, functools, http.server, os, sys, threading
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from cdp import Page, say  # noqa: E402
+from cdp import Chromium, say  # noqa: E402
 
 CHECKS = r"""(async () => {
   await Promise.all([...document.images].map(i => i.complete ? 0 :
@@ -83,47 +82,30 @@ def main():
     server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
     threading.Thread(target=server.serve_forever, daemon=True).start()
     url = "http://127.0.0.1:%d/index.html" % server.server_address[1]
-    profile = tempfile.mkdtemp(prefix="textura-chromium.")
-    proc = subprocess.Popen([chromium, "--headless=new", "--no-sandbox", "--disable-gpu",
-                             "--no-first-run", "--disable-extensions", "--remote-debugging-port=0",
-                             "--user-data-dir=" + profile, "--window-size=1100,900", url],
-                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
     try:
-        port_file = os.path.join(profile, "DevToolsActivePort")
-        for _ in range(300):
-            if (os.path.exists(port_file) and open(port_file).read().count("\n") >= 1) or \
-                    proc.poll() is not None:
-                break
-            time.sleep(0.1)
-        if not os.path.exists(port_file):
-            sys.stderr.write("chromium did not start: %s\n" % proc.stderr.read1(400).decode(errors="replace")
-                             if proc.poll() is not None else "chromium did not open its DevTools port\n")
-            sys.exit(3)
-        port = int(open(port_file).read().split()[0])
-        targets = json.load(urllib.request.urlopen("http://127.0.0.1:%d/json/list" % port, timeout=10))
-        page = Page(next(t for t in targets if t["type"] == "page")["webSocketDebuggerUrl"])
-        page.call("Runtime.enable")
-        page.until("document.readyState == 'complete' && document.querySelectorAll('figure').length > 0")
-        r = page.js(CHECKS)
-        say(r["pics"] > 100 and not r["broken"], "chromium shows the %d pictures, none broken" % r["pics"],
-            r["broken"][:5])
-        say(r["links"] == r["pics"], "a click on each picture opens it at full size (%d links)" % r["links"])
-        say(not r["overflow"], "no caption overflows its figure", r["overflow"][:3])
-        say(not r["midword"], "no caption breaks inside a word", r["midword"][:5])
-        say(r["overlaps"] == 0, "no two figures overlap", r["overlaps"])
-        say(not r["flat"], "no thumbnail is flat", r["flat"][:5])
-        say(r["pairs"] > 40 and not r["same"],
-            "each of %d thumbnails with inputs differs from them by its pixels" % r["pairs"], r["same"][:5])
-        png = base64.b64decode(page.call("Page.captureScreenshot", format="png")["data"])
-        os.makedirs(os.path.dirname(os.path.abspath(shot)), exist_ok=True)
-        open(shot, "wb").write(png)
-        say(png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 20000, "a screenshot of the page is kept: " + shot,
-            len(png))
+        with Chromium(chromium, url) as page:
+            checks(page, shot)
     finally:
-        proc.kill()
-        proc.wait()
         server.shutdown()
-        shutil.rmtree(profile, ignore_errors=True)
+
+
+def checks(page, shot):
+    page.until("document.readyState == 'complete' && document.querySelectorAll('figure').length > 0")
+    r = page.js(CHECKS)
+    say(r["pics"] > 100 and not r["broken"], "chromium shows the %d pictures, none broken" % r["pics"],
+        r["broken"][:5])
+    say(r["links"] == r["pics"], "a click on each picture opens it at full size (%d links)" % r["links"])
+    say(not r["overflow"], "no caption overflows its figure", r["overflow"][:3])
+    say(not r["midword"], "no caption breaks inside a word", r["midword"][:5])
+    say(r["overlaps"] == 0, "no two figures overlap", r["overlaps"])
+    say(not r["flat"], "no thumbnail is flat", r["flat"][:5])
+    say(r["pairs"] > 40 and not r["same"],
+        "each of %d thumbnails with inputs differs from them by its pixels" % r["pairs"], r["same"][:5])
+    png = base64.b64decode(page.call("Page.captureScreenshot", format="png")["data"])
+    os.makedirs(os.path.dirname(os.path.abspath(shot)), exist_ok=True)
+    open(shot, "wb").write(png)
+    say(png[:8] == b"\x89PNG\r\n\x1a\n" and len(png) > 20000, "a screenshot of the page is kept: " + shot,
+        len(png))
 
 
 if __name__ == "__main__":
