@@ -520,50 +520,88 @@ static inline void transmit_prim(const struct tex_scene *s, const struct prim *p
     }
 }
 
-double tex_scene_transmit(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
-                          double tmin, double tmax, const struct tex_object *from)
+/* Ray i of r (of those in live) through prim p: its product tr[i], and i out of live where
+ * the light falls to 1e-4 */
+static inline void transmit_rays(const struct tex_scene *s, const struct prim *p,
+                                 const struct ray *r, uint64_t m, const double *tmin,
+                                 const double *tmax, const struct tex_object *const *from,
+                                 double *tr, uint64_t *live)
+{
+    for (; m; m &= m - 1) {
+        int i = __builtin_ctzll(m);
+        if (p->ob == from[i])
+            continue;
+        transmit_prim(s, p, &r[i], tmin[i], tmax[i], &tr[i]);
+        if (tr[i] <= 1e-4)
+            tr[i] = 0, *live &= ~(1ull << i);
+    }
+}
+
+/* The rays of m whose segments enter box b */
+static inline uint64_t rays_box(const struct tex_bounds *b, const struct ray *r, uint64_t m,
+                                const double *tmin, const double *tmax)
+{
+    uint64_t in = 0;
+    double t0;
+    for (; m; m &= m - 1) {
+        int i = __builtin_ctzll(m);
+        in |= (uint64_t)hit_box(b, &r[i], tmin[i], tmax[i], &t0) << i;
+    }
+    return in;
+}
+
+/* The rays walk the tree together, depth first, nearer child first as one ray alone does:
+ * each meets the objects it enters in the order its own walk meets them, so that its
+ * product of Kt is the one its own walk makes, bit for bit. */
+void tex_scene_transmit_n(const struct tex_scene *s, int n, const tex_v3 *o, const tex_v3 *d,
+                          const double *tmin, const double *tmax,
+                          const struct tex_object *const *from, double *tr)
 {
     const struct tex_bvh *t = s->bvh;
-    struct ray r;
-    ray_setup(&r, o, d);
-    double tr = 1, t0;
-    if (!(r.dd > 0))
-        return 1;
-    for (int i = 0; i < t->nunb; i++) {
-        if (t->unb[i].ob == from)
-            continue;
-        transmit_prim(s, &t->unb[i], &r, tmin, tmax, &tr);
-        if (tr <= 1e-4)
-            return 0;
+    struct ray r[TEX_TRANSMIT_MAX];
+    uint64_t live = 0;
+    for (int i = 0; i < n; i++) {
+        ray_setup(&r[i], &o[i], &d[i]);
+        tr[i] = 1;
+        live |= (uint64_t)(r[i].dd > 0) << i;
     }
-    if (!t->nnodes || !hit_box(&t->nodes[0].b, &r, tmin, tmax, &t0))
-        return tr;
-    int stack[128], sp = 0, ni = 0;
-    for (;;) {
-        const struct node *n = &t->nodes[ni];
-        if (n->count) {
-            for (int i = 0; i < n->count; i++) {
-                if (t->prims[n->first + i].ob == from)
-                    continue;
-                transmit_prim(s, &t->prims[n->first + i], &r, tmin, tmax, &tr);
-                if (tr <= 1e-4)
-                    return 0;
-            }
+    for (int i = 0; i < t->nunb && live; i++)
+        transmit_rays(s, &t->unb[i], r, live, tmin, tmax, from, tr, &live);
+    if (!t->nnodes)
+        return;
+    struct {
+        int node;
+        uint64_t m;
+    } stack[128];
+    int sp = 0, ni = 0;
+    uint64_t m = rays_box(&t->nodes[0].b, r, live, tmin, tmax);
+    while (m) {
+        const struct node *nd = &t->nodes[ni];
+        if (nd->count) {
+            for (int i = 0; i < nd->count && (m &= live); i++)
+                transmit_rays(s, &t->prims[nd->first + i], r, m, tmin, tmax, from, tr, &live);
         } else {
-            int l = ni + 1, rt = n->first;
-            int hl = hit_box(&t->nodes[l].b, &r, tmin, tmax, &t0);
-            int hr = hit_box(&t->nodes[rt].b, &r, tmin, tmax, &t0);
-            if (hl && hr)
-                stack[sp++] = rt;
-            if (hl || hr) {
-                ni = hl ? l : rt;
+            int l = ni + 1, rt = nd->first;
+            uint64_t ml = rays_box(&t->nodes[l].b, r, m, tmin, tmax);
+            uint64_t mr = rays_box(&t->nodes[rt].b, r, m, tmin, tmax);
+            if (ml && mr)
+                stack[sp].node = rt, stack[sp++].m = mr;
+            if (ml || mr) {
+                ni = ml ? l : rt, m = ml ? ml : mr;
                 continue;
             }
         }
-        if (!sp)
-            return tr;
-        ni = stack[--sp];
+        for (m = 0; !m && sp;) /* the next node some ray still alive enters */
+            sp--, ni = stack[sp].node, m = stack[sp].m & live;
     }
+}
+
+double tex_scene_transmit(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
+                          double tmin, double tmax, const struct tex_object *from)
+{
+    double tr;
+    tex_scene_transmit_n(s, 1, o, d, &tmin, &tmax, &from, &tr);
+    return tr;
 }
 
 int tex_scene_trace(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d, double tmin,
