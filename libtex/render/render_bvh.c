@@ -537,10 +537,16 @@ static inline void transmit_rays(const struct tex_scene *s, const struct prim *p
     }
 }
 
-/* The rays of m whose segments enter box b */
+/* The rays of m whose segments enter box b; none where b lies apart from the box around
+ * every segment, all (a box widened far beyond the rounding of hit_box's slabs: shadow rays
+ * to one light, from a packet's hits, skip most of the tree at one test) */
 static inline uint64_t rays_box(const struct tex_bounds *b, const struct ray *r, uint64_t m,
-                                const double *tmin, const double *tmax)
+                                const double *tmin, const double *tmax,
+                                const struct tex_bounds *all)
 {
+    if (b->lo.x > all->hi.x || b->hi.x < all->lo.x || b->lo.y > all->hi.y ||
+        b->hi.y < all->lo.y || b->lo.z > all->hi.z || b->hi.z < all->lo.z)
+        return 0;
     uint64_t in = 0;
     double t0;
     for (; m; m &= m - 1) {
@@ -548,6 +554,14 @@ static inline uint64_t rays_box(const struct tex_bounds *b, const struct ray *r,
         in |= (uint64_t)hit_box(b, &r[i], tmin[i], tmax[i], &t0) << i;
     }
     return in;
+}
+
+/* b grown to hold p (comparisons, not fmin's call: NaN is caught apart) */
+static inline void box_grow(struct tex_bounds *b, tex_v3 p)
+{
+    b->lo.x = tex_mind(b->lo.x, p.x), b->hi.x = tex_maxd(b->hi.x, p.x);
+    b->lo.y = tex_mind(b->lo.y, p.y), b->hi.y = tex_maxd(b->hi.y, p.y);
+    b->lo.z = tex_mind(b->lo.z, p.z), b->hi.z = tex_maxd(b->hi.z, p.z);
 }
 
 /* The rays walk the tree together, depth first, nearer child first as one ray alone does:
@@ -569,12 +583,33 @@ void tex_scene_transmit_n(const struct tex_scene *s, int n, const tex_v3 *o, con
         transmit_rays(s, &t->unb[i], r, live, tmin, tmax, from, tr, &live);
     if (!t->nnodes)
         return;
+    /* the box around every segment, widened by a million times the rounding of its ends
+     * and of hit_box; the whole space where an end is not finite (a distant light) */
+    struct tex_bounds all = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
+    double big = 0;
+    for (uint64_t m = live; m; m &= m - 1) {
+        int i = __builtin_ctzll(m);
+        tex_v3 e = tex_v3_madd(o[i], d[i], tmax[i]); /* the far end: the near one is o */
+        box_grow(&all, o[i]);
+        box_grow(&all, e);
+        double size = fabs(e.x) + fabs(e.y) + fabs(e.z) + fabs(o[i].x) + fabs(o[i].y) +
+                      fabs(o[i].z);
+        big = size < 1e12 ? tex_maxd(big, size) : INFINITY; /* NaN too */
+    }
+    if (big < 1e12) {
+        double eps = 1e-9 * (1 + big);
+        all.lo = tex_v3_sub(all.lo, tex_v3_make(eps, eps, eps));
+        all.hi = tex_v3_add(all.hi, tex_v3_make(eps, eps, eps));
+    } else {
+        all.lo = tex_v3_make(-INFINITY, -INFINITY, -INFINITY);
+        all.hi = tex_v3_make(INFINITY, INFINITY, INFINITY);
+    }
     struct {
         int node;
         uint64_t m;
     } stack[128];
     int sp = 0, ni = 0;
-    uint64_t m = rays_box(&t->nodes[0].b, r, live, tmin, tmax);
+    uint64_t m = rays_box(&t->nodes[0].b, r, live, tmin, tmax, &all);
     while (m) {
         const struct node *nd = &t->nodes[ni];
         if (nd->count) {
@@ -582,8 +617,8 @@ void tex_scene_transmit_n(const struct tex_scene *s, int n, const tex_v3 *o, con
                 transmit_rays(s, &t->prims[nd->first + i], r, m, tmin, tmax, from, tr, &live);
         } else {
             int l = ni + 1, rt = nd->first;
-            uint64_t ml = rays_box(&t->nodes[l].b, r, m, tmin, tmax);
-            uint64_t mr = rays_box(&t->nodes[rt].b, r, m, tmin, tmax);
+            uint64_t ml = rays_box(&t->nodes[l].b, r, m, tmin, tmax, &all);
+            uint64_t mr = rays_box(&t->nodes[rt].b, r, m, tmin, tmax, &all);
             if (ml && mr)
                 stack[sp].node = rt, stack[sp++].m = mr;
             if (ml || mr) {
