@@ -603,7 +603,7 @@ void tex_scene_transmit_n(const struct tex_scene *s, int n, const tex_v3 *o, con
                       fabs(o[i].z);
         big = size < 1e12 ? tex_maxd(big, size) : INFINITY; /* NaN too */
     }
-    if (big < 1e12) {
+    if (big < 1e12 && n > 1) { /* one ray: its own test of the box is the same */
         double eps = 1e-9 * (1 + big);
         all.lo = tex_v3_sub(all.lo, tex_v3_make(eps, eps, eps));
         all.hi = tex_v3_add(all.hi, tex_v3_make(eps, eps, eps));
@@ -646,6 +646,11 @@ void tex_scene_transmit_n(const struct tex_scene *s, int n, const tex_v3 *o, con
         for (m = 0; !m && sp;) /* the next node some ray still alive enters */
             sp--, ni = stack[sp].node, m = stack[sp].m & live;
     }
+}
+
+int tex_scene_shadow_batches(const struct tex_scene *s)
+{
+    return s->bvh->nnodes > 1;
 }
 
 double tex_scene_transmit(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,

@@ -226,9 +226,11 @@ void tex_miss(const struct tex_render_ctx *c, const tex_ray *r, tex_colour *out)
         s->cs.from_rgb(&s->cs, rgb, TEX_SPECTRUM_ILLUMINANT, out);
 }
 
-void tex_shade_begin(const struct tex_render_ctx *c, const tex_ray *r, const struct tex_hit *hp,
-                     tex_v3 P, tex_v3 Ng, const struct tex_prefetch *pre, int depth,
-                     struct tex_shading *sh)
+/* tex_shade_begin's and tex_shade_end's work, inlined into tex_shade whole: its state
+ * stays in registers and one frame, as it did before the packets' batches split it */
+static inline __attribute__((always_inline)) void shade_begin(
+    const struct tex_render_ctx *c, const tex_ray *r, const struct tex_hit *hp, tex_v3 P,
+    tex_v3 Ng, const struct tex_prefetch *pre, int depth, struct tex_shading *sh)
 {
     const struct tex_scene *s = c->s;
     sh->h = *hp;
@@ -251,14 +253,28 @@ void tex_shade_begin(const struct tex_render_ctx *c, const tex_ray *r, const str
                                    &sh->Pin, width,  at.dist, entering, outside};
 }
 
-void tex_shade_end(const struct tex_render_ctx *c, const tex_ray *r, struct tex_shading *sh,
-                   const struct tex_light_ahead *lit, int depth, double weight, tex_colour *out)
+static inline __attribute__((always_inline)) void shade_end(
+    const struct tex_render_ctx *c, const tex_ray *r, struct tex_shading *sh,
+    const struct tex_light_ahead *lit, int depth, double weight, tex_colour *out)
 {
     struct tex_material *m = sh->m;
     tex_colour_mul(out, c->n, c->ambient, &m->ka);
     direct_light(c, m, &sh->f, sh->a0, lit, out);
     if (depth < c->s->settings.depth && (reflects(&m[0]) || (m->blend_m && reflects(&m[1]))))
         secondary(c, r, &sh->f, m, depth, weight, out);
+}
+
+void tex_shade_begin(const struct tex_render_ctx *c, const tex_ray *r, const struct tex_hit *hp,
+                     tex_v3 P, tex_v3 Ng, const struct tex_prefetch *pre, int depth,
+                     struct tex_shading *sh)
+{
+    shade_begin(c, r, hp, P, Ng, pre, depth, sh);
+}
+
+void tex_shade_end(const struct tex_render_ctx *c, const tex_ray *r, struct tex_shading *sh,
+                   const struct tex_light_ahead *lit, int depth, double weight, tex_colour *out)
+{
+    shade_end(c, r, sh, lit, depth, weight, out);
 }
 
 /* Whitted's recursion from ray r's hit h at P, of normal Ng (hit_normal's): ambient,
@@ -270,8 +286,8 @@ void tex_shade(const struct tex_render_ctx *c, const tex_ray *r, const struct te
                   tex_colour *out)
 {
     struct tex_shading sh;
-    tex_shade_begin(c, r, hp, P, Ng, pre, depth, &sh);
-    tex_shade_end(c, r, &sh, NULL, depth, weight, out);
+    shade_begin(c, r, hp, P, Ng, pre, depth, &sh);
+    shade_end(c, r, &sh, NULL, depth, weight, out);
 }
 
 /* The colour ray r brings back; from: tex_scene_trace's */

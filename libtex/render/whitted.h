@@ -23,6 +23,7 @@ struct tex_render_ctx {
     tex_rng *rng;
     int need_rng; /* jittered samples or area lights */
     int plain;    /* RGB, point and spot lights alone: plain hits shaded together */
+    int batch;    /* a packet's shadow rays traced together (tex_scene_shadow_batches) */
 };
 
 static inline double tex_eps_at(tex_v3 p)
