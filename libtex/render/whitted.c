@@ -56,7 +56,7 @@ static inline const struct tex_light_ahead *first_light(const struct tex_scene *
 /* Light sample k of light li at the hit of frame f into a (an area light's jitter drawn
  * from c's rng; a0: the first light's, made ahead), ok where it lights the surface from
  * above both normals, its shadow ray yet to be traced */
-static inline void light_at(const struct tex_render_ctx *c, const struct tex_hit_frame *f,
+static inline __attribute__((always_inline)) void light_at(const struct tex_render_ctx *c, const struct tex_hit_frame *f,
                             const struct tex_light_ahead *a0, int li, int k,
                             struct tex_light_ahead *a)
 {
@@ -75,7 +75,7 @@ static inline void light_at(const struct tex_render_ctx *c, const struct tex_hit
 
 /* Light sample a of light l, its shadow ray traced (tex_light_pass), through m's shading
  * model into out */
-static inline void light_shade(const struct tex_render_ctx *c, const struct tex_material *m,
+static inline __attribute__((always_inline)) void light_shade(const struct tex_render_ctx *c, const struct tex_material *m,
                                const struct tex_hit_frame *f, const struct tex_light *l,
                                const struct tex_light_ahead *a, tex_colour *out)
 {
@@ -111,7 +111,7 @@ int tex_light_rays(const struct tex_render_ctx *c, const struct tex_shading *sh,
  * shading model (pbrt's SampleLd); a0: the first light's, made ahead.  lit: the samples
  * made and their shadow rays traced (tex_light_rays), else NULL: made here, each shadow
  * ray traced on its own. */
-static void direct_light(const struct tex_render_ctx *c, const struct tex_material *m,
+static inline __attribute__((always_inline)) void direct_light(const struct tex_render_ctx *c, const struct tex_material *m,
                          const struct tex_hit_frame *f, const struct tex_light_ahead *a0,
                          const struct tex_light_ahead *lit, tex_colour *out)
 {
