@@ -158,7 +158,7 @@ static int refraction(const struct tex_render_ctx *c, const tex_ray *r, const st
 /* Reflection and refraction (Whitted's kr Ir + kt It).  The media on both
  * sides (nested solids) give Fresnel the solid's index relative to what lies
  * beyond it; an opaque Phong mirror needs neither. */
-static void secondary(const struct tex_render_ctx *c, const tex_ray *r, const struct tex_hit_frame *f,
+static inline __attribute__((always_inline)) void secondary(const struct tex_render_ctx *c, const tex_ray *r, const struct tex_hit_frame *f,
                       struct tex_material *m, int depth, double weight, tex_colour *out)
 {
     const struct tex_scene *s = c->s;
