@@ -263,8 +263,9 @@ awk -v s="$sd" 'BEGIN { exit !(s > 0.02) }' && ok "the test scene's textures var
 # a packet's shadow rays traced together through the tree, light by light
 # (tex_scene_transmit_n): the light through nested and overlapping glass (Kt multiplied
 # at every crossing, in each ray's own order), a glass CSG shell, 40 small spheres in the
-# tree, four lights with a 3x3 area light (9 samples a hit, the general path's batches) and
-# with a 6x6 one (36: more than a hit keeps, each shadow ray on its own)
+# tree (more than one leaf: shadow rays batch), four lights with a 3x3 area light (12
+# samples a hit, the general path's batches) and with a 6x6 one (39: more than a hit keeps,
+# each shadow ray on its own), and the point and spot lights alone (the plain hits' batches)
 {
     cat <<SCENE
 image 37 29
@@ -294,7 +295,8 @@ SCENE
     done
 } >"$T/s.scene"
 sed 's/samples 3 intensity/samples 6 intensity/' "$T/s.scene" >"$T/s6.scene"
-for sc in s s6; do
+sed '/^light distant\|^light area/d' "$T/s.scene" >"$T/sp.scene"
+for sc in s s6 sp; do
     for args in "-j 1" "-j 2 --spp 3"; do
         # shellcheck disable=SC2086
         TEXTURA_PACKETS=0 t_apply "$T/$sc.scene" -q -j 1 ${args#-j ?} -o "$T/$sc-px.pfm" &&
