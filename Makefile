@@ -46,10 +46,14 @@ SANFLAGS = -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-poin
 SAN      = $(if $(SANITIZE),$(SANFLAGS))
 # the sanitizer builds compile noise.c's row kernels once for every operation (noise.c)
 SAN_DEFS = $(if $(SANITIZE),-DTEX_SANITIZE)
-ALL_CFLAGS   = -std=gnu11 -fPIC -fopenmp -ffp-contract=off $(WARN) $(SAN) $(SAN_DEFS) $(CFLAGS) \
+# Frame pointers in every function, leaves too: `perf record -g` walks them, where without
+# them it took whatever lay on the stack for callers (0x3ff0000000000000, a double's 1.0)
+# and a profile's callers were a tail of addresses no symbol holds (doc/performance.md)
+FRAMES  := -fno-omit-frame-pointer $(if $(filter x86_64 aarch64,$(shell uname -m)),-mno-omit-leaf-frame-pointer)
+ALL_CFLAGS   = -std=gnu11 -fPIC -fopenmp -ffp-contract=off $(FRAMES) $(WARN) $(SAN) $(SAN_DEFS) $(CFLAGS) \
                -DTEX_VERSION='"$(VERSION)"' -DTEX_PREFIX='"$(PREFIX)"' -DTEX_LIBDIR='"$(LIBDIR)"' \
                -DTEX_DATADIR='"$(DATADIR)"'
-ALL_CXXFLAGS = -std=c++17 -fPIC $(WARN) $(CXXFLAGS)
+ALL_CXXFLAGS = -std=c++17 -fPIC $(FRAMES) $(WARN) $(CXXFLAGS)
 CPPFLAGS += -Ilibtex -I/usr/include/OpenEXR
 LDFLAGS  += -fopenmp $(SAN) -Wl,--as-needed
 LDLIBS    = -lOpenEXRCore -lfftw3f_threads -lfftw3f -llz4 -lstdc++ -lm -ldl

@@ -65,6 +65,18 @@ void *tex_pages_new(size_t bytes, size_t min, size_t *mapped)
     return p;
 }
 
+void tex_pages_touch(void *p, size_t mapped)
+{
+    if (!mapped)
+        return; /* the heap's: memset already */
+#ifdef MADV_POPULATE_WRITE
+    if (!madvise(p, mapped, MADV_POPULATE_WRITE))
+        return;
+#endif
+    for (size_t i = 0; i < mapped; i += 4096) /* a kernel before 5.14 */
+        ((volatile char *)p)[i] = 0;
+}
+
 void tex_pages_free(void *p, size_t mapped)
 {
     if (mapped)

@@ -49,6 +49,9 @@ typedef struct tex_map {
  * 4 KiB page is a page fault), else the heap.
  * *mapped is what tex_pages_free takes back (0 from the heap); NULL when out of memory. */
 void *tex_pages_new(size_t bytes, size_t min, size_t *mapped);
+/* tex_pages_new's pages p (mapped bytes) made present, zeroed, now: their first touch paid
+ * where they are made, not where the caller writes them (a render's inner loop) */
+void tex_pages_touch(void *p, size_t mapped);
 void tex_pages_free(void *p, size_t mapped);
 /* For tools, at start (tex_cli_parse): with glibc, memory freed stays on the heap for the
  * next allocation instead of going back to the system, so that buffers of one size made

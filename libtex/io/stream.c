@@ -343,6 +343,8 @@ static int encode(const tex_map *m, tex_rows_fn fill, void *arg, enum tex_compre
         exr_finish(&ctx);
         return tex_error("out of memory");
     }
+    if (band) /* its pages made here, not in fill's inner loop */
+        tex_pages_touch(band, band_mapped);
     for (y = 0; y < m->h; y += lines) {
         const float *row0 = band ? band + (size_t)(y % brows) * m->w * m->nc : tex_map_row(m, y);
         /* a band's rows reach a reader before the next band is made */
@@ -428,6 +430,8 @@ static int encode_tiled(const tex_map *m, tex_rows_fn fill, void *arg, int tile,
         tex_error("out of memory");
         goto done;
     }
+    if (band)
+        tex_pages_touch(band, band_mapped);
     memset(&enc, 0, sizeof enc);
     writer_init(&init, sink);
     if ((rv = exr_start_write(&ctx, "stream", EXR_WRITE_FILE_DIRECTLY, &init)) ||

@@ -59,6 +59,16 @@ int tex_scene_trace_view(const struct tex_scene *s, const tex_v3 *o, const tex_v
  * tex_scene_trace. */
 double tex_scene_transmit(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
                           double tmin, double tmax, const struct tex_object *from);
+/* tex_scene_transmit of n rays (n <= TEX_TRANSMIT_MAX) at once, ray i o[i] + t d[i] for t
+ * in (tmin[i], tmax[i]), not meeting from[i]: tr[i], the value tex_scene_transmit gives it */
+#define TEX_TRANSMIT_MAX 64
+/* Whether rays gain from going together through the scene's tree: more than one leaf's
+ * objects (a tree of one leaf walked by a batch cost the spheres benchmark 7 % more CPU
+ * than each ray's own walk) */
+int tex_scene_shadow_batches(const struct tex_scene *s);
+void tex_scene_transmit_n(const struct tex_scene *s, int n, const tex_v3 *o, const tex_v3 *d,
+                          const double *tmin, const double *tmax,
+                          const struct tex_object *const *from, double *tr);
 
 struct tex_bvh *tex_bvh_build(struct tex_object **obs, int n);
 void tex_bvh_free(struct tex_bvh *b);

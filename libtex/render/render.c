@@ -105,6 +105,19 @@ struct plain {
     tex_v3 Ngv[NP];      /* their geometric normals */
 };
 
+/* A packet's hits that general_shade shades, their shadow rays traced together light by
+ * light: those whose light samples number LIT_MIN to LIT_MAX */
+#define LIT_MAX 32
+/* and LIT_MIN at least: with fewer, a packet's hits held between their material and their
+ * shading (64 of 2 KiB) cost more in the cache than their rays' batches saved (the
+ * spheres benchmark, one light: 15 % more CPU than each hit shaded whole) */
+#define LIT_MIN 4
+struct general {
+    int n, k[NP]; /* k: the hit in the packet */
+    struct tex_shading sh[NP];
+    struct tex_light_ahead lit[NP][LIT_MAX];
+};
+
 struct packet {
     tex_rng rng[PACKET * PACKET];
     int x[PACKET * PACKET], y[PACKET * PACKET]; /* the pixels: no division by the width */
@@ -116,6 +129,7 @@ struct packet {
     struct tex_prefetch pre[PACKET * PACKET], *pp[PACKET * PACKET];
     struct tex_lanes lanes[QUEUES];
     struct plain plain;
+    struct general general;
 };
 
 /* The packet's hit k taken as the next plain one: its frame (shade's) from the normal Ngv
@@ -174,8 +188,42 @@ static int plain_take(const struct tex_render_ctx *c, struct packet *pk, int k)
     return 1;
 }
 
-/* Light l's share at the plain hits (direct_light's) */
-static void plain_light(const struct tex_scene *s, const struct tex_light *l, struct plain *pl)
+/* Shadow rays gathered to be traced together (tex_scene_transmit_n): each one's light
+ * sample, whose ok and fatt take the light passing, as tex_direct_light's do */
+struct shadows {
+    int n;
+    tex_v3 o[TEX_TRANSMIT_MAX], d[TEX_TRANSMIT_MAX];
+    double tmin[TEX_TRANSMIT_MAX], tmax[TEX_TRANSMIT_MAX];
+    const struct tex_object *from[TEX_TRANSMIT_MAX];
+    struct tex_light_ahead *a[TEX_TRANSMIT_MAX];
+};
+
+static void shadows_trace(const struct tex_scene *s, struct shadows *sw)
+{
+    double tr[TEX_TRANSMIT_MAX];
+    if (!sw->n)
+        return;
+    tex_scene_transmit_n(s, sw->n, sw->o, sw->d, sw->tmin, sw->tmax, sw->from, tr);
+    for (int i = 0; i < sw->n; i++)
+        tex_light_pass(sw->a[i], tr[i]);
+    sw->n = 0;
+}
+
+/* The shadow ray of light sample a from o (from: tex_scene_trace's) added to sw, the rays
+ * traced when sw is full */
+static inline void shadow_ray(const struct tex_scene *s, struct shadows *sw, const tex_v3 *o,
+                              const struct tex_object *from, struct tex_light_ahead *a)
+{
+    int i = sw->n++;
+    sw->o[i] = *o, sw->d[i] = a->L, sw->tmin[i] = 0, sw->tmax[i] = a->dist;
+    sw->from[i] = from, sw->a[i] = a;
+    if (sw->n == TEX_TRANSMIT_MAX)
+        shadows_trace(s, sw);
+}
+
+/* Light l's share at the plain hits (direct_light's); batch: their shadow rays together */
+static void plain_light(const struct tex_scene *s, const struct tex_light *l, struct plain *pl,
+                        int batch)
 {
     for (int i = 0; i < pl->n; i++) { /* direct_light's tests */
         struct tex_light_ahead *a = &pl->a[i];
@@ -186,14 +234,17 @@ static void plain_light(const struct tex_scene *s, const struct tex_light *l, st
         struct tex_light_ahead *a = &pl->a[pl->bent[j]];
         a->ok = a->ok && !(tex_v3_dot(a->L, pl->Ngv[pl->bent[j]]) <= 0);
     }
+    struct shadows sw;
+    sw.n = 0;
     for (int i = 0; i < pl->n; i++) {
         struct tex_light_ahead *a = &pl->a[i];
-        if (!a->ok)
-            continue;
-        double sh = tex_scene_transmit(s, &pl->Pout[i], &a->L, 0, a->dist, pl->outside[i]);
-        a->ok = !(sh <= 0);
-        a->fatt *= sh; /* E's scale */
+        if (a->ok && batch)
+            shadow_ray(s, &sw, &pl->Pout[i], pl->outside[i], a);
+        else if (a->ok)
+            tex_light_pass(a, tex_scene_transmit(s, &pl->Pout[i], &a->L, 0, a->dist,
+                                                 pl->outside[i]));
     }
+    shadows_trace(s, &sw);
     for (int i = 0; i < pl->n; i++) {
         if (!pl->a[i].ok)
             continue;
@@ -216,11 +267,53 @@ static void plain_shade(const struct tex_render_ctx *c, struct packet *pk)
     struct plain *pl = &pk->plain;
     const struct tex_scene *s = c->s;
     for (int li = 0; li < s->nlights; li++)
-        plain_light(s, &s->lights[li], pl);
+        plain_light(s, &s->lights[li], pl, c->batch);
     for (int i = 0; i < pl->n; i++)
         for (int j = 0; j < 3; j++)
             pk->acc[pl->k[i]][j] += pl->out[i][j];
     pl->n = pl->nbent = 0;
+}
+
+/* Hit k of the packet (its rng c's) taken to be shaded with the others (general_shade), its
+ * material and light samples made: 1, or 0 where its samples number fewer than LIT_MIN or
+ * more than LIT_MAX */
+static int general_take(const struct tex_render_ctx *c, struct packet *pk, int k, int samples)
+{
+    struct general *g = &pk->general;
+    if (!c->batch || samples < LIT_MIN || samples > LIT_MAX)
+        return 0;
+    int i = g->n++;
+    g->k[i] = k;
+    tex_shade_begin(c, &pk->r[k], &pk->h[k], pk->P[k], pk->Ng[k], &pk->pre[k], 0, &g->sh[i]);
+    tex_light_rays(c, &g->sh[i], g->lit[i]);
+    return 1;
+}
+
+/* The hits general_take took: their shadow rays traced together, light by light, then each
+ * shaded (tex_shade_end) into its pixel's sum */
+static void general_shade(struct tex_render_ctx *c, struct packet *pk)
+{
+    struct general *g = &pk->general;
+    const struct tex_scene *s = c->s;
+    struct shadows sw;
+    sw.n = 0;
+    for (int li = 0, at = 0; li < s->nlights; li++) {
+        int ns = tex_light_samples(&s->lights[li]);
+        for (int i = 0; i < g->n; i++)
+            for (int j = at; j < at + ns; j++)
+                if (g->lit[i][j].ok)
+                    shadow_ray(s, &sw, &g->sh[i].Pout, g->sh[i].f.outside, &g->lit[i][j]);
+        shadows_trace(s, &sw);
+        at += ns;
+    }
+    for (int i = 0; i < g->n; i++) {
+        int k = g->k[i];
+        tex_colour col;
+        c->rng = &pk->rng[k];
+        tex_shade_end(c, &pk->r[k], &g->sh[i], g->lit[i], 0, 1, &col);
+        accumulate(s, &col, pk->acc[k]);
+    }
+    g->n = 0;
 }
 
 /* Hit k of the packet queued for the lanes (tex_lanes_take) in the first queue of its leaf
@@ -288,6 +381,9 @@ static void render_packet(const struct tex_render_ctx *c0, const struct tex_came
     /* a packet beside the box (most of a floor or a sky) tests only the unbounded objects,
      * and one beside an object's box does not test it */
     uint64_t visit = tex_camera_objects(cam, x0, y0, x1, y1);
+    int samples = 0; /* light samples at a hit */
+    for (int li = 0; li < s->nlights; li++)
+        samples += tex_light_samples(&s->lights[li]);
     for (int i = 0; i < spp; i++) {
         tex_camera_rays(c.s, cam, pk->x, pk->y, np, i, pk->rng, pk->r);
         for (int k = 0; k < np; k++)
@@ -299,7 +395,8 @@ static void render_packet(const struct tex_render_ctx *c0, const struct tex_came
         for (int k = 0; k < np; k++) {
             tex_colour col;
             c.rng = &pk->rng[k];
-            if (pk->hit[k] && c.plain && plain_take(&c, pk, k))
+            if (pk->hit[k] && ((c.plain && plain_take(&c, pk, k)) ||
+                               general_take(&c, pk, k, samples)))
                 continue;
             if (pk->hit[k])
                 tex_shade(&c, &pk->r[k], &pk->h[k], pk->P[k], pk->Ng[k], &pk->pre[k], 0, 1, &col);
@@ -307,6 +404,7 @@ static void render_packet(const struct tex_render_ctx *c0, const struct tex_came
                 tex_miss(&c, &pk->r[k], &col);
             accumulate(s, &col, pk->acc[k]);
         }
+        general_shade(&c, pk);
         plain_shade(&c, pk);
     }
     for (int k = 0; k < np; k++)
@@ -320,13 +418,16 @@ tex_map *tex_render(struct tex_scene *s, void (*progress)(long, long, void *), v
 
 /* A packet for each of n threads, made on the first band and kept for the others, in one
  * huge page where the kernel gives it (tex_pages_new): each thread's first touch of its own
- * 4 KiB pages was 29 page faults, 1 % of a render at -j 2 on a virtual machine. NULL
- * without the memory. */
+ * 4 KiB pages was 29 page faults, 1 % of a render at -j 2 on a virtual machine; the pages
+ * are made present here (tex_pages_touch), where a huge page's zeroing was 1.6 % of
+ * render_packet's time at -j 2. NULL without the memory. */
 static struct packet *packet_pool(struct tex_scene *s, int n)
 {
     if (s->npackets < n) {
         tex_pages_free(s->packets, s->packets_mapped);
         s->packets = tex_pages_new(n * sizeof(struct packet), 0, &s->packets_mapped);
+        if (s->packets) /* touched here, not by the threads' first packets */
+            tex_pages_touch(s->packets, s->packets_mapped);
         s->npackets = s->packets ? n : 0;
     }
     return s->packets;
@@ -361,7 +462,7 @@ static int render_into(struct tex_scene *s, int rx, int ry, tex_map *img,
     s->cs.from_rgb(&s->cs, s->ambient, TEX_SPECTRUM_ILLUMINANT, &ambient);
     s->cs.from_rgb(&s->cs, s->background, TEX_SPECTRUM_ILLUMINANT, &background);
     struct tex_render_ctx c = {s, s->cs.n, &ambient, &background, NULL, st->spp > 1,
-                    s->cs.mode == TEX_COLOUR_RGB};
+                    s->cs.mode == TEX_COLOUR_RGB, tex_scene_shadow_batches(s)};
     for (int i = 0; i < s->nlights; i++) {
         c.need_rng |= s->lights[i].kind == TEX_LIGHT_AREA;
         c.plain &= s->lights[i].kind == TEX_LIGHT_POINT || s->lights[i].kind == TEX_LIGHT_SPOT;
@@ -412,6 +513,7 @@ tex_map *tex_render_region(struct tex_scene *s, int rx, int ry, int rw, int rh,
     tex_map *img;
     if (region_check(s, rx, ry, rw, rh) < 0 || !(img = tex_map_new(rw, rh, 3)))
         return NULL;
+    tex_pages_touch(img->px, img->mapped); /* here, not in the threads' put_pixel */
     if (rw != s->settings.w || rh != s->settings.h) {
         img->x0 = rx;
         img->y0 = ry;

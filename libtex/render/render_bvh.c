@@ -30,6 +30,7 @@
 
 #include "base/error.h"
 #include "render/scene.h"
+#include "render/x86/bvh_x86.h"
 
 #define LEAF_MAX 8
 
@@ -520,50 +521,144 @@ static inline void transmit_prim(const struct tex_scene *s, const struct prim *p
     }
 }
 
-double tex_scene_transmit(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
-                          double tmin, double tmax, const struct tex_object *from)
+/* Ray i of r (of those in live) through prim p: its product tr[i], and i out of live where
+ * the light falls to 1e-4 */
+static inline void transmit_rays(const struct tex_scene *s, const struct prim *p,
+                                 const struct ray *r, uint64_t m, const double *tmin,
+                                 const double *tmax, const struct tex_object *const *from,
+                                 double *tr, uint64_t *live)
+{
+    for (; m; m &= m - 1) {
+        int i = __builtin_ctzll(m);
+        if (p->ob == from[i])
+            continue;
+        transmit_prim(s, p, &r[i], tmin[i], tmax[i], &tr[i]);
+        if (tr[i] <= 1e-4)
+            tr[i] = 0, *live &= ~(1ull << i);
+    }
+}
+
+/* The rays of m whose segments enter box b; none where b lies apart from the box around
+ * every segment, all (a box widened far beyond the rounding of hit_box's slabs: shadow rays
+ * to one light, from a packet's hits, skip most of the tree at one test) */
+static inline uint64_t rays_box(const struct tex_bounds *b, const struct ray *r, uint64_t m,
+                                const double *tmin, const double *tmax,
+                                const struct tex_bounds *all, const struct tex_ray_lanes *lanes)
+{
+    if (b->lo.x > all->hi.x || b->hi.x < all->lo.x || b->lo.y > all->hi.y ||
+        b->hi.y < all->lo.y || b->lo.z > all->hi.z || b->hi.z < all->lo.z)
+        return 0;
+#ifdef TEX_X86
+    if (lanes && __builtin_popcountll(m) >= 4) /* the rays' lanes, where the CPU has them */
+        return tex_rays_box_avx512(b, lanes, m);
+#else
+    (void)lanes;
+#endif
+    uint64_t in = 0;
+    double t0;
+    for (; m; m &= m - 1) {
+        int i = __builtin_ctzll(m);
+        in |= (uint64_t)hit_box(b, &r[i], tmin[i], tmax[i], &t0) << i;
+    }
+    return in;
+}
+
+/* b grown to hold p (comparisons, not fmin's call: NaN is caught apart) */
+static inline void box_grow(struct tex_bounds *b, tex_v3 p)
+{
+    b->lo.x = tex_mind(b->lo.x, p.x), b->hi.x = tex_maxd(b->hi.x, p.x);
+    b->lo.y = tex_mind(b->lo.y, p.y), b->hi.y = tex_maxd(b->hi.y, p.y);
+    b->lo.z = tex_mind(b->lo.z, p.z), b->hi.z = tex_maxd(b->hi.z, p.z);
+}
+
+/* The rays walk the tree together, depth first, nearer child first as one ray alone does:
+ * each meets the objects it enters in the order its own walk meets them, so that its
+ * product of Kt is the one its own walk makes, bit for bit. */
+void tex_scene_transmit_n(const struct tex_scene *s, int n, const tex_v3 *o, const tex_v3 *d,
+                          const double *tmin, const double *tmax,
+                          const struct tex_object *const *from, double *tr)
 {
     const struct tex_bvh *t = s->bvh;
-    struct ray r;
-    ray_setup(&r, o, d);
-    double tr = 1, t0;
-    if (!(r.dd > 0))
-        return 1;
-    for (int i = 0; i < t->nunb; i++) {
-        if (t->unb[i].ob == from)
-            continue;
-        transmit_prim(s, &t->unb[i], &r, tmin, tmax, &tr);
-        if (tr <= 1e-4)
-            return 0;
+    struct ray r[TEX_TRANSMIT_MAX];
+    uint64_t live = 0;
+    for (int i = 0; i < n; i++) {
+        ray_setup(&r[i], &o[i], &d[i]);
+        tr[i] = 1;
+        live |= (uint64_t)(r[i].dd > 0) << i;
     }
-    if (!t->nnodes || !hit_box(&t->nodes[0].b, &r, tmin, tmax, &t0))
-        return tr;
-    int stack[128], sp = 0, ni = 0;
-    for (;;) {
-        const struct node *n = &t->nodes[ni];
-        if (n->count) {
-            for (int i = 0; i < n->count; i++) {
-                if (t->prims[n->first + i].ob == from)
-                    continue;
-                transmit_prim(s, &t->prims[n->first + i], &r, tmin, tmax, &tr);
-                if (tr <= 1e-4)
-                    return 0;
-            }
+    for (int i = 0; i < t->nunb && live; i++)
+        transmit_rays(s, &t->unb[i], r, live, tmin, tmax, from, tr, &live);
+    if (!t->nnodes)
+        return;
+    /* the box around every segment, widened by a million times the rounding of its ends
+     * and of hit_box; the whole space where an end is not finite (a distant light) */
+    struct tex_bounds all = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
+    double big = 0;
+    for (uint64_t m = live; m; m &= m - 1) {
+        int i = __builtin_ctzll(m);
+        tex_v3 e = tex_v3_madd(o[i], d[i], tmax[i]); /* the far end: the near one is o */
+        box_grow(&all, o[i]);
+        box_grow(&all, e);
+        double size = fabs(e.x) + fabs(e.y) + fabs(e.z) + fabs(o[i].x) + fabs(o[i].y) +
+                      fabs(o[i].z);
+        big = size < 1e12 ? tex_maxd(big, size) : INFINITY; /* NaN too */
+    }
+    if (big < 1e12 && n > 1) { /* one ray: its own test of the box is the same */
+        double eps = 1e-9 * (1 + big);
+        all.lo = tex_v3_sub(all.lo, tex_v3_make(eps, eps, eps));
+        all.hi = tex_v3_add(all.hi, tex_v3_make(eps, eps, eps));
+    } else {
+        all.lo = tex_v3_make(-INFINITY, -INFINITY, -INFINITY);
+        all.hi = tex_v3_make(INFINITY, INFINITY, INFINITY);
+    }
+    struct tex_ray_lanes lanes, *lp = NULL; /* the rays in lanes, eight or more of them */
+    if (n >= 8 && tex_simd_level() >= TEX_SIMD_AVX512) {
+        lp = &lanes;
+        lanes.tmin = tmin, lanes.tmax = tmax;
+        for (int i = 0; i < n; i++) {
+            lanes.o[0][i] = r[i].o.x, lanes.o[1][i] = r[i].o.y, lanes.o[2][i] = r[i].o.z;
+            lanes.inv[0][i] = r[i].inv.x, lanes.inv[1][i] = r[i].inv.y;
+            lanes.inv[2][i] = r[i].inv.z;
+        }
+    }
+    struct {
+        int node;
+        uint64_t m;
+    } stack[128];
+    int sp = 0, ni = 0;
+    uint64_t m = rays_box(&t->nodes[0].b, r, live, tmin, tmax, &all, lp);
+    while (m) {
+        const struct node *nd = &t->nodes[ni];
+        if (nd->count) {
+            for (int i = 0; i < nd->count && (m &= live); i++)
+                transmit_rays(s, &t->prims[nd->first + i], r, m, tmin, tmax, from, tr, &live);
         } else {
-            int l = ni + 1, rt = n->first;
-            int hl = hit_box(&t->nodes[l].b, &r, tmin, tmax, &t0);
-            int hr = hit_box(&t->nodes[rt].b, &r, tmin, tmax, &t0);
-            if (hl && hr)
-                stack[sp++] = rt;
-            if (hl || hr) {
-                ni = hl ? l : rt;
+            int l = ni + 1, rt = nd->first;
+            uint64_t ml = rays_box(&t->nodes[l].b, r, m, tmin, tmax, &all, lp);
+            uint64_t mr = rays_box(&t->nodes[rt].b, r, m, tmin, tmax, &all, lp);
+            if (ml && mr)
+                stack[sp].node = rt, stack[sp++].m = mr;
+            if (ml || mr) {
+                ni = ml ? l : rt, m = ml ? ml : mr;
                 continue;
             }
         }
-        if (!sp)
-            return tr;
-        ni = stack[--sp];
+        for (m = 0; !m && sp;) /* the next node some ray still alive enters */
+            sp--, ni = stack[sp].node, m = stack[sp].m & live;
     }
+}
+
+int tex_scene_shadow_batches(const struct tex_scene *s)
+{
+    return s->bvh->nnodes > 1;
+}
+
+double tex_scene_transmit(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
+                          double tmin, double tmax, const struct tex_object *from)
+{
+    double tr;
+    tex_scene_transmit_n(s, 1, o, d, &tmin, &tmax, &from, &tr);
+    return tr;
 }
 
 int tex_scene_trace(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d, double tmin,

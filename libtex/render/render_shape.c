@@ -306,6 +306,25 @@ static double poly_bracketed(const double *c, int n, double lo, double hi, doubl
     return x;
 }
 
+/* Roots of c (degree n >= 2) in (a, b) where it changes sign, ascending, given the roots x
+ * of its derivative there (nx of them, ascending, as poly_sign_roots makes them): between
+ * them c is monotonic; returns their number (at most n). */
+static int poly_roots_between(const double *c, int n, double a, double b, const double *x,
+                              int nx, double *r)
+{
+    int k = 0;
+    double d, lo = a, fa = poly_eval(c, n, a, &d);
+    for (int i = 0; i <= nx; i++) {
+        double hi = i < nx ? x[i] : b, fb = poly_eval(c, n, hi, &d);
+        if (fa == 0 && i > 0)
+            r[k++] = lo;
+        else if ((fa < 0 && fb > 0) || (fa > 0 && fb < 0))
+            r[k++] = poly_bracketed(c, n, lo, hi, fa);
+        lo = hi, fa = fb;
+    }
+    return k;
+}
+
 /* Roots of c (degree n >= 1) in (a, b) where it changes sign, ascending;
  * returns their number (at most n). */
 static int poly_sign_roots(const double *c, int n, double a, double b, double *r)
@@ -318,24 +337,10 @@ static int poly_sign_roots(const double *c, int n, double a, double b, double *r
         }
         return 0;
     }
-    double dc[4], x[6];
+    double dc[4], x[4];
     for (int i = 1; i <= n; i++)
         dc[i - 1] = i * c[i];
-    int nx = 1;
-    x[0] = a;
-    nx += poly_sign_roots(dc, n - 1, a, b, x + 1);
-    x[nx++] = b;
-    int k = 0;
-    double d, fa = poly_eval(c, n, a, &d);
-    for (int i = 0; i + 1 < nx; i++) {
-        double fb = poly_eval(c, n, x[i + 1], &d);
-        if (fa == 0 && i > 0)
-            r[k++] = x[i];
-        else if ((fa < 0 && fb > 0) || (fa > 0 && fb < 0))
-            r[k++] = poly_bracketed(c, n, x[i], x[i + 1], fa);
-        fa = fb;
-    }
-    return k;
+    return poly_roots_between(c, n, a, b, x, poly_sign_roots(dc, n - 1, a, b, x), r);
 }
 
 static int torus_inside(double R, double r, tex_v3 p)
@@ -348,6 +353,24 @@ static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
     return (x > y) - (x < y);
+}
+
+/* The n (at most 10) cuts ascending: by insertion, where qsort's call per comparison cost
+ * more than the few moves; qsort where one is NaN, which orders nothing */
+static void sort_cuts(double *cut, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (isnan(cut[i])) {
+            qsort(cut, n, sizeof *cut, cmp_double);
+            return;
+        }
+    for (int i = 1; i < n; i++) {
+        double v = cut[i];
+        int j = i;
+        for (; j > 0 && cut[j - 1] > v; j--)
+            cut[j] = cut[j - 1];
+        cut[j] = v;
+    }
 }
 
 /* The quartic (|p|^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + z^2) = 0 along the ray,
@@ -377,10 +400,13 @@ static void torus_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct 
     double cut[10], dc[4] = {c[1], 2 * c[2], 3 * c[3], 4 * c[4]};
     int n = 0;
     cut[n++] = -h;
-    n += poly_sign_roots(c, 4, -h, h, cut + n);
-    n += poly_sign_roots(dc, 3, -h, h, cut + n);
+    double x[3]; /* the critical points: the quartic's own roots found between them */
+    int nx = poly_sign_roots(dc, 3, -h, h, x);
+    n += poly_roots_between(c, 4, -h, h, x, nx, cut + n);
+    for (int i = 0; i < nx; i++)
+        cut[n++] = x[i];
     cut[n++] = h;
-    qsort(cut, n, sizeof *cut, cmp_double);
+    sort_cuts(cut, n);
     int in = 0;
     for (int i = 0; i + 1 < n; i++) {
         if (!(cut[i + 1] > cut[i]))

@@ -53,50 +53,83 @@ static inline const struct tex_light_ahead *first_light(const struct tex_scene *
     return a;
 }
 
-/* Direct lighting: every light sample that reaches P unshadowed, through the
- * surface's shading model (pbrt's SampleLd); a0: the first light's, made ahead. */
-void tex_direct_light(const struct tex_render_ctx *c, const struct tex_material *m,
-                         const struct tex_hit_frame *f, const struct tex_light_ahead *a0,
-                         tex_colour *out)
+/* Light sample k of light li at the hit of frame f into a (an area light's jitter drawn
+ * from c's rng; a0: the first light's, made ahead), ok where it lights the surface from
+ * above both normals, its shadow ray yet to be traced */
+static inline __attribute__((always_inline)) void light_at(const struct tex_render_ctx *c, const struct tex_hit_frame *f,
+                            const struct tex_light_ahead *a0, int li, int k,
+                            struct tex_light_ahead *a)
 {
-    const struct tex_scene *s = c->s;
+    const struct tex_light *l = &c->s->lights[li];
+    double jx = 0.5, jy = 0.5;
+    if (l->kind == TEX_LIGHT_AREA) {
+        jx = tex_rng_uniform(c->rng);
+        jy = tex_rng_uniform(c->rng);
+    }
+    if (!li && a0)
+        *a = *a0;
+    else
+        tex_light_ahead_at(l, k, jx, jy, f->P, a);
+    a->ok = a->ok && !(tex_v3_dot(a->L, *f->N) <= 0 || tex_v3_dot(a->L, *f->Ngv) <= 0);
+}
+
+/* Light sample a of light l, its shadow ray traced (tex_light_pass), through m's shading
+ * model into out */
+static inline __attribute__((always_inline)) void light_shade(const struct tex_render_ctx *c, const struct tex_material *m,
+                               const struct tex_hit_frame *f, const struct tex_light *l,
+                               const struct tex_light_ahead *a, tex_colour *out)
+{
     int n = c->n;
     const tex_v3 *N = f->N, *V = f->V;
+    tex_colour E;
+    tex_colour_scale(&E, n, &l->e, (float)a->fatt);
+    if (!m->blend_m) {
+        shade_direct(m, N, V, &a->L, &E, n, out);
+    } else { /* a mixture of two surfaces: each one's light, weighted */
+        tex_colour ca, cb;
+        tex_colour_set(&ca, n, 0);
+        tex_colour_set(&cb, n, 0);
+        shade_direct(m, N, V, &a->L, &E, n, &ca);
+        shade_direct(m->blend_m, N, V, &a->L, &E, n, &cb);
+        for (int i = 0; i < n; i++)
+            out->v[i] += (1 - m->blend) * ca.v[i] + m->blend * cb.v[i];
+    }
+}
+
+int tex_light_rays(const struct tex_render_ctx *c, const struct tex_shading *sh,
+                   struct tex_light_ahead *lit)
+{
+    const struct tex_scene *s = c->s;
+    int j = 0;
+    for (int li = 0; li < s->nlights; li++)
+        for (int k = 0, ns = tex_light_samples(&s->lights[li]); k < ns; k++)
+            light_at(c, &sh->f, sh->a0, li, k, &lit[j++]);
+    return j;
+}
+
+/* Direct lighting: every light sample that reaches P unshadowed, through the surface's
+ * shading model (pbrt's SampleLd); a0: the first light's, made ahead.  lit: the samples
+ * made and their shadow rays traced (tex_light_rays), else NULL: made here, each shadow
+ * ray traced on its own. */
+static inline __attribute__((always_inline)) void direct_light(const struct tex_render_ctx *c, const struct tex_material *m,
+                         const struct tex_hit_frame *f, const struct tex_light_ahead *a0,
+                         const struct tex_light_ahead *lit, tex_colour *out)
+{
+    const struct tex_scene *s = c->s;
     for (int li = 0; li < s->nlights; li++) {
         const struct tex_light *l = &s->lights[li];
         int ns = tex_light_samples(l);
         for (int k = 0; k < ns; k++) {
-            double jx = 0.5, jy = 0.5;
-            if (l->kind == TEX_LIGHT_AREA) {
-                jx = tex_rng_uniform(c->rng);
-                jy = tex_rng_uniform(c->rng);
-            }
             struct tex_light_ahead own;
-            const struct tex_light_ahead *a = !li && a0 ? a0 : &own;
-            if (a == &own)
-                tex_light_ahead_at(l, k, jx, jy, f->P, &own);
-            if (!a->ok)
-                continue;
-            tex_v3 L = a->L;
-            double dist = a->dist, fatt = a->fatt;
-            if (tex_v3_dot(L, *N) <= 0 || tex_v3_dot(L, *f->Ngv) <= 0)
-                continue;
-            double sh = tex_scene_transmit(s, f->Pout, &L, 0, dist, f->outside);
-            if (sh <= 0)
-                continue;
-            tex_colour E;
-            tex_colour_scale(&E, n, &l->e, (float)(fatt * sh));
-            if (!m->blend_m) {
-                shade_direct(m, N, V, &L, &E, n, out);
-            } else { /* a mixture of two surfaces: each one's light, weighted */
-                tex_colour a, b;
-                tex_colour_set(&a, n, 0);
-                tex_colour_set(&b, n, 0);
-                shade_direct(m, N, V, &L, &E, n, &a);
-                shade_direct(m->blend_m, N, V, &L, &E, n, &b);
-                for (int i = 0; i < n; i++)
-                    out->v[i] += (1 - m->blend) * a.v[i] + m->blend * b.v[i];
+            const struct tex_light_ahead *a = lit ? lit++ : &own;
+            if (!lit) {
+                light_at(c, f, a0, li, k, &own);
+                if (own.ok)
+                    tex_light_pass(&own, tex_scene_transmit(s, f->Pout, &own.L, 0, own.dist,
+                                                            f->outside));
             }
+            if (a->ok)
+                light_shade(c, m, f, l, a, out);
         }
     }
 }
@@ -125,7 +158,7 @@ static int refraction(const struct tex_render_ctx *c, const tex_ray *r, const st
 /* Reflection and refraction (Whitted's kr Ir + kt It).  The media on both
  * sides (nested solids) give Fresnel the solid's index relative to what lies
  * beyond it; an opaque Phong mirror needs neither. */
-static void secondary(const struct tex_render_ctx *c, const tex_ray *r, const struct tex_hit_frame *f,
+static inline __attribute__((always_inline)) void secondary(const struct tex_render_ctx *c, const tex_ray *r, const struct tex_hit_frame *f,
                       struct tex_material *m, int depth, double weight, tex_colour *out)
 {
     const struct tex_scene *s = c->s;
@@ -193,6 +226,57 @@ void tex_miss(const struct tex_render_ctx *c, const tex_ray *r, tex_colour *out)
         s->cs.from_rgb(&s->cs, rgb, TEX_SPECTRUM_ILLUMINANT, out);
 }
 
+/* tex_shade_begin's and tex_shade_end's work, inlined into tex_shade whole: its state
+ * stays in registers and one frame, as it did before the packets' batches split it */
+static inline __attribute__((always_inline)) void shade_begin(
+    const struct tex_render_ctx *c, const tex_ray *r, const struct tex_hit *hp, tex_v3 P,
+    tex_v3 Ng, const struct tex_prefetch *pre, int depth, struct tex_shading *sh)
+{
+    const struct tex_scene *s = c->s;
+    sh->h = *hp;
+    sh->P = P;
+    int entering = tex_v3_dot(r->d, Ng) < 0;
+    sh->N = entering ? Ng : tex_v3_scale(Ng, -1);
+    double width = fabs(r->width + sh->h.t * r->spread); /* a focused beam crosses 0 */
+    struct tex_shade_at at = {sh->h.leaf, &sh->P, &r->d, width, r->dist + sh->h.t, depth, pre};
+    sh->a0 = first_light(s, &sh->P, &sh->la);
+    tex_resolve_material(s, tex_surface_of(s, sh->h.leaf), &at, &sh->N, sh->m);
+    sh->V = tex_v3_scale(r->d, -1);
+    double e = tex_eps_at(P);
+    /* offset along the geometric normal so bumped normals cannot start rays inside */
+    sh->Ngv = entering ? Ng : tex_v3_scale(Ng, -1);
+    sh->Pout = tex_v3_madd(P, sh->Ngv, e), sh->Pin = tex_v3_madd(P, sh->Ngv, -e);
+    /* rays leaving a hull leaf from outside, away from its surface, skip its object */
+    const struct tex_object *outside =
+        entering && sh->h.leaf->hull ? tex_object_top(sh->h.leaf) : NULL;
+    sh->f = (struct tex_hit_frame){&sh->h, &sh->P, &sh->N,    &sh->Ngv, &sh->V,  &sh->Pout,
+                                   &sh->Pin, width,  at.dist, entering, outside};
+}
+
+static inline __attribute__((always_inline)) void shade_end(
+    const struct tex_render_ctx *c, const tex_ray *r, struct tex_shading *sh,
+    const struct tex_light_ahead *lit, int depth, double weight, tex_colour *out)
+{
+    struct tex_material *m = sh->m;
+    tex_colour_mul(out, c->n, c->ambient, &m->ka);
+    direct_light(c, m, &sh->f, sh->a0, lit, out);
+    if (depth < c->s->settings.depth && (reflects(&m[0]) || (m->blend_m && reflects(&m[1]))))
+        secondary(c, r, &sh->f, m, depth, weight, out);
+}
+
+void tex_shade_begin(const struct tex_render_ctx *c, const tex_ray *r, const struct tex_hit *hp,
+                     tex_v3 P, tex_v3 Ng, const struct tex_prefetch *pre, int depth,
+                     struct tex_shading *sh)
+{
+    shade_begin(c, r, hp, P, Ng, pre, depth, sh);
+}
+
+void tex_shade_end(const struct tex_render_ctx *c, const tex_ray *r, struct tex_shading *sh,
+                   const struct tex_light_ahead *lit, int depth, double weight, tex_colour *out)
+{
+    shade_end(c, r, sh, lit, depth, weight, out);
+}
+
 /* Whitted's recursion from ray r's hit h at P, of normal Ng (hit_normal's): ambient,
  * direct light, then reflection and refraction (pre: the hit's lookups done ahead with its
  * packet, or NULL).  weight: the largest share of the pixel this ray can carry (1 for eye
@@ -201,29 +285,9 @@ void tex_shade(const struct tex_render_ctx *c, const tex_ray *r, const struct te
                   tex_v3 Ng, const struct tex_prefetch *pre, int depth, double weight,
                   tex_colour *out)
 {
-    const struct tex_scene *s = c->s;
-    struct tex_hit h = *hp;
-    int entering = tex_v3_dot(r->d, Ng) < 0;
-    tex_v3 N = entering ? Ng : tex_v3_scale(Ng, -1);
-    double width = fabs(r->width + h.t * r->spread); /* a focused beam crosses 0 */
-    struct tex_material m[2]; /* m[1]: a blended surface's */
-    struct tex_shade_at at = {h.leaf, &P, &r->d, width, r->dist + h.t, depth, pre};
-    struct tex_light_ahead la;
-    const struct tex_light_ahead *a0 = first_light(s, &P, &la);
-    tex_resolve_material(s, tex_surface_of(s, h.leaf), &at, &N, m);
-    tex_v3 V = tex_v3_scale(r->d, -1);
-    double e = tex_eps_at(P);
-    /* offset along the geometric normal so bumped normals cannot start rays inside */
-    tex_v3 Ngv = entering ? Ng : tex_v3_scale(Ng, -1);
-    tex_v3 Pout = tex_v3_madd(P, Ngv, e), Pin = tex_v3_madd(P, Ngv, -e);
-    /* rays leaving a hull leaf from outside, away from its surface, skip its object */
-    const struct tex_object *outside = entering && h.leaf->hull ? tex_object_top(h.leaf) : NULL;
-    struct tex_hit_frame f = {&h, &P, &N, &Ngv, &V, &Pout, &Pin, width, at.dist, entering, outside};
-
-    tex_colour_mul(out, c->n, c->ambient, &m->ka);
-    tex_direct_light(c, m, &f, a0, out);
-    if (depth < s->settings.depth && (reflects(&m[0]) || (m->blend_m && reflects(&m[1]))))
-        secondary(c, r, &f, m, depth, weight, out);
+    struct tex_shading sh;
+    shade_begin(c, r, hp, P, Ng, pre, depth, &sh);
+    shade_end(c, r, &sh, NULL, depth, weight, out);
 }
 
 /* The colour ray r brings back; from: tex_scene_trace's */

@@ -23,6 +23,7 @@ struct tex_render_ctx {
     tex_rng *rng;
     int need_rng; /* jittered samples or area lights */
     int plain;    /* RGB, point and spot lights alone: plain hits shaded together */
+    int batch;    /* a packet's shadow rays traced together (tex_scene_shadow_batches) */
 };
 
 static inline double tex_eps_at(tex_v3 p)
@@ -84,22 +85,42 @@ static inline void tex_light_ahead_at(const struct tex_light *l, int k, double j
         a->ok = tex_light_sample(l, k, jx, jy, *P, &a->L, &a->dist, &a->fatt);
 }
 
-/* Direct lighting: every light sample that reaches P unshadowed, through the
- * surface's shading model (pbrt's SampleLd); a0: the first light's, made ahead. */
-/* Direct lighting: every light sample that reaches P unshadowed, through the
- * surface's shading model (pbrt's SampleLd); a0: the first light's, made ahead. */
-void tex_direct_light(const struct tex_render_ctx *c, const struct tex_material *m,
-                         const struct tex_hit_frame *f, const struct tex_light_ahead *a0,
-                         tex_colour *out);
+/* Light sample a given tr, the light passing along its shadow ray (tex_scene_transmit):
+ * ok where some passes, fatt scaled by it */
+static inline void tex_light_pass(struct tex_light_ahead *a, double tr)
+{
+    a->ok = !(tr <= 0);
+    a->fatt *= tr;
+}
 
-/* What a ray that meets nothing sees: the background or the environment map. */
+/* A hit between its material and its light (tex_shade_begin): the frame f points into it,
+ * so it stays where it was made */
+struct tex_shading {
+    struct tex_hit h;
+    tex_v3 P, N, Ngv, V, Pout, Pin;
+    struct tex_material m[2]; /* m[1]: a blended surface's */
+    struct tex_hit_frame f;
+    struct tex_light_ahead la; /* the first light's, made ahead: a0 */
+    const struct tex_light_ahead *a0;
+};
+
+/* tex_shade in three steps, so that a packet's shadow rays go together: the hit's
+ * material and frame into sh; its light samples into lit[] (tex_light_rays: one per sample
+ * of each light in turn, an area light's jitter drawn from c's rng as tex_shade draws it;
+ * returns how many), their shadow rays traced by the caller (tex_light_pass); then the
+ * shading and the rays sent on (tex_shade_end; lit NULL: the samples made there, each
+ * shadow ray traced on its own). */
+void tex_shade_begin(const struct tex_render_ctx *c, const tex_ray *r, const struct tex_hit *hp,
+                     tex_v3 P, tex_v3 Ng, const struct tex_prefetch *pre, int depth,
+                     struct tex_shading *sh);
+int tex_light_rays(const struct tex_render_ctx *c, const struct tex_shading *sh,
+                   struct tex_light_ahead *lit);
+void tex_shade_end(const struct tex_render_ctx *c, const tex_ray *r, struct tex_shading *sh,
+                   const struct tex_light_ahead *lit, int depth, double weight, tex_colour *out);
+
 /* What a ray that meets nothing sees: the background or the environment map. */
 void tex_miss(const struct tex_render_ctx *c, const tex_ray *r, tex_colour *out);
 
-/* Whitted's recursion from ray r's hit h at P, of normal Ng (tex_hit_normal's): ambient,
- * direct light, then reflection and refraction (pre: the hit's lookups done ahead with its
- * packet, or NULL).  weight: the largest share of the pixel this ray can carry (1 for eye
- * rays); rays below the scene's bailout are not traced. */
 /* Whitted's recursion from ray r's hit h at P, of normal Ng (hit_normal's): ambient,
  * direct light, then reflection and refraction (pre: the hit's lookups done ahead with its
  * packet, or NULL).  weight: the largest share of the pixel this ray can carry (1 for eye
@@ -108,7 +129,6 @@ void tex_shade(const struct tex_render_ctx *c, const tex_ray *r, const struct te
                   tex_v3 Ng, const struct tex_prefetch *pre, int depth, double weight,
                   tex_colour *out);
 
-/* The colour ray r brings back; from: tex_scene_trace's */
 /* The colour ray r brings back; from: tex_scene_trace's */
 void tex_trace(const struct tex_render_ctx *c, const tex_ray *r, const struct tex_object *from,
                   int depth, double weight, tex_colour *out);

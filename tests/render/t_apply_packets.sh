@@ -260,3 +260,72 @@ awk -v s="$sd" 'BEGIN { exit !(s > 0.05) }' && ok "the maps' scene is textured (
 sd=$(info_json "$T/spp1-pk1.pfm" stats 0 stddev)
 awk -v s="$sd" 'BEGIN { exit !(s > 0.02) }' && ok "the test scene's textures vary (stddev $sd)" ||
     notok "the test scene is textured" "stddev $sd"
+# a packet's shadow rays traced together through the tree, light by light
+# (tex_scene_transmit_n): the light through nested and overlapping glass (Kt multiplied
+# at every crossing, in each ray's own order), a glass CSG shell, 40 small spheres in the
+# tree (more than one leaf: shadow rays batch), four lights with a 3x3 area light (12
+# samples a hit, the general path's batches) and with a 6x6 one (39: more than a hit keeps,
+# each shadow ray on its own), and the point and spot lights alone (the plain hits' batches)
+{
+    cat <<SCENE
+image 37 29
+samples 1
+depth 3
+ambient 0.2 0.2 0.2
+camera { eye 0 3 -6 look 0 0.7 0 fov 60 }
+light point { position -3 8 -4 }
+light spot { position 3 6 -3 at 0 0.5 0 angle 35 exponent 2 intensity 0.6 }
+light distant { direction -0.3 1 -0.5 intensity 0.3 }
+light area { position -1 6 -2 edge1 2 0 0 edge2 0 0 2 samples 3 intensity 0.5 }
+texture cells noise { solid frequency 5 seed 9 }
+surface floor { Kd 0.8 0.8 0.8 apply cells { mapping solid Kd = f*p + 0.1 } }
+surface glass { Kd 0.05 Ks 0.5 n 80 Kt 0.7 ior 1.3 }
+surface tint { Kd 0.1 0.3 0.1 Kt 0.5 ior 1.1 }
+surface red { Kd 0.8 0.2 0.1 Ks 0.3 n 20 }
+plane { surface floor }
+sphere { centre 0 1.2 0 radius 1 surface glass }
+sphere { centre 0 1.2 0 radius 0.5 surface tint }
+sphere { centre 0.8 1.4 0.3 radius 0.6 surface tint }
+difference { box { min -1 0 -1 max 1 1.5 1 } box { min -0.8 0.2 -0.8 max 0.8 1.7 0.8 }
+             surface glass translate -2.2 0 0.5 }
+SCENE
+    for i in $(seq 0 39); do
+        echo "sphere { centre $((i % 8 - 4)).$((i % 3))5 0.15 $((i / 8 - 1)).$((i % 5))"\
+            "radius 0.15 surface $(echo red tint | cut -d' ' -f$((i % 2 + 1))) }"
+    done
+} >"$T/s.scene"
+sed 's/samples 3 intensity/samples 6 intensity/' "$T/s.scene" >"$T/s6.scene"
+sed '/^light distant\|^light area/d' "$T/s.scene" >"$T/sp.scene"
+for sc in s s6 sp; do
+    for args in "-j 1" "-j 2 --spp 3"; do
+        # shellcheck disable=SC2086
+        TEXTURA_PACKETS=0 t_apply "$T/$sc.scene" -q -j 1 ${args#-j ?} -o "$T/$sc-px.pfm" &&
+            TEXTURA_PACKETS=1 t_apply "$T/$sc.scene" -q $args -o "$T/$sc-pk.pfm" &&
+            cmp -s "$T/$sc-px.pfm" "$T/$sc-pk.pfm" &&
+            ok "shadow rays together ($sc.scene $args): the pixel-by-pixel render's bytes" ||
+            notok "shadow rays together ($sc.scene $args) against pixel by pixel" \
+                "$(maxdiff "$T/$sc-px.pfm" "$T/$sc-pk.pfm" 2>&1)"
+    done
+done
+# the glass passes part of the light: with one light behind the glass, its shadow falls
+# on the floor before it (the image's bottom rows, PFM's first) lighter than opaque spheres'
+cat >"$T/s1.scene" <<SCENE
+$(sed '/^light\|^sphere { centre [-0-9.]* 0.15/d' "$T/s.scene")
+light point { position 0 8 5 }
+SCENE
+sed 's/surface glass }/surface red }/; s/surface tint }/surface red }/g' "$T/s1.scene" >"$T/s1r.scene"
+if t_apply "$T/s1.scene" -q -o "$T/s1.pfm" && t_apply "$T/s1r.scene" -q -o "$T/s1r.pfm"; then
+    d=$(python3 -c '
+import sys
+def rd(p):
+    f = open(p, "rb"); f.readline(); w, h = map(int, f.readline().split()); f.readline()
+    import array; a = array.array("f"); a.frombytes(f.read()); return w, h, a
+w, h, a = rd(sys.argv[1]); _, _, b = rd(sys.argv[2])
+s = sum(a[i] - b[i] for i in range(3 * w * (h // 4)))
+print("%.4f" % s)' "$T/s1.pfm" "$T/s1r.pfm")
+    awk -v d="$d" 'BEGIN { exit !(d > 0) }' &&
+        ok "glass lets light through to the floor where opaque spheres do not (sum $d)" ||
+        notok "glass lets light through to the floor" "sum $d"
+else
+    notok "the glass shadow scenes render"
+fi
