@@ -117,13 +117,14 @@ int tex_geometry_region(const struct tex_field *f, double u, double v)
  * margin needs no lattice: it holds for any point of the box. */
 #define GEO_EPS 1e-7
 
-/* The box u +- hu, v +- hv in a cell: its centre (x, y), y up as in eval2, and
- * its half sides hx, hy widened by GEO_EPS; 0 when it reaches a cell's side. */
-static inline int geo_box(int nu, int nv, double u, double v, double hu, double hv, double *x,
-                          double *y, double *hx, double *hy)
+/* The box u +- hu, v +- hv in a cell (moved by the centre's shift s->du, s->dv): its centre
+ * (x, y), y up as in eval2, and its half sides hx, hy widened by GEO_EPS; 0 when it reaches
+ * a cell's side. */
+static inline int geo_box(const struct geo_state *s, int nu, int nv, double u, double v,
+                          double hu, double hv, double *x, double *y, double *hx, double *hy)
 {
-    *x = cell(u, nu);
-    *y = 1.0 - cell(v, nv);
+    *x = cell(u - s->du, nu);
+    *y = 1.0 - cell(v + s->dv, nv);
     *hx = hu * nu + GEO_EPS;
     *hy = hv * nv + GEO_EPS;
     return *x - *hx > 0 && *x + *hx < 1 && *y - *hy > 0 && *y + *hy < 1;
@@ -136,11 +137,10 @@ static inline int geo_box(int nu, int nv, double u, double v, double hu, double 
                             double hu, double hv, float *out)                                      \
     {                                                                                              \
         const S *p = f->params;                                                                    \
-        const struct geo_state *s = f->state;                                                      \
-        double x, y, hx, hy;                                                                       \
+        double x, y, hx, hy, *k = ((struct geo_state *)f->state)->k;                              \
         for (int i = 0; i < n; i++)                                                                \
-            out[i] = geo_box(p->nu, p->nv, u[i] - s->du, v[i] + s->dv, hu, hv, &x, &y, &hx, &hy)   \
-                         ? (float)name##_box(p, s->k, x, y, hx, hy) : 0.0f;                        \
+            out[i] = geo_box(f->state, p->nu, p->nv, u[i], v[i], hu, hv, &x, &y, &hx, &hy)         \
+                         ? (float)name##_box(p, k, x, y, hx, hy) : 0.0f;                           \
     }
 
 /* 1 when a disc of radius r at distance d from a circle's centre misses the circle of radius R. */
@@ -1240,11 +1240,11 @@ static void brick_box2(const struct tex_field *f, int n, const double *u, const 
     const struct geo_state *g = &((const struct brick_state *)f->state)->g;
     const double *k = g->k;
     for (int i = 0; i < n; i++) {
-        double x, y, hx, hy, uu = u[i] - g->du, vv = v[i] + g->dv;
-        int id = geo_box(p->nu, p->nv, uu, vv, hu, hv, &x, &y, &hx, &hy)
+        double x, y, hx, hy;
+        int id = geo_box(g, p->nu, p->nv, u[i], v[i], hu, hv, &x, &y, &hx, &hy)
                      ? brick_box(p, k, x, y, hx, hy) : 0;
         if (p->cells && id)
-            id = id == 2 ? 1 : brick_cell(f, k, uu, vv);
+            id = id == 2 ? 1 : brick_cell(f, k, u[i] - g->du, v[i] + g->dv);
         out[i] = (float)id;
     }
 }
