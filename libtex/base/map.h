@@ -47,7 +47,8 @@ typedef struct tex_map {
 /* bytes of zeroed memory, 64-byte aligned, for a buffer a caller fills: from min bytes up
  * (and 1), fresh pages (in 2 MiB huge pages where the kernel gives them: a first touch of each
  * 4 KiB page is a page fault), else the heap.
- * *mapped is what tex_pages_free takes back (0 from the heap); NULL when out of memory. */
+ * *mapped is what tex_pages_free takes back (0 from the heap); NULL when out of memory.
+ * tex_pages_free keeps a few mappings up to 64 MiB for the next tex_pages_new of their size. */
 void *tex_pages_new(size_t bytes, size_t min, size_t *mapped);
 void tex_pages_free(void *p, size_t mapped);
 /* For tools, at start (tex_cli_parse): with glibc, memory freed stays on the heap for the
@@ -61,6 +62,9 @@ void tex_keep_heap(void);
 int tex_map_check_size(long long w, long long h, long long nc);
 
 tex_map *tex_map_new(int w, int h, int nc); /* zero-filled */
+/* A map whose samples are what its memory held, for a caller that sets every one: from 1 MiB
+ * a mapping freed before may come back, without the pass that zeroes it */
+tex_map *tex_map_new_unset(int w, int h, int nc);
 void tex_map_free(tex_map *m);
 tex_map *tex_map_clone(const tex_map *m);
 

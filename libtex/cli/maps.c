@@ -85,7 +85,8 @@ static int window_rows(struct window_job *j, int y, int n)
     size_t row = (size_t)j->w * j->nc;
     int from = top < 0 ? 0 : top, to = y + n + m < j->h ? y + n + m : j->h;
 
-    if (!j->band && !(j->band = tex_map_new(j->w, cap, j->nc)))
+    /* every row up to n + 2 m set below: read, moved up or an edge's copy */
+    if (!j->band && !(j->band = tex_map_new_unset(j->w, cap, j->nc)))
         return -1;
     if (y > 0 && m > 0) { /* the last band began at y - rows - m */
         memmove(j->band->px, j->band->px + (size_t)j->rows * row, 2 * m * row * sizeof(float));
