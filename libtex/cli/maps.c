@@ -52,16 +52,6 @@ void tex_cli_write_rows(tex_map *head, const struct tex_common *c, tex_rows_fn f
         tex_die();
 }
 
-void tex_cli_write_rows_as_whole(tex_map *head, const struct tex_common *c, tex_rows_fn fill,
-                                 void *arg)
-{
-    struct tex_common plain = *c;
-
-    if (!c->output || !strcmp(c->output, "-"))
-        plain.compression = TEX_COMPRESS_NONE;
-    tex_cli_write_rows(head, &plain, fill, arg);
-}
-
 /* A band op's work: the band (n + 2 margin rows of input, from row y - margin) read a
  * band at a time, its output served to the writer's fill calls, whatever their size. */
 struct window_job {

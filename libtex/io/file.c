@@ -1291,8 +1291,10 @@ int tex_map_write_rows(const tex_map *head, tex_rows_fn fill, void *arg, const c
     if (file && tex_out_open(&out, file) < 0)
         return tex_out_close(&out, -1);
     if (f == TEX_FMT_EXR) {
-        r = tex_exr_write_rows(head, fill, arg, o->tiled ? TEX_EXR_TILE : 0, o->compression,
-                               out.fd, name);
+        /* standard output carries the stream, never compressed, a regular file or not, as
+         * tex_map_write writes it */
+        r = tex_exr_write_rows(head, fill, arg, o->tiled ? TEX_EXR_TILE : 0,
+                               out.fd == 1 ? TEX_COMPRESS_NONE : o->compression, out.fd, name);
     } else {
         struct rows_out s = {fill, arg, f, depth, head->h, out.fd, 0, NULL, name};
         r = write_rows_as(head, &s);
