@@ -286,6 +286,22 @@ void tex_stats_add(struct tex_stats_acc *a, const float *px, size_t w, size_t ro
     }
 }
 
+void tex_stats_add_range(struct tex_stats_acc *a, const float *px, size_t w, size_t rows, int nc)
+{
+    size_t total = w * rows, n = a->n;
+    float lo = a->lo, hi = a->hi;
+
+    for (size_t i = 0; i < total; i++) { /* tex_stats_add's comparisons, in its order */
+        float v = px[i * nc];
+        if (!isfinite(v))
+            continue;
+        lo = v < lo ? v : lo;
+        hi = v > hi ? v : hi;
+        n++;
+    }
+    a->lo = lo, a->hi = hi, a->n = n;
+}
+
 void tex_stats_end(const struct tex_stats_acc *a, struct tex_stats *s)
 {
     size_t n = a->n;

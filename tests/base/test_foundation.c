@@ -111,6 +111,36 @@ static void test_pages_kept(void)
     }
 }
 
+/* tex_stats_add_range: the min and max tex_map_stats gives, the same bits (which of -0 and +0
+ * comes first), over rows of a channel among others with NaN and infinities, added in bands */
+static void test_stats_range(void)
+{
+    tex_map *m = tex_map_new(37, 29, 3);
+    if (!m) {
+        CHECK(0, "a map");
+        return;
+    }
+    for (size_t i = 0; i < tex_map_samples(m); i++)
+        m->px[i] = (float)((i * 7919) % 1000) / 100.0f - 5.0f;
+    m->px[0] = -0.0f, m->px[3] = 0.0f, m->px[6] = NAN, m->px[9] = INFINITY;
+    m->px[12] = -INFINITY, m->px[4] = -1e6f; /* channel 1: not channel 0's */
+    int same = 1;
+    for (int c = 0; c < 3; c++) {
+        struct tex_stats whole, range;
+        struct tex_stats_acc a;
+        tex_map_stats(m, c, &whole);
+        tex_stats_begin(&a);
+        for (int y = 0; y < m->h; y += 5)
+            tex_stats_add_range(&a, tex_map_row(m, y) + c, (size_t)m->w,
+                                (size_t)(m->h - y < 5 ? m->h - y : 5), m->nc);
+        tex_stats_end(&a, &range);
+        same &= !memcmp(&whole.min, &range.min, sizeof whole.min) &&
+                !memcmp(&whole.max, &range.max, sizeof whole.max);
+    }
+    CHECK(same, "tex_stats_add_range: tex_map_stats' min and max, bit for bit, in bands");
+    tex_map_free(m);
+}
+
 /* tex_read_fd: a large file into pages, a small one and a pipe into the heap; a buffer of
  * pages grows onto the heap with its bytes */
 static void test_read_fd(void)
@@ -374,6 +404,7 @@ int main(void)
     test_map_limits();
     test_pages();
     test_pages_kept();
+    test_stats_range();
     test_keep_heap();
     test_read_fd();
     test_params();
