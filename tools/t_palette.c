@@ -190,7 +190,7 @@ static int spool_fill(void *arg, int y, int n, float *rows)
     if (tex_rows_read(s->r, y, n, rows, s->name) < 0 ||
         tex_rows_nonfinite(rows, s->w, n, s->nc, y, s->name) < 0)
         return -1;
-    tex_stats_add(&s->range, rows, (size_t)s->w, (size_t)n, s->nc);
+    tex_stats_add_range(&s->range, rows, (size_t)s->w, (size_t)n, s->nc);
     return 0;
 }
 

@@ -234,7 +234,7 @@ static int stream_chain(const char *path, const struct opts *o, int ew, int eh,
         spool_input(&x);
     out.subregions = x.subregions;
     out.history = head.history;
-    tex_cli_write_rows_as_whole(&out, c, xchain_fill, &x);
+    tex_cli_write_rows(&out, c, xchain_fill, &x);
     free(out.history);
     tex_rows_close(x.r);
     if (x.spool >= 0)

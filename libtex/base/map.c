@@ -8,6 +8,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <pthread.h>
 #include <sys/mman.h>
 
 #include "base/error.h"
@@ -48,19 +49,78 @@ static void *mapped_pages(size_t *bytes)
     return p + head;
 }
 
-void *tex_pages_new(size_t bytes, size_t min, size_t *mapped)
+/* Mappings freed, kept for the next of their size: a band op frees its band's maps and makes
+ * maps of the same sizes for the next band, and fresh pages each time were a third of
+ * t_palette's CPU in a pipe, zeroed by the kernel (doc/performance.md). At most KEEP_SLOTS of
+ * at most KEEP_MAX bytes each and KEEP_ALL in all, so a tool holds little more than a band's
+ * maps beyond what it uses. */
+enum { KEEP_SLOTS = 4 };
+#define KEEP_MAX ((size_t)64 << 20)
+#define KEEP_ALL ((size_t)128 << 20)
+static struct {
+    void *p;
+    size_t n;
+} kept[KEEP_SLOTS];
+static size_t kept_all;
+static pthread_mutex_t kept_lock = PTHREAD_MUTEX_INITIALIZER;
+
+/* The smallest kept mapping of n to 2n bytes, taken out (*n its size); NULL if none. Up to 2n:
+ * the last band's maps, shorter, reuse the others' (a mapping of its own made the blur's peak
+ * RSS 28 MB larger), and a buffer much smaller (the writer's band) leaves them to the maps. */
+static void *kept_take(size_t *n)
 {
+    int best = -1;
+
+    pthread_mutex_lock(&kept_lock);
+    for (int i = 0; i < KEEP_SLOTS; i++)
+        if (kept[i].p && kept[i].n >= *n && kept[i].n / 2 <= *n &&
+            (best < 0 || kept[i].n < kept[best].n))
+            best = i;
+    void *p = best < 0 ? NULL : kept[best].p;
+    if (p) {
+        *n = kept[best].n;
+        kept_all -= *n;
+        kept[best].p = NULL;
+    }
+    pthread_mutex_unlock(&kept_lock);
+    return p;
+}
+
+/* 1 if p (n bytes) is kept, 0 if it is the caller's to unmap */
+static int kept_give(void *p, size_t n)
+{
+    int given = 0;
+
+    if (n > KEEP_MAX)
+        return 0;
+    pthread_mutex_lock(&kept_lock);
+    for (int i = 0; i < KEEP_SLOTS && !given && kept_all + n <= KEEP_ALL; i++)
+        if (!kept[i].p)
+            kept[i].p = p, kept[i].n = n, kept_all += n, given = 1;
+    pthread_mutex_unlock(&kept_lock);
+    return given;
+}
+
+/* tex_pages_new's memory, zeroed or (zero 0) as a kept mapping left it */
+static void *pages_new(size_t bytes, size_t min, size_t *mapped, int zero)
+{
+    const size_t huge = (size_t)2 << 20;
     void *p;
 
     *mapped = 0;
     if (bytes && bytes >= min) {
-        size_t n = bytes;
-        if ((p = mapped_pages(&n)))
-            *mapped = n;
+        size_t n = (bytes + huge - 1) / huge * huge;
+        if ((p = kept_take(&n))) {
+            if (zero)
+                memset(p, 0, bytes);
+        } else if (!(p = mapped_pages(&n))) {
+            return NULL;
+        }
+        *mapped = n;
         return p;
     }
     /* aligned_alloc wants a multiple of the alignment */
-    if ((p = aligned_alloc(64, (bytes + 63) & ~(size_t)63)))
+    if ((p = aligned_alloc(64, (bytes + 63) & ~(size_t)63)) && zero)
         memset(p, 0, bytes);
     return p;
 }
@@ -77,11 +137,16 @@ void tex_pages_touch(void *p, size_t mapped)
         ((volatile char *)p)[i] = 0;
 }
 
+void *tex_pages_new(size_t bytes, size_t min, size_t *mapped)
+{
+    return pages_new(bytes, min, mapped, 1);
+}
+
 void tex_pages_free(void *p, size_t mapped)
 {
-    if (mapped)
+    if (mapped && !kept_give(p, mapped))
         munmap(p, mapped);
-    else
+    else if (!mapped)
         free(p);
 }
 
@@ -93,7 +158,7 @@ void tex_keep_heap(void)
 #endif
 }
 
-tex_map *tex_map_new(int w, int h, int nc)
+static tex_map *map_new(int w, int h, int nc, int zero)
 {
     tex_map *m;
     size_t bytes;
@@ -105,8 +170,9 @@ tex_map *tex_map_new(int w, int h, int nc)
         return NULL;
     }
     bytes = (size_t)w * h * nc * sizeof *m->px;
-    /* from 1 MiB, fresh pages: they come zeroed, no pass over a map the caller will fill */
-    if (!(m->px = tex_pages_new(bytes, 1 << 20, &m->mapped))) {
+    /* from 1 MiB, pages of their own: fresh ones come zeroed, no pass over a map the caller
+     * will fill */
+    if (!(m->px = pages_new(bytes, 1 << 20, &m->mapped, zero))) {
         free(m);
         tex_error("out of memory for a %dx%dx%d map", w, h, nc);
         return NULL;
@@ -115,6 +181,16 @@ tex_map *tex_map_new(int w, int h, int nc)
     m->h = h;
     m->nc = nc;
     return m;
+}
+
+tex_map *tex_map_new(int w, int h, int nc)
+{
+    return map_new(w, h, nc, 1);
+}
+
+tex_map *tex_map_new_unset(int w, int h, int nc)
+{
+    return map_new(w, h, nc, 0);
 }
 
 void tex_map_free(tex_map *m)
@@ -220,6 +296,22 @@ void tex_stats_add(struct tex_stats_acc *a, const float *px, size_t w, size_t ro
         a->nonfinite += w - (n - a->n);
         a->sum = sum, a->s1 = s1, a->s2 = s2, a->lo = lo, a->hi = hi, a->n = n, a->nan = nan;
     }
+}
+
+void tex_stats_add_range(struct tex_stats_acc *a, const float *px, size_t w, size_t rows, int nc)
+{
+    size_t total = w * rows, n = a->n;
+    float lo = a->lo, hi = a->hi;
+
+    for (size_t i = 0; i < total; i++) { /* tex_stats_add's comparisons, in its order */
+        float v = px[i * nc];
+        if (!isfinite(v))
+            continue;
+        lo = v < lo ? v : lo;
+        hi = v > hi ? v : hi;
+        n++;
+    }
+    a->lo = lo, a->hi = hi, a->n = n;
 }
 
 void tex_stats_end(const struct tex_stats_acc *a, struct tex_stats *s)

@@ -118,7 +118,7 @@ void tex_cli_lockstep_write(tex_lockstep *l, const struct tex_common *c, int his
     tex_map_free(probe);
     if (hist >= 0 && l->r[hist]) /* the history of input hist */
         head.history = l->heads[hist].history, l->heads[hist].history = NULL;
-    tex_cli_write_rows_as_whole(&head, c, lockstep_fill, l);
+    tex_cli_write_rows(&head, c, lockstep_fill, l);
     free(head.history);
 }
 

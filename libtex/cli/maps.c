@@ -52,16 +52,6 @@ void tex_cli_write_rows(tex_map *head, const struct tex_common *c, tex_rows_fn f
         tex_die();
 }
 
-void tex_cli_write_rows_as_whole(tex_map *head, const struct tex_common *c, tex_rows_fn fill,
-                                 void *arg)
-{
-    struct tex_common plain = *c;
-
-    if (!c->output || !strcmp(c->output, "-"))
-        plain.compression = TEX_COMPRESS_NONE;
-    tex_cli_write_rows(head, &plain, fill, arg);
-}
-
 /* A band op's work: the band (n + 2 margin rows of input, from row y - margin) read a
  * band at a time, its output served to the writer's fill calls, whatever their size. */
 struct window_job {
@@ -85,7 +75,8 @@ static int window_rows(struct window_job *j, int y, int n)
     size_t row = (size_t)j->w * j->nc;
     int from = top < 0 ? 0 : top, to = y + n + m < j->h ? y + n + m : j->h;
 
-    if (!j->band && !(j->band = tex_map_new(j->w, cap, j->nc)))
+    /* every row up to n + 2 m set below: read, moved up or an edge's copy */
+    if (!j->band && !(j->band = tex_map_new_unset(j->w, cap, j->nc)))
         return -1;
     if (y > 0 && m > 0) { /* the last band began at y - rows - m */
         memmove(j->band->px, j->band->px + (size_t)j->rows * row, 2 * m * row * sizeof(float));

@@ -40,12 +40,6 @@ void tex_cli_write(tex_map *m, const struct tex_common *c);
  * more for other formats (t_apply's sRGB) stream. */
 int tex_cli_streams(const struct tex_common *c);
 int tex_cli_takes_rows(const struct tex_common *c);
-/* tex_cli_write_rows with tex_cli_write's bytes on standard output too: the stream there
- * uncompressed even where standard output is a regular file (tex_cli_write_rows, as the
- * tools that streamed first do, compresses it then).  For the tools that wrote whole maps
- * before they streamed. */
-void tex_cli_write_rows_as_whole(tex_map *head, const struct tex_common *c,
-                                 int (*fill)(void *arg, int y, int n, float *rows), void *arg);
 void tex_cli_write_rows(tex_map *head, const struct tex_common *c,
                         int (*fill)(void *arg, int y, int n, float *rows), void *arg);
 

@@ -26,14 +26,24 @@ static int colour_channels(const tex_map *m)
     return m->nc == 4 ? 3 : m->nc;
 }
 
-static tex_map *like(const tex_map *m, int nc)
+static tex_map *with_history(tex_map *o, const tex_map *m)
 {
-    tex_map *o = tex_map_new(m->w, m->h, nc);
     if (o && m->history && tex_map_set_history(o, m->history) < 0) {
         tex_map_free(o);
         return NULL;
     }
     return o;
+}
+
+static tex_map *like(const tex_map *m, int nc)
+{
+    return with_history(tex_map_new(m->w, m->h, nc), m);
+}
+
+/* for an op that sets every sample */
+static tex_map *like_unset(const tex_map *m, int nc)
+{
+    return with_history(tex_map_new_unset(m->w, m->h, nc), m);
 }
 
 int tex_blur_radius(double sigma)
@@ -94,9 +104,10 @@ tex_map *tex_filter_separable(const tex_map *m, const float *k, int r, enum tex_
     int nc = m->nc, n = m->w * m->nc, strips = (n + VB - 1) / VB, yblocks = (m->h + VROWS - 1) / VROWS;
     int fail = 0;
 
-    if (!(tmp = tex_map_new(m->w, m->h, nc)))
+    /* both passes set every sample */
+    if (!(tmp = tex_map_new_unset(m->w, m->h, nc)))
         return NULL;
-    if (!(out = like(m, nc))) {
+    if (!(out = like_unset(m, nc))) {
         tex_map_free(tmp);
         return NULL;
     }

@@ -734,7 +734,7 @@ tex_map *tex_palette_map(const tex_palette *p, const tex_map *m, double lo, doub
     for (int i = 0; i < p->nindex; i++)
         alpha |= p->index[i].rgba[3] != 1.0f;
     nc = alpha ? 4 : 3;
-    if (!(out = tex_map_new(m->w, m->h, nc)))
+    if (!(out = tex_map_new_unset(m->w, m->h, nc))) /* every pixel coloured below */
         return NULL;
     if (m->history && tex_map_set_history(out, m->history) < 0) {
         tex_map_free(out);
@@ -751,8 +751,11 @@ tex_map *tex_palette_map(const tex_palette *p, const tex_map *m, double lo, doub
         return out;
     }
     if (isnan(lo) || isnan(hi)) {
+        struct tex_stats_acc a;
         struct tex_stats s;
-        tex_map_stats(m, 0, &s);
+        tex_stats_begin(&a);
+        tex_stats_add_range(&a, m->px, (size_t)m->w, (size_t)m->h, m->nc);
+        tex_stats_end(&a, &s);
         lo = s.min;
         hi = s.max;
     }

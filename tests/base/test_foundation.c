@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <unistd.h>
 #ifdef __GLIBC__ /* known once a libc header is in */
 #include <malloc.h>
@@ -60,6 +61,84 @@ static void test_pages(void)
                 memset(p, 0xff, n);
             tex_pages_free(p, mapped);
         }
+}
+
+static long minor_faults(void)
+{
+    struct rusage u;
+    getrusage(RUSAGE_SELF, &u);
+    return u.ru_minflt;
+}
+
+/* A band's maps made again in their sizes (16 MiB) reuse the pages of those freed: a fresh
+ * mapping faults at least once per 2 MiB page on its first touch (each band's maps were a third
+ * of t_palette's CPU in a pipe), a kept one not at all, and it comes zeroed all the same;
+ * unset, it keeps what was written. A map over 64 MiB is not kept. */
+static void test_pages_kept(void)
+{
+    const size_t n = (size_t)1024 * 1024 * 4;
+    int zero = 1, same = 1;
+    for (int round = 0; round < 3; round++) {
+        tex_map *m = round < 2 ? tex_map_new(1024, 1024, 4) : tex_map_new_unset(1024, 1024, 4);
+        if (!m) {
+            CHECK(0, "a 16 MiB map");
+            return;
+        }
+        for (size_t i = 0; round > 0 && i < n; i++)
+            zero &= round == 1 ? m->px[i] == 0 : 1, same &= round == 2 ? m->px[i] == 1 : 1;
+        long before = minor_faults();
+        for (size_t i = 0; i < n; i++)
+            m->px[i] = (float)round;
+        long faults = minor_faults() - before;
+        if (round > 0)
+            CHECKF(faults < 8, "%s map of a freed one's size: %ld page faults writing its 16 MiB",
+                   round == 1 ? "a" : "an unset", faults);
+        tex_map_free(m);
+    }
+    CHECK(zero, "tex_map_new's map comes zeroed from a kept mapping");
+    CHECK(same, "tex_map_new_unset's map is the kept mapping's bytes as they were left");
+    tex_map *big = tex_map_new(4096, 2048, 4); /* 128 MiB: not kept */
+    if (big) {
+        memset(big->px, 0, (size_t)4096 * 2048 * 4 * sizeof(float));
+        tex_map_free(big);
+        big = tex_map_new_unset(4096, 2048, 4);
+        long before = minor_faults();
+        if (big)
+            memset(big->px, 0, (size_t)4096 * 2048 * 4 * sizeof(float));
+        CHECKF(big && minor_faults() - before >= 64, "a 128 MiB map is fresh pages each time "
+               "(%ld page faults writing it)", minor_faults() - before);
+        tex_map_free(big);
+    }
+}
+
+/* tex_stats_add_range: the min and max tex_map_stats gives, the same bits (which of -0 and +0
+ * comes first), over rows of a channel among others with NaN and infinities, added in bands */
+static void test_stats_range(void)
+{
+    tex_map *m = tex_map_new(37, 29, 3);
+    if (!m) {
+        CHECK(0, "a map");
+        return;
+    }
+    for (size_t i = 0; i < tex_map_samples(m); i++)
+        m->px[i] = (float)((i * 7919) % 1000) / 100.0f - 5.0f;
+    m->px[0] = -0.0f, m->px[3] = 0.0f, m->px[6] = NAN, m->px[9] = INFINITY;
+    m->px[12] = -INFINITY, m->px[4] = -1e6f; /* channel 1: not channel 0's */
+    int same = 1;
+    for (int c = 0; c < 3; c++) {
+        struct tex_stats whole, range;
+        struct tex_stats_acc a;
+        tex_map_stats(m, c, &whole);
+        tex_stats_begin(&a);
+        for (int y = 0; y < m->h; y += 5)
+            tex_stats_add_range(&a, tex_map_row(m, y) + c, (size_t)m->w,
+                                (size_t)(m->h - y < 5 ? m->h - y : 5), m->nc);
+        tex_stats_end(&a, &range);
+        same &= !memcmp(&whole.min, &range.min, sizeof whole.min) &&
+                !memcmp(&whole.max, &range.max, sizeof whole.max);
+    }
+    CHECK(same, "tex_stats_add_range: tex_map_stats' min and max, bit for bit, in bands");
+    tex_map_free(m);
 }
 
 /* tex_read_fd: a large file into pages, a small one and a pipe into the heap; a buffer of
@@ -324,6 +403,8 @@ int main(void)
     test_progress();
     test_map_limits();
     test_pages();
+    test_pages_kept();
+    test_stats_range();
     test_keep_heap();
     test_read_fd();
     test_params();

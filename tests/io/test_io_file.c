@@ -2,6 +2,7 @@
  * assembled into the full map */
 #define _GNU_SOURCE
 #include <dirent.h>
+#include <math.h>
 #include <fcntl.h>
 #include <signal.h>
 #include <stdlib.h>
@@ -181,6 +182,47 @@ static void test_assemble(void)
     tex_map_free(whole);
 }
 
+/* tex_rows_nonfinite skips blocks of samples without a NaN or infinity in vector code: one
+ * in any block, at a block's first or last sample or past the last whole block, is still
+ * found, the first named and each replaced */
+static void test_nonfinite_blocks(void)
+{
+    const int w = 301, h = 47, nc = 3; /* 42441 samples: 10 blocks of 4096 and a part */
+    const size_t at[] = {0, 4095, 4096, 20000, (size_t)w * h * nc - 1};
+    const float bad[] = {NAN, INFINITY, -INFINITY, NAN, INFINITY};
+    size_t total = (size_t)w * h * nc;
+    float *px = malloc(total * sizeof *px);
+    if (!px) {
+        CHECK(0, "a buffer");
+        return;
+    }
+    for (int k = 0; k < 5; k++) {
+        for (size_t i = 0; i < total; i++)
+            px[i] = 0.5f;
+        px[at[k]] = bad[k];
+        tex_map_set_nonfinite(TEX_NONFINITE_REFUSE, 0);
+        char want[64];
+        snprintf(want, sizeof want, "pixel (%zu,%zu) channel %zu", at[k] / nc % w,
+                 7 + at[k] / nc / w, at[k] % nc);
+        CHECKF(tex_rows_nonfinite(px, w, h, nc, 7, "rows") < 0 && strstr(tex_errmsg(), want),
+               "a non-finite sample at %zu refused: %s", at[k], tex_errmsg());
+    }
+    for (size_t i = 0; i < total; i++)
+        px[i] = i % 7 == 0 ? 0.25f : 0.5f;
+    for (int k = 0; k < 5; k++)
+        px[at[k]] = bad[k];
+    tex_map_set_nonfinite(TEX_NONFINITE_REPLACE, 0.75f);
+    int same = tex_rows_nonfinite(px, w, h, nc, 0, "rows") == 0;
+    for (size_t i = 0, k = 0; i < total; i++) {
+        int is_bad = k < 5 && i == at[k];
+        same &= px[i] == (is_bad ? 0.75f : i % 7 == 0 ? 0.25f : 0.5f);
+        k += is_bad;
+    }
+    CHECK(same, "--nonfinite VALUE replaces the five non-finite samples and only those");
+    tex_map_set_nonfinite(TEX_NONFINITE_REFUSE, 0);
+    free(px);
+}
+
 int main(void)
 {
     if (!mkdtemp(dir)) {
@@ -190,6 +232,7 @@ int main(void)
     test_atomic();
     test_out_rows();
     test_assemble();
+    test_nonfinite_blocks();
     rmdir(dir);
     return unit_done();
 }

@@ -87,3 +87,12 @@ for ext in png; do
         notok "t_convert to .$ext under ulimit -v $lim" "$(head -c 200 err)"
     rm -f w.$ext s.$ext
 done
+
+# One rule for the EXR stream: standard output is never compressed, a regular file or a pipe,
+# whether the tool streams (t_noise, t_filter) or writes the whole map (t_fft); -o compresses
+for tool in "t_noise -s 300x200 -f 8" "t_filter blur y.exr" "t_fft y.exr"; do
+    $tool >reg.exr && $tool | cat >piped.exr && $tool -o named.exr
+    cmp -s reg.exr piped.exr && [ "$(wc -c <named.exr)" -lt "$(wc -c <reg.exr)" ] &&
+        ok "${tool%% *}: an EXR to standard output has the same bytes to a regular file as to a pipe, -o's compressed" ||
+        notok "${tool%% *}'s standard output" "$(wc -c reg.exr piped.exr named.exr | head -3 | tr '\n' ' ')"
+done
