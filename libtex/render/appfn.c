@@ -35,6 +35,8 @@ const struct tex_scene_word tex_quantities[TEX_Q_COUNT + 1] = {
     {"ny", NULL, "the normal's world y"},
     {"nz", NULL, "the normal's world z"},
     {"region", NULL, "the map's subregion id at the hit (0: a map without regions)"},
+    {"face", NULL, "the shape's face at the hit: box 1..6 (+x -x +y -y +z -z), cylinder and "
+                   "cone side 1, bottom cap 2, top cap 3; other shapes 1"},
     {NULL, NULL, NULL},
 };
 
@@ -315,10 +317,14 @@ static void cross_combine(const struct tex_apply *ap, const struct placement *pm
                                                    : fmaxf(f[k], g[k]);
 }
 
-/* The quantities of the hit that do not depend on the texture (tex_quantities). */
+/* The quantities of the hit that do not depend on the texture (tex_quantities); the face,
+ * the shape's own whatever the mapping, where read (bits, as tex_surface_cache's). */
 static void hit_quantities(const struct tex_shade_at *at, const tex_v3 *pl, const tex_v3 *N,
-                           double q[TEX_Q_COUNT])
+                           int read, double q[TEX_Q_COUNT])
 {
+    double u, v;
+    q[TEX_Q_FACE] = read & 1 << TEX_Q_FACE
+                        ? tex_shape_methods[at->leaf->kind].uv(at->leaf, *pl, &u, &v) : 0;
     q[TEX_Q_DIST] = at->dist;
     q[TEX_Q_NDOTV] = fabs(tex_v3_dot(*N, *at->D));
     q[TEX_Q_DEPTH] = at->depth;
@@ -430,7 +436,7 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
     struct footprint fq; /* the real footprint for the quantities, filtered or not */
     if (cache->quantities) {
         q = qv;
-        hit_quantities(at, &pl, N, q);
+        hit_quantities(at, &pl, N, cache->quantities, q);
         footprint_at(&fq, at->D, N, at->width);
     }
     int j = 0;

@@ -144,7 +144,7 @@ enum tex_eleaf { TEX_LEAF_F, TEX_LEAF_P, TEX_LEAF_TEX /* ptr: the texture */,
 enum tex_quantity { TEX_Q_DIST, TEX_Q_FOOTPRINT, TEX_Q_LOD, TEX_Q_NDOTV, TEX_Q_DEPTH,
                     TEX_Q_X, TEX_Q_Y, TEX_Q_Z, TEX_Q_OX, TEX_Q_OY, TEX_Q_OZ,
                     TEX_Q_U, TEX_Q_V, TEX_Q_W, TEX_Q_NX, TEX_Q_NY, TEX_Q_NZ, TEX_Q_REGION,
-                    TEX_Q_COUNT };
+                    TEX_Q_FACE, TEX_Q_COUNT };
 extern const struct tex_scene_word tex_quantities[TEX_Q_COUNT + 1]; /* render.h */
 
 /* g[region][parameter] = h: one application function. */
