@@ -191,7 +191,7 @@ static int lanes_mapping(const struct tex_apply *ap, const struct tex_object *le
 {
     int k = leaf->kind;
     return plane_planar(ap, leaf) ||
-           (ap->mapping == TEX_MAP_NATURAL && (k == TEX_SHAPE_BOX || k == TEX_SHAPE_CYLINDER ||
+           (ap->mapping == TEX_MAP_NATURAL && !(ap->size[0] > 0) && (k == TEX_SHAPE_BOX || k == TEX_SHAPE_CYLINDER ||
                                                k == TEX_SHAPE_CONE || k == TEX_SHAPE_SPHERE));
 }
 

@@ -200,6 +200,9 @@ const struct tex_param tex_apply_rows[] = {
             "times the map repeats inside the window (fixed-size placement)"),
     TEX_SPECIAL("stretch", 0, 0, NULL, NULL, "the map once across the window: repeat 1 1",
                 tex_scene_read_stretch),
+    TEX_ROW("size", struct tex_apply, size, TEX_P_REAL, "0,0", 0, 1e9, 2, 0, "W H",
+            "natural mapping: the map's size in the object's units, repeating every W along u "
+            "and H along v (non-elastic); 0 0: stretched once across the shape"),
     TEX_ROW("scale", struct tex_apply, scale, TEX_P_REAL, "1", 1e-9, 1e9, 1, 0, "S",
             "planar and world mappings: texture units per world unit"),
     TEX_SPECIAL("region", 1, 1 << 24, NULL, "N { ... }",

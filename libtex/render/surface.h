@@ -163,6 +163,8 @@ struct tex_apply {
     double u1, v1, u2, v2; /* the texture window */
     double nu, nv;         /* repeat counts (1 1: stretch) */
     double scale;          /* world / planar mapping: texture units per world unit */
+    double size[2];        /* natural: one map per W x H object units (thesis 5.3.1's
+                            * non-elastic mapping); 0 0: across the shape (elastic) */
     /* projections (thesis 5.2.1.3): the texture's frame relative to the object, its y axis
      * along `axis`, then rotated and translated; to_tex takes points into it */
     tex_v3 axis;

@@ -49,3 +49,97 @@ if t_apply "$T/fcyl.scene" -o "$T/fcyl.exr"; then
 else
     notok "face on a cylinder: renders"
 fi
+
+# ---- size W H: a fixed-size (non-elastic) natural mapping ----
+# wraps MAP CH: along the middle row, then the middle column, how many times channel CH
+# wraps (jumps by more than 0.5), and CH's value at the centre
+wraps() {
+    local pfm
+    pfm=$(mktemp "$T/px.XXXXXX").pfm
+    t_convert -o "$pfm" "$1" && python3 - "$pfm" "$2" <<'P'
+import array, sys
+d = open(sys.argv[1], 'rb').read()
+kind, size, scale, rest = d.split(b'\n', 3)
+w, h = map(int, size.split())
+a = array.array('f'); a.frombytes(rest[:w * h * 3 * 4])
+if float(scale) > 0: a.byteswap()
+ch = int(sys.argv[2])
+px = lambda x, y: a[((h - 1 - y) * w + x) * 3 + ch]
+row = [px(x, h // 2) for x in range(w)]
+col = [px(w // 2, y) for y in range(h)]
+n = lambda s: sum(abs(s[i + 1] - s[i]) > 0.5 for i in range(len(s) - 1) if s[i] and s[i + 1])
+print(n(row), n(col), px(w // 2, h // 2))
+P
+}
+size_scene() { # SHAPE APPLY-WORDS
+    cat <<S
+image 96 96
+camera { eye 0 0 -40 look 0 0 0 fov 9 }
+ambient 1 1 1
+texture n noise { }
+surface s { Ka 1 Kd 1 apply n { $2 Kd = rgb(u, v, footprint) } }
+$1
+S
+}
+# a box 4 x 2 (the unit box scaled 2, 1 per axis): its -z face is 8 maps of 0.5 x 0.25
+# across and up, 7 wraps each way; the footprint, in the map's units, 8 times the
+# stretched map's
+size_scene 'box { min -2 -1 -1 max 2 1 1 surface s }' 'size 0.5 0.25' >"$T/sbox.scene"
+size_scene 'box { min -2 -1 -1 max 2 1 1 surface s }' '' >"$T/ebox.scene"
+if t_apply "$T/sbox.scene" -o "$T/sbox.exr" && t_apply "$T/ebox.scene" -o "$T/ebox.exr"; then
+    read -r su _ _ < <(wraps "$T/sbox.exr" 0)
+    read -r _ _ sf < <(wraps "$T/sbox.exr" 2)
+    read -r _ sv _ < <(wraps "$T/sbox.exr" 1)
+    read -r eu ev ef < <(wraps "$T/ebox.exr" 2)
+    [ "$su $sv $eu $ev" = "7 7 0 0" ] &&
+        ok "size: a 4 x 2 box face holds 8 x 8 maps of 0.5 x 0.25 (stretched: one)" ||
+        notok "size on a box" "wraps across, up: $su $sv, stretched $eu $ev"
+    awk -v a="$sf" -v b="$ef" 'BEGIN { exit !(b > 0 && a / b > 7.9 && a / b < 8.1) }' &&
+        ok "size: the footprint follows the map's size (8 times, $sf against $ef)" ||
+        notok "size: footprint" "$sf against $ef"
+else
+    notok "size on a box: renders"
+fi
+# spheres of radius 1 and 2 under maps of 1 x 1: the bigger one shows twice the maps
+# around its equator (2 pi r of them) and down a meridian (pi r): 3.1 and 6.3 in view,
+# less the wraps the grazing edges hide
+for r in 1 2; do
+    size_scene "sphere { centre 0 0 0 radius $r surface s }" 'size 1 1' >"$T/sph$r.scene"
+    t_apply "$T/sph$r.scene" -o "$T/sph$r.exr" || notok "size on a sphere of radius $r: renders"
+done
+read -r w1 _ _ < <(wraps "$T/sph1.exr" 0)
+read -r w2 _ _ < <(wraps "$T/sph2.exr" 0)
+read -r _ v1 _ < <(wraps "$T/sph1.exr" 1)
+read -r _ v2 _ < <(wraps "$T/sph2.exr" 1)
+[ "${w1:-0}" -ge 2 ] && [ "${v1:-0}" -ge 2 ] && [ "$w2" -ge $((2 * w1)) ] &&
+    [ "$v2" -ge $((2 * v1)) ] && [ "$w2" -le 7 ] && [ "$v2" -le 7 ] &&
+    ok "size: a sphere twice as big shows twice the maps (u wraps $w1, $w2; v $v1, $v2)" ||
+    notok "size on spheres" "u wraps $w1 $w2, v wraps $v1 $v2"
+# a sized natural mapping is left out of the AVX-512 lanes (they map unsized): the packets
+# and the vector paths give the pixel-by-pixel render's bytes, a bumped map on a sphere
+awk 'BEGIN { print "P3 30 17 255"; for (y = 0; y < 17; y++) for (x = 0; x < 30; x++)
+    print (x * 8) % 256, (y * 15) % 256, ((x + y) * 37) % 256 }' >"$T/colour.ppm"
+cat >"$T/lanes.scene" <<S
+image 120 96
+camera { eye 0 6 0 look 0 0 0 up 0 0 1 fov 20 }
+light point { position -3 8 -4 }
+texture colour file "$T/colour.ppm"
+surface sized { Kd 0.6 0.6 0.6 apply colour { mapping natural size 0.4 0.3 Kd = f bump = 0.3 } }
+sphere { centre 0 0.5 0 radius 0.9 surface sized }
+S
+if TEXTURA_PACKETS=0 t_apply "$T/lanes.scene" -q -j 1 -o "$T/l-px.pfm" &&
+    t_apply "$T/lanes.scene" -q -j 2 -o "$T/l-pk.pfm" &&
+    TEXTURA_SIMD=scalar t_apply "$T/lanes.scene" -q -j 1 -o "$T/l-pk0.pfm"; then
+    cmp -s "$T/l-px.pfm" "$T/l-pk.pfm" && cmp -s "$T/l-px.pfm" "$T/l-pk0.pfm" &&
+        ok "size: packets and vector paths give the pixel-by-pixel render's bytes" ||
+        notok "size: packets against pixel by pixel" "$(maxdiff "$T/l-px.pfm" "$T/l-pk.pfm")"
+else
+    notok "size in packets: renders"
+fi
+# bad words: one line naming the input and the valid range, exit 2, no output
+printf 'texture n noise { }\nsurface s { apply n { size 0 1 Kd = f } }\n' >"$T/bad1.scene"
+check_fails "size 0 1 is refused" 2 t_apply "$T/bad1.scene" -o "$T/bad1.png"
+grep -q "size needs W > 0 and H > 0 (got 0 1)" "$T/.err" && [ ! -e "$T/bad1.png" ] &&
+    ok "size 0 1: says W and H must be > 0" || notok "size 0 1: message" "$(cat "$T/.err")"
+printf 'texture n noise { }\nsurface s { apply n { mapping planar size 1 1 Kd = f } }\n' >"$T/bad2.scene"
+check_fails "size with a planar mapping is refused" 2 t_apply "$T/bad2.scene" -o "$T/bad2.png"
