@@ -193,6 +193,7 @@ static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const flo
     case TEX_SP_M: scalar = &sc, sc = (float)pr->m; break;
     case TEX_SP_S: scalar = &sc, sc = (float)pr->s; break;
     case TEX_SP_BLEND: scalar = &pr->blend; break;
+    case TEX_SP_P: scalar = &pr->disp; break;
     case TEX_SP_NORMAL: /* p: the flat normal */
         colour = pr->normal;
         colour[0] = colour[1] = 0.5f, colour[2] = 1;
@@ -425,6 +426,8 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
 {
     const struct tex_object *leaf = at->leaf;
     const tex_v3 *P = at->P;
+    tex_v3 Pd, N0 = *N; /* P moved by a P target along N0: the textures after it look there */
+    float moved = 0;
     double width = filter ? at->width : 0;
     struct footprint fp;
     footprint_at(&fp, at->D, N, width);
@@ -487,6 +490,14 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
                 }
             }
         }
+        if (pr->disp != moved && ap->next) { /* P moved: the next textures map it there */
+            struct tex_shade_at atd = *at;
+            moved = pr->disp;
+            Pd = tex_v3_madd(*at->P, N0, moved);
+            atd.P = P = &Pd, pl = tex_xform_point(&leaf->to_obj, Pd), pre = NULL;
+            if (q)
+                hit_quantities(&atd, &pl, &N0, cache->quantities, q);
+        }
     }
     bend(tilt, N);
     return ks_textured;
@@ -531,6 +542,7 @@ material(const struct tex_colour_space *cs, const struct tex_surface *sf,
     m->ior = pr->ior;
     m->m = pr->m;
     m->s = pr->s;
+    m->disp = pr->disp;
     m->model = sf->model;
     m->model_data = sf->ct;
     m->blend = 0;
@@ -620,7 +632,7 @@ int tex_surface_energy(const struct tex_surface *sf, double *e)
         for (int c = 0; c < places; c++) {
             struct params pr = {{sf->kd[0], sf->kd[1], sf->kd[2]}, sf->ka, sf->ks[0],
                                 (float)sf->n, (float)sf->kr, (float)sf->kt, (float)sf->ior, 0,
-                                ctm.m, ctm.s, 0, {0.5f, 0.5f, 1}, {0, 0, 0}, 0};
+                                ctm.m, ctm.s, 0, {0.5f, 0.5f, 1}, {0, 0, 0}, 0, 0};
             float f[3] = {(float)l / 16, (float)l / 16, (float)l / 16};
             for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next)
                 for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next)
@@ -656,7 +668,7 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
         nap++;
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++) {
             c->direct &= !fn->region && fn->param != TEX_SP_NORMAL &&
-                         fn->param != TEX_SP_GRADIENT;
+                         fn->param != TEX_SP_GRADIENT && fn->param != TEX_SP_P;
             c->compiled[nfn] = (char)poly_of(fn->e, &c->poly[nfn]);
             for (int i = 0; i < fn->e->n; i++)
                 if (fn->e->code[i].op == TEX_EOP_LEAF && fn->e->code[i].leaf >= TEX_LEAF_Q)
@@ -669,7 +681,7 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
     tex_ct_material(&ctm, sf->ct);
     c->base = (struct params){{sf->kd[0], sf->kd[1], sf->kd[2]}, sf->ka, sf->ks[0], (float)sf->n,
                               (float)sf->kr, (float)sf->kt, (float)sf->ior, 0, ctm.m, ctm.s, 0,
-                              {0.5f, 0.5f, 1}, {0, 0, 0}, 0};
+                              {0.5f, 0.5f, 1}, {0, 0, 0}, 0, 0};
     float ka[3] = {sf->ka * sf->kd[0], sf->ka * sf->kd[1], sf->ka * sf->kd[2]};
     cs->from_rgb(cs, ka, TEX_SPECTRUM_REFLECTANCE, &c->col[0]);
     cs->from_rgb(cs, sf->kd, TEX_SPECTRUM_REFLECTANCE, &c->col[1]);
@@ -686,7 +698,7 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
     nfn = 0;
     for (const struct tex_appfn *fn = sf->apply ? sf->apply->fns : NULL; fn; fn = fn->next)
         lean &= fn->param == TEX_SP_KD && c->compiled[nfn++];
-    c->plain = plain ? (lean ? 1 : 2) : 0;
+    c->plain = plain && !(textured & 1 << TEX_SP_P) ? (lean ? 1 : 2) : 0; /* P: shade() moves it */
     return 0;
 }
 

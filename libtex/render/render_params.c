@@ -166,6 +166,9 @@ const struct tex_param tex_target_rows[] = {
     TARGET("gradient", -1e6, 1e6, "DU DV",
            "bump mapping from a height gradient per texture unit (t_filter gradient; "
            "t_d_noise's times its frequency): N tilts by DU grad u + DV grad v"),
+    TARGET("P", -1e6, 1e6, "D",
+           "the point (table 4.1): moved D world units along the normal, where the textures "
+           "after it are looked up and the light is shaded"),
     {0}};
 
 const struct tex_param *tex_sparam_row(enum tex_sparam sp)

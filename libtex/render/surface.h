@@ -129,7 +129,7 @@ void tex_surface_uncache(struct tex_surface *sf);
  * a height gradient (tex_sparam_row gives each one's row). */
 enum tex_sparam { TEX_SP_KA, TEX_SP_KD, TEX_SP_KS, TEX_SP_N, TEX_SP_KR, TEX_SP_KT, TEX_SP_IOR,
                   TEX_SP_BUMP, TEX_SP_M, TEX_SP_S, TEX_SP_BLEND, TEX_SP_NORMAL,
-                  TEX_SP_GRADIENT, TEX_SP_COUNT };
+                  TEX_SP_GRADIENT, TEX_SP_P, TEX_SP_COUNT };
 
 /* An application function's expression, compiled (lang/expr.h): a postfix
  * program over f (the map value), p (the untextured value), numbers, colours,

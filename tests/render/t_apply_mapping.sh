@@ -143,3 +143,78 @@ grep -q "size needs W > 0 and H > 0 (got 0 1)" "$T/.err" && [ ! -e "$T/bad1.png"
     ok "size 0 1: says W and H must be > 0" || notok "size 0 1: message" "$(cat "$T/.err")"
 printf 'texture n noise { }\nsurface s { apply n { mapping planar size 1 1 Kd = f } }\n' >"$T/bad2.scene"
 check_fails "size with a planar mapping is refused" 2 t_apply "$T/bad2.scene" -o "$T/bad2.png"
+
+# ---- P as a target (table 4.1): the point moved along the normal ----
+p_scene() { # APPLY-BLOCKS LIGHTS
+    cat <<S
+image 48 48
+camera { eye 0 3 0 look 0 0 0 up 0 0 1 fov 100 }
+$2
+texture n noise { }
+surface s { Ka 1 Kd 1 Ks 0 $1 }
+plane { surface s }
+S
+}
+# the textures after it are looked up at the moved point: y = 0.5 on the floor y = 0
+p_scene 'apply n { P = 0.5 } apply n { mapping world Kd = 2 * y + 0 * f }' 'ambient 1 1 1' \
+    >"$T/plook.scene"
+if t_apply "$T/plook.scene" -o "$T/plook.exr"; then
+    got=$(counts "$T/plook.exr" | awk '{ printf "%g:%s ", $1, $2 }')
+    [ "$got" = "1:2304 " ] && ok "P = 0.5: the next texture looks up at y = 0.5 (every pixel)" ||
+        notok "P: lookups at the moved point" "values $got"
+else
+    notok "P: lookups at the moved point: renders"
+fi
+# and the light is shaded there: a point light 1 above the floor's origin lights the hit r
+# from it at cos = 1 / sqrt(1 + r^2), the point moved up 0.5 at 0.5 / sqrt(0.25 + r^2)
+light='ambient 0 0 0 light point { position 0 1 0 }'
+p_scene 'Ka 0' "$light" >"$T/pflat.scene"
+p_scene 'Ka 0 apply n { P = 0.5 }' "$light" >"$T/pmove.scene"
+if t_apply "$T/pflat.scene" -o "$T/pflat.pfm" && t_apply "$T/pmove.scene" -o "$T/pmove.pfm"; then
+    python3 - "$T/pflat.pfm" "$T/pmove.pfm" <<'P' >"$T/pcheck" 2>&1
+import array, math, sys
+def load(f):
+    d = open(f, 'rb').read()
+    kind, size, scale, rest = d.split(b'\n', 3)
+    a = array.array('f'); a.frombytes(rest)
+    if float(scale) > 0: a.byteswap()
+    return a
+a, b = load(sys.argv[1]), load(sys.argv[2])
+n = bad = 0
+for i in range(0, len(a), 3):
+    if not a[i] > 0.05: continue
+    r2 = 1 / (a[i] * a[i]) - 1
+    want = 0.5 / math.sqrt(0.25 + r2)
+    n += 1; bad += abs(b[i] - want) > 1e-4
+print(n, bad)
+P
+    read -r n bad <"$T/pcheck"
+    [ "${n:-0}" -gt 2000 ] && [ "$bad" = 0 ] &&
+        ok "P = 0.5: a point light shades the moved point ($n pixels)" ||
+        notok "P: shading at the moved point" "$(cat "$T/pcheck")"
+else
+    notok "P: shading: renders"
+fi
+# a textured P on a sphere over a floor, shadows and all: packets and the vector paths give
+# the pixel-by-pixel render's bytes
+cat >"$T/ppk.scene" <<S
+image 64 48
+camera { eye 0 2 -4 look 0 0.5 0 fov 60 }
+light point { position -2 4 -3 }
+texture n noise { solid frequency 6 }
+texture colour file "$T/colour.ppm"
+surface s { Kd 0.8 0.6 0.4 Ks 0.3 apply n { mapping solid P = 0.05 * f bump = 0.3 }
+    apply colour { Kd = f } }
+surface floor { Kd 0.7 0.7 0.7 apply colour { mapping planar P = 0.2 * f Kd = f } }
+sphere { centre 0 0.6 0 radius 0.6 surface s }
+plane { surface floor }
+S
+if TEXTURA_PACKETS=0 t_apply "$T/ppk.scene" -q -j 1 -o "$T/pp-px.pfm" &&
+    t_apply "$T/ppk.scene" -q -j 2 -o "$T/pp-pk.pfm" &&
+    TEXTURA_SIMD=scalar t_apply "$T/ppk.scene" -q -j 1 -o "$T/pp-pk0.pfm"; then
+    cmp -s "$T/pp-px.pfm" "$T/pp-pk.pfm" && cmp -s "$T/pp-px.pfm" "$T/pp-pk0.pfm" &&
+        ok "P: packets and vector paths give the pixel-by-pixel render's bytes" ||
+        notok "P: packets against pixel by pixel" "$(maxdiff "$T/pp-px.pfm" "$T/pp-pk.pfm")"
+else
+    notok "P in packets: renders"
+fi
