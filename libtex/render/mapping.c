@@ -82,6 +82,7 @@ static void natural_size(const struct tex_apply *ap, const struct tex_object *le
         break;
     case TEX_SHAPE_CYLINDER:
     case TEX_SHAPE_CONE:
+    case TEX_SHAPE_INF_CONE:
         if (face == 1) {
             r = (leaf->r0 > leaf->r1 ? leaf->r0 : leaf->r1) * sxz;
             lu = 2 * M_PI * r, lv = hypot(s[1], (leaf->r1 - leaf->r0) * sxz);
@@ -212,6 +213,7 @@ static int natural_gradient(const struct tex_apply *ap, const struct tex_object 
     }
     case TEX_SHAPE_CYLINDER:
     case TEX_SHAPE_CONE:
+    case TEX_SHAPE_INF_CONE:
         if (face == 1) { /* the side: u around the axis, v = 1 - y */
             if (!(rho2 > 1e-24))
                 return 0;

@@ -1129,7 +1129,8 @@ static void place_leaf(struct parser *ps, struct tex_object *ob, const struct te
         break;
     }
     case TEX_SHAPE_CYLINDER:
-    case TEX_SHAPE_CONE: {
+    case TEX_SHAPE_CONE:
+    case TEX_SHAPE_INF_CONE: {
         double len = tex_v3_len(tex_v3_sub(l->top, l->base));
         double r0 = kind == TEX_SHAPE_CYLINDER ? l->radius : l->radius1;
         double r1 = kind == TEX_SHAPE_CYLINDER ? l->radius : l->radius2;

@@ -218,3 +218,84 @@ if TEXTURA_PACKETS=0 t_apply "$T/ppk.scene" -q -j 1 -o "$T/pp-px.pfm" &&
 else
     notok "P in packets: renders"
 fi
+
+# ---- the infinite cone (inf_cone, thesis 5.3.1's inf_cone_map) ----
+# a double cone of apex 0 along y, radius 0.5 |y|, seen from the side: every hit lies on
+# x^2 + z^2 = (y / 2)^2, its normal along (x, -y / 4, z), v = fract(-y), and both nappes
+# reach the top and bottom rows (no caps, no bounds)
+ic_scene() { # KD
+    cat <<S
+image 48 64
+camera { eye 0 0 -12 look 0 0 0 fov 40 }
+ambient 1 1 1
+texture n noise { }
+surface s { Ka 1 Kd 1 apply n { Kd = $1 + 0 * f } }
+inf_cone { base 0 0 0 top 0 1 0 radius1 0 radius2 0.5 surface s }
+S
+}
+ic_scene 'rgb(0.5 + 0.5 * nx, 0.5 + 0.5 * ny, 0.5 + 0.5 * nz)' >"$T/icn.scene"
+ic_scene 'rgb(0.5 + ox / 20, 0.5 + oy / 20, 0.5 + oz / 20)' >"$T/icp.scene"
+ic_scene 'rgb(v, u, 0.5)' >"$T/icv.scene"
+if t_apply "$T/icn.scene" -o "$T/icn.pfm" && t_apply "$T/icp.scene" -o "$T/icp.pfm" &&
+    t_apply "$T/icv.scene" -o "$T/icv.pfm"; then
+    python3 - "$T/icn.pfm" "$T/icp.pfm" "$T/icv.pfm" <<'P' >"$T/iccheck" 2>&1
+import array, math, sys
+def load(f):
+    d = open(f, 'rb').read()
+    kind, size, scale, rest = d.split(b'\n', 3)
+    a = array.array('f'); a.frombytes(rest)
+    if float(scale) > 0: a.byteswap()
+    return a, [int(x) for x in size.split()]
+(N, (w, h)), (Pp, _), (V, _) = load(sys.argv[1]), load(sys.argv[2]), load(sys.argv[3])
+n = bad = up = down = 0
+rows = set()
+for i in range(w * h):
+    if Pp[3 * i + 2] == 0: continue  # the sky
+    x, y, z = ((Pp[3 * i + k] - 0.5) * 20 for k in range(3))
+    nx, ny, nz = (2 * N[3 * i + k] - 1 for k in range(3))
+    m = math.sqrt(x * x + y * y / 16 + z * z)
+    g = (x / m, -y / 16 / m * 4, z / m)
+    dot = nx * g[0] + ny * g[1] + nz * g[2]
+    v = -y - math.floor(-y)
+    n += 1
+    rows.add(i // w)
+    up += y > 0.5; down += y < -0.5
+    if abs(math.hypot(x, z) - abs(y) / 2) > 2e-3 or abs(abs(dot) - 1) > 1e-3 or \
+       (min(v, 1 - v) > 2e-3 and abs(V[3 * i] - v) > 2e-3):
+        bad += 1
+print(n, bad, up, down, int(0 in rows and h - 1 in rows))
+P
+    read -r n bad up down ends <"$T/iccheck"
+    [ "${n:-0}" -gt 300 ] && [ "$bad" = 0 ] && [ "$up" -gt 100 ] && [ "$down" -gt 100 ] &&
+        [ "$ends" = 1 ] &&
+        ok "inf_cone: hits on the double cone, its normal and v, both nappes unbounded ($n)" ||
+        notok "inf_cone: surface, normal, v" "$(cat "$T/iccheck")"
+else
+    notok "inf_cone: renders"
+fi
+# CSG: a box less an infinite cylinder along z is a box with a hole through it
+cat >"$T/ichole.scene" <<S
+image 41 41
+camera { eye 0 0 -10 look 0 0 0 fov 20 }
+ambient 1 1 1
+surface s { Ka 1 Kd 1 1 1 }
+difference { box { min -1 -1 -1 max 1 1 1 }
+             inf_cone { base 0 0 0 top 0 0 1 radius1 0.5 radius2 0.5 } surface s }
+S
+if t_apply "$T/ichole.scene" -o "$T/ichole.pfm"; then
+    got=$(t_convert -o - --format pfm "$T/ichole.pfm" | python3 -c '
+import array, sys
+d = sys.stdin.buffer.read()
+kind, size, scale, rest = d.split(b"\n", 3)
+a = array.array("f"); a.frombytes(rest)
+if float(scale) > 0: a.byteswap()
+px = lambda x, y: a[((40 - y) * 41 + x) * 3]
+print(px(20, 20), px(20 + 3, 20), px(20 + 12, 20), px(20, 20 - 12))')
+    [ "$got" = "0.0 0.0 1.0 1.0" ] &&
+        ok "inf_cone in CSG: a box less an infinite cylinder has a hole through it" ||
+        notok "inf_cone in CSG" "centre, in the hole, the box, the box: $got"
+else
+    notok "inf_cone in CSG: renders"
+fi
+printf 'inf_cone { radius1 0 radius2 0 }\n' >"$T/bad3.scene"
+check_fails "inf_cone with both radii 0 is refused" 2 t_apply "$T/bad3.scene" -o "$T/bad3.png"
