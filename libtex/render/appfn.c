@@ -698,7 +698,8 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
     nfn = 0;
     for (const struct tex_appfn *fn = sf->apply ? sf->apply->fns : NULL; fn; fn = fn->next)
         lean &= fn->param == TEX_SP_KD && c->compiled[nfn++];
-    c->plain = plain && !(textured & 1 << TEX_SP_P) ? (lean ? 1 : 2) : 0; /* P: shade() moves it */
+    plain &= !(textured & 1 << TEX_SP_P); /* a moved P: shade_begin's */
+    c->plain = plain ? (lean ? 1 : 2) : 0;
     return 0;
 }
 

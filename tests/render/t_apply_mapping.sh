@@ -3,19 +3,31 @@
 # (non-elastic) mapping, P as a target and the infinite cone.
 . "$(dirname "$0")/../lib.sh"
 
+# pfm.load(FILE): a map's floats (3 channels), width and height; px(a, w, h, x, y, ch) with
+# y = 0 the top row.  The checks below import it (PYTHONPATH=$T).
+cat >"$T/pfm.py" <<'P'
+import array, subprocess
+def load(f):
+    d = subprocess.run(['t_convert', '-o', '-', '--format', 'pfm', f], check=True,
+                       stdout=subprocess.PIPE).stdout
+    kind, size, scale, rest = d.split(b'\n', 3)
+    w, h = map(int, size.split())
+    nc = 3 if kind == b'PF' else 1
+    a = array.array('f'); a.frombytes(rest[:w * h * nc * 4])
+    if float(scale) > 0: a.byteswap()
+    if nc == 1: a = array.array('f', [v for v in a for _ in range(3)])
+    return a, w, h
+def px(a, w, h, x, y, ch=0):
+    return a[((h - 1 - y) * w + x) * 3 + ch]
+P
+py() { PYTHONPATH=$T python3 "$@"; }
+
 # counts MAP: "value count" of the red channel's values (rounded to 1e-4), one per line
 counts() {
-    local pfm
-    pfm=$(mktemp "$T/px.XXXXXX").pfm
-    t_convert -o "$pfm" "$1" && python3 - "$pfm" <<'P'
-import array, collections, sys
-d = open(sys.argv[1], 'rb').read()
-kind, size, scale, rest = d.split(b'\n', 3)
-w, h = map(int, size.split())
-nc = 3 if kind == b'PF' else 1
-a = array.array('f'); a.frombytes(rest[:w * h * nc * 4])
-if float(scale) > 0: a.byteswap()
-for v, n in sorted(collections.Counter(round(a[i * nc], 4) for i in range(w * h)).items()):
+    py - "$1" <<'P'
+import collections, sys, pfm
+a, w, h = pfm.load(sys.argv[1])
+for v, n in sorted(collections.Counter(round(a[i * 3], 4) for i in range(w * h)).items()):
     print(v, n)
 P
 }
@@ -54,21 +66,14 @@ fi
 # wraps MAP CH: along the middle row, then the middle column, how many times channel CH
 # wraps (jumps by more than 0.5), and CH's value at the centre
 wraps() {
-    local pfm
-    pfm=$(mktemp "$T/px.XXXXXX").pfm
-    t_convert -o "$pfm" "$1" && python3 - "$pfm" "$2" <<'P'
-import array, sys
-d = open(sys.argv[1], 'rb').read()
-kind, size, scale, rest = d.split(b'\n', 3)
-w, h = map(int, size.split())
-a = array.array('f'); a.frombytes(rest[:w * h * 3 * 4])
-if float(scale) > 0: a.byteswap()
+    py - "$1" "$2" <<'P'
+import sys, pfm
+a, w, h = pfm.load(sys.argv[1])
 ch = int(sys.argv[2])
-px = lambda x, y: a[((h - 1 - y) * w + x) * 3 + ch]
-row = [px(x, h // 2) for x in range(w)]
-col = [px(w // 2, y) for y in range(h)]
+row = [pfm.px(a, w, h, x, h // 2, ch) for x in range(w)]
+col = [pfm.px(a, w, h, w // 2, y, ch) for y in range(h)]
 n = lambda s: sum(abs(s[i + 1] - s[i]) > 0.5 for i in range(len(s) - 1) if s[i] and s[i + 1])
-print(n(row), n(col), px(w // 2, h // 2))
+print(n(row), n(col), pfm.px(a, w, h, w // 2, h // 2, ch))
 P
 }
 size_scene() { # SHAPE APPLY-WORDS
@@ -171,15 +176,9 @@ light='ambient 0 0 0 light point { position 0 1 0 }'
 p_scene 'Ka 0' "$light" >"$T/pflat.scene"
 p_scene 'Ka 0 apply n { P = 0.5 }' "$light" >"$T/pmove.scene"
 if t_apply "$T/pflat.scene" -o "$T/pflat.pfm" && t_apply "$T/pmove.scene" -o "$T/pmove.pfm"; then
-    python3 - "$T/pflat.pfm" "$T/pmove.pfm" <<'P' >"$T/pcheck" 2>&1
-import array, math, sys
-def load(f):
-    d = open(f, 'rb').read()
-    kind, size, scale, rest = d.split(b'\n', 3)
-    a = array.array('f'); a.frombytes(rest)
-    if float(scale) > 0: a.byteswap()
-    return a
-a, b = load(sys.argv[1]), load(sys.argv[2])
+    py - "$T/pflat.pfm" "$T/pmove.pfm" <<'P' >"$T/pcheck" 2>&1
+import math, sys, pfm
+(a, _, _), (b, _, _) = pfm.load(sys.argv[1]), pfm.load(sys.argv[2])
 n = bad = 0
 for i in range(0, len(a), 3):
     if not a[i] > 0.05: continue
@@ -238,15 +237,9 @@ ic_scene 'rgb(0.5 + ox / 20, 0.5 + oy / 20, 0.5 + oz / 20)' >"$T/icp.scene"
 ic_scene 'rgb(v, u, 0.5)' >"$T/icv.scene"
 if t_apply "$T/icn.scene" -o "$T/icn.pfm" && t_apply "$T/icp.scene" -o "$T/icp.pfm" &&
     t_apply "$T/icv.scene" -o "$T/icv.pfm"; then
-    python3 - "$T/icn.pfm" "$T/icp.pfm" "$T/icv.pfm" <<'P' >"$T/iccheck" 2>&1
-import array, math, sys
-def load(f):
-    d = open(f, 'rb').read()
-    kind, size, scale, rest = d.split(b'\n', 3)
-    a = array.array('f'); a.frombytes(rest)
-    if float(scale) > 0: a.byteswap()
-    return a, [int(x) for x in size.split()]
-(N, (w, h)), (Pp, _), (V, _) = load(sys.argv[1]), load(sys.argv[2]), load(sys.argv[3])
+    py - "$T/icn.pfm" "$T/icp.pfm" "$T/icv.pfm" <<'P' >"$T/iccheck" 2>&1
+import math, sys, pfm
+(N, w, h), (Pp, _, _), (V, _, _) = (pfm.load(f) for f in sys.argv[1:4])
 n = bad = up = down = 0
 rows = set()
 for i in range(w * h):
@@ -283,14 +276,11 @@ difference { box { min -1 -1 -1 max 1 1 1 }
              inf_cone { base 0 0 0 top 0 0 1 radius1 0.5 radius2 0.5 } surface s }
 S
 if t_apply "$T/ichole.scene" -o "$T/ichole.pfm"; then
-    got=$(t_convert -o - --format pfm "$T/ichole.pfm" | python3 -c '
-import array, sys
-d = sys.stdin.buffer.read()
-kind, size, scale, rest = d.split(b"\n", 3)
-a = array.array("f"); a.frombytes(rest)
-if float(scale) > 0: a.byteswap()
-px = lambda x, y: a[((40 - y) * 41 + x) * 3]
-print(px(20, 20), px(20 + 3, 20), px(20 + 12, 20), px(20, 20 - 12))')
+    got=$(py -c '
+import sys, pfm
+a, w, h = pfm.load(sys.argv[1])
+print(*(pfm.px(a, w, h, x, y) for x, y in ((20, 20), (23, 20), (32, 20), (20, 8))))' \
+        "$T/ichole.pfm")
     [ "$got" = "0.0 0.0 1.0 1.0" ] &&
         ok "inf_cone in CSG: a box less an infinite cylinder has a hole through it" ||
         notok "inf_cone in CSG" "centre, in the hole, the box, the box: $got"
