@@ -120,6 +120,28 @@ read -r _ v2 _ < <(wraps "$T/sph2.exr" 1)
     [ "$v2" -ge $((2 * v1)) ] && [ "$w2" -le 7 ] && [ "$v2" -le 7 ] &&
     ok "size: a sphere twice as big shows twice the maps (u wraps $w1, $w2; v $v1, $v2)" ||
     notok "size on spheres" "u wraps $w1 $w2, v wraps $v1 $v2"
+# a plane's natural mapping under size 2 3: u = fract(x / 2), v = fract(z / 3) of its own x, z
+for k in uv:'rgb(u, v, 0)' xz:'rgb(0.5 + ox / 40, 0.5 + oz / 40, 0)'; do
+    printf '%s\n' 'image 48 48' 'camera { eye 0 8 0 look 0 0 0 up 0 0 1 fov 90 }' \
+        'ambient 1 1 1' 'texture n noise { }' \
+        "surface s { Ka 1 Kd 1 apply n { size 2 3 Kd = ${k#*:} + 0 * f } }" \
+        'plane { surface s }' >"$T/pl-${k%%:*}.scene"
+    t_apply "$T/pl-${k%%:*}.scene" -o "$T/pl-${k%%:*}.pfm" || notok "size on a plane: renders"
+done
+got=$(py - "$T/pl-uv.pfm" "$T/pl-xz.pfm" <<'P'
+import math, sys, pfm
+(a, w, h), (b, _, _) = pfm.load(sys.argv[1]), pfm.load(sys.argv[2])
+bad = 0
+for i in range(w * h):
+    x, z = (b[3 * i] - 0.5) * 40, (b[3 * i + 1] - 0.5) * 40
+    for got, c, size in ((a[3 * i], x, 2), (a[3 * i + 1], z, 3)):
+        want = c / size - math.floor(c / size)
+        bad += min(want, 1 - want) > 1e-3 and abs(got - want) > 1e-3
+print(w * h, bad)
+P
+)
+[ "$got" = "2304 0" ] && ok "size: a plane repeats the map every 2 x 3 units of x and z" ||
+    notok "size on a plane" "pixels, wrong: $got"
 # a sized natural mapping is left out of the AVX-512 lanes (they map unsized): the packets
 # and the vector paths give the pixel-by-pixel render's bytes, a bumped map on a sphere
 awk 'BEGIN { print "P3 30 17 255"; for (y = 0; y < 17; y++) for (x = 0; x < 30; x++)
