@@ -35,6 +35,8 @@ const struct tex_scene_word tex_quantities[TEX_Q_COUNT + 1] = {
     {"ny", NULL, "the normal's world y"},
     {"nz", NULL, "the normal's world z"},
     {"region", NULL, "the map's subregion id at the hit (0: a map without regions)"},
+    {"face", NULL, "the shape's face at the hit: box 1..6 (+x -x +y -y +z -z), cylinder and "
+                   "cone side 1, bottom cap 2, top cap 3; other shapes 1"},
     {NULL, NULL, NULL},
 };
 
@@ -191,6 +193,7 @@ static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const flo
     case TEX_SP_M: scalar = &sc, sc = (float)pr->m; break;
     case TEX_SP_S: scalar = &sc, sc = (float)pr->s; break;
     case TEX_SP_BLEND: scalar = &pr->blend; break;
+    case TEX_SP_P: scalar = &pr->disp; break;
     case TEX_SP_NORMAL: /* p: the flat normal */
         colour = pr->normal;
         colour[0] = colour[1] = 0.5f, colour[2] = 1;
@@ -315,10 +318,14 @@ static void cross_combine(const struct tex_apply *ap, const struct placement *pm
                                                    : fmaxf(f[k], g[k]);
 }
 
-/* The quantities of the hit that do not depend on the texture (tex_quantities). */
+/* The quantities of the hit that do not depend on the texture (tex_quantities); the face,
+ * the shape's own whatever the mapping, where read (bits, as tex_surface_cache's). */
 static void hit_quantities(const struct tex_shade_at *at, const tex_v3 *pl, const tex_v3 *N,
-                           double q[TEX_Q_COUNT])
+                           int read, double q[TEX_Q_COUNT])
 {
+    double u, v;
+    q[TEX_Q_FACE] = read & 1 << TEX_Q_FACE
+                        ? tex_shape_methods[at->leaf->kind].uv(at->leaf, *pl, &u, &v) : 0;
     q[TEX_Q_DIST] = at->dist;
     q[TEX_Q_NDOTV] = fabs(tex_v3_dot(*N, *at->D));
     q[TEX_Q_DEPTH] = at->depth;
@@ -419,6 +426,8 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
 {
     const struct tex_object *leaf = at->leaf;
     const tex_v3 *P = at->P;
+    tex_v3 Pd, N0 = *N; /* P moved by a P target along N0: the textures after it look there */
+    float moved = 0;
     double width = filter ? at->width : 0;
     struct footprint fp;
     footprint_at(&fp, at->D, N, width);
@@ -430,7 +439,7 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
     struct footprint fq; /* the real footprint for the quantities, filtered or not */
     if (cache->quantities) {
         q = qv;
-        hit_quantities(at, &pl, N, q);
+        hit_quantities(at, &pl, N, cache->quantities, q);
         footprint_at(&fq, at->D, N, at->width);
     }
     int j = 0;
@@ -481,6 +490,14 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
                 }
             }
         }
+        if (pr->disp != moved && ap->next) { /* P moved: the next textures map it there */
+            struct tex_shade_at atd = *at;
+            moved = pr->disp;
+            Pd = tex_v3_madd(*at->P, N0, moved);
+            atd.P = P = &Pd, pl = tex_xform_point(&leaf->to_obj, Pd), pre = NULL;
+            if (q)
+                hit_quantities(&atd, &pl, &N0, cache->quantities, q);
+        }
     }
     bend(tilt, N);
     return ks_textured;
@@ -525,6 +542,7 @@ material(const struct tex_colour_space *cs, const struct tex_surface *sf,
     m->ior = pr->ior;
     m->m = pr->m;
     m->s = pr->s;
+    m->disp = pr->disp;
     m->model = sf->model;
     m->model_data = sf->ct;
     m->blend = 0;
@@ -614,7 +632,7 @@ int tex_surface_energy(const struct tex_surface *sf, double *e)
         for (int c = 0; c < places; c++) {
             struct params pr = {{sf->kd[0], sf->kd[1], sf->kd[2]}, sf->ka, sf->ks[0],
                                 (float)sf->n, (float)sf->kr, (float)sf->kt, (float)sf->ior, 0,
-                                ctm.m, ctm.s, 0, {0.5f, 0.5f, 1}, {0, 0, 0}, 0};
+                                ctm.m, ctm.s, 0, {0.5f, 0.5f, 1}, {0, 0, 0}, 0, 0};
             float f[3] = {(float)l / 16, (float)l / 16, (float)l / 16};
             for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next)
                 for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next)
@@ -650,7 +668,7 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
         nap++;
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++) {
             c->direct &= !fn->region && fn->param != TEX_SP_NORMAL &&
-                         fn->param != TEX_SP_GRADIENT;
+                         fn->param != TEX_SP_GRADIENT && fn->param != TEX_SP_P;
             c->compiled[nfn] = (char)poly_of(fn->e, &c->poly[nfn]);
             for (int i = 0; i < fn->e->n; i++)
                 if (fn->e->code[i].op == TEX_EOP_LEAF && fn->e->code[i].leaf >= TEX_LEAF_Q)
@@ -663,7 +681,7 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
     tex_ct_material(&ctm, sf->ct);
     c->base = (struct params){{sf->kd[0], sf->kd[1], sf->kd[2]}, sf->ka, sf->ks[0], (float)sf->n,
                               (float)sf->kr, (float)sf->kt, (float)sf->ior, 0, ctm.m, ctm.s, 0,
-                              {0.5f, 0.5f, 1}, {0, 0, 0}, 0};
+                              {0.5f, 0.5f, 1}, {0, 0, 0}, 0, 0};
     float ka[3] = {sf->ka * sf->kd[0], sf->ka * sf->kd[1], sf->ka * sf->kd[2]};
     cs->from_rgb(cs, ka, TEX_SPECTRUM_REFLECTANCE, &c->col[0]);
     cs->from_rgb(cs, sf->kd, TEX_SPECTRUM_REFLECTANCE, &c->col[1]);
@@ -680,6 +698,7 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
     nfn = 0;
     for (const struct tex_appfn *fn = sf->apply ? sf->apply->fns : NULL; fn; fn = fn->next)
         lean &= fn->param == TEX_SP_KD && c->compiled[nfn++];
+    plain &= !(textured & 1 << TEX_SP_P); /* a moved P: shade_begin's */
     c->plain = plain ? (lean ? 1 : 2) : 0;
     return 0;
 }

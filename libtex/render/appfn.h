@@ -32,6 +32,7 @@ struct params {
     double m, s; /* Cook-Torrance's slope and specular fraction (double: as the model's) */
     float blend; /* the blended surface's weight */
     float normal[3], gradient[3]; /* one apply block's normal map and height gradient */
+    float disp; /* P's displacement along the normal (P = D) */
     float end;
 };
 

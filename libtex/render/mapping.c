@@ -56,6 +56,52 @@ static int map_point_world(const struct tex_apply *ap, const struct tex_object *
     return 1;
 }
 
+/* A fixed-size natural mapping's repetitions (thesis 5.3.1, non-elastic): k[0], k[1] maps of
+ * size W x H along u and v of face on leaf, the face's extents in the object's units (the
+ * unit shape's through the scale of to_world per axis) over W and H.  Sphere: 2 pi r by
+ * pi r, r the mean radius; cylinder and cone side: 2 pi r (the larger radius) by the
+ * slant height; caps: 2r by 2r; box faces: their two sides; torus: 2 pi R by 2 pi r. */
+static void natural_size(const struct tex_apply *ap, const struct tex_object *leaf, int face,
+                         double k[2])
+{
+    double s[3], lu = 1, lv = 1, r;
+    for (int i = 0; i < 3; i++) {
+        const double(*m)[4] = leaf->to_world.m;
+        s[i] = sqrt(m[0][i] * m[0][i] + m[1][i] * m[1][i] + m[2][i] * m[2][i]);
+    }
+    double sxz = (s[0] + s[2]) / 2, mean = (s[0] + s[1] + s[2]) / 3;
+    switch (leaf->kind) {
+    case TEX_SHAPE_SPHERE:
+        lu = 2 * M_PI * mean, lv = M_PI * mean;
+        break;
+    case TEX_SHAPE_BOX:
+        if (face >= 1 && face <= 6) {
+            int a = tex_box_axes[face - 1][0], b = tex_box_axes[face - 1][1];
+            lu = 2 * s[(a < 0 ? -a : a) - 1], lv = 2 * s[(b < 0 ? -b : b) - 1];
+        }
+        break;
+    case TEX_SHAPE_CYLINDER:
+    case TEX_SHAPE_CONE:
+    case TEX_SHAPE_INF_CONE:
+        if (face == 1) {
+            r = (leaf->r0 > leaf->r1 ? leaf->r0 : leaf->r1) * sxz;
+            lu = 2 * M_PI * r, lv = hypot(s[1], (leaf->r1 - leaf->r0) * sxz);
+        } else {
+            r = face == 2 ? leaf->r0 : leaf->r1;
+            r = r > 0 ? r : 1;
+            lu = 2 * r * s[0], lv = 2 * r * s[2];
+        }
+        break;
+    case TEX_SHAPE_TORUS:
+        lu = 2 * M_PI * leaf->r0 * sxz, lv = 2 * M_PI * leaf->r1 * mean;
+        break;
+    default: /* the plane: u = x, v = z, one unit each */
+        lu = s[0], lv = s[2];
+        break;
+    }
+    k[0] = lu / ap->size[0], k[1] = lv / ap->size[1];
+}
+
 /* A projection's frame on leaf: the point pl turned by the placement about the shape's
  * box centre c into *pt, and *q, *pt across the box (half extents *e): in [-1, 1] inside
  * it; a shape without a box (returns 0) takes c = 0, e = 1.  The box is the leaf's, kept
@@ -78,8 +124,17 @@ int tex_map_point_other(const struct tex_apply *ap, const struct tex_object *lea
     enum tex_mapping mp = ap->mapping;
     tex_v3 plt;
     uvw[2] = 0;
-    if (mp == TEX_MAP_NATURAL)
-        return tex_shape_methods[leaf->kind].uv(leaf, *pl, &uvw[0], &uvw[1]);
+    if (mp == TEX_MAP_NATURAL) {
+        int face = tex_shape_methods[leaf->kind].uv(leaf, *pl, &uvw[0], &uvw[1]);
+        if (ap->size[0] > 0) { /* fixed size: the plane's from x and z, not yet wrapped */
+            double k[2];
+            natural_size(ap, leaf, face, k);
+            if (leaf->kind == TEX_SHAPE_PLANE)
+                uvw[0] = pl->x, uvw[1] = pl->z;
+            uvw[0] = fract(uvw[0] * k[0]), uvw[1] = fract(uvw[1] * k[1]);
+        }
+        return face;
+    }
     if (mp == TEX_MAP_WORLD || mp == TEX_MAP_SOLID)
         return map_point_world(ap, leaf, P, uvw);
     tex_v3 q, e;
@@ -158,6 +213,7 @@ static int natural_gradient(const struct tex_apply *ap, const struct tex_object 
     }
     case TEX_SHAPE_CYLINDER:
     case TEX_SHAPE_CONE:
+    case TEX_SHAPE_INF_CONE:
         if (face == 1) { /* the side: u around the axis, v = 1 - y */
             if (!(rho2 > 1e-24))
                 return 0;
@@ -173,6 +229,20 @@ static int natural_gradient(const struct tex_apply *ap, const struct tex_object 
     default:
         return 0;
     }
+}
+
+/* natural_gradient's, times a fixed-size mapping's repetitions (natural_size) */
+static int natural_gradient_sized(const struct tex_apply *ap, const struct tex_object *leaf,
+                                  const tex_v3 *pp, int face, tex_v3 *du, tex_v3 *dv)
+{
+    if (!natural_gradient(ap, leaf, pp, face, du, dv))
+        return 0;
+    if (ap->size[0] > 0) {
+        double k[2];
+        natural_size(ap, leaf, face, k);
+        *du = tex_v3_scale(*du, k[0]), *dv = tex_v3_scale(*dv, k[1]);
+    }
+    return 1;
 }
 
 /* A cylinder or cone projection's gradients of u and v in object space at *pl (the
@@ -214,7 +284,7 @@ static int projection_gradient(const struct tex_apply *ap, const struct tex_obje
 int tex_point_gradient(const struct tex_apply *ap, const struct tex_object *leaf,
                           const tex_v3 *pl, int face, tex_v3 g[2])
 {
-    if (!natural_gradient(ap, leaf, pl, face, &g[0], &g[1]) &&
+    if (!natural_gradient_sized(ap, leaf, pl, face, &g[0], &g[1]) &&
         !projection_gradient(ap, leaf, pl, &g[0], &g[1]))
         return 0;
     g[0] = tex_xform_normal(&leaf->to_obj, g[0]);

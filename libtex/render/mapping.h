@@ -29,7 +29,7 @@ static inline double clamp01(double x)
 static inline int plane_planar(const struct tex_apply *ap, const struct tex_object *leaf)
 {
     return (ap->mapping == TEX_MAP_NATURAL || ap->mapping == TEX_MAP_PLANAR) &&
-           leaf->kind == TEX_SHAPE_PLANE && !ap->placed;
+           leaf->kind == TEX_SHAPE_PLANE && !ap->placed && !(ap->size[0] > 0);
 }
 
 /* map_point_at for every mapping but plane_planar */

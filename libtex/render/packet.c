@@ -190,9 +190,10 @@ void tex_prefetch_map(struct tex_prefetch *pf, const struct tex_surface *sf,
 static int lanes_mapping(const struct tex_apply *ap, const struct tex_object *leaf)
 {
     int k = leaf->kind;
+    int natural = ap->mapping == TEX_MAP_NATURAL && !(ap->size[0] > 0); /* lanes: unsized */
     return plane_planar(ap, leaf) ||
-           (ap->mapping == TEX_MAP_NATURAL && (k == TEX_SHAPE_BOX || k == TEX_SHAPE_CYLINDER ||
-                                               k == TEX_SHAPE_CONE || k == TEX_SHAPE_SPHERE));
+           (natural && (k == TEX_SHAPE_BOX || k == TEX_SHAPE_CYLINDER || k == TEX_SHAPE_CONE ||
+                        k == TEX_SHAPE_SPHERE));
 }
 
 int tex_lanes_take(struct tex_lanes *L, struct tex_prefetch *pf, const struct tex_surface *sf,

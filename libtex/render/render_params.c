@@ -166,6 +166,9 @@ const struct tex_param tex_target_rows[] = {
     TARGET("gradient", -1e6, 1e6, "DU DV",
            "bump mapping from a height gradient per texture unit (t_filter gradient; "
            "t_d_noise's times its frequency): N tilts by DU grad u + DV grad v"),
+    TARGET("P", -1e6, 1e6, "D",
+           "the point (table 4.1): moved D world units along the normal, where the textures "
+           "after it are looked up and the light is shaded"),
     {0}};
 
 const struct tex_param *tex_sparam_row(enum tex_sparam sp)
@@ -200,6 +203,9 @@ const struct tex_param tex_apply_rows[] = {
             "times the map repeats inside the window (fixed-size placement)"),
     TEX_SPECIAL("stretch", 0, 0, NULL, NULL, "the map once across the window: repeat 1 1",
                 tex_scene_read_stretch),
+    TEX_ROW("size", struct tex_apply, size, TEX_P_REAL, "0,0", 0, 1e9, 2, 0, "W H",
+            "natural mapping: the map's size in the object's units, repeating every W along u "
+            "and H along v (non-elastic); 0 0: stretched once across the shape"),
     TEX_ROW("scale", struct tex_apply, scale, TEX_P_REAL, "1", 1e-9, 1e9, 1, 0, "S",
             "planar and world mappings: texture units per world unit"),
     TEX_SPECIAL("region", 1, 1 << 24, NULL, "N { ... }",
@@ -221,13 +227,15 @@ const struct tex_param tex_object_rows[] = {
     OROW("min", min, "-1,-1,-1", 3, "X Y Z", SHP(BOX), "box: the corner of least x, y and z"),
     OROW("max", max, "1,1,1", 3, "X Y Z", SHP(BOX),
          "box: the opposite corner (above min on every axis)"),
-    OROW("base", base, "0,0,0", 3, "X Y Z", SHP(CYLINDER) | SHP(CONE),
-         "cylinder, cone: the centre of the base cap"),
-    OROW("top", top, "0,1,0", 3, "X Y Z", SHP(CYLINDER) | SHP(CONE),
-         "cylinder, cone: the centre of the top cap (not the base)"),
-    OROW("radius1", radius1, "1", 1, "R0", SHP(CONE), "cone: the radius at the base (>= 0)"),
-    OROW("radius2", radius2, "0", 1, "R1", SHP(CONE),
-         "cone: the radius at the top (>= 0; not both radii 0)"),
+    OROW("base", base, "0,0,0", 3, "X Y Z", SHP(CYLINDER) | SHP(CONE) | SHP(INF_CONE),
+         "cylinder, cone: the centre of the base cap; inf_cone: a point on its axis"),
+    OROW("top", top, "0,1,0", 3, "X Y Z", SHP(CYLINDER) | SHP(CONE) | SHP(INF_CONE),
+         "cylinder, cone: the centre of the top cap (not the base); inf_cone: a second point "
+         "on its axis, one map length along it from base"),
+    OROW("radius1", radius1, "1", 1, "R0", SHP(CONE) | SHP(INF_CONE),
+         "cone, inf_cone: the radius at the base (>= 0)"),
+    OROW("radius2", radius2, "0", 1, "R1", SHP(CONE) | SHP(INF_CONE),
+         "cone, inf_cone: the radius at the top (>= 0; not both radii 0)"),
     OROW("normal", normal, "0,1,0", 3, "X Y Z", SHP(PLANE),
          "plane: the normal n of the half-space n.x <= d (not zero)"),
     OROW("distance", distance, "0", 1, "D", SHP(PLANE),

@@ -758,6 +758,11 @@ static struct tex_apply *parse_apply(struct parser *ps)
     if ((seen & row_bit(tex_apply_rows, "window")) && !(ap->u2 > ap->u1 && ap->v2 > ap->v1))
         fail_at(ps, &at, 0, "window needs u1 < u2 and v1 < v2");
     apply_projection(ps, ap, seen, &at);
+    if ((seen & row_bit(tex_apply_rows, "size")) && !(ap->size[0] > 0 && ap->size[1] > 0))
+        fail_at(ps, &at, 0, "size needs W > 0 and H > 0 (got %g %g)", ap->size[0], ap->size[1]);
+    if (ap->size[0] > 0 && ap->mapping != TEX_MAP_NATURAL)
+        fail_at(ps, &at, 0, "size sets a natural mapping's map size; planar and world mappings "
+                            "take scale");
     if (ap->mapping == TEX_MAP_SOLID && tx->field && !tx->solid && !tx->mip)
         fail_at(ps, &at, 0, "texture '%s' is 2D; add 'solid' to it", tx->name);
     return ap;
@@ -1124,7 +1129,8 @@ static void place_leaf(struct parser *ps, struct tex_object *ob, const struct te
         break;
     }
     case TEX_SHAPE_CYLINDER:
-    case TEX_SHAPE_CONE: {
+    case TEX_SHAPE_CONE:
+    case TEX_SHAPE_INF_CONE: {
         double len = tex_v3_len(tex_v3_sub(l->top, l->base));
         double r0 = kind == TEX_SHAPE_CYLINDER ? l->radius : l->radius1;
         double r1 = kind == TEX_SHAPE_CYLINDER ? l->radius : l->radius2;

@@ -8,6 +8,8 @@
  *   plane     the half-space y <= 0, normal +y
  *   torus     around the y axis: (sqrt(x^2+z^2) - R)^2 + y^2 <= r^2 with
  *             R = r0 (major radius, >= 0) and r = r1 (minor radius, > 0)
+ *   inf_cone  x^2 + z^2 <= (r0 + (r1 - r0) y)^2 for every y: the cone's side unbounded
+ *             along its axis (both nappes; r0 = r1: an infinite cylinder)
  */
 #include <float.h>
 #include <math.h>
@@ -223,6 +225,71 @@ static int cone_bounds(const struct tex_object *ob, struct tex_bounds *b)
     b->lo = tex_v3_make(-r, 0, -r);
     b->hi = tex_v3_make(r, 1, r);
     return 1;
+}
+
+/* ---- infinite cone (thesis 5.3.1's inf_cone_map) ---------------------------------- */
+
+/* Where x^2 + z^2 - (r0 + k y)^2 <= 0 along the ray: between the roots of the quadratic
+ * where it opens upwards, outside them (two spans, one per nappe) where it opens
+ * downwards, everywhere where it stays negative. */
+static void inf_cone_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct tex_spans *s)
+{
+    double k = ob->r1 - ob->r0, ry = ob->r0 + k * o.y;
+    double a = d.x * d.x + d.z * d.z - k * k * d.y * d.y;
+    double b = 2 * (o.x * d.x + o.z * d.z - ry * k * d.y);
+    double c = o.x * o.x + o.z * o.z - ry * ry;
+    s->n = 0;
+    if (!(fabs(a) > 1e-14)) { /* along a generator's direction: linear */
+        if (fabs(b) > 1e-14)
+            span1(s, ob, b > 0 ? -INFINITY : -c / b, b > 0 ? -c / b : INFINITY);
+        else if (c <= 0)
+            span1(s, ob, -INFINITY, INFINITY);
+        return;
+    }
+    double disc = b * b - 4 * a * c;
+    if (!(disc > 0)) {
+        if (a < 0)
+            span1(s, ob, -INFINITY, INFINITY);
+        return;
+    }
+    double q = sqrt(disc), h = 0.5 / a, t0 = (-b - q) * h, t1 = (-b + q) * h;
+    if (t0 > t1) {
+        double x = t0;
+        t0 = t1, t1 = x;
+    }
+    if (a > 0) {
+        span1(s, ob, t0, t1);
+        return;
+    }
+    span1(s, ob, -INFINITY, t0);
+    s->n = 2;
+    s->in[1] = (struct tex_hit){.t = t1, .leaf = ob};
+    s->out[1] = (struct tex_hit){.t = INFINITY, .leaf = NULL};
+}
+
+/* The gradient of x^2 + z^2 - (r0 + k y)^2, outwards on both nappes */
+static tex_v3 inf_cone_normal(const struct tex_object *ob, tex_v3 p)
+{
+    double k = ob->r1 - ob->r0, ry = ob->r0 + k * p.y;
+    tex_v3 n = tex_v3_make(p.x, -k * ry, p.z);
+    return tex_v3_len(n) > 0 ? n : tex_v3_make(0, 1, 0);
+}
+
+/* inf_cone_map: u around the axis as cylinder_map's, v down the axis repeating every
+ * base-to-top length; one face */
+static int inf_cone_uv(const struct tex_object *ob, tex_v3 p, double *u, double *v)
+{
+    (void)ob;
+    *u = tex_turns(-p.z, p.x);
+    *v = -p.y - floor(-p.y);
+    return 1;
+}
+
+/* Unbounded, like the plane: no box */
+static int inf_cone_bounds(const struct tex_object *ob, struct tex_bounds *b)
+{
+    (void)ob, (void)b;
+    return 0;
 }
 
 /* ---- plane ------------------------------------------------------------------ */
@@ -464,6 +531,8 @@ const struct tex_shape_methods tex_shape_methods[TEX_SHAPE_NKINDS] = {
     [TEX_SHAPE_CONE] = {"cone", cone_spans, cone_normal, cone_uv, cone_bounds},
     [TEX_SHAPE_PLANE] = {"plane", plane_spans, plane_normal, plane_uv, plane_bounds},
     [TEX_SHAPE_TORUS] = {"torus", torus_spans, torus_normal, torus_uv, torus_bounds},
+    [TEX_SHAPE_INF_CONE] = {"inf_cone", inf_cone_spans, inf_cone_normal, inf_cone_uv,
+                            inf_cone_bounds},
 };
 
 /* ---- objects ------------------------------------------------------------------ */
@@ -558,7 +627,7 @@ void tex_csg_spans(const struct tex_object *ob, const tex_v3 *o, const tex_v3 *d
 static void mark_hulls(struct tex_object *ob, int holds)
 {
     if (ob->op == TEX_CSG_LEAF) { /* cones have radii >= 0 (the parser's): no double cone */
-        ob->hull = holds && ob->kind != TEX_SHAPE_TORUS;
+        ob->hull = holds && ob->kind != TEX_SHAPE_TORUS && ob->kind != TEX_SHAPE_INF_CONE;
         return;
     }
     mark_hulls(ob->a, holds && ob->op != TEX_CSG_UNION);

@@ -15,7 +15,7 @@ extern "C" {
 #endif
 
 enum tex_shape_kind { TEX_SHAPE_SPHERE, TEX_SHAPE_BOX, TEX_SHAPE_CYLINDER, TEX_SHAPE_CONE,
-                      TEX_SHAPE_PLANE, TEX_SHAPE_TORUS, TEX_SHAPE_NKINDS };
+                      TEX_SHAPE_PLANE, TEX_SHAPE_TORUS, TEX_SHAPE_INF_CONE, TEX_SHAPE_NKINDS };
 
 struct tex_surface;
 struct tex_surface_cache;

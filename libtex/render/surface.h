@@ -129,7 +129,7 @@ void tex_surface_uncache(struct tex_surface *sf);
  * a height gradient (tex_sparam_row gives each one's row). */
 enum tex_sparam { TEX_SP_KA, TEX_SP_KD, TEX_SP_KS, TEX_SP_N, TEX_SP_KR, TEX_SP_KT, TEX_SP_IOR,
                   TEX_SP_BUMP, TEX_SP_M, TEX_SP_S, TEX_SP_BLEND, TEX_SP_NORMAL,
-                  TEX_SP_GRADIENT, TEX_SP_COUNT };
+                  TEX_SP_GRADIENT, TEX_SP_P, TEX_SP_COUNT };
 
 /* An application function's expression, compiled (lang/expr.h): a postfix
  * program over f (the map value), p (the untextured value), numbers, colours,
@@ -144,7 +144,7 @@ enum tex_eleaf { TEX_LEAF_F, TEX_LEAF_P, TEX_LEAF_TEX /* ptr: the texture */,
 enum tex_quantity { TEX_Q_DIST, TEX_Q_FOOTPRINT, TEX_Q_LOD, TEX_Q_NDOTV, TEX_Q_DEPTH,
                     TEX_Q_X, TEX_Q_Y, TEX_Q_Z, TEX_Q_OX, TEX_Q_OY, TEX_Q_OZ,
                     TEX_Q_U, TEX_Q_V, TEX_Q_W, TEX_Q_NX, TEX_Q_NY, TEX_Q_NZ, TEX_Q_REGION,
-                    TEX_Q_COUNT };
+                    TEX_Q_FACE, TEX_Q_COUNT };
 extern const struct tex_scene_word tex_quantities[TEX_Q_COUNT + 1]; /* render.h */
 
 /* g[region][parameter] = h: one application function. */
@@ -163,6 +163,8 @@ struct tex_apply {
     double u1, v1, u2, v2; /* the texture window */
     double nu, nv;         /* repeat counts (1 1: stretch) */
     double scale;          /* world / planar mapping: texture units per world unit */
+    double size[2];        /* natural: one map per W x H object units (thesis 5.3.1's
+                            * non-elastic mapping); 0 0: across the shape (elastic) */
     /* projections (thesis 5.2.1.3): the texture's frame relative to the object, its y axis
      * along `axis`, then rotated and translated; to_tex takes points into it */
     tex_v3 axis;

@@ -240,7 +240,12 @@ static inline __attribute__((always_inline)) void shade_begin(
     double width = fabs(r->width + sh->h.t * r->spread); /* a focused beam crosses 0 */
     struct tex_shade_at at = {sh->h.leaf, &sh->P, &r->d, width, r->dist + sh->h.t, depth, pre};
     sh->a0 = first_light(s, &sh->P, &sh->la);
+    tex_v3 Nf = sh->N; /* the normal facing the ray, before bump */
     tex_resolve_material(s, tex_surface_of(s, sh->h.leaf), &at, &sh->N, sh->m);
+    if (sh->m[0].disp != 0) { /* P as a target: the light is shaded at the moved point */
+        sh->P = tex_v3_madd(P, Nf, sh->m[0].disp);
+        sh->a0 = first_light(s, &sh->P, &sh->la);
+    }
     sh->V = tex_v3_scale(r->d, -1);
     double e = tex_eps_at(P);
     /* offset along the geometric normal so bumped normals cannot start rays inside */

@@ -114,6 +114,7 @@ same_shape cylinder 'base 0 0 0 top 0 1 0 radius 1'
 same_shape cone 'base 0 0 0 top 0 1 0 radius1 1 radius2 0'
 same_shape plane 'normal 0 1 0 distance 0' 'rotate 20 0 0'
 same_shape torus 'centre 0 0 0 axis 0 1 0 major 1 minor 0.25'
+same_shape inf_cone 'base 0 0 0 top 0 1 0 radius1 1 radius2 0'
 shape torus-thick 'torus { minor 0.3 surface s }'
 cmp -s "$T/torus-def.pfm" "$T/torus-thick.pfm" &&
     notok "torus minor 0.3 differs from the default (the test can fail)" ||
