@@ -121,7 +121,11 @@ static tex_map *gather(const char *path, tex_map *head, struct tex_stats *st)
     if (r) {
         int ok = gather_rows(r, name, head, st);
         tex_rows_close(r);
-        return ok < 0 ? NULL : head;
+        if (ok < 0) { /* the next map is read after this one's error */
+            free(head->history);
+            return NULL;
+        }
+        return head;
     }
     for (int k = 0; k < whole->nc; k++)
         tex_map_stats(whole, k, &st[k]);
