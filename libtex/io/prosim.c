@@ -68,8 +68,9 @@ tex_map *tex_prosim_decode(const void *data, size_t len, int pic, const char *pa
 /* The file of path with its extension replaced by ext ("r", "g", "b") into out */
 static int sibling(const char *path, const char *ext, char *out, size_t n)
 {
-    const char *dot = strrchr(path, '.');
-    int r = snprintf(out, n, "%.*s.%s", (int)(dot - path), path, ext);
+    const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
+    size_t base = dot && (!slash || dot > slash) ? (size_t)(dot - path) : strlen(path);
+    int r = snprintf(out, n, "%.*s.%s", (int)base, path, ext);
     return r < 0 || (size_t)r >= n ? tex_error("%s: path too long", path) : 0;
 }
 
@@ -159,7 +160,9 @@ int tex_prosim_write(const tex_map *m, const char *path, int pic, const char *na
     int w, h, n = pic ? 1 : 3, r = 0, opened = 0;
 
     if (tex_prosim_size(path, (size_t)m->w * m->h, &w, &h) < 0 || w != m->w || h != m->h) {
-        const char *dot = strrchr(path, '.');
+        const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
+        if (!dot || (slash && dot < slash))
+            dot = path + strlen(path);
         return tex_usage_error("%s: a %dx%d map needs its size in the name, as ProSim's files "
                                "have no header: %.*s_%dx%d%s",
                                name, m->w, m->h, (int)(dot - path), path, m->w, m->h, dot);

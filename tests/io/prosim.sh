@@ -48,3 +48,8 @@ TC
 rm -f leo.exr leo.png
 t_compose s.tc -o s.exr && [ "$(info_json s.exr channels)" = 3 ] &&
     ok "a script's bare name leo reads leo.r, leo.g, leo.b" || notok "script with leo" "$(t_compose s.tc 2>&1 >/dev/null)"
+# a prefix names the format of a name without an extension: the triple takes it as its base
+t_noise -s 16 -S 3 -o r:plain && [ -s plain.r ] && [ -s plain.g ] && [ -s plain.b ] &&
+    ok "-o r:NAME writes NAME.r, .g and .b" || notok "r: prefix"
+check_fails "-o pic:NAME of a map the name does not size" 2 t_noise -s 16x8 -o pic:flat
+grep -q "flat_16x8" "$T/.err" && ok "... names flat_16x8" || notok "pic: prefix message" "$(cat "$T/.err")"
