@@ -133,3 +133,18 @@ truncated() {
 stream_vlimit() {
     nm "$TEXTURA_BUILD/lib/libtex.a" 2>/dev/null | grep -q __asan_ && echo unlimited || echo "$1"
 }
+
+# same_paths NAME SCENE: the scene rendered with packets (-j 2) and on the scalar path
+# (TEXTURA_SIMD=scalar) gives the pixel-by-pixel render's bytes (TEXTURA_PACKETS=0)
+same_paths() {
+    local n=$1 sc=$2
+    if TEXTURA_PACKETS=0 t_apply "$sc" -q -j 1 -o "$T/$n-px.pfm" &&
+        t_apply "$sc" -q -j 2 -o "$T/$n-pk.pfm" &&
+        TEXTURA_SIMD=scalar t_apply "$sc" -q -j 1 -o "$T/$n-pk0.pfm"; then
+        cmp -s "$T/$n-px.pfm" "$T/$n-pk.pfm" && cmp -s "$T/$n-px.pfm" "$T/$n-pk0.pfm" &&
+            ok "$n: packets and vector paths give the pixel-by-pixel render's bytes" ||
+            notok "$n: packets against pixel by pixel" "$(maxdiff "$T/$n-px.pfm" "$T/$n-pk.pfm")"
+    else
+        notok "$n: renders on every path"
+    fi
+}

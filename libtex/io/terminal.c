@@ -34,11 +34,18 @@ static void rgb8(const tex_map *m, int x, int y, unsigned char out[3])
  * the number of registers in pal (3 bytes each). */
 struct box { int lo, hi, axis, range; };
 
-static int cmp_axis;
-static const unsigned char *cmp_rgb;
-static int by_axis(const void *a, const void *b)
+/* idx[lo..hi) in order of their channel axis, by counting (no state beyond the call, as
+ * qsort's comparison would need); tmp holds hi - lo ints */
+static void sort_by(int *idx, int lo, int hi, int axis, const unsigned char *rgb, int *tmp)
 {
-    return cmp_rgb[*(const int *)a * 3 + cmp_axis] - cmp_rgb[*(const int *)b * 3 + cmp_axis];
+    int count[257] = {0};
+    for (int i = lo; i < hi; i++)
+        count[rgb[idx[i] * 3 + axis] + 1]++;
+    for (int v = 0; v < 256; v++)
+        count[v + 1] += count[v];
+    for (int i = lo; i < hi; i++)
+        tmp[count[rgb[idx[i] * 3 + axis]]++] = idx[i];
+    memcpy(idx + lo, tmp, (size_t)(hi - lo) * sizeof *idx);
 }
 
 static void box_measure(struct box *b, const int *idx, const unsigned char *rgb)
@@ -56,7 +63,7 @@ static void box_measure(struct box *b, const int *idx, const unsigned char *rgb)
     b->range = hi[b->axis] - lo[b->axis];
 }
 
-static int median_cut(const unsigned char *rgb, int *idx, int n, unsigned char *pal)
+static int median_cut(const unsigned char *rgb, int *idx, int *tmp, int n, unsigned char *pal)
 {
     struct box box[256] = {{0, n, 0, 0}};
     int nb = 1;
@@ -69,8 +76,7 @@ static int median_cut(const unsigned char *rgb, int *idx, int n, unsigned char *
                 w = i;
         if (w < 0)
             break;
-        cmp_axis = box[w].axis, cmp_rgb = rgb;
-        qsort(idx + box[w].lo, (size_t)(box[w].hi - box[w].lo), sizeof *idx, by_axis);
+        sort_by(idx, box[w].lo, box[w].hi, box[w].axis, rgb, tmp);
         int mid = box[w].lo + (box[w].hi - box[w].lo) / 2;
         /* the cut between two values, so equal colours stay in one box */
         unsigned char v = rgb[idx[mid] * 3 + box[w].axis];
@@ -155,7 +161,7 @@ static int sixel(FILE *fp, const tex_map *m, unsigned char *rgb)
 {
     size_t n = (size_t)m->w * m->h;
     unsigned char pal[256 * 3], *reg = malloc(n);
-    int *idx = malloc(n * sizeof *idx), np;
+    int *idx = malloc(2 * n * sizeof *idx), np; /* and the sort's room after it */
     float *err = malloc((size_t)(m->w + 2) * 6 * sizeof *err);
 
     if (!reg || !idx || !err) {
@@ -167,7 +173,7 @@ static int sixel(FILE *fp, const tex_map *m, unsigned char *rgb)
             rgb8(m, x, y, rgb + ((size_t)y * m->w + x) * 3);
     for (size_t i = 0; i < n; i++)
         idx[i] = (int)i;
-    np = median_cut(rgb, idx, (int)n, pal);
+    np = median_cut(rgb, idx, idx + n, (int)n, pal);
     diffuse(m, rgb, pal, np, reg, err);
     free(idx), free(err);
     fputs("\033Pq\"1;1;", fp);

@@ -420,6 +420,23 @@ static void bend(tex_v3 tilt, tex_v3 *N)
 
 /* The textures of sf applied at the hit (normal N; filter: mip-mapped lookups) to pr, N bent
  * by bump maps; 1 if one of them set Ks. */
+/* A normal map's or a height gradient's function, along the mapping's (u, v) at the hit:
+ * the normal map bends N itself (0), the gradient gives its tilt in *t (1) */
+static int uv_bend(enum tex_sparam param, const struct tex_apply *ap, const struct placement *pm,
+                   const struct tex_object *leaf, const tex_v3 *P, struct footprint *fp,
+                   double width, const struct tex_prefetch_ap *pa, const struct params *pr,
+                   tex_v3 *N, tex_v3 *t)
+{
+    tex_v3 gu, gv;
+    uv_gradients(ap, pm, leaf, P, fp, width, pa->uvw0[0], pa->uvw0[1], &gu, &gv);
+    if (param == TEX_SP_NORMAL) {
+        *N = normal_mapped(pr->normal, N, &gu, &gv);
+        return 0;
+    }
+    *t = tex_v3_add(tex_v3_scale(gu, pr->gradient[0]), tex_v3_scale(gv, pr->gradient[1]));
+    return 1;
+}
+
 static int apply_textures(const struct tex_surface *sf, const struct tex_shade_at *at,
                           const struct tex_prefetch *pre, tex_v3 *N, int filter,
                           struct params *pr)
@@ -480,14 +497,9 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
                                                                  pr->bump));
                 pr->bump = 0;
             } else if (fn->param == TEX_SP_NORMAL || fn->param == TEX_SP_GRADIENT) {
-                tex_v3 gu, gv;
-                uv_gradients(ap, pm, leaf, P, &fp, width, pa->uvw0[0], pa->uvw0[1], &gu, &gv);
-                if (fn->param == TEX_SP_NORMAL) {
-                    *N = normal_mapped(pr->normal, N, &gu, &gv);
-                } else {
-                    tilt = tex_v3_add(tilt, tex_v3_add(tex_v3_scale(gu, pr->gradient[0]),
-                                                       tex_v3_scale(gv, pr->gradient[1])));
-                }
+                tex_v3 t;
+                if (uv_bend(fn->param, ap, pm, leaf, P, &fp, width, pa, pr, N, &t))
+                    tilt = tex_v3_add(tilt, t);
             }
         }
         if (pr->disp != moved && ap->next) { /* P moved: the next textures map it there */
@@ -613,26 +625,43 @@ void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *s
     }
 }
 
+/* The quantities (tex_quantities) function fn reads, bit k for quantity k */
+static int fn_quantities(const struct tex_appfn *fn)
+{
+    int q = 0;
+    for (int i = 0; i < fn->e->n; i++)
+        if (fn->e->code[i].op == TEX_EOP_LEAF && fn->e->code[i].leaf >= TEX_LEAF_Q)
+            q |= 1 << (fn->e->code[i].leaf - TEX_LEAF_Q);
+    return q;
+}
+
+/* The surface's own parameters, before its textures (Cook-Torrance's m and s: the
+ * surface's, or the defaults) */
+static struct params surface_params(const struct tex_surface *sf)
+{
+    struct tex_material ctm;
+    tex_ct_material(&ctm, sf->ct);
+    return (struct params){{sf->kd[0], sf->kd[1], sf->kd[2]}, sf->ka, sf->ks[0], (float)sf->n,
+                           (float)sf->kr, (float)sf->kt, (float)sf->ior, 0, ctm.m, ctm.s, 0,
+                           {0.5f, 0.5f, 1}, {0, 0, 0}, 0, 0};
+}
+
 int tex_surface_energy(const struct tex_surface *sf, double *e)
 {
     static const double corner[9][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}, {0, 0, 1},
                                         {1, 0, 1}, {0, 1, 1}, {1, 1, 1}, {0.5, 0.5, 0.5}};
-    struct tex_material ctm;
     int ks_textured = 0, levels = sf->apply ? 17 : 1, places = sf->apply ? 9 : 1;
     for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next)
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next) {
             ks_textured |= fn->param == TEX_SP_KS;
-            for (int i = 0; i < fn->e->n; i++)
-                if (fn->e->code[i].op == TEX_EOP_LEAF && fn->e->code[i].leaf >= TEX_LEAF_Q)
-                    return 0; /* the hit's quantities: no value without a hit */
+            if (fn_quantities(fn))
+                return 0; /* the hit's quantities: no value without a hit */
         }
-    tex_ct_material(&ctm, sf->ct);
+    const struct params base = surface_params(sf);
     *e = 0;
     for (int l = 0; l < levels; l++)
         for (int c = 0; c < places; c++) {
-            struct params pr = {{sf->kd[0], sf->kd[1], sf->kd[2]}, sf->ka, sf->ks[0],
-                                (float)sf->n, (float)sf->kr, (float)sf->kt, (float)sf->ior, 0,
-                                ctm.m, ctm.s, 0, {0.5f, 0.5f, 1}, {0, 0, 0}, 0, 0};
+            struct params pr = base;
             float f[3] = {(float)l / 16, (float)l / 16, (float)l / 16};
             for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next)
                 for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next)
@@ -670,18 +699,12 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
             c->direct &= !fn->region && fn->param != TEX_SP_NORMAL &&
                          fn->param != TEX_SP_GRADIENT && fn->param != TEX_SP_P;
             c->compiled[nfn] = (char)poly_of(fn->e, &c->poly[nfn]);
-            for (int i = 0; i < fn->e->n; i++)
-                if (fn->e->code[i].op == TEX_EOP_LEAF && fn->e->code[i].leaf >= TEX_LEAF_Q)
-                    c->quantities |= 1 << (fn->e->code[i].leaf - TEX_LEAF_Q);
+            c->quantities |= fn_quantities(fn);
         }
     }
     c->direct &= !c->quantities;
     c->lanes = c->direct && tex_simd_level() >= TEX_SIMD_AVX512;
-    struct tex_material ctm; /* Cook-Torrance's m and s: the surface's, or the defaults */
-    tex_ct_material(&ctm, sf->ct);
-    c->base = (struct params){{sf->kd[0], sf->kd[1], sf->kd[2]}, sf->ka, sf->ks[0], (float)sf->n,
-                              (float)sf->kr, (float)sf->kt, (float)sf->ior, 0, ctm.m, ctm.s, 0,
-                              {0.5f, 0.5f, 1}, {0, 0, 0}, 0, 0};
+    c->base = surface_params(sf);
     float ka[3] = {sf->ka * sf->kd[0], sf->ka * sf->kd[1], sf->ka * sf->kd[2]};
     cs->from_rgb(cs, ka, TEX_SPECTRUM_REFLECTANCE, &c->col[0]);
     cs->from_rgb(cs, sf->kd, TEX_SPECTRUM_REFLECTANCE, &c->col[1]);

@@ -154,15 +154,7 @@ texture colour file "$T/colour.ppm"
 surface sized { Kd 0.6 0.6 0.6 apply colour { mapping natural size 0.4 0.3 Kd = f bump = 0.3 } }
 sphere { centre 0 0.5 0 radius 0.9 surface sized }
 S
-if TEXTURA_PACKETS=0 t_apply "$T/lanes.scene" -q -j 1 -o "$T/l-px.pfm" &&
-    t_apply "$T/lanes.scene" -q -j 2 -o "$T/l-pk.pfm" &&
-    TEXTURA_SIMD=scalar t_apply "$T/lanes.scene" -q -j 1 -o "$T/l-pk0.pfm"; then
-    cmp -s "$T/l-px.pfm" "$T/l-pk.pfm" && cmp -s "$T/l-px.pfm" "$T/l-pk0.pfm" &&
-        ok "size: packets and vector paths give the pixel-by-pixel render's bytes" ||
-        notok "size: packets against pixel by pixel" "$(maxdiff "$T/l-px.pfm" "$T/l-pk.pfm")"
-else
-    notok "size in packets: renders"
-fi
+same_paths size "$T/lanes.scene"
 # bad words: one line naming the input and the valid range, exit 2, no output
 printf 'texture n noise { }\nsurface s { apply n { size 0 1 Kd = f } }\n' >"$T/bad1.scene"
 check_fails "size 0 1 is refused" 2 t_apply "$T/bad1.scene" -o "$T/bad1.png"
@@ -230,15 +222,7 @@ surface floor { Kd 0.7 0.7 0.7 apply colour { mapping planar P = 0.2 * f Kd = f 
 sphere { centre 0 0.6 0 radius 0.6 surface s }
 plane { surface floor }
 S
-if TEXTURA_PACKETS=0 t_apply "$T/ppk.scene" -q -j 1 -o "$T/pp-px.pfm" &&
-    t_apply "$T/ppk.scene" -q -j 2 -o "$T/pp-pk.pfm" &&
-    TEXTURA_SIMD=scalar t_apply "$T/ppk.scene" -q -j 1 -o "$T/pp-pk0.pfm"; then
-    cmp -s "$T/pp-px.pfm" "$T/pp-pk.pfm" && cmp -s "$T/pp-px.pfm" "$T/pp-pk0.pfm" &&
-        ok "P: packets and vector paths give the pixel-by-pixel render's bytes" ||
-        notok "P: packets against pixel by pixel" "$(maxdiff "$T/pp-px.pfm" "$T/pp-pk.pfm")"
-else
-    notok "P in packets: renders"
-fi
+same_paths P "$T/ppk.scene"
 
 # ---- the infinite cone (inf_cone, thesis 5.3.1's inf_cone_map) ----
 # a double cone of apex 0 along y, radius 0.5 |y|, seen from the side: every hit lies on
