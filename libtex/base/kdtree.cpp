@@ -11,6 +11,7 @@ extern ostream cout;
 }
 #include <flann/algorithms/dist.h>
 #include <flann/algorithms/kdtree_single_index.h>
+#include <cmath>
 #include <new>
 
 #include "base/error.h"
@@ -21,6 +22,7 @@ template <typename T> using tree_of = flann::KDTreeSingleIndex<flann::L2<T>>;
 struct tex_kdtree {
     tree_of<float> *f; // one of the two, by the points' type
     tree_of<double> *d;
+    double *wide;      // float points whose splits overflow a float, widened (d holds them)
 };
 
 template <typename T> static tree_of<T> *build(const T *pts, long n, int dim, int leaf)
@@ -72,7 +74,7 @@ static int knn(const tree_of<T> *ix, const T *q, int nq, int k, float eps, int s
 template <typename T>
 static tex_kdtree *new_tree(const T *pts, long n, int dim, int leaf, tree_of<T> *tex_kdtree::*slot)
 {
-    tex_kdtree *t = new (std::nothrow) tex_kdtree{nullptr, nullptr};
+    tex_kdtree *t = new (std::nothrow) tex_kdtree{nullptr, nullptr, nullptr};
     if (!t) {
         tex_error("out of memory");
         return nullptr;
@@ -84,9 +86,39 @@ static tex_kdtree *new_tree(const T *pts, long n, int dim, int leaf, tree_of<T> 
     return t;
 }
 
+// Whether FLANN's split of some axis, (min + max) / 2, or its span overflows a float (it then
+// asserts that points lie on both sides of an infinite cut, and aborts)
+static int splits_overflow(const float *pts, long n, int dim)
+{
+    for (int j = 0; j < dim; j++) {
+        float lo = pts[j], hi = pts[j];
+        for (long i = 1; i < n; i++)
+            lo = pts[i * dim + j] < lo ? pts[i * dim + j] : lo,
+            hi = pts[i * dim + j] > hi ? pts[i * dim + j] : hi;
+        if (!std::isfinite(lo + hi) || !std::isfinite(hi - lo))
+            return 1;
+    }
+    return 0;
+}
+
 tex_kdtree *tex_kdtree_new_f(const float *pts, long n, int dim, int leaf)
 {
-    return new_tree(pts, n, dim, leaf, &tex_kdtree::f);
+    if (!splits_overflow(pts, n, dim))
+        return new_tree(pts, n, dim, leaf, &tex_kdtree::f);
+    // such points in doubles: the same neighbours, the splits finite
+    double *w = new (std::nothrow) double[(size_t)n * dim];
+    if (!w) {
+        tex_error("out of memory");
+        return nullptr;
+    }
+    for (size_t i = 0; i < (size_t)n * dim; i++)
+        w[i] = pts[i];
+    tex_kdtree *t = new_tree(w, n, dim, leaf, &tex_kdtree::d);
+    if (!t)
+        delete[] w;
+    else
+        t->wide = w;
+    return t;
 }
 
 tex_kdtree *tex_kdtree_new_d(const double *pts, long n, int dim, int leaf)
@@ -97,7 +129,19 @@ tex_kdtree *tex_kdtree_new_d(const double *pts, long n, int dim, int leaf)
 int tex_kdtree_knn_f(const tex_kdtree *t, const float *q, int nq, int k, float eps, int sorted,
                      int *ind, float *d2)
 {
-    return knn(t->f, q, nq, k, eps, sorted, ind, d2);
+    if (!t->wide)
+        return knn(t->f, q, nq, k, eps, sorted, ind, d2);
+    size_t nd = (size_t)nq * t->d->veclen();
+    double *wq = new (std::nothrow) double[nd], *wd = new (std::nothrow) double[(size_t)nq * k];
+    int r = wq && wd ? 0 : tex_error("out of memory");
+    for (size_t i = 0; !r && i < nd; i++)
+        wq[i] = q[i];
+    if (!r && (r = knn(t->d, wq, nq, k, eps, sorted, ind, wd)) == 0)
+        for (size_t i = 0; i < (size_t)nq * k; i++)
+            d2[i] = (float)wd[i];
+    delete[] wq;
+    delete[] wd;
+    return r;
 }
 
 int tex_kdtree_knn_d(const tex_kdtree *t, const double *q, int nq, int k, float eps, int sorted,
@@ -128,6 +172,7 @@ void tex_kdtree_free(tex_kdtree *t)
     if (t) {
         delete t->f;
         delete t->d;
+        delete[] t->wide;
         delete t;
     }
 }
