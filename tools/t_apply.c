@@ -41,9 +41,10 @@ static const struct tex_param rows[] = {
                "(quantities|functions), and exit"),
     TEX_STRING(struct opts, help_scene_mdoc, 0, NULL, "BLOCK",
                "the same list as mdoc, for t_apply(5)"),
-    TEX_FLAG(struct opts, check_energy, 0,
-             "warn of each surface whose Kd + Ks + Kr + Kt can pass 1 (thesis 4.4), its own "
-             "values or its textures'"),
+    TEX_ENUM(struct opts, check_energy, 0, "warn", "warn|off",
+             "warn of each surface whose Kd + max(Ks, Kr) + Kt can pass 1 (thesis 4.4), its "
+             "own values or its textures', or not",
+             .bare = "warn"),
     TEX_FLAG(struct opts, list_materials, 0,
              "list the materials of the database a scene reads by default (or SCENE's), "
              "and exit"),
@@ -300,7 +301,7 @@ int main(int argc, char **argv)
                         r[2], r[3], o.region);
         die_freeing(s);
     }
-    if (o.check_energy)
+    if (o.check_energy == 0)
         tex_scene_check_energy(s);
     if (!c.quiet)
         fputs(tex_scene_warnings(s), stderr);

@@ -1006,10 +1006,12 @@ int tex_scene_check_energy(struct tex_scene *s)
         const struct tex_surface *sf = s->surfaces[i];
         double e;
         if (tex_surface_energy(sf, &e) && e > 1 + 1e-6) {
-            tex_scene_warn(s, "%s:%d:%d: warning: surface '%s' breaks energy: Kd + Ks + Kr + Kt "
-                              "reaches %.3g, above 1 (thesis 4.4; a character gives consistent "
-                              "values)",
-                           s->file, sf->line, sf->col, sf->name, e);
+            tex_scene_warn(s, "%s:%d:%d: warning: surface '%s' breaks energy: %s reaches %.3g, "
+                              "above 1 (thesis 4.4; a character gives consistent values)",
+                           s->file, sf->line, sf->col, sf->name,
+                           sf->model == &tex_shading_cook_torrance ? "(1 - s) Kd + max(s, Kr, Kt)"
+                                                                   : "Kd + max(Ks, Kr) + Kt",
+                           e);
             n++;
         }
     }
