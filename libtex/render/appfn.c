@@ -449,11 +449,12 @@ static int uv_bend(enum tex_sparam param, const struct tex_apply *ap, const stru
  * against its v at the hit, in world space, into pr->flow (zero where the map is flat) */
 static void flow_field(const struct tex_apply *ap, const struct placement *pm,
                        const struct tex_object *leaf, const tex_v3 *P, struct footprint *fp,
-                       double width, const struct tex_prefetch_ap *pa, struct params *pr)
+                       const struct tex_prefetch_ap *pa, struct params *pr)
 {
     tex_v3 gu, gv;
     double x = 2.0 * pr->tangent[0] - 1, y = 2.0 * pr->tangent[1] - 1;
-    uv_gradients(ap, pm, leaf, P, fp, width, pa->uvw0[0], pa->uvw0[1], &gu, &gv);
+    /* the shortest step (width 0): a direction, not a filtered gradient as uv_bend's */
+    uv_gradients(ap, pm, leaf, P, fp, 0, pa->uvw0[0], pa->uvw0[1], &gu, &gv);
     gu = tex_v3_norm(gu), gv = tex_v3_norm(gv);
     tex_v3 d = tex_v3_sub(tex_v3_scale(gu, x), tex_v3_scale(gv, y));
     if (!(tex_v3_dot(d, d) > 0)) /* flat, or a mapping without gradients here */
@@ -525,7 +526,7 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
                 if (uv_bend(fn->param, ap, pm, leaf, P, &fp, width, pa, pr, N, &t))
                     tilt = tex_v3_add(tilt, t);
             } else if (fn->param == TEX_SP_TANGENT) {
-                flow_field(ap, pm, leaf, P, &fp, width, pa, pr);
+                flow_field(ap, pm, leaf, P, &fp, pa, pr);
             }
         }
         if (pr->disp != moved && ap->next) { /* P moved: the next textures map it there */
