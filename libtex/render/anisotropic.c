@@ -92,7 +92,10 @@ static void specular(const struct tex_material *mat, const double N[3], const do
                      const double L[3], const tex_colour *E, int n, tex_colour *out, int ward)
 {
     double t[3], nl = dot3(N, L);
-    tex_aniso_frame(N, mat->T, t); /* the shading normal's plane */
+    if (fabs(dot3(N, mat->T)) < 1e-12) /* the material's, across this N already */
+        t[0] = mat->T[0], t[1] = mat->T[1], t[2] = mat->T[2];
+    else
+        tex_aniso_frame(N, mat->T, t); /* the shading normal's plane */
     double f = ward ? tex_ward_brdf(N, t, L, V, mat->au, mat->av)
                     : tex_as_brdf(N, t, L, V, tex_as_exponent(mat->au),
                                   tex_as_exponent(mat->av));
@@ -152,7 +155,7 @@ const struct tex_shading_model tex_shading_ward = {"ward", ward_direct, aniso_we
 const struct tex_shading_model tex_shading_ashikhmin_shirley = {"ashikhmin-shirley", as_direct,
                                                                 aniso_weights};
 
-/* The shape's own mapping's u (or v, along_v) at P on leaf, 1 where it took p */
+/* The shape's own mapping's (u, v) and face at P on leaf: 1 where they are numbers */
 static int shape_uv(const struct tex_object *leaf, tex_v3 P, double uv[2], int *face)
 {
     tex_v3 pl = tex_xform_point(&leaf->to_obj, P);
@@ -160,19 +163,25 @@ static int shape_uv(const struct tex_object *leaf, tex_v3 P, double uv[2], int *
     return isfinite(uv[0]) && isfinite(uv[1]);
 }
 
-/* dP/du (along_v: dP/dv) of the shape's own mapping at P, by differences along two
- * tangents made from N alone (so the same at a point for any ray): the mapping's Jacobian
- * inverted; its gradient where the Jacobian is singular; zero where u does not change. */
+/* The direction u (along_v: v) of the shape's own mapping grows in at P on leaf: its
+ * gradient, in closed form where the mapping has one (mapping.h's tex_point_gradient: the
+ * sphere, box, cylinder and cones), else by differences along two tangents made from N
+ * alone (so the same at a point for any ray), the mapping's Jacobian inverted: dP/du, which
+ * the gradient is along on these orthogonal mappings; zero where u does not change. */
 static tex_v3 mapping_tangent(const struct tex_object *leaf, const tex_v3 *P, const tex_v3 *N,
                               int along_v)
 {
+    static const struct tex_apply natural = {.mapping = TEX_MAP_NATURAL};
     const double h = 1e-4;
     double n[3] = {N->x, N->y, N->z}, zero[3] = {0, 0, 0}, t[2][3], uv0[2], d[2][2];
     int face0, face;
-    tex_aniso_frame(n, zero, t[0]);
-    cross3(n, t[0], t[1]);
+    tex_v3 g[2], pl = tex_xform_point(&leaf->to_obj, *P);
     if (!shape_uv(leaf, *P, uv0, &face0))
         return tex_v3_make(0, 0, 0);
+    if (tex_point_gradient(&natural, leaf, &pl, face0, g))
+        return g[along_v];
+    tex_aniso_frame(n, zero, t[0]);
+    cross3(n, t[0], t[1]);
     for (int i = 0; i < 2; i++) {
         double uv[2], s = h; /* a step onto another face goes the other way */
         tex_v3 Ti = tex_v3_make(t[i][0], t[i][1], t[i][2]);
