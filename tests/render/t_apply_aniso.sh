@@ -93,6 +93,13 @@ same_paths gold "$T/gold.scene"
 sed 's/colour spectral 8/colour rgb/' "$T/gold.scene" >"$T/rgb.scene"
 same_paths rgb "$T/rgb.scene"
 same_paths flow "$T/ward-f.scene"
+# a flow field from a map file (mip-mapped, looked up ahead with the packets) and a fixed
+# tangent, at 64 x 42
+t_noise -s 64 -f 3 -S 5 --tile | t_filter normal --strength 30 -o "$T/flow.exr"
+sed -e 's|file -|file "'"$T"'/flow.exr"|' -e 's/^image .*/image 64 42/' -e 's/^samples .*/samples 1/' \
+    -e '/^surface ball/s/material stainless/& tangent -1 0.5 0/' patterns/brushed_steel.scene \
+    >"$T/steel.scene"
+same_paths brushed_steel "$T/steel.scene"
 
 # bad input: one line naming the scene's line and the range
 bad() {
