@@ -65,6 +65,10 @@ for m in ward ashikhmin-shirley; do
     # the two tangents come by differences of different steps: within 1e-3 of the peak (2)
     same "$m: angle = 90 and a flow field against v give the same pixels" "$T/$m-a.pfm" \
         "$T/$m-f.pfm" 2e-3
+    sphere $m 'alpha 0.05' 'au = 0.4' >"$T/$m-au.scene"
+    t_apply "$T/$m-au.scene" -q -o "$T/$m-au.pfm" &&
+        same "$m: au = 0.4 over alpha 0.05 gives alpha 0.4 0.05's pixels" "$T/$m-au.pfm" \
+            "$T/$m-u.pfm" 0 || notok "$m: au = 0.4 renders"
 done
 
 # a spectral gold cylinder brushed along its axis; a swirl by an angle of the position
