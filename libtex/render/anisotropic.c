@@ -164,18 +164,21 @@ static int shape_uv(const struct tex_object *leaf, tex_v3 P, double uv[2], int *
 }
 
 /* The direction u (along_v: v) of the shape's own mapping grows in at P on leaf: its
- * gradient, in closed form where the mapping has one (mapping.h's tex_point_gradient: the
- * sphere, box, cylinder and cones), else by differences along two tangents made from N
+ * gradient, in closed form where the mapping has one (mapping.h's map_gradient, the plane's,
+ * and tex_point_gradient, the sphere's, box's, cylinder's and cones'), as the footprints
+ * take it (placed_derivatives), else by differences along two tangents made from N
  * alone (so the same at a point for any ray), the mapping's Jacobian inverted: dP/du, which
  * the gradient is along on these orthogonal mappings; zero where u does not change. */
 static tex_v3 mapping_tangent(const struct tex_object *leaf, const tex_v3 *P, const tex_v3 *N,
                               int along_v)
 {
-    static const struct tex_apply natural = {.mapping = TEX_MAP_NATURAL};
+    static const struct tex_apply natural = {.mapping = TEX_MAP_NATURAL, .scale = 1};
     const double h = 1e-4;
     double n[3] = {N->x, N->y, N->z}, zero[3] = {0, 0, 0}, t[2][3], uv0[2], d[2][2];
     int face0, face;
-    tex_v3 g[2], pl = tex_xform_point(&leaf->to_obj, *P);
+    tex_v3 g[3], pl = tex_xform_point(&leaf->to_obj, *P);
+    if (map_gradient(&natural, leaf, g))
+        return g[along_v];
     if (!shape_uv(leaf, *P, uv0, &face0))
         return tex_v3_make(0, 0, 0);
     if (tex_point_gradient(&natural, leaf, &pl, face0, g))
