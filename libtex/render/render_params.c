@@ -129,7 +129,8 @@ const struct tex_param tex_surface_rows[] = {
                 "the lobe's half-maximum angle",
                 tex_scene_read_facets),
     TEX_SPECIAL("specular", 0, 1, STR(TEX_CT_S), "S",
-                "Cook-Torrance specular fraction (the diffuse one is 1 - S)",
+                "Cook-Torrance's, Ward's and Ashikhmin-Shirley's specular fraction (the diffuse "
+                "one is 1 - S)",
                 tex_scene_read_specular),
     TEX_ROW("alpha", struct tex_surface, alpha, TEX_P_REAL, STR(TEX_ANISO_ALPHA) "," STR(
                 TEX_ANISO_ALPHA), TEX_ANISO_ALPHA_MIN, TEX_ANISO_ALPHA_MAX, 2, (1u << 1) | (1u << 2),
@@ -168,7 +169,9 @@ const struct tex_param tex_target_rows[] = {
     TARGET("bump", -1000, 1000, "S",
            "bump mapping: the normal tilts by S times the map's gradient across the surface"),
     TARGET("m", TEX_CT_M_MIN, TEX_CT_M_MAX, "M", "Cook-Torrance: Beckmann's slope of the microfacets"),
-    TARGET("s", 0, 1, "S", "Cook-Torrance: the specular fraction (the diffuse one is 1 - S)"),
+    TARGET("s", 0, 1, "S",
+           "Cook-Torrance, ward, ashikhmin-shirley: the specular fraction (the diffuse one is "
+           "1 - S)"),
     TARGET("blend", 0, 1, "W",
            "the weight of the surface named by the surface's blend (its light times W, this "
            "surface's times 1 - W)"),

@@ -1014,8 +1014,10 @@ static void parse_surface(struct parser *ps)
             int aniso = tex_shading_anisotropic(sf->model);
             if ((fn->param == TEX_SP_M && sf->model != &tex_shading_cook_torrance) ||
                 (fn->param == TEX_SP_S && sf->model != &tex_shading_cook_torrance && !aniso))
-                fail_at(ps, &ft, 0, "m and s are Cook-Torrance's: surface '%s' needs "
-                                    "model cook-torrance", name);
+                fail_at(ps, &ft, 0, "%s is Cook-Torrance's%s: surface '%s' needs model "
+                                    "cook-torrance%s", tex_sparam_row(fn->param)->name,
+                        fn->param == TEX_SP_S ? " and the anisotropic models'" : "", name,
+                        fn->param == TEX_SP_S ? ", ward or ashikhmin-shirley" : "");
             if (fn->param >= TEX_SP_AU && fn->param <= TEX_SP_TANGENT && !aniso)
                 fail_at(ps, &ft, 0, "%s is the anisotropic models': surface '%s' needs model "
                                     "ward or ashikhmin-shirley", tex_sparam_row(fn->param)->name,
