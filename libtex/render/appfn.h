@@ -25,8 +25,8 @@ struct poly {
 };
 
 /* The parameters being textured, in RGB, before conversion to the colour space.  A float
- * follows each colour (ka kd's, gradient[0] normal's, disp gradient's, flow[0] tangent's): colour_set writes
- * the colour with it. */
+ * follows each colour (ka kd's, gradient[0] normal's, disp gradient's, flow[0]
+ * tangent's): colour_set writes the colour with it. */
 struct params {
     float kd[3], ka, ks, n, kr, kt, ior, bump;
     double m, s; /* Cook-Torrance's slope and specular fraction (double: as the model's) */

@@ -132,8 +132,9 @@ const struct tex_param tex_surface_rows[] = {
                 "Cook-Torrance's, Ward's and Ashikhmin-Shirley's specular fraction (the diffuse "
                 "one is 1 - S)",
                 tex_scene_read_specular),
-    TEX_ROW("alpha", struct tex_surface, alpha, TEX_P_REAL, STR(TEX_ANISO_ALPHA) "," STR(
-                TEX_ANISO_ALPHA), TEX_ANISO_ALPHA_MIN, TEX_ANISO_ALPHA_MAX, 2, (1u << 1) | (1u << 2),
+    TEX_ROW("alpha", struct tex_surface, alpha, TEX_P_REAL,
+            STR(TEX_ANISO_ALPHA) "," STR(TEX_ANISO_ALPHA), TEX_ANISO_ALPHA_MIN,
+            TEX_ANISO_ALPHA_MAX, 2, (1u << 1) | (1u << 2),
             "AU [AV]", "ward, ashikhmin-shirley: the roughness along the tangent and across it "
             "(one number: both), Beckmann's slopes; ashikhmin-shirley's exponents are "
             "2/A^2 - 2"),
