@@ -221,10 +221,9 @@ static void frame(void)
 int main(void)
 {
     reciprocity();
-    const char *top = getenv("TEXTURA_TOP");
     char path[4096];
-    snprintf(path, sizeof path, "%s/patterns/materials.txt", top ? top : ".");
     struct tex_matdb db;
+    unit_top_path("patterns/materials.txt", path, sizeof path);
     if (tex_matdb_read(&db, path) < 0) {
         CHECKF(0, "materials: %s", tex_errmsg());
     } else {
