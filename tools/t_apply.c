@@ -31,7 +31,8 @@ static const struct tex_param rows[] = {
                "shade with N spectral samples (1..64), overriding the scene's 'colour'"),
     TEX_FLAG(struct opts, rgb, 0, "shade in RGB, overriding the scene's 'colour'"),
     TEX_STRING(struct opts, model, 0, NULL, "NAME",
-               "shade every surface with this model (phong|cook-torrance)"),
+               "shade every surface with this model "
+               "(phong|cook-torrance|ward|ashikhmin-shirley)"),
     TEX_STRING(struct opts, region, 0, NULL, "X,Y,W,H",
                "render only the W x H region at X,Y of the image, the same pixels as the whole "
                "render (for render farms: t_assemble puts regions together)"),
@@ -276,7 +277,8 @@ int main(int argc, char **argv)
     }
     const struct tex_shading_model *model = NULL;
     if (o.model && !(model = tex_shading_find(o.model)))
-        tex_usage_die("--model '%s' must be phong or cook-torrance", o.model);
+        tex_usage_die("--model '%s' must be phong, cook-torrance, ward or ashikhmin-shirley",
+                      o.model);
     /* one bar: the scene's loading (its maps sampled, read, mip-mapped) a tenth of it */
     tex_progress_stage(0.1, 1);
     tex_progress_hold(1);

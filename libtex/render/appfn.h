@@ -25,14 +25,16 @@ struct poly {
 };
 
 /* The parameters being textured, in RGB, before conversion to the colour space.  A float
- * follows each colour (ka kd's, gradient[0] normal's, end gradient's): colour_set writes
- * the colour with it. */
+ * follows each colour (ka kd's, gradient[0] normal's, disp gradient's, flow[0]
+ * tangent's): colour_set writes the colour with it. */
 struct params {
     float kd[3], ka, ks, n, kr, kt, ior, bump;
     double m, s; /* Cook-Torrance's slope and specular fraction (double: as the model's) */
     float blend; /* the blended surface's weight */
     float normal[3], gradient[3]; /* one apply block's normal map and height gradient */
     float disp; /* P's displacement along the normal (P = D) */
+    float au, av, angle; /* anisotropic: roughnesses, the tangent's turn in degrees */
+    float tangent[3], flow[3]; /* a flow field's encoded value, then its world direction */
     float end;
 };
 
