@@ -703,10 +703,10 @@ int tex_surface_energy(const struct tex_surface *sf, double *e)
             double ks = ks_textured ? pr.ks : fmax(sf->ks[0], fmax(sf->ks[1], sf->ks[2]));
             /* Ks (the lights' highlight) and Kr (the scene's mirror image) are one specular
              * reflectance seen in two kinds of incident light, as Whitted's single ks;
-             * Cook-Torrance splits light s to 1 - s, and Fresnel's F to 1 - F splits Kr
-             * from Kt */
+             * the microfacet models (Cook-Torrance, Ward, Ashikhmin-Shirley) split light
+             * s to 1 - s, and Fresnel's F to 1 - F splits Kr from Kt */
             double sum = kd + fmax(ks, pr.kr) + pr.kt;
-            if (sf->model == &tex_shading_cook_torrance)
+            if (sf->model != &tex_shading_phong)
                 sum = (1 - pr.s) * kd +
                       fmax(pr.s, fmax(pr.kr, sf->ct && sf->ct->conductor ? 0 : pr.kt));
             *e = sum > *e ? sum : *e;

@@ -39,11 +39,11 @@ struct params {
 };
 
 /* Thesis 4.4: the largest of Kd's channels plus the larger of Ks and Kr (one specular
- * reflectance, of the lights and of the scene) plus Kt (Cook-Torrance: (1 - s) Kd plus the
- * largest of s, Kr and a dielectric's Kt), the surface's own and,
- * where its textures set them, its functions' at texture values 0, 1/16, ..., 1 (grey) and
- * at the corners and middle of (u, v, w), every function in order, regions alike, into *e:
- * 1, or 0 when it cannot tell (a function reads the hit's quantities). */
+ * reflectance, of the lights and of the scene) plus Kt (the microfacet models: (1 - s) Kd
+ * plus the largest of s, Kr and a dielectric's Kt), the surface's own and, where its
+ * textures set them, its functions' at texture values 0, 1/16, ..., 1 (grey) and at the
+ * corners and middle of (u, v, w), every function in order, regions alike, into *e: 1, or
+ * 0 when it cannot tell (a function reads the hit's quantities). */
 int tex_surface_energy(const struct tex_surface *sf, double *e);
 
 struct tex_surface_cache {

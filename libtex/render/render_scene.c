@@ -1038,8 +1038,8 @@ int tex_scene_check_energy(struct tex_scene *s)
             tex_scene_warn(s, "%s:%d:%d: warning: surface '%s' breaks energy: %s reaches %.3g, "
                               "above 1 (thesis 4.4; a character gives consistent values)",
                            s->file, sf->line, sf->col, sf->name,
-                           sf->model == &tex_shading_cook_torrance ? "(1 - s) Kd + max(s, Kr, Kt)"
-                                                                   : "Kd + max(Ks, Kr) + Kt",
+                           sf->model != &tex_shading_phong ? "(1 - s) Kd + max(s, Kr, Kt)"
+                                                           : "Kd + max(Ks, Kr) + Kt",
                            e);
             n++;
         }

@@ -66,6 +66,7 @@ energy "Kt adds" "Kd 0.3 Ks 0.3 n 20 Kr 0.3 Kt 0.5" 1.1
 # Cook-Torrance as it shades: (1 - s) Kd + max(s, Kr, Kt); a conductor's Kt does not count
 energy "Cook-Torrance dielectric" "Kd 0.8 Kr 1 Kt 1 model cook-torrance material bk7 specular 0.9" 1.08
 energy "Cook-Torrance conductor, s = 1" "Kd 0.9 Ks 0.9 Kr 0.8 Kt 0.5 model cook-torrance material gold specular 1" none
+energy "Ward, as Cook-Torrance" "Kd 0.9 Kr 0.9 model ward material gold specular 0.5" 1.35
 energy "Cook-Torrance diffuse beside Kr" "Kd 0.9 Kr 0.9 model cook-torrance material gold specular 0.5" 1.35
 grep -q "(1 - s) Kd + max(s, Kr, Kt) reaches 1.35" "$T/e" && ok "... the message names Cook-Torrance's sum" ||
     notok "Cook-Torrance's message" "$(cat "$T/e")"
