@@ -202,10 +202,12 @@ static int stream_chain(const char *path, const struct opts *o, int ew, int eh,
     tex_map head, one = {0}, out = {0};
     float px[4] = {0};
 
-    if (o->rotate != 0 || o->scale.n || !tex_cli_takes_rows(c) ||
+    if (o->rotate != 0 || o->scale.n ||
         (o->shift.n && (o->shift.v[0] != floor(o->shift.v[0]) ||
                         o->shift.v[1] != floor(o->shift.v[1]) ||
                         fabs(o->shift.v[0]) > 1e6 || fabs(o->shift.v[1]) > 1e6)))
+        return *whole = NULL, 0; /* it resamples: stream_steps' */
+    if (!tex_cli_takes_rows(c))
         return *whole = tex_cli_read(path), 0;
     x.name = strcmp(path, "-") ? path : "standard input";
     if (!(x.r = tex_map_open_rows(path, &head, whole)))
@@ -242,6 +244,173 @@ static int stream_chain(const char *path, const struct opts *o, int ew, int eh,
     return 1;
 }
 
+/* The steps of the chain (expand, rotate, scale, shift, clip, those asked for) over a
+ * w x h input, into st; their number */
+static int chain_steps(const struct opts *o, int w, int h, int ew, int eh, struct tex_xstep *st)
+{
+    int n = 0;
+    if (o->expand && tex_expand_step(w, h, ew, eh, o->background, &st[n++]) < 0)
+        tex_die();
+    for (int k = 0; k < n; k++)
+        w = st[k].w, h = st[k].h;
+    if (o->rotate != 0 && tex_rotate_step(w, h, o->rotate, o->around.n ? o->around.v[0] : w / 2.0,
+                                          o->around.n ? o->around.v[1] : h / 2.0, o->background,
+                                          &st[n++]) < 0)
+        tex_die();
+    if (o->scale.n && tex_scale_step(w, h, o->scale.v[0],
+                                     o->scale.n > 1 ? o->scale.v[1] : o->scale.v[0], &st[n++]) < 0)
+        tex_die();
+    w = n ? st[n - 1].w : w, h = n ? st[n - 1].h : h;
+    if (o->shift.n)
+        tex_shift_step(w, h, o->shift.v[0], o->shift.v[1], o->wrap, o->background, &st[n++]);
+    if (o->clip.n && tex_clip_step(w, h, (int)o->clip.v[0], (int)o->clip.v[1], (int)o->clip.v[2],
+                                   (int)o->clip.v[3], &st[n++]) < 0)
+        tex_die();
+    return n;
+}
+
+/* A step of a chain that streams: the rows of its output it keeps, rows top..top + n - 1,
+ * made from the rows of the step before that they read (tex_affine_reads), which that step
+ * keeps in turn; the first step reads the input.  Rows are asked for from the top down, and
+ * kept from row off of rows' storage: rows let go of are moved out only when room is short,
+ * so each row is moved a bounded number of times. */
+struct kept {
+    const struct tex_xstep *st; /* NULL: the input */
+    struct kept *src;
+    int w, h, nc, subregions;
+    tex_map *rows; /* storage for rows->h rows */
+    int off, top, n;
+    tex_rows_reader *r;
+    const char *name;
+};
+
+static float *kept_row(const struct kept *k, int y)
+{
+    return k->rows->px + (size_t)(k->off + y - k->top) * k->w * k->nc;
+}
+
+/* Room for rows up to row `to` after the kept ones: the kept rows moved to the storage's top,
+ * and the storage twice as tall where that is not enough */
+static int kept_room(struct kept *k, long to)
+{
+    size_t row = (size_t)k->w * k->nc;
+    long need = to - k->top;
+    if (k->rows && k->off + need <= k->rows->h)
+        return 0;
+    if (k->rows && need <= k->rows->h) {
+        memmove(k->rows->px, k->rows->px + (size_t)k->off * row, (size_t)k->n * row * sizeof(float));
+        k->off = 0;
+        return 0;
+    }
+    long cap = k->rows ? 2L * k->rows->h : 64;
+    cap = cap < need ? need : cap > k->h ? (need > k->h ? need : k->h) : cap;
+    tex_map *m = tex_map_new_unset(k->w, (int)cap, k->nc);
+    if (!m)
+        return -1;
+    if (k->n)
+        memcpy(m->px, kept_row(k, k->top), (size_t)k->n * row * sizeof(float));
+    tex_map_free(k->rows);
+    k->rows = m, k->off = 0;
+    return 0;
+}
+
+/* Rows [from, to) of k's output kept, the rows above from let go; -1 with the error set.
+ * Rows beyond the map are its edge rows, as the clamp edge rule reads them: at least one row
+ * is kept, the nearest. */
+static int keep_rows(struct kept *k, long from, long to)
+{
+    from = from < 0 ? 0 : from > k->h - 1 ? k->h - 1 : from;
+    to = to > k->h ? k->h : to < from + 1 ? from + 1 : to;
+    if (k->n && from > k->top) { /* let go of the rows above */
+        int drop = from - k->top < k->n ? (int)(from - k->top) : k->n;
+        k->top += drop, k->off += drop, k->n -= drop;
+    }
+    if (!k->n)
+        k->top = (int)from, k->off = 0;
+    int y = k->top + k->n, n = (int)(to - y);
+    if (n <= 0)
+        return 0;
+    if (kept_room(k, to) < 0)
+        return -1;
+    float *at = kept_row(k, y);
+    if (!k->st) { /* the input's rows, in order */
+        if (tex_rows_read(k->r, y, n, at, k->name) < 0 ||
+            tex_rows_nonfinite(at, k->w, n, k->nc, y, k->name) < 0)
+            return -1;
+    } else {
+        long sf, sto;
+        tex_affine_reads(k->st->a, k->w, y, n, &sf, &sto);
+        if (keep_rows(k->src, sf, sto) < 0)
+            return -1;
+        struct kept *s = k->src;
+        tex_map band = {.w = s->w, .h = s->n, .nc = s->nc, .subregions = s->subregions,
+                        .px = kept_row(s, s->top)};
+        tex_map out = {.w = k->w, .h = n, .nc = k->nc, .px = at};
+        if (tex_affine_rows(&band, s->top, s->h, &out, y, k->st->a, k->st->edge, k->st->bg) < 0)
+            return -1;
+    }
+    k->n += n;
+    return 0;
+}
+
+static int kept_fill(void *arg, int y, int n, float *rows)
+{
+    struct kept *last = arg;
+    size_t row = (size_t)last->w * last->nc;
+    for (int b = tex_cli_band_rows(last->w, last->nc), k; n > 0; y += k, n -= k, rows += k * row) {
+        k = n < b ? n : b;
+        if (keep_rows(last, y, y + k) < 0)
+            return -1;
+        memcpy(rows, kept_row(last, y), k * row * sizeof *rows);
+    }
+    return 0;
+}
+
+/* A chain that resamples (rotate, scale, a shift by a fraction of a pixel), a band of rows
+ * at a time, each step keeping the rows the next reads: where the output takes rows, every
+ * step's source rows go down the map as its output's do (no turn past 90 degrees) and no
+ * shift wraps vertically.  1 when done, 0 with *whole the map read whole (the caller's to
+ * do). */
+static int stream_steps(const char *path, const struct opts *o, int ew, int eh,
+                        const struct tex_common *c, tex_map **whole)
+{
+    tex_map head;
+    struct tex_xstep st[5];
+    struct kept k[6] = {{0}};
+    int n, ok = tex_cli_takes_rows(c) && !(o->wrap && o->shift.n && o->shift.v[1] != 0);
+    if (!ok)
+        return *whole = tex_cli_read(path), 0;
+    if (!(k[0].r = tex_map_open_rows(path, &head, whole))) {
+        if (!*whole)
+            tex_die();
+        return 0;
+    }
+    k[0].name = strcmp(path, "-") ? path : "standard input";
+    n = chain_steps(o, head.w, head.h, ew, eh, st);
+    for (int i = 0; i < n; i++)
+        ok &= st[i].a[4] >= 0;
+    if (!ok) { /* read whole after all, from the reader already open */
+        *whole = tex_cli_rows_whole(k[0].r, &head, k[0].name); /* it closes the reader */
+        return 0;
+    }
+    k[0] = (struct kept){.w = head.w, .h = head.h, .nc = head.nc, .subregions = head.subregions,
+                         .r = k[0].r, .name = strcmp(path, "-") ? path : "standard input"};
+    for (int i = 0; i < n; i++) {
+        tex_map one = {.w = 1, .h = 1, .nc = k[i].nc};
+        k[i + 1] = (struct kept){.st = &st[i], .src = &k[i], .w = st[i].w, .h = st[i].h,
+                                 .nc = tex_bg_channels(&one, st[i].bg),
+                                 .subregions = head.subregions};
+    }
+    tex_map out = {.w = k[n].w, .h = k[n].h, .nc = k[n].nc, .subregions = head.subregions,
+                   .history = head.history};
+    tex_cli_write_rows(&out, c, kept_fill, &k[n]);
+    free(out.history);
+    tex_rows_close(k[0].r);
+    for (int i = 0; i <= n; i++)
+        tex_map_free(k[i].rows);
+    return 1;
+}
+
 int main(int argc, char **argv)
 {
     struct tex_common c;
@@ -269,24 +438,15 @@ int main(int argc, char **argv)
     for (int k = 0; k < o.clip.n; k++)
         if (o.clip.v[k] != floor(o.clip.v[k]))
             tex_usage_die("--clip takes whole pixels (got %g)", o.clip.v[k]);
-    if (stream_chain(i < argc ? argv[i] : "-", &o, ew, eh, &c, &m)) {
+    const char *path = i < argc ? argv[i] : "-";
+    m = NULL;
+    if (stream_chain(path, &o, ew, eh, &c, &m) || (!m && stream_steps(path, &o, ew, eh, &c, &m))) {
         free(c.cmdline);
         return 0;
     }
-    if (o.expand)
-        step(&m, tex_expand(m, ew, eh, o.background));
-    if (o.rotate != 0) {
-        double cx = o.around.n ? o.around.v[0] : m->w / 2.0;
-        double cy = o.around.n ? o.around.v[1] : m->h / 2.0;
-        step(&m, tex_rotate(m, o.rotate, cx, cy, o.background));
-    }
-    if (o.scale.n)
-        step(&m, tex_scale(m, o.scale.v[0], o.scale.n > 1 ? o.scale.v[1] : o.scale.v[0]));
-    if (o.shift.n)
-        step(&m, tex_shift(m, o.shift.v[0], o.shift.v[1], o.wrap, o.background));
-    if (o.clip.n)
-        step(&m, tex_clip(m, (int)o.clip.v[0], (int)o.clip.v[1], (int)o.clip.v[2],
-                          (int)o.clip.v[3]));
+    struct tex_xstep st[5];
+    for (int k = 0, n = chain_steps(&o, m->w, m->h, ew, eh, st); k < n; k++)
+        step(&m, tex_step(m, &st[k]));
     tex_cli_write(m, &c);
     tex_map_free(m);
     free(c.cmdline);

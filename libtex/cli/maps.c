@@ -136,7 +136,7 @@ static int window_fill(void *arg, int y, int n, float *rows)
 
 /* Rows of output per band: $TEXTURA_BAND_ROWS, or about 16 MiB of input in whole
  * multiples of the writer's 64 rows */
-static int band_rows(int w, int nc)
+int tex_cli_band_rows(int w, int nc)
 {
     const char *e = getenv("TEXTURA_BAND_ROWS");
     char *end;
@@ -207,7 +207,7 @@ static void stream_window(const char *path, const struct tex_common *c, int marg
     }
     struct window_job j = {.r = r, .name = name, .w = head.w, .nc = head.nc,
                            .subregions = head.subregions, .h = head.h, .margin = margin,
-                           .rows = band_rows(head.w, head.nc), .edge = edge, .op = op,
+                           .rows = tex_cli_band_rows(head.w, head.nc), .edge = edge, .op = op,
                            .arg = arg, .consumes = consumes};
     if (window_next(&j, 0) < 0) /* the first band before the header: its channels */
         tex_die();

@@ -29,15 +29,19 @@ void tex_sampler_init(struct tex_sampler *s, const tex_map *m, enum tex_edge edg
     s->edge = edge;
     s->nearest = m->subregions > 0;
     s->maxtaps = 32;
+    s->rows = m->h;
     bg_layout(bg ? bg : black, m->nc, s->bg);
 }
 
 /* Pixel (ix,iy) through the edge rule: a pointer into the map or to bg. */
 static inline const float *fetch(const struct tex_sampler *s, long ix, long iy)
 {
-    long x = tex_edge_index(ix, s->m->w, s->edge), y = tex_edge_index(iy, s->m->h, s->edge);
+    long x = tex_edge_index(ix, s->m->w, s->edge), y = tex_edge_index(iy, s->rows, s->edge);
 
     if (x < 0 || y < 0)
+        return s->bg;
+    y -= s->row0;
+    if (y < 0 || y >= s->m->h) /* a band short of the rows it needs: its caller's error */
         return s->bg;
     return tex_map_px(s->m, (int)x, (int)y);
 }
@@ -143,12 +147,12 @@ tex_map *tex_map_channels(const tex_map *m, int nc)
     return r;
 }
 
-tex_map *tex_affine(const tex_map *m, int w, int h, const double a[6], enum tex_edge edge,
-                    const float bg[4])
+int tex_affine_rows(const tex_map *m, int row0, int full_h, tex_map *r, int y0,
+                    const double a[6], enum tex_edge edge, const float bg[4])
 {
-    int nc = tex_bg_channels(m, bg);
+    int nc = r->nc, w = r->w, h = r->h;
     const tex_map *src = m;
-    tex_map *conv = NULL, *r;
+    tex_map *conv = NULL;
     struct tex_sampler s;
     const double du[2] = {a[0], a[3]}, dv[2] = {a[1], a[4]};
     /* A whole-pixel translation copies pixels: no filtering at all. */
@@ -157,26 +161,17 @@ tex_map *tex_affine(const tex_map *m, int w, int h, const double a[6], enum tex_
 
     for (int i = 0; i < 6; i++)
         if (!isfinite(a[i]))
-            return tex_usage_error("transform is not finite"), NULL;
+            return tex_usage_error("transform is not finite");
     if (nc != m->nc && !(src = conv = tex_map_channels(m, nc)))
-        return NULL;
-    if (!(r = tex_map_new(w, h, nc))) {
-        tex_map_free(conv);
-        return NULL;
-    }
-    r->subregions = m->subregions;
-    if (m->history && tex_map_set_history(r, m->history) < 0) {
-        tex_map_free(conv);
-        tex_map_free(r);
-        return NULL;
-    }
+        return -1;
     tex_sampler_init(&s, src, edge, bg);
+    s.row0 = row0, s.rows = full_h;
     if (exact)
         s.nearest = 1;
 #pragma omp parallel for schedule(dynamic, 4)
     for (int y = 0; y < h; y++) {
         float *row = tex_map_row(r, y);
-        double Y = y + 0.5;
+        double Y = y0 + y + 0.5;
         for (int x = 0; x < w; x++) {
             double X = x + 0.5;
             tex_sample(&s, a[0] * X + a[1] * Y + a[2], a[3] * X + a[4] * Y + a[5], du, dv,
@@ -184,62 +179,136 @@ tex_map *tex_affine(const tex_map *m, int w, int h, const double a[6], enum tex_
         }
     }
     tex_map_free(conv);
+    return 0;
+}
+
+tex_map *tex_affine(const tex_map *m, int w, int h, const double a[6], enum tex_edge edge,
+                    const float bg[4])
+{
+    tex_map *r = tex_map_new(w, h, tex_bg_channels(m, bg));
+
+    if (!r)
+        return NULL;
+    r->subregions = m->subregions;
+    if ((m->history && tex_map_set_history(r, m->history) < 0) ||
+        tex_affine_rows(m, 0, m->h, r, 0, a, edge, bg) < 0) {
+        tex_map_free(r);
+        return NULL;
+    }
     return r;
+}
+
+void tex_affine_reads(const double a[6], int w, int y, int n, long *from, long *to)
+{
+    /* pixel centres' source rows at the band's corners, the lookups spread over the
+     * footprint (half of |a3| + |a4| each way), the bilinear rows either side */
+    double c[4] = {a[3] * 0.5 + a[4] * (y + 0.5), a[3] * (w - 0.5) + a[4] * (y + 0.5),
+                   a[3] * 0.5 + a[4] * (y + n - 0.5), a[3] * (w - 0.5) + a[4] * (y + n - 0.5)};
+    double lo = c[0], hi = c[0], spread = 0.5 * (fabs(a[3]) + fabs(a[4]));
+    for (int i = 1; i < 4; i++)
+        lo = c[i] < lo ? c[i] : lo, hi = c[i] > hi ? c[i] : hi;
+    lo += a[5] - spread - 0.5, hi += a[5] + spread - 0.5;
+    *from = (long)floor(lo > -1e9 ? lo : -1e9) - 1;
+    *to = (long)floor(hi < 1e9 ? hi : 1e9) + 3;
+}
+
+tex_map *tex_step(const tex_map *m, const struct tex_xstep *st)
+{
+    return tex_affine(m, st->w, st->h, st->a, st->edge, st->bg);
+}
+
+int tex_rotate_step(int w, int h, double degrees, double cx, double cy, const float bg[4],
+                    struct tex_xstep *st)
+{
+    double t = degrees * M_PI / 180.0, c = cos(t), s = sin(t);
+    /* Output point P samples the source at c + R(-t)(P - c), with y downwards. */
+    *st = (struct tex_xstep){w, h, {c, -s, cx - c * cx + s * cy, s, c, cy - s * cx - c * cy},
+                             TEX_EDGE_BACKGROUND, bg};
+    if (!isfinite(degrees) || !isfinite(cx) || !isfinite(cy))
+        return tex_usage_error("rotation is not finite");
+    return 0;
+}
+
+int tex_resize_step(int w, int h, int ow, int oh, struct tex_xstep *st)
+{
+    *st = (struct tex_xstep){ow, oh, {(double)w / ow, 0, 0, 0, (double)h / oh, 0},
+                             TEX_EDGE_CLAMP, NULL};
+    return tex_map_check_size(ow, oh, 1);
+}
+
+int tex_scale_step(int w, int h, double sx, double sy, struct tex_xstep *st)
+{
+    double ow = floor(w * sx + 0.5), oh = floor(h * sy + 0.5);
+
+    if (!(sx > 0 && sy > 0) || !(ow >= 1 && oh >= 1 && ow <= TEX_MAP_MAX_SIDE &&
+                                  oh <= TEX_MAP_MAX_SIDE))
+        return tex_usage_error("scale %g,%g of a %dx%d map gives %.0fx%.0f: each side must be "
+                               "1..%d", sx, sy, w, h, ow, oh, TEX_MAP_MAX_SIDE);
+    return tex_resize_step(w, h, (int)ow, (int)oh, st);
+}
+
+void tex_shift_step(int w, int h, double dx, double dy, int wrap, const float bg[4],
+                    struct tex_xstep *st)
+{
+    *st = (struct tex_xstep){w, h, {1, 0, -dx, 0, 1, -dy},
+                             wrap ? TEX_EDGE_WRAP : TEX_EDGE_BACKGROUND, bg};
+}
+
+int tex_expand_step(int w, int h, int ow, int oh, const float bg[4], struct tex_xstep *st)
+{
+    *st = (struct tex_xstep){ow, oh, {1, 0, (double)((w - ow) / 2), 0, 1, (double)((h - oh) / 2)},
+                             TEX_EDGE_BACKGROUND, bg};
+    return tex_map_check_size(ow, oh, 4);
+}
+
+int tex_clip_step(int w, int h, int x0, int y0, int x1, int y1, struct tex_xstep *st)
+{
+    *st = (struct tex_xstep){x1 - x0, y1 - y0, {1, 0, x0, 0, 1, y0}, TEX_EDGE_CLAMP, NULL};
+    if (x0 < 0 || y0 < 0 || x1 > w || y1 > h || x1 <= x0 || y1 <= y0)
+        return tex_usage_error("clip window %d,%d to %d,%d must lie inside the %dx%d map and "
+                               "not be empty", x0, y0, x1, y1, w, h);
+    return 0;
+}
+
+/* A transform: its step (rc its result), then the step applied */
+static tex_map *stepped(const tex_map *m, int rc, const struct tex_xstep *st)
+{
+    return rc < 0 ? NULL : tex_step(m, st);
 }
 
 tex_map *tex_rotate(const tex_map *m, double degrees, double cx, double cy, const float bg[4])
 {
-    double t = degrees * M_PI / 180.0, c = cos(t), s = sin(t);
-    /* Output point P samples the source at c + R(-t)(P - c), with y downwards. */
-    double a[6] = {c, -s, cx - c * cx + s * cy, s, c, cy - s * cx - c * cy};
-
-    if (!isfinite(degrees) || !isfinite(cx) || !isfinite(cy))
-        return tex_usage_error("rotation is not finite"), NULL;
-    return tex_affine(m, m->w, m->h, a, TEX_EDGE_BACKGROUND, bg);
+    struct tex_xstep st;
+    return stepped(m, tex_rotate_step(m->w, m->h, degrees, cx, cy, bg, &st), &st);
 }
 
 tex_map *tex_resize(const tex_map *m, int w, int h)
 {
-    double a[6] = {(double)m->w / w, 0, 0, 0, (double)m->h / h, 0};
-
-    if (tex_map_check_size(w, h, m->nc) < 0)
-        return NULL;
-    return tex_affine(m, w, h, a, TEX_EDGE_CLAMP, NULL);
+    struct tex_xstep st;
+    return stepped(m, tex_resize_step(m->w, m->h, w, h, &st), &st);
 }
 
 tex_map *tex_scale(const tex_map *m, double sx, double sy)
 {
-    double w = floor(m->w * sx + 0.5), h = floor(m->h * sy + 0.5);
-
-    if (!(sx > 0 && sy > 0) || !(w >= 1 && h >= 1 && w <= TEX_MAP_MAX_SIDE &&
-                                  h <= TEX_MAP_MAX_SIDE))
-        return tex_usage_error("scale %g,%g of a %dx%d map gives %.0fx%.0f: each side must be "
-                               "1..%d", sx, sy, m->w, m->h, w, h, TEX_MAP_MAX_SIDE), NULL;
-    return tex_resize(m, (int)w, (int)h);
+    struct tex_xstep st;
+    return stepped(m, tex_scale_step(m->w, m->h, sx, sy, &st), &st);
 }
 
 tex_map *tex_shift(const tex_map *m, double dx, double dy, int wrap, const float bg[4])
 {
-    double a[6] = {1, 0, -dx, 0, 1, -dy};
-
-    return tex_affine(m, m->w, m->h, a, wrap ? TEX_EDGE_WRAP : TEX_EDGE_BACKGROUND, bg);
+    struct tex_xstep st;
+    tex_shift_step(m->w, m->h, dx, dy, wrap, bg, &st);
+    return tex_step(m, &st);
 }
 
 tex_map *tex_expand(const tex_map *m, int w, int h, const float bg[4])
 {
-    double a[6] = {1, 0, (double)((m->w - w) / 2), 0, 1, (double)((m->h - h) / 2)};
-
-    if (tex_map_check_size(w, h, 4) < 0)
-        return NULL;
-    return tex_affine(m, w, h, a, TEX_EDGE_BACKGROUND, bg);
+    struct tex_xstep st;
+    return stepped(m, tex_expand_step(m->w, m->h, w, h, bg, &st), &st);
 }
 
 tex_map *tex_clip(const tex_map *m, int x0, int y0, int x1, int y1)
 {
-    double a[6] = {1, 0, x0, 0, 1, y0};
-
-    if (x0 < 0 || y0 < 0 || x1 > m->w || y1 > m->h || x1 <= x0 || y1 <= y0)
-        return tex_usage_error("clip window %d,%d to %d,%d must lie inside the %dx%d map and "
-                               "not be empty", x0, y0, x1, y1, m->w, m->h), NULL;
-    return tex_affine(m, x1 - x0, y1 - y0, a, TEX_EDGE_CLAMP, NULL);
+    struct tex_xstep st;
+    return stepped(m, tex_clip_step(m->w, m->h, x0, y0, x1, y1, &st), &st);
 }

@@ -39,6 +39,7 @@ struct tex_sampler {
     float bg[4];  /* background in m's channel layout (TEX_EDGE_BACKGROUND) */
     int nearest;  /* 1: no interpolation or averaging (region ids) */
     int maxtaps;  /* most lookups per axis for one output pixel (0: 32) */
+    int row0, rows; /* m holds rows row0.. of a map rows tall (tex_affine_rows; init: 0, m->h) */
 };
 
 /* Prepare a sampler; bg is RGBA and is converted to m's channels. */
@@ -59,6 +60,16 @@ tex_map *tex_map_channels(const tex_map *m, int nc);
  * x = a[0] X + a[1] Y + a[2], y = a[3] X + a[4] Y + a[5]. */
 tex_map *tex_affine(const tex_map *m, int w, int h, const double a[6], enum tex_edge edge,
                     const float bg[4]);
+/* Rows y..y + out->h - 1 of tex_affine(M, out->w, h, a, edge, bg) into out (its
+ * channels tex_bg_channels'), made from band, which holds rows row0..row0 + band->h - 1 of
+ * M, a map full_h rows tall and band->w wide: the whole map's values, bit for bit, where
+ * band holds every row of M inside 0..full_h - 1 that tex_affine_reads names.  The way a
+ * transform streams (t_xform).  0, or -1 with the error set. */
+int tex_affine_rows(const tex_map *band, int row0, int full_h, tex_map *out, int y,
+                    const double a[6], enum tex_edge edge, const float bg[4]);
+/* The rows [*from, *to) of M that rows y..y+n-1 of an affine w pixels wide read, before
+ * the edge rule (they may pass M's edges) */
+void tex_affine_reads(const double a[6], int w, int y, int n, long *from, long *to);
 
 tex_map *tex_rotate(const tex_map *m, double degrees, double cx, double cy, const float bg[4]);
 tex_map *tex_resize(const tex_map *m, int w, int h);
@@ -69,6 +80,26 @@ tex_map *tex_shift(const tex_map *m, double dx, double dy, int wrap, const float
 tex_map *tex_expand(const tex_map *m, int w, int h, const float bg[4]);
 /* The window [x0,x1) x [y0,y1), which must lie inside m. */
 tex_map *tex_clip(const tex_map *m, int x0, int y0, int x1, int y1);
+
+/* Each transform above as the affine it is: the output's size, tex_affine's a, the edge
+ * rule and background (bg is kept, not copied) of the step on a w x h map, 0 or -1 with the
+ * error set as the transform itself would fail; tex_step applies one.  A chain of steps
+ * can then stream, a band of rows at a time (tex_affine_rows, t_xform). */
+struct tex_xstep {
+    int w, h;
+    double a[6];
+    enum tex_edge edge;
+    const float *bg;
+};
+tex_map *tex_step(const tex_map *m, const struct tex_xstep *st);
+int tex_rotate_step(int w, int h, double degrees, double cx, double cy, const float bg[4],
+                    struct tex_xstep *st);
+int tex_resize_step(int w, int h, int ow, int oh, struct tex_xstep *st);
+int tex_scale_step(int w, int h, double sx, double sy, struct tex_xstep *st);
+void tex_shift_step(int w, int h, double dx, double dy, int wrap, const float bg[4],
+                    struct tex_xstep *st);
+int tex_expand_step(int w, int h, int ow, int oh, const float bg[4], struct tex_xstep *st);
+int tex_clip_step(int w, int h, int x0, int y0, int x1, int y1, struct tex_xstep *st);
 
 TEX_API_END
 #endif

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # xform_stream.sh - t_xform's expand, whole-pixel shift (with and without --wrap) and clip
-# go a band of rows at a time: the whole map's bytes for any band height and -j, the same
-# usage errors, a map of any size in bounded memory; rotate, scale and fractional shifts
-# still read the whole map, with their bytes.
+# go a band of rows at a time, and so do rotate (up to 90 degrees either way), scale and
+# fractional shifts, each step keeping the rows the next reads: the whole map's bytes for
+# any band height and -j, the same usage errors, a map of any size in bounded memory.
 . "$(dirname "$0")/../lib.sh"
 cd "$T" || exit 1
 
@@ -40,6 +40,17 @@ done <<'ARGS'
 --shift 2.5,1
 --rotate 30 --shift 4,4
 --scale 0.5 --clip 0,0,100,100
+--rotate 30
+--rotate -20 --around 50,60
+--rotate 89.5
+--rotate 120
+--scale 0.37,1.7
+--scale 2.5
+--scale 0.02
+--shift 0.5,0 --wrap
+--shift 0.5,0.25 --wrap
+--rotate 30 --background #ff000080
+--expand 400x300 --rotate 15 --scale 0.8 --shift 3.3,-2.1 --clip 10,20,300,200
 ARGS
 [ -z "$bad" ] && ok "t_xform: $n chains from a stream give the whole map's bytes" ||
     notok "t_xform streamed" "$bad"
@@ -66,7 +77,8 @@ truncated "a truncated stream" out.exr t_xform --shift 3,3
 # (spooled to TMPDIR) and clipped, under a limit far below it
 lim=$(stream_vlimit 180000)
 t_noise -s 4096 -f 8 | t_palette --range 0,1 marble >big.exr
-for args in "--expand 4200x4100 --shift 1024,-1030 --wrap --clip 8,8,4000,4000"; do
+for args in "--expand 4200x4100 --shift 1024,-1030 --wrap --clip 8,8,4000,4000" "--rotate 5" \
+    "--scale 0.5" "--shift 10.5,7.25"; do
     want=$(t_xform $args <big.exr | md5sum)
     got=$(cat big.exr | (ulimit -v $lim; t_xform $args) | md5sum)
     [ "$got" = "$want" ] && ok "t_xform $args: a 4096x4096 stream under ulimit -v $lim KB" ||
