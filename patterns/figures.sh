@@ -154,4 +154,9 @@ t_convert fab_colour.exr -o fig.exr"
 figure ferreira_5 "Ferreira (1991), Figure 5: the five spheres rendered with Whitted-Phong in RGB (left) and Cook-Torrance with sampled spectra (right)." "
 '$here/five_spheres.sh' -o five -s ${s}x$((3 * s / 4)) >/dev/null
 t_convert five_render.exr -o fig.exr"
+figure 2.9 "Section 2.9: hypertexture (Perlin and Hoffert), ray-marched: a fireball glowing through turbulence, an eroded sphere whose soft region fBm eats into, and smoke rising over a CSG block, lit through the volume." "
+for sc in fireball eroded_sphere smoke_csg; do
+    t_apply '$here/'\$sc.scene -s ${s}x$((3 * s / 4)) -q -o \$sc.exr
+done
+t_tile --matrix cycle --nu 3 --nv 1 -s $((3 * s))x$((3 * s / 4)) fireball.exr eroded_sphere.exr smoke_csg.exr -o fig.exr"
 echo "wrote $page"
