@@ -291,16 +291,16 @@ const struct tex_param tex_hyper_rows[] = {
          "the scattered share of the ambient light (K x colour x Ia per unit of scattering)"),
     {0}};
 
-/* The application functions of a hypertexture, in enum tex_hyper_fn order (no storage) */
+/* The application functions of a hypertexture, in enum tex_hyper_fn order (no storage; the
+ * default is what an absent function gives) */
+#define HFN(name, d, lo, hi, meta, help) {name, 0, TEX_P_REAL, 0, 0, lo, hi, d, NULL, 0, meta, \
+                                          help, 0, 0, 0, NULL, NULL, NULL, NULL}
 const struct tex_param tex_hyper_fn_rows[] = {
-    TARGET("density", 0, 1, "H",
-           "H, Perlin and Hoffert's modulated density, from D (default D)"),
-    TARGET("opacity", 0, 1e6, "O",
-           "the extinction's share: absorption and scattering times O per unit length "
-           "(default H)"),
-    TARGET("colour", 0, 1, "R G B", "the scattered light's colour, the albedo (default 1)"),
-    TARGET("emission", 0, 1e6, "R G B",
-           "light emitted per unit length, a fire's (default 0)"),
+    HFN("density", "D", 0, 1, "H", "H, Perlin and Hoffert's modulated density"),
+    HFN("opacity", "H", 0, 1e6, "O",
+        "the extinction's share: absorption and scattering times O per unit length"),
+    HFN("colour", "1", 0, 1, "R G B", "the scattered light's colour, the albedo (also color)"),
+    HFN("emission", "0", 0, 1e6, "R G B", "light emitted per unit length, a fire's"),
     {0}};
 
 /* A density's words (hypertexture.h): KIND bits of enum tex_hdensity_kind */
