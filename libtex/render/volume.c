@@ -91,7 +91,7 @@ double tex_volume_transmit(const struct tex_scene *s, const tex_v3 *o, const tex
         double t0, t1, step, tol, g;
         j = group(sp, n, i, &t0, &t1);
         steps(sp, i, j, 1, &step, &tol);
-        double dt = fmax(step, (t1 - t0) / TEX_VOLUME_MAX_STEPS);
+        double dt = fmax(step, (t1 - t0) / TEX_VOLUME_SHADOW_STEPS);
         for (double t = t0; t < t1; t += dt) {
             double h = fmin(dt, t1 - t), tm = t + h / 2;
             tex_v3 P = tex_v3_madd(*o, *d, tm);

@@ -19,8 +19,10 @@
  *
  * Steps: the longest is the hypertexture's step, or the ray's footprint where that is
  * wider (a pixel resolves no finer); where the extinction changes by g per unit length
- * the next step is sqrt(tolerance / g), down to a sixteenth of the longest.  No segment
- * takes more than TEX_VOLUME_MAX_STEPS steps: a longer one's steps lengthen.
+ * the next step is sqrt(tolerance / g), down to a sixteenth of the longest.  No span of
+ * a ray takes more than TEX_VOLUME_MAX_STEPS steps, nor of a shadow ray more than
+ * TEX_VOLUME_SHADOW_STEPS: a longer one's steps lengthen, so that a ray's work is bounded
+ * (at most their product per light) whatever the scene asks.
  */
 #ifndef TEX_VOLUME_H
 #define TEX_VOLUME_H
@@ -33,7 +35,8 @@ extern "C" {
 #endif
 
 #define TEX_VOLUME_CUTOFF 1e-4
-#define TEX_VOLUME_MAX_STEPS 65536
+#define TEX_VOLUME_MAX_STEPS 4096
+#define TEX_VOLUME_SHADOW_STEPS 1024
 
 struct tex_render_ctx;
 struct tex_scene;

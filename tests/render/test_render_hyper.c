@@ -282,10 +282,16 @@ static void test_bad(void)
     bad("hypertexture { step 0.1 }", "test.scene:2:1:", "needs a density");
     bad("hypertexture { sphere { } absorbtion 1 }", "test.scene:2:27:", "did you mean absorption");
     /* never spins: a huge volume at the finest step renders, its steps capped */
-    tex_map *img = unit_render_text("image 4 4 camera { eye 0 0 -5 look 0 0 0 }\n"
+    tex_map *img = unit_render_text("image 4 4 camera { eye 0 0 -5 look 0 0 0 fov 0.01 }\n"
                                     "hypertexture { box { min -1e5 -1e5 -1e5 max 1e5 1e5 1e5 } "
                                     "absorption 1e-9 step 1e-6 }\n", 0);
     CHECK(img != NULL, "a huge volume at the finest step renders (steps capped)");
+    tex_map_free(img);
+    img = unit_render_text("image 2 2 camera { eye 0 0 -5 look 0 0 0 fov 0.01 }\n"
+                           "light point { position 0 3 0 }\n"
+                           "hypertexture { box { min -1e5 -1e5 -1e5 max 1e5 1e5 1e5 } "
+                           "absorption 0 scattering 1e-9 step 1e-6 shadow-step 1e-6 }\n", 1);
+    CHECK(img != NULL, "and scattering toward a light through it: shadow rays capped too");
     tex_map_free(img);
 }
 
