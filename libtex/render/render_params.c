@@ -296,7 +296,8 @@ const struct tex_param tex_hyper_rows[] = {
 #define HFN(name, d, lo, hi, meta, help) {name, 0, TEX_P_REAL, 0, 0, lo, hi, d, NULL, 0, meta, \
                                           help, 0, 0, 0, NULL, NULL, NULL, NULL}
 const struct tex_param tex_hyper_fn_rows[] = {
-    HFN("density", "D", 0, 1, "H", "H, Perlin and Hoffert's modulated density"),
+    HFN("density", "D", 0, 1, "H",
+        "H, Perlin and Hoffert's modulated density (also written H = ...)"),
     HFN("opacity", "H", 0, 1e6, "O",
         "the extinction's share: absorption and scattering times O per unit length"),
     HFN("colour", "1", 0, 1, "R G B", "the scattered light's colour, the albedo (also color)"),

@@ -1392,6 +1392,8 @@ static void parse_hypertexture(struct parser *ps, const struct tex_tok *at)
         struct tex_tok kt = ps->lx.t;
         const struct tex_param *p = row_of(tex_hyper_rows, &kt, -1),
                                *f = row_of(tex_hyper_fn_rows, &kt, -1);
+        if (tex_tok_is_word(&kt, "H")) /* the thesis's H = f_n(...f_0(D)) */
+            f = &tex_hyper_fn_rows[TEX_HF_DENSITY];
         if (density_kind(&kt) >= 0) {
             if (h->d)
                 FAIL(ps, "a hypertexture takes one density (union, intersection, difference "

@@ -228,7 +228,7 @@ static const char *smoke =
     "hypertexture {\n"
     "    difference { box { min -1.2 0 -1.2 max 1.2 1.6 1.2 soft 0.5 }\n"
     "                 sphere { centre 0 0.7 0 radius 0.55 soft 0.1 } }\n"
-    "    density = gain(0.7, D * (0.4 + turb))\n"
+    "    H = gain(0.7, D * (0.4 + turb))\n"
     "    absorption 0.5 scattering 3 phase 0.3 step 0.06\n"
     "    colour = mix(0.5 0.5 0.6, 1 1 1, H) emission = 0.2 0.1 0 * H\n"
     "}\n";
@@ -277,6 +277,7 @@ static void test_bad(void)
     bad("hypertexture { sphere { radius 1 soft 3 } }", "test.scene:2:16:", "soft width");
     bad("hypertexture { box { min 0 0 0 max 0 1 1 } }", "test.scene:2:16:", "min < max");
     bad("hypertexture { sphere { }\n density = H * 2 }", "test.scene:3:12:", "density makes H");
+    bad("hypertexture { sphere { } H = 2 * H }", "test.scene:2:35:", "density makes H");
     bad("hypertexture { sphere { } colour = ndotv }", "test.scene:2:36:", "surface's");
     bad("hypertexture { sphere { } box { } }", "test.scene:2:27:", "one density");
     bad("hypertexture { step 0.1 }", "test.scene:2:1:", "needs a density");
