@@ -96,7 +96,7 @@ double tex_volume_transmit(const struct tex_scene *s, const tex_v3 *o, const tex
             double h = fmin(dt, t1 - t), tm = t + h / 2;
             tex_v3 P = tex_v3_madd(*o, *d, tm);
             struct tex_hyper_sample v;
-            sample(sp, i, j, tm, &P, 0, 1, &v, &g);
+            sample(sp, i, j, tm, &P, s->settings.filter ? h * h : 0, 1, &v, &g);
             tau += v.sigma_t * h;
             if (tau > -log(TEX_VOLUME_CUTOFF))
                 return 0;

@@ -19,7 +19,9 @@
  *
  * Steps: the longest is the hypertexture's step, or the ray's footprint where that is
  * wider (a pixel resolves no finer); where the extinction changes by g per unit length
- * the next step is sqrt(tolerance / g), down to a sixteenth of the longest.  No span of
+ * the next step is sqrt(tolerance / g), down to a sixteenth of the longest.  Textures are
+ * looked up through the ray's footprint, a shadow ray's as wide as its step (what it cannot
+ * resolve: band-limited textures fade those octaves out; filter off, none).  No span of
  * a ray takes more than TEX_VOLUME_MAX_STEPS steps, nor of a shadow ray more than
  * TEX_VOLUME_SHADOW_STEPS: a longer one's steps lengthen, so that a ray's work is bounded
  * (at most their product per light) whatever the scene asks.
