@@ -154,6 +154,11 @@ t_convert fab_colour.exr -o fig.exr"
 figure ferreira_5 "Ferreira (1991), Figure 5: the five spheres rendered with Whitted-Phong in RGB (left) and Cook-Torrance with sampled spectra (right)." "
 '$here/five_spheres.sh' -o five -s ${s}x$((3 * s / 4)) >/dev/null
 t_convert five_render.exr -o fig.exr"
+figure brushed_steel "Anisotropic reflection, which section 5.2.4 leaves as future work (Kajiya 1985): brushed stainless steel, smooth along its grooves and rough across them. The plate (Ward's model) is brushed in swirls along the contour lines of a noise, its flow field the noise's normal map turned 90 degrees; the cylinder is turned on a lathe (the mapping's u, the default tangent); the ball (Ashikhmin-Shirley's model) is brushed round its poles." "
+t_noise -s 256 -f 3 -S 5 --tile | t_filter normal --strength 30 |
+    t_apply '$here/brushed_steel.scene' -s ${s}x$((2 * s / 3)) -q -o fig.exr"
+figure satin "Anisotropic reflection: satin, Ashikhmin-Shirley's model over a dyed dielectric. The cushion's threads run round its tube, its sheen a band round the ring; the cloth is a satin weave whose weft floats turn the tangent 90 degrees, so its threads glint in two directions." "
+t_apply '$here/satin.scene' -s ${s}x$((2 * s / 3)) -q -o fig.exr"
 figure 2.9 "Section 2.9: hypertexture (Perlin and Hoffert), ray-marched: a fireball glowing through turbulence, an eroded sphere whose soft region fBm eats into, and smoke rising over a CSG block, lit through the volume." "
 for sc in fireball eroded_sphere smoke_csg; do
     t_apply '$here/'\$sc.scene -s ${s}x$((3 * s / 4)) -q -o \$sc.exr

@@ -85,6 +85,27 @@ print(v)' "$@" ;;
     esac
 }
 
+# pfm_py: py, python3 that can import pfm: pfm.load(FILE), a map's floats (3 channels),
+# width and height; pfm.px(a, w, h, x, y, ch) with y = 0 the top row.
+pfm_py() {
+    cat >"$T/pfm.py" <<'P'
+import array, subprocess
+def load(f):
+    d = subprocess.run(['t_convert', '-o', '-', '--format', 'pfm', f], check=True,
+                       stdout=subprocess.PIPE).stdout
+    kind, size, scale, rest = d.split(b'\n', 3)
+    w, h = map(int, size.split())
+    nc = 3 if kind == b'PF' else 1
+    a = array.array('f'); a.frombytes(rest[:w * h * nc * 4])
+    if float(scale) > 0: a.byteswap()
+    if nc == 1: a = array.array('f', [v for v in a for _ in range(3)])
+    return a, w, h
+def px(a, w, h, x, y, ch=0):
+    return a[((h - 1 - y) * w + x) * 3 + ch]
+P
+}
+py() { PYTHONPATH=$T python3 "$@"; }
+
 # maxdiff A B: the largest |A - B| over the colour channels (sub keeps the alpha of A).
 maxdiff() {
     t_op sub "$1" "$2" | t_op abs - | t_info --json | awk -F'"max": ' '/^  \{"channel"/ && n++ < 3 {

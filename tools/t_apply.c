@@ -31,7 +31,8 @@ static const struct tex_param rows[] = {
                "shade with N spectral samples (1..64), overriding the scene's 'colour'"),
     TEX_FLAG(struct opts, rgb, 0, "shade in RGB, overriding the scene's 'colour'"),
     TEX_STRING(struct opts, model, 0, NULL, "NAME",
-               "shade every surface with this model (phong|cook-torrance)"),
+               "shade every surface with this model "
+               "(phong|cook-torrance|ward|ashikhmin-shirley)"),
     TEX_STRING(struct opts, region, 0, NULL, "X,Y,W,H",
                "render only the W x H region at X,Y of the image, the same pixels as the whole "
                "render (for render farms: t_assemble puts regions together)"),
@@ -42,9 +43,10 @@ static const struct tex_param rows[] = {
                "(quantities|functions), and exit"),
     TEX_STRING(struct opts, help_scene_mdoc, 0, NULL, "BLOCK",
                "the same list as mdoc, for t_apply(5)"),
-    TEX_FLAG(struct opts, check_energy, 0,
-             "warn of each surface whose Kd + Ks + Kr + Kt can pass 1 (thesis 4.4), its own "
-             "values or its textures'"),
+    TEX_ENUM(struct opts, check_energy, 0, "warn", "warn|off",
+             "warn of each surface whose Kd + max(Ks, Kr) + Kt can pass 1 (thesis 4.4), its "
+             "own values or its textures', or not",
+             .bare = "warn"),
     TEX_FLAG(struct opts, list_materials, 0,
              "list the materials of the database a scene reads by default (or SCENE's), "
              "and exit"),
@@ -277,7 +279,8 @@ int main(int argc, char **argv)
     }
     const struct tex_shading_model *model = NULL;
     if (o.model && !(model = tex_shading_find(o.model)))
-        tex_usage_die("--model '%s' must be phong or cook-torrance", o.model);
+        tex_usage_die("--model '%s' must be phong, cook-torrance, ward or ashikhmin-shirley",
+                      o.model);
     /* one bar: the scene's loading (its maps sampled, read, mip-mapped) a tenth of it */
     tex_progress_stage(0.1, 1);
     tex_progress_hold(1);
@@ -302,7 +305,7 @@ int main(int argc, char **argv)
                         r[2], r[3], o.region);
         die_freeing(s);
     }
-    if (o.check_energy)
+    if (o.check_energy == 0)
         tex_scene_check_energy(s);
     if (!c.quiet)
         fputs(tex_scene_warnings(s), stderr);

@@ -1,4 +1,5 @@
 /* t_info - describe a texture map: size, channels, statistics, metadata */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -50,60 +51,126 @@ static int stdout_flushed(void)
     return 0;
 }
 
-/* The thumbnail of the map at path: at most 256 pixels a side, area-filtered */
-static int preview(const char *path, int how)
-{
-    tex_map *m = tex_map_read(path);
-    if (!m)
-        return -1;
-    int tw = m->w, th = m->h, side = m->w > m->h ? m->w : m->h;
-    if (side > 256) {
-        tw = (int)((long)m->w * 256 / side), th = (int)((long)m->h * 256 / side);
-        tw = tw > 0 ? tw : 1, th = th > 0 ? th : 1;
-    }
-    tex_map *t = tw == m->w && th == m->h ? m : tex_resize(m, tw, th);
-    int r = !t ? -1
-               : tex_terminal_write(stdout, t, how == 1   ? tex_terminal_guess()
-                                               : how == 2 ? TEX_TERMINAL_SIXEL
-                                                          : TEX_TERMINAL_KITTY);
-    if (t && t != m)
-        tex_map_free(t);
-    tex_map_free(m);
-    return r;
-}
-
 /* Whether channel statistics s of map m found no finite sample (its figures are 0s then) */
 static int none_finite(const tex_map *m, const struct tex_stats *s)
 {
     return s->nonfinite == (size_t)m->w * (size_t)m->h;
 }
 
-/* The statistics of a stream's rows into st, as they pass a band of about 1 MiB at a time */
-static int gather_rows(tex_rows_reader *r, const char *name, const tex_map *head,
-                        struct tex_stats *st)
+/* Each band of a stream's rows, about 1 MiB at a time, given to use(arg, y, n, rows) */
+static int each_band(tex_rows_reader *r, const char *name, const tex_map *head,
+                     void (*use)(void *arg, int y, int n, const float *rows), void *arg)
 {
-    struct tex_stats_acc a[4];
     int rows = (int)((1L << 20) / ((long)head->w * head->nc * (long)sizeof(float)));
     rows = rows < 1 ? 1 : rows > head->h ? head->h : rows;
     float *band = malloc((size_t)rows * head->w * head->nc * sizeof *band);
 
     if (!band)
         return tex_error("out of memory");
-    for (int k = 0; k < head->nc; k++)
-        tex_stats_begin(&a[k]);
     for (int y = 0; y < head->h; y += rows) {
         int n = head->h - y < rows ? head->h - y : rows;
         if (tex_rows_read(r, y, n, band, name) < 0) {
             free(band);
             return -1;
         }
-        for (int k = 0; k < head->nc; k++)
-            tex_stats_add(&a[k], band + k, (size_t)head->w, (size_t)n, head->nc);
+        use(arg, y, n, band);
     }
-    for (int k = 0; k < head->nc; k++)
-        tex_stats_end(&a[k], &st[k]);
     free(band);
     return 0;
+}
+
+struct stats_job {
+    const tex_map *head;
+    struct tex_stats_acc a[4];
+};
+
+static void stats_band(void *arg, int y, int n, const float *rows)
+{
+    struct stats_job *j = arg;
+    (void)y;
+    for (int k = 0; k < j->head->nc; k++)
+        tex_stats_add(&j->a[k], rows + k, (size_t)j->head->w, (size_t)n, j->head->nc);
+}
+
+/* The statistics of a stream's rows into st, as they pass */
+static int gather_rows(tex_rows_reader *r, const char *name, const tex_map *head,
+                       struct tex_stats *st)
+{
+    struct stats_job j = {.head = head};
+    for (int k = 0; k < head->nc; k++)
+        tex_stats_begin(&j.a[k]);
+    if (each_band(r, name, head, stats_band, &j) < 0)
+        return -1;
+    for (int k = 0; k < head->nc; k++)
+        tex_stats_end(&j.a[k], &st[k]);
+    return 0;
+}
+
+/* A thumbnail made as the rows pass, never the map whole: the map's columns and rows split
+ * evenly among its pixels (x goes to x tw / w), each pixel the mean of the finite samples
+ * of its box (an area filter; 0 where none is finite). */
+struct thumb {
+    int w, h, tw, th, nc;
+    double *sum;
+    unsigned *count;
+};
+
+static void thumb_band(void *arg, int y, int n, const float *rows)
+{
+    struct thumb *t = arg;
+    for (int i = 0; i < n; i++) {
+        size_t ty = (size_t)((long long)(y + i) * t->th / t->h);
+        const float *row = rows + (size_t)i * t->w * t->nc;
+        for (int x = 0; x < t->w; x++) {
+            size_t at = (ty * t->tw + (size_t)((long long)x * t->tw / t->w)) * t->nc;
+            for (int k = 0; k < t->nc; k++) {
+                float v = row[(size_t)x * t->nc + k];
+                if (isfinite(v))
+                    t->sum[at + k] += v, t->count[at + k]++;
+            }
+        }
+    }
+}
+
+/* The thumbnail of the map at path, at most 256 pixels a side, drawn in the terminal (how:
+ * 1 auto, 2 sixel, 3 kitty): a scanline EXR's rows as they pass, another format's whole */
+static int preview(const char *path, int how)
+{
+    const char *name = strcmp(path, "-") ? path : "standard input";
+    tex_map head, *whole = NULL, *out = NULL;
+    tex_rows_reader *r = tex_map_open_rows(path, &head, &whole);
+    if (!r && !whole)
+        return -1;
+    if (whole) /* the sizes only: whole keeps its own history */
+        head = *whole;
+    int side = head.w > head.h ? head.w : head.h, rc = -1;
+    struct thumb t = {head.w, head.h, head.w, head.h, head.nc, NULL, NULL};
+    if (side > 256) {
+        t.tw = (int)((long)head.w * 256 / side), t.th = (int)((long)head.h * 256 / side);
+        t.tw = t.tw > 0 ? t.tw : 1, t.th = t.th > 0 ? t.th : 1;
+    }
+    size_t n = (size_t)t.tw * t.th * t.nc;
+    if (!(t.sum = calloc(n, sizeof *t.sum)) || !(t.count = calloc(n, sizeof *t.count)) ||
+        !(out = tex_map_new(t.tw, t.th, t.nc)))
+        tex_error("out of memory");
+    else if (r)
+        rc = each_band(r, name, &head, thumb_band, &t);
+    else
+        thumb_band(&t, 0, whole->h, whole->px), rc = 0;
+    if (rc == 0) {
+        for (size_t i = 0; i < n; i++)
+            out->px[i] = t.count[i] ? (float)(t.sum[i] / t.count[i]) : 0;
+        rc = tex_terminal_write(stdout, out, how == 1   ? tex_terminal_guess()
+                                             : how == 2 ? TEX_TERMINAL_SIXEL
+                                                        : TEX_TERMINAL_KITTY);
+    }
+    if (r)
+        tex_rows_close(r), free(head.history);
+    tex_map_free(whole);
+    tex_map_free(out);
+    free(t.sum);
+    free(t.count);
+    return rc;
 }
 
 /* The map's header into head and its statistics into st: from a scanline EXR (a pipe or a

@@ -132,7 +132,7 @@ int tex_generate_main_rows(const struct tex_primitive *p, const char *name,
         tex_die();
     if (colors)
         f->colors = (const float(*)[3])colors;
-    if (tex_cli_streams(&c) && !tex_field_whole(f)) {
+    if (tex_cli_takes_rows(&c) && !tex_field_whole(f)) {
         generate_bands(f, &c); /* the same pixels, a band of rows at a time */
     } else {
         if (!(m = tex_field_sample(f)))

@@ -2,7 +2,7 @@
  *
  * For looking at a map from the shell without opening a viewer (t_info
  * --preview).  The map is drawn at its own size, one terminal pixel per
- * texel, so the caller shrinks it first (tex_resize, ops/transform.h).
+ * texel, so the caller shrinks it first (t_info takes box means as rows pass).
  * Values are taken as display values, as the other formats store them:
  * clamped to [0, 1], no transfer function; a grey map is grey, a 2-channel
  * map red and green, an alpha channel composes over black.

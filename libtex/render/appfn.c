@@ -12,6 +12,7 @@
 
 #include "base/error.h"
 #include "ops/palette.h"
+#include "render/anisotropic.h"
 #include "render/appfn.h"
 #include "render/render_ct.h"
 #include "render/scene.h"
@@ -194,6 +195,13 @@ static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const flo
     case TEX_SP_S: scalar = &sc, sc = (float)pr->s; break;
     case TEX_SP_BLEND: scalar = &pr->blend; break;
     case TEX_SP_P: scalar = &pr->disp; break;
+    case TEX_SP_AU: scalar = &pr->au; break;
+    case TEX_SP_AV: scalar = &pr->av; break;
+    case TEX_SP_ANGLE: scalar = &pr->angle; break;
+    case TEX_SP_TANGENT: /* p: along the texture's u */
+        colour = pr->tangent;
+        colour[0] = 1, colour[1] = colour[2] = 0.5f;
+        break;
     case TEX_SP_NORMAL: /* p: the flat normal */
         colour = pr->normal;
         colour[0] = colour[1] = 0.5f, colour[2] = 1;
@@ -437,6 +445,23 @@ static int uv_bend(enum tex_sparam param, const struct tex_apply *ap, const stru
     return 1;
 }
 
+/* A flow field's direction (anisotropic.h): the encoded R and G along the mapping's u and
+ * against its v at the hit, in world space, into pr->flow (zero where the map is flat) */
+static void flow_field(const struct tex_apply *ap, const struct placement *pm,
+                       const struct tex_object *leaf, const tex_v3 *P, struct footprint *fp,
+                       const struct tex_prefetch_ap *pa, struct params *pr)
+{
+    tex_v3 gu, gv;
+    double x = 2.0 * pr->tangent[0] - 1, y = 2.0 * pr->tangent[1] - 1;
+    /* the shortest step (width 0): a direction, not a filtered gradient as uv_bend's */
+    uv_gradients(ap, pm, leaf, P, fp, 0, pa->uvw0[0], pa->uvw0[1], &gu, &gv);
+    gu = tex_v3_norm(gu), gv = tex_v3_norm(gv);
+    tex_v3 d = tex_v3_sub(tex_v3_scale(gu, x), tex_v3_scale(gv, y));
+    if (!(tex_v3_dot(d, d) > 0)) /* flat, or a mapping without gradients here */
+        d = tex_v3_make(0, 0, 0);
+    pr->flow[0] = (float)d.x, pr->flow[1] = (float)d.y, pr->flow[2] = (float)d.z;
+}
+
 static int apply_textures(const struct tex_surface *sf, const struct tex_shade_at *at,
                           const struct tex_prefetch *pre, tex_v3 *N, int filter,
                           struct params *pr)
@@ -500,6 +525,8 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
                 tex_v3 t;
                 if (uv_bend(fn->param, ap, pm, leaf, P, &fp, width, pa, pr, N, &t))
                     tilt = tex_v3_add(tilt, t);
+            } else if (fn->param == TEX_SP_TANGENT) {
+                flow_field(ap, pm, leaf, P, &fp, pa, pr);
             }
         }
         if (pr->disp != moved && ap->next) { /* P moved: the next textures map it there */
@@ -594,7 +621,10 @@ static void resolve(const struct tex_scene *s, const struct tex_surface *sf,
 {
     *blend = 0;
     if (!sf->apply) { /* the cache as it is, without the textured path's set-up */
-        material(&s->cs, sf, &sf->cache->base, 0, m);
+        const struct params *b = &sf->cache->base;
+        material(&s->cs, sf, b, 0, m);
+        if (tex_shading_anisotropic(sf->model))
+            tex_aniso_material(m, sf, at->leaf, at->P, N, b->flow, b->angle, b->au, b->av);
         return;
     }
     struct params pr = sf->cache->base;
@@ -607,6 +637,8 @@ static void resolve(const struct tex_scene *s, const struct tex_surface *sf,
                              : apply_textures(sf, at, pre, N, filter, &pr);
     material(&s->cs, sf, &pr, ks_textured, m);
     *blend = pr.blend;
+    if (tex_shading_anisotropic(sf->model))
+        tex_aniso_material(m, sf, at->leaf, at->P, N, pr.flow, pr.angle, pr.au, pr.av);
 }
 
 void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *sf,
@@ -643,7 +675,8 @@ static struct params surface_params(const struct tex_surface *sf)
     tex_ct_material(&ctm, sf->ct);
     return (struct params){{sf->kd[0], sf->kd[1], sf->kd[2]}, sf->ka, sf->ks[0], (float)sf->n,
                            (float)sf->kr, (float)sf->kt, (float)sf->ior, 0, ctm.m, ctm.s, 0,
-                           {0.5f, 0.5f, 1}, {0, 0, 0}, 0, 0};
+                           {0.5f, 0.5f, 1}, {0, 0, 0}, 0, (float)sf->alpha[0],
+                           (float)sf->alpha[1], 0, {1, 0.5f, 0.5f}, {0, 0, 0}, 0};
 }
 
 int tex_surface_energy(const struct tex_surface *sf, double *e)
@@ -668,7 +701,14 @@ int tex_surface_energy(const struct tex_surface *sf, double *e)
                     apply_fn(fn, NULL, f, corner[c], 0, NULL, &pr);
             double kd = fmax(pr.kd[0], fmax(pr.kd[1], pr.kd[2]));
             double ks = ks_textured ? pr.ks : fmax(sf->ks[0], fmax(sf->ks[1], sf->ks[2]));
-            double sum = kd + ks + pr.kr + pr.kt;
+            /* Ks (the lights' highlight) and Kr (the scene's mirror image) are one specular
+             * reflectance seen in two kinds of incident light, as Whitted's single ks;
+             * the microfacet models (Cook-Torrance, Ward, Ashikhmin-Shirley) split light
+             * s to 1 - s, and Fresnel's F to 1 - F splits Kr from Kt */
+            double sum = kd + fmax(ks, pr.kr) + pr.kt;
+            if (sf->model != &tex_shading_phong)
+                sum = (1 - pr.s) * kd +
+                      fmax(pr.s, fmax(pr.kr, sf->ct && sf->ct->conductor ? 0 : pr.kt));
             *e = sum > *e ? sum : *e;
         }
     return 1;
@@ -697,7 +737,8 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
         nap++;
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++) {
             c->direct &= !fn->region && fn->param != TEX_SP_NORMAL &&
-                         fn->param != TEX_SP_GRADIENT && fn->param != TEX_SP_P;
+                         fn->param != TEX_SP_GRADIENT && fn->param != TEX_SP_P &&
+                         fn->param != TEX_SP_TANGENT;
             c->compiled[nfn] = (char)poly_of(fn->e, &c->poly[nfn]);
             c->quantities |= fn_quantities(fn);
         }

@@ -25,21 +25,25 @@ struct poly {
 };
 
 /* The parameters being textured, in RGB, before conversion to the colour space.  A float
- * follows each colour (ka kd's, gradient[0] normal's, end gradient's): colour_set writes
- * the colour with it. */
+ * follows each colour (ka kd's, gradient[0] normal's, disp gradient's, flow[0]
+ * tangent's): colour_set writes the colour with it. */
 struct params {
     float kd[3], ka, ks, n, kr, kt, ior, bump;
     double m, s; /* Cook-Torrance's slope and specular fraction (double: as the model's) */
     float blend; /* the blended surface's weight */
     float normal[3], gradient[3]; /* one apply block's normal map and height gradient */
     float disp; /* P's displacement along the normal (P = D) */
+    float au, av, angle; /* anisotropic: roughnesses, the tangent's turn in degrees */
+    float tangent[3], flow[3]; /* a flow field's encoded value, then its world direction */
     float end;
 };
 
-/* Thesis 4.4: the largest of Kd's channels plus Ks, Kr and Kt, the surface's own and,
- * where its textures set them, its functions' at texture values 0, 1/16, ..., 1 (grey) and
- * at the corners and middle of (u, v, w), every function in order, regions alike, into *e:
- * 1, or 0 when it cannot tell (a function reads the hit's quantities). */
+/* Thesis 4.4: the largest of Kd's channels plus the larger of Ks and Kr (one specular
+ * reflectance, of the lights and of the scene) plus Kt (the microfacet models: (1 - s) Kd
+ * plus the largest of s, Kr and a dielectric's Kt), the surface's own and, where its
+ * textures set them, its functions' at texture values 0, 1/16, ..., 1 (grey) and at the
+ * corners and middle of (u, v, w), every function in order, regions alike, into *e: 1, or
+ * 0 when it cannot tell (a function reads the hit's quantities). */
 int tex_surface_energy(const struct tex_surface *sf, double *e);
 
 struct tex_surface_cache {

@@ -67,8 +67,8 @@ void tex_scene_set_model(struct tex_scene *s, const struct tex_shading_model *m)
 int tex_scene_prepare(struct tex_scene *s);
 /* What the scene's checks found worth saying, one line each ("" if nothing). */
 const char *tex_scene_warnings(const struct tex_scene *s);
-/* Thesis 4.4, item 8: a warning (tex_scene_warnings) for each surface whose Kd + Ks + Kr +
- * Kt can pass 1, its own or where its textures set them (appfn.h's tex_surface_energy);
+/* Thesis 4.4, item 8: a warning (tex_scene_warnings) for each surface whose Kd + max(Ks, Kr)
+ * + Kt can pass 1, its own or where its textures set them (appfn.h's tex_surface_energy);
  * the number of such surfaces. */
 int tex_scene_check_energy(struct tex_scene *s);
 

@@ -200,6 +200,11 @@ static void fresnel(const struct tex_material *mat, const struct tex_ct *ct, dou
     fresnel_dielectric_n((float)(c > 1 ? 1 : c), r, n, fr->v);
 }
 
+void tex_ct_fresnel(const struct tex_material *mat, double cos_i, int n, tex_colour *fr)
+{
+    fresnel(mat, params(mat), cos_i, n, fr);
+}
+
 static void ct_direct(const struct tex_material *mat, const double N[3], const double V[3],
                       const double L[3], const tex_colour *E, int n, tex_colour *out)
 {

@@ -91,6 +91,9 @@ int tex_ct_init(struct tex_ct *ct, const struct tex_colour_space *cs,
 /* Sample eta and k again for another colour space (a scene's colour model
  * overridden after its surfaces were read); the entry must still exist. */
 void tex_ct_set_space(struct tex_ct *ct, const struct tex_colour_space *cs);
+/* Fresnel's reflectance per sample at cos_i (< 0: from inside) for a material whose
+ * model_data is a struct tex_ct or NULL (the anisotropic models share it). */
+void tex_ct_fresnel(const struct tex_material *mat, double cos_i, int n, tex_colour *fr);
 /* Tabulate the Fresnel reflectance for n samples (the renderer, before
  * tracing), and free the table; a surface without a table computes it. */
 int tex_ct_tabulate(struct tex_ct *ct, int n);

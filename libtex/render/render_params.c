@@ -12,6 +12,7 @@
 #include <stddef.h>
 
 #include "lang/expr.h"
+#include "render/anisotropic.h"
 #include "render/hypertexture.h"
 #include "render/render_ct.h"
 #include "render/scene.h"
@@ -111,7 +112,9 @@ const struct tex_param tex_surface_rows[] = {
             "transmission coefficient"),
     TEX_ROW("ior", struct tex_surface, ior, TEX_P_REAL, "1", 0.1, 10, 1, 0, "N",
             "index of refraction (a dielectric material gives its own)"),
-    TEX_SPECIAL("model", 0, 0, "phong", "phong|cook-torrance", "the shading model",
+    TEX_SPECIAL("model", 0, 0, "phong", "phong|cook-torrance|ward|ashikhmin-shirley",
+                "the shading model (ward and ashikhmin-shirley: anisotropic, Ward 1992 and "
+                "Ashikhmin-Shirley 2000, with Cook-Torrance's material and specular)",
                 tex_scene_read_model),
     TEX_SPECIAL("character", 0, 0, NULL, TEX_CHARACTERS,
                 "an optical character (thesis 4.4): a consistent Ka, Kd, Ks, n, Kr, Kt and ior "
@@ -127,8 +130,19 @@ const struct tex_param tex_surface_rows[] = {
                 "the lobe's half-maximum angle",
                 tex_scene_read_facets),
     TEX_SPECIAL("specular", 0, 1, STR(TEX_CT_S), "S",
-                "Cook-Torrance specular fraction (the diffuse one is 1 - S)",
+                "Cook-Torrance's, Ward's and Ashikhmin-Shirley's specular fraction (the diffuse "
+                "one is 1 - S)",
                 tex_scene_read_specular),
+    TEX_ROW("alpha", struct tex_surface, alpha, TEX_P_REAL,
+            STR(TEX_ANISO_ALPHA) "," STR(TEX_ANISO_ALPHA), TEX_ANISO_ALPHA_MIN,
+            TEX_ANISO_ALPHA_MAX, 2, (1u << 1) | (1u << 2),
+            "AU [AV]", "ward, ashikhmin-shirley: the roughness along the tangent and across it "
+            "(one number: both), Beckmann's slopes; ashikhmin-shirley's exponents are "
+            "2/A^2 - 2"),
+    TEX_SPECIAL("tangent", 0, 0, "u", "u|v|X Y Z",
+                "ward, ashikhmin-shirley: the tangent the highlight stretches across, the "
+                "direction the shape's own mapping's u or v grows in, or a world direction "
+                "(not along a plane's normal)", tex_scene_read_tangent),
     TEX_SPECIAL("apply", 0, 0, NULL, "TEXTURE { ... }",
                 "apply a texture through application functions (any number, in order)",
                 tex_scene_read_apply),
@@ -157,7 +171,9 @@ const struct tex_param tex_target_rows[] = {
     TARGET("bump", -1000, 1000, "S",
            "bump mapping: the normal tilts by S times the map's gradient across the surface"),
     TARGET("m", TEX_CT_M_MIN, TEX_CT_M_MAX, "M", "Cook-Torrance: Beckmann's slope of the microfacets"),
-    TARGET("s", 0, 1, "S", "Cook-Torrance: the specular fraction (the diffuse one is 1 - S)"),
+    TARGET("s", 0, 1, "S",
+           "Cook-Torrance, ward, ashikhmin-shirley: the specular fraction (the diffuse one is "
+           "1 - S)"),
     TARGET("blend", 0, 1, "W",
            "the weight of the surface named by the surface's blend (its light times W, this "
            "surface's times 1 - W)"),
@@ -170,6 +186,15 @@ const struct tex_param tex_target_rows[] = {
     TARGET("P", -1e6, 1e6, "D",
            "the point (table 4.1): moved D world units along the normal, where the textures "
            "after it are looked up and the light is shaded"),
+    TARGET("au", TEX_ANISO_ALPHA_MIN, TEX_ANISO_ALPHA_MAX, "A",
+           "ward, ashikhmin-shirley: the roughness along the tangent"),
+    TARGET("av", TEX_ANISO_ALPHA_MIN, TEX_ANISO_ALPHA_MAX, "A",
+           "ward, ashikhmin-shirley: the roughness across the tangent"),
+    TARGET("angle", -36000, 36000, "DEG",
+           "ward, ashikhmin-shirley: the tangent turned DEG degrees about the normal"),
+    TARGET("tangent", 0, 1, "R G B",
+           "ward, ashikhmin-shirley: a flow field, the tangent's direction in the surface "
+           "encoded 0.5 + 0.5 d (R along u, G against v, as a normal map's; B unread)"),
     {0}};
 
 const struct tex_param *tex_sparam_row(enum tex_sparam sp)

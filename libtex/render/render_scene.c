@@ -21,6 +21,7 @@
 #include "ops/palette.h"
 #include "render/scene.h"
 #include "render/render_ct.h"
+#include "render/anisotropic.h"
 #include "render/appfn.h"
 #include "render/hypertexture.h"
 #include "lang/expr.h"
@@ -894,6 +895,27 @@ void tex_scene_read_model(void *reader, const struct tex_param *p, void *ctx)
         fail_at(ps, &mt, 0, "%s must be %s (got %s)", p->name, p->meta, m);
 }
 
+/* tangent u | v | X Y Z (anisotropic.h) */
+void tex_scene_read_tangent(void *reader, const struct tex_param *p, void *ctx)
+{
+    struct parser *ps = reader;
+    struct tex_surface *sf = ((struct block *)ctx)->obj;
+    struct tex_tok t = ps->lx.t;
+    char b[64];
+    if (tex_tok_is_word(&t, "u") || tex_tok_is_word(&t, "v")) {
+        sf->tangent_from = tex_tok_is_word(&t, "v") ? TEX_TANGENT_V : TEX_TANGENT_U;
+        tex_lex_next(&ps->lx);
+        return;
+    }
+    if (t.kind != TEX_TOK_NUM)
+        FAIL(ps, "%s takes %s, found %s", p->name, p->meta, tex_tok_desc(&t, b, sizeof b));
+    tex_v3 d = vec(ps);
+    if (!(tex_v3_dot(d, d) > 0))
+        fail_at(ps, &t, 0, "%s X Y Z must not be zero (got %g %g %g)", p->name, d.x, d.y, d.z);
+    sf->tangent_from = TEX_TANGENT_FIXED;
+    sf->tangent = tex_v3_norm(d);
+}
+
 void tex_scene_read_character(void *reader, const struct tex_param *p, void *ctx)
 {
     struct parser *ps = reader;
@@ -991,10 +1013,17 @@ static void parse_surface(struct parser *ps)
             struct tex_tok ft = {TEX_TOK_NAME, "", 0, 0, ap->line, ap->col};
             if (fn->param == TEX_SP_BLEND && !sf->blend)
                 fail_at(ps, &ft, 0, "blend = h needs 'blend SURFACE' in surface '%s'", name);
-            if ((fn->param == TEX_SP_M || fn->param == TEX_SP_S) &&
-                sf->model != &tex_shading_cook_torrance)
-                fail_at(ps, &ft, 0, "m and s are Cook-Torrance's: surface '%s' needs "
-                                    "model cook-torrance", name);
+            int aniso = tex_shading_anisotropic(sf->model);
+            if ((fn->param == TEX_SP_M && sf->model != &tex_shading_cook_torrance) ||
+                (fn->param == TEX_SP_S && sf->model != &tex_shading_cook_torrance && !aniso))
+                fail_at(ps, &ft, 0, "%s is Cook-Torrance's%s: surface '%s' needs model "
+                                    "cook-torrance%s", tex_sparam_row(fn->param)->name,
+                        fn->param == TEX_SP_S ? " and the anisotropic models'" : "", name,
+                        fn->param == TEX_SP_S ? ", ward or ashikhmin-shirley" : "");
+            if (fn->param >= TEX_SP_AU && fn->param <= TEX_SP_TANGENT && !aniso)
+                fail_at(ps, &ft, 0, "%s is the anisotropic models': surface '%s' needs model "
+                                    "ward or ashikhmin-shirley", tex_sparam_row(fn->param)->name,
+                        name);
             if (fn->param == TEX_SP_M && ct && ct->facets.dist != TEX_FACET_BECKMANN)
                 fail_at(ps, &ft, 0, "m is Beckmann's slope: surface '%s' has blinn facets",
                         name);
@@ -1008,10 +1037,12 @@ int tex_scene_check_energy(struct tex_scene *s)
         const struct tex_surface *sf = s->surfaces[i];
         double e;
         if (tex_surface_energy(sf, &e) && e > 1 + 1e-6) {
-            tex_scene_warn(s, "%s:%d:%d: warning: surface '%s' breaks energy: Kd + Ks + Kr + Kt "
-                              "reaches %.3g, above 1 (thesis 4.4; a character gives consistent "
-                              "values)",
-                           s->file, sf->line, sf->col, sf->name, e);
+            tex_scene_warn(s, "%s:%d:%d: warning: surface '%s' breaks energy: %s reaches %.3g, "
+                              "above 1 (thesis 4.4; a character gives consistent values)",
+                           s->file, sf->line, sf->col, sf->name,
+                           sf->model != &tex_shading_phong ? "(1 - s) Kd + max(s, Kr, Kt)"
+                                                           : "Kd + max(Ks, Kr) + Kt",
+                           e);
             n++;
         }
     }
@@ -1193,6 +1224,26 @@ static struct tex_object *parse_leaf(struct parser *ps, int kind, const struct t
     return ob;
 }
 
+/* A plane whose anisotropic surface's fixed tangent lies along its normal has no
+ * direction to stretch the highlight in: refused, naming the surface's line. */
+static void fixed_tangent(struct parser *ps, const struct tex_object *ob)
+{
+    const struct tex_surface *sf = ob->surface;
+    if (ob->op != TEX_CSG_LEAF || ob->kind != TEX_SHAPE_PLANE || !sf ||
+        !tex_shading_anisotropic(sf->model) || sf->tangent_from != TEX_TANGENT_FIXED)
+        return;
+    tex_v3 n = tex_v3_norm(tex_xform_normal(
+        &ob->to_obj, tex_shape_methods[TEX_SHAPE_PLANE].normal(ob, tex_v3_make(0, 0, 0))));
+    tex_v3 c = tex_v3_cross(n, sf->tangent);
+    if (tex_v3_dot(c, c) < 1e-8) {
+        struct tex_tok t = {0};
+        t.line = sf->line, t.col = sf->col;
+        fail_at(ps, &t, 0, "surface '%s': tangent %g %g %g is along the normal of the plane on "
+                           "line %d; give a direction in the plane, or tangent u",
+                sf->name, sf->tangent.x, sf->tangent.y, sf->tangent.z, ob->line);
+    }
+}
+
 static void set_world(struct parser *ps, struct tex_object *ob, const tex_xform *parent,
                       const struct tex_surface *sf, const struct tex_object *root)
 {
@@ -1213,6 +1264,7 @@ static void set_world(struct parser *ps, struct tex_object *ob, const tex_xform 
     if (!ob->surface)
         ob->surface = sf;
     ob->root = root;
+    fixed_tangent(ps, ob);
 }
 
 static struct tex_object *parse_object(struct parser *ps)

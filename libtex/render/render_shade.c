@@ -4,6 +4,7 @@
 #include "render/render.h"
 #include "render/render_shade.h"
 #include "render/render_ct.h"
+#include "render/anisotropic.h"
 
 static void phong_direct(const struct tex_material *m, const double N[3], const double V[3],
                          const double L[3], const tex_colour *E, int n, tex_colour *out)
@@ -22,7 +23,9 @@ static void phong_weights(const struct tex_material *m, double cosi, int n, tex_
 const struct tex_shading_model tex_shading_phong = {"phong", phong_direct, phong_weights};
 
 static const struct tex_shading_model *const models[] = {&tex_shading_phong,
-                                                         &tex_shading_cook_torrance, NULL};
+                                                         &tex_shading_cook_torrance,
+                                                         &tex_shading_ward,
+                                                         &tex_shading_ashikhmin_shirley, NULL};
 
 const struct tex_shading_model *tex_shading_find(const char *name)
 {

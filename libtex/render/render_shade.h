@@ -49,6 +49,7 @@ struct tex_material {
     double ior;      /* index of refraction, > 0 */
     double m, s;     /* Cook-Torrance: Beckmann's slope and the specular fraction here */
     double disp;     /* the shaded point's displacement along the normal (target P) */
+    double au, av, T[3]; /* ward, ashikhmin-shirley: roughnesses, unit tangent (anisotropic.h) */
     const struct tex_shading_model *model;
     const void *model_data; /* the model's own parameters, or NULL */
     /* a blend of two surfaces (`blend = h`): the light this one reflects, times 1 - blend,

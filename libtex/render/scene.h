@@ -131,7 +131,7 @@ tex_param_read tex_scene_read_seed, tex_scene_read_colour, tex_scene_read_materi
 tex_param_read tex_scene_read_spectrum, tex_scene_read_falloff;
 tex_param_read tex_scene_read_model, tex_scene_read_character, tex_scene_read_material,
     tex_scene_read_facets,
-    tex_scene_read_specular, tex_scene_read_apply, tex_scene_read_blend;
+    tex_scene_read_specular, tex_scene_read_apply, tex_scene_read_blend, tex_scene_read_tangent;
 tex_param_read tex_scene_read_translate, tex_scene_read_rotate, tex_scene_read_scale,
     tex_scene_read_cross, tex_scene_read_stretch, tex_scene_read_region;
 tex_param_read tex_scene_read_surface;

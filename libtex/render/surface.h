@@ -125,11 +125,13 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
 void tex_surface_uncache(struct tex_surface *sf);
 
 /* The parameters an application function can set: the surface's Ka..ior, then bump,
- * Cook-Torrance's m and s, the weight of a blended surface, a tangent-space normal map and
- * a height gradient (tex_sparam_row gives each one's row). */
+ * Cook-Torrance's m and s, the weight of a blended surface, a tangent-space normal map,
+ * a height gradient, the point, and the anisotropic models' roughnesses, tangent angle and
+ * flow field (tex_sparam_row gives each one's row). */
 enum tex_sparam { TEX_SP_KA, TEX_SP_KD, TEX_SP_KS, TEX_SP_N, TEX_SP_KR, TEX_SP_KT, TEX_SP_IOR,
                   TEX_SP_BUMP, TEX_SP_M, TEX_SP_S, TEX_SP_BLEND, TEX_SP_NORMAL,
-                  TEX_SP_GRADIENT, TEX_SP_P, TEX_SP_COUNT };
+                  TEX_SP_GRADIENT, TEX_SP_P, TEX_SP_AU, TEX_SP_AV, TEX_SP_ANGLE,
+                  TEX_SP_TANGENT, TEX_SP_COUNT };
 
 /* An application function's expression, compiled (lang/expr.h): a postfix
  * program over f (the map value), p (the untextured value), numbers, colours,
@@ -183,6 +185,9 @@ struct tex_apply {
  * channels plus Ks, Kr and Kt is at most 1.  words[i] is a row of tex_surface_rows and its
  * value, as a scene writes them; NULL ends. */
 #define TEX_CHARACTERS "matte|glossy|metal|glass|varnished"
+
+/* Where an anisotropic surface's tangent comes from (its `tangent` row, anisotropic.h) */
+enum tex_tangent_from { TEX_TANGENT_U, TEX_TANGENT_V, TEX_TANGENT_FIXED };
 struct tex_character {
     const char *name;
     const char *words[8][2];
@@ -195,6 +200,9 @@ struct tex_surface {
     double n, kr, kt, ior;
     const struct tex_shading_model *model;
     struct tex_ct *ct;      /* Cook-Torrance parameters (render_ct.h); NULL: its defaults */
+    double alpha[2];        /* ward, ashikhmin-shirley: roughness along and across T */
+    enum tex_tangent_from tangent_from; /* their tangent (anisotropic.h) */
+    tex_v3 tangent;                     /* TEX_TANGENT_FIXED's, world */
     const struct tex_surface *blend; /* `blend SURFACE`: mixed in by `blend = h`, or NULL */
     int character;                   /* `character NAME`: 1 + its index in tex_characters, or 0 */
     struct tex_apply *apply;

@@ -102,3 +102,35 @@ print(sys.argv[3], "worst block", worst, "mean", mean, file=sys.stderr)
 sys.exit(0 if worst <= 3 and max(mean) <= 1 else 1)
 P
 done
+# The thumbnail of a large map is the area mean of its boxes: a 1024x512 map shown 256x128,
+# each pixel the mean of its 4x4 box (8-bit, from kitty's exact picture), from the stream and
+# from a PNG alike
+t_fractal -s 1024x512 -f 8 -S 5 | t_palette marble -o "$T/big.exr"
+t_convert "$T/big.exr" -o "$T/big.pfm"
+t_convert --depth 16 "$T/big.exr" -o "$T/big.png"
+for src in "stream" "png"; do
+    case $src in stream) t_info --preview kitty <"$T/big.exr" ;; png) t_info --preview kitty "$T/big.png" ;; esac |
+        decode kitty >"$T/th.txt"
+    python3 - "$T/big.pfm" "$T/th.txt" <<'P' && ok "--preview of a $src: each thumbnail pixel the mean of its 4x4 box" ||
+import array, sys
+d = open(sys.argv[1], "rb").read(); k, s, sc, rest = d.split(b"\n", 3)
+w, h = map(int, s.split()); a = array.array("f"); a.frombytes(rest[:w * h * 12])
+l = open(sys.argv[2]).read().split("\n"); tw, th = map(int, l[0].split())
+assert (tw, th) == (256, 128), (tw, th)
+worst = 0
+for ty in range(th):
+    for tx in range(tw):
+        got = list(map(int, l[1 + ty * tw + tx].split()))
+        for c in range(3):
+            m = sum(a[((h - 1 - (4 * ty + j)) * w + 4 * tx + i) * 3 + c] for j in range(4) for i in range(4)) / 16
+            worst = max(worst, abs(got[c] - min(max(m, 0), 1) * 255))
+sys.exit(0 if worst <= 0.51 else 1)
+P
+        notok "--preview of a $src: box means" "$(head -c 200 "$T/th.txt")"
+done
+# a streamed map's thumbnail in bounded memory: a 4096x4096 RGB map (192 MiB as float)
+lim=$(stream_vlimit 60000)
+t_noise -s 4096 -f 8 | t_palette --range 0,1 marble |
+    (ulimit -v $lim; t_info --preview kitty) | decode kitty >"$T/th.txt"
+head -1 "$T/th.txt" | grep -qx "256 256" &&
+    ok "--preview of a 4096x4096 stream under ulimit -v $lim KB" || notok "--preview under ulimit -v $lim"

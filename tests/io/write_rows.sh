@@ -88,6 +88,26 @@ for ext in png; do
     rm -f w.$ext s.$ext
 done
 
+# A generator writes every format that takes rows as it samples them: the bytes of its EXR
+# converted, in bounded memory (every primitive of the registry, the formats that take rows)
+bad=""
+for name in $(t_info --primitives | awk '{ print $1 }'); do
+    t_$name -s 61x37 -o g.exr 2>/dev/null || continue
+    for ext in png jpg ppm tif pfm; do
+        t_$name -s 61x37 -o g.$ext && t_convert -o c.$ext g.exr && cmp -s g.$ext c.$ext ||
+            bad="$bad $name.$ext"
+    done
+done
+[ -z "$bad" ] && ok "every generator's PNG, JPEG, PPM, TIFF and PFM: the bytes of its EXR converted" ||
+    notok "generators' formats" "$bad"
+lim=$(stream_vlimit 60000)
+for ext in png tif ppm; do
+    (ulimit -v $lim; t_noise -s 4096 -f 8 -o s.$ext) 2>err && t_noise -s 4096 -f 8 | t_convert -o w.$ext &&
+        cmp -s w.$ext s.$ext && ok "t_noise writes a 4096x4096 .$ext in bands under ulimit -v $lim KB" ||
+        notok "t_noise to .$ext under ulimit -v $lim" "$(head -c 200 err)"
+    rm -f w.$ext s.$ext
+done
+
 # One rule for the EXR stream: standard output is never compressed, a regular file or a pipe,
 # whether the tool streams (t_noise, t_filter) or writes the whole map (t_fft); -o compresses
 for tool in "t_noise -s 300x200 -f 8" "t_filter blur y.exr" "t_fft y.exr"; do

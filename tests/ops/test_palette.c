@@ -263,8 +263,7 @@ static void test_shipped(void)
                                         "sky", "earth", "water", "brick", "grass", "greys",
                                         "rainbow", "viridis", "magma", "inferno", "plasma"};
     char dir[4096];
-    const char *top = getenv("TEXTURA_TOP");
-    snprintf(dir, sizeof dir, "%s/palettes", top ? top : ".");
+    unit_top_path("palettes", dir, sizeof dir);
     setenv("TEXTURA_PALETTES", dir, 1);
     tex_palette *p;
     float c[4];

@@ -243,7 +243,7 @@ printf 'camera { eye 0 0 0 look 0 0 1 }\nsphere { radius 2 }\n' >"$T/in.scene"
 t_apply "$T/in.scene" -s 8 -o "$T/in.exr" 2>"$T/in.err"
 grep -q "in.scene:2:1: warning: the camera is inside" "$T/in.err" && [ -e "$T/in.exr" ] &&
     ok "camera inside an object: a warning with its place" || notok "camera inside warning" "$(cat "$T/in.err")"
-printf 'camera { eye 0 0 0 look 0 0 1 }\nsurface water { Kt 1 ior 1.33 }\nsphere { radius 2 surface water }\n' \
+printf 'camera { eye 0 0 0 look 0 0 1 }\nsurface water { Kd 0 Ks 0 Kt 1 ior 1.33 }\nsphere { radius 2 surface water }\n' \
     >"$T/under.scene"
 t_apply "$T/under.scene" -s 8 -o "$T/under.exr" 2>"$T/under.err" && [ ! -s "$T/under.err" ] &&
     ok "camera inside a transparent solid: its medium, no warning" ||

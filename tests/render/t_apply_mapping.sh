@@ -3,24 +3,7 @@
 # (non-elastic) mapping, P as a target and the infinite cone.
 . "$(dirname "$0")/../lib.sh"
 
-# pfm.load(FILE): a map's floats (3 channels), width and height; px(a, w, h, x, y, ch) with
-# y = 0 the top row.  The checks below import it (PYTHONPATH=$T).
-cat >"$T/pfm.py" <<'P'
-import array, subprocess
-def load(f):
-    d = subprocess.run(['t_convert', '-o', '-', '--format', 'pfm', f], check=True,
-                       stdout=subprocess.PIPE).stdout
-    kind, size, scale, rest = d.split(b'\n', 3)
-    w, h = map(int, size.split())
-    nc = 3 if kind == b'PF' else 1
-    a = array.array('f'); a.frombytes(rest[:w * h * nc * 4])
-    if float(scale) > 0: a.byteswap()
-    if nc == 1: a = array.array('f', [v for v in a for _ in range(3)])
-    return a, w, h
-def px(a, w, h, x, y, ch=0):
-    return a[((h - 1 - y) * w + x) * 3 + ch]
-P
-py() { PYTHONPATH=$T python3 "$@"; }
+pfm_py # py: python3 with pfm.load and pfm.px (tests/lib.sh)
 
 # counts MAP: "value count" of the red channel's values (rounded to 1e-4), one per line
 counts() {

@@ -37,10 +37,9 @@ static void metal_rgb(const struct tex_bands *b, const tex_colorimetry *cm,
 
 int main(void)
 {
-    const char *top = getenv("TEXTURA_TOP");
     char path[4096];
-    snprintf(path, sizeof path, "%s/patterns/materials.txt", top ? top : ".");
     struct tex_matdb db;
+    unit_top_path("patterns/materials.txt", path, sizeof path);
     int rc = tex_matdb_read(&db, path);
     CHECKF(rc == 0, "the shipped database reads (%s)", rc ? tex_errmsg() : "ok");
     if (rc)

@@ -67,10 +67,9 @@ int main(void)
     CHECKF(la.v[0] > 2 * la.v[2], "illuminant A in an RGB scene (%.3f %.3f %.3f)", la.v[0],
            la.v[1], la.v[2]);
 
-    const char *top = getenv("TEXTURA_TOP");
     char path[4096];
-    snprintf(path, sizeof path, "%s/patterns/materials.txt", top ? top : ".");
     struct tex_matdb db;
+    unit_top_path("patterns/materials.txt", path, sizeof path);
     if (tex_matdb_read(&db, path) < 0) {
         CHECKF(0, "materials: %s", tex_errmsg());
         return unit_done();
