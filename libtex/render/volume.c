@@ -46,8 +46,9 @@ static int group(const struct span *sp, int n, int i, double *t0, double *t1)
     return i;
 }
 
-/* The samples of the hypertextures of sp[i..j) whose spans hold t, summed: colours and
- * emission weighted by their scattering and share */
+/* The samples of the hypertextures of sp[i..j) whose spans hold t, summed: extinction,
+ * scattering and emission added, colours weighted by each one's scattering, and the phase
+ * (*g) of the one that scatters most */
 static void sample(const struct span *sp, int i, int j, double t, const tex_v3 *P, double fw2,
                    int shadow, struct tex_hyper_sample *v, double *g)
 {
@@ -92,7 +93,8 @@ double tex_volume_transmit(const struct tex_scene *s, const tex_v3 *o, const tex
         j = group(sp, n, i, &t0, &t1);
         steps(sp, i, j, 1, &step, &tol);
         double dt = fmax(step, (t1 - t0) / TEX_VOLUME_SHADOW_STEPS);
-        for (double t = t0; t < t1; t += dt) {
+        /* t + dt == t past a double's resolution: nothing left to march */
+        for (double t = t0; t < t1 && t + dt > t; t += dt) {
             double h = fmin(dt, t1 - t), tm = t + h / 2;
             tex_v3 P = tex_v3_madd(*o, *d, tm);
             struct tex_hyper_sample v;

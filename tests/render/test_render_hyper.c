@@ -294,6 +294,19 @@ static void test_bad(void)
                            "absorption 0 scattering 1e-9 step 1e-6 shadow-step 1e-6 }\n", 1);
     CHECK(img != NULL, "and scattering toward a light through it: shadow rays capped too");
     tex_map_free(img);
+    /* a span 16 long at 1e17, where a double's resolution is 16: the marches end */
+    struct tex_scene *s = parse("image 2 2 camera { eye 0 0 0 look 0 0 1 fov 0.01 }\n"
+                                "hypertexture { box { min -1e3 -1e3 1e17 max 1e3 1e3 "
+                                "100000000000000016 } absorption 0 step 1e-6 shadow-step 1e-6 }\n");
+    if (s) {
+        tex_v3 o = tex_v3_make(0, 0, 2e17), d = tex_v3_make(0, 0, -1);
+        CHECK(tex_volume_transmit(s, &o, &d, 2e17) == 1,
+              "a shadow ray through a span below a double's resolution ends");
+        tex_map *m = tex_render(s, NULL, NULL);
+        CHECK(m != NULL, "and an eye ray's march through it");
+        tex_map_free(m);
+        tex_scene_free(s);
+    }
 }
 
 int main(void)
