@@ -159,4 +159,9 @@ t_noise -s 256 -f 3 -S 5 --tile | t_filter normal --strength 30 |
     t_apply '$here/brushed_steel.scene' -s ${s}x$((2 * s / 3)) -q -o fig.exr"
 figure satin "Anisotropic reflection: satin, Ashikhmin-Shirley's model over a dyed dielectric. The cushion's threads run round its tube, its sheen a band round the ring; the cloth is a satin weave whose weft floats turn the tangent 90 degrees, so its threads glint in two directions." "
 t_apply '$here/satin.scene' -s ${s}x$((2 * s / 3)) -q -o fig.exr"
+figure 2.9 "Section 2.9: hypertexture (Perlin and Hoffert), ray-marched: a fireball glowing through turbulence, an eroded sphere whose soft region fBm eats into, and smoke rising over a CSG block, lit through the volume." "
+for sc in fireball eroded_sphere smoke_csg; do
+    t_apply '$here/'\$sc.scene -s ${s}x$((3 * s / 4)) -q -o \$sc.exr
+done
+t_tile --matrix cycle --nu 3 --nv 1 -s $((3 * s))x$((3 * s / 4)) fireball.exr eroded_sphere.exr smoke_csg.exr -o fig.exr"
 echo "wrote $page"

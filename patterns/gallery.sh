@@ -150,9 +150,11 @@ shot "t_ifft magnitude.exr --format png" magnitude
 shot "t_sparse sample.exr $s --format png" sample
 shot "t_synth sample.exr $s --tile --format png" sample
 section=scenes
-cp "$here/still_life.scene" "$here/resolution.scene" .
+cp "$here/still_life.scene" "$here/resolution.scene" "$here/fireball.scene" "$here/smoke_csg.scene" .
 shot "t_noise -s 256 -f 12 -S 7 | t_apply still_life.scene -s ${big}x$((3 * big / 4)) -q --format png"
 shot "t_apply resolution.scene -s ${big}x$((9 * big / 16)) -q --format png"
+shot "t_apply fireball.scene -s ${big}x$((3 * big / 4)) -q --format png"
+shot "t_apply smoke_csg.scene -s ${big}x$((3 * big / 4)) -q --format png"
 # the thesis's figures as make figures left them (the source tree's doc/figures)
 figs=$here/../doc/figures
 if [ -f "$figs/figures.md" ]; then

@@ -38,7 +38,8 @@ static const struct tex_param rows[] = {
                "render (for render farms: t_assemble puts regions together)"),
     TEX_STRING(struct opts, help_scene, 0, NULL, "BLOCK",
                "list the words of a scene block (settings|camera|light|environment|texture|"
-               "surface|apply|targets|object), or of application functions' expressions "
+               "surface|apply|targets|object|hypertexture|hyperfunctions|density), or of "
+               "application functions' expressions "
                "(quantities|functions), and exit"),
     TEX_STRING(struct opts, help_scene_mdoc, 0, NULL, "BLOCK",
                "the same list as mdoc, for t_apply(5)"),
@@ -151,7 +152,8 @@ __attribute__((noreturn)) static void help_scene(const char *block, int mdoc)
         b++;
     if (!b->name)
         tex_usage_die("--help-scene%s must be settings|camera|light|environment|texture|surface|"
-                      "apply|targets|object|quantities|functions (got '%s')", mdoc ? "-mdoc" : "", block);
+                      "apply|targets|object|hypertexture|hyperfunctions|density|quantities|functions "
+                      "(got '%s')", mdoc ? "-mdoc" : "", block);
     if (mdoc)
         puts(".Bl -tag -width Ds");
     for (const struct tex_param *p = b->rows; p->name; p++) {

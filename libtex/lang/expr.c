@@ -25,6 +25,11 @@ const struct tex_expr_func tex_expr_funcs[] = {
     {"floor", 1, TEX_EOP_FLOOR, "a", "the largest integer not above a"},
     {"fract", 1, TEX_EOP_FRACT, "a", "a - floor(a), in [0, 1)"},
     {"if", 3, TEX_EOP_IF, "c, a, b", "a where c is not 0, else b (per channel)"},
+    {"bias", 2, TEX_EOP_BIAS, "b, t",
+     "Perlin's bias: t^(ln b / ln 0.5), t clamped to [0, 1]; b where t is 0.5"},
+    {"gain", 2, TEX_EOP_GAIN, "g, t",
+     "Perlin's gain, two bias curves: bias(1 - g, 2t) / 2 below t = 0.5, "
+     "1 - bias(1 - g, 2 - 2t) / 2 above"},
     {NULL, 0, 0, NULL, NULL},
 };
 
@@ -303,6 +308,7 @@ int tex_expr_apply_row(enum tex_eop op, int n, const double *a, const double *b,
     ROW(TEX_EOP_LE); ROW(TEX_EOP_GE); ROW(TEX_EOP_EQ); ROW(TEX_EOP_NE); ROW(TEX_EOP_MIX);
     ROW(TEX_EOP_SMOOTHSTEP); ROW(TEX_EOP_STEP); ROW(TEX_EOP_CLAMP); ROW(TEX_EOP_POW);
     ROW(TEX_EOP_SIN); ROW(TEX_EOP_COS); ROW(TEX_EOP_FLOOR); ROW(TEX_EOP_FRACT); ROW(TEX_EOP_IF);
+    ROW(TEX_EOP_BIAS); ROW(TEX_EOP_GAIN);
     default: return -1;
     }
 #undef ROW

@@ -23,6 +23,7 @@
  *   min(a, b)  max(a, b)  abs(a)  rgb(r, g, b)
  *   mix(a, b, t)  smoothstep(e0, e1, x)  step(edge, x)  clamp(x, lo, hi)
  *   pow(a, b)  sin(a)  cos(a)  floor(a)  fract(a)  if(c, a, b)
+ *   bias(b, t)  gain(g, t)     Perlin's (ops/remap.h's), as hypertexture modulates density
  * In a scene they act per colour channel on numbers; in a script on every
  * pixel of images (rgb takes numbers only there, and makes a colour).  A
  * language may add comparisons (< > <= >= == !=, 1 or 0) to its binary
@@ -53,6 +54,7 @@
 #include <math.h>
 
 #include "lex.h"
+#include "../ops/remap.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -70,7 +72,7 @@ enum tex_eop {
     TEX_EOP_MIN, TEX_EOP_MAX, TEX_EOP_ABS, TEX_EOP_RGB, /* channel k of argument k */
     TEX_EOP_LT, TEX_EOP_GT, TEX_EOP_LE, TEX_EOP_GE, TEX_EOP_EQ, TEX_EOP_NE, /* 1 or 0 */
     TEX_EOP_MIX, TEX_EOP_SMOOTHSTEP, TEX_EOP_STEP, TEX_EOP_CLAMP, TEX_EOP_POW, TEX_EOP_SIN,
-    TEX_EOP_COS, TEX_EOP_FLOOR, TEX_EOP_FRACT, TEX_EOP_IF,
+    TEX_EOP_COS, TEX_EOP_FLOOR, TEX_EOP_FRACT, TEX_EOP_IF, TEX_EOP_BIAS, TEX_EOP_GAIN,
     TEX_EOP_PALETTE /* ptr: a tex_palette (ops/palette.h) at the mean of the argument */
 };
 
@@ -187,6 +189,12 @@ static inline double tex_expr_op(enum tex_eop op, double a, double b, double c)
     case TEX_EOP_FLOOR: return floor(a);
     case TEX_EOP_FRACT: return a - floor(a);
     case TEX_EOP_IF: return a != 0 ? b : c;
+    case TEX_EOP_BIAS: /* b outside (0, 1): 0 where that is not a real number, as pow */
+        x = tex_bias(a, b);
+        return isfinite(x) ? x : 0;
+    case TEX_EOP_GAIN:
+        x = tex_gain(a, b);
+        return isfinite(x) ? x : 0;
     default: return 0; /* CONST, LEAF, RGB, PALETTE: not scalar operators */
     }
 }

@@ -14,7 +14,8 @@ static double unit(double t)
 double tex_bias(double b, double t)
 {
     t = unit(t);
-    return t == 0 ? 0 : pow(t, log(b) / log(0.5));
+    /* bias_b(0.5) = b exactly, which pow's rounding does not promise */
+    return t == 0 ? 0 : t == 0.5 ? b : pow(t, log(b) / log(0.5));
 }
 
 double tex_gain(double g, double t)

@@ -816,3 +816,10 @@ void tex_surface_uncache(struct tex_surface *sf)
     }
     sf->cache = NULL;
 }
+
+void tex_appfn_eval(const struct tex_expr *e, const float f[3], const float p[3],
+                    const double uvw[3], double fw2, const double *q, double out[3])
+{
+    struct evalctx c = {f, p, uvw, fw2, q};
+    expr_eval(e, &c, out);
+}

@@ -71,6 +71,13 @@ struct tex_surface_cache {
 tex_v3 tex_tilt_along(const double *grad, const double du[2], const double dv[2],
                          double g[2], tex_v3 t1, tex_v3 t2);
 
+/* An application function's expression e run per channel, as a hit runs it: its f and p
+ * leaves read f and p, its textures are looked up at uvw through a footprint sqrt(fw2)
+ * wide, its quantities read q[TEX_Q_COUNT] (NULL where e reads none).  Hypertextures run
+ * theirs through it (hypertexture.h). */
+void tex_appfn_eval(const struct tex_expr *e, const float f[3], const float p[3],
+                    const double uvw[3], double fw2, const double *q, double out[3]);
+
 /* Whether the packet looks texture ap up ahead when it is a surface's first: a filtered
  * map, with its gradient where bumped (a cross mapping wants a second map). */
 static inline int map_ahead(const struct tex_apply *ap)

@@ -474,7 +474,7 @@ static int render_into(struct tex_scene *s, int rx, int ry, tex_map *img,
     int threads = st->threads > 0 ? st->threads : omp_get_max_threads();
     /* TEXTURA_PACKETS=0: every pixel on its own (the tests compare the two) */
     const char *pe = getenv("TEXTURA_PACKETS");
-    int packets = !(pe && !strcmp(pe, "0"));
+    int packets = !(pe && !strcmp(pe, "0")) && !s->nhypers; /* volumes: tex_trace's */
     struct packet *pool = packets ? packet_pool(s, threads) : NULL;
 #pragma omp parallel num_threads(threads)
     {

@@ -13,6 +13,7 @@
 
 #include "lang/expr.h"
 #include "render/anisotropic.h"
+#include "render/hypertexture.h"
 #include "render/render_ct.h"
 #include "render/scene.h"
 
@@ -290,12 +291,74 @@ const struct tex_param tex_environment_rows[] = {
             "X Y Z", "turn the map X degrees about x, then Y about y, then Z about z"),
     {0}};
 
+/* hypertexture { }: over struct tex_hyper (hypertexture.h; marched by volume.c) */
+#define HROW(name, f, d, lo, hi, meta, help) \
+    TEX_ROW(name, struct tex_hyper, f, TEX_P_REAL, d, lo, hi, 1, 0, meta, help)
+const struct tex_param tex_hyper_rows[] = {
+    HROW("absorption", absorption, "1", 0, 1e6, "A",
+         "light absorbed per unit length where the opacity is 1"),
+    HROW("scattering", scattering, "0", 0, 1e6, "S",
+         "light scattered per unit length where the opacity is 1 (single scattering toward "
+         "each light, shadow rays through the volume)"),
+    HROW("phase", phase, "0", -0.99, 0.99, "G",
+         "Henyey-Greenstein's g: 0 isotropic, above 0 forward (brightest looking toward a "
+         "light), below 0 backward"),
+    HROW("step", step, "0.05", 1e-6, 1e6, "DT",
+         "the march's longest step in world units (the pixel's footprint where wider)"),
+    HROW("shadow-step", shadow_step, "0", 0, 1e6, "DT",
+         "the step of shadow rays through the volume (0: twice step)"),
+    HROW("tolerance", tolerance, "0.01", 1e-9, 1e6, "E",
+         "the optical depth a step may change by: where the extinction changes by g per unit "
+         "length, steps shrink to sqrt(E / g), down to a sixteenth of step"),
+    HROW("jitter", jitter, "1", 0, 1, "J",
+         "the share of a step its sample moves by a hash of the ray (0: the midpoint)"),
+    HROW("ambient", ambient, "0.1", 0, 1e6, "K",
+         "the scattered share of the ambient light (K x colour x Ia per unit of scattering)"),
+    {0}};
+
+/* The application functions of a hypertexture, in enum tex_hyper_fn order (no storage; the
+ * default is what an absent function gives) */
+#define HFN(name, d, lo, hi, meta, help) {name, 0, TEX_P_REAL, 0, 0, lo, hi, d, NULL, 0, meta, \
+                                          help, 0, 0, 0, NULL, NULL, NULL, NULL}
+const struct tex_param tex_hyper_fn_rows[] = {
+    HFN("density", "D", 0, 1, "H",
+        "H, Perlin and Hoffert's modulated density (also written H = ...)"),
+    HFN("opacity", "H", 0, 1e6, "O",
+        "the extinction's share: absorption and scattering times O per unit length"),
+    HFN("colour", "1", 0, 1, "R G B", "the scattered light's colour, the albedo (also color)"),
+    HFN("emission", "0", 0, 1e6, "R G B", "light emitted per unit length, a fire's"),
+    {0}};
+
+/* A density's words (hypertexture.h): KIND bits of enum tex_hdensity_kind */
+#define HD(k) KIND(TEX_HD_##k)
+#define DROW(name, f, d, lo, hi, n, meta, kinds, help)                                           \
+    {name, 0, TEX_P_REAL, offsetof(struct tex_hdensity, f), 0, lo, hi, d, NULL, 0, meta, help,  \
+     n, 0, kinds, NULL, NULL, NULL, NULL}
+const struct tex_param tex_hdensity_rows[] = {
+    DROW("centre", centre, "0,0,0", -INF, INF, 3, "X Y Z", HD(SPHERE),
+         "sphere: the centre c (also center)"),
+    DROW("radius", radius, "1", -INF, INF, 1, "R", HD(SPHERE) | HD(CYLINDER),
+         "sphere, cylinder: the radius r (> 0)"),
+    DROW("soft", soft, "0", 0, 1e9, 1, "S",
+         HD(SPHERE) | HD(BOX) | HD(CYLINDER),
+         "the soft region's width s, centred on the surface (sphere: at most 2 r); 0: a hard "
+         "edge"),
+    DROW("min", min, "-1,-1,-1", -INF, INF, 3, "X Y Z", HD(BOX), "box: the corner of least x, y, z"),
+    DROW("max", max, "1,1,1", -INF, INF, 3, "X Y Z", HD(BOX),
+         "box: the opposite corner (above min on every axis)"),
+    DROW("base", base, "0,0,0", -INF, INF, 3, "X Y Z", HD(CYLINDER),
+         "cylinder: the centre of the base cap"),
+    DROW("top", top, "0,1,0", -INF, INF, 3, "X Y Z", HD(CYLINDER),
+         "cylinder: the centre of the top cap (not the base)"),
+    {0}};
+
 const struct tex_scene_block tex_scene_blocks[] = {
     {"settings", tex_settings_rows}, {"camera", tex_camera_rows}, {"light", tex_light_rows},
     {"environment", tex_environment_rows},
     {"texture", tex_field_rows},     {"surface", tex_surface_rows}, {"apply", tex_apply_rows},
     {"targets", tex_target_rows},
-    {"object", tex_object_rows},     {NULL, NULL}};
+    {"object", tex_object_rows},     {"hypertexture", tex_hyper_rows},
+    {"hyperfunctions", tex_hyper_fn_rows}, {"density", tex_hdensity_rows}, {NULL, NULL}};
 
 /* lang/expr.h's functions, then the scene's own palette(NAME, x) */
 int tex_scene_function(int i, struct tex_scene_word *w)

@@ -23,6 +23,7 @@
 #include "render/render_ct.h"
 #include "render/anisotropic.h"
 #include "render/appfn.h"
+#include "render/hypertexture.h"
 #include "lang/expr.h"
 #include "lang/lex.h"
 #include "lang/proc.h"
@@ -44,6 +45,7 @@ struct parser {
     int sample_size; /* tex_scene_opts */
     struct tex_tok kt; /* the word of the row a reader reads (struct tex_param's read) */
     size_t caplights, capsurfaces; /* room in s->lights and s->surfaces (pgrow) */
+    int hyper_fn; /* 1 + the hypertexture function being read (enum tex_hyper_fn), or 0 */
 };
 
 /* The block a row's reader reads into (struct tex_param's read, ctx): the block's struct
@@ -1329,6 +1331,167 @@ static struct tex_object *parse_object(struct parser *ps)
     return ob;
 }
 
+/* ---- hypertextures (hypertexture.h) ----------------------------------------------------- */
+
+static int density_kind(const struct tex_tok *t)
+{
+    for (int k = 0; k < TEX_HD_NKINDS; k++)
+        if (tex_tok_is_word(t, tex_hdensity_names[k]))
+            return k;
+    return -1;
+}
+
+static struct tex_hdensity *parse_density(struct parser *ps);
+
+/* kids[0..n) combined by op, a balanced tree as CSG's: every walk log2(n) deep */
+static struct tex_hdensity *density_tree(struct parser *ps, int op, struct tex_hdensity **kids,
+                                         int n)
+{
+    if (n == 1)
+        return kids[0];
+    struct tex_hdensity *d = palloc(ps, sizeof *d);
+    *d = (struct tex_hdensity){.kind = op, .line = kids[0]->line, .col = kids[0]->col};
+    d->a = density_tree(ps, op, kids, n / 2);
+    d->b = density_tree(ps, op, kids + n / 2, n - n / 2);
+    return d;
+}
+
+/* A density: a shape's block through tex_hdensity_rows, or a boolean of densities */
+static struct tex_hdensity *parse_density(struct parser *ps)
+{
+    char b[64], what[32];
+    struct tex_tok at = ps->lx.t;
+    int k = density_kind(&at);
+    if (k < 0)
+        FAIL(ps, "expected a density (sphere, box, cylinder, union, intersection, difference "
+                 "or complement), found %s", tex_tok_desc(&at, b, sizeof b));
+    if (++ps->nest > MAX_NEST)
+        FAIL(ps, "densities nested too deeply");
+    tex_lex_next(&ps->lx);
+    struct tex_hdensity *d = palloc(ps, sizeof *d), **kids = NULL;
+    snprintf(what, sizeof what, "a density %s", tex_hdensity_names[k]);
+    if (k <= TEX_HD_CYLINDER) {
+        if (tex_params_defaults(tex_hdensity_rows, d) < 0)
+            fail_at(ps, &at, 0, "%s", tex_errmsg());
+        ps->whole_vectors = 1;
+        read_block(ps, tex_hdensity_rows, k, &(struct block){.obj = d}, NULL, what);
+        ps->whole_vectors = 0;
+    } else {
+        size_t nk = 0, ck = 0;
+        tex_lex_expect(&ps->lx, '{');
+        while (!tex_tok_is_punct(&ps->lx.t, '}')) {
+            if (ps->lx.t.kind == TEX_TOK_EOF)
+                FAIL(ps, "expected '}' to end %s, found the end of the file", what);
+            kids = pgrow(ps, kids, nk, &ck, sizeof *kids);
+            kids[nk++] = parse_density(ps);
+        }
+        tex_lex_next(&ps->lx);
+        if (k == TEX_HD_COMPLEMENT ? nk != 1 : nk < 2)
+            fail_at(ps, &at, 0, "%s needs %s", what,
+                    k == TEX_HD_COMPLEMENT ? "one density" : "at least two densities");
+        if (k == TEX_HD_COMPLEMENT)
+            d->a = kids[0];
+        else if (k == TEX_HD_DIFFERENCE) /* a - b - c ... is a - (b u c u ...) */
+            d->a = kids[0], d->b = density_tree(ps, TEX_HD_UNION, kids + 1, (int)nk - 1);
+        else
+            d->a = density_tree(ps, k, kids, (int)nk / 2),
+            d->b = density_tree(ps, k, kids + nk / 2, (int)(nk - nk / 2));
+    }
+    d->kind = k;
+    d->line = at.line, d->col = at.col;
+    ps->nest--;
+    return d;
+}
+
+/* An operand of a hypertexture's function: D (the object density, as a surface's p), H (the
+ * modulated one, as f; not in density, which makes it), x y z and ox oy oz (the point), or
+ * what an application function reads besides (textures, palettes) */
+static struct tex_enode *hyper_operand(struct tex_expr_parser *xp)
+{
+    struct parser *ps = xp->ctx;
+    struct tex_tok t = ps->lx.t;
+    int D = tex_tok_is_word(&t, "D"), H = tex_tok_is_word(&t, "H"), q = -1;
+    if (D || H) {
+        if (H && ps->hyper_fn == 1 + TEX_HF_DENSITY)
+            FAIL(ps, "density makes H: it reads D, the point and textures");
+        struct tex_enode *e = tex_expr_node(&ps->lx, TEX_EK_LEAF, &t);
+        e->op = D ? TEX_LEAF_P : TEX_LEAF_F;
+        tex_lex_next(&ps->lx);
+        return e;
+    }
+    for (int i = 0; i < TEX_Q_COUNT; i++)
+        if (tex_tok_is_word(&t, tex_quantities[i].name))
+            q = i;
+    if (tex_tok_is_word(&t, "f") || tex_tok_is_word(&t, "p") ||
+        (q >= 0 && !(q >= TEX_Q_X && q <= TEX_Q_OZ)))
+        FAIL(ps, "'%.*s' is a surface's: a hypertexture's functions read D, H, x, y, z, "
+                 "textures, palettes, numbers and functions", (int)t.len, t.text);
+    return operand(xp);
+}
+
+static void parse_hypertexture(struct parser *ps, const struct tex_tok *at)
+{
+    struct tex_scene *s = ps->s;
+    char b[64];
+    struct tex_hyper *h = palloc(ps, sizeof *h);
+    if (tex_params_defaults(tex_hyper_rows, h) < 0)
+        fail_at(ps, at, 0, "%s", tex_errmsg());
+    h->line = at->line, h->col = at->col;
+    for (int i = 0; i < TEX_HF_COUNT; i++)
+        h->lo[i] = tex_hyper_fn_rows[i].min, h->hi[i] = tex_hyper_fn_rows[i].max;
+    tex_lex_expect(&ps->lx, '{');
+    while (!tex_tok_is_punct(&ps->lx.t, '}')) {
+        struct tex_tok kt = ps->lx.t;
+        const struct tex_param *p = row_of(tex_hyper_rows, &kt, -1),
+                               *f = row_of(tex_hyper_fn_rows, &kt, -1);
+        if (tex_tok_is_word(&kt, "H")) /* the thesis's H = f_n(...f_0(D)) */
+            f = &tex_hyper_fn_rows[TEX_HF_DENSITY];
+        if (density_kind(&kt) >= 0) {
+            if (h->d)
+                FAIL(ps, "a hypertexture takes one density (union, intersection, difference "
+                         "and complement combine them)");
+            h->d = parse_density(ps);
+        } else if (p) {
+            tex_lex_next(&ps->lx);
+            read_value(ps, p, &kt, &(struct block){.obj = h});
+        } else if (f) {
+            static const struct tex_expr_lang lang = {tex_expr_arith_binops, hyper_operand};
+            struct tex_expr_parser xp = {&ps->lx, &lang, ps, 0, 0};
+            tex_lex_next(&ps->lx);
+            if (!tex_tok_is_punct(&ps->lx.t, '='))
+                FAIL(ps, "expected '=' after %s, found %s", f->name,
+                     tex_tok_desc(&ps->lx.t, b, sizeof b));
+            tex_lex_next(&ps->lx);
+            ps->hyper_fn = 1 + (int)(f - tex_hyper_fn_rows);
+            h->fn[f - tex_hyper_fn_rows] = tex_expr_compile(&ps->lx, tex_expr_parse(&xp));
+            ps->hyper_fn = 0;
+        } else if (kt.kind == TEX_TOK_EOF) {
+            FAIL(ps, "expected '}' to end a hypertexture, found the end of the file");
+        } else {
+            FAIL(ps, "unknown word %s in a hypertexture%s", tex_tok_desc(&kt, b, sizeof b),
+                 nearest_row(tex_hyper_rows, -1, &kt));
+        }
+    }
+    tex_lex_next(&ps->lx);
+    struct tex_hdensity *bad;
+    const char *msg;
+    if (!h->d)
+        fail_at(ps, at, 0, "a hypertexture needs a density: sphere, box, cylinder, union, "
+                           "intersection, difference or complement");
+    if (tex_hdensity_prepare(h->d, &bad, &msg) < 0)
+        fail_at(ps, &(struct tex_tok){.line = bad->line, .col = bad->col}, 0, "%s", msg);
+    if (!tex_hdensity_bounded(h->d))
+        fail_at(ps, at, 0, "unbounded volume: a complement needs an intersection with, or a "
+                           "difference from, a bounded density");
+    if (s->nhypers == TEX_HYPER_MAX)
+        fail_at(ps, at, 0, "more than %d hypertextures", TEX_HYPER_MAX);
+    if (!h->shadow_step)
+        h->shadow_step = 2 * h->step;
+    if (!s->hypers)
+        s->hypers = palloc(ps, TEX_HYPER_MAX * sizeof *s->hypers);
+    s->hypers[s->nhypers++] = h;
+}
+
 /* ---- lights, camera, settings ------------------------------------------------------------ */
 
 /* spectrum D65 | A | E | F2 ... (colord-data) | blackbody K | "blackbody:K" */
@@ -1565,6 +1728,8 @@ static void parse_scene(struct parser *ps)
             parse_surface(ps);
         } else if (tex_tok_is_word(&kt, "environment")) {
             parse_environment(ps, &kt);
+        } else if (tex_tok_is_word(&kt, "hypertexture")) {
+            parse_hypertexture(ps, &kt);
         } else if (!settings_word(ps, &kt)) {
             char b[64];
             fail_at(ps, &kt, 0, "unknown word %s at the top of the scene%s",
@@ -1632,7 +1797,7 @@ struct tex_scene *tex_scene_parse_opts(const char *text, size_t len, const char 
         tex_scene_free(s);
         return NULL;
     }
-    if (!s->nobjects)
+    if (!s->nobjects && !s->nhypers)
         tex_scene_warn(s, "%s: warning: the scene has no objects", name);
     return s;
 }

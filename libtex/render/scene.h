@@ -77,6 +77,8 @@ struct tex_scene {
     int nlights;
     struct tex_object **objects; /* top-level objects */
     int nobjects, cobjects;      /* in use, allocated */
+    struct tex_hyper **hypers;   /* hypertextures (hypertexture.h), marched by volume.c */
+    int nhypers;
     struct tex_bvh *bvh;
     struct tex_media eye_media; /* the transparent solids the camera is inside (prepare's) */
     /* everything allocated, freed together */
@@ -118,6 +120,11 @@ extern const struct tex_param tex_target_rows[];   /* bump, m, s, blend, normal,
                                                     * TEX_SP_BUMP.. in order */
 extern const struct tex_param tex_environment_rows[]; /* environment FILE { }, over
                                                        * struct tex_environment */
+extern const struct tex_param tex_hyper_rows[];    /* hypertexture { }, over struct tex_hyper */
+extern const struct tex_param tex_hyper_fn_rows[]; /* its functions: enum tex_hyper_fn order */
+extern const struct tex_param tex_hdensity_rows[]; /* its densities' words, over struct
+                                                    * tex_hdensity; kinds: bit enum
+                                                    * tex_hdensity_kind */
 /* The readers of the rows that the scene language's own code reads (TEX_P_SPECIAL;
  * render_scene.c): reader is its parser, ctx the block being read. */
 tex_param_read tex_scene_read_seed, tex_scene_read_colour, tex_scene_read_materials;

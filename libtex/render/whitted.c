@@ -1,6 +1,7 @@
 /* whitted.c - Whitted's recursion: ambient, direct light, reflection and refraction */
 #include <math.h>
 
+#include "render/volume.h"
 #include "render/whitted.h"
 
 /* The surface's largest normal curvature at P (unit facing normal Nf, unit
@@ -124,9 +125,12 @@ static inline __attribute__((always_inline)) void direct_light(const struct tex_
             const struct tex_light_ahead *a = lit ? lit++ : &own;
             if (!lit) {
                 light_at(c, f, a0, li, k, &own);
-                if (own.ok)
-                    tex_light_pass(&own, tex_scene_transmit(s, f->Pout, &own.L, 0, own.dist,
-                                                            f->outside));
+                if (own.ok) {
+                    double tr = tex_scene_transmit(s, f->Pout, &own.L, 0, own.dist, f->outside);
+                    if (tr > 0 && s->nhypers) /* and through the hypertextures */
+                        tr *= tex_volume_transmit(s, f->Pout, &own.L, own.dist);
+                    tex_light_pass(&own, tr);
+                }
             }
             if (a->ok)
                 light_shade(c, m, f, l, a, out);
@@ -300,10 +304,19 @@ void tex_trace(const struct tex_render_ctx *c, const tex_ray *r, const struct te
                   int depth, double weight, tex_colour *out)
 {
     struct tex_hit h;
-    if (!tex_scene_trace(c->s, &r->o, &r->d, 0, INFINITY, from, &h))
+    int hit = tex_scene_trace(c->s, &r->o, &r->d, 0, INFINITY, from, &h);
+    tex_colour Lv; /* the hypertextures before the hit: their light and transmittance T */
+    double T = c->s->nhypers ? tex_volume_march(c, r, hit ? h.t : INFINITY, &Lv) : 1;
+    if (!(T > 0)) {
+        tex_colour_copy(out, c->n, &Lv);
+        return;
+    }
+    if (!hit)
         tex_miss(c, r, out);
     else {
         tex_v3 P = tex_v3_madd(r->o, r->d, h.t);
-        tex_shade(c, r, &h, P, tex_hit_normal(&h, P), NULL, depth, weight, out);
+        tex_shade(c, r, &h, P, tex_hit_normal(&h, P), NULL, depth, weight * T, out);
     }
+    if (c->s->nhypers)
+        TEX_COLOUR_EACH(c->n, out, out->v[i] * (float)T + Lv.v[i]);
 }

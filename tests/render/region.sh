@@ -20,6 +20,7 @@ regions() {
 regions "regions == whole render (spheres, 4 samples)" tests/scenes/spheres.scene --spp 4
 regions "regions == whole render (five spheres, -j 1)" patterns/five_spheres.scene --spp 2 -j 1
 regions "regions == whole render (area light)" patterns/still_life.scene --spp 1
+regions "regions == whole render (hypertexture over CSG)" patterns/smoke_csg.scene --spp 2
 
 t_apply tests/scenes/spheres.scene -s 40x30 --region 8,4,10,6 -o "$T/one.exr"
 check "a region records its place in the image" \
