@@ -251,8 +251,8 @@ static int chain_steps(const struct opts *o, int w, int h, int ew, int eh, struc
     int n = 0;
     if (o->expand && tex_expand_step(w, h, ew, eh, o->background, &st[n++]) < 0)
         tex_die();
-    for (int k = 0; k < n; k++)
-        w = st[k].w, h = st[k].h;
+    if (n) /* the canvas */
+        w = st[0].w, h = st[0].h;
     if (o->rotate != 0 && tex_rotate_step(w, h, o->rotate, o->around.n ? o->around.v[0] : w / 2.0,
                                           o->around.n ? o->around.v[1] : h / 2.0, o->background,
                                           &st[n++]) < 0)
@@ -279,6 +279,7 @@ struct kept {
     struct kept *src;
     int w, h, nc, subregions;
     tex_map *rows; /* storage for rows->h rows */
+    long cap;      /* the storage's planned height */
     int off, top, n;
     tex_rows_reader *r;
     const char *name;
@@ -289,8 +290,9 @@ static float *kept_row(const struct kept *k, int y)
     return k->rows->px + (size_t)(k->off + y - k->top) * k->w * k->nc;
 }
 
-/* Room for rows up to row `to` after the kept ones: the kept rows moved to the storage's top,
- * and the storage twice as tall where that is not enough */
+/* Room for rows up to row `to` after the kept ones: the kept rows moved to the storage's top
+ * where that makes room, else storage as tall as they need; the storage is made once, as
+ * tall as stream_steps planned (k->cap), so this is the rare case */
 static int kept_room(struct kept *k, long to)
 {
     size_t row = (size_t)k->w * k->nc;
@@ -302,9 +304,8 @@ static int kept_room(struct kept *k, long to)
         k->off = 0;
         return 0;
     }
-    long cap = k->rows ? 2L * k->rows->h : 64;
-    cap = cap < need ? need : cap > k->h ? (need > k->h ? need : k->h) : cap;
-    tex_map *m = tex_map_new_unset(k->w, (int)cap, k->nc);
+    long cap = need > k->cap ? need : k->cap;
+    tex_map *m = tex_map_new_unset(k->w, (int)(cap < k->h ? cap : k->h), k->nc);
     if (!m)
         return -1;
     if (k->n)
@@ -353,11 +354,18 @@ static int keep_rows(struct kept *k, long from, long to)
     return 0;
 }
 
+/* Rows the last step makes at a time: 64, the writer's band, or $TEXTURA_BAND_ROWS (the
+ * tests try every band height) */
+static int step_rows(const struct kept *last)
+{
+    return getenv("TEXTURA_BAND_ROWS") ? tex_cli_band_rows(last->w, last->nc) : 64;
+}
+
 static int kept_fill(void *arg, int y, int n, float *rows)
 {
     struct kept *last = arg;
     size_t row = (size_t)last->w * last->nc;
-    for (int b = tex_cli_band_rows(last->w, last->nc), k; n > 0; y += k, n -= k, rows += k * row) {
+    for (int b = step_rows(last), k; n > 0; y += k, n -= k, rows += k * row) {
         k = n < b ? n : b;
         if (keep_rows(last, y, y + k) < 0)
             return -1;
@@ -400,6 +408,15 @@ static int stream_steps(const char *path, const struct opts *o, int ew, int eh,
         k[i + 1] = (struct kept){.st = &st[i], .src = &k[i], .w = st[i].w, .h = st[i].h,
                                  .nc = tex_bg_channels(&one, st[i].bg),
                                  .subregions = head.subregions};
+    }
+    /* each step's storage planned from the last: the rows the band after it reads, and a
+     * quarter more, so the kept rows move up once every few bands */
+    k[n].cap = step_rows(&k[n]);
+    for (int i = n; i > 0; i--) {
+        long from, to;
+        tex_affine_reads(st[i - 1].a, k[i].w, 0, (int)(k[i].cap < k[i].h ? k[i].cap : k[i].h),
+                         &from, &to);
+        k[i - 1].cap = (to - from) + (to - from) / 4 + 64;
     }
     tex_map out = {.w = k[n].w, .h = k[n].h, .nc = k[n].nc, .subregions = head.subregions,
                    .history = head.history};
