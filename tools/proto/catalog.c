@@ -63,7 +63,7 @@ static void json_palettes(struct tex_str *b)
 struct kind kinds[] = {
     {"op", "t_op", "op", "add|sub|mul|div|min|max|mix|abs|invert|threshold|over|under|and|or|xor",
      "the operation: A op B; mix is A (1 - W) + B W; abs, invert and threshold take A alone",
-     {"a", "b", "w"}, 1, NULL, 0, NULL},
+     {"a", "b", "w"}, 2, NULL, 0, NULL}, /* needs: add's; each operation's own in graph.c */
     {"palette", "t_palette", "palette", NULL, "the palette: an installed one or a NAME.pal "
      "saved in the working folder", {"in"}, 1, "from to stops space list", 0, NULL},
     {"filter", "t_filter", "op", "blur|box|smooth|sharpen|sobel|edges|emboss|median|noise|"

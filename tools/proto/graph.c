@@ -283,10 +283,10 @@ static int node_stage(struct pipeline *pl, const struct graph *g, int i, int exp
                            at_node(pl, n);
                 if (arg(pl, word(pl, "-S%d", (int)x)) < 0)
                     return at_node(pl, n);
-            } else if (!strcmp(key, "tile")) {
+            } else if (!strcmp(key, "tile") || !strcmp(key, "ids")) { /* common flags */
                 if (strcmp(v, "0") && strcmp(v, "1"))
-                    return fail(pl, "tile is 0 or 1 (got '%.20s')", v), at_node(pl, n);
-                if (!strcmp(v, "1") && arg(pl, "--tile") < 0)
+                    return fail(pl, "%s is 0 or 1 (got '%.20s')", key, v), at_node(pl, n);
+                if (!strcmp(v, "1") && arg(pl, word(pl, "--%s", key)) < 0)
                     return at_node(pl, n);
             } else if (!(row = tex_param_find(n->prim->params, key))) {
                 return fail(pl, "%s has no parameter '%.40s'", n->prim->name, key),
