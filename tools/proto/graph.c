@@ -412,8 +412,9 @@ static int chain(struct pipeline *pl, const struct graph *g, int tail, int expor
     while (k--)
         if (node_stage(pl, g, nodes[k], export) < 0)
             return -1;
-    if (tail != g->target)
-        return arg(pl, "-o") | arg(pl, map_path(pl, g, tail, export));
+    if (tail != g->target) /* a file read back at once: zip would cost more than it saves */
+        return arg(pl, "--compression=none") | arg(pl, "-o") |
+               arg(pl, map_path(pl, g, tail, export));
     return last ? arg(pl, word(pl, "%s", last)) : 0;
 }
 
