@@ -671,10 +671,8 @@ int project_check(struct pipeline *pl, const char *text)
         rc = fail(pl, "the project's size must be 1..%d", MAX_SIDE);
     else if (gr && gr->type != TEX_JSON_OBJECT)
         rc = fail(pl, "the project's \"graph\" must be an object");
-    else if (gr) { /* the graph as a request would run it */
-        g->size = (int)s;
-        rc = graph_load(pl, g, gr) < 0 || graph_select(pl, g, g->out) < 0 ? -1 : 0;
-    }
+    else if (gr) /* a graph that loads back (one still being edited may lack an input) */
+        rc = graph_load(pl, g, gr);
     free(g);
     tex_json_free(doc);
     return rc;

@@ -105,7 +105,8 @@ unsigned api_graph(struct MHD_Connection *c, struct pipeline *pl, struct tex_str
                    const char **type);
 int graph_export(struct MHD_Connection *c, struct pipeline *pl, const char *form,
                  const char *map, struct tex_str *out);
-/* a project's text checked: JSON, its graph (if any) one graph_export would take */
+/* a project's text checked: JSON, its graph (if any) one that loads: nodes of known kinds,
+ * edges into their slots, an output, no cycle (inputs may still be missing) */
 int project_check(struct pipeline *pl, const char *text);
 
 /* spawn.c: the worst exit status (0 ok, 1 runtime, 2 usage), the output in out; and every
