@@ -23,6 +23,7 @@ struct gnode {
     const struct kind *k;              /* ... an operator kind */
     const struct tex_json *params;     /* an object, or NULL */
     const char *operand;               /* k's operand word: the operation, the palette */
+    char first[32];                    /* the operand's default, when not given */
     int in[MAX_SLOTS];                 /* the node feeding each slot, or -1 */
     int want, cons, pipe, depth;       /* upstream of the target; its consumers there; the
                                         * node it pipes into (-1: a file); its chain's length */
@@ -97,11 +98,8 @@ static int check_operand(struct pipeline *pl, struct gnode *n)
     size_t len;
     if (!v) { /* the default: the first choice, or marble */
         const char *c = n->k->choices ? n->k->choices : "marble";
-        static char firsts[16][32];
-        int i = (int)(n->k - kinds);
-        len = strcspn(c, "|");
-        snprintf(firsts[i], sizeof firsts[i], "%.*s", (int)len, c);
-        v = firsts[i];
+        snprintf(n->first, sizeof n->first, "%.*s", (int)strcspn(c, "|"), c);
+        v = n->first;
     }
     n->operand = v;
     if (n->k->choices) {
