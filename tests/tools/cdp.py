@@ -507,6 +507,30 @@ def graph(page, work, shots):
     """A graph with fan-out built by clicking, its shell export run, its inner node and 3D
     previews, saved in a project and loaded back after a reload."""
     ed = Editor(page, shots)
+    # the single-primitive editor's state as nodes: the same preview, byte for byte
+    ed.pick("wood")
+    v = ed.version()
+    ed.set("#params [data-name=rings]", "5.5")
+    ed.settled(v)
+    v = ed.version()
+    page.js("(() => { document.getElementById('stepkind').value = 'palette';"
+            " document.getElementById('addstep').click(); })()")
+    ed.settled(v)
+    v = ed.version()
+    ed.set("#steps .steparg", "marble", "change")
+    ed.settled(v)
+    h_steps = page.js(PREVIEW)
+    v = ed.version()
+    page.js("document.getElementById('tograph').click()")
+    st = ed.settled(v)
+    g = ed.js("graphJSON()")
+    h_nodes = page.preview_other_than("", 30)
+    say(st == "ok" and h_nodes == h_steps and [n["kind"] for n in g["nodes"]] == ["wood", "palette"]
+        and g["nodes"][0]["params"] == {"rings": "5.5"} and g["output"] == g["nodes"][1]["id"],
+        "the primitive and its steps become a chain of nodes with the same preview", (st, g))
+    v = ed.version()
+    page.js("document.getElementById('cleargraph').click()")
+    ed.settled(v)
     kinds = page.js("Array.from(document.querySelectorAll('#nodekind option')).map(o => o.value)")
     say(all(k in kinds for k in ["op", "palette", "filter", "remap", "xform", "warp", "cascade", "tile",
                                  "noise", "marble"]),
