@@ -1,8 +1,8 @@
 /* catalog.c - the node kinds and their parameter rows, as JSON for the page: every
  * primitive (rows from the registry) and the operator tools (rows from --help-json) */
 #include <dirent.h>
-#include <stdlib.h>
 #include <fcntl.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -61,13 +61,12 @@ static void json_palettes(struct tex_str *b)
  * come from the tool itself (kinds_load), but for those that make no map from the inputs
  * (t_palette's --from...) or that t_proto sets (-s). */
 struct kind kinds[] = {
-    {"op", "t_op", "op", "add|sub|mul|div|min|max|mix|abs|invert|threshold|over|under|and|or|xor",
+    {"op", "t_op", "op", "", /* its choices: libtex's operators, in kinds_load */
      "the operation: A op B; mix is A (1 - W) + B W; abs, invert and threshold take A alone",
      {"a", "b", "w"}, 2, NULL, 0, NULL}, /* needs: add's; each operation's own in graph.c */
     {"palette", "t_palette", "palette", NULL, "the palette: an installed one or a NAME.pal "
      "saved in the working folder", {"in"}, 1, "from to stops space list", 0, NULL},
-    {"filter", "t_filter", "op", "blur|box|smooth|sharpen|sobel|edges|emboss|median|noise|"
-     "normal|gradient", "the filter", {"in"}, 1, NULL, 0, NULL},
+    {"filter", "t_filter", "op", "", "the filter", {"in"}, 1, NULL, 0, NULL}, /* choices: too */
     {"remap", "t_remap", NULL, NULL, NULL, {"in"}, 1, NULL, 0, NULL},
     {"xform", "t_xform", NULL, NULL, NULL, {"in"}, 1, NULL, 0, NULL},
     {"warp", "t_warp", NULL, NULL, NULL, {"map", "by"}, 2, "size", 0, NULL},
@@ -107,6 +106,12 @@ const struct tex_json *kind_row(const struct kind *k, const char *name)
 
 int kinds_load(void)
 {
+    static char filters[512];
+    for (const struct tex_filter_op *f = tex_filter_ops; f->name; f++)
+        snprintf(filters + strlen(filters), sizeof filters - strlen(filters), "%s%s",
+                 f == tex_filter_ops ? "" : "|", f->name);
+    kinds[0].choices = tex_op_names();
+    kinds[2].choices = filters;
     for (struct kind *k = kinds; k->name; k++) {
         struct pipeline *pl = calloc(1, sizeof *pl);
         struct tex_str out = {0};

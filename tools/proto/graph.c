@@ -83,11 +83,8 @@ static void arity(const struct gnode *n, int *need, int *most)
     *most = 0;
     for (int s = 0; n->k && s < MAX_SLOTS && n->k->slots[s]; s++)
         *most = s + 1;
-    if (n->k && !strcmp(n->k->name, "op")) {
-        int one = !strcmp(n->operand, "abs") || !strcmp(n->operand, "invert") ||
-                  !strcmp(n->operand, "threshold");
-        *need = *most = one ? 1 : !strcmp(n->operand, "mix") ? 3 : 2;
-    }
+    if (n->k && !strcmp(n->k->name, "op"))
+        *need = *most = tex_op_arity((enum tex_op)tex_op_find(n->operand));
 }
 
 /* The operand word: one of the kind's choices, or a palette installed or saved. */

@@ -68,7 +68,8 @@ struct pipeline {
 struct tex_json;
 struct kind {
     const char *name, *tool;
-    const char *operand, *choices, *operand_help; /* the operand word's row, or NULL */
+    const char *operand, *choices, *operand_help; /* the operand word's row, or NULL;
+                                                   * choices NULL: a palette's name */
     const char *slots[MAX_SLOTS];                 /* input slots, in operand order */
     int needs;                                    /* the first slots that must be fed */
     const char *skip;                             /* the tool's rows not offered */
