@@ -117,6 +117,38 @@ say(sum(l.count("t_noise") for l in lines) == 1 and any(l.endswith("--compressio
     sum(l.count(" n.exr") for l in lines) == 4,  # written once, read by w, f and m "a map feeding several nodes is made once, into a named file",
     script.decode()[:600])
 
+# a map is kept for the next request: an edit reruns only what is downstream of it
+import glob
+def kept():
+    return {f: os.stat(f).st_mtime_ns for f in glob.glob(os.path.join(os.environ.get("TMPDIR", "/tmp"),
+                                                                      "t_proto.*", "g.*.exr"))}
+before = kept()
+s1, a = graph(fan, size="48")
+k1 = {f: t for f, t in kept().items() if f not in before}
+fan2 = json.loads(json.dumps(fan))
+fan2["nodes"][5]["params"]["op"] = "add"
+fan2["edges"] = [e for e in fan2["edges"] if e["slot"] != "w"]
+s2, b = graph(fan2, size="48")
+k2 = {f: t for f, t in kept().items() if f not in before}
+fan3 = json.loads(json.dumps(fan))
+fan3["nodes"][0]["params"]["frequency"] = 5
+s3, c = graph(fan3, size="48")
+k3 = {f: t for f, t in kept().items() if f not in before}
+say(s1 == s2 == s3 == 200 and len(k1) == 2 and set(k2) == set(k1) and len(k3) == 4 and a != b and a != c,
+    "the maps that feed several nodes are kept: editing the output reuses them, editing the noise makes new ones",
+    (s1, s2, s3, len(k1), len(k2), len(k3)))
+# a palette saved again under its name is not taken from a kept map
+pal = lambda c: "space rgb\n0 #000000\n1 %s\n" % c
+s, b = get("/api/save", [("kind", "palette"), ("name", "mine.pal"), ("text", pal("#ff0000"))])
+pg = {"nodes": [{"id": "n", "kind": "noise"}, {"id": "p", "kind": "palette", "params": {"palette": "mine.pal"}},
+                {"id": "m", "kind": "op", "params": {"op": "max"}}],
+      "edges": [{"from": "n", "to": "p", "slot": "in"}, {"from": "p", "to": "m", "slot": "a"},
+                {"from": "p", "to": "m", "slot": "b"}], "output": "m"}
+s1, red = graph(pg, size="32")
+s, b = get("/api/save", [("kind", "palette"), ("name", "mine.pal"), ("text", pal("#00ff00")), ("overwrite", "1")])
+s2, green = graph(pg, size="32")
+say(s1 == s2 == 200 and red != green, "a palette saved again changes the graph's preview", (s1, s2, s, b))
+
 # the 3D preview, and the t_apply export of it: the same scene, the same bytes
 s1, scene = graph(fan, what="scene", apply="bump", strength="0.5", size="64")
 s2, text = graph(fan, what="apply", apply="bump", strength="0.5", size="64", map="fan.exr")

@@ -3,14 +3,19 @@
  * before anything runs (ids, kinds, slots, cycles, dangling inputs, every parameter as the
  * single-primitive page checks it), each message naming its node.  It runs as chains: a
  * node whose map feeds one node only pipes into it (its standard input), any other map
- * goes to a file, made once per request in the temporary folder (ID.exr in the shell
- * export).  The export is the preview's words with those names, so it gives the same
- * bytes. */
+ * goes to a file in the temporary folder (ID.exr in the shell export).  The export is the
+ * preview's words with those names, so it gives the same bytes.  A file is named by a hash
+ * of the words that make it (its inputs named the same way, so of its whole upstream), and
+ * kept for the next request: an edit reruns only the chains downstream of it. */
+#include <dirent.h>
+#include <fcntl.h>
 #include <limits.h>
 #include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "io/json.h"
@@ -27,6 +32,7 @@ struct gnode {
     int in[MAX_SLOTS];                 /* the node feeding each slot, or -1 */
     int want, cons, pipe, depth;       /* upstream of the target; its consumers there; the
                                         * node it pipes into (-1: a file); its chain's length */
+    unsigned long long key;            /* its file's: the hash of the words that make it */
 };
 
 struct graph {
@@ -245,12 +251,36 @@ static int kind_param(struct pipeline *pl, const struct tex_json *row, const cha
     return arg(pl, word(pl, "--%s=%s", name, v));
 }
 
-/* The name of node i's map file: in the temporary folder (files=NULL) or files's. */
+/* The name of node i's map file: ID.exr in the export, else its key's in the temporary
+ * folder (tmp: the name it is written under, then renamed). */
 static const char *map_path(struct pipeline *pl, const struct graph *g, int i, int export)
 {
     if (export)
         return word(pl, "%s.exr", g->n[i].id);
-    return word(pl, "%s/g.%lx.%s.exr", proto.tmpdir, (unsigned long)pthread_self(), g->n[i].id);
+    return word(pl, "%s/g.%016llx.exr", proto.tmpdir, g->n[i].key);
+}
+
+/* The hash of the words of pl's stages (FNV-1a), and of the time, size and inode of each
+ * file a word names but the temporary folder's (a palette saved again, --defs edited). */
+static unsigned long long words_key(const struct pipeline *pl)
+{
+    unsigned long long h = 14695981039346656037ull;
+    size_t n = strlen(proto.tmpdir);
+    for (int i = 0; i < pl->n; i++)
+        for (int k = 0; k <= pl->st[i].n; k++) {
+            const char *w = k < pl->st[i].n ? pl->st[i].argv[k] : "|", *eq = strchr(w, '=');
+            const char *path = w[0] == '/' ? w : eq && eq[1] == '/' ? eq + 1 : NULL;
+            struct stat st;
+            for (const char *c = w; c == w || c[-1]; c++)
+                h = (h ^ (unsigned char)*c) * 1099511628211ull;
+            if (path && strncmp(path, proto.tmpdir, n) && stat(path, &st) == 0) {
+                long long f[4] = {st.st_mtim.tv_sec, st.st_mtim.tv_nsec, st.st_size,
+                                  (long long)st.st_ino};
+                for (size_t b = 0; b < sizeof f; b++)
+                    h = (h ^ ((const unsigned char *)f)[b]) * 1099511628211ull;
+            }
+        }
+    return h;
 }
 
 /* Node i's stage: its tool, operand, inputs (standard input where one pipes in, else the
@@ -389,8 +419,7 @@ static int graph_select(struct pipeline *pl, struct graph *g, int target)
 
 /* The chain ending at node tail (a file's or the target's) as the stages of pl, with the
  * map's destination: the target's by last (its words), a file otherwise. */
-static int chain(struct pipeline *pl, const struct graph *g, int tail, int export,
-                 const char *last)
+static int chain(struct pipeline *pl, struct graph *g, int tail, int export, const char *last)
 {
     int nodes[MAX_STAGES], k = 0;
     for (int i = tail; i >= 0 && k < MAX_STAGES;) {
@@ -407,10 +436,16 @@ static int chain(struct pipeline *pl, const struct graph *g, int tail, int expor
     while (k--)
         if (node_stage(pl, g, nodes[k], export) < 0)
             return -1;
-    if (tail != g->target) /* a file read back at once: zip would cost more than it saves */
-        return arg(pl, "--compression=none") | arg(pl, "-o") |
-               arg(pl, map_path(pl, g, tail, export));
-    return last ? arg(pl, word(pl, "%s", last)) : 0;
+    if (tail == g->target)
+        return last ? arg(pl, word(pl, "%s", last)) : 0;
+    /* a file read back at once: zip would cost more than it saves */
+    if (arg(pl, "--compression=none") < 0 || arg(pl, "-o") < 0)
+        return -1;
+    if (export)
+        return arg(pl, map_path(pl, g, tail, 1));
+    g->n[tail].key = words_key(pl);
+    return arg(pl, word(pl, "%s/g.%016llx.%lx.exr", proto.tmpdir, g->n[tail].key,
+                        (unsigned long)pthread_self()));
 }
 
 /* Name the node a tool's message came from ("t_op: error: ..."), else the chain's tail. */
@@ -432,28 +467,65 @@ static void blame(struct pipeline *pl, const struct graph *g, int tail)
     at_node(pl, &g->n[who]);
 }
 
-/* Run the chains in order: the target's last writes its map by last ("--format=png" to
- * out, or "-oFILE"); the status (0, 1 runtime, 2 usage). */
+/* At most KEEP files kept: the oldest go, but none used within RUN_SECONDS (a request
+ * running may still read it). */
+#define KEEP 64
+static void evict(void)
+{
+    struct { char name[64]; time_t t; } f[256];
+    int n = 0;
+    DIR *d = opendir(proto.tmpdir);
+    struct dirent *e;
+    struct stat st;
+    time_t now = time(NULL);
+    while (d && (e = readdir(d)) && n < 256)
+        if (!strncmp(e->d_name, "g.", 2) && strlen(e->d_name) == 22 &&
+            fstatat(dirfd(d), e->d_name, &st, 0) == 0) {
+            snprintf(f[n].name, sizeof f[n].name, "%s", e->d_name);
+            f[n++].t = st.st_mtime;
+        }
+    for (int left = n; left > KEEP; left--) {
+        int old = -1;
+        for (int i = 0; i < n; i++)
+            if (f[i].name[0] && f[i].t < now - RUN_SECONDS && (old < 0 || f[i].t < f[old].t))
+                old = i;
+        if (old < 0)
+            break;
+        unlinkat(dirfd(d), f[old].name, 0);
+        f[old].name[0] = 0;
+    }
+    if (d)
+        closedir(d);
+}
+
+/* Run the chains in order, each file made unless kept from an earlier request: the
+ * target's last writes its map by last ("--format=png" to out, or "-oFILE"); the status
+ * (0, 1 runtime, 2 usage). */
 static int graph_run(struct pipeline *pl, struct graph *g, const char *last, struct tex_str *out)
 {
     int rc = 0;
     for (int k = 0; k < g->nn && !rc; k++) {
         int i = g->order[k];
         struct tex_str scratch = {0};
+        char made[PATH_MAX + 64], kept[PATH_MAX + 64];
         if (!g->n[i].want || g->n[i].pipe >= 0)
             continue;
         if (chain(pl, g, i, 0, last) < 0)
             return 2;
+        if (i != g->target) {
+            snprintf(made, sizeof made, "%s", pl->st[pl->n - 1].argv[pl->st[pl->n - 1].n - 1]);
+            snprintf(kept, sizeof kept, "%s/g.%016llx.exr", proto.tmpdir, g->n[i].key);
+            if (utimensat(AT_FDCWD, kept, NULL, 0) == 0) /* kept: used now */
+                continue;
+        }
         rc = run(pl, i == g->target ? out : &scratch);
         free(scratch.s);
         if (rc)
             blame(pl, g, i);
+        if (i != g->target && (rc || rename(made, kept) < 0))
+            unlink(made);
     }
-    for (int i = 0; i < g->nn; i++) /* the request's files go with it */
-        if (g->n[i].want && g->n[i].pipe < 0 && i != g->target) {
-            pl->used = 0;
-            unlink(map_path(pl, g, i, 0));
-        }
+    evict();
     return rc;
 }
 
