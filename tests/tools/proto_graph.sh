@@ -225,6 +225,11 @@ bad("a runtime error names the node", {"nodes": [{"id": "s", "kind": "stripe"},
     {"id": "p", "kind": "palette"}], "edges": [{"from": "s", "to": "p", "slot": "in"}], "output": "p"},
     "node 'p' (palette): t_palette: error:", 500)
 
+# the same gate as every request: the token, the Host
+s, b = get("/api/graph", [("graph", json.dumps(fan))], tok=False)
+s2, b2 = get("/api/graph", [("graph", json.dumps(fan))], headers={"Host": "evil.example:%d" % port})
+say(s == 403 and s2 == 403, "a graph request without the token, or for another host, gets 403", (s, s2))
+
 # exports and projects are saved, never over a file without asking
 q = [("graph", json.dumps(fan)), ("size", "64")]
 s1, b1 = get("/api/save", q + [("kind", "graph"), ("form", "sh"), ("name", "fan2.sh"), ("map", "f.png")])
