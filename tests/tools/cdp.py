@@ -624,14 +624,27 @@ def graph(page, work, shots):
     bad = ed.js("document.querySelector('#nodes .node[data-id=\"%s\"]').classList.contains('bad')" % f)
     say(st == "error" and ("node '%s'" % f) in ed.msg() and bad, "an error names and marks its node", (st, ed.msg()))
     in_node(f, "[data-name=sigma]", "1", "input")
-    # saved in a project, loaded back after a reload
+    # a palette of the editor's used by a node: the project carries its text
+    page.js("(() => { const c = document.querySelectorAll('#stops .stopcolour');"
+            " c[0].value = '#301000'; c[0].dispatchEvent(new Event('input'));"
+            " document.getElementById('palname').value = 'graphpal.pal';"
+            " document.getElementById('savepal').click(); })()")
+    try:
+        page.until("palettes.includes('graphpal.pal') && !!document.querySelector("
+                   "'#nodes .node[data-id=\"%s\"] [data-name=palette] option[value=\"graphpal.pal\"]')" % p)
+    except RuntimeError:
+        say(False, "a palette saved in the editor is offered to the palette node",
+            page.js("[document.getElementById('status').textContent, palettes]"))
+    st = in_node(p, "[data-name=palette]", "graphpal.pal")
+    h_out = page.preview_other_than(h_out)
     ed.js("window.confirm = () => true; document.getElementById('projname').value = 'fan.tproj';"
           " document.getElementById('status').textContent = '';"
           " document.querySelector('button[data-kind=project]').click()")
     page.until("document.getElementById('status').textContent.includes('saved fan.tproj')")
     j = json.load(open(os.path.join(work, "fan.tproj")))
     say(j.get("graph", {}).get("output") == m and len(j["graph"]["nodes"]) == 4 and len(j["graph"]["edges"]) == 5
-        and j["graph"]["nodes"][0]["params"] == {"frequency": "5"}, "the project holds the graph, readable", j.get("graph"))
+        and j["graph"]["nodes"][0]["params"] == {"frequency": "5"} and "graphpal.pal" in j.get("palettes", {}),
+        "the project holds the graph, readable, and the text of the palette a node uses", j.get("graph"))
     before = ed.js("JSON.stringify(graphJSON())")
     png_before, box = ed.shot("graph-before-reload")
     page.call("Page.reload")
