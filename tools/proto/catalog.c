@@ -73,7 +73,7 @@ struct kind kinds[] = {
     {"cascade", "t_cascade", NULL, NULL, NULL,
      {"ids", "1", "2", "3", "4", "5", "6", "7", "8"}, 2, NULL, 0, NULL},
     {"tile", "t_tile", NULL, NULL, NULL, {"1", "2", "3", "4"}, 1, "size", 1, NULL},
-    {NULL}};
+    {0}};
 
 /* Is name one of the words of the space-separated list? */
 static int listed(const char *list, const char *name)
