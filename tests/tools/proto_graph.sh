@@ -191,6 +191,11 @@ bad("a cycle is refused, naming a node in it",
     {"nodes": [{"id": "a", "kind": "remap"}, {"id": "b", "kind": "remap"}],
      "edges": [{"from": "a", "to": "b", "slot": "in"}, {"from": "b", "to": "a", "slot": "in"}], "output": "b"},
     "the graph has a cycle through node 'a'")
+s, b = graph({"nodes": [{"id": "c", "kind": "remap"}, {"id": "a", "kind": "remap"}, {"id": "b", "kind": "remap"}],
+               "edges": [{"from": "a", "to": "c", "slot": "in"}, {"from": "a", "to": "b", "slot": "in"},
+                         {"from": "b", "to": "a", "slot": "in"}], "output": "c"})
+say(s == 400 and b in (b"the graph has a cycle through node 'a'", b"the graph has a cycle through node 'b'"),
+    "a cycle is named by a node on it, not by one it feeds", (s, b))
 bad("a dangling input is refused, naming the node and the slot",
     {"nodes": [noise, {"id": "o", "kind": "op"}], "edges": [{"from": "n", "to": "o", "slot": "a"}], "output": "o"},
     "node 'o' (op): input 'b' is not connected")

@@ -191,8 +191,15 @@ static int graph_load(struct pipeline *pl, struct graph *g, const struct tex_jso
         }
     }
     for (int i = 0; i < g->nn; i++)
-        if (!done[i])
+        if (!done[i]) { /* every node left has an input left: going up them ends on the cycle */
+            for (int step = 0; step < g->nn; step++)
+                for (int s = 0; s < MAX_SLOTS; s++)
+                    if (g->n[i].in[s] >= 0 && !done[g->n[i].in[s]]) {
+                        i = g->n[i].in[s];
+                        break;
+                    }
             return fail(pl, "the graph has a cycle through node '%s'", g->n[i].id);
+        }
     return 0;
 }
 
@@ -215,6 +222,8 @@ static int kind_param(struct pipeline *pl, const struct tex_json *row, const cha
 {
     const char *type = member_text(row, "type"), *meta = member_text(row, "meta");
     const char *choices = member_text(row, "choices");
+    type = type ? type : "";
+    choices = choices ? choices : "";
     char name[72];
     double x, lo = 0, hi = 0;
     snprintf(name, sizeof name, "%s", key);
