@@ -225,6 +225,10 @@ bad("an operation that takes one input refuses a second",
     {"nodes": [noise, {"id": "q", "kind": "op", "params": {"op": "abs"}}],
      "edges": [{"from": "n", "to": "q", "slot": "a"}, {"from": "n", "to": "q", "slot": "b"}], "output": "q"},
     "abs takes 1 input")
+bad("a constant input that is not a number or a colour is refused",
+    {"nodes": [noise, {"id": "q", "kind": "op", "params": {"b": "0.5;x"}}],
+     "edges": [{"from": "n", "to": "q", "slot": "a"}], "output": "q"},
+    "node 'q' (op): input 'b' is a node's map or a constant such as 0.5 or 1,0,0")
 bad("text that is not JSON is refused with where", '{"nodes": [', "the graph is not JSON: expected a value at byte 11")
 bad("a runtime error names the node", {"nodes": [{"id": "s", "kind": "stripe"},
     {"id": "p", "kind": "palette"}], "edges": [{"from": "s", "to": "p", "slot": "in"}], "output": "p"},

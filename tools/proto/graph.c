@@ -345,12 +345,14 @@ static int node_stage(struct pipeline *pl, const struct graph *g, int i, int exp
         double x;
         if (src < 0 && !strcmp(n->k->name, "op") && (c = member_text(ps, slot))) {
             /* a constant operand: a number or r,g,b[,a] */
-            char buf[128];
+            char buf[128], *save = NULL;
+            int ok = strlen(c) < sizeof buf;
             snprintf(buf, sizeof buf, "%s", c);
-            for (char *t = strtok(buf, ","); t; t = strtok(NULL, ","))
-                if (tex_parse_real(t, &x) < 0)
-                    return fail(pl, "input '%s' is a node's map or a constant such as 0.5 or "
-                                "1,0,0 (got '%.20s')", slot, c), at_node(pl, n);
+            for (char *t = strtok_r(buf, ",", &save); t && ok; t = strtok_r(NULL, ",", &save))
+                ok = tex_parse_real(t, &x) == 0;
+            if (!ok)
+                return fail(pl, "input '%s' is a node's map or a constant such as 0.5 or "
+                            "1,0,0 (got '%.20s')", slot, c), at_node(pl, n);
         }
         if (src < 0 && !c) {
             if (s < need)
