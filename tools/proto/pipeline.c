@@ -167,13 +167,13 @@ static enum MHD_Result each_param(void *cls, enum MHD_ValueKind kind, const char
 /* step=KIND:ARG:ARG...: one pipeline step, each word checked. */
 static int step(struct pipeline *pl, const char *spec, int size)
 {
-    char buf[256], *w[8];
+    char buf[256], *w[8], *save = NULL; /* strtok_r: requests run on threads at once */
     int n = 0;
     double x;
     if (strlen(spec) >= sizeof buf)
         return fail(pl, "step too long");
     strcpy(buf, spec);
-    for (char *s = strtok(buf, ":"); s && n < 8; s = strtok(NULL, ":"))
+    for (char *s = strtok_r(buf, ":", &save); s && n < 8; s = strtok_r(NULL, ":", &save))
         w[n++] = s;
     if (!n)
         return fail(pl, "empty step");
