@@ -167,17 +167,20 @@ say(s == 200 and other != scene and spread(other) > 0, "the application function
 simple = {"nodes": [{"id": "a", "kind": "noise", "params": {"frequency": 6, "seed": 2}},
                     {"id": "b", "kind": "filter", "params": {"op": "emboss", "strength": 2}},
                     {"id": "c", "kind": "op", "params": {"op": "over"}},
-                    {"id": "d", "kind": "warp", "params": {"displacement": 0.3}}],
+                    {"id": "d", "kind": "warp", "params": {"displacement": 0.3}},
+                    {"id": "e", "kind": "wood"}, {"id": "f", "kind": "op", "params": {"op": "mix"}}],
           "edges": [{"from": "a", "to": "b", "slot": "in"}, {"from": "b", "to": "c", "slot": "a"},
                     {"from": "a", "to": "c", "slot": "b"}, {"from": "c", "to": "d", "slot": "map"},
-                    {"from": "a", "to": "d", "slot": "by"}], "output": "d"}
+                    {"from": "a", "to": "d", "slot": "by"}, {"from": "d", "to": "f", "slot": "a"},
+                    {"from": "e", "to": "f", "slot": "b"}, {"from": "a", "to": "f", "slot": "w"}],
+          "output": "f"}
 s, tc = graph(simple, what="compose", size="64")
 s2, prev = graph(simple, size="64")
 open(os.path.join(work, "g.tc"), "wb").write(tc)
 r = sh(["sh", "-c", "t_compose g.tc --format=png > tc.png"])
 got = open(os.path.join(work, "tc.png"), "rb").read() if r.returncode == 0 else b""
-say(s == s2 == 200 and b"d = warp c by a amount 0.3;" in tc and got == prev,
-    "the t_compose export gives the preview's bytes where t_compose says the graph",
+say(s == s2 == 200 and b"d = warp c by a amount 0.3;" in tc and b"e = wood(seed = 1)" in tc and got == prev,
+    "the t_compose export gives the preview's bytes where t_compose says the graph (the tools' seed written)",
     (s, tc.decode(), r.stderr[:300]))
 s, b = graph(fan, what="compose", size="64")
 say(s == 400 and b"node 'p' (palette marble) has no t_compose equivalent" in b,

@@ -588,6 +588,8 @@ static int compose_node(struct pipeline *pl, const struct graph *g, int i, struc
             compose_value(b, value_text(&ps->item[m]));
             first = 0;
         }
+        if (!tex_json_get(ps, "seed")) /* the tools' default, where t_compose's is its own */
+            tex_str_add(b, "%sseed = 1", first ? "" : ", ");
         tex_str_add(b, ") %d by %d;\n", g->size, g->size);
         return 0;
     }
@@ -596,6 +598,8 @@ static int compose_node(struct pipeline *pl, const struct graph *g, int i, struc
     for (int m = 0; ps && m < ps->n; m++)
         extra += !(n->k->operand && !strcmp(ps->item[m].key, n->k->operand)) &&
                  slot_index(n, ps->item[m].key) < 0;
+    for (int s = 0; s < MAX_SLOTS; s++) /* t_compose writes a colour with blanks */
+        extra += n->in[s] < 0 && in[s] && strchr(in[s], ',');
     if (!strcmp(kn, "op")) {
         const char *t = member_text(ps, "threshold");
         for (size_t k = 0; k < sizeof infix / sizeof *infix && !extra; k++)
