@@ -52,6 +52,15 @@ for p in cat["primitives"]:
 say(not blank, "every primitive (%d) previews with its defaults, not blank" % len(cat["primitives"]), blank)
 feeds = {"cascade": [({"id": "i", "kind": "brick", "params": {"ids": 1}}, "ids"), (noise, "1")],
          "warp": [({"id": "w", "kind": "wood"}, "map"), (noise, "by")]}
+unlike = []
+
+def same_as_export(q, png, name):
+    """the shell export of q at 64, run here, writes png"""
+    s, script = graph(q, size="64", what="sh", map="k.png")
+    open(os.path.join(work, "k.sh"), "wb").write(script)
+    r = sh(["sh", "k.sh"])
+    if s != 200 or r.returncode or open(os.path.join(work, "k.png"), "rb").read() != png:
+        unlike.append((name, s, r.stderr[:100]))
 for k in kinds:
     src = feeds.get(k, [(noise, s) for s in kinds[k]["slots"][:kinds[k]["needs"]]])
     nodes = {n["id"]: n for n, _ in src}
@@ -60,6 +69,7 @@ for k in kinds:
     s, b = graph(q, size="64")
     if s != 200 or spread(b) <= 0:
         blank.append((k, s, b[:100]))
+    same_as_export(q, b, k)
 for op in rows("op")["op"]["choices"].split("|"):
     n = 1 if op in ("abs", "invert", "threshold") else 3 if op == "mix" else 2
     q = {"nodes": [noise, {"id": "m", "kind": "wood"}, {"id": "k", "kind": "op", "params": {"op": op}}],
@@ -67,7 +77,9 @@ for op in rows("op")["op"]["choices"].split("|"):
     s, b = graph(q, size="64")
     if s != 200:
         blank.append(("op " + op, s, b[:100]))
+    same_as_export(q, b, "op " + op)
 say(not blank, "every operator kind and every operation previews with its defaults", blank)
+say(not unlike, "for each, the shell export writes the preview's bytes", unlike)
 
 # the shell export gives the preview's bytes
 fan = {"nodes": [{"id": "n", "kind": "noise", "params": {"frequency": 4, "seed": 3}},
