@@ -492,7 +492,7 @@ static void evict(void)
     while (d && (e = readdir(d)) && n < 256)
         if (!strncmp(e->d_name, "g.", 2) && strlen(e->d_name) == 22 &&
             fstatat(dirfd(d), e->d_name, &st, 0) == 0) {
-            snprintf(f[n].name, sizeof f[n].name, "%s", e->d_name);
+            snprintf(f[n].name, sizeof f[n].name, "%.63s", e->d_name);
             f[n++].t = st.st_mtime;
         }
     for (int left = n; left > KEEP; left--) {
