@@ -478,13 +478,15 @@ static void blame(struct pipeline *pl, const struct graph *g, int tail)
     at_node(pl, &g->n[who]);
 }
 
-/* At most KEEP files kept: the oldest go, but none used within RUN_SECONDS (a request
- * running may still read it). */
+/* At most KEEP files and KEEP_BYTES kept: the oldest go, but none used within RUN_SECONDS
+ * (a request running may still read it). */
 #define KEEP 64
+#define KEEP_BYTES ((long long)256 << 20)
 static void evict(void)
 {
-    struct { char name[64]; time_t t; } f[256];
+    struct { char name[64]; time_t t; long long size; } f[256];
     int n = 0;
+    long long bytes = 0;
     DIR *d = opendir(proto.tmpdir);
     struct dirent *e;
     struct stat st;
@@ -493,9 +495,10 @@ static void evict(void)
         if (!strncmp(e->d_name, "g.", 2) && strlen(e->d_name) == 22 &&
             fstatat(dirfd(d), e->d_name, &st, 0) == 0) {
             snprintf(f[n].name, sizeof f[n].name, "%.63s", e->d_name);
-            f[n++].t = st.st_mtime;
+            f[n].t = st.st_mtime;
+            bytes += f[n++].size = st.st_size;
         }
-    for (int left = n; left > KEEP; left--) {
+    for (int left = n; left > KEEP || bytes > KEEP_BYTES; left--) {
         int old = -1;
         for (int i = 0; i < n; i++)
             if (f[i].name[0] && f[i].t < now - RUN_SECONDS && (old < 0 || f[i].t < f[old].t))
@@ -504,6 +507,7 @@ static void evict(void)
             break;
         unlinkat(dirfd(d), f[old].name, 0);
         f[old].name[0] = 0;
+        bytes -= f[old].size;
     }
     if (d)
         closedir(d);
