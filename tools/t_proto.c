@@ -128,6 +128,10 @@ int main(int argc, char **argv)
         tex_error("cannot make a temporary folder in %s: %s", tmp, strerror(errno));
         tex_die();
     }
+    if (kinds_load() < 0) { /* the operator tools' rows, from the tools beside it */
+        remove_tmpdir();
+        tex_die();
+    }
     if (!(d = serve(fd))) {
         remove_tmpdir();
         tex_error("cannot start the server on 127.0.0.1:%u", proto.port);

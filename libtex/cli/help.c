@@ -1,9 +1,11 @@
 /* help.c - --help and the man pages' option lists, made from the option rows */
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "cli/cli.h"
 #include "cli/internal.h"
+#include "io/json.h"
 
 static void usage_line(const struct tex_tool *t, FILE *fp)
 {
@@ -161,4 +163,21 @@ void tex_cli_mdoc(FILE *fp, const struct tex_tool *t, const struct tex_cli_opt *
               ".Xr textura 5 ,\nCOMMON OPTIONS.\n", fp);
     }
     fputs(".El\n", fp);
+}
+
+void tex_cli_json(FILE *fp, const struct tex_tool *t)
+{
+    struct tex_str b = {0};
+    tex_str_add(&b, "{\"tool\":");
+    tex_json_string(&b, t->name);
+    tex_str_add(&b, ",\"operands\":");
+    tex_json_string(&b, t->operands);
+    tex_str_add(&b, ",\"summary\":");
+    tex_json_string(&b, t->summary);
+    tex_str_add(&b, ",\"params\":");
+    tex_json_rows(&b, t->params);
+    tex_str_add(&b, "}\n");
+    if (b.s)
+        fputs(b.s, fp);
+    free(b.s);
 }

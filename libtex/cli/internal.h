@@ -28,6 +28,10 @@ void tex_cli_synopsis(FILE *fp, const struct tex_tool *t, const struct tex_cli_o
  * (--help-common-mdoc: every row in full, t NULL). */
 void tex_cli_mdoc(FILE *fp, const struct tex_tool *t, const struct tex_cli_opt *o, int n);
 
+/* --help-json: the tool's name, operands, summary and own rows (tex_json_rows), for
+ * editors such as t_proto to offer its options. */
+void tex_cli_json(FILE *fp, const struct tex_tool *t);
+
 /* "prog: warning: msg" on a line of its own: the warning handler (error.h). */
 void tex_cli_warning(const char *msg);
 /* At exit: standard output flushed and closed, or "standard output: ..." and _exit(1). */

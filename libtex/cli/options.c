@@ -149,8 +149,8 @@ struct lname {
     char text[48]; /* without the dashes */
 };
 struct tables {
-    struct option lo[MAXNAMES + 7]; /* and --help, --version, --help-mdoc, --help-options,
-                                      * --help-synopsis, 0 */
+    struct option lo[MAXNAMES + 8]; /* and --help, --version, --help-mdoc, --help-options,
+                                      * --help-synopsis, --help-common-mdoc, --help-json, 0 */
     struct lname names[MAXNAMES];
     int nnames;
     struct lname clashes[16]; /* a current name taken already by another row */
@@ -253,7 +253,8 @@ static void getopt_tables(const struct tex_cli_opt *o, int n, struct tables *tb)
     tb->lo[tb->nnames + 3] = (struct option){"help-options", no_argument, NULL, 2};
     tb->lo[tb->nnames + 4] = (struct option){"help-synopsis", no_argument, NULL, 4};
     tb->lo[tb->nnames + 5] = (struct option){"help-common-mdoc", no_argument, NULL, 5};
-    tb->lo[tb->nnames + 6] = (struct option){0};
+    tb->lo[tb->nnames + 6] = (struct option){"help-json", no_argument, NULL, 6};
+    tb->lo[tb->nnames + 7] = (struct option){0};
 }
 
 /* Every name the tool takes, one a line: NAME, the row's option, how the name
@@ -407,6 +408,9 @@ static void take_option(const struct tex_tool *t, int k, int argc, char **argv,
         exit(0);
     } else if (k == 4) {
         tex_cli_synopsis(stdout, t, o, n);
+        exit(0);
+    } else if (k == 6) {
+        tex_cli_json(stdout, t);
         exit(0);
     } else if (k == 2) {
         print_names(o, tb);

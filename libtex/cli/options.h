@@ -7,7 +7,8 @@
  * they are deprecated (textura(5) gives the naming rule).  Options may follow
  * the operands, as in GNU tools, whatever POSIXLY_CORRECT says; "--" ends them.
  * Options a mode does not use are refused (tex_cli_check_kinds), and so is
- * --format with -o.  --help, --help-mdoc and --version print from the same rows.
+ * --format with -o.  --help, --help-mdoc, --help-json and --version print from the same
+ * rows.
  *
  *   static struct opts { int json; } o;
  *   static const struct tex_param rows[] = {TEX_FLAG(struct opts, json, 0, "..."), {0}};

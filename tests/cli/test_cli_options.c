@@ -7,6 +7,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "io/json.h"
 #include "textura.h"
 #include "unit.h"
 
@@ -233,6 +234,23 @@ static void test_help(void)
              tex_param_range(oct, rng, sizeof rng), tex_param_default(oct, def, sizeof def));
     CHECKF(strstr(out, line) != NULL, "--octaves in mdoc: %.*s", (int)strcspn(line, "\n"),
            line);
+    {   /* --help-json: the tool's own rows, as editors read them */
+        char err[128];
+        struct tex_json *j = run(ARGS("t_turbulence", "--help-json")) == 0
+                                 ? tex_json_parse(out, strlen(out), err, sizeof err) : NULL;
+        const struct tex_json *ps = tex_json_get(j, "params"), *o = NULL;
+        int n = 0;
+        for (const struct tex_param *p = prim->params; p->name; p++)
+            n++;
+        for (int i = 0; ps && i < ps->n; i++)
+            if (!strcmp(tex_json_get(&ps->item[i], "name")->str, "octaves"))
+                o = &ps->item[i];
+        CHECK(j && !strcmp(tex_json_get(j, "tool")->str, "t_turbulence") && ps && ps->n == n &&
+                  o && !strcmp(tex_json_get(o, "default")->str, def) &&
+                  !strcmp(tex_json_get(o, "help")->str, oct->help),
+              "--help-json is JSON: the tool and its own rows, each with its default and help");
+        tex_json_free(j);
+    }
     CHECK(run(ARGS("t_turbulence", "-V")) == 0 && !strncmp(out, "t_turbulence (Textura) ", 23),
           "-V names the tool and Textura");
 }

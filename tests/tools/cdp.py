@@ -503,6 +503,169 @@ def project(page, work, shots):
     ed.page_shot("page")
 
 
+def graph(page, work, shots):
+    """A graph with fan-out built by clicking, its shell export run, its inner node and 3D
+    previews, saved in a project and loaded back after a reload."""
+    ed = Editor(page, shots)
+    # the single-primitive editor's state as nodes: the same preview, byte for byte
+    ed.pick("wood")
+    v = ed.version()
+    ed.set("#params [data-name=rings]", "5.5")
+    ed.settled(v)
+    v = ed.version()
+    page.js("(() => { document.getElementById('stepkind').value = 'palette';"
+            " document.getElementById('addstep').click(); })()")
+    ed.settled(v)
+    v = ed.version()
+    ed.set("#steps .steparg", "marble", "change")
+    ed.settled(v)
+    h_steps = page.js(PREVIEW)
+    v = ed.version()
+    page.js("document.getElementById('tograph').click()")
+    st = ed.settled(v)
+    g = ed.js("graphJSON()")
+    h_nodes = page.preview_other_than("", 30)
+    say(st == "ok" and h_nodes == h_steps and [n["kind"] for n in g["nodes"]] == ["wood", "palette"]
+        and g["nodes"][0]["params"] == {"rings": "5.5"} and g["output"] == g["nodes"][1]["id"],
+        "the primitive and its steps become a chain of nodes with the same preview", (st, g))
+    v = ed.version()
+    page.js("document.getElementById('cleargraph').click()")
+    ed.settled(v)
+    kinds = page.js("Array.from(document.querySelectorAll('#nodekind option')).map(o => o.value)")
+    say(all(k in kinds for k in ["op", "palette", "filter", "remap", "xform", "warp", "cascade", "tile",
+                                 "noise", "marble"]),
+        "the node menu offers every operator kind and every primitive, composed ones too", kinds)
+
+    def add(kind):
+        v = ed.version()
+        ed.js("(() => { const s = document.getElementById('nodekind'); s.value = %s;"
+              " document.getElementById('addnode').click(); })()" % json.dumps(kind))
+        ed.settled(v)
+        return ed.js("graph.nodes[graph.nodes.length - 1].id")
+
+    def in_node(node, selector, value, event="change"):
+        v = ed.version()
+        ed.set('#nodes .node[data-id="%s"] %s' % (node, selector), value, event)
+        return ed.settled(v)
+
+    n = add("noise")
+    in_node(n, "[data-name=frequency]", "5", "input")
+    p = add("palette")   # fed by the node before it
+    in_node(p, "[data-name=palette]", "marble")
+    f = add("filter")
+    in_node(f, "select.slot[data-slot=in]", n)
+    in_node(f, "[data-name=op]", "emboss")
+    m = add("op")
+    in_node(m, "[data-name=op]", "mix")
+    in_node(m, "select.slot[data-slot=a]", p)
+    in_node(m, "select.slot[data-slot=b]", f)
+    st = in_node(m, "select.slot[data-slot=w]", n)
+    v = ed.version()
+    ed.js("document.querySelector('#nodes .node[data-id=\"%s\"] input.out').click()" % m)
+    ed.js("document.querySelector('#nodes .node[data-id=\"%s\"] button.show').click()" % m)
+    st = ed.settled(v)
+    g = ed.js("graphJSON()")
+    edges = sorted((e["from"], e["to"], e["slot"]) for e in g["edges"])
+    say(st == "ok" and g["output"] == m and edges == sorted([(n, p, "in"), (n, f, "in"), (p, m, "a"), (f, m, "b"),
+                                                             (n, m, "w")]),
+        "a graph with fan-out is built by clicking: the noise feeds three nodes", (st, ed.msg(), g))
+    stats = ed.preview_stats("graph-output")
+    say(stats["colours"] > 50 and stats["spread"] > 5, "the output's preview is a textured map", stats)
+    h_out = ed.js(PREVIEW)
+    # export at the preview's size, run it in a shell: the same bytes
+    ed.js("document.getElementById('size').value = 256; document.getElementById('name').value = 'fan.png';")
+    ed.js("document.getElementById('status').textContent = '';"
+          " document.querySelector('button[data-export=sh]').click()")
+    page.until("document.getElementById('status').textContent.includes('saved fan.sh')")
+    r = subprocess.run(["sh", "fan.sh"], cwd=work, capture_output=True)
+    got = hashlib.sha256(open(os.path.join(work, "fan.png"), "rb").read()).hexdigest() if r.returncode == 0 else ""
+    script = open(os.path.join(work, "fan.sh")).read()
+    say(got == h_out and script.count("t_noise") == 1 and "-o %s.exr" % n in script,
+        "the exported shell script, run in a shell, gives the preview's bytes (the fan-out made once)",
+        (r.stderr[:200], script))
+    for form, name, want in [("compose", "fan.tc", "no t_compose equivalent"), ("apply", "fan.scene", "saved fan.scene")]:
+        ed.js("document.getElementById('status').textContent = '';"
+              " document.querySelector('button[data-export=%s]').click()" % form)
+        text = page.until("document.getElementById('status').textContent")
+        say(want in text, "export %s: %s" % (form, want), text)
+    # an inner node previewed; the 3D preview follows it
+    sv = ed.js("Number(document.getElementById('scene').dataset.version || 0)")
+    v = ed.version()
+    ed.js("document.querySelector('#nodes .node[data-id=\"%s\"] button.show').click()" % p)
+    st = ed.settled(v)
+    h_p = ed.js(PREVIEW)
+    stats_p = ed.preview_stats("graph-palette-node")
+    page.until("Number(document.getElementById('scene').dataset.version || 0) > %d" % sv, 60)
+    say(st == "ok" and h_p != h_out and stats_p["colours"] > 50 and "t_palette marble" in ed.cmd()
+        and "t_op" not in ed.cmd(), "any node previews, and the command line is its own", (st, ed.cmd()))
+    v = ed.version()
+    ed.set("#apply", "bump", "input")
+    sv = ed.js("Number(document.getElementById('scene').dataset.version || 0)")
+    page.until("Number(document.getElementById('scene').dataset.version || 0) > %d" % sv, 60)
+    x, y, w, h = ed.js("(() => { const r = document.getElementById('scene').getBoundingClientRect();"
+                       " return [r.x, r.y, r.width, r.height]; })()")
+    scene = base64.b64decode(page.call("Page.captureScreenshot", format="png", clip={
+        "x": x, "y": y, "width": w, "height": h, "scale": 1})["data"])
+    ed.n += 1
+    open(os.path.join(shots, "%02d-graph-scene-bump.png" % ed.n), "wb").write(scene)
+    sst = region_stats(scene, (0, 0, w, h))
+    say(sst["colours"] > 50 and sst["spread"] > 5, "the 3D preview shows the node in the standard scene", sst)
+    ed.js("document.getElementById('apply').value = 'Kd'")
+    # an error names the node and marks it (a node upstream of the one previewed)
+    v = ed.version()
+    ed.js("document.querySelector('#nodes .node[data-id=\"%s\"] button.show').click()" % m)
+    ed.settled(v)
+    in_node(f, "[data-name=sigma]", "0", "input")
+    try:  # a redraw asked for before (the bump view's) may settle first
+        page.until("document.getElementById('preview').dataset.state === 'error'", 60)
+    except RuntimeError:
+        pass
+    st = ed.js("document.getElementById('preview').dataset.state")
+    bad = ed.js("document.querySelector('#nodes .node[data-id=\"%s\"]').classList.contains('bad')" % f)
+    say(st == "error" and ("node '%s'" % f) in ed.msg() and bad, "an error names and marks its node", (st, ed.msg()))
+    in_node(f, "[data-name=sigma]", "1", "input")
+    # a palette of the editor's used by a node: the project carries its text
+    page.js("(() => { const c = document.querySelectorAll('#stops .stopcolour');"
+            " c[0].value = '#301000'; c[0].dispatchEvent(new Event('input'));"
+            " document.getElementById('palname').value = 'graphpal.pal';"
+            " document.getElementById('savepal').click(); })()")
+    try:
+        page.until("palettes.includes('graphpal.pal') && !!document.querySelector("
+                   "'#nodes .node[data-id=\"%s\"] [data-name=palette] option[value=\"graphpal.pal\"]')" % p)
+    except RuntimeError:
+        say(False, "a palette saved in the editor is offered to the palette node",
+            page.js("[document.getElementById('status').textContent, palettes]"))
+    st = in_node(p, "[data-name=palette]", "graphpal.pal")
+    h_out = page.preview_other_than(h_out)
+    ed.js("window.confirm = () => true; document.getElementById('projname').value = 'fan.tproj';"
+          " document.getElementById('status').textContent = '';"
+          " document.querySelector('button[data-kind=project]').click()")
+    page.until("document.getElementById('status').textContent.includes('saved fan.tproj')")
+    j = json.load(open(os.path.join(work, "fan.tproj")))
+    say(j.get("graph", {}).get("output") == m and len(j["graph"]["nodes"]) == 4 and len(j["graph"]["edges"]) == 5
+        and j["graph"]["nodes"][0]["params"] == {"frequency": "5"} and "graphpal.pal" in j.get("palettes", {}),
+        "the project holds the graph, readable, and the text of the palette a node uses", j.get("graph"))
+    before = ed.js("JSON.stringify(graphJSON())")
+    png_before, box = ed.shot("graph-before-reload")
+    page.call("Page.reload")
+    time.sleep(0.5)
+    page.until("typeof prims !== 'undefined' && prims.length > 10 && %s > 0" % VERSION)
+    v = ed.version()
+    page.js("document.getElementById('projname').value = 'fan.tproj'; document.getElementById('load').click()")
+    page.until("document.getElementById('status').textContent.includes('loaded fan.tproj')")
+    ed.settled(v)
+    time.sleep(0.5)
+    after = ed.js("JSON.stringify(graphJSON())")
+    cards = ed.js("document.querySelectorAll('#nodes .node').length")
+    h_after = ed.js(PREVIEW)
+    png_after, box2 = ed.shot("graph-after-reload")
+    a, b = region_stats(png_before, box), region_stats(png_after, box2)
+    say(after == before and cards == 4 and h_after == h_out and abs(a["mean"] - b["mean"]) < 0.5,
+        "a project loads back the same graph after a reload, and previews the same bytes and pixels",
+        (before, after, cards, a, b))
+    ed.page_shot("page")
+
+
 def main():
     chromium, url, work, shots, scenario = sys.argv[1:6]
     os.makedirs(shots, exist_ok=True)
@@ -511,7 +674,8 @@ def main():
         page.until("document.querySelectorAll('#prim option').length > 10")
         page.until("%s > 0" % VERSION)
         say(True, "chromium loads the editor and its primitives")
-        {"basic": basic, "prims": prims, "values": values, "project": project}[scenario](page, work, shots)
+        {"basic": basic, "prims": prims, "values": values, "project": project,
+         "graph": graph}[scenario](page, work, shots)
 
 
 if __name__ == "__main__":

@@ -108,10 +108,14 @@ s1, a = get("/api/scene", [("prim", "noise"), ("p", "frequency:3"), ("apply", "K
 s2, c = get("/api/scene", [("prim", "noise"), ("p", "frequency:12"), ("apply", "Ks")])
 d = diff(a, c) if s1 == s2 == 200 else 0
 say(d > 2, "the Ks view shows the map: two maps differ by %.1f grey levels a pixel" % d, (s1, s2))
-proj = up.urlencode(q)
+proj = json.dumps({"format": "t_proto project 1", "name": "m.png", "size": 200,
+                   "primitive": "noise", "params": dict(p.split(":") for k, p in q if k == "p")})
 s, b = get("/api/save", [("kind", "project"), ("name", "p.tproj"), ("text", proj)])
 s2, b2 = get("/api/load", [("name", "p.tproj")])
-say(s == 200 and s2 == 200 and b2.decode() == proj, "a project is saved and loaded back")
+say(s == 200 and s2 == 200 and b2.decode() == proj, "a project is saved and loaded back", b)
+s, b = get("/api/save", [("kind", "project"), ("name", "q.tproj"), ("text", up.urlencode(q))])
+say(s == 400 and b"JSON" in b and not os.path.exists(os.path.join(work, "q.tproj")),
+    "a project that is not JSON is refused", (s, b))
 s, b = get("/api/save", q + [("kind", "scene"), ("name", "t.scene")])
 text = open(os.path.join(work, "t.scene")).read() if s == 200 else ""
 say(s == 200 and text.startswith("# t_noise") and "texture map file -" in text,

@@ -286,6 +286,8 @@ static enum MHD_Result route(struct MHD_Connection *c, const char *url, struct t
     const char *type = "text/plain; charset=utf-8";
     if (!strcmp(what, "preview") || !strcmp(what, "cmdline") || !strcmp(what, "scene")) {
         code = api_render(c, pl, what, out, &type);
+    } else if (!strcmp(what, "graph")) {
+        code = api_graph(c, pl, out, &type);
     } else if (!strcmp(what, "save")) {
         code = api_save(c, pl, out);
     } else if (!strcmp(what, "load")) {

@@ -58,7 +58,7 @@ int fail(struct pipeline *pl, const char *fmt, ...)
 
 /* A file a row names (meta "FILE"): a plain file inside the working folder, whole path
  * resolved, within the input limit; the resolved path into w (NULL with pl->err). */
-static const char *inside(struct pipeline *pl, const char *opt, const char *v)
+const char *inside(struct pipeline *pl, const char *opt, const char *v)
 {
     char rel[PATH_MAX + 128], real[PATH_MAX];
     struct stat st;
@@ -75,18 +75,23 @@ static const char *inside(struct pipeline *pl, const char *opt, const char *v)
 
 /* A value for a row: checked by the row itself, as the tool will; no control characters
  * (a newline would end a scene's comment line). */
+int plain_value(struct pipeline *pl, const char *name, const char *v)
+{
+    for (const char *c = v; *c; c++)
+        if ((unsigned char)*c < 0x20 || *c == 0x7f)
+            return fail(pl, "the value of %s has a control character (byte 0x%02x)", name,
+                        (unsigned char)*c);
+    if (strlen(v) > 100)
+        return fail(pl, "value too long (%.20s...)", v);
+    return 0;
+}
+
 static int check_value(struct pipeline *pl, const struct tex_param *p, const char *v)
 {
     void *scratch = calloc(1, p->off + 4096); /* room for the row's value */
-    int rc = 0;
-    for (const char *c = v; *c && !rc; c++)
-        if ((unsigned char)*c < 0x20 || *c == 0x7f)
-            rc = fail(pl, "the value of %s has a control character (byte 0x%02x)", p->name,
-                      (unsigned char)*c);
+    int rc = plain_value(pl, p->name, v);
     if (rc)
         ;
-    else if (strlen(v) > 100)
-        rc = fail(pl, "value too long (%.20s...)", v);
     else if (!scratch || tex_param_parse(p, scratch, v, TEX_PARAM_OPTION) < 0)
         rc = fail(pl, "%s", tex_errmsg());
     free(scratch);
@@ -101,6 +106,28 @@ int is_name(const char *s)
         if (!((*s >= 'a' && *s <= 'z') || (*s >= '0' && *s <= '9') || *s == '_' || *s == '-'))
             return 0;
     return 1;
+}
+
+/* A primitive's parameter as the option word of its row, the value checked by the row. */
+int param_arg(struct pipeline *pl, const struct tex_param *row, const char *value)
+{
+    char name[72];
+    snprintf(name, sizeof name, "%s", row->name);
+    for (char *c = name; *c; c++) /* the option's spelling */
+        if (*c == '_')
+            *c = '-';
+    if (row->type == TEX_P_FLAG) {
+        if (strcmp(value, "0") && strcmp(value, "1"))
+            return fail(pl, "--%s is 0 or 1 (got '%.20s')", name, value);
+        return !strcmp(value, "1") ? arg(pl, word(pl, "--%s", name)) : 0;
+    }
+    if (check_value(pl, row, value) < 0)
+        return -1;
+    if (row->type == TEX_P_STRING && row->meta && !strcmp(row->meta, "FILE")) {
+        const char *w = inside(pl, name, value);
+        return w ? arg(pl, w) : -1;
+    }
+    return arg(pl, word(pl, "--%s=%s", name, value));
 }
 
 struct req {
@@ -133,36 +160,20 @@ static enum MHD_Result each_param(void *cls, enum MHD_ValueKind kind, const char
         r->failed = fail(r->pl, "%s has no parameter '%s'", prim->name, name);
         return MHD_NO;
     }
-    for (char *c = name; *c; c++) /* the option's spelling */
-        if (*c == '_')
-            *c = '-';
-    if (row->type == TEX_P_FLAG) {
-        if (strcmp(colon + 1, "0") && strcmp(colon + 1, "1"))
-            r->failed = fail(r->pl, "--%s is 0 or 1 (got '%.20s')", name, colon + 1);
-        else if (!strcmp(colon + 1, "1") && arg(r->pl, word(r->pl, "--%s", name)) < 0)
-            r->failed = -1;
-    } else if (check_value(r->pl, row, colon + 1) < 0) {
-        r->failed = -1;
-    } else if (row->type == TEX_P_STRING && row->meta && !strcmp(row->meta, "FILE")) {
-        const char *w = inside(r->pl, name, colon + 1);
-        if (!w || arg(r->pl, w) < 0)
-            r->failed = -1;
-    } else if (arg(r->pl, word(r->pl, "--%s=%s", name, colon + 1)) < 0) {
-        r->failed = -1;
-    }
+    r->failed = param_arg(r->pl, row, colon + 1);
     return r->failed ? MHD_NO : MHD_YES;
 }
 
 /* step=KIND:ARG:ARG...: one pipeline step, each word checked. */
 static int step(struct pipeline *pl, const char *spec, int size)
 {
-    char buf[256], *w[8];
+    char buf[256], *w[8], *save = NULL; /* strtok_r: requests run on threads at once */
     int n = 0;
     double x;
     if (strlen(spec) >= sizeof buf)
         return fail(pl, "step too long");
     strcpy(buf, spec);
-    for (char *s = strtok(buf, ":"); s && n < 8; s = strtok(NULL, ":"))
+    for (char *s = strtok_r(buf, ":", &save); s && n < 8; s = strtok_r(NULL, ":", &save))
         w[n++] = s;
     if (!n)
         return fail(pl, "empty step");
@@ -309,11 +320,11 @@ static const struct view {
     {"bump", "-3 5 -4", "0.8", "40", "0.7", "10", NULL},
 };
 
-int scene_stage(struct pipeline *pl, const char *fn, const char *strength, const char *map)
+int scene_text(struct pipeline *pl, struct tex_str *s, const char *fn, const char *strength,
+               const char *map)
 {
-    char scene[PATH_MAX + 64], apply[64];
-    struct tex_str s = {0};
     const struct view *v = NULL;
+    char apply[64];
     double k = 0.2;
     for (size_t i = 0; i < sizeof views / sizeof *views; i++)
         if (!strcmp(fn ? fn : "Kd", views[i].fn))
@@ -326,15 +337,13 @@ int scene_stage(struct pipeline *pl, const char *fn, const char *strength, const
         snprintf(apply, sizeof apply, "bump = %.17g", k);
     else
         snprintf(apply, sizeof apply, "%s = f", v->fn);
-    tex_str_add(&s, "image 192 144\nsamples 1\nambient 0.25 0.25 0.25\nbackground 0.15 0.15 0.17\n"
+    tex_str_add(s, "image 192 144\nsamples 1\nambient 0.25 0.25 0.25\nbackground 0.15 0.15 0.17\n"
              "camera { eye 0 1.3 -3.6 look 0 0.55 0 fov 42 }\n"
              "light point { position %s intensity 1 }\n"
              "texture m file ", v->light);
-    if (scene_string(&s, map) < 0) {
-        free(s.s);
+    if (scene_string(s, map) < 0)
         return fail(pl, "the map's path has a control character");
-    }
-    tex_str_add(&s, "\n"
+    tex_str_add(s, "\n"
              "surface ball { Kd %s Ks 0.3 n %s apply m { mapping sphere %s } }\n"
              "surface cube { Kd %s Ks 0.3 n %s apply m { mapping box %s } }\n"
              "surface floor { Kd %s Ks 0.1 n %s apply m { scale 0.5 %s } }\n"
@@ -343,6 +352,17 @@ int scene_stage(struct pipeline *pl, const char *fn, const char *strength, const
              "plane { surface floor }\n",
              v->kd, v->n, apply, v->kd, v->n, apply, v->floor_kd, v->floor_n,
              v->floor_apply ? v->floor_apply : apply);
+    return 0;
+}
+
+int scene_stage(struct pipeline *pl, const char *fn, const char *strength, const char *map)
+{
+    char scene[PATH_MAX + 64];
+    struct tex_str s = {0};
+    if (scene_text(pl, &s, fn, strength, map) < 0) {
+        free(s.s);
+        return -1;
+    }
     snprintf(scene, sizeof scene, "%s/scene.%lx.scene", proto.tmpdir,
              (unsigned long)pthread_self());
     FILE *f = fopen(scene, "w");

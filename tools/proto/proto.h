@@ -1,7 +1,8 @@
 /* proto.h - what t_proto's files share (t_proto.c keeps main)
  *
- *   catalog.c   the primitives and their rows, as JSON for the page
+ *   catalog.c   the node kinds (primitives, operator tools) and their rows, as JSON
  *   pipeline.c  a request made into a pipeline of tools, every word checked
+ *   graph.c     a node graph: checked, run as pipelines over temporary files, exported
  *   spawn.c     the pipeline run, its stages spawned without a shell
  *   save.c      files saved into the folder it serves, and projects loaded
  *   http.c      libmicrohttpd: the token, the rate limit, the routes and replies
@@ -22,6 +23,9 @@
 #define MAX_STEPS 8       /* pipeline steps after the primitive */
 #define MAX_STAGES (1 + MAX_STEPS)
 #define MAX_ARGS 64       /* query parameters of one request */
+#define MAX_NODES 32      /* nodes of a graph */
+#define MAX_SLOTS 9       /* input slots of a node */
+#define MAX_GRAPH 32768   /* bytes of a graph's or a project's JSON */
 #define RUN_SECONDS 30    /* a request's time limit for its pipelines */
 #define MAX_RUNS 8        /* pipelines running at once; more wait their turn */
 #define HEAD_SECONDS 5    /* a request's time to arrive whole (and a kept connection's idle time) */
@@ -58,7 +62,24 @@ struct pipeline {
     char err[512];
 };
 
-/* catalog.c: {"primitives": [...], "palettes": "..."} */
+/* catalog.c: the operator kinds (the table), found by name; a kind's row of that name as its
+ * tool printed it (NULL if none or not offered); the rows read from each tool at start
+ * (-1 with a message); {"primitives": [...], "kinds": [...], "palettes": [...]} */
+struct tex_json;
+struct kind {
+    const char *name, *tool;
+    const char *operand, *choices, *operand_help; /* the operand word's row, or NULL;
+                                                   * choices NULL: a palette's name */
+    const char *slots[MAX_SLOTS];                 /* input slots, in operand order */
+    int needs;                                    /* the first slots that must be fed */
+    const char *skip;                             /* the tool's rows not offered */
+    int sized;                                    /* takes -s SIZE */
+    struct tex_json *help;                        /* the tool's --help-json */
+};
+extern struct kind kinds[];
+const struct kind *kind_find(const char *name);
+const struct tex_json *kind_row(const struct kind *k, const char *name);
+int kinds_load(void);
 void api_prims(struct tex_str *b);
 
 /* pipeline.c: words and stages (-1 with pl->err set when full), the pipeline of a
@@ -68,9 +89,26 @@ int arg(struct pipeline *pl, const char *w);
 int stage(struct pipeline *pl, const char *tool);
 int fail(struct pipeline *pl, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 int is_name(const char *s);
+int plain_value(struct pipeline *pl, const char *name, const char *v);
+const char *inside(struct pipeline *pl, const char *opt, const char *v);
+struct tex_param;
+int param_arg(struct pipeline *pl, const struct tex_param *row, const char *value);
 int build(struct MHD_Connection *c, struct pipeline *pl, int size);
 void cmdline(const struct pipeline *pl, struct tex_str *b);
+int scene_text(struct pipeline *pl, struct tex_str *s, const char *fn, const char *strength,
+               const char *map);
 int scene_stage(struct pipeline *pl, const char *fn, const char *strength, const char *map);
+
+/* graph.c: /api/graph (what=preview, scene, sh, compose or apply; the HTTP status, the
+ * reply into out, its type into *type), and a graph's export as text for /api/save
+ * (form sh, compose or apply) */
+unsigned api_graph(struct MHD_Connection *c, struct pipeline *pl, struct tex_str *out,
+                   const char **type);
+int graph_export(struct MHD_Connection *c, struct pipeline *pl, const char *form,
+                 const char *map, struct tex_str *out);
+/* a project's text checked: JSON, its graph (if any) one that loads: nodes of known kinds,
+ * edges into their slots, an output, no cycle (inputs may still be missing) */
+int project_check(struct pipeline *pl, const char *text);
 
 /* spawn.c: the worst exit status (0 ok, 1 runtime, 2 usage), the output in out; and every
  * running pipeline killed (on a signal, before the temporary folder goes) */

@@ -108,15 +108,26 @@ unsigned api_save(struct MHD_Connection *c, struct pipeline *pl, struct tex_str 
     if (!strcmp(kind, "palette") || !strcmp(kind, "project")) {
         /* text the page made: a palette file, or a project (the query) */
         if (save_name(pl, name, kind[1] == 'a' ? pal_exts : proj_exts) == 0) {
-            if (!body || strlen(body) > 16384)
-                fail(pl, "the %s's text is missing or longer than 16384 bytes", kind);
+            if (!body || strlen(body) > MAX_GRAPH)
+                fail(pl, "the %s's text is missing or longer than %d bytes", kind, MAX_GRAPH);
             else if (kind[1] == 'a') {
                 tex_palette *p = tex_palette_parse(body, strlen(body), name);
                 rc = p ? save_text(pl, name, body, strlen(body)) : fail(pl, "%s", tex_errmsg());
                 tex_palette_free(p);
-            } else {
+            } else if (project_check(pl, body) == 0) { /* loads back: JSON, its graph runs */
                 rc = save_text(pl, name, body, strlen(body));
             }
+        }
+    } else if (!strcmp(kind, "graph")) {
+        /* a graph's export: the script, the t_compose script or the scene */
+        const char *form = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "form");
+        static const char *const tc_exts[] = {"tc", "txt", NULL};
+        form = form ? form : "sh";
+        if (save_name(pl, name, form[0] == 's' ? sh_exts : form[0] == 'c' ? tc_exts
+                                                                          : scene_exts) == 0 &&
+            graph_export(c, pl, form, MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND,
+                                                                  "map"), &b) == 0) {
+            rc = save_text(pl, name, b.s, b.n);
         }
     } else if (size < 0 || build(c, pl, size) < 0) {
         ;
@@ -141,7 +152,8 @@ unsigned api_save(struct MHD_Connection *c, struct pipeline *pl, struct tex_str 
             rc = b.n ? save_text(pl, name, b.s, b.n) : -1;
         }
     } else {
-        fail(pl, "kind must be map, palette, cmdline, scene or project (got '%.20s')", kind);
+        fail(pl, "kind must be map, palette, cmdline, scene, project or graph (got '%.20s')",
+             kind);
     }
     if (rc == 0)
         tex_str_add(out, "saved %s", name);
@@ -157,7 +169,7 @@ unsigned api_load(struct MHD_Connection *c, struct pipeline *pl, struct tex_str 
     if (save_name(pl, name, proj_exts) == 0) {
         int fd = openat(proto.workfd, name, O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
         tex_buf tb = {0};
-        if (fd < 0 || tex_read_fd(fd, &tb, name) < 0 || tb.len > 16384)
+        if (fd < 0 || tex_read_fd(fd, &tb, name) < 0 || tb.len > MAX_GRAPH)
             fail(pl, "cannot read project '%s'", name);
         else {
             tex_str_bytes(out, (const char *)tb.data, tb.len);

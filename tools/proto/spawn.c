@@ -122,7 +122,7 @@ static int slot(struct pipeline *pl, time_t end, int take)
 static int run_slot(struct pipeline *pl, struct tex_str *out, time_t end);
 
 /* Run the pipeline; the last stage's standard output into out.  Returns the
- * worst exit status (0 ok, 1 runtime, 2 usage) with stderr's first line in err. */
+ * worst exit status (0 ok, 1 runtime, 2 usage) with stderr's first error line in err. */
 int run(struct pipeline *pl, struct tex_str *out)
 {
     time_t end = pl->end ? (time_t)pl->end : time(NULL) + RUN_SECONDS;
@@ -187,11 +187,14 @@ static int run_slot(struct pipeline *pl, struct tex_str *out, time_t end)
     }
     if (pid[0] > 0)
         group_set(pid[0], 0);
-    if (status && err.s) {
-        char *nl = strchr(err.s, '\n');
-        if (nl)
+    if (status && err.s) { /* the first error line: a progress bar may come before it */
+        char *line = strstr(err.s, ": error: "), *nl;
+        while (line && line > err.s && line[-1] != '\n' && line[-1] != '\r')
+            line--;
+        line = line ? line : err.s;
+        if ((nl = strpbrk(line, "\r\n")))
             *nl = 0;
-        snprintf(pl->err, sizeof pl->err, "%s", err.s);
+        snprintf(pl->err, sizeof pl->err, "%s", line);
     }
     free(err.s);
     return status;
