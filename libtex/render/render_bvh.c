@@ -477,6 +477,19 @@ static __attribute__((noinline)) void transmit_spans(const struct tex_scene *s,
                                                      double tmin, double tmax, double *tr)
 {
     struct tex_spans sp;
+    double t0;
+    if (p->kind == PK_LEAF) { /* a torus's quartic only where the cheap tests cannot tell */
+        if (p->ob->bounded && !hit_box(&p->box, r, tmin, tmax, &t0))
+            return;
+        int cross = tex_leaf_segment(p->ob, &r->o, &r->d, tmin, tmax);
+        double kt = surface_kt(s, p->ob);
+        if (cross < 0)
+            return;
+        if (cross > 0 && kt == 0) { /* a crossing of an opaque leaf: the product its spans make */
+            *tr *= kt;
+            return;
+        }
+    }
     if (!prim_spans(p, r, tmin, tmax, &sp))
         return;
     for (int i = 0; i < sp.n && *tr > 0; i++) {
