@@ -292,15 +292,28 @@ static inline int hit_box(const struct tex_bounds *b, const struct ray *r, doubl
     return lo <= hi;
 }
 
+/* Does r cross the surface of transformed leaf p between tmin and tmax?  -1 where it misses
+ * p's box there or surely does not, 1 where it surely does, 0 where only its spans tell
+ * (tex_leaf_segment: a torus's quartic only where cheap tests cannot decide) */
+static inline int leaf_segment(const struct prim *p, const struct ray *r, double tmin,
+                               double tmax)
+{
+    double t0;
+    if (p->ob->bounded && !hit_box(&p->box, r, tmin, tmax, &t0))
+        return -1;
+    return tex_leaf_segment(p->ob, &r->o, &r->d, tmin, tmax);
+}
+
 /* The spans of a transformed leaf or a CSG tree p along r into *s; 0 (none made) where r
- * misses its box between tmin and tmax (the closest hit so far, or the light). */
+ * has no boundary of it between tmin and tmax (the closest hit so far, or the light) that
+ * cheap tests can rule out: its box, or leaf_segment. */
 static inline int prim_spans(const struct prim *p, const struct ray *r, double tmin, double tmax,
                              struct tex_spans *s)
 {
     const struct tex_object *ob = p->ob;
     double t0;
     if (p->kind == PK_LEAF) {
-        if (ob->bounded && !hit_box(&p->box, r, tmin, tmax, &t0))
+        if (leaf_segment(p, r, tmin, tmax) < 0)
             return 0;
         tex_leaf_spans(ob, &r->o, &r->d, s);
     } else if (!ob->bounded) {
@@ -477,8 +490,19 @@ static __attribute__((noinline)) void transmit_spans(const struct tex_scene *s,
                                                      double tmin, double tmax, double *tr)
 {
     struct tex_spans sp;
-    if (!prim_spans(p, r, tmin, tmax, &sp))
+    if (p->kind == PK_LEAF) {
+        int cross = leaf_segment(p, r, tmin, tmax);
+        double kt = surface_kt(s, p->ob);
+        if (cross < 0)
+            return;
+        if (cross > 0 && kt == 0) { /* a crossing of an opaque leaf: the product its spans make */
+            *tr *= kt;
+            return;
+        }
+        tex_leaf_spans(p->ob, &r->o, &r->d, &sp);
+    } else if (!prim_spans(p, r, tmin, tmax, &sp)) {
         return;
+    }
     for (int i = 0; i < sp.n && *tr > 0; i++) {
         const struct tex_hit *h[2] = {&sp.in[i], &sp.out[i]};
         for (int k = 0; k < 2; k++)

@@ -496,6 +496,77 @@ static void torus_spans(const struct tex_object *ob, tex_v3 o, tex_v3 d, struct 
     }
 }
 
+/* q^2 + y^2 at o + t d over r^2: below 1 inside the solid, above 1 outside */
+static double torus_depth(double R, double r, tex_v3 o, tex_v3 d, double t)
+{
+    tex_v3 p = tex_v3_madd(o, d, t);
+    double q = sqrt(p.x * p.x + p.z * p.z) - R;
+    return (q * q + p.y * p.y) / (r * r);
+}
+
+/* x^2 + z^2 at o + t d */
+static double torus_rho2(tex_v3 o, tex_v3 d, double t)
+{
+    double x = o.x + t * d.x, z = o.z + t * d.z;
+    return x * x + z * z;
+}
+
+/* Does o + t d, t in (tmin, tmax), cross the torus's surface?  -1 where it surely does not:
+ * it stays beyond the tube's slab, or within it in the hole or beyond the rim.  1 where it
+ * surely does: a point of it lies deep inside and an end clearly outside (the points tried:
+ * where it crosses the tube's plane and the core circle's cylinder, where shadow rays
+ * through a torus are inside).  0: only torus_spans can tell.  The margins (1e-6 of r) are
+ * far beyond the rounding of either test, so a sure answer is torus_spans' own (its pieces
+ * keep one side each). */
+static int torus_segment(const struct tex_object *ob, tex_v3 o, tex_v3 d, double tmin,
+                         double tmax)
+{
+    double R = ob->r0, r = ob->r1, m = r * 1e-6, u = tmin, v = tmax;
+    if (d.y != 0) { /* the slab |y| <= r + m, beyond which the depth is > 1 + 2e-6 */
+        double ta = (-(r + m) - o.y) / d.y, tb = (r + m - o.y) / d.y;
+        u = tex_maxd(u, tex_mind(ta, tb)), v = tex_mind(v, tex_maxd(ta, tb));
+    } else if (!(fabs(o.y) <= r + m)) {
+        return -1;
+    }
+    if (u > v)
+        return -1;
+    double a = d.x * d.x + d.z * d.z, b = o.x * d.x + o.z * d.z;
+    double hole = R - r - m, rim = R + r + m, tv = a > 0 ? tex_mind(v, tex_maxd(u, -b / a)) : u;
+    if ((hole > 0 && torus_rho2(o, d, u) < hole * hole && torus_rho2(o, d, v) < hole * hole) ||
+        torus_rho2(o, d, tv) > rim * rim)
+        return -1;
+    double rmin2 = torus_rho2(o, d, tv), len = v - u;
+    if (rmin2 > 0 && isfinite(len)) {
+        /* D^2 = q^2 + y^2 (q = rho - R) from u on: its value and slope there, and its second
+         * derivative 2 (q'^2 + q rho'' + y'^2) bounded below by K (rho'' in [0, a / rho]) */
+        tex_v3 p = tex_v3_madd(o, d, u);
+        double rho = sqrt(p.x * p.x + p.z * p.z), q = rho - R, rmin = sqrt(rmin2);
+        double D2 = q * q + p.y * p.y, slope = 2 * (q * (p.x * d.x + p.z * d.z) / rho + p.y * d.y);
+        double K = 2 * (d.y * d.y + tex_mind(0, rmin - R) * a / rmin);
+        double low = tex_mind(0, len * (slope + 0.5 * K * len)), tk = K > 0 ? -slope / K : -1;
+        if (tk > 0 && tk < len)
+            low = tex_mind(low, -0.5 * slope * slope / K);
+        if (D2 + low > r * r * (1 + 4e-6))
+            return -1; /* D stays above r on the whole piece */
+    }
+    double lo = 1 - 1e-6, hi = 1 + 1e-6;
+    if (!(torus_depth(R, r, o, d, tmin) > hi) && !(torus_depth(R, r, o, d, tmax) > hi))
+        return 0;
+    double t[3];
+    int n = 0;
+    if (d.y != 0)
+        t[n++] = -o.y / d.y;
+    double disc = b * b - a * (o.x * o.x + o.z * o.z - R * R);
+    if (a > 0 && disc > 0) {
+        double q = sqrt(disc);
+        t[n++] = (-b - q) / a, t[n++] = (-b + q) / a;
+    }
+    for (int k = 0; k < n; k++)
+        if (t[k] > tmin && t[k] < tmax && torus_depth(R, r, o, d, t[k]) < lo)
+            return 1;
+    return 0;
+}
+
 /* The gradient of (rho - R)^2 + y^2: away from the tube's centre circle. */
 static tex_v3 torus_normal(const struct tex_object *ob, tex_v3 p)
 {
@@ -552,6 +623,20 @@ static int ray_box(const struct tex_bounds *b, tex_v3 o, tex_v3 inv)
     return t0 <= t1;
 }
 
+/* A world ray in the leaf's object space */
+static inline __attribute__((always_inline)) void
+leaf_ray(const struct tex_object *ob, const tex_v3 *o, const tex_v3 *d, tex_v3 *lo, tex_v3 *ld)
+{
+    if (ob->scaled) { /* the full products' zero terms change no more than a zero's sign */
+        const double(*m)[4] = ob->to_obj.m;
+        *lo = tex_v3_make(m[0][0] * o->x + m[0][3], m[1][1] * o->y + m[1][3],
+                          m[2][2] * o->z + m[2][3]);
+        *ld = tex_v3_make(m[0][0] * d->x, m[1][1] * d->y, m[2][2] * d->z);
+    } else {
+        *lo = tex_xform_point(&ob->to_obj, *o), *ld = tex_xform_dir(&ob->to_obj, *d);
+    }
+}
+
 /* A leaf's spans along a world ray: a switch, not the method table, so the
  * common shapes (always_inline) are inlined and the object-space ray stays in registers
  * (a tex_v3 passed by value goes through the stack, and the load after the
@@ -560,14 +645,7 @@ void tex_leaf_spans(const struct tex_object *ob, const tex_v3 *o, const tex_v3 *
                     struct tex_spans *s)
 {
     tex_v3 lo, ld;
-    if (ob->scaled) { /* the full products' zero terms change no more than a zero's sign */
-        const double(*m)[4] = ob->to_obj.m;
-        lo = tex_v3_make(m[0][0] * o->x + m[0][3], m[1][1] * o->y + m[1][3],
-                         m[2][2] * o->z + m[2][3]);
-        ld = tex_v3_make(m[0][0] * d->x, m[1][1] * d->y, m[2][2] * d->z);
-    } else {
-        lo = tex_xform_point(&ob->to_obj, *o), ld = tex_xform_dir(&ob->to_obj, *d);
-    }
+    leaf_ray(ob, o, d, &lo, &ld);
     switch (ob->kind) {
     case TEX_SHAPE_SPHERE: sphere_spans(ob, lo, ld, s); break;
     case TEX_SHAPE_BOX: box_spans(ob, lo, ld, s); break;
@@ -575,6 +653,16 @@ void tex_leaf_spans(const struct tex_object *ob, const tex_v3 *o, const tex_v3 *
     case TEX_SHAPE_CONE: cone_spans(ob, lo, ld, s); break;
     default: tex_shape_methods[ob->kind].spans(ob, lo, ld, s); break;
     }
+}
+
+int tex_leaf_segment(const struct tex_object *ob, const tex_v3 *o, const tex_v3 *d,
+                     double tmin, double tmax)
+{
+    if (ob->kind != TEX_SHAPE_TORUS)
+        return 0;
+    tex_v3 lo, ld;
+    leaf_ray(ob, o, d, &lo, &ld);
+    return torus_segment(ob, lo, ld, tmin, tmax);
 }
 
 static void object_spans(const struct tex_object *ob, const tex_v3 *o, const tex_v3 *d,

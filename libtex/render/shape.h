@@ -126,6 +126,12 @@ void tex_csg_spans(const struct tex_object *ob, const tex_v3 *o, const tex_v3 *d
 /* The spans of a leaf (its transform applied) along a world ray. */
 void tex_leaf_spans(const struct tex_object *ob, const tex_v3 *o, const tex_v3 *d,
                     struct tex_spans *s);
+/* Does the world segment o + t d, t in (tmin, tmax), cross the leaf's surface?  1 where it
+ * surely does, -1 where it surely does not (as tex_leaf_spans would show), 0 where only
+ * tex_leaf_spans can tell: a shadow ray's test without the spans.  Only the torus, whose
+ * quartic is the dearest solve, answers other than 0. */
+int tex_leaf_segment(const struct tex_object *ob, const tex_v3 *o, const tex_v3 *d,
+                     double tmin, double tmax);
 /* Combine two interval lists with a CSG operation. */
 void tex_csg_combine(enum tex_csg_op op, const struct tex_spans *a, const struct tex_spans *b,
                      struct tex_spans *r);

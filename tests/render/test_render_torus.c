@@ -230,11 +230,72 @@ static void test_map(void)
     CHECKF(err < 1e-12, "torus_map inverts the torus's parametrisation (worst %g)", err);
 }
 
+/* A shadow ray's segment (tmin, tmax): whether tex_leaf_spans puts a crossing in it, as
+ * tex_scene_transmit counts them */
+static int crosses(const struct tex_object *ob, tex_v3 o, tex_v3 d, double tmin, double tmax)
+{
+    struct tex_spans s;
+    tex_leaf_spans(ob, &o, &d, &s);
+    for (int j = 0; j < s.n; j++)
+        if ((s.in[j].t > tmin && s.in[j].t < tmax) || (s.out[j].t > tmin && s.out[j].t < tmax))
+            return 1;
+    return 0;
+}
+
+static tex_v3 random_dir(tex_rng *rng, double len)
+{
+    double z = 2 * tex_rng_uniform(rng) - 1, a = 6.283185307179586 * tex_rng_uniform(rng);
+    double s = sqrt(1 - z * z);
+    return tex_v3_make(len * s * cos(a), len * z, len * s * sin(a));
+}
+
+/* tex_leaf_segment's sure answers are the spans' own: shadow rays leaving the surface (a
+ * hit point, nudged either way by the renderer's offsets or not at all) in every
+ * direction, and segments from anywhere near, ring and spindle tori; and it answers
+ * most of the rays leaving the surface, which it is there for. */
+static void test_segment(void)
+{
+    tex_rng rng;
+    tex_rng_seed(&rng, 63);
+    int wrong = 0, rays = 0, leaving = 0, sure = 0;
+    for (int i = 0; i < 4000; i++) {
+        double R = 2 * tex_rng_uniform(&rng), r = 0.05 + 1.2 * tex_rng_uniform(&rng);
+        struct tex_object ob = torus(R, r);
+        tex_v3 o = random_dir(&rng, 3 * (R + r)), d = tex_v3_scale(o, -1);
+        struct tex_spans s;
+        tex_object_spans(&ob, o, d, &s);
+        for (int k = 0; k < 8; k++) {
+            double tmin = 0, tmax = k == 7 ? INFINITY : 0.1 + 20 * tex_rng_uniform(&rng);
+            tex_v3 from = o, dir = random_dir(&rng, 0.25 + tex_rng_uniform(&rng));
+            int out = 0;
+            if (s.n && k < 6) { /* from the surface, nudged out, in or not at all */
+                int enter = tex_rng_uniform(&rng) < 0.5;
+                from = tex_v3_madd(o, d, (enter ? s.in[0].t : s.out[0].t) + (k % 3 - 1) * 3e-6);
+                out = k % 3 == (enter ? 0 : 2);
+                leaving += out;
+            } else { /* from anywhere near, over any piece */
+                from = tex_v3_scale(random_dir(&rng, 1), (R + r) * 1.5 * tex_rng_uniform(&rng));
+                tmin = 0.5 * tex_rng_uniform(&rng);
+            }
+            int a = tex_leaf_segment(&ob, &from, &dir, tmin, tmax);
+            int truth = crosses(&ob, from, dir, tmin, tmax);
+            wrong += (a > 0 && !truth) || (a < 0 && truth);
+            sure += a != 0 && out;
+            rays++;
+        }
+    }
+    CHECKF(wrong == 0, "%d segments: every sure answer of tex_leaf_segment is the spans' (%d not)",
+           rays, wrong);
+    CHECKF(sure > leaving / 2, "it answers %d of %d rays from just outside the surface (more than half)",
+           sure, leaving);
+}
+
 int main(void)
 {
     test_crossings();
     test_grazing();
     test_random();
+    test_segment();
     test_silhouette();
     test_difference();
     test_transform();
