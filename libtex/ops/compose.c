@@ -393,18 +393,28 @@ tex_map *tex_warp(const tex_map *m, const tex_map *by, const struct tex_warp_opt
 #pragma omp parallel
     {
         /* This row's displacements and the next row's, one extra column:
-         * their differences give each pixel's footprint in m. */
-        double *d0 = malloc(4 * sizeof *d0 * (w + 1)), *d1 = d0 ? d0 + 2 * (w + 1) : NULL;
-        if (!d0) {
+         * their differences give each pixel's footprint in m.  The next
+         * row's become the following row's own when a thread takes
+         * consecutive rows (the 4 of a chunk), so most rows cost one. */
+        double *buf = malloc(4 * sizeof *buf * (w + 1)), *d0 = buf,
+               *d1 = buf ? buf + 2 * (w + 1) : NULL;
+        int next = -1; /* the row d1 holds */
+        if (!buf) {
 #pragma omp atomic write
             failed = 1;
         }
 #pragma omp for schedule(dynamic, 4)
         for (int y = 0; y < h; y++) {
-            if (!d0)
+            if (!buf)
                 continue;
-            warp_row(&sb, o, w, h, y, d0);
+            if (y == next) {
+                double *t = d0;
+                d0 = d1;
+                d1 = t;
+            } else
+                warp_row(&sb, o, w, h, y, d0);
             warp_row(&sb, o, w, h, y + 1, d1);
+            next = y + 1;
             for (int x = 0; x < w; x++) {
                 double u = (x + 0.5) / w + o->amount * d0[2 * x];
                 double v = (y + 0.5) / h + o->amount * d0[2 * x + 1];
@@ -415,7 +425,7 @@ tex_map *tex_warp(const tex_map *m, const tex_map *by, const struct tex_warp_opt
                 tex_sample(&sm, u * m->w, v * m->h, du, dv, tex_map_px(r, x, y));
             }
         }
-        free(d0);
+        free(buf);
     }
     if (failed) {
         tex_map_free(r);

@@ -58,9 +58,21 @@ static void bilinear(const struct tex_sampler *s, double x, double y, float *out
     int nc = s->m->nc;
     double fx = tame(x) - 0.5, fy = tame(y) - 0.5, x0 = floor(fx), y0 = floor(fy);
     float tx = (float)(fx - x0), ty = (float)(fy - y0);
-    long ix = (long)x0, iy = (long)y0;
-    const float *p00 = fetch(s, ix, iy), *p10 = fetch(s, ix + 1, iy);
-    const float *p01 = fetch(s, ix, iy + 1), *p11 = fetch(s, ix + 1, iy + 1);
+    long ix = (long)x0, iy = (long)y0, ry = iy - s->row0;
+    const float *p00, *p10, *p01, *p11;
+
+    if (ix >= 0 && ix + 1 < s->m->w && iy >= 0 && iy + 1 < s->rows && ry >= 0 &&
+        ry + 1 < s->m->h) { /* inside: the four pixels fetch() would give, without the edge rule */
+        p00 = tex_map_px(s->m, (int)ix, (int)ry);
+        p10 = p00 + nc;
+        p01 = p00 + (size_t)s->m->w * nc;
+        p11 = p01 + nc;
+    } else {
+        p00 = fetch(s, ix, iy);
+        p10 = fetch(s, ix + 1, iy);
+        p01 = fetch(s, ix, iy + 1);
+        p11 = fetch(s, ix + 1, iy + 1);
+    }
 
     for (int c = 0; c < nc; c++) {
         float a = p00[c] + (p10[c] - p00[c]) * tx, b = p01[c] + (p11[c] - p01[c]) * tx;
@@ -71,9 +83,15 @@ static void bilinear(const struct tex_sampler *s, double x, double y, float *out
 /* Lookups along one axis: about one per source pixel the output pixel spans,
  * so each bilinear tap covers its share; one (plain bilinear) at 1:1 and when
  * magnifying, which keeps whole-pixel lookups exact. */
-static int taps(double len, int maxtaps)
+static int taps(const double d[2], int maxtaps)
 {
-    double n = ceil(len - 1e-6);
+    double n;
+
+    /* |a| + |b| <= 1 bounds hypot() by 1 + a few ulp, far below the 1e-6
+     * that makes a second tap: one tap, as hypot() would give, at less cost. */
+    if (fabs(d[0]) + fabs(d[1]) <= 1.0)
+        return 1;
+    n = ceil(hypot(d[0], d[1]) - 1e-6);
     return n < 1 ? 1 : n > maxtaps ? maxtaps : (int)n;
 }
 
@@ -88,8 +106,8 @@ void tex_sample(const struct tex_sampler *s, double x, double y, const double du
         memcpy(out, p, nc * sizeof *out);
         return;
     }
-    nu = taps(hypot(du[0], du[1]), maxt);
-    nv = taps(hypot(dv[0], dv[1]), maxt);
+    nu = taps(du, maxt);
+    nv = taps(dv, maxt);
     if (nu == 1 && nv == 1) {
         bilinear(s, x, y, out);
         return;

@@ -141,6 +141,11 @@ t_warp "$T/a.exr" "$T/quarter.exr" --displacement 1 >"$T/wq.exr"
 same "warp by a constant = shift" "$T/wq.exr" "$(t_xform --shift -16,0 --wrap "$T/a.exr" >"$T/sq.exr"; echo "$T/sq.exr")"
 t_warp --displacement 0.15 "$T/stripe.exr" "$T/a.exr" >"$T/marble.exr"
 golden "turbulence o stripe golden (Fig. 5.10)" "$T/marble.exr" compose_warp_stripe.exr 1e-5
+# A thread reuses the displacements of the row below for its next row; threads take rows in
+# chunks, so the rows computed afresh differ with -j: the pixels must not.
+t_warp -j1 -s 131x67 --displacement 0.4 --isotropic "$T/stripe.exr" "$T/a.exr" >"$T/wj1.exr"
+t_warp -j3 -s 131x67 --displacement 0.4 --isotropic "$T/stripe.exr" "$T/a.exr" >"$T/wj3.exr"
+same "warp: the same pixels with 1 and 3 threads, odd size" "$T/wj1.exr" "$T/wj3.exr"
 
 # ---- t_compose ----
 sed "s|noise(frequency = 6, seed = 3) 200 by 200|noise(frequency = 6, seed = 3) 64 by 64|;
