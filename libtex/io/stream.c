@@ -444,32 +444,62 @@ static int encode_batches(exr_context_t ctx, int part, const tex_map *m, tex_row
     return r;
 }
 
+/* An uncompressed part's chunks one after the other (the stream's case): from m's rows, or
+ * from fill's, made brows at a time into band; -1 with the error set, ctx the caller's */
+static int encode_raw(exr_context_t ctx, int part, const tex_map *m, tex_rows_fn fill,
+                      void *arg, float *band, int brows, int lines, struct wsink *sink,
+                      struct worth *w)
+{
+    exr_encode_pipeline_t enc;
+    exr_chunk_info_t ci;
+    exr_result_t rv = EXR_ERR_SUCCESS;
+    int r = 0;
+
+    memset(&enc, 0, sizeof enc);
+    for (int y = 0; y < m->h && !r && !rv; y += lines) {
+        const float *row0 = band ? band + (size_t)(y % brows) * m->w * m->nc : tex_map_row(m, y);
+        /* a band's rows reach a reader before the next band is made */
+        if (band && y % brows == 0 &&
+            (sink_flush(sink) < 0 || fill(arg, y, m->h - y < brows ? m->h - y : brows, band) < 0)) {
+            r = -1;
+            break;
+        }
+        if ((rv = exr_write_scanline_chunk_info(ctx, part, y + (m->full_w > 0 ? m->y0 : 0), &ci)) ||
+            (rv = y == 0 ? exr_encoding_initialize(ctx, part, &ci, &enc)
+                         : exr_encoding_update(ctx, part, &ci, &enc)))
+            break;
+        aim_encoder(&enc, row0, m->w, m->nc);
+        if (y == 0 && (rv = exr_encoding_choose_default_routines(ctx, part, &enc)))
+            break;
+        rv = encode_chunk(ctx, part, &enc, w);
+    }
+    exr_encoding_destroy(ctx, &enc);
+    if (rv)
+        return exr_fail(NULL, rv, "EXR encode");
+    return r;
+}
+
 static int encode(const tex_map *m, tex_rows_fn fill, void *arg, enum tex_compression c,
                   struct wsink *sink)
 {
-    float *band = NULL; /* fill's rows, one chunk at a time */
+    float *band = NULL; /* fill's rows, a band of chunks at a time */
     size_t band_mapped = 0;
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
     exr_context_t ctx = NULL;
-    exr_encode_pipeline_t enc;
-    exr_chunk_info_t ci;
     exr_result_t rv;
     tex_buf *out = sink->buf;
-    int part, lines, y, nchunks;
+    int part, lines, nchunks;
     struct worth worth = {c != TEX_COMPRESS_NONE, 0, 0};
     size_t est = (size_t)m->w * m->h * m->nc * 4 + 4096 + (size_t)m->h * 16;
 
     if (sink->fd < 0 && !fill && c == TEX_COMPRESS_NONE &&
         tex_buf_reserve(out, out->len + est) < 0)
         return -1;
-    memset(&enc, 0, sizeof enc);
     writer_init(&init, sink);
-
     if ((rv = exr_start_write(&ctx, "stream", EXR_WRITE_FILE_DIRECTLY, &init)))
         return exr_fail(&ctx, rv, "EXR write");
-    if ((rv = add_part(ctx, m, EXR_STORAGE_SCANLINE, ctype[c], &part)))
-        return exr_fail(&ctx, rv, "EXR header");
-    if ((rv = exr_write_header(ctx)) || (rv = exr_get_scanlines_per_chunk(ctx, part, &lines)) ||
+    if ((rv = add_part(ctx, m, EXR_STORAGE_SCANLINE, ctype[c], &part)) ||
+        (rv = exr_write_header(ctx)) || (rv = exr_get_scanlines_per_chunk(ctx, part, &lines)) ||
         (rv = exr_get_chunk_count(ctx, part, &nchunks)))
         return exr_fail(&ctx, rv, "EXR header");
     if (sink->fd >= 0 && !sink->seekable && start_streaming(sink, m, nchunks, lines) < 0) {
@@ -486,45 +516,14 @@ static int encode(const tex_map *m, tex_rows_fn fill, void *arg, enum tex_compre
     }
     if (band) /* its pages made here, not in fill's inner loop */
         tex_pages_touch(band, band_mapped);
-    if (c != TEX_COMPRESS_NONE) {
-        int r = encode_batches(ctx, part, m, fill, arg, band, brows, lines, sink, &worth);
-        tex_pages_free(band, band_mapped);
-        if (r < 0) {
-            exr_finish(&ctx);
-            return -1;
-        }
-        if ((rv = exr_finish(&ctx)))
-            return exr_fail(NULL, rv, "EXR finish");
-        return sink_flush(sink);
-    }
-    for (y = 0; y < m->h; y += lines) {
-        const float *row0 = band ? band + (size_t)(y % brows) * m->w * m->nc : tex_map_row(m, y);
-        /* a band's rows reach a reader before the next band is made */
-        if (band && y % brows == 0 &&
-            (sink_flush(sink) < 0 || fill(arg, y, m->h - y < brows ? m->h - y : brows, band) < 0)) {
-            tex_pages_free(band, band_mapped);
-            if (y > 0)
-                exr_encoding_destroy(ctx, &enc);
-            exr_finish(&ctx);
-            return -1;
-        }
-        if ((rv = exr_write_scanline_chunk_info(ctx, part, y + (m->full_w > 0 ? m->y0 : 0), &ci)))
-            return exr_fail(&ctx, rv, "EXR chunk");
-        rv = y == 0 ? exr_encoding_initialize(ctx, part, &ci, &enc)
-                    : exr_encoding_update(ctx, part, &ci, &enc);
-        if (rv)
-            return exr_fail(&ctx, rv, "EXR encoder");
-        aim_encoder(&enc, row0, m->w, m->nc);
-        if (y == 0 && (rv = exr_encoding_choose_default_routines(ctx, part, &enc)))
-            return exr_fail(&ctx, rv, "EXR encoder");
-        if ((rv = encode_chunk(ctx, part, &enc, &worth))) {
-            exr_encoding_destroy(ctx, &enc);
-            tex_pages_free(band, band_mapped);
-            return exr_fail(&ctx, rv, "EXR encode");
-        }
-    }
+    int r = c != TEX_COMPRESS_NONE
+                ? encode_batches(ctx, part, m, fill, arg, band, brows, lines, sink, &worth)
+                : encode_raw(ctx, part, m, fill, arg, band, brows, lines, sink, &worth);
     tex_pages_free(band, band_mapped);
-    exr_encoding_destroy(ctx, &enc);
+    if (r < 0) {
+        exr_finish(&ctx);
+        return -1;
+    }
     if ((rv = exr_finish(&ctx)))
         return exr_fail(NULL, rv, "EXR finish");
     return sink_flush(sink);
