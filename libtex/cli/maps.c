@@ -134,21 +134,23 @@ static int window_fill(void *arg, int y, int n, float *rows)
     return 0;
 }
 
-/* Rows of output per band: $TEXTURA_BAND_ROWS, or about 16 MiB of input in whole
- * multiples of the writer's 64 rows */
+/* Rows of output per band: $TEXTURA_BAND_ROWS, or about 2 MiB of input in whole
+ * multiples of the writer's 64 rows.  Small bands let the next stage start sooner, and
+ * keep a band's maps below malloc's mmap threshold, so they reuse pages rather than
+ * clear fresh ones for every band. */
 int tex_cli_band_rows(int w, int nc)
 {
     const char *e = getenv("TEXTURA_BAND_ROWS");
     char *end;
     long n;
 
-    if (e && *e) {
+    if (e && *e && !tex_rows_whole()) {
         n = strtol(e, &end, 10);
         if (*end || n < 1 || n > 65536)
-            tex_usage_die("TEXTURA_BAND_ROWS must be 1..65536 (got '%s')", e);
+            tex_usage_die("TEXTURA_BAND_ROWS must be 1..65536 or whole (got '%s')", e);
         return (int)n;
     }
-    n = (16L << 20) / ((long)w * nc * (long)sizeof(float)) / 64 * 64;
+    n = (2L << 20) / ((long)w * nc * (long)sizeof(float)) / 64 * 64;
     return n < 64 ? 64 : n > 4096 ? 4096 : (int)n;
 }
 
@@ -251,7 +253,7 @@ int tex_cli_streams(const struct tex_common *c)
 int tex_cli_takes_rows(const struct tex_common *c)
 {
     struct tex_write_opts o = write_opts(c);
-    return tex_map_write_streams(c->output, &o);
+    return !tex_rows_whole() && tex_map_write_streams(c->output, &o);
 }
 
 void tex_cli_stream(const char *path, const struct tex_common *c,

@@ -40,7 +40,7 @@ void tex_cli_write(tex_map *m, const struct tex_common *c);
  * more for other formats (t_apply's sRGB) stream. */
 int tex_cli_streams(const struct tex_common *c);
 /* Rows of output per band for a map w x nc wide: $TEXTURA_BAND_ROWS (the tests' way to try
- * every band height), or about 16 MiB of input in whole multiples of 64 rows */
+ * every band height), or about 2 MiB of input in whole multiples of 64 rows */
 int tex_cli_band_rows(int w, int nc);
 int tex_cli_takes_rows(const struct tex_common *c);
 void tex_cli_write_rows(tex_map *head, const struct tex_common *c,
@@ -68,7 +68,7 @@ void tex_cli_stream(const char *path, const struct tex_common *c,
  * rows (tex_cli_takes_rows), when edge is
  * TEX_EDGE_WRAP (the first rows would need the last), and when the map has fewer than
  * 2 margin + 1 rows: the same pixels either way, when op's rows of output depend on
- * nothing but those rows of input.  Bands are about 16 MiB of input, and a multiple of
+ * nothing but those rows of input.  Bands are about 2 MiB of input, and a multiple of
  * 64 rows; $TEXTURA_BAND_ROWS (1..65536) sets their height instead, to show that the
  * output does not depend on it.  Dies on errors. */
 /* The map a row reader opened for (io/file.h tex_map_open_rows), none of its rows read

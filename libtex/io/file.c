@@ -620,6 +620,12 @@ static tex_rows_reader *open_pipe_rows(int fd, const char *name, tex_map *head, 
     return r;
 }
 
+int tex_rows_whole(void)
+{
+    const char *e = getenv("TEXTURA_BAND_ROWS");
+    return e && !strcmp(e, "whole");
+}
+
 tex_rows_reader *tex_map_open_rows(const char *path, tex_map *head, tex_map **whole)
 {
     const char *name = path && strcmp(path, "-") ? path : "standard input";
@@ -628,11 +634,19 @@ tex_rows_reader *tex_map_open_rows(const char *path, tex_map *head, tex_map **wh
     tex_rows_reader *r;
 
     *whole = NULL;
+    if (tex_rows_whole()) {
+        *whole = tex_map_read(path);
+        return NULL;
+    }
+    /* a file on standard input, read from its start: by its name, as a file given is */
+    if ((!path || !strcmp(path, "-")) && !isatty(0) && fstat(0, &st) == 0 &&
+        S_ISREG(st.st_mode) && lseek(0, 0, SEEK_CUR) == 0)
+        path = "/dev/stdin"; /* a new open: standard input's own offset stays at 0 */
     if (path && strcmp(path, "-") != 0) {
         int fd = open(path, O_RDONLY);
         size_t max;
         if (fd < 0) {
-            tex_error("%s: %s", path, strerror(errno));
+            tex_error("%s: %s", name, strerror(errno));
             return NULL;
         }
         if (fstat(fd, &st) == 0 && S_ISFIFO(st.st_mode))
@@ -645,7 +659,8 @@ tex_rows_reader *tex_map_open_rows(const char *path, tex_map *head, tex_map **wh
         if (plain && tex_format_sniff(pre, 4) == TEX_FMT_EXR &&
             (r = tex_rows_open(-1, NULL, 0, path, name, head, NULL)))
             return r;
-        *whole = tex_map_read(path); /* another format, a tiled EXR, or refused */
+        /* another format, a tiled EXR, or refused */
+        *whole = tex_map_read(strcmp(name, "standard input") ? path : NULL);
         return NULL;
     }
     if (isatty(0) || fstat(0, &st) != 0 || !S_ISFIFO(st.st_mode)) {

@@ -90,13 +90,17 @@ tex_map *tex_map_read(const char *path);
  * array; NULL with the error set. */
 tex_map **tex_map_read_levels(const char *path, int *n);
 /* Open a map to be read a band of rows at a time (stream.h, tex_rows_read),
- * from path or standard input (NULL or "-"), when it is a scanline EXR;
- * otherwise the map is read whole into *whole and NULL is returned (NULL
- * with *whole NULL: an error); a tiled EXR on a pipe is decoded whole from
- * what the pipe has sent.  The input limit (limit.h) holds as for
+ * from path or standard input (NULL or "-"), when it is a scanline EXR, a
+ * file or a pipe; otherwise, or with $TEXTURA_BAND_ROWS set to "whole"
+ * (tex_rows_whole), the map is read whole into *whole and NULL is returned
+ * (NULL with *whole NULL: an error); a tiled EXR on a pipe is decoded whole
+ * from what the pipe has sent.  The input limit (limit.h) holds as for
  * tex_map_read, with its words.  Rows read are checked for non-finite
  * samples by the caller with tex_rows_nonfinite. */
 tex_rows_reader *tex_map_open_rows(const char *path, tex_map *head, tex_map **whole);
+/* $TEXTURA_BAND_ROWS is "whole": the tools read, work and write each map whole, as they
+ * do a map in a format that has no rows to stream (the path bands are proved against) */
+int tex_rows_whole(void);
 /* The --nonfinite policy over n rows of w x nc samples starting at row y0:
  * 0, or -1 naming the first refused sample (the map's row, y0-based). */
 int tex_rows_nonfinite(float *px, int w, int n, int nc, int y0, const char *name);

@@ -23,8 +23,8 @@ for src in y rgb ya; do
         [ "$src" = ya ] && case $c in png: | tif: | pam: | jpg: | pfm:) ;; *) continue ;; esac
         ext=${c%%:*} d=${c#*:} opt=""
         case $d in tiles) opt="--exr-tiles" ;; ?*) opt="--depth $d" ;; esac
-        # a file on standard input is read whole, and written whole: today's bytes
-        (cd w && t_convert $opt -o o.$ext <../$src.exr 2>/dev/null) || continue
+        # read whole and written whole (TEXTURA_BAND_ROWS=whole): today's bytes
+        (cd w && TEXTURA_BAND_ROWS=whole t_convert $opt -o o.$ext <../$src.exr 2>/dev/null) || continue
         n=$((n + 1))
         rowset="7"
         [ "$src" = rgb ] && rowset="1 64 default"
@@ -42,7 +42,7 @@ done
 bad=""
 for f in png pgm ppm pam pbm jpg exr; do
     for src in y rgb; do
-        want=$(t_convert --format $f <$src.exr 2>&1 | md5sum)
+        want=$(TEXTURA_BAND_ROWS=whole t_convert --format $f <$src.exr 2>&1 | md5sum)
         for rows in "" 7; do
             got=$(cat $src.exr | TEXTURA_BAND_ROWS=$rows t_convert --format $f 2>&1 | md5sum)
             [ "$got" = "$want" ] || bad+=" $f/$src/${rows:-default}"
@@ -57,7 +57,7 @@ bad=""
 for cmd in "t_filter blur --sigma 1.5" "t_remap --gamma 2" "t_palette marble --range 0,1" "t_palette marble"; do
     for ext in png tif ppm; do
         [ "$ext" = ppm ] && [ "${cmd%% *}" = t_filter ] && src=rgb || src=y
-        (cd w && $cmd -o o.$ext <../$src.exr) && (cd s && cat ../$src.exr | TEXTURA_BAND_ROWS=7 $cmd -o o.$ext 2>../err) &&
+        (cd w && TEXTURA_BAND_ROWS=whole $cmd -o o.$ext <../$src.exr) && (cd s && cat ../$src.exr | TEXTURA_BAND_ROWS=7 $cmd -o o.$ext 2>../err) &&
             cmp -s w/o.$ext s/o.$ext || bad+=" [$cmd $ext: $(head -c 80 err)]"
     done
 done
@@ -66,7 +66,7 @@ done
 
 # Formats written whole still are: a mip-mapped EXR, BMP (OpenImageIO), TIFF to a pipe
 for o in "--mipmap -o w.exr" "-o w.bmp" "--format tif"; do
-    want=$(t_convert $o <y.exr 2>/dev/null | md5sum; md5sum <"${o##* }" 2>/dev/null)
+    want=$(TEXTURA_BAND_ROWS=whole t_convert $o <y.exr 2>/dev/null | md5sum; md5sum <"${o##* }" 2>/dev/null)
     got=$(cat y.exr | t_convert $o 2>/dev/null | md5sum; md5sum <"${o##* }" 2>/dev/null)
     [ "$got" = "$want" ] && ok "t_convert $o: written whole, the same bytes" || notok "t_convert $o"
 done
