@@ -589,19 +589,17 @@ int tex_palette_write(const tex_palette *p, FILE *fp)
 
 /* ---- lookup ---- */
 
-/* tex_palette_lookup up to the colour space: 0 with rgba made, or 1 with a colour mixed in
- * OKLab, in lab, and its alpha in rgba[3] */
-static int lookup_lab(const tex_palette *p, float t, float rgba[4], float lab[3])
+/* t as the stops take it: NaN and below 0 are 0, above 1 is 1 */
+static inline float stop_t(float t)
 {
-    const struct tex_palette_stop *a, *b;
-    int lo = 0, hi = p->nstops;
-    float f;
+    return !(t >= 0.0f) ? 0.0f : t > 1.0f ? 1.0f : t;
+}
 
-    if (!(t >= 0.0f)) /* also NaN */
-        t = 0.0f;
-    if (t > 1.0f)
-        t = 1.0f;
-    /* first stop with pos > t */
+/* The first stop with pos > t, by halving */
+static int stop_after(const tex_palette *p, float t)
+{
+    int lo = 0, hi = p->nstops;
+
     while (lo < hi) {
         int mid = (lo + hi) / 2;
         if (p->stops[mid].pos <= t)
@@ -609,6 +607,16 @@ static int lookup_lab(const tex_palette *p, float t, float rgba[4], float lab[3]
         else
             hi = mid;
     }
+    return lo;
+}
+
+/* The colour at t, whose first stop with pos > t is stops[lo], up to the colour space: 0
+ * with rgba made, or 1 with a colour mixed in OKLab, in lab, and its alpha in rgba[3] */
+static int mix_stops(const tex_palette *p, float t, int lo, float rgba[4], float lab[3])
+{
+    const struct tex_palette_stop *a, *b;
+    float f;
+
     if (lo == 0 || lo == p->nstops) {
         memcpy(rgba, p->stops[lo ? lo - 1 : 0].rgba, 4 * sizeof *rgba);
         return 0;
@@ -629,6 +637,13 @@ static int lookup_lab(const tex_palette *p, float t, float rgba[4], float lab[3]
         lab[c] = a->lab[c] + f * (b->lab[c] - a->lab[c]);
     rgba[3] = a->rgba[3] + f * (b->rgba[3] - a->rgba[3]);
     return 1;
+}
+
+/* tex_palette_lookup up to the colour space, as mix_stops */
+static int lookup_lab(const tex_palette *p, float t, float rgba[4], float lab[3])
+{
+    t = stop_t(t);
+    return mix_stops(p, t, stop_after(p, t), rgba, lab);
 }
 
 void tex_palette_lookup(const tex_palette *p, float t, float rgba[4])
@@ -671,7 +686,7 @@ void tex_palette_index(const tex_palette *p, int id, float rgba[4])
 
 /* ---- colouring maps ---- */
 
-float tex_palette_t(double v, double lo, double hi, enum tex_outside outside)
+static inline float palette_t(double v, double lo, double hi, enum tex_outside outside)
 {
     double t = hi > lo ? (v - lo) / (hi - lo) : 0.0;
 
@@ -693,18 +708,49 @@ float tex_palette_t(double v, double lo, double hi, enum tex_outside outside)
     return (float)t;
 }
 
+float tex_palette_t(double v, double lo, double hi, enum tex_outside outside)
+{
+    return palette_t(v, lo, hi, outside);
+}
+
+/* Up to this many stops in order, the first with pos > t is the count of those with
+ * pos <= t: no branches to guess wrong on a noisy map, as halving has */
+enum { COUNTED_STOPS = 32 };
+static int stops_counted(const tex_palette *p)
+{
+    if (p->nstops > COUNTED_STOPS)
+        return 0;
+    for (int i = 1; i < p->nstops; i++)
+        if (!(p->stops[i].pos >= p->stops[i - 1].pos))
+            return 0;
+    return 1;
+}
+
 /* n values of v coloured into out (nc channels each): tex_palette_lookup's colours, those
  * mixed in OKLab taken to sRGB together (oklab_srgb_n) */
 enum { COLOUR_RUN = 256 };
-static void colour_run(const tex_palette *p, const float *v, int n, double lo, double hi,
-                       enum tex_outside outside, float *out, int nc)
+static void colour_run(const tex_palette *p, int counted, const float *v, int n, double lo,
+                       double hi, enum tex_outside outside, float *out, int nc)
 {
-    float c[COLOUR_RUN][4], lab[3][COLOUR_RUN], rgb[3][COLOUR_RUN];
-    int at[COLOUR_RUN], k = 0; /* the pixels mixed in OKLab */
+    float c[COLOUR_RUN][4], lab[3][COLOUR_RUN], rgb[3][COLOUR_RUN], t[COLOUR_RUN];
+    int at[COLOUR_RUN], after[COLOUR_RUN], k = 0; /* at: the pixels mixed in OKLab */
 
+    for (int j = 0; j < n; j++)
+        t[j] = stop_t(palette_t(v[j], lo, hi, outside));
+    if (counted) {
+        for (int j = 0; j < n; j++) {
+            int a = 0;
+            for (int i = 0; i < p->nstops; i++)
+                a += p->stops[i].pos <= t[j];
+            after[j] = a;
+        }
+    } else {
+        for (int j = 0; j < n; j++)
+            after[j] = stop_after(p, t[j]);
+    }
     for (int j = 0; j < n; j++) {
         float e[3];
-        if (lookup_lab(p, tex_palette_t(v[j], lo, hi, outside), c[j], e)) {
+        if (mix_stops(p, t[j], after[j], c[j], e)) {
             lab[0][k] = e[0], lab[1][k] = e[1], lab[2][k] = e[2];
             at[k++] = j;
         }
@@ -713,8 +759,11 @@ static void colour_run(const tex_palette *p, const float *v, int n, double lo, d
                  (float *const[3]){rgb[0], rgb[1], rgb[2]}, k);
     for (int q = 0; q < k; q++)
         c[at[q]][0] = rgb[0][q], c[at[q]][1] = rgb[1][q], c[at[q]][2] = rgb[2][q];
-    for (int j = 0; j < n; j++)
-        memcpy(out + (size_t)j * nc, c[j], nc * sizeof **c);
+    if (nc == 3) /* a call to memcpy a pixel was a quarter of the time */
+        for (int j = 0; j < n; j++)
+            out[3 * j] = c[j][0], out[3 * j + 1] = c[j][1], out[3 * j + 2] = c[j][2];
+    else
+        memcpy(out, c, (size_t)n * sizeof *c);
 }
 
 tex_map *tex_palette_map(const tex_palette *p, const tex_map *m, double lo, double hi,
@@ -759,10 +808,11 @@ tex_map *tex_palette_map(const tex_palette *p, const tex_map *m, double lo, doub
         lo = s.min;
         hi = s.max;
     }
+    int counted = stops_counted(p);
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i += COLOUR_RUN)
-        colour_run(p, m->px + i, n - i < COLOUR_RUN ? (int)(n - i) : COLOUR_RUN, lo, hi, outside,
-                   out->px + i * nc, nc);
+        colour_run(p, counted, m->px + i, n - i < COLOUR_RUN ? (int)(n - i) : COLOUR_RUN, lo, hi,
+                   outside, out->px + i * nc, nc);
     return out;
 }
 
