@@ -14,7 +14,7 @@ struct job {
 static tex_map *filter_band(tex_map *band, const struct tex_band *b, void *arg)
 {
     const struct job *j = arg;
-    return tex_filter_op_apply(j->op, band, j->a, b->y - b->margin, b->full_h);
+    return tex_filter_op_apply(j->op, band, j->a, b->y - b->margin, b->full_h, b->margin);
 }
 
 /* --help's summary, from the table: each operation and what it takes. */

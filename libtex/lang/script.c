@@ -1521,7 +1521,7 @@ static int eval_filter(struct S *s, const struct node *n, struct val *v, struct 
     if (eval_map(s, n->a, &v[0], n->filter ? n->filter->name : n->fop->name) < 0)
         return -1;
     if (n->fop) {
-        tex_map *r = tex_filter_op_apply(n->fop, v[0].m, n->fargs, 0, v[0].m->h);
+        tex_map *r = tex_filter_op_apply(n->fop, v[0].m, n->fargs, 0, v[0].m->h, 0);
         if (!r)
             tex_error_in_words();
         return set_result(s, n, out, r);

@@ -40,12 +40,6 @@ static tex_map *like(const tex_map *m, int nc)
     return with_history(tex_map_new(m->w, m->h, nc), m);
 }
 
-/* for an op that sets every sample */
-static tex_map *like_unset(const tex_map *m, int nc)
-{
-    return with_history(tex_map_new_unset(m->w, m->h, nc), m);
-}
-
 int tex_blur_radius(double sigma)
 {
     double r = ceil(4.0 * sigma);
@@ -75,8 +69,9 @@ HOT static void hpass_row(const float *pad, float *out, int n, int nc, const flo
     }
 }
 
-HOT static void vpass_strip(const tex_map *src, tex_map *dst, int i0, int len, int y0, int y1,
-                            const float *k, int r, enum tex_edge e)
+/* Rows y0..y1-1 of src's vertical pass into dst's rows y0-skip.. */
+HOT static void vpass_strip(const tex_map *src, tex_map *dst, int skip, int i0, int len, int y0,
+                            int y1, const float *k, int r, enum tex_edge e)
 {
     size_t stride = (size_t)src->w * src->nc;
     for (int y = y0; y < y1; y++) {
@@ -94,20 +89,25 @@ HOT static void vpass_strip(const tex_map *src, tex_map *dst, int i0, int len, i
             for (int b = 0; b < len; b++)
                 acc[b] += kj * (lo[b] + hi[b]);
         }
-        memcpy(dst->px + (size_t)y * stride + i0, acc, (size_t)len * sizeof *acc);
+        memcpy(dst->px + (size_t)(y - skip) * stride + i0, acc, (size_t)len * sizeof *acc);
     }
 }
 
-tex_map *tex_filter_separable(const tex_map *m, const float *k, int r, enum tex_edge e)
+tex_map *tex_filter_separable_rows(const tex_map *m, const float *k, int r, enum tex_edge e,
+                                   int skip)
 {
     tex_map *tmp, *out;
-    int nc = m->nc, n = m->w * m->nc, strips = (n + VB - 1) / VB, yblocks = (m->h + VROWS - 1) / VROWS;
-    int fail = 0;
+    int nc = m->nc, n = m->w * m->nc, strips = (n + VB - 1) / VB, h = m->h - 2 * skip;
+    int yblocks = (h + VROWS - 1) / VROWS, fail = 0;
 
+    if (skip < 0 || h < 1) {
+        tex_error("a band of %d rows has no rows between its %d rows of context", m->h, skip);
+        return NULL;
+    }
     /* both passes set every sample */
     if (!(tmp = tex_map_new_unset(m->w, m->h, nc)))
         return NULL;
-    if (!(out = like_unset(m, nc))) {
+    if (!(out = with_history(tex_map_new_unset(m->w, h, nc), m))) {
         tex_map_free(tmp);
         return NULL;
     }
@@ -126,7 +126,11 @@ tex_map *tex_filter_separable(const tex_map *m, const float *k, int r, enum tex_
             const float *row = tex_map_row(m, y);
             if (!pad)
                 continue;
-            for (long x = -r; x < m->w + r; x++)
+            memcpy(pad + (size_t)r * nc, row, (size_t)n * sizeof *pad);
+            for (long x = -r; x < 0; x++) /* the edges: copies, as far as the kernel reaches */
+                memcpy(pad + (size_t)(x + r) * nc, row + (size_t)tex_edge_index(x, m->w, e) * nc,
+                       nc * sizeof *pad);
+            for (long x = m->w; x < m->w + r; x++)
                 memcpy(pad + (size_t)(x + r) * nc, row + (size_t)tex_edge_index(x, m->w, e) * nc,
                        nc * sizeof *pad);
             hpass_row(pad, tex_map_row(tmp, y), n, nc, k, r);
@@ -143,11 +147,16 @@ tex_map *tex_filter_separable(const tex_map *m, const float *k, int r, enum tex_
     for (int t = 0; t < strips * yblocks; t++) {
         int s = t % strips, yb = t / strips;
         int i0 = s * VB, len = n - i0 < VB ? n - i0 : VB;
-        int y0 = yb * VROWS, y1 = y0 + VROWS < m->h ? y0 + VROWS : m->h;
-        vpass_strip(tmp, out, i0, len, y0, y1, k, r, e);
+        int y0 = skip + yb * VROWS, y1 = y0 + VROWS < skip + h ? y0 + VROWS : skip + h;
+        vpass_strip(tmp, out, skip, i0, len, y0, y1, k, r, e);
     }
     tex_map_free(tmp);
     return out;
+}
+
+tex_map *tex_filter_separable(const tex_map *m, const float *k, int r, enum tex_edge e)
+{
+    return tex_filter_separable_rows(m, k, r, e, 0);
 }
 
 /* t_filter's kernels must fit the map: wider ones would only repeat its edges. */
@@ -159,7 +168,7 @@ static int kernel_fits(const tex_map *m, int r)
     return 0;
 }
 
-tex_map *tex_filter_gaussian(const tex_map *m, double sigma, enum tex_edge e)
+static tex_map *gaussian_rows(const tex_map *m, double sigma, enum tex_edge e, int skip)
 {
     int r = tex_blur_radius(sigma);
     double sum = 0, *g = malloc(((size_t)r + 1) * sizeof *g);
@@ -175,14 +184,19 @@ tex_map *tex_filter_gaussian(const tex_map *m, double sigma, enum tex_edge e)
         }
         for (int j = 0; j <= r; j++)
             k[j] = (float)(g[j] / sum);
-        out = tex_filter_separable(m, k, r, e);
+        out = tex_filter_separable_rows(m, k, r, e, skip);
     }
     free(g);
     free(k);
     return out;
 }
 
-tex_map *tex_filter_blur(const tex_map *m, double sigma, enum tex_edge e)
+tex_map *tex_filter_gaussian(const tex_map *m, double sigma, enum tex_edge e)
+{
+    return gaussian_rows(m, sigma, e, 0);
+}
+
+tex_map *tex_filter_blur_rows(const tex_map *m, double sigma, enum tex_edge e, int skip)
 {
     if (!(sigma > 0) || !isfinite(sigma)) {
         tex_usage_error("the blur's sigma must be > 0 (got %g)", sigma);
@@ -194,10 +208,15 @@ tex_map *tex_filter_blur(const tex_map *m, double sigma, enum tex_edge e)
                         width, m->w, m->h);
         return NULL;
     }
-    return tex_filter_gaussian(m, sigma, e);
+    return gaussian_rows(m, sigma, e, skip);
 }
 
-tex_map *tex_filter_box(const tex_map *m, int radius, enum tex_edge e)
+tex_map *tex_filter_blur(const tex_map *m, double sigma, enum tex_edge e)
+{
+    return tex_filter_blur_rows(m, sigma, e, 0);
+}
+
+tex_map *tex_filter_box_rows(const tex_map *m, int radius, enum tex_edge e, int skip)
 {
     float *k;
     tex_map *out;
@@ -214,15 +233,25 @@ tex_map *tex_filter_box(const tex_map *m, int radius, enum tex_edge e)
     }
     for (int j = 0; j <= radius; j++)
         k[j] = (float)(1.0 / (2.0 * radius + 1));
-    out = tex_filter_separable(m, k, radius, e);
+    out = tex_filter_separable_rows(m, k, radius, e, skip);
     free(k);
     return out;
 }
 
-tex_map *tex_filter_smooth(const tex_map *m, enum tex_edge e)
+tex_map *tex_filter_box(const tex_map *m, int radius, enum tex_edge e)
+{
+    return tex_filter_box_rows(m, radius, e, 0);
+}
+
+tex_map *tex_filter_smooth_rows(const tex_map *m, enum tex_edge e, int skip)
 {
     static const float k[2] = {0.5f, 0.25f};
-    return kernel_fits(m, 1) < 0 ? NULL : tex_filter_separable(m, k, 1, e);
+    return kernel_fits(m, 1) < 0 ? NULL : tex_filter_separable_rows(m, k, 1, e, skip);
+}
+
+tex_map *tex_filter_smooth(const tex_map *m, enum tex_edge e)
+{
+    return tex_filter_smooth_rows(m, e, 0);
 }
 
 tex_map *tex_filter_sharpen(const tex_map *m, double sigma, double amount, enum tex_edge e)

@@ -77,5 +77,14 @@ tex_map *tex_filter_gradient_rows(const tex_map *m, enum tex_edge e, int full_h)
  * and smooth.  Any r: the edge rule extends the map as far as it needs. */
 tex_map *tex_filter_separable(const tex_map *m, const float *k, int r, enum tex_edge e);
 
+/* A band of a stream: the filter's rows skip..h-1-skip of m only, the skip rows above and
+ * below being their context (skip 0: the whole map).  The same bits as those rows of the
+ * whole map's filter, when skip is at least the kernel's reach. */
+tex_map *tex_filter_separable_rows(const tex_map *m, const float *k, int r, enum tex_edge e,
+                                   int skip);
+tex_map *tex_filter_blur_rows(const tex_map *m, double sigma, enum tex_edge e, int skip);
+tex_map *tex_filter_box_rows(const tex_map *m, int radius, enum tex_edge e, int skip);
+tex_map *tex_filter_smooth_rows(const tex_map *m, enum tex_edge e, int skip);
+
 TEX_API_END
 #endif

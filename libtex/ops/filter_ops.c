@@ -62,13 +62,13 @@ int tex_filter_op_index(const struct tex_filter_op *op)
 }
 
 tex_map *tex_filter_op_apply(const struct tex_filter_op *op, const tex_map *m,
-                             const struct tex_filter_args *a, int y0, int full_h)
+                             const struct tex_filter_args *a, int y0, int full_h, int margin)
 {
     enum tex_edge e = (enum tex_edge)a->edge;
     switch (tex_filter_op_index(op)) {
-    case BLUR: return tex_filter_blur(m, a->sigma, e);
-    case BOX: return tex_filter_box(m, a->radius, e);
-    case SMOOTH: return tex_filter_smooth(m, e);
+    case BLUR: return tex_filter_blur_rows(m, a->sigma, e, margin);
+    case BOX: return tex_filter_box_rows(m, a->radius, e, margin);
+    case SMOOTH: return tex_filter_smooth_rows(m, e, margin);
     case SHARPEN: return tex_filter_sharpen(m, a->sigma, a->strength, e);
     case SOBEL: return tex_filter_sobel(m, a->direction, a->strength, e);
     case EDGES: return tex_filter_edges(m, a->strength, e);

@@ -10,13 +10,16 @@
  *   const struct tex_filter_op *op = tex_filter_op_find("emboss");
  *   tex_params_defaults(tex_filter_rows, &a);
  *   tex_param_set(tex_param_find(tex_filter_rows, "angle"), &a, "45");
- *   tex_map *r = tex_filter_op_apply(op, m, &a, 0, m->h);
+ *   tex_map *r = tex_filter_op_apply(op, m, &a, 0, m->h, 0);
  *
  * Row k of tex_filter_rows applies to the operations whose bit is set in
  * its kinds (bit i: tex_filter_ops[i]).  tex_filter_op_apply takes a map, or
  * a band of rows of a taller map: y0 is the band's first row in the whole
  * map and full_h the whole map's height (0 and m->h for a whole map);
- * noise and gradient depend on them, the others do not.
+ * noise and gradient depend on them, the others do not.  margin is the rows
+ * of context above and below the band's output rows (0 for a whole map):
+ * blur, box and smooth leave them out of the map they return, the others
+ * return them filtered too.
  */
 #ifndef TEX_FILTER_OPS_H
 #define TEX_FILTER_OPS_H
@@ -53,7 +56,7 @@ extern const struct tex_filter_op tex_filter_ops[];
 const struct tex_filter_op *tex_filter_op_find(const char *name);
 /* The operation on m (NULL with tex_errmsg() on failure). */
 tex_map *tex_filter_op_apply(const struct tex_filter_op *op, const tex_map *m,
-                             const struct tex_filter_args *a, int y0, int full_h);
+                             const struct tex_filter_args *a, int y0, int full_h, int margin);
 /* Its index in tex_filter_ops (the bit of its rows' kinds). */
 int tex_filter_op_index(const struct tex_filter_op *op);
 /* The rows above and below an output row that it reads. */
