@@ -8,6 +8,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "base/error.h"
@@ -536,11 +537,22 @@ int tex_palette_find(const char *name, char *buf, size_t n)
         }
         if (tex_nearest_name(&nr))
             snprintf(near, sizeof near, "did you mean %s? ", tex_nearest_name(&nr));
-        return tex_usage_error("unknown palette '%s' (%sknown: %s; or a file NAME.pal)", name,
+        return tex_usage_error("unknown palette '%s' (%sknown: %s; or a palette file)", name,
                                near, known);
     }
     return tex_usage_error("unknown palette '%s' (no %s.pal in $TEXTURA_PALETTES or %s/palettes)",
                            name, name, tex_install_dir(TEX_DIR_DATA));
+}
+
+/* A name that is no palette's but an existing file's, as netpbm's tools take a file: its
+ * path in buf.  tex_palette_find takes no such file, so the editor's names reach none of
+ * the server's files. */
+static int plain_file(const char *name, char *buf, size_t n)
+{
+    struct find_ctx c = {name, buf, n};
+    struct stat st;
+    return !is_file_name(name) && !each_dir(find_in, &c) && stat(name, &st) == 0 &&
+           S_ISREG(st.st_mode) && (size_t)snprintf(buf, n, "%s", name) < n;
 }
 
 tex_palette *tex_palette_load(const char *name_or_file)
@@ -550,7 +562,8 @@ tex_palette *tex_palette_load(const char *name_or_file)
     size_t len;
     tex_palette *p;
 
-    if (tex_palette_find(name_or_file, path, sizeof path) < 0)
+    if (!plain_file(name_or_file, path, sizeof path) &&
+        tex_palette_find(name_or_file, path, sizeof path) < 0)
         return NULL;
     if (!(text = tex_read_text(path, MAX_FILE, &len, "a palette")))
         return NULL;

@@ -14,8 +14,12 @@ t_palette "$T/bw.pal" --range 0,1 -o "$T/g.exr" "$T/n.exr"
 a=$(info_json "$T/g.exr" stats 0 mean) b=$(info_json "$T/n.exr" stats 0 mean)
 approx "$a" "$b" 1e-5 && ok "a black-white palette over 0,1 is the identity ($a)" || notok "identity palette" "$a vs $b"
 t_palette "$T/bw.pal" -o "$T/a.exr" "$T/n.exr"
-[ "$(info_json "$T/a.exr" stats 0 min)" = 0 ] && [ "$(info_json "$T/a.exr" stats 0 max)" = 1 ] &&
-    ok "--range auto stretches to the map's range" || notok "--range auto"
+# a file named without '/' or .pal, in the working folder; a palette's name still wins
+cp "$T/bw.pal" "$T/ramp.gpl" && cp "$T/bw.pal" "$T/marble"
+(cd "$T" && t_palette ramp.gpl -o g2.exr n.exr && t_palette marble -o m2.exr n.exr) ||
+    notok "t_palette FILE without .pal"
+same "t_palette ramp.gpl: a file of that name" "$T/a.exr" "$T/g2.exr"
+same "t_palette marble: the shipped palette before ./marble" "$T/m.exr" "$T/m2.exr"
 t_palette greys --range 0.25,0.5 --outside repeat -o "$T/r.exr" "$T/n.exr"
 [ "$(info_json "$T/r.exr" stats 0 max)" != 1 ] && ok "--outside repeat wraps" || notok "--outside repeat"
 printf '0 #000000\n0.5 #ffffff\n0.4 #808080\n' >"$T/bad.pal"
