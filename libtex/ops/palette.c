@@ -742,12 +742,47 @@ static int stops_counted(const tex_palette *p)
 /* n values of v coloured into out (nc channels each): tex_palette_lookup's colours, those
  * mixed in OKLab taken to sRGB together (oklab_srgb_n) */
 enum { COLOUR_RUN = 256 };
-static void colour_run(const tex_palette *p, int counted, const float *v, int n, double lo,
-                       double hi, enum tex_outside outside, float *out, int nc)
+/* p's stops in lanes for the AVX-512 kernel, when the CPU has it and they fit: 1 */
+static int palette_lanes(const tex_palette *p, struct tex_palette_lanes *l)
+{
+#ifdef TEX_X86
+    if (tex_simd_level() < TEX_SIMD_AVX512 || p->nstops < 1 || p->nstops > 16)
+        return 0;
+    memset(l, 0, sizeof *l);
+    l->n = p->nstops;
+    l->oklab = p->space != TEX_SPACE_RGB;
+    for (int i = 0; i < p->nstops; i++) {
+        l->pos[i] = p->stops[i].pos;
+        for (int k = 0; k < 4; k++)
+            l->rgba[k][i] = p->stops[i].rgba[k];
+        for (int k = 0; k < 3; k++)
+            l->lab[k][i] = p->stops[i].lab[k];
+    }
+    pthread_once(&enc_once, enc_setup);
+    return 1;
+#else
+    (void)p, (void)l;
+    return 0;
+#endif
+}
+
+/* The run v[0..n) coloured into out, nc floats a pixel: where the CPU has AVX-512 and the
+ * palette fits its lanes (l), sixteen at a time with the same floats */
+static void colour_run(const tex_palette *p, int counted, const struct tex_palette_lanes *l,
+                       const float *v, int n, double lo, double hi, enum tex_outside outside,
+                       float *out, int nc)
 {
     float c[COLOUR_RUN][4], lab[3][COLOUR_RUN], rgb[3][COLOUR_RUN], t[COLOUR_RUN];
     int at[COLOUR_RUN], after[COLOUR_RUN], k = 0; /* at: the pixels mixed in OKLab */
 
+#ifdef TEX_X86
+    if (l) {
+        int done = tex_palette_colour_avx512(l, &enc, v, n, lo, hi, (int)outside, out, nc);
+        v += done, out += (size_t)done * nc, n -= done;
+    }
+#else
+    (void)l;
+#endif
     for (int j = 0; j < n; j++)
         t[j] = stop_t(palette_t(v[j], lo, hi, outside));
     if (counted) {
@@ -822,10 +857,12 @@ tex_map *tex_palette_map(const tex_palette *p, const tex_map *m, double lo, doub
         hi = s.max;
     }
     int counted = stops_counted(p);
+    struct tex_palette_lanes lanes;
+    const struct tex_palette_lanes *l = counted && palette_lanes(p, &lanes) ? &lanes : NULL;
 #pragma omp parallel for schedule(static)
     for (size_t i = 0; i < n; i += COLOUR_RUN)
-        colour_run(p, counted, m->px + i, n - i < COLOUR_RUN ? (int)(n - i) : COLOUR_RUN, lo, hi,
-                   outside, out->px + i * nc, nc);
+        colour_run(p, counted, l, m->px + i, n - i < COLOUR_RUN ? (int)(n - i) : COLOUR_RUN, lo,
+                   hi, outside, out->px + i * nc, nc);
     return out;
 }
 

@@ -205,44 +205,64 @@ static void test_maps(void)
     tex_palette_free(p);
 }
 
-/* A map coloured in OKLab (its colours taken to sRGB in runs, eight at a time where the CPU
- * has AVX-512) has tex_palette_lookup's bytes at every pixel: dark colours on the linear toe,
- * colours out of gamut that clamp to 0 and 1, NaN, values outside the range, an odd count. */
+/* A map coloured in runs (sixteen values at a time where the CPU has AVX-512, their OKLab
+ * colours taken to sRGB eight at a time) has tex_palette_lookup's bytes at every pixel, at
+ * every SIMD level: dark colours on the linear toe, colours out of gamut that clamp to 0 and
+ * 1, NaN, values outside the range in each --outside mode, values at a stop, stops at one
+ * place, alpha, more stops than the kernel's lanes, an odd count. */
 static void test_map_runs(void)
 {
-    tex_palette *p = parse("space oklab\n0 #000000\n0.3 #030303\n0.5 #0000ff\n0.7 #ffff00\n"
-                           "1 #ff00ff\n");
+    static const char *const pals[] = {
+        "space oklab\n0 #000000\n0.3 #030303\n0.5 #0000ff\n0.7 #ffff00\n1 #ff00ff\n",
+        "space rgb\n0 #ff000080\n0.25 #00ff00\n0.25 #0000ff\n0.5 1 1 0 0.5\n1 #ffffff40\n",
+        "space oklab\n0 #ff000080\n0.5 #00ff00\n0.5 #102030\n1 #ffffff40\n",
+        "space rgb\n0.2 #336699\n0.6 #996633\n",
+        "space oklab\n0 #000000\n0.05 #100000\n0.1 #200000\n0.15 #300000\n0.2 #400000\n"
+        "0.25 #500000\n0.3 #600000\n0.35 #700000\n0.4 #800000\n0.45 #900000\n0.5 #a00000\n"
+        "0.55 #b00000\n0.6 #c00000\n0.65 #d00000\n0.7 #e00000\n0.75 #f00000\n0.8 #ff0000\n"
+        "1 #ffffff\n"};
+    static const double range[][2] = {{0, 1}, {-0.3, 0.2}, {0.5, 0.5}};
     enum { N = 4099 };
     tex_map *m = tex_map_new(N, 1, 1);
     uint64_t x = 1;
-    for (int i = 0; p && m && i < N; i++) {
+    int cases = 0, bad = 0, toe = 0, zeros = 0, ones = 0, best = tex_simd_level();
+    for (int i = 0; m && i < N; i++) {
         x = x * 6364136223846793005ULL + 1442695040888963407ULL;
         m->px[i] = i % 3 ? -0.1f + 1.2f * i / (N - 1) : (float)(x >> 40) / (1 << 24);
+        if (i % 97 == 0)
+            m->px[i] = (float)(i % 5) * 0.25f; /* at the stops */
     }
     if (m)
-        m->px[7] = NAN;
-    for (int level = tex_simd_level(); level >= TEX_SIMD_AVX2; level--) {
-        tex_simd_limit(level);
-        tex_map *o = p && m ? tex_palette_map(p, m, 0, 1, TEX_OUTSIDE_CLAMP) : NULL;
-        int same = o != NULL, zeros = 0, ones = 0, toe = 0;
-        for (int i = 0; o && i < N; i++) {
-            float c[4];
-            tex_palette_lookup(p, tex_palette_t(m->px[i], 0, 1, TEX_OUTSIDE_CLAMP), c);
-            same &= !memcmp(c, o->px + 3 * i, 3 * sizeof *c);
-            for (int k = 0; k < 3; k++) {
-                zeros += c[k] == 0 && i > N / 2, ones += c[k] == 1 && i > N / 2;
-                toe += c[k] > 0 && c[k] < 0.04f;
-            }
-        }
-        CHECKF(same && zeros && ones && toe,
-               "%s: %d values coloured in OKLab are lookup's bytes (%d clamped to 0 and %d to 1 "
-               "out of gamut, %d on the toe)", level == TEX_SIMD_AVX512 ? "AVX-512" : "AVX2",
-               N, zeros, ones, toe);
-        tex_map_free(o);
+        m->px[7] = NAN, m->px[8] = INFINITY, m->px[9] = -1e30f;
+    for (size_t q = 0; m && q < sizeof pals / sizeof *pals; q++) {
+        tex_palette *p = parse(pals[q]);
+        for (size_t r = 0; p && r < sizeof range / sizeof *range; r++)
+            for (int out = TEX_OUTSIDE_CLAMP; out <= TEX_OUTSIDE_MIRROR; out++)
+                for (int level = best; level >= TEX_SIMD_SCALAR; level--, cases++) {
+                    double lo = range[r][0], hi = range[r][1];
+                    tex_simd_limit(level);
+                    tex_map *o = tex_palette_map(p, m, lo, hi, out);
+                    int same = o != NULL;
+                    for (int i = 0; o && i < N; i++) {
+                        float c[4];
+                        tex_palette_lookup(p, tex_palette_t(m->px[i], lo, hi, out), c);
+                        same &= !memcmp(c, o->px + o->nc * i, (size_t)o->nc * sizeof *c);
+                        for (int k = 0; q == 0 && k < 3; k++) {
+                            zeros += c[k] == 0 && i > N / 2, ones += c[k] == 1 && i > N / 2;
+                            toe += c[k] > 0 && c[k] < 0.04f;
+                        }
+                    }
+                    bad += !same;
+                    tex_map_free(o);
+                }
+        tex_palette_free(p);
     }
     tex_simd_limit(TEX_SIMD_AVX512);
+    CHECKF(cases == 5 * 3 * 3 * (best + 1) && !bad && zeros && ones && toe,
+           "%d colourings of %d values (5 palettes, 3 ranges, 3 outside modes, each SIMD level) "
+           "are lookup's bytes: %d differ (%d clamped to 0 and %d to 1 out of gamut, %d on the toe)",
+           cases, N, bad, zeros, ones, toe);
     tex_map_free(m);
-    tex_palette_free(p);
 }
 
 /* Only index lines: they double as the gradient. */

@@ -1,9 +1,12 @@
-/* palette_x86.c - palette.c's OKLab to sRGB eight colours at a time (AVX-512) */
+/* palette_x86.c - palette.c's OKLab to sRGB eight colours at a time, and its colouring of a
+ * run sixteen values at a time (AVX-512) */
+#include <math.h>
 #include <stdint.h>
 
 #include "base/x86/simd_x86.h"
 
 #ifdef TEX_X86
+#include "ops/palette.h"
 #include "ops/palette_srgb.h"
 #include "ops/x86/palette_x86.h"
 
@@ -79,6 +82,106 @@ int tex_oklab_srgb_avx512(const struct tex_srgb_enc *e, const float *const lab[3
     for (; i + 8 <= n; i += 8)
         oklab_srgb8(e, (const float *[3]){lab[0] + i, lab[1] + i, lab[2] + i},
                     (float *[3]){rgb[0] + i, rgb[1] + i, rgb[2] + i});
+    return i;
+}
+/* palette_t of eight values: its double operations lane by lane (fmod(u, 2) is
+ * u - 2 trunc(u / 2), exactly) */
+TEX_AVX512 static __m256 palette_t8(__m256 v, double lo, double hi, int outside)
+{
+    const __m512d zero = _mm512_setzero_pd(), one = _mm512_set1_pd(1.0);
+    __m512d t = zero, r;
+    if (hi > lo)
+        t = _mm512_div_pd(_mm512_sub_pd(_mm512_cvtps_pd(v), _mm512_set1_pd(lo)),
+                          _mm512_set1_pd(hi - lo));
+    t = _mm512_maskz_mov_pd(_mm512_cmp_pd_mask(_mm512_abs_pd(t), _mm512_set1_pd(INFINITY),
+                                               _CMP_LT_OQ), t); /* not finite: 0 */
+    __mmask8 low = _mm512_cmp_pd_mask(t, zero, _CMP_LT_OQ);
+    __mmask8 off = low | _mm512_cmp_pd_mask(t, one, _CMP_GT_OQ);
+    if (!off)
+        return _mm512_cvtpd_ps(t);
+    if (outside == TEX_OUTSIDE_REPEAT) {
+        r = _mm512_sub_pd(t, _mm512_roundscale_pd(t, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC));
+    } else if (outside == TEX_OUTSIDE_MIRROR) {
+        __m512d u = _mm512_abs_pd(t), two = _mm512_set1_pd(2.0);
+        __m512d q = _mm512_roundscale_pd(_mm512_mul_pd(u, _mm512_set1_pd(0.5)),
+                                         _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC);
+        u = _mm512_sub_pd(u, _mm512_mul_pd(two, q));
+        r = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(u, one, _CMP_GT_OQ), u, _mm512_sub_pd(two, u));
+    } else {
+        r = _mm512_mask_blend_pd(low, one, zero);
+    }
+    return _mm512_cvtpd_ps(_mm512_mask_blend_pd(off, t, r));
+}
+
+/* Sixteen values coloured into c[channel] */
+TEX_AVX512 static void colour16(const struct tex_palette_lanes *l, const struct tex_srgb_enc *e,
+                                const float *v, double lo, double hi, int outside, __m512 c[4])
+{
+    const __m512 zero = _mm512_setzero_ps(), one = _mm512_set1_ps(1.0f);
+    __m256 t0 = palette_t8(_mm256_loadu_ps(v), lo, hi, outside);
+    __m256 t1 = palette_t8(_mm256_loadu_ps(v + 8), lo, hi, outside);
+    __m512 t = _mm512_castpd_ps(
+        _mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_castps_pd(t0)), _mm256_castps_pd(t1), 1));
+    t = _mm512_maskz_mov_ps(_mm512_cmp_ps_mask(t, zero, _CMP_GE_OQ), t); /* stop_t */
+    t = _mm512_mask_blend_ps(_mm512_cmp_ps_mask(t, one, _CMP_GT_OQ), t, one);
+    __m512i after = _mm512_setzero_si512(), k1 = _mm512_set1_epi32(1);
+    for (int i = 0; i < l->n; i++)
+        after = _mm512_mask_add_epi32(
+            after, _mm512_cmp_ps_mask(_mm512_set1_ps(l->pos[i]), t, _CMP_LE_OQ), after, k1);
+    __m512i ia = _mm512_max_epi32(_mm512_sub_epi32(after, k1), _mm512_setzero_si512());
+    __m512i ib = _mm512_min_epi32(after, _mm512_set1_epi32(l->n - 1));
+    __m512 pos = _mm512_loadu_ps(l->pos);
+    __m512 pa = _mm512_permutexvar_ps(ia, pos), pb = _mm512_permutexvar_ps(ib, pos);
+    __mmask16 ends = _mm512_cmpeq_epi32_mask(after, _mm512_setzero_si512()) |
+                     _mm512_cmpeq_epi32_mask(after, _mm512_set1_epi32(l->n));
+    __m512 f = _mm512_div_ps(_mm512_sub_ps(t, pa), _mm512_sub_ps(pb, pa));
+    __mmask16 at = ends | _mm512_cmp_ps_mask(f, zero, _CMP_LE_OQ); /* a stop's own colour */
+    f = _mm512_maskz_mov_ps(~at, f);
+    __m512 a[4], mix[4];
+    for (int k = 0; k < 4; k++) {
+        const float *q = l->oklab && k < 3 ? l->lab[k] : l->rgba[k];
+        __m512 qa = _mm512_permutexvar_ps(ia, _mm512_loadu_ps(q));
+        __m512 qb = _mm512_permutexvar_ps(ib, _mm512_loadu_ps(q));
+        mix[k] = _mm512_add_ps(qa, _mm512_mul_ps(f, _mm512_sub_ps(qb, qa)));
+        a[k] = l->oklab && k < 3 ? _mm512_permutexvar_ps(ia, _mm512_loadu_ps(l->rgba[k])) : qa;
+    }
+    if (l->oklab) {
+        float lab[3][16], rgb[3][16];
+        for (int k = 0; k < 3; k++)
+            _mm512_storeu_ps(lab[k], mix[k]);
+        for (int h = 0; h < 16; h += 8)
+            oklab_srgb8(e, (const float *[3]){lab[0] + h, lab[1] + h, lab[2] + h},
+                        (float *[3]){rgb[0] + h, rgb[1] + h, rgb[2] + h});
+        for (int k = 0; k < 3; k++)
+            mix[k] = _mm512_loadu_ps(rgb[k]);
+    }
+    for (int k = 0; k < 4; k++)
+        c[k] = _mm512_mask_blend_ps(at, mix[k], a[k]);
+}
+
+TEX_AVX512 int tex_palette_colour_avx512(const struct tex_palette_lanes *l, const struct tex_srgb_enc *e,
+                              const float *v, int n, double lo, double hi, int outside,
+                              float *out, int nc)
+{
+    /* pixels interleaved by permutes: float g of a block of 16 nc is channel g % nc of pixel
+     * g / nc, taken from the pair (R, G) or (B, A) */
+    int idx[4][16];
+    __mmask16 ba[4] = {0};
+    for (int g = 0; g < 16 * nc; g++) {
+        idx[g / 16][g % 16] = g / nc + (g % nc & 1) * 16;
+        ba[g / 16] |= (__mmask16)((g % nc >= 2) << (g % 16));
+    }
+    int i = 0;
+    for (; i + 16 <= n; i += 16) {
+        __m512 c[4];
+        colour16(l, e, v + i, lo, hi, outside, c);
+        for (int o = 0; o < nc; o++) {
+            __m512i x = _mm512_loadu_si512(idx[o]);
+            __m512 rg = _mm512_permutex2var_ps(c[0], x, c[1]);
+            __m512 bal = _mm512_permutex2var_ps(c[2], x, c[3]);
+            _mm512_storeu_ps(out + (size_t)(i * nc + 16 * o), _mm512_mask_blend_ps(ba[o], rg, bal));
+        }
+    }
     return i;
 }
 #endif
