@@ -8,11 +8,11 @@
 #include "ops/filter.h"
 #include "base/rng.h"
 
-/* The hot loops are built twice, for AVX2 and for the baseline, and picked
- * at run time.  Neither clone contracts to FMA and each output sample is
- * summed in the same order, so both give the same bits. */
+/* The hot loops are built for AVX-512, AVX2 and the baseline, and picked at
+ * run time.  No clone contracts to FMA and each output sample is summed in
+ * the same order, so all give the same bits. */
 #if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_ADDRESS__)
-#define HOT __attribute__((target_clones("avx2", "default")))
+#define HOT __attribute__((target_clones("avx512f", "avx2", "default")))
 #else
 #define HOT
 #endif
