@@ -32,6 +32,40 @@ static void highlight(const struct tex_colour_space *cs, const struct tex_matdb_
     cs->to_rgb(cs, &out, rgb);
 }
 
+/* from_rgb remembers its last conversions (per thread): six colours, each converted as
+ * reflectance and as illuminant in two spaces of 16 and 8 bands, the four conversions
+ * twice over (the second time from memory), the spaces made anew each pass with their
+ * band counts swapped (where the last were freed), give the bits of conversions made
+ * too far apart to be remembered.
+ * Returns the conversions that differed. */
+static int remembered_spectra(void)
+{
+    const float c[6][3] = {{0.8f, 0.2f, 0.1f}, {0.1f, 0.8f, 0.2f}, {0.2f, 0.1f, 0.8f},
+                           {0.5f, 0.5f, 0.5f}, {0.08f, 0.08f, 0.08f}, {0.83f, 0.83f, 0.83f}};
+    struct tex_colour_space sp[2];
+    tex_colour first[2][6][2]; /* [16 or 8 bands][colour][kind] */
+    int bad = 0;
+    for (int pass = 0; pass < 3; pass++) {
+        for (int k = 0; k < 2; k++)
+            if (tex_colour_space_spectral(&sp[k], (k + pass) % 2 ? 8 : 16, NULL) < 0)
+                return -1;
+        for (int kind = 0; pass == 0 && kind < 2; kind++) /* fresh: six apart */
+            for (int k = 0; k < 2; k++)
+                for (int j = 0; j < 6; j++)
+                    sp[k].from_rgb(&sp[k], c[j], kind, &first[sp[k].n == 8][j][kind]);
+        for (int j = 0; j < 6; j++)
+            for (int i = 0; i < 8; i++) {
+                int k = i % 2, kind = i / 2 % 2, b = sp[k].n == 8;
+                tex_colour out;
+                sp[k].from_rgb(&sp[k], c[j], kind, &out);
+                bad += memcmp(out.v, first[b][j][kind].v, sp[k].n * sizeof *out.v) != 0;
+            }
+        for (int k = 0; k < 2; k++)
+            tex_colour_space_spectral_free(&sp[k]);
+    }
+    return bad;
+}
+
 /* direct() adds a Beckmann highlight exactly where its weight w = s pi G' (N.L) is over
  * 1e-12 (G' = tex_ct_geometry), though it decides most of the tiny ones without D's exp:
  * random lights and views over the hemisphere, grazing ones too, on lobes from polished to
@@ -211,6 +245,9 @@ int main(void)
     mat.model->direct(&mat, N0, N0, N0, &E, cs.n, &out);
     CHECKF(fabs(kr.v[0] - 0.04) < 1e-6 && out.v[0] > 0,
            "without model data: a dielectric of the surface's ior (Fr %.4f)", kr.v[0]);
+    int bad = remembered_spectra();
+    CHECKF(bad == 0, "remembered RGB-to-spectrum conversions give their own bits, space by "
+           "space and kind by kind (%d differ)", bad);
     int wrong, near = highlight_cut(&cs, &wrong);
     CHECKF(wrong == 0 && near > 1000,
            "a highlight where its weight is over 1e-12 and none elsewhere (%d wrong, %d "
