@@ -456,6 +456,10 @@ static inline __attribute__((always_inline)) int bvh_trace(const struct tex_bvh 
         } else {
             double tl, tr;
             int l = ni + 1, rt = n->first;
+            /* the walk waits on memory: ask for both children while their boxes are tested */
+            __builtin_prefetch(&t->nodes[rt]);
+            __builtin_prefetch(&t->pairs[rt]);
+            __builtin_prefetch(&t->pairs[l]);
 #ifdef TEX_X86 /* both children at once: the same answers */
             double tc[2];
             int both = tex_box_pair_sse2(&t->pairs[ni], &r.o, &r.inv, tmin, tmax, tc);
