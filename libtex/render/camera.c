@@ -35,19 +35,25 @@ uint64_t tex_camera_objects(const struct tex_camera *cam, int x0, int y0, int x1
 
 /* The eye ray of sample i of pixel (x, y), its position drawn from the pixel's rng
  * (the centre at 1 spp). */
+/* Where in its pixel sample i falls: drawn from the pixel's rng (the centre at 1 spp) */
+static inline void sample_offset(int spp, int k, int i, tex_rng *rng, double *ox, double *oy)
+{
+    *ox = *oy = 0.5;
+    if (spp > 1) {
+        *ox = tex_rng_uniform(rng);
+        *oy = tex_rng_uniform(rng);
+        if (k > 0) { /* stratified: jitter within cell i of a k x k grid */
+            *ox = ((i % k) + *ox) / k;
+            *oy = ((i / k) + *oy) / k;
+        }
+    }
+}
+
 void tex_camera_ray(const struct tex_scene *s, const struct tex_camera *cam, int x, int y, int i,
                     tex_rng *rng, tex_ray *r)
 {
-    int spp = s->settings.spp, k = cam->k;
-    double ox = 0.5, oy = 0.5;
-    if (spp > 1) {
-        ox = tex_rng_uniform(rng);
-        oy = tex_rng_uniform(rng);
-        if (k > 0) { /* stratified: jitter within cell i of a k x k grid */
-            ox = ((i % k) + ox) / k;
-            oy = ((i / k) + oy) / k;
-        }
-    }
+    double ox, oy;
+    sample_offset(s->settings.spp, cam->k, i, rng, &ox, &oy);
     double a = (x + ox) * cam->kx - cam->sx;
     double b = cam->sy - (y + oy) * cam->ky;
     *r = (tex_ray){cam->eye,
@@ -57,15 +63,23 @@ void tex_camera_ray(const struct tex_scene *s, const struct tex_camera *cam, int
 }
 
 /* The eye rays of sample i of the packet's np pixels (x[k], y[k]) into r, made apart from
- * the traces so that their square roots overlap; at 1 spp eight at a time in lanes. */
+ * the traces so that their square roots overlap; eight at a time in lanes, their places
+ * in the pixels drawn first (each pixel's rng in its order). */
 void tex_camera_rays(const struct tex_scene *s, const struct tex_camera *cam, const int *x,
                      const int *y, int np, int i, tex_rng *rng, tex_ray *r)
 {
 #ifdef TEX_X86
-    if (s->settings.spp == 1 && tex_simd_level() >= TEX_SIMD_AVX512) {
-        for (int k = 0; k < np; k += 8)
-            tex_eye_rays8_avx512(cam, s->eye_media.n ? &s->eye_media : NULL, x + k, y + k,
-                                 np - k < 8 ? np - k : 8, r + k);
+    if (tex_simd_level() >= TEX_SIMD_AVX512) {
+        for (int k = 0; k < np; k += 8) {
+            int n = np - k < 8 ? np - k : 8;
+            double ox[8], oy[8];
+            for (int j = 0; j < 8; j++)
+                ox[j] = oy[j] = 0.5;
+            for (int j = 0; j < n; j++)
+                sample_offset(s->settings.spp, cam->k, i, &rng[k + j], &ox[j], &oy[j]);
+            tex_eye_rays8_avx512(cam, s->eye_media.n ? &s->eye_media : NULL, x + k, y + k, ox,
+                                 oy, n, r + k);
+        }
         return;
     }
 #endif

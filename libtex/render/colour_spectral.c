@@ -3,22 +3,55 @@
 
 #include "base/error.h"
 
+#include <stdint.h>
 #include <stdlib.h>
+#include <string.h>
 
 struct spectral_data {
     struct tex_bands bands;
     float d65[TEX_BANDS_MAX]; /* Y = 1 */
+    unsigned long serial;     /* this space's own, never reused: the memo's key */
 };
+
+/* Each thread's last few conversions.  A textured surface's colours come back to a few
+ * values hit after hit (a checker's two, and Ka times each): converting each anew was
+ * 5 % of the five spheres in 16 bands.  Keyed by the space's serial, the kind and the
+ * RGB's bits, so a remembered spectrum is the one the conversion would give. */
+#define MEMO 4
+struct memo {
+    unsigned long serial; /* 0: empty */
+    uint32_t r, g, b, kind; /* the RGB's bits */
+    float v[TEX_BANDS_MAX];
+};
+static _Thread_local struct memo memo[MEMO];
+static _Thread_local int memo_next;
 
 static void spec_from_rgb(const struct tex_colour_space *cs, const float rgb[3],
                           enum tex_spectrum_kind kind, tex_colour *out)
 {
     const struct spectral_data *d = cs->data;
+    uint32_t r, g, b; /* in registers: the compares load no stored key */
+    memcpy(&r, &rgb[0], sizeof r);
+    memcpy(&g, &rgb[1], sizeof g);
+    memcpy(&b, &rgb[2], sizeof b);
+    for (int k = 0; k < MEMO; k++) {
+        const struct memo *m = &memo[k];
+        if (m->r == r && m->g == g && m->b == b && m->kind == (uint32_t)kind &&
+            m->serial == d->serial) {
+            memcpy(out->v, m->v, cs->n * sizeof *out->v);
+            return;
+        }
+    }
     double c[3] = {rgb[0], rgb[1], rgb[2]};
     tex_bands_from_rgb(&d->bands, c, kind == TEX_SPECTRUM_REFLECTANCE, out->v);
     if (kind == TEX_SPECTRUM_ILLUMINANT)
         for (int i = 0; i < cs->n; i++)
             out->v[i] *= d->d65[i];
+    struct memo *m = &memo[memo_next];
+    memo_next = (memo_next + 1) % MEMO;
+    m->serial = d->serial;
+    m->r = r, m->g = g, m->b = b, m->kind = (uint32_t)kind;
+    memcpy(m->v, out->v, cs->n * sizeof *out->v);
 }
 
 static void spec_to_rgb(const struct tex_colour_space *cs, const tex_colour *c, float rgb[3])
@@ -46,6 +79,8 @@ int tex_colour_space_spectral(struct tex_colour_space *cs, int n, const char *co
         rc = tex_bands_init(&d->bands, n, cm);
     if (rc == 0 && tex_bands_light(&d->bands, &cm->d65, d->d65) < 0)
         rc = tex_error("D65 has no luminance");
+    static unsigned long serials;
+    d->serial = __atomic_add_fetch(&serials, 1, __ATOMIC_RELAXED);
     free(cm);
     if (rc < 0) {
         free(d);

@@ -451,13 +451,6 @@ static int render_into(struct tex_scene *s, int rx, int ry, tex_map *img,
 {
     const struct tex_settings *st = &s->settings;
     int rw = img->w, rh = img->h;
-    for (int i = 0; i < s->nsurfaces; i++) {
-        if (tex_surface_cache(s->surfaces[i], &s->cs) < 0) {
-            for (int j = 0; j <= i; j++)
-                tex_surface_uncache(s->surfaces[j]);
-            return -1;
-        }
-    }
     tex_colour ambient, background;
     s->cs.from_rgb(&s->cs, s->ambient, TEX_SPECTRUM_ILLUMINANT, &ambient);
     s->cs.from_rgb(&s->cs, s->background, TEX_SPECTRUM_ILLUMINANT, &background);
@@ -502,8 +495,6 @@ static int render_into(struct tex_scene *s, int rx, int ry, tex_map *img,
     }
     if (progress)
         progress(ntiles, ntiles, arg);
-    for (int i = 0; i < s->nsurfaces; i++)
-        tex_surface_uncache(s->surfaces[i]);
     return 0;
 }
 

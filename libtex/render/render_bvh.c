@@ -57,6 +57,7 @@ struct node {
 
 struct tex_bvh {
     struct node *nodes;
+    struct tex_box_pair *pairs; /* an inner node's children's boxes, for one test of both */
     int nnodes;
     struct prim *prims; /* bounded, in tree order */
     int nprims;
@@ -211,6 +212,17 @@ static void build(struct builder *bd, int first, int count, int depth)
     t->nodes[id].first = right;
 }
 
+/* Boxes a and b side by side, a in lane 0 */
+static void pair_of(const struct tex_bounds *a, const struct tex_bounds *b,
+                    struct tex_box_pair *p)
+{
+    const tex_v3 *lo[2] = {&a->lo, &b->lo}, *hi[2] = {&a->hi, &b->hi};
+    for (int c = 0; c < 2; c++) {
+        p->lo[0][c] = lo[c]->x, p->lo[1][c] = lo[c]->y, p->lo[2][c] = lo[c]->z;
+        p->hi[0][c] = hi[c]->x, p->hi[1][c] = hi[c]->y, p->hi[2][c] = hi[c]->z;
+    }
+}
+
 struct tex_bvh *tex_bvh_build(struct tex_object **obs, int n)
 {
     struct tex_bvh *t = calloc(1, sizeof *t);
@@ -252,6 +264,11 @@ struct tex_bvh *tex_bvh_build(struct tex_object **obs, int n)
     if (nb)
         build(&bd, 0, nb, 0);
     t->nprims = nb;
+    if (!(t->pairs = malloc((t->nnodes ? t->nnodes : 1) * sizeof *t->pairs)))
+        goto oom;
+    for (int i = 0; i < t->nnodes; i++)
+        if (!t->nodes[i].count)
+            pair_of(&t->nodes[i + 1].b, &t->nodes[t->nodes[i].first].b, &t->pairs[i]);
     free(src);
     free(bd.idx);
     free(bd.tmp);
@@ -272,6 +289,7 @@ void tex_bvh_free(struct tex_bvh *b)
     if (!b)
         return;
     free(b->nodes);
+    free(b->pairs);
     free(b->prims);
     free(b->unb);
     free(b);
@@ -438,8 +456,19 @@ static inline __attribute__((always_inline)) int bvh_trace(const struct tex_bvh 
         } else {
             double tl, tr;
             int l = ni + 1, rt = n->first;
+            /* the walk waits on memory: ask for both children while their boxes are tested */
+            __builtin_prefetch(&t->nodes[rt]);
+            __builtin_prefetch(&t->pairs[rt]);
+            __builtin_prefetch(&t->pairs[l]);
+#ifdef TEX_X86 /* both children at once: the same answers */
+            double tc[2];
+            int both = tex_box_pair_sse2(&t->pairs[ni], &r.o, &r.inv, tmin, tmax, tc);
+            int hl = both & 1, hr = both >> 1;
+            tl = tc[0], tr = tc[1];
+#else
             int hl = hit_box(&t->nodes[l].b, &r, tmin, tmax, &tl);
             int hr = hit_box(&t->nodes[rt].b, &r, tmin, tmax, &tr);
+#endif
             if (hl && hr) {
                 /* visit the nearer first; the farther waits with its entry distance */
                 stack[sp].node = tl <= tr ? rt : l;

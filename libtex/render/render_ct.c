@@ -7,6 +7,7 @@
 #include "render/x86/render_ct_x86.h"
 
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -205,6 +206,28 @@ void tex_ct_fresnel(const struct tex_material *mat, double cos_i, int n, tex_col
     fresnel(mat, params(mat), cos_i, n, fr);
 }
 
+/* Whether the highlight's weight w = s pi D G / (4 (N.V)) of a Beckmann lobe is surely
+ * under cut, found without D's exp (a third of five_spheres' highlights in 16 bands):
+ * G <= 2 (N.H)(N.V) / (V.H) gives w <= s exp(e) / (2 m^2 c^3 (V.H)), and exp(e) <= 2^k / 2
+ * with k the next whole number up from e log2(e), plus one.  Four times under cut: far
+ * beyond the roundings, so the computed w is under it too. */
+static int highlight_below(const struct tex_facets *fc, double c, double vh, double s,
+                           double cut)
+{
+    if (fc->dist != TEX_FACET_BECKMANN || !(c > 0 && fc->m > 0 && vh > 0))
+        return 0;
+    double c2 = c * c, m2 = fc->m * fc->m, e = (c2 - 1) / (c2 * m2);
+    if (!(e < -20)) /* NaN too */
+        return 0;
+    double t = e * M_LOG2E;
+    int k = t < -1000 ? -1000 : (int)t + 1; /* (int) rounds toward zero: up */
+    union {
+        uint64_t u;
+        double d;
+    } p = {(uint64_t)(k + 1023) << 52}; /* 2^k */
+    return s * p.d <= cut * m2 * c2 * c * vh;
+}
+
 static void ct_direct(const struct tex_material *mat, const double N[3], const double V[3],
                       const double L[3], const tex_colour *E, int n, tex_colour *out)
 {
@@ -224,6 +247,8 @@ static void ct_direct(const struct tex_material *mat, const double N[3], const d
         return;
     double nh = (N[0] * h[0] + N[1] * h[1] + N[2] * h[2]) / hl;
     double vh = (V[0] * h[0] + V[1] * h[1] + V[2] * h[2]) / hl;
+    if (highlight_below(&fc, nh, vh, s, 1e-12))
+        return; /* as the test of w below would */
     double g = tex_ct_geometry(&fc, nh, nv, nl, vh);
     double w = s * M_PI * g * nl;
     /* F <= 1: a highlight below 1e-12 of the light (far from H) needs no Fresnel term */

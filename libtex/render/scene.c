@@ -43,6 +43,8 @@ void tex_scene_free(struct tex_scene *s)
         free(t);
     }
     free(s->textures);
+    for (int i = 0; i < s->nsurfaces; i++)
+        tex_surface_uncache(s->surfaces[i]);
     for (int i = 0; i < s->npalettes; i++)
         tex_palette_free(s->palettes[i]);
     free(s->palettes);
@@ -172,10 +174,15 @@ int tex_scene_prepare(struct tex_scene *s)
             return -1;
         tex_colour_scale(&l->e, s->cs.n, &l->e, l->rgb[0]);
     }
-    /* the colour model may have changed since the surfaces were read */
-    for (int i = 0; i < s->nsurfaces; i++)
+    /* the colour model may have changed since the surfaces were read; their caches are
+     * filled once here, not by every band of rows a render is asked for (t_apply's ten
+     * bands tabulated Fresnel ten times: 2 % of a spectral render) */
+    for (int i = 0; i < s->nsurfaces; i++) {
         if (s->surfaces[i]->ct)
             tex_ct_set_space(s->surfaces[i]->ct, &s->cs);
+        if (tex_surface_cache(s->surfaces[i], &s->cs) < 0)
+            return -1;
+    }
     tex_bvh_free(s->bvh);
     s->bvh = tex_bvh_build(s->objects, s->nobjects);
     if (!s->bvh)

@@ -119,7 +119,7 @@ int tex_plain_material(const struct tex_surface *sf, const struct tex_prefetch *
                        struct tex_plain *m);
 void tex_plain_resolve(const struct tex_scene *s, const struct tex_surface *sf,
                        const struct tex_shade_at *at, tex_v3 *N, struct tex_plain *m);
-/* Fill (tex_render, before tracing) and free a surface's cache: its untextured
+/* Fill (tex_scene_prepare) and free (tex_scene_free) a surface's cache: its untextured
  * colours in the scene's colour space, its application functions compiled. */
 int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs);
 void tex_surface_uncache(struct tex_surface *sf);
@@ -207,7 +207,7 @@ struct tex_surface {
     int character;                   /* `character NAME`: 1 + its index in tex_characters, or 0 */
     struct tex_apply *apply;
     int line, col;
-    struct tex_surface_cache *cache; /* tex_render's (appfn.c), or NULL */
+    struct tex_surface_cache *cache; /* tex_scene_prepare's (appfn.c), or NULL */
 };
 
 #ifdef __cplusplus

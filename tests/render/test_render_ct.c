@@ -32,6 +32,87 @@ static void highlight(const struct tex_colour_space *cs, const struct tex_matdb_
     cs->to_rgb(cs, &out, rgb);
 }
 
+/* from_rgb remembers its last conversions (per thread): six colours, each converted as
+ * reflectance and as illuminant in two spaces of 16 and 8 bands, the four conversions
+ * twice over (the second time from memory), the spaces made anew each pass with their
+ * band counts swapped (where the last were freed), give the bits of conversions made
+ * too far apart to be remembered.
+ * Returns the conversions that differed. */
+static int remembered_spectra(void)
+{
+    const float c[6][3] = {{0.8f, 0.2f, 0.1f}, {0.1f, 0.8f, 0.2f}, {0.2f, 0.1f, 0.8f},
+                           {0.5f, 0.5f, 0.5f}, {0.08f, 0.08f, 0.08f}, {0.83f, 0.83f, 0.83f}};
+    struct tex_colour_space sp[2];
+    tex_colour first[2][6][2]; /* [16 or 8 bands][colour][kind] */
+    int bad = 0;
+    for (int pass = 0; pass < 3; pass++) {
+        for (int k = 0; k < 2; k++)
+            if (tex_colour_space_spectral(&sp[k], (k + pass) % 2 ? 8 : 16, NULL) < 0)
+                return -1;
+        for (int kind = 0; pass == 0 && kind < 2; kind++) /* fresh: six apart */
+            for (int k = 0; k < 2; k++)
+                for (int j = 0; j < 6; j++)
+                    sp[k].from_rgb(&sp[k], c[j], kind, &first[sp[k].n == 8][j][kind]);
+        for (int j = 0; j < 6; j++)
+            for (int i = 0; i < 8; i++) {
+                int k = i % 2, kind = i / 2 % 2, b = sp[k].n == 8;
+                tex_colour out;
+                sp[k].from_rgb(&sp[k], c[j], kind, &out);
+                bad += memcmp(out.v, first[b][j][kind].v, sp[k].n * sizeof *out.v) != 0;
+            }
+        for (int k = 0; k < 2; k++)
+            tex_colour_space_spectral_free(&sp[k]);
+    }
+    return bad;
+}
+
+/* direct() adds a Beckmann highlight exactly where its weight w = s pi G' (N.L) is over
+ * 1e-12 (G' = tex_ct_geometry), though it decides most of the tiny ones without D's exp:
+ * random lights and views over the hemisphere, grazing ones too, on lobes from polished to
+ * matte.  Returns the cases whose w lay within a factor 10 of the cut; *wrong counts the
+ * highlights added or left out against w. */
+static int highlight_cut(const struct tex_colour_space *cs, int *wrong)
+{
+    struct tex_material mat;
+    memset(&mat, 0, sizeof mat);
+    tex_ct_material(&mat, NULL);
+    mat.ior = 1.5;
+    tex_colour_set(&mat.kd, cs->n, 0);
+    float w1[3] = {1, 1, 1};
+    tex_colour E, out;
+    cs->from_rgb(cs, w1, TEX_SPECTRUM_ILLUMINANT, &E);
+    const double ms[] = {0.02, 0.05, 0.1, 0.25, 0.6};
+    unsigned long x = 12345;
+    int near = 0;
+    *wrong = 0;
+    for (int i = 0; i < 200000; i++) {
+        double u[4];
+        for (int j = 0; j < 4; j++) {
+            x = x * 6364136223846793005ul + 1442695040888963407ul;
+            u[j] = (double)(x >> 11) / 9007199254740992.0;
+        }
+        mat.m = ms[i % 5];
+        mat.s = 0.05 + 0.95 * (i % 7) / 6.0;
+        /* heights from grazing (u^3 near 0) to overhead */
+        double zv = u[0] * u[0] * u[0], zl = u[1] * u[1] * u[1];
+        double pv = 2 * M_PI * u[2], pl = 2 * M_PI * u[3];
+        double rv = sqrt(1 - zv * zv), rl = sqrt(1 - zl * zl);
+        double N[3] = {0, 0, 1}, V[3] = {rv * cos(pv), rv * sin(pv), zv},
+               L[3] = {rl * cos(pl), rl * sin(pl), zl};
+        tex_colour_set(&out, cs->n, 0);
+        mat.model->direct(&mat, N, V, L, &E, cs->n, &out);
+        /* ct_direct's steps, in its order */
+        double h[3] = {L[0] + V[0], L[1] + V[1], L[2] + V[2]};
+        double hl = sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+        double nh = h[2] / hl, vh = (V[0] * h[0] + V[1] * h[1] + V[2] * h[2]) / hl;
+        struct tex_facets fc = {TEX_FACET_BECKMANN, mat.m, 0};
+        double w = mat.s * M_PI * tex_ct_geometry(&fc, nh, zv, zl, vh) * zl;
+        near += w > 1e-13 && w < 1e-11;
+        *wrong += (out.v[0] > 0) != (w > 1e-12);
+    }
+    return near;
+}
+
 int main(void)
 {
     struct tex_colour_space cs, rgbcs;
@@ -164,6 +245,14 @@ int main(void)
     mat.model->direct(&mat, N0, N0, N0, &E, cs.n, &out);
     CHECKF(fabs(kr.v[0] - 0.04) < 1e-6 && out.v[0] > 0,
            "without model data: a dielectric of the surface's ior (Fr %.4f)", kr.v[0]);
+    int bad = remembered_spectra();
+    CHECKF(bad == 0, "remembered RGB-to-spectrum conversions give their own bits, space by "
+           "space and kind by kind (%d differ)", bad);
+    int wrong, near = highlight_cut(&cs, &wrong);
+    CHECKF(wrong == 0 && near > 1000,
+           "a highlight where its weight is over 1e-12 and none elsewhere (%d wrong, %d "
+           "within 10x of the cut)",
+           wrong, near);
     CHECK(tex_shading_find("cook-torrance") == &tex_shading_cook_torrance,
           "the model is found by its scene name");
     tex_matdb_free(&db);

@@ -3,19 +3,22 @@
 #include "render/x86/camera_x86.h"
 
 #ifdef TEX_X86
-/* camera_ray's rays through the centres of the n <= 8 pixels (x[k], y[k]) (1 spp): its
- * operations in lanes, so its bits, the square roots and divisions of eight rays at once.
- * x and y hold 8 readable entries. */
+/* camera_ray's rays through the n <= 8 pixels (x[k], y[k]) at (ox[k], oy[k]) inside each:
+ * its operations in lanes, so its bits, the square roots and divisions of eight rays at
+ * once.  x, y, ox and oy hold 8 readable entries. */
 TEX_AVX512 void tex_eye_rays8_avx512(const struct tex_camera *cam, const struct tex_media *media,
-                                     const int *x, const int *y, int n, tex_ray *r)
+                                     const int *x, const int *y, const double *ox,
+                                     const double *oy, int n, tex_ray *r)
 {
-    __m512d half = _mm512_set1_pd(0.5), v[3];
+    __m512d v[3];
     __m512d px = _mm512_cvtepi32_pd(_mm256_loadu_si256((const __m256i *)x));
     __m512d py = _mm512_cvtepi32_pd(_mm256_loadu_si256((const __m256i *)y));
-    __m512d a = _mm512_sub_pd(_mm512_mul_pd(_mm512_add_pd(px, half), _mm512_set1_pd(cam->kx)),
-                              _mm512_set1_pd(cam->sx));
-    __m512d b = _mm512_sub_pd(_mm512_set1_pd(cam->sy),
-                              _mm512_mul_pd(_mm512_add_pd(py, half), _mm512_set1_pd(cam->ky)));
+    __m512d a = _mm512_sub_pd(
+        _mm512_mul_pd(_mm512_add_pd(px, _mm512_loadu_pd(ox)), _mm512_set1_pd(cam->kx)),
+        _mm512_set1_pd(cam->sx));
+    __m512d b = _mm512_sub_pd(
+        _mm512_set1_pd(cam->sy),
+        _mm512_mul_pd(_mm512_add_pd(py, _mm512_loadu_pd(oy)), _mm512_set1_pd(cam->ky)));
     const double f[3] = {cam->fwd.x, cam->fwd.y, cam->fwd.z};
     const double rt[3] = {cam->right.x, cam->right.y, cam->right.z};
     const double u[3] = {cam->up.x, cam->up.y, cam->up.z};

@@ -10,11 +10,12 @@ extern "C" {
 #endif
 
 #ifdef TEX_X86
-/* camera_ray's rays through the centres of the n <= 8 pixels (x[k], y[k]) (1 spp): its
- * operations in lanes, so its bits, the square roots and divisions of eight rays at once.
- * x and y hold 8 readable entries. */
+/* camera_ray's rays through the n <= 8 pixels (x[k], y[k]) at (ox[k], oy[k]) inside each:
+ * its operations in lanes, so its bits, the square roots and divisions of eight rays at
+ * once.  x, y, ox and oy hold 8 readable entries. */
 TEX_AVX512 void tex_eye_rays8_avx512(const struct tex_camera *cam, const struct tex_media *media,
-                                     const int *x, const int *y, int n, tex_ray *r);
+                                     const int *x, const int *y, const double *ox,
+                                     const double *oy, int n, tex_ray *r);
 #endif
 
 #ifdef __cplusplus
