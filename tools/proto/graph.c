@@ -1,12 +1,13 @@
 /* graph.c - a node graph: nodes (a primitive, or an operator tool, with their parameters),
  * edges carrying maps into input slots, one output node.  The graph is checked whole
  * before anything runs (ids, kinds, slots, cycles, dangling inputs, every parameter as the
- * single-primitive page checks it), each message naming its node.  It runs as chains: a
- * node whose map feeds one node only pipes into it (its standard input), any other map
- * goes to a file in the temporary folder (ID.exr in the shell export).  The export is the
- * preview's words with those names, so it gives the same bytes.  A file is named by a hash
- * of the words that make it (its inputs named the same way, so of its whole upstream), and
- * kept for the next request: an edit reruns only the chains downstream of it. */
+ * single-primitive page checks it), each message naming its node.  It runs as chains: in
+ * the shell export (and previews above FILES_SIDE) a node whose map feeds one node only
+ * pipes into it (its standard input); any other map goes to a file in the temporary folder
+ * (ID.exr in the export).  The export is the preview's words with those names, so it gives
+ * the same bytes.  A file is named by a hash of the words that make it (its inputs named
+ * the same way, so of its whole upstream), and kept for the next request: an edit reruns
+ * only the nodes downstream of it. */
 #include <dirent.h>
 #include <fcntl.h>
 #include <limits.h>
@@ -390,8 +391,9 @@ static int node_stage(struct pipeline *pl, const struct graph *g, int i, int exp
 }
 
 /* The nodes upstream of target, checked (inputs fed, every parameter), and the chains:
- * a node whose map feeds one node there pipes into it, in its first such slot. */
-static int graph_select(struct pipeline *pl, struct graph *g, int target)
+ * with pipes, a node whose map feeds one node there pipes into it, in its first such slot;
+ * without, every map is a file of its own. */
+static int graph_select(struct pipeline *pl, struct graph *g, int target, int pipes)
 {
     g->target = target;
     g->n[target].want = 1;
@@ -410,7 +412,8 @@ static int graph_select(struct pipeline *pl, struct graph *g, int target)
         n->depth = 1;
         for (int s = 0; n->want && s < MAX_SLOTS; s++) {
             int src = n->in[s];
-            if (src >= 0 && !piped && g->n[src].cons == 1 && g->n[src].depth < MAX_STAGES) {
+            if (pipes && src >= 0 && !piped && g->n[src].cons == 1 &&
+                g->n[src].depth < MAX_STAGES) {
                 g->n[src].pipe = i;
                 n->depth = g->n[src].depth + 1;
                 piped = 1;
@@ -544,8 +547,15 @@ static int graph_run(struct pipeline *pl, struct graph *g, const char *last, str
     return rc;
 }
 
-/* The graph of a request, its target (node=ID, else the output) selected and checked. */
-static int request_graph(struct MHD_Connection *c, struct pipeline *pl, struct graph *g)
+/* Up to this side a preview keeps every node's map as a file: it costs what a pipe does
+ * (tests/bench/proto) and spares rerunning the nodes above an edit; bigger maps pipe, or a
+ * few nodes would fill the kept files' KEEP_BYTES. */
+#define FILES_SIDE 1024
+
+/* The graph of a request, its target (node=ID, else the output) selected and checked: an
+ * export pipes where a map feeds one node, a preview as FILES_SIDE says. */
+static int request_graph(struct MHD_Connection *c, struct pipeline *pl, struct graph *g,
+                         int export)
 {
     const char *node = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "node");
     int t;
@@ -554,7 +564,7 @@ static int request_graph(struct MHD_Connection *c, struct pipeline *pl, struct g
         return -1;
     if ((t = node ? find_id(g, node) : g->out) < 0)
         return fail(pl, "no node '%.40s' in the graph", node);
-    return graph_select(pl, g, t);
+    return graph_select(pl, g, t, export || g->size > FILES_SIDE);
 }
 
 /* A value for a t_compose script: a number, a name, else a quoted string. */
@@ -646,7 +656,7 @@ int graph_export(struct MHD_Connection *c, struct pipeline *pl, const char *form
     form = form ? form : "sh";
     if (!g)
         return fail(pl, "out of memory");
-    if (request_graph(c, pl, g) < 0)
+    if (request_graph(c, pl, g, 1) < 0)
         goto done;
     if (!strcmp(form, "sh") || !strcmp(form, "apply")) {
         int apply = form[0] == 'a';
@@ -726,7 +736,7 @@ unsigned api_graph(struct MHD_Connection *c, struct pipeline *pl, struct tex_str
         return fail(pl, "out of memory"), 500;
     snprintf(map, sizeof map, "%s/map.%lx.exr", proto.tmpdir, (unsigned long)pthread_self());
     snprintf(last, sizeof last, what[0] == 's' ? "-o%s" : "--format=png", map);
-    r = request_graph(c, pl, g) < 0 ? 2 : graph_run(pl, g, last, out);
+    r = request_graph(c, pl, g, 0) < 0 ? 2 : graph_run(pl, g, last, out);
     if (!r && what[0] == 's') {
         const char *fn = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "apply");
         const char *k = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "strength");
