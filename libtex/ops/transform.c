@@ -74,6 +74,11 @@ static void bilinear(const struct tex_sampler *s, double x, double y, float *out
         p11 = fetch(s, ix + 1, iy + 1);
     }
 
+    if (nc == 1) { /* a grey map, the warp's usual, without the loop: the same sums */
+        float a = p00[0] + (p10[0] - p00[0]) * tx, b = p01[0] + (p11[0] - p01[0]) * tx;
+        out[0] = a + (b - a) * ty;
+        return;
+    }
     for (int c = 0; c < nc; c++) {
         float a = p00[c] + (p10[c] - p00[c]) * tx, b = p01[c] + (p11[c] - p01[c]) * tx;
         out[c] = a + (b - a) * ty;
@@ -91,7 +96,13 @@ static int taps(const double d[2], int maxtaps)
      * that makes a second tap: one tap, as hypot() would give, at less cost. */
     if (fabs(d[0]) + fabs(d[1]) <= 1.0)
         return 1;
-    n = ceil(hypot(d[0], d[1]) - 1e-6);
+    /* sqrt of the squares is within a few ulp of hypot(), which costs four times more:
+     * its ceiling is hypot()'s unless the length lies within 1e-9 of a whole number (or
+     * overflows), where hypot() decides */
+    n = sqrt(d[0] * d[0] + d[1] * d[1]) - 1e-6;
+    if (!(n < 1e6 && n - floor(n) > 1e-9 && ceil(n) - n > 1e-9))
+        n = hypot(d[0], d[1]) - 1e-6;
+    n = ceil(n);
     return n < 1 ? 1 : n > maxtaps ? maxtaps : (int)n;
 }
 
@@ -112,10 +123,14 @@ void tex_sample(const struct tex_sampler *s, double x, double y, const double du
         bilinear(s, x, y, out);
         return;
     }
+    double as[64]; /* the taps' offsets along u, divided once rather than per row */
+    int once = nu <= 64;
+    for (int i = 0; once && i < nu; i++)
+        as[i] = (i + 0.5) / nu - 0.5;
     for (int j = 0; j < nv; j++) {
         double b = (j + 0.5) / nv - 0.5;
         for (int i = 0; i < nu; i++) {
-            double a = (i + 0.5) / nu - 0.5;
+            double a = once ? as[i] : (i + 0.5) / nu - 0.5;
             bilinear(s, x + a * du[0] + b * dv[0], y + a * du[1] + b * dv[1], v);
             for (int c = 0; c < nc; c++)
                 acc[c] += v[c];

@@ -241,6 +241,16 @@ class Editor:
                        " e.dispatchEvent(new Event(%s)); return e.value; })()"
                        % (json.dumps(selector), json.dumps(value), json.dumps(event)))
 
+    def palette_step(self, palette):
+        """Add a palette step, then choose PALETTE in it, each edit's preview waited for."""
+        v = self.version()
+        self.js("(() => { document.getElementById('stepkind').value = 'palette';"
+                " document.getElementById('addstep').click(); })()")
+        self.settled(v)
+        v = self.version()
+        self.set("#steps .steparg", palette, "change")
+        return self.settled(v)
+
     def pick(self, name):
         v = self.version()
         self.set("#prim", name, "change")
@@ -250,7 +260,7 @@ class Editor:
         """A screenshot of the preview as the page shows it, kept in SHOTS; its box is then the
         whole image (decoding a whole page in Python would cost seconds)."""
         x, y, w, h = self.js("(() => { const r = document.getElementById('preview').getBoundingClientRect();"
-                             " return [r.x, r.y, r.width, r.height]; })()")
+                             " return [r.x + scrollX, r.y + scrollY, r.width, r.height]; })()")  # the clip's are the page's
         png = base64.b64decode(self.page.call("Page.captureScreenshot", format="png", clip={
             "x": x, "y": y, "width": w, "height": h, "scale": 1})["data"])
         self.n += 1
@@ -437,13 +447,7 @@ def project(page, work, shots):
     lines = [l for l in open(os.path.join(work, "leaf.pal")).read().splitlines() if not l.startswith("#")]
     say(lines == ["space rgb", "0 #102030", "0.3 #40a060", "1 #e0c040"],
         "the palette editor saves any number of stops", lines)
-    v = ed.version()
-    page.js("(() => { document.getElementById('stepkind').value = 'palette';"
-            " document.getElementById('addstep').click(); })()")
-    ed.settled(v)
-    v = ed.version()
-    ed.set("#steps .steparg", "leaf.pal", "change")
-    ed.settled(v)
+    ed.palette_step("leaf.pal")
     ed.set("#size", "300")
     before = page.js(PREVIEW)
     png_before, box = ed.shot("project-before")
@@ -512,13 +516,7 @@ def graph(page, work, shots):
     v = ed.version()
     ed.set("#params [data-name=rings]", "5.5")
     ed.settled(v)
-    v = ed.version()
-    page.js("(() => { document.getElementById('stepkind').value = 'palette';"
-            " document.getElementById('addstep').click(); })()")
-    ed.settled(v)
-    v = ed.version()
-    ed.set("#steps .steparg", "marble", "change")
-    ed.settled(v)
+    ed.palette_step("marble")
     h_steps = page.js(PREVIEW)
     v = ed.version()
     page.js("document.getElementById('tograph').click()")
@@ -572,6 +570,17 @@ def graph(page, work, shots):
     stats = ed.preview_stats("graph-output")
     say(stats["colours"] > 50 and stats["spread"] > 5, "the output's preview is a textured map", stats)
     h_out = ed.js(PREVIEW)
+    # the last node scrolled into view: the previews stay in view, the same pixels
+    ed.js("document.querySelector('#nodes .node:last-child').scrollIntoView()")
+    time.sleep(0.3)
+    top, bottom, high, scrolled = ed.js("(() => { const r = document.getElementById('preview')"
+                                        ".getBoundingClientRect(); return [r.top, r.bottom, innerHeight, scrollY]; })()")
+    there = ed.preview_stats("graph-scrolled")
+    ed.page_shot("graph-scrolled-page")
+    say(scrolled > 0 and 0 <= top and bottom <= high and abs(there["mean"] - stats["mean"]) < 0.5
+        and there["colours"] == stats["colours"], "the previews stay in view while the graph panel scrolls",
+        (top, bottom, high, scrolled, stats, there))
+    ed.js("window.scrollTo(0, 0)")
     # export at the preview's size, run it in a shell: the same bytes
     ed.js("document.getElementById('size').value = 256; document.getElementById('name').value = 'fan.png';")
     ed.js("document.getElementById('status').textContent = '';"

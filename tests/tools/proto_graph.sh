@@ -146,8 +146,11 @@ fan3 = json.loads(json.dumps(fan))
 fan3["nodes"][0]["params"]["frequency"] = 5
 s3, c = graph(fan3, size="48")
 k3 = {f: t for f, t in kept().items() if f not in before}
-say(s1 == s2 == s3 == 200 and len(k1) == 2 and set(k2) == set(k1) and len(k3) == 4 and a != b and a != c,
-    "the maps that feed several nodes are kept: editing the output reuses them, editing the noise makes new ones",
+# a preview keeps every node's map but the output's (n, s, w, p, f); the noise's edit remakes
+# those below it (n, w, p, f), the wood's is reused
+say(s1 == s2 == s3 == 200 and len(k1) == 5 and set(k2) == set(k1) and len(k3) == 9 and
+    set(k1) <= set(k3) and a != b and a != c,
+    "every node's map is kept: editing the output reuses them all, editing the noise remakes those below it",
     (s1, s2, s3, len(k1), len(k2), len(k3)))
 # a palette saved again under its name is not taken from a kept map
 pal = lambda c: "space rgb\n0 #000000\n1 %s\n" % c

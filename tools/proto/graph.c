@@ -1,12 +1,13 @@
 /* graph.c - a node graph: nodes (a primitive, or an operator tool, with their parameters),
  * edges carrying maps into input slots, one output node.  The graph is checked whole
  * before anything runs (ids, kinds, slots, cycles, dangling inputs, every parameter as the
- * single-primitive page checks it), each message naming its node.  It runs as chains: a
- * node whose map feeds one node only pipes into it (its standard input), any other map
- * goes to a file in the temporary folder (ID.exr in the shell export).  The export is the
- * preview's words with those names, so it gives the same bytes.  A file is named by a hash
- * of the words that make it (its inputs named the same way, so of its whole upstream), and
- * kept for the next request: an edit reruns only the chains downstream of it. */
+ * single-primitive page checks it), each message naming its node.  It runs as chains: in
+ * the shell export (and previews above FILES_SIDE) a node whose map feeds one node only
+ * pipes into it (its standard input); any other map goes to a file in the temporary folder
+ * (ID.exr in the export).  The export is the preview's words with those names, so it gives
+ * the same bytes.  A file is named by a hash of the words that make it (its inputs named
+ * the same way, so of its whole upstream), and kept for the next request: an edit reruns
+ * only the nodes downstream of it. */
 #include <dirent.h>
 #include <fcntl.h>
 #include <limits.h>
@@ -117,11 +118,9 @@ static int check_operand(struct pipeline *pl, struct gnode *n)
     return fail(pl, "unknown palette '%.40s'", v);
 }
 
-/* The graph read from its JSON and checked: nodes, edges, the output, no cycle. */
-static int graph_load(struct pipeline *pl, struct graph *g, const struct tex_json *doc)
+/* The graph's nodes: ids unique names, kinds known, params objects, operands valid. */
+static int load_nodes(struct pipeline *pl, struct graph *g, const struct tex_json *nodes)
 {
-    const struct tex_json *nodes, *edges, *out;
-    nodes = tex_json_get(doc, "nodes");
     if (!nodes || nodes->type != TEX_JSON_ARRAY || nodes->n < 1)
         return fail(pl, "the graph has no \"nodes\" (an array of objects)");
     if (nodes->n > MAX_NODES)
@@ -150,7 +149,12 @@ static int graph_load(struct pipeline *pl, struct graph *g, const struct tex_jso
         if (n->k && n->k->operand && check_operand(pl, n) < 0)
             return at_node(pl, n);
     }
-    edges = tex_json_get(doc, "edges");
+    return 0;
+}
+
+/* The graph's edges: each from a node into a free slot of an operator node. */
+static int load_edges(struct pipeline *pl, struct graph *g, const struct tex_json *edges)
+{
     if (edges && edges->type != TEX_JSON_ARRAY)
         return fail(pl, "the graph's \"edges\" must be an array");
     for (int i = 0; edges && i < edges->n; i++) {
@@ -171,11 +175,12 @@ static int graph_load(struct pipeline *pl, struct graph *g, const struct tex_jso
             return fail(pl, "node '%s': input '%s' is fed twice", g->n[b].id, slot);
         g->n[b].in[s] = a;
     }
-    out = tex_json_get(doc, "output");
-    g->out = out ? find_id(g, value_text(out)) : g->nn == 1 ? 0 : -1;
-    if (g->out < 0)
-        return fail(pl, "the graph's \"output\" must name one of its nodes");
-    /* the order, and a cycle found as the nodes left over */
+    return 0;
+}
+
+/* g->order, every node after those feeding it; a cycle found as the nodes left over. */
+static int graph_order(struct pipeline *pl, struct graph *g)
+{
     int done[MAX_NODES] = {0}, k = 0;
     for (int progress = 1; progress;) {
         progress = 0;
@@ -201,6 +206,20 @@ static int graph_load(struct pipeline *pl, struct graph *g, const struct tex_jso
             return fail(pl, "the graph has a cycle through node '%s'", g->n[i].id);
         }
     return 0;
+}
+
+/* The graph read from its JSON and checked: nodes, edges, the output, no cycle. */
+static int graph_load(struct pipeline *pl, struct graph *g, const struct tex_json *doc)
+{
+    const struct tex_json *out;
+    if (load_nodes(pl, g, tex_json_get(doc, "nodes")) < 0 ||
+        load_edges(pl, g, tex_json_get(doc, "edges")) < 0)
+        return -1;
+    out = tex_json_get(doc, "output");
+    g->out = out ? find_id(g, value_text(out)) : g->nn == 1 ? 0 : -1;
+    if (g->out < 0)
+        return fail(pl, "the graph's \"output\" must name one of its nodes");
+    return graph_order(pl, g);
 }
 
 static int graph_read(struct pipeline *pl, struct graph *g, const char *text)
@@ -292,85 +311,91 @@ static unsigned long long words_key(const struct pipeline *pl)
     return h;
 }
 
-/* Node i's stage: its tool, operand, inputs (standard input where one pipes in, else the
- * map's file; a constant where t_op's params give one), parameters and size. */
-static int node_stage(struct pipeline *pl, const struct graph *g, int i, int export)
+/* A primitive node's stage: its tool (t_expr for a composed one), size and parameters. */
+static int prim_stage(struct pipeline *pl, const struct graph *g, const struct gnode *n)
+{
+    const struct tex_json *ps = n->params;
+    if (tex_primitive_find(n->prim->name) ? stage(pl, word(pl, "t_%s", n->prim->name))
+                                          : stage(pl, "t_expr") | arg(pl, "--defs") |
+                                                arg(pl, proto.defs) | arg(pl, n->prim->name))
+        return -1;
+    if (arg(pl, word(pl, "-s%d", g->size)) < 0)
+        return -1;
+    for (int m = 0; ps && m < ps->n; m++) {
+        const char *key = ps->item[m].key, *v = value_text(&ps->item[m]);
+        const struct tex_param *row;
+        double x;
+        if (!v)
+            return fail(pl, "%s: a value is a string or a number", key);
+        if (!strcmp(key, "seed")) {
+            if (tex_parse_real(v, &x) < 0 || x != (int)x || x < 0 || x > TEX_SEED_MAX)
+                return fail(pl, "seed must be 0..%d (got '%.20s')", TEX_SEED_MAX, v);
+            if (arg(pl, word(pl, "-S%d", (int)x)) < 0)
+                return -1;
+        } else if (!strcmp(key, "tile") || !strcmp(key, "ids")) { /* common flags */
+            if (strcmp(v, "0") && strcmp(v, "1"))
+                return fail(pl, "%s is 0 or 1 (got '%.20s')", key, v);
+            if (!strcmp(v, "1") && arg(pl, word(pl, "--%s", key)) < 0)
+                return -1;
+        } else if (!(row = tex_param_find(n->prim->params, key))) {
+            return fail(pl, "%s has no parameter '%.40s'", n->prim->name, key);
+        } else if (param_arg(pl, row, v) < 0) {
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* t_op's constant operand for a slot no node feeds: a number or r,g,b[,a]. */
+static int op_constant(struct pipeline *pl, const char *slot, const char *c)
+{
+    char buf[128], *save = NULL;
+    int ok = strlen(c) < sizeof buf;
+    double x;
+    snprintf(buf, sizeof buf, "%s", c);
+    for (char *t = strtok_r(buf, ",", &save); t && ok; t = strtok_r(NULL, ",", &save))
+        ok = tex_parse_real(t, &x) == 0;
+    return ok ? 0 : fail(pl, "input '%s' is a node's map or a constant such as 0.5 or 1,0,0 "
+                         "(got '%.20s')", slot, c);
+}
+
+/* An operator node's inputs, in slot order: standard input where one pipes in, else the
+ * map's file, or a constant where t_op's params give one. */
+static int op_inputs(struct pipeline *pl, const struct graph *g, int i, int export)
 {
     const struct gnode *n = &g->n[i];
-    const struct tex_json *ps = n->params;
-    if (n->prim) {
-        if (tex_primitive_find(n->prim->name) ? stage(pl, word(pl, "t_%s", n->prim->name))
-                                              : stage(pl, "t_expr") | arg(pl, "--defs") |
-                                                    arg(pl, proto.defs) | arg(pl, n->prim->name))
-            return at_node(pl, n);
-        if (arg(pl, word(pl, "-s%d", g->size)) < 0)
-            return at_node(pl, n);
-        for (int m = 0; ps && m < ps->n; m++) {
-            const char *key = ps->item[m].key, *v = value_text(&ps->item[m]);
-            const struct tex_param *row;
-            double x;
-            if (!v)
-                return fail(pl, "%s: a value is a string or a number", key), at_node(pl, n);
-            if (!strcmp(key, "seed")) {
-                if (tex_parse_real(v, &x) < 0 || x != (int)x || x < 0 || x > TEX_SEED_MAX)
-                    return fail(pl, "seed must be 0..%d (got '%.20s')", TEX_SEED_MAX, v),
-                           at_node(pl, n);
-                if (arg(pl, word(pl, "-S%d", (int)x)) < 0)
-                    return at_node(pl, n);
-            } else if (!strcmp(key, "tile") || !strcmp(key, "ids")) { /* common flags */
-                if (strcmp(v, "0") && strcmp(v, "1"))
-                    return fail(pl, "%s is 0 or 1 (got '%.20s')", key, v), at_node(pl, n);
-                if (!strcmp(v, "1") && arg(pl, word(pl, "--%s", key)) < 0)
-                    return at_node(pl, n);
-            } else if (!(row = tex_param_find(n->prim->params, key))) {
-                return fail(pl, "%s has no parameter '%.40s'", n->prim->name, key),
-                       at_node(pl, n);
-            } else if (param_arg(pl, row, v) < 0) {
-                return at_node(pl, n);
-            }
-        }
-        return 0;
-    }
     int need, most, fed = 0;
     arity(n, &need, &most);
-    if (stage(pl, n->k->tool) < 0)
-        return at_node(pl, n);
-    if (n->k->operand && arg(pl, is_saved_palette(n->operand)
-                                     ? word(pl, "%s/%s", proto.dir, n->operand)
-                                     : word(pl, "%s", n->operand)) < 0)
-        return at_node(pl, n);
     for (int s = 0; s < MAX_SLOTS && n->k->slots[s]; s++) {
         const char *slot = n->k->slots[s], *w, *c = NULL;
         int src = n->in[s];
-        double x;
-        if (src < 0 && !strcmp(n->k->name, "op") && (c = member_text(ps, slot))) {
-            /* a constant operand: a number or r,g,b[,a] */
-            char buf[128], *save = NULL;
-            int ok = strlen(c) < sizeof buf;
-            snprintf(buf, sizeof buf, "%s", c);
-            for (char *t = strtok_r(buf, ",", &save); t && ok; t = strtok_r(NULL, ",", &save))
-                ok = tex_parse_real(t, &x) == 0;
-            if (!ok)
-                return fail(pl, "input '%s' is a node's map or a constant such as 0.5 or "
-                            "1,0,0 (got '%.20s')", slot, c), at_node(pl, n);
-        }
+        if (src < 0 && !strcmp(n->k->name, "op") && (c = member_text(n->params, slot)) &&
+            op_constant(pl, slot, c) < 0)
+            return -1;
         if (src < 0 && !c) {
             if (s < need)
-                return fail(pl, "input '%s' is not connected", slot), at_node(pl, n);
+                return fail(pl, "input '%s' is not connected", slot);
             continue;
         }
         if (s >= most)
             return fail(pl, "%s takes %d input%s (input '%s' is connected)", n->operand, most,
-                        most > 1 ? "s" : "", slot), at_node(pl, n);
+                        most > 1 ? "s" : "", slot);
         w = c ? word(pl, "%s", c) : g->n[src].pipe == i ? "-" : map_path(pl, g, src, export);
         if (!strcmp(n->k->name, "cascade") && s > 0)
             w = w ? word(pl, "%s=%s", slot, w) : NULL;
         if (arg(pl, w) < 0)
-            return at_node(pl, n);
+            return -1;
         fed++;
     }
     if (fed < need) /* cascade: the region-id map and at least one region */
-        return fail(pl, "needs %d inputs connected", need), at_node(pl, n);
+        return fail(pl, "needs %d inputs connected", need);
+    return 0;
+}
+
+/* An operator node's parameters but its operand and t_op's constants, by its tool's rows. */
+static int op_params(struct pipeline *pl, const struct gnode *n)
+{
+    const struct tex_json *ps = n->params;
     for (int m = 0; ps && m < ps->n; m++) {
         const char *key = ps->item[m].key, *v = value_text(&ps->item[m]);
         const struct tex_json *row;
@@ -378,20 +403,35 @@ static int node_stage(struct pipeline *pl, const struct graph *g, int i, int exp
             (!strcmp(n->k->name, "op") && slot_index(n, key) >= 0))
             continue;
         if (!v)
-            return fail(pl, "%s: a value is a string or a number", key), at_node(pl, n);
+            return fail(pl, "%s: a value is a string or a number", key);
         if (!(row = kind_row(n->k, key)))
-            return fail(pl, "%s has no parameter '%.40s'", n->k->tool, key), at_node(pl, n);
+            return fail(pl, "%s has no parameter '%.40s'", n->k->tool, key);
         if (kind_param(pl, row, key, v) < 0)
-            return at_node(pl, n);
+            return -1;
     }
-    if (n->k->sized && arg(pl, word(pl, "-s%d", g->size)) < 0)
+    return 0;
+}
+
+/* Node i's stage: its tool, operand, inputs, parameters and size; a message names it. */
+static int node_stage(struct pipeline *pl, const struct graph *g, int i, int export)
+{
+    const struct gnode *n = &g->n[i];
+    if (n->prim)
+        return prim_stage(pl, g, n) < 0 ? at_node(pl, n) : 0;
+    if (stage(pl, n->k->tool) < 0 ||
+        (n->k->operand && arg(pl, is_saved_palette(n->operand)
+                                      ? word(pl, "%s/%s", proto.dir, n->operand)
+                                      : word(pl, "%s", n->operand)) < 0) ||
+        op_inputs(pl, g, i, export) < 0 || op_params(pl, n) < 0 ||
+        (n->k->sized && arg(pl, word(pl, "-s%d", g->size)) < 0))
         return at_node(pl, n);
     return 0;
 }
 
 /* The nodes upstream of target, checked (inputs fed, every parameter), and the chains:
- * a node whose map feeds one node there pipes into it, in its first such slot. */
-static int graph_select(struct pipeline *pl, struct graph *g, int target)
+ * with pipes, a node whose map feeds one node there pipes into it, in its first such slot;
+ * without, every map is a file of its own. */
+static int graph_select(struct pipeline *pl, struct graph *g, int target, int pipes)
 {
     g->target = target;
     g->n[target].want = 1;
@@ -410,7 +450,8 @@ static int graph_select(struct pipeline *pl, struct graph *g, int target)
         n->depth = 1;
         for (int s = 0; n->want && s < MAX_SLOTS; s++) {
             int src = n->in[s];
-            if (src >= 0 && !piped && g->n[src].cons == 1 && g->n[src].depth < MAX_STAGES) {
+            if (pipes && src >= 0 && !piped && g->n[src].cons == 1 &&
+                g->n[src].depth < MAX_STAGES) {
                 g->n[src].pipe = i;
                 n->depth = g->n[src].depth + 1;
                 piped = 1;
@@ -544,8 +585,15 @@ static int graph_run(struct pipeline *pl, struct graph *g, const char *last, str
     return rc;
 }
 
-/* The graph of a request, its target (node=ID, else the output) selected and checked. */
-static int request_graph(struct MHD_Connection *c, struct pipeline *pl, struct graph *g)
+/* Up to this side a preview keeps every node's map as a file: it costs what a pipe does
+ * (tests/bench/proto) and spares rerunning the nodes above an edit; bigger maps pipe, or a
+ * few nodes would fill the kept files' KEEP_BYTES. */
+#define FILES_SIDE 1024
+
+/* The graph of a request, its target (node=ID, else the output) selected and checked: an
+ * export pipes where a map feeds one node, a preview as FILES_SIDE says. */
+static int request_graph(struct MHD_Connection *c, struct pipeline *pl, struct graph *g,
+                         int export)
 {
     const char *node = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "node");
     int t;
@@ -554,7 +602,7 @@ static int request_graph(struct MHD_Connection *c, struct pipeline *pl, struct g
         return -1;
     if ((t = node ? find_id(g, node) : g->out) < 0)
         return fail(pl, "no node '%.40s' in the graph", node);
-    return graph_select(pl, g, t);
+    return graph_select(pl, g, t, export || g->size > FILES_SIDE);
 }
 
 /* A value for a t_compose script: a number, a name, else a quoted string. */
@@ -646,7 +694,7 @@ int graph_export(struct MHD_Connection *c, struct pipeline *pl, const char *form
     form = form ? form : "sh";
     if (!g)
         return fail(pl, "out of memory");
-    if (request_graph(c, pl, g) < 0)
+    if (request_graph(c, pl, g, 1) < 0)
         goto done;
     if (!strcmp(form, "sh") || !strcmp(form, "apply")) {
         int apply = form[0] == 'a';
@@ -726,7 +774,7 @@ unsigned api_graph(struct MHD_Connection *c, struct pipeline *pl, struct tex_str
         return fail(pl, "out of memory"), 500;
     snprintf(map, sizeof map, "%s/map.%lx.exr", proto.tmpdir, (unsigned long)pthread_self());
     snprintf(last, sizeof last, what[0] == 's' ? "-o%s" : "--format=png", map);
-    r = request_graph(c, pl, g) < 0 ? 2 : graph_run(pl, g, last, out);
+    r = request_graph(c, pl, g, 0) < 0 ? 2 : graph_run(pl, g, last, out);
     if (!r && what[0] == 's') {
         const char *fn = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "apply");
         const char *k = MHD_lookup_connection_value(c, MHD_GET_ARGUMENT_KIND, "strength");
