@@ -69,6 +69,16 @@ HOT static void hpass_row(const float *pad, float *out, int n, int nc, const flo
     }
 }
 
+/* Pixels x0..x1-1 of a row of w padded by r on each side, outside the row: copies by the
+ * edge rule, as far as the kernel reaches */
+static void pad_edge(float *pad, const float *row, long x0, long x1, int w, int nc, int r,
+                     enum tex_edge e)
+{
+    for (long x = x0; x < x1; x++)
+        memcpy(pad + (size_t)(x + r) * nc, row + (size_t)tex_edge_index(x, w, e) * nc,
+               nc * sizeof *pad);
+}
+
 /* Rows y0..y1-1 of src's vertical pass into dst's rows y0-skip.. */
 HOT static void vpass_strip(const tex_map *src, tex_map *dst, int skip, int i0, int len, int y0,
                             int y1, const float *k, int r, enum tex_edge e)
@@ -127,12 +137,8 @@ tex_map *tex_filter_separable_rows(const tex_map *m, const float *k, int r, enum
             if (!pad)
                 continue;
             memcpy(pad + (size_t)r * nc, row, (size_t)n * sizeof *pad);
-            for (long x = -r; x < 0; x++) /* the edges: copies, as far as the kernel reaches */
-                memcpy(pad + (size_t)(x + r) * nc, row + (size_t)tex_edge_index(x, m->w, e) * nc,
-                       nc * sizeof *pad);
-            for (long x = m->w; x < m->w + r; x++)
-                memcpy(pad + (size_t)(x + r) * nc, row + (size_t)tex_edge_index(x, m->w, e) * nc,
-                       nc * sizeof *pad);
+            pad_edge(pad, row, -r, 0, m->w, nc, r, e);
+            pad_edge(pad, row, m->w, m->w + r, m->w, nc, r, e);
             hpass_row(pad, tex_map_row(tmp, y), n, nc, k, r);
         }
         free(pad);

@@ -551,8 +551,9 @@ static int plain_file(const char *name, char *buf, size_t n)
 {
     struct find_ctx c = {name, buf, n};
     struct stat st;
-    return !is_file_name(name) && !each_dir(find_in, &c) && stat(name, &st) == 0 &&
-           S_ISREG(st.st_mode) && (size_t)snprintf(buf, n, "%s", name) < n;
+    /* the folders are searched only for a name a file has: tex_palette_find searches them */
+    return !is_file_name(name) && stat(name, &st) == 0 && S_ISREG(st.st_mode) &&
+           !each_dir(find_in, &c) && (size_t)snprintf(buf, n, "%s", name) < n;
 }
 
 tex_palette *tex_palette_load(const char *name_or_file)
@@ -739,9 +740,6 @@ static int stops_counted(const tex_palette *p)
     return 1;
 }
 
-/* n values of v coloured into out (nc channels each): tex_palette_lookup's colours, those
- * mixed in OKLab taken to sRGB together (oklab_srgb_n) */
-enum { COLOUR_RUN = 256 };
 /* p's stops in lanes for the AVX-512 kernel, when the CPU has it and they fit: 1 */
 static int palette_lanes(const tex_palette *p, struct tex_palette_lanes *l)
 {
@@ -766,8 +764,10 @@ static int palette_lanes(const tex_palette *p, struct tex_palette_lanes *l)
 #endif
 }
 
-/* The run v[0..n) coloured into out, nc floats a pixel: where the CPU has AVX-512 and the
+/* n values of v coloured into out (nc channels each): tex_palette_lookup's colours, those
+ * mixed in OKLab taken to sRGB together (oklab_srgb_n); where the CPU has AVX-512 and the
  * palette fits its lanes (l), sixteen at a time with the same floats */
+enum { COLOUR_RUN = 256 };
 static void colour_run(const tex_palette *p, int counted, const struct tex_palette_lanes *l,
                        const float *v, int n, double lo, double hi, enum tex_outside outside,
                        float *out, int nc)

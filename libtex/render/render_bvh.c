@@ -406,6 +406,28 @@ static inline int seen(uint64_t visit, int i)
     return visit >> (i < TEX_VIEW_OBJECTS ? i : TEX_VIEW_OBJECTS) & 1;
 }
 
+/* Which of inner node ni's children r enters within tmin..tmax (bit 0 the left, bit 1 the
+ * right), at distances *tl and *tr */
+static inline __attribute__((always_inline)) int children(const struct tex_bvh *t, int ni,
+                                                          const struct ray *r, double tmin,
+                                                          double tmax, double *tl, double *tr)
+{
+    int l = ni + 1, rt = t->nodes[ni].first;
+    /* the walk waits on memory: ask for both children while their boxes are tested */
+    __builtin_prefetch(&t->nodes[rt]);
+    __builtin_prefetch(&t->pairs[rt]);
+    __builtin_prefetch(&t->pairs[l]);
+#ifdef TEX_X86 /* both children at once: the same answers */
+    double tc[2];
+    int both = tex_box_pair_sse2(&t->pairs[ni], &r->o, &r->inv, tmin, tmax, tc);
+    *tl = tc[0], *tr = tc[1];
+    return both;
+#else
+    return hit_box(&t->nodes[l].b, r, tmin, tmax, tl) |
+           hit_box(&t->nodes[rt].b, r, tmin, tmax, tr) << 1;
+#endif
+}
+
 /* Inlined into the entry points: the closest-hit one loses every test of any; tree = 0 (a
  * ray known to miss the tree's box) tests the unbounded objects alone, which need neither
  * 1/d nor 1/d.d. */
@@ -455,20 +477,8 @@ static inline __attribute__((always_inline)) int bvh_trace(const struct tex_bvh 
             }
         } else {
             double tl, tr;
-            int l = ni + 1, rt = n->first;
-            /* the walk waits on memory: ask for both children while their boxes are tested */
-            __builtin_prefetch(&t->nodes[rt]);
-            __builtin_prefetch(&t->pairs[rt]);
-            __builtin_prefetch(&t->pairs[l]);
-#ifdef TEX_X86 /* both children at once: the same answers */
-            double tc[2];
-            int both = tex_box_pair_sse2(&t->pairs[ni], &r.o, &r.inv, tmin, tmax, tc);
+            int l = ni + 1, rt = n->first, both = children(t, ni, &r, tmin, tmax, &tl, &tr);
             int hl = both & 1, hr = both >> 1;
-            tl = tc[0], tr = tc[1];
-#else
-            int hl = hit_box(&t->nodes[l].b, &r, tmin, tmax, &tl);
-            int hr = hit_box(&t->nodes[rt].b, &r, tmin, tmax, &tr);
-#endif
             if (hl && hr) {
                 /* visit the nearer first; the farther waits with its entry distance */
                 stack[sp].node = tl <= tr ? rt : l;

@@ -65,6 +65,37 @@ static tex_map *median1(const tex_map *m, enum tex_edge e) { return tex_filter_m
 static tex_map *normal4(const tex_map *m, enum tex_edge e) { return tex_filter_normal(m, 4, e); }
 static tex_map *box2(const tex_map *m, enum tex_edge e) { return tex_filter_box(m, 2, e); }
 
+/* A band of a stream (tex_filter_*_rows): its own rows have the whole map's bits when its
+ * context rows cover the kernel's reach; a band with no rows of its own is refused. */
+static void test_band_rows(void)
+{
+    tex_map *m = unit_random_map(37, 41, 3, 5), *band = tex_map_new(37, 11 + 2 * 6, 3);
+    tex_map *whole[3] = {tex_filter_blur(m, 1.2, TEX_EDGE_CLAMP), tex_filter_box(m, 3, TEX_EDGE_WRAP),
+                         tex_filter_smooth(m, TEX_EDGE_MIRROR)};
+    size_t row = (size_t)m->w * m->nc;
+    int same = 0, bands = 0;
+    for (int y0 = 6; y0 + 11 + 6 <= m->h; y0 += 11, bands++) { /* rows y0..y0+10, 6 of context */
+        memcpy(band->px, tex_map_row(m, y0 - 6), row * band->h * sizeof *band->px);
+        tex_map *b[3] = {tex_filter_blur_rows(band, 1.2, TEX_EDGE_CLAMP, 6),
+                         tex_filter_box_rows(band, 3, TEX_EDGE_WRAP, 6),
+                         tex_filter_smooth_rows(band, TEX_EDGE_MIRROR, 6)};
+        for (int k = 0; k < 3; k++) {
+            same += b[k] && b[k]->h == 11 &&
+                    !memcmp(b[k]->px, tex_map_row(whole[k], y0), row * 11 * sizeof *band->px);
+            tex_map_free(b[k]);
+        }
+    }
+    CHECKF(bands == 2 && same == 3 * bands, "blur, box and smooth of %d bands: the whole map's "
+           "bits in their own rows (%d of %d)", bands, same, 3 * bands);
+    tex_map *none = tex_filter_blur_rows(band, 1.2, TEX_EDGE_CLAMP, 12);
+    CHECKF(!none && strstr(tex_errmsg(), "no rows between its 12 rows of context"),
+           "a band with no rows of its own is refused (%s)", tex_errmsg());
+    for (int k = 0; k < 3; k++)
+        tex_map_free(whole[k]);
+    tex_map_free(band);
+    tex_map_free(m);
+}
+
 int main(void)
 {
     tex_map *m, *b;
@@ -226,5 +257,6 @@ int main(void)
     b = tex_filter_median(m, 20, TEX_EDGE_WRAP);
     CHECK(!b && strstr(tex_errmsg(), "1..15"), "a median radius above 15 is refused");
     tex_map_free(m);
+    test_band_rows();
     return unit_done();
 }

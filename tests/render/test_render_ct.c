@@ -113,6 +113,81 @@ static int highlight_cut(const struct tex_colour_space *cs, int *wrong)
     return near;
 }
 
+/* Reflection and transmission weights, the Fresnel table against the formula, and a
+ * surface without model data, under light E */
+static void weights(const struct tex_colour_space *cs, struct tex_matdb *db, const tex_colour *E)
+{
+    struct tex_ct ct;
+    struct tex_material mat;
+    memset(&mat, 0, sizeof mat);
+    mat.ior = 1.5;
+    mat.kr = mat.kt = 1;
+    tex_ct_init(&ct, cs, tex_matdb_find(db, "bk7"), TEX_FACET_BECKMANN, 0.1, 0, 0.5);
+    tex_ct_material(&mat, &ct);
+    tex_colour kr, kt, out;
+    double worst = 0;
+    for (double c = -1; c <= 1; c += 0.05) {
+        mat.model->weights(&mat, c, cs->n, &kr, &kt);
+        for (int i = 0; i < cs->n; i++)
+            worst = fmax(worst, fabs(kr.v[i] + kt.v[i] - 1));
+    }
+    CHECKF(worst < 1e-6, "glass: Fr + Ft = 1 per band, from both sides (%.2g)", worst);
+    mat.model->weights(&mat, 1, cs->n, &kr, &kt);
+    CHECKF(fabs(kr.v[8] - 0.042) < 0.003, "BK7 reflects about 4.2%% at normal incidence (%.4f)",
+           kr.v[8]);
+    mat.model->weights(&mat, -0.3, cs->n, &kr, &kt);
+    CHECK(kr.v[0] == 1 && kt.v[0] == 0, "inside glass at a grazing angle: total internal reflection");
+    tex_ct_init(&ct, cs, tex_matdb_find(db, "copper"), TEX_FACET_BECKMANN, 0.1, 0, 0.5);
+    mat.model->weights(&mat, 0.9, cs->n, &kr, &kt);
+    CHECKF(kt.v[0] == 0 && kr.v[cs->n - 1] > kr.v[0] + 0.2,
+           "copper: no transmission, reflects more red than blue (%.3f vs %.3f)", kr.v[cs->n - 1],
+           kr.v[0]);
+    worst = 0;
+    for (double c = 0; c <= 1; c += 0.01) {
+        mat.model->weights(&mat, c, cs->n, &kr, &kt);
+        for (int i = 0; i < cs->n; i++)
+            worst = fmax(worst, fabs(kr.v[i] - tex_fresnel_conductor(c, 1, ct.eta.v[i], ct.k.v[i])));
+    }
+    CHECKF(worst < 1e-5, "copper: the per-spectrum Fresnel equals tex_fresnel_conductor (%.2g)",
+           worst);
+    /* The renderer's table (tex_ct_tabulate) against the formula, every
+     * material of the database (glasses from outside), between and on its steps. */
+    static const char *const tabled[] = {"gold",      "silver",    "copper", "aluminium",
+                                         "chromium",  "stainless", "bk7",    "dielectric"};
+    double worst_table = 0;
+    int tables = 0;
+    for (size_t m = 0; m < sizeof tabled / sizeof *tabled; m++) {
+        const struct tex_matdb_entry *e = tex_matdb_find(db, tabled[m]);
+        if (!e || tex_ct_init(&ct, cs, e, TEX_FACET_BECKMANN, 0.1, 0, 0.5) < 0 ||
+            tex_ct_tabulate(&ct, cs->n) < 0)
+            continue;
+        tables += ct.table != NULL;
+        for (int j = 0; j <= 4000; j++) {
+            double c = j / 4000.0;
+            mat.model->weights(&mat, c, cs->n, &kr, &kt);
+            for (int i = 0; i < cs->n; i++) {
+                double f = ct.conductor ? tex_fresnel_conductor(c, 1, ct.eta.v[i], ct.k.v[i])
+                                        : tex_fresnel_dielectric(c, 1, ct.eta.v[i], NULL);
+                worst_table = fmax(worst_table, fabs(kr.v[i] - f));
+            }
+        }
+        tex_ct_untabulate(&ct);
+    }
+    CHECKF(tables == 8 && worst_table < 2e-5,
+           "the Fresnel table is within 2e-5 of the formula (%d tables, worst %.2g)", tables,
+           worst_table);
+    CHECK(tex_ct_init(&ct, cs, NULL, TEX_FACET_BECKMANN, 0, 0, 0.5) < 0 &&
+              tex_ct_init(&ct, cs, NULL, TEX_FACET_BECKMANN, 0.2, 0, 1.5) < 0,
+          "bad roughness or specular fraction: usage errors");
+    tex_ct_material(&mat, NULL);
+    mat.model->weights(&mat, 1, cs->n, &kr, &kt);
+    tex_colour_set(&out, cs->n, 0);
+    double N0[3] = {0, 0, 1};
+    mat.model->direct(&mat, N0, N0, N0, E, cs->n, &out);
+    CHECKF(fabs(kr.v[0] - 0.04) < 1e-6 && out.v[0] > 0,
+           "without model data: a dielectric of the surface's ior (Fr %.4f)", kr.v[0]);
+}
+
 int main(void)
 {
     struct tex_colour_space cs, rgbcs;
@@ -175,76 +250,7 @@ int main(void)
     highlight(&cs, tex_matdb_find(&db, "gold"), rgb);
     CHECK(!memcmp(again, rgb, sizeof rgb), "shading is deterministic");
 
-    /* Reflection and transmission weights. */
-    struct tex_ct ct;
-    struct tex_material mat;
-    memset(&mat, 0, sizeof mat);
-    mat.ior = 1.5;
-    mat.kr = mat.kt = 1;
-    tex_ct_init(&ct, &cs, tex_matdb_find(&db, "bk7"), TEX_FACET_BECKMANN, 0.1, 0, 0.5);
-    tex_ct_material(&mat, &ct);
-    tex_colour kr, kt;
-    double worst = 0;
-    for (double c = -1; c <= 1; c += 0.05) {
-        mat.model->weights(&mat, c, cs.n, &kr, &kt);
-        for (int i = 0; i < cs.n; i++)
-            worst = fmax(worst, fabs(kr.v[i] + kt.v[i] - 1));
-    }
-    CHECKF(worst < 1e-6, "glass: Fr + Ft = 1 per band, from both sides (%.2g)", worst);
-    mat.model->weights(&mat, 1, cs.n, &kr, &kt);
-    CHECKF(fabs(kr.v[8] - 0.042) < 0.003, "BK7 reflects about 4.2%% at normal incidence (%.4f)",
-           kr.v[8]);
-    mat.model->weights(&mat, -0.3, cs.n, &kr, &kt);
-    CHECK(kr.v[0] == 1 && kt.v[0] == 0, "inside glass at a grazing angle: total internal reflection");
-    tex_ct_init(&ct, &cs, tex_matdb_find(&db, "copper"), TEX_FACET_BECKMANN, 0.1, 0, 0.5);
-    mat.model->weights(&mat, 0.9, cs.n, &kr, &kt);
-    CHECKF(kt.v[0] == 0 && kr.v[cs.n - 1] > kr.v[0] + 0.2,
-           "copper: no transmission, reflects more red than blue (%.3f vs %.3f)", kr.v[cs.n - 1],
-           kr.v[0]);
-    worst = 0;
-    for (double c = 0; c <= 1; c += 0.01) {
-        mat.model->weights(&mat, c, cs.n, &kr, &kt);
-        for (int i = 0; i < cs.n; i++)
-            worst = fmax(worst, fabs(kr.v[i] - tex_fresnel_conductor(c, 1, ct.eta.v[i], ct.k.v[i])));
-    }
-    CHECKF(worst < 1e-5, "copper: the per-spectrum Fresnel equals tex_fresnel_conductor (%.2g)",
-           worst);
-    /* The renderer's table (tex_ct_tabulate) against the formula, every
-     * material of the database (glasses from outside), between and on its steps. */
-    static const char *const tabled[] = {"gold",      "silver",    "copper", "aluminium",
-                                         "chromium",  "stainless", "bk7",    "dielectric"};
-    double worst_table = 0;
-    int tables = 0;
-    for (size_t m = 0; m < sizeof tabled / sizeof *tabled; m++) {
-        const struct tex_matdb_entry *e = tex_matdb_find(&db, tabled[m]);
-        if (!e || tex_ct_init(&ct, &cs, e, TEX_FACET_BECKMANN, 0.1, 0, 0.5) < 0 ||
-            tex_ct_tabulate(&ct, cs.n) < 0)
-            continue;
-        tables += ct.table != NULL;
-        for (int j = 0; j <= 4000; j++) {
-            double c = j / 4000.0;
-            mat.model->weights(&mat, c, cs.n, &kr, &kt);
-            for (int i = 0; i < cs.n; i++) {
-                double f = ct.conductor ? tex_fresnel_conductor(c, 1, ct.eta.v[i], ct.k.v[i])
-                                        : tex_fresnel_dielectric(c, 1, ct.eta.v[i], NULL);
-                worst_table = fmax(worst_table, fabs(kr.v[i] - f));
-            }
-        }
-        tex_ct_untabulate(&ct);
-    }
-    CHECKF(tables == 8 && worst_table < 2e-5,
-           "the Fresnel table is within 2e-5 of the formula (%d tables, worst %.2g)", tables,
-           worst_table);
-    CHECK(tex_ct_init(&ct, &cs, NULL, TEX_FACET_BECKMANN, 0, 0, 0.5) < 0 &&
-              tex_ct_init(&ct, &cs, NULL, TEX_FACET_BECKMANN, 0.2, 0, 1.5) < 0,
-          "bad roughness or specular fraction: usage errors");
-    tex_ct_material(&mat, NULL);
-    mat.model->weights(&mat, 1, cs.n, &kr, &kt);
-    tex_colour_set(&out, cs.n, 0);
-    double N0[3] = {0, 0, 1};
-    mat.model->direct(&mat, N0, N0, N0, &E, cs.n, &out);
-    CHECKF(fabs(kr.v[0] - 0.04) < 1e-6 && out.v[0] > 0,
-           "without model data: a dielectric of the surface's ior (Fr %.4f)", kr.v[0]);
+    weights(&cs, &db, &E);
     int bad = remembered_spectra();
     CHECKF(bad == 0, "remembered RGB-to-spectrum conversions give their own bits, space by "
            "space and kind by kind (%d differ)", bad);
