@@ -57,6 +57,24 @@ check_fails() {
     fi
 }
 
+# A sanitizer build runs several times slower and holds more (shadow memory, quarantine):
+# within's bounds grow with it, still far below what a quadratic parser takes.
+tscale=1 mscale=1
+nm "${TEXTURA_BUILD:-}/lib/libtex.a" 2>/dev/null | grep -q __asan_ && tscale=4 mscale=3
+
+# within NAME SECONDS KB CMD...: CMD succeeds in SECONDS and KB of resident memory at most
+within() {
+    local name=$1 s=$(($2 * tscale)) kb=$(($3 * mscale)) st
+    shift 3
+    /usr/bin/time -f '%M' -o "$T/.mem" timeout "$s" "$@" >/dev/null 2>"$T/.err"
+    st=$?
+    if [ "$st" = 0 ] && [ "$(tail -1 "$T/.mem")" -le "$kb" ]; then
+        ok "$name: within $s s and $((kb / 1024)) MB ($(($(tail -1 "$T/.mem") / 1024)) MB)"
+    else
+        notok "$name: within $s s and $((kb / 1024)) MB" "exit $st, $(tail -1 "$T/.mem") KB: $(head -c 200 "$T/.err")"
+    fi
+}
+
 approx() {
     awk -v a="$1" -v b="$2" -v t="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(d <= t) }'
 }

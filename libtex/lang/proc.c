@@ -38,13 +38,20 @@ struct call {
     struct arg *args;
 };
 
+/* A definition's parameters: the rows point at the names, so the block never moves. */
+struct pblock {
+    struct tex_param rows[TEX_PROC_MAX_PARAMS + 1];
+    char names[TEX_PROC_MAX_PARAMS][NAME_MAX_LEN + 1];
+    char *help[TEX_PROC_MAX_PARAMS];
+};
+
+static const struct tex_param no_rows[1];
+
 struct proc {
     struct tex_primitive prim; /* first: a field's prim points at the whole */
     char name[NAME_MAX_LEN + 1];
     char *summary, *file;
-    struct tex_param rows[TEX_PROC_MAX_PARAMS + 1];
-    char pnames[TEX_PROC_MAX_PARAMS][NAME_MAX_LEN + 1];
-    char *phelp[TEX_PROC_MAX_PARAMS];
+    struct pblock *pb; /* NULL while there are no parameters: in place, 7 KB per definition */
     int nparams, ncalls, capcalls, depth, line, col;
     struct call *calls; /* grown as calls are read: 256 in place made each definition 23 KB */
     struct tex_rowcode *code;
@@ -302,8 +309,9 @@ static void proc_free(struct proc *p)
         }
         free(c->args);
     }
-    for (int i = 0; i < TEX_PROC_MAX_PARAMS; i++) /* a help read before its row failed too */
-        free(p->phelp[i]);
+    for (int i = 0; p->pb && i < TEX_PROC_MAX_PARAMS; i++) /* a help read before its row failed too */
+        free(p->pb->help[i]);
+    free(p->pb);
     tex_rowcode_free(p->code);
     free(p->calls);
     free(p->summary);
@@ -375,7 +383,7 @@ static struct tex_tok peek(const struct tex_lexer *lx)
 static int param_index(const struct proc *p, const struct tex_tok *t)
 {
     for (int i = 0; i < p->nparams; i++)
-        if (tex_tok_is_word(t, p->pnames[i]))
+        if (tex_tok_is_word(t, p->pb->names[i]))
             return i;
     return -1;
 }
@@ -586,7 +594,7 @@ static void check_name(struct reader *rd, const char *name, int line, int col, i
             tex_lex_fail(rd->lx, line, col, "parameter '%s' is declared twice", name);
         return;
     }
-    if (tex_primitive_find(name))
+    if (tex_primitive_get(name))
         tex_lex_fail(rd->lx, line, col, "'%s' is a primitive already", name);
     const struct proc *q = tex_names_get(&rd->set->names, name);
     if (q)
@@ -610,8 +618,9 @@ static void params(struct reader *rd)
             tex_lex_fail(lx, line, col, "too many parameters (more than %d)",
                          TEX_PROC_MAX_PARAMS);
         line = lx->t.line, col = lx->t.col;
-        name_of(lx, p->pnames[i], "a parameter name");
-        check_name(rd, p->pnames[i], line, col, 1);
+        struct pblock *pb = p->pb ? p->pb : (p->pb = xalloc(lx, calloc(1, sizeof *p->pb)));
+        name_of(lx, pb->names[i], "a parameter name");
+        check_name(rd, pb->names[i], line, col, 1);
         tex_lex_expect(lx, '=');
         def = number(lx, "the default (a number)");
         expect_word(lx, "in");
@@ -620,15 +629,15 @@ static void params(struct reader *rd)
         hi = number(lx, "the greatest value (a number)");
         if (!(lo <= hi) || !(def >= lo && def <= hi))
             tex_lex_fail(lx, line, col, "parameter %s: the default %g is not in %g..%g",
-                         p->pnames[i], def, lo, hi);
+                         pb->names[i], def, lo, hi);
         if (lx->t.kind == TEX_TOK_STR) {
-            p->phelp[i] = tok_copy(lx, &lx->t);
+            pb->help[i] = tok_copy(lx, &lx->t);
             tex_lex_next(lx);
         }
-        p->rows[i] = (struct tex_param){p->pnames[i], 0, TEX_P_REAL, i * sizeof(double), def,
-                                        lo, hi, NULL, NULL, 0, "X",
-                                        p->phelp[i] ? p->phelp[i] : "a parameter", 0, 0, 0,
-                                        NULL, NULL, NULL, NULL};
+        pb->rows[i] = (struct tex_param){pb->names[i], 0, TEX_P_REAL, i * sizeof(double), def,
+                                         lo, hi, NULL, NULL, 0, "X",
+                                         pb->help[i] ? pb->help[i] : "a parameter", 0, 0, 0,
+                                         NULL, NULL, NULL, NULL};
         p->nparams++;
     }
     tex_lex_next(lx);
@@ -645,7 +654,7 @@ static void body(struct reader *rd)
     p->prim.name = p->name;
     p->prim.summary = p->summary ? p->summary : "a composed primitive";
     p->prim.params_size = p->nparams * sizeof(double);
-    p->prim.params = p->rows;
+    p->prim.params = p->pb ? p->pb->rows : no_rows;
     p->prim.init = init;
     p->prim.fini = fini;
     p->prim.eval2 = eval2;

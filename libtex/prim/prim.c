@@ -26,14 +26,22 @@ const char *tex_primitive_nearest(const char *name, char *buf, size_t n)
     return buf;
 }
 
+const struct tex_primitive *tex_primitive_get(const char *name)
+{
+    for (int i = 0; tex_primitives[i]; i++)
+        if (strcmp(tex_primitives[i]->name, name) == 0)
+            return tex_primitives[i];
+    return NULL;
+}
+
 const struct tex_primitive *tex_primitive_find(const char *name)
 {
     char known[1024], near[64];
     size_t n = 0;
+    const struct tex_primitive *p = tex_primitive_get(name);
 
-    for (int i = 0; tex_primitives[i]; i++)
-        if (strcmp(tex_primitives[i]->name, name) == 0)
-            return tex_primitives[i];
+    if (p)
+        return p;
     known[0] = '\0';
     for (int i = 0; tex_primitives[i] && n < sizeof known; i++)
         n += (size_t)snprintf(known + n, sizeof known - n, "%s%s", i ? ", " : "",

@@ -159,6 +159,8 @@ struct tex_primitive {
 extern const struct tex_primitive *const tex_primitives[];
 /* The primitive called name; NULL with a usage error listing the known ones. */
 const struct tex_primitive *tex_primitive_find(const char *name);
+/* The same without the message, for a name that may be no primitive. */
+const struct tex_primitive *tex_primitive_get(const char *name);
 /* The registered primitive's name nearest to a mistyped one, into buf; NULL if none is near. */
 const char *tex_primitive_nearest(const char *name, char *buf, size_t n);
 

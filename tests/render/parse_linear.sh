@@ -5,23 +5,6 @@
 # with every one before it).
 . "$(dirname "$0")/../lib.sh"
 cd "$T" || exit 1
-# a sanitizer build runs several times slower and holds more (shadow memory, quarantine):
-# the bounds grow with it, still far below what the quadratic parsers took
-tscale=1 mscale=1
-nm "$TEXTURA_BUILD/lib/libtex.a" 2>/dev/null | grep -q __asan_ && tscale=4 mscale=3
-
-# within NAME SECONDS KB CMD...: CMD succeeds in SECONDS and KB of resident memory at most
-within() {
-    local name=$1 s=$(($2 * tscale)) kb=$(($3 * mscale)) st
-    shift 3
-    /usr/bin/time -f '%M' -o mem timeout "$s" "$@" >/dev/null 2>err
-    st=$?
-    if [ "$st" = 0 ] && [ "$(tail -1 mem)" -le "$kb" ]; then
-        ok "$name: within $s s and $((kb / 1024)) MB ($(($(tail -1 mem) / 1024)) MB)"
-    else
-        notok "$name: within $s s and $((kb / 1024)) MB" "exit $st, $(tail -1 mem) KB: $(head -c 200 err)"
-    fi
-}
 python3 - <<'PY'
 n = 100000
 head = ['image 8 8', 'camera { eye 0 0 -3 look 0 0 0 }']

@@ -315,9 +315,9 @@ static unsigned long long words_key(const struct pipeline *pl)
 static int prim_stage(struct pipeline *pl, const struct graph *g, const struct gnode *n)
 {
     const struct tex_json *ps = n->params;
-    if (tex_primitive_find(n->prim->name) ? stage(pl, word(pl, "t_%s", n->prim->name))
-                                          : stage(pl, "t_expr") | arg(pl, "--defs") |
-                                                arg(pl, proto.defs) | arg(pl, n->prim->name))
+    if (tex_primitive_get(n->prim->name) ? stage(pl, word(pl, "t_%s", n->prim->name))
+                                         : stage(pl, "t_expr") | arg(pl, "--defs") |
+                                               arg(pl, proto.defs) | arg(pl, n->prim->name))
         return -1;
     if (arg(pl, word(pl, "-s%d", g->size)) < 0)
         return -1;

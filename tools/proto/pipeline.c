@@ -252,7 +252,7 @@ int build(struct MHD_Connection *c, struct pipeline *pl, int size)
 
     if (!name || !is_name(name) || !(p = tex_procs_find(proto.procs, name)))
         return fail(pl, "unknown primitive '%.40s'", name ? name : "");
-    if (tex_primitive_find(name)) {
+    if (tex_primitive_get(name)) {
         if (stage(pl, word(pl, "t_%s", name)) < 0)
             return -1;
     } else if (stage(pl, "t_expr") | arg(pl, "--defs") | arg(pl, proto.defs) | arg(pl, name)) {
