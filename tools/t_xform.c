@@ -230,7 +230,7 @@ static int stream_chain(const char *path, const struct opts *o, int ew, int eh,
                           "empty", x0, y0, x1, y1, x.ew, x.eh);
         x.cx = x0, x.cy = y0, out.w = x.ow = x1 - x0, out.h = y1 - y0;
     }
-    if (x.expand && tex_map_check_size(x.ew, x.eh, 4) < 0)
+    if (x.expand && tex_map_check_sides(x.ew, x.eh, 4) < 0)
         tex_die();
     if (x.shift && x.wrap && x.dy % x.eh != 0)
         spool_input(&x);

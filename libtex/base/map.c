@@ -15,18 +15,26 @@
 #include "base/map.h"
 
 _Static_assert(TEX_MAP_MAX_SIDE == 65536 && TEX_MAP_MAX_SAMPLES == 1ULL << 30,
-               "TEX_MAP_SIZE_RULE says these limits");
+               "TEX_MAP_SIZE_RULE and the message below say these limits");
 
-int tex_map_check_size(long long w, long long h, long long nc)
+int tex_map_check_sides(long long w, long long h, long long nc)
 {
     if (w < 1 || w > TEX_MAP_MAX_SIDE || h < 1 || h > TEX_MAP_MAX_SIDE)
         return tex_usage_error("size %lldx%lld is out of range: " TEX_MAP_SIZE_RULE, w, h);
     if (nc < 1 || nc > TEX_MAP_MAX_CHANNELS)
         return tex_usage_error("%lld channels is out of range: 1..%d", nc, TEX_MAP_MAX_CHANNELS);
+    return 0;
+}
+
+int tex_map_check_size(long long w, long long h, long long nc)
+{
+    if (tex_map_check_sides(w, h, nc) < 0)
+        return -1;
     /* Each factor is at most 2^16, so the product fits in 64 bits. */
     if ((unsigned long long)w * h * nc > TEX_MAP_MAX_SAMPLES)
-        return tex_usage_error("size %lldx%lldx%lld is too large: at most %llu samples (4 GiB)",
-                               w, h, nc, TEX_MAP_MAX_SAMPLES);
+        return tex_usage_error("size %lldx%lldx%lld is too large to hold whole: at most 2^30 "
+                               "samples (4 GiB of float); only streaming tools take it",
+                               w, h, nc);
     return 0;
 }
 

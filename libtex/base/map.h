@@ -16,8 +16,10 @@
  *   tex_map_px(m, x, y)[c] = 0.5f;
  *   tex_map_free(m);
  *
- * Sizes are checked without overflow: each side must be 1..TEX_MAP_MAX_SIDE
- * and the whole map at most TEX_MAP_MAX_SAMPLES floats (4 GiB).
+ * Sizes are checked without overflow: each side must be 1..TEX_MAP_MAX_SIDE,
+ * and a map held whole at most TEX_MAP_MAX_SAMPLES floats (4 GiB).  A map that
+ * passes through a pipeline in bands of rows is never held whole: its sides
+ * alone are checked (tex_map_check_sides), up to 65536 x 65536 x 4.
  */
 #ifndef TEX_MAP_H
 #define TEX_MAP_H
@@ -30,9 +32,8 @@ TEX_API_BEGIN
 
 #define TEX_MAP_MAX_SIDE 65536
 #define TEX_MAP_MAX_SAMPLES (1ULL << 30)
-/* The rule for a map's size in pixels, as messages say it where a size is refused (-s): a
- * side's limit alone hid the other, 32769 x 32769 is too large */
-#define TEX_MAP_SIZE_RULE "each side 1..65536 and W x H at most 2^30 (1073741824) pixels"
+/* The rule for a map's size in pixels, as messages say it where a size is refused (-s) */
+#define TEX_MAP_SIZE_RULE "each side 1..65536"
 #define TEX_MAP_MAX_CHANNELS 4
 
 typedef struct tex_map {
@@ -61,8 +62,10 @@ void tex_pages_free(void *p, size_t mapped);
  * tex_pages_new's mappings are not the heap's. Does nothing elsewhere. */
 void tex_keep_heap(void);
 
-/* 0 if a w x h x nc map is allowed, else -1 with a usage error naming the limit. */
+/* 0 if a w x h x nc map may be held whole, else -1 with a usage error naming the limit. */
 int tex_map_check_size(long long w, long long h, long long nc);
+/* 0 if a w x h x nc map may pass in bands (its sides and channels), else -1 likewise. */
+int tex_map_check_sides(long long w, long long h, long long nc);
 
 tex_map *tex_map_new(int w, int h, int nc); /* zero-filled */
 /* A map whose samples are what its memory held, for a caller that sets every one: from 1 MiB

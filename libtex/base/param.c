@@ -27,7 +27,7 @@ int tex_parse_size(const char *s, int *w, int *h)
             return -1;
     } else
         b = a;
-    if (*end || tex_map_check_size(a, b, 1) < 0)
+    if (*end || tex_map_check_sides(a, b, 1) < 0)
         return -1;
     *w = (int)a;
     *h = (int)b;

@@ -651,9 +651,12 @@ tex_rows_reader *tex_map_open_rows(const char *path, tex_map *head, tex_map **wh
         }
         if (fstat(fd, &st) == 0 && S_ISFIFO(st.st_mode))
             return open_pipe_rows(fd, name, head, whole); /* <(t_noise ...) */
-        /* a file over the input limit, or not a regular one (a device): the whole reader
-         * refuses it with its words, or counts the bytes it reads */
-        int plain = fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && tex_input_max(&max) == 0 &&
+        /* a file over the input limit of a read in rows (any map's, unless set), or not a
+         * regular one (a device): the whole reader refuses it with its words, or counts the
+         * bytes it reads */
+        int plain = fstat(fd, &st) == 0 && S_ISREG(st.st_mode) &&
+                    tex_input_max_rows(TEX_MAP_MAX_SIDE, TEX_MAP_MAX_SIDE, TEX_MAP_MAX_CHANNELS,
+                                       &max) == 0 &&
                     (unsigned long long)st.st_size <= max && read(fd, pre, 4) == 4;
         close(fd);
         if (plain && tex_format_sniff(pre, 4) == TEX_FMT_EXR &&

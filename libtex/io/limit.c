@@ -6,7 +6,9 @@
 #include "base/error.h"
 #include "io/limit.h"
 
-int tex_input_max(size_t *max)
+/* $TEXTURA_MAX_INPUT into *max: 1 when it is set, 0 when not (*max the default), -1 when it
+ * is not a size. */
+static int env_max(size_t *max)
 {
     const char *s = getenv("TEXTURA_MAX_INPUT");
     char *end;
@@ -26,7 +28,35 @@ int tex_input_max(size_t *max)
         return tex_usage_error("TEXTURA_MAX_INPUT must be a size from 1K, in bytes or with K, "
                                "M or G (got \"%s\")", s);
     *max = (size_t)(v * unit);
-    return 0;
+    return 1;
+}
+
+int tex_input_max(size_t *max)
+{
+    return env_max(max) < 0 ? -1 : 0;
+}
+
+/* A map's floats and an eighth more (a chunk that compression made larger), its offset table
+ * (8 bytes a row at most) and 1 MiB of header: more than a valid stream of it holds. */
+static size_t stream_bound(long long w, long long h, long long nc)
+{
+    unsigned long long f = (unsigned long long)w * h * nc * 4;
+    return (size_t)(f + f / 8 + 8ULL * (unsigned long long)h + (1ULL << 20));
+}
+
+int tex_input_max_rows(long long w, long long h, long long nc, size_t *max)
+{
+    int set = env_max(max);
+    if (set == 0)
+        *max = stream_bound(w, h, nc);
+    return set < 0 ? -1 : 0;
+}
+
+int tex_input_check_rows(long long w, long long h, long long nc)
+{
+    size_t max;
+    int set = env_max(&max);
+    return set < 0 ? -1 : set ? tex_input_check_decoded(w, h, nc) : 0;
 }
 
 int tex_input_check_decoded(long long w, long long h, long long nc)

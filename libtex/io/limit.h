@@ -12,6 +12,12 @@
  * 875 KB PNG of 30000 x 30000 zeros) is refused before it is decompressed.
  * The limit is $TEXTURA_MAX_INPUT, in bytes with an optional suffix K, M or
  * G (powers of 1024), 1K at least; unset or empty, 2 GiB (textura(5)).
+ *
+ * A read of a map in bands of rows (io/stream.h's rows reader) holds a band,
+ * not the map: with the variable unset, its header is read under the 2 GiB
+ * limit and its rows under the size the header declares (tex_input_max_rows),
+ * so a streaming pipeline of 65536 x 65536 maps needs no setting; with the
+ * variable set, the limit is the variable's, as for any read.
  */
 #ifndef TEX_LIMIT_H
 #define TEX_LIMIT_H
@@ -31,6 +37,13 @@ int tex_input_max(size_t *max);
 /* 0 when a w x h x nc map of float fits the limit, else -1 with an error giving the
  * declared size and the limit (the caller adds the input's name). */
 int tex_input_check_decoded(long long w, long long h, long long nc);
+
+/* The same for a map read in bands of rows: the variable's limit when it is set, else
+ * none (the map is never held). */
+int tex_input_check_rows(long long w, long long h, long long nc);
+/* The limit on the bytes of a w x h x nc map's stream read in bands: the variable's when it
+ * is set, else a bound on what a valid stream of that map holds; -1 as tex_input_max. */
+int tex_input_max_rows(long long w, long long h, long long nc, size_t *max);
 
 TEX_API_END
 

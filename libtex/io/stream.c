@@ -768,6 +768,27 @@ static int64_t read_stream(exr_const_context_t ctxt, void *ud, void *dst, uint64
 
     if (off < r->base)
         return ecb(ctxt, EXR_ERR_READ_IO, "the stream's chunks are out of order"), -1;
+    /* Bytes between the window and the request are read and dropped, never kept: a gap in
+     * the offsets is bounded by the limit, and the window by the largest request. */
+    while (off > r->base + r->len && !r->eof && r->base + r->len <= r->max) {
+        r->base += r->len;
+        r->len = 0;
+        size_t gap = (size_t)(off - r->base), left = (size_t)(r->max + 1 - r->base);
+        ssize_t k = read(r->fd, r->buf, gap < r->cap ? (gap < left ? gap : left)
+                                                     : (r->cap < left ? r->cap : left));
+        if (k < 0 && errno == EINTR)
+            continue;
+        if (k < 0)
+            return ecb(ctxt, EXR_ERR_READ_IO, "%s: %s", r->name, strerror(errno)), -1;
+        if (k == 0)
+            r->eof = 1;
+        r->len = (size_t)k;
+    }
+    if (off > r->base + r->len) { /* the stream ended, or passed the limit, before it */
+        r->over = r->base + r->len > r->max;
+        exr_ran_short = 1;
+        return r->over ? ecb(ctxt, EXR_ERR_READ_IO, "over the input limit"), -1 : 0;
+    }
     need = (size_t)(off + sz - r->base);
     if (need > r->cap) {
         /* Out of room: drop what lies before this request, then grow if still short. */
@@ -1311,7 +1332,8 @@ tex_rows_reader *tex_rows_open(int fd, const void *prefix, size_t prefix_len, co
     head->nc = order_channels(cl, r->order);
     head->w = r->dw.max.x - r->dw.min.x + 1;
     head->h = r->dw.max.y - r->dw.min.y + 1;
-    if (tex_input_check_decoded(head->w, head->h, head->nc) < 0) { /* as decode() refuses */
+    if (tex_input_check_rows(head->w, head->h, head->nc) < 0 || /* as decode() refuses */
+        (!path && tex_input_max_rows(head->w, head->h, cl->num_channels, &r->rs.max) < 0)) {
         tex_error_context(name);
         goto fail;
     }
@@ -1346,6 +1368,8 @@ int tex_rows_read(tex_rows_reader *r, int y, int n, float *rows, const char *nam
                 return -1;
             }
             if (decode_one(r->ctx, &r->dec, &ci, r->first, r->order, r->chunk, 0, 0) < 0) {
+                if (exr_ran_short) /* at the chunk's row of the map, not of the chunk */
+                    chunk_error(0, "scanline", cy);
                 rstream_limit_word(&r->rs);
                 tex_error_context(name);
                 return -1;

@@ -266,7 +266,7 @@ int tex_resize_step(int w, int h, int ow, int oh, struct tex_xstep *st)
 {
     *st = (struct tex_xstep){ow, oh, {(double)w / ow, 0, 0, 0, (double)h / oh, 0},
                              TEX_EDGE_CLAMP, NULL};
-    return tex_map_check_size(ow, oh, 1);
+    return tex_map_check_sides(ow, oh, 1);
 }
 
 int tex_scale_step(int w, int h, double sx, double sy, struct tex_xstep *st)
@@ -291,7 +291,7 @@ int tex_expand_step(int w, int h, int ow, int oh, const float bg[4], struct tex_
 {
     *st = (struct tex_xstep){ow, oh, {1, 0, (double)((w - ow) / 2), 0, 1, (double)((h - oh) / 2)},
                              TEX_EDGE_BACKGROUND, bg};
-    return tex_map_check_size(ow, oh, 4);
+    return tex_map_check_sides(ow, oh, 4);
 }
 
 int tex_clip_step(int w, int h, int x0, int y0, int x1, int y1, struct tex_xstep *st)

@@ -675,6 +675,13 @@ static int frac_init(struct tex_field *f)
         /* Scenes evaluate at points: they get a 512 x 512 map, sampled bilinearly. */
         s->mw = f->w > 0 ? f->w : 512;
         s->mh = f->h > 0 ? f->h : 512;
+        /* the map and its lattice, (2^k + 1)^2 for the larger side, are held whole */
+        if (tex_map_check_size(s->mw, s->mh, 1) < 0)
+            return -1;
+        if (s->mw > TEX_MAP_MAX_SIDE / 2 || s->mh > TEX_MAP_MAX_SIDE / 2)
+            return tex_usage_error("%s midpoint at %dx%d: each side at most %d (its lattice is "
+                                   "held whole, the larger side's power of 2 plus 1 squared)",
+                                   FRAC_OPTION(mode), s->mw, s->mh, TEX_MAP_MAX_SIDE / 2);
         if (!(s->mp = malloc((size_t)s->mw * s->mh * sizeof *s->mp)))
             return tex_error("out of memory");
         return midpoint(p, f->seed, f->tile, s->mw, s->mh, s->mp);

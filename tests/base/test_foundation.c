@@ -25,6 +25,12 @@ static void test_map_limits(void)
     CHECK(tex_map_check_size(32768, 32768, 1) == 0, "32768^2 x 1 is within the limit");
     CHECK(tex_map_check_size(4, 4, 5) < 0 && tex_map_check_size(4, 4, 0) < 0,
           "channels outside 1..4 are refused");
+    CHECK(tex_map_check_sides(65536, 65536, 4) == 0, "65536^2 x 4 may pass in bands");
+    CHECK(tex_map_check_size(65536, 65536, 1) < 0 && strstr(tex_errmsg(), "hold whole"),
+          "65536^2 held whole is refused, saying so");
+    CHECK(tex_map_check_sides(65537, 1, 1) < 0 && tex_map_check_sides(1, 0, 1) < 0 &&
+              tex_map_check_sides(1, 1, 5) < 0 && tex_errkind() == TEX_ERR_USAGE,
+          "a band's map still has sides 1..65536 and 1..4 channels");
     CHECK(tex_map_new(0, 10, 1) == NULL, "tex_map_new refuses an empty map");
     m = tex_map_new(7, 3, 3);
     CHECK(m && m->w == 7 && m->h == 3 && m->nc == 3, "tex_map_new keeps the shape");

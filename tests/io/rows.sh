@@ -75,6 +75,21 @@ grep -qF "standard input: over the input limit of 17408 bytes (TEXTURA_MAX_INPUT
     notok "t_op: the same words" "$(cat "$T/.err")"
 [ ! -e out2.exr ] && ok "no output after a refusal" || notok "output left behind"
 
+# Unset, the limit holds a read in rows to what its header declares, not to 2 GiB: such a
+# read holds a band, never the map (issue 58). A 65536^2 stream (16 GiB as float) cut after
+# 8 MB ends early, at its row; with the variable set, the declared size is refused as before.
+for cmd in "t_filter blur --sigma 1.5 -o big.exr" "t_palette marble --range 0,1 -o big.exr" \
+    "t_remap --gamma 2 -o big.exr" "t_convert -o big.exr" "t_info"; do
+    check_fails "$cmd: a 65536^2 stream cut short" 1 bash -c "t_noise -s 65536 | head -c 8000000 | $cmd"
+    grep -qE "standard input: truncated OpenEXR data at scanline (2[0-9]|30)$" "$T/.err" ||
+        notok "$cmd: the row where it ended" "$(cat "$T/.err")"
+    TEXTURA_MAX_INPUT=1G check_fails "$cmd: a 65536^2 stream over a limit set" 1 \
+        bash -c "t_noise -s 65536 | head -c 8000000 | $cmd"
+    grep -qF "65536x65536 with 1 channel is 17179869184 bytes as float, over the input limit" "$T/.err" ||
+        notok "$cmd: the declared size's words" "$(cat "$T/.err")"
+done
+[ ! -e big.exr ] && ok "no output from a stream cut short" || notok "output left behind"
+
 # t_info streams: a 4096x4096 RGB map (192 MiB) under a limit far below it
 lim=$(stream_vlimit 180000)
 t_noise -s 4096 -f 8 | t_palette --range 0,1 marble >big.exr
