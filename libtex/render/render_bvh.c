@@ -770,8 +770,8 @@ static inline int closest(const struct tex_bvh *t, const tex_v3 *o, const tex_v3
                           double tmax, uint64_t visit, const struct tex_object *from,
                           struct tex_hit *hit)
 {
-#ifdef TEX_X86
-    if (tex_simd_level() >= TEX_SIMD_AVX2)
+#ifdef TEX_X86 /* a tree of one leaf has no quads: no call to ask the level a ray */
+    if (t->nquads && tex_simd_level() >= TEX_SIMD_AVX2)
         return closest_avx2(t, o, d, tmin, tmax, visit, from, hit);
 #endif
     return bvh_trace(t, o, d, tmin, tmax, 0, 1, visit, from, hit, QUADS);
