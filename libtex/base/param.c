@@ -466,7 +466,6 @@ int tex_param_parse(const struct tex_param *p, void *obj, const char *text,
 int tex_params_defaults(const struct tex_param *t, void *obj)
 {
     for (; t && t->name; t++) {
-        char num[64];
         switch (t->type) {
         case TEX_P_SPECIAL:
             break;
@@ -474,10 +473,11 @@ int tex_params_defaults(const struct tex_param *t, void *obj)
         case TEX_P_REAL:
         case TEX_P_FLOAT:
         case TEX_P_FLAG:
-            snprintf(num, sizeof num, "%.17g", t->def);
+            /* the number itself, checked as a parsed one would be: no text to parse */
             if (t->type == TEX_P_FLAG)
                 *AT(obj, t, int) = 0;
-            else if (tex_param_set(t, obj, t->defstr ? t->defstr : num) < 0)
+            else if (t->defstr ? tex_param_set(t, obj, t->defstr) < 0
+                               : store(t, obj, &t->def, 1, TEX_PARAM_OPTION, NULL) < 0)
                 return -1;
             break;
         case TEX_P_STRING:

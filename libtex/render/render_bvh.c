@@ -12,7 +12,8 @@
  * the transform once a ray meets their box, CSG trees for their interval
  * lists.  Traversal is ordered (nearer child first), skips nodes entered
  * beyond the closest hit, and a shadow query (any = 1) stops at the first
- * hit.  tex_scene_transmit visits every object along a shadow ray once, in
+ * hit; it goes four children a node (struct quad: the binary tree with every
+ * other level folded in), whose boxes one ray tests in vector lanes.  tex_scene_transmit visits every object along a shadow ray once, in
  * any order: the light passing is the product of Kt over the surfaces
  * crossed.  A ray leaving an object from a hull leaf (struct tex_object)
  * does not test it (it cannot meet it again), and eye rays that a view of
@@ -55,10 +56,20 @@ struct node {
     int count; /* leaf: number of prims; 0 for inner nodes */
 };
 
+/* A node of the four-wide tree the closest-hit walk takes: the binary tree with every other
+ * level folded in (an inner node's grandchildren, where its children are inner), its children's
+ * boxes lane by lane for one test of all.  Child c: a leaf's prims first[c].. (count[c] > 0)
+ * or the quad first[c]; mask: its children's lanes (2 to 4). */
+struct quad {
+    struct tex_box4 b;
+    int first[4], count[4];
+    int mask;
+} __attribute__((aligned(64)));
+
 struct tex_bvh {
     struct node *nodes;
-    struct tex_box_pair *pairs; /* an inner node's children's boxes, for one test of both */
-    int nnodes;
+    struct quad *quads; /* quads[0]: the root's, where it is inner */
+    int nnodes, nquads;
     struct prim *prims; /* bounded, in tree order */
     int nprims;
     struct prim *unb;   /* unbounded */
@@ -212,15 +223,35 @@ static void build(struct builder *bd, int first, int count, int depth)
     t->nodes[id].first = right;
 }
 
-/* Boxes a and b side by side, a in lane 0 */
-static void pair_of(const struct tex_bounds *a, const struct tex_bounds *b,
-                    struct tex_box_pair *p)
+/* The quad of inner node ni and those under it: its children, each inner one's two in its
+ * place, in the binary tree's order (a tie of entry distances walks them as it did) */
+static int quad_of(struct tex_bvh *t, int ni)
 {
-    const tex_v3 *lo[2] = {&a->lo, &b->lo}, *hi[2] = {&a->hi, &b->hi};
-    for (int c = 0; c < 2; c++) {
-        p->lo[0][c] = lo[c]->x, p->lo[1][c] = lo[c]->y, p->lo[2][c] = lo[c]->z;
-        p->hi[0][c] = hi[c]->x, p->hi[1][c] = hi[c]->y, p->hi[2][c] = hi[c]->z;
+    int id = t->nquads++, kid[4], n = 0;
+    int two[2] = {ni + 1, t->nodes[ni].first};
+    for (int i = 0; i < 2; i++) {
+        const struct node *k = &t->nodes[two[i]];
+        if (k->count) {
+            kid[n++] = two[i];
+        } else {
+            kid[n++] = two[i] + 1;
+            kid[n++] = k->first;
+        }
     }
+    struct quad *q = &t->quads[id];
+    q->mask = (1 << n) - 1;
+    for (int c = 0; c < 4; c++) { /* lanes past n repeat the first box, masked off */
+        const struct node *k = &t->nodes[kid[c < n ? c : 0]];
+        const double lo[3] = {k->b.lo.x, k->b.lo.y, k->b.lo.z};
+        const double hi[3] = {k->b.hi.x, k->b.hi.y, k->b.hi.z};
+        for (int a = 0; a < 3; a++)
+            q->b.lo[a][c] = lo[a], q->b.hi[a][c] = hi[a];
+        q->first[c] = k->first, q->count[c] = k->count;
+    }
+    for (int c = 0; c < n; c++)
+        if (!q->count[c])
+            q->first[c] = quad_of(t, kid[c]);
+    return id;
 }
 
 struct tex_bvh *tex_bvh_build(struct tex_object **obs, int n)
@@ -264,11 +295,10 @@ struct tex_bvh *tex_bvh_build(struct tex_object **obs, int n)
     if (nb)
         build(&bd, 0, nb, 0);
     t->nprims = nb;
-    if (!(t->pairs = malloc((t->nnodes ? t->nnodes : 1) * sizeof *t->pairs)))
+    if (!(t->quads = aligned_alloc(64, (t->nnodes ? t->nnodes : 1) * sizeof *t->quads)))
         goto oom;
-    for (int i = 0; i < t->nnodes; i++)
-        if (!t->nodes[i].count)
-            pair_of(&t->nodes[i + 1].b, &t->nodes[t->nodes[i].first].b, &t->pairs[i]);
+    if (t->nnodes && !t->nodes[0].count)
+        quad_of(t, 0);
     free(src);
     free(bd.idx);
     free(bd.tmp);
@@ -289,7 +319,7 @@ void tex_bvh_free(struct tex_bvh *b)
     if (!b)
         return;
     free(b->nodes);
-    free(b->pairs);
+    free(b->quads);
     free(b->prims);
     free(b->unb);
     free(b);
@@ -406,25 +436,21 @@ static inline int seen(uint64_t visit, int i)
     return visit >> (i < TEX_VIEW_OBJECTS ? i : TEX_VIEW_OBJECTS) & 1;
 }
 
-/* Which of inner node ni's children r enters within tmin..tmax (bit 0 the left, bit 1 the
- * right), at distances *tl and *tr */
-static inline __attribute__((always_inline)) int children(const struct tex_bvh *t, int ni,
-                                                          const struct ray *r, double tmin,
-                                                          double tmax, double *tl, double *tr)
+/* How a walk tests a quad's boxes: in SSE2's lanes (x86) or plain C, or in AVX2's */
+enum { QUADS, QUADS_AVX2 };
+
+/* The children of quad q that r enters within tmin..tmax (bit c: child c), at distances t[c] */
+static inline __attribute__((always_inline)) int quad_children(const struct quad *q,
+                                                               const struct ray *r, double tmin,
+                                                               double tmax, double t[4], int how)
 {
-    int l = ni + 1, rt = t->nodes[ni].first;
-    /* the walk waits on memory: ask for both children while their boxes are tested */
-    __builtin_prefetch(&t->nodes[rt]);
-    __builtin_prefetch(&t->pairs[rt]);
-    __builtin_prefetch(&t->pairs[l]);
-#ifdef TEX_X86 /* both children at once: the same answers */
-    double tc[2];
-    int both = tex_box_pair_sse2(&t->pairs[ni], &r->o, &r->inv, tmin, tmax, tc);
-    *tl = tc[0], *tr = tc[1];
-    return both;
+#ifdef TEX_X86 /* four boxes in vector lanes: the same answers */
+    if (how == QUADS_AVX2)
+        return tex_box4_avx2(&q->b, &r->o, &r->inv, tmin, tmax, t) & q->mask;
+    return tex_box4_sse2(&q->b, &r->o, &r->inv, tmin, tmax, t) & q->mask;
 #else
-    return hit_box(&t->nodes[l].b, r, tmin, tmax, tl) |
-           hit_box(&t->nodes[rt].b, r, tmin, tmax, tr) << 1;
+    (void)how;
+    return tex_box4_hit(&q->b, &r->o, &r->inv, tmin, tmax, t) & q->mask;
 #endif
 }
 
@@ -436,7 +462,7 @@ static inline __attribute__((always_inline)) int bvh_trace(const struct tex_bvh 
                                                            double tmin, double tmax, int any,
                                                            int tree, uint64_t visit,
                                                            const struct tex_object *from,
-                                                           struct tex_hit *hit)
+                                                           struct tex_hit *hit, int how)
 {
     struct ray r;
     if (tree) {
@@ -456,38 +482,44 @@ static inline __attribute__((always_inline)) int bvh_trace(const struct tex_bvh 
     }
     if (!t->nnodes || !tree)
         return found;
-    struct {
-        int node;
-        double t;
-    } stack[128]; /* the tree is at most SAH_DEPTH + 32 deep */
-    int sp = 0, ni = 0;
+    struct ref {
+        int first, count; /* a leaf's prims, or (count 0) a quad */
+        double t;         /* its entry distance */
+    } stack[256], cur;    /* the binary tree is at most SAH_DEPTH + 32 deep: a quad level
+                           * folds two of its levels and leaves at most three behind */
+    int sp = 0;
     double t0;
     if (!hit_box(&t->nodes[0].b, &r, tmin, tmax, &t0))
         return found;
+    cur = (struct ref){t->nodes[0].count ? t->nodes[0].first : 0, t->nodes[0].count, t0};
     for (;;) {
-        const struct node *n = &t->nodes[ni];
-        if (n->count) {
-            const struct prim *p = &t->prims[n->first];
-            for (int i = 0; i < n->count; i++) {
-                if (p[i].ob == from || !seen(visit, n->first + i))
+        if (cur.count) {
+            const struct prim *p = &t->prims[cur.first];
+            for (int i = 0; i < cur.count; i++) {
+                if (p[i].ob == from || !seen(visit, cur.first + i))
                     continue;
                 found |= first_hit(&p[i], &r, tmin, &tmax, hit);
                 if (found && any)
                     return 1;
             }
         } else {
-            double tl, tr;
-            int l = ni + 1, rt = n->first, both = children(t, ni, &r, tmin, tmax, &tl, &tr);
-            int hl = both & 1, hr = both >> 1;
-            if (hl && hr) {
-                /* visit the nearer first; the farther waits with its entry distance */
-                stack[sp].node = tl <= tr ? rt : l;
-                stack[sp++].t = tl <= tr ? tr : tl;
-                ni = tl <= tr ? l : rt;
-                continue;
+            const struct quad *q = &t->quads[cur.first];
+            double tc[4];
+            int in = quad_children(q, &r, tmin, tmax, tc, how), k = 0, lane[4];
+            /* the children entered, nearer first (a tie: the tree's order) */
+            for (; in; in &= in - 1) {
+                int c = __builtin_ctz(in), j = k++;
+                for (; j > 0 && tc[lane[j - 1]] > tc[c]; j--)
+                    lane[j] = lane[j - 1];
+                lane[j] = c;
+                if (!q->count[c]) /* the walk waits on memory: ask for it while sorting */
+                    __builtin_prefetch(&t->quads[q->first[c]]);
             }
-            if (hl || hr) {
-                ni = hl ? l : rt;
+            if (k) {
+                /* the farther wait with their entry distances */
+                for (int j = k - 1; j > 0; j--)
+                    stack[sp++] = (struct ref){q->first[lane[j]], q->count[lane[j]], tc[lane[j]]};
+                cur = (struct ref){q->first[lane[0]], q->count[lane[0]], tc[lane[0]]};
                 continue;
             }
         }
@@ -499,21 +531,21 @@ static inline __attribute__((always_inline)) int bvh_trace(const struct tex_bvh 
             if (stack[sp].t <= tmax)
                 break;
         }
-        ni = stack[sp].node;
+        cur = stack[sp];
     }
 }
 
 int tex_bvh_trace(const struct tex_bvh *t, const tex_v3 *o, const tex_v3 *d, double tmin,
                   double tmax, struct tex_hit *hit)
 {
-    return bvh_trace(t, o, d, tmin, tmax, 0, 1, ~0ull, NULL, hit);
+    return bvh_trace(t, o, d, tmin, tmax, 0, 1, ~0ull, NULL, hit, QUADS);
 }
 
 int tex_bvh_trace_any(const struct tex_bvh *t, const tex_v3 *o, const tex_v3 *d, double tmin,
                       double tmax, int any, struct tex_hit *hit)
 {
-    return any ? bvh_trace(t, o, d, tmin, tmax, 1, 1, ~0ull, NULL, hit)
-               : bvh_trace(t, o, d, tmin, tmax, 0, 1, ~0ull, NULL, hit);
+    return any ? bvh_trace(t, o, d, tmin, tmax, 1, 1, ~0ull, NULL, hit, QUADS)
+               : bvh_trace(t, o, d, tmin, tmax, 0, 1, ~0ull, NULL, hit, QUADS);
 }
 
 /* Product of Kt over the boundaries of p in (tmin, tmax) into *tr; 0 at an opaque one. */
@@ -724,22 +756,43 @@ double tex_scene_transmit(const struct tex_scene *s, const tex_v3 *o, const tex_
     return tr;
 }
 
+#ifdef TEX_X86
+/* The closest hit, the walk compiled for AVX2 to test a quad's boxes in one vector's lanes */
+TEX_AVX2 static int closest_avx2(const struct tex_bvh *t, const tex_v3 *o, const tex_v3 *d,
+                                 double tmin, double tmax, uint64_t visit,
+                                 const struct tex_object *from, struct tex_hit *hit)
+{
+    return bvh_trace(t, o, d, tmin, tmax, 0, 1, visit, from, hit, QUADS_AVX2);
+}
+#endif
+
+static inline int closest(const struct tex_bvh *t, const tex_v3 *o, const tex_v3 *d, double tmin,
+                          double tmax, uint64_t visit, const struct tex_object *from,
+                          struct tex_hit *hit)
+{
+#ifdef TEX_X86 /* a tree of one leaf has no quads: no call to ask the level a ray */
+    if (t->nquads && tex_simd_level() >= TEX_SIMD_AVX2)
+        return closest_avx2(t, o, d, tmin, tmax, visit, from, hit);
+#endif
+    return bvh_trace(t, o, d, tmin, tmax, 0, 1, visit, from, hit, QUADS);
+}
+
 int tex_scene_trace(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d, double tmin,
                     double tmax, const struct tex_object *from, struct tex_hit *hit)
 {
-    return bvh_trace(s->bvh, o, d, tmin, tmax, 0, 1, ~0ull, from, hit);
+    return closest(s->bvh, o, d, tmin, tmax, ~0ull, from, hit);
 }
 
 int tex_scene_trace_unbounded(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
                               double tmin, double tmax, struct tex_hit *hit)
 {
-    return bvh_trace(s->bvh, o, d, tmin, tmax, 0, 0, ~0ull, NULL, hit);
+    return bvh_trace(s->bvh, o, d, tmin, tmax, 0, 0, ~0ull, NULL, hit, QUADS);
 }
 
 int tex_scene_trace_view(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
                          uint64_t visit, struct tex_hit *hit)
 {
-    return bvh_trace(s->bvh, o, d, 0, INFINITY, 0, 1, visit, NULL, hit);
+    return closest(s->bvh, o, d, 0, INFINITY, visit, NULL, hit);
 }
 
 /* Box b's rect r as seen from c in the frame u, v, w (tex_scene_view's): 1, or 0 where

@@ -7,8 +7,11 @@
 
 #include "base/error.h"
 #include "io/file.h"
+#include "render/box4.h"
 #include "render/scene.h"
+#include "render/x86/bvh_x86.h"
 #include "base/rng.h"
+#include "base/simd.h"
 #include "fixtures.h"
 #include "unit.h"
 
@@ -403,6 +406,59 @@ static void test_bvh_brute(void)
     tex_scene_free(s);
 }
 
+/* A coordinate for the box tests: on a grid of 0.5 most of the time, so that origins lie on
+ * boxes' faces and boxes are flat (+-0 and ties in the slabs' min and max) */
+static double box_coord(tex_rng *g)
+{
+    return tex_rng_below(g, 4) ? 0.5 * ((int)tex_rng_below(g, 9) - 4) : 4 * tex_rng_uniform(g) - 2;
+}
+
+/* The tree's four-box test in SSE2's and AVX2's lanes gives tex_box4_hit's bits: which
+ * boxes are entered and at what distance, for rays along the axes, from the faces, into
+ * flat boxes and empty ones */
+static void test_box4_lanes(void)
+{
+#ifdef TEX_X86
+    tex_rng g;
+    tex_rng_seed(&g, 7);
+    int bad_sse2 = 0, bad_avx2 = 0, entered = 0, n = 200000;
+    int avx2 = tex_simd_level() >= TEX_SIMD_AVX2;
+    for (int k = 0; k < n; k++) {
+        struct tex_box4 b;
+        for (int a = 0; a < 3; a++)
+            for (int c = 0; c < 4; c++) {
+                double p = box_coord(&g), q = box_coord(&g);
+                int order = tex_rng_below(&g, 8); /* now and then lo > hi: an empty box */
+                b.lo[a][c] = order ? fmin(p, q) : fmax(p, q);
+                b.hi[a][c] = order ? fmax(p, q) : fmin(p, q);
+            }
+        tex_v3 o = tex_v3_make(box_coord(&g), box_coord(&g), box_coord(&g));
+        tex_v3 d = random_dir(&g);
+        double *dc[3] = {&d.x, &d.y, &d.z};
+        for (int a = 0; a < 3; a++)
+            if (!tex_rng_below(&g, 3))
+                *dc[a] = tex_rng_below(&g, 2) ? 0.0 : -0.0; /* along a face */
+        tex_v3 inv = tex_v3_slab_inv(d);
+        double tmin = tex_rng_below(&g, 2) ? 0 : tex_rng_uniform(&g);
+        double tmax = tex_rng_below(&g, 2) ? INFINITY : 4 * tex_rng_uniform(&g);
+        double t[4], ts[4], ta[4];
+        int in = tex_box4_hit(&b, &o, &inv, tmin, tmax, t);
+        int ins = tex_box4_sse2(&b, &o, &inv, tmin, tmax, ts);
+        entered += __builtin_popcount(in);
+        bad_sse2 += ins != in || memcmp(ts, t, sizeof t) != 0;
+        if (avx2) {
+            int ina = tex_box4_avx2(&b, &o, &inv, tmin, tmax, ta);
+            bad_avx2 += ina != in || memcmp(ta, t, sizeof t) != 0;
+        }
+    }
+    CHECKF(bad_sse2 == 0 && entered > n / 4,
+           "four boxes in SSE2 lanes: tex_box4_hit's bits (%d of %d differ, %d entered)",
+           bad_sse2, n, entered);
+    CHECKF(bad_avx2 == 0, "four boxes in AVX2 lanes: tex_box4_hit's bits (%d of %d differ%s)",
+           bad_avx2, n, avx2 ? "" : "; no AVX2 here");
+#endif
+}
+
 /* The outward world normal at a hit on leaf h->leaf (render.c's hit_normal, unhurried). */
 static tex_v3 outward_normal(const struct tex_hit *h, tex_v3 P)
 {
@@ -702,6 +758,7 @@ int main(void)
     test_determinism();
     test_receding();
     test_bvh_brute();
+    test_box4_lanes();
     test_hull_skip();
     test_scaled_leaves();
     test_bailout();
