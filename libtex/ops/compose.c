@@ -162,7 +162,7 @@ tex_map *tex_op_apply(enum tex_op op, const struct tex_operand *a, const struct 
         nops = 2;
     if (!(size = operands_size(op, ops, nops, &nc)))
         return NULL;
-    if (!(r = tex_map_new(size->w, size->h, nc)))
+    if (!(r = tex_map_new_unset(size->w, size->h, nc))) /* every sample is set below */
         return NULL;
     if (a->map && a->map->history && tex_map_set_history(r, a->map->history) < 0) {
         tex_map_free(r);
@@ -408,7 +408,7 @@ tex_map *tex_warp(const tex_map *m, const tex_map *by, const struct tex_warp_opt
 
     if (!isfinite(o->amount) || !isfinite(o->centre) || !isfinite(o->angle))
         return tex_usage_error("warp parameters must be finite"), NULL;
-    if (!(r = tex_map_new(w, h, m->nc)))
+    if (!(r = tex_map_new_unset(w, h, m->nc))) /* every pixel is sampled below */
         return NULL;
     r->subregions = m->subregions;
     if (m->history && tex_map_set_history(r, m->history) < 0) {
