@@ -408,7 +408,7 @@ tex_map *tex_warp(const tex_map *m, const tex_map *by, const struct tex_warp_opt
 
     if (!isfinite(o->amount) || !isfinite(o->centre) || !isfinite(o->angle))
         return tex_usage_error("warp parameters must be finite"), NULL;
-    if (!(r = tex_map_new_unset(w, h, m->nc))) /* every pixel is sampled below */
+    if (!(r = tex_map_new(w, h, m->nc)))
         return NULL;
     r->subregions = m->subregions;
     if (m->history && tex_map_set_history(r, m->history) < 0) {
