@@ -169,7 +169,7 @@ tex_map *tex_op_apply(enum tex_op op, const struct tex_operand *a, const struct 
         return NULL;
     }
     n = (size_t)size->w * size->h;
-    if (op == TEX_OP_MIX) { /* the preview's last stage: the sums below, a channel at a time */
+    if (op == TEX_OP_MIX) { /* x + (y - x) s, each operand's broadcast found once a channel */
         size_t st[3][4];
         const float *p[3][4];
         for (int k = 0; k < 3; k++)

@@ -291,7 +291,8 @@ static inline void sobel(const tex_map *m, long x, long y, int c, enum tex_edge 
                          float *gy)
 {
     float a, b, d, f, g, h, i, j;
-    if (x > 0 && x + 1 < m->w && y > 0 && y + 1 < m->h) { /* inside: at()'s, without the edge rule */
+    /* inside the map: at()'s samples without the edge rule */
+    if (x > 0 && x + 1 < m->w && y > 0 && y + 1 < m->h) {
         long nc = m->nc, row = (long)m->w * nc;
         const float *p = m->px + ((size_t)y * m->w + x) * m->nc + c;
         a = p[-row - nc], b = p[-row], d = p[-row + nc], f = p[-nc], g = p[nc];

@@ -116,7 +116,8 @@ TEX_AVX2 static __m128 srgb_encode4(const struct tex_srgb_enc *e, __m256d x)
         float r[4], lin[4];
         double c[4];
         _mm_storeu_ps(r, lo);
-        _mm_storeu_ps(lin, _mm256_cvtpd_ps(_mm256_mul_pd(_mm256_set1_pd(12.92), x))); /* the toe's */
+        /* the toe's */
+        _mm_storeu_ps(lin, _mm256_cvtpd_ps(_mm256_mul_pd(_mm256_set1_pd(12.92), x)));
         _mm256_storeu_pd(c, x);
         for (int k = 0; k < 4; k++)
             if (!(done >> k & 1))
