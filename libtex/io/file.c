@@ -675,24 +675,36 @@ tex_rows_reader *tex_map_open_rows(const char *path, tex_map *head, tex_map **wh
 
 /* ---- writing ---- */
 
-/* Quantise to 8 or 16 bits with clamping and rounding; NaN becomes 0. */
-/* m's samples as 8- or 16-bit integers, in memory of tex_pages_new's (*mapped for
- * tex_pages_free): on the heap a 2048^2 map's were a first touch of 1,000 pages. */
+/* v clamped to [0,1] (NaN to 0), times scale, rounded as lrintf rounds: below 2^23, adding
+ * 2^23 leaves no fraction, so the sum is rounded in the current mode and the difference is
+ * exact.  Unlike lrintf (a call to libm, errno aside) it vectorises. */
+static inline float quantum(float v, float scale)
+{
+    v = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f; /* NaN fails v > 0 */
+    return v * scale + 0x1p23f - 0x1p23f;
+}
+
+/* Quantise m's samples to 8 or 16 bits with clamping and rounding into q. */
 static void quantise_to(const tex_map *m, int bits, void *q)
 {
     size_t n = tex_map_samples(m);
-    float scale = bits == 8 ? 255.0f : 65535.0f;
+    const float *px = m->px;
 
-    for (size_t i = 0; i < n; i++) {
-        float v = m->px[i];
-        v = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f; /* NaN fails v > 0 */
-        if (bits == 8)
-            ((unsigned char *)q)[i] = (unsigned char)lrintf(v * scale);
-        else
-            ((unsigned short *)q)[i] = (unsigned short)lrintf(v * scale);
+    if (bits == 8) {
+        unsigned char *o = q;
+#pragma omp simd
+        for (size_t i = 0; i < n; i++)
+            o[i] = (unsigned char)(int)quantum(px[i], 255.0f);
+    } else {
+        unsigned short *o = q;
+#pragma omp simd
+        for (size_t i = 0; i < n; i++)
+            o[i] = (unsigned short)(int)quantum(px[i], 65535.0f);
     }
 }
 
+/* m's samples as 8- or 16-bit integers, in memory of tex_pages_new's (*mapped for
+ * tex_pages_free): on the heap a 2048^2 map's were a first touch of 1,000 pages. */
 static void *quantise(const tex_map *m, int bits, size_t *mapped)
 {
     void *q = tex_pages_new(tex_map_samples(m) * (bits / 8), PAGES_FROM, mapped);

@@ -81,6 +81,22 @@ static inline float val(const struct tex_operand *o, size_t i, int c, int nc)
     return onc == 1 ? p[0] : p[c];
 }
 
+/* Channel c of operand o as val() sees it with nc channels, for every pixel i at
+ * base[i * *step]: the branches of val() taken once, not per sample. */
+static const float *val_run(const struct tex_operand *o, int c, int nc, size_t *step)
+{
+    static const float one = 1.0f;
+    int onc = o->map ? o->map->nc : o->nc;
+    const float *p = o->map ? o->map->px : o->c;
+
+    *step = o->map ? (size_t)onc : 0;
+    if (nc == 4 && c == 3 && onc != 4) {
+        *step = 0;
+        return &one;
+    }
+    return onc == 1 ? p : p + c;
+}
+
 /* The channels of the result, or -1 if the operands do not combine. */
 static int combine_nc(const struct tex_operand *const *ops, int n)
 {
@@ -146,13 +162,32 @@ tex_map *tex_op_apply(enum tex_op op, const struct tex_operand *a, const struct 
         nops = 2;
     if (!(size = operands_size(op, ops, nops, &nc)))
         return NULL;
-    if (!(r = tex_map_new(size->w, size->h, nc)))
+    if (!(r = tex_map_new_unset(size->w, size->h, nc))) /* every sample is set below */
         return NULL;
     if (a->map && a->map->history && tex_map_set_history(r, a->map->history) < 0) {
         tex_map_free(r);
         return NULL;
     }
     n = (size_t)size->w * size->h;
+    if (op == TEX_OP_MIX) { /* x + (y - x) s, each operand's broadcast found once a channel */
+        size_t st[3][4];
+        const float *p[3][4];
+        for (int k = 0; k < 3; k++)
+            for (int c = 0; c < nc; c++)
+                p[k][c] = val_run(ops[k], c, nc, &st[k][c]);
+#pragma omp parallel
+        for (int c = 0; c < nc; c++) {
+            const float *pa = p[0][c], *pb = p[1][c], *pw = p[2][c];
+            size_t sa = st[0][c], sb = st[1][c], sw = st[2][c];
+            float *d = r->px + c;
+#pragma omp for schedule(static) nowait
+            for (size_t i = 0; i < n; i++) {
+                float x = pa[i * sa], y = pb[i * sb], s = pw[i * sw];
+                d[i * nc] = x + (y - x) * s;
+            }
+        }
+        return r;
+    }
     /* Colour channels: all but the alpha of RGBA. */
     int ncol = nc == 4 ? 3 : nc;
 #pragma omp parallel for schedule(static)
@@ -164,13 +199,6 @@ tex_map *tex_op_apply(enum tex_op op, const struct tex_operand *a, const struct 
             float k = nc == 4 ? 1.0f - val(top, i, 3, 4) : 0.0f;
             for (int c = 0; c < nc; c++)
                 d[c] = val(top, i, c, nc) + val(bot, i, c, nc) * k;
-            continue;
-        }
-        if (op == TEX_OP_MIX) {
-            for (int c = 0; c < nc; c++) {
-                float x = val(a, i, c, nc), y = val(b, i, c, nc), s = val(w, i, c, nc);
-                d[c] = x + (y - x) * s;
-            }
             continue;
         }
         for (int c = 0; c < ncol; c++) {

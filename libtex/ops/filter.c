@@ -290,9 +290,18 @@ static inline float at(const tex_map *m, long x, long y, int c, enum tex_edge e)
 static inline void sobel(const tex_map *m, long x, long y, int c, enum tex_edge e, float *gx,
                          float *gy)
 {
-    float a = at(m, x - 1, y - 1, c, e), b = at(m, x, y - 1, c, e), d = at(m, x + 1, y - 1, c, e);
-    float f = at(m, x - 1, y, c, e), g = at(m, x + 1, y, c, e);
-    float h = at(m, x - 1, y + 1, c, e), i = at(m, x, y + 1, c, e), j = at(m, x + 1, y + 1, c, e);
+    float a, b, d, f, g, h, i, j;
+    /* inside the map: at()'s samples without the edge rule */
+    if (x > 0 && x + 1 < m->w && y > 0 && y + 1 < m->h) {
+        long nc = m->nc, row = (long)m->w * nc;
+        const float *p = m->px + ((size_t)y * m->w + x) * m->nc + c;
+        a = p[-row - nc], b = p[-row], d = p[-row + nc], f = p[-nc], g = p[nc];
+        h = p[row - nc], i = p[row], j = p[row + nc];
+    } else {
+        a = at(m, x - 1, y - 1, c, e), b = at(m, x, y - 1, c, e), d = at(m, x + 1, y - 1, c, e);
+        f = at(m, x - 1, y, c, e), g = at(m, x + 1, y, c, e);
+        h = at(m, x - 1, y + 1, c, e), i = at(m, x, y + 1, c, e), j = at(m, x + 1, y + 1, c, e);
+    }
     *gx = ((d + 2 * g + j) - (a + 2 * f + h)) * 0.125f;
     *gy = ((h + 2 * i + j) - (a + 2 * b + d)) * 0.125f;
 }

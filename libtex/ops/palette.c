@@ -122,7 +122,7 @@ static void oklab_linear(const float lab[3], double lin[3])
 }
 
 /* tex_oklab_to_srgb of n colours, their channels in separate arrays: eight at a time where
- * the CPU has AVX-512, the same floats */
+ * the CPU has AVX-512, four with AVX2, the same floats */
 static void oklab_srgb_n(const float *const lab[3], float *const rgb[3], int n)
 {
     int i = 0;
@@ -130,6 +130,8 @@ static void oklab_srgb_n(const float *const lab[3], float *const rgb[3], int n)
 #ifdef TEX_X86
     if (tex_simd_level() >= TEX_SIMD_AVX512)
         i = tex_oklab_srgb_avx512(&enc, lab, rgb, n);
+    else if (tex_simd_level() >= TEX_SIMD_AVX2)
+        i = tex_oklab_srgb_avx2(&enc, lab, rgb, n);
 #endif
     for (; i < n; i++) {
         double lin[3];

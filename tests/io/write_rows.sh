@@ -116,3 +116,20 @@ for tool in "t_noise -s 300x200 -f 8" "t_filter blur y.exr" "t_fft y.exr"; do
         ok "${tool%% *}: an EXR to standard output has the same bytes to a regular file as to a pipe, -o's compressed" ||
         notok "${tool%% *}'s standard output" "$(wc -c reg.exr piped.exr named.exr | head -3 | tr '\n' ' ')"
 done
+
+# PNG's samples (quantised in bands, io/file.c) are PGM's (netpbm.c, lrintf) at 8 and 16 bits:
+# the halves (0.5 is 127.5 and 32767.5, rounded to even), NaN, infinities, -0 and out of range
+python3 - <<'PY'
+import random, struct
+random.seed(7)
+v = [float("nan"), float("inf"), float("-inf"), -0.0, 0.5, 1.0, 2**-9, 1.5 / 255, 2.5 / 255,
+     0.5 / 65535, 1.5 / 65535]
+v += [random.uniform(-0.1, 1.1) for _ in range(4099 - len(v))]
+open("q.pfm", "wb").write(b"Pf\n4099 1\n-1.0\n" + struct.pack("<4099f", *v))
+PY
+for d in 8 16; do
+    t_convert --nonfinite keep q.pfm --depth $d -o q.png && t_convert --nonfinite keep q.pfm --depth $d -o q.pgm &&
+        t_convert q.png -o a.pfm && t_convert q.pgm -o b.pfm && cmp -s a.pfm b.pfm &&
+        ok "a $d-bit PNG's samples are a PGM's: lrintf of the clamped values, NaN 0" ||
+        notok "a $d-bit PNG against a PGM" "$(cmp a.pfm b.pfm 2>&1 | head -c 200)"
+done

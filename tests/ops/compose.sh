@@ -32,6 +32,14 @@ same "mix weight 0 = a" "$(t_op mix "$T/a.exr" "$T/b.exr" 0 >"$T/m0.exr"; echo "
 same "mix weight 1 = b" "$(t_op mix "$T/a.exr" "$T/b.exr" 1 >"$T/m1.exr"; echo "$T/m1.exr")" "$T/b.exr"
 t_op mix "$T/a.exr" "$T/b.exr" "$T/one.exr" >"$T/mw.exr"
 same "mix weight map of ones = b" "$T/mw.exr" "$T/b.exr"
+# mix is a + (b - a) w in floats, each operand broadcast: an RGB a, a grey b, a grey or RGB
+# weight, and a constant, as sub, mul and add give it one step at a time
+t_palette marble "$T/a.exr" -o "$T/rgb.exr"
+for w in "$T/b.exr" "$T/rgb.exr" 0.3; do
+    t_op sub "$T/b.exr" "$T/rgb.exr" | t_op mul - "$w" | t_op add "$T/rgb.exr" - >"$T/steps.exr"
+    same "mix of RGB, grey and ${w##*/} is a + (b - a) w, to the bit" \
+        <(t_op mix "$T/rgb.exr" "$T/b.exr" "$w") "$T/steps.exr"
+done
 same "opaque a over b = a" "$(t_op over "$T/a.exr" "$T/b.exr" >"$T/o.exr"; echo "$T/o.exr")" "$T/a.exr"
 same "a under opaque b = b" "$(t_op under "$T/a.exr" "$T/b.exr" >"$T/u.exr"; echo "$T/u.exr")" "$T/b.exr"
 # A transparent frame around a: over b shows a inside and b outside.

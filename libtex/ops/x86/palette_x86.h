@@ -1,6 +1,6 @@
-/* palette_x86.h - palette.c's kernels for x86 (AVX-512): OKLab to sRGB eight colours at a
- * time, the floats of tex_oklab_to_srgb; and a run of a map's values coloured sixteen at a
- * time, the floats of colour_run
+/* palette_x86.h - palette.c's kernels for x86: OKLab to sRGB eight colours at a time
+ * (AVX-512) or four (AVX2), the floats of tex_oklab_to_srgb; and a run of a map's values
+ * coloured sixteen at a time (AVX-512), the floats of colour_run
  */
 #ifndef TEX_PALETTE_X86_H
 #define TEX_PALETTE_X86_H
@@ -11,6 +11,10 @@ struct tex_srgb_enc;
  * table e filled; returns how many. */
 int tex_oklab_srgb_avx512(const struct tex_srgb_enc *e, const float *const lab[3],
                           float *const rgb[3], int n);
+
+/* The same, the first n - n % 4 colours, four at a time with AVX2 */
+int tex_oklab_srgb_avx2(const struct tex_srgb_enc *e, const float *const lab[3],
+                        float *const rgb[3], int n);
 
 /* A palette of 1..16 stops in order, each quantity's stops side by side for permutes */
 struct tex_palette_lanes {
