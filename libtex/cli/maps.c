@@ -137,7 +137,8 @@ static int window_fill(void *arg, int y, int n, float *rows)
 /* Rows of output per band: $TEXTURA_BAND_ROWS, or about 2 MiB of input in whole
  * multiples of the writer's 64 rows.  Small bands let the next stage start sooner, and
  * keep a band's maps below malloc's mmap threshold, so they reuse pages rather than
- * clear fresh ones for every band. */
+ * clear fresh ones for every band.  Rows wider than 32 KiB: 64 of them, or fewer where 64
+ * pass 8 MiB (16 at least), so a stage of a 65536-wide map holds tens of MiB, not 100. */
 int tex_cli_band_rows(int w, int nc)
 {
     const char *e = getenv("TEXTURA_BAND_ROWS");
@@ -150,8 +151,13 @@ int tex_cli_band_rows(int w, int nc)
             tex_usage_die("TEXTURA_BAND_ROWS must be 1..65536 or whole (got '%s')", e);
         return (int)n;
     }
-    n = (2L << 20) / ((long)w * nc * (long)sizeof(float)) / 64 * 64;
-    return n < 64 ? 64 : n > 4096 ? 4096 : (int)n;
+    long row = (long)w * nc * (long)sizeof(float);
+    n = (2L << 20) / row / 64 * 64;
+    if (n < 64) {
+        n = (8L << 20) / row;
+        return n < 16 ? 16 : n > 64 ? 64 : (int)n;
+    }
+    return n > 4096 ? 4096 : (int)n;
 }
 
 tex_map *tex_cli_rows_whole(tex_rows_reader *r, tex_map *head, const char *name)

@@ -40,7 +40,8 @@ void tex_cli_write(tex_map *m, const struct tex_common *c);
  * more for other formats (t_apply's sRGB) stream. */
 int tex_cli_streams(const struct tex_common *c);
 /* Rows of output per band for a map w x nc wide: $TEXTURA_BAND_ROWS (the tests' way to try
- * every band height), or about 2 MiB of input in whole multiples of 64 rows */
+ * every band height), or about 2 MiB of input in whole multiples of 64 rows (16 to 64 rows
+ * of 8 MiB at most where a row is wider than 32 KiB) */
 int tex_cli_band_rows(int w, int nc);
 int tex_cli_takes_rows(const struct tex_common *c);
 void tex_cli_write_rows(tex_map *head, const struct tex_common *c,

@@ -296,11 +296,12 @@ static void aim_encoder(exr_encode_pipeline_t *enc, const float *p, int w, int n
     }
 }
 
-/* Compressed scanline chunks go CHUNK_BATCH at a time: the chunks of a batch shared among
- * the threads, each thread packing and compressing its own in a pipeline of its own (the
- * core library packs under the context's lock and compresses outside it), their bytes kept,
- * then the batch written in order.  The batch is fixed, not the thread count, so the file's
- * bytes are the same for any -j.  Whether chunks are worth compressing (struct worth) is
+/* Compressed scanline chunks go CHUNK_BATCH at a time (2 to 8 where a batch of 8 would pass
+ * 32 MiB: a very wide map's): the chunks of a batch shared among the threads, each thread
+ * packing and compressing its own in a pipeline of its own (the core library packs under
+ * the context's lock and compresses outside it), their bytes kept, then the batch written
+ * in order.  The batch is fixed by the map's width, not the thread count or the band, so the
+ * file's bytes are the same for any -j.  Whether chunks are worth compressing (struct worth) is
  * decided a batch at a time: after a batch that shrank by less than an eighth, the next is
  * stored raw and the one after compresses only its first chunk (a probe: one chunk in
  * sixteen), until a probe shrinks by more. */
@@ -506,9 +507,14 @@ static int encode(const tex_map *m, tex_rows_fn fill, void *arg, enum tex_compre
         exr_finish(&ctx);
         return -1;
     }
-    /* fill makes whole chunks, at least 64 rows at a time: its work per call
-     * (a parallel loop, say) then outweighs starting it; compressed, a batch of them */
-    int brows = c != TEX_COMPRESS_NONE ? lines * CHUNK_BATCH : lines * ((64 + lines - 1) / lines);
+    /* fill makes whole chunks, 64 rows at a time (fewer where they pass 8 MiB): its work per
+     * call (a parallel loop, say) then outweighs starting it; compressed, a batch of them
+     * (fewer than CHUNK_BATCH, 2 at least, where they pass 32 MiB: a 65536-wide map's) */
+    size_t row = (size_t)m->w * m->nc * sizeof(float), fit = ((size_t)8 << 20) / row;
+    size_t chunks = ((size_t)32 << 20) / (row * (size_t)lines);
+    int want = fit < 64 ? (fit ? (int)fit : 1) : 64;
+    int batch = chunks < CHUNK_BATCH ? (chunks < 2 ? 2 : (int)chunks) : CHUNK_BATCH;
+    int brows = c != TEX_COMPRESS_NONE ? lines * batch : lines * ((want + lines - 1) / lines);
     if (fill && !(band = tex_pages_new(sizeof *band * (size_t)brows * m->w * m->nc, BAND_PAGES,
                                        &band_mapped))) {
         exr_finish(&ctx);
