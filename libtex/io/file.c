@@ -656,7 +656,7 @@ tex_rows_reader *tex_map_open_rows(const char *path, tex_map *head, tex_map **wh
          * bytes it reads */
         int plain = fstat(fd, &st) == 0 && S_ISREG(st.st_mode) &&
                     tex_input_max_rows(TEX_MAP_MAX_SIDE, TEX_MAP_MAX_SIDE, TEX_MAP_MAX_CHANNELS,
-                                       &max) == 0 &&
+                                       0, &max) == 0 &&
                     (unsigned long long)st.st_size <= max && read(fd, pre, 4) == 4;
         close(fd);
         if (plain && tex_format_sniff(pre, 4) == TEX_FMT_EXR &&

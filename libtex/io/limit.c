@@ -36,19 +36,20 @@ int tex_input_max(size_t *max)
     return env_max(max) < 0 ? -1 : 0;
 }
 
-/* A map's floats and an eighth more (a chunk that compression made larger), its offset table
- * (8 bytes a row at most) and 1 MiB of header: more than a valid stream of it holds. */
-static size_t stream_bound(long long w, long long h, long long nc)
+/* The header's bytes, a map's floats and an eighth more (a chunk that compression made
+ * larger), its offset table and chunks' leaders (16 bytes a row at most) and 1 MiB: more than
+ * a valid stream of it holds. */
+static size_t stream_bound(long long w, long long h, long long nc, size_t head)
 {
     unsigned long long f = (unsigned long long)w * h * nc * 4;
-    return (size_t)(f + f / 8 + 8ULL * (unsigned long long)h + (1ULL << 20));
+    return (size_t)(head + f + f / 8 + 16ULL * (unsigned long long)h + (1ULL << 20));
 }
 
-int tex_input_max_rows(long long w, long long h, long long nc, size_t *max)
+int tex_input_max_rows(long long w, long long h, long long nc, size_t head, size_t *max)
 {
     int set = env_max(max);
     if (set == 0)
-        *max = stream_bound(w, h, nc);
+        *max = stream_bound(w, h, nc, head);
     return set < 0 ? -1 : 0;
 }
 

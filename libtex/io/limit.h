@@ -41,9 +41,10 @@ int tex_input_check_decoded(long long w, long long h, long long nc);
 /* The same for a map read in bands of rows: the variable's limit when it is set, else
  * none (the map is never held). */
 int tex_input_check_rows(long long w, long long h, long long nc);
-/* The limit on the bytes of a w x h x nc map's stream read in bands: the variable's when it
- * is set, else a bound on what a valid stream of that map holds; -1 as tex_input_max. */
-int tex_input_max_rows(long long w, long long h, long long nc, size_t *max);
+/* The limit on the bytes of a w x h x nc map's stream read in bands, head bytes of it read
+ * already (its header): the variable's when it is set, else a bound on what a valid stream
+ * of that map holds; -1 as tex_input_max. */
+int tex_input_max_rows(long long w, long long h, long long nc, size_t head, size_t *max);
 
 TEX_API_END
 

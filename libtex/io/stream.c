@@ -1339,7 +1339,8 @@ tex_rows_reader *tex_rows_open(int fd, const void *prefix, size_t prefix_len, co
     head->w = r->dw.max.x - r->dw.min.x + 1;
     head->h = r->dw.max.y - r->dw.min.y + 1;
     if (tex_input_check_rows(head->w, head->h, head->nc) < 0 || /* as decode() refuses */
-        (!path && tex_input_max_rows(head->w, head->h, cl->num_channels, &r->rs.max) < 0)) {
+        (!path && tex_input_max_rows(head->w, head->h, cl->num_channels,
+                                      (size_t)(r->rs.base + r->rs.len), &r->rs.max) < 0)) {
         tex_error_context(name);
         goto fail;
     }
