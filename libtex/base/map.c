@@ -13,6 +13,8 @@
 
 #include "base/error.h"
 #include "base/map.h"
+#include "base/simd.h"
+#include "base/x86/stats_x86.h"
 
 _Static_assert(TEX_MAP_MAX_SIDE == 65536 && TEX_MAP_MAX_SAMPLES == 1ULL << 30,
                "TEX_MAP_SIZE_RULE and the message below say these limits");
@@ -275,53 +277,54 @@ void tex_stats_begin(struct tex_stats_acc *a)
 /* A row's samples go to four lanes (x mod 4) met in a fixed order: four chains of additions
  * rather than one, and figures that depend on the map alone, not on how it was split. */
 #define LANES 4
+_Static_assert(sizeof(((struct tex_stats_lanes *)0)->sum) == LANES * sizeof(double),
+               "stats_x86.h keeps four lanes");
 
-struct lane {
-    double sum, s1, s2;
-    float lo, hi;
-    size_t n, nan;
-};
-
-static inline void lane_take(struct lane *l, float v, double k0, int sums)
+/* Lane l of L takes v */
+static inline void lane_take(struct tex_stats_lanes *L, int l, float v, double k0, int sums)
 {
     int f = isfinite(v);
-    l->lo = f && v < l->lo ? v : l->lo;
-    l->hi = f && v > l->hi ? v : l->hi;
-    l->n += f;
+    L->lo[l] = f && v < L->lo[l] ? v : L->lo[l];
+    L->hi[l] = f && v > L->hi[l] ? v : L->hi[l];
+    L->n[l] += f;
     if (sums) {
         double d = f ? v - k0 : 0;
-        l->sum += f ? v : 0;
-        l->s1 += d;
-        l->s2 += d * d;
-        l->nan += v != v;
+        L->sum[l] += f ? v : 0;
+        L->s1[l] += d;
+        L->s2[l] += d * d;
+        L->nan[l] += v != v;
     }
 }
 
 /* One row of w samples, nc floats apart, into a: only the range when !sums */
 static inline void row_take(struct tex_stats_acc *a, const float *px, size_t w, int nc, int sums)
 {
-    struct lane L[LANES];
+    struct tex_stats_lanes L = {0};
     size_t x = 0, n = 0;
 
     for (int l = 0; l < LANES; l++)
-        L[l] = (struct lane){.lo = INFINITY, .hi = -INFINITY};
+        L.lo[l] = INFINITY, L.hi[l] = -INFINITY;
+#ifdef TEX_X86 /* four lanes in one vector: the same doubles (t_info's and t_palette's pass) */
+    if (tex_simd_level() >= TEX_SIMD_AVX2)
+        x = tex_stats_row_avx2(&L, px, w, nc, a->shift, sums);
+#endif
     for (; x + LANES <= w; x += LANES)
 #pragma GCC unroll 4
         for (int l = 0; l < LANES; l++)
-            lane_take(&L[l], px[(x + l) * nc], a->shift, sums);
+            lane_take(&L, l, px[(x + l) * nc], a->shift, sums);
     for (; x < w; x++)
-        lane_take(&L[x % LANES], px[x * nc], a->shift, sums);
+        lane_take(&L, (int)(x % LANES), px[x * nc], a->shift, sums);
     for (int l = 0; l < LANES; l++) { /* which of -0 and +0 comes first: the same either way */
-        a->lo = L[l].lo < a->lo ? L[l].lo : a->lo;
-        a->hi = L[l].hi > a->hi ? L[l].hi : a->hi;
-        n += L[l].n;
-        a->nan += L[l].nan;
+        a->lo = L.lo[l] < a->lo ? L.lo[l] : a->lo;
+        a->hi = L.hi[l] > a->hi ? L.hi[l] : a->hi;
+        n += (size_t)L.n[l];
+        a->nan += (size_t)L.nan[l];
     }
     a->n += n;
     if (sums) {
-        a->sum += (L[0].sum + L[1].sum) + (L[2].sum + L[3].sum);
-        a->s1 += (L[0].s1 + L[1].s1) + (L[2].s1 + L[3].s1);
-        a->s2 += (L[0].s2 + L[1].s2) + (L[2].s2 + L[3].s2);
+        a->sum += (L.sum[0] + L.sum[1]) + (L.sum[2] + L.sum[3]);
+        a->s1 += (L.s1[0] + L.s1[1]) + (L.s1[2] + L.s1[3]);
+        a->s2 += (L.s2[0] + L.s2[1]) + (L.s2[2] + L.s2[3]);
         a->nonfinite += w - n;
     }
 }

@@ -766,6 +766,20 @@ static void rstream_limit_word(const struct rstream *r)
         tex_error("over the input limit of %zu bytes (TEXTURA_MAX_INPUT)", r->max);
 }
 
+/* One read of at most want bytes after the window's, none beyond a byte past the limit: its
+ * count (0 at the end, eof set), or -1 with errno */
+static ssize_t rstream_read(struct rstream *r, size_t want)
+{
+    size_t left = (size_t)(r->max + 1 - r->base - r->len);
+    ssize_t k;
+    do
+        k = read(r->fd, r->buf + r->len, want < left ? want : left);
+    while (k < 0 && errno == EINTR);
+    if (k == 0)
+        r->eof = 1;
+    return k;
+}
+
 static int64_t read_stream(exr_const_context_t ctxt, void *ud, void *dst, uint64_t sz,
                            uint64_t off, exr_stream_error_func_ptr_t ecb)
 {
@@ -779,15 +793,10 @@ static int64_t read_stream(exr_const_context_t ctxt, void *ud, void *dst, uint64
     while (off > r->base + r->len && !r->eof && r->base + r->len <= r->max) {
         r->base += r->len;
         r->len = 0;
-        size_t gap = (size_t)(off - r->base), left = (size_t)(r->max + 1 - r->base);
-        ssize_t k = read(r->fd, r->buf, gap < r->cap ? (gap < left ? gap : left)
-                                                     : (r->cap < left ? r->cap : left));
-        if (k < 0 && errno == EINTR)
-            continue;
+        size_t gap = (size_t)(off - r->base);
+        ssize_t k = rstream_read(r, gap < r->cap ? gap : r->cap);
         if (k < 0)
             return ecb(ctxt, EXR_ERR_READ_IO, "%s: %s", r->name, strerror(errno)), -1;
-        if (k == 0)
-            r->eof = 1;
         r->len = (size_t)k;
     }
     if (off > r->base + r->len) { /* the stream ended, or passed the limit, before it */
@@ -816,14 +825,9 @@ static int64_t read_stream(exr_const_context_t ctxt, void *ud, void *dst, uint64
      * request reaches them (the header's is 4 KiB, its declared size judged first);
      * reads stop a byte past it. */
     while (r->len < need && !r->eof && r->base + r->len <= r->max) {
-        size_t room = r->cap - r->len, left = (size_t)(r->max + 1 - r->base - r->len);
-        ssize_t k = read(r->fd, r->buf + r->len, room < left ? room : left);
-        if (k < 0 && errno == EINTR)
-            continue;
+        ssize_t k = rstream_read(r, r->cap - r->len);
         if (k < 0)
             return ecb(ctxt, EXR_ERR_READ_IO, "%s: %s", r->name, strerror(errno)), -1;
-        if (k == 0)
-            r->eof = 1;
         r->len += (size_t)k;
     }
     if (r->base + r->len > r->max && off + sz > r->max) {

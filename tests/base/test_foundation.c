@@ -9,6 +9,7 @@
 #include <malloc.h>
 #endif
 
+#include "base/simd.h"
 #include "textura.h"
 #include "unit.h"
 
@@ -145,6 +146,51 @@ static void test_stats_range(void)
     }
     CHECK(same, "tex_stats_add_range: tex_map_stats' min and max, bit for bit, in bands");
     tex_map_free(m);
+}
+
+/* The statistics at every SIMD level the CPU has are the scalar path's, bit for bit: rows of
+ * every width from 1 to 41 (a vector's lanes and the tail), 1 to 4 channels, with -0, +0,
+ * NaN and infinities, the sums and the range alone */
+static void test_stats_simd(void)
+{
+    int same = 1, cases = 0;
+    for (int nc = 1; nc <= 4; nc++)
+        for (int w = 1; w <= 41; w += 4 - nc % 3) {
+            tex_map *m = tex_map_new(w, 7, nc);
+            if (!m) {
+                CHECK(0, "a map");
+                return;
+            }
+            for (size_t i = 0; i < tex_map_samples(m); i++)
+                m->px[i] = (float)((i * 7919 + (size_t)w) % 1013) / 97.0f - 5.0f;
+            const float odd[] = {-0.0f, 0.0f, NAN, INFINITY, -INFINITY, 1e30f, -1e-30f};
+            for (size_t i = 0; i < tex_map_samples(m); i += 5)
+                m->px[i] = odd[i / 5 % 7];
+            if (w % 2) /* zeros at the range's ends, -0 and +0 in one lane: which one stays */
+                for (size_t i = 0; i < tex_map_samples(m); i++)
+                    m->px[i] = i % 4 == 0 ? (i / 4 % 2 ? 0.0f : -0.0f)
+                                          : (float)(w % 4 == 1 ? i % 3 + 1 : -(int)(i % 3) - 1);
+            for (int c = 0; c < nc; c++)
+                for (int sums = 0; sums < 2; sums++) {
+                    struct tex_stats s[2];
+                    for (int lv = 0; lv < 2; lv++) {
+                        struct tex_stats_acc a;
+                        tex_simd_limit(lv ? TEX_SIMD_AVX512 : TEX_SIMD_SCALAR);
+                        tex_stats_begin(&a);
+                        for (int y = 0; y < m->h; y += 3)
+                            (sums ? tex_stats_add : tex_stats_add_range)(
+                                &a, tex_map_row(m, y) + c, (size_t)m->w,
+                                (size_t)(m->h - y < 3 ? m->h - y : 3), m->nc);
+                        tex_stats_end(&a, &s[lv]);
+                    }
+                    same &= !memcmp(&s[0], &s[1], sizeof s[0]);
+                    cases++;
+                }
+            tex_map_free(m);
+        }
+    tex_simd_limit(TEX_SIMD_AVX512);
+    CHECKF(same, "statistics at the CPU's SIMD level (%s) are the scalar path's bits (%d cases)",
+           tex_simd_name(tex_simd_level()), cases);
 }
 
 /* tex_read_fd: a large file into pages, a small one and a pipe into the heap; a buffer of
@@ -411,6 +457,7 @@ int main(void)
     test_pages();
     test_pages_kept();
     test_stats_range();
+    test_stats_simd();
     test_keep_heap();
     test_read_fd();
     test_params();
