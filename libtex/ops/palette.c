@@ -742,11 +742,11 @@ static int stops_counted(const tex_palette *p)
     return 1;
 }
 
-/* p's stops in lanes for the AVX-512 kernel, when the CPU has it and they fit: 1 */
+/* p's stops in lanes for the AVX-512 or AVX2 kernel, when the CPU has one and they fit: 1 */
 static int palette_lanes(const tex_palette *p, struct tex_palette_lanes *l)
 {
 #ifdef TEX_X86
-    if (tex_simd_level() < TEX_SIMD_AVX512 || p->nstops < 1 || p->nstops > 16)
+    if (tex_simd_level() < TEX_SIMD_AVX2 || p->nstops < 1 || p->nstops > 16)
         return 0;
     memset(l, 0, sizeof *l);
     l->n = p->nstops;
@@ -779,7 +779,9 @@ static void colour_run(const tex_palette *p, int counted, const struct tex_palet
 
 #ifdef TEX_X86
     if (l) {
-        int done = tex_palette_colour_avx512(l, &enc, v, n, lo, hi, (int)outside, out, nc);
+        int done = tex_simd_level() >= TEX_SIMD_AVX512
+                       ? tex_palette_colour_avx512(l, &enc, v, n, lo, hi, (int)outside, out, nc)
+                       : tex_palette_colour_avx2(l, &enc, v, n, lo, hi, (int)outside, out, nc);
         v += done, out += (size_t)done * nc, n -= done;
     }
 #else

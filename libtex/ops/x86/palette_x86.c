@@ -249,4 +249,92 @@ TEX_AVX512 int tex_palette_colour_avx512(const struct tex_palette_lanes *l, cons
     }
     return i;
 }
+/* palette_t8 on four lanes with AVX2: the same double operations */
+TEX_AVX2 static __m128 palette_t4(__m128 v, double lo, double hi, int outside)
+{
+    const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0);
+    const __m256d sign = _mm256_set1_pd(-0.0);
+    __m256d t = zero, r;
+    if (hi > lo)
+        t = _mm256_div_pd(_mm256_sub_pd(_mm256_cvtps_pd(v), _mm256_set1_pd(lo)),
+                          _mm256_set1_pd(hi - lo));
+    t = _mm256_and_pd(_mm256_cmp_pd(_mm256_andnot_pd(sign, t), _mm256_set1_pd(INFINITY),
+                                    _CMP_LT_OQ), t); /* not finite: 0 */
+    __m256d low = _mm256_cmp_pd(t, zero, _CMP_LT_OQ);
+    __m256d off = _mm256_or_pd(low, _mm256_cmp_pd(t, one, _CMP_GT_OQ));
+    if (_mm256_testz_pd(off, off))
+        return _mm256_cvtpd_ps(t);
+    if (outside == TEX_OUTSIDE_REPEAT) {
+        r = _mm256_sub_pd(t, _mm256_round_pd(t, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC));
+    } else if (outside == TEX_OUTSIDE_MIRROR) {
+        __m256d u = _mm256_andnot_pd(sign, t), two = _mm256_set1_pd(2.0);
+        __m256d q = _mm256_round_pd(_mm256_mul_pd(u, _mm256_set1_pd(0.5)),
+                                    _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC);
+        u = _mm256_sub_pd(u, _mm256_mul_pd(two, q));
+        r = _mm256_blendv_pd(u, _mm256_sub_pd(two, u), _mm256_cmp_pd(u, one, _CMP_GT_OQ));
+    } else {
+        r = _mm256_blendv_pd(one, zero, low);
+    }
+    return _mm256_cvtpd_ps(_mm256_blendv_pd(t, r, off));
+}
+
+/* colour16 on eight values with AVX2: the stops gathered where AVX-512 permutes them */
+TEX_AVX2 static void colour8(const struct tex_palette_lanes *l, const struct tex_srgb_enc *e,
+                             const float *v, double lo, double hi, int outside, __m256 c[4])
+{
+    const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
+    __m256 t = _mm256_set_m128(palette_t4(_mm_loadu_ps(v + 4), lo, hi, outside),
+                               palette_t4(_mm_loadu_ps(v), lo, hi, outside));
+    t = _mm256_and_ps(_mm256_cmp_ps(t, zero, _CMP_GE_OQ), t); /* stop_t */
+    t = _mm256_blendv_ps(t, one, _mm256_cmp_ps(t, one, _CMP_GT_OQ));
+    __m256i after = _mm256_setzero_si256(), k1 = _mm256_set1_epi32(1);
+    for (int i = 0; i < l->n; i++) /* a true compare is -1 */
+        after = _mm256_sub_epi32(after, _mm256_castps_si256(_mm256_cmp_ps(
+                                            _mm256_set1_ps(l->pos[i]), t, _CMP_LE_OQ)));
+    __m256i ia = _mm256_max_epi32(_mm256_sub_epi32(after, k1), _mm256_setzero_si256());
+    __m256i ib = _mm256_min_epi32(after, _mm256_set1_epi32(l->n - 1));
+    __m256 pa = _mm256_i32gather_ps(l->pos, ia, 4), pb = _mm256_i32gather_ps(l->pos, ib, 4);
+    __m256 ends = _mm256_castsi256_ps(
+        _mm256_or_si256(_mm256_cmpeq_epi32(after, _mm256_setzero_si256()),
+                        _mm256_cmpeq_epi32(after, _mm256_set1_epi32(l->n))));
+    __m256 f = _mm256_div_ps(_mm256_sub_ps(t, pa), _mm256_sub_ps(pb, pa));
+    __m256 at = _mm256_or_ps(ends, _mm256_cmp_ps(f, zero, _CMP_LE_OQ)); /* a stop's own colour */
+    f = _mm256_andnot_ps(at, f);
+    __m256 a[4], mix[4];
+    for (int k = 0; k < 4; k++) {
+        const float *q = l->oklab && k < 3 ? l->lab[k] : l->rgba[k];
+        __m256 qa = _mm256_i32gather_ps(q, ia, 4), qb = _mm256_i32gather_ps(q, ib, 4);
+        mix[k] = _mm256_add_ps(qa, _mm256_mul_ps(f, _mm256_sub_ps(qb, qa)));
+        a[k] = l->oklab && k < 3 ? _mm256_i32gather_ps(l->rgba[k], ia, 4) : qa;
+    }
+    if (l->oklab) {
+        float lab[3][8], rgb[3][8];
+        for (int k = 0; k < 3; k++)
+            _mm256_storeu_ps(lab[k], mix[k]);
+        tex_oklab_srgb_avx2(e, (const float *const[3]){lab[0], lab[1], lab[2]},
+                            (float *const[3]){rgb[0], rgb[1], rgb[2]}, 8);
+        for (int k = 0; k < 3; k++)
+            mix[k] = _mm256_loadu_ps(rgb[k]);
+    }
+    for (int k = 0; k < 4; k++)
+        c[k] = _mm256_blendv_ps(mix[k], a[k], at);
+}
+
+TEX_AVX2 int tex_palette_colour_avx2(const struct tex_palette_lanes *l,
+                                     const struct tex_srgb_enc *e, const float *v, int n,
+                                     double lo, double hi, int outside, float *out, int nc)
+{
+    int i = 0;
+    for (; i + 8 <= n; i += 8) {
+        __m256 c[4];
+        float px[4][8];
+        colour8(l, e, v + i, lo, hi, outside, c);
+        for (int k = 0; k < 4; k++)
+            _mm256_storeu_ps(px[k], c[k]);
+        for (int j = 0; j < 8; j++) /* interleaved: AVX2 has no two-register permute */
+            for (int k = 0; k < nc; k++)
+                out[(size_t)(i + j) * nc + k] = px[k][j];
+    }
+    return i;
+}
 #endif

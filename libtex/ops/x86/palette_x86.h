@@ -28,5 +28,9 @@ struct tex_palette_lanes {
 int tex_palette_colour_avx512(const struct tex_palette_lanes *l, const struct tex_srgb_enc *e,
                               const float *v, int n, double lo, double hi, int outside,
                               float *out, int nc);
+/* The same eight at a time with AVX2: the first n - n % 8 values */
+int tex_palette_colour_avx2(const struct tex_palette_lanes *l, const struct tex_srgb_enc *e,
+                            const float *v, int n, double lo, double hi, int outside,
+                            float *out, int nc);
 
 #endif
