@@ -879,7 +879,8 @@ int tex_scene_trace_packet(const struct tex_scene *s, int n, const tex_ray *rays
     struct {
         int first, count;
         uint64_t m;
-    } stack[256], cur = {0, 0, m};
+        double t; /* the nearest of its rays' entries */
+    } stack[256], cur = {0, 0, m, 0};
     int sp = 0;
     while (cur.m) {
         if (cur.count) {
@@ -911,15 +912,20 @@ int tex_scene_trace_packet(const struct tex_scene *s, int n, const tex_ray *rays
                 for (int j = k - 1; j > 0; j--) {
                     int c = lane[j];
                     stack[sp].first = q->first[c], stack[sp].count = q->count[c];
-                    stack[sp++].m = in[c];
+                    stack[sp].m = in[c], stack[sp++].t = tc[c];
                 }
                 cur.first = q->first[lane[0]], cur.count = q->count[lane[0]], cur.m = in[lane[0]];
                 continue;
             }
         }
-        if (!sp)
-            break;
-        cur.first = stack[--sp].first, cur.count = stack[sp].count, cur.m = stack[sp].m;
+        /* the next node a ray enters before its closest hit so far: the others' own walks
+         * pass it by */
+        for (cur.m = 0; !cur.m && sp;) {
+            cur = stack[--sp];
+            for (uint64_t b = cur.m; b; b &= b - 1)
+                if (tmax[__builtin_ctzll(b)] < cur.t)
+                    cur.m &= ~(1ull << __builtin_ctzll(b));
+        }
     }
     /* a tie: the ray's own walk, whose order of the objects decides it */
     for (uint64_t b = tie; b; b &= b - 1) {
