@@ -13,9 +13,10 @@
  * lists.  Traversal is ordered (nearer child first), skips nodes entered
  * beyond the closest hit, and a shadow query (any = 1) stops at the first
  * hit; it goes four children a node (struct quad: the binary tree with every
- * other level folded in), whose boxes one ray tests in vector lanes.  tex_scene_transmit visits every object along a shadow ray once, in
- * any order: the light passing is the product of Kt over the surfaces
- * crossed.  A ray leaving an object from a hull leaf (struct tex_object)
+ * other level folded in), whose boxes one ray tests in vector lanes; a packet's eye rays walk
+ * it together (tex_scene_trace_packet), a node's boxes against every ray still in it.
+ * tex_scene_transmit visits every object along a shadow ray once, in any order: the light
+ * passing is the product of Kt over the surfaces crossed.  A ray leaving an object from a hull leaf (struct tex_object)
  * does not test it (it cannot meet it again), and eye rays that a view of
  * the tree's box shows beside it (tex_scene_view) test the unbounded objects
  * alone; beside it, they skip the bounded objects whose boxes the view shows
