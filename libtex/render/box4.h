@@ -4,9 +4,14 @@
  * children's boxes axis by axis, lane by lane (lo[axis][child]), so that one ray tests
  * them in vector lanes (x86/bvh_x86.h).  tex_box4_hit is the test in plain C, lane by
  * lane render_bvh.c's hit_box, its operations in its order: the lanes' answers are its.
+ * A packet's eye rays walk the tree together (tex_scene_trace_packet): tex_box4_rays tests
+ * a node's boxes against the packet's rays, in plain C here, four rays a vector in AVX2's
+ * lanes (x86/bvh_x86.h), the same answers.
  */
 #ifndef TEX_BOX4_H
 #define TEX_BOX4_H
+
+#include <stdint.h>
 
 #include "vecmath.h"
 
@@ -16,6 +21,12 @@ extern "C" {
 
 struct tex_box4 {
     double lo[3][4], hi[3][4];
+};
+
+/* Rays lane by lane: origins, their directions' reciprocals, the bounds of t */
+struct tex_ray_lanes {
+    double o[3][64], inv[3][64];
+    const double *tmin, *tmax;
 };
 
 /* The boxes of b a ray (origin o, reciprocal direction inv) enters within [tmin, tmax]:
@@ -35,6 +46,27 @@ static inline int tex_box4_hit(const struct tex_box4 *b, const tex_v3 *o, const 
         in |= (lo <= hi) << c;
     }
     return in;
+}
+
+/* The rays of m (bit i: lane i of r) that enter box c of b (of those in mask) within
+ * [tmin[i], tmax[i]]: in[c]; the least of their entry distances in t[c] (INFINITY: none) */
+static inline void tex_box4_rays(const struct tex_box4 *b, int mask, const struct tex_ray_lanes *r,
+                                 uint64_t m, uint64_t in[4], double t[4])
+{
+    for (int c = 0; c < 4; c++)
+        in[c] = 0, t[c] = INFINITY;
+    for (; m; m &= m - 1) {
+        int i = __builtin_ctzll(m);
+        tex_v3 o = tex_v3_make(r->o[0][i], r->o[1][i], r->o[2][i]);
+        tex_v3 inv = tex_v3_make(r->inv[0][i], r->inv[1][i], r->inv[2][i]);
+        double tc[4];
+        int hit = tex_box4_hit(b, &o, &inv, r->tmin[i], r->tmax[i], tc) & mask;
+        for (; hit; hit &= hit - 1) {
+            int c = __builtin_ctz(hit);
+            in[c] |= 1ull << i;
+            t[c] = tex_mind(t[c], tc[c]);
+        }
+    }
 }
 
 #ifdef __cplusplus

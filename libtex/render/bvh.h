@@ -17,6 +17,7 @@ extern "C" {
 #endif
 
 struct tex_scene;
+struct tex_ray;
 
 /* The closest hit along a ray o + t d beyond tmin: 1 and *hit, or 0.  The
  * queries take the ray's vectors by address: every ray makes them.  from: a top-level
@@ -53,6 +54,13 @@ uint64_t tex_view_objects(const struct tex_view *vw, const double r[4]);
  * them) untested */
 int tex_scene_trace_view(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
                          uint64_t visit, struct tex_hit *hit);
+
+/* tex_scene_trace_view of n rays (n <= 64) at once, all of one packet's visit: the closest
+ * hit of ray k (found[k]: 1 and hit[k], or 0), the one its own walk finds.  They walk the
+ * tree together, a node's boxes against every ray still in it; a ray whose closest hit ties
+ * with another object's walks alone after them.  The number of those. */
+int tex_scene_trace_packet(const struct tex_scene *s, int n, const struct tex_ray *r,
+                           uint64_t visit, struct tex_hit *hit, int *found);
 
 /* Fraction of light passing along o + t d for t in (tmin, tmax): the product
  * of the surfaces' Kt over every boundary crossed, 0 if it falls to 1e-4.  from: as for

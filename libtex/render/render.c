@@ -386,11 +386,11 @@ static void render_packet(const struct tex_render_ctx *c0, const struct tex_came
         samples += tex_light_samples(&s->lights[li]);
     for (int i = 0; i < spp; i++) {
         tex_camera_rays(c.s, cam, pk->x, pk->y, np, i, pk->rng, pk->r);
-        for (int k = 0; k < np; k++)
-            pk->hit[k] = visit ? tex_scene_trace_view(s, &pk->r[k].o, &pk->r[k].d, visit,
-                                                          &pk->h[k])
-                                   : tex_scene_trace_unbounded(s, &pk->r[k].o, &pk->r[k].d, 0,
-                                                               INFINITY, &pk->h[k]);
+        if (visit)
+            tex_scene_trace_packet(s, np, pk->r, visit, pk->h, pk->hit);
+        for (int k = 0; k < np && !visit; k++)
+            pk->hit[k] = tex_scene_trace_unbounded(s, &pk->r[k].o, &pk->r[k].d, 0, INFINITY,
+                                                   &pk->h[k]);
         look_ahead(s, pk, np);
         for (int k = 0; k < np; k++) {
             tex_colour col;

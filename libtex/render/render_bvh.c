@@ -13,9 +13,10 @@
  * lists.  Traversal is ordered (nearer child first), skips nodes entered
  * beyond the closest hit, and a shadow query (any = 1) stops at the first
  * hit; it goes four children a node (struct quad: the binary tree with every
- * other level folded in), whose boxes one ray tests in vector lanes.  tex_scene_transmit visits every object along a shadow ray once, in
- * any order: the light passing is the product of Kt over the surfaces
- * crossed.  A ray leaving an object from a hull leaf (struct tex_object)
+ * other level folded in), whose boxes one ray tests in vector lanes; a packet's eye rays walk
+ * it together (tex_scene_trace_packet), a node's boxes against every ray still in it.
+ * tex_scene_transmit visits every object along a shadow ray once, in any order: the light
+ * passing is the product of Kt over the surfaces crossed.  A ray leaving an object from a hull leaf (struct tex_object)
  * does not test it (it cannot meet it again), and eye rays that a view of
  * the tree's box shows beside it (tex_scene_view) test the unbounded objects
  * alone; beside it, they skip the bounded objects whose boxes the view shows
@@ -397,9 +398,9 @@ static __attribute__((noinline)) int first_hit_spans(const struct prim *p, const
     return 0;
 }
 
-/* The first boundary of p beyond tmin and before *tmax: 1, *hit and *tmax updated. */
-static inline int first_hit(const struct prim *p, const struct ray *r, double tmin, double *tmax,
-                            struct tex_hit *hit)
+/* Where ray r first meets p beyond tmin, where p is a sphere or a plane (no t beyond tmin:
+ * NaN or a t <= tmin) */
+static inline double quick_t(const struct prim *p, const struct ray *r, double tmin)
 {
     double t;
     if (p->kind == PK_SPHERE) {
@@ -407,19 +408,26 @@ static inline int first_hit(const struct prim *p, const struct ray *r, double tm
         double b = tex_v3_dot(oc, r->d), c = tex_v3_dot(oc, oc) - p->b;
         double disc = b * b - r->dd * c;
         if (disc <= 0)
-            return 0;
+            return NAN;
         double q = sqrt(disc);
         t = (-b - q) * r->idd; /* no division after the square root */
         if (!(t > tmin))
             t = (-b + q) * r->idd;
-    } else if (p->kind == PK_PLANE) {
-        double dy = tex_v3_dot(p->a, r->d);
-        if (dy == 0)
-            return 0;
-        t = -(tex_v3_dot(p->a, r->o) + p->b) / dy;
-    } else {
-        return first_hit_spans(p, r, tmin, tmax, hit);
+        return t;
     }
+    double dy = tex_v3_dot(p->a, r->d);
+    if (dy == 0)
+        return NAN;
+    return -(tex_v3_dot(p->a, r->o) + p->b) / dy;
+}
+
+/* The first boundary of p beyond tmin and before *tmax: 1, *hit and *tmax updated. */
+static inline int first_hit(const struct prim *p, const struct ray *r, double tmin, double *tmax,
+                            struct tex_hit *hit)
+{
+    if (p->kind != PK_SPHERE && p->kind != PK_PLANE)
+        return first_hit_spans(p, r, tmin, tmax, hit);
+    double t = quick_t(p, r, tmin);
     if (t > tmin && t < *tmax) {
         hit->t = t;
         hit->leaf = p->ob;
@@ -793,6 +801,139 @@ int tex_scene_trace_view(const struct tex_scene *s, const tex_v3 *o, const tex_v
                          uint64_t visit, struct tex_hit *hit)
 {
     return closest(s->bvh, o, d, 0, INFINITY, visit, NULL, hit);
+}
+
+/* first_hit from 0 for ray i of a packet, which tells the walk where p's boundary lies as
+ * far as the closest hit so far (*tmax) too: a tie, bit i of *tie (the order of the objects
+ * met decides it), which a nearer hit clears */
+static inline int packet_hit(const struct prim *p, const struct ray *r, double *tmax,
+                             struct tex_hit *hit, int i, uint64_t *tie)
+{
+    double t;
+    struct tex_hit h;
+    if (p->kind == PK_SPHERE) {
+        t = quick_t(p, r, 0);
+        h = (struct tex_hit){t, p->ob, 0};
+    } else { /* a boundary at *tmax itself is found one step of a double beyond it */
+        double far = nextafter(*tmax, INFINITY);
+        if (!first_hit_spans(p, r, 0, &far, &h))
+            return 0;
+        t = h.t;
+    }
+    if (!(t > 0) || t > *tmax)
+        return 0;
+    if (t == *tmax) {
+        *tie |= 1ull << i;
+        return 0;
+    }
+    *hit = h;
+    *tmax = t;
+    *tie &= ~(1ull << i);
+    return 1;
+}
+
+/* The four children of q the rays of m enter (ray lanes l), how they ask (AVX2 or not) */
+static inline void packet_children(const struct quad *q, const struct tex_ray_lanes *l,
+                                   uint64_t m, uint64_t in[4], double t[4], int avx2)
+{
+#ifdef TEX_X86
+    if (avx2) {
+        tex_box4_rays_avx2(&q->b, q->mask, l, m, in, t);
+        return;
+    }
+#endif
+    (void)avx2;
+    tex_box4_rays(&q->b, q->mask, l, m, in, t);
+}
+
+int tex_scene_trace_packet(const struct tex_scene *s, int n, const tex_ray *rays, uint64_t visit,
+                           struct tex_hit *hit, int *found)
+{
+    const struct tex_bvh *t = s->bvh;
+    if (n > 64 || !t->nquads) { /* a tree of one leaf: each ray's walk is as short */
+        for (int k = 0; k < n; k++)
+            found[k] = tex_scene_trace_view(s, &rays[k].o, &rays[k].d, visit, &hit[k]);
+        return 0;
+    }
+    struct ray r[64];
+    struct tex_ray_lanes l;
+    double tmin[64], tmax[64];
+    uint64_t m = 0, tie = 0;
+    l.tmin = tmin, l.tmax = tmax;
+    for (int k = 0; k < 64; k++) { /* lanes past n: rays that enter nothing, never asked */
+        int i = k < n ? k : 0;
+        double t0;
+        ray_setup(&r[k], &rays[i].o, &rays[i].d);
+        tmin[k] = 0, tmax[k] = INFINITY;
+        for (int a = 0; a < 3; a++)
+            l.o[a][k] = tex_v3_get(r[k].o, a), l.inv[a][k] = tex_v3_get(r[k].inv, a);
+        if (k >= n)
+            continue;
+        found[k] = 0;
+        if (!(r[k].dd > 0))
+            continue;
+        for (int u = 0; u < t->nunb; u++)
+            found[k] |= first_hit(&t->unb[u], &r[k], 0, &tmax[k], &hit[k]);
+        m |= (uint64_t)hit_box(&t->nodes[0].b, &r[k], 0, tmax[k], &t0) << k;
+    }
+    int avx2 = tex_simd_level() >= TEX_SIMD_AVX2;
+    struct {
+        int first, count;
+        uint64_t m;
+        double t; /* the nearest of its rays' entries */
+    } stack[256], cur = {0, 0, m, 0};
+    int sp = 0;
+    while (cur.m) {
+        if (cur.count) {
+            const struct prim *p = &t->prims[cur.first];
+            for (int j = 0; j < cur.count; j++) {
+                if (!seen(visit, cur.first + j))
+                    continue;
+                for (uint64_t b = cur.m; b; b &= b - 1) {
+                    int k = __builtin_ctzll(b);
+                    found[k] |= packet_hit(&p[j], &r[k], &tmax[k], &hit[k], k, &tie);
+                }
+            }
+        } else {
+            const struct quad *q = &t->quads[cur.first];
+            uint64_t in[4];
+            double tc[4];
+            int k = 0, lane[4];
+            packet_children(q, &l, cur.m, in, tc, avx2);
+            /* the children entered, nearer first for the nearest of the rays */
+            for (int c = 0; c < 4; c++) {
+                if (!in[c])
+                    continue;
+                int j = k++;
+                for (; j > 0 && tc[lane[j - 1]] > tc[c]; j--)
+                    lane[j] = lane[j - 1];
+                lane[j] = c;
+            }
+            if (k) {
+                for (int j = k - 1; j > 0; j--) {
+                    int c = lane[j];
+                    stack[sp].first = q->first[c], stack[sp].count = q->count[c];
+                    stack[sp].m = in[c], stack[sp++].t = tc[c];
+                }
+                cur.first = q->first[lane[0]], cur.count = q->count[lane[0]], cur.m = in[lane[0]];
+                continue;
+            }
+        }
+        /* the next node a ray enters before its closest hit so far: the others' own walks
+         * pass it by */
+        for (cur.m = 0; !cur.m && sp;) {
+            cur = stack[--sp];
+            for (uint64_t b = cur.m; b; b &= b - 1)
+                if (tmax[__builtin_ctzll(b)] < cur.t)
+                    cur.m &= ~(1ull << __builtin_ctzll(b));
+        }
+    }
+    /* a tie: the ray's own walk, whose order of the objects decides it */
+    for (uint64_t b = tie; b; b &= b - 1) {
+        int k = __builtin_ctzll(b);
+        found[k] = tex_scene_trace_view(s, &rays[k].o, &rays[k].d, visit, &hit[k]);
+    }
+    return __builtin_popcountll(tie);
 }
 
 /* Box b's rect r as seen from c in the frame u, v, w (tex_scene_view's): 1, or 0 where

@@ -287,8 +287,10 @@ static void brute_closest(const struct tex_scene *s, tex_v3 o, tex_v3 d, struct 
             *best = h;
 }
 
-/* 600 objects of every fast path and a tilted plane, placed by g, prepared */
-static struct tex_scene *bvh_scene(tex_rng *g)
+/* 600 objects of every fast path and a tilted plane, placed by g, prepared; twins: each
+ * sphere of the world-space path twice, in one place, and each box with a larger one on its
+ * lowest corner, rotated alike (ties: rays entering both at one face) */
+static struct tex_scene *bvh_scene(tex_rng *g, int twins)
 {
     size_t cap = 200000, len = 0;
     char *sc = malloc(cap);
@@ -301,8 +303,9 @@ static struct tex_scene *bvh_scene(tex_rng *g)
                z = 20 * tex_rng_uniform(g) - 10, r = 0.2 + 0.8 * tex_rng_uniform(g);
         switch (i % 6) {
         case 0: /* world-space fast path */
-            len += snprintf(sc + len, cap - len, "sphere { centre %g %g %g radius %g }\n", x, y,
-                            z, r);
+            for (int k = 0; k <= twins; k++)
+                len += snprintf(sc + len, cap - len, "sphere { centre %g %g %g radius %g }\n", x,
+                                y, z, r);
             break;
         case 1: /* rotated and uniformly scaled: still the fast path */
             len += snprintf(sc + len, cap - len,
@@ -315,8 +318,10 @@ static struct tex_scene *bvh_scene(tex_rng *g)
                             r, x, y, z);
             break;
         case 3:
-            len += snprintf(sc + len, cap - len, "box { min %g %g %g max %g %g %g rotate 5 5 5 }\n",
-                            x, y, z, x + r, y + 2 * r, z + r);
+            for (int k = 0; k <= twins; k++) /* the twin larger, from the same corner */
+                len += snprintf(sc + len, cap - len,
+                                "box { min %g %g %g max %g %g %g rotate 5 5 5 }\n", x, y, z,
+                                x + (1 + 3 * k) * r, y + (2 + 3 * k) * r, z + (1 + 3 * k) * r);
             break;
         case 4:
             len += snprintf(sc + len, cap - len,
@@ -373,7 +378,7 @@ static void test_bvh_brute(void)
 {
     tex_rng g;
     tex_rng_seed(&g, 42);
-    struct tex_scene *s = bvh_scene(&g);
+    struct tex_scene *s = bvh_scene(&g, 0);
     CHECK(s != NULL, "600-object scene prepares");
     if (!s)
         return;
@@ -456,6 +461,94 @@ static void test_box4_lanes(void)
            bad_sse2, n, entered);
     CHECKF(bad_avx2 == 0, "four boxes in AVX2 lanes: tex_box4_hit's bits (%d of %d differ%s)",
            bad_avx2, n, avx2 ? "" : "; no AVX2 here");
+#endif
+}
+
+/* A packet's rays walking the tree together find each ray's own closest hit, the same object
+ * at the same t (ties between twin objects included), at every SIMD level; packets of 64
+ * rays from the eye through an 8 x 8 grid of neighbouring directions, and of fewer */
+static void test_packet_walk(void)
+{
+    tex_rng g;
+    tex_rng_seed(&g, 43);
+    struct tex_scene *s = bvh_scene(&g, 1);
+    CHECK(s != NULL, "scene of twin objects prepares");
+    if (!s)
+        return;
+    int levels[2] = {tex_simd_level(), TEX_SIMD_SCALAR}, bad = 0, hits = 0, ties = 0, rays = 0;
+    for (int lv = 0; lv < 2; lv++) {
+        tex_simd_limit(levels[lv]);
+        for (int p = 0; p < 300; p++) {
+            tex_ray r[64];
+            struct tex_hit h[64], one;
+            int found[64], n = p % 5 ? 64 : 1 + (int)tex_rng_below(&g, 64);
+            double x0 = 1.4 * tex_rng_uniform(&g) - 0.7, y0 = 1.4 * tex_rng_uniform(&g) - 0.7;
+            double step = p % 2 ? 0.002 : 0.02;
+            for (int k = 0; k < n; k++) {
+                r[k] = (tex_ray){0};
+                r[k].o = tex_v3_make(0, 0, -30);
+                r[k].d = tex_v3_norm(tex_v3_make(x0 + step * (k % 8), y0 + step * (k / 8), 1));
+            }
+            ties += tex_scene_trace_packet(s, n, r, ~0ull, h, found);
+            for (int k = 0; k < n; k++, rays++) {
+                int f = tex_scene_trace_view(s, &r[k].o, &r[k].d, ~0ull, &one);
+                hits += f;
+                bad += f != found[k] || (f && (memcmp(&one.t, &h[k].t, sizeof one.t) != 0 ||
+                                               one.leaf != h[k].leaf || one.flip != h[k].flip));
+            }
+        }
+    }
+    tex_simd_limit(levels[0]);
+    CHECKF(bad == 0 && hits > rays / 4 && ties > 0,
+           "a packet's walk finds each ray's own closest hit (%d of %d differ, %d hits, %d ties)",
+           bad, rays, hits, ties);
+    tex_scene_free(s);
+}
+
+/* A packet's rays against four boxes in AVX2's lanes: tex_box4_rays's rays and entries */
+static void test_box4_rays_lanes(void)
+{
+#ifdef TEX_X86
+    if (tex_simd_level() < TEX_SIMD_AVX2)
+        return;
+    tex_rng g;
+    tex_rng_seed(&g, 8);
+    int bad = 0, entered = 0, n = 4000;
+    struct tex_ray_lanes l;
+    double tmin[64], tmax[64];
+    l.tmin = tmin, l.tmax = tmax;
+    for (int k = 0; k < n; k++) {
+        struct tex_box4 b;
+        for (int a = 0; a < 3; a++)
+            for (int c = 0; c < 4; c++) {
+                double p = box_coord(&g), q = box_coord(&g);
+                b.lo[a][c] = fmin(p, q), b.hi[a][c] = fmax(p, q);
+            }
+        for (int i = 0; i < 64; i++) {
+            tex_v3 d = random_dir(&g);
+            double *dc[3] = {&d.x, &d.y, &d.z};
+            for (int a = 0; a < 3; a++)
+                if (!tex_rng_below(&g, 3))
+                    *dc[a] = tex_rng_below(&g, 2) ? 0.0 : -0.0; /* along a face */
+            tex_v3 inv = tex_v3_slab_inv(d);
+            l.o[0][i] = box_coord(&g), l.o[1][i] = box_coord(&g), l.o[2][i] = box_coord(&g);
+            l.inv[0][i] = inv.x, l.inv[1][i] = inv.y, l.inv[2][i] = inv.z;
+            tmin[i] = tex_rng_below(&g, 2) ? 0 : tex_rng_uniform(&g);
+            tmax[i] = tex_rng_below(&g, 2) ? INFINITY : 4 * tex_rng_uniform(&g);
+        }
+        uint64_t m = (uint64_t)tex_rng_below(&g, 1u << 31) << 33 ^ tex_rng_below(&g, 1u << 31);
+        int mask = 1 + (int)tex_rng_below(&g, 15);
+        uint64_t in[4], ia[4];
+        double t[4], ta[4];
+        tex_box4_rays(&b, mask, &l, m, in, t);
+        tex_box4_rays_avx2(&b, mask, &l, m, ia, ta);
+        for (int c = 0; c < 4; c++) {
+            entered += __builtin_popcountll(in[c]);
+            bad += in[c] != ia[c] || !(t[c] == ta[c]) || (in[c] & ~m) || (!(mask >> c & 1) && in[c]);
+        }
+    }
+    CHECKF(bad == 0 && entered > n * 4, "a packet's rays against four boxes in AVX2 lanes: "
+           "tex_box4_rays's (%d of %d differ, %d entered)", bad, 4 * n, entered);
 #endif
 }
 
@@ -759,6 +852,8 @@ int main(void)
     test_receding();
     test_bvh_brute();
     test_box4_lanes();
+    test_box4_rays_lanes();
+    test_packet_walk();
     test_hull_skip();
     test_scaled_leaves();
     test_bailout();

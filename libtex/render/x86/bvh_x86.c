@@ -1,4 +1,5 @@
-/* bvh_x86.c - a batch of shadow rays against a box in AVX-512 lanes */
+/* bvh_x86.c - a batch of shadow rays against a box in AVX-512 lanes, a packet's eye rays
+ * against a node's four boxes in AVX2's */
 #include "render/x86/bvh_x86.h"
 
 #ifdef TEX_X86
@@ -31,5 +32,43 @@ TEX_AVX512 uint64_t tex_rays_box_avx512(const struct tex_bounds *b, const struct
         in |= (uint64_t)_mm512_mask_cmp_pd_mask(k, lo, hi, _CMP_LE_OQ) << i;
     }
     return in;
+}
+
+TEX_AVX2 void tex_box4_rays_avx2(const struct tex_box4 *b, int mask, const struct tex_ray_lanes *r,
+                                 uint64_t m, uint64_t in[4], double t[4])
+{
+    for (int c = 0; c < 4; c++) {
+        in[c] = 0, t[c] = INFINITY;
+        if (!(mask >> c & 1))
+            continue;
+        __m256d blo[3], bhi[3], tc = _mm256_set1_pd(INFINITY);
+        for (int a = 0; a < 3; a++)
+            blo[a] = _mm256_set1_pd(b->lo[a][c]), bhi[a] = _mm256_set1_pd(b->hi[a][c]);
+        for (int i = 0; i < 64 && m >> i; i += 4) {
+            int k = (int)(m >> i & 15);
+            if (!k)
+                continue;
+            __m256d lo = _mm256_loadu_pd(r->tmin + i), hi = _mm256_loadu_pd(r->tmax + i);
+            for (int a = 0; a < 3; a++) { /* tex_box4_hit's operations, its operands' order */
+                __m256d o = _mm256_loadu_pd(r->o[a] + i), inv = _mm256_loadu_pd(r->inv[a] + i);
+                __m256d p = _mm256_mul_pd(_mm256_sub_pd(blo[a], o), inv);
+                __m256d q = _mm256_mul_pd(_mm256_sub_pd(bhi[a], o), inv);
+                lo = _mm256_max_pd(lo, _mm256_min_pd(p, q));
+                hi = _mm256_min_pd(hi, _mm256_max_pd(p, q));
+            }
+            __m256d yes = _mm256_cmp_pd(lo, hi, _CMP_LE_OQ);
+            int e = _mm256_movemask_pd(yes) & k;
+            if (!e)
+                continue;
+            in[c] |= (uint64_t)e << i;
+            /* the entries of the rays of m that enter; INFINITY in the other lanes */
+            __m256d take = _mm256_and_pd(yes, _mm256_castsi256_pd(_mm256_set_epi64x(
+                                                  -(k >> 3 & 1), -(k >> 2 & 1), -(k >> 1 & 1), -(k & 1))));
+            tc = _mm256_min_pd(tc, _mm256_blendv_pd(_mm256_set1_pd(INFINITY), lo, take));
+        }
+        double v[4];
+        _mm256_storeu_pd(v, tc);
+        t[c] = tex_mind(tex_mind(v[0], v[1]), tex_mind(v[2], v[3]));
+    }
 }
 #endif

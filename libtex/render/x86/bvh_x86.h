@@ -15,12 +15,6 @@
 extern "C" {
 #endif
 
-/* A batch's rays, lane by lane: origins, their directions' reciprocals, the bounds of t */
-struct tex_ray_lanes {
-    double o[3][64], inv[3][64];
-    const double *tmin, *tmax;
-};
-
 #ifdef TEX_X86
 /* tex_box4_hit (../box4.h) in the lanes of two SSE2 vectors, boxes 0 and 1 in the first:
  * its operations in its order lane by lane (max_pd and min_pd pick as its tex_maxd and
@@ -63,6 +57,11 @@ TEX_AVX2 static inline int tex_box4_avx2(const struct tex_box4 *b, const tex_v3 
     _mm256_storeu_pd(t, lo);
     return _mm256_movemask_pd(_mm256_cmp_pd(lo, hi, _CMP_LE_OQ));
 }
+
+/* tex_box4_rays (../box4.h) four rays a vector in AVX2's lanes, as tex_box4_avx2 (the lanes
+ * of r past the last ray of m are read, not answered) */
+TEX_AVX2 void tex_box4_rays_avx2(const struct tex_box4 *b, int mask, const struct tex_ray_lanes *r,
+                                 uint64_t m, uint64_t in[4], double t[4]);
 
 /* The rays of m (bit i: lane i) whose segments (tmin, tmax) enter box b, eight at a time */
 TEX_AVX512 uint64_t tex_rays_box_avx512(const struct tex_bounds *b, const struct tex_ray_lanes *r,
