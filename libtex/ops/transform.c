@@ -53,7 +53,9 @@ static inline double tame(double x)
     return x > -1e9 && x < 1e9 ? x : (x > 0 ? 1e9 : -1e9);
 }
 
-static void bilinear(const struct tex_sampler *s, double x, double y, float *out)
+/* inlined into tex_sample's tap loop: a call per tap cost more than the sums */
+static inline __attribute__((always_inline)) void bilinear(const struct tex_sampler *s, double x,
+                                                           double y, float *out)
 {
     int nc = s->m->nc;
     double fx = tame(x) - 0.5, fy = tame(y) - 0.5, x0 = floor(fx), y0 = floor(fy);
@@ -88,7 +90,7 @@ static void bilinear(const struct tex_sampler *s, double x, double y, float *out
 /* Lookups along one axis: about one per source pixel the output pixel spans,
  * so each bilinear tap covers its share; one (plain bilinear) at 1:1 and when
  * magnifying, which keeps whole-pixel lookups exact. */
-static int taps(const double d[2], int maxtaps)
+static inline int taps(const double d[2], int maxtaps)
 {
     double n;
 
@@ -104,6 +106,13 @@ static int taps(const double d[2], int maxtaps)
         n = hypot(d[0], d[1]) - 1e-6;
     n = ceil(n);
     return n < 1 ? 1 : n > maxtaps ? maxtaps : (int)n;
+}
+
+/* Tap i of n's offset, (i + 0.5) / n - 0.5: two taps, the usual many, at -1/4 and 1/4
+ * (exactly the quotients) without a division */
+static inline double offset(int i, int n)
+{
+    return n == 2 ? (i ? 0.25 : -0.25) : (i + 0.5) / n - 0.5;
 }
 
 void tex_sample(const struct tex_sampler *s, double x, double y, const double du[2],
@@ -126,11 +135,11 @@ void tex_sample(const struct tex_sampler *s, double x, double y, const double du
     double as[64]; /* the taps' offsets along u, divided once rather than per row */
     int once = nu <= 64;
     for (int i = 0; once && i < nu; i++)
-        as[i] = (i + 0.5) / nu - 0.5;
+        as[i] = offset(i, nu);
     for (int j = 0; j < nv; j++) {
-        double b = (j + 0.5) / nv - 0.5;
+        double b = offset(j, nv);
         for (int i = 0; i < nu; i++) {
-            double a = once ? as[i] : (i + 0.5) / nu - 0.5;
+            double a = once ? as[i] : offset(i, nu);
             bilinear(s, x + a * du[0] + b * dv[0], y + a * du[1] + b * dv[1], v);
             for (int c = 0; c < nc; c++)
                 acc[c] += v[c];
