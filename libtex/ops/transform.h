@@ -40,6 +40,7 @@ struct tex_sampler {
     int nearest;  /* 1: no interpolation or averaging (region ids) */
     int maxtaps;  /* most lookups per axis for one output pixel (0: 32) */
     int row0, rows; /* m holds rows row0.. of a map rows tall (tex_affine_rows; init: 0, m->h) */
+    int level;    /* the SIMD level tex_sample's code takes (init: tex_simd_level(); same floats) */
 };
 
 /* Prepare a sampler; bg is RGBA and is converted to m's channels. */
