@@ -309,7 +309,8 @@ static void proc_free(struct proc *p)
         }
         free(c->args);
     }
-    for (int i = 0; p->pb && i < TEX_PROC_MAX_PARAMS; i++) /* a help read before its row failed too */
+    /* a help read before its row failed too */
+    for (int i = 0; p->pb && i < TEX_PROC_MAX_PARAMS; i++)
         free(p->pb->help[i]);
     free(p->pb);
     tex_rowcode_free(p->code);

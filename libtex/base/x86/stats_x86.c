@@ -39,7 +39,8 @@ TEX_AVX2 size_t tex_stats_row_avx2(struct tex_stats_lanes *L, const float *px, s
             sum = _mm256_add_pd(sum, _mm256_and_pd(m, vd));
             s1 = _mm256_add_pd(s1, d);
             s2 = _mm256_add_pd(s2, _mm256_mul_pd(d, d));
-            nan = _mm256_sub_epi64(nan, _mm256_cvtepi32_epi64(_mm_castps_si128(_mm_cmpunord_ps(v, v))));
+            __m128i isnan = _mm_castps_si128(_mm_cmpunord_ps(v, v));
+            nan = _mm256_sub_epi64(nan, _mm256_cvtepi32_epi64(isnan));
         }
     }
     _mm_storeu_ps(L->lo, lo), _mm_storeu_ps(L->hi, hi);
