@@ -2,7 +2,7 @@
  *
  * Included by transform.c for the portable path and by x86/sample_x86.c for AVX2, with
  * SAMPLE_FN the function's name and SAMPLE_TARGET its target attribute (empty, or
- * TEX_AVX2): the same C, so the same double and float operations in the same order (no
+ * the AVX2 target): the same C, so the same double and float operations in the same order (no
  * contraction: -ffp-contract=off), where AVX2's code rounds (floor, ceil) in one
  * instruction and so costs less.  Not compiled alone.
  */

@@ -444,20 +444,14 @@ static inline int seen(uint64_t visit, int i)
     return visit >> (i < TEX_VIEW_OBJECTS ? i : TEX_VIEW_OBJECTS) & 1;
 }
 
-/* How a walk tests a quad's boxes: in SSE2's lanes (x86) or plain C, or in AVX2's */
-enum { QUADS, QUADS_AVX2 };
-
 /* The children of quad q that r enters within tmin..tmax (bit c: child c), at distances t[c] */
 static inline __attribute__((always_inline)) int quad_children(const struct quad *q,
                                                                const struct ray *r, double tmin,
-                                                               double tmax, double t[4], int how)
+                                                               double tmax, double t[4])
 {
-#ifdef TEX_X86 /* four boxes in vector lanes: the same answers */
-    if (how == QUADS_AVX2)
-        return tex_box4_avx2(&q->b, &r->o, &r->inv, tmin, tmax, t) & q->mask;
+#ifdef TEX_X86 /* four boxes in SSE2's lanes, which every x86-64 has: the same answers */
     return tex_box4_sse2(&q->b, &r->o, &r->inv, tmin, tmax, t) & q->mask;
 #else
-    (void)how;
     return tex_box4_hit(&q->b, &r->o, &r->inv, tmin, tmax, t) & q->mask;
 #endif
 }
@@ -470,7 +464,7 @@ static inline __attribute__((always_inline)) int bvh_trace(const struct tex_bvh 
                                                            double tmin, double tmax, int any,
                                                            int tree, uint64_t visit,
                                                            const struct tex_object *from,
-                                                           struct tex_hit *hit, int how)
+                                                           struct tex_hit *hit)
 {
     struct ray r;
     if (tree) {
@@ -513,7 +507,7 @@ static inline __attribute__((always_inline)) int bvh_trace(const struct tex_bvh 
         } else {
             const struct quad *q = &t->quads[cur.first];
             double tc[4];
-            int in = quad_children(q, &r, tmin, tmax, tc, how), k = 0, lane[4];
+            int in = quad_children(q, &r, tmin, tmax, tc), k = 0, lane[4];
             /* the children entered, nearer first (a tie: the tree's order) */
             for (; in; in &= in - 1) {
                 int c = __builtin_ctz(in), j = k++;
@@ -546,14 +540,14 @@ static inline __attribute__((always_inline)) int bvh_trace(const struct tex_bvh 
 int tex_bvh_trace(const struct tex_bvh *t, const tex_v3 *o, const tex_v3 *d, double tmin,
                   double tmax, struct tex_hit *hit)
 {
-    return bvh_trace(t, o, d, tmin, tmax, 0, 1, ~0ull, NULL, hit, QUADS);
+    return bvh_trace(t, o, d, tmin, tmax, 0, 1, ~0ull, NULL, hit);
 }
 
 int tex_bvh_trace_any(const struct tex_bvh *t, const tex_v3 *o, const tex_v3 *d, double tmin,
                       double tmax, int any, struct tex_hit *hit)
 {
-    return any ? bvh_trace(t, o, d, tmin, tmax, 1, 1, ~0ull, NULL, hit, QUADS)
-               : bvh_trace(t, o, d, tmin, tmax, 0, 1, ~0ull, NULL, hit, QUADS);
+    return any ? bvh_trace(t, o, d, tmin, tmax, 1, 1, ~0ull, NULL, hit)
+               : bvh_trace(t, o, d, tmin, tmax, 0, 1, ~0ull, NULL, hit);
 }
 
 /* Product of Kt over the boundaries of p in (tmin, tmax) into *tr; 0 at an opaque one. */
@@ -764,25 +758,11 @@ double tex_scene_transmit(const struct tex_scene *s, const tex_v3 *o, const tex_
     return tr;
 }
 
-#ifdef TEX_X86
-/* The closest hit, the walk compiled for AVX2 to test a quad's boxes in one vector's lanes */
-TEX_AVX2 static int closest_avx2(const struct tex_bvh *t, const tex_v3 *o, const tex_v3 *d,
-                                 double tmin, double tmax, uint64_t visit,
-                                 const struct tex_object *from, struct tex_hit *hit)
-{
-    return bvh_trace(t, o, d, tmin, tmax, 0, 1, visit, from, hit, QUADS_AVX2);
-}
-#endif
-
 static inline int closest(const struct tex_bvh *t, const tex_v3 *o, const tex_v3 *d, double tmin,
                           double tmax, uint64_t visit, const struct tex_object *from,
                           struct tex_hit *hit)
 {
-#ifdef TEX_X86 /* a tree of one leaf has no quads: no call to ask the level a ray */
-    if (t->nquads && tex_simd_level() >= TEX_SIMD_AVX2)
-        return closest_avx2(t, o, d, tmin, tmax, visit, from, hit);
-#endif
-    return bvh_trace(t, o, d, tmin, tmax, 0, 1, visit, from, hit, QUADS);
+    return bvh_trace(t, o, d, tmin, tmax, 0, 1, visit, from, hit);
 }
 
 int tex_scene_trace(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d, double tmin,
@@ -794,7 +774,7 @@ int tex_scene_trace(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
 int tex_scene_trace_unbounded(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
                               double tmin, double tmax, struct tex_hit *hit)
 {
-    return bvh_trace(s->bvh, o, d, tmin, tmax, 0, 0, ~0ull, NULL, hit, QUADS);
+    return bvh_trace(s->bvh, o, d, tmin, tmax, 0, 0, ~0ull, NULL, hit);
 }
 
 int tex_scene_trace_view(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,

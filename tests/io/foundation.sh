@@ -157,7 +157,8 @@ check_fails "a corrupt PNG is a runtime error" 1 bash -c "printf '\211PNG\r\n\03
 check_fails "size 0 is a usage error" 2 t_noise -s 0
 check_fails "size 10^9 is a usage error" 2 t_noise -s 1000000000
 check_fails "a malformed size is a usage error" 2 t_noise -s 10x
-check_fails "65536x65536 is over the sample limit" 2 t_noise -s 65536
+check_fails "65537 is over the side limit" 2 t_noise -s 65537
+check_fails "65536x65536 held whole is over the sample limit" 2 t_spectral -s 65536
 check_fails "NaN frequency is a usage error" 2 t_noise --frequency nan
 check_fails "a negative frequency is a usage error" 2 t_noise --frequency -1
 check_fails "an unknown option is a usage error" 2 t_noise --octaves 3
