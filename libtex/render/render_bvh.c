@@ -456,6 +456,20 @@ static inline __attribute__((always_inline)) int quad_children(const struct quad
 #endif
 }
 
+/* The children entered (bit c: child c) into lane[], nearer first by t (a tie: the tree's
+ * order); returns how many */
+static inline int nearer_first(int entered, const double t[4], int lane[4])
+{
+    int k = 0;
+    for (; entered; entered &= entered - 1) {
+        int c = __builtin_ctz(entered), j = k++;
+        for (; j > 0 && t[lane[j - 1]] > t[c]; j--)
+            lane[j] = lane[j - 1];
+        lane[j] = c;
+    }
+    return k;
+}
+
 /* Inlined into the entry points: the closest-hit one loses every test of any; tree = 0 (a
  * ray known to miss the tree's box) tests the unbounded objects alone, which need neither
  * 1/d nor 1/d.d. */
@@ -507,16 +521,10 @@ static inline __attribute__((always_inline)) int bvh_trace(const struct tex_bvh 
         } else {
             const struct quad *q = &t->quads[cur.first];
             double tc[4];
-            int in = quad_children(q, &r, tmin, tmax, tc), k = 0, lane[4];
-            /* the children entered, nearer first (a tie: the tree's order) */
-            for (; in; in &= in - 1) {
-                int c = __builtin_ctz(in), j = k++;
-                for (; j > 0 && tc[lane[j - 1]] > tc[c]; j--)
-                    lane[j] = lane[j - 1];
-                lane[j] = c;
-                if (!q->count[c]) /* the walk waits on memory: ask for it while sorting */
-                    __builtin_prefetch(&t->quads[q->first[c]]);
-            }
+            int lane[4], k = nearer_first(quad_children(q, &r, tmin, tmax, tc), tc, lane);
+            for (int j = 0; j < k; j++) /* the walk waits on memory: ask for them all now */
+                if (!q->count[lane[j]])
+                    __builtin_prefetch(&t->quads[q->first[lane[j]]]);
             if (k) {
                 /* the farther wait with their entry distances */
                 for (int j = k - 1; j > 0; j--)
@@ -826,6 +834,33 @@ static inline void packet_children(const struct quad *q, const struct tex_ray_la
     tex_box4_rays(&q->b, q->mask, l, m, in, t);
 }
 
+/* A packet's n rays into r and l's lanes (tmin, tmax theirs), each one's hits on the unbounded
+ * objects found: the mask of those that enter the tree's box */
+static uint64_t packet_start(const struct tex_bvh *t, int n, const tex_ray *rays, struct ray r[64],
+                             struct tex_ray_lanes *l, double tmin[64], double tmax[64],
+                             struct tex_hit *hit, int *found)
+{
+    uint64_t m = 0;
+    l->tmin = tmin, l->tmax = tmax;
+    for (int k = 0; k < 64; k++) { /* lanes past n: rays that enter nothing, never asked */
+        int i = k < n ? k : 0;
+        double t0;
+        ray_setup(&r[k], &rays[i].o, &rays[i].d);
+        tmin[k] = 0, tmax[k] = INFINITY;
+        for (int a = 0; a < 3; a++)
+            l->o[a][k] = tex_v3_get(r[k].o, a), l->inv[a][k] = tex_v3_get(r[k].inv, a);
+        if (k >= n)
+            continue;
+        found[k] = 0;
+        if (!(r[k].dd > 0))
+            continue;
+        for (int u = 0; u < t->nunb; u++)
+            found[k] |= first_hit(&t->unb[u], &r[k], 0, &tmax[k], &hit[k]);
+        m |= (uint64_t)hit_box(&t->nodes[0].b, &r[k], 0, tmax[k], &t0) << k;
+    }
+    return m;
+}
+
 int tex_scene_trace_packet(const struct tex_scene *s, int n, const tex_ray *rays, uint64_t visit,
                            struct tex_hit *hit, int *found)
 {
@@ -838,24 +873,7 @@ int tex_scene_trace_packet(const struct tex_scene *s, int n, const tex_ray *rays
     struct ray r[64];
     struct tex_ray_lanes l;
     double tmin[64], tmax[64];
-    uint64_t m = 0, tie = 0;
-    l.tmin = tmin, l.tmax = tmax;
-    for (int k = 0; k < 64; k++) { /* lanes past n: rays that enter nothing, never asked */
-        int i = k < n ? k : 0;
-        double t0;
-        ray_setup(&r[k], &rays[i].o, &rays[i].d);
-        tmin[k] = 0, tmax[k] = INFINITY;
-        for (int a = 0; a < 3; a++)
-            l.o[a][k] = tex_v3_get(r[k].o, a), l.inv[a][k] = tex_v3_get(r[k].inv, a);
-        if (k >= n)
-            continue;
-        found[k] = 0;
-        if (!(r[k].dd > 0))
-            continue;
-        for (int u = 0; u < t->nunb; u++)
-            found[k] |= first_hit(&t->unb[u], &r[k], 0, &tmax[k], &hit[k]);
-        m |= (uint64_t)hit_box(&t->nodes[0].b, &r[k], 0, tmax[k], &t0) << k;
-    }
+    uint64_t tie = 0, m = packet_start(t, n, rays, r, &l, tmin, tmax, hit, found);
     int avx2 = tex_simd_level() >= TEX_SIMD_AVX2;
     struct {
         int first, count;
@@ -878,17 +896,11 @@ int tex_scene_trace_packet(const struct tex_scene *s, int n, const tex_ray *rays
             const struct quad *q = &t->quads[cur.first];
             uint64_t in[4];
             double tc[4];
-            int k = 0, lane[4];
+            int lane[4];
             packet_children(q, &l, cur.m, in, tc, avx2);
-            /* the children entered, nearer first for the nearest of the rays */
-            for (int c = 0; c < 4; c++) {
-                if (!in[c])
-                    continue;
-                int j = k++;
-                for (; j > 0 && tc[lane[j - 1]] > tc[c]; j--)
-                    lane[j] = lane[j - 1];
-                lane[j] = c;
-            }
+            /* nearer first for the nearest of the rays */
+            int k = nearer_first((in[0] != 0) | (in[1] != 0) << 1 | (in[2] != 0) << 2 | (in[3] != 0) << 3,
+                                 tc, lane);
             if (k) {
                 for (int j = k - 1; j > 0; j--) {
                     int c = lane[j];
