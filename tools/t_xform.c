@@ -53,11 +53,11 @@ static void step(tex_map **m, tex_map *next)
  * input row y + an offset, or the background.  Such a chain goes a band of rows at a time:
  * each band through the same tex_expand, tex_shift and tex_clip arithmetic (tex_affine on
  * the band's rows, placed where the whole map has them), so the bytes are the whole map's.
- * A vertical --wrap needs the last rows first: the input goes to an unlinked file of raw
- * rows, read back as the bands ask. */
+ * A vertical --wrap asks for the rows from some row r down, then from the top: rows above r
+ * go to an unlinked file of raw rows, read back as the bands ask, the rest stream on. */
 struct xchain {
-    tex_rows_reader *r; /* the input's rows, asked for from the top, or */
-    int spool;          /* -1, or the file of its rows */
+    tex_rows_reader *r; /* the input's rows, asked for from the top, but */
+    int spool, spooled; /* -1, or the file of its rows 0..spooled-1 */
     const char *name;
     int w, h, nc, subregions;
     int expand, ew, eh, enc, ox, oy; /* the canvas, its channels, tex_expand's offsets */
@@ -75,7 +75,7 @@ static tex_map *input_rows(struct xchain *x, int y, int n)
     if (!m)
         return NULL;
     m->subregions = x->subregions;
-    if (x->spool < 0) {
+    if (x->spool < 0 || y >= x->spooled) {
         if (tex_rows_read(x->r, y, n, m->px, x->name) < 0 ||
             tex_rows_nonfinite(m->px, x->w, n, x->nc, y, x->name) < 0)
             return tex_map_free(m), NULL;
@@ -168,8 +168,8 @@ static int xchain_fill(void *arg, int y, int n, float *rows)
     return 0;
 }
 
-/* The input's rows into an unlinked file in TMPDIR, about 1 MiB at a time */
-static void spool_input(struct xchain *x)
+/* The input's rows 0..rows-1 into an unlinked file in TMPDIR, about 1 MiB at a time */
+static void spool_input(struct xchain *x, int rows_above)
 {
     const char *dir = getenv("TMPDIR");
     char tmp[4096];
@@ -182,8 +182,8 @@ static void spool_input(struct xchain *x)
     }
     unlink(tmp);
     rows = rows < 1 ? 1 : rows;
-    for (int y = 0; y < x->h; y += rows) {
-        int n = x->h - y < rows ? x->h - y : rows, fd = x->spool;
+    for (int y = 0; y < rows_above; y += rows) {
+        int n = rows_above - y < rows ? rows_above - y : rows, fd = x->spool;
         x->spool = -1;
         tex_map *m = input_rows(x, y, n);
         x->spool = fd;
@@ -191,6 +191,7 @@ static void spool_input(struct xchain *x)
             tex_die();
         tex_map_free(m);
     }
+    x->spooled = rows_above;
 }
 
 /* Expand, shift and clip as a chain of bands, when the input and output stream and no
@@ -232,8 +233,12 @@ static int stream_chain(const char *path, const struct opts *o, int ew, int eh,
     }
     if (x.expand && tex_map_check_sides(x.ew, x.eh, 4) < 0)
         tex_die();
-    if (x.shift && x.wrap && x.dy % x.eh != 0)
-        spool_input(&x);
+    if (x.shift && x.wrap && x.dy % x.eh != 0) {
+        /* the first band's input row: the canvas's row (cy - dy) mod eh, less expand's offset */
+        long first = ((x.cy - (long)x.dy) % x.eh + x.eh) % x.eh + x.oy;
+        if (first > 0 && first < x.h)
+            spool_input(&x, (int)first);
+    }
     out.subregions = x.subregions;
     out.history = head.history;
     tex_cli_write_rows(&out, c, xchain_fill, &x);

@@ -93,6 +93,30 @@ tex_map *tex_map_channels(const tex_map *m, int nc)
     return r;
 }
 
+/* Output row `row` (w pixels) of a whole-pixel translation: source row sy, columns from sx0 on,
+ * copied in runs.  The pixels are those the sampler's nearest lookup (fetch) gives. */
+static void copy_row(const struct tex_sampler *s, long sy, long sx0, float *row, int w)
+{
+    int nc = s->m->nc, mw = s->m->w;
+    long y = tex_edge_index(sy, s->rows, s->edge);
+    const float *src = y >= 0 && y - s->row0 >= 0 && y - s->row0 < s->m->h
+                           ? tex_map_row(s->m, (int)(y - s->row0))
+                           : NULL;
+
+    for (int x = 0; x < w;) {
+        long sx = sx0 + x, ex = sx >= 0 && sx < mw ? sx : tex_edge_index(sx, mw, s->edge);
+        /* inside, and beyond it with a wrap, the pixels run on to the map's right side */
+        long run = ex == sx || s->edge == TEX_EDGE_WRAP ? mw - ex : 1;
+        if (!src || ex < 0) {
+            memcpy(row + (size_t)x++ * nc, s->bg, nc * sizeof *row);
+            continue;
+        }
+        run = run < w - x ? run : w - x;
+        memcpy(row + (size_t)x * nc, src + (size_t)ex * nc, (size_t)run * nc * sizeof *row);
+        x += (int)run;
+    }
+}
+
 int tex_affine_rows(const tex_map *m, int row0, int full_h, tex_map *r, int y0,
                     const double a[6], enum tex_edge edge, const float bg[4])
 {
@@ -114,6 +138,13 @@ int tex_affine_rows(const tex_map *m, int row0, int full_h, tex_map *r, int y0,
     s.row0 = row0, s.rows = full_h;
     if (exact)
         s.nearest = 1;
+    if (exact && fabs(a[2]) < 1e8 && fabs(a[5]) < 1e8 && y0 + h < 1e8 && w < 1e8) {
+#pragma omp parallel for schedule(static)
+        for (int y = 0; y < h; y++)
+            copy_row(&s, (long)(y0 + y + a[5]), (long)a[2], tex_map_row(r, y), w);
+        tex_map_free(conv);
+        return 0;
+    }
 #pragma omp parallel for schedule(dynamic, 4)
     for (int y = 0; y < h; y++) {
         float *row = tex_map_row(r, y);

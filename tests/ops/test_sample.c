@@ -97,9 +97,51 @@ static void centres(void)
     tex_map_free(m);
 }
 
+/* tex_affine_rows's whole-pixel translation copies rows in runs: the pixels the sampler's
+ * nearest lookup gives, through every edge rule, from a band of rows among the map's, with
+ * shifts inside, across and far beyond the sides, and a channel added by the background. */
+static void translation_copies(void)
+{
+    static const float bg[4] = {0.25f, 0.5f, 0.75f, 0.5f};
+    tex_map *m = tex_map_new(13, 5, 3);
+    int ok = 1, cases = 0;
+    if (!m)
+        return;
+    for (int i = 0; i < 13 * 5 * 3; i++)
+        m->px[i] = (float)rnd(0, 1);
+    for (int e = TEX_EDGE_CLAMP; e <= TEX_EDGE_BACKGROUND; e++)
+        for (int nc = 3; nc <= 4; nc++)
+            for (int t = 0; t < 40; t++) {
+                double a[6] = {1, 0, floor(rnd(-40, 40)), 0, 1, floor(rnd(-12, 12))};
+                int w = 1 + (int)rnd(0, 30), h = 1 + (int)rnd(0, 9), y0 = (int)rnd(-3, 6);
+                tex_map *r = tex_map_new(w, h, nc), *src = tex_map_channels(m, nc);
+                struct tex_sampler s;
+                const double du[2] = {1, 0}, dv[2] = {0, 1};
+                if (!r || !src || tex_affine_rows(m, 2, 11, r, y0, a, e, bg) < 0) {
+                    ok = 0;
+                } else {
+                    /* the map as rows 2..6 of one 11 rows tall, looked up pixel by pixel */
+                    tex_sampler_init(&s, src, e, bg);
+                    s.row0 = 2, s.rows = 11, s.nearest = 1;
+                    for (int y = 0; y < h; y++)
+                        for (int x = 0; x < w; x++) {
+                            float v[4];
+                            tex_sample(&s, x + 0.5 + a[2], y0 + y + 0.5 + a[5], du, dv, v);
+                            ok &= !memcmp(v, tex_map_px(r, x, y), nc * sizeof *v);
+                        }
+                }
+                cases++;
+                tex_map_free(r);
+                tex_map_free(src);
+            }
+    CHECKF(ok, "a whole-pixel translation gives the nearest lookup's pixels (%d cases)", cases);
+    tex_map_free(m);
+}
+
 int main(void)
 {
     levels_agree();
     centres();
+    translation_copies();
     return unit_done();
 }

@@ -30,6 +30,12 @@ done <<'ARGS'
 --shift 3,1000 --wrap
 --shift 3,1000
 --shift 0,0 --wrap
+--expand 250x100 --shift 5,-30 --wrap
+--expand 400x300 --shift 0,60 --wrap
+--expand 400x300 --shift 0,-20 --wrap
+--expand 400x300 --shift 0,-280 --wrap
+--clip 0,50,301,120 --shift 0,30 --wrap
+--clip 0,150,301,203 --shift 9,-40 --wrap
 --clip 10,20,200,150
 --clip 0,0,301,203
 --expand 400x300
