@@ -23,6 +23,7 @@
  *   netpbm.h    PNM, PAM and PFM, read and written natively
  *   prosim.h    ProSim's headerless NAME.r/.g/.b and NAME.pic, by their names
  *   assemble.h  windows of a map put together into the whole
+ *   spool.h     a stream's rows in an unlinked temporary file, read back in any order
  *   terminal.h  a map drawn in a terminal (sixel, kitty)
  * prim/     the primitives
  *   prim.h      the primitive descriptor and registry, sampling on a grid
@@ -79,6 +80,7 @@
 #include "io/prosim.h"
 #include "io/terminal.h"
 #include "io/assemble.h"
+#include "io/spool.h"
 #include "prim/prim.h"
 #include "prim/noise.h"
 #include "prim/cellular.h"

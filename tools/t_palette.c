@@ -199,8 +199,8 @@ static int spool_fill(void *arg, int y, int n, float *rows)
  * time; anything else is coloured whole. */
 static void colour_auto(struct colouring *k, const struct tex_common *c)
 {
-    const char *dir = getenv("TMPDIR"), *name = strcmp(k->input, "-") ? k->input : "standard input";
-    char tmp[4096], path[64];
+    const char *name = strcmp(k->input, "-") ? k->input : "standard input";
+    char path[64];
     tex_map head, *whole = NULL;
     tex_rows_reader *r = NULL;
     struct tex_stats st;
@@ -220,12 +220,8 @@ static void colour_auto(struct colouring *k, const struct tex_common *c)
         tex_map_free(out);
         return;
     }
-    snprintf(tmp, sizeof tmp, "%s/.t_palette.XXXXXX", dir && *dir ? dir : "/tmp");
-    if ((fd = mkstemp(tmp)) < 0) {
-        tex_error("%s: %s", tmp, strerror(errno));
+    if ((fd = tex_spool_file("t_palette")) < 0)
         tex_die();
-    }
-    unlink(tmp);
     struct spool s = {.r = r, .name = name, .w = head.w, .nc = head.nc};
     tex_stats_begin(&s.range);
     if (tex_exr_write_rows(&head, spool_fill, &s, 0, TEX_COMPRESS_NONE, fd, name) < 0)

@@ -1,10 +1,7 @@
 /* t_xform - rotate, scale, shift, expand and clip a texture map, filtered */
-#include <errno.h>
 #include <math.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 #include "ops/compose.h"
 #include "textura.h"
@@ -56,8 +53,8 @@ static void step(tex_map **m, tex_map *next)
  * A vertical --wrap asks for the rows from some row r down, then from the top: rows above r
  * go to an unlinked file of raw rows, read back as the bands ask, the rest stream on. */
 struct xchain {
-    tex_rows_reader *r; /* the input's rows, asked for from the top, but */
-    int spool, spooled; /* -1, or the file of its rows 0..spooled-1 */
+    tex_rows_reader *r;  /* the input's rows, asked for from the top, but */
+    struct tex_spool sp; /* fd -1, or the file of its rows 0..sp.h-1 */
     const char *name;
     int w, h, nc, subregions;
     int expand, ew, eh, enc, ox, oy; /* the canvas, its channels, tex_expand's offsets */
@@ -70,24 +67,14 @@ struct xchain {
 static tex_map *input_rows(struct xchain *x, int y, int n)
 {
     tex_map *m = tex_map_new(x->w, n, x->nc);
-    size_t row = (size_t)x->w * x->nc * sizeof(float);
 
     if (!m)
         return NULL;
     m->subregions = x->subregions;
-    if (x->spool < 0 || y >= x->spooled) {
-        if (tex_rows_read(x->r, y, n, m->px, x->name) < 0 ||
-            tex_rows_nonfinite(m->px, x->w, n, x->nc, y, x->name) < 0)
-            return tex_map_free(m), NULL;
-        return m;
-    }
-    for (size_t done = 0, want = row * n; done < want;) {
-        ssize_t k = pread(x->spool, (char *)m->px + done, want - done, (off_t)(row * y + done));
-        if (k <= 0 && !(k < 0 && errno == EINTR))
-            return tex_error("%s: spooled rows: %s", x->name, k < 0 ? strerror(errno) : "short"),
-                   tex_map_free(m), NULL;
-        done += k > 0 ? (size_t)k : 0;
-    }
+    if (x->sp.fd >= 0 && y < x->sp.h ? tex_spool_read(&x->sp, y, n, m->px) < 0
+                                     : tex_rows_read(x->r, y, n, m->px, x->name) < 0 ||
+                                           tex_rows_nonfinite(m->px, x->w, n, x->nc, y, x->name) < 0)
+        return tex_map_free(m), NULL;
     return m;
 }
 
@@ -168,38 +155,12 @@ static int xchain_fill(void *arg, int y, int n, float *rows)
     return 0;
 }
 
-/* The input's rows 0..rows-1 into an unlinked file in TMPDIR, about 1 MiB at a time */
-static void spool_input(struct xchain *x, int rows_above)
-{
-    const char *dir = getenv("TMPDIR");
-    char tmp[4096];
-    int rows = (int)((1L << 20) / ((long)x->w * x->nc * (long)sizeof(float)));
-
-    snprintf(tmp, sizeof tmp, "%s/.t_xform.XXXXXX", dir && *dir ? dir : "/tmp");
-    if ((x->spool = mkstemp(tmp)) < 0) {
-        tex_error("%s: %s", tmp, strerror(errno));
-        tex_die();
-    }
-    unlink(tmp);
-    rows = rows < 1 ? 1 : rows;
-    for (int y = 0; y < rows_above; y += rows) {
-        int n = rows_above - y < rows ? rows_above - y : rows, fd = x->spool;
-        x->spool = -1;
-        tex_map *m = input_rows(x, y, n);
-        x->spool = fd;
-        if (!m || tex_write_all(fd, m->px, tex_map_samples(m) * sizeof(float), "a spool") < 0)
-            tex_die();
-        tex_map_free(m);
-    }
-    x->spooled = rows_above;
-}
-
 /* Expand, shift and clip as a chain of bands, when the input and output stream and no
  * step resamples: 1 when done, 0 with *whole the map read whole (the caller's to do) */
 static int stream_chain(const char *path, const struct opts *o, int ew, int eh,
                         const struct tex_common *c, tex_map **whole)
 {
-    struct xchain x = {.spool = -1, .bg = o->background};
+    struct xchain x = {.sp = {.fd = -1}, .bg = o->background};
     tex_map head, one = {0}, out = {0};
     float px[4] = {0};
 
@@ -236,16 +197,16 @@ static int stream_chain(const char *path, const struct opts *o, int ew, int eh,
     if (x.shift && x.wrap && x.dy % x.eh != 0) {
         /* the first band's input row: the canvas's row (cy - dy) mod eh, less expand's offset */
         long first = ((x.cy - (long)x.dy) % x.eh + x.eh) % x.eh + x.oy;
-        if (first > 0 && first < x.h)
-            spool_input(&x, (int)first);
+        if (first > 0 && first < x.h &&
+            tex_spool_rows(&x.sp, "t_xform", x.r, &head, x.name, (int)first, NULL, NULL) < 0)
+            tex_die();
     }
     out.subregions = x.subregions;
     out.history = head.history;
     tex_cli_write_rows(&out, c, xchain_fill, &x);
     free(out.history);
     tex_rows_close(x.r);
-    if (x.spool >= 0)
-        close(x.spool);
+    tex_spool_close(&x.sp);
     return 1;
 }
 

@@ -386,23 +386,24 @@ tex_map *tex_tile(const tex_map *const *maps, int nmaps, enum tex_rule rule, int
 
 /* ---- domain perturbation ---- */
 
-/* The displacement (in texture units, before the amount) at row y. */
-static void warp_row(const struct tex_sampler *sb, const struct tex_warp_opts *o, int w, int h,
-                     int y, double *d)
+/* The displacement (in texture units, before the amount) at row y: sb samples BY for the
+ * first lookup, sb2 for the isotropic's second (half a map away: a band of its own). */
+static void warp_row(const struct tex_sampler *sb, const struct tex_sampler *sb2,
+                     const struct tex_warp_opts *o, int w, int h, int y, double *d)
 {
-    const tex_map *b = sb->m;
-    double du[2] = {(double)b->w / w, 0}, dv[2] = {0, (double)b->h / h};
+    int bw = sb->m->w, bh = sb->rows, bnc = sb->m->nc;
+    double du[2] = {(double)bw / w, 0}, dv[2] = {0, (double)bh / h};
     double ca = cos(o->angle * M_PI / 180.0), sa = sin(o->angle * M_PI / 180.0);
     float v[4], v2[4];
 
     for (int x = 0; x <= w; x++) {
         double u = (x + 0.5) / w, vv = (y + 0.5) / h;
-        tex_sample(sb, u * b->w, vv * b->h, du, dv, v);
-        if (b->nc >= 2) {
+        tex_sample(sb, u * bw, vv * bh, du, dv, v);
+        if (bnc >= 2) {
             d[2 * x] = v[0] - o->centre;
             d[2 * x + 1] = v[1] - o->centre;
         } else if (o->isotropic) {
-            tex_sample(sb, (u + 0.5) * b->w, (vv + 0.5) * b->h, du, dv, v2);
+            tex_sample(sb2, (u + 0.5) * bw, (vv + 0.5) * bh, du, dv, v2);
             d[2 * x] = v[0] - o->centre;
             d[2 * x + 1] = v2[0] - o->centre;
         } else {
@@ -415,22 +416,34 @@ static void warp_row(const struct tex_sampler *sb, const struct tex_warp_opts *o
 tex_map *tex_warp(const tex_map *m, const tex_map *by, const struct tex_warp_opts *o, int w,
                   int h)
 {
-    struct tex_sampler sm, sb;
+    struct tex_map_rows mr = {m, 0, m->h}, br = {by, 0, by->h};
     tex_map *r;
-    int failed = 0;
 
-    if (!isfinite(o->amount) || !isfinite(o->centre) || !isfinite(o->angle))
-        return tex_usage_error("warp parameters must be finite"), NULL;
     if (!(r = tex_map_new(w, h, m->nc)))
         return NULL;
     r->subregions = m->subregions;
-    if (m->history && tex_map_set_history(r, m->history) < 0) {
+    if ((m->history && tex_map_set_history(r, m->history) < 0) ||
+        tex_warp_rows(mr, br, br, o, r, 0, h) < 0) {
         tex_map_free(r);
         return NULL;
     }
-    tex_sampler_init(&sm, m, o->edge, NULL);
-    tex_sampler_init(&sb, by, TEX_EDGE_WRAP, NULL);
-    sb.nearest = 0;
+    return r;
+}
+
+int tex_warp_rows(struct tex_map_rows m, struct tex_map_rows by, struct tex_map_rows by2,
+                  const struct tex_warp_opts *o, tex_map *out, int y0, int h)
+{
+    struct tex_sampler sm, sb, sb2;
+    int failed = 0, w = out->w, mw = m.band->w, mh = m.full_h;
+
+    if (!isfinite(o->amount) || !isfinite(o->centre) || !isfinite(o->angle))
+        return tex_usage_error("warp parameters must be finite");
+    tex_sampler_init(&sm, m.band, o->edge, NULL);
+    tex_sampler_init(&sb, by.band, TEX_EDGE_WRAP, NULL);
+    tex_sampler_init(&sb2, by2.band, TEX_EDGE_WRAP, NULL);
+    sm.row0 = m.row0, sm.rows = mh;
+    sb.row0 = by.row0, sb.rows = by.full_h, sb2.row0 = by2.row0, sb2.rows = by2.full_h;
+    sb.nearest = sb2.nearest = 0;
 #pragma omp parallel
     {
         /* This row's displacements and the next row's, one extra column:
@@ -445,7 +458,7 @@ tex_map *tex_warp(const tex_map *m, const tex_map *by, const struct tex_warp_opt
             failed = 1;
         }
 #pragma omp for schedule(dynamic, 4)
-        for (int y = 0; y < h; y++) {
+        for (int y = y0; y < y0 + out->h; y++) {
             if (!buf)
                 continue;
             if (y == next) {
@@ -453,26 +466,70 @@ tex_map *tex_warp(const tex_map *m, const tex_map *by, const struct tex_warp_opt
                 d0 = d1;
                 d1 = t;
             } else
-                warp_row(&sb, o, w, h, y, d0);
-            warp_row(&sb, o, w, h, y + 1, d1);
+                warp_row(&sb, &sb2, o, w, h, y, d0);
+            warp_row(&sb, &sb2, o, w, h, y + 1, d1);
             next = y + 1;
             for (int x = 0; x < w; x++) {
                 double u = (x + 0.5) / w + o->amount * d0[2 * x];
                 double v = (y + 0.5) / h + o->amount * d0[2 * x + 1];
-                double du[2] = {m->w * (1.0 / w + o->amount * (d0[2 * x + 2] - d0[2 * x])),
-                                m->h * o->amount * (d0[2 * x + 3] - d0[2 * x + 1])};
-                double dv[2] = {m->w * o->amount * (d1[2 * x] - d0[2 * x]),
-                                m->h * (1.0 / h + o->amount * (d1[2 * x + 1] - d0[2 * x + 1]))};
-                tex_sample(&sm, u * m->w, v * m->h, du, dv, tex_map_px(r, x, y));
+                double du[2] = {mw * (1.0 / w + o->amount * (d0[2 * x + 2] - d0[2 * x])),
+                                mh * o->amount * (d0[2 * x + 3] - d0[2 * x + 1])};
+                double dv[2] = {mw * o->amount * (d1[2 * x] - d0[2 * x]),
+                                mh * (1.0 / h + o->amount * (d1[2 * x + 1] - d0[2 * x + 1]))};
+                tex_sample(&sm, u * mw, v * mh, du, dv, tex_map_px(out, x, y - y0));
             }
         }
         free(buf);
     }
-    if (failed) {
-        tex_map_free(r);
-        return tex_error("out of memory"), NULL;
+    if (failed)
+        return tex_error("out of memory");
+    return 0;
+}
+
+/* floor(x) as a row index, or -1 (with *bad set) past what a row index can be */
+static long row_floor(double x, int *bad)
+{
+    if (!(x > -1e12 && x < 1e12)) {
+        *bad = 1;
+        return 0;
     }
-    return r;
+    return (long)floor(x);
+}
+
+int tex_warp_reads(const struct tex_warp_opts *o, int bnc, const double lo[4],
+                   const double hi[4], int bh, int mh, int h, int y, int n,
+                   struct tex_warp_reach *r)
+{
+    /* BY: row r's lookups at (r + 0.5) bh / h (and bh / 2 below for the second), spread
+     * over bh / h rows, for rows y..y+n (the last row's footprint takes the next row's);
+     * a bilinear lookup at Y reads rows floor(Y - 0.5) and the one below.  Two rows more
+     * each side for the rounding of the lookups' arithmetic. */
+    double s = (double)bh / h, top = y * s, end = (y + n + 1) * s;
+    int c = bnc >= 2 ? 1 : 0, bad = 0;
+    r->by[0] = row_floor(top - 0.5, &bad) - 2;
+    r->by[1] = row_floor(end - 0.5, &bad) + 4;
+    r->by2[0] = row_floor(top + 0.5 * bh - 0.5, &bad) - 2;
+    r->by2[1] = row_floor(end + 0.5 * bh - 0.5, &bad) + 4;
+    /* M: d_v, BY's channel c less the neutral value (times -sin angle for a push along
+     * the angle), lies within [L, H], widened for the float sums of a filtered lookup.  A
+     * tap of the footprint's grid looks up v + amount ((1-a-b) d + a d_right + b d_below)
+     * + b / h, |a|, |b| < 1/2: weights of sum 1, the positive ones below 2 in all and
+     * the negative ones above -1, so within amount [L - R, H + R] (R = H - L), and half
+     * a row of the output either side of the row's own v. */
+    double eps = 1e-4 * fmax(fabs(lo[c]), fabs(hi[c])), L = lo[c] - eps - o->centre,
+           H = hi[c] + eps - o->centre;
+    if (bnc == 1 && !o->isotropic) {
+        double sa = sin(o->angle * M_PI / 180.0), a = -L * sa, b = -H * sa;
+        L = fmin(a, b), H = fmax(a, b);
+    }
+    double R = H - L, dlo = o->amount * (L - R), dhi = o->amount * (H + R);
+    if (dlo > dhi) {
+        double t = dlo;
+        dlo = dhi, dhi = t;
+    }
+    r->m[0] = row_floor(mh * ((double)y / h + dlo) - 0.5, &bad) - 2;
+    r->m[1] = row_floor(mh * ((double)(y + n) / h + dhi) - 0.5, &bad) + 4;
+    return bad || !isfinite(R) ? -1 : 0;
 }
 
 /* ---- blur ---- */

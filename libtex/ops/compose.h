@@ -109,6 +109,25 @@ struct tex_warp_opts {
 };
 tex_map *tex_warp(const tex_map *m, const tex_map *by, const struct tex_warp_opts *o, int w,
                   int h);
+/* The warp a band of rows at a time (t_warp in bounded memory): rows y..y+out->h-1 of
+ * tex_warp(M, BY, o, out->w, h) into out (M's channels), bit for bit, from m, by and by2
+ * (transform.h's struct tex_map_rows: bands of M and BY, wrapping where the edge rule
+ * does) holding every row that tex_warp_reads names: by for BY's first lookup, by2 for
+ * the isotropic's second (by again when none).  0, or -1 with the error set. */
+int tex_warp_rows(struct tex_map_rows m, struct tex_map_rows by, struct tex_map_rows by2,
+                  const struct tex_warp_opts *o, tex_map *out, int y, int h);
+/* The rows [from, to) that rows y..y+n-1 of a warp h rows tall read, before the edge rule
+ * (they may pass either edge): by and by2 of BY (bh rows tall; by2 the isotropic's second
+ * lookup), m of M (mh rows tall) when BY's channel c (of bnc) lies within lo[c]..hi[c].
+ * M's rows reach amount (3 max|BY - neutral| at most) x mh either side of the row's
+ * own, less where BY's range is narrow.  0, or -1 when a bound passes any row index
+ * (BY not finite, a displacement of more than 10^12 rows): then any row may be read. */
+struct tex_warp_reach {
+    long by[2], by2[2], m[2];
+};
+int tex_warp_reads(const struct tex_warp_opts *o, int bnc, const double lo[4],
+                   const double hi[4], int bh, int mh, int h, int y, int n,
+                   struct tex_warp_reach *r);
 
 /* The composition language's blur: tex_filter_gaussian (filter.h) with
  * standard deviation sigma pixels (0..TEX_BLUR_MAX), edges clamped, any

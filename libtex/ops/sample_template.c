@@ -13,8 +13,9 @@ SAMPLE_TARGET static inline const float *fetch(const struct tex_sampler *s, long
 
     if (x < 0 || y < 0)
         return s->bg;
-    y -= s->row0;
-    if (y < 0 || y >= s->m->h) /* a band short of the rows it needs: its caller's error */
+    y -= s->row0; /* counted from the band's first row, modulo the map's: a band may wrap */
+    y = y < 0 ? y + s->rows : y >= s->rows ? y - s->rows : y;
+    if (y >= s->m->h) /* a band short of the rows it needs: its caller's error */
         return s->bg;
     return tex_map_px(s->m, (int)x, (int)y);
 }

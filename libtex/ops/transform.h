@@ -39,8 +39,17 @@ struct tex_sampler {
     float bg[4];  /* background in m's channel layout (TEX_EDGE_BACKGROUND) */
     int nearest;  /* 1: no interpolation or averaging (region ids) */
     int maxtaps;  /* most lookups per axis for one output pixel (0: 32) */
-    int row0, rows; /* m holds rows row0.. of a map rows tall (tex_affine_rows; init: 0, m->h) */
+    int row0, rows; /* m holds rows row0.. of a map rows tall, counted modulo rows (a band
+                     * may wrap past the last row; -rows < row0 < rows; init: 0, m->h) */
     int level;    /* the SIMD level tex_sample's code takes (init: tex_simd_level(); same floats) */
+};
+
+/* A band of a map's rows: band holds rows row0..row0 + band->h - 1 of a map full_h rows
+ * tall, counted modulo full_h (-full_h < row0 < full_h), so a band may wrap from the last
+ * row to the first, as a sampler with a wrapping edge rule reads it. */
+struct tex_map_rows {
+    const tex_map *band;
+    int row0, full_h;
 };
 
 /* Prepare a sampler; bg is RGBA and is converted to m's channels. */
