@@ -719,9 +719,9 @@ void tex_scene_transmit_n(const struct tex_scene *s, int n, const tex_v3 *o, con
         all.hi = tex_v3_make(INFINITY, INFINITY, INFINITY);
     }
     struct tex_ray_lanes lanes, *lp = NULL; /* the rays in lanes, eight or more of them */
-    int level = tex_simd_level(), wide = level >= TEX_SIMD_AVX512;
-    if (n >= 8 && level >= TEX_SIMD_AVX2) {
-        lp = &lanes;
+    int wide = 0; /* one ray's calls (most of them) do not ask the level */
+    if (n >= 8 && tex_simd_level() >= TEX_SIMD_AVX2) {
+        lp = &lanes, wide = tex_simd_level() >= TEX_SIMD_AVX512;
         lanes.tmin = tmin, lanes.tmax = tmax;
         for (int i = 0; i < n; i++) {
             lanes.o[0][i] = r[i].o.x, lanes.o[1][i] = r[i].o.y, lanes.o[2][i] = r[i].o.z;
