@@ -637,9 +637,9 @@ static void test_rays_box_lanes(void)
 #endif
 }
 
-/* A batch of shadow rays through a tree of glass and opaque boxes on a grid (from their corners and faces,
- * along their faces, to their corners) gives each ray's own product of Kt, bit for bit, at
- * every SIMD level */
+/* A batch of shadow rays through a tree of glass and opaque boxes on a grid (from their
+ * corners and faces, along their faces, to their corners) gives each ray's own product of
+ * Kt, bit for bit, at every SIMD level */
 static void test_transmit_batch(void)
 {
     tex_rng g;
@@ -650,8 +650,9 @@ static void test_transmit_batch(void)
     len += snprintf(sc, cap, "image 8 8\nsurface a { Kd 0.2 Kt 0.5 }\nsurface b { Kd 0.2 Kt 0.9 }\n"
                              "surface c { Kd 0.2 }\n");
     for (int i = 0; i < 80; i++) {
-        double x = 0.5 * ((int)tex_rng_below(&g, 16) - 8), y = 0.5 * ((int)tex_rng_below(&g, 16) - 8),
-               z = 0.5 * ((int)tex_rng_below(&g, 16) - 8);
+        double x = 0.5 * ((int)tex_rng_below(&g, 16) - 8);
+        double y = 0.5 * ((int)tex_rng_below(&g, 16) - 8);
+        double z = 0.5 * ((int)tex_rng_below(&g, 16) - 8);
         bx[i].lo = tex_v3_make(x, y, z);
         bx[i].hi = tex_v3_make(x + 0.5 * (1 + (int)tex_rng_below(&g, 3)),
                                y + 0.5 * (1 + (int)tex_rng_below(&g, 3)),
@@ -675,9 +676,9 @@ static void test_transmit_batch(void)
             const struct tex_object *from[64];
             int n = p % 4 ? 64 : 1 + (int)tex_rng_below(&g, 64);
             for (int i = 0; i < n; i++) {
-                const struct tex_bounds *a = &bx[tex_rng_below(&g, 80)], *b = &bx[tex_rng_below(&g, 80)];
+                const struct tex_bounds *a = &bx[tex_rng_below(&g, 80)];
                 o[i] = box_point(&g, a);
-                d[i] = graze_dir(&g, o[i], b);
+                d[i] = graze_dir(&g, o[i], &bx[tex_rng_below(&g, 80)]);
                 tmin[i] = tex_rng_below(&g, 2) ? 0 : 1e-6;
                 tmax[i] = tex_rng_below(&g, 4) ? 1 + 8 * tex_rng_uniform(&g) : INFINITY;
                 from[i] = NULL;
