@@ -588,8 +588,22 @@ material(const struct tex_colour_space *cs, const struct tex_surface *sf,
     m->blend_m = NULL;
 }
 
-/* apply_textures for a direct surface (tex_surface_cache) whose map's value and footprint
- * came with the packet in pa, and a bump's tilt where it bumps: its functions in order,
+/* The value f of a direct surface's texture t that came with the packet in pa (texture_value's
+ * for it): a map's, RGB already, or a primitive's through its palette into fin */
+static inline const float *direct_value(const struct tex_texture *t,
+                                        const struct tex_prefetch_ap *pa, float fin[3])
+{
+    if (t->mip)
+        return pa->val;
+    float val[TEX_MAP_MAX_CHANNELS];
+    memcpy(val, pa->val, sizeof val);
+    tex_field_finish(t, val, fin);
+    return fin;
+}
+
+/* apply_textures for a direct surface (tex_surface_cache) whose texture's value came with
+ * the packet in pa: a map's with its footprint, and a bump's tilt where it bumps; a
+ * primitive's without (lookup_width2's 0 for a value made ahead).  Its functions in order,
  * without the general path's set-up; N bent as apply_textures bends it */
 static int apply_direct(const struct tex_surface *sf, const struct tex_prefetch_ap *pa,
                         tex_v3 *N, struct params *pr)
@@ -597,14 +611,17 @@ static int apply_direct(const struct tex_surface *sf, const struct tex_prefetch_
     const struct tex_surface_cache *c = sf->cache;
     int ks_textured = 0, i = 0;
     tex_v3 tilt = tex_v3_make(0, 0, 0);
+    float fin[3];
+    const float *f = pa->inside ? direct_value(sf->apply->tex, pa, fin) : NULL;
+    double fw2 = sf->apply->tex->mip ? pa->fw : 0;
     for (const struct tex_appfn *fn = sf->apply->fns; pa->inside && fn; fn = fn->next, i++) {
         const struct poly *q = c->compiled[i] ? &c->poly[i] : NULL;
         ks_textured |= fn->param == TEX_SP_KS;
         if (q && fn->param == TEX_SP_KD) { /* apply_fn's path for it, without the call */
-            colour_poly(q, pa->val, fn->lo, fn->hi, pr->kd);
+            colour_poly(q, f, fn->lo, fn->hi, pr->kd);
             continue;
         }
-        apply_fn(fn, q, pa->val, pa->uvw, pa->fw, NULL, pr);
+        apply_fn(fn, q, f, pa->uvw, fw2, NULL, pr);
         if (fn->param == TEX_SP_BUMP && pr->bump != 0) {
             tilt = tex_v3_add(tilt, tilt_ahead(pa, pr->bump));
             pr->bump = 0;
@@ -733,7 +750,7 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
     for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next) {
         tex_placement_of(ap, &c->placement[nap]);
         c->footprints |= band_limited(ap->tex) || (!nap && map_ahead(ap));
-        c->direct = !nap && !ap->next && map_ahead(ap);
+        c->direct = !nap && !ap->next && (map_ahead(ap) || value_ahead(ap));
         nap++;
         for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++) {
             c->direct &= !fn->region && fn->param != TEX_SP_NORMAL &&
@@ -744,7 +761,7 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
         }
     }
     c->direct &= !c->quantities;
-    c->lanes = c->direct && tex_simd_level() >= TEX_SIMD_AVX512;
+    c->lanes = c->direct && map_ahead(sf->apply) && tex_simd_level() >= TEX_SIMD_AVX512;
     c->base = surface_params(sf);
     float ka[3] = {sf->ka * sf->kd[0], sf->ka * sf->kd[1], sf->ka * sf->kd[2]};
     cs->from_rgb(cs, ka, TEX_SPECTRUM_REFLECTANCE, &c->col[0]);
@@ -788,13 +805,13 @@ int tex_plain_material(const struct tex_surface *sf, const struct tex_prefetch *
 {
     const struct tex_surface_cache *c = sf->cache;
     const struct tex_prefetch_ap *pa = &pre->ap[0];
-    float v[4] = {c->base.kd[0], c->base.kd[1], c->base.kd[2], 0};
+    float v[4] = {c->base.kd[0], c->base.kd[1], c->base.kd[2], 0}, fin[3];
     if (sf->apply && !(pre->sf == sf && pre->n && pa->has_val))
         return 0;
+    const float *f = sf->apply && pa->inside ? direct_value(sf->apply->tex, pa, fin) : NULL;
     int i = 0; /* apply_direct's compiled Kd functions, in order */
-    for (const struct tex_appfn *fn = sf->apply && pa->inside ? sf->apply->fns : NULL; fn;
-         fn = fn->next, i++)
-        colour_poly(&c->poly[i], pa->val, fn->lo, fn->hi, v);
+    for (const struct tex_appfn *fn = f ? sf->apply->fns : NULL; fn; fn = fn->next, i++)
+        colour_poly(&c->poly[i], f, fn->lo, fn->hi, v);
     for (int k = 0; k < 3; k++) { /* material's, in RGB */
         m->ka[k] = c->cached & 1 ? c->col[0].v[k] : c->base.ka * v[k];
         m->kd[k] = c->cached & 2 ? c->col[1].v[k] : v[k];

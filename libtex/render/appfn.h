@@ -55,10 +55,11 @@ struct tex_surface_cache {
     char *compiled;              /* 1: poly[i] holds function i */
     int quantities;              /* bit k: a function reads quantity k (tex_quantities) */
     int footprints;              /* 1: lookups ahead take footprints (tex_surface_footprints) */
-    /* 1: one texture, a map looked up ahead, whose functions read no quantity, see every
-     * region and bend no normal but by a bump (apply_direct) */
+    /* 1: one texture, a map looked up ahead or a primitive evaluated ahead, whose
+     * functions read no quantity, see every region and bend no normal but by a bump
+     * (apply_direct) */
     int direct;
-    int lanes; /* 1: direct, and AVX-512: its planes' hits go in lanes (tex_lanes_take) */
+    int lanes; /* 1: direct, a map, and AVX-512: its planes' hits go in lanes (tex_lanes_take) */
     int plain; /* tex_surface_plain: 1, a material tex_plain_material makes; 2, any other */
 };
 
@@ -83,6 +84,13 @@ void tex_appfn_eval(const struct tex_expr *e, const float f[3], const float p[3]
 static inline int map_ahead(const struct tex_apply *ap)
 {
     return ap->tex->mip && !ap->tex->subregions && ap->mapping != TEX_MAP_CROSS;
+}
+
+/* Whether a packet's lookups ahead make ap's texture's value whole: a primitive's (the
+ * texture's palette aside), not crossed with a second map (tex_prefetch_eval) */
+static inline int value_ahead(const struct tex_apply *ap)
+{
+    return !ap->tex->mip && ap->mapping != TEX_MAP_CROSS;
 }
 
 #ifdef __cplusplus

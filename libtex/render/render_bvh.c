@@ -645,19 +645,21 @@ static inline void transmit_rays(const struct tex_scene *s, const struct prim *p
 
 /* The rays of m whose segments enter box b; none where b lies apart from the box around
  * every segment, all (a box widened far beyond the rounding of hit_box's slabs: shadow rays
- * to one light, from a packet's hits, skip most of the tree at one test) */
+ * to one light, from a packet's hits, skip most of the tree at one test).  lanes: the rays
+ * in vector lanes, eight a vector where wide, else four (NULL: one ray at a time). */
 static inline uint64_t rays_box(const struct tex_bounds *b, const struct ray *r, uint64_t m,
                                 const double *tmin, const double *tmax,
-                                const struct tex_bounds *all, const struct tex_ray_lanes *lanes)
+                                const struct tex_bounds *all, const struct tex_ray_lanes *lanes,
+                                int wide)
 {
     if (b->lo.x > all->hi.x || b->hi.x < all->lo.x || b->lo.y > all->hi.y ||
         b->hi.y < all->lo.y || b->lo.z > all->hi.z || b->hi.z < all->lo.z)
         return 0;
 #ifdef TEX_X86
     if (lanes && __builtin_popcountll(m) >= 4) /* the rays' lanes, where the CPU has them */
-        return tex_rays_box_avx512(b, lanes, m);
+        return wide ? tex_rays_box_avx512(b, lanes, m) : tex_rays_box_avx2(b, lanes, m);
 #else
-    (void)lanes;
+    (void)lanes, (void)wide;
 #endif
     uint64_t in = 0;
     double t0;
@@ -717,8 +719,9 @@ void tex_scene_transmit_n(const struct tex_scene *s, int n, const tex_v3 *o, con
         all.hi = tex_v3_make(INFINITY, INFINITY, INFINITY);
     }
     struct tex_ray_lanes lanes, *lp = NULL; /* the rays in lanes, eight or more of them */
-    if (n >= 8 && tex_simd_level() >= TEX_SIMD_AVX512) {
-        lp = &lanes;
+    int wide = 0; /* one ray's calls (most of them) do not ask the level */
+    if (n >= 8 && tex_simd_level() >= TEX_SIMD_AVX2) {
+        lp = &lanes, wide = tex_simd_level() >= TEX_SIMD_AVX512;
         lanes.tmin = tmin, lanes.tmax = tmax;
         for (int i = 0; i < n; i++) {
             lanes.o[0][i] = r[i].o.x, lanes.o[1][i] = r[i].o.y, lanes.o[2][i] = r[i].o.z;
@@ -731,7 +734,7 @@ void tex_scene_transmit_n(const struct tex_scene *s, int n, const tex_v3 *o, con
         uint64_t m;
     } stack[128];
     int sp = 0, ni = 0;
-    uint64_t m = rays_box(&t->nodes[0].b, r, live, tmin, tmax, &all, lp);
+    uint64_t m = rays_box(&t->nodes[0].b, r, live, tmin, tmax, &all, lp, wide);
     while (m) {
         const struct node *nd = &t->nodes[ni];
         if (nd->count) {
@@ -739,8 +742,8 @@ void tex_scene_transmit_n(const struct tex_scene *s, int n, const tex_v3 *o, con
                 transmit_rays(s, &t->prims[nd->first + i], r, m, tmin, tmax, from, tr, &live);
         } else {
             int l = ni + 1, rt = nd->first;
-            uint64_t ml = rays_box(&t->nodes[l].b, r, m, tmin, tmax, &all, lp);
-            uint64_t mr = rays_box(&t->nodes[rt].b, r, m, tmin, tmax, &all, lp);
+            uint64_t ml = rays_box(&t->nodes[l].b, r, m, tmin, tmax, &all, lp, wide);
+            uint64_t mr = rays_box(&t->nodes[rt].b, r, m, tmin, tmax, &all, lp, wide);
             if (ml && mr)
                 stack[sp].node = rt, stack[sp++].m = mr;
             if (ml || mr) {

@@ -9,6 +9,7 @@
 #endif
 
 #include "textura.h"
+#include "base/simd.h"
 #include "unit.h"
 
 /* A field of primitive name with "key=value" settings, ready for a w x h grid. */
@@ -381,6 +382,52 @@ static void solids(void)
     tex_field_free(f);
 }
 
+/* A coordinate of the checker's tests: on a cell's face (k / 2, its half-cell faces), a
+ * rounding beside it, zeros, NaN, infinities, the largest and smallest doubles, and beyond
+ * 2^52 where every double is whole */
+static double cell_coord(unsigned k)
+{
+    static const double odd[] = {0.0, -0.0, NAN, INFINITY, -INFINITY, 1e300, -1e300,
+                                 4503599627370497.0, -4503599627370497.0, 0x1p53, 5e-324, -5e-324};
+    double x = ((int)(k % 41) - 20) / 2.0, near[3] = {x, nextafter(x, -1e9), nextafter(x, 1e9)};
+    if (k % 7 == 0)
+        return odd[k / 7 % (sizeof odd / sizeof *odd)];
+    return k % 5 == 0 ? x - 0.5e-10 : near[k / 41 % 3]; /* the cell's epsilon, at its edge */
+}
+
+/* The solid checker's kernel in vector lanes gives the portable cells, bit for bit, at every
+ * level, on faces, beside them and at the odd values */
+static void checker_levels(void)
+{
+    int reps[3][3] = {{1, 1, 1}, {3, 5, 2}, {4096, 7, 1}}, levels[2] = {tex_simd_level(), 0};
+    int n = 1003, bad = 0, two = 0; /* n: not a multiple of the lanes */
+    double *u = malloc(3 * n * sizeof *u), *v = u + n, *w = v + n;
+    float *out = malloc(2 * n * sizeof *out);
+    for (int i = 0; i < n; i++)
+        u[i] = cell_coord(i), v[i] = cell_coord(3 * i + 1), w[i] = cell_coord(7 * i + 2);
+    for (int r = 0; r < 3; r++) {
+        char a[3][16];
+        snprintf(a[0], sizeof a[0], "nu=%d", reps[r][0]);
+        snprintf(a[1], sizeof a[1], "nv=%d", reps[r][1]);
+        snprintf(a[2], sizeof a[2], "nw=%d", reps[r][2]);
+        struct tex_field *f = field("checker", 1, 0, 0, a[0], a[1], a[2], NULL);
+        for (int l = 0; l < 2; l++) {
+            tex_simd_limit(levels[l]);
+            f->prim->eval3(f, n, u, v, w, out + l * n);
+        }
+        tex_simd_limit(levels[0]);
+        for (int i = 0; i < n; i++)
+            bad += memcmp(&out[i], &out[n + i], sizeof *out) != 0, two += out[i] == 2;
+        tex_field_free(f);
+    }
+    CHECKF(bad == 0 && two > n && two < 2 * n,
+           "checker solid: the AVX2 kernel's cells are the portable ones (%s; %d of %d differ, "
+           "%d twos)",
+           tex_simd_name(levels[0]), bad, 3 * n, two);
+    free(u);
+    free(out);
+}
+
 static void bad_params(void)
 {
     struct {
@@ -462,6 +509,7 @@ int main(void)
     threads();
     sample_into();
     solids();
+    checker_levels();
     bad_params();
     return unit_done();
 }

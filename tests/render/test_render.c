@@ -8,6 +8,7 @@
 #include "base/error.h"
 #include "io/file.h"
 #include "render/box4.h"
+#include "render/bvh.h"
 #include "render/scene.h"
 #include "render/x86/bvh_x86.h"
 #include "base/rng.h"
@@ -552,6 +553,151 @@ static void test_box4_rays_lanes(void)
 #endif
 }
 
+/* A point of box b (on the grid where box_coord puts its faces): one of its corners, a point
+ * of one of its faces, or anywhere near */
+static tex_v3 box_point(tex_rng *g, const struct tex_bounds *b)
+{
+    double lo[3] = {b->lo.x, b->lo.y, b->lo.z}, hi[3] = {b->hi.x, b->hi.y, b->hi.z}, p[3];
+    int kind = (int)tex_rng_below(g, 3), face = (int)tex_rng_below(g, 3);
+    for (int a = 0; a < 3; a++)
+        p[a] = kind == 0 || (kind == 1 && a == face) ? (tex_rng_below(g, 2) ? lo[a] : hi[a])
+                                                     : box_coord(g);
+    return tex_v3_make(p[0], p[1], p[2]);
+}
+
+/* A direction from o grazing box b: along one or two of the axes' planes (zero components),
+ * to one of its corners (ties in the slabs), or any */
+static tex_v3 graze_dir(tex_rng *g, tex_v3 o, const struct tex_bounds *b)
+{
+    tex_v3 d = random_dir(g);
+    if (tex_rng_below(g, 2)) {
+        tex_v3 c = tex_v3_make(tex_rng_below(g, 2) ? b->lo.x : b->hi.x,
+                               tex_rng_below(g, 2) ? b->lo.y : b->hi.y,
+                               tex_rng_below(g, 2) ? b->lo.z : b->hi.z);
+        if (tex_v3_dot(tex_v3_sub(c, o), tex_v3_sub(c, o)) > 0)
+            d = tex_v3_sub(c, o);
+    }
+    double *dc[3] = {&d.x, &d.y, &d.z};
+    for (int a = 0; a < 3; a++)
+        if (!tex_rng_below(g, 3))
+            *dc[a] = tex_rng_below(g, 2) ? 0.0 : -0.0;
+    return d;
+}
+
+/* A batch of shadow rays against a box in AVX2's lanes (and AVX-512's where the CPU has
+ * them) gives each ray's own slab test (tex_box4_hit's lane: hit_box's operations in its
+ * order) for rays from the box's corners and faces, along its faces and to its corners */
+static void test_rays_box_lanes(void)
+{
+#ifdef TEX_X86
+    if (tex_simd_level() < TEX_SIMD_AVX2)
+        return;
+    tex_rng g;
+    tex_rng_seed(&g, 9);
+    int wide = tex_simd_level() >= TEX_SIMD_AVX512, n = 4000;
+    long bad[2] = {0, 0}, entered = 0, asked = 0, graze = 0;
+    struct tex_ray_lanes l;
+    double tmin[64], tmax[64];
+    l.tmin = tmin, l.tmax = tmax;
+    for (int k = 0; k < n; k++) {
+        double p[3], q[3];
+        for (int a = 0; a < 3; a++)
+            p[a] = box_coord(&g), q[a] = tex_rng_below(&g, 8) ? box_coord(&g) : p[a]; /* flat */
+        struct tex_bounds b = {tex_v3_make(fmin(p[0], q[0]), fmin(p[1], q[1]), fmin(p[2], q[2])),
+                               tex_v3_make(fmax(p[0], q[0]), fmax(p[1], q[1]), fmax(p[2], q[2]))};
+        struct tex_box4 b4;
+        for (int c = 0; c < 4; c++)
+            for (int a = 0; a < 3; a++)
+                b4.lo[a][c] = tex_v3_get(b.lo, a), b4.hi[a][c] = tex_v3_get(b.hi, a);
+        uint64_t m = (uint64_t)tex_rng_below(&g, 1u << 31) << 33 ^ tex_rng_below(&g, 1u << 31);
+        uint64_t want = 0;
+        for (int i = 0; i < 64; i++) {
+            tex_v3 o = box_point(&g, &b), inv = tex_v3_slab_inv(graze_dir(&g, o, &b));
+            for (int a = 0; a < 3; a++)
+                l.o[a][i] = tex_v3_get(o, a), l.inv[a][i] = tex_v3_get(inv, a);
+            tmin[i] = tex_rng_below(&g, 2) ? 0 : tex_rng_uniform(&g);
+            tmax[i] = tex_rng_below(&g, 2) ? INFINITY : 4 * tex_rng_uniform(&g);
+            double t[4];
+            want |= (uint64_t)(tex_box4_hit(&b4, &o, &inv, tmin[i], tmax[i], t) & 1) << i;
+            for (int a = 0; a < 3; a++) /* along a face's plane: a slab of +-0 and +-inf */
+                graze += (m >> i & 1) && fabs(l.inv[a][i]) > 1e299 &&
+                         (l.o[a][i] == tex_v3_get(b.lo, a) || l.o[a][i] == tex_v3_get(b.hi, a));
+        }
+        want &= m;
+        bad[0] += __builtin_popcountll(tex_rays_box_avx2(&b, &l, m) ^ want);
+        if (wide)
+            bad[1] += __builtin_popcountll(tex_rays_box_avx512(&b, &l, m) ^ want);
+        entered += __builtin_popcountll(want), asked += __builtin_popcountll(m);
+    }
+    CHECKF(bad[0] == 0 && entered > asked / 8 && entered < asked - asked / 8 && graze > n,
+           "shadow rays against a box in AVX2 lanes: each one's slab test (%ld of %ld differ, "
+           "%ld entered, %ld along a face)", bad[0], asked, entered, graze);
+    CHECKF(bad[1] == 0, "shadow rays against a box in AVX-512 lanes: each one's slab test "
+           "(%ld of %ld differ%s)", bad[1], asked, wide ? "" : "; no AVX-512 here");
+#endif
+}
+
+/* A batch of shadow rays through a tree of glass and opaque boxes on a grid (from their
+ * corners and faces, along their faces, to their corners) gives each ray's own product of
+ * Kt, bit for bit, at every SIMD level */
+static void test_transmit_batch(void)
+{
+    tex_rng g;
+    tex_rng_seed(&g, 11);
+    size_t cap = 40000, len = 0;
+    char *sc = malloc(cap);
+    struct tex_bounds bx[80];
+    len += snprintf(sc, cap, "image 8 8\nsurface a { Kd 0.2 Kt 0.5 }\nsurface b { Kd 0.2 Kt 0.9 }\n"
+                             "surface c { Kd 0.2 }\n");
+    for (int i = 0; i < 80; i++) {
+        double x = 0.5 * ((int)tex_rng_below(&g, 16) - 8);
+        double y = 0.5 * ((int)tex_rng_below(&g, 16) - 8);
+        double z = 0.5 * ((int)tex_rng_below(&g, 16) - 8);
+        bx[i].lo = tex_v3_make(x, y, z);
+        bx[i].hi = tex_v3_make(x + 0.5 * (1 + (int)tex_rng_below(&g, 3)),
+                               y + 0.5 * (1 + (int)tex_rng_below(&g, 3)),
+                               z + 0.5 * (1 + (int)tex_rng_below(&g, 3)));
+        len += snprintf(sc + len, cap - len, "box { min %g %g %g max %g %g %g surface %c }\n", x,
+                        y, z, bx[i].hi.x, bx[i].hi.y, bx[i].hi.z, "abc"[i % 3]);
+    }
+    struct tex_scene *s = tex_scene_parse(sc, len, "glass.scene");
+    free(sc);
+    CHECK(s && tex_scene_prepare(s) == 0 && tex_scene_shadow_batches(s), "glass boxes prepare");
+    if (!s)
+        return;
+    int levels[3] = {tex_simd_level(), TEX_SIMD_AVX2, TEX_SIMD_SCALAR}, bad = 0, rays = 0;
+    int dim = 0, dark = 0;
+    for (int lv = 0; lv < 3; lv++) {
+        tex_simd_limit(levels[lv]);
+        tex_rng_seed(&g, 12);
+        for (int p = 0; p < 400; p++) {
+            tex_v3 o[64], d[64];
+            double tmin[64], tmax[64], tr[64];
+            const struct tex_object *from[64];
+            int n = p % 4 ? 64 : 1 + (int)tex_rng_below(&g, 64);
+            for (int i = 0; i < n; i++) {
+                const struct tex_bounds *a = &bx[tex_rng_below(&g, 80)];
+                o[i] = box_point(&g, a);
+                d[i] = graze_dir(&g, o[i], &bx[tex_rng_below(&g, 80)]);
+                tmin[i] = tex_rng_below(&g, 2) ? 0 : 1e-6;
+                tmax[i] = tex_rng_below(&g, 4) ? 1 + 8 * tex_rng_uniform(&g) : INFINITY;
+                from[i] = NULL;
+            }
+            tex_scene_transmit_n(s, n, o, d, tmin, tmax, from, tr);
+            for (int i = 0; i < n; i++, rays++) {
+                double one = tex_scene_transmit(s, &o[i], &d[i], tmin[i], tmax[i], NULL);
+                bad += memcmp(&one, &tr[i], sizeof one) != 0;
+                dim += one > 0 && one < 1, dark += one == 0;
+            }
+        }
+    }
+    tex_simd_limit(levels[0]);
+    CHECKF(bad == 0 && dim > rays / 4 && dark > rays / 20,
+           "a batch of shadow rays through glass boxes: each ray's own product of Kt at every "
+           "SIMD level (%d of %d differ, %d dimmed, %d dark)", bad, rays, dim, dark);
+    tex_scene_free(s);
+}
+
 /* The outward world normal at a hit on leaf h->leaf (render.c's hit_normal, unhurried). */
 static tex_v3 outward_normal(const struct tex_hit *h, tex_v3 P)
 {
@@ -853,6 +999,8 @@ int main(void)
     test_bvh_brute();
     test_box4_lanes();
     test_box4_rays_lanes();
+    test_rays_box_lanes();
+    test_transmit_batch();
     test_packet_walk();
     test_hull_skip();
     test_scaled_leaves();

@@ -1,5 +1,5 @@
-/* bvh_x86.c - a batch of shadow rays against a box in AVX-512 lanes, a packet's eye rays
- * against a node's four boxes in AVX2's */
+/* bvh_x86.c - a batch of shadow rays against a box in AVX-512's or AVX2's lanes, a packet's
+ * eye rays against a node's four boxes in AVX2's */
 #include "render/x86/bvh_x86.h"
 
 #ifdef TEX_X86
@@ -30,6 +30,36 @@ TEX_AVX512 uint64_t tex_rays_box_avx512(const struct tex_bounds *b, const struct
             slab8(blo[c], bhi[c], _mm512_maskz_loadu_pd(k, r->o[c] + i),
                   _mm512_maskz_loadu_pd(k, r->inv[c] + i), &lo, &hi);
         in |= (uint64_t)_mm512_mask_cmp_pd_mask(k, lo, hi, _CMP_LE_OQ) << i;
+    }
+    return in;
+}
+
+/* slab8 in AVX2's four lanes */
+TEX_AVX2 static inline void slab4(double lo_b, double hi_b, __m256d o, __m256d inv, __m256d *lo,
+                                  __m256d *hi)
+{
+    __m256d a = _mm256_mul_pd(_mm256_sub_pd(_mm256_set1_pd(lo_b), o), inv);
+    __m256d c = _mm256_mul_pd(_mm256_sub_pd(_mm256_set1_pd(hi_b), o), inv);
+    *lo = _mm256_max_pd(*lo, _mm256_min_pd(a, c));
+    *hi = _mm256_min_pd(*hi, _mm256_max_pd(a, c));
+}
+
+TEX_AVX2 uint64_t tex_rays_box_avx2(const struct tex_bounds *b, const struct tex_ray_lanes *r,
+                                    uint64_t m)
+{
+    const double blo[3] = {b->lo.x, b->lo.y, b->lo.z}, bhi[3] = {b->hi.x, b->hi.y, b->hi.z};
+    uint64_t in = 0;
+    for (int i = 0; i < 64 && m >> i; i += 4) {
+        int k = (int)(m >> i & 15);
+        if (!k)
+            continue;
+        /* masked loads, as tex_rays_box_avx512's: lanes past the batch are not read */
+        __m256i km = _mm256_set_epi64x(-(k >> 3 & 1), -(k >> 2 & 1), -(k >> 1 & 1), -(k & 1));
+        __m256d lo = _mm256_maskload_pd(r->tmin + i, km), hi = _mm256_maskload_pd(r->tmax + i, km);
+        for (int c = 0; c < 3; c++)
+            slab4(blo[c], bhi[c], _mm256_maskload_pd(r->o[c] + i, km),
+                  _mm256_maskload_pd(r->inv[c] + i, km), &lo, &hi);
+        in |= (uint64_t)(_mm256_movemask_pd(_mm256_cmp_pd(lo, hi, _CMP_LE_OQ)) & k) << i;
     }
     return in;
 }

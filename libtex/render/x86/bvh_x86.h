@@ -1,6 +1,6 @@
-/* bvh_x86.h - a batch of shadow rays against a tree node's box in AVX-512 lanes, and one
- * ray against a node's four children in SSE2's (render_bvh.c's hit_box, its operations in
- * its order: the same answers)
+/* bvh_x86.h - a batch of shadow rays against a tree node's box in AVX-512's or AVX2's lanes,
+ * and one ray against a node's four children in SSE2's (render_bvh.c's hit_box, its
+ * operations in its order: the same answers)
  */
 #ifndef TEX_BVH_X86_H
 #define TEX_BVH_X86_H
@@ -66,6 +66,9 @@ TEX_AVX2 void tex_box4_rays_avx2(const struct tex_box4 *b, int mask, const struc
 /* The rays of m (bit i: lane i) whose segments (tmin, tmax) enter box b, eight at a time */
 TEX_AVX512 uint64_t tex_rays_box_avx512(const struct tex_bounds *b, const struct tex_ray_lanes *r,
                                         uint64_t m);
+/* tex_rays_box_avx512 four rays at a time in AVX2's lanes: the same answers */
+TEX_AVX2 uint64_t tex_rays_box_avx2(const struct tex_bounds *b, const struct tex_ray_lanes *r,
+                                    uint64_t m);
 #endif
 
 #ifdef __cplusplus
