@@ -8,6 +8,7 @@
  *            jittered grid: soft shadows (each sample carries 1/n^2)
  */
 #include <math.h>
+#include <stdint.h>
 
 #include "render/scene.h"
 
@@ -26,16 +27,32 @@ int tex_light_sample(const struct tex_light *l, int k, double jx, double jy, tex
         *fatt = 1;
         return 1;
     }
+    /* n a power of two 2^e (the usual 2, 4, 8): a mask, a shift and products by 2^-e
+     * where divisions by n and n^2 stood, the same numbers (a product by a power of two
+     * is exact as the quotient is, both rounded once), without the divisions' latency
+     * on the way to the light's direction (a quarter of an area-lit render) */
+    int n = l->samples, e = n > 0 && !(n & (n - 1)) ? __builtin_ctz((unsigned)n) : -1;
+    union {
+        uint64_t u;
+        double d;
+    } inv = {(uint64_t)(1023 - (e > 0 ? e : 0)) << 52}; /* 2^-e */
     if (l->kind == TEX_LIGHT_AREA) {
-        int n = l->samples;
-        double a = ((k % n) + jx) / n, b = ((k / n) + jy) / n;
+        double a, b;
+        if (e >= 0)
+            a = ((k & (n - 1)) + jx) * inv.d, b = ((k >> e) + jy) * inv.d;
+        else
+            a = ((k % n) + jx) / n, b = ((k / n) + jy) / n;
         pos = tex_v3_add(pos, tex_v3_add(tex_v3_scale(l->edge1, a), tex_v3_scale(l->edge2, b)));
     }
     double f;
     if (!tex_light_point_at(l, &pos, &P, L, dist, &f))
         return 0;
-    if (l->kind == TEX_LIGHT_AREA)
-        f /= tex_light_samples(l);
+    if (l->kind == TEX_LIGHT_AREA) {
+        if (e >= 0)
+            f *= inv.d * inv.d;
+        else
+            f /= tex_light_samples(l);
+    }
     *fatt = f;
     return f > 0;
 }

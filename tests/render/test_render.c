@@ -944,6 +944,56 @@ static void test_csg_combine(void)
  * This view, light and exponent pass the highlight's cut-off (a Ks of 0.3 adds to the
  * diffuse term), so the full model adds Ks E w there, and w's finite, positive value does
  * not change zeros. */
+/* An area light's samples as tex_light_sample made them before it took a mask, a shift and
+ * products by 2^-e for a power of two n: the divisions by n and n^2 */
+static int area_sample_ref(const struct tex_light *l, int k, double jx, double jy, tex_v3 P,
+                           tex_v3 *L, double *dist, double *fatt)
+{
+    int n = l->samples;
+    double a = ((k % n) + jx) / n, b = ((k / n) + jy) / n, f;
+    tex_v3 pos =
+        tex_v3_add(l->pos, tex_v3_add(tex_v3_scale(l->edge1, a), tex_v3_scale(l->edge2, b)));
+    if (!tex_light_point_at(l, &pos, &P, L, dist, &f))
+        return 0;
+    f /= n * n;
+    *fatt = f;
+    return f > 0;
+}
+
+/* Every sample of area lights of 1 to 33 samples a side, jittered, from points near and far,
+ * with and without falloff: the same bits as the divisions give */
+static void test_area_samples(void)
+{
+    tex_rng rng;
+    tex_rng_seed(&rng, 63);
+    long checked = 0, wrong = 0;
+    for (int n = 1; n <= 33; n++)
+        for (int fall = 0; fall < 2; fall++) {
+            struct tex_light l = {0};
+            l.kind = TEX_LIGHT_AREA;
+            l.samples = n;
+            l.falloff = fall ? TEX_FALL_POLY : TEX_FALL_NONE;
+            l.c1 = 1, l.c2 = 0.02, l.c3 = 0.002;
+            l.pos = tex_v3_make(-1.3, 6.1, -2.7);
+            l.edge1 = tex_v3_make(2.3, 0.1, 0), l.edge2 = tex_v3_make(0, 0.2, 1.9);
+            for (int k = 0; k < n * n; k++)
+                for (int t = 0; t < 4; t++) {
+                    double jx = tex_rng_uniform(&rng), jy = tex_rng_uniform(&rng);
+                    double sc = t ? 1e-3 * pow(10, 2 * t) : 0;
+                    tex_v3 P = tex_v3_make(sc * (jx - 0.5), sc * (jy - 0.3), sc * 0.7);
+                    tex_v3 L0, L1;
+                    double d0, d1, f0 = -1, f1 = -1;
+                    int r0 = area_sample_ref(&l, k, jx, jy, P, &L0, &d0, &f0);
+                    int r1 = tex_light_sample(&l, k, jx, jy, P, &L1, &d1, &f1);
+                    checked++;
+                    wrong += r0 != r1 || memcmp(&f0, &f1, sizeof f0) ||
+                             (r0 && (memcmp(&L0, &L1, sizeof L0) || memcmp(&d0, &d1, sizeof d0)));
+                }
+        }
+    CHECKF(wrong == 0, "area light samples as the divisions give: %ld of %ld differ", wrong,
+           checked);
+}
+
 static void test_phong_zero_ks(void)
 {
     const double N[3] = {0, 1, 0}, V[3] = {0, 0.6, -0.8}, L[3] = {0, 0.8, 0.6}, nl = 0.8;
@@ -1007,6 +1057,7 @@ int main(void)
     test_bailout();
     test_csg_combine();
     test_phong_zero_ks();
+    test_area_samples();
     char cmd[300];
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
     if (system(cmd) != 0)
