@@ -1,5 +1,4 @@
 /* t_warp - domain perturbation: displace a map's lookups by another map */
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -144,9 +143,12 @@ static int drain(struct source *s)
     return 0;
 }
 
-/* BY's range as its rows pass: each channel's least and greatest sample */
+/* BY's range as its rows pass: each channel's least and greatest finite sample
+ * (tex_stats_add_range), and whether any sample is not finite */
 struct range {
     int w, nc, nonfinite;
+    size_t samples; /* a channel's, passed so far */
+    struct tex_stats_acc acc[4];
     double lo[4], hi[4];
 };
 
@@ -154,14 +156,18 @@ static void take_range(void *arg, const float *px, int y, int n)
 {
     struct range *g = arg;
     (void)y;
+    for (int c = 0; c < g->nc; c++)
+        tex_stats_add_range(&g->acc[c], px + c, (size_t)g->w, (size_t)n, g->nc);
+    g->samples += (size_t)g->w * n;
+}
+
+static void range_end(struct range *g)
+{
     for (int c = 0; c < g->nc; c++) {
-        float lo = (float)g->lo[c], hi = (float)g->hi[c];
-        for (size_t i = c, k = (size_t)g->w * n * g->nc; i < k; i += g->nc) {
-            lo = px[i] < lo ? px[i] : lo;
-            hi = px[i] > hi ? px[i] : hi;
-            g->nonfinite |= !isfinite(px[i]);
-        }
-        g->lo[c] = lo, g->hi[c] = hi;
+        struct tex_stats st;
+        tex_stats_end(&g->acc[c], &st);
+        g->lo[c] = st.min, g->hi[c] = st.max;
+        g->nonfinite |= g->acc[c].n != g->samples;
     }
 }
 
@@ -205,7 +211,7 @@ static void read_by(const char *path, struct job *j, tex_map **whole, struct tex
     j->by = (struct source){.name = name, .w = m->w, .h = m->h, .nc = m->nc, .whole = *whole};
     j->g = (struct range){.w = m->w, .nc = m->nc};
     for (int c = 0; c < 4; c++)
-        j->g.lo[c] = INFINITY, j->g.hi[c] = -INFINITY;
+        tex_stats_begin(&j->g.acc[c]);
     if (*whole)
         take_range(&j->g, (*whole)->px, 0, (*whole)->h);
     else {
@@ -215,6 +221,7 @@ static void read_by(const char *path, struct job *j, tex_map **whole, struct tex
         free(head.history);
         j->by.sp = sp;
     }
+    range_end(&j->g);
 }
 
 /* The whole of a source read at last: from its spool, or the rest of its stream */

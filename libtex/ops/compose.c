@@ -146,6 +146,42 @@ static const tex_map *operands_size(enum tex_op op, const struct tex_operand *co
     return size;
 }
 
+/* mix, add, sub and mul into r (n pixels, r->nc channels) a channel at a time, each
+ * operand's broadcast found once a channel; an RGBA result's alpha is a's but in mix, whose
+ * every channel mixes */
+static void channel_runs(enum tex_op op, const struct tex_operand *const *ops, tex_map *r,
+                         size_t n)
+{
+    int nc = r->nc;
+    size_t st[3][4];
+    const float *p[3][4];
+    for (int k = 0; k < (op == TEX_OP_MIX ? 3 : 2); k++)
+        for (int c = 0; c < nc; c++)
+            p[k][c] = val_run(ops[k], c, nc, &st[k][c]);
+#pragma omp parallel
+    for (int c = 0; c < nc; c++) {
+        const float *pa = p[0][c], *pb = p[1][c], *pw = p[2][c];
+        size_t sa = st[0][c], sb = st[1][c], sw = op == TEX_OP_MIX ? st[2][c] : 0;
+        float *d = r->px + c;
+        enum tex_op cop = nc == 4 && c == 3 && op != TEX_OP_MIX ? TEX_OP_COUNT : op;
+#define CHANNEL_RUN(z)                                                                         \
+    _Pragma("omp for schedule(static) nowait") for (size_t i = 0; i < n; i++)                   \
+    {                                                                                          \
+        float x = pa[i * sa], y = pb[i * sb];                                                  \
+        (void)y;                                                                               \
+        d[i * nc] = (z);                                                                       \
+    }
+        switch (cop) {
+        case TEX_OP_MIX: CHANNEL_RUN(x + (y - x) * pw[i * sw]) break;
+        case TEX_OP_ADD: CHANNEL_RUN(x + y) break;
+        case TEX_OP_SUB: CHANNEL_RUN(x - y) break;
+        case TEX_OP_MUL: CHANNEL_RUN(x * y) break;
+        default: CHANNEL_RUN(x) break;
+        }
+#undef CHANNEL_RUN
+    }
+}
+
 tex_map *tex_op_apply(enum tex_op op, const struct tex_operand *a, const struct tex_operand *b,
                       const struct tex_operand *w, double t)
 {
@@ -170,35 +206,7 @@ tex_map *tex_op_apply(enum tex_op op, const struct tex_operand *a, const struct 
     }
     n = (size_t)size->w * size->h;
     if (op == TEX_OP_MIX || op == TEX_OP_ADD || op == TEX_OP_SUB || op == TEX_OP_MUL) {
-        /* a channel at a time, each operand's broadcast found once a channel; an RGBA
-         * result's alpha is a's but in mix, whose every channel mixes */
-        size_t st[3][4];
-        const float *p[3][4];
-        for (int k = 0; k < (op == TEX_OP_MIX ? 3 : 2); k++)
-            for (int c = 0; c < nc; c++)
-                p[k][c] = val_run(ops[k], c, nc, &st[k][c]);
-#pragma omp parallel
-        for (int c = 0; c < nc; c++) {
-            const float *pa = p[0][c], *pb = p[1][c], *pw = p[2][c];
-            size_t sa = st[0][c], sb = st[1][c], sw = op == TEX_OP_MIX ? st[2][c] : 0;
-            float *d = r->px + c;
-            enum tex_op cop = nc == 4 && c == 3 && op != TEX_OP_MIX ? TEX_OP_COUNT : op;
-#define CHANNEL_RUN(z)                                                                         \
-    _Pragma("omp for schedule(static) nowait") for (size_t i = 0; i < n; i++)                   \
-    {                                                                                          \
-        float x = pa[i * sa], y = pb[i * sb];                                                  \
-        (void)y;                                                                               \
-        d[i * nc] = (z);                                                                       \
-    }
-            switch (cop) {
-            case TEX_OP_MIX: CHANNEL_RUN(x + (y - x) * pw[i * sw]) break;
-            case TEX_OP_ADD: CHANNEL_RUN(x + y) break;
-            case TEX_OP_SUB: CHANNEL_RUN(x - y) break;
-            case TEX_OP_MUL: CHANNEL_RUN(x * y) break;
-            default: CHANNEL_RUN(x) break;
-            }
-#undef CHANNEL_RUN
-        }
+        channel_runs(op, ops, r, n);
         return r;
     }
     /* Colour channels: all but the alpha of RGBA. */

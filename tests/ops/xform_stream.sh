@@ -78,6 +78,10 @@ cmp -s whole.png bands.png && ok "t_xform writes PNG in bands with the whole map
 # a stream cut short: one line naming standard input, nothing left
 head -c 100000 y.exr >cut.exr
 truncated "a truncated stream" out.exr t_xform --shift 3,3
+# with a vertical wrap: cut among the rows spooled (from row 153), and among those that
+# stream on after a spool of rows 0..52
+truncated "a truncated stream while spooling" out.exr t_xform --shift 3,50 --wrap
+truncated "a truncated stream after the spool" out.exr t_xform --shift 3,150 --wrap
 
 # Bounded memory: a 4096x4096 RGB map (192 MiB as float) expanded, shifted with a wrap
 # (spooled to TMPDIR) and clipped, under a limit far below it
