@@ -44,7 +44,7 @@ static double scalar_width(const struct tex_prefetch *pf, int j, const struct te
 
 /* The footprints fw of n pending points of one texture (hit[i], its texture number j[i]
  * there, or the first where j is NULL; mapping a[i]), as scalar_width makes them: 0
- * unfiltered; in vector lanes where the CPU has AVX-512 those whose mapping has gradients
+ * unfiltered; in vector lanes where the CPU has AVX2 those whose mapping has gradients
  * (affine, or a map's tex_point_gradient), but those seen head-on.  A map's (solid 0) also
  * gives, where lane is given, the lane of fr of each point (else -1) and, where bump, the
  * frames' bump members. */
@@ -55,7 +55,8 @@ static void batch_widths(int n, struct tex_prefetch *const *hit, struct tex_pref
     for (int c = 0; c < 3; c++) /* the frames' rows: fr's own */
         fr->d[c] = fr->rows[c], fr->nn[c] = fr->rows[3 + c];
     fr->w = fr->rows[6];
-    int lanes = 0, at[CHUNK], affine = 0, simd = tex_simd_level() >= TEX_SIMD_AVX512;
+    int level = tex_simd_level(), lanes = 0, at[CHUNK], affine = 0;
+    int simd = level >= TEX_SIMD_AVX2, wide = level >= TEX_SIMD_AVX512 ? 8 : 4;
     /* the gradients' leaf and texture, kept while hits share them; lane 0's (leaf0, ap0) */
     const struct tex_object *leaf = NULL, *leaf0 = NULL;
     const struct tex_apply *gap = NULL, *ap = NULL, *ap0 = NULL;
@@ -100,10 +101,12 @@ static void batch_widths(int n, struct tex_prefetch *const *hit, struct tex_pref
     }
 #ifdef TEX_X86
     double lw[CHUNK];
-    for (int l = 0; l < lanes; l += 8) {
-        int m = lanes - l < 8 ? lanes - l : 8;
-        unsigned headon = solid ? tex_solid_footprints8_avx512(fr, l, m, lw)
-                                : tex_footprints8_avx512(fr, l, m, bump, lw);
+    for (int l = 0; l < lanes; l += wide) {
+        int m = lanes - l < wide ? lanes - l : wide;
+        unsigned headon = wide == 4 ? solid ? tex_solid_footprints4_avx2(fr, l, m, lw)
+                                            : tex_footprints4_avx2(fr, l, m, bump, lw)
+                          : solid   ? tex_solid_footprints8_avx512(fr, l, m, lw)
+                                    : tex_footprints8_avx512(fr, l, m, bump, lw);
         for (int k = l; k < l + m; k++) {
             int on = !(headon >> (k - l) & 1), i = at[k];
             fw[i] = on ? lw[k] : scalar_width(hit[i], j ? j[i] : 0, a[i], solid);

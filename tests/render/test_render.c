@@ -10,7 +10,9 @@
 #include "render/box4.h"
 #include "render/bvh.h"
 #include "render/scene.h"
+#include "render/footprint.h"
 #include "render/x86/bvh_x86.h"
+#include "render/x86/packet_x86.h"
 #include "base/rng.h"
 #include "base/simd.h"
 #include "fixtures.h"
@@ -637,6 +639,103 @@ static void test_rays_box_lanes(void)
 #endif
 }
 
+/* A random unit vector; one in eight along an axis, to give head-on views */
+static tex_v3 unit_dir(tex_rng *g)
+{
+    if (!tex_rng_below(g, 8))
+        return tex_v3_make(0, tex_rng_below(g, 2) ? 1 : -1, 0);
+    tex_v3 v = tex_v3_make(2 * tex_rng_uniform(g) - 1, 2 * tex_rng_uniform(g) - 1,
+                           2 * tex_rng_uniform(g) - 1);
+    return tex_v3_norm(v);
+}
+
+/* The AVX2 footprint kernels against the scalar path's own: tex_footprint_width2 and
+ * tex_solid_width2 (its root) on world and solid mappings, the bump's unit tangents and
+ * placed derivatives (footprint_unit, placed_derivatives), bit for bit, lanes of their own
+ * or shared; the head-on lanes, left to the scalar path, as footprint_tangents finds them */
+static void test_footprint_lanes(void)
+{
+#ifdef TEX_X86
+    if (tex_simd_level() < TEX_SIMD_AVX2)
+        return;
+    static struct frames fr;
+    struct tex_apply ap[2];
+    struct tex_object leaf;
+    struct placement pm[2] = {{1, 1, 8, 8, 1}, {1, 1, 0.25, 3, 1}};
+    memset(ap, 0, sizeof ap), memset(&leaf, 0, sizeof leaf);
+    ap[0].mapping = TEX_MAP_WORLD, ap[0].scale = 0.25;
+    ap[1].mapping = TEX_MAP_SOLID, ap[1].scale = 1.5, ap[1].placed = 1;
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 4; c++)
+            ap[1].to_tex.m[r][c] = (r == c) + 0.3 * (r + 1) * (c - 1.5);
+    tex_rng g;
+    tex_rng_seed(&g, 23);
+    long bad = 0, bad_solid = 0, headon = 0, checked = 0;
+    for (int k = 0; k < 20000; k++) {
+        int n = 1 + (int)tex_rng_below(&g, 4), which = (int)tex_rng_below(&g, 2);
+        tex_v3 gr[3], D[4], N[4];
+        map_gradient(&ap[which], &leaf, gr);
+        for (int c = 0; c < 3; c++)
+            fr.d[c] = fr.rows[c], fr.nn[c] = fr.rows[3 + c];
+        fr.w = fr.rows[6];
+        fr.shared = (int)tex_rng_below(&g, 2);
+        for (int l = 0; l < 4; l++) {
+            N[l] = unit_dir(&g);
+            D[l] = tex_rng_below(&g, 6) ? unit_dir(&g) : tex_v3_scale(N[l], -1);
+            for (int c = 0; c < 3; c++)
+                fr.rows[c][l] = tex_v3_get(D[l], c), fr.rows[3 + c][l] = tex_v3_get(N[l], c);
+            fr.rows[6][l] = tex_rng_below(&g, 4) ? 1e-3 * tex_rng_uniform(&g) : 0.5;
+            for (int c = 0; c < 3; c++) /* shared: lane 0's alone */
+                fr.gu[c][l] = tex_v3_get(gr[0], c), fr.gv[c][l] = tex_v3_get(gr[1], c),
+                fr.gw[c][l] = tex_v3_get(gr[2], c);
+            fr.su[l] = fr.shared && l ? NAN : pm[which].su;
+            fr.sv[l] = fr.shared && l ? NAN : pm[which].sv;
+            if (fr.shared && l)
+                fr.gu[0][l] = fr.gv[1][l] = fr.gw[2][l] = NAN;
+        }
+        double fw2[4] = {-1, -1, -1, -1}, fw[4] = {-1, -1, -1, -1};
+        unsigned ho = tex_footprints4_avx2(&fr, 0, n, 1, fw2);
+        unsigned hs = tex_solid_footprints4_avx2(&fr, 0, n, fw);
+        for (int l = 0; l < 4; l++) {
+            if (l >= n) { /* beyond the batch: untouched */
+                bad += fw2[l] != -1, bad_solid += fw[l] != -1;
+                continue;
+            }
+            tex_v3 t1 = tex_v3_madd(D[l], N[l], -tex_v3_dot(D[l], N[l]));
+            int on = tex_v3_dot(t1, t1) < 1e-18;
+            bad += on != (int)(ho >> l & 1), bad_solid += on != (int)(hs >> l & 1);
+            headon += on;
+            if (on)
+                continue;
+            checked++;
+            struct footprint fp;
+            tex_v3 P = tex_v3_make(0, 0, 0);
+            double du[2], dv[2], want;
+            footprint_at(&fp, &D[l], &N[l], fr.rows[6][l]);
+            want = tex_footprint_width2(&ap[which], &pm[which], &leaf, &fp, &P, &P, 1, 0, 0);
+            bad += memcmp(&want, &fw2[l], sizeof want) != 0;
+            footprint_at(&fp, &D[l], &N[l], fr.rows[6][l]);
+            want = sqrt(tex_solid_width2(&ap[which], &pm[which], &leaf, &fp, &P, &P,
+                                         (double[3]){0, 0, 0}));
+            bad_solid += memcmp(&want, &fw[l], sizeof want) != 0;
+            footprint_at(&fp, &D[l], &N[l], fr.rows[6][l]);
+            footprint_unit(&fp);
+            placed_derivatives(&ap[which], &pm[which], &leaf, &fp, &P, 1, du, dv);
+            double got[10] = {fr.e1[0][l], fr.e1[1][l], fr.e1[2][l], fr.e2[0][l], fr.e2[1][l],
+                              fr.e2[2][l], fr.du[0][l], fr.du[1][l], fr.dv[0][l], fr.dv[1][l]};
+            double exp[10] = {fp.t1.x, fp.t1.y, fp.t1.z, fp.t2.x, fp.t2.y, fp.t2.z,
+                              du[0], du[1], dv[0], dv[1]};
+            bad += memcmp(got, exp, sizeof got) != 0;
+        }
+    }
+    CHECKF(bad == 0 && headon > 1000 && checked > 20000,
+           "footprints in AVX2 lanes: tex_footprint_width2's and the bump's frame, bit for bit "
+           "(%ld wrong; %ld lanes checked, %ld head-on)", bad, checked, headon);
+    CHECKF(bad_solid == 0, "band-limited solids' footprints in AVX2 lanes: tex_solid_width2's "
+           "root, bit for bit (%ld wrong)", bad_solid);
+#endif
+}
+
 /* A batch of shadow rays through a tree of glass and opaque boxes on a grid (from their
  * corners and faces, along their faces, to their corners) gives each ray's own product of
  * Kt, bit for bit, at every SIMD level */
@@ -1050,6 +1149,7 @@ int main(void)
     test_box4_lanes();
     test_box4_rays_lanes();
     test_rays_box_lanes();
+    test_footprint_lanes();
     test_transmit_batch();
     test_packet_walk();
     test_hull_skip();

@@ -1,4 +1,5 @@
-/* packet_x86.h - a packet's footprints and mappings in AVX-512 lanes (packet.c's twins)
+/* packet_x86.h - a packet's footprints and mappings in AVX-512 lanes, its footprints in
+ * AVX2's too (packet.c's twins)
  *
  * Each performs the scalar path's operations in its order (footprint.c, mapping.c), so
  * the same bytes.
@@ -23,6 +24,9 @@ TEX_AVX512 unsigned tex_footprints8_avx512(struct frames *fr, int i, int n, int 
  * lanes seen head-on. */
 TEX_AVX512 unsigned tex_solid_footprints8_avx512(const struct frames *fr, int i, int n,
                                                  double *fw);
+/* tex_footprints8_avx512 and tex_solid_footprints8_avx512 in AVX2's lanes: n <= 4 points */
+TEX_AVX2 unsigned tex_footprints4_avx2(struct frames *fr, int i, int n, int bump, double *fw2);
+TEX_AVX2 unsigned tex_solid_footprints4_avx2(const struct frames *fr, int i, int n, double *fw);
 /* map_hit of a plane's planar mapping over the n <= 8 lanes of L's points from i on: the
  * mapping's u0, v0 and the placed u, v; returns the lanes inside the window. */
 TEX_AVX512 unsigned tex_plane_map8_avx512(const struct tex_lanes *L, int i, int n, double *u0,
