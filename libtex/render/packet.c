@@ -188,13 +188,14 @@ void tex_prefetch_map(struct tex_prefetch *pf, const struct tex_surface *sf,
     }
 }
 
-/* Whether the lanes map hits of ap on leaf: a plane's planar mapping, or a natural one on a
- * box, cylinder, cone or sphere */
+/* Whether the lanes map hits of ap on leaf: a plane's planar mapping, or (AVX-512) a natural
+ * one on a box, cylinder, cone or sphere */
 static int lanes_mapping(const struct tex_apply *ap, const struct tex_object *leaf)
 {
-    int k = leaf->kind;
-    int natural = ap->mapping == TEX_MAP_NATURAL && !(ap->size[0] > 0); /* lanes: unsized */
-    return plane_planar(ap, leaf) ||
+    int k = leaf->kind, level = tex_simd_level(); /* the level in use, not the cache's */
+    int natural = ap->mapping == TEX_MAP_NATURAL && !(ap->size[0] > 0) && /* lanes: unsized */
+                  level >= TEX_SIMD_AVX512;
+    return (level >= TEX_SIMD_AVX2 && plane_planar(ap, leaf)) ||
            (natural && (k == TEX_SHAPE_BOX || k == TEX_SHAPE_CYLINDER || k == TEX_SHAPE_CONE ||
                         k == TEX_SHAPE_SPHERE));
 }
@@ -269,11 +270,14 @@ int tex_prefetch_lanes(struct tex_lanes *L, struct tex_prefetch **rest)
         map_gradient(L->sf->apply, L->leaf, g);
         lane_mapping(&fr, 0, g, L->sf->cache->placement, 0);
     }
-    for (int i = 0; i < n; i += 8) {
-        int k = n - i < 8 ? n - i : 8;
-        unsigned inside = natural ? tex_natural_map8_avx512(L, i, k, u0, v0, u, v, face, &fr)
-                                  : tex_plane_map8_avx512(L, i, k, u0, v0, u, v);
-        unsigned done = inside & ~tex_footprints8_avx512(&fr, i, k, bump, fw2);
+    int wide = tex_simd_level() >= TEX_SIMD_AVX512 ? 8 : 4; /* AVX2: a plane's alone */
+    for (int i = 0; i < n; i += wide) {
+        int k = n - i < wide ? n - i : wide;
+        unsigned inside = wide == 4 ? tex_plane_map4_avx2(L, i, k, u0, v0, u, v)
+                          : natural ? tex_natural_map8_avx512(L, i, k, u0, v0, u, v, face, &fr)
+                                    : tex_plane_map8_avx512(L, i, k, u0, v0, u, v);
+        unsigned done = inside & ~(wide == 4 ? tex_footprints4_avx2(&fr, i, k, bump, fw2)
+                                             : tex_footprints8_avx512(&fr, i, k, bump, fw2));
         for (int j = i; j < i + k; j++) {
             if (done >> (j - i) & 1)
                 u[m] = u[j], v[m] = v[j], fw2[m] = fw2[j], at[m++] = j;

@@ -10,6 +10,7 @@
 #include "render/box4.h"
 #include "render/bvh.h"
 #include "render/scene.h"
+#include "render/appfn.h"
 #include "render/footprint.h"
 #include "render/x86/bvh_x86.h"
 #include "render/x86/packet_x86.h"
@@ -736,6 +737,74 @@ static void test_footprint_lanes(void)
 #endif
 }
 
+/* A coordinate for a plane's mapping: most in a few units, some on whole numbers, at -0,
+ * beyond 2^52 or not finite (fract's edges) */
+static double plane_coord(tex_rng *g)
+{
+    switch (tex_rng_below(g, 16)) {
+    case 0: return (double)((int)tex_rng_below(g, 9) - 4);
+    case 1: return -0.0;
+    case 2: return (tex_rng_below(g, 2) ? -1 : 1) * 0x1p53 * (1 + tex_rng_uniform(g));
+    case 3: return tex_rng_below(g, 2) ? INFINITY : NAN;
+    default: return 16 * tex_rng_uniform(g) - 8;
+    }
+}
+
+/* tex_plane_map4_avx2 against map_point_at and place, the scalar path's planar mapping of a
+ * plane: the coordinates, the placed ones and the lanes inside the window, bit for bit */
+static void test_plane_lanes(void)
+{
+#ifdef TEX_X86
+    if (tex_simd_level() < TEX_SIMD_AVX2)
+        return;
+    static struct tex_lanes L;
+    struct tex_apply ap;
+    struct tex_object leaf;
+    struct tex_surface sf;
+    struct tex_surface_cache cache;
+    struct placement pm;
+    memset(&ap, 0, sizeof ap), memset(&leaf, 0, sizeof leaf);
+    memset(&sf, 0, sizeof sf), memset(&cache, 0, sizeof cache);
+    ap.mapping = TEX_MAP_PLANAR, ap.scale = 0.37, ap.nu = 3, ap.nv = 2;
+    ap.u1 = 0.1, ap.u2 = 0.8, ap.v1 = 0.25, ap.v2 = 1;
+    tex_placement_of(&ap, &pm);
+    leaf.kind = TEX_SHAPE_PLANE;
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 4; c++)
+            leaf.to_obj.m[r][c] = (r == c) + 0.2 * (c - r) + (c == 3) * 0.3 * (r + 1);
+    cache.placement = &pm;
+    sf.apply = &ap, sf.cache = &cache;
+    L.sf = &sf, L.leaf = &leaf;
+    tex_rng g;
+    tex_rng_seed(&g, 29);
+    long bad = 0, inside = 0, lanes = 0;
+    for (int k = 0; k < 20000; k++) {
+        int n = 1 + (int)tex_rng_below(&g, 4);
+        double u0[4], v0[4], u[4], v[4];
+        for (int l = 0; l < 4; l++)
+            for (int c = 0; c < 3; c++)
+                L.p[c][l] = tex_rng_below(&g, 4) ? 16 * tex_rng_uniform(&g) - 8 : plane_coord(&g);
+        unsigned in = tex_plane_map4_avx2(&L, 0, n, u0, v0, u, v);
+        for (int l = 0; l < n; l++, lanes++) {
+            tex_v3 P = tex_v3_make(L.p[0][l], L.p[1][l], L.p[2][l]);
+            tex_v3 pl = tex_xform_point(&leaf.to_obj, P);
+            double uvw[3], got[2] = {u0[l], v0[l]};
+            map_point_at(&ap, &leaf, &P, &pl, uvw);
+            bad += memcmp(got, uvw, sizeof got) != 0;
+            int want = place(&ap, &pm, uvw);
+            bad += want != (int)(in >> l & 1);
+            inside += want;
+            if (want)
+                bad += memcmp(&u[l], &uvw[0], sizeof *u) != 0 || memcmp(&v[l], &uvw[1], sizeof *v);
+        }
+        bad += in >> n != 0;
+    }
+    CHECKF(bad == 0 && inside > lanes / 8 && inside < lanes - lanes / 8,
+           "a plane's planar mapping in AVX2 lanes: map_point_at's and place's bits (%ld wrong "
+           "of %ld lanes, %ld inside)", bad, lanes, inside);
+#endif
+}
+
 /* A batch of shadow rays through a tree of glass and opaque boxes on a grid (from their
  * corners and faces, along their faces, to their corners) gives each ray's own product of
  * Kt, bit for bit, at every SIMD level */
@@ -1150,6 +1219,7 @@ int main(void)
     test_box4_rays_lanes();
     test_rays_box_lanes();
     test_footprint_lanes();
+    test_plane_lanes();
     test_transmit_batch();
     test_packet_walk();
     test_hull_skip();

@@ -1,5 +1,5 @@
-/* packet_x86.c - a packet's footprints and mappings in AVX-512 lanes; its footprints in
- * AVX2's too */
+/* packet_x86.c - a packet's footprints and mappings in AVX-512 lanes; its footprints and a
+ * plane's mapping in AVX2's too */
 #include <math.h>
 #include <stdint.h>
 
@@ -261,6 +261,49 @@ TEX_AVX512 unsigned tex_plane_map8_avx512(const struct tex_lanes *L, int i, int 
     __m512d c0 = fract8_avx512(_mm512_mul_pd(xform_row8(m[0], x, y, z), sc));
     __m512d c1 = fract8_avx512(_mm512_mul_pd(xform_row8(m[2], x, y, z), sc));
     return place8_avx512(ap, L->sf->cache->placement, i, in, c0, c1, u0, v0, u, v);
+}
+
+/* tex_plane_map8_avx512 in AVX2's four lanes (fract8_avx512, xform_row8 and place8_avx512's
+ * operations in their order) */
+TEX_AVX2 static inline __m256d xform_row4(const double *r, __m256d x, __m256d y, __m256d z)
+{
+    __m256d a = _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(r[0]), x),
+                              _mm256_mul_pd(_mm256_set1_pd(r[1]), y));
+    return _mm256_add_pd(_mm256_add_pd(a, _mm256_mul_pd(_mm256_set1_pd(r[2]), z)),
+                         _mm256_set1_pd(r[3]));
+}
+
+TEX_AVX2 static inline __m256d fract4_avx2(__m256d x)
+{
+    __m256d ax = _mm256_andnot_pd(_mm256_set1_pd(-0.0), x);
+    __m256d small = _mm256_cmp_pd(ax, _mm256_set1_pd(4503599627370496.0), _CMP_LT_OQ);
+    __m256d f = _mm256_add_pd(_mm256_round_pd(x, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC),
+                              _mm256_setzero_pd());
+    return _mm256_sub_pd(x, _mm256_blendv_pd(x, f, small));
+}
+
+TEX_AVX2 unsigned tex_plane_map4_avx2(const struct tex_lanes *L, int i, int n, double *u0,
+                                      double *v0, double *u, double *v)
+{
+    __m256i in = lanes4(n);
+    const struct tex_apply *ap = L->sf->apply;
+    const struct placement *pm = L->sf->cache->placement;
+    const double(*m)[4] = L->leaf->to_obj.m;
+    __m256d x = _mm256_maskload_pd(L->p[0] + i, in), y = _mm256_maskload_pd(L->p[1] + i, in);
+    __m256d z = _mm256_maskload_pd(L->p[2] + i, in), sc = _mm256_set1_pd(ap->scale);
+    __m256d c0 = fract4_avx2(_mm256_mul_pd(xform_row4(m[0], x, y, z), sc));
+    __m256d c1 = fract4_avx2(_mm256_mul_pd(xform_row4(m[2], x, y, z), sc));
+    _mm256_maskstore_pd(u0 + i, in, c0);
+    _mm256_maskstore_pd(v0 + i, in, c1);
+    __m256d s = _mm256_mul_pd(_mm256_sub_pd(c0, _mm256_set1_pd(ap->u1)), _mm256_set1_pd(pm->iu));
+    __m256d t = _mm256_mul_pd(_mm256_sub_pd(c1, _mm256_set1_pd(ap->v1)), _mm256_set1_pd(pm->iv));
+    __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1);
+    __m256d inside = _mm256_and_pd(
+        _mm256_and_pd(_mm256_cmp_pd(s, zero, _CMP_GE_OQ), _mm256_cmp_pd(s, one, _CMP_LE_OQ)),
+        _mm256_and_pd(_mm256_cmp_pd(t, zero, _CMP_GE_OQ), _mm256_cmp_pd(t, one, _CMP_LE_OQ)));
+    _mm256_maskstore_pd(u + i, in, _mm256_mul_pd(s, _mm256_set1_pd(ap->nu)));
+    _mm256_maskstore_pd(v + i, in, _mm256_mul_pd(t, _mm256_set1_pd(ap->nv)));
+    return (unsigned)_mm256_movemask_pd(inside) & ((1u << n) - 1);
 }
 
 /* tex_point_gradient of a natural mapping over the lanes in (natural_gradient at the
