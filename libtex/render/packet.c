@@ -189,7 +189,8 @@ void tex_prefetch_map(struct tex_prefetch *pf, const struct tex_surface *sf,
 }
 
 /* Whether the lanes map hits of ap on leaf: a plane's planar mapping, or (AVX-512) a natural
- * one on a box, cylinder, cone or sphere */
+ * one on a box, cylinder, cone or sphere (asked of a queue's first hit: the others share its
+ * leaf and surface) */
 static int lanes_mapping(const struct tex_apply *ap, const struct tex_object *leaf)
 {
     int k = leaf->kind, level = tex_simd_level(); /* the level in use, not the cache's */
@@ -205,7 +206,7 @@ int tex_lanes_take(struct tex_lanes *L, struct tex_prefetch *pf, const struct te
                    const tex_v3 *N, double width)
 {
     if (!sf->cache->lanes || !(width > 0) || L->n == TEX_LANES ||
-        (L->n && (L->leaf != leaf || L->sf != sf)) || !lanes_mapping(sf->apply, leaf))
+        (L->n ? L->leaf != leaf || L->sf != sf : !lanes_mapping(sf->apply, leaf)))
         return 0;
     int i = L->n++;
     L->sf = sf, L->leaf = leaf, L->pf[i] = pf;
