@@ -9,6 +9,7 @@
 #include "io/file.h"
 #include "render/box4.h"
 #include "render/bvh.h"
+#include "render/camera.h"
 #include "render/scene.h"
 #include "render/appfn.h"
 #include "render/footprint.h"
@@ -805,6 +806,55 @@ static void test_plane_lanes(void)
 #endif
 }
 
+/* The eye rays in AVX2's lanes (tex_eye_rays4_avx2 through tex_camera_rays) against the
+ * portable path's, bit for bit: 1 and 9 samples a pixel (jittered), packets of 1 to 64
+ * pixels anywhere on the image, a camera tilted off its axes */
+static void test_eye_rays_lanes(void)
+{
+#ifdef TEX_X86
+    if (tex_simd_level() < TEX_SIMD_AVX2)
+        return;
+    long bad = 0, rays = 0;
+    for (int spp = 1; spp <= 9; spp += 8) {
+        char sc[200];
+        int len = snprintf(sc, sizeof sc, "image 801 599 samples %d\n"
+                                          "camera { eye 0.3 3 -7 look 0.1 0.8 0.2 fov 47 }\n"
+                                          "sphere { radius 1 }\n", spp);
+        struct tex_scene *s = tex_scene_parse(sc, len, "eye.scene");
+        CHECK(s && tex_scene_prepare(s) == 0, "eye rays' scene prepares");
+        if (!s)
+            return;
+        struct tex_camera cam;
+        tex_camera_setup(s, &cam);
+        tex_rng g;
+        tex_rng_seed(&g, 31);
+        for (int t = 0; t < 400; t++) {
+            int x[64], y[64], np = 1 + (int)tex_rng_below(&g, 64), i = (int)tex_rng_below(&g, spp);
+            tex_rng rng[2][64];
+            tex_ray r[2][64];
+            for (int k = 0; k < 64; k++) {
+                x[k] = (int)tex_rng_below(&g, 801), y[k] = (int)tex_rng_below(&g, 599);
+                tex_rng_seed(&rng[0][k], (uint64_t)t * 64 + k);
+                rng[1][k] = rng[0][k];
+            }
+            tex_simd_limit(TEX_SIMD_SCALAR);
+            tex_camera_rays(s, &cam, x, y, np, i, rng[0], r[0]);
+            tex_simd_limit(TEX_SIMD_AVX2);
+            tex_camera_rays(s, &cam, x, y, np, i, rng[1], r[1]);
+            tex_simd_limit(TEX_SIMD_AVX512);
+            for (int k = 0; k < np; k++, rays++)
+                bad += memcmp(&r[0][k].o, &r[1][k].o, sizeof r[0][k].o) != 0 ||
+                       memcmp(&r[0][k].d, &r[1][k].d, sizeof r[0][k].d) != 0 ||
+                       r[0][k].spread != r[1][k].spread || r[0][k].width != r[1][k].width ||
+                       r[0][k].dist != r[1][k].dist || r[0][k].media != r[1][k].media;
+        }
+        tex_scene_free(s);
+    }
+    CHECKF(bad == 0 && rays > 10000, "eye rays in AVX2 lanes: the portable path's bits (%ld of "
+           "%ld differ)", bad, rays);
+#endif
+}
+
 /* A batch of shadow rays through a tree of glass and opaque boxes on a grid (from their
  * corners and faces, along their faces, to their corners) gives each ray's own product of
  * Kt, bit for bit, at every SIMD level */
@@ -1220,6 +1270,7 @@ int main(void)
     test_rays_box_lanes();
     test_footprint_lanes();
     test_plane_lanes();
+    test_eye_rays_lanes();
     test_transmit_batch();
     test_packet_walk();
     test_hull_skip();
