@@ -14,6 +14,7 @@
 #include "render/appfn.h"
 #include "render/footprint.h"
 #include "render/x86/bvh_x86.h"
+#include "render/x86/light_x86.h"
 #include "render/x86/packet_x86.h"
 #include "base/rng.h"
 #include "base/simd.h"
@@ -855,6 +856,55 @@ static void test_eye_rays_lanes(void)
 #endif
 }
 
+/* A point or spot light's samples at four hits in AVX2's lanes (tex_light_points4_avx2)
+ * against tex_light_ahead_at's, bit for bit where they reach the hit: every falloff, spots
+ * of whole exponents 0 to 9, hits at the light, across the cone's edge and far off */
+static void test_light_lanes(void)
+{
+#ifdef TEX_X86
+    if (tex_simd_level() < TEX_SIMD_AVX2)
+        return;
+    tex_rng g;
+    tex_rng_seed(&g, 37);
+    long bad = 0, lit = 0, dark = 0, n = 0;
+    for (int t = 0; t < 6000; t++) {
+        struct tex_light l;
+        memset(&l, 0, sizeof l);
+        l.kind = tex_rng_below(&g, 2) ? TEX_LIGHT_SPOT : TEX_LIGHT_POINT;
+        l.pos = tex_v3_make(4 * tex_rng_uniform(&g) - 2, 3, 4 * tex_rng_uniform(&g) - 2);
+        l.dir = tex_v3_norm(
+            tex_v3_make(tex_rng_uniform(&g) - 0.5, -1, tex_rng_uniform(&g) - 0.5));
+        l.falloff = (enum tex_falloff)tex_rng_below(&g, 3);
+        l.c1 = tex_rng_below(&g, 2) ? 1 : 0.2, l.c2 = 0.02 * tex_rng_uniform(&g);
+        l.c3 = 0.5 * tex_rng_uniform(&g);
+        l.cos_angle = cos(0.7 * tex_rng_uniform(&g)), l.exponent = (int)tex_rng_below(&g, 10);
+        tex_v3 P[4];
+        for (int k = 0; k < 4; k++) {
+            double sc = tex_rng_below(&g, 8) ? 4 : 1e6;
+            P[k] = tex_rng_below(&g, 16) ? tex_v3_make(sc * (tex_rng_uniform(&g) - 0.5),
+                                                       sc * (tex_rng_uniform(&g) - 0.5),
+                                                       sc * (tex_rng_uniform(&g) - 0.5))
+                                         : l.pos; /* at the light */
+        }
+        if (!tex_light_lanes(&l))
+            continue;
+        struct tex_light_ahead a[4], w;
+        tex_light_points4_avx2(&l, P, a);
+        for (int k = 0; k < 4; k++, n++) {
+            tex_light_ahead_at(&l, 0, 0.5, 0.5, &P[k], &w);
+            bad += a[k].ok != w.ok;
+            if (w.ok)
+                bad += memcmp(&a[k].L, &w.L, sizeof w.L) != 0 ||
+                       memcmp(&a[k].dist, &w.dist, sizeof w.dist) != 0 ||
+                       memcmp(&a[k].fatt, &w.fatt, sizeof w.fatt) != 0;
+            lit += w.ok, dark += !w.ok;
+        }
+    }
+    CHECKF(bad == 0 && lit > n / 8 && dark > n / 8, "point and spot lights at four hits in AVX2 "
+           "lanes: tex_light_ahead_at's bits (%ld of %ld differ, %ld lit)", bad, n, lit);
+#endif
+}
+
 /* A batch of shadow rays through a tree of glass and opaque boxes on a grid (from their
  * corners and faces, along their faces, to their corners) gives each ray's own product of
  * Kt, bit for bit, at every SIMD level */
@@ -1271,6 +1321,7 @@ int main(void)
     test_footprint_lanes();
     test_plane_lanes();
     test_eye_rays_lanes();
+    test_light_lanes();
     test_transmit_batch();
     test_packet_walk();
     test_hull_skip();
