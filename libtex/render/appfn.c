@@ -761,7 +761,7 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
         }
     }
     c->direct &= !c->quantities;
-    c->lanes = c->direct && map_ahead(sf->apply) && tex_simd_level() >= TEX_SIMD_AVX512;
+    c->lanes = c->direct && map_ahead(sf->apply) && tex_simd_level() >= TEX_SIMD_AVX2;
     c->base = surface_params(sf);
     float ka[3] = {sf->ka * sf->kd[0], sf->ka * sf->kd[1], sf->ka * sf->kd[2]};
     cs->from_rgb(cs, ka, TEX_SPECTRUM_REFLECTANCE, &c->col[0]);

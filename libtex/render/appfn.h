@@ -59,7 +59,7 @@ struct tex_surface_cache {
      * functions read no quantity, see every region and bend no normal but by a bump
      * (apply_direct) */
     int direct;
-    int lanes; /* 1: direct, a map, and AVX-512: its planes' hits go in lanes (tex_lanes_take) */
+    int lanes; /* 1: direct, a map, and AVX2: its hits go in lanes (tex_lanes_take) */
     int plain; /* tex_surface_plain: 1, a material tex_plain_material makes; 2, any other */
 };
 

@@ -63,22 +63,26 @@ void tex_camera_ray(const struct tex_scene *s, const struct tex_camera *cam, int
 }
 
 /* The eye rays of sample i of the packet's np pixels (x[k], y[k]) into r, made apart from
- * the traces so that their square roots overlap; eight at a time in lanes, their places
- * in the pixels drawn first (each pixel's rng in its order). */
+ * the traces so that their square roots overlap; eight (AVX-512) or four (AVX2) at a time in
+ * lanes, their places in the pixels drawn first (each pixel's rng in its order). */
 void tex_camera_rays(const struct tex_scene *s, const struct tex_camera *cam, const int *x,
                      const int *y, int np, int i, tex_rng *rng, tex_ray *r)
 {
 #ifdef TEX_X86
-    if (tex_simd_level() >= TEX_SIMD_AVX512) {
-        for (int k = 0; k < np; k += 8) {
-            int n = np - k < 8 ? np - k : 8;
+    int level = tex_simd_level(), wide = level >= TEX_SIMD_AVX512 ? 8 : 4;
+    if (level >= TEX_SIMD_AVX2) {
+        const struct tex_media *media = s->eye_media.n ? &s->eye_media : NULL;
+        for (int k = 0; k < np; k += wide) {
+            int n = np - k < wide ? np - k : wide;
             double ox[8], oy[8];
             for (int j = 0; j < 8; j++)
                 ox[j] = oy[j] = 0.5;
             for (int j = 0; j < n; j++)
                 sample_offset(s->settings.spp, cam->k, i, &rng[k + j], &ox[j], &oy[j]);
-            tex_eye_rays8_avx512(cam, s->eye_media.n ? &s->eye_media : NULL, x + k, y + k, ox,
-                                 oy, n, r + k);
+            if (wide == 8)
+                tex_eye_rays8_avx512(cam, media, x + k, y + k, ox, oy, n, r + k);
+            else
+                tex_eye_rays4_avx2(cam, media, x + k, y + k, ox, oy, n, r + k);
         }
         return;
     }

@@ -86,6 +86,14 @@ static inline int tex_light_point_at(const struct tex_light *l, const tex_v3 *po
 }
 int tex_light_sample(const struct tex_light *l, int k, double jx, double jy, tex_v3 P, tex_v3 *L,
                      double *dist, double *fatt);
+/* Whether tex_light_point_at takes l without pow: a point light, or a spot whose exponent
+ * tex_powi takes by squaring (then its lanes can, x86/light_x86.h) */
+static inline int tex_light_lanes(const struct tex_light *l)
+{
+    return l->kind == TEX_LIGHT_POINT ||
+           (l->kind == TEX_LIGHT_SPOT && l->exponent >= 0 && l->exponent <= 4096 &&
+            l->exponent == (int)l->exponent);
+}
 
 #ifdef __cplusplus
 }

@@ -44,7 +44,7 @@ static double scalar_width(const struct tex_prefetch *pf, int j, const struct te
 
 /* The footprints fw of n pending points of one texture (hit[i], its texture number j[i]
  * there, or the first where j is NULL; mapping a[i]), as scalar_width makes them: 0
- * unfiltered; in vector lanes where the CPU has AVX-512 those whose mapping has gradients
+ * unfiltered; in vector lanes where the CPU has AVX2 those whose mapping has gradients
  * (affine, or a map's tex_point_gradient), but those seen head-on.  A map's (solid 0) also
  * gives, where lane is given, the lane of fr of each point (else -1) and, where bump, the
  * frames' bump members. */
@@ -55,7 +55,8 @@ static void batch_widths(int n, struct tex_prefetch *const *hit, struct tex_pref
     for (int c = 0; c < 3; c++) /* the frames' rows: fr's own */
         fr->d[c] = fr->rows[c], fr->nn[c] = fr->rows[3 + c];
     fr->w = fr->rows[6];
-    int lanes = 0, at[CHUNK], affine = 0, simd = tex_simd_level() >= TEX_SIMD_AVX512;
+    int level = tex_simd_level(), lanes = 0, at[CHUNK], affine = 0;
+    int simd = level >= TEX_SIMD_AVX2, wide = level >= TEX_SIMD_AVX512 ? 8 : 4;
     /* the gradients' leaf and texture, kept while hits share them; lane 0's (leaf0, ap0) */
     const struct tex_object *leaf = NULL, *leaf0 = NULL;
     const struct tex_apply *gap = NULL, *ap = NULL, *ap0 = NULL;
@@ -100,10 +101,12 @@ static void batch_widths(int n, struct tex_prefetch *const *hit, struct tex_pref
     }
 #ifdef TEX_X86
     double lw[CHUNK];
-    for (int l = 0; l < lanes; l += 8) {
-        int m = lanes - l < 8 ? lanes - l : 8;
-        unsigned headon = solid ? tex_solid_footprints8_avx512(fr, l, m, lw)
-                                : tex_footprints8_avx512(fr, l, m, bump, lw);
+    for (int l = 0; l < lanes; l += wide) {
+        int m = lanes - l < wide ? lanes - l : wide;
+        unsigned headon = wide == 4 ? solid ? tex_solid_footprints4_avx2(fr, l, m, lw)
+                                            : tex_footprints4_avx2(fr, l, m, bump, lw)
+                          : solid   ? tex_solid_footprints8_avx512(fr, l, m, lw)
+                                    : tex_footprints8_avx512(fr, l, m, bump, lw);
         for (int k = l; k < l + m; k++) {
             int on = !(headon >> (k - l) & 1), i = at[k];
             fw[i] = on ? lw[k] : scalar_width(hit[i], j ? j[i] : 0, a[i], solid);
@@ -185,13 +188,15 @@ void tex_prefetch_map(struct tex_prefetch *pf, const struct tex_surface *sf,
     }
 }
 
-/* Whether the lanes map hits of ap on leaf: a plane's planar mapping, or a natural one on a
- * box, cylinder, cone or sphere */
+/* Whether the lanes map hits of ap on leaf: a plane's planar mapping, or (AVX-512) a natural
+ * one on a box, cylinder, cone or sphere (asked of a queue's first hit: the others share its
+ * leaf and surface) */
 static int lanes_mapping(const struct tex_apply *ap, const struct tex_object *leaf)
 {
-    int k = leaf->kind;
-    int natural = ap->mapping == TEX_MAP_NATURAL && !(ap->size[0] > 0); /* lanes: unsized */
-    return plane_planar(ap, leaf) ||
+    int k = leaf->kind, level = tex_simd_level(); /* the level in use, not the cache's */
+    int natural = ap->mapping == TEX_MAP_NATURAL && !(ap->size[0] > 0) && /* lanes: unsized */
+                  level >= TEX_SIMD_AVX512;
+    return (level >= TEX_SIMD_AVX2 && plane_planar(ap, leaf)) ||
            (natural && (k == TEX_SHAPE_BOX || k == TEX_SHAPE_CYLINDER || k == TEX_SHAPE_CONE ||
                         k == TEX_SHAPE_SPHERE));
 }
@@ -201,7 +206,7 @@ int tex_lanes_take(struct tex_lanes *L, struct tex_prefetch *pf, const struct te
                    const tex_v3 *N, double width)
 {
     if (!sf->cache->lanes || !(width > 0) || L->n == TEX_LANES ||
-        (L->n && (L->leaf != leaf || L->sf != sf)) || !lanes_mapping(sf->apply, leaf))
+        (L->n ? L->leaf != leaf || L->sf != sf : !lanes_mapping(sf->apply, leaf)))
         return 0;
     int i = L->n++;
     L->sf = sf, L->leaf = leaf, L->pf[i] = pf;
@@ -266,11 +271,14 @@ int tex_prefetch_lanes(struct tex_lanes *L, struct tex_prefetch **rest)
         map_gradient(L->sf->apply, L->leaf, g);
         lane_mapping(&fr, 0, g, L->sf->cache->placement, 0);
     }
-    for (int i = 0; i < n; i += 8) {
-        int k = n - i < 8 ? n - i : 8;
-        unsigned inside = natural ? tex_natural_map8_avx512(L, i, k, u0, v0, u, v, face, &fr)
-                                  : tex_plane_map8_avx512(L, i, k, u0, v0, u, v);
-        unsigned done = inside & ~tex_footprints8_avx512(&fr, i, k, bump, fw2);
+    int wide = tex_simd_level() >= TEX_SIMD_AVX512 ? 8 : 4; /* AVX2: a plane's alone */
+    for (int i = 0; i < n; i += wide) {
+        int k = n - i < wide ? n - i : wide;
+        unsigned inside = wide == 4 ? tex_plane_map4_avx2(L, i, k, u0, v0, u, v)
+                          : natural ? tex_natural_map8_avx512(L, i, k, u0, v0, u, v, face, &fr)
+                                    : tex_plane_map8_avx512(L, i, k, u0, v0, u, v);
+        unsigned done = inside & ~(wide == 4 ? tex_footprints4_avx2(&fr, i, k, bump, fw2)
+                                             : tex_footprints8_avx512(&fr, i, k, bump, fw2));
         for (int j = i; j < i + k; j++) {
             if (done >> (j - i) & 1)
                 u[m] = u[j], v[m] = v[j], fw2[m] = fw2[j], at[m++] = j;

@@ -31,6 +31,7 @@
 #include "render/camera.h"
 #include "render/scene.h"
 #include "render/whitted.h"
+#include "render/x86/light_x86.h"
 
 #define TILE 16
 
@@ -225,9 +226,16 @@ static inline void shadow_ray(const struct tex_scene *s, struct shadows *sw, con
 static void plain_light(const struct tex_scene *s, const struct tex_light *l, struct plain *pl,
                         int batch)
 {
-    for (int i = 0; i < pl->n; i++) { /* direct_light's tests */
+    int i = 0;
+#ifdef TEX_X86
+    if (tex_light_lanes(l) && tex_simd_level() >= TEX_SIMD_AVX2)
+        for (; i + 4 <= pl->n; i += 4) /* the square roots and divisions four at a time */
+            tex_light_points4_avx2(l, &pl->P[i], &pl->a[i]);
+#endif
+    for (; i < pl->n; i++)
+        tex_light_ahead_at(l, 0, 0.5, 0.5, &pl->P[i], &pl->a[i]);
+    for (i = 0; i < pl->n; i++) { /* direct_light's tests */
         struct tex_light_ahead *a = &pl->a[i];
-        tex_light_ahead_at(l, 0, 0.5, 0.5, &pl->P[i], a);
         a->ok = a->ok && !(tex_v3_dot(a->L, pl->N[i]) <= 0);
     }
     for (int j = 0; j < pl->nbent; j++) { /* and the geometric normal's, where bent */

@@ -86,8 +86,9 @@ struct tex_lanes {
 };
 /* Whether the hit of record pf on leaf (surface sf, whose lookups take footprints; P, D, N
  * and width > 0 as for tex_prefetch_footprints) goes in L's lanes: 1, queued there (a
- * direct surface, tex_resolve_material's short way, whose map's mapping the lanes make,
- * where the CPU has AVX-512, and the same leaf as the hits queued before); else 0, for
+ * direct surface, tex_resolve_material's short way, whose map's mapping the lanes make:
+ * a plane's where the CPU has AVX2, the natural ones too with AVX-512; and the same leaf
+ * as the hits queued before); else 0, for
  * tex_prefetch_map and the rest. */
 int tex_lanes_take(struct tex_lanes *L, struct tex_prefetch *pf, const struct tex_surface *sf,
                    const struct tex_object *leaf, const tex_v3 *P, const tex_v3 *D,

@@ -9,8 +9,13 @@
 #include "io/file.h"
 #include "render/box4.h"
 #include "render/bvh.h"
+#include "render/camera.h"
 #include "render/scene.h"
+#include "render/appfn.h"
+#include "render/footprint.h"
 #include "render/x86/bvh_x86.h"
+#include "render/x86/light_x86.h"
+#include "render/x86/packet_x86.h"
 #include "base/rng.h"
 #include "base/simd.h"
 #include "fixtures.h"
@@ -637,6 +642,269 @@ static void test_rays_box_lanes(void)
 #endif
 }
 
+/* A random unit vector; one in eight along an axis, to give head-on views */
+static tex_v3 unit_dir(tex_rng *g)
+{
+    if (!tex_rng_below(g, 8))
+        return tex_v3_make(0, tex_rng_below(g, 2) ? 1 : -1, 0);
+    tex_v3 v = tex_v3_make(2 * tex_rng_uniform(g) - 1, 2 * tex_rng_uniform(g) - 1,
+                           2 * tex_rng_uniform(g) - 1);
+    return tex_v3_norm(v);
+}
+
+/* The AVX2 footprint kernels against the scalar path's own: tex_footprint_width2 and
+ * tex_solid_width2 (its root) on world and solid mappings, the bump's unit tangents and
+ * placed derivatives (footprint_unit, placed_derivatives), bit for bit, lanes of their own
+ * or shared; the head-on lanes, left to the scalar path, as footprint_tangents finds them */
+static void test_footprint_lanes(void)
+{
+#ifdef TEX_X86
+    if (tex_simd_level() < TEX_SIMD_AVX2)
+        return;
+    static struct frames fr;
+    struct tex_apply ap[2];
+    struct tex_object leaf;
+    struct placement pm[2] = {{1, 1, 8, 8, 1}, {1, 1, 0.25, 3, 1}};
+    memset(ap, 0, sizeof ap), memset(&leaf, 0, sizeof leaf);
+    ap[0].mapping = TEX_MAP_WORLD, ap[0].scale = 0.25;
+    ap[1].mapping = TEX_MAP_SOLID, ap[1].scale = 1.5, ap[1].placed = 1;
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 4; c++)
+            ap[1].to_tex.m[r][c] = (r == c) + 0.3 * (r + 1) * (c - 1.5);
+    tex_rng g;
+    tex_rng_seed(&g, 23);
+    long bad = 0, bad_solid = 0, headon = 0, checked = 0;
+    for (int k = 0; k < 20000; k++) {
+        int n = 1 + (int)tex_rng_below(&g, 4), which = (int)tex_rng_below(&g, 2);
+        tex_v3 gr[3], D[4], N[4];
+        map_gradient(&ap[which], &leaf, gr);
+        for (int c = 0; c < 3; c++)
+            fr.d[c] = fr.rows[c], fr.nn[c] = fr.rows[3 + c];
+        fr.w = fr.rows[6];
+        fr.shared = (int)tex_rng_below(&g, 2);
+        for (int l = 0; l < 4; l++) {
+            N[l] = unit_dir(&g);
+            D[l] = tex_rng_below(&g, 6) ? unit_dir(&g) : tex_v3_scale(N[l], -1);
+            for (int c = 0; c < 3; c++)
+                fr.rows[c][l] = tex_v3_get(D[l], c), fr.rows[3 + c][l] = tex_v3_get(N[l], c);
+            fr.rows[6][l] = tex_rng_below(&g, 4) ? 1e-3 * tex_rng_uniform(&g) : 0.5;
+            for (int c = 0; c < 3; c++) /* shared: lane 0's alone */
+                fr.gu[c][l] = tex_v3_get(gr[0], c), fr.gv[c][l] = tex_v3_get(gr[1], c),
+                fr.gw[c][l] = tex_v3_get(gr[2], c);
+            fr.su[l] = fr.shared && l ? NAN : pm[which].su;
+            fr.sv[l] = fr.shared && l ? NAN : pm[which].sv;
+            if (fr.shared && l)
+                fr.gu[0][l] = fr.gv[1][l] = fr.gw[2][l] = NAN;
+        }
+        double fw2[4] = {-1, -1, -1, -1}, fw[4] = {-1, -1, -1, -1};
+        unsigned ho = tex_footprints4_avx2(&fr, 0, n, 1, fw2);
+        unsigned hs = tex_solid_footprints4_avx2(&fr, 0, n, fw);
+        for (int l = 0; l < 4; l++) {
+            if (l >= n) { /* beyond the batch: untouched */
+                bad += fw2[l] != -1, bad_solid += fw[l] != -1;
+                continue;
+            }
+            tex_v3 t1 = tex_v3_madd(D[l], N[l], -tex_v3_dot(D[l], N[l]));
+            int on = tex_v3_dot(t1, t1) < 1e-18;
+            bad += on != (int)(ho >> l & 1), bad_solid += on != (int)(hs >> l & 1);
+            headon += on;
+            if (on)
+                continue;
+            checked++;
+            struct footprint fp;
+            tex_v3 P = tex_v3_make(0, 0, 0);
+            double du[2], dv[2], want;
+            footprint_at(&fp, &D[l], &N[l], fr.rows[6][l]);
+            want = tex_footprint_width2(&ap[which], &pm[which], &leaf, &fp, &P, &P, 1, 0, 0);
+            bad += memcmp(&want, &fw2[l], sizeof want) != 0;
+            footprint_at(&fp, &D[l], &N[l], fr.rows[6][l]);
+            want = sqrt(tex_solid_width2(&ap[which], &pm[which], &leaf, &fp, &P, &P,
+                                         (double[3]){0, 0, 0}));
+            bad_solid += memcmp(&want, &fw[l], sizeof want) != 0;
+            footprint_at(&fp, &D[l], &N[l], fr.rows[6][l]);
+            footprint_unit(&fp);
+            placed_derivatives(&ap[which], &pm[which], &leaf, &fp, &P, 1, du, dv);
+            double got[10] = {fr.e1[0][l], fr.e1[1][l], fr.e1[2][l], fr.e2[0][l], fr.e2[1][l],
+                              fr.e2[2][l], fr.du[0][l], fr.du[1][l], fr.dv[0][l], fr.dv[1][l]};
+            double exp[10] = {fp.t1.x, fp.t1.y, fp.t1.z, fp.t2.x, fp.t2.y, fp.t2.z,
+                              du[0], du[1], dv[0], dv[1]};
+            bad += memcmp(got, exp, sizeof got) != 0;
+        }
+    }
+    CHECKF(bad == 0 && headon > 1000 && checked > 20000,
+           "footprints in AVX2 lanes: tex_footprint_width2's and the bump's frame, bit for bit "
+           "(%ld wrong; %ld lanes checked, %ld head-on)", bad, checked, headon);
+    CHECKF(bad_solid == 0, "band-limited solids' footprints in AVX2 lanes: tex_solid_width2's "
+           "root, bit for bit (%ld wrong)", bad_solid);
+#endif
+}
+
+/* A coordinate for a plane's mapping: most in a few units, some on whole numbers, at -0,
+ * beyond 2^52 or not finite (fract's edges) */
+static double plane_coord(tex_rng *g)
+{
+    switch (tex_rng_below(g, 16)) {
+    case 0: return (double)((int)tex_rng_below(g, 9) - 4);
+    case 1: return -0.0;
+    case 2: return (tex_rng_below(g, 2) ? -1 : 1) * 0x1p53 * (1 + tex_rng_uniform(g));
+    case 3: return tex_rng_below(g, 2) ? INFINITY : NAN;
+    default: return 16 * tex_rng_uniform(g) - 8;
+    }
+}
+
+/* tex_plane_map4_avx2 against map_point_at and place, the scalar path's planar mapping of a
+ * plane: the coordinates, the placed ones and the lanes inside the window, bit for bit */
+static void test_plane_lanes(void)
+{
+#ifdef TEX_X86
+    if (tex_simd_level() < TEX_SIMD_AVX2)
+        return;
+    static struct tex_lanes L;
+    struct tex_apply ap;
+    struct tex_object leaf;
+    struct tex_surface sf;
+    struct tex_surface_cache cache;
+    struct placement pm;
+    memset(&ap, 0, sizeof ap), memset(&leaf, 0, sizeof leaf);
+    memset(&sf, 0, sizeof sf), memset(&cache, 0, sizeof cache);
+    ap.mapping = TEX_MAP_PLANAR, ap.scale = 0.37, ap.nu = 3, ap.nv = 2;
+    ap.u1 = 0.1, ap.u2 = 0.8, ap.v1 = 0.25, ap.v2 = 1;
+    tex_placement_of(&ap, &pm);
+    leaf.kind = TEX_SHAPE_PLANE;
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 4; c++)
+            leaf.to_obj.m[r][c] = (r == c) + 0.2 * (c - r) + (c == 3) * 0.3 * (r + 1);
+    cache.placement = &pm;
+    sf.apply = &ap, sf.cache = &cache;
+    L.sf = &sf, L.leaf = &leaf;
+    tex_rng g;
+    tex_rng_seed(&g, 29);
+    long bad = 0, inside = 0, lanes = 0;
+    for (int k = 0; k < 20000; k++) {
+        int n = 1 + (int)tex_rng_below(&g, 4);
+        double u0[4], v0[4], u[4], v[4];
+        for (int l = 0; l < 4; l++)
+            for (int c = 0; c < 3; c++)
+                L.p[c][l] = tex_rng_below(&g, 4) ? 16 * tex_rng_uniform(&g) - 8 : plane_coord(&g);
+        unsigned in = tex_plane_map4_avx2(&L, 0, n, u0, v0, u, v);
+        for (int l = 0; l < n; l++, lanes++) {
+            tex_v3 P = tex_v3_make(L.p[0][l], L.p[1][l], L.p[2][l]);
+            tex_v3 pl = tex_xform_point(&leaf.to_obj, P);
+            double uvw[3], got[2] = {u0[l], v0[l]};
+            map_point_at(&ap, &leaf, &P, &pl, uvw);
+            bad += memcmp(got, uvw, sizeof got) != 0;
+            int want = place(&ap, &pm, uvw);
+            bad += want != (int)(in >> l & 1);
+            inside += want;
+            if (want)
+                bad += memcmp(&u[l], &uvw[0], sizeof *u) != 0 || memcmp(&v[l], &uvw[1], sizeof *v);
+        }
+        bad += in >> n != 0;
+    }
+    CHECKF(bad == 0 && inside > lanes / 8 && inside < lanes - lanes / 8,
+           "a plane's planar mapping in AVX2 lanes: map_point_at's and place's bits (%ld wrong "
+           "of %ld lanes, %ld inside)", bad, lanes, inside);
+#endif
+}
+
+/* The eye rays in AVX2's lanes (tex_eye_rays4_avx2 through tex_camera_rays) against the
+ * portable path's, bit for bit: 1 and 9 samples a pixel (jittered), packets of 1 to 64
+ * pixels anywhere on the image, a camera tilted off its axes */
+static void test_eye_rays_lanes(void)
+{
+#ifdef TEX_X86
+    if (tex_simd_level() < TEX_SIMD_AVX2)
+        return;
+    long bad = 0, rays = 0;
+    for (int spp = 1; spp <= 9; spp += 8) {
+        char sc[200];
+        int len = snprintf(sc, sizeof sc, "image 801 599 samples %d\n"
+                                          "camera { eye 0.3 3 -7 look 0.1 0.8 0.2 fov 47 }\n"
+                                          "sphere { radius 1 }\n", spp);
+        struct tex_scene *s = tex_scene_parse(sc, len, "eye.scene");
+        CHECK(s && tex_scene_prepare(s) == 0, "eye rays' scene prepares");
+        if (!s)
+            return;
+        struct tex_camera cam;
+        tex_camera_setup(s, &cam);
+        tex_rng g;
+        tex_rng_seed(&g, 31);
+        for (int t = 0; t < 400; t++) {
+            int x[64], y[64], np = 1 + (int)tex_rng_below(&g, 64), i = (int)tex_rng_below(&g, spp);
+            tex_rng rng[2][64];
+            tex_ray r[2][64];
+            for (int k = 0; k < 64; k++) {
+                x[k] = (int)tex_rng_below(&g, 801), y[k] = (int)tex_rng_below(&g, 599);
+                tex_rng_seed(&rng[0][k], (uint64_t)t * 64 + k);
+                rng[1][k] = rng[0][k];
+            }
+            tex_simd_limit(TEX_SIMD_SCALAR);
+            tex_camera_rays(s, &cam, x, y, np, i, rng[0], r[0]);
+            tex_simd_limit(TEX_SIMD_AVX2);
+            tex_camera_rays(s, &cam, x, y, np, i, rng[1], r[1]);
+            tex_simd_limit(TEX_SIMD_AVX512);
+            for (int k = 0; k < np; k++, rays++)
+                bad += memcmp(&r[0][k].o, &r[1][k].o, sizeof r[0][k].o) != 0 ||
+                       memcmp(&r[0][k].d, &r[1][k].d, sizeof r[0][k].d) != 0 ||
+                       r[0][k].spread != r[1][k].spread || r[0][k].width != r[1][k].width ||
+                       r[0][k].dist != r[1][k].dist || r[0][k].media != r[1][k].media;
+        }
+        tex_scene_free(s);
+    }
+    CHECKF(bad == 0 && rays > 10000, "eye rays in AVX2 lanes: the portable path's bits (%ld of "
+           "%ld differ)", bad, rays);
+#endif
+}
+
+/* A point or spot light's samples at four hits in AVX2's lanes (tex_light_points4_avx2)
+ * against tex_light_ahead_at's, bit for bit where they reach the hit: every falloff, spots
+ * of whole exponents 0 to 9, hits at the light, across the cone's edge and far off */
+static void test_light_lanes(void)
+{
+#ifdef TEX_X86
+    if (tex_simd_level() < TEX_SIMD_AVX2)
+        return;
+    tex_rng g;
+    tex_rng_seed(&g, 37);
+    long bad = 0, lit = 0, dark = 0, n = 0;
+    for (int t = 0; t < 6000; t++) {
+        struct tex_light l;
+        memset(&l, 0, sizeof l);
+        l.kind = tex_rng_below(&g, 2) ? TEX_LIGHT_SPOT : TEX_LIGHT_POINT;
+        l.pos = tex_v3_make(4 * tex_rng_uniform(&g) - 2, 3, 4 * tex_rng_uniform(&g) - 2);
+        l.dir = tex_v3_norm(
+            tex_v3_make(tex_rng_uniform(&g) - 0.5, -1, tex_rng_uniform(&g) - 0.5));
+        l.falloff = (enum tex_falloff)tex_rng_below(&g, 3);
+        l.c1 = tex_rng_below(&g, 2) ? 1 : 0.2, l.c2 = 0.02 * tex_rng_uniform(&g);
+        l.c3 = 0.5 * tex_rng_uniform(&g);
+        l.cos_angle = cos(0.7 * tex_rng_uniform(&g)), l.exponent = (int)tex_rng_below(&g, 10);
+        tex_v3 P[4];
+        for (int k = 0; k < 4; k++) {
+            double sc = tex_rng_below(&g, 8) ? 4 : 1e6;
+            P[k] = tex_rng_below(&g, 16) ? tex_v3_make(sc * (tex_rng_uniform(&g) - 0.5),
+                                                       sc * (tex_rng_uniform(&g) - 0.5),
+                                                       sc * (tex_rng_uniform(&g) - 0.5))
+                                         : l.pos; /* at the light */
+        }
+        if (!tex_light_lanes(&l))
+            continue;
+        struct tex_light_ahead a[4], w;
+        tex_light_points4_avx2(&l, P, a);
+        for (int k = 0; k < 4; k++, n++) {
+            tex_light_ahead_at(&l, 0, 0.5, 0.5, &P[k], &w);
+            bad += a[k].ok != w.ok;
+            if (w.ok)
+                bad += memcmp(&a[k].L, &w.L, sizeof w.L) != 0 ||
+                       memcmp(&a[k].dist, &w.dist, sizeof w.dist) != 0 ||
+                       memcmp(&a[k].fatt, &w.fatt, sizeof w.fatt) != 0;
+            lit += w.ok, dark += !w.ok;
+        }
+    }
+    CHECKF(bad == 0 && lit > n / 8 && dark > n / 8, "point and spot lights at four hits in AVX2 "
+           "lanes: tex_light_ahead_at's bits (%ld of %ld differ, %ld lit)", bad, n, lit);
+#endif
+}
+
 /* A batch of shadow rays through a tree of glass and opaque boxes on a grid (from their
  * corners and faces, along their faces, to their corners) gives each ray's own product of
  * Kt, bit for bit, at every SIMD level */
@@ -1050,6 +1318,10 @@ int main(void)
     test_box4_lanes();
     test_box4_rays_lanes();
     test_rays_box_lanes();
+    test_footprint_lanes();
+    test_plane_lanes();
+    test_eye_rays_lanes();
+    test_light_lanes();
     test_transmit_batch();
     test_packet_walk();
     test_hull_skip();

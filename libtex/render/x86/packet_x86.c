@@ -1,4 +1,5 @@
-/* packet_x86.c - a packet's footprints and mappings in AVX-512 lanes */
+/* packet_x86.c - a packet's footprints and mappings in AVX-512 lanes; its footprints and a
+ * plane's mapping in AVX2's too */
 #include <math.h>
 #include <stdint.h>
 
@@ -109,6 +110,103 @@ TEX_AVX512 unsigned tex_solid_footprints8_avx512(const struct frames *fr, int i,
 #undef LD
 #undef LDG
 
+/* AVX2's twins of the two footprint kernels above, four points a vector, the same
+ * operations in the same order */
+
+/* row a's lanes of mask in from lane i on (0 in the others); LDG4: of a row the lanes may
+ * share (struct frames) */
+#define LD4(a) _mm256_maskload_pd((a) + i, in)
+#define LDG4(a) (fr->shared ? _mm256_set1_pd((a)[0]) : LD4(a))
+
+/* the mask of lanes 0 to n - 1 (n <= 4) */
+TEX_AVX2 static inline __m256i lanes4(int n)
+{
+    return _mm256_cmpgt_epi64(_mm256_set1_epi64x(n), _mm256_setr_epi64x(0, 1, 2, 3));
+}
+
+/* tangents8 in AVX2's lanes; the lanes seen head-on as bits */
+TEX_AVX2 static inline __attribute__((always_inline)) unsigned
+tangents4(const struct frames *fr, int i, __m256i in, __m256d t1[3], __m256d t2[3],
+          __m256d *l2, __m256d *c)
+{
+    __m256d d[3], nn[3], sign = _mm256_set1_pd(-0.0);
+    for (int k = 0; k < 3; k++)
+        d[k] = LD4(fr->d[k]), nn[k] = LD4(fr->nn[k]);
+    __m256d dn = dot4(d[0], d[1], d[2], nn[0], nn[1], nn[2]), cosv = _mm256_andnot_pd(sign, dn);
+    __m256d ndn = _mm256_xor_pd(dn, sign);
+    for (int k = 0; k < 3; k++)
+        t1[k] = _mm256_add_pd(d[k], _mm256_mul_pd(nn[k], ndn));
+    *l2 = dot4(t1[0], t1[1], t1[2], t1[0], t1[1], t1[2]);
+    for (int k = 0; k < 3; k++) /* N x t1 */
+        t2[k] = _mm256_sub_pd(_mm256_mul_pd(nn[(k + 1) % 3], t1[(k + 2) % 3]),
+                              _mm256_mul_pd(nn[(k + 2) % 3], t1[(k + 1) % 3]));
+    __m256d lo = _mm256_set1_pd(0.02);
+    *c = _mm256_blendv_pd(lo, cosv, _mm256_cmp_pd(cosv, lo, _CMP_GT_OQ));
+    return (unsigned)_mm256_movemask_pd(_mm256_cmp_pd(*l2, _mm256_set1_pd(1e-18), _CMP_LT_OQ));
+}
+
+TEX_AVX2 unsigned tex_footprints4_avx2(struct frames *fr, int i, int n, int bump, double *fw2)
+{
+    __m256i in = lanes4(n);
+    __m256d t1[3], t2[3], l2, c;
+    unsigned headon = tangents4(fr, i, in, t1, t2, &l2, &c);
+    __m256d t1x = t1[0], t1y = t1[1], t1z = t1[2], t2x = t2[0], t2y = t2[1], t2z = t2[2];
+    __m256d gux = LDG4(fr->gu[0]), guy = LDG4(fr->gu[1]), guz = LDG4(fr->gu[2]);
+    __m256d gvx = LDG4(fr->gv[0]), gvy = LDG4(fr->gv[1]), gvz = LDG4(fr->gv[2]);
+    __m256d su = LDG4(fr->su), sv = LDG4(fr->sv), w = LD4(fr->w);
+    __m256d du0 = _mm256_mul_pd(dot4(gux, guy, guz, t1x, t1y, t1z), su);
+    __m256d dv0 = _mm256_mul_pd(dot4(gvx, gvy, gvz, t1x, t1y, t1z), sv);
+    __m256d du1 = _mm256_mul_pd(dot4(gux, guy, guz, t2x, t2y, t2z), su);
+    __m256d dv1 = _mm256_mul_pd(dot4(gvx, gvy, gvz, t2x, t2y, t2z), sv);
+    __m256d c2 = _mm256_mul_pd(c, c);
+    __m256d l1 = _mm256_add_pd(_mm256_mul_pd(du0, du0), _mm256_mul_pd(dv0, dv0));
+    __m256d m2 =
+        _mm256_mul_pd(_mm256_add_pd(_mm256_mul_pd(du1, du1), _mm256_mul_pd(dv1, dv1)), c2);
+    __m256d r = _mm256_mul_pd(_mm256_max_pd(l1, m2), _mm256_mul_pd(w, w)); /* l1 > m2 ? l1 : m2 */
+    _mm256_maskstore_pd(fw2 + i, in, _mm256_div_pd(r, _mm256_mul_pd(l2, c2)));
+    if (bump) { /* footprint_unit's tangents, placed_derivatives along them */
+        __m256d s = _mm256_div_pd(_mm256_set1_pd(1), _mm256_sqrt_pd(l2));
+        __m256d e1[3] = {_mm256_mul_pd(t1x, s), _mm256_mul_pd(t1y, s), _mm256_mul_pd(t1z, s)};
+        __m256d e2[3] = {_mm256_mul_pd(t2x, s), _mm256_mul_pd(t2y, s), _mm256_mul_pd(t2z, s)};
+        __m256d dd[4] = {
+            _mm256_mul_pd(dot4(gux, guy, guz, e1[0], e1[1], e1[2]), su),
+            _mm256_mul_pd(dot4(gvx, gvy, gvz, e1[0], e1[1], e1[2]), sv),
+            _mm256_mul_pd(dot4(gux, guy, guz, e2[0], e2[1], e2[2]), su),
+            _mm256_mul_pd(dot4(gvx, gvy, gvz, e2[0], e2[1], e2[2]), sv)};
+        for (int c = 0; c < 3; c++) {
+            _mm256_maskstore_pd(fr->e1[c] + i, in, e1[c]);
+            _mm256_maskstore_pd(fr->e2[c] + i, in, e2[c]);
+        }
+        for (int c = 0; c < 4; c++)
+            _mm256_maskstore_pd(c & 1 ? fr->dv[c / 2] + i : fr->du[c / 2] + i, in, dd[c]);
+    }
+    return headon & ((1u << n) - 1);
+}
+
+TEX_AVX2 unsigned tex_solid_footprints4_avx2(const struct frames *fr, int i, int n, double *fw)
+{
+    __m256i in = lanes4(n);
+    __m256d t1[3], t2[3], l2, c;
+    unsigned headon = tangents4(fr, i, in, t1, t2, &l2, &c);
+    const double(*g[3])[CHUNK] = {fr->gu, fr->gv, fr->gw};
+    __m256d sc[3] = {LDG4(fr->su), LDG4(fr->sv), _mm256_set1_pd(1)}, l1 = _mm256_setzero_pd();
+    __m256d m2 = _mm256_setzero_pd(), w = LD4(fr->w);
+    for (int k = 0; k < 3; k++) { /* l1 += a a, m2 += b b, as tex_solid_width2 sums them */
+        __m256d gx = LDG4(g[k][0]), gy = LDG4(g[k][1]), gz = LDG4(g[k][2]);
+        __m256d a = _mm256_mul_pd(dot4(gx, gy, gz, t1[0], t1[1], t1[2]), sc[k]);
+        __m256d b = _mm256_mul_pd(dot4(gx, gy, gz, t2[0], t2[1], t2[2]), sc[k]);
+        l1 = _mm256_add_pd(l1, _mm256_mul_pd(a, a));
+        m2 = _mm256_add_pd(m2, _mm256_mul_pd(b, b));
+    }
+    __m256d r = _mm256_div_pd(
+        _mm256_mul_pd(_mm256_sqrt_pd(_mm256_mul_pd(l1, m2)), _mm256_mul_pd(w, w)),
+        _mm256_mul_pd(c, l2));
+    _mm256_maskstore_pd(fw + i, in, _mm256_sqrt_pd(r));
+    return headon & ((1u << n) - 1);
+}
+#undef LD4
+#undef LDG4
+
 /* fract in lanes: x - tex_floord(x), tex_floord's floor (+0 for -0: floor's -0 plus 0), and
  * x - x beyond 2^52 */
 TEX_AVX512 static inline __m512d fract8_avx512(__m512d x)
@@ -163,6 +261,49 @@ TEX_AVX512 unsigned tex_plane_map8_avx512(const struct tex_lanes *L, int i, int 
     __m512d c0 = fract8_avx512(_mm512_mul_pd(xform_row8(m[0], x, y, z), sc));
     __m512d c1 = fract8_avx512(_mm512_mul_pd(xform_row8(m[2], x, y, z), sc));
     return place8_avx512(ap, L->sf->cache->placement, i, in, c0, c1, u0, v0, u, v);
+}
+
+/* tex_plane_map8_avx512 in AVX2's four lanes (fract8_avx512, xform_row8 and place8_avx512's
+ * operations in their order) */
+TEX_AVX2 static inline __m256d xform_row4(const double *r, __m256d x, __m256d y, __m256d z)
+{
+    __m256d a = _mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(r[0]), x),
+                              _mm256_mul_pd(_mm256_set1_pd(r[1]), y));
+    return _mm256_add_pd(_mm256_add_pd(a, _mm256_mul_pd(_mm256_set1_pd(r[2]), z)),
+                         _mm256_set1_pd(r[3]));
+}
+
+TEX_AVX2 static inline __m256d fract4_avx2(__m256d x)
+{
+    __m256d ax = _mm256_andnot_pd(_mm256_set1_pd(-0.0), x);
+    __m256d small = _mm256_cmp_pd(ax, _mm256_set1_pd(4503599627370496.0), _CMP_LT_OQ);
+    __m256d f = _mm256_add_pd(_mm256_round_pd(x, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC),
+                              _mm256_setzero_pd());
+    return _mm256_sub_pd(x, _mm256_blendv_pd(x, f, small));
+}
+
+TEX_AVX2 unsigned tex_plane_map4_avx2(const struct tex_lanes *L, int i, int n, double *u0,
+                                      double *v0, double *u, double *v)
+{
+    __m256i in = lanes4(n);
+    const struct tex_apply *ap = L->sf->apply;
+    const struct placement *pm = L->sf->cache->placement;
+    const double(*m)[4] = L->leaf->to_obj.m;
+    __m256d x = _mm256_maskload_pd(L->p[0] + i, in), y = _mm256_maskload_pd(L->p[1] + i, in);
+    __m256d z = _mm256_maskload_pd(L->p[2] + i, in), sc = _mm256_set1_pd(ap->scale);
+    __m256d c0 = fract4_avx2(_mm256_mul_pd(xform_row4(m[0], x, y, z), sc));
+    __m256d c1 = fract4_avx2(_mm256_mul_pd(xform_row4(m[2], x, y, z), sc));
+    _mm256_maskstore_pd(u0 + i, in, c0);
+    _mm256_maskstore_pd(v0 + i, in, c1);
+    __m256d s = _mm256_mul_pd(_mm256_sub_pd(c0, _mm256_set1_pd(ap->u1)), _mm256_set1_pd(pm->iu));
+    __m256d t = _mm256_mul_pd(_mm256_sub_pd(c1, _mm256_set1_pd(ap->v1)), _mm256_set1_pd(pm->iv));
+    __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1);
+    __m256d inside = _mm256_and_pd(
+        _mm256_and_pd(_mm256_cmp_pd(s, zero, _CMP_GE_OQ), _mm256_cmp_pd(s, one, _CMP_LE_OQ)),
+        _mm256_and_pd(_mm256_cmp_pd(t, zero, _CMP_GE_OQ), _mm256_cmp_pd(t, one, _CMP_LE_OQ)));
+    _mm256_maskstore_pd(u + i, in, _mm256_mul_pd(s, _mm256_set1_pd(ap->nu)));
+    _mm256_maskstore_pd(v + i, in, _mm256_mul_pd(t, _mm256_set1_pd(ap->nv)));
+    return (unsigned)_mm256_movemask_pd(inside) & ((1u << n) - 1);
 }
 
 /* tex_point_gradient of a natural mapping over the lanes in (natural_gradient at the

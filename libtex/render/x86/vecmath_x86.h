@@ -19,6 +19,14 @@ TEX_AVX512 static inline __m512d dot8(__m512d ax, __m512d ay, __m512d az, __m512
                          _mm512_mul_pd(az, bz));
 }
 
+/* dot8 in AVX2's four lanes */
+TEX_AVX2 static inline __m256d dot4(__m256d ax, __m256d ay, __m256d az, __m256d bx, __m256d by,
+                                    __m256d bz)
+{
+    return _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(ax, bx), _mm256_mul_pd(ay, by)),
+                         _mm256_mul_pd(az, bz));
+}
+
 /* -x over lanes: the sign flipped, as C's unary minus does (for a zero too) */
 TEX_AVX512 static inline __m512d neg8(__m512d x)
 {
