@@ -334,35 +334,51 @@ TEX_AVX2 static void colour8(const struct tex_palette_lanes *l, const struct tex
         c[k] = _mm256_blendv_ps(mix[k], a[k], at);
 }
 
+/* Eight pixels of c[0..2] interleaved into out: float g of the 24 is channel g % 3 of pixel
+ * g / 3, each channel's vector permuted to the pixels and blended in where it belongs */
+TEX_AVX2 static inline void interleave3(const __m256 c[4], float *out)
+{
+    const __m256i i0 = _mm256_setr_epi32(0, 0, 0, 1, 1, 1, 2, 2);
+    const __m256i i1 = _mm256_setr_epi32(2, 3, 3, 3, 4, 4, 4, 5);
+    const __m256i i2 = _mm256_setr_epi32(5, 5, 6, 6, 6, 7, 7, 7);
+#define PIX3(i, m1, m2)                                                                          \
+    _mm256_blend_ps(_mm256_blend_ps(_mm256_permutevar8x32_ps(c[0], i),                          \
+                                    _mm256_permutevar8x32_ps(c[1], i), m1),                     \
+                    _mm256_permutevar8x32_ps(c[2], i), m2)
+    _mm256_storeu_ps(out, PIX3(i0, 0x92, 0x24));
+    _mm256_storeu_ps(out + 8, PIX3(i1, 0x24, 0x49));
+    _mm256_storeu_ps(out + 16, PIX3(i2, 0x49, 0x92));
+#undef PIX3
+}
+
+/* The same for four channels: two pixels a vector */
+TEX_AVX2 static inline void interleave4(const __m256 c[4], float *out)
+{
+    __m256 rg0 = _mm256_unpacklo_ps(c[0], c[1]), rg1 = _mm256_unpackhi_ps(c[0], c[1]);
+    __m256 ba0 = _mm256_unpacklo_ps(c[2], c[3]), ba1 = _mm256_unpackhi_ps(c[2], c[3]);
+    /* pixels 0 1 | 4 5, 2 3 | 6 7 */
+    __m256 p0 = _mm256_castpd_ps(_mm256_unpacklo_pd(_mm256_castps_pd(rg0), _mm256_castps_pd(ba0)));
+    __m256 p1 = _mm256_castpd_ps(_mm256_unpackhi_pd(_mm256_castps_pd(rg0), _mm256_castps_pd(ba0)));
+    __m256 p2 = _mm256_castpd_ps(_mm256_unpacklo_pd(_mm256_castps_pd(rg1), _mm256_castps_pd(ba1)));
+    __m256 p3 = _mm256_castpd_ps(_mm256_unpackhi_pd(_mm256_castps_pd(rg1), _mm256_castps_pd(ba1)));
+    _mm256_storeu_ps(out, _mm256_permute2f128_ps(p0, p1, 0x20));
+    _mm256_storeu_ps(out + 8, _mm256_permute2f128_ps(p2, p3, 0x20));
+    _mm256_storeu_ps(out + 16, _mm256_permute2f128_ps(p0, p1, 0x31));
+    _mm256_storeu_ps(out + 24, _mm256_permute2f128_ps(p2, p3, 0x31));
+}
+
 TEX_AVX2 int tex_palette_colour_avx2(const struct tex_palette_lanes *l,
                                      const struct tex_srgb_enc *e, const float *v, int n,
                                      double lo, double hi, int outside, float *out, int nc)
 {
-    /* pixels interleaved by permutes: float g of a block of 8 nc is channel g % nc of pixel
-     * g / nc, each channel's vector permuted to the pixels and blended in where it belongs */
-    __m256i idx[4];
-    __m256 sel[4][4];
-    for (int o = 0; o < nc; o++) {
-        int ix[8], s[4][8];
-        for (int g = 0; g < 8; g++) {
-            ix[g] = (8 * o + g) / nc;
-            for (int k = 0; k < 4; k++)
-                s[k][g] = (8 * o + g) % nc == k ? -1 : 0;
-        }
-        idx[o] = _mm256_loadu_si256((const __m256i *)ix);
-        for (int k = 0; k < nc; k++)
-            sel[o][k] = _mm256_castsi256_ps(_mm256_loadu_si256((const __m256i *)s[k]));
-    }
     int i = 0;
     for (; i + 8 <= n; i += 8) {
         __m256 c[4];
         colour8(l, e, v + i, lo, hi, outside, c);
-        for (int o = 0; o < nc; o++) {
-            __m256 x = _mm256_permutevar8x32_ps(c[0], idx[o]);
-            for (int k = 1; k < nc; k++)
-                x = _mm256_blendv_ps(x, _mm256_permutevar8x32_ps(c[k], idx[o]), sel[o][k]);
-            _mm256_storeu_ps(out + (size_t)i * nc + 8 * o, x);
-        }
+        if (nc == 3)
+            interleave3(c, out + (size_t)i * 3);
+        else
+            interleave4(c, out + (size_t)i * 4);
     }
     return i;
 }
