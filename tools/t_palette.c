@@ -5,9 +5,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
+#include "io/spool.h"
 #include "ops/palette.h"
 #include "textura.h"
 
@@ -177,34 +177,29 @@ static tex_map *colour(tex_map *band, void *arg)
     return out;
 }
 
-struct spool {
-    tex_rows_reader *r;
-    const char *name;
+struct range {
+    struct tex_stats_acc a; /* of channel 0, as tex_palette_map's automatic range */
     int w, nc;
-    struct tex_stats_acc range; /* of channel 0, as tex_palette_map's auto range */
 };
 
-static int spool_fill(void *arg, int y, int n, float *rows)
+static void take_range(void *arg, const float *rows, int y, int n)
 {
-    struct spool *s = arg;
-    if (tex_rows_read(s->r, y, n, rows, s->name) < 0 ||
-        tex_rows_nonfinite(rows, s->w, n, s->nc, y, s->name) < 0)
-        return -1;
-    tex_stats_add_range(&s->range, rows, (size_t)s->w, (size_t)n, s->nc);
-    return 0;
+    struct range *g = arg;
+    (void)y;
+    tex_stats_add_range(&g->a, rows, (size_t)g->w, (size_t)n, g->nc);
 }
 
-/* The map's own range: from a stream, in bounded memory, its rows pass to a temporary file
- * (unlinked at once) as their range is taken, and are coloured from there a band at a
- * time; anything else is coloured whole. */
+/* The map's own range: from a stream, in bounded memory, its rows pass to a spool (io/spool.h)
+ * as their range is taken, and are coloured from there a band at a time; anything else is
+ * coloured whole. */
 static void colour_auto(struct colouring *k, const struct tex_common *c)
 {
     const char *name = strcmp(k->input, "-") ? k->input : "standard input";
-    char path[64];
     tex_map head, *whole = NULL;
     tex_rows_reader *r = NULL;
+    struct tex_spool sp;
+    struct range g;
     struct tex_stats st;
-    int fd;
 
     if (tex_cli_takes_rows(c)) {
         if (!(r = tex_map_open_rows(k->input, &head, &whole)) && !whole)
@@ -220,28 +215,15 @@ static void colour_auto(struct colouring *k, const struct tex_common *c)
         tex_map_free(out);
         return;
     }
-    if ((fd = tex_spool_file("t_palette")) < 0)
-        tex_die();
-    struct spool s = {.r = r, .name = name, .w = head.w, .nc = head.nc};
-    tex_stats_begin(&s.range);
-    if (tex_exr_write_rows(&head, spool_fill, &s, 0, TEX_COMPRESS_NONE, fd, name) < 0)
+    tex_stats_begin(&g.a);
+    g.w = head.w, g.nc = head.nc;
+    if (tex_spool_rows(&sp, "t_palette", r, &head, name, head.h, take_range, &g) < 0)
         tex_die();
     tex_rows_close(r);
-    free(head.history);
-    tex_stats_end(&s.range, &st);
+    tex_stats_end(&g.a, &st);
     k->lo = st.min, k->hi = st.max;
-    /* The spool holds rows already taken in under the input limit, but no longer compressed
-     * and with a chunk table: near the limit it may pass it, and is no input to judge */
-    struct stat sb;
-    size_t max;
-    char lim[32];
-    if (fstat(fd, &sb) == 0 && tex_input_max(&max) == 0 && (size_t)sb.st_size > max) {
-        snprintf(lim, sizeof lim, "%lld", (long long)sb.st_size);
-        setenv("TEXTURA_MAX_INPUT", lim, 1);
-    }
-    snprintf(path, sizeof path, "/proc/self/fd/%d", fd);
-    tex_cli_stream(path, c, colour, k);
-    close(fd);
+    tex_cli_stream_spool(&sp, &head, c, colour, k);
+    tex_spool_close(&sp);
 }
 
 int main(int argc, char **argv)

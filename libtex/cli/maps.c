@@ -7,6 +7,7 @@
 #include "base/error.h"
 #include "base/progress.h"
 #include "io/file.h"
+#include "io/spool.h"
 #include "io/stream.h"
 
 int tex_cli_depth(const struct tex_common *c)
@@ -55,7 +56,8 @@ void tex_cli_write_rows(tex_map *head, const struct tex_common *c, tex_rows_fn f
 /* A band op's work: the band (n + 2 margin rows of input, from row y - margin) read a
  * band at a time, its output served to the writer's fill calls, whatever their size. */
 struct window_job {
-    tex_rows_reader *r;
+    tex_rows_reader *r;          /* the rows read from here, or */
+    const struct tex_spool *sp;  /* from a spool (taken in through the policy already) */
     const char *name;
     int w, nc, subregions, h, margin, rows; /* rows: a band's output rows */
     enum tex_edge edge;
@@ -83,8 +85,10 @@ static int window_rows(struct window_job *j, int y, int n)
         from = y + m < to ? y + m : to;
     }
     float *at = j->band->px + (size_t)(from - top) * row;
-    if (to > from && (tex_rows_read(j->r, from, to - from, at, j->name) < 0 ||
-                      tex_rows_nonfinite(at, j->w, to - from, j->nc, from, j->name) < 0))
+    if (to > from && (j->sp ? tex_spool_read(j->sp, from, to - from, at) < 0
+                            : tex_rows_read(j->r, from, to - from, at, j->name) < 0 ||
+                                  tex_rows_nonfinite(at, j->w, to - from, j->nc, from,
+                                                     j->name) < 0))
         return -1;
     for (int v = top; v < y + n + m; v++)
         if (v < 0 || v >= j->h)
@@ -189,6 +193,22 @@ static void stream_whole(tex_map *whole, const struct tex_common *c, tex_band_fn
     tex_map_free(m);
 }
 
+/* j's bands written to -o or standard output as head (its history taken and freed) */
+static void window_write(struct window_job *j, tex_map *head, const struct tex_common *c)
+{
+    if (window_next(j, 0) < 0) /* the first band before the header: its channels */
+        tex_die();
+    tex_map out = *head;
+    out.nc = j->out->nc;
+    out.subregions = j->out->subregions;
+    head->history = NULL;
+    tex_cli_write_rows(&out, c, window_fill, j);
+    if (j->out != j->band)
+        tex_map_free(j->out);
+    tex_map_free(j->band);
+    free(out.history);
+}
+
 static void stream_window(const char *path, const struct tex_common *c, int margin,
                           enum tex_edge edge, tex_band_fn *op, void *arg, int consumes)
 {
@@ -217,17 +237,8 @@ static void stream_window(const char *path, const struct tex_common *c, int marg
                            .subregions = head.subregions, .h = head.h, .margin = margin,
                            .rows = tex_cli_band_rows(head.w, head.nc), .edge = edge, .op = op,
                            .arg = arg, .consumes = consumes};
-    if (window_next(&j, 0) < 0) /* the first band before the header: its channels */
-        tex_die();
-    tex_map out = head;
-    out.nc = j.out->nc;
-    out.subregions = j.out->subregions;
-    tex_cli_write_rows(&out, c, window_fill, &j);
-    if (j.out != j.band)
-        tex_map_free(j.out);
-    tex_map_free(j.band);
+    window_write(&j, &head, c);
     tex_rows_close(r);
-    free(out.history);
 }
 
 void tex_cli_stream_window(const char *path, const struct tex_common *c, int margin,
@@ -267,4 +278,15 @@ void tex_cli_stream(const char *path, const struct tex_common *c,
 {
     struct pixel_op p = {op, arg};
     stream_window(path, c, 0, TEX_EDGE_CLAMP, pixel_band, &p, 1);
+}
+
+void tex_cli_stream_spool(const struct tex_spool *sp, tex_map *head, const struct tex_common *c,
+                          tex_map *(*op)(tex_map *band, void *arg), void *arg)
+{
+    struct pixel_op p = {op, arg};
+    struct window_job j = {.sp = sp, .name = sp->name, .w = sp->w, .nc = sp->nc,
+                           .subregions = head->subregions, .h = sp->h,
+                           .rows = tex_cli_band_rows(sp->w, sp->nc), .edge = TEX_EDGE_CLAMP,
+                           .op = pixel_band, .arg = &p, .consumes = 1};
+    window_write(&j, head, c);
 }

@@ -58,6 +58,12 @@ void tex_cli_write_rows(tex_map *head, const struct tex_common *c,
  * instead: the same pixels either way, op being per-pixel.  Dies on errors. */
 void tex_cli_stream(const char *path, const struct tex_common *c,
                     tex_map *(*op)(tex_map *band, void *arg), void *arg);
+/* The same over the rows of a spool (io/spool.h) of the input whose header is head (as
+ * tex_map_open_rows gave it; its history is taken and freed), when the rows must all have
+ * passed before the first is worked on (t_palette's automatic range).  Dies on errors. */
+struct tex_spool;
+void tex_cli_stream_spool(const struct tex_spool *sp, tex_map *head, const struct tex_common *c,
+                          tex_map *(*op)(tex_map *band, void *arg), void *arg);
 
 /* A neighbourhood operation's work in bounded memory: output rows y..y+n-1 need input rows
  * y-margin..y+n-1+margin, those beyond the top and bottom given by the edge rule.  op gets

@@ -9,7 +9,8 @@
 #include "io/file.h"
 #include "io/spool.h"
 
-int tex_spool_file(const char *prefix)
+/* An unlinked file in TMPDIR, ".prefix.XXXXXX": its descriptor */
+static int spool_file(const char *prefix)
 {
     const char *dir = getenv("TMPDIR");
     char tmp[4096];
@@ -34,7 +35,7 @@ int tex_spool_rows(struct tex_spool *s, const char *prefix, tex_rows_reader *r,
     band = band < 1 ? 1 : band > rows ? rows : band;
     if (!(buf = malloc(row * band * sizeof *buf)))
         return tex_error("out of memory");
-    if ((s->fd = tex_spool_file(prefix)) < 0) {
+    if ((s->fd = spool_file(prefix)) < 0) {
         free(buf);
         return -1;
     }

@@ -13,8 +13,7 @@
  *   tex_spool_read(&s, -3, 10, rows);   // rows h-3..h-1, then 0..6: wrapped
  *   tex_spool_close(&s);
  *
- * tex_spool_file: such a file alone, its descriptor (t_palette writes an EXR stream to it);
- * prefix names it (".prefix.XXXXXX").  tex_spool_rows: the reader r's first `rows` rows
+ * tex_spool_rows: the reader r's first `rows` rows (prefix names the file, ".prefix.XXXXXX")
  * (stream.h; head its header, as tex_map_open_rows gave it; head->h for all, and the
  * spool's h is the rows it holds), about 1 MiB at a time,
  * through the --nonfinite policy (file.h tex_rows_nonfinite) and shown to take (when not
@@ -38,7 +37,6 @@ struct tex_spool {
     const char *name; /* the input, for messages */
 };
 
-int tex_spool_file(const char *prefix);
 int tex_spool_rows(struct tex_spool *s, const char *prefix, tex_rows_reader *r,
                    const tex_map *head, const char *name, int rows,
                    void (*take)(void *arg, const float *rows, int y, int n), void *arg);

@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/uio.h>
 #include <unistd.h>
 
 #include <omp.h>
@@ -83,8 +84,9 @@ int tex_write_all(int fd, const void *p, size_t n, const char *name)
 /* Where encoded bytes go.  In memory (buf) they may land at any offset.  On
  * a file descriptor they must come in order: the header is buffered, then
  * written with a chunk offset table computed in advance, and the chunks pass
- * through buf (emptied), gathered into writes of up to STAGE bytes (the core hands
- * over a scanline's header and its pixels apart: two system calls a row); the table the
+ * through buf (emptied), gathered into writes of up to STAGE bytes; a piece of half a
+ * STAGE or more (a wide row's pixels, which the core hands over apart from the row's
+ * header) leaves with what buf gathered in one writev, not copied to buf; the table the
  * core writes last must match ours.  STAGE is a pipe's default capacity: a larger stage
  * costs more first touches of pages than it saves in writes (doc/performance.md). */
 #define STAGE (1 << 16)
@@ -111,6 +113,29 @@ static int sink_flush(struct wsink *w)
     return tex_write_all(w->fd, w->buf->data, n, w->name);
 }
 
+/* What w's buf gathered and then sz bytes at src, in one system call when the pipe takes
+ * them whole: a row's pixels leave from where the core packed them, not copied to buf */
+static int sink_write(struct wsink *w, const void *src, size_t sz)
+{
+    struct iovec v[2] = {{w->buf->data, w->buf->len}, {(void *)src, sz}};
+    int k = w->buf->len ? 0 : 1;
+
+    w->buf->len = 0;
+    while (k < 2) {
+        ssize_t n = writev(w->fd, v + k, 2 - k);
+        if (n < 0) {
+            if (errno == EINTR)
+                continue;
+            return tex_error("%s: write error: %s", w->name, strerror(errno));
+        }
+        for (; k < 2 && (size_t)n >= v[k].iov_len; k++)
+            n -= (ssize_t)v[k].iov_len;
+        if (k < 2)
+            v[k].iov_base = (char *)v[k].iov_base + n, v[k].iov_len -= (size_t)n;
+    }
+    return 0;
+}
+
 static int64_t write_mem(exr_const_context_t ctxt, void *ud, const void *src, uint64_t sz,
                          uint64_t off, exr_stream_error_func_ptr_t ecb)
 {
@@ -133,11 +158,11 @@ static int64_t write_mem(exr_const_context_t ctxt, void *ud, const void *src, ui
     }
     if (w->streaming) {
         if (off == w->pos) {
-            if ((w->buf->len + sz > STAGE && sink_flush(w) < 0) ||
-                (sz >= STAGE ? tex_write_all(w->fd, src, sz, w->name)
-                             : tex_buf_reserve(w->buf, STAGE)) < 0)
+            if ((sz >= STAGE / 2 ? sink_write(w, src, sz)
+                                 : (w->buf->len + sz > STAGE && sink_flush(w) < 0) ||
+                                       tex_buf_reserve(w->buf, STAGE)) < 0)
                 return ecb(ctxt, EXR_ERR_WRITE_IO, "%s", tex_errmsg()), -1;
-            if (sz < STAGE)
+            if (sz < STAGE / 2)
                 memcpy(w->buf->data + w->buf->len, src, sz), w->buf->len += sz;
             w->pos += sz;
             return (int64_t)sz;

@@ -69,14 +69,34 @@ HOT static void hpass_row(const float *pad, float *out, int n, int nc, const flo
     }
 }
 
-/* Pixels x0..x1-1 of a row of w padded by r on each side, outside the row: copies by the
- * edge rule, as far as the kernel reaches */
-static void pad_edge(float *pad, const float *row, long x0, long x1, int w, int nc, int r,
+/* Pixels x0..x1-1 of a row of w into pad, which holds pixel `first` first: those outside
+ * the row copies by the edge rule, as far as the kernel reaches */
+static void pad_edge(float *pad, long first, const float *row, long x0, long x1, int w, int nc,
                      enum tex_edge e)
 {
     for (long x = x0; x < x1; x++)
-        memcpy(pad + (size_t)(x + r) * nc, row + (size_t)tex_edge_index(x, w, e) * nc,
+        memcpy(pad + (size_t)(x - first) * nc, row + (size_t)tex_edge_index(x, w, e) * nc,
                nc * sizeof *pad);
+}
+
+/* A row's horizontal pass into out: its middle read where it is, its r pixels at each end
+ * from pad (w + 2 r pixels) holding them and the pixels the kernel reaches, those beyond the
+ * row by the edge rule; a row narrower than 2 r padded whole */
+static void hpass(const float *row, float *out, int w, int nc, const float *k, int r,
+                  enum tex_edge e, float *pad)
+{
+    int rn = r * nc, n = w * nc;
+
+    if (w < 2 * r) {
+        pad_edge(pad, -r, row, -r, w + r, w, nc, e);
+        hpass_row(pad, out, n, nc, k, r);
+        return;
+    }
+    pad_edge(pad, -r, row, -r, 2 * r, w, nc, e);
+    hpass_row(pad, out, rn, nc, k, r);
+    hpass_row(row, out + rn, n - 2 * rn, nc, k, r);
+    pad_edge(pad, w - 2 * r, row, w - 2 * r, w + r, w, nc, e);
+    hpass_row(pad, out + n - rn, rn, nc, k, r);
 }
 
 /* Rows y0..y1-1 of src's vertical pass into dst's rows y0-skip.. */
@@ -133,13 +153,8 @@ tex_map *tex_filter_separable_rows(const tex_map *m, const float *k, int r, enum
          * result does not depend on which thread takes it */
 #pragma omp for schedule(dynamic, 8)
         for (int y = 0; y < m->h; y++) {
-            const float *row = tex_map_row(m, y);
-            if (!pad)
-                continue;
-            memcpy(pad + (size_t)r * nc, row, (size_t)n * sizeof *pad);
-            pad_edge(pad, row, -r, 0, m->w, nc, r, e);
-            pad_edge(pad, row, m->w, m->w + r, m->w, nc, r, e);
-            hpass_row(pad, tex_map_row(tmp, y), n, nc, k, r);
+            if (pad)
+                hpass(tex_map_row(m, y), tex_map_row(tmp, y), m->w, nc, k, r, e, pad);
         }
         free(pad);
     }

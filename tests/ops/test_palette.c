@@ -209,7 +209,7 @@ static void test_maps(void)
  * colours taken to sRGB eight at a time) has tex_palette_lookup's bytes at every pixel, at
  * every SIMD level: dark colours on the linear toe, colours out of gamut that clamp to 0 and
  * 1, NaN, values outside the range in each --outside mode, values at a stop, stops at one
- * place, alpha, more stops than the kernel's lanes, an odd count. */
+ * place, alpha, 1, 2, 8, 9 and 16 stops and more than the kernels' lanes, an odd count. */
 static void test_map_runs(void)
 {
     static const char *const pals[] = {
@@ -220,7 +220,16 @@ static void test_map_runs(void)
         "space oklab\n0 #000000\n0.05 #100000\n0.1 #200000\n0.15 #300000\n0.2 #400000\n"
         "0.25 #500000\n0.3 #600000\n0.35 #700000\n0.4 #800000\n0.45 #900000\n0.5 #a00000\n"
         "0.55 #b00000\n0.6 #c00000\n0.65 #d00000\n0.7 #e00000\n0.75 #f00000\n0.8 #ff0000\n"
-        "1 #ffffff\n"};
+        "1 #ffffff\n",
+        /* one stop, and 8, 9, 16: the AVX2 kernel's lanes, one permute or two */
+        "space oklab\n0.4 #336699c0\n",
+        "space rgb\n0 #000000\n0.1 #ff0000\n0.2 #00ff00c0\n0.35 #0000ff\n0.5 #ffff00\n"
+        "0.6 #00ffff\n0.8 #ff00ff80\n1 #ffffff\n",
+        "space oklab\n0 #000000\n0.1 #ff0000\n0.2 #00ff00\n0.35 #0000ff\n0.5 #ffff00\n"
+        "0.6 #00ffff\n0.8 #ff00ff\n0.9 #808080\n1 #ffffff\n",
+        "space oklab\n0 #000000\n0.05 #200000\n0.1 #002000\n0.2 #000020\n0.25 #404000\n"
+        "0.3 #004040\n0.4 #400040\n0.45 #808000\n0.5 #008080c0\n0.55 #800080\n0.6 #c0c000\n"
+        "0.7 #00c0c0\n0.75 #c000c0\n0.8 #ff8000\n0.9 #0080ff\n1 #ffffff\n"};
     static const double range[][2] = {{0, 1}, {-0.3, 0.2}, {0.5, 0.5}};
     enum { N = 4099 };
     tex_map *m = tex_map_new(N, 1, 1);
@@ -258,8 +267,8 @@ static void test_map_runs(void)
         tex_palette_free(p);
     }
     tex_simd_limit(TEX_SIMD_AVX512);
-    CHECKF(cases == 5 * 3 * 3 * (best + 1) && !bad && zeros && ones && toe,
-           "%d colourings of %d values (5 palettes, 3 ranges, 3 outside modes, each SIMD level) "
+    CHECKF(cases == 9 * 3 * 3 * (best + 1) && !bad && zeros && ones && toe,
+           "%d colourings of %d values (9 palettes, 3 ranges, 3 outside modes, each SIMD level) "
            "are lookup's bytes: %d differ (%d clamped to 0 and %d to 1 out of gamut, %d on the toe)",
            cases, N, bad, zeros, ones, toe);
     tex_map_free(m);

@@ -278,7 +278,17 @@ TEX_AVX2 static __m128 palette_t4(__m128 v, double lo, double hi, int outside)
     return _mm256_cvtpd_ps(_mm256_blendv_pd(t, r, off));
 }
 
-/* colour16 on eight values with AVX2: the stops gathered where AVX-512 permutes them */
+/* The stops' quantity q (16 floats, those past the last stop 0) at indices ix: one permute of
+ * eight where the palette has at most eight stops, two and a blend by bit 3 for up to 16 */
+TEX_AVX2 static inline __m256 stop_q(const float *q, __m256i ix, int wide, __m256 upper)
+{
+    __m256 lo = _mm256_permutevar8x32_ps(_mm256_loadu_ps(q), ix);
+    if (!wide)
+        return lo;
+    return _mm256_blendv_ps(lo, _mm256_permutevar8x32_ps(_mm256_loadu_ps(q + 8), ix), upper);
+}
+
+/* colour16 on eight values with AVX2: the stops permuted within eight lanes */
 TEX_AVX2 static void colour8(const struct tex_palette_lanes *l, const struct tex_srgb_enc *e,
                              const float *v, double lo, double hi, int outside, __m256 c[4])
 {
@@ -293,7 +303,11 @@ TEX_AVX2 static void colour8(const struct tex_palette_lanes *l, const struct tex
                                             _mm256_set1_ps(l->pos[i]), t, _CMP_LE_OQ)));
     __m256i ia = _mm256_max_epi32(_mm256_sub_epi32(after, k1), _mm256_setzero_si256());
     __m256i ib = _mm256_min_epi32(after, _mm256_set1_epi32(l->n - 1));
-    __m256 pa = _mm256_i32gather_ps(l->pos, ia, 4), pb = _mm256_i32gather_ps(l->pos, ib, 4);
+    int wide = l->n > 8;
+    __m256i seven = _mm256_set1_epi32(7);
+    __m256 ua = _mm256_castsi256_ps(_mm256_cmpgt_epi32(ia, seven));
+    __m256 ub = _mm256_castsi256_ps(_mm256_cmpgt_epi32(ib, seven));
+    __m256 pa = stop_q(l->pos, ia, wide, ua), pb = stop_q(l->pos, ib, wide, ub);
     __m256 ends = _mm256_castsi256_ps(
         _mm256_or_si256(_mm256_cmpeq_epi32(after, _mm256_setzero_si256()),
                         _mm256_cmpeq_epi32(after, _mm256_set1_epi32(l->n))));
@@ -303,9 +317,9 @@ TEX_AVX2 static void colour8(const struct tex_palette_lanes *l, const struct tex
     __m256 a[4], mix[4];
     for (int k = 0; k < 4; k++) {
         const float *q = l->oklab && k < 3 ? l->lab[k] : l->rgba[k];
-        __m256 qa = _mm256_i32gather_ps(q, ia, 4), qb = _mm256_i32gather_ps(q, ib, 4);
+        __m256 qa = stop_q(q, ia, wide, ua), qb = stop_q(q, ib, wide, ub);
         mix[k] = _mm256_add_ps(qa, _mm256_mul_ps(f, _mm256_sub_ps(qb, qa)));
-        a[k] = l->oklab && k < 3 ? _mm256_i32gather_ps(l->rgba[k], ia, 4) : qa;
+        a[k] = l->oklab && k < 3 ? stop_q(l->rgba[k], ia, wide, ua) : qa;
     }
     if (l->oklab) {
         float lab[3][8], rgb[3][8];
@@ -320,6 +334,39 @@ TEX_AVX2 static void colour8(const struct tex_palette_lanes *l, const struct tex
         c[k] = _mm256_blendv_ps(mix[k], a[k], at);
 }
 
+/* Eight pixels of c[0..2] interleaved into out: float g of the 24 is channel g % 3 of pixel
+ * g / 3, each channel's vector permuted to the pixels and blended in where it belongs */
+TEX_AVX2 static inline void interleave3(const __m256 c[4], float *out)
+{
+    const __m256i i0 = _mm256_setr_epi32(0, 0, 0, 1, 1, 1, 2, 2);
+    const __m256i i1 = _mm256_setr_epi32(2, 3, 3, 3, 4, 4, 4, 5);
+    const __m256i i2 = _mm256_setr_epi32(5, 5, 6, 6, 6, 7, 7, 7);
+#define PIX3(i, m1, m2)                                                                          \
+    _mm256_blend_ps(_mm256_blend_ps(_mm256_permutevar8x32_ps(c[0], i),                          \
+                                    _mm256_permutevar8x32_ps(c[1], i), m1),                     \
+                    _mm256_permutevar8x32_ps(c[2], i), m2)
+    _mm256_storeu_ps(out, PIX3(i0, 0x92, 0x24));
+    _mm256_storeu_ps(out + 8, PIX3(i1, 0x24, 0x49));
+    _mm256_storeu_ps(out + 16, PIX3(i2, 0x49, 0x92));
+#undef PIX3
+}
+
+/* The same for four channels: two pixels a vector */
+TEX_AVX2 static inline void interleave4(const __m256 c[4], float *out)
+{
+    __m256 rg0 = _mm256_unpacklo_ps(c[0], c[1]), rg1 = _mm256_unpackhi_ps(c[0], c[1]);
+    __m256 ba0 = _mm256_unpacklo_ps(c[2], c[3]), ba1 = _mm256_unpackhi_ps(c[2], c[3]);
+    /* pixels 0 1 | 4 5, 2 3 | 6 7 */
+    __m256 p0 = _mm256_castpd_ps(_mm256_unpacklo_pd(_mm256_castps_pd(rg0), _mm256_castps_pd(ba0)));
+    __m256 p1 = _mm256_castpd_ps(_mm256_unpackhi_pd(_mm256_castps_pd(rg0), _mm256_castps_pd(ba0)));
+    __m256 p2 = _mm256_castpd_ps(_mm256_unpacklo_pd(_mm256_castps_pd(rg1), _mm256_castps_pd(ba1)));
+    __m256 p3 = _mm256_castpd_ps(_mm256_unpackhi_pd(_mm256_castps_pd(rg1), _mm256_castps_pd(ba1)));
+    _mm256_storeu_ps(out, _mm256_permute2f128_ps(p0, p1, 0x20));
+    _mm256_storeu_ps(out + 8, _mm256_permute2f128_ps(p2, p3, 0x20));
+    _mm256_storeu_ps(out + 16, _mm256_permute2f128_ps(p0, p1, 0x31));
+    _mm256_storeu_ps(out + 24, _mm256_permute2f128_ps(p2, p3, 0x31));
+}
+
 TEX_AVX2 int tex_palette_colour_avx2(const struct tex_palette_lanes *l,
                                      const struct tex_srgb_enc *e, const float *v, int n,
                                      double lo, double hi, int outside, float *out, int nc)
@@ -327,13 +374,11 @@ TEX_AVX2 int tex_palette_colour_avx2(const struct tex_palette_lanes *l,
     int i = 0;
     for (; i + 8 <= n; i += 8) {
         __m256 c[4];
-        float px[4][8];
         colour8(l, e, v + i, lo, hi, outside, c);
-        for (int k = 0; k < 4; k++)
-            _mm256_storeu_ps(px[k], c[k]);
-        for (int j = 0; j < 8; j++) /* interleaved: AVX2 has no two-register permute */
-            for (int k = 0; k < nc; k++)
-                out[(size_t)(i + j) * nc + k] = px[k][j];
+        if (nc == 3)
+            interleave3(c, out + (size_t)i * 3);
+        else
+            interleave4(c, out + (size_t)i * 4);
     }
     return i;
 }
