@@ -259,8 +259,7 @@ colour_poly(const struct poly *q, const float f[3], double lo, double hi, float 
  * applied to the parameters pr: the colour Kd per channel; a scalar parameter sees the map's
  * luminance as f and takes the mean of the channels.  Results clamped to the valid range. */
 static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const float f[3],
-                     const double uvw[3], double fw2, const double *qv, struct params *pr,
-                     struct tex_plain_later *later)
+                     const double uvw[3], double fw2, const double *qv, struct params *pr)
 {
     float *scalar = NULL, *colour = pr->kd, fg[3], p[3], sc = 0; /* sc: m or s, as a float */
     double lo = fn->lo, hi = fn->hi, r[3]; /* the parameter's row's range */
@@ -301,14 +300,6 @@ static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const flo
         p[0] = p[1] = p[2] = *scalar;
         fv = fg, pv = p;
     }
-    if (later) { /* Kd's expression, left to run with other hits' (tex_plain_later_run) */
-        later->fn = fn, later->fw2 = fw2, later->has_q = qv != NULL;
-        memcpy(later->f, fv, sizeof later->f), memcpy(later->p, pv, sizeof later->p);
-        memcpy(later->uvw, uvw, sizeof later->uvw);
-        if (qv)
-            memcpy(later->q, qv, sizeof later->q);
-        return;
-    }
     if (!q) {
         struct evalctx c = {fv, pv, uvw, fw2, qv};
         expr_eval(fn->e, &c, r);
@@ -327,6 +318,18 @@ static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const flo
         colour_set(colour, (float4){(float)clampd(r[0], lo, hi), (float)clampd(r[1], lo, hi),
                                     (float)clampd(r[2], lo, hi), 0});
     }
+}
+
+/* Kd's function fn (an expression) left in later to run with other hits'
+ * (tex_plain_later_run): its operands as apply_fn would give them, f and Kd as p */
+static void leave(struct tex_plain_later *later, const struct tex_appfn *fn, const float f[3],
+                  const float kd[3], const double uvw[3], double fw2, const double *qv)
+{
+    later->fn = fn, later->fw2 = fw2, later->has_q = qv != NULL;
+    memcpy(later->f, f, sizeof later->f), memcpy(later->p, kd, sizeof later->p);
+    memcpy(later->uvw, uvw, sizeof later->uvw);
+    if (qv)
+        memcpy(later->q, qv, sizeof later->q);
 }
 
 /* The surface gradients (world space, texture units per world unit) of the placed u and v of
@@ -601,8 +604,10 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
             if (fn->region && fn->region != region)
                 continue;
             ks_textured |= fn->param == TEX_SP_KS;
-            apply_fn(fn, cache->compiled[nfn] ? &cache->poly[nfn] : NULL, f, uvw, fw2, q, pr,
-                     later && nfn == cache->later ? later : NULL);
+            if (later && nfn == cache->later)
+                leave(later, fn, f, pr->kd, uvw, fw2, q);
+            else
+                apply_fn(fn, cache->compiled[nfn] ? &cache->poly[nfn] : NULL, f, uvw, fw2, q, pr);
             if (fn->param == TEX_SP_BUMP && pr->bump != 0) {
                 if (pa->has_tilt && ap->next) /* as bump_tilt leaves it for those after */
                     footprint_unit(&fp);
@@ -711,7 +716,10 @@ static int apply_direct(const struct tex_surface *sf, const struct tex_prefetch_
             colour_poly(q, f, fn->lo, fn->hi, pr->kd);
             continue;
         }
-        apply_fn(fn, q, f, pa->uvw, fw2, NULL, pr, later && i == c->later ? later : NULL);
+        if (later && i == c->later)
+            leave(later, fn, f, pr->kd, pa->uvw, fw2, NULL);
+        else
+            apply_fn(fn, q, f, pa->uvw, fw2, NULL, pr);
         if (fn->param == TEX_SP_BUMP && pr->bump != 0) {
             tilt = tex_v3_add(tilt, tilt_ahead(pa, pr->bump));
             pr->bump = 0;
@@ -721,19 +729,18 @@ static int apply_direct(const struct tex_surface *sf, const struct tex_prefetch_
     return ks_textured;
 }
 
-/* One surface's material at the hit; *blend: its blend's weight there.  later (or NULL):
+/* One surface's material at the hit; returns its blend's weight there.  later (or NULL):
  * where the surface's function cache->later is to be left (tex_plain_resolve). */
-static void resolve(const struct tex_scene *s, const struct tex_surface *sf,
-                    const struct tex_shade_at *at, tex_v3 *N, struct tex_material *m,
-                    float *blend, struct tex_plain_later *later)
+static float resolve(const struct tex_scene *s, const struct tex_surface *sf,
+                     const struct tex_shade_at *at, tex_v3 *N, struct tex_material *m,
+                     struct tex_plain_later *later)
 {
-    *blend = 0;
     if (!sf->apply) { /* the cache as it is, without the textured path's set-up */
         const struct params *b = &sf->cache->base;
         material(&s->cs, sf, b, 0, m);
         if (tex_shading_anisotropic(sf->model))
             tex_aniso_material(m, sf, at->leaf, at->P, N, b->flow, b->angle, b->au, b->av);
-        return;
+        return 0;
     }
     struct params pr = sf->cache->base;
     const struct tex_prefetch *pre = at->pre && at->pre->sf == sf ? at->pre : NULL;
@@ -746,19 +753,18 @@ static void resolve(const struct tex_scene *s, const struct tex_surface *sf,
     if (later && later->fn)
         later->ka = pr.ka;
     material(&s->cs, sf, &pr, ks_textured, m);
-    *blend = pr.blend;
     if (tex_shading_anisotropic(sf->model))
         tex_aniso_material(m, sf, at->leaf, at->P, N, pr.flow, pr.angle, pr.au, pr.av);
+    return pr.blend;
 }
 
 void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *sf,
                           const struct tex_shade_at *at, tex_v3 *N, struct tex_material m[2])
 {
-    float w, w1;
     tex_v3 N1 = *N; /* this surface's normal shades both */
-    resolve(s, sf, at, N, &m[0], &w, NULL);
+    float w = resolve(s, sf, at, N, &m[0], NULL);
     if (sf->blend && w > 0) { /* the other surface at the same hit, its own textures */
-        resolve(s, sf->blend, at, &N1, &m[1], &w1, NULL);
+        resolve(s, sf->blend, at, &N1, &m[1], NULL); /* its own blend's weight unused */
         tex_colour_scale(&m[0].ka, s->cs.n, &m[0].ka, 1 - w); /* the ambient term, mixed */
         for (int i = 0; i < s->cs.n; i++)
             m[0].ka.v[i] += w * m[1].ka.v[i];
@@ -808,7 +814,7 @@ int tex_surface_energy(const struct tex_surface *sf, double *e)
             float f[3] = {(float)l / 16, (float)l / 16, (float)l / 16};
             for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next)
                 for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next)
-                    apply_fn(fn, NULL, f, corner[c], 0, NULL, &pr, NULL);
+                    apply_fn(fn, NULL, f, corner[c], 0, NULL, &pr);
             double kd = fmax(pr.kd[0], fmax(pr.kd[1], pr.kd[2]));
             double ks = ks_textured ? pr.ks : fmax(sf->ks[0], fmax(sf->ks[1], sf->ks[2]));
             /* Ks (the lights' highlight) and Kr (the scene's mirror image) are one specular
@@ -895,11 +901,10 @@ void tex_plain_resolve(const struct tex_scene *s, const struct tex_surface *sf,
                        const struct tex_shade_at *at, tex_v3 *N, struct tex_plain *pm,
                        struct tex_plain_later *later)
 {
-    struct tex_material m;
-    float blend; /* none: a plain surface has no blend */
+    struct tex_material m; /* a plain surface has no blend */
     if (later)
         later->fn = NULL;
-    resolve(s, sf, at, N, &m, &blend, sf->cache->later >= 0 ? later : NULL);
+    resolve(s, sf, at, N, &m, sf->cache->later >= 0 ? later : NULL);
     for (int k = 0; k < 3; k++)
         pm->ka[k] = m.ka.v[k], pm->kd[k] = m.kd.v[k], pm->ks[k] = m.ks.v[k];
     pm->n = m.n;
