@@ -273,10 +273,26 @@ int tex_expr_arity(enum tex_eop op)
     }
 }
 
+/* Where a palette takes colour a: its mean, clamped to [0, 1] */
+static float palette_at(const double a[3])
+{
+    return tex_palette_t((a[0] + a[1] + a[2]) / 3, 0, 1, TEX_OUTSIDE_CLAMP);
+}
+
 void tex_expr_palette(const void *palette, const double a[3], float rgba[4])
 {
-    tex_palette_lookup(palette, tex_palette_t((a[0] + a[1] + a[2]) / 3, 0, 1, TEX_OUTSIDE_CLAMP),
-                       rgba);
+    tex_palette_lookup(palette, palette_at(a), rgba);
+}
+
+void tex_expr_palette_n(const void *palette, const double (*a)[3], int n, float (*rgb)[3])
+{
+    float t[256];
+    for (int i = 0; i < n; i += 256) {
+        int m = n - i < 256 ? n - i : 256;
+        for (int j = 0; j < m; j++)
+            t[j] = palette_at(a[i + j]);
+        tex_palette_lookup_n(palette, t, m, rgb[i]);
+    }
 }
 
 double tex_expr_apply(const struct tex_einsn *in, int k, const double *a, const double *b,

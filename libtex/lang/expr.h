@@ -202,6 +202,9 @@ static inline double tex_expr_op(enum tex_eop op, double a, double b, double c)
 /* TEX_EOP_PALETTE: palette (a tex_palette) at the mean of the colour a, clamped to [0, 1],
  * into rgba: one lookup for the three channels. */
 void tex_expr_palette(const void *palette, const double a[3], float rgba[4]);
+/* tex_expr_palette at n colours a, into rgb (three floats each): the same floats, the
+ * lookups together (tex_palette_lookup_n) */
+void tex_expr_palette_n(const void *palette, const double (*a)[3], int n, float (*rgb)[3]);
 /* Channel k of operator in->op (not CONST or LEAF) on the colours a, b, c
  * (as many as its arity; the others may be NULL). */
 double tex_expr_apply(const struct tex_einsn *in, int k, const double *a, const double *b,

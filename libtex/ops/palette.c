@@ -818,6 +818,17 @@ static void colour_run(const tex_palette *p, int counted, const struct tex_palet
         memcpy(out, c, (size_t)n * sizeof *c);
 }
 
+void tex_palette_lookup_n(const tex_palette *p, const float *t, int n, float *rgb)
+{
+    /* t in [0, 1] is palette_t's own at lo 0, hi 1: (t - 0) / 1 */
+    int counted = stops_counted(p);
+    struct tex_palette_lanes lanes;
+    const struct tex_palette_lanes *l = counted && palette_lanes(p, &lanes) ? &lanes : NULL;
+    for (int i = 0; i < n; i += COLOUR_RUN)
+        colour_run(p, counted, l, t + i, n - i < COLOUR_RUN ? n - i : COLOUR_RUN, 0, 1,
+                   TEX_OUTSIDE_CLAMP, rgb + (size_t)3 * i, 3);
+}
+
 tex_map *tex_palette_map(const tex_palette *p, const tex_map *m, double lo, double hi,
                          enum tex_outside outside)
 {

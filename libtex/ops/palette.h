@@ -100,6 +100,10 @@ int tex_palette_find(const char *name, char *buf, size_t n);
 int tex_palette_names(char *buf, size_t n);
 
 void tex_palette_lookup(const tex_palette *p, float t, float rgba[4]);
+/* tex_palette_lookup at n positions t in [0, 1] (as tex_palette_t gives them) into rgb, three
+ * floats each: the same floats, the colours mixed in OKLab taken to sRGB together (in
+ * vector lanes where the CPU has them) */
+void tex_palette_lookup_n(const tex_palette *p, const float *t, int n, float *rgb);
 void tex_palette_index(const tex_palette *p, int id, float rgba[4]);
 void tex_palette_index_n(const tex_palette *p, int id, int n, float rgba[4]);
 /* The colours of subregions 1..n (tex_palette_index_n): n RGB triples from

@@ -65,6 +65,22 @@ static void call(const struct tex_einsn *in, double (*arg)[3])
     arg[0][0] = r[0], arg[0][1] = r[1], arg[0][2] = r[2];
 }
 
+/* Operand in (TEX_EOP_LEAF) at the hit c, into a */
+static inline void leaf_value(const struct tex_einsn *in, const struct evalctx *c, double a[3])
+{
+    const float *v = in->leaf == TEX_LEAF_F ? c->f : c->p;
+    float t[3];
+    if (in->leaf >= TEX_LEAF_Q) {
+        a[0] = a[1] = a[2] = c->q[in->leaf - TEX_LEAF_Q];
+        return;
+    }
+    if (in->leaf == TEX_LEAF_TEX) {
+        tex_texture_lookup(in->ptr, c->uvw[0], c->uvw[1], c->uvw[2], c->fw2, t);
+        v = t;
+    }
+    a[0] = v[0], a[1] = v[1], a[2] = v[2];
+}
+
 /* Run the compiled function e (lang/expr.h) per channel: a loop over its postfix code
  * with the values on a stack in this frame; no recursion, no allocation. */
 static void expr_eval(const struct tex_expr *e, const struct evalctx *c, double out[3])
@@ -77,21 +93,9 @@ static void expr_eval(const struct tex_expr *e, const struct evalctx *c, double 
             a = st[sp++];
             a[0] = in->v[0], a[1] = in->v[1], a[2] = in->v[2];
             continue;
-        case TEX_EOP_LEAF: {
-            const float *v = in->leaf == TEX_LEAF_F ? c->f : c->p;
-            float t[3];
-            a = st[sp++];
-            if (in->leaf >= TEX_LEAF_Q) {
-                a[0] = a[1] = a[2] = c->q[in->leaf - TEX_LEAF_Q];
-                continue;
-            }
-            if (in->leaf == TEX_LEAF_TEX) {
-                tex_texture_lookup(in->ptr, c->uvw[0], c->uvw[1], c->uvw[2], c->fw2, t);
-                v = t;
-            }
-            a[0] = v[0], a[1] = v[1], a[2] = v[2];
+        case TEX_EOP_LEAF:
+            leaf_value(in, c, st[sp++]);
             continue;
-        }
         case TEX_EOP_RGB: /* channel k of argument k */
             sp -= 2;
             st[sp - 1][1] = st[sp][1];
@@ -123,6 +127,82 @@ static void expr_eval(const struct tex_expr *e, const struct evalctx *c, double 
         }
     }
     out[0] = st[0][0], out[1] = st[0][1], out[2] = st[0][2];
+}
+
+/* The most values e's program holds on its stack */
+static int expr_depth(const struct tex_expr *e)
+{
+    int sp = 0, most = 0;
+    for (int i = 0; i < e->n; i++) {
+        enum tex_eop op = e->code[i].op;
+        sp += op == TEX_EOP_CONST || op == TEX_EOP_LEAF ? 1 : 1 - tex_expr_arity(op);
+        most = sp > most ? sp : most;
+    }
+    return most;
+}
+
+/* expr_eval at the n <= TEX_LATER_MAX hits c (e's depth at most LATER_STACK): its program
+ * walked once, each instruction over every hit, the same doubles; the palettes looked up
+ * together */
+#define LATER_STACK 8
+static void expr_eval_n(const struct tex_expr *e, const struct evalctx *c, int n,
+                        double (*out)[3])
+{
+    double st[LATER_STACK][TEX_LATER_MAX][3], (*a)[3];
+    float rgb[TEX_LATER_MAX][3];
+    int sp = 0;
+    for (const struct tex_einsn *in = e->code, *end = in + e->n; in < end; in++) {
+        switch (in->op) {
+        case TEX_EOP_CONST:
+            a = st[sp++];
+            for (int i = 0; i < n; i++)
+                a[i][0] = in->v[0], a[i][1] = in->v[1], a[i][2] = in->v[2];
+            continue;
+        case TEX_EOP_LEAF:
+            a = st[sp++];
+            for (int i = 0; i < n; i++)
+                leaf_value(in, &c[i], a[i]);
+            continue;
+        case TEX_EOP_RGB:
+            sp -= 2;
+            for (int i = 0; i < n; i++)
+                st[sp - 1][i][1] = st[sp][i][1], st[sp - 1][i][2] = st[sp + 1][i][2];
+            continue;
+        case TEX_EOP_PALETTE:
+            a = st[sp - 1];
+            tex_expr_palette_n(in->ptr, (const double(*)[3])a, n, rgb);
+            for (int i = 0; i < n; i++)
+                a[i][0] = rgb[i][0], a[i][1] = rgb[i][1], a[i][2] = rgb[i][2];
+            continue;
+        case TEX_EOP_NEG: case TEX_EOP_ABS:
+            a = st[sp - 1];
+            for (int i = 0; i < n; i++)
+                for (int k = 0; k < 3; k++)
+                    a[i][k] = tex_expr_op(in->op, a[i][k], 0, 0);
+            continue;
+        case TEX_EOP_ADD: case TEX_EOP_SUB: case TEX_EOP_MUL: case TEX_EOP_DIV:
+        case TEX_EOP_MIN: case TEX_EOP_MAX:
+            a = st[--sp - 1];
+            for (int i = 0; i < n; i++)
+                for (int k = 0; k < 3; k++)
+                    a[i][k] = tex_expr_op(in->op, a[i][k], st[sp][i][k], 0);
+            continue;
+        default: { /* call's arguments gathered hit by hit */
+            int k = tex_expr_arity(in->op);
+            sp -= k;
+            for (int i = 0; i < n; i++) {
+                double arg[3][3];
+                for (int j = 0; j < k; j++)
+                    memcpy(arg[j], st[sp + j][i], sizeof arg[j]);
+                call(in, arg);
+                memcpy(st[sp][i], arg[0], sizeof arg[0]);
+            }
+            sp++;
+            continue;
+        }
+        }
+    }
+    memcpy(out, st[0], (size_t)n * sizeof *out);
 }
 
 /* The polynomial of e in f and p (lang/expr.h), and whether it is folded */
@@ -238,6 +318,18 @@ static void apply_fn(const struct tex_appfn *fn, const struct poly *q, const flo
         colour_set(colour, (float4){(float)clampd(r[0], lo, hi), (float)clampd(r[1], lo, hi),
                                     (float)clampd(r[2], lo, hi), 0});
     }
+}
+
+/* Kd's function fn (an expression) left in later to run with other hits'
+ * (tex_plain_later_run): its operands as apply_fn would give them, f and Kd as p */
+static void leave(struct tex_plain_later *later, const struct tex_appfn *fn, const float f[3],
+                  const float kd[3], const double uvw[3], double fw2, const double *qv)
+{
+    later->fn = fn, later->fw2 = fw2, later->has_q = qv != NULL;
+    memcpy(later->f, f, sizeof later->f), memcpy(later->p, kd, sizeof later->p);
+    memcpy(later->uvw, uvw, sizeof later->uvw);
+    if (qv)
+        memcpy(later->q, qv, sizeof later->q);
 }
 
 /* The surface gradients (world space, texture units per world unit) of the placed u and v of
@@ -464,7 +556,7 @@ static void flow_field(const struct tex_apply *ap, const struct placement *pm,
 
 static int apply_textures(const struct tex_surface *sf, const struct tex_shade_at *at,
                           const struct tex_prefetch *pre, tex_v3 *N, int filter,
-                          struct params *pr)
+                          struct params *pr, struct tex_plain_later *later)
 {
     const struct tex_object *leaf = at->leaf;
     const tex_v3 *P = at->P;
@@ -512,7 +604,10 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
             if (fn->region && fn->region != region)
                 continue;
             ks_textured |= fn->param == TEX_SP_KS;
-            apply_fn(fn, cache->compiled[nfn] ? &cache->poly[nfn] : NULL, f, uvw, fw2, q, pr);
+            if (later && nfn == cache->later)
+                leave(later, fn, f, pr->kd, uvw, fw2, q);
+            else
+                apply_fn(fn, cache->compiled[nfn] ? &cache->poly[nfn] : NULL, f, uvw, fw2, q, pr);
             if (fn->param == TEX_SP_BUMP && pr->bump != 0) {
                 if (pa->has_tilt && ap->next) /* as bump_tilt leaves it for those after */
                     footprint_unit(&fp);
@@ -606,7 +701,7 @@ static inline const float *direct_value(const struct tex_texture *t,
  * primitive's without (lookup_width2's 0 for a value made ahead).  Its functions in order,
  * without the general path's set-up; N bent as apply_textures bends it */
 static int apply_direct(const struct tex_surface *sf, const struct tex_prefetch_ap *pa,
-                        tex_v3 *N, struct params *pr)
+                        tex_v3 *N, struct params *pr, struct tex_plain_later *later)
 {
     const struct tex_surface_cache *c = sf->cache;
     int ks_textured = 0, i = 0;
@@ -621,7 +716,10 @@ static int apply_direct(const struct tex_surface *sf, const struct tex_prefetch_
             colour_poly(q, f, fn->lo, fn->hi, pr->kd);
             continue;
         }
-        apply_fn(fn, q, f, pa->uvw, fw2, NULL, pr);
+        if (later && i == c->later)
+            leave(later, fn, f, pr->kd, pa->uvw, fw2, NULL);
+        else
+            apply_fn(fn, q, f, pa->uvw, fw2, NULL, pr);
         if (fn->param == TEX_SP_BUMP && pr->bump != 0) {
             tilt = tex_v3_add(tilt, tilt_ahead(pa, pr->bump));
             pr->bump = 0;
@@ -631,18 +729,18 @@ static int apply_direct(const struct tex_surface *sf, const struct tex_prefetch_
     return ks_textured;
 }
 
-/* One surface's material at the hit; *blend: its blend's weight there. */
-static void resolve(const struct tex_scene *s, const struct tex_surface *sf,
-                    const struct tex_shade_at *at, tex_v3 *N, struct tex_material *m,
-                    float *blend)
+/* One surface's material at the hit; returns its blend's weight there.  later (or NULL):
+ * where the surface's function cache->later is to be left (tex_plain_resolve). */
+static float resolve(const struct tex_scene *s, const struct tex_surface *sf,
+                     const struct tex_shade_at *at, tex_v3 *N, struct tex_material *m,
+                     struct tex_plain_later *later)
 {
-    *blend = 0;
     if (!sf->apply) { /* the cache as it is, without the textured path's set-up */
         const struct params *b = &sf->cache->base;
         material(&s->cs, sf, b, 0, m);
         if (tex_shading_anisotropic(sf->model))
             tex_aniso_material(m, sf, at->leaf, at->P, N, b->flow, b->angle, b->au, b->av);
-        return;
+        return 0;
     }
     struct params pr = sf->cache->base;
     const struct tex_prefetch *pre = at->pre && at->pre->sf == sf ? at->pre : NULL;
@@ -650,22 +748,23 @@ static void resolve(const struct tex_scene *s, const struct tex_surface *sf,
     /* a bumped direct surface's tilt made ahead in lanes, or the general path's own */
     int direct = pre && sf->cache->direct && pre->n && pre->ap[0].has_val &&
                  (!sf->cache->placement[0].bump || pre->ap[0].has_tilt);
-    int ks_textured = direct ? apply_direct(sf, &pre->ap[0], N, &pr)
-                             : apply_textures(sf, at, pre, N, filter, &pr);
+    int ks_textured = direct ? apply_direct(sf, &pre->ap[0], N, &pr, later)
+                             : apply_textures(sf, at, pre, N, filter, &pr, later);
+    if (later && later->fn)
+        later->ka = pr.ka;
     material(&s->cs, sf, &pr, ks_textured, m);
-    *blend = pr.blend;
     if (tex_shading_anisotropic(sf->model))
         tex_aniso_material(m, sf, at->leaf, at->P, N, pr.flow, pr.angle, pr.au, pr.av);
+    return pr.blend;
 }
 
 void tex_resolve_material(const struct tex_scene *s, const struct tex_surface *sf,
                           const struct tex_shade_at *at, tex_v3 *N, struct tex_material m[2])
 {
-    float w, w1;
     tex_v3 N1 = *N; /* this surface's normal shades both */
-    resolve(s, sf, at, N, &m[0], &w);
+    float w = resolve(s, sf, at, N, &m[0], NULL);
     if (sf->blend && w > 0) { /* the other surface at the same hit, its own textures */
-        resolve(s, sf->blend, at, &N1, &m[1], &w1);
+        resolve(s, sf->blend, at, &N1, &m[1], NULL); /* its own blend's weight unused */
         tex_colour_scale(&m[0].ka, s->cs.n, &m[0].ka, 1 - w); /* the ambient term, mixed */
         for (int i = 0; i < s->cs.n; i++)
             m[0].ka.v[i] += w * m[1].ka.v[i];
@@ -781,6 +880,15 @@ int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs)
         lean &= fn->param == TEX_SP_KD && c->compiled[nfn++];
     plain &= !(textured & 1 << TEX_SP_P); /* a moved P: shade_begin's */
     c->plain = plain ? (lean ? 1 : 2) : 0;
+    /* a plain surface's last Kd function, where an expression that is no polynomial (a
+     * palette's, a sine's) and shallow enough to run over a packet's hits */
+    c->later = -1;
+    nfn = 0;
+    for (const struct tex_apply *ap = sf->apply; ap; ap = ap->next)
+        for (const struct tex_appfn *fn = ap->fns; fn; fn = fn->next, nfn++)
+            if (fn->param == TEX_SP_KD)
+                c->later = c->plain == 2 && !c->compiled[nfn] && expr_depth(fn->e) <= LATER_STACK
+                               ? nfn : -1;
     return 0;
 }
 
@@ -790,14 +898,50 @@ int tex_surface_plain(const struct tex_surface *sf)
 }
 
 void tex_plain_resolve(const struct tex_scene *s, const struct tex_surface *sf,
-                       const struct tex_shade_at *at, tex_v3 *N, struct tex_plain *pm)
+                       const struct tex_shade_at *at, tex_v3 *N, struct tex_plain *pm,
+                       struct tex_plain_later *later)
 {
-    struct tex_material m;
-    float blend; /* none: a plain surface has no blend */
-    resolve(s, sf, at, N, &m, &blend);
+    struct tex_material m; /* a plain surface has no blend */
+    if (later)
+        later->fn = NULL;
+    resolve(s, sf, at, N, &m, sf->cache->later >= 0 ? later : NULL);
     for (int k = 0; k < 3; k++)
         pm->ka[k] = m.ka.v[k], pm->kd[k] = m.kd.v[k], pm->ks[k] = m.ks.v[k];
     pm->n = m.n;
+}
+
+void tex_plain_later_run(struct tex_plain_later *later, struct tex_plain *m, int n)
+{
+    if (n > TEX_LATER_MAX) {
+        tex_plain_later_run(later + TEX_LATER_MAX, m + TEX_LATER_MAX, n - TEX_LATER_MAX);
+        n = TEX_LATER_MAX;
+    }
+    int todo[TEX_LATER_MAX], left = 0;
+    for (int i = 0; i < n; i++)
+        if (later[i].fn)
+            todo[left++] = i;
+    while (left) { /* the hits of one function together */
+        const struct tex_appfn *fn = later[todo[0]].fn;
+        struct evalctx c[TEX_LATER_MAX];
+        double r[TEX_LATER_MAX][3];
+        int at[TEX_LATER_MAX], g = 0, rest = 0;
+        for (int j = 0; j < left; j++) {
+            struct tex_plain_later *l = &later[todo[j]];
+            if (l->fn != fn) {
+                todo[rest++] = todo[j];
+                continue;
+            }
+            at[g] = todo[j];
+            c[g++] = (struct evalctx){l->f, l->p, l->uvw, l->fw2, l->has_q ? l->q : NULL};
+        }
+        left = rest;
+        expr_eval_n(fn->e, c, g, r);
+        for (int j = 0; j < g; j++) /* apply_fn's Kd, then material's Ka Kd */
+            for (int k = 0; k < 3; k++) {
+                float kd = (float)clampd(r[j][k], fn->lo, fn->hi);
+                m[at[j]].kd[k] = kd, m[at[j]].ka[k] = later[at[j]].ka * kd;
+            }
+    }
 }
 
 int tex_plain_material(const struct tex_surface *sf, const struct tex_prefetch *pre,

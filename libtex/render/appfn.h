@@ -61,6 +61,7 @@ struct tex_surface_cache {
     int direct;
     int lanes; /* 1: direct, a map, and AVX2: its hits go in lanes (tex_lanes_take) */
     int plain; /* tex_surface_plain: 1, a material tex_plain_material makes; 2, any other */
+    int later; /* the function tex_plain_resolve leaves to tex_plain_later_run, or -1 */
 };
 
 /* A tilt's direction along the footprint's tangents t1, t2 from the luminance's

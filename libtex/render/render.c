@@ -104,6 +104,8 @@ struct plain {
     float out[NP][3];
     int nbent, bent[NP]; /* the hits whose N the general path made */
     tex_v3 Ngv[NP];      /* their geometric normals */
+    int nlater;          /* hits whose Kd function was left to run together */
+    struct tex_plain_later later[NP];
 };
 
 /* A packet's hits that general_shade shades, their shadow rays traced together light by
@@ -165,7 +167,8 @@ static __attribute__((noinline)) void plain_resolve(const struct tex_render_ctx 
     tex_v3 N = Ngv;
     struct tex_shade_at at = {h->leaf, &pk->P[k], &r->d, fabs(r->width + h->t * r->spread),
                               r->dist + h->t, 0, &pk->pre[k]};
-    tex_plain_resolve(c->s, sf, &at, &N, &pl->m[pl->n]);
+    tex_plain_resolve(c->s, sf, &at, &N, &pl->m[pl->n], &pl->later[pl->n]);
+    pl->nlater += pl->later[pl->n].fn != NULL;
     pl->bent[pl->nbent++] = pl->n;
     pl->Ngv[pl->n] = Ngv;
     plain_frame(c, pk, k, entering, Ngv, N);
@@ -182,10 +185,12 @@ static int plain_take(const struct tex_render_ctx *c, struct packet *pk, int k)
     tex_v3 Ng = pk->Ng[k];
     int entering = tex_v3_dot(pk->r[k].d, Ng) < 0;
     tex_v3 N = entering ? Ng : tex_v3_scale(Ng, -1);
-    if (kind == 2)
+    if (kind == 2) {
         plain_resolve(c, pk, k, sf, entering, N);
-    else
+    } else {
+        pl->later[pl->n].fn = NULL;
         plain_frame(c, pk, k, entering, N, N);
+    }
     return 1;
 }
 
@@ -274,12 +279,18 @@ static void plain_shade(const struct tex_render_ctx *c, struct packet *pk)
 {
     struct plain *pl = &pk->plain;
     const struct tex_scene *s = c->s;
+    if (pl->nlater) { /* their Ka and Kd, then the ambient term plain_frame made from Ka */
+        tex_plain_later_run(pl->later, pl->m, pl->n);
+        for (int i = 0; i < pl->n; i++)
+            for (int j = 0; pl->later[i].fn && j < 3; j++)
+                pl->out[i][j] = c->ambient->v[j] * pl->m[i].ka[j];
+    }
     for (int li = 0; li < s->nlights; li++)
         plain_light(s, &s->lights[li], pl, c->batch);
     for (int i = 0; i < pl->n; i++)
         for (int j = 0; j < 3; j++)
             pk->acc[pl->k[i]][j] += pl->out[i][j];
-    pl->n = pl->nbent = 0;
+    pl->n = pl->nbent = pl->nlater = 0;
 }
 
 /* Hit k of the packet (its rng c's) taken to be shaded with the others (general_shade), its

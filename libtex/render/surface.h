@@ -118,8 +118,13 @@ struct tex_plain {
 int tex_surface_plain(const struct tex_surface *sf);
 int tex_plain_material(const struct tex_surface *sf, const struct tex_prefetch *pre,
                        struct tex_plain *m);
+/* later (or NULL): where sf's Kd function is an expression run better with other hits'
+ * (tex_surface_cache's choice), it is left there to run (tex_plain_later_run) and m's Ka
+ * and Kd wait for it; later->fn stays NULL where nothing was left */
+struct tex_plain_later;
 void tex_plain_resolve(const struct tex_scene *s, const struct tex_surface *sf,
-                       const struct tex_shade_at *at, tex_v3 *N, struct tex_plain *m);
+                       const struct tex_shade_at *at, tex_v3 *N, struct tex_plain *m,
+                       struct tex_plain_later *later);
 /* Fill (tex_scene_prepare) and free (tex_scene_free) a surface's cache: its untextured
  * colours in the scene's colour space, its application functions compiled. */
 int tex_surface_cache(struct tex_surface *sf, const struct tex_colour_space *cs);
@@ -158,6 +163,21 @@ struct tex_appfn {
     struct tex_expr *e;
     struct tex_appfn *next;
 };
+
+/* A plain hit's Kd function left by tex_plain_resolve: its expression's operands as the hit
+ * has them, and the Ka that scales the result (material's Ka Kd) */
+#define TEX_LATER_MAX 64 /* hits run together */
+struct tex_plain_later {
+    const struct tex_appfn *fn; /* NULL: none left */
+    float f[3], p[3], ka;
+    double uvw[3], fw2;
+    int has_q;
+    double q[TEX_Q_COUNT];
+};
+/* The n hits' functions left in later[i] run, the expressions' programs walked once for the
+ * hits that share one (their palettes looked up together), and Ka and Kd of m[i] made: the
+ * floats tex_plain_resolve gives without later */
+void tex_plain_later_run(struct tex_plain_later *later, struct tex_plain *m, int n);
 
 /* One texture applied to a surface: its mapping, window, placement and functions. */
 struct tex_apply {

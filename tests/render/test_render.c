@@ -1301,6 +1301,88 @@ static void test_phong_zero_ks(void)
            cases);
 }
 
+/* A plain surface's Kd expressions left by tex_plain_resolve and run over many hits together
+ * (tex_plain_later_run): Ka and Kd bit for bit those of each hit's own run (tex_appfn_eval,
+ * clamped as apply_fn clamps, times Ka as material scales it), hits of several functions
+ * mixed, palettes' positions at their ends, outside them and not finite */
+static void test_later_run(void)
+{
+    const char *sc = "image 8 8\ntexture t turbulence { solid }\n"
+                     "surface s0 { Ks 0.5 apply t { mapping solid Kd = palette(marble, 0.5 + 0.5 "
+                     "* sin(6 * ox + 12 * f)) } }\n"
+                     "surface s1 { apply t { mapping solid Kd = palette(wood, f) } }\n"
+                     "surface s2 { apply t { mapping solid Kd = palette(fire, min(f, p) / 0.7 "
+                     "- nz) } }\n"
+                     "surface s3 { apply t { mapping solid Kd = rgb(abs(f - 0.3), -p, f * p) * "
+                     "2 } }\n"
+                     "surface s4 { apply t { mapping solid Kd = palette(wood, mix(f, p, 0.25)) "
+                     "+ max(f, u) } }\n"
+                     "sphere { surface s0 }\n sphere { surface s1 }\n sphere { surface s2 }\n"
+                     "sphere { surface s3 }\n sphere { surface s4 }\n";
+    char pals[4096];
+    unit_top_path("palettes", pals, sizeof pals);
+    setenv("TEXTURA_PALETTES", pals, 1);
+    struct tex_scene *s = tex_scene_parse(sc, strlen(sc), "later.scene");
+    CHECKF(s && tex_scene_prepare(s) == 0, "palette expressions' scene prepares (%s)",
+           s ? "" : tex_errmsg());
+    if (!s)
+        return;
+    enum { FNS = 5, HITS = 150 };
+    const struct tex_appfn *fns[FNS];
+    int nf = 0;
+    for (int i = 0; i < s->nsurfaces && nf < FNS; i++)
+        if (s->surfaces[i]->apply && s->surfaces[i]->cache->later >= 0)
+            fns[nf++] = s->surfaces[i]->apply->fns;
+    CHECKF(nf == FNS, "every surface's Kd function is left to run later (%d of %d)", nf, FNS);
+    const float odd[] = {0, -0.0f, 1, 0.5f, -3, 7, INFINITY, -INFINITY, NAN, 1e-30f};
+    tex_rng g;
+    tex_rng_seed(&g, 63);
+    static struct tex_plain_later later[HITS];
+    static struct tex_plain m[HITS];
+    long bad = 0, runs = 0;
+    for (int round = 0; round < 40 && nf; round++) {
+        for (int i = 0; i < HITS; i++) {
+            struct tex_plain_later *l = &later[i];
+            memset(l, 0, sizeof *l);
+            l->fn = tex_rng_uniform(&g) < 0.1 ? NULL : fns[tex_rng_below(&g, nf)];
+            int grey = tex_rng_uniform(&g) < 0.5, edge = tex_rng_uniform(&g) < 0.15;
+            for (int k = 0; k < 3; k++) {
+                l->f[k] = grey && k ? l->f[0]
+                          : edge    ? odd[tex_rng_below(&g, 10)]
+                                    : (float)(1.4 * tex_rng_uniform(&g) - 0.2);
+                l->p[k] = (float)tex_rng_uniform(&g);
+                l->uvw[k] = tex_rng_uniform(&g);
+            }
+            l->ka = (float)tex_rng_uniform(&g), l->fw2 = 1e-4 * tex_rng_uniform(&g);
+            l->has_q = 1;
+            for (int q = 0; q < TEX_Q_COUNT; q++)
+                l->q[q] = 4 * tex_rng_uniform(&g) - 2;
+            for (int k = 0; k < 3; k++)
+                m[i].ka[k] = m[i].kd[k] = -7;
+        }
+        tex_plain_later_run(later, m, HITS);
+        for (int i = 0; i < HITS; i++) {
+            const struct tex_plain_later *l = &later[i];
+            float ka[3] = {-7, -7, -7}, kd[3] = {-7, -7, -7};
+            if (l->fn) {
+                double r[3];
+                tex_appfn_eval(l->fn->e, l->f, l->p, l->uvw, l->fw2, l->q, r);
+                for (int k = 0; k < 3; k++) {
+                    kd[k] = (float)(!(r[k] >= l->fn->lo) ? l->fn->lo
+                                    : r[k] > l->fn->hi   ? l->fn->hi
+                                                         : r[k]);
+                    ka[k] = l->ka * kd[k];
+                }
+            }
+            bad += memcmp(ka, m[i].ka, sizeof ka) != 0 || memcmp(kd, m[i].kd, sizeof kd) != 0;
+            runs++;
+        }
+    }
+    CHECKF(bad == 0, "Kd expressions run over hits together: each hit's own bits (%ld of %ld "
+           "differ)", bad, runs);
+    tex_scene_free(s);
+}
+
 int main(void)
 {
     if (!mkdtemp(dir))
@@ -1329,6 +1411,7 @@ int main(void)
     test_bailout();
     test_csg_combine();
     test_phong_zero_ks();
+    test_later_run();
     test_area_samples();
     char cmd[300];
     snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
