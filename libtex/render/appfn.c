@@ -332,6 +332,17 @@ static void leave(struct tex_plain_later *later, const struct tex_appfn *fn, con
         memcpy(later->q, qv, sizeof later->q);
 }
 
+/* fn at the hit, or left in later where it is the function left to run later (is_later) */
+static void take_fn(struct tex_plain_later *later, int is_later, const struct tex_appfn *fn,
+                    const struct poly *q, const float f[3], const double uvw[3], double fw2,
+                    const double *qv, struct params *pr)
+{
+    if (later && is_later)
+        leave(later, fn, f, pr->kd, uvw, fw2, qv);
+    else
+        apply_fn(fn, q, f, uvw, fw2, qv, pr);
+}
+
 /* The surface gradients (world space, texture units per world unit) of the placed u and v of
  * texture ap at the hit, (u0, v0) by its mapping, by finite differences along the tangents. */
 static void uv_gradients(const struct tex_apply *ap, const struct placement *pm,
@@ -604,10 +615,8 @@ static int apply_textures(const struct tex_surface *sf, const struct tex_shade_a
             if (fn->region && fn->region != region)
                 continue;
             ks_textured |= fn->param == TEX_SP_KS;
-            if (later && nfn == cache->later)
-                leave(later, fn, f, pr->kd, uvw, fw2, q);
-            else
-                apply_fn(fn, cache->compiled[nfn] ? &cache->poly[nfn] : NULL, f, uvw, fw2, q, pr);
+            take_fn(later, nfn == cache->later, fn, cache->compiled[nfn] ? &cache->poly[nfn] : NULL,
+                    f, uvw, fw2, q, pr);
             if (fn->param == TEX_SP_BUMP && pr->bump != 0) {
                 if (pa->has_tilt && ap->next) /* as bump_tilt leaves it for those after */
                     footprint_unit(&fp);
@@ -716,10 +725,7 @@ static int apply_direct(const struct tex_surface *sf, const struct tex_prefetch_
             colour_poly(q, f, fn->lo, fn->hi, pr->kd);
             continue;
         }
-        if (later && i == c->later)
-            leave(later, fn, f, pr->kd, pa->uvw, fw2, NULL);
-        else
-            apply_fn(fn, q, f, pa->uvw, fw2, NULL, pr);
+        take_fn(later, i == c->later, fn, q, f, pa->uvw, fw2, NULL, pr);
         if (fn->param == TEX_SP_BUMP && pr->bump != 0) {
             tilt = tex_v3_add(tilt, tilt_ahead(pa, pr->bump));
             pr->bump = 0;

@@ -652,6 +652,32 @@ static tex_v3 unit_dir(tex_rng *g)
     return tex_v3_norm(v);
 }
 
+/* Four random hits' frames for the footprint lanes: directions D (one in six head-on) at
+ * normals N, the mapping's gradients gr and placement pm; shared or not, at random (shared
+ * rows beyond lane 0 left NaN, as the lanes must not read them) */
+static void random_frames(tex_rng *g, struct frames *fr, const tex_v3 gr[3],
+                          const struct placement *pm, tex_v3 D[4], tex_v3 N[4])
+{
+    for (int c = 0; c < 3; c++)
+        fr->d[c] = fr->rows[c], fr->nn[c] = fr->rows[3 + c];
+    fr->w = fr->rows[6];
+    fr->shared = (int)tex_rng_below(g, 2);
+    for (int l = 0; l < 4; l++) {
+        N[l] = unit_dir(g);
+        D[l] = tex_rng_below(g, 6) ? unit_dir(g) : tex_v3_scale(N[l], -1);
+        for (int c = 0; c < 3; c++)
+            fr->rows[c][l] = tex_v3_get(D[l], c), fr->rows[3 + c][l] = tex_v3_get(N[l], c);
+        fr->rows[6][l] = tex_rng_below(g, 4) ? 1e-3 * tex_rng_uniform(g) : 0.5;
+        for (int c = 0; c < 3; c++) /* shared: lane 0's alone */
+            fr->gu[c][l] = tex_v3_get(gr[0], c), fr->gv[c][l] = tex_v3_get(gr[1], c),
+            fr->gw[c][l] = tex_v3_get(gr[2], c);
+        fr->su[l] = fr->shared && l ? NAN : pm->su;
+        fr->sv[l] = fr->shared && l ? NAN : pm->sv;
+        if (fr->shared && l)
+            fr->gu[0][l] = fr->gv[1][l] = fr->gw[2][l] = NAN;
+    }
+}
+
 /* The AVX2 footprint kernels against the scalar path's own: tex_footprint_width2 and
  * tex_solid_width2 (its root) on world and solid mappings, the bump's unit tangents and
  * placed derivatives (footprint_unit, placed_derivatives), bit for bit, lanes of their own
@@ -678,24 +704,7 @@ static void test_footprint_lanes(void)
         int n = 1 + (int)tex_rng_below(&g, 4), which = (int)tex_rng_below(&g, 2);
         tex_v3 gr[3], D[4], N[4];
         map_gradient(&ap[which], &leaf, gr);
-        for (int c = 0; c < 3; c++)
-            fr.d[c] = fr.rows[c], fr.nn[c] = fr.rows[3 + c];
-        fr.w = fr.rows[6];
-        fr.shared = (int)tex_rng_below(&g, 2);
-        for (int l = 0; l < 4; l++) {
-            N[l] = unit_dir(&g);
-            D[l] = tex_rng_below(&g, 6) ? unit_dir(&g) : tex_v3_scale(N[l], -1);
-            for (int c = 0; c < 3; c++)
-                fr.rows[c][l] = tex_v3_get(D[l], c), fr.rows[3 + c][l] = tex_v3_get(N[l], c);
-            fr.rows[6][l] = tex_rng_below(&g, 4) ? 1e-3 * tex_rng_uniform(&g) : 0.5;
-            for (int c = 0; c < 3; c++) /* shared: lane 0's alone */
-                fr.gu[c][l] = tex_v3_get(gr[0], c), fr.gv[c][l] = tex_v3_get(gr[1], c),
-                fr.gw[c][l] = tex_v3_get(gr[2], c);
-            fr.su[l] = fr.shared && l ? NAN : pm[which].su;
-            fr.sv[l] = fr.shared && l ? NAN : pm[which].sv;
-            if (fr.shared && l)
-                fr.gu[0][l] = fr.gv[1][l] = fr.gw[2][l] = NAN;
-        }
+        random_frames(&g, &fr, gr, &pm[which], D, N);
         double fw2[4] = {-1, -1, -1, -1}, fw[4] = {-1, -1, -1, -1};
         unsigned ho = tex_footprints4_avx2(&fr, 0, n, 1, fw2);
         unsigned hs = tex_solid_footprints4_avx2(&fr, 0, n, fw);
