@@ -94,4 +94,14 @@ check_fails "a truncated stream: exit 1, one line" 1 bash -c "cat '$T/cut.exr' |
 grep -q "standard input" "$T/.err" && ok "the message names standard input" ||
     notok "truncated stream's message" "$(cat "$T/.err")"
 [ ! -e "$T/out.exr" ] && ok "no output file after a truncated stream" || notok "output left behind"
+# t_palette's automatic range spools its input: cut short there, or with no room to spool
+check_fails "t_palette's spool of a truncated stream: exit 1, one line" 1 \
+    bash -c "cat '$T/cut.exr' | t_palette marble -o '$T/pal.exr'"
+grep -q "standard input" "$T/.err" && [ ! -e "$T/pal.exr" ] &&
+    ok "the spool's message names standard input, and no output file is left" ||
+    notok "t_palette's truncated spool" "$(cat "$T/.err")"
+check_fails "t_palette with no TMPDIR to spool in: exit 1, one line" 1 \
+    bash -c "TMPDIR='$T/none' t_palette marble -o '$T/pal.exr' <'$T/tall.exr'"
+[ ! -e "$T/pal.exr" ] && ok "no output file when the spool cannot be made" ||
+    notok "output left behind when the spool cannot be made"
 
