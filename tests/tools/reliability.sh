@@ -111,13 +111,19 @@ st=$?
     ok "t_apply's EXR in bands >/dev/full exits 1" ||
     notok "t_apply's EXR in bands >/dev/full exits 1" "exit $st: $(cat err)"
 # a reader that leaves early, SIGPIPE ignored: the writes gathered up to 1 MiB (stream.c)
-# fail later than the first, when a band is done or the gathered MiB is full: still an error
-for cmd in "t_apply $TEXTURA_TOP/tests/scenes/spheres.scene -s 1500x300 -j 1" "t_noise -s 1500"; do
+# fail later than the first, when a band is done or the gathered MiB is full: still an error;
+# rows of 32 KiB and more (9000 wide) leave by writev, not through the stage
+for cmd in "t_apply $TEXTURA_TOP/tests/scenes/spheres.scene -s 1500x300 -j 1" "t_noise -s 1500" \
+    "t_noise -s 9000x40"; do
     st=$(trap '' PIPE; $cmd -o - 2>err | head -c 100000 >/dev/null; echo "${PIPESTATUS[0]}")
     [ "$st" = 1 ] && grep -q "^t_[a-z]*: error: standard output: write error: Broken pipe$" err &&
         ok "${cmd%% *} to a reader that leaves early: exit 1, one line" ||
         notok "${cmd%% *} to a reader that leaves early" "exit $st: $(cat err)"
 done
+t_noise -s 9000x40 -o - >/dev/full 2>err
+[ $? = 1 ] && grep -q '^t_noise: error: standard output: write error: No space' err &&
+    ok "t_noise's rows of 36 KiB (writev) >/dev/full exit 1" ||
+    notok "t_noise's wide rows >/dev/full exit 1" "$(cat err)"
 t_noise -s 8 -o n.exr
 t_info n.exr >/dev/full 2>err
 [ $? = 1 ] && ok "t_info >/dev/full exits 1" || notok "t_info >/dev/full exits 1" "$(cat err)"
