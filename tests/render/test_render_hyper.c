@@ -217,7 +217,7 @@ static void test_shadow(void)
 }
 
 static const char *smoke =
-    "image 48 36 samples 2 ambient 0.3 0.3 0.3 background 0.2 0.25 0.3\n"
+    "image 24 18 samples 2 ambient 0.3 0.3 0.3 background 0.2 0.25 0.3\n"
     "camera { eye 0 1.5 -5 look 0 0.6 0 fov 45 }\n"
     "light point { position -3 5 -3 }\n"
     "light area { position 2 4 -2 edge1 0.5 0 0 edge2 0 0 0.5 samples 2 intensity 0.4 }\n"
