@@ -5,7 +5,7 @@
 # primitives, band-limited solids (through each hit's footprint), region ids at points, a texture applied twice, more applied textures than
 # a packet looks up ahead, bumps, blended surfaces, area lights and jittered samples,
 # spectral colour, image sizes that packets do not divide, and regions of the image; plain
-# surfaces shaded together.
+# surfaces shaded together; samples on 2x2 and 3x3 grids (a packet's cells, camera.c).
 . tests/lib.sh
 
 cat >"$T/a.scene" <<'SCENE'
@@ -57,7 +57,8 @@ render() { # NAME PACKETS ARGS...: the render as PFM (raw floats)
     TEXTURA_PACKETS=$p t_apply "$T/a.scene" -q -o "$T/$name.pfm" "$@"
 }
 for cfg in "spp1|--spp 1" "spp4|--spp 4" "spectral|--spectral 6 --spp 2" \
-    "region|--region 5,3,27,22 --spp 2" "region1|--region 5,3,27,22" "odd|-s 33x17 --spp 3"; do
+    "region|--region 5,3,27,22 --spp 2" "region1|--region 5,3,27,22" "odd|-s 33x17 --spp 3" \
+    "spp9|-s 24x16 --spp 9"; do
     name=${cfg%%|*} args=${cfg#*|}
     # shellcheck disable=SC2086
     if render "$name-px" 0 -j 1 $args && render "$name-pk1" 1 -j 1 $args &&
