@@ -3,33 +3,10 @@
 
 #include "base/rng.h"
 
-static inline uint64_t rotl(uint64_t x, int k)
-{
-    return (x << k) | (x >> (64 - k));
-}
-
 void tex_rng_seed(tex_rng *r, uint64_t seed)
 {
     for (int i = 0; i < 4; i++)
         r->s[i] = seed = tex_hash64(seed);
-}
-
-uint64_t tex_rng_next(tex_rng *r)
-{
-    uint64_t *s = r->s, result = rotl(s[1] * 5, 7) * 9, t = s[1] << 17;
-
-    s[2] ^= s[0];
-    s[3] ^= s[1];
-    s[1] ^= s[2];
-    s[0] ^= s[3];
-    s[2] ^= t;
-    s[3] = rotl(s[3], 45);
-    return result;
-}
-
-double tex_rng_uniform(tex_rng *r)
-{
-    return (tex_rng_next(r) >> 11) * 0x1.0p-53;
 }
 
 uint32_t tex_rng_below(tex_rng *r, uint32_t n)

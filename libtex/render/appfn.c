@@ -735,6 +735,25 @@ static int apply_direct(const struct tex_surface *sf, const struct tex_prefetch_
     return ks_textured;
 }
 
+/* A textured surface's parameters at the hit into pr, N bent by its bumps; 1 if a texture
+ * set Ks.  later: resolve's. */
+static int textured_params(const struct tex_scene *s, const struct tex_surface *sf,
+                           const struct tex_shade_at *at, tex_v3 *N, struct params *pr,
+                           struct tex_plain_later *later)
+{
+    *pr = sf->cache->base;
+    const struct tex_prefetch *pre = at->pre && at->pre->sf == sf ? at->pre : NULL;
+    int filter = s->settings.filter && at->width > 0;
+    /* a bumped direct surface's tilt made ahead in lanes, or the general path's own */
+    int direct = pre && sf->cache->direct && pre->n && pre->ap[0].has_val &&
+                 (!sf->cache->placement[0].bump || pre->ap[0].has_tilt);
+    int ks_textured = direct ? apply_direct(sf, &pre->ap[0], N, pr, later)
+                             : apply_textures(sf, at, pre, N, filter, pr, later);
+    if (later && later->fn)
+        later->ka = pr->ka;
+    return ks_textured;
+}
+
 /* One surface's material at the hit; returns its blend's weight there.  later (or NULL):
  * where the surface's function cache->later is to be left (tex_plain_resolve). */
 static float resolve(const struct tex_scene *s, const struct tex_surface *sf,
@@ -748,16 +767,8 @@ static float resolve(const struct tex_scene *s, const struct tex_surface *sf,
             tex_aniso_material(m, sf, at->leaf, at->P, N, b->flow, b->angle, b->au, b->av);
         return 0;
     }
-    struct params pr = sf->cache->base;
-    const struct tex_prefetch *pre = at->pre && at->pre->sf == sf ? at->pre : NULL;
-    int filter = s->settings.filter && at->width > 0;
-    /* a bumped direct surface's tilt made ahead in lanes, or the general path's own */
-    int direct = pre && sf->cache->direct && pre->n && pre->ap[0].has_val &&
-                 (!sf->cache->placement[0].bump || pre->ap[0].has_tilt);
-    int ks_textured = direct ? apply_direct(sf, &pre->ap[0], N, &pr, later)
-                             : apply_textures(sf, at, pre, N, filter, &pr, later);
-    if (later && later->fn)
-        later->ka = pr.ka;
+    struct params pr;
+    int ks_textured = textured_params(s, sf, at, N, &pr, later);
     material(&s->cs, sf, &pr, ks_textured, m);
     if (tex_shading_anisotropic(sf->model))
         tex_aniso_material(m, sf, at->leaf, at->P, N, pr.flow, pr.angle, pr.au, pr.av);
@@ -903,17 +914,29 @@ int tex_surface_plain(const struct tex_surface *sf)
     return sf->cache->plain;
 }
 
+/* material's colours and exponent in RGB (a plain surface's scene) from Ka, Kd, Ks and n,
+ * the cached colours where untextured */
+static void plain_colours(const struct tex_surface_cache *c, float ka, const float kd[3],
+                          const float ks[3], float n, struct tex_plain *m)
+{
+    for (int k = 0; k < 3; k++) {
+        m->ka[k] = c->cached & 1 ? c->col[0].v[k] : ka * kd[k];
+        m->kd[k] = c->cached & 2 ? c->col[1].v[k] : kd[k];
+        m->ks[k] = c->cached & 4 ? c->col[2].v[k] : ks[k];
+    }
+    m->n = n;
+}
+
 void tex_plain_resolve(const struct tex_scene *s, const struct tex_surface *sf,
                        const struct tex_shade_at *at, tex_v3 *N, struct tex_plain *pm,
                        struct tex_plain_later *later)
 {
-    struct tex_material m; /* a plain surface has no blend */
+    struct params pr; /* a plain surface is textured (tex_surface_cache's 2), has no blend */
     if (later)
         later->fn = NULL;
-    resolve(s, sf, at, N, &m, sf->cache->later >= 0 ? later : NULL);
-    for (int k = 0; k < 3; k++)
-        pm->ka[k] = m.ka.v[k], pm->kd[k] = m.kd.v[k], pm->ks[k] = m.ks.v[k];
-    pm->n = m.n;
+    int ks_textured = textured_params(s, sf, at, N, &pr, sf->cache->later >= 0 ? later : NULL);
+    float ks[3] = {pr.ks, pr.ks, pr.ks};
+    plain_colours(sf->cache, pr.ka, pr.kd, ks_textured ? ks : sf->ks, pr.n, pm);
 }
 
 void tex_plain_later_run(struct tex_plain_later *later, struct tex_plain *m, int n)
@@ -962,12 +985,7 @@ int tex_plain_material(const struct tex_surface *sf, const struct tex_prefetch *
     int i = 0; /* apply_direct's compiled Kd functions, in order */
     for (const struct tex_appfn *fn = f ? sf->apply->fns : NULL; fn; fn = fn->next, i++)
         colour_poly(&c->poly[i], f, fn->lo, fn->hi, v);
-    for (int k = 0; k < 3; k++) { /* material's, in RGB */
-        m->ka[k] = c->cached & 1 ? c->col[0].v[k] : c->base.ka * v[k];
-        m->kd[k] = c->cached & 2 ? c->col[1].v[k] : v[k];
-        m->ks[k] = c->cached & 4 ? c->col[2].v[k] : sf->ks[k];
-    }
-    m->n = c->base.n;
+    plain_colours(c, c->base.ka, v, sf->ks, c->base.n, m);
     return 1;
 }
 

@@ -49,6 +49,22 @@ static inline void sample_offset(int spp, int k, int i, tex_rng *rng, double *ox
     }
 }
 
+/* sample_offset's for n <= 8 pixels of a packet, spp > 1 (ox, oy: 8 entries): the draws
+ * pixel by pixel, then the cell of sample i, one for all, and the eight divisions together
+ * (the same IEEE divisions, in vector registers: one at a time, each waited on the last) */
+static void packet_offsets(int k, int i, tex_rng *rng, int n, double *ox, double *oy)
+{
+    for (int j = 0; j < n; j++) {
+        ox[j] = tex_rng_uniform(&rng[j]);
+        oy[j] = tex_rng_uniform(&rng[j]);
+    }
+    if (k > 0) {
+        double cx = i % k, cy = i / k, dk = k;
+        for (int j = 0; j < 8; j++)
+            ox[j] = (cx + ox[j]) / dk, oy[j] = (cy + oy[j]) / dk;
+    }
+}
+
 void tex_camera_ray(const struct tex_scene *s, const struct tex_camera *cam, int x, int y, int i,
                     tex_rng *rng, tex_ray *r)
 {
@@ -77,8 +93,8 @@ void tex_camera_rays(const struct tex_scene *s, const struct tex_camera *cam, co
             double ox[8], oy[8];
             for (int j = 0; j < 8; j++)
                 ox[j] = oy[j] = 0.5;
-            for (int j = 0; j < n; j++)
-                sample_offset(s->settings.spp, cam->k, i, &rng[k + j], &ox[j], &oy[j]);
+            if (s->settings.spp > 1)
+                packet_offsets(cam->k, i, rng + k, n, ox, oy);
             if (wide == 8)
                 tex_eye_rays8_avx512(cam, media, x + k, y + k, ox, oy, n, r + k);
             else

@@ -94,6 +94,12 @@ static inline int tex_light_lanes(const struct tex_light *l)
            (l->kind == TEX_LIGHT_SPOT && l->exponent >= 0 && l->exponent <= 4096 &&
             l->exponent == (int)l->exponent);
 }
+/* Whether tex_light_sample takes l's samples by a power of two's products, so its lanes
+ * can (an area light whose samples a side are 1, 2, 4, ...) */
+static inline int tex_light_area_lanes(const struct tex_light *l)
+{
+    return l->kind == TEX_LIGHT_AREA && l->samples > 0 && !(l->samples & (l->samples - 1));
+}
 
 #ifdef __cplusplus
 }

@@ -89,6 +89,7 @@ static void render_pixel(const struct tex_render_ctx *c0, const struct tex_camer
 #define PACKET 8
 #define QUEUES 3 /* lanes' queues: a packet's leaves (a floor, an object's faces) */
 #define NP (PACKET * PACKET)
+_Static_assert(NP <= TEX_TRANSMIT_MAX, "a packet's plain hits' shadow rays go in one batch");
 
 /* A packet's hits on plain surfaces (tex_surface_plain), in an RGB scene lit by point and
  * spot lights alone: shade's work for them (ambient, then each light's direction, shadow
@@ -249,11 +250,16 @@ static void plain_light(const struct tex_scene *s, const struct tex_light *l, st
     }
     struct shadows sw;
     sw.n = 0;
-    for (int i = 0; i < pl->n; i++) {
+    for (int i = 0; batch && i < pl->n; i++) { /* each hit's ray written, kept where lit */
         struct tex_light_ahead *a = &pl->a[i];
-        if (a->ok && batch)
-            shadow_ray(s, &sw, &pl->Pout[i], pl->outside[i], a);
-        else if (a->ok)
+        int j = sw.n;
+        sw.o[j] = pl->Pout[i], sw.d[j] = a->L, sw.tmin[j] = 0, sw.tmax[j] = a->dist;
+        sw.from[j] = pl->outside[i], sw.a[j] = a;
+        sw.n += a->ok != 0;
+    }
+    for (int i = 0; !batch && i < pl->n; i++) {
+        struct tex_light_ahead *a = &pl->a[i];
+        if (a->ok)
             tex_light_pass(a, tex_scene_transmit(s, &pl->Pout[i], &a->L, 0, a->dist,
                                                  pl->outside[i]));
     }

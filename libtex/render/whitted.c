@@ -3,6 +3,7 @@
 
 #include "render/volume.h"
 #include "render/whitted.h"
+#include "render/x86/light_x86.h"
 
 /* The surface's largest normal curvature at P (unit facing normal Nf, unit
  * ray direction d): > 0 where it bulges towards the ray (a convex mirror
@@ -97,14 +98,45 @@ static inline __attribute__((always_inline)) void light_shade(const struct tex_r
     }
 }
 
+#ifdef TEX_X86
+/* light_at's samples of area light l (ns of them, tex_light_area_lanes) into lit, four at a
+ * time in lanes, their jitters drawn first in light_at's order; returns how many were made
+ * (a multiple of 4: light_at makes the rest, after them, drawing on) */
+static int area_lanes(const struct tex_render_ctx *c, const struct tex_hit_frame *f,
+                      const struct tex_light *l, int ns, struct tex_light_ahead *lit)
+{
+    enum { MAX = 64 };
+    double jx[MAX], jy[MAX];
+    int m = (ns < MAX ? ns : MAX) & ~3;
+    for (int k = 0; k < m; k++) {
+        jx[k] = tex_rng_uniform(c->rng);
+        jy[k] = tex_rng_uniform(c->rng);
+    }
+    for (int k = 0; k < m; k += 4)
+        tex_light_area4_avx2(l, k, jx + k, jy + k, f->P, lit + k);
+    for (int k = 0; k < m; k++) /* light_at's tests */
+        lit[k].ok = lit[k].ok && !(tex_v3_dot(lit[k].L, *f->N) <= 0 ||
+                                   tex_v3_dot(lit[k].L, *f->Ngv) <= 0);
+    return m;
+}
+#endif
+
 int tex_light_rays(const struct tex_render_ctx *c, const struct tex_shading *sh,
                    struct tex_light_ahead *lit)
 {
     const struct tex_scene *s = c->s;
     int j = 0;
-    for (int li = 0; li < s->nlights; li++)
-        for (int k = 0, ns = tex_light_samples(&s->lights[li]); k < ns; k++)
-            light_at(c, &sh->f, sh->a0, li, k, &lit[j++]);
+    for (int li = 0; li < s->nlights; li++) {
+        int k = 0, ns = tex_light_samples(&s->lights[li]);
+#ifdef TEX_X86
+        if (ns >= 4 && (li || !sh->a0) && tex_light_area_lanes(&s->lights[li]) &&
+            tex_simd_level() >= TEX_SIMD_AVX2)
+            k = area_lanes(c, &sh->f, &s->lights[li], ns, lit + j);
+#endif
+        for (; k < ns; k++)
+            light_at(c, &sh->f, sh->a0, li, k, &lit[j + k]);
+        j += ns;
+    }
     return j;
 }
 

@@ -5,7 +5,7 @@
 # primitives, band-limited solids (through each hit's footprint), region ids at points, a texture applied twice, more applied textures than
 # a packet looks up ahead, bumps, blended surfaces, area lights and jittered samples,
 # spectral colour, image sizes that packets do not divide, and regions of the image; plain
-# surfaces shaded together.
+# surfaces shaded together; samples on 2x2 and 3x3 grids (a packet's cells, camera.c).
 . tests/lib.sh
 
 cat >"$T/a.scene" <<'SCENE'
@@ -57,7 +57,8 @@ render() { # NAME PACKETS ARGS...: the render as PFM (raw floats)
     TEXTURA_PACKETS=$p t_apply "$T/a.scene" -q -o "$T/$name.pfm" "$@"
 }
 for cfg in "spp1|--spp 1" "spp4|--spp 4" "spectral|--spectral 6 --spp 2" \
-    "region|--region 5,3,27,22 --spp 2" "region1|--region 5,3,27,22" "odd|-s 33x17 --spp 3"; do
+    "region|--region 5,3,27,22 --spp 2" "region1|--region 5,3,27,22" "odd|-s 33x17 --spp 3" \
+    "spp9|-s 24x16 --spp 9"; do
     name=${cfg%%|*} args=${cfg#*|}
     # shellcheck disable=SC2086
     if render "$name-px" 0 -j 1 $args && render "$name-pk1" 1 -j 1 $args &&
@@ -88,6 +89,20 @@ for v in "wide|eye 0 9 -14 look 0 1 0 fov 100" "inside|eye 1 2 0 look -2 0.8 0 f
         notok "$name view: renders"
     fi
 done
+# an area light of 4x4 samples, made four a vector from the jitters drawn first
+# (whitted.c's area_lanes), with a falloff, against the pixel-by-pixel render's one by one
+sed 's/^light area.*/light area { position 2 6 -3 edge1 1 0 0 edge2 0 0 1 samples 4 falloff 1 0.05 0.01 intensity 0.4 }/' \
+    "$T/a.scene" >"$T/area4.scene"
+if grep -q 'samples 4 falloff' "$T/area4.scene" &&
+    TEXTURA_PACKETS=0 t_apply "$T/area4.scene" -q -j 1 -s 24x16 --spp 2 -o "$T/area4-px.pfm" &&
+    TEXTURA_PACKETS=1 t_apply "$T/area4.scene" -q -j 2 -s 24x16 --spp 2 -o "$T/area4-pk.pfm"; then
+    cmp -s "$T/area4-px.pfm" "$T/area4-pk.pfm" &&
+        ok "an area light's 16 samples: packets give the pixel-by-pixel render's bytes" ||
+        notok "an area light's 16 samples: packets against pixel by pixel" \
+            "$(maxdiff "$T/area4-px.pfm" "$T/area4-pk.pfm")"
+else
+    notok "an area light's 16 samples: renders"
+fi
 # a packet tests only the objects whose boxes its pixels' rays can meet (tex_view_objects):
 # 150 spheres and 50 boxes of the scene's surfaces over the view, large and small ones at
 # the edges of packets (a box's top edge is its rect's), more than the 63 a packet keeps
