@@ -554,22 +554,39 @@ static int encode_batches(exr_context_t ctx, int part, const tex_map *m, tex_row
 }
 
 /* An uncompressed part's chunks one after the other (the stream's case): from m's rows, or
- * from fill's, made brows at a time into band; -1 with the error set, ctx the caller's */
+ * from at's where they lie, or from fill's, made brows at a time into band; -1 with the
+ * error set, ctx the caller's */
 static int encode_raw(exr_context_t ctx, int part, const tex_map *m, tex_rows_fn fill,
-                      void *arg, float *band, int brows, int lines, struct wsink *sink,
-                      struct worth *w)
+                      tex_rows_at_fn at, void *arg, float *band, int brows, int lines,
+                      struct wsink *sink, struct worth *w)
 {
     exr_encode_pipeline_t enc;
     exr_chunk_info_t ci;
     exr_result_t rv = EXR_ERR_SUCCESS;
-    int r = 0;
+    const float *lie = NULL; /* at's rows, from row ly to row lend */
+    int r = 0, ly = 0, lend = 0;
+    size_t row = (size_t)m->w * m->nc;
 
     memset(&enc, 0, sizeof enc);
     for (int y = 0; y < m->h && !r && !rv; y += lines) {
-        const float *row0 = band ? band + (size_t)(y % brows) * m->w * m->nc : tex_map_row(m, y);
+        const float *row0 = at ? NULL : band ? band + (size_t)(y % brows) * row : tex_map_row(m, y);
+        int left = m->h - y < brows - y % brows ? m->h - y : brows - y % brows;
         /* a band's rows reach a reader before the next band is made */
-        if (band && y % brows == 0 &&
-            (sink_flush(sink) < 0 || fill(arg, y, m->h - y < brows ? m->h - y : brows, band) < 0)) {
+        if ((band || at) && y % brows == 0 && sink_flush(sink) < 0) {
+            r = -1;
+            break;
+        }
+        if (at && y >= lend) {
+            int k = at(arg, y, left, &lie);
+            if (k < 1) {
+                r = -1;
+                break;
+            }
+            ly = y, lend = y + k;
+        }
+        if (at)
+            row0 = lie + (size_t)(y - ly) * row;
+        else if (band && y % brows == 0 && fill(arg, y, left, band) < 0) {
             r = -1;
             break;
         }
@@ -588,8 +605,8 @@ static int encode_raw(exr_context_t ctx, int part, const tex_map *m, tex_rows_fn
     return r;
 }
 
-static int encode(const tex_map *m, tex_rows_fn fill, void *arg, enum tex_compression c,
-                  struct wsink *sink)
+static int encode(const tex_map *m, tex_rows_fn fill, tex_rows_at_fn at, void *arg,
+                  enum tex_compression c, struct wsink *sink)
 {
     float *band = NULL; /* fill's rows, a band of chunks at a time */
     size_t band_mapped = 0;
@@ -623,7 +640,9 @@ static int encode(const tex_map *m, tex_rows_fn fill, void *arg, enum tex_compre
     int want = fit < 64 ? (fit ? (int)fit : 1) : 64;
     int batch = chunks < CHUNK_BATCH ? (chunks < 2 ? 2 : (int)chunks) : CHUNK_BATCH;
     int brows = c != TEX_COMPRESS_NONE ? lines * batch : lines * ((want + lines - 1) / lines);
-    if (fill && !(band = tex_pages_new(sizeof *band * (size_t)brows * m->w * m->nc, BAND_PAGES,
+    if (lines != 1)
+        at = NULL; /* at's rows are whole chunks only a line high */
+    if (fill && !at && !(band = tex_pages_new(sizeof *band * (size_t)brows * m->w * m->nc, BAND_PAGES,
                                        &band_mapped))) {
         exr_finish(&ctx);
         return tex_error("out of memory");
@@ -632,7 +651,7 @@ static int encode(const tex_map *m, tex_rows_fn fill, void *arg, enum tex_compre
         tex_pages_touch(band, band_mapped);
     int r = c != TEX_COMPRESS_NONE
                 ? encode_batches(ctx, part, m, fill, arg, band, brows, lines, sink, &worth)
-                : encode_raw(ctx, part, m, fill, arg, band, brows, lines, sink, &worth);
+                : encode_raw(ctx, part, m, fill, at, arg, band, brows, lines, sink, &worth);
     tex_pages_free(band, band_mapped);
     if (r < 0) {
         exr_finish(&ctx);
@@ -748,7 +767,7 @@ int tex_exr_encode_tiled(const tex_map *m, int tile, int mipmap, enum tex_compre
 int tex_exr_encode(const tex_map *m, enum tex_compression c, tex_buf *out)
 {
     struct wsink sink = {out, out->len, -1, "memory", 0, 0, 0, NULL, 0, 0};
-    return encode(m, NULL, NULL, c, &sink);
+    return encode(m, NULL, NULL, NULL, c, &sink);
 }
 
 /* A pipe's default 64 KiB buffer costs a context switch per 64 KiB; ask for
@@ -771,7 +790,7 @@ int tex_exr_write_fd(const tex_map *m, int fd, const char *name)
     int r;
 
     tex_pipe_widen(fd);
-    r = encode(m, NULL, NULL, TEX_COMPRESS_NONE, &sink);
+    r = encode(m, NULL, NULL, NULL, TEX_COMPRESS_NONE, &sink);
 
     free(sink.table);
     tex_buf_free(&head);
@@ -780,6 +799,12 @@ int tex_exr_write_fd(const tex_map *m, int fd, const char *name)
 
 int tex_exr_write_rows(const tex_map *head, tex_rows_fn fill, void *arg, int tile,
                        enum tex_compression c, int fd, const char *name)
+{
+    return tex_exr_write_rows_at(head, fill, NULL, arg, tile, c, fd, name);
+}
+
+int tex_exr_write_rows_at(const tex_map *head, tex_rows_fn fill, tex_rows_at_fn at, void *arg,
+                          int tile, enum tex_compression c, int fd, const char *name)
 {
     tex_buf hb = {0};
     struct stat st;
@@ -794,7 +819,7 @@ int tex_exr_write_rows(const tex_map *head, tex_rows_fn fill, void *arg, int til
         c = TEX_COMPRESS_NONE; /* a pipe carries the stream, never compressed */
     }
     r = tile > 0 ? encode_tiled(head, fill, arg, tile, 0, c, &sink)
-                 : encode(head, fill, arg, c, &sink);
+                 : encode(head, fill, c == TEX_COMPRESS_NONE ? at : NULL, arg, c, &sink);
     free(sink.table);
     tex_buf_free(&hb);
     return r;
