@@ -6,7 +6,7 @@
 #ifndef TEX_INTERLEAVE_X86_H
 #define TEX_INTERLEAVE_X86_H
 
-#include "base/x86/simd_x86.h"
+#include "simd_x86.h"
 
 #ifdef TEX_X86
 /* Eight pixels of c[0..2] interleaved into out: float g of the 24 is channel g % 3 of pixel
