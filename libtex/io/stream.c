@@ -569,7 +569,9 @@ static int encode_raw(exr_context_t ctx, int part, const tex_map *m, tex_rows_fn
 
     memset(&enc, 0, sizeof enc);
     for (int y = 0; y < m->h && !r && !rv; y += lines) {
-        const float *row0 = at ? NULL : band ? band + (size_t)(y % brows) * row : tex_map_row(m, y);
+        const float *row0 = at     ? NULL
+                            : band ? band + (size_t)(y % brows) * row
+                                   : tex_map_row(m, y);
         int left = m->h - y < brows - y % brows ? m->h - y : brows - y % brows;
         /* a band's rows reach a reader before the next band is made */
         if ((band || at) && y % brows == 0 && sink_flush(sink) < 0) {
@@ -642,8 +644,9 @@ static int encode(const tex_map *m, tex_rows_fn fill, tex_rows_at_fn at, void *a
     int brows = c != TEX_COMPRESS_NONE ? lines * batch : lines * ((want + lines - 1) / lines);
     if (lines != 1)
         at = NULL; /* at's rows are whole chunks only a line high */
-    if (fill && !at && !(band = tex_pages_new(sizeof *band * (size_t)brows * m->w * m->nc, BAND_PAGES,
-                                       &band_mapped))) {
+    if (fill && !at &&
+        !(band = tex_pages_new(sizeof *band * (size_t)brows * m->w * m->nc, BAND_PAGES,
+                               &band_mapped))) {
         exr_finish(&ctx);
         return tex_error("out of memory");
     }

@@ -38,7 +38,8 @@ static void test_moves(void)
                 tex_planes_split(out, px, nc, w);
                 for (int k = 0; k < nc; k++)
                     for (int x = 0; x < W; x++)
-                        split &= (size_t)x < w ? back[k][x] == runs[k][x] : back[k][x] != back[k][x];
+                        split &= (size_t)x < w ? back[k][x] == runs[k][x]
+                                               : back[k][x] != back[k][x];
             }
         CHECKF(joined, "level %d: runs joined into pixels, each sample where it belongs", level);
         CHECKF(split, "level %d: pixels split into runs, each sample where it belongs", level);

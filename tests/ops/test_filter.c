@@ -105,7 +105,8 @@ static float taps(const float *p, long i, long n, long step, const float *k, int
 {
     float acc = k[0] * p[i * step];
     for (int j = 1; j <= r; j++)
-        acc += k[j] * (p[tex_edge_index(i - j, n, e) * step] + p[tex_edge_index(i + j, n, e) * step]);
+        acc += k[j] * (p[tex_edge_index(i - j, n, e) * step] +
+                       p[tex_edge_index(i + j, n, e) * step]);
     return acc;
 }
 
@@ -118,7 +119,8 @@ static void test_separable_sums(void)
     for (size_t s = 0; s < sizeof sizes / sizeof *sizes; s++)
         for (int r = 1; r <= 8; r += 7)
             for (enum tex_edge e = TEX_EDGE_CLAMP; e <= TEX_EDGE_MIRROR; e++) {
-                int w = sizes[s][0], h = sizes[s][1], nc = sizes[s][2], skip = h > 2 * r + 1 ? r : 0;
+                int w = sizes[s][0], h = sizes[s][1], nc = sizes[s][2];
+                int skip = h > 2 * r + 1 ? r : 0;
                 tex_map *m = unit_random_map(w, h, nc, (uint64_t)(s * 31 + r)), *want;
                 tex_map *tmp = tex_map_new(w, h, nc), *got;
                 want = tex_map_new(w, h - 2 * skip, nc);

@@ -63,8 +63,10 @@ TEX_AVX2 static inline void tex_deinterleave4_avx2(const float *in, __m256 c[4])
     __m256 o2 = _mm256_loadu_ps(in + 16), o3 = _mm256_loadu_ps(in + 24);
     __m256 a = _mm256_permute2f128_ps(o0, o2, 0x20), b = _mm256_permute2f128_ps(o0, o2, 0x31);
     __m256 d = _mm256_permute2f128_ps(o1, o3, 0x20), e = _mm256_permute2f128_ps(o1, o3, 0x31);
-    __m256d t0 = _mm256_castps_pd(_mm256_unpacklo_ps(a, b)), t1 = _mm256_castps_pd(_mm256_unpackhi_ps(a, b));
-    __m256d t2 = _mm256_castps_pd(_mm256_unpacklo_ps(d, e)), t3 = _mm256_castps_pd(_mm256_unpackhi_ps(d, e));
+    __m256d t0 = _mm256_castps_pd(_mm256_unpacklo_ps(a, b));
+    __m256d t1 = _mm256_castps_pd(_mm256_unpackhi_ps(a, b));
+    __m256d t2 = _mm256_castps_pd(_mm256_unpacklo_ps(d, e));
+    __m256d t3 = _mm256_castps_pd(_mm256_unpackhi_ps(d, e));
     c[0] = _mm256_castpd_ps(_mm256_unpacklo_pd(t0, t2));
     c[1] = _mm256_castpd_ps(_mm256_unpackhi_pd(t0, t2));
     c[2] = _mm256_castpd_ps(_mm256_unpacklo_pd(t1, t3));
