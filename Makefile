@@ -109,7 +109,7 @@ PCFILE   = $(BUILD)/lib/pkgconfig/textura.pc
 RENDER_PRIVATE = scene camera whitted vecmath shape bvh light texture surface mipmap mapping \
                  footprint appfn packet render_shade render_ct anisotropic hypertexture volume box4
 PRIVATE_HEADERS = libtex/base/kdtree.h libtex/base/names.h libtex/base/nearest.h libtex/base/trig_fdlibm.h libtex/base/simd.h \
-                  libtex/base/fp_strict.h libtex/io/json.h libtex/io/strbuf.h libtex/io/oiio_bridge.h \
+                  libtex/base/fp_strict.h libtex/io/json.h libtex/io/planes.h libtex/io/strbuf.h libtex/io/oiio_bridge.h \
                   libtex/io/codec_bridge.h libtex/prim/noise_grid.h libtex/prim/cellular_impl.h libtex/prim/cell.h \
                   libtex/ops/palette_srgb.h \
                   libtex/lang/lex.h libtex/lang/expr.h libtex/lang/rowcode.h \

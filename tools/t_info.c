@@ -88,8 +88,7 @@ static void stats_band(void *arg, int y, int n, const float *rows)
 {
     struct stats_job *j = arg;
     (void)y;
-    for (int k = 0; k < j->head->nc; k++)
-        tex_stats_add(&j->a[k], rows + k, (size_t)j->head->w, (size_t)n, j->head->nc);
+    tex_stats_add_pixels(j->a, rows, (size_t)j->head->w, (size_t)n, j->head->nc);
 }
 
 /* The statistics of a stream's rows into st, as they pass */

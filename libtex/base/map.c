@@ -296,53 +296,96 @@ static inline void lane_take(struct tex_stats_lanes *L, int l, float v, double k
     }
 }
 
+static void lanes_begin(struct tex_stats_lanes *L)
+{
+    *L = (struct tex_stats_lanes){0};
+    for (int l = 0; l < LANES; l++)
+        L->lo[l] = INFINITY, L->hi[l] = -INFINITY;
+}
+
+/* Lanes x.. to the row's end of w samples, nc floats apart, then the lanes met into a */
+static void lanes_end(struct tex_stats_acc *a, struct tex_stats_lanes *L, const float *px,
+                      size_t x, size_t w, int nc, int sums)
+{
+    size_t n = 0;
+    for (; x + LANES <= w; x += LANES)
+#pragma GCC unroll 4
+        for (int l = 0; l < LANES; l++)
+            lane_take(L, l, px[(x + l) * nc], a->shift, sums);
+    for (; x < w; x++)
+        lane_take(L, (int)(x % LANES), px[x * nc], a->shift, sums);
+    for (int l = 0; l < LANES; l++) { /* which of -0 and +0 comes first: the same either way */
+        a->lo = L->lo[l] < a->lo ? L->lo[l] : a->lo;
+        a->hi = L->hi[l] > a->hi ? L->hi[l] : a->hi;
+        n += (size_t)L->n[l];
+        a->nan += (size_t)L->nan[l];
+    }
+    a->n += n;
+    if (sums) {
+        a->sum += (L->sum[0] + L->sum[1]) + (L->sum[2] + L->sum[3]);
+        a->s1 += (L->s1[0] + L->s1[1]) + (L->s1[2] + L->s1[3]);
+        a->s2 += (L->s2[0] + L->s2[1]) + (L->s2[2] + L->s2[3]);
+        a->nonfinite += w - n;
+    }
+}
+
 /* One row of w samples, nc floats apart, into a: only the range when !sums */
 static inline void row_take(struct tex_stats_acc *a, const float *px, size_t w, int nc, int sums)
 {
-    struct tex_stats_lanes L = {0};
-    size_t x = 0, n = 0;
+    struct tex_stats_lanes L;
+    size_t x = 0;
 
-    for (int l = 0; l < LANES; l++)
-        L.lo[l] = INFINITY, L.hi[l] = -INFINITY;
+    lanes_begin(&L);
 #ifdef TEX_X86 /* four lanes in one vector: the same doubles (t_info's and t_palette's pass) */
     if (tex_simd_level() >= TEX_SIMD_AVX2)
         x = tex_stats_row_avx2(&L, px, w, nc, a->shift, sums);
 #endif
-    for (; x + LANES <= w; x += LANES)
-#pragma GCC unroll 4
-        for (int l = 0; l < LANES; l++)
-            lane_take(&L, l, px[(x + l) * nc], a->shift, sums);
-    for (; x < w; x++)
-        lane_take(&L, (int)(x % LANES), px[x * nc], a->shift, sums);
-    for (int l = 0; l < LANES; l++) { /* which of -0 and +0 comes first: the same either way */
-        a->lo = L.lo[l] < a->lo ? L.lo[l] : a->lo;
-        a->hi = L.hi[l] > a->hi ? L.hi[l] : a->hi;
-        n += (size_t)L.n[l];
-        a->nan += (size_t)L.nan[l];
-    }
-    a->n += n;
-    if (sums) {
-        a->sum += (L.sum[0] + L.sum[1]) + (L.sum[2] + L.sum[3]);
-        a->s1 += (L.s1[0] + L.s1[1]) + (L.s1[2] + L.s1[3]);
-        a->s2 += (L.s2[0] + L.s2[1]) + (L.s2[2] + L.s2[3]);
-        a->nonfinite += w - n;
-    }
+    lanes_end(a, &L, px, x, w, nc, sums);
+}
+
+/* The shift, from the first row with a finite sample: its mean */
+static void take_shift(struct tex_stats_acc *a, const float *px, size_t w, int nc)
+{
+    double t = 0;
+    size_t k = 0;
+    if (a->shifted)
+        return;
+    for (size_t x = 0; x < w; x++)
+        if (isfinite(px[x * nc]))
+            t += px[x * nc], k++;
+    if (k)
+        a->shift = t / k, a->shifted = 1;
 }
 
 void tex_stats_add(struct tex_stats_acc *a, const float *px, size_t w, size_t rows, int nc)
 {
     for (size_t y = 0; y < rows; y++, px += w * nc) {
-        if (!a->shifted) { /* the first row with a finite sample: its mean is the shift */
-            double t = 0;
-            size_t k = 0;
-            for (size_t x = 0; x < w; x++)
-                if (isfinite(px[x * nc]))
-                    t += px[x * nc], k++;
-            if (k)
-                a->shift = t / k, a->shifted = 1;
-        }
+        take_shift(a, px, w, nc);
         row_take(a, px, w, nc, 1);
     }
+}
+
+void tex_stats_add_pixels(struct tex_stats_acc *a, const float *px, size_t w, size_t rows, int nc)
+{
+#ifdef TEX_X86 /* three channels' lanes in three vectors, each sample where it lies */
+    if (nc == 3 && tex_simd_level() >= TEX_SIMD_AVX2) {
+        for (size_t y = 0; y < rows; y++, px += w * nc) {
+            struct tex_stats_lanes L[3];
+            double k0[3];
+            for (int c = 0; c < 3; c++) {
+                take_shift(&a[c], px + c, w, nc);
+                lanes_begin(&L[c]);
+                k0[c] = a[c].shift;
+            }
+            size_t x = tex_stats_pixels3_avx2(L, px, w, k0);
+            for (int c = 0; c < 3; c++)
+                lanes_end(&a[c], &L[c], px + c, x, w, nc, 1);
+        }
+        return;
+    }
+#endif
+    for (int c = 0; c < nc; c++)
+        tex_stats_add(&a[c], px + c, w, rows, nc);
 }
 
 void tex_stats_add_range(struct tex_stats_acc *a, const float *px, size_t w, size_t rows, int nc)

@@ -154,6 +154,7 @@ void tex_map_stats(const tex_map *m, int channel, struct tex_stats *s);
  *   struct tex_stats_acc a[4];
  *   for (c...) tex_stats_begin(&a[c]);
  *   for each band: tex_stats_add(&a[c], band + c, pixels_per_row, rows, nc);
+ *                  (or tex_stats_add_pixels(a, band, pixels_per_row, rows, nc))
  *   tex_stats_end(&a[c], &s); */
 struct tex_stats_acc {
     double sum, shift, s1, s2;
@@ -164,6 +165,9 @@ struct tex_stats_acc {
 void tex_stats_begin(struct tex_stats_acc *a);
 /* Add rows of w samples each, nc floats apart (px: the channel's first sample). */
 void tex_stats_add(struct tex_stats_acc *a, const float *px, size_t w, size_t rows, int nc);
+/* The same for every channel at once: a[c] takes channel c of rows of w pixels of nc
+ * channels (px: the first pixel), as tex_stats_add(&a[c], px + c, ...) would. */
+void tex_stats_add_pixels(struct tex_stats_acc *a, const float *px, size_t w, size_t rows, int nc);
 /* Only the range: of tex_stats_end's figures, min and max hold and no others (a palette's
  * auto range), without the sums' cost. */
 void tex_stats_add_range(struct tex_stats_acc *a, const float *px, size_t w, size_t rows, int nc);

@@ -43,14 +43,21 @@ void tex_cli_write(tex_map *m, const struct tex_common *c)
         tex_die();
 }
 
-void tex_cli_write_rows(tex_map *head, const struct tex_common *c, tex_rows_fn fill, void *arg)
+/* tex_cli_write_rows, the stream's rows taken where at says they lie */
+static void write_rows_at(tex_map *head, const struct tex_common *c, tex_rows_fn fill,
+                          tex_rows_at_fn at, void *arg)
 {
     struct tex_write_opts o = write_opts(c);
 
     if (c->cmdline && tex_map_add_history(head, c->cmdline) < 0)
         tex_die();
-    if (tex_map_write_rows(head, fill, arg, c->output, &o) < 0)
+    if (tex_map_write_rows_at(head, fill, at, arg, c->output, &o) < 0)
         tex_die();
+}
+
+void tex_cli_write_rows(tex_map *head, const struct tex_common *c, tex_rows_fn fill, void *arg)
+{
+    write_rows_at(head, c, fill, NULL, arg);
 }
 
 /* A band op's work: the band (n + 2 margin rows of input, from row y - margin) read a
@@ -123,16 +130,30 @@ static int window_next(struct window_job *j, int y)
     return 0;
 }
 
+/* Where the output's rows y.. lie, k of them (1..n, those of the band that holds y): k, or
+ * -1 with the error set.  The stream's writer takes them from there (tex_rows_at_fn). */
+static int window_at(void *arg, int y, int n, const float **rows)
+{
+    struct window_job *j = arg;
+
+    if (y >= j->oy + j->on && window_next(j, y) < 0)
+        return -1;
+    *rows = j->out->px + (size_t)(y - j->oy + j->ofs) * j->w * j->out->nc;
+    return j->oy + j->on - y < n ? j->oy + j->on - y : n;
+}
+
+/* The same rows copied into the writer's, for the writers that take no rows where they lie */
 static int window_fill(void *arg, int y, int n, float *rows)
 {
     struct window_job *j = arg;
 
     while (n > 0) {
-        if (y >= j->oy + j->on && window_next(j, y) < 0)
+        const float *at;
+        int k = window_at(j, y, n, &at);
+        if (k < 0)
             return -1;
-        int k = j->oy + j->on - y < n ? j->oy + j->on - y : n;
         size_t orow = (size_t)j->w * j->out->nc;
-        memcpy(rows, j->out->px + (size_t)(y - j->oy + j->ofs) * orow, k * orow * sizeof *rows);
+        memcpy(rows, at, k * orow * sizeof *rows);
         rows += k * orow, y += k, n -= k;
     }
     return 0;
@@ -202,7 +223,7 @@ static void window_write(struct window_job *j, tex_map *head, const struct tex_c
     out.nc = j->out->nc;
     out.subregions = j->out->subregions;
     head->history = NULL;
-    tex_cli_write_rows(&out, c, window_fill, j);
+    write_rows_at(&out, c, window_fill, window_at, j);
     if (j->out != j->band)
         tex_map_free(j->out);
     tex_map_free(j->band);

@@ -1324,6 +1324,12 @@ static int write_rows_as(const tex_map *head, struct rows_out *s)
 int tex_map_write_rows(const tex_map *head, tex_rows_fn fill, void *arg, const char *path,
                        const struct tex_write_opts *o)
 {
+    return tex_map_write_rows_at(head, fill, NULL, arg, path, o);
+}
+
+int tex_map_write_rows_at(const tex_map *head, tex_rows_fn fill, tex_rows_at_fn at, void *arg,
+                          const char *path, const struct tex_write_opts *o)
+{
     static const struct tex_write_opts defaults = TEX_WRITE_DEFAULTS;
     struct tex_out out = {.fd = 1};
     const char *name, *file;
@@ -1346,8 +1352,8 @@ int tex_map_write_rows(const tex_map *head, tex_rows_fn fill, void *arg, const c
     if (f == TEX_FMT_EXR) {
         /* standard output carries the stream, never compressed, a regular file or not, as
          * tex_map_write writes it */
-        r = tex_exr_write_rows(head, fill, arg, o->tiled ? TEX_EXR_TILE : 0,
-                               out.fd == 1 ? TEX_COMPRESS_NONE : o->compression, out.fd, name);
+        r = tex_exr_write_rows_at(head, fill, at, arg, o->tiled ? TEX_EXR_TILE : 0,
+                                  out.fd == 1 ? TEX_COMPRESS_NONE : o->compression, out.fd, name);
     } else {
         struct rows_out s = {fill, arg, f, depth, head->h, out.fd, 0, NULL, name};
         r = write_rows_as(head, &s);

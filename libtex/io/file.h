@@ -118,6 +118,10 @@ int tex_map_write(const tex_map *m, const char *path, const struct tex_write_opt
 int tex_map_write_streams(const char *path, const struct tex_write_opts *o);
 int tex_map_write_rows(const tex_map *head, tex_rows_fn fill, void *arg, const char *path,
                        const struct tex_write_opts *o);
+/* The same, the EXR stream's rows taken where at says they lie (stream.h's
+ * tex_rows_at_fn), not copied by fill */
+int tex_map_write_rows_at(const tex_map *head, tex_rows_fn fill, tex_rows_at_fn at, void *arg,
+                          const char *path, const struct tex_write_opts *o);
 /* Whether tex_map_write could take path with format (tex_output_format: a format
  * known, not a directory; standard output not a terminal): 0, or -1 with its error.
  * Tools that write images check it before the work (a palette file is not an image: it

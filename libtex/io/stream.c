@@ -19,6 +19,7 @@
 
 #include "base/error.h"
 #include "io/limit.h"
+#include "io/planes.h"
 #include "io/stream.h"
 
 #define ATTR_SUBREGIONS "textura:subregions"
@@ -304,6 +305,88 @@ static exr_result_t add_part(exr_context_t ctx, const tex_map *m, exr_storage_t 
     return EXR_ERR_SUCCESS;
 }
 
+/* The first pixel's sample k of n channels (the channel whose samples are k of each pixel
+ * in slot[k]) when they are float samples, neither subsampled nor skipped, of one map's
+ * pixels n floats apart, its rows alike: the core's routines move these a sample at a
+ * time, ours (pack_planes, unpack_planes) a line's runs at once.  0 when they are not. */
+static int float_pixels(const exr_coding_channel_info_t *ch, int n, const uint8_t **first,
+                        int slot[4])
+{
+    const uint8_t *lo = ch[0].encode_from_ptr;
+    int seen = 0;
+    if (n < 1 || n > 4)
+        return 0;
+    for (int c = 1; c < n; c++)
+        if (ch[c].encode_from_ptr < lo)
+            lo = ch[c].encode_from_ptr;
+    for (int c = 0; c < n; c++) {
+        const exr_coding_channel_info_t *x = &ch[c];
+        long k = x->encode_from_ptr && lo ? (long)(x->encode_from_ptr - lo) : -1;
+        if (x->data_type != EXR_PIXEL_FLOAT || x->user_data_type != EXR_PIXEL_FLOAT ||
+            x->bytes_per_element != 4 || x->user_bytes_per_element != 4 ||
+            x->x_samples != 1 || x->y_samples != 1 || x->user_pixel_stride != 4 * n ||
+            x->user_line_stride != ch[0].user_line_stride || x->width != ch[0].width ||
+            x->height != ch[0].height || k < 0 || k % 4 || k / 4 >= n || seen & 1 << k / 4)
+            return 0;
+        seen |= 1 << k / 4;
+        slot[k / 4] = c;
+    }
+    *first = lo;
+    return 1;
+}
+
+/* The core's pack for float_pixels' channels: each line's pixels split into the chunk's
+ * channel runs (planes.h) */
+static exr_result_t pack_planes(exr_encode_pipeline_t *enc)
+{
+    const exr_coding_channel_info_t *ch = enc->channels;
+    const uint8_t *first;
+    int slot[4], n = enc->channel_count, w = ch[0].width;
+    float *dst = enc->packed_buffer, *plane[4];
+
+    if (!float_pixels(ch, n, &first, slot))
+        return EXR_ERR_INVALID_ARGUMENT;
+    for (int y = 0; y < ch[0].height; y++, dst += (size_t)n * w) {
+        for (int k = 0; k < n; k++)
+            plane[k] = dst + (size_t)slot[k] * w;
+        tex_planes_split(plane, (const float *)(first + (size_t)y * ch[0].user_line_stride), n,
+                         (size_t)w);
+    }
+    enc->packed_bytes = (uint64_t)ch[0].height * n * w * 4;
+    return EXR_ERR_SUCCESS;
+}
+
+/* The core's unpack for float_pixels' channels: each line's channel runs joined into its
+ * pixels */
+static exr_result_t unpack_planes(exr_decode_pipeline_t *dec)
+{
+    const exr_coding_channel_info_t *ch = dec->channels;
+    const uint8_t *first;
+    int slot[4], n = dec->channel_count, w = ch[0].width;
+    const float *src = dec->unpacked_buffer, *plane[4];
+
+    if (!float_pixels(ch, n, &first, slot))
+        return EXR_ERR_INVALID_ARGUMENT;
+    for (int y = 0; y < ch[0].height; y++, src += (size_t)n * w) {
+        for (int k = 0; k < n; k++)
+            plane[k] = src + (size_t)slot[k] * w;
+        tex_planes_join((float *)(first + (size_t)y * ch[0].user_line_stride), plane, n,
+                        (size_t)w);
+    }
+    return EXR_ERR_SUCCESS;
+}
+
+/* The core's default routines for enc, with pack_planes where its channels allow */
+static exr_result_t choose_encoder(exr_context_t ctx, int part, exr_encode_pipeline_t *enc)
+{
+    const uint8_t *first;
+    int slot[4];
+    exr_result_t rv = exr_encoding_choose_default_routines(ctx, part, enc);
+    if (!rv && float_pixels(enc->channels, enc->channel_count, &first, slot))
+        enc->convert_and_pack_fn = pack_planes;
+    return rv;
+}
+
 /* Point the encoder's channels (listed alphabetically: A B G R) at pixel p of
  * a map nc channels deep whose rows are w pixels apart. */
 static void aim_encoder(exr_encode_pipeline_t *enc, const float *p, int w, int nc)
@@ -374,7 +457,7 @@ static exr_result_t encode_slot(exr_context_t ctx, int part, struct pipe *p, str
     if (rv)
         return rv;
     aim_encoder(&p->enc, row0, w, nc);
-    if (!p->ready && (rv = exr_encoding_choose_default_routines(ctx, part, &p->enc)))
+    if (!p->ready && (rv = choose_encoder(ctx, part, &p->enc)))
         return rv;
     p->ready = 1;
     if (p->enc.compress_fn && p->enc.compress_fn != raw_if_incompressible)
@@ -471,22 +554,41 @@ static int encode_batches(exr_context_t ctx, int part, const tex_map *m, tex_row
 }
 
 /* An uncompressed part's chunks one after the other (the stream's case): from m's rows, or
- * from fill's, made brows at a time into band; -1 with the error set, ctx the caller's */
+ * from at's where they lie, or from fill's, made brows at a time into band; -1 with the
+ * error set, ctx the caller's */
 static int encode_raw(exr_context_t ctx, int part, const tex_map *m, tex_rows_fn fill,
-                      void *arg, float *band, int brows, int lines, struct wsink *sink,
-                      struct worth *w)
+                      tex_rows_at_fn at, void *arg, float *band, int brows, int lines,
+                      struct wsink *sink, struct worth *w)
 {
     exr_encode_pipeline_t enc;
     exr_chunk_info_t ci;
     exr_result_t rv = EXR_ERR_SUCCESS;
-    int r = 0;
+    const float *lie = NULL; /* at's rows, from row ly to row lend */
+    int r = 0, ly = 0, lend = 0;
+    size_t row = (size_t)m->w * m->nc;
 
     memset(&enc, 0, sizeof enc);
     for (int y = 0; y < m->h && !r && !rv; y += lines) {
-        const float *row0 = band ? band + (size_t)(y % brows) * m->w * m->nc : tex_map_row(m, y);
+        const float *row0 = at     ? NULL
+                            : band ? band + (size_t)(y % brows) * row
+                                   : tex_map_row(m, y);
+        int left = m->h - y < brows - y % brows ? m->h - y : brows - y % brows;
         /* a band's rows reach a reader before the next band is made */
-        if (band && y % brows == 0 &&
-            (sink_flush(sink) < 0 || fill(arg, y, m->h - y < brows ? m->h - y : brows, band) < 0)) {
+        if ((band || at) && y % brows == 0 && sink_flush(sink) < 0) {
+            r = -1;
+            break;
+        }
+        if (at && y >= lend) {
+            int k = at(arg, y, left, &lie);
+            if (k < 1) {
+                r = -1;
+                break;
+            }
+            ly = y, lend = y + k;
+        }
+        if (at)
+            row0 = lie + (size_t)(y - ly) * row;
+        else if (band && y % brows == 0 && fill(arg, y, left, band) < 0) {
             r = -1;
             break;
         }
@@ -495,7 +597,7 @@ static int encode_raw(exr_context_t ctx, int part, const tex_map *m, tex_rows_fn
                          : exr_encoding_update(ctx, part, &ci, &enc)))
             break;
         aim_encoder(&enc, row0, m->w, m->nc);
-        if (y == 0 && (rv = exr_encoding_choose_default_routines(ctx, part, &enc)))
+        if (y == 0 && (rv = choose_encoder(ctx, part, &enc)))
             break;
         rv = encode_chunk(ctx, part, &enc, w);
     }
@@ -505,8 +607,8 @@ static int encode_raw(exr_context_t ctx, int part, const tex_map *m, tex_rows_fn
     return r;
 }
 
-static int encode(const tex_map *m, tex_rows_fn fill, void *arg, enum tex_compression c,
-                  struct wsink *sink)
+static int encode(const tex_map *m, tex_rows_fn fill, tex_rows_at_fn at, void *arg,
+                  enum tex_compression c, struct wsink *sink)
 {
     float *band = NULL; /* fill's rows, a band of chunks at a time */
     size_t band_mapped = 0;
@@ -540,8 +642,11 @@ static int encode(const tex_map *m, tex_rows_fn fill, void *arg, enum tex_compre
     int want = fit < 64 ? (fit ? (int)fit : 1) : 64;
     int batch = chunks < CHUNK_BATCH ? (chunks < 2 ? 2 : (int)chunks) : CHUNK_BATCH;
     int brows = c != TEX_COMPRESS_NONE ? lines * batch : lines * ((want + lines - 1) / lines);
-    if (fill && !(band = tex_pages_new(sizeof *band * (size_t)brows * m->w * m->nc, BAND_PAGES,
-                                       &band_mapped))) {
+    if (lines != 1)
+        at = NULL; /* at's rows are whole chunks only a line high */
+    if (fill && !at &&
+        !(band = tex_pages_new(sizeof *band * (size_t)brows * m->w * m->nc, BAND_PAGES,
+                               &band_mapped))) {
         exr_finish(&ctx);
         return tex_error("out of memory");
     }
@@ -549,7 +654,7 @@ static int encode(const tex_map *m, tex_rows_fn fill, void *arg, enum tex_compre
         tex_pages_touch(band, band_mapped);
     int r = c != TEX_COMPRESS_NONE
                 ? encode_batches(ctx, part, m, fill, arg, band, brows, lines, sink, &worth)
-                : encode_raw(ctx, part, m, fill, arg, band, brows, lines, sink, &worth);
+                : encode_raw(ctx, part, m, fill, at, arg, band, brows, lines, sink, &worth);
     tex_pages_free(band, band_mapped);
     if (r < 0) {
         exr_finish(&ctx);
@@ -579,7 +684,7 @@ static exr_result_t write_tile(exr_context_t ctx, int part, exr_encode_pipeline_
     if ((rv = exr_encoding_initialize(ctx, part, &ci, enc)))
         return rv;
     aim_encoder(enc, px ? px : tex_map_px(lv, tx * tile, ty * tile), lv->w, lv->nc);
-    if ((rv = exr_encoding_choose_default_routines(ctx, part, enc)) ||
+    if ((rv = choose_encoder(ctx, part, enc)) ||
         (rv = encode_chunk(ctx, part, enc, worth)))
         return rv;
     exr_encoding_destroy(ctx, enc);
@@ -665,7 +770,7 @@ int tex_exr_encode_tiled(const tex_map *m, int tile, int mipmap, enum tex_compre
 int tex_exr_encode(const tex_map *m, enum tex_compression c, tex_buf *out)
 {
     struct wsink sink = {out, out->len, -1, "memory", 0, 0, 0, NULL, 0, 0};
-    return encode(m, NULL, NULL, c, &sink);
+    return encode(m, NULL, NULL, NULL, c, &sink);
 }
 
 /* A pipe's default 64 KiB buffer costs a context switch per 64 KiB; ask for
@@ -688,7 +793,7 @@ int tex_exr_write_fd(const tex_map *m, int fd, const char *name)
     int r;
 
     tex_pipe_widen(fd);
-    r = encode(m, NULL, NULL, TEX_COMPRESS_NONE, &sink);
+    r = encode(m, NULL, NULL, NULL, TEX_COMPRESS_NONE, &sink);
 
     free(sink.table);
     tex_buf_free(&head);
@@ -697,6 +802,12 @@ int tex_exr_write_fd(const tex_map *m, int fd, const char *name)
 
 int tex_exr_write_rows(const tex_map *head, tex_rows_fn fill, void *arg, int tile,
                        enum tex_compression c, int fd, const char *name)
+{
+    return tex_exr_write_rows_at(head, fill, NULL, arg, tile, c, fd, name);
+}
+
+int tex_exr_write_rows_at(const tex_map *head, tex_rows_fn fill, tex_rows_at_fn at, void *arg,
+                          int tile, enum tex_compression c, int fd, const char *name)
 {
     tex_buf hb = {0};
     struct stat st;
@@ -711,7 +822,7 @@ int tex_exr_write_rows(const tex_map *head, tex_rows_fn fill, void *arg, int til
         c = TEX_COMPRESS_NONE; /* a pipe carries the stream, never compressed */
     }
     r = tile > 0 ? encode_tiled(head, fill, arg, tile, 0, c, &sink)
-                 : encode(head, fill, arg, c, &sink);
+                 : encode(head, fill, c == TEX_COMPRESS_NONE ? at : NULL, arg, c, &sink);
     free(sink.table);
     tex_buf_free(&hb);
     return r;
@@ -1050,6 +1161,12 @@ static int decode_one(exr_context_t ctx, exr_decode_pipeline_t *dec, exr_chunk_i
     aim_channels(dec, order, m, x, y);
     if (first && (rv = exr_decoding_choose_default_routines(ctx, 0, dec)))
         return tex_error("corrupt OpenEXR stream (%s)", exr_get_default_error_message(rv));
+    const uint8_t *at;
+    int slot[4];
+    /* (a channel alone, uncompressed, the core reads where it goes, with no unpack) */
+    if (first && dec->unpack_and_convert_fn &&
+        float_pixels(dec->channels, dec->channel_count, &at, slot))
+        dec->unpack_and_convert_fn = unpack_planes;
     /* A chunk read short decodes (the core, not told the data's size, fills the rest): the
      * data ended in it.  (Returning -1 from the read instead overran the core's buffer.) */
     exr_ran_short = 0; /* the header's parse, or another reader's, may have read short */
@@ -1386,16 +1503,21 @@ fail:
     return NULL;
 }
 
+/* A chunk whose rows the request holds whole decodes into them where they go; one it holds
+ * in part (a compressed chunk's, the band's edge) into r's chunk, kept for the next request */
 int tex_rows_read(tex_rows_reader *r, int y, int n, float *rows, const char *name)
 {
     const tex_map *c = r->chunk;
     size_t row = (size_t)c->w * c->nc;
 
-    for (int k = y; k < y + n; k++) {
+    for (int k = y; k < y + n;) {
         if (r->cy < 0 || k < r->cy || k >= r->cy + r->lines) {
             exr_chunk_info_t ci;
             exr_result_t rv;
-            int cy = k - k % r->lines;
+            int cy = k - k % r->lines, direct = cy == k && k + r->lines <= y + n;
+            tex_map at = *c;
+            if (direct)
+                at.px = rows + (size_t)(k - y) * row;
             exr_ran_short = 0; /* a leader read short: the data ended before it */
             if ((rv = exr_read_scanline_chunk_info(r->ctx, 0, r->dw.min.y + cy, &ci))) {
                 chunk_error(rv, "scanline", cy);
@@ -1403,7 +1525,8 @@ int tex_rows_read(tex_rows_reader *r, int y, int n, float *rows, const char *nam
                 tex_error_context(name);
                 return -1;
             }
-            if (decode_one(r->ctx, &r->dec, &ci, r->first, r->order, r->chunk, 0, 0) < 0) {
+            r->cy = -1;
+            if (decode_one(r->ctx, &r->dec, &ci, r->first, r->order, &at, 0, 0) < 0) {
                 if (exr_ran_short) /* at the chunk's row of the map, not of the chunk */
                     chunk_error(0, "scanline", cy);
                 rstream_limit_word(&r->rs);
@@ -1411,9 +1534,14 @@ int tex_rows_read(tex_rows_reader *r, int y, int n, float *rows, const char *nam
                 return -1;
             }
             r->first = 0;
+            if (direct) {
+                k += r->lines;
+                continue;
+            }
             r->cy = cy;
         }
         memcpy(rows + (size_t)(k - y) * row, tex_map_row(c, k - r->cy), row * sizeof *rows);
+        k++;
     }
     return 0;
 }

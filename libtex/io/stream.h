@@ -66,6 +66,13 @@ int tex_exr_write_fd(const tex_map *m, int fd, const char *name);
 typedef int (*tex_rows_fn)(void *arg, int y, int n, float *rows);
 int tex_exr_write_rows(const tex_map *head, tex_rows_fn fill, void *arg, int tile,
                        enum tex_compression c, int fd, const char *name);
+/* The same, where the rows lie somewhere already: at(arg, y, n, &rows) points rows at rows
+ * y..y+k-1 (w * nc floats each, one after another, there until the next call) and returns
+ * k, 1..n, or -1 with the error set.  An uncompressed scanline part (the stream's) is
+ * written from there, not copied into the writer's band by fill; others use fill. */
+typedef int (*tex_rows_at_fn)(void *arg, int y, int n, const float **rows);
+int tex_exr_write_rows_at(const tex_map *head, tex_rows_fn fill, tex_rows_at_fn at, void *arg,
+                          int tile, enum tex_compression c, int fd, const char *name);
 
 /* A scanline EXR read a band of rows at a time, holding one chunk: from the
  * file at path, or (path NULL) from the pipe fd of which prefix_len bytes

@@ -48,25 +48,60 @@ int tex_blur_radius(double sigma)
 
 /* ---- separable convolution ---- */
 
-HOT static void hpass_row(const float *pad, float *out, int n, int nc, const float *k, int r)
+/* A block of the passes: HB floats summed as four vectors of lanes held in registers through
+ * the kernel's taps, where a sum kept in memory is loaded and stored again at every tap.
+ * Each clone lowers the vectors to its own lanes (a zmm, two ymm, four xmm); each sample's sum
+ * is the scalar loop's, in its order (HB is four vectors of 16). */
+typedef float lanes __attribute__((vector_size(64), aligned(4), may_alias));
+#define lanes_at(p) (*(const lanes *)(p))
+
+/* out[b] = k0 c[b] + sum over j of kj (c[b - j step] + c[b + j step]), b < HB: four sums
+ * in flight, named so that the compiler keeps them in registers */
+static inline __attribute__((always_inline)) void taps_block(const float *c, ptrdiff_t step,
+                                                             float *out, const float *k, int r)
 {
-    for (int i0 = 0; i0 < n; i0 += HB) {
-        int len = n - i0 < HB ? n - i0 : HB;
-        float acc[HB];
-        const float *c = pad + (size_t)r * nc + i0;
-        const float k0 = k[0];
+    lanes a0 = k[0] * lanes_at(c), a1 = k[0] * lanes_at(c + 16);
+    lanes a2 = k[0] * lanes_at(c + 32), a3 = k[0] * lanes_at(c + 48);
+    for (int j = 1; j <= r; j++) {
+        const float *lo = c - j * step, *hi = c + j * step;
+        const float kj = k[j];
+        a0 += kj * (lanes_at(lo) + lanes_at(hi));
+        a1 += kj * (lanes_at(lo + 16) + lanes_at(hi + 16));
+        a2 += kj * (lanes_at(lo + 32) + lanes_at(hi + 32));
+        a3 += kj * (lanes_at(lo + 48) + lanes_at(hi + 48));
+    }
+    *(lanes *)out = a0, *(lanes *)(out + 16) = a1;
+    *(lanes *)(out + 32) = a2, *(lanes *)(out + 48) = a3;
+}
+
+/* The same for len < HB samples, its sum kept in memory */
+static inline __attribute__((always_inline)) void taps_tail(const float *c, ptrdiff_t step,
+                                                            float *out, int len, const float *k,
+                                                            int r)
+{
+    float acc[HB];
+    const float k0 = k[0];
+#pragma omp simd
+    for (int b = 0; b < len; b++)
+        acc[b] = k0 * c[b];
+    for (int j = 1; j <= r; j++) {
+        const float *lo = c - j * step, *hi = c + j * step;
+        const float kj = k[j];
 #pragma omp simd
         for (int b = 0; b < len; b++)
-            acc[b] = k0 * c[b];
-        for (int j = 1; j <= r; j++) {
-            const float *lo = c - (size_t)j * nc, *hi = c + (size_t)j * nc;
-            const float kj = k[j];
-#pragma omp simd
-            for (int b = 0; b < len; b++)
-                acc[b] += kj * (lo[b] + hi[b]);
-        }
-        memcpy(out + i0, acc, (size_t)len * sizeof *acc);
+            acc[b] += kj * (lo[b] + hi[b]);
     }
+    memcpy(out, acc, (size_t)len * sizeof *acc);
+}
+
+HOT static void hpass_row(const float *pad, float *out, int n, int nc, const float *k, int r)
+{
+    const float *c = pad + (size_t)r * nc;
+    int i0 = 0;
+    for (; i0 + HB <= n; i0 += HB)
+        taps_block(c + i0, nc, out + i0, k, r);
+    if (i0 < n)
+        taps_tail(c + i0, nc, out + i0, n - i0, k, r);
 }
 
 /* Pixels x0..x1-1 of a row of w into pad, which holds pixel `first` first: those outside
@@ -99,14 +134,24 @@ static void hpass(const float *row, float *out, int w, int nc, const float *k, i
     hpass_row(pad, out + n - rn, rn, nc, k, r);
 }
 
-/* Rows y0..y1-1 of src's vertical pass into dst's rows y0-skip.. */
+/* Rows y0..y1-1 of src's vertical pass into dst's rows y0-skip..: a row whose taps all lie
+ * in src a block of lanes at a time, one nearer an edge than the kernel's reach by the rule */
 HOT static void vpass_strip(const tex_map *src, tex_map *dst, int skip, int i0, int len, int y0,
                             int y1, const float *k, int r, enum tex_edge e)
 {
     size_t stride = (size_t)src->w * src->nc;
     for (int y = y0; y < y1; y++) {
-        float acc[VB];
         const float *c = src->px + (size_t)y * stride + i0;
+        float *o = dst->px + (size_t)(y - skip) * stride + i0;
+        int b = 0;
+        if (y >= r && y + r < src->h) {
+            for (; b + HB <= len; b += HB)
+                taps_block(c + b, (ptrdiff_t)stride, o + b, k, r);
+            if (b < len)
+                taps_tail(c + b, (ptrdiff_t)stride, o + b, len - b, k, r);
+            continue;
+        }
+        float acc[VB];
         const float k0 = k[0];
 #pragma omp simd
         for (int b = 0; b < len; b++)
@@ -119,7 +164,7 @@ HOT static void vpass_strip(const tex_map *src, tex_map *dst, int skip, int i0, 
             for (int b = 0; b < len; b++)
                 acc[b] += kj * (lo[b] + hi[b]);
         }
-        memcpy(dst->px + (size_t)(y - skip) * stride + i0, acc, (size_t)len * sizeof *acc);
+        memcpy(o, acc, (size_t)len * sizeof *acc);
     }
 }
 

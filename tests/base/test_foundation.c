@@ -186,6 +186,27 @@ static void test_stats_simd(void)
                     same &= !memcmp(&s[0], &s[1], sizeof s[0]);
                     cases++;
                 }
+            /* every channel at once (tex_stats_add_pixels), at each level: the scalar path's
+             * channel by channel */
+            for (int lv = 0; lv < 2; lv++) {
+                struct tex_stats_acc a[4], one;
+                struct tex_stats all, each;
+                tex_simd_limit(lv ? TEX_SIMD_AVX512 : TEX_SIMD_SCALAR);
+                for (int c = 0; c < nc; c++)
+                    tex_stats_begin(&a[c]);
+                for (int y = 0; y < m->h; y += 3)
+                    tex_stats_add_pixels(a, tex_map_row(m, y), (size_t)m->w,
+                                         (size_t)(m->h - y < 3 ? m->h - y : 3), m->nc);
+                tex_simd_limit(TEX_SIMD_SCALAR);
+                for (int c = 0; c < nc; c++) {
+                    tex_stats_begin(&one);
+                    tex_stats_add(&one, tex_map_row(m, 0) + c, (size_t)m->w, (size_t)m->h, m->nc);
+                    tex_stats_end(&one, &each);
+                    tex_stats_end(&a[c], &all);
+                    same &= !memcmp(&all, &each, sizeof all);
+                    cases++;
+                }
+            }
             tex_map_free(m);
         }
     tex_simd_limit(TEX_SIMD_AVX512);

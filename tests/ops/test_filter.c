@@ -96,6 +96,55 @@ static void test_band_rows(void)
     tex_map_free(m);
 }
 
+/* The separable passes against the sum written out per sample, in its order (k0 times the
+ * sample, then kj times the sum of the pair at distance j, j from 1 up), each row and column
+ * by the edge rule: the same bits, for widths that fill blocks of lanes and leave tails
+ * (w * nc a multiple of 64 and not), rows narrower than the kernel, and bands with context */
+static float taps(const float *p, long i, long n, long step, const float *k, int r,
+                  enum tex_edge e)
+{
+    float acc = k[0] * p[i * step];
+    for (int j = 1; j <= r; j++)
+        acc += k[j] * (p[tex_edge_index(i - j, n, e) * step] +
+                       p[tex_edge_index(i + j, n, e) * step]);
+    return acc;
+}
+
+static void test_separable_sums(void)
+{
+    static const int sizes[][3] = {{64, 9, 1}, {128, 21, 3}, {67, 40, 3}, {150, 33, 4}, {5, 23, 2},
+                                   {1, 19, 1}, {300, 70, 3}};
+    static const float k[] = {0.3f, 0.2f, 0.1f, 0.05f, 0.025f, 0.0125f, 0.00625f, 0.003f, 0.001f};
+    int cases = 0, same = 0;
+    for (size_t s = 0; s < sizeof sizes / sizeof *sizes; s++)
+        for (int r = 1; r <= 8; r += 7)
+            for (enum tex_edge e = TEX_EDGE_CLAMP; e <= TEX_EDGE_MIRROR; e++) {
+                int w = sizes[s][0], h = sizes[s][1], nc = sizes[s][2];
+                int skip = h > 2 * r + 1 ? r : 0;
+                tex_map *m = unit_random_map(w, h, nc, (uint64_t)(s * 31 + r)), *want;
+                tex_map *tmp = tex_map_new(w, h, nc), *got;
+                want = tex_map_new(w, h - 2 * skip, nc);
+                for (int y = 0; y < h; y++)
+                    for (int x = 0; x < w; x++)
+                        for (int c = 0; c < nc; c++)
+                            tex_map_px(tmp, x, y)[c] =
+                                taps(tex_map_row(m, y) + c, x, w, nc, k, r, e);
+                for (int y = skip; y < h - skip; y++)
+                    for (long i = 0; i < (long)w * nc; i++)
+                        tex_map_row(want, y - skip)[i] =
+                            taps(tmp->px + i, y, h, (long)w * nc, k, r, e);
+                got = tex_filter_separable_rows(m, k, r, e, skip);
+                cases++;
+                same += got && !memcmp(got->px, want->px, tex_map_samples(want) * sizeof(float));
+                tex_map_free(got);
+                tex_map_free(want);
+                tex_map_free(tmp);
+                tex_map_free(m);
+            }
+    CHECKF(same == cases, "separable passes: the sums per sample, bit for bit (%d of %d)", same,
+           cases);
+}
+
 int main(void)
 {
     tex_map *m, *b;
@@ -258,5 +307,6 @@ int main(void)
     CHECK(!b && strstr(tex_errmsg(), "1..15"), "a median radius above 15 is refused");
     tex_map_free(m);
     test_band_rows();
+    test_separable_sums();
     return unit_done();
 }

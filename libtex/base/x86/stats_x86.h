@@ -20,5 +20,10 @@ struct tex_stats_lanes {
  * !sums); k0 the shift. Returns w - w % 4. */
 size_t tex_stats_row_avx2(struct tex_stats_lanes *L, const float *px, size_t w, int nc, double k0,
                           int sums);
+/* The first w - w % 4 pixels of a row of three channels into L[0..2], channel c's shift
+ * k0[c], with sums: each vector holds four consecutive samples (channel i % 3 of pixel
+ * i / 3 of four pixels), each into its channel's lane.  Returns w - w % 4. */
+size_t tex_stats_pixels3_avx2(struct tex_stats_lanes L[3], const float *px, size_t w,
+                              const double k0[3]);
 
 #endif

@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdint.h>
 
+#include "base/x86/interleave_x86.h"
 #include "base/x86/simd_x86.h"
 
 #ifdef TEX_X86
@@ -334,39 +335,6 @@ TEX_AVX2 static void colour8(const struct tex_palette_lanes *l, const struct tex
         c[k] = _mm256_blendv_ps(mix[k], a[k], at);
 }
 
-/* Eight pixels of c[0..2] interleaved into out: float g of the 24 is channel g % 3 of pixel
- * g / 3, each channel's vector permuted to the pixels and blended in where it belongs */
-TEX_AVX2 static inline void interleave3(const __m256 c[4], float *out)
-{
-    const __m256i i0 = _mm256_setr_epi32(0, 0, 0, 1, 1, 1, 2, 2);
-    const __m256i i1 = _mm256_setr_epi32(2, 3, 3, 3, 4, 4, 4, 5);
-    const __m256i i2 = _mm256_setr_epi32(5, 5, 6, 6, 6, 7, 7, 7);
-#define PIX3(i, m1, m2)                                                                          \
-    _mm256_blend_ps(_mm256_blend_ps(_mm256_permutevar8x32_ps(c[0], i),                          \
-                                    _mm256_permutevar8x32_ps(c[1], i), m1),                     \
-                    _mm256_permutevar8x32_ps(c[2], i), m2)
-    _mm256_storeu_ps(out, PIX3(i0, 0x92, 0x24));
-    _mm256_storeu_ps(out + 8, PIX3(i1, 0x24, 0x49));
-    _mm256_storeu_ps(out + 16, PIX3(i2, 0x49, 0x92));
-#undef PIX3
-}
-
-/* The same for four channels: two pixels a vector */
-TEX_AVX2 static inline void interleave4(const __m256 c[4], float *out)
-{
-    __m256 rg0 = _mm256_unpacklo_ps(c[0], c[1]), rg1 = _mm256_unpackhi_ps(c[0], c[1]);
-    __m256 ba0 = _mm256_unpacklo_ps(c[2], c[3]), ba1 = _mm256_unpackhi_ps(c[2], c[3]);
-    /* pixels 0 1 | 4 5, 2 3 | 6 7 */
-    __m256 p0 = _mm256_castpd_ps(_mm256_unpacklo_pd(_mm256_castps_pd(rg0), _mm256_castps_pd(ba0)));
-    __m256 p1 = _mm256_castpd_ps(_mm256_unpackhi_pd(_mm256_castps_pd(rg0), _mm256_castps_pd(ba0)));
-    __m256 p2 = _mm256_castpd_ps(_mm256_unpacklo_pd(_mm256_castps_pd(rg1), _mm256_castps_pd(ba1)));
-    __m256 p3 = _mm256_castpd_ps(_mm256_unpackhi_pd(_mm256_castps_pd(rg1), _mm256_castps_pd(ba1)));
-    _mm256_storeu_ps(out, _mm256_permute2f128_ps(p0, p1, 0x20));
-    _mm256_storeu_ps(out + 8, _mm256_permute2f128_ps(p2, p3, 0x20));
-    _mm256_storeu_ps(out + 16, _mm256_permute2f128_ps(p0, p1, 0x31));
-    _mm256_storeu_ps(out + 24, _mm256_permute2f128_ps(p2, p3, 0x31));
-}
-
 TEX_AVX2 int tex_palette_colour_avx2(const struct tex_palette_lanes *l,
                                      const struct tex_srgb_enc *e, const float *v, int n,
                                      double lo, double hi, int outside, float *out, int nc)
@@ -376,9 +344,9 @@ TEX_AVX2 int tex_palette_colour_avx2(const struct tex_palette_lanes *l,
         __m256 c[4];
         colour8(l, e, v + i, lo, hi, outside, c);
         if (nc == 3)
-            interleave3(c, out + (size_t)i * 3);
+            tex_interleave3_avx2(c, out + (size_t)i * 3);
         else
-            interleave4(c, out + (size_t)i * 4);
+            tex_interleave4_avx2(c, out + (size_t)i * 4);
     }
     return i;
 }
