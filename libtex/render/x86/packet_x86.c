@@ -8,115 +8,31 @@
 #include "render/x86/shape_x86.h"
 
 #ifdef TEX_X86
-/* footprint_tangents of the lanes in of fr from i on, operation for operation: t1, t2 (x, y,
- * z), l2 and c; the lanes seen head-on (no tangent from the ray) in the mask returned */
-TEX_AVX512 static inline __attribute__((always_inline)) __mmask8
-tangents8(const struct frames *fr, int i, __mmask8 in, __m512d t1[3], __m512d t2[3],
-          __m512d *l2, __m512d *c)
-{
-    __m512d d[3], nn[3];
-    for (int k = 0; k < 3; k++) {
-        d[k] = _mm512_maskz_loadu_pd(in, fr->d[k] + i);
-        nn[k] = _mm512_maskz_loadu_pd(in, fr->nn[k] + i);
-    }
-    __m512d dn = dot8(d[0], d[1], d[2], nn[0], nn[1], nn[2]), cosv = _mm512_abs_pd(dn);
-    __m512d ndn = neg8(dn);
-    for (int k = 0; k < 3; k++)
-        t1[k] = _mm512_add_pd(d[k], _mm512_mul_pd(nn[k], ndn));
-    *l2 = dot8(t1[0], t1[1], t1[2], t1[0], t1[1], t1[2]);
-    for (int k = 0; k < 3; k++) /* N x t1 */
-        t2[k] = _mm512_sub_pd(_mm512_mul_pd(nn[(k + 1) % 3], t1[(k + 2) % 3]),
-                              _mm512_mul_pd(nn[(k + 2) % 3], t1[(k + 1) % 3]));
-    __m512d lo = _mm512_set1_pd(0.02);
-    *c = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(cosv, lo, _CMP_GT_OQ), lo, cosv);
-    return _mm512_cmp_pd_mask(*l2, _mm512_set1_pd(1e-18), _CMP_LT_OQ);
-}
 
-/* the lanes in of row a from lane i on; LDG: of a row the lanes may share (struct frames) */
-#define LD(a) _mm512_maskz_loadu_pd(in, (a) + i)
-#define LDG(a) (fr->shared ? _mm512_set1_pd((a)[0]) : LD(a))
-
-/* tex_footprint_width2 of the n <= 8 affine points from i on (footprint_tangents,
- * placed_derivatives and its end, operation for operation) into fw2[i...], and where bump,
- * the frames' bump members; returns the lanes seen head-on, which the scalar path takes. */
-TEX_AVX512 unsigned tex_footprints8_avx512(struct frames *fr, int i, int n, int bump,
-                                           double *fw2)
-{
-    __mmask8 in = (__mmask8)((1u << n) - 1);
-    __m512d t1[3], t2[3], l2, c;
-    __mmask8 headon = tangents8(fr, i, in, t1, t2, &l2, &c);
-    __m512d t1x = t1[0], t1y = t1[1], t1z = t1[2], t2x = t2[0], t2y = t2[1], t2z = t2[2];
-    __m512d gux = LDG(fr->gu[0]), guy = LDG(fr->gu[1]), guz = LDG(fr->gu[2]);
-    __m512d gvx = LDG(fr->gv[0]), gvy = LDG(fr->gv[1]), gvz = LDG(fr->gv[2]);
-    __m512d su = LDG(fr->su), sv = LDG(fr->sv), w = LD(fr->w);
-    __m512d du0 = _mm512_mul_pd(dot8(gux, guy, guz, t1x, t1y, t1z), su);
-    __m512d dv0 = _mm512_mul_pd(dot8(gvx, gvy, gvz, t1x, t1y, t1z), sv);
-    __m512d du1 = _mm512_mul_pd(dot8(gux, guy, guz, t2x, t2y, t2z), su);
-    __m512d dv1 = _mm512_mul_pd(dot8(gvx, gvy, gvz, t2x, t2y, t2z), sv);
-    __m512d c2 = _mm512_mul_pd(c, c);
-    __m512d l1 = _mm512_add_pd(_mm512_mul_pd(du0, du0), _mm512_mul_pd(dv0, dv0));
-    __m512d m2 =
-        _mm512_mul_pd(_mm512_add_pd(_mm512_mul_pd(du1, du1), _mm512_mul_pd(dv1, dv1)), c2);
-    __m512d r = _mm512_mul_pd(_mm512_max_pd(l1, m2), _mm512_mul_pd(w, w)); /* l1 > m2 ? l1 : m2 */
-    _mm512_mask_storeu_pd(fw2 + i, in, _mm512_div_pd(r, _mm512_mul_pd(l2, c2)));
-    if (bump) { /* footprint_unit's tangents, placed_derivatives along them */
-        __m512d s = _mm512_div_pd(_mm512_set1_pd(1), _mm512_sqrt_pd(l2));
-        __m512d e1[3] = {_mm512_mul_pd(t1x, s), _mm512_mul_pd(t1y, s), _mm512_mul_pd(t1z, s)};
-        __m512d e2[3] = {_mm512_mul_pd(t2x, s), _mm512_mul_pd(t2y, s), _mm512_mul_pd(t2z, s)};
-        __m512d dd[4] = {
-            _mm512_mul_pd(dot8(gux, guy, guz, e1[0], e1[1], e1[2]), su),
-            _mm512_mul_pd(dot8(gvx, gvy, gvz, e1[0], e1[1], e1[2]), sv),
-            _mm512_mul_pd(dot8(gux, guy, guz, e2[0], e2[1], e2[2]), su),
-            _mm512_mul_pd(dot8(gvx, gvy, gvz, e2[0], e2[1], e2[2]), sv)};
-        for (int c = 0; c < 3; c++) {
-            _mm512_mask_storeu_pd(fr->e1[c] + i, in, e1[c]);
-            _mm512_mask_storeu_pd(fr->e2[c] + i, in, e2[c]);
-        }
-        for (int c = 0; c < 4; c++)
-            _mm512_mask_storeu_pd(c & 1 ? fr->dv[c / 2] + i : fr->du[c / 2] + i, in, dd[c]);
-    }
-    return headon & in;
-}
-
-/* The footprint widths of the n <= 8 band-limited solid points from i on, as
- * sqrt(tex_solid_width2) makes them under an affine mapping (footprint_tangents, the three
- * gradients' derivatives along t1 and t2, operation for operation), into fw[i...]; returns
- * the lanes seen head-on, which the scalar path takes. */
-TEX_AVX512 unsigned tex_solid_footprints8_avx512(const struct frames *fr, int i, int n,
-                                                 double *fw)
-{
-    __mmask8 in = (__mmask8)((1u << n) - 1);
-    __m512d t1[3], t2[3], l2, c;
-    __mmask8 headon = tangents8(fr, i, in, t1, t2, &l2, &c);
-    const double(*g[3])[CHUNK] = {fr->gu, fr->gv, fr->gw};
-    __m512d sc[3] = {LDG(fr->su), LDG(fr->sv), _mm512_set1_pd(1)}, l1 = _mm512_setzero_pd();
-    __m512d m2 = _mm512_setzero_pd(), w = LD(fr->w);
-    for (int k = 0; k < 3; k++) { /* l1 += a a, m2 += b b, as tex_solid_width2 sums them */
-        __m512d gx = LDG(g[k][0]), gy = LDG(g[k][1]), gz = LDG(g[k][2]);
-        __m512d a = _mm512_mul_pd(dot8(gx, gy, gz, t1[0], t1[1], t1[2]), sc[k]);
-        __m512d b = _mm512_mul_pd(dot8(gx, gy, gz, t2[0], t2[1], t2[2]), sc[k]);
-        l1 = _mm512_add_pd(l1, _mm512_mul_pd(a, a));
-        m2 = _mm512_add_pd(m2, _mm512_mul_pd(b, b));
-    }
-    __m512d r = _mm512_div_pd(
-        _mm512_mul_pd(_mm512_sqrt_pd(_mm512_mul_pd(l1, m2)), _mm512_mul_pd(w, w)),
-        _mm512_mul_pd(c, l2));
-    _mm512_mask_storeu_pd(fw + i, in, _mm512_sqrt_pd(r));
-    return headon & in;
-#undef LD
-#undef LDG
-}
-
-#undef LD
-#undef LDG
-
-/* AVX2's twins of the two footprint kernels above, four points a vector, the same
- * operations in the same order */
-
-/* row a's lanes of mask in from lane i on (0 in the others); LDG4: of a row the lanes may
- * share (struct frames) */
-#define LD4(a) _mm256_maskload_pd((a) + i, in)
-#define LDG4(a) (fr->shared ? _mm256_set1_pd((a)[0]) : LD4(a))
+/* The footprints (footprint_template.c) in AVX-512's eight lanes */
+#define FP_TARGET TEX_AVX512
+#define FP_TANGENTS tangents8
+#define FP_FOOTPRINTS tex_footprints8_avx512
+#define FP_SOLID_FOOTPRINTS tex_solid_footprints8_avx512
+#define vd __m512d
+#define vmask __mmask8
+#define V_IN(n) ((__mmask8)((1u << (n)) - 1))
+#define V_LD(a) _mm512_maskz_loadu_pd(in, (a) + i)
+#define V_ST(a, v) _mm512_mask_storeu_pd((a) + i, in, v)
+#define V_SET1 _mm512_set1_pd
+#define V_ZERO _mm512_setzero_pd
+#define V_ADD _mm512_add_pd
+#define V_SUB _mm512_sub_pd
+#define V_MUL _mm512_mul_pd
+#define V_DIV _mm512_div_pd
+#define V_SQRT _mm512_sqrt_pd
+#define V_MAX _mm512_max_pd
+#define V_DOT dot8
+#define V_ABS _mm512_abs_pd
+#define V_NEG neg8
+#define V_GT_ELSE(a, lo) _mm512_mask_blend_pd(_mm512_cmp_pd_mask(a, lo, _CMP_GT_OQ), lo, a)
+#define V_LT_BITS(a, b) ((unsigned)_mm512_cmp_pd_mask(a, b, _CMP_LT_OQ))
+#include "render/x86/footprint_template.c"
 
 /* the mask of lanes 0 to n - 1 (n <= 4) */
 TEX_AVX2 static inline __m256i lanes4(int n)
@@ -124,88 +40,30 @@ TEX_AVX2 static inline __m256i lanes4(int n)
     return _mm256_cmpgt_epi64(_mm256_set1_epi64x(n), _mm256_setr_epi64x(0, 1, 2, 3));
 }
 
-/* tangents8 in AVX2's lanes; the lanes seen head-on as bits */
-TEX_AVX2 static inline __attribute__((always_inline)) unsigned
-tangents4(const struct frames *fr, int i, __m256i in, __m256d t1[3], __m256d t2[3],
-          __m256d *l2, __m256d *c)
-{
-    __m256d d[3], nn[3], sign = _mm256_set1_pd(-0.0);
-    for (int k = 0; k < 3; k++)
-        d[k] = LD4(fr->d[k]), nn[k] = LD4(fr->nn[k]);
-    __m256d dn = dot4(d[0], d[1], d[2], nn[0], nn[1], nn[2]), cosv = _mm256_andnot_pd(sign, dn);
-    __m256d ndn = _mm256_xor_pd(dn, sign);
-    for (int k = 0; k < 3; k++)
-        t1[k] = _mm256_add_pd(d[k], _mm256_mul_pd(nn[k], ndn));
-    *l2 = dot4(t1[0], t1[1], t1[2], t1[0], t1[1], t1[2]);
-    for (int k = 0; k < 3; k++) /* N x t1 */
-        t2[k] = _mm256_sub_pd(_mm256_mul_pd(nn[(k + 1) % 3], t1[(k + 2) % 3]),
-                              _mm256_mul_pd(nn[(k + 2) % 3], t1[(k + 1) % 3]));
-    __m256d lo = _mm256_set1_pd(0.02);
-    *c = _mm256_blendv_pd(lo, cosv, _mm256_cmp_pd(cosv, lo, _CMP_GT_OQ));
-    return (unsigned)_mm256_movemask_pd(_mm256_cmp_pd(*l2, _mm256_set1_pd(1e-18), _CMP_LT_OQ));
-}
-
-TEX_AVX2 unsigned tex_footprints4_avx2(struct frames *fr, int i, int n, int bump, double *fw2)
-{
-    __m256i in = lanes4(n);
-    __m256d t1[3], t2[3], l2, c;
-    unsigned headon = tangents4(fr, i, in, t1, t2, &l2, &c);
-    __m256d t1x = t1[0], t1y = t1[1], t1z = t1[2], t2x = t2[0], t2y = t2[1], t2z = t2[2];
-    __m256d gux = LDG4(fr->gu[0]), guy = LDG4(fr->gu[1]), guz = LDG4(fr->gu[2]);
-    __m256d gvx = LDG4(fr->gv[0]), gvy = LDG4(fr->gv[1]), gvz = LDG4(fr->gv[2]);
-    __m256d su = LDG4(fr->su), sv = LDG4(fr->sv), w = LD4(fr->w);
-    __m256d du0 = _mm256_mul_pd(dot4(gux, guy, guz, t1x, t1y, t1z), su);
-    __m256d dv0 = _mm256_mul_pd(dot4(gvx, gvy, gvz, t1x, t1y, t1z), sv);
-    __m256d du1 = _mm256_mul_pd(dot4(gux, guy, guz, t2x, t2y, t2z), su);
-    __m256d dv1 = _mm256_mul_pd(dot4(gvx, gvy, gvz, t2x, t2y, t2z), sv);
-    __m256d c2 = _mm256_mul_pd(c, c);
-    __m256d l1 = _mm256_add_pd(_mm256_mul_pd(du0, du0), _mm256_mul_pd(dv0, dv0));
-    __m256d m2 =
-        _mm256_mul_pd(_mm256_add_pd(_mm256_mul_pd(du1, du1), _mm256_mul_pd(dv1, dv1)), c2);
-    __m256d r = _mm256_mul_pd(_mm256_max_pd(l1, m2), _mm256_mul_pd(w, w)); /* l1 > m2 ? l1 : m2 */
-    _mm256_maskstore_pd(fw2 + i, in, _mm256_div_pd(r, _mm256_mul_pd(l2, c2)));
-    if (bump) { /* footprint_unit's tangents, placed_derivatives along them */
-        __m256d s = _mm256_div_pd(_mm256_set1_pd(1), _mm256_sqrt_pd(l2));
-        __m256d e1[3] = {_mm256_mul_pd(t1x, s), _mm256_mul_pd(t1y, s), _mm256_mul_pd(t1z, s)};
-        __m256d e2[3] = {_mm256_mul_pd(t2x, s), _mm256_mul_pd(t2y, s), _mm256_mul_pd(t2z, s)};
-        __m256d dd[4] = {
-            _mm256_mul_pd(dot4(gux, guy, guz, e1[0], e1[1], e1[2]), su),
-            _mm256_mul_pd(dot4(gvx, gvy, gvz, e1[0], e1[1], e1[2]), sv),
-            _mm256_mul_pd(dot4(gux, guy, guz, e2[0], e2[1], e2[2]), su),
-            _mm256_mul_pd(dot4(gvx, gvy, gvz, e2[0], e2[1], e2[2]), sv)};
-        for (int c = 0; c < 3; c++) {
-            _mm256_maskstore_pd(fr->e1[c] + i, in, e1[c]);
-            _mm256_maskstore_pd(fr->e2[c] + i, in, e2[c]);
-        }
-        for (int c = 0; c < 4; c++)
-            _mm256_maskstore_pd(c & 1 ? fr->dv[c / 2] + i : fr->du[c / 2] + i, in, dd[c]);
-    }
-    return headon & ((1u << n) - 1);
-}
-
-TEX_AVX2 unsigned tex_solid_footprints4_avx2(const struct frames *fr, int i, int n, double *fw)
-{
-    __m256i in = lanes4(n);
-    __m256d t1[3], t2[3], l2, c;
-    unsigned headon = tangents4(fr, i, in, t1, t2, &l2, &c);
-    const double(*g[3])[CHUNK] = {fr->gu, fr->gv, fr->gw};
-    __m256d sc[3] = {LDG4(fr->su), LDG4(fr->sv), _mm256_set1_pd(1)}, l1 = _mm256_setzero_pd();
-    __m256d m2 = _mm256_setzero_pd(), w = LD4(fr->w);
-    for (int k = 0; k < 3; k++) { /* l1 += a a, m2 += b b, as tex_solid_width2 sums them */
-        __m256d gx = LDG4(g[k][0]), gy = LDG4(g[k][1]), gz = LDG4(g[k][2]);
-        __m256d a = _mm256_mul_pd(dot4(gx, gy, gz, t1[0], t1[1], t1[2]), sc[k]);
-        __m256d b = _mm256_mul_pd(dot4(gx, gy, gz, t2[0], t2[1], t2[2]), sc[k]);
-        l1 = _mm256_add_pd(l1, _mm256_mul_pd(a, a));
-        m2 = _mm256_add_pd(m2, _mm256_mul_pd(b, b));
-    }
-    __m256d r = _mm256_div_pd(
-        _mm256_mul_pd(_mm256_sqrt_pd(_mm256_mul_pd(l1, m2)), _mm256_mul_pd(w, w)),
-        _mm256_mul_pd(c, l2));
-    _mm256_maskstore_pd(fw + i, in, _mm256_sqrt_pd(r));
-    return headon & ((1u << n) - 1);
-}
-#undef LD4
-#undef LDG4
+/* And in AVX2's four: the sign's bit cleared and flipped as AVX-512's abs and neg8 do */
+#define FP_TARGET TEX_AVX2
+#define FP_TANGENTS tangents4
+#define FP_FOOTPRINTS tex_footprints4_avx2
+#define FP_SOLID_FOOTPRINTS tex_solid_footprints4_avx2
+#define vd __m256d
+#define vmask __m256i
+#define V_IN lanes4
+#define V_LD(a) _mm256_maskload_pd((a) + i, in)
+#define V_ST(a, v) _mm256_maskstore_pd((a) + i, in, v)
+#define V_SET1 _mm256_set1_pd
+#define V_ZERO _mm256_setzero_pd
+#define V_ADD _mm256_add_pd
+#define V_SUB _mm256_sub_pd
+#define V_MUL _mm256_mul_pd
+#define V_DIV _mm256_div_pd
+#define V_SQRT _mm256_sqrt_pd
+#define V_MAX _mm256_max_pd
+#define V_DOT dot4
+#define V_ABS(x) _mm256_andnot_pd(_mm256_set1_pd(-0.0), x)
+#define V_NEG(x) _mm256_xor_pd(x, _mm256_set1_pd(-0.0))
+#define V_GT_ELSE(a, lo) _mm256_blendv_pd(lo, a, _mm256_cmp_pd(a, lo, _CMP_GT_OQ))
+#define V_LT_BITS(a, b) ((unsigned)_mm256_movemask_pd(_mm256_cmp_pd(a, b, _CMP_LT_OQ)))
+#include "render/x86/footprint_template.c"
 
 /* fract in lanes: x - tex_floord(x), tex_floord's floor (+0 for -0: floor's -0 plus 0), and
  * x - x beyond 2^52 */
