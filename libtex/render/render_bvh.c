@@ -683,14 +683,11 @@ static inline void box_grow(struct tex_bounds *b, tex_v3 p)
 /* The rays walk the tree together, depth first, nearer child first as one ray alone does:
  * each meets the objects it enters in the order its own walk meets them, so that its
  * product of Kt is the one its own walk makes, bit for bit. */
-void tex_scene_transmit_n(const struct tex_scene *s, struct tex_shadow_rays *b)
+static void transmit_walk(const struct tex_scene *s, int n, struct tex_bvh_ray *r,
+                          const double *tmin, const double *tmax,
+                          const struct tex_object *const *from, double *tr)
 {
     const struct tex_bvh *t = s->bvh;
-    struct tex_bvh_ray *r = b->r;
-    const double *tmin = b->tmin, *tmax = b->tmax;
-    const struct tex_object *const *from = b->from;
-    double *tr = b->tr;
-    int n = b->n;
     uint64_t live = 0;
     for (int i = 0; i < n; i++) {
         ray_slabs(&r[i]);
@@ -759,6 +756,11 @@ void tex_scene_transmit_n(const struct tex_scene *s, struct tex_shadow_rays *b)
     }
 }
 
+void tex_scene_transmit_n(const struct tex_scene *s, struct tex_shadow_rays *b)
+{
+    transmit_walk(s, b->n, b->r, b->tmin, b->tmax, b->from, b->tr);
+}
+
 int tex_scene_shadow_batches(const struct tex_scene *s)
 {
     return s->bvh->nnodes > 1;
@@ -767,10 +769,11 @@ int tex_scene_shadow_batches(const struct tex_scene *s)
 double tex_scene_transmit(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
                           double tmin, double tmax, const struct tex_object *from)
 {
-    struct tex_shadow_rays b;
-    b.n = 1, b.r[0].o = *o, b.r[0].d = *d, b.tmin[0] = tmin, b.tmax[0] = tmax, b.from[0] = from;
-    tex_scene_transmit_n(s, &b);
-    return b.tr[0];
+    struct tex_bvh_ray r;
+    double tr;
+    r.o = *o, r.d = *d;
+    transmit_walk(s, 1, &r, &tmin, &tmax, &from, &tr); /* a walk of one ray, specialised */
+    return tr;
 }
 
 static inline int closest(const struct tex_bvh *t, const tex_v3 *o, const tex_v3 *d, double tmin,
