@@ -67,16 +67,30 @@ int tex_scene_trace_packet(const struct tex_scene *s, int n, const struct tex_ra
  * tex_scene_trace. */
 double tex_scene_transmit(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
                           double tmin, double tmax, const struct tex_object *from);
-/* tex_scene_transmit of n rays (n <= TEX_TRANSMIT_MAX) at once, ray i o[i] + t d[i] for t
- * in (tmin[i], tmax[i]), not meeting from[i]: tr[i], the value tex_scene_transmit gives it */
 #define TEX_TRANSMIT_MAX 64
+/* A ray as the tree's walks read it: o + t d, inv d's reciprocals for the boxes' slabs
+ * (tex_v3_slab_inv), dd = d.d and idd = 1 / dd */
+struct tex_bvh_ray {
+    tex_v3 o, d, inv;
+    double dd, idd;
+};
+/* Shadow rays to trace together, in the layout the walk reads: the caller writes ray i's o
+ * and d into r[i], its segment (tmin[i], tmax[i]) and from[i]; tex_scene_transmit_n fills
+ * the rest of r[i] in place and tr[i].  Nothing is copied on the way into the tree. */
+struct tex_shadow_rays {
+    int n;
+    struct tex_bvh_ray r[TEX_TRANSMIT_MAX];
+    double tmin[TEX_TRANSMIT_MAX], tmax[TEX_TRANSMIT_MAX];
+    const struct tex_object *from[TEX_TRANSMIT_MAX];
+    double tr[TEX_TRANSMIT_MAX];
+};
 /* Whether rays gain from going together through the scene's tree: more than one leaf's
  * objects (a tree of one leaf walked by a batch cost the spheres benchmark 7 % more CPU
  * than each ray's own walk) */
 int tex_scene_shadow_batches(const struct tex_scene *s);
-void tex_scene_transmit_n(const struct tex_scene *s, int n, const tex_v3 *o, const tex_v3 *d,
-                          const double *tmin, const double *tmax,
-                          const struct tex_object *const *from, double *tr);
+/* tex_scene_transmit of b's n rays (n <= TEX_TRANSMIT_MAX) at once, ray i o + t d for t in
+ * (tmin[i], tmax[i]), not meeting from[i]: tr[i], the value tex_scene_transmit gives it */
+void tex_scene_transmit_n(const struct tex_scene *s, struct tex_shadow_rays *b);
 
 struct tex_bvh *tex_bvh_build(struct tex_object **obs, int n);
 void tex_bvh_free(struct tex_bvh *b);

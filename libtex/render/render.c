@@ -195,25 +195,30 @@ static int plain_take(const struct tex_render_ctx *c, struct packet *pk, int k)
     return 1;
 }
 
-/* Shadow rays gathered to be traced together (tex_scene_transmit_n): each one's light
- * sample, whose ok and fatt take the light passing, as tex_direct_light's do */
+/* Shadow rays gathered to be traced together (tex_scene_transmit_n), written where the walk
+ * reads them: each one's light sample, whose ok and fatt take the light passing, as
+ * tex_direct_light's do */
 struct shadows {
-    int n;
-    tex_v3 o[TEX_TRANSMIT_MAX], d[TEX_TRANSMIT_MAX];
-    double tmin[TEX_TRANSMIT_MAX], tmax[TEX_TRANSMIT_MAX];
-    const struct tex_object *from[TEX_TRANSMIT_MAX];
+    struct tex_shadow_rays b;
     struct tex_light_ahead *a[TEX_TRANSMIT_MAX];
 };
 
 static void shadows_trace(const struct tex_scene *s, struct shadows *sw)
 {
-    double tr[TEX_TRANSMIT_MAX];
-    if (!sw->n)
+    if (!sw->b.n)
         return;
-    tex_scene_transmit_n(s, sw->n, sw->o, sw->d, sw->tmin, sw->tmax, sw->from, tr);
-    for (int i = 0; i < sw->n; i++)
-        tex_light_pass(sw->a[i], tr[i]);
-    sw->n = 0;
+    tex_scene_transmit_n(s, &sw->b);
+    for (int i = 0; i < sw->b.n; i++)
+        tex_light_pass(sw->a[i], sw->b.tr[i]);
+    sw->b.n = 0;
+}
+
+/* Light sample a's shadow ray from o (from: tex_scene_trace's) as sw's ray i */
+static inline void shadow_write(struct shadows *sw, int i, const tex_v3 *o,
+                                const struct tex_object *from, struct tex_light_ahead *a)
+{
+    sw->b.r[i].o = *o, sw->b.r[i].d = a->L, sw->b.tmin[i] = 0, sw->b.tmax[i] = a->dist;
+    sw->b.from[i] = from, sw->a[i] = a;
 }
 
 /* The shadow ray of light sample a from o (from: tex_scene_trace's) added to sw, the rays
@@ -221,10 +226,8 @@ static void shadows_trace(const struct tex_scene *s, struct shadows *sw)
 static inline void shadow_ray(const struct tex_scene *s, struct shadows *sw, const tex_v3 *o,
                               const struct tex_object *from, struct tex_light_ahead *a)
 {
-    int i = sw->n++;
-    sw->o[i] = *o, sw->d[i] = a->L, sw->tmin[i] = 0, sw->tmax[i] = a->dist;
-    sw->from[i] = from, sw->a[i] = a;
-    if (sw->n == TEX_TRANSMIT_MAX)
+    shadow_write(sw, sw->b.n++, o, from, a);
+    if (sw->b.n == TEX_TRANSMIT_MAX)
         shadows_trace(s, sw);
 }
 
@@ -249,13 +252,10 @@ static void plain_light(const struct tex_scene *s, const struct tex_light *l, st
         a->ok = a->ok && !(tex_v3_dot(a->L, pl->Ngv[pl->bent[j]]) <= 0);
     }
     struct shadows sw;
-    sw.n = 0;
+    sw.b.n = 0;
     for (int i = 0; batch && i < pl->n; i++) { /* each hit's ray written, kept where lit */
-        struct tex_light_ahead *a = &pl->a[i];
-        int j = sw.n;
-        sw.o[j] = pl->Pout[i], sw.d[j] = a->L, sw.tmin[j] = 0, sw.tmax[j] = a->dist;
-        sw.from[j] = pl->outside[i], sw.a[j] = a;
-        sw.n += a->ok != 0;
+        shadow_write(&sw, sw.b.n, &pl->Pout[i], pl->outside[i], &pl->a[i]);
+        sw.b.n += pl->a[i].ok != 0;
     }
     for (int i = 0; !batch && i < pl->n; i++) {
         struct tex_light_ahead *a = &pl->a[i];
@@ -321,7 +321,7 @@ static void general_shade(struct tex_render_ctx *c, struct packet *pk)
     struct general *g = &pk->general;
     const struct tex_scene *s = c->s;
     struct shadows sw;
-    sw.n = 0;
+    sw.b.n = 0;
     for (int li = 0, at = 0; li < s->nlights; li++) {
         int ns = tex_light_samples(&s->lights[li]);
         for (int i = 0; i < g->n; i++)

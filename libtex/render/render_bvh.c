@@ -78,17 +78,19 @@ struct tex_bvh {
 };
 
 /* A ray with its per-ray constants. */
-struct ray {
-    tex_v3 o, d, inv;
-    double dd, idd; /* d.d and 1 / d.d (1 for unit directions) */
-};
+/* r's inv and dd from its d: what a shadow ray's walk reads (no idd: its division is the
+ * closest hit's alone) */
+static inline void ray_slabs(struct tex_bvh_ray *r)
+{
+    r->inv = tex_v3_slab_inv(r->d);
+    r->dd = tex_v3_dot(r->d, r->d);
+}
 
-static inline void ray_setup(struct ray *r, const tex_v3 *o, const tex_v3 *d)
+static inline void ray_setup(struct tex_bvh_ray *r, const tex_v3 *o, const tex_v3 *d)
 {
     r->o = *o;
     r->d = *d;
-    r->inv = tex_v3_slab_inv(*d);
-    r->dd = tex_v3_dot(*d, *d);
+    ray_slabs(r);
     r->idd = 1 / r->dd;
 }
 
@@ -328,7 +330,7 @@ void tex_bvh_free(struct tex_bvh *b)
 
 
 /* Slab test against [tmin, tmax]; the entry distance in *t0. */
-static inline int hit_box(const struct tex_bounds *b, const struct ray *r, double tmin,
+static inline int hit_box(const struct tex_bounds *b, const struct tex_bvh_ray *r, double tmin,
                           double tmax, double *t0)
 {
     double a = (b->lo.x - r->o.x) * r->inv.x, c = (b->hi.x - r->o.x) * r->inv.x;
@@ -344,7 +346,7 @@ static inline int hit_box(const struct tex_bounds *b, const struct ray *r, doubl
 /* Does r cross the surface of transformed leaf p between tmin and tmax?  -1 where it misses
  * p's box there or surely does not, 1 where it surely does, 0 where only its spans tell
  * (tex_leaf_segment: a torus's quartic only where cheap tests cannot decide) */
-static inline int leaf_segment(const struct prim *p, const struct ray *r, double tmin,
+static inline int leaf_segment(const struct prim *p, const struct tex_bvh_ray *r, double tmin,
                                double tmax)
 {
     double t0;
@@ -356,7 +358,7 @@ static inline int leaf_segment(const struct prim *p, const struct ray *r, double
 /* The spans of a transformed leaf or a CSG tree p along r into *s; 0 (none made) where r
  * has no boundary of it between tmin and tmax (the closest hit so far, or the light) that
  * cheap tests can rule out: its box, or leaf_segment. */
-static inline int prim_spans(const struct prim *p, const struct ray *r, double tmin, double tmax,
+static inline int prim_spans(const struct prim *p, const struct tex_bvh_ray *r, double tmin, double tmax,
                              struct tex_spans *s)
 {
     const struct tex_object *ob = p->ob;
@@ -377,7 +379,7 @@ static inline int prim_spans(const struct prim *p, const struct ray *r, double t
 
 /* Spans of a CSG tree or a transformed leaf: the first boundary beyond tmin
  * and before *tmax.  Out of line: the interval lists are large. */
-static __attribute__((noinline)) int first_hit_spans(const struct prim *p, const struct ray *r,
+static __attribute__((noinline)) int first_hit_spans(const struct prim *p, const struct tex_bvh_ray *r,
                                                      double tmin, double *tmax,
                                                      struct tex_hit *hit)
 {
@@ -400,7 +402,7 @@ static __attribute__((noinline)) int first_hit_spans(const struct prim *p, const
 
 /* Where ray r first meets p beyond tmin, where p is a sphere or a plane (no t beyond tmin:
  * NaN or a t <= tmin) */
-static inline double quick_t(const struct prim *p, const struct ray *r, double tmin)
+static inline double quick_t(const struct prim *p, const struct tex_bvh_ray *r, double tmin)
 {
     double t;
     if (p->kind == PK_SPHERE) {
@@ -422,7 +424,7 @@ static inline double quick_t(const struct prim *p, const struct ray *r, double t
 }
 
 /* The first boundary of p beyond tmin and before *tmax: 1, *hit and *tmax updated. */
-static inline int first_hit(const struct prim *p, const struct ray *r, double tmin, double *tmax,
+static inline int first_hit(const struct prim *p, const struct tex_bvh_ray *r, double tmin, double *tmax,
                             struct tex_hit *hit)
 {
     if (p->kind != PK_SPHERE && p->kind != PK_PLANE)
@@ -446,7 +448,7 @@ static inline int seen(uint64_t visit, int i)
 
 /* The children of quad q that r enters within tmin..tmax (bit c: child c), at distances t[c] */
 static inline __attribute__((always_inline)) int quad_children(const struct quad *q,
-                                                               const struct ray *r, double tmin,
+                                                               const struct tex_bvh_ray *r, double tmin,
                                                                double tmax, double t[4])
 {
 #ifdef TEX_X86 /* four boxes in SSE2's lanes, which every x86-64 has: the same answers */
@@ -480,11 +482,11 @@ static inline __attribute__((always_inline)) int bvh_trace(const struct tex_bvh 
                                                            const struct tex_object *from,
                                                            struct tex_hit *hit)
 {
-    struct ray r;
+    struct tex_bvh_ray r;
     if (tree) {
         ray_setup(&r, o, d);
     } else {
-        r = (struct ray){*o, *d, {0, 0, 0}, tex_v3_dot(*d, *d), 0}; /* the unbounded read neither */
+        r = (struct tex_bvh_ray){*o, *d, {0, 0, 0}, tex_v3_dot(*d, *d), 0}; /* the unbounded read neither */
     }
     int found = 0;
     if (!(r.dd > 0))
@@ -567,7 +569,7 @@ static double surface_kt(const struct tex_scene *s, const struct tex_object *lea
 /* Spans of a CSG tree or a transformed leaf: the product of Kt over its
  * boundaries in (tmin, tmax) into *tr.  Out of line: the interval lists are large. */
 static __attribute__((noinline)) void transmit_spans(const struct tex_scene *s,
-                                                     const struct prim *p, const struct ray *r,
+                                                     const struct prim *p, const struct tex_bvh_ray *r,
                                                      double tmin, double tmax, double *tr)
 {
     struct tex_spans sp;
@@ -593,7 +595,7 @@ static __attribute__((noinline)) void transmit_spans(const struct tex_scene *s,
 }
 
 static inline void transmit_prim(const struct tex_scene *s, const struct prim *p,
-                                 const struct ray *r, double tmin, double tmax, double *tr)
+                                 const struct tex_bvh_ray *r, double tmin, double tmax, double *tr)
 {
     double t0, t1;
     int n = 0;
@@ -629,7 +631,7 @@ static inline void transmit_prim(const struct tex_scene *s, const struct prim *p
 /* Ray i of r (of those in live) through prim p: its product tr[i], and i out of live where
  * the light falls to 1e-4 */
 static inline void transmit_rays(const struct tex_scene *s, const struct prim *p,
-                                 const struct ray *r, uint64_t m, const double *tmin,
+                                 const struct tex_bvh_ray *r, uint64_t m, const double *tmin,
                                  const double *tmax, const struct tex_object *const *from,
                                  double *tr, uint64_t *live)
 {
@@ -647,7 +649,7 @@ static inline void transmit_rays(const struct tex_scene *s, const struct prim *p
  * every segment, all (a box widened far beyond the rounding of hit_box's slabs: shadow rays
  * to one light, from a packet's hits, skip most of the tree at one test).  lanes: the rays
  * in vector lanes, eight a vector where wide, else four (NULL: one ray at a time). */
-static inline uint64_t rays_box(const struct tex_bounds *b, const struct ray *r, uint64_t m,
+static inline uint64_t rays_box(const struct tex_bounds *b, const struct tex_bvh_ray *r, uint64_t m,
                                 const double *tmin, const double *tmax,
                                 const struct tex_bounds *all, const struct tex_ray_lanes *lanes,
                                 int wide)
@@ -681,15 +683,14 @@ static inline void box_grow(struct tex_bounds *b, tex_v3 p)
 /* The rays walk the tree together, depth first, nearer child first as one ray alone does:
  * each meets the objects it enters in the order its own walk meets them, so that its
  * product of Kt is the one its own walk makes, bit for bit. */
-void tex_scene_transmit_n(const struct tex_scene *s, int n, const tex_v3 *o, const tex_v3 *d,
+static void transmit_walk(const struct tex_scene *s, int n, struct tex_bvh_ray *r,
                           const double *tmin, const double *tmax,
                           const struct tex_object *const *from, double *tr)
 {
     const struct tex_bvh *t = s->bvh;
-    struct ray r[TEX_TRANSMIT_MAX];
     uint64_t live = 0;
     for (int i = 0; i < n; i++) {
-        ray_setup(&r[i], &o[i], &d[i]);
+        ray_slabs(&r[i]);
         tr[i] = 1;
         live |= (uint64_t)(r[i].dd > 0) << i;
     }
@@ -699,16 +700,26 @@ void tex_scene_transmit_n(const struct tex_scene *s, int n, const tex_v3 *o, con
         return;
     /* the box around every segment, widened by a million times the rounding of its ends
      * and of hit_box; the whole space where an end is not finite (a distant light) */
+    struct tex_ray_lanes lanes, *lp = NULL; /* the live rays in lanes, eight or more of them */
+    int wide = 0; /* one ray's calls (most of them) do not ask the level */
+    if (n >= 8 && tex_simd_level() >= TEX_SIMD_AVX2) {
+        lp = &lanes, wide = tex_simd_level() >= TEX_SIMD_AVX512;
+        lanes.tmin = tmin, lanes.tmax = tmax;
+    }
     struct tex_bounds all = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
     double big = 0;
-    for (uint64_t m = live; m; m &= m - 1) {
+    for (uint64_t m = live; m; m &= m - 1) { /* the box and the lanes in one pass */
         int i = __builtin_ctzll(m);
-        tex_v3 e = tex_v3_madd(o[i], d[i], tmax[i]); /* the far end: the near one is o */
-        box_grow(&all, o[i]);
+        tex_v3 o = r[i].o, e = tex_v3_madd(o, r[i].d, tmax[i]); /* the far end: the near one is o */
+        box_grow(&all, o);
         box_grow(&all, e);
-        double size = fabs(e.x) + fabs(e.y) + fabs(e.z) + fabs(o[i].x) + fabs(o[i].y) +
-                      fabs(o[i].z);
+        double size = fabs(e.x) + fabs(e.y) + fabs(e.z) + fabs(o.x) + fabs(o.y) + fabs(o.z);
         big = size < 1e12 ? tex_maxd(big, size) : INFINITY; /* NaN too */
+        if (lp) { /* the masks never hold a ray out of live: its lanes go unread */
+            lanes.o[0][i] = o.x, lanes.o[1][i] = o.y, lanes.o[2][i] = o.z;
+            lanes.inv[0][i] = r[i].inv.x, lanes.inv[1][i] = r[i].inv.y;
+            lanes.inv[2][i] = r[i].inv.z;
+        }
     }
     if (big < 1e12 && n > 1) { /* one ray: its own test of the box is the same */
         double eps = 1e-9 * (1 + big);
@@ -717,17 +728,6 @@ void tex_scene_transmit_n(const struct tex_scene *s, int n, const tex_v3 *o, con
     } else {
         all.lo = tex_v3_make(-INFINITY, -INFINITY, -INFINITY);
         all.hi = tex_v3_make(INFINITY, INFINITY, INFINITY);
-    }
-    struct tex_ray_lanes lanes, *lp = NULL; /* the rays in lanes, eight or more of them */
-    int wide = 0; /* one ray's calls (most of them) do not ask the level */
-    if (n >= 8 && tex_simd_level() >= TEX_SIMD_AVX2) {
-        lp = &lanes, wide = tex_simd_level() >= TEX_SIMD_AVX512;
-        lanes.tmin = tmin, lanes.tmax = tmax;
-        for (int i = 0; i < n; i++) {
-            lanes.o[0][i] = r[i].o.x, lanes.o[1][i] = r[i].o.y, lanes.o[2][i] = r[i].o.z;
-            lanes.inv[0][i] = r[i].inv.x, lanes.inv[1][i] = r[i].inv.y;
-            lanes.inv[2][i] = r[i].inv.z;
-        }
     }
     struct {
         int node;
@@ -756,6 +756,11 @@ void tex_scene_transmit_n(const struct tex_scene *s, int n, const tex_v3 *o, con
     }
 }
 
+void tex_scene_transmit_n(const struct tex_scene *s, struct tex_shadow_rays *b)
+{
+    transmit_walk(s, b->n, b->r, b->tmin, b->tmax, b->from, b->tr);
+}
+
 int tex_scene_shadow_batches(const struct tex_scene *s)
 {
     return s->bvh->nnodes > 1;
@@ -764,8 +769,10 @@ int tex_scene_shadow_batches(const struct tex_scene *s)
 double tex_scene_transmit(const struct tex_scene *s, const tex_v3 *o, const tex_v3 *d,
                           double tmin, double tmax, const struct tex_object *from)
 {
+    struct tex_bvh_ray r;
     double tr;
-    tex_scene_transmit_n(s, 1, o, d, &tmin, &tmax, &from, &tr);
+    r.o = *o, r.d = *d;
+    transmit_walk(s, 1, &r, &tmin, &tmax, &from, &tr); /* a walk of one ray, specialised */
     return tr;
 }
 
@@ -797,7 +804,7 @@ int tex_scene_trace_view(const struct tex_scene *s, const tex_v3 *o, const tex_v
 /* first_hit from 0 for ray i of a packet, which tells the walk where p's boundary lies as
  * far as the closest hit so far (*tmax) too: a tie, bit i of *tie (the order of the objects
  * met decides it), which a nearer hit clears */
-static inline int packet_hit(const struct prim *p, const struct ray *r, double *tmax,
+static inline int packet_hit(const struct prim *p, const struct tex_bvh_ray *r, double *tmax,
                              struct tex_hit *hit, int i, uint64_t *tie)
 {
     double t;
@@ -839,7 +846,7 @@ static inline void packet_children(const struct quad *q, const struct tex_ray_la
 
 /* A packet's n rays into r and l's lanes (tmin, tmax theirs), each one's hits on the unbounded
  * objects found: the mask of those that enter the tree's box */
-static uint64_t packet_start(const struct tex_bvh *t, int n, const tex_ray *rays, struct ray r[64],
+static uint64_t packet_start(const struct tex_bvh *t, int n, const tex_ray *rays, struct tex_bvh_ray r[64],
                              struct tex_ray_lanes *l, double tmin[64], double tmax[64],
                              struct tex_hit *hit, int *found)
 {
@@ -873,7 +880,7 @@ int tex_scene_trace_packet(const struct tex_scene *s, int n, const tex_ray *rays
             found[k] = tex_scene_trace_view(s, &rays[k].o, &rays[k].d, visit, &hit[k]);
         return 0;
     }
-    struct ray r[64];
+    struct tex_bvh_ray r[64];
     struct tex_ray_lanes l;
     double tmin[64], tmax[64];
     uint64_t tie = 0, m = packet_start(t, n, rays, r, &l, tmin, tmax, hit, found);

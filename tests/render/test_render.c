@@ -948,22 +948,21 @@ static void test_transmit_batch(void)
         tex_simd_limit(levels[lv]);
         tex_rng_seed(&g, 12);
         for (int p = 0; p < 400; p++) {
+            static struct tex_shadow_rays b;
             tex_v3 o[64], d[64];
-            double tmin[64], tmax[64], tr[64];
-            const struct tex_object *from[64];
-            int n = p % 4 ? 64 : 1 + (int)tex_rng_below(&g, 64);
+            int n = b.n = p % 4 ? 64 : 1 + (int)tex_rng_below(&g, 64);
             for (int i = 0; i < n; i++) {
                 const struct tex_bounds *a = &bx[tex_rng_below(&g, 80)];
-                o[i] = box_point(&g, a);
-                d[i] = graze_dir(&g, o[i], &bx[tex_rng_below(&g, 80)]);
-                tmin[i] = tex_rng_below(&g, 2) ? 0 : 1e-6;
-                tmax[i] = tex_rng_below(&g, 4) ? 1 + 8 * tex_rng_uniform(&g) : INFINITY;
-                from[i] = NULL;
+                o[i] = b.r[i].o = box_point(&g, a);
+                d[i] = b.r[i].d = graze_dir(&g, o[i], &bx[tex_rng_below(&g, 80)]);
+                b.tmin[i] = tex_rng_below(&g, 2) ? 0 : 1e-6;
+                b.tmax[i] = tex_rng_below(&g, 4) ? 1 + 8 * tex_rng_uniform(&g) : INFINITY;
+                b.from[i] = NULL;
             }
-            tex_scene_transmit_n(s, n, o, d, tmin, tmax, from, tr);
+            tex_scene_transmit_n(s, &b);
             for (int i = 0; i < n; i++, rays++) {
-                double one = tex_scene_transmit(s, &o[i], &d[i], tmin[i], tmax[i], NULL);
-                bad += memcmp(&one, &tr[i], sizeof one) != 0;
+                double one = tex_scene_transmit(s, &o[i], &d[i], b.tmin[i], b.tmax[i], NULL);
+                bad += memcmp(&one, &b.tr[i], sizeof one) != 0;
                 dim += one > 0 && one < 1, dark += one == 0;
             }
         }
