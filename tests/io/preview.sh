@@ -129,8 +129,8 @@ P
         notok "--preview of a $src: box means" "$(head -c 200 "$T/th.txt")"
 done
 # a streamed map's thumbnail in bounded memory: a 4096x4096 RGB map (192 MiB as float)
-lim=$(stream_vlimit 60000)
-t_noise -s 4096 -f 8 | t_palette --range 0,1 marble |
+lim=$(stream_vlimit 60000) side=$(stream_side 4096)
+t_noise -s $side -f 8 | t_palette --range 0,1 marble |
     (ulimit -v $lim; t_info --preview kitty) | decode kitty >"$T/th.txt"
 head -1 "$T/th.txt" | grep -qx "256 256" &&
-    ok "--preview of a 4096x4096 stream under ulimit -v $lim KB" || notok "--preview under ulimit -v $lim"
+    ok "--preview of a ${side}x$side stream under ulimit -v $lim KB" || notok "--preview under ulimit -v $lim"

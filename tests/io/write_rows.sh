@@ -78,12 +78,12 @@ truncated "a truncated stream to PNG" out.png t_convert
 
 # Bounded memory: a 4096x4096 RGB map (192 MiB as float) to PNG, TIFF and PPM under a limit
 # far below it (the whole-map writer holds the map and its 8-bit copy)
-lim=$(stream_vlimit 180000)
-t_noise -s 4096 -f 8 | t_palette --range 0,1 marble >big.exr
+lim=$(stream_vlimit 180000) side=$(stream_side 4096)
+t_noise -s $side -f 8 | t_palette --range 0,1 marble >big.exr
 for ext in png; do
     t_convert -o w.$ext <big.exr
     cat big.exr | (ulimit -v $lim; t_convert -o s.$ext) 2>err
-    cmp -s w.$ext s.$ext && ok "t_convert streams a 4096x4096 map to .$ext under ulimit -v $lim KB" ||
+    cmp -s w.$ext s.$ext && ok "t_convert streams a ${side}x$side map to .$ext under ulimit -v $lim KB" ||
         notok "t_convert to .$ext under ulimit -v $lim" "$(head -c 200 err)"
     rm -f w.$ext s.$ext
 done
@@ -102,8 +102,8 @@ done
     notok "generators' formats" "$bad"
 lim=$(stream_vlimit 60000)
 for ext in png tif ppm; do
-    (ulimit -v $lim; t_noise -s 4096 -f 8 -o s.$ext) 2>err && t_noise -s 4096 -f 8 | t_convert -o w.$ext &&
-        cmp -s w.$ext s.$ext && ok "t_noise writes a 4096x4096 .$ext in bands under ulimit -v $lim KB" ||
+    (ulimit -v $lim; t_noise -s $side -f 8 -o s.$ext) 2>err && t_noise -s $side -f 8 | t_convert -o w.$ext &&
+        cmp -s w.$ext s.$ext && ok "t_noise writes a ${side}x$side .$ext in bands under ulimit -v $lim KB" ||
         notok "t_noise to .$ext under ulimit -v $lim" "$(head -c 200 err)"
     rm -f w.$ext s.$ext
 done

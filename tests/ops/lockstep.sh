@@ -68,10 +68,10 @@ truncated "a truncated operand" out.exr t_op add - b.exr
 
 # Bounded memory: two 4096x4096 generators (64 MiB each as float, 192 MiB with the result
 # whole) added under a limit far below them
-lim=$(stream_vlimit 120000)
-want=$(t_op add <(t_noise -s 4096 -f 8 -S 1) <(t_noise -s 4096 -f 8 -S 2) | md5sum)
-got=$( (ulimit -v $lim; t_op add <(t_noise -s 4096 -f 8 -S 1) <(t_noise -s 4096 -f 8 -S 2)) | md5sum)
-[ "$got" = "$want" ] && ok "t_op adds two 4096x4096 streams under ulimit -v $lim KB" ||
+lim=$(stream_vlimit 120000) side=$(stream_side 4096)
+want=$(t_op add <(t_noise -s $side -f 8 -S 1) <(t_noise -s $side -f 8 -S 2) | md5sum)
+got=$( (ulimit -v $lim; t_op add <(t_noise -s $side -f 8 -S 1) <(t_noise -s $side -f 8 -S 2)) | md5sum)
+[ "$got" = "$want" ] && ok "t_op adds two ${side}x$side streams under ulimit -v $lim KB" ||
     notok "t_op under ulimit -v $lim" "$got vs $want"
 
 # t_cascade: the ids and the regions' maps in lockstep
@@ -94,7 +94,7 @@ a.exr ids.exr 1=- 2=b.exr
 a.exr --regions 2 ids2.exr 1=- 2=small.exr --resize tile
 ARGS
 [ -z "$bad" ] && ok "t_cascade: $n cascades in lockstep give the whole map's bytes" || notok "t_cascade in lockstep" "$bad"
-want=$(t_cascade <(t_circle -s 4096 --ids) 1=<(t_noise -s 4096 -f 8) | md5sum)
-got=$( (ulimit -v $lim; t_cascade <(t_circle -s 4096 --ids) 1=<(t_noise -s 4096 -f 8)) | md5sum)
-[ "$got" = "$want" ] && ok "t_cascade fills a 4096x4096 stream under ulimit -v $lim KB" ||
+want=$(t_cascade <(t_circle -s $side --ids) 1=<(t_noise -s $side -f 8) | md5sum)
+got=$( (ulimit -v $lim; t_cascade <(t_circle -s $side --ids) 1=<(t_noise -s $side -f 8)) | md5sum)
+[ "$got" = "$want" ] && ok "t_cascade fills a ${side}x$side stream under ulimit -v $lim KB" ||
     notok "t_cascade under ulimit -v $lim" "$got vs $want"

@@ -58,17 +58,16 @@ done
 
 # Bounded memory: a 4096x4096 RGB map (192 MiB, three times that for the whole-map blur)
 # through t_filter under a limit below the map's size
-lim=180000
-nm "$TEXTURA_BUILD/lib/libtex.a" 2>/dev/null | grep -q __asan_ && lim=unlimited
-t_noise -s 4096 -f 8 | t_palette --range 0,1 marble >"$T/big.exr"
+lim=$(stream_vlimit 180000) side=$(stream_side 4096)
+t_noise -s $side -f 8 | t_palette --range 0,1 marble >"$T/big.exr"
 want=$(TEXTURA_BAND_ROWS=whole t_filter blur --sigma 2 <"$T/big.exr" | md5sum)
 got=$(cat "$T/big.exr" | (ulimit -v $lim; t_filter blur --sigma 2) | md5sum)
-[ "$got" = "$want" ] && ok "t_filter blur streams a 4096x4096 map under ulimit -v $lim KB" ||
+[ "$got" = "$want" ] && ok "t_filter blur streams a ${side}x$side map under ulimit -v $lim KB" ||
     notok "t_filter blur under ulimit -v $lim" "$got vs $want"
-t_noise -s 4096 -f 8 >"$T/bigy.exr"
+t_noise -s $side -f 8 >"$T/bigy.exr"
 want=$(TEXTURA_BAND_ROWS=whole t_palette marble <"$T/bigy.exr" | md5sum)
 got=$(cat "$T/bigy.exr" | (ulimit -v $lim; t_palette marble) | md5sum)
-[ "$got" = "$want" ] && ok "t_palette's auto range streams a 4096x4096 map under ulimit -v $lim KB" ||
+[ "$got" = "$want" ] && ok "t_palette's auto range streams a ${side}x$side map under ulimit -v $lim KB" ||
     notok "t_palette auto range under ulimit -v $lim" "$got vs $want"
 rm -f "$T/bigy.exr"
 rm -f "$T/big.exr"

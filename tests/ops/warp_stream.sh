@@ -106,8 +106,7 @@ truncated "MAP cut short below the last window" out.exr TEXTURA_BAND_ROWS=7 t_wa
 # Bounded memory: a 4096x4096 RGB MAP (192 MiB as float; the whole-map path holds it, BY
 # and the result, 448 MiB) warped by a small displacement under a limit far below it.  A
 # sanitizer build has no limit to keep (its shadow memory): there the bytes alone, at 1024
-lim=$(stream_vlimit 150000) side=4096
-[ "$lim" = unlimited ] && side=1024
+lim=$(stream_vlimit 150000) side=$(stream_side 4096)
 t_noise -s $side -f 8 -S 1 | t_palette --range 0,1 marble >big.exr
 t_noise -s $side -f 4 -S 2 >bigby.exr
 for args in "--angle 90" "--edge clamp --isotropic"; do

@@ -85,12 +85,13 @@ truncated "a truncated stream after the spool" out.exr t_xform --shift 3,150 --w
 
 # Bounded memory: a 4096x4096 RGB map (192 MiB as float) expanded, shifted with a wrap
 # (spooled to TMPDIR) and clipped, under a limit far below it
-lim=$(stream_vlimit 180000)
-t_noise -s 4096 -f 8 | t_palette --range 0,1 marble >big.exr
-for args in "--expand 4200x4100 --shift 1024,-1030 --wrap --clip 8,8,4000,4000" "--rotate 5" \
-    "--scale 0.5" "--shift 10.5,7.25"; do
+lim=$(stream_vlimit 180000) side=$(stream_side 4096)
+t_noise -s $side -f 8 | t_palette --range 0,1 marble >big.exr
+q=$((side / 4)) # at 4096: --expand 4200x4100 --shift 1024,-1030 --clip 8,8,4000,4000
+for args in "--expand $((side + 104))x$((side + 4)) --shift $q,-$((q + 6)) --wrap --clip 8,8,$((side - 96)),$((side - 96))" \
+    "--rotate 5" "--scale 0.5" "--shift 10.5,7.25"; do
     want=$(TEXTURA_BAND_ROWS=whole t_xform $args <big.exr | md5sum)
     got=$(cat big.exr | (ulimit -v $lim; t_xform $args) | md5sum)
-    [ "$got" = "$want" ] && ok "t_xform $args: a 4096x4096 stream under ulimit -v $lim KB" ||
+    [ "$got" = "$want" ] && ok "t_xform $args: a ${side}x$side stream under ulimit -v $lim KB" ||
         notok "t_xform $args under ulimit -v $lim" "$got vs $want"
 done

@@ -28,7 +28,7 @@ awk -v u="$gu" -v v="$gv" 'BEGIN { exit !(v < 2 * u) }' && ok "a spread of 90 de
 # 1 - e^(-N A) of the map (a Poisson field of them).
 for set in "300 0.2 0.004" "2000 0.05 0.006" "100 0.5 0.01"; do
     read -r n l w <<<"$set"
-    t_segments -s 1024 --segments "$n" --length "$l" --width "$w" -S 3 | t_op -t 1e-9 threshold - -o "$T/c.exr"
+    t_segments -s 512 --segments "$n" --length "$l" --width "$w" -S 3 | t_op -t 1e-9 threshold - -o "$T/c.exr"
     got=$(mean "$T/c.exr" 0)
     want=$(awk -v n="$n" -v l="$l" -v w="$w" 'BEGIN { print 1 - exp(-n * (l * w + 3.14159265 * w * w / 4)) }')
     awk -v g="$got" -v e="$want" 'BEGIN { d = g / e - 1; exit !(d < 0.12 && d > -0.12) }' &&
