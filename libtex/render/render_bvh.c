@@ -358,8 +358,8 @@ static inline int leaf_segment(const struct prim *p, const struct tex_bvh_ray *r
 /* The spans of a transformed leaf or a CSG tree p along r into *s; 0 (none made) where r
  * has no boundary of it between tmin and tmax (the closest hit so far, or the light) that
  * cheap tests can rule out: its box, or leaf_segment. */
-static inline int prim_spans(const struct prim *p, const struct tex_bvh_ray *r, double tmin, double tmax,
-                             struct tex_spans *s)
+static inline int prim_spans(const struct prim *p, const struct tex_bvh_ray *r, double tmin,
+                             double tmax, struct tex_spans *s)
 {
     const struct tex_object *ob = p->ob;
     double t0;
@@ -379,7 +379,8 @@ static inline int prim_spans(const struct prim *p, const struct tex_bvh_ray *r, 
 
 /* Spans of a CSG tree or a transformed leaf: the first boundary beyond tmin
  * and before *tmax.  Out of line: the interval lists are large. */
-static __attribute__((noinline)) int first_hit_spans(const struct prim *p, const struct tex_bvh_ray *r,
+static __attribute__((noinline)) int first_hit_spans(const struct prim *p,
+                                                     const struct tex_bvh_ray *r,
                                                      double tmin, double *tmax,
                                                      struct tex_hit *hit)
 {
@@ -424,8 +425,8 @@ static inline double quick_t(const struct prim *p, const struct tex_bvh_ray *r, 
 }
 
 /* The first boundary of p beyond tmin and before *tmax: 1, *hit and *tmax updated. */
-static inline int first_hit(const struct prim *p, const struct tex_bvh_ray *r, double tmin, double *tmax,
-                            struct tex_hit *hit)
+static inline int first_hit(const struct prim *p, const struct tex_bvh_ray *r, double tmin,
+                            double *tmax, struct tex_hit *hit)
 {
     if (p->kind != PK_SPHERE && p->kind != PK_PLANE)
         return first_hit_spans(p, r, tmin, tmax, hit);
@@ -448,8 +449,9 @@ static inline int seen(uint64_t visit, int i)
 
 /* The children of quad q that r enters within tmin..tmax (bit c: child c), at distances t[c] */
 static inline __attribute__((always_inline)) int quad_children(const struct quad *q,
-                                                               const struct tex_bvh_ray *r, double tmin,
-                                                               double tmax, double t[4])
+                                                               const struct tex_bvh_ray *r,
+                                                               double tmin, double tmax,
+                                                               double t[4])
 {
 #ifdef TEX_X86 /* four boxes in SSE2's lanes, which every x86-64 has: the same answers */
     return tex_box4_sse2(&q->b, &r->o, &r->inv, tmin, tmax, t) & q->mask;
@@ -486,7 +488,8 @@ static inline __attribute__((always_inline)) int bvh_trace(const struct tex_bvh 
     if (tree) {
         ray_setup(&r, o, d);
     } else {
-        r = (struct tex_bvh_ray){*o, *d, {0, 0, 0}, tex_v3_dot(*d, *d), 0}; /* the unbounded read neither */
+        /* the unbounded read neither inv nor idd */
+        r = (struct tex_bvh_ray){*o, *d, {0, 0, 0}, tex_v3_dot(*d, *d), 0};
     }
     int found = 0;
     if (!(r.dd > 0))
@@ -569,7 +572,8 @@ static double surface_kt(const struct tex_scene *s, const struct tex_object *lea
 /* Spans of a CSG tree or a transformed leaf: the product of Kt over its
  * boundaries in (tmin, tmax) into *tr.  Out of line: the interval lists are large. */
 static __attribute__((noinline)) void transmit_spans(const struct tex_scene *s,
-                                                     const struct prim *p, const struct tex_bvh_ray *r,
+                                                     const struct prim *p,
+                                                     const struct tex_bvh_ray *r,
                                                      double tmin, double tmax, double *tr)
 {
     struct tex_spans sp;
@@ -846,7 +850,8 @@ static inline void packet_children(const struct quad *q, const struct tex_ray_la
 
 /* A packet's n rays into r and l's lanes (tmin, tmax theirs), each one's hits on the unbounded
  * objects found: the mask of those that enter the tree's box */
-static uint64_t packet_start(const struct tex_bvh *t, int n, const tex_ray *rays, struct tex_bvh_ray r[64],
+static uint64_t packet_start(const struct tex_bvh *t, int n, const tex_ray *rays,
+                             struct tex_bvh_ray r[64],
                              struct tex_ray_lanes *l, double tmin[64], double tmax[64],
                              struct tex_hit *hit, int *found)
 {
