@@ -119,7 +119,8 @@ HEADERS  = $(filter-out $(PRIVATE_HEADERS),$(wildcard libtex/*/*.h)) libtex/prim
 DEBS = build-essential pkg-config liblz4-dev libopenexr-dev libopenimageio-dev openimageio-tools \
        libpng-dev libjpeg62-turbo-dev libtiff-dev libvips-dev \
        libflann-dev libfftw3-dev colord-data mandoc netpbm imagemagick libnoise-dev povray \
-       hyperfine clang libclang-rt-14-dev libomp-dev python3 parallel libmicrohttpd-dev chromium ffmpeg
+       hyperfine clang libclang-rt-14-dev libomp-dev python3 parallel libmicrohttpd-dev chromium ffmpeg \
+       fonts-dejavu-core
 
 .PHONY: all deps demo test test-plain test-clang check bench install uninstall man fuzz fuzz-libs fuzz-smoke figures \
         gallery clean tsan

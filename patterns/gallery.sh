@@ -204,7 +204,8 @@ html() {
     echo '</body></html>'
 } >index.html
 # the contact sheet: captions wrapped at spaces to the thumbnail's width, at most six
-# lines (montage makes every tile as tall as the tallest label)
+# lines (montage makes every tile as tall as the tallest label), in DejaVu Sans (make
+# deps' fonts-dejavu-core: montage's default font is looked up again for every label)
 if command -v montage >/dev/null; then
     cols=$((W / 5))
     set --
@@ -212,7 +213,7 @@ if command -v montage >/dev/null; then
         label=$(printf '%s' "$cmd" | fold -s -w "$cols" | awk 'NR <= 6 { print } NR == 7 { print "..." }')
         set -- "$@" -label "$label" "$f"
     done <list
-    montage "$@" -tile 8x -geometry "${W}x${W}+6+6" -pointsize 8 \
+    montage "$@" -tile 8x -geometry "${W}x${W}+6+6" -font DejaVu-Sans -pointsize 8 \
         -background '#222222' -fill '#dddddd' gallery.png
 fi
 rm -f err prims
