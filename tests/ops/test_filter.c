@@ -145,7 +145,8 @@ static void test_separable_sums(void)
            cases);
 }
 
-int main(void)
+/* Blur, box and smooth of white noise, threads, and tileable maps */
+static void test_white_noise(void)
 {
     tex_map *m, *b;
 
@@ -201,6 +202,12 @@ int main(void)
     CHECKF(shift_error(median1, m, TEX_EDGE_WRAP) == 0, "median, wrap: tileable stays tileable");
     CHECKF(shift_error(normal4, m, TEX_EDGE_WRAP) == 0, "normal, wrap: tileable stays tileable");
     tex_map_free(m);
+}
+
+/* Sobel, normals and gradient of a ramp, a level plane and a bump */
+static void test_slopes(void)
+{
+    tex_map *m, *b;
 
     /* Sobel of a ramp is constant: the ramp's slope. */
     m = tex_map_new(64, 48, 1);
@@ -266,6 +273,13 @@ int main(void)
     CHECK(b->nc == 2 && tex_map_px(b, 38, 24)[0] < 0 && tex_map_px(b, 32, 28)[1] < 0,
           "gradient: 2 channels, downhill away from the bump");
     tex_map_free(b);
+    tex_map_free(m);
+}
+
+/* Median and edges around a one-pixel spike */
+static void test_spike(void)
+{
+    tex_map *m = tex_map_new(64, 48, 1), *b;
 
     /* Median removes a lone spike; sharpen and edges keep flat areas. */
     for (size_t i = 0; i < tex_map_samples(m); i++)
@@ -279,6 +293,12 @@ int main(void)
           "edges enhances the spike and keeps flat areas");
     tex_map_free(b);
     tex_map_free(m);
+}
+
+/* The noise filter */
+static void test_noise(void)
+{
+    tex_map *m, *b;
 
     /* Noise: the asked standard deviation, alpha untouched; a seed is repeatable. */
     m = tex_map_new(128, 128, 4);
@@ -295,6 +315,12 @@ int main(void)
     }
     tex_map_free(b);
     tex_map_free(m);
+}
+
+/* Bad input */
+static void test_bad(void)
+{
+    tex_map *m, *b;
 
     /* Bad input. */
     m = tex_map_new(16, 16, 1);
@@ -306,6 +332,15 @@ int main(void)
     b = tex_filter_median(m, 20, TEX_EDGE_WRAP);
     CHECK(!b && strstr(tex_errmsg(), "1..15"), "a median radius above 15 is refused");
     tex_map_free(m);
+}
+
+int main(void)
+{
+    test_white_noise();
+    test_slopes();
+    test_spike();
+    test_noise();
+    test_bad();
     test_band_rows();
     test_separable_sums();
     return unit_done();
