@@ -159,10 +159,15 @@ static inline float tex_colour_max(const tex_colour *a, int n)
     /* four lanes (one vector): the reduction from v[1] stored and reloaded its partial
      * vector, a stall that was 1/7 of a spectral tex_shade.  The same number: NaN where
      * v[0] is, else the largest of the others (a zero's sign aside, which no caller asks) */
-    float l[4] = {m, -INFINITY, -INFINITY, -INFINITY};
-    for (int i = 0; i < n; i += 4)
-        for (int j = 0; j < 4; j++)
-            l[j] = a->v[i + j] > l[j] ? a->v[i + j] : l[j];
+    typedef float f4 __attribute__((vector_size(16)));
+    typedef int i4 __attribute__((vector_size(16)));
+    f4 l = {m, -INFINITY, -INFINITY, -INFINITY};
+    for (int i = 0; i < n; i += 4) { /* x > l ? x : l in whole vectors: it was lane by lane */
+        f4 x;
+        memcpy(&x, a->v + i, sizeof x);
+        i4 gt = x > l;
+        l = (f4)(((i4)x & gt) | ((i4)l & ~gt));
+    }
     for (int j = 1; j < 4; j++)
         m = l[j] > m ? l[j] : m;
     return m;
