@@ -349,15 +349,16 @@ int tex_bands_light(const struct tex_bands *b, const tex_curve *c, float *out)
     return 0;
 }
 
-void tex_bands_xyz(const struct tex_bands *b, const float *s, double xyz[3])
+/* tex_bands_xyz over n bands: X, Y and Z side by side in lanes, each summed band by band
+ * as ever (three scalar chains were once per sample of a spectral render, its largest cost
+ * after shading) */
+static inline void bands_xyz(const struct tex_bands *b, int n, const float *s, double xyz[3])
 {
-    /* X, Y and Z side by side in lanes, each summed band by band as ever: three scalar
-     * chains were once per sample of a spectral render, its largest cost after shading */
     typedef float f4 __attribute__((vector_size(16)));
     typedef double d2 __attribute__((vector_size(16)));
     d2 xy = {0, 0};
     double z = 0;
-    for (int i = 0; i < b->n; i++) {
+    for (int i = 0; i < n; i++) {
         f4 w;
         memcpy(&w, b->wxyz[i], sizeof w);
         f4 p = w * s[i]; /* the float products s[i] * w[k][i] */
@@ -369,8 +370,17 @@ void tex_bands_xyz(const struct tex_bands *b, const float *s, double xyz[3])
     xyz[2] = z;
 }
 
-void tex_bands_from_rgb(const struct tex_bands *b, const double rgb[3], int reflectance,
-                        float *out)
+/* The default band count unrolled: a loop of constant length */
+void tex_bands_xyz(const struct tex_bands *b, const float *s, double xyz[3])
+{
+    if (b->n == TEX_BANDS_DEFAULT)
+        bands_xyz(b, TEX_BANDS_DEFAULT, s, xyz);
+    else
+        bands_xyz(b, b->n, s, xyz);
+}
+
+static inline void bands_from_rgb(const struct tex_bands *b, int n, const double rgb[3],
+                                  int reflectance, float *out)
 {
     /* per hit point in the renderer: single precision, so the loop vectorises */
     float c[3];
@@ -379,11 +389,20 @@ void tex_bands_from_rgb(const struct tex_bands *b, const double rgb[3], int refl
                        b->rgb2c[j][2] * rgb[2]);
     float hi = reflectance ? 1.0f : INFINITY;
 #pragma omp simd
-    for (int i = 0; i < b->n; i++) {
+    for (int i = 0; i < n; i++) {
         float v = c[0] * b->basis[0][i] + c[1] * b->basis[1][i] + c[2] * b->basis[2][i];
         v = v < 0 ? 0 : v;
         out[i] = v > hi ? hi : v;
     }
+}
+
+void tex_bands_from_rgb(const struct tex_bands *b, const double rgb[3], int reflectance,
+                        float *out)
+{
+    if (b->n == TEX_BANDS_DEFAULT)
+        bands_from_rgb(b, TEX_BANDS_DEFAULT, rgb, reflectance, out);
+    else
+        bands_from_rgb(b, b->n, rgb, reflectance, out);
 }
 
 void tex_bands_to_rgb(const struct tex_bands *b, const float *s, enum tex_gamut g,
