@@ -76,10 +76,9 @@ float tex_srgb_decode(float encoded);
         if ((n) == 3) {                                                                    \
             for (int i = 0; i < 3; i++) r_[i] = (expr);                                    \
             (d)->v[0] = r_[0], (d)->v[1] = r_[1], (d)->v[2] = r_[2];                        \
-        } else if ((n) == TEX_COLOUR_BANDS) {                                              \
+        } else if ((n) == TEX_COLOUR_BANDS)                                                \
             _Pragma("omp simd") for (int i = 0; i < TEX_COLOUR_BANDS; i++)(d)->v[i] = (expr); \
-        } else                                                                             \
-            _Pragma("omp simd") for (int i = 0; i < (n); i++)(d)->v[i] = (expr);           \
+        else _Pragma("omp simd") for (int i = 0; i < (n); i++)(d)->v[i] = (expr);          \
     } while (0)
 
 static inline void tex_colour_set(tex_colour *d, int n, float x)
