@@ -62,17 +62,23 @@ void tex_colour_space_rgb(struct tex_colour_space *cs);
 float tex_srgb_encode(float linear);
 float tex_srgb_decode(float encoded);
 
+/* The band count of spectral scenes unless they ask for another (spectrum.h's
+ * TEX_BANDS_DEFAULT): loops over it have a constant length, whole vectors without a loop. */
+#define TEX_COLOUR_BANDS 16
+
 /* d->v[i] = expr for every sample i < n: RGB unrolled (n = 3), with all
  * three values computed before any is stored (d may be an operand: the
- * compiler need not reload after each store), spectra vectorised. */
+ * compiler need not reload after each store), spectra vectorised
+ * (TEX_COLOUR_BANDS of them unrolled). */
 #define TEX_COLOUR_EACH(n, d, expr)                                                        \
     do {                                                                                   \
         float r_[3];                                                                       \
         if ((n) == 3) {                                                                    \
             for (int i = 0; i < 3; i++) r_[i] = (expr);                                    \
             (d)->v[0] = r_[0], (d)->v[1] = r_[1], (d)->v[2] = r_[2];                        \
-        } else                                                                             \
-            _Pragma("omp simd") for (int i = 0; i < (n); i++)(d)->v[i] = (expr);           \
+        } else if ((n) == TEX_COLOUR_BANDS)                                                \
+            _Pragma("omp simd") for (int i = 0; i < TEX_COLOUR_BANDS; i++)(d)->v[i] = (expr); \
+        else _Pragma("omp simd") for (int i = 0; i < (n); i++)(d)->v[i] = (expr);          \
     } while (0)
 
 static inline void tex_colour_set(tex_colour *d, int n, float x)
@@ -88,6 +94,10 @@ static inline void tex_colour_copy(tex_colour *d, int n, const tex_colour *a)
     }
     /* spectra in blocks of a constant size: the loop alone became a call to memmove,
      * 2 % of the five spheres in 16 bands */
+    if (n == TEX_COLOUR_BANDS) {
+        memcpy(d->v, a->v, TEX_COLOUR_BANDS * sizeof *d->v);
+        return;
+    }
     int i = 0;
     for (; i + 8 <= n; i += 8)
         memcpy(d->v + i, a->v + i, 8 * sizeof *d->v);
@@ -144,6 +154,27 @@ static inline int tex_colour_zero(const tex_colour *a, int n)
     return 1;
 }
 
+/* tex_colour_max of n, a multiple of 4: four lanes (one vector); the reduction from v[1]
+ * stored and reloaded its partial vector, a stall that was 1/7 of a spectral tex_shade.
+ * The same number: NaN where v[0] is, else the largest of v[0] and the other three lanes
+ * (a zero's sign aside, which no caller asks).  Lane 0's v[4], v[8], ... take no part. */
+static inline float tex_colour_max4_(const tex_colour *a, int n)
+{
+    typedef float f4 __attribute__((vector_size(16)));
+    typedef int i4 __attribute__((vector_size(16)));
+    float m = a->v[0];
+    f4 l = {m, -INFINITY, -INFINITY, -INFINITY};
+    for (int i = 0; i < n; i += 4) { /* x > l ? x : l in whole vectors: it was lane by lane */
+        f4 x;
+        memcpy(&x, a->v + i, sizeof x);
+        i4 gt = x > l;
+        l = (f4)(((i4)x & gt) | ((i4)l & ~gt));
+    }
+    for (int j = 1; j < 4; j++)
+        m = l[j] > m ? l[j] : m;
+    return m;
+}
+
 static inline float tex_colour_max(const tex_colour *a, int n)
 {
     float m = a->v[0];
@@ -156,16 +187,7 @@ static inline float tex_colour_max(const tex_colour *a, int n)
             m = a->v[i] > m ? a->v[i] : m;
         return m;
     }
-    /* four lanes (one vector): the reduction from v[1] stored and reloaded its partial
-     * vector, a stall that was 1/7 of a spectral tex_shade.  The same number: NaN where
-     * v[0] is, else the largest of the others (a zero's sign aside, which no caller asks) */
-    float l[4] = {m, -INFINITY, -INFINITY, -INFINITY};
-    for (int i = 0; i < n; i += 4)
-        for (int j = 0; j < 4; j++)
-            l[j] = a->v[i + j] > l[j] ? a->v[i + j] : l[j];
-    for (int j = 1; j < 4; j++)
-        m = l[j] > m ? l[j] : m;
-    return m;
+    return n == TEX_COLOUR_BANDS ? tex_colour_max4_(a, TEX_COLOUR_BANDS) : tex_colour_max4_(a, n);
 }
 
 TEX_API_END

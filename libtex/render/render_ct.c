@@ -179,9 +179,7 @@ static void fresnel(const struct tex_material *mat, const struct tex_ct *ct, dou
             tex_colour_set(fr, n, f0[0] + a * (f1[0] - f0[0]));
             return;
         }
-#pragma omp simd
-        for (int i = 0; i < n; i++)
-            fr->v[i] = f0[i] + a * (f1[i] - f0[i]);
+        TEX_COLOUR_EACH(n, fr, f0[i] + a * (f1[i] - f0[i]));
         return;
     }
     if (ct->conductor) {
@@ -266,10 +264,8 @@ static void ct_weights(const struct tex_material *mat, double cosi, int n, tex_c
     tex_colour f;
     fresnel(mat, ct, cosi, n, &f);
     float wr = (float)mat->kr, wt = ct->conductor ? 0 : (float)mat->kt;
-    for (int i = 0; i < n; i++) {
-        kr->v[i] = wr * f.v[i];
-        kt->v[i] = wt * (1 - f.v[i]);
-    }
+    TEX_COLOUR_EACH(n, kr, wr * f.v[i]);
+    TEX_COLOUR_EACH(n, kt, wt * (1 - f.v[i]));
 }
 
 const struct tex_shading_model tex_shading_cook_torrance = {"cook-torrance", ct_direct,

@@ -300,7 +300,8 @@ int tex_bands_init(struct tex_bands *b, int n, const tex_colorimetry *cm)
         double lo = TEX_LAMBDA_MIN + i * b->width, hi = lo + b->width;
         b->centre[i] = (float)(0.5 * (lo + hi));
         for (int k = 0; k < 3; k++)
-            b->w[k][i] = (float)(tex_curve_mean(cmf[k], lo, hi) * b->width / ynorm);
+            b->wxyz[i][k] = b->w[k][i] =
+                (float)(tex_curve_mean(cmf[k], lo, hi) * b->width / ynorm);
     }
     float d65[TEX_BANDS_MAX];
     if (tex_bands_light(b, &cm->d65, d65) < 0)
@@ -348,21 +349,38 @@ int tex_bands_light(const struct tex_bands *b, const tex_curve *c, float *out)
     return 0;
 }
 
-void tex_bands_xyz(const struct tex_bands *b, const float *s, double xyz[3])
+/* tex_bands_xyz over n bands: X, Y and Z side by side in lanes, each summed band by band
+ * as ever (three scalar chains were once per sample of a spectral render, its largest cost
+ * after shading) */
+static inline void bands_xyz(const struct tex_bands *b, int n, const float *s, double xyz[3])
 {
-    double x = 0, y = 0, z = 0;
-    for (int i = 0; i < b->n; i++) {
-        x += s[i] * b->w[0][i];
-        y += s[i] * b->w[1][i];
-        z += s[i] * b->w[2][i];
+    typedef float f4 __attribute__((vector_size(16)));
+    typedef double d2 __attribute__((vector_size(16)));
+    d2 xy = {0, 0};
+    double z = 0;
+    for (int i = 0; i < n; i++) {
+        f4 w;
+        memcpy(&w, b->wxyz[i], sizeof w);
+        f4 p = w * s[i]; /* the float products s[i] * w[k][i] */
+        xy += __builtin_convertvector(__builtin_shufflevector(p, p, 0, 1), d2);
+        z += p[2];
     }
-    xyz[0] = x;
-    xyz[1] = y;
+    xyz[0] = xy[0];
+    xyz[1] = xy[1];
     xyz[2] = z;
 }
 
-void tex_bands_from_rgb(const struct tex_bands *b, const double rgb[3], int reflectance,
-                        float *out)
+/* The default band count unrolled: a loop of constant length */
+void tex_bands_xyz(const struct tex_bands *b, const float *s, double xyz[3])
+{
+    if (b->n == TEX_BANDS_DEFAULT)
+        bands_xyz(b, TEX_BANDS_DEFAULT, s, xyz);
+    else
+        bands_xyz(b, b->n, s, xyz);
+}
+
+static inline void bands_from_rgb(const struct tex_bands *b, int n, const double rgb[3],
+                                  int reflectance, float *out)
 {
     /* per hit point in the renderer: single precision, so the loop vectorises */
     float c[3];
@@ -371,11 +389,20 @@ void tex_bands_from_rgb(const struct tex_bands *b, const double rgb[3], int refl
                        b->rgb2c[j][2] * rgb[2]);
     float hi = reflectance ? 1.0f : INFINITY;
 #pragma omp simd
-    for (int i = 0; i < b->n; i++) {
+    for (int i = 0; i < n; i++) {
         float v = c[0] * b->basis[0][i] + c[1] * b->basis[1][i] + c[2] * b->basis[2][i];
         v = v < 0 ? 0 : v;
         out[i] = v > hi ? hi : v;
     }
+}
+
+void tex_bands_from_rgb(const struct tex_bands *b, const double rgb[3], int reflectance,
+                        float *out)
+{
+    if (b->n == TEX_BANDS_DEFAULT)
+        bands_from_rgb(b, TEX_BANDS_DEFAULT, rgb, reflectance, out);
+    else
+        bands_from_rgb(b, b->n, rgb, reflectance, out);
 }
 
 void tex_bands_to_rgb(const struct tex_bands *b, const float *s, enum tex_gamut g,
@@ -406,6 +433,17 @@ void tex_linear_srgb_to_xyz(const double rgb[3], double xyz[3])
     xyz[2] = 0.0193339 * r + 0.1191920 * g + 0.9503041 * b;
 }
 
+/* fmin and fmax (the number where one is NaN) without libm's call */
+static inline double min_num(double a, double b)
+{
+    return a < b || b != b ? a : b;
+}
+
+static inline double max_num(double a, double b)
+{
+    return a > b || b != b ? a : b;
+}
+
 void tex_gamut_map(double rgb[3], enum tex_gamut g)
 {
     if (g == TEX_GAMUT_NONE)
@@ -424,7 +462,7 @@ void tex_gamut_map(double rgb[3], enum tex_gamut g)
         rgb[0] = rgb[1] = rgb[2] = 1;
         return;
     }
-    double lo = fmin(rgb[0], fmin(rgb[1], rgb[2]));
+    double lo = min_num(rgb[0], min_num(rgb[1], rgb[2]));
     if (lo < 0) { /* toward grey until the lowest channel reaches 0 */
         double t = y / (y - lo);
         for (int i = 0; i < 3; i++)
@@ -435,7 +473,7 @@ void tex_gamut_map(double rgb[3], enum tex_gamut g)
             rgb[i] = rgb[i] < 0 ? 0 : rgb[i];
         return;
     }
-    double hi = fmax(rgb[0], fmax(rgb[1], rgb[2]));
+    double hi = max_num(rgb[0], max_num(rgb[1], rgb[2]));
     if (hi > 1) { /* then until the highest reaches 1 */
         double t = (1 - y) / (hi - y);
         for (int i = 0; i < 3; i++)
