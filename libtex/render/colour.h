@@ -156,8 +156,8 @@ static inline int tex_colour_zero(const tex_colour *a, int n)
 
 /* tex_colour_max of n, a multiple of 4: four lanes (one vector); the reduction from v[1]
  * stored and reloaded its partial vector, a stall that was 1/7 of a spectral tex_shade.
- * The same number: NaN where v[0] is, else the largest of v[0] and the other three lanes
- * (a zero's sign aside, which no caller asks).  Lane 0's v[4], v[8], ... take no part. */
+ * The scalar loop's number: NaN where v[0] is, else the largest of the others (a zero's
+ * sign aside, which no caller asks). */
 static inline float tex_colour_max4_(const tex_colour *a, int n)
 {
     typedef float f4 __attribute__((vector_size(16)));
@@ -170,6 +170,7 @@ static inline float tex_colour_max4_(const tex_colour *a, int n)
         i4 gt = x > l;
         l = (f4)(((i4)x & gt) | ((i4)l & ~gt));
     }
+    m = l[0]; /* v[0] and lane 0's v[4], v[8], ... */
     for (int j = 1; j < 4; j++)
         m = l[j] > m ? l[j] : m;
     return m;
