@@ -133,14 +133,31 @@ static inline void tex_colour_mmadd(tex_colour *d, int n, const tex_colour *a, c
     TEX_COLOUR_EACH(n, d, d->v[i] + a->v[i] * b->v[i] * s);
 }
 
+/* 1 if every sample of e is finite (RGB unrolled, as TEX_COLOUR_EACH) */
+static inline int tex_colour_finite(const tex_colour *e, int n)
+{
+    if (n == 3)
+        return isfinite(e->v[0]) && isfinite(e->v[1]) && isfinite(e->v[2]);
+    for (int i = 0; i < n; i++)
+        if (!isfinite(e->v[i]))
+            return 0;
+    return 1;
+}
+
+/* 1 if no sample of d is -0.  A sum keeps it so: x + y is -0 only where both are */
+static inline int tex_colour_no_negative_zero(const tex_colour *d, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (d->v[i] == 0 && signbit(d->v[i]))
+            return 0;
+    return 1;
+}
+
 /* 1 if d + a * e * s, a zero colour a and s finite, is d itself: every sample of e finite
  * (0 inf is NaN) and none of d -0 (-0 + +0 is +0) */
 static inline int tex_colour_zero_adds_nothing(const tex_colour *d, const tex_colour *e, int n)
 {
-    for (int i = 0; i < n; i++)
-        if (!isfinite(e->v[i]) || (d->v[i] == 0 && signbit(d->v[i])))
-            return 0;
-    return 1;
+    return tex_colour_finite(e, n) && tex_colour_no_negative_zero(d, n);
 }
 
 /* 1 if every sample is zero (of either sign) */

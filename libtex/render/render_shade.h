@@ -81,10 +81,12 @@ static inline double tex_powi(double x, double n)
 }
 
 /* Whitted-Phong's direct(), inline for the renderer's common case (N, V, L:
- * three doubles each). */
-static inline void tex_phong_direct(const struct tex_material *m, const double *N,
-                                    const double *V, const double *L, const tex_colour *E,
-                                    int n, tex_colour *out)
+ * three doubles each).  dull: the caller knows m's Ks zero and no sample of out -0
+ * (tex_colour_no_negative_zero, which the sums here keep), tested once for a hit's many
+ * light samples rather than at each: then the highlight adds nothing wherever E is finite. */
+static inline void tex_phong_direct_dull(const struct tex_material *m, const double *N,
+                                         const double *V, const double *L, const tex_colour *E,
+                                         int n, int dull, tex_colour *out)
 {
     double nl = N[0] * L[0] + N[1] * L[1] + N[2] * L[2];
     if (nl <= 0)
@@ -92,7 +94,8 @@ static inline void tex_phong_direct(const struct tex_material *m, const double *
     tex_colour_mmadd(out, n, &m->kd, E, (float)nl);
     /* without a specular colour (Ks 0, the default) the highlight adds zeros: where they
      * leave out as it is, no half vector, cut-off or power */
-    if (tex_colour_zero(&m->ks, n) && tex_colour_zero_adds_nothing(out, E, n))
+    if (dull ? tex_colour_finite(E, n)
+             : tex_colour_zero(&m->ks, n) && tex_colour_zero_adds_nothing(out, E, n))
         return;
     double h[3] = {L[0] + V[0], L[1] + V[1], L[2] + V[2]};
     double hh = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
@@ -104,6 +107,13 @@ static inline void tex_phong_direct(const struct tex_material *m, const double *
     double x = q * q / hh, y = 1 - x;
     if (0.5 * m->n * y * (1 + y * (0.5 + y * (1.0 / 3))) < 30)
         tex_colour_mmadd(out, n, &m->ks, E, (float)tex_powi(q / sqrt(hh), m->n));
+}
+
+static inline void tex_phong_direct(const struct tex_material *m, const double *N,
+                                    const double *V, const double *L, const tex_colour *E,
+                                    int n, tex_colour *out)
+{
+    tex_phong_direct_dull(m, N, V, L, E, n, 0, out);
 }
 
 /* tex_shading_find (render.h) finds a model by name. */

@@ -35,12 +35,14 @@ static double curvature(const struct tex_hit *h, tex_v3 P, tex_v3 Nf, tex_v3 d)
     return fabs(k[0]) > fabs(k[1]) ? k[0] : k[1];
 }
 
-/* One light sample of irradiance E from L through m's shading model. */
+/* One light sample of irradiance E from L through m's shading model (dull: Phong's,
+ * tex_phong_direct_dull's). */
 static inline void shade_direct(const struct tex_material *m, const tex_v3 *N, const tex_v3 *V,
-                                const tex_v3 *L, const tex_colour *E, int n, tex_colour *out)
+                                const tex_v3 *L, const tex_colour *E, int n, int dull,
+                                tex_colour *out)
 {
     if (m->model == &tex_shading_phong) /* inline: no call for the common model */
-        tex_phong_direct(m, &N->x, &V->x, &L->x, E, n, out);
+        tex_phong_direct_dull(m, &N->x, &V->x, &L->x, E, n, dull, out);
     else
         m->model->direct(m, &N->x, &V->x, &L->x, E, n, out);
 }
@@ -76,23 +78,23 @@ static inline __attribute__((always_inline)) void light_at(const struct tex_rend
 }
 
 /* Light sample a of light l, its shadow ray traced (tex_light_pass), through m's shading
- * model into out */
+ * model into out (dull: direct_light's) */
 static inline __attribute__((always_inline)) void light_shade(const struct tex_render_ctx *c, const struct tex_material *m,
                                const struct tex_hit_frame *f, const struct tex_light *l,
-                               const struct tex_light_ahead *a, tex_colour *out)
+                               const struct tex_light_ahead *a, int dull, tex_colour *out)
 {
     int n = c->n;
     const tex_v3 *N = f->N, *V = f->V;
     tex_colour E;
     tex_colour_scale(&E, n, &l->e, (float)a->fatt);
     if (!m->blend_m) {
-        shade_direct(m, N, V, &a->L, &E, n, out);
+        shade_direct(m, N, V, &a->L, &E, n, dull, out);
     } else { /* a mixture of two surfaces: each one's light, weighted */
         tex_colour ca, cb;
         tex_colour_set(&ca, n, 0);
         tex_colour_set(&cb, n, 0);
-        shade_direct(m, N, V, &a->L, &E, n, &ca);
-        shade_direct(m->blend_m, N, V, &a->L, &E, n, &cb);
+        shade_direct(m, N, V, &a->L, &E, n, 0, &ca);
+        shade_direct(m->blend_m, N, V, &a->L, &E, n, 0, &cb);
         for (int i = 0; i < n; i++)
             out->v[i] += (1 - m->blend) * ca.v[i] + m->blend * cb.v[i];
     }
@@ -149,6 +151,10 @@ static inline __attribute__((always_inline)) void direct_light(const struct tex_
                          const struct tex_light_ahead *lit, tex_colour *out)
 {
     const struct tex_scene *s = c->s;
+    /* a Phong surface without highlights: its Ks and out's zeros tested once, not at
+     * each of the samples (16 an area light) */
+    int dull = m->model == &tex_shading_phong && !m->blend_m && tex_colour_zero(&m->ks, c->n) &&
+               tex_colour_no_negative_zero(out, c->n);
     for (int li = 0; li < s->nlights; li++) {
         const struct tex_light *l = &s->lights[li];
         int ns = tex_light_samples(l);
@@ -165,7 +171,7 @@ static inline __attribute__((always_inline)) void direct_light(const struct tex_
                 }
             }
             if (a->ok)
-                light_shade(c, m, f, l, a, out);
+                light_shade(c, m, f, l, a, dull, out);
         }
     }
 }
