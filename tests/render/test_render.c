@@ -13,6 +13,7 @@
 #include "render/scene.h"
 #include "render/appfn.h"
 #include "render/footprint.h"
+#include "render/whitted.h"
 #include "render/x86/bvh_x86.h"
 #include "render/x86/light_x86.h"
 #include "render/x86/packet_x86.h"
@@ -1309,6 +1310,64 @@ static void test_phong_zero_ks(void)
            cases);
 }
 
+/* tex_phong_direct_dull where its caller's promise holds (Ks zero of either sign, no sample
+ * of out -0): the bits of tex_phong_direct, E finite or not */
+static void test_phong_dull(void)
+{
+    const double N[3] = {0, 1, 0}, V[3] = {0, 0.6, -0.8}, L[3] = {0, 0.8, 0.6};
+    const float kds[3] = {0.5f, -0.0f, 0}, kss[2] = {0, -0.0f};
+    const float es[5] = {1, INFINITY, -INFINITY, NAN, 0}, outs[3] = {0, 0.25f, NAN};
+    int bad = 0, cases = 0;
+    for (int n = 3; n <= 8; n += 5)
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 2; b++)
+                for (int e = 0; e < 5; e++)
+                    for (int o = 0; o < 3; o++) {
+                        struct tex_material m = {.n = 20};
+                        tex_colour E, got, want;
+                        tex_colour_set(&m.kd, n, kds[a]);
+                        tex_colour_set(&m.ks, n, kss[b]);
+                        tex_colour_set(&E, n, 1);
+                        E.v[n - 1] = es[e]; /* one sample off */
+                        tex_colour_set(&got, n, outs[o]);
+                        want = got;
+                        tex_phong_direct_dull(&m, N, V, L, &E, n, 1, &got);
+                        tex_phong_direct(&m, N, V, L, &E, n, &want);
+                        bad += memcmp(got.v, want.v, n * sizeof *got.v) != 0;
+                        cases++;
+                    }
+    CHECKF(bad == 0, "Phong without highlights, tested once: tex_phong_direct's bits (%d of %d "
+           "differ)", bad, cases);
+}
+
+/* A hit whose sum starts at -0 (Ka Kd, Kd -0) and stays there through the diffuse terms:
+ * the first highlight of Ks 0 makes it +0, as tex_phong_direct has it, so direct_light
+ * may not take the surface as one without highlights */
+static void test_dull_negative_zero(void)
+{
+    const char *sc = "image 8 8\nambient 1 1 1\n"
+                     "light area { position -0.5 4 -0.5 edge1 1 0 0 edge2 0 0 1 samples 4 }\n"
+                     "surface s { Ka 0.5 Kd -0 Ks 0 }\nplane { surface s }\n";
+    struct tex_scene *s = tex_scene_parse(sc, strlen(sc), "zero.scene");
+    CHECK(s && tex_scene_prepare(s) == 0, "the -0 scene prepares");
+    if (!s)
+        return;
+    tex_colour ambient, background, out;
+    s->cs.from_rgb(&s->cs, s->ambient, TEX_SPECTRUM_ILLUMINANT, &ambient);
+    s->cs.from_rgb(&s->cs, s->background, TEX_SPECTRUM_ILLUMINANT, &background);
+    tex_rng g;
+    tex_rng_seed(&g, 5);
+    struct tex_render_ctx c = {s, s->cs.n, &ambient, &background, &g, 1, 0, 0};
+    tex_ray r = {tex_v3_make(0, 2, 0), tex_v3_make(0, -1, 0), 0, 0, NULL, 0};
+    tex_trace(&c, &r, NULL, 0, 1, &out);
+    int neg = 0;
+    for (int i = 0; i < c.n; i++)
+        neg += out.v[i] != 0 || signbit(out.v[i]);
+    CHECKF(neg == 0, "a sum at -0, a highlight of Ks 0 added: +0 (%d of %d samples not)", neg,
+           c.n);
+    tex_scene_free(s);
+}
+
 /* A plain surface's Kd expressions left by tex_plain_resolve and run over many hits together
  * (tex_plain_later_run): Ka and Kd bit for bit those of each hit's own run (tex_appfn_eval,
  * clamped as apply_fn clamps, times Ka as material scales it), hits of several functions
@@ -1419,6 +1478,8 @@ int main(void)
     test_bailout();
     test_csg_combine();
     test_phong_zero_ks();
+    test_phong_dull();
+    test_dull_negative_zero();
     test_later_run();
     test_area_samples();
     char cmd[300];
