@@ -692,39 +692,46 @@ static void transmit_walk(const struct tex_scene *s, int n, struct tex_bvh_ray *
                           const struct tex_object *const *from, double *tr)
 {
     const struct tex_bvh *t = s->bvh;
-    uint64_t live = 0;
-    for (int i = 0; i < n; i++) {
-        ray_slabs(&r[i]);
-        tr[i] = 1;
-        live |= (uint64_t)(r[i].dd > 0) << i;
-    }
-    for (int i = 0; i < t->nunb && live; i++)
-        transmit_rays(s, &t->unb[i], r, live, tmin, tmax, from, tr, &live);
-    if (!t->nnodes)
-        return;
     /* the box around every segment, widened by a million times the rounding of its ends
      * and of hit_box; the whole space where an end is not finite (a distant light) */
     struct tex_ray_lanes lanes, *lp = NULL; /* the live rays in lanes, eight or more of them */
     int wide = 0; /* one ray's calls (most of them) do not ask the level */
-    if (n >= 8 && tex_simd_level() >= TEX_SIMD_AVX2) {
+    if (n >= 8 && t->nnodes && tex_simd_level() >= TEX_SIMD_AVX2) {
         lp = &lanes, wide = tex_simd_level() >= TEX_SIMD_AVX512;
         lanes.tmin = tmin, lanes.tmax = tmax;
     }
     struct tex_bounds all = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
-    double big = 0;
-    for (uint64_t m = live; m; m &= m - 1) { /* the box and the lanes in one pass */
-        int i = __builtin_ctzll(m);
+    double bige = 0, bigo = 0;
+    tex_v3 po = tex_v3_make(NAN, NAN, NAN); /* the origin last grown by: none equals NaN */
+    uint64_t live = 0;
+    for (int i = 0; i < n; i++) { /* the rays' slabs, the box and the lanes in one pass */
+        ray_slabs(&r[i]);
+        tr[i] = 1;
+        if (!(r[i].dd > 0))
+            continue;
+        live |= 1ull << i;
         tex_v3 o = r[i].o, e = tex_v3_madd(o, r[i].d, tmax[i]); /* the far end: the near one is o */
-        box_grow(&all, o);
+        /* an area light's samples share their origin: the box grown by it once (and by rays
+         * an unbounded object then darkens: the box only has to hold the live ones) */
+        if (!(o.x == po.x && o.y == po.y && o.z == po.z)) {
+            box_grow(&all, o), po = o;
+            double so = fabs(o.x) + fabs(o.y) + fabs(o.z);
+            bigo = so < 1e12 ? tex_maxd(bigo, so) : INFINITY; /* NaN too */
+        }
         box_grow(&all, e);
-        double size = fabs(e.x) + fabs(e.y) + fabs(e.z) + fabs(o.x) + fabs(o.y) + fabs(o.z);
-        big = size < 1e12 ? tex_maxd(big, size) : INFINITY; /* NaN too */
+        double se = fabs(e.x) + fabs(e.y) + fabs(e.z);
+        bige = se < 1e12 ? tex_maxd(bige, se) : INFINITY;
         if (lp) { /* the masks never hold a ray out of live: its lanes go unread */
             lanes.o[0][i] = o.x, lanes.o[1][i] = o.y, lanes.o[2][i] = o.z;
             lanes.inv[0][i] = r[i].inv.x, lanes.inv[1][i] = r[i].inv.y;
             lanes.inv[2][i] = r[i].inv.z;
         }
     }
+    for (int i = 0; i < t->nunb && live; i++)
+        transmit_rays(s, &t->unb[i], r, live, tmin, tmax, from, tr, &live);
+    if (!t->nnodes)
+        return;
+    double big = bige + bigo;
     if (big < 1e12 && n > 1) { /* one ray: its own test of the box is the same */
         double eps = 1e-9 * (1 + big);
         all.lo = tex_v3_sub(all.lo, tex_v3_make(eps, eps, eps));
