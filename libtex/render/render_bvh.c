@@ -701,26 +701,21 @@ static void transmit_walk(const struct tex_scene *s, int n, struct tex_bvh_ray *
         lanes.tmin = tmin, lanes.tmax = tmax;
     }
     struct tex_bounds all = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
-    double bige = 0, bigo = 0;
-    tex_v3 po = tex_v3_make(NAN, NAN, NAN); /* the origin last grown by: none equals NaN */
+    double big = 0;
     uint64_t live = 0;
-    for (int i = 0; i < n; i++) { /* the rays' slabs, the box and the lanes in one pass */
+    /* the rays' slabs, the box and the lanes in one pass (the box grown by rays an unbounded
+     * object then darkens too: it only has to hold the live ones) */
+    for (int i = 0; i < n; i++) {
         ray_slabs(&r[i]);
         tr[i] = 1;
         if (!(r[i].dd > 0))
             continue;
         live |= 1ull << i;
         tex_v3 o = r[i].o, e = tex_v3_madd(o, r[i].d, tmax[i]); /* the far end: the near one is o */
-        /* an area light's samples share their origin: the box grown by it once (and by rays
-         * an unbounded object then darkens: the box only has to hold the live ones) */
-        if (!(o.x == po.x && o.y == po.y && o.z == po.z)) {
-            box_grow(&all, o), po = o;
-            double so = fabs(o.x) + fabs(o.y) + fabs(o.z);
-            bigo = so < 1e12 ? tex_maxd(bigo, so) : INFINITY; /* NaN too */
-        }
+        box_grow(&all, o);
         box_grow(&all, e);
-        double se = fabs(e.x) + fabs(e.y) + fabs(e.z);
-        bige = se < 1e12 ? tex_maxd(bige, se) : INFINITY;
+        double size = fabs(e.x) + fabs(e.y) + fabs(e.z) + fabs(o.x) + fabs(o.y) + fabs(o.z);
+        big = size < 1e12 ? tex_maxd(big, size) : INFINITY; /* NaN too */
         if (lp) { /* the masks never hold a ray out of live: its lanes go unread */
             lanes.o[0][i] = o.x, lanes.o[1][i] = o.y, lanes.o[2][i] = o.z;
             lanes.inv[0][i] = r[i].inv.x, lanes.inv[1][i] = r[i].inv.y;
@@ -731,7 +726,6 @@ static void transmit_walk(const struct tex_scene *s, int n, struct tex_bvh_ray *
         transmit_rays(s, &t->unb[i], r, live, tmin, tmax, from, tr, &live);
     if (!t->nnodes)
         return;
-    double big = bige + bigo;
     if (big < 1e12 && n > 1) { /* one ray: its own test of the box is the same */
         double eps = 1e-9 * (1 + big);
         all.lo = tex_v3_sub(all.lo, tex_v3_make(eps, eps, eps));

@@ -953,7 +953,7 @@ static void test_transmit_batch(void)
             tex_v3 o[64], d[64];
             int n = b.n = p % 4 ? 64 : 1 + (int)tex_rng_below(&g, 64);
             /* as an area light's samples from one hit: one origin, segments to points of
-             * one box, some of no length (unlit; the walk grows its box by an origin once) */
+             * one box, some of no length (unlit: out of the walk, the box not grown by them) */
             int share = p % 5 == 2;
             const struct tex_bounds *lamp = &bx[tex_rng_below(&g, 80)];
             for (int i = 0; i < n; i++) {
