@@ -7,6 +7,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* colour.h's loops of constant length are for the band count spectral scenes take unasked */
+_Static_assert(TEX_COLOUR_BANDS == TEX_BANDS_DEFAULT, "colour.h's TEX_COLOUR_BANDS follows "
+                                                      "spectrum.h's TEX_BANDS_DEFAULT");
+
 struct spectral_data {
     struct tex_bands bands;
     float d65[TEX_BANDS_MAX]; /* Y = 1 */

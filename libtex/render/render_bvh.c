@@ -77,7 +77,6 @@ struct tex_bvh {
     int nunb;
 };
 
-/* A ray with its per-ray constants. */
 /* r's inv and dd from its d: what a shadow ray's walk reads (no idd: its division is the
  * closest hit's alone) */
 static inline void ray_slabs(struct tex_bvh_ray *r)

@@ -300,8 +300,7 @@ int tex_bands_init(struct tex_bands *b, int n, const tex_colorimetry *cm)
         double lo = TEX_LAMBDA_MIN + i * b->width, hi = lo + b->width;
         b->centre[i] = (float)(0.5 * (lo + hi));
         for (int k = 0; k < 3; k++)
-            b->wxyz[i][k] = b->w[k][i] =
-                (float)(tex_curve_mean(cmf[k], lo, hi) * b->width / ynorm);
+            b->wxyz[i][k] = (float)(tex_curve_mean(cmf[k], lo, hi) * b->width / ynorm);
     }
     float d65[TEX_BANDS_MAX];
     if (tex_bands_light(b, &cm->d65, d65) < 0)
@@ -361,7 +360,7 @@ static inline void bands_xyz(const struct tex_bands *b, int n, const float *s, d
     for (int i = 0; i < n; i++) {
         f4 w;
         memcpy(&w, b->wxyz[i], sizeof w);
-        f4 p = w * s[i]; /* the float products s[i] * w[k][i] */
+        f4 p = w * s[i]; /* the float products s[i] * wxyz[i][k] */
         xy += __builtin_convertvector(__builtin_shufflevector(p, p, 0, 1), d2);
         z += p[2];
     }

@@ -107,8 +107,7 @@ struct tex_bands {
     int n;
     double width;                  /* nm */
     float centre[TEX_BANDS_MAX];   /* nm */
-    float w[3][TEX_BANDS_MAX];     /* CIE weights: XYZ = sum s_i w[.][i] */
-    float wxyz[TEX_BANDS_MAX][4];  /* the same by band: (w[0][i], w[1][i], w[2][i], 0) */
+    float wxyz[TEX_BANDS_MAX][4];  /* CIE weights by band: XYZ = sum s_i wxyz[i][.]; [3] 0 */
     float basis[3][TEX_BANDS_MAX]; /* RGB basis curves (blue, green, red) per band */
     double rgb2c[3][3];            /* M^-1: rgb -> basis weights (r, g, b order) */
     double xyz2rgb[3][3];          /* sRGB primaries, white = these bands' D65 */

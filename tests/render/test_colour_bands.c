@@ -119,7 +119,7 @@ static void bands(const tex_colorimetry *cm)
             double xyz[3], ref[3] = {0, 0, 0};
             for (int i = 0; i < b.n; i++)
                 for (int c = 0; c < 3; c++)
-                    ref[c] += s.v[i] * b.w[c][i];
+                    ref[c] += s.v[i] * b.wxyz[i][c];
             tex_bands_xyz(&b, s.v, xyz);
             bad[0] += !same(xyz, ref, sizeof xyz);
             double rgb[3] = {draw(), draw(), draw()};
